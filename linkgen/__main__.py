@@ -1,0 +1,3 @@
+from linkgen.cli import main
+
+main()

@@ -1,0 +1,55 @@
+"""The CSV column plan: inputs, then the chosen outputs, then status (generated-programs spec)."""
+
+from __future__ import annotations
+
+from .model import Mechanism
+from .steplog import Column
+
+_POINT = (("x", "x", "position"), ("y", "y", "position"), ("vx", "dx", "velocity"), ("vy", "dy", "velocity"),
+          ("ax", "ddx", "acceleration"), ("ay", "ddy", "acceleration"))
+_ANGLE = (("phi", "the", "angle"), ("omega", "dthe", "angular_velocity"), ("alpha", "ddthe", "angular_acceleration"))
+_SLIDE = (("s", "v", "position"), ("ds", "dv", "velocity"), ("dds", "ddv", "acceleration"))
+_PER_ORDER = {"point": 2, "angle": 1, "slide": 1}
+
+
+def _take(spec: tuple, per: int, order: int) -> tuple:
+    return spec[: per * (order + 1)]
+
+
+def plan(m: Mechanism, order: int, outputs: tuple[str, ...], positions: dict[str, str], angles: dict[str, str],
+         slides: dict[str, str], input_vars: list[str]) -> tuple[Column, ...]:
+    """Columns in the spec's order for the given outputs (empty: the default set)."""
+    cols = []
+    for inp, var in zip(m.inputs, input_vars):
+        field, quantity = ("the", "angle") if inp.kind == "revolute" else ("v", "position")
+        cols.append(Column(inp.column, var, field, quantity))
+
+    def point(name: str) -> None:
+        cols.extend(Column(f"{name}.{c}", positions[name], f, q) for c, f, q in _take(_POINT, 2, order))
+
+    def slide(name: str) -> None:
+        cols.extend(Column(f"{name}.{c}", slides[name], f, q) for c, f, q in _take(_SLIDE, 1, order))
+
+    def angle(name: str) -> None:
+        cols.extend(Column(f"{name}.{c}", angles[name], f, q) for c, f, q in _take(_ANGLE, 1, order))
+
+    prismatic = [j.name for j in m.joints if not j.revolute]
+    links = [lk.name for lk in m.links]
+    if not outputs:
+        for j in m.joints:
+            point(j.name)
+        for p in m.points:
+            point(p.name)
+        for name in links:
+            angle(name)
+        for name in prismatic:
+            slide(name)
+    else:
+        for name in outputs:
+            if name in links:
+                angle(name)
+            else:
+                point(name)
+                if name in prismatic:
+                    slide(name)
+    return tuple(cols)

@@ -1,0 +1,29 @@
+"""Errors a user can act on: each names the file, the line and the key."""
+
+from __future__ import annotations
+
+
+class LinkgenError(Exception):
+    """A problem with the user's input or request, reported as ``file:line: key: message``."""
+
+    def __init__(self, message: str, path: str = "", line: int = 0, key: str = ""):
+        super().__init__(message)
+        self.message = message
+        self.path = path
+        self.line = line
+        self.key = key
+
+    def __str__(self) -> str:
+        where = self.path
+        if self.line:
+            where = f"{where}:{self.line}"
+        parts = [p for p in (where, self.key) if p]
+        return ": ".join(parts + [self.message])
+
+
+class InputError(LinkgenError):
+    """The mechanism file is malformed or describes an impossible mechanism."""
+
+
+class ProcedureError(LinkgenError):
+    """No systematic-analysis procedure can be extracted for a valid mechanism."""

@@ -1,0 +1,321 @@
+"""Stage 6: evaluate a step log in-process.
+
+Mechanisms without Add-links are evaluated for all rows at once with numpy.
+Mechanisms with Add-links are evaluated row by row, exactly as the generated
+programs do: the same scalar primitives, the same Newton resolver, warm-started
+from the previous row and, from a cold start, continued from the sketch with
+halved input steps where a direct step fails.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field
+from importlib import resources
+
+import numpy as np
+
+from .primitives import PRIMITIVES, numpy_backend, python_backend
+from .primitives.dsl import record_fields
+from .steplog import ResolverGroup, Step, StepLog, Variable
+
+FAIL, NOT_CONVERGED, SINGULAR, NEAR = 1, 2, 3, 4
+
+
+def _record(kind: str, order: int, value: float, rate: float = 0.0, acc: float = 0.0, y: float = 0.0) -> tuple:
+    if kind == "POINT":
+        return (value, y, 0.0, 0.0, 0.0, 0.0)[: 2 * (order + 1)]
+    return (value, rate, acc)[: order + 1]
+
+
+def constant_record(v: Variable, order: int) -> tuple:
+    if v.kind == "POINT":
+        return _record("POINT", order, v.value[0], y=v.value[1])
+    return _record(v.kind, order, v.value[0])
+
+
+@functools.cache
+def _resolver_namespace() -> dict:
+    source = resources.files("linkgen.runtime.py").joinpath("resolver.py").read_text(encoding="utf-8")
+    ns: dict = {"sqrt": math.sqrt, "NAN": math.nan}
+    exec(compile(source, "<linkgen resolver>", "exec"), ns)
+    return ns
+
+
+def _scalar_call(order: int):
+    fns = python_backend(order)
+
+    def call(name: str, args: list) -> tuple[int, float, tuple]:
+        prim = PRIMITIVES[name]
+        res = fns[name](*args)
+        if prim.status is None:
+            return 0, 1.0, ((res,) if len(prim.outputs) == 1 else res)
+        if prim.sigma is None:
+            return res[0], 1.0, res[1:]
+        return res[0], res[1], res[2:]
+
+    return call
+
+
+def _numpy_call(order: int):
+    fns = numpy_backend(order)
+
+    def call(name: str, args: list) -> tuple:
+        st, sigma, *outs = fns[name](*args)
+        return st, sigma, tuple(outs)
+
+    return call
+
+
+def _args(step: Step, env: dict) -> list:
+    out = []
+    for a in step.args:
+        if a.kind == "var":
+            out.append(env[a.var])
+        elif a.kind == "int":
+            out.append(int(a.value))
+        else:
+            out.append(float(a.value))
+    return out
+
+
+def execute(steps, env: dict, call) -> dict[int, tuple]:
+    """Run runtime calls in order; returns {step number: (status, sigma)}."""
+    report = {}
+    for step in steps:
+        if not step.function:
+            continue
+        st, sigma, outs = call(step.function, _args(step, env))
+        for name, rec in zip(step.outputs, outs):
+            env[name] = rec
+        report[step.number] = (st, sigma)
+    return report
+
+
+class Codes:
+    """Row status from step reports: first failure, else first singular, else first near-singular."""
+
+    def __init__(self, rows: int):
+        self.fail = np.zeros(rows, dtype=int)
+        self.singular = np.zeros(rows, dtype=int)
+        self.near = np.zeros(rows, dtype=int)
+
+    def add(self, number: int, status) -> None:
+        st = np.asarray(status)
+        for target, codes in ((self.fail, (FAIL, NOT_CONVERGED)), (self.singular, (SINGULAR,)), (self.near, (NEAR,))):
+            hit = np.isin(st, codes) & (target == 0)
+            target[hit] = (10 * number + st * np.ones_like(target))[hit]
+
+    def status(self) -> np.ndarray:
+        return np.where(self.fail > 0, self.fail,
+                        np.where(self.singular > 0, self.singular, -np.where(self.near > 0, self.near, 0)))
+
+
+def input_rows(log: StepLog, samples: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    k = np.arange(samples, dtype=float)
+    values = np.stack([i.start + k * (i.stop - i.start) / (samples - 1) for i in log.inputs], axis=1)
+    rates = np.tile([i.speed for i in log.inputs], (samples, 1)).astype(float)
+    return values, rates, np.zeros_like(values)
+
+
+@dataclass
+class Result:
+    inputs: np.ndarray  # rows x inputs
+    values: dict[str, tuple]  # variable -> tuple of arrays (rows)
+    status: np.ndarray
+    sigma: dict[int, np.ndarray]  # step -> conditioning per row
+    iterations: dict[int, np.ndarray] = field(default_factory=dict)  # group -> Newton steps per row
+
+
+def _input_record(log: StepLog, i: int, order: int, value, rate, acc) -> tuple:
+    kind = "ANGLE" if log.inputs[i].kind == "revolute" else "VARIABLE"
+    return _record(kind, order, value, rate, acc)
+
+
+def _base_env(log: StepLog, order: int) -> dict:
+    return {v.name: constant_record(v, order) for v in log.variables if v.constant}
+
+
+def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarray, order: int | None = None) -> Result:
+    """Evaluate the procedure at rows of input values, rates and accelerations."""
+    order = log.order if order is None else order
+    if log.groups:
+        return _evaluate_rows(log, values, rates, accs, order)
+    env = _base_env(log, order)
+    for i, inp in enumerate(log.inputs):
+        env[inp.variable] = _input_record(log, i, order, values[:, i], rates[:, i], accs[:, i])
+    with np.errstate(all="ignore"):
+        report = execute(log.steps, env, _numpy_call(order))
+    return _finish(log, values, env, report, order)
+
+
+def _finish(log: StepLog, values: np.ndarray, env: dict, report: dict, order: int,
+            iterations: dict | None = None) -> Result:
+    rows = values.shape[0]
+    codes = Codes(rows)
+    for number in sorted(report):
+        codes.add(number, report[number][0])
+    status = codes.status()
+    out = {}
+    for name, rec in env.items():
+        out[name] = tuple(np.broadcast_to(np.asarray(x, dtype=float), (rows,)).copy() for x in rec)
+    sigma = {n: np.broadcast_to(np.asarray(s, dtype=float), (rows,)).copy() for n, (_, s) in report.items()}
+    return Result(values, out, status, sigma, iterations or {})
+
+
+def _pad(rec: tuple, kind: str, order: int, live: bool) -> tuple:
+    """A record at ``order``: missing derivative fields are zero, and all of them when not live."""
+    width = 2 if kind == "POINT" else 1
+    full = list(rec) + [0.0] * (width * (order + 1) - len(rec))
+    return tuple(x if live or i < width else 0.0 for i, x in enumerate(full[: width * (order + 1)]))
+
+
+@dataclass
+class Pass:
+    report: dict
+    env: dict
+    solutions: dict  # group -> Add-link lengths
+    iterations: dict  # group -> Newton steps
+    failed_group: int  # the group whose resolver failed (0: none)
+
+    @property
+    def ok(self) -> bool:
+        return not self.failed_group and all(st != FAIL for st, _ in self.report.values())
+
+
+class RowSolver:
+    """The generated programs' solve(): one row at a time, with warm starts."""
+
+    def __init__(self, log: StepLog, order: int):
+        self.log = log
+        self.order = order
+        self.ns = _resolver_namespace()
+        self.kinds = {v.name: v.kind for v in log.variables}
+        self.warm: tuple[tuple[float, ...], dict[int, list[float]]] | None = None
+        sketch = {a.name: a.length for a in log.add_links}
+        self.sketch_a = {g.number: [sketch[a] for a in g.add_links] for g in log.groups}
+        self.sketch_in = tuple(i.sketch for i in log.inputs)
+        self.halvings = max(g.max_halvings for g in log.groups)
+
+    def run(self, values, rates, accs, order: int, start: dict[int, list[float]]) -> Pass:
+        """One pass of the whole procedure, each resolver started from ``start``."""
+        call = _scalar_call(order)
+        env = _base_env(self.log, order)
+        for i, inp in enumerate(self.log.inputs):
+            env[inp.variable] = _input_record(self.log, i, order, values[i], rates[i], accs[i])
+        out = Pass({}, env, {}, {}, 0)
+        groups = {g.step: g for g in self.log.groups}
+        inside = {n for g in self.log.groups for n in g.steps}
+        for step in self.log.steps:
+            if step.action == "resolve":
+                g = groups[step.number]
+                if not self.resolve(g, out, order, start[g.number]):
+                    out.report[step.number] = (NOT_CONVERGED, 0.0)
+                    out.failed_group = g.number
+                    return out
+            elif step.function and step.number not in inside:
+                out.report.update(execute([step], env, call))
+                if out.report[step.number][0] == FAIL:
+                    return out
+        return out
+
+    def resolve(self, g: ResolverGroup, out: Pass, order: int, a0: list[float]) -> bool:
+        """Newton on the group's Add-links (velocity channel at least, for the Jacobian)."""
+        env = out.env
+        inner = max(order, 1)
+        call = _scalar_call(inner)
+        steps = [self.log.step(n) for n in g.steps]
+        inner_vars = set(g.writes) | set(g.add_links)
+        reads = {a.var: env[a.var] for st in steps for a in st.args if a.kind == "var" and a.var not in inner_vars}
+        last: dict[int, tuple] = {}
+
+        def group(a, live):
+            for name, rec in reads.items():
+                env[name] = _pad(rec, self.kinds[name], inner, live)
+            for name, rec in zip(g.add_links, a):
+                env[name] = tuple(rec[: inner + 1])
+            last.clear()
+            last.update(execute(steps, env, call))
+            bad = any(st == FAIL for st, _ in last.values())
+            return (1 if bad else 0), [env[f] for f in g.residuals]
+
+        ok, a, its, jac = self.ns["newton"](group, list(a0), g.tolerance * self.log.length_scale, g.max_iterations)
+        if not ok:
+            return False
+        st, sigma, rates, accs = self.ns["addlink_rates"](group, a, jac, order)
+        width = {"POINT": 2}
+        for name in list(g.writes) + list(g.add_links) + list(reads):
+            env[name] = env[name][: width.get(self.kinds[name], 1) * (order + 1)]
+        for name, v, r, c in zip(g.add_links, a, rates, accs):
+            env[name] = (v, r, c)[: order + 1]
+        out.report.update(last)
+        out.report[g.step] = (SINGULAR if sigma < 1e-7 else NEAR if sigma < 1e-3 else 0, sigma)
+        out.solutions[g.number], out.iterations[g.number] = a, its
+        return True
+
+    def solve(self, values, rates, accs) -> Pass:
+        """Solve one row, following the sketch's assembly continuously from the warm start."""
+        base_in, base_a = self.warm if self.warm is not None else (self.sketch_in, self.sketch_a)
+        out = self.run(values, rates, accs, self.order, base_a)
+        if not out.failed_group:
+            if out.ok:
+                self.warm = (tuple(values), out.solutions)
+            return out
+        # continuation: walk from the warm start to the target, halving the step where it fails
+        t, dt, a = 0.0, 0.5, base_a
+        zeros = [0.0] * len(values)
+        while t < 1.0:
+            tt = min(1.0, t + dt)
+            trial = [b + tt * (v - b) for b, v in zip(base_in, values)] if tt < 1.0 else list(values)
+            step = self.run(trial, zeros, zeros, 0, a)
+            if step.ok:
+                t, a, dt = tt, step.solutions, dt * 2
+            else:
+                dt /= 2
+                if dt < 2.0 ** -self.halvings:
+                    return out
+        out = self.run(values, rates, accs, self.order, a)
+        if out.ok:
+            self.warm = (tuple(values), out.solutions)
+        return out
+
+
+def _evaluate_rows(log: StepLog, values, rates, accs, order: int) -> Result:
+    solver = RowSolver(log, order)
+    rows = values.shape[0]
+    envs, reports, its = [], [], {g.number: np.zeros(rows, dtype=int) for g in log.groups}
+    for r in range(rows):
+        row = solver.solve(values[r], rates[r], accs[r])
+        envs.append(row.env)
+        reports.append(row.report)
+        for g, n in row.iterations.items():
+            its[g][r] = n
+    names = {n for env in envs for n in env}
+    nan = {v.name: (math.nan,) * len(record_fields(v.kind, order)) for v in log.variables}
+    env = {}
+    for name in sorted(names):
+        recs = [e.get(name, nan[name]) for e in envs]
+        env[name] = tuple(np.array([rec[i] for rec in recs], dtype=float) for i in range(len(nan[name])))
+    numbers = {n for rep in reports for n in rep}
+    report = {
+        n: (np.array([rep.get(n, (0, math.nan))[0] for rep in reports]),
+            np.array([rep.get(n, (0, math.nan))[1] for rep in reports], dtype=float))
+        for n in sorted(numbers)
+    }
+    return _finish(log, values, env, report, order, its)
+
+
+def residual_norm(variables: dict[str, Variable], steps: list[Step], inputs: list[str], values: tuple[float, ...],
+                  residuals: list[str]) -> float | None:
+    """|f| with every Add-link at its sketch length (the paper's ranking of candidates)."""
+    env = {v.name: constant_record(v, 0) for v in variables.values() if v.constant}
+    for name, value in zip(inputs, values):
+        env[name] = (value,)
+    for v in variables.values():
+        if v.role == "addlink":
+            env[v.name] = (v.sketch[0],)
+    report = execute(steps, env, _scalar_call(0))
+    if any(st == FAIL for st, _ in report.values()):
+        return None
+    return math.sqrt(sum(env[f][0] ** 2 for f in residuals))

@@ -1,0 +1,90 @@
+"""The stages in order: file -> Mechanism -> Topology -> Procedure -> StepLog."""
+
+from __future__ import annotations
+
+
+from . import __version__
+from .columns import plan
+from .evaluate import residual_norm
+from .model import Mechanism
+from .procedure import Extractor, Procedure, extract
+from .steplog import InputInfo, LinkInfo, PairInfo, StatusCode, StepLog
+from .topology import Topology, analyse
+from .validate import read_mechanism
+
+_REASONS = {1: "the chain cannot close", 2: "the resolver did not converge", 3: "singular position",
+            4: "near a singular position"}
+
+
+def _norm(ex: Extractor, probe: tuple[float, ...]) -> float | None:
+    group = ex.groups[-1]
+    return residual_norm(ex.variables, ex.steps, ex.inputs, probe, group.residuals)
+
+
+def _status_codes(proc: Procedure) -> tuple[StatusCode, ...]:
+    out = []
+    for s in proc.steps:
+        if not s.fails:
+            continue
+        if s.action == "resolve":
+            reasons = (2, 3, 4)
+        elif s.action == "residual":
+            reasons = (3,)
+        elif s.function == "link_angle":
+            reasons = (1,)
+        elif s.function in ("PRP_links", "PPR_links"):
+            reasons = (1, 3, 4)
+        else:
+            reasons = (1, 3, 4)
+        for r in reasons:
+            code = 10 * s.number + r
+            out.append(StatusCode(-code if r == 4 else code, s.number, f"step {s.number}: {_REASONS[r]}"))
+    return tuple(out)
+
+
+def steplog(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = None,
+            order: int | None = None) -> StepLog:
+    m = topo.mechanism
+    order = m.order if order is None else order
+    outputs = m.outputs if outputs is None else outputs
+    input_vars = [v.name for v in proc.variables if v.role == "input"]
+    pairs = tuple(
+        PairInfo(j.name, j.kind, j.x, j.y, j.axis, tuple(lk.name for lk in m.links_of(j.name)),
+                 "" if j.revolute else m.prismatic_of(j.name).guide,
+                 "" if j.revolute else m.prismatic_of(j.name).slider)
+        for j in m.joints
+    )
+    links = tuple(
+        LinkInfo(lk.name, lk.fixed, lk.joints, tuple(p.name for p in lk.points),
+                 tuple((mb.a, mb.b, mb.length) for mb in topo.members if mb.link == lk.name and mb.b),
+                 (topo.direction(lk.name).origin, topo.direction(lk.name).target or topo.direction(lk.name).axis_of),
+                 topo.direction(lk.name).angle)
+        for lk in m.links
+    )
+    inputs = tuple(
+        InputInfo(i.index, i.kind, i.column, i.joint, i.link, i.relative_to, i.between, i.start, i.stop, i.speed,
+                  s, v)
+        for i, s, v in zip(m.inputs, topo.sketch_inputs, input_vars)
+    )
+    runtime = sorted({s.function for s in proc.steps if s.function} | ({"resolver"} if proc.groups else set()))
+    return StepLog(
+        __version__, m.name, m.title, m.source, m.length_unit, m.angle_unit, topo.length_scale, topo.grubler,
+        topo.mobility, topo.redundant, order, m.samples, pairs, links, inputs, proc.variables, proc.steps,
+        proc.lj, proc.add_links, proc.residuals, proc.groups,
+        plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars),
+        _status_codes(proc), tuple(runtime),
+    )
+
+
+def analyse_file(path: str) -> tuple[Mechanism, Topology, Procedure]:
+    m = read_mechanism(path)
+    topo = analyse(m)
+    return m, topo, extract(topo, _norm)
+
+
+def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | None = None) -> StepLog:
+    _, topo, proc = analyse_file(path)
+    return steplog(topo, proc, outputs, order)
+
+
+

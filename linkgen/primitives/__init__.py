@@ -1,0 +1,44 @@
+"""The mech.cpp-shaped runtime library: one DSL definition per function, printed per language."""
+
+from __future__ import annotations
+
+import functools
+import linecache
+import math
+import sys
+from collections.abc import Callable
+
+import numpy as np
+
+from .library import PRIMITIVES
+from .printers import numpy_function, python_function
+
+__all__ = ["PRIMITIVES", "python_backend", "numpy_backend"]
+
+
+def _compile(source: str, filename: str, namespace: dict) -> dict:
+    """Exec generated source under a fake file name so tracebacks show it."""
+    linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
+    exec(compile(source, filename, "exec"), namespace)
+    return namespace
+
+
+@functools.cache
+def python_backend(order: int = 2) -> dict[str, Callable]:
+    """Scalar functions on tuples of floats, with sigma (what generated Python runs)."""
+    source = "\n\n".join(python_function(p, order, with_sigma=True) for p in PRIMITIVES.values())
+    ns = {
+        "sqrt": math.sqrt, "hypot": math.hypot, "atan2": math.atan2, "cos": math.cos,
+        "sin": math.sin, "EPS": sys.float_info.epsilon, "NAN": math.nan, "PI": math.pi,
+    }
+    _compile(source, f"<linkgen runtime python order {order}>", ns)
+    return {name: ns[name] for name in PRIMITIVES}
+
+
+@functools.cache
+def numpy_backend(order: int = 2) -> dict[str, Callable]:
+    """Vectorised functions on tuples of arrays, returning (status, sigma, outputs...)."""
+    source = "\n\n".join(numpy_function(p, order) for p in PRIMITIVES.values())
+    ns = {"np": np, "EPS": float(np.finfo(float).eps), "NAN": np.nan, "PI": np.pi}
+    _compile(source, f"<linkgen runtime numpy order {order}>", ns)
+    return {name: ns[name] for name in PRIMITIVES}

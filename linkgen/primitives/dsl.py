@@ -1,0 +1,366 @@
+"""A tiny straight-line language in which every runtime primitive is written once.
+
+Each primitive (``RRR_links``, ``crank_input``, ...) is a list of scalar assignments
+over the fields of its record arguments.  Printers turn that one definition into
+Python (``math``), NumPy (the evaluator), C99 and MATLAB/Octave, and ``to_sympy``
+turns it into sympy expressions so the tests can prove the derivative formulas.
+
+Every assignment carries the derivative order it belongs to (0 displacement,
+1 velocity, 2 acceleration) so a program built for a lower order contains none
+of the higher-order code.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+# Record kinds and their scalar fields, by derivative order (mech.cpp's POINT,
+# ANGLE and VARIABLE records).
+RECORD_FIELDS: dict[str, tuple[tuple[str, ...], ...]] = {
+    "POINT": (("x", "y"), ("dx", "dy"), ("ddx", "ddy")),
+    "ANGLE": (("the",), ("dthe",), ("ddthe",)),
+    "VARIABLE": (("v",), ("dv",), ("ddv",)),
+}
+SCALAR_KINDS = ("REAL", "INT")
+
+
+def record_fields(kind: str, order: int) -> tuple[str, ...]:
+    """The scalar fields of a record kind up to a derivative order."""
+    return tuple(f for level in RECORD_FIELDS[kind][: order + 1] for f in level)
+
+
+def field_order(kind: str, name: str) -> int:
+    """The derivative order of one field of a record kind."""
+    for level, names in enumerate(RECORD_FIELDS[kind]):
+        if name in names:
+            return level
+    raise KeyError(f"{kind} has no field {name}")
+
+
+class Expr:
+    """An expression node; Python operators build new nodes."""
+
+    def __add__(self, other: object) -> Expr:
+        return Bin("+", self, wrap(other))
+
+    def __radd__(self, other: object) -> Expr:
+        return Bin("+", wrap(other), self)
+
+    def __sub__(self, other: object) -> Expr:
+        return Bin("-", self, wrap(other))
+
+    def __rsub__(self, other: object) -> Expr:
+        return Bin("-", wrap(other), self)
+
+    def __mul__(self, other: object) -> Expr:
+        return Bin("*", self, wrap(other))
+
+    def __rmul__(self, other: object) -> Expr:
+        return Bin("*", wrap(other), self)
+
+    def __truediv__(self, other: object) -> Expr:
+        return Bin("/", self, wrap(other))
+
+    def __rtruediv__(self, other: object) -> Expr:
+        return Bin("/", wrap(other), self)
+
+    def __neg__(self) -> Expr:
+        return Neg(self)
+
+    def __lt__(self, other: object) -> Expr:
+        return Cmp("<", self, wrap(other))
+
+    def __le__(self, other: object) -> Expr:
+        return Cmp("<=", self, wrap(other))
+
+    def __gt__(self, other: object) -> Expr:
+        return Cmp(">", self, wrap(other))
+
+    def __ge__(self, other: object) -> Expr:
+        return Cmp(">=", self, wrap(other))
+
+    def eq(self, other: object) -> Expr:
+        return Cmp("==", self, wrap(other))
+
+
+@dataclass(frozen=True, eq=False)
+class Sym(Expr):
+    name: str
+
+
+@dataclass(frozen=True, eq=False)
+class Num(Expr):
+    value: float | int
+
+
+@dataclass(frozen=True, eq=False)
+class Const(Expr):
+    """A named mathematical constant: ``eps`` (machine epsilon), ``nan``, ``pi``."""
+
+    name: str
+
+
+@dataclass(frozen=True, eq=False)
+class Bin(Expr):
+    op: str
+    a: Expr
+    b: Expr
+
+
+@dataclass(frozen=True, eq=False)
+class Neg(Expr):
+    a: Expr
+
+
+@dataclass(frozen=True, eq=False)
+class Call(Expr):
+    """A math function: sqrt, hypot, atan2, cos, sin, abs, max, min."""
+
+    fn: str
+    args: tuple[Expr, ...]
+
+
+@dataclass(frozen=True, eq=False)
+class Cmp(Expr):
+    op: str
+    a: Expr
+    b: Expr
+
+
+@dataclass(frozen=True, eq=False)
+class Logic(Expr):
+    op: str  # "and" | "or"
+    a: Expr
+    b: Expr
+
+
+@dataclass(frozen=True, eq=False)
+class Select(Expr):
+    """``a`` where ``cond`` holds, else ``b``."""
+
+    cond: Expr
+    a: Expr
+    b: Expr
+
+
+def wrap(value: object) -> Expr:
+    if isinstance(value, Expr):
+        return value
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise TypeError(f"cannot use {value!r} in an expression")
+    return Num(value)
+
+
+def sqrt(a: Expr) -> Expr:
+    return Call("sqrt", (a,))
+
+
+def hypot(a: Expr, b: Expr) -> Expr:
+    return Call("hypot", (a, b))
+
+
+def atan2(y: Expr, x: Expr) -> Expr:
+    return Call("atan2", (y, x))
+
+
+def cos(a: Expr) -> Expr:
+    return Call("cos", (a,))
+
+
+def sin(a: Expr) -> Expr:
+    return Call("sin", (a,))
+
+
+def fabs(a: Expr) -> Expr:
+    return Call("abs", (a,))
+
+
+def fmax(a: object, b: object) -> Expr:
+    return Call("max", (wrap(a), wrap(b)))
+
+
+def fmin(a: object, b: object) -> Expr:
+    return Call("min", (wrap(a), wrap(b)))
+
+
+def both(a: Expr, b: Expr) -> Expr:
+    return Logic("and", a, b)
+
+
+def either(a: Expr, b: Expr) -> Expr:
+    return Logic("or", a, b)
+
+
+def select(cond: Expr, a: object, b: object) -> Expr:
+    return Select(cond, wrap(a), wrap(b))
+
+
+EPS = Const("eps")
+NAN = Const("nan")
+PI = Const("pi")
+
+
+@dataclass(frozen=True)
+class Param:
+    name: str
+    kind: str  # a RECORD_FIELDS key or a SCALAR_KINDS entry
+
+    @property
+    def is_record(self) -> bool:
+        return self.kind in RECORD_FIELDS
+
+
+class Record:
+    """A record argument seen from inside a primitive: ``j1.x``, ``j1.dx``, ..."""
+
+    def __init__(self, name: str, kind: str):
+        self._name = name
+        self._kind = kind
+
+    def __getattr__(self, fieldname: str) -> Sym:
+        if fieldname.startswith("_"):
+            raise AttributeError(fieldname)
+        field_order(self._kind, fieldname)  # raises on a wrong field
+        return Sym(f"{self._name}_{fieldname}")
+
+
+@dataclass(frozen=True)
+class Let:
+    name: str
+    expr: Expr
+    order: int
+
+
+def children(e: Expr) -> tuple[Expr, ...]:
+    if isinstance(e, (Bin, Cmp, Logic)):
+        return (e.a, e.b)
+    if isinstance(e, Neg):
+        return (e.a,)
+    if isinstance(e, Call):
+        return e.args
+    if isinstance(e, Select):
+        return (e.cond, e.a, e.b)
+    return ()
+
+
+def symbols(e: Expr) -> set[str]:
+    """Names of the symbols an expression reads."""
+    if isinstance(e, Sym):
+        return {e.name}
+    out: set[str] = set()
+    for c in children(e):
+        out |= symbols(c)
+    return out
+
+
+@dataclass(frozen=True)
+class Primitive:
+    """One runtime function: parameters, straight-line body, record outputs.
+
+    ``results`` maps each output record to its fields' expressions.  ``status``
+    is 0 (done), 1 (the chain cannot close: every output nan), 3 (singular:
+    displacements valid, derivatives nan) or 4 (near singular: values valid);
+    None when the function cannot fail.  ``sigma`` is the dimensionless
+    conditioning reported with the status (None when there is none).
+    """
+
+    name: str
+    doc: str
+    params: tuple[Param, ...]
+    outputs: tuple[Param, ...]
+    body: tuple[Let, ...]
+    results: dict[str, dict[str, Expr]] = field(hash=False)
+    status: Expr | None = None
+    sigma: Expr | None = None
+
+    def result_fields(self, order: int) -> list[tuple[Param, str, Expr]]:
+        """(output, field, expression) for every output field up to ``order``."""
+        return [
+            (out, f, self.results[out.name][f])
+            for out in self.outputs
+            for f in record_fields(out.kind, order)
+        ]
+
+    def live(self, order: int, with_sigma: bool = True) -> tuple[Let, ...]:
+        """The assignments needed for the outputs up to ``order`` (dead code dropped)."""
+        roots = [e for _, _, e in self.result_fields(order)]
+        roots += [e for e in (self.status, self.sigma if with_sigma else None) if e is not None]
+        needed: set[str] = set()
+        for e in roots:
+            needed |= symbols(e)
+        kept = []
+        for let in reversed(self.body):
+            if let.name in needed:
+                kept.append(let)
+                needed |= symbols(let.expr)
+        return tuple(reversed(kept))
+
+    def params_used(self, order: int, with_sigma: bool = True) -> set[str]:
+        """Parameter fields (``j1_x``) and scalars read at ``order``."""
+        used: set[str] = set()
+        for let in self.live(order, with_sigma):
+            used |= symbols(let.expr)
+        for e in [e for _, _, e in self.result_fields(order)] + [self.status, self.sigma]:
+            if e is not None:
+                used |= symbols(e)
+        return used
+
+
+class Builder:
+    """Collects the statements of one primitive in the order they are written.
+
+    The derivative order of each assignment is inferred from what it reads.
+    """
+
+    def __init__(self, name: str, doc: str):
+        self.name = name
+        self.doc = doc
+        self.params: list[Param] = []
+        self.outputs: list[Param] = []
+        self.body: list[Let] = []
+        self.results: dict[str, dict[str, Expr]] = {}
+        self._orders: dict[str, int] = {}
+
+    def record(self, name: str, kind: str) -> Record:
+        self.params.append(Param(name, kind))
+        for f in record_fields(kind, 2):
+            self._orders[f"{name}_{f}"] = field_order(kind, f)
+        return Record(name, kind)
+
+    def scalar(self, name: str, kind: str = "REAL") -> Sym:
+        self.params.append(Param(name, kind))
+        self._orders[name] = 0
+        return Sym(name)
+
+    def order_of(self, e: Expr) -> int:
+        return max((self._orders[s] for s in symbols(e)), default=0)
+
+    def let(self, name: str, expr: object) -> Sym:
+        if name in self._orders:
+            raise ValueError(f"{self.name}: {name} assigned twice")
+        e = wrap(expr)
+        order = self.order_of(e)
+        self.body.append(Let(name, e, order))
+        self._orders[name] = order
+        return Sym(name)
+
+    def output(self, name: str, kind: str, **fields: Expr) -> None:
+        self.outputs.append(Param(name, kind))
+        self.results[name] = {k: wrap(v) for k, v in fields.items()}
+
+    def build(self, status: Expr | None = None, sigma: Expr | None = None) -> Primitive:
+        for out in self.outputs:
+            wanted = set(record_fields(out.kind, 2))
+            got = self.results[out.name]
+            if set(got) != wanted:
+                raise ValueError(f"{self.name}: output {out.name} needs fields {sorted(wanted)}")
+            for f, e in got.items():
+                if self.order_of(e) > field_order(out.kind, f):
+                    raise ValueError(f"{self.name}: {out.name}.{f} reads a higher derivative")
+        for e in (status, sigma):
+            if e is not None and self.order_of(e) > 0:
+                raise ValueError(f"{self.name}: status and sigma must come from displacements")
+        return Primitive(
+            self.name, self.doc, tuple(self.params), tuple(self.outputs), tuple(self.body),
+            self.results, status, sigma,
+        )

@@ -1,0 +1,102 @@
+# Over-constraint resolver: Newton-Raphson on the Add-link lengths.
+# group(a, live) runs the steps of one resolver group with the Add-link records
+# a = [(length, rate, acc), ...] and returns (status, f) with f the residual
+# records; live=False zeroes the rates of everything the group reads, so a
+# unit Add-link rate gives one exact Jacobian column through the velocity channel.
+
+
+def solve_linear(m, b):
+    """Solve m x = b by Gaussian elimination with partial pivoting; return (x, det)."""
+    n = len(b)
+    a = [list(row) + [b[i]] for i, row in enumerate(m)]
+    det = 1.0
+    for c in range(n):
+        p = max(range(c, n), key=lambda r: abs(a[r][c]))
+        if a[p][c] == 0.0:
+            return [NAN] * n, 0.0
+        if p != c:
+            a[c], a[p] = a[p], a[c]
+            det = -det
+        det *= a[c][c]
+        for r in range(c + 1, n):
+            k = a[r][c] / a[c][c]
+            for j in range(c, n + 1):
+                a[r][j] -= k * a[c][j]
+    x = [0.0] * n
+    for r in range(n - 1, -1, -1):
+        x[r] = (a[r][n] - sum(a[r][j] * x[j] for j in range(r + 1, n))) / a[r][r]
+    return x, det
+
+
+def _jacobian(group, a):
+    """Residuals and Jacobian at a (one pass per Add-link); None when a chain cannot close."""
+    n = len(a)
+    jac = [[0.0] * n for _ in range(n)]
+    f = None
+    for j in range(n):
+        st, rec = group([(a[i], 1.0 if i == j else 0.0, 0.0) for i in range(n)], False)
+        if st:
+            return None, None
+        f = [r[0] for r in rec]
+        for i in range(n):
+            jac[i][j] = rec[i][1]
+    return f, jac
+
+
+def conditioning(jac, det):
+    """|det J| over the product of its column norms (at least 1): 1 is ideal, 0 singular."""
+    prod = 1.0
+    for j in range(len(jac)):
+        prod *= sqrt(sum(row[j] * row[j] for row in jac))
+    return abs(det) / max(prod, 1.0)
+
+
+def newton(group, a, tol, max_iter):
+    """Iterate the Add-link lengths until max|f| <= tol, then one step more.
+
+    Returns (ok, a, iterations, jac) with jac the Jacobian at the returned a.
+    A step that makes a chain fail to close is halved (up to 8 times).
+    """
+    f, jac = _jacobian(group, a)
+    if f is None:
+        return False, a, 0, None
+    for it in range(1, max_iter + 1):
+        dx, det = solve_linear(jac, [-v for v in f])
+        if det == 0.0:
+            return False, a, it, None
+        t = 1.0
+        for _ in range(9):
+            trial = [a[i] + t * dx[i] for i in range(len(a))]
+            f2, jac2 = _jacobian(group, trial)
+            if f2 is not None:
+                break
+            t /= 2
+        else:
+            return False, a, it, None
+        done = max(abs(v) for v in f) <= tol
+        a, f, jac = trial, f2, jac2
+        if done:
+            return True, a, it, jac
+    return False, a, max_iter, None
+
+
+def addlink_rates(group, a, jac, order):
+    """Exact Add-link rates by the implicit-function theorem, then the final pass.
+
+    J adot = -df/dt|adot=0 and J addot = -d2f/dt2|addot=0 with the same J;
+    returns (status, sigma) of the final pass and the Jacobian.
+    """
+    n = len(a)
+    rates, accs = [0.0] * n, [0.0] * n
+    _, det = solve_linear(jac, [0.0] * n)
+    sigma = conditioning(jac, det)
+    if order >= 1 and det != 0.0:
+        st, rec = group([(a[i], 0.0, 0.0) for i in range(n)], True)
+        rates, _ = solve_linear(jac, [-r[1] for r in rec])
+        if order >= 2:
+            st, rec = group([(a[i], rates[i], 0.0) for i in range(n)], True)
+            accs, _ = solve_linear(jac, [-r[2] for r in rec])
+    elif order >= 1:
+        rates, accs = [NAN] * n, [NAN] * n
+    st, _ = group([(a[i], rates[i], accs[i]) for i in range(n)], True)
+    return st, sigma, rates, accs

@@ -1,0 +1,231 @@
+"""Stage 5 types: the step log, a plain serialisable record of every decision.
+
+Templates and the evaluator read nothing else.  Only builtins cross this
+boundary (str, int, float, bool, tuples of them); ``to_json`` writes it
+deterministically.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, fields
+
+
+@dataclass(frozen=True)
+class Variable:
+    """A record in the generated code: a pair's motion, a link angle, a slider displacement.
+
+    ``value`` holds the displacement fields of a constant record (its derivatives
+    are zero); computed records have ``value == ()``.  ``sketch`` holds the
+    displacement fields at the sketch, which every local coordinate refers to.
+    """
+
+    name: str
+    kind: str  # POINT | ANGLE | VARIABLE
+    role: str  # pair | point | link | line | guide | slide | input | reference | length | addlink | residual
+    entity: str  # the pair, point, link or input it belongs to
+    value: tuple[float, ...]
+    sketch: tuple[float, ...]
+
+    @property
+    def constant(self) -> bool:
+        return bool(self.value)
+
+
+@dataclass(frozen=True)
+class Arg:
+    """One argument of a runtime call: a variable, a real constant or an integer flag."""
+
+    kind: str  # var | real | int
+    var: str = ""
+    value: float = 0.0
+    label: str = ""  # what a constant means, for comments: "gsi", "l1", ...
+
+
+@dataclass(frozen=True)
+class Step:
+    number: int
+    action: str  # fixed | input | chain | point | angle | line | add_link | residual | resolve
+    function: str  # runtime function called ("" for fixed, add_link, resolve)
+    args: tuple[Arg, ...]
+    outputs: tuple[str, ...]  # variables written, in the function's output order
+    target: str  # what the step determines (pair, point, link, line or Add-link)
+    chain: str  # RRR | RRP | PRP | RPR | PPR for two-link chains
+    pairs: tuple[str, ...]  # known pairs (or lines) read
+    links: tuple[str, ...]  # links (truss members) used
+    branch: int  # +1 / -1 for chains with two assemblies, 0 otherwise
+    reason: str  # one sentence: why this is computable now
+    branch_reason: str
+    determines: tuple[str, ...]  # pairs that become known (their LJ entries turn negative)
+    group: int  # resolver group the step is iterated in (0: none)
+    fails: bool  # the function reports a status
+
+    @property
+    def status_base(self) -> int:
+        return 10 * self.number
+
+
+@dataclass(frozen=True)
+class Candidate:
+    pairs: tuple[str, str]  # (known pair, unknown pair)
+    norm: float | None  # |f| at the probe input, None when a chain cannot close there
+    usable: bool  # the Solver completes its group with it
+
+
+@dataclass(frozen=True)
+class AddLink:
+    name: str  # LJ column and variable: add1, add2, ...
+    pairs: tuple[str, str]
+    length: float  # in the sketch: the resolver's first start value
+    step: int
+    candidates: tuple[Candidate, ...]  # ranked: usable first, then by norm, then as enumerated
+    probe: tuple[float, ...]  # the input values at which the norms were computed
+
+
+@dataclass(frozen=True)
+class Residual:
+    name: str  # variable f1, f2, ...
+    link: str  # the link (or actuator) the Solver did not use
+    pairs: tuple[str, str]
+    length: str  # VARIABLE record it must equal
+    step: int
+
+
+@dataclass(frozen=True)
+class ResolverGroup:
+    """Newton-Raphson on Add-link lengths until every unused link regains its length."""
+
+    number: int
+    step: int  # the resolve step
+    strategy: str  # "newton-addlink"
+    add_links: tuple[str, ...]
+    residuals: tuple[str, ...]
+    steps: tuple[int, ...]  # steps iterated, in order
+    reads: tuple[str, ...]  # variables computed before the group that it reads
+    writes: tuple[str, ...]  # variables the group computes
+    tolerance: float  # relative to the length scale
+    max_iterations: int
+    max_halvings: int  # continuation: how often an input step may be halved
+
+
+@dataclass(frozen=True)
+class LJColumn:
+    name: str
+    kind: str  # member | input | actuator | addlink
+    pairs: tuple[str, ...]
+    link: str
+
+
+@dataclass(frozen=True)
+class LJMatrix:
+    """Rows pairs, columns links (after rule i/ii); states after each step are
+    derived from each step's ``determines`` and the Add-link steps' new columns."""
+
+    rows: tuple[str, ...]
+    prismatic: tuple[bool, ...]
+    columns: tuple[LJColumn, ...]
+    known: tuple[str, ...]  # pairs known before step 1
+
+
+@dataclass(frozen=True)
+class Column:
+    """One CSV column: ``variable``'s ``field`` (x, y, dx, the, v, ...)."""
+
+    name: str
+    variable: str
+    field: str
+    quantity: str  # position | velocity | acceleration | angle | angular_velocity | angular_acceleration
+
+
+@dataclass(frozen=True)
+class PairInfo:
+    name: str
+    kind: str
+    x: float
+    y: float
+    axis: float
+    links: tuple[str, ...]
+    guide: str
+    slider: str
+
+
+@dataclass(frozen=True)
+class LinkInfo:
+    name: str
+    fixed: bool
+    pairs: tuple[str, ...]
+    points: tuple[str, ...]
+    lengths: tuple[tuple[str, str, float], ...]  # truss members
+    direction: tuple[str, str]  # (origin, target); target "" when it is a prismatic axis
+    angle: float
+
+
+@dataclass(frozen=True)
+class InputInfo:
+    index: int
+    kind: str
+    column: str
+    joint: str
+    link: str
+    relative_to: str
+    between: tuple[str, ...]
+    start: float
+    stop: float
+    speed: float
+    sketch: float
+    variable: str
+
+
+@dataclass(frozen=True)
+class StatusCode:
+    code: int
+    step: int
+    meaning: str
+
+
+@dataclass(frozen=True)
+class StepLog:
+    linkgen_version: str
+    name: str
+    title: str
+    source: str
+    length_unit: str
+    angle_unit: str
+    length_scale: float
+    grubler: int
+    mobility: int
+    redundant: int
+    order: int
+    samples: int
+    pairs: tuple[PairInfo, ...]
+    links: tuple[LinkInfo, ...]
+    inputs: tuple[InputInfo, ...]
+    variables: tuple[Variable, ...]
+    steps: tuple[Step, ...]
+    lj: LJMatrix
+    add_links: tuple[AddLink, ...]
+    residuals: tuple[Residual, ...]
+    groups: tuple[ResolverGroup, ...]
+    columns: tuple[Column, ...]
+    status_codes: tuple[StatusCode, ...]
+    runtime: tuple[str, ...]
+
+    def variable(self, name: str) -> Variable:
+        return next(v for v in self.variables if v.name == name)
+
+    def step(self, number: int) -> Step:
+        return self.steps[number - 1]
+
+    def to_json(self) -> str:
+        return json.dumps(_plain(self), indent=2, allow_nan=False, ensure_ascii=False) + "\n"
+
+
+def _plain(obj: object) -> object:
+    if hasattr(obj, "__dataclass_fields__"):
+        return {f.name: _plain(getattr(obj, f.name)) for f in fields(obj)}  # type: ignore[arg-type]
+    if isinstance(obj, tuple):
+        return [_plain(x) for x in obj]
+    if obj is None or isinstance(obj, (str, int, float, bool)):
+        return obj
+    raise TypeError(f"{type(obj).__name__} is not allowed in the step log")
+

@@ -1,0 +1,260 @@
+"""Stage 3: the mechanism's structure and sketch geometry.
+
+Multi-pair links become trusses of binary members (the paper's rule i), compound
+hinges are one pair on several links (rule iii), each link gets the direction
+that defines its angle, each input its sketch value, and the mobility is found
+both by Grübler's count and by the rank of the constraint Jacobian at the sketch
+(which sees redundant constraints such as an exactly drawn parallelogram).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import InputError
+from .model import Input, Link, Mechanism
+
+RANK_TOLERANCE = 1e-9  # relative, as the format specifies
+
+
+@dataclass(frozen=True)
+class Member:
+    """A binary link of the truss that replaces a link: two pairs at a fixed distance."""
+
+    link: str
+    a: str
+    b: str
+    length: float
+
+    @property
+    def label(self) -> str:
+        return f"{self.link}:{self.a}-{self.b}"
+
+
+@dataclass(frozen=True)
+class Direction:
+    """How a link's angle is measured: from pair/point ``origin`` towards ``target``,
+    or along the axis of the prismatic pair ``axis_of`` when all its points coincide."""
+
+    origin: str
+    target: str
+    axis_of: str
+    angle: float  # in the sketch
+
+
+@dataclass(frozen=True)
+class Topology:
+    mechanism: Mechanism
+    length_scale: float
+    grubler: int
+    mobility: int
+    redundant: int
+    members: tuple[Member, ...]
+    directions: tuple[Direction, ...]  # per link, in links order
+    sketch_inputs: tuple[float, ...]  # per input, in its units (radians or length)
+
+    def position(self, name: str) -> tuple[float, float]:
+        return sketch_position(self.mechanism, name)
+
+    def direction(self, link: str) -> Direction:
+        return self.directions[self.mechanism.link(link).index]
+
+
+def sketch_position(m: Mechanism, name: str) -> tuple[float, float]:
+    for j in m.joints:
+        if j.name == name:
+            return j.x, j.y
+    for p in m.points:
+        if p.name == name:
+            return p.x, p.y
+    raise KeyError(name)
+
+
+def wrap_angle(a: float) -> float:
+    """Angle in (-pi, pi]."""
+    a = math.remainder(a, 2 * math.pi)
+    return math.pi if a == -math.pi else a
+
+
+def angle_between(m: Mechanism, origin: str, target: str) -> float:
+    (x0, y0), (x1, y1) = sketch_position(m, origin), sketch_position(m, target)
+    return math.atan2(y1 - y0, x1 - x0)
+
+
+def _carried(link: Link) -> list[str]:
+    return list(link.joints) + [p.name for p in link.points]
+
+
+def link_direction(m: Mechanism, link: Link) -> Direction:
+    """The spec's link direction: first pair to the next pair (then point) elsewhere."""
+    names = _carried(link)
+    origin = names[0]
+    for target in names[1:]:
+        if sketch_position(m, target) != sketch_position(m, origin):
+            return Direction(origin, target, "", angle_between(m, origin, target))
+    prismatic = next(j for j in link.joints if not m.joint(j).revolute)
+    return Direction(origin, "", prismatic, m.joint(prismatic).axis)
+
+
+def input_direction(m: Mechanism, link: Link, joint: str) -> Direction:
+    """A link's direction seen from an input pair: towards the next pair after it
+    (cyclically), then its points, skipping any at the same sketch position."""
+    pairs = list(link.joints)
+    start = pairs.index(joint)
+    order = pairs[start + 1:] + pairs[:start] + [p.name for p in link.points]
+    here = sketch_position(m, joint)
+    for target in order:
+        if sketch_position(m, target) != here:
+            return Direction(joint, target, "", angle_between(m, joint, target))
+    raise InputError(f"link {link.name} has no pair or point away from the input pair {joint}",
+                     m.path, link.where.line, link.where.key)
+
+
+def truss(m: Mechanism, link: Link) -> list[Member]:
+    """Rule (i): a link with k pairs becomes the binary members between all its pairs."""
+    pairs = list(link.joints)
+    if len(pairs) == 1:
+        return [Member(link.name, pairs[0], "", 0.0)]
+    out = []
+    for i, a in enumerate(pairs):
+        for b in pairs[i + 1:]:
+            (xa, ya), (xb, yb) = sketch_position(m, a), sketch_position(m, b)
+            out.append(Member(link.name, a, b, math.hypot(xb - xa, yb - ya)))
+    return out
+
+
+def _nearest_turn(value: float, start: float, stop: float) -> float:
+    """The representative of an angle (mod 2 pi) nearest the range, preferring the start."""
+    lo, hi = min(start, stop), max(start, stop)
+    best = None
+    for k in range(math.floor((lo - value) / (2 * math.pi)) - 1, math.ceil((hi - value) / (2 * math.pi)) + 2):
+        cand = value + 2 * math.pi * k
+        gap = max(lo - cand, cand - hi, 0.0)
+        key = (gap, abs(cand - start))
+        if best is None or key < best[0]:
+            best = (key, cand)
+    assert best is not None
+    return best[1]
+
+
+def sketch_input(m: Mechanism, inp: Input) -> float:
+    if inp.kind == "revolute":
+        phi_l = input_direction(m, m.link(inp.link), inp.joint).angle
+        phi_f = input_direction(m, m.link(inp.relative_to), inp.joint).angle
+        return _nearest_turn(wrap_angle(phi_l - phi_f), inp.start, inp.stop)
+    if inp.kind == "prismatic":
+        return 0.0
+    (xa, ya), (xb, yb) = sketch_position(m, inp.between[0]), sketch_position(m, inp.between[1])
+    return math.hypot(xb - xa, yb - ya)
+
+
+class _Jacobian:
+    """Velocity constraints at the sketch, columns (vx, vy, omega * L) per moving link."""
+
+    def __init__(self, m: Mechanism, scale: float):
+        self.m = m
+        self.scale = scale
+        self.moving = [lk for lk in m.links if not lk.fixed]
+        self.col = {lk.name: 3 * i for i, lk in enumerate(self.moving)}
+        self.n = 3 * len(self.moving)
+
+    def point_rows(self, link: str, name: str) -> np.ndarray:
+        """d(velocity of a point on link)/d(unknowns): a 2 x n block."""
+        block = np.zeros((2, self.n))
+        if link not in self.col:
+            return block
+        c = self.col[link]
+        ref = sketch_position(self.m, self.m.link(link).joints[0])
+        x, y = sketch_position(self.m, name)
+        block[0, c], block[1, c + 1] = 1.0, 1.0
+        block[0, c + 2] = -(y - ref[1]) / self.scale
+        block[1, c + 2] = (x - ref[0]) / self.scale
+        return block
+
+    def turn_row(self, link: str) -> np.ndarray:
+        row = np.zeros(self.n)
+        if link in self.col:
+            row[self.col[link] + 2] = 1.0
+        return row
+
+    def constraints(self) -> np.ndarray:
+        rows: list[np.ndarray] = []
+        for j in self.m.joints:
+            on = [lk.name for lk in self.m.links_of(j.name)]
+            if j.revolute:
+                for other in on[1:]:
+                    rows.extend(self.point_rows(on[0], j.name) - self.point_rows(other, j.name))
+            else:
+                p = self.m.prismatic_of(j.name)
+                normal = np.array([-math.sin(j.axis), math.cos(j.axis)])
+                rel = self.point_rows(p.slider, j.name) - self.point_rows(p.guide, j.name)
+                rows.append(normal @ rel)
+                rows.append(self.turn_row(p.slider) - self.turn_row(p.guide))
+        return np.array(rows).reshape(-1, self.n)
+
+    def input_row(self, inp: Input) -> np.ndarray:
+        if inp.kind == "revolute":
+            return self.turn_row(inp.link) - self.turn_row(inp.relative_to)
+        if inp.kind == "prismatic":
+            j = self.m.joint(inp.joint)
+            axis = np.array([math.cos(j.axis), math.sin(j.axis)])
+            return axis @ (self.point_rows(inp.link, j.name) - self.point_rows(inp.relative_to, j.name))
+        a, b = inp.between
+        (xa, ya), (xb, yb) = sketch_position(self.m, a), sketch_position(self.m, b)
+        u = np.array([xb - xa, yb - ya]) / math.hypot(xb - xa, yb - ya)
+        la, lb = self.m.links_of(a)[0].name, self.m.links_of(b)[0].name
+        return u @ (self.point_rows(lb, b) - self.point_rows(la, a))
+
+
+def _rank(a: np.ndarray) -> int:
+    if a.size == 0:
+        return 0
+    s = np.linalg.svd(a, compute_uv=False)
+    return int(np.sum(s > RANK_TOLERANCE * max(s[0], 1.0)))
+
+
+def length_scale(m: Mechanism) -> float:
+    """The largest distance between two pairs or points of the sketch."""
+    spots = np.array([(j.x, j.y) for j in m.joints] + [(p.x, p.y) for p in m.points])
+    d = spots[:, None, :] - spots[None, :, :]
+    return float(np.max(np.hypot(d[..., 0], d[..., 1])))
+
+
+def grubler(m: Mechanism) -> int:
+    pairs = sum(len(m.links_of(j.name)) - 1 if j.revolute else 1 for j in m.joints)
+    return 3 * (len(m.links) - 1) - 2 * pairs
+
+
+def analyse(m: Mechanism) -> Topology:
+    """Build the topology and check that the inputs drive the mechanism exactly."""
+    scale = length_scale(m)
+    if scale == 0:
+        raise InputError("all pairs lie at one position; draw the mechanism in its sketch configuration",
+                         m.path, m.where.line, "joints")
+    jac = _Jacobian(m, scale)
+    c = jac.constraints()
+    mobility = jac.n - _rank(c)
+    count = grubler(m)
+    inputs_node = m.inputs[0].where if m.inputs else m.where
+    if len(m.inputs) != mobility:
+        redundancy = ""
+        if mobility != count:
+            redundancy = (f"; Grübler's count gives {count}, and {mobility - count} constraint(s) of the sketch "
+                          "are redundant (parallel links drawn exactly)")
+        raise InputError(
+            f"the mechanism has mobility {mobility}{redundancy}, but {len(m.inputs)} input(s) are given; "
+            f"give one input per degree of freedom", m.path, inputs_node.line, "inputs")
+    if m.inputs:
+        full = np.vstack([c, np.array([jac.input_row(i) for i in m.inputs])])
+        if _rank(full) < jac.n:
+            raise InputError(
+                "the inputs do not determine the sketch configuration: some of them drive the same motion, "
+                "so part of the mechanism is left free; drive independent motions",
+                m.path, inputs_node.line, "inputs")
+    directions = tuple(link_direction(m, lk) for lk in m.links)
+    members = tuple(mb for lk in m.links for mb in truss(m, lk))
+    sketch = tuple(sketch_input(m, i) for i in m.inputs)
+    return Topology(m, scale, count, mobility, mobility - count, members, directions, sketch)
