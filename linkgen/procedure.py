@@ -24,7 +24,7 @@ from dataclasses import dataclass, field, replace
 from .errors import ProcedureError
 from .model import Input, Link
 from .steplog import AddLink, Arg, Candidate, LJColumn, LJMatrix, Residual, ResolverGroup, Step, Variable
-from .topology import Topology, angle_between, input_direction, wrap_angle
+from .topology import Topology, input_direction, wrap_angle
 
 RESOLVER_TOLERANCE = 1e-10  # relative to the length scale; one Newton step is taken past it
 RESOLVER_MAX_ITERATIONS = 25
@@ -102,6 +102,7 @@ class Extractor:
         self.steps: list[Step] = []
         self.pos: dict[str, str] = {}
         self.orient: dict[str, str] = {}
+        self.coupled: dict[str, str] = {}  # link -> placed link it slides on (same rotation)
         self.tied: dict[str, list[str]] = {lk.name: [] for lk in self.m.links}
         self.placed: set[str] = set()
         self.lines: dict[str, tuple[str, str]] = {}
@@ -118,6 +119,7 @@ class Extractor:
         self.groups: list[_GroupDraft] = []
         self.group = 0
         self.residual_links: set[str] = set()
+        self.joint_names = {j.name for j in self.m.joints}
 
     # -- names and variables ---------------------------------------------------
     def new_var(self, name: str, kind: str, role: str, entity: str, value: tuple[float, ...] = (),
@@ -129,7 +131,7 @@ class Extractor:
         return name
 
     def xy(self, name: str) -> tuple[float, float]:
-        return self.topo.position(name)
+        return self.topo.position(name.split("@")[0])
 
     def angle0(self, var: str) -> float:
         return self.variables[var].sketch[0]
@@ -141,12 +143,21 @@ class Extractor:
     def link(self, name: str) -> Link:
         return self.m.link(name)
 
+    def copy(self, pair: str, link: str) -> str:
+        """The name of the link's copy of a pair: a prismatic pair's position is its
+        slider's copy; the guide's copy of the reference point is ``S@guide``."""
+        if self.m.joint(pair).revolute or self.m.prismatic_of(pair).slider == link:
+            return pair
+        return f"{pair}@{link}"
+
+    def named(self, name: str, link: str) -> str:
+        """A pair's or point's name as seen on a link (see ``copy``)."""
+        return self.copy(name, link) if name in self.joint_names else name
+
     def own(self, link: str) -> list[str]:
-        """Names whose known position is a point of this link (a prismatic pair's
-        position is its slider's copy)."""
+        """Names of the points of this link whose positions the Solver may know."""
         lk = self.link(link)
-        names = [j for j in lk.joints if self.m.joint(j).revolute or self.m.prismatic_of(j).slider == link]
-        return names + [p.name for p in lk.points]
+        return [self.copy(j, link) for j in lk.joints] + [p.name for p in lk.points]
 
     def distinct(self, names: list[str]) -> bool:
         return len({self.xy(n) for n in names}) >= 2
@@ -196,8 +207,8 @@ class Extractor:
             changed = False
             for p in self.m.prismatic:
                 for a, b in ((p.guide, p.slider), (p.slider, p.guide)):
-                    if a in self.placed and b not in self.orient:
-                        self.orient[b] = self.orient[a]
+                    if a in self.placed and not self.oriented(b):
+                        self.coupled[b] = a
                         changed = True
             for lk in self.m.links:
                 if lk.name in self.placed:
@@ -207,12 +218,12 @@ class Extractor:
                     if n in self.pos and n not in tied:
                         if not tied:
                             tied.append(n)
-                        elif lk.name in self.orient or self.distinct(tied):
+                        elif self.oriented(lk.name) or self.distinct(tied):
                             raise Unsupported(f"link {lk.name} is over-determined at {n}")
                         else:
                             self.add_residual(lk.name, tied[0], n, self.member_length(lk.name, tied[0], n))
                             tied.append(n)
-                if tied and (lk.name in self.orient or self.distinct(tied)):
+                if tied and (self.oriented(lk.name) or self.distinct(tied)):
                     self.placed.add(lk.name)
                     changed = True
         for c in self.carriers:
@@ -278,18 +289,26 @@ class Extractor:
         self.steps[start:] = before + inside
 
     # -- reusable pieces --------------------------------------------------------------
+    def oriented(self, link: str) -> bool:
+        return link in self.orient or link in self.placed or link in self.coupled
+
     def frame(self, link: str) -> str:
         """An ANGLE variable turning with the link (emitting link_angle if needed)."""
         if link in self.orient:
             return self.orient[link]
+        if link in self.coupled:
+            self.orient[link] = self.frame(self.coupled[link])
+            return self.orient[link]
         tied = self.tied[link]
         d = self.topo.direction(link)
-        if d.target and d.origin in tied and d.target in tied:
-            a, b = d.origin, d.target
+        origin, target = self.named(d.origin, link), self.named(d.target, link) if d.target else ""
+        if target and origin in tied and target in tied:
+            a, b = origin, target
         else:
             a = tied[0]
             b = next(n for n in tied[1:] if self.xy(n) != self.xy(a))
-        off = wrap_angle(d.angle - angle_between(self.m, a, b))
+        (xa, ya), (xb, yb) = self.xy(a), self.xy(b)
+        off = wrap_angle(d.angle - math.atan2(yb - ya, xb - xa))
         var = self.new_var(f"phi_{link}", "ANGLE", "link", link, sketch=(wrap_angle(d.angle),))
         self.emit("angle", "link_angle", [Arg("var", self.pos[a]), Arg("var", self.pos[b]), Arg("real", value=off, label="off")],
                   [var], link, pairs=(a, b), links=(link,), fails=True,
@@ -316,8 +335,13 @@ class Extractor:
                 psi = self.new_var(f"psi_{pair}", "ANGLE", "line", pair, sketch=(wrap_angle(j.axis),))
                 self.emit("line", "offset_angle", [Arg("var", base), Arg("real", value=off, label="off")], [psi], pair,
                           pairs=(), links=(guide,), reason=f"the slide axis of {pair} turns with its guide {guide}")
-            g = self.new_var(f"g_{pair}", "POINT", "guide", pair, sketch=(j.x, j.y))
-            self.point_on(guide, pair, g, psi, f"the guide {guide} of {pair} is placed, so its copy of the reference point is known")
+            g = self.pos.get(f"{pair}@{guide}")
+            if g is None:
+                g = self.new_var(f"g_{pair}", "POINT", "guide", pair, sketch=(j.x, j.y))
+                self.pos[f"{pair}@{guide}"] = g
+                self.tied[guide].append(f"{pair}@{guide}")
+                self.point_on(guide, pair, g, psi,
+                              f"the guide {guide} of {pair} is placed, so its copy of the reference point is known")
         self.lines[pair] = (g, psi)
         return self.lines[pair]
 
@@ -367,10 +391,14 @@ class Extractor:
             drive = input_direction(self.m, self.link(inp.link), inp.joint)
             root = input_direction(self.m, self.link(inp.relative_to), inp.joint)
             ref = self.reference(inp, root.angle)
-            out = self.pos.get(drive.target) or self.point_var(drive.target, self.role(drive.target))
-            (xj, yj), (xa, ya) = self.xy(inp.joint), self.xy(drive.target)
-            self.pos[drive.target] = out
-            self.tied[inp.link] = [inp.joint, drive.target]
+            target = drive.target
+            if target in {j.name for j in self.m.joints}:
+                target = self.copy(target, inp.link)
+            out = self.point_var(target, self.role(target)) if "@" not in target else \
+                self.new_var(f"g_{drive.target}", "POINT", "guide", drive.target, sketch=self.xy(target))
+            (xj, yj), (xa, ya) = self.xy(inp.joint), self.xy(target)
+            self.pos[target] = out
+            self.tied[inp.link] = [inp.joint, target]
             self.emit("input", "crank_input",
                       [Arg("var", self.pos[inp.joint]), Arg("real", value=math.hypot(xa - xj, ya - yj), label="l"),
                        Arg("var", var), Arg("var", ref)], [out], drive.target, pairs=(inp.joint,),
@@ -660,8 +688,8 @@ class Extractor:
         if link in self.angles:
             return
         d = self.topo.direction(link)
-        if link in self.orient:
-            base = self.orient[link]
+        if link in self.orient or link in self.coupled:
+            base = self.frame(link)
             off = wrap_angle(d.angle - self.angle0(base))
             if off == 0.0:
                 self.angles[link] = base
@@ -770,10 +798,10 @@ def extract(topo: Topology, evaluate_norm) -> Procedure:
 def _freeze(ex: Extractor) -> Procedure:
     """Number the steps and turn the drafts into step-log records."""
     steps = tuple(replace(s, number=i + 1) for i, s in enumerate(ex.steps))
-    step_of_output = {o: s.number for s in steps for o in s.outputs}
-    residuals = tuple(replace(r, step=step_of_output[r.name]) for r in ex.residuals)
+    residuals = tuple(replace(r, step=next(s.number for s in steps if r.name in s.outputs)) for r in ex.residuals)
     add_links = tuple(
-        AddLink(d.name, d.pairs, d.length, step_of_output[d.var], d.candidates, d.probe)
+        AddLink(d.name, d.pairs, d.length, next(s.number for s in steps if s.action == "add_link" and s.target == d.name),
+                d.candidates, d.probe)
         for d in ex.add_links
     )
     groups = []

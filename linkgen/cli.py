@@ -1,0 +1,153 @@
+"""Command line: linkgen build | run | lj | candidates | procedure."""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+
+import click
+
+from . import __version__
+from .errors import LinkgenError
+
+
+def _fail(exc: LinkgenError) -> None:
+    click.echo(f"linkgen: error: {exc}", err=True)
+    sys.exit(1)
+
+
+def _outputs(value: str | None) -> tuple[str, ...] | None:
+    return tuple(v.strip() for v in value.split(",") if v.strip()) if value else None
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="linkgen")
+def cli() -> None:
+    """Systematic kinematic analysis of closed-loop planar linkages.
+
+    Reads a mechanism file (pairs at their sketch positions, links, the fixed
+    link, the inputs) and extracts the analysis procedure of two-link chains.
+    """
+
+
+@cli.command()
+@click.argument("mechanism", type=click.Path(dir_okay=False))
+@click.option("-o", "--outdir", type=click.Path(file_okay=False), help="Output folder (default: build/NAME).")
+@click.option("--check", is_flag=True, help="Rebuild in memory; exit 1 with a diff if any file on disk differs.")
+def build(mechanism: str, outdir: str | None, check: bool) -> None:
+    """Write the step log (NAME.json) and the generated files."""
+    from .pipeline import build_log
+    from .render import render_all
+    from .writer import differences, write_all
+
+    try:
+        log = build_log(mechanism)
+        files = render_all(log)
+    except LinkgenError as exc:
+        _fail(exc)
+    target = outdir or os.path.join("build", log.name)
+    if check:
+        diffs = differences(files, target)
+        for d in diffs:
+            click.echo(d, nl=False)
+        sys.exit(1 if diffs else 0)
+    for path in write_all(files, target):
+        click.echo(path)
+
+
+@cli.command()
+@click.argument("mechanism", type=click.Path(dir_okay=False))
+@click.option("--samples", type=click.IntRange(min=2), help="Rows in the sweep (default: the file's samples).")
+@click.option("--order", type=click.IntRange(0, 2), help="Derivatives: 0, 1 or 2 (default: the file's order).")
+@click.option("--outputs", help="Comma-separated outputs (default: the file's outputs).")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV here instead of stdout.")
+def run(mechanism: str, samples: int | None, order: int | None, outputs: str | None, output: str | None) -> None:
+    """Evaluate the sweep in-process and print it as CSV."""
+    from .evaluate import evaluate, input_rows
+    from .pipeline import build_log
+    from .table import csv
+    from .writer import write_all
+
+    try:
+        log = build_log(mechanism, _outputs(outputs), order)
+    except LinkgenError as exc:
+        _fail(exc)
+    values, rates, accs = input_rows(log, samples or log.samples)
+    text = csv(log, evaluate(log, values, rates, accs))
+    if output:
+        write_all({os.path.basename(output): text.encode()}, os.path.dirname(output) or ".")
+    else:
+        click.echo(text, nl=False)
+
+
+@cli.command()
+@click.argument("mechanism", type=click.Path(dir_okay=False))
+@click.option("--step", "at", type=int, help="Print only the state after this step (0: before step 1).")
+def lj(mechanism: str, at: int | None) -> None:
+    """Print the LJ-matrix before the first step and after each step."""
+    from .ljmatrix import states, text
+    from .pipeline import build_log
+
+    try:
+        log = build_log(mechanism)
+    except LinkgenError as exc:
+        _fail(exc)
+    chosen = states(log)
+    if at is not None:
+        if not 0 <= at < len(chosen):
+            raise click.BadParameter(f"the procedure has steps 1 to {len(chosen) - 1}", param_hint="--step")
+        chosen = [chosen[at]]
+    blocks = []
+    for state in chosen:
+        title = "before step 1" if state.step == 0 else f"after step {state.step}: {log.step(state.step).reason}"
+        blocks.append(f"# LJ-matrix {title}\n" + text(state))
+    click.echo("\n".join(blocks), nl=False)
+
+
+@cli.command()
+@click.argument("mechanism", type=click.Path(dir_okay=False))
+@click.option("--json", "as_json", is_flag=True, help="Print a JSON array of {pairs, norm}, ranked.")
+def candidates(mechanism: str, as_json: bool) -> None:
+    """List the Add-link candidates where the Solver first stops, ranked by the norm of f."""
+    from .pipeline import build_log
+
+    try:
+        log = build_log(mechanism)
+    except LinkgenError as exc:
+        _fail(exc)
+    if not log.add_links:
+        if as_json:
+            click.echo("[]")
+        else:
+            click.echo("The Solver completes without an Add-link: every step is a computable two-link chain.")
+        return
+    for k, add in enumerate(log.add_links):
+        rows = [{"pairs": list(c.pairs), "norm": c.norm, "usable": c.usable} for c in add.candidates]
+        if as_json:
+            if k == 0:
+                click.echo(json.dumps(rows, indent=2))
+            continue
+        click.echo(f"Add-link {add.name} (step {add.step}): {len(rows)} candidates, ranked by |f| at the probe input")
+        for rank, c in enumerate(add.candidates, 1):
+            norm = "cannot close" if c.norm is None else f"{c.norm:.6g}"
+            mark = "  <- chosen" if c.pairs == add.pairs else ""
+            click.echo(f"  {rank}. {c.pairs[0]}-{c.pairs[1]}  |f| = {norm}{mark}")
+
+
+@cli.command()
+@click.argument("mechanism", type=click.Path(dir_okay=False))
+def procedure(mechanism: str) -> None:
+    """Print the numbered procedure, one call per step."""
+    from .pipeline import build_log
+
+    try:
+        log = build_log(mechanism)
+    except LinkgenError as exc:
+        _fail(exc)
+    for s in log.steps:
+        click.echo(f"{s.number:3d}  {s.function or s.action:<14} {s.target:<10} {s.reason}")
+
+
+def main() -> None:
+    cli(prog_name="linkgen")

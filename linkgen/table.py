@@ -1,0 +1,47 @@
+"""The sweep as CSV, exactly as the generated programs write it."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .evaluate import Result
+from .steplog import StepLog
+
+_DERIVATIVES = {"velocity", "acceleration", "angular_velocity", "angular_acceleration"}
+
+
+def number(x: float) -> str:
+    """%.17g for finite values; the literal nan for the rest (as every language writes it)."""
+    return "%.17g" % x if math.isfinite(x) else "nan"
+
+
+def columns(log: StepLog, result: Result) -> tuple[list[str], np.ndarray]:
+    """Header and a rows x columns array with the spec's nan rules applied (status excluded)."""
+    names = [c.name for c in log.columns]
+    data = np.empty((result.inputs.shape[0], len(names)))
+    n_inputs = len(log.inputs)
+    for k, c in enumerate(log.columns):
+        if k < n_inputs:
+            data[:, k] = result.inputs[:, k]
+            continue
+        v = log.variable(c.variable)
+        fields = {"POINT": ("x", "y", "dx", "dy", "ddx", "ddy"), "ANGLE": ("the", "dthe", "ddthe"),
+                  "VARIABLE": ("v", "dv", "ddv")}[v.kind]
+        data[:, k] = result.values[c.variable][fields.index(c.field)]
+    fail = (result.status > 0) & np.isin(result.status % 10, (1, 2))
+    singular = (result.status > 0) & (result.status % 10 == 3)
+    data[fail, n_inputs:] = np.nan
+    for k, c in enumerate(log.columns):
+        if k >= n_inputs and c.quantity in _DERIVATIVES:
+            data[singular, k] = np.nan
+    return names, data
+
+
+def csv(log: StepLog, result: Result) -> str:
+    names, data = columns(log, result)
+    lines = [",".join(names + ["status"])]
+    for row, st in zip(data, result.status):
+        lines.append(",".join([number(x) for x in row] + [str(int(st))]))
+    return "\n".join(lines) + "\n"
