@@ -230,9 +230,11 @@ class RowSolver:
         reads = {a.var: env[a.var] for st in steps for a in st.args if a.kind == "var" and a.var not in inner_vars}
         last: dict[int, tuple] = {}
 
+        padded = {live: {name: _pad(rec, self.kinds[name], inner, live) for name, rec in reads.items()}
+                  for live in (False, True)}
+
         def group(a, live):
-            for name, rec in reads.items():
-                env[name] = _pad(rec, self.kinds[name], inner, live)
+            env.update(padded[live])
             for name, rec in zip(g.add_links, a):
                 env[name] = tuple(rec[: inner + 1])
             last.clear()

@@ -7,6 +7,7 @@ key) so later stages order by the file and report errors where the user wrote.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 
 @dataclass(frozen=True)
@@ -99,21 +100,39 @@ class Mechanism:
     samples: int
     where: Where  # the top of the file
 
+    @cached_property
+    def _index(self) -> dict[str, dict]:
+        carried: dict[str, list[Link]] = {j.name: [] for j in self.joints}
+        for lk in self.links:
+            for j in lk.joints:
+                carried[j].append(lk)
+        return {
+            "joint": {j.name: j for j in self.joints},
+            "link": {lk.name: lk for lk in self.links},
+            "links_of": {k: tuple(v) for k, v in carried.items()},
+            "prismatic": {p.joint: p for p in self.prismatic},
+        }
+
     def joint(self, name: str) -> Joint:
-        return next(j for j in self.joints if j.name == name)
+        return self._index["joint"][name]
 
     def link(self, name: str) -> Link:
-        return next(lk for lk in self.links if lk.name == name)
+        return self._index["link"][name]
 
     def links_of(self, joint: str) -> tuple[Link, ...]:
-        return tuple(lk for lk in self.links if joint in lk.joints)
+        return self._index["links_of"][joint]
 
     def prismatic_of(self, joint: str) -> Prismatic:
-        return next(p for p in self.prismatic if p.joint == joint)
+        return self._index["prismatic"][joint]
 
-    @property
+    @cached_property
     def points(self) -> tuple[Point, ...]:
         return tuple(p for lk in self.links for p in lk.points)
+
+    @cached_property
+    def positions(self) -> dict[str, tuple[float, float]]:
+        """Sketch position of every pair and point."""
+        return {**{j.name: (j.x, j.y) for j in self.joints}, **{p.name: (p.x, p.y) for p in self.points}}
 
     @property
     def fixed(self) -> Link:

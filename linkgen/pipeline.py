@@ -53,9 +53,12 @@ def steplog(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = N
                  "" if j.revolute else m.prismatic_of(j.name).slider)
         for j in m.joints
     )
+    members: dict[str, list[tuple[str, str, float]]] = {lk.name: [] for lk in m.links}
+    for mb in topo.members:
+        if mb.b:
+            members[mb.link].append((mb.a, mb.b, mb.length))
     links = tuple(
-        LinkInfo(lk.name, lk.fixed, lk.joints, tuple(p.name for p in lk.points),
-                 tuple((mb.a, mb.b, mb.length) for mb in topo.members if mb.link == lk.name and mb.b),
+        LinkInfo(lk.name, lk.fixed, lk.joints, tuple(p.name for p in lk.points), tuple(members[lk.name]),
                  (topo.direction(lk.name).origin, topo.direction(lk.name).target or topo.direction(lk.name).axis_of),
                  topo.direction(lk.name).angle)
         for lk in m.links

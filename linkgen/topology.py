@@ -64,12 +64,8 @@ class Topology:
 
 
 def sketch_position(m: Mechanism, name: str) -> tuple[float, float]:
-    for j in m.joints:
-        if j.name == name:
-            return j.x, j.y
-    for p in m.points:
-        if p.name == name:
-            return p.x, p.y
+    if name in m.positions:
+        return m.positions[name]
     raise KeyError(name)
 
 

@@ -1,0 +1,46 @@
+"""The LJ-matrix of the paper's Table 1 and its states."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from linkgen.ljmatrix import states, text
+from linkgen.pipeline import build_log
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_slider_crank_states_follow_table_1():
+    log = build_log(str(ROOT / "tests" / "mechanisms" / "slider_crank.yaml"))
+    seq = states(log)
+    assert [c.name for c in seq[0].columns] == ["frame", "crank", "rod", "block", "theta_O"]
+    assert seq[0].rows == ("O", "A", "B", "S")
+    # before step 1 every pair is unknown: 1 revolute, 2 prismatic
+    assert seq[0].entries == ((1, 1, 0, 0, 0), (0, 1, 1, 0, 1), (0, 0, 1, 1, 0), (2, 0, 0, 2, 2))
+    # step 1 fixes the frame: O is known, and so is the line of S (its guide is the frame)
+    assert seq[1].entries == ((-1, -1, 0, 0, 0), (0, 1, 1, 0, 1), (0, 0, 1, 1, 0), (-2, 0, 0, -2, -2))
+    # step 2 turns the crank (A), step 3 closes the 2R1P chain (B)
+    assert seq[2].entries[1] == (0, -1, -1, 0, -1)
+    assert seq[3].entries[2] == (0, 0, -1, -1, 0)
+    assert all(e <= 0 for row in seq[-1].entries for e in row)
+
+
+def test_add_link_column_appears_at_its_step():
+    log = build_log(str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"))
+    seq = states(log)
+    (add,) = log.add_links
+    before, after = seq[add.step - 1], seq[add.step]
+    assert add.name not in [c.name for c in before.columns]
+    assert after.columns[-1].name == add.name
+    k, u = add.pairs
+    column = [row[-1] for row in after.entries]
+    assert column[after.rows.index(k)] == -1 and column[after.rows.index(u)] == 1
+    # the ternary link is a truss of three binary links (rule i)
+    assert {c.name for c in seq[0].columns} >= {"ternary:J2-J4", "ternary:J2-J5", "ternary:J4-J5"}
+
+
+def test_text_table_is_aligned():
+    log = build_log(str(ROOT / "samples" / "fourbar" / "fourbar.yaml"))
+    lines = text(states(log)[0]).splitlines()
+    assert lines[0].split() == ["frame", "crank", "coupler", "rocker", "theta_O1"]
+    assert lines[1].split() == ["O1", "1", "1", "0", "0", "0"]
