@@ -221,3 +221,157 @@ def numpy_function(prim: Primitive, order: int) -> str:
         outs.append("(" + ", ".join(fields) + ("," if len(fields) == 1 else "") + ")")
     lines.append(f"    return st, sigma, {', '.join(outs)}")
     return "\n".join(lines) + "\n"
+
+
+def _is_int(e: Expr, ints: set[str]) -> bool:
+    """Whether an expression is integer-valued in C (flags, comparisons, status codes)."""
+    if isinstance(e, (Cmp, Logic)):
+        return True
+    if isinstance(e, Num):
+        return isinstance(e.value, int)
+    if isinstance(e, Sym):
+        return e.name in ints
+    if isinstance(e, Select):
+        return _is_int(e.a, ints) and _is_int(e.b, ints)
+    return False
+
+
+_C_FIELD = {"x": "P.x", "y": "P.y", "dx": "DP.x", "dy": "DP.y", "ddx": "DDP.x", "ddy": "DDP.y"}
+
+
+class CExprs(ExprPrinter):
+    calls = {
+        "sqrt": "sqrt", "hypot": "hypot", "atan2": "atan2", "cos": "cos", "sin": "sin",
+        "abs": "fabs", "max": "fmax", "min": "fmin",
+    }
+    consts = {"eps": "DBL_EPSILON", "nan": "NAN", "pi": "3.141592653589793"}
+    and_op = "&&"
+    or_op = "||"
+
+    def __init__(self, prim: Primitive):
+        self.fields: dict[str, str] = {}
+        for p in prim.params:
+            if p.is_record:
+                for f in record_fields(p.kind, 2):
+                    self.fields[f"{p.name}_{f}"] = f"{p.name}.{_C_FIELD[f] if p.kind == 'POINT' else f}"
+
+    def sym(self, name: str) -> str:
+        return self.fields.get(name, name)
+
+    def select(self, cond: str, a: str, b: str) -> str:
+        return f"{cond} ? {a} : {b}"
+
+
+def _c_type(kind: str) -> str:
+    return {"REAL": "double", "INT": "int"}.get(kind, kind)
+
+
+def c_function(prim: Primitive, order: int) -> str:
+    """A static C99 function shaped like mech.cpp: records by value, outputs by pointer,
+    the status as return value (void when the function cannot fail)."""
+    exprs = CExprs(prim)
+    params = [f"{_c_type(p.kind)} {p.name}" for p in prim.params]
+    params += [f"{p.kind} *{p.name}" for p in prim.outputs]
+    if prim.sigma is not None:
+        params.append("double *sigma_out")
+    head = "static int" if prim.status is not None else "static void"
+    lines = [f"/* {prim.doc} */", f"{head} {prim.name}({', '.join(params)})", "{"]
+    used = prim.params_used(order)
+    for p in prim.params:
+        touched = used & ({f"{p.name}_{f}" for f in record_fields(p.kind, order)} if p.is_record else {p.name})
+        if not touched:
+            lines.append(f"    (void){p.name};")
+    ints = {p.name for p in prim.params if p.kind == "INT"}
+    for let in prim.live(order):
+        ctype = "int" if _is_int(let.expr, ints) else "double"
+        if ctype == "int":
+            ints.add(let.name)
+        lines.append(f"    const {ctype} {let.name} = {exprs.expr(let.expr)};")
+    if prim.status is not None:
+        lines.append(f"    const int st = {exprs.expr(prim.status)};")
+    if prim.sigma is not None and exprs.expr(prim.sigma) != "sigma":
+        lines.append(f"    const double sigma = {exprs.expr(prim.sigma)};")
+    for p, f, e in prim.result_fields(order):
+        field = _C_FIELD[f] if p.kind == "POINT" else f
+        lines.append(f"    {p.name}->{field} = {exprs.expr(e)};")
+    if prim.sigma is not None:
+        lines.append("    *sigma_out = sigma;")
+    if prim.status is not None:
+        for code, nan_from in _MASKS:
+            fields = [(p, f) for p, f, _ in prim.result_fields(order)
+                      if nan_from <= next(i for i, n in enumerate(RECORD_FIELDS[p.kind]) if f in n)]
+            if fields:
+                cond = "st == 1" if code == 1 else "st == 1 || st == 3"
+                sets = " ".join(f"{p.name}->{_C_FIELD[f] if p.kind == 'POINT' else f} = NAN;" for p, f in fields)
+                lines.append(f"    if ({cond}) {{ {sets} }}")
+        lines.append("    return st;")
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+class OctaveExprs(ExprPrinter):
+    calls = {
+        "sqrt": "sqrt", "hypot": "hypot", "atan2": "atan2", "cos": "cos", "sin": "sin",
+        "abs": "abs", "max": "max", "min": "min",
+    }
+    consts = {"eps": "eps", "nan": "NaN", "pi": "pi"}
+    and_op = "&&"
+    or_op = "||"
+
+    def __init__(self, prim: Primitive):
+        self.fields: dict[str, str] = {}
+        for p in prim.params:
+            if p.is_record:
+                for f in record_fields(p.kind, 2):
+                    self.fields[f"{p.name}_{f}"] = f"{p.name}.{f}"
+
+    def sym(self, name: str) -> str:
+        return self.fields.get(name, name)
+
+    def select(self, cond: str, a: str, b: str) -> str:
+        raise ValueError("MATLAB has no conditional expression; selections are statements")
+
+    def assign(self, target: str, e: Expr, indent: str = "    ") -> list[str]:
+        """``target = e`` where e may be a chain of selections: if / elseif / else."""
+        if not isinstance(e, Select):
+            return [f"{indent}{target} = {self.expr(e)};"]
+        out = []
+        keyword = "if"
+        while isinstance(e, Select):
+            out.append(f"{indent}{keyword} {self.expr(e.cond)}")
+            out.append(f"{indent}    {target} = {self.expr(e.a)};")
+            keyword = "elseif"
+            e = e.b
+        out += [f"{indent}else", f"{indent}    {target} = {self.expr(e)};", f"{indent}end"]
+        return out
+
+
+def octave_function(prim: Primitive, order: int) -> str:
+    """A MATLAB/Octave subfunction: records are structs, outputs then status and sigma."""
+    exprs = OctaveExprs(prim)
+    outs = [p.name for p in prim.outputs]
+    if prim.status is not None:
+        outs.append("st")
+    if prim.sigma is not None:
+        outs.append("sigma")
+    ret = f"[{', '.join(outs)}]" if len(outs) > 1 else outs[0]
+    lines = [f"function {ret} = {prim.name}({', '.join(p.name for p in prim.params)})", f"    % {prim.doc}"]
+    for let in prim.live(order):
+        lines += exprs.assign(let.name, let.expr)
+    if prim.status is not None:
+        lines += exprs.assign("st", prim.status)
+    if prim.sigma is not None and exprs.expr(prim.sigma) != "sigma":
+        lines += exprs.assign("sigma", prim.sigma)
+    for p, f, e in prim.result_fields(order):
+        lines += exprs.assign(f"{p.name}.{f}", e)
+    if prim.status is not None:
+        for code, nan_from in _MASKS:
+            fields = [(p, f) for p, f, _ in prim.result_fields(order)
+                      if nan_from <= next(i for i, n in enumerate(RECORD_FIELDS[p.kind]) if f in n)]
+            if fields:
+                cond = "st == 1" if code == 1 else "st == 1 || st == 3"
+                lines.append(f"    if {cond}")
+                lines += [f"        {p.name}.{f} = NaN;" for p, f in fields]
+                lines.append("    end")
+    lines.append("end")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,181 @@
+"""How each language spells the procedure: names, numbers, references and calls.
+
+Templates lay the files out; these classes say how one call, one record or one
+constant is written in C, Python or MATLAB/Octave.  Nothing here decides what is
+computed: that is the step log's job.
+"""
+
+from __future__ import annotations
+
+import keyword
+
+from ..primitives import PRIMITIVES
+from ..primitives.dsl import record_fields
+from ..primitives.printers import literal
+from ..steplog import Arg, Step, Variable
+from .view import Group
+
+C_RESERVED = set("""auto break case char const continue default do double else enum extern float for goto if inline
+int long register restrict return short signed sizeof static struct switch typedef union unsigned void volatile
+while _Bool _Complex _Imaginary NAN INFINITY main errno assert""".split())
+M_RESERVED = set("""break case catch classdef continue else elseif end for function global if otherwise parfor
+persistent return spmd switch try while ans eps pi NaN Inf i j""".split())
+
+
+def ident(name: str, reserved: set[str]) -> str:
+    """A user name as an identifier of the target language (reserved words get a trailing _)."""
+    return f"{name}_" if name in reserved else name
+
+
+class Spelling:
+    """Shared rules; subclasses spell records, references and calls."""
+
+    name = ""
+    comment = ""
+    reserved: set[str] = set()
+
+    def __init__(self, order: int):
+        self.order = order
+
+    def ident(self, name: str) -> str:
+        return ident(name, self.reserved)
+
+    @staticmethod
+    def lit(value: float | int) -> str:
+        return literal(value)
+
+    def arg(self, a: Arg, scope: Group | None) -> str:
+        if a.kind == "var":
+            return self.ref(a.var, scope)
+        if a.kind == "int":
+            return str(int(a.value))
+        return self.lit(float(a.value))
+
+    def ref(self, var: str, scope: Group | None) -> str:
+        raise NotImplementedError
+
+    @staticmethod
+    def external(var: str, scope: Group | None) -> bool:
+        return scope is not None and any(v.name == var for v in scope.reads)
+
+    @staticmethod
+    def constant(var: str, scope_vars: dict[str, Variable]) -> bool:
+        return scope_vars[var].constant
+
+    @staticmethod
+    def status_code(step: Step, reason: int) -> int:
+        return 10 * step.number + reason
+
+    def fields(self, kind: str) -> tuple[str, ...]:
+        return record_fields(kind, self.order)
+
+
+class C(Spelling):
+    name = "c"
+    comment = "/*"
+    reserved = C_RESERVED
+    _field = {"x": "P.x", "y": "P.y", "dx": "DP.x", "dy": "DP.y", "ddx": "DDP.x", "ddy": "DDP.y"}
+
+    def __init__(self, order: int, variables: dict[str, Variable]):
+        super().__init__(order)
+        self.variables = variables
+
+    def ref(self, var: str, scope: Group | None) -> str:
+        if self.variables[var].constant or self.external(var, scope):
+            return var
+        return f"w->{var}"
+
+    def field(self, kind: str, f: str) -> str:
+        return self._field[f] if kind == "POINT" else f
+
+    def initializer(self, v: Variable) -> str:
+        """Braced initializer of a constant record (derivatives zero)."""
+        if v.kind == "POINT":
+            levels = [f"{{{self.lit(v.value[0])}, {self.lit(v.value[1])}}}"] + ["{0.0, 0.0}"] * self.order
+            return "{" + ", ".join(levels) + "}"
+        return "{" + ", ".join([self.lit(v.value[0])] + ["0.0"] * self.order) + "}"
+
+    def call(self, step: Step, scope: Group | None) -> list[str]:
+        prim = PRIMITIVES[step.function]
+        args = [self.arg(a, scope) for a in step.args]
+        args += [f"&{self.ref(o, scope)}" for o in step.outputs]
+        if prim.sigma is not None:
+            args.append(f"&w->sigma[{step.number}]")
+        text = f"{step.function}({', '.join(args)});"
+        if prim.status is None:
+            return [text]
+        if scope is None:
+            return [f"st = {text}", f"if (st == 1) return {self.status_code(step, 1)};", f"note(w, {step.number}, st);"]
+        return [f"st = {text}", "if (st == 1) return 1;", f"if (live) note(w, {step.number}, st);"]
+
+
+class Python(Spelling):
+    name = "py"
+    comment = "#"
+    reserved = set(keyword.kwlist)
+
+    def __init__(self, order: int, variables: dict[str, Variable]):
+        super().__init__(order)
+        self.variables = variables
+
+    def ref(self, var: str, scope: Group | None) -> str:
+        if self.variables[var].constant:
+            return var.upper()
+        if self.external(var, scope):
+            return var
+        return f"w.{var}"
+
+    def initializer(self, v: Variable) -> str:
+        zeros = [0.0] * (len(record_fields(v.kind, self.order)) - len(v.value))
+        return "(" + ", ".join(self.lit(x) for x in (*v.value, *zeros)) + ("," if v.kind != "POINT" and
+                                                                          self.order == 0 else "") + ")"
+
+    def call(self, step: Step, scope: Group | None) -> list[str]:
+        prim = PRIMITIVES[step.function]
+        args = ", ".join(self.arg(a, scope) for a in step.args)
+        targets = [self.ref(o, scope) for o in step.outputs]
+        if prim.status is None:
+            return [f"{', '.join(targets)} = {step.function}({args})"]
+        head = ["st"] + ([f"w.sigma[{step.number}]"] if prim.sigma is not None else [])
+        lines = [f"{', '.join(head + targets)} = {step.function}({args})"]
+        if scope is None:
+            return lines + ["if st == 1:", f"    return {self.status_code(step, 1)}", f"w.note({step.number}, st)"]
+        return lines + ["if st == 1:", "    return 1, None", "if live:", f"    w.note({step.number}, st)"]
+
+
+class Octave(Spelling):
+    name = "m"
+    comment = "%"
+    reserved = M_RESERVED
+
+    def __init__(self, order: int, variables: dict[str, Variable]):
+        super().__init__(order)
+        self.variables = variables
+
+    def ref(self, var: str, scope: Group | None) -> str:
+        if self.variables[var].constant or self.external(var, scope):
+            return var
+        return f"w.{var}"
+
+    def initializer(self, v: Variable) -> str:
+        names = record_fields(v.kind, self.order)
+        values = [*v.value, *([0.0] * (len(names) - len(v.value)))]
+        return "struct(" + ", ".join(f"'{n}', {self.lit(x)}" for n, x in zip(names, values)) + ")"
+
+    def call(self, step: Step, scope: Group | None) -> list[str]:
+        prim = PRIMITIVES[step.function]
+        args = ", ".join(self.arg(a, scope) for a in step.args)
+        targets = [self.ref(o, scope) for o in step.outputs]
+        if prim.status is not None:
+            targets.append("st")
+        if prim.sigma is not None:
+            targets.append(f"w.sigma({step.number})")
+        lhs = f"[{', '.join(targets)}]" if len(targets) > 1 else targets[0]
+        lines = [f"{lhs} = {step.function}({args});"]
+        if prim.status is None:
+            return lines
+        if scope is None:
+            return lines + ["if st == 1", f"    status = {self.status_code(step, 1)};", "    return;", "end",
+                            f"w = note(w, {step.number}, st);"]
+        return lines + ["if st == 1", "    st = 1;", "    res = [];", "    return;", "end", "if live",
+                        f"    w = note(w, {step.number}, st);", "end"]

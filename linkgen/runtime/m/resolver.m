@@ -1,0 +1,108 @@
+function [x, det] = solve_linear(m, b)
+    % Solve m x = b by Gaussian elimination with partial pivoting; det(m) too.
+    n = numel(b);
+    a = [m, b(:)];
+    det = 1;
+    x = NaN(n, 1);
+    for c = 1:n
+        [~, p] = max(abs(a(c:n, c)));
+        p = p + c - 1;
+        if a(p, c) == 0
+            det = 0;
+            return;
+        end
+        if p ~= c
+            a([c, p], :) = a([p, c], :);
+            det = -det;
+        end
+        det = det * a(c, c);
+        for r = c + 1:n
+            k = a(r, c) / a(c, c);
+            a(r, c:n + 1) = a(r, c:n + 1) - k * a(c, c:n + 1);
+        end
+    end
+    for r = n:-1:1
+        x(r) = (a(r, n + 1) - a(r, r + 1:n) * x(r + 1:n)) / a(r, r);
+    end
+end
+
+function [ok, f, jac, w] = resolver_jacobian(group, w, a)
+    % Residuals and Jacobian at a, one pass per Add-link; ok is false when a chain cannot close.
+    n = numel(a);
+    jac = zeros(n, n);
+    f = zeros(n, 1);
+    for j = 1:n
+        rec = struct('v', num2cell(a(:)'), 'dv', num2cell(double((1:n) == j)), 'ddv', num2cell(zeros(1, n)));
+        [st, res, w] = group(w, rec, false);
+        if st
+            ok = false;
+            return;
+        end
+        f = [res.v]';
+        jac(:, j) = [res.dv]';
+    end
+    ok = true;
+end
+
+function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter)
+    % Iterate the Add-link lengths until max|f| <= tol, then one step more; a step that
+    % makes a chain fail to close is halved (up to 8 times).
+    its = 0;
+    [ok, f, jac, w] = resolver_jacobian(group, w, a);
+    if ~ok
+        return;
+    end
+    for it = 1:max_iter
+        its = it;
+        [dx, det] = solve_linear(jac, -f);
+        ok = false;
+        if det == 0
+            return;
+        end
+        t = 1;
+        for halving = 1:9
+            trial = a + t * dx;
+            [closed, f2, jac2, w] = resolver_jacobian(group, w, trial);
+            if closed
+                break;
+            end
+            t = t / 2;
+        end
+        if ~closed
+            return;
+        end
+        done = max(abs(f)) <= tol;
+        a = trial;
+        f = f2;
+        jac = jac2;
+        if done
+            ok = true;
+            return;
+        end
+    end
+end
+
+function [st, sigma, w] = resolver_rates(group, w, a, jac, order)
+    % Exact Add-link rates by the implicit-function theorem, then the final pass.
+    n = numel(a);
+    rates = zeros(n, 1);
+    accs = zeros(n, 1);
+    if order >= 1
+        [~, res, w] = group(w, struct('v', num2cell(a(:)'), 'dv', 0, 'ddv', 0), true);
+        [rates, det] = solve_linear(jac, -[res.dv]');
+        if order >= 2 && det ~= 0
+            [~, res, w] = group(w, struct('v', num2cell(a(:)'), 'dv', num2cell(rates'), 'ddv', 0), true);
+            accs = solve_linear(jac, -[res.ddv]');
+        elseif det == 0
+            accs = NaN(n, 1);
+        end
+    else
+        [~, det] = solve_linear(jac, zeros(n, 1));
+    end
+    prod = 1;
+    for j = 1:n
+        prod = prod * sqrt(sum(jac(:, j) .^ 2));
+    end
+    sigma = abs(det) / max(prod, 1);
+    [st, ~, w] = group(w, struct('v', num2cell(a(:)'), 'dv', num2cell(rates'), 'ddv', num2cell(accs')), true);
+end
