@@ -72,11 +72,7 @@ def _c_files(view: View, banner) -> dict[str, bytes]:
         "VARIABLE": f"double {', '.join(('v', 'dv', 'ddv')[: view.record_order + 1])};",
     }
     lit = spell.lit
-    sketch_a = []
-    adds = {a.name: a.length for a in log.add_links}
-    for g in log.groups:
-        values = [lit(adds[a]) for a in g.add_links] + ["0.0"] * (view.nmax - len(g.add_links))
-        sketch_a.append("{" + ", ".join(values) + "}")
+    sketch_a = ["{" + a + "}" for a in _sketch_a(view, lit)]
     per_kind = {"point": ("x", "y", "vx", "vy", "ax", "ay"), "angle": ("phi", "omega", "alpha"),
                 "slide": ("s", "ds", "dds")}
     width = {"point": 2, "angle": 1, "slide": 1}
@@ -97,12 +93,62 @@ def _c_files(view: View, banner) -> dict[str, bytes]:
     }
 
 
+def _sketch_a(view: View, lit) -> list[str]:
+    """Start lengths of each group's Add-links (padded to the largest group)."""
+    adds = {a.name: a.length for a in view.log.add_links}
+    return [", ".join([lit(adds[a]) for a in g.add_links] + ["0.0"] * (view.nmax - len(g.add_links)))
+            for g in view.log.groups]
+
+
+def _py_files(view: View, banner) -> dict[str, bytes]:
+    log = view.log
+    spell = Python(view.record_order, {v.name: v for v in log.variables})
+    runtime = [python_function(PRIMITIVES[p], view.record_order, with_sigma=True).rstrip("\n") for p in _used(view)]
+    if view.groups:
+        runtime.append(_runtime_source("py", "resolver.py").rstrip("\n"))
+    order_of = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
+                "angular_acceleration": 2}
+    values, levels = [], []
+    for o in view.outputs:
+        for _, c in o.fields:
+            index = spell.fields(o.variable.kind).index(c.field)
+            values.append(f"{spell.ref(c.variable, None)}[{index}]")
+            levels.append(str(order_of[c.quantity]))
+    lit = spell.lit
+    text = _render("py/NAME.py.j2", v=view, L=spell, banner=banner, name=log.name, runtime=runtime,
+                   columns=[c.name for c in log.columns], levels=levels, values=values,
+                   inputs=[f"{lit(i.start)}, {lit(i.stop)}, {lit(i.speed)}" for i in log.inputs],
+                   sketch_a=_sketch_a(view, lit))
+    return {f"{log.name}.py": text}
+
+
+def _m_files(view: View, banner) -> dict[str, bytes]:
+    log = view.log
+    spell = Octave(view.record_order, {v.name: v for v in log.variables})
+    runtime = [octave_function(PRIMITIVES[p], view.record_order).rstrip("\n") for p in _used(view)]
+    if view.groups:
+        runtime.append(_runtime_source("m", "resolver.m").rstrip("\n"))
+    level = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
+             "angular_acceleration": 2}
+    outputs = [{"name": spell.ident(o.name),
+                "fields": [(field, f"{spell.ref(c.variable, None)}.{c.field}", level[c.quantity]) for field, c in o.fields]}
+               for o in view.outputs]
+    lit = spell.lit
+    common = dict(v=view, L=spell, banner=banner, name=log.name)
+    inputs = {k: ", ".join(lit(getattr(i, k)) for i in log.inputs) for k in ("start", "stop", "speed")}
+    return {
+        f"{log.name}_solve.m": _render("m/NAME_solve.m.j2", **common, runtime=runtime, outputs=outputs,
+                                       sketch_in=", ".join(lit(i.sketch) for i in log.inputs),
+                                       sketch_a=", ".join(f"[{a}]'" for a in _sketch_a(view, lit))),
+        f"{log.name}.m": _render("m/NAME.m.j2", **common, columns=[c.name for c in log.columns], inputs=inputs),
+    }
+
+
 def render_all(log: StepLog) -> dict[str, bytes]:
     view = build_view(log)
     banner = _banner(log)
     files = {f"{log.name}.json": log.to_json().encode("utf-8")}
     files.update(_c_files(view, banner))
+    files.update(_py_files(view, banner))
+    files.update(_m_files(view, banner))
     return files
-
-
-__all__ = ["render_all", "template_dir", "Octave", "Python", "octave_function", "python_function"]

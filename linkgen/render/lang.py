@@ -69,6 +69,10 @@ class Spelling:
     def fields(self, kind: str) -> tuple[str, ...]:
         return record_fields(kind, self.order)
 
+    def input_record(self, var: Variable, k: int) -> str:
+        """The statement that builds an input record from the k-th input, rate and acceleration."""
+        raise NotImplementedError
+
 
 class C(Spelling):
     name = "c"
@@ -87,6 +91,10 @@ class C(Spelling):
 
     def field(self, kind: str, f: str) -> str:
         return self._field[f] if kind == "POINT" else f
+
+    def input_record(self, var: Variable, k: int) -> str:
+        sources = ("in", "din", "ddin")
+        return " ".join(f"w->{var.name}.{f} = {src}[{k}];" for f, src in zip(self.fields(var.kind), sources))
 
     def initializer(self, v: Variable) -> str:
         """Braced initializer of a constant record (derivatives zero)."""
@@ -119,11 +127,13 @@ class Python(Spelling):
         self.variables = variables
 
     def ref(self, var: str, scope: Group | None) -> str:
-        if self.variables[var].constant:
-            return var.upper()
-        if self.external(var, scope):
+        if self.variables[var].constant or self.external(var, scope):
             return var
         return f"w.{var}"
+
+    def input_record(self, var: Variable, k: int) -> str:
+        sources = ("inputs", "d_inputs", "dd_inputs")[: self.order + 1]
+        return f"w.{var.name} = (" + ", ".join(f"{src}[{k}]" for src in sources) + ("," if self.order == 0 else "") + ")"
 
     def initializer(self, v: Variable) -> str:
         zeros = [0.0] * (len(record_fields(v.kind, self.order)) - len(v.value))
@@ -153,9 +163,17 @@ class Octave(Spelling):
         self.variables = variables
 
     def ref(self, var: str, scope: Group | None) -> str:
-        if self.variables[var].constant or self.external(var, scope):
-            return var
-        return f"w.{var}"
+        """Constants live in the work struct too (MATLAB has no file-level constants)."""
+        return var if self.external(var, scope) else f"w.{var}"
+
+    def input_record(self, var: Variable, k: int) -> str:
+        sources = ("in", "din", "ddin")
+        pairs = ", ".join(f"'{f}', {src}({k + 1})" for f, src in zip(self.fields(var.kind), sources))
+        return f"w.{var.name} = struct({pairs});"
+
+    def rates(self, kind: str) -> tuple[str, ...]:
+        """The derivative fields of a record kind."""
+        return record_fields(kind, self.order)[2 if kind == "POINT" else 1:]
 
     def initializer(self, v: Variable) -> str:
         names = record_fields(v.kind, self.order)

@@ -22,7 +22,11 @@ function [x, det] = solve_linear(m, b)
         end
     end
     for r = n:-1:1
-        x(r) = (a(r, n + 1) - a(r, r + 1:n) * x(r + 1:n)) / a(r, r);
+        s = a(r, n + 1);
+        for j = r + 1:n
+            s = s - a(r, j) * x(j);
+        end
+        x(r) = s / a(r, r);
     end
 end
 
