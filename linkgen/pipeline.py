@@ -11,10 +11,6 @@ from .steplog import InputInfo, LinkInfo, PairInfo, StatusCode, StepLog
 from .topology import Topology, analyse
 from .validate import read_mechanism
 
-_REASONS = {1: "the chain cannot close", 2: "the resolver did not converge", 3: "singular position",
-            4: "near a singular position"}
-
-
 def _norm(ex: Extractor, probe: tuple[float, ...]) -> float | None:
     group = ex.groups[-1]
     return residual_norm(ex.variables, ex.steps, ex.inputs, probe, group.residuals)
@@ -26,18 +22,18 @@ def _status_codes(proc: Procedure) -> tuple[StatusCode, ...]:
         if not s.fails:
             continue
         if s.action == "resolve":
-            reasons = (2, 3, 4)
+            reasons = {2: "the resolver did not converge", 3: "the resolver's Jacobian is singular",
+                       4: "the resolver's Jacobian is near singular"}
         elif s.action == "residual":
-            reasons = (3,)
+            reasons = {3: f"the pairs of {s.target} coincide, so the resolver has no rate"}
         elif s.function == "link_angle":
-            reasons = (1,)
-        elif s.function in ("PRP_links", "PPR_links"):
-            reasons = (1, 3, 4)
+            reasons = {1: f"the two points of {s.target} coincide"}
         else:
-            reasons = (1, 3, 4)
-        for r in reasons:
+            reasons = {1: "the chain cannot close", 3: "singular position (toggle)",
+                       4: "near a singular position"}
+        for r, meaning in reasons.items():
             code = 10 * s.number + r
-            out.append(StatusCode(-code if r == 4 else code, s.number, f"step {s.number}: {_REASONS[r]}"))
+            out.append(StatusCode(-code if r == 4 else code, s.number, f"step {s.number} ({s.target}): {meaning}"))
     return tuple(out)
 
 

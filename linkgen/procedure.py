@@ -267,7 +267,8 @@ class Extractor:
             self.steps.append(Step(
                 len(self.steps) + 1, "resolve", "", (), tuple(g.add_links), f"group{g.number}", "", (), (), 0,
                 f"Newton-Raphson on {', '.join(g.add_links)} until "
-                + ", ".join(f"{r.link}" for r in self.residuals if r.name in g.residuals) + " regain their lengths",
+                + " and ".join(f"{r.link}" for r in self.residuals if r.name in g.residuals)
+                + (" regains its length" if len(g.residuals) == 1 else " regain their lengths"),
                 "", (), g.number, True))
             self.group = 0
 

@@ -105,8 +105,9 @@ def input_direction(m: Mechanism, link: Link, joint: str) -> Direction:
     for target in order:
         if sketch_position(m, target) != here:
             return Direction(joint, target, "", angle_between(m, joint, target))
-    raise InputError(f"link {link.name} has no pair or point away from the input pair {joint}",
-                     m.path, link.where.line, link.where.key)
+    raise InputError(f"every pair and point of link {link.name} lies at the input pair {joint}, so the input "
+                     f"angle at {joint} has no direction on {link.name}; give {link.name} a point away from {joint} "
+                     f"(points: {{NAME: [x, y]}})", m.path, link.where.line, link.where.key)
 
 
 def truss(m: Mechanism, link: Link) -> list[Member]:
@@ -224,32 +225,89 @@ def grubler(m: Mechanism) -> int:
     return 3 * (len(m.links) - 1) - 2 * pairs
 
 
+def _describe_input(inp: Input) -> str:
+    if inp.kind == "distance":
+        return f"the actuator between {inp.between[0]} and {inp.between[1]}"
+    return f"the input on {inp.joint}"
+
+
+def _and(items) -> str:
+    items = list(items)
+    return ", ".join(items[:-1]) + " and " + items[-1] if len(items) > 1 else "".join(items)
+
+
+def _degrees(n: int) -> str:
+    return f"{n} degree{'' if n == 1 else 's'} of freedom"
+
+
+def _check_input_count(m: Mechanism, mobility: int, count: int) -> None:
+    given = len(m.inputs)
+    if given == mobility:
+        return
+    why = f"(Grübler's count gives {count}"
+    if mobility != count:
+        redundant = mobility - count
+        why += f", and {redundant} constraint{' is' if redundant == 1 else 's are'} redundant in the sketch, "
+        why += "as in a parallelogram drawn exactly"
+    why += ")"
+    if mobility == 0:
+        raise InputError(f"the mechanism cannot move: its links form a rigid structure {why}, so it takes no input",
+                         m.path, m.inputs[0].where.line, m.inputs[0].where.key)
+    if given > mobility:
+        extra = m.inputs[mobility].where
+        raise InputError(f"the mechanism has {_degrees(mobility)} {why}, but {given} inputs are given; "
+                         "give one input per degree of freedom", m.path, extra.line, extra.key)
+    raise InputError(f"the mechanism has {_degrees(mobility)} {why}, but only {given} input{'' if given == 1 else 's'} "
+                     f"{'is' if given == 1 else 'are'} given; give one input per degree of freedom, "
+                     "or the rest of the mechanism is left free", m.path, m.inputs[0].where.line, "inputs")
+
+
+def _free_links(jac: _Jacobian, full: np.ndarray) -> list[str]:
+    """The moving links that still move when every input is held: the null space of the full Jacobian."""
+    _, s, vt = np.linalg.svd(full)
+    rank = int(np.sum(s > RANK_TOLERANCE * max(s[0], 1.0)))
+    free = np.abs(vt[rank:]).max(axis=0)
+    return [lk.name for lk in jac.moving if free[jac.col[lk.name]:jac.col[lk.name] + 3].max() > RANK_TOLERANCE]
+
+
+def _cannot_move(inp: Input) -> str:
+    if inp.kind == "revolute":
+        return (f"the input on {inp.joint} cannot move in the sketch ({inp.link} and {inp.relative_to} are locked "
+                "together there, or the sketch is at a dead centre for this input)")
+    return (f"{_describe_input(inp)} cannot move in the sketch (its links are locked together there, "
+            "or the sketch is at a dead centre for this input)")
+
+
+def _check_inputs_determine(m: Mechanism, jac: _Jacobian, c: np.ndarray) -> None:
+    """Each input must fix a motion that the constraints and the inputs before it leave free."""
+    rows = [jac.input_row(i) for i in m.inputs]
+    for k, inp in enumerate(m.inputs):
+        before = np.vstack([c, *rows[:k]]) if k else c
+        if _rank(np.vstack([before, rows[k]])) > _rank(before):
+            continue
+        if k == 0:
+            cause = _cannot_move(inp)
+        else:
+            cause = f"{_describe_input(inp)} drives the same motion as {_and(_describe_input(i) for i in m.inputs[:k])}"
+        free = _free_links(jac, np.vstack([c, *rows]))
+        raise InputError(f"the inputs do not determine the sketch configuration: {cause}, so link"
+                         f"{'s' if len(free) > 1 else ''} {_and(free)} {'are' if len(free) > 1 else 'is'} left free; "
+                         "drive independent motions", m.path, inp.where.line, inp.where.key)
+
+
 def analyse(m: Mechanism) -> Topology:
     """Build the topology and check that the inputs drive the mechanism exactly."""
     scale = length_scale(m)
     if scale == 0:
-        raise InputError("all pairs lie at one position; draw the mechanism in its sketch configuration",
-                         m.path, m.where.line, "joints")
+        first = m.joints[0].where
+        raise InputError("all pairs and points lie at one position; draw the mechanism as it is assembled, "
+                         "with every pair at its place", m.path, first.line, "joints")
     jac = _Jacobian(m, scale)
     c = jac.constraints()
     mobility = jac.n - _rank(c)
     count = grubler(m)
-    inputs_node = m.inputs[0].where if m.inputs else m.where
-    if len(m.inputs) != mobility:
-        redundancy = ""
-        if mobility != count:
-            redundancy = (f"; Grübler's count gives {count}, and {mobility - count} constraint(s) of the sketch "
-                          "are redundant (parallel links drawn exactly)")
-        raise InputError(
-            f"the mechanism has mobility {mobility}{redundancy}, but {len(m.inputs)} input(s) are given; "
-            f"give one input per degree of freedom", m.path, inputs_node.line, "inputs")
-    if m.inputs:
-        full = np.vstack([c, np.array([jac.input_row(i) for i in m.inputs])])
-        if _rank(full) < jac.n:
-            raise InputError(
-                "the inputs do not determine the sketch configuration: some of them drive the same motion, "
-                "so part of the mechanism is left free; drive independent motions",
-                m.path, inputs_node.line, "inputs")
+    _check_input_count(m, mobility, count)
+    _check_inputs_determine(m, jac, c)
     directions = tuple(link_direction(m, lk) for lk in m.links)
     members = tuple(mb for lk in m.links for mb in truss(m, lk))
     sketch = tuple(sketch_input(m, i) for i in m.inputs)

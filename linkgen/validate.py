@@ -7,11 +7,12 @@ the inputs determine the sketch are checked by ``topology``.
 
 from __future__ import annotations
 
+import difflib
 import math
 import os
 
 from .errors import InputError
-from .loader import Mapping, Node, Reader, Sequence, load
+from .loader import Mapping, Node, Reader, Sequence, describe, load
 from .model import Input, Joint, Link, Mechanism, Point, Prismatic, Where
 
 FORMAT_VERSION = 1
@@ -19,10 +20,21 @@ DEFAULT_SAMPLES = 361
 DEFAULT_ORDER = 2
 _TOP_REQUIRED = ("linkgen", "name", "joints", "links", "inputs")
 _TOP_OPTIONAL = ("title", "units", "outputs", "order", "samples")
+_INPUT_KEYS = ("joint", "link", "relative_to", "between", "speed")
 
 
 def _where(node: Node) -> Where:
     return Where(node.line, node.key)
+
+
+def _did_you_mean(name: str, known) -> str:
+    close = difflib.get_close_matches(name, list(known), n=1)
+    return f" (did you mean {close[0]}?)" if close else ""
+
+
+def _names(items) -> str:
+    items = list(items)
+    return ", ".join(items[:-1]) + " and " + items[-1] if len(items) > 1 else "".join(items)
 
 
 class _Validator:
@@ -34,76 +46,91 @@ class _Validator:
         self.angle_scale = math.pi / 180
 
     # -- helpers -------------------------------------------------------------
+    def error(self, message: str, where: Where) -> InputError:
+        return InputError(message, self.path, where.line, where.key)
+
     def claim(self, name: str, node: Node, what: str) -> None:
         if name in self.names:
             first = self.names[name]
-            raise self.r.error(node, f"the name {name!r} is used twice (first at line {first.line}, {first.key}); "
-                               f"pairs, points and links share one set of names, so each {what} needs its own")
+            raise self.r.error(node, f"the name {name} is already used at line {first.line} ({first.key}); "
+                               f"pairs, points and links share one set of names, so this {what} needs another")
         self.names[name] = node
 
     def xy(self, node: Node, what: str) -> tuple[float, float]:
-        seq = self.r.sequence(node, f"{what} as [x, y]")
+        seq = self.r.sequence(node, f"the position of {what} as [x, y]")
         if len(seq.items) != 2:
-            raise self.r.error(node, f"expected {what} as [x, y], got {len(seq.items)} numbers")
-        return self.r.number(seq.items[0], "an x coordinate"), self.r.number(seq.items[1], "a y coordinate")
+            raise self.r.error(node, f"expected the position of {what} as [x, y], two numbers, "
+                               f"got {len(seq.items)} value{'' if len(seq.items) == 1 else 's'}")
+        x = self.r.number(seq.items[0], f"the x coordinate of {what}, a number")
+        y = self.r.number(seq.items[1], f"the y coordinate of {what}, a number")
+        return x, y
 
     def angle(self, node: Node, what: str) -> float:
         return self.r.number(node, what) * self.angle_scale
+
+    def pair_name(self, node: Node, joints: dict[str, Joint], what: str) -> str:
+        name = self.r.name(node, f"{what}, a pair name")
+        if name not in joints:
+            raise self.r.error(node, f"{name} is not a pair in joints{_did_you_mean(name, joints)}")
+        return name
 
     # -- sections ------------------------------------------------------------
     def header(self) -> tuple[str, str, str, str]:
         root = self.root
         self.r.keys(root, _TOP_REQUIRED, _TOP_OPTIONAL, "the mechanism file")
-        version = root.get("linkgen")
-        if self.r.integer(version, "the format version 1") != FORMAT_VERSION:
-            raise self.r.error(version, f"this linkgen reads format version {FORMAT_VERSION}")
-        name = self.r.name(root.get("name"), "an identifier for the mechanism")
+        node = root.get("linkgen")
+        version = self.r.integer(node, f"the format version {FORMAT_VERSION}")
+        if version != FORMAT_VERSION:
+            raise self.r.error(node, f"this file is format version {version}, "
+                               f"but this linkgen reads format version {FORMAT_VERSION}")
+        name = self.r.name(root.get("name"), "a name for the mechanism, such as fourbar")
         title_node = root.get("title")
-        title = self.r.text(title_node, "a title") if title_node is not None else name
+        title = self.r.text(title_node, "a title (text)") if title_node is not None else name
         length_unit, angle_unit = "", "deg"
         units = root.get("units")
         if units is not None:
-            units = self.r.mapping(units, "units")
+            units = self.r.mapping(units, "the units as {length: mm, angle: deg}")
             self.r.keys(units, (), ("length", "angle"), "units")
             if units.get("length") is not None:
-                length_unit = self.r.text(units.get("length"), "a length unit label")
-            if units.get("angle") is not None:
-                node = units.get("angle")
-                angle_unit = self.r.text(node, "deg or rad")
+                length_unit = self.r.text(units.get("length"), "a length unit label such as mm")
+            node = units.get("angle")
+            if node is not None:
+                angle_unit = self.r.text(node, "the angle unit deg or rad")
                 if angle_unit not in ("deg", "rad"):
-                    raise self.r.error(node, f"angle unit must be deg or rad, got {angle_unit!r}")
+                    raise self.r.error(node, f"the angle unit is deg (degrees) or rad (radians), got {angle_unit!r}")
         self.angle_scale = math.pi / 180 if angle_unit == "deg" else 1.0
         return name, title, length_unit, angle_unit
 
     def joints(self) -> tuple[Joint, ...]:
-        section = self.r.mapping(self.root.get("joints"), "the pairs (joints)")
+        section = self.r.mapping(self.root.get("joints"),
+                                 "the pairs as NAME: [x, y] or NAME: {type: prismatic, at: [x, y], axis: ANGLE}")
         if not section.items:
-            raise self.r.error(section, "no pairs are given")
+            raise self.r.error(section, "no pairs are given; list every pair at its position in the sketch")
         out = []
         for index, (key, node) in enumerate(section.items):
             name = self.r.name(key, "a pair name")
             self.claim(name, key, "pair")
             if isinstance(node, Sequence):
-                x, y = self.xy(node, "the pair's position")
+                x, y = self.xy(node, f"pair {name}")
                 out.append(Joint(name, index, "revolute", x, y, 0.0, _where(key)))
                 continue
-            spec = self.r.mapping(node, "a pair: [x, y] or {at: [x, y], type: ..., axis: ...}")
+            spec = self.r.mapping(node, f"pair {name} as [x, y] or {{type: prismatic, at: [x, y], axis: ANGLE}}")
             kind_node = spec.get("type")
-            kind = self.r.text(kind_node, "revolute or prismatic") if kind_node is not None else "revolute"
+            kind = self.r.text(kind_node, "the pair type") if kind_node is not None else "revolute"
             if kind not in ("revolute", "prismatic"):
-                raise self.r.error(kind_node, f"a pair type is revolute or prismatic, got {kind!r}")
+                raise self.r.error(kind_node, f"a pair is revolute (a hinge) or prismatic (a slider), got {kind!r}")
+            axis = 0.0
             if kind == "revolute":
                 self.r.keys(spec, ("at",), ("type",), f"revolute pair {name}")
-                axis = 0.0
             else:
                 self.r.keys(spec, ("at", "axis"), ("type",), f"prismatic pair {name}")
-                axis = self.angle(spec.get("axis"), "the slide axis angle")
-            x, y = self.xy(spec.get("at"), "the pair's position")
+                axis = self.angle(spec.get("axis"), f"the slide axis angle of pair {name}, a number")
+            x, y = self.xy(spec.get("at"), f"pair {name}")
             out.append(Joint(name, index, kind, x, y, axis, _where(key)))
         return tuple(out)
 
     def links(self, joints: dict[str, Joint]) -> tuple[Link, ...]:
-        section = self.r.mapping(self.root.get("links"), "the links")
+        section = self.r.mapping(self.root.get("links"), "the links as NAME: [PAIR, PAIR, ...]")
         out = []
         point_index = 0
         for index, (key, node) in enumerate(section.items):
@@ -111,44 +138,45 @@ class _Validator:
             self.claim(name, key, "link")
             fixed = False
             points: list[Point] = []
+            jnode = node
             if isinstance(node, Mapping):
                 self.r.keys(node, ("joints",), ("fixed", "points"), f"link {name}")
                 jnode = node.get("joints")
                 if node.get("fixed") is not None:
-                    fixed = self.r.boolean(node.get("fixed"))
+                    fixed = self.r.boolean(node.get("fixed"), f"whether link {name} is fixed")
                 if node.get("points") is not None:
-                    pnode = self.r.mapping(node.get("points"), "the link's points {NAME: [x, y]}")
-                    for pkey, pval in pnode.items:
-                        pname = self.r.name(pkey, "a point name")
-                        self.claim(pname, pkey, "point")
-                        x, y = self.xy(pval, "the point's position")
-                        points.append(Point(pname, point_index, name, x, y, _where(pkey)))
-                        point_index += 1
-            else:
-                jnode = node
-            seq = self.r.sequence(jnode, f"the pairs link {name} carries")
-            names: list[str] = []
-            for item in seq.items:
-                jname = self.r.name(item, "a pair name")
-                if jname not in joints:
-                    raise self.r.error(item, f"link {name} carries {jname!r}, which is not a pair in joints")
-                if jname in names:
-                    raise self.r.error(item, f"link {name} lists the pair {jname} twice")
-                names.append(jname)
-            if not names:
-                raise self.r.error(seq, f"link {name} carries no pair")
-            self.link_geometry(name, names, points, joints, seq)
+                    points = self.points(name, node.get("points"), point_index)
+                    point_index += len(points)
+            elif not isinstance(node, Sequence):
+                raise self.r.error(node, f"expected link {name} as [PAIR, PAIR, ...] or "
+                                   f"{{joints: [...], fixed: true, points: {{NAME: [x, y]}}}}, got {describe(node)}")
+            names = self.link_pairs(name, jnode, joints)
+            self.link_geometry(name, names, points, joints, jnode)
             out.append(Link(name, index, tuple(names), fixed, tuple(points), _where(key)))
-        fixed_links = [lk for lk in out if lk.fixed]
-        if not fixed_links:
-            raise self.r.error(section, "no link is fixed: mark the frame with fixed: true")
-        if len(fixed_links) > 1:
-            second = fixed_links[1]
-            raise InputError(
-                f"two links are fixed ({fixed_links[0].name} and {second.name}); exactly one link is the frame",
-                self.path, second.where.line, second.where.key,
-            )
+        self.one_fixed(out, section)
         return tuple(out)
+
+    def points(self, link: str, node: Node, first_index: int) -> list[Point]:
+        section = self.r.mapping(node, f"the points of link {link} as {{NAME: [x, y], ...}}")
+        out = []
+        for pkey, pval in section.items:
+            pname = self.r.name(pkey, "a point name")
+            self.claim(pname, pkey, "point")
+            x, y = self.xy(pval, f"point {pname}")
+            out.append(Point(pname, first_index + len(out), link, x, y, _where(pkey)))
+        return out
+
+    def link_pairs(self, link: str, node: Node, joints: dict[str, Joint]) -> list[str]:
+        seq = self.r.sequence(node, f"the pairs link {link} carries, as [PAIR, PAIR, ...]")
+        names: list[str] = []
+        for item in seq.items:
+            jname = self.pair_name(item, joints, f"a pair of link {link}")
+            if jname in names:
+                raise self.r.error(item, f"link {link} lists the pair {jname} twice")
+            names.append(jname)
+        if not names:
+            raise self.r.error(seq, f"link {link} carries no pair")
+        return names
 
     def link_geometry(self, name: str, names: list[str], points: list[Point], joints: dict[str, Joint],
                       node: Node) -> None:
@@ -156,134 +184,148 @@ class _Validator:
         for i, a in enumerate(revolute):
             for b in revolute[i + 1:]:
                 if (a.x, a.y) == (b.x, b.y):
-                    raise self.r.error(node, f"link {name} carries the revolute pairs {a.name} and {b.name} "
-                                       f"at the same position ({a.x:g}, {a.y:g}); a link cannot be pinned twice at one point")
+                    raise self.r.error(node, f"link {name} carries the revolute pairs {a.name} and {b.name} at the "
+                                       f"same position ({a.x:g}, {a.y:g}); a link cannot be hinged twice at one point")
         spots = {(joints[j].x, joints[j].y) for j in names} | {(p.x, p.y) for p in points}
-        if len(spots) == 1 and not any(not joints[j].revolute for j in names):
-            raise self.r.error(node, f"all pairs and points of link {name} lie at one position, so its direction "
-                               "is undefined; give a second pair or point elsewhere on the link")
+        if len(names) + len(points) > 1 and len(spots) == 1 and all(joints[j].revolute for j in names):
+            raise self.r.error(node, f"all pairs and points of link {name} lie at one position, so the link has no "
+                               "direction; give a pair or point of the link elsewhere, at its place in the sketch")
+
+    def one_fixed(self, links: list[Link], section: Mapping) -> None:
+        fixed = [lk for lk in links if lk.fixed]
+        if not fixed:
+            raise self.r.error(section, "no link is fixed; mark the frame with {joints: [...], fixed: true}")
+        if len(fixed) > 1:
+            raise self.error(f"links {fixed[0].name} and {fixed[1].name} are both fixed; exactly one link is "
+                             "the frame (pairs on the frame are all listed by that one link)", fixed[1].where)
+
+    def pair_usage(self, joints: tuple[Joint, ...], links: tuple[Link, ...]) -> None:
+        for j in joints:
+            on = [lk.name for lk in links if j.name in lk.joints]
+            if not on:
+                raise self.error(f"the pair {j.name} is on no link; list it in the two links it joins", j.where)
+            if len(on) == 1:
+                raise self.error(f"the pair {j.name} is only on link {on[0]}, but a pair joins two links; list it "
+                                 f"in the other link too, or make it a point of {on[0]} (points: {{{j.name}: [x, y]}})",
+                                 j.where)
+            if not j.revolute and len(on) != 2:
+                raise self.error(f"the prismatic pair {j.name} is on {len(on)} links ({_names(on)}); a prismatic "
+                                 "pair joins exactly two links, the guide and the slider", j.where)
 
     def inputs(self, joints: dict[str, Joint], links: tuple[Link, ...]) -> tuple[Input, ...]:
-        seq = self.r.sequence(self.root.get("inputs"), "the inputs, one per degree of freedom")
+        seq = self.r.sequence(self.root.get("inputs"),
+                              "the inputs as a list, one '- {joint: ..., ...}' line per degree of freedom")
+        if not seq.items:
+            raise self.r.error(seq, "no inputs are given; give one input per degree of freedom")
         out: list[Input] = []
         driven: dict[str, Node] = {}
         by_name = {lk.name: lk for lk in links}
         for index, node in enumerate(seq.items):
-            spec = self.r.mapping(node, "an input {joint: ..., ...} or {between: [J1, J2], ...}")
-            self.r.keys(spec, ("range",), ("joint", "link", "relative_to", "between", "speed"), "an input")
-            rng = self.r.sequence(spec.get("range"), "the input range [from, to]")
-            if len(rng.items) != 2:
-                raise self.r.error(rng, "expected the input range as [from, to]")
-            speed_node = spec.get("speed")
+            spec = self.r.mapping(node, "an input {joint: ..., link: ..., relative_to: ..., range: [from, to]}")
+            self.r.keys(spec, ("range",), _INPUT_KEYS, "an input")
             if spec.get("between") is not None:
-                out.append(self.distance_input(index, spec, joints, links, rng, speed_node, driven))
-                continue
-            if spec.get("joint") is None:
-                raise self.r.error(spec, "an input needs joint: (a driven pair) or between: [J1, J2] (an actuator)")
-            jnode = spec.get("joint")
-            jname = self.r.name(jnode, "the driven pair")
-            if jname not in joints:
-                raise self.r.error(jnode, f"{jname!r} is not a pair in joints")
-            if jname in driven:
-                raise self.r.error(jnode, f"the pair {jname} already carries an input (line {driven[jname].line}); "
-                                   "a pair carries at most one input")
-            driven[jname] = jnode
-            on = [lk.name for lk in links if jname in lk.joints]
-            joint = joints[jname]
-            if joint.revolute:
-                kind, scale = "revolute", self.angle_scale
-                for key in ("link", "relative_to"):
-                    if spec.get(key) is None:
-                        raise self.r.error(spec, f"a revolute input on {jname} needs {key}: the "
-                                           f"{'driven link' if key == 'link' else 'link it turns against'}")
-                link = self.input_link(spec.get("link"), jname, on, by_name)
-                ref = self.input_link(spec.get("relative_to"), jname, on, by_name)
-                if by_name[link].fixed:
-                    raise self.r.error(spec.get("link"), f"the driven link {link} is the fixed link; drive the moving "
-                                       "link and give the frame as relative_to")
-                if link == ref:
-                    raise self.r.error(spec.get("relative_to"), f"an input turns {link} against another link, not itself")
+                out.append(self.distance_input(index, spec, joints, links, driven))
+            elif spec.get("joint") is None:
+                raise self.r.error(spec, "an input needs joint: (the driven pair) or between: [J1, J2] (an actuator)")
             else:
-                kind, scale = "prismatic", 1.0
-                if len(on) != 2:
-                    raise self.r.error(jnode, f"the prismatic pair {jname} must join exactly two links")
-                link, ref = "", ""
-                for key in ("link", "relative_to"):
-                    if spec.get(key) is not None:
-                        self.input_link(spec.get(key), jname, on, by_name)
-                if spec.get("link") is not None and spec.get("relative_to") is not None:
-                    if self.r.name(spec.get("link")) == self.r.name(spec.get("relative_to")):
-                        raise self.r.error(spec.get("relative_to"), "an input moves one link against another link")
-            start = self.r.number(rng.items[0], "the start of the range") * scale
-            stop = self.r.number(rng.items[1], "the end of the range") * scale
-            speed = self.r.number(speed_node, "a speed") * scale if speed_node is not None else scale
-            out.append(Input(index, kind, jname, link, ref, (), start, stop, speed, _where(node)))
+                out.append(self.pair_input(index, spec, joints, by_name, driven))
         return tuple(out)
+
+    def pair_input(self, index: int, spec: Mapping, joints: dict[str, Joint], by_name: dict[str, Link],
+                   driven: dict[str, Node]) -> Input:
+        jnode = spec.get("joint")
+        jname = self.pair_name(jnode, joints, "the driven pair")
+        if jname in driven:
+            raise self.r.error(jnode, f"the pair {jname} already carries an input (line {driven[jname].line}); "
+                               "a pair carries at most one input")
+        driven[jname] = jnode
+        on = [name for name, lk in by_name.items() if jname in lk.joints]
+        if not joints[jname].revolute:
+            for key in ("link", "relative_to"):
+                if spec.get(key) is not None:
+                    self.input_link(spec.get(key), jname, on, by_name)
+            both = spec.get("link") is not None and spec.get("relative_to") is not None
+            if both and self.r.name(spec.get("link")) == self.r.name(spec.get("relative_to")):
+                raise self.r.error(spec.get("relative_to"), "an input moves one link against another link, "
+                                       "not against itself")
+            start, stop, speed = self.sweep(spec, 1.0)
+            return Input(index, "prismatic", jname, "", "", (), start, stop, speed, _where(spec))
+        for key, what in (("link", "the driven link"), ("relative_to", "the link it turns against")):
+            if spec.get(key) is None:
+                raise InputError(f"a revolute input on {jname} needs {key}: {what}", self.path, spec.line,
+                                 f"{spec.key}.{key}")
+        link = self.input_link(spec.get("link"), jname, on, by_name)
+        ref = self.input_link(spec.get("relative_to"), jname, on, by_name)
+        if by_name[link].fixed:
+            raise self.r.error(spec.get("link"), f"the driven link {link} is the fixed link; drive the moving link "
+                               f"and give the frame as relative_to (link: {ref}, relative_to: {link})")
+        if link == ref:
+            raise self.r.error(spec.get("relative_to"), f"an input turns link {link} against another link, "
+                               "not against itself")
+        start, stop, speed = self.sweep(spec, self.angle_scale)
+        return Input(index, "revolute", jname, link, ref, (), start, stop, speed, _where(spec))
 
     def input_link(self, node: Node, joint: str, on: list[str], by_name: dict[str, Link]) -> str:
         name = self.r.name(node, "a link name")
         if name not in by_name:
-            raise self.r.error(node, f"{name!r} is not a link")
+            raise self.r.error(node, f"{name} is not a link{_did_you_mean(name, by_name)}")
         if name not in on:
-            raise self.r.error(node, f"the input pair {joint} does not join link {name} "
-                               f"({joint} is on {', '.join(on) if on else 'no link'})")
+            raise self.r.error(node, f"link {name} does not carry the pair {joint}, so the input on {joint} "
+                               f"cannot move it; {joint} joins {_names(on)}")
         return name
 
+    def sweep(self, spec: Mapping, scale: float) -> tuple[float, float, float]:
+        """The input's range and speed, in radians or length units."""
+        rng = self.r.sequence(spec.get("range"), "the input range as [from, to]")
+        if len(rng.items) != 2:
+            raise self.r.error(rng, f"expected the input range as [from, to], two numbers, got {len(rng.items)}")
+        start = self.r.number(rng.items[0], "the start of the range, a number")
+        stop = self.r.number(rng.items[1], "the end of the range, a number")
+        speed_node = spec.get("speed")
+        speed = self.r.number(speed_node, "the input speed, a number") if speed_node is not None else 1.0
+        return start * scale, stop * scale, speed * scale
+
     def distance_input(self, index: int, spec: Mapping, joints: dict[str, Joint], links: tuple[Link, ...],
-                       rng: Sequence, speed_node: Node | None, driven: dict[str, Node]) -> Input:
+                       driven: dict[str, Node]) -> Input:
         for key in ("joint", "link", "relative_to"):
             if spec.get(key) is not None:
-                raise self.r.error(spec.get(key), f"a distance input (between:) takes no {key}:")
-        bnode = self.r.sequence(spec.get("between"), "the two pairs [J1, J2] of the actuator")
+                raise self.r.error(spec.get(key), f"an actuator (between: [J1, J2]) takes no {key}:")
+        bnode = self.r.sequence(spec.get("between"), "the two pairs of the actuator as [J1, J2]")
         if len(bnode.items) != 2:
-            raise self.r.error(bnode, "an actuator acts between exactly two pairs [J1, J2]")
-        pair = []
-        for item in bnode.items:
-            jname = self.r.name(item, "a pair name")
-            if jname not in joints:
-                raise self.r.error(item, f"{jname!r} is not a pair in joints")
+            raise self.r.error(bnode, f"an actuator acts between exactly two pairs [J1, J2], got {len(bnode.items)}")
+        pair = [self.pair_name(item, joints, "the actuator's end") for item in bnode.items]
+        for item, jname in zip(bnode.items, pair):
             if not joints[jname].revolute:
                 raise self.r.error(item, f"an actuator acts between revolute pairs; {jname} is prismatic")
-            pair.append(jname)
         if pair[0] == pair[1]:
-            raise self.r.error(bnode, "an actuator needs two different pairs")
+            raise self.r.error(bnode, "an actuator acts between two different pairs")
         shared = [lk.name for lk in links if pair[0] in lk.joints and pair[1] in lk.joints]
         if shared:
             raise self.r.error(bnode, f"{pair[0]} and {pair[1]} are both on link {shared[0]}, so their distance "
                                "cannot change; an actuator acts between pairs that share no link")
+        a, b = joints[pair[0]], joints[pair[1]]
+        if (a.x, a.y) == (b.x, b.y):
+            raise self.r.error(bnode, f"{pair[0]} and {pair[1]} are at the same position in the sketch, so the "
+                               "actuator has no length and no direction")
         key = "+".join(sorted(pair))
         if key in driven:
-            raise self.r.error(bnode, f"an actuator between {pair[0]} and {pair[1]} is already given")
+            raise self.r.error(bnode, f"an actuator between {pair[0]} and {pair[1]} is already given "
+                               f"(line {driven[key].line})")
         driven[key] = bnode
-        start = self.r.number(rng.items[0], "the start of the range")
-        stop = self.r.number(rng.items[1], "the end of the range")
-        speed = self.r.number(speed_node, "a speed") if speed_node is not None else 1.0
-        a, b = joints[pair[0]], joints[pair[1]]
-        if math.hypot(a.x - b.x, a.y - b.y) == 0:
-            raise self.r.error(bnode, f"{pair[0]} and {pair[1]} coincide in the sketch; an actuator needs a length")
+        start, stop, speed = self.sweep(spec, 1.0)
         return Input(index, "distance", "", "", "", tuple(pair), start, stop, speed, _where(spec))
 
-    def pair_usage(self, joints: tuple[Joint, ...], links: tuple[Link, ...], inputs: tuple[Input, ...]) -> None:
-        driven_single = {i.link for i in inputs if i.kind == "revolute"}
+    def single_pair_links(self, links: tuple[Link, ...], inputs: tuple[Input, ...]) -> None:
+        driven = {i.link for i in inputs if i.kind == "revolute"}
         for lk in links:
-            if len(lk.joints) < 2 and not (lk.points and lk.name in driven_single):
-                raise InputError(
-                    f"link {lk.name} carries only one pair; a link needs two pairs, or one pair and a point "
-                    "when it is the driven link of a revolute input", self.path, lk.where.line, lk.where.key)
-        for j in joints:
-            on = [lk.name for lk in links if j.name in lk.joints]
-            if not on:
-                raise InputError(f"the pair {j.name} is on no link; list it in the links it joins",
-                                 self.path, j.where.line, j.where.key)
-            if len(on) == 1:
-                raise InputError(f"the pair {j.name} is only on link {on[0]}; a pair joins two links",
-                                 self.path, j.where.line, j.where.key)
-            if not j.revolute and len(on) != 2:
-                raise InputError(f"the prismatic pair {j.name} is on {len(on)} links ({', '.join(on)}); "
-                                 "a prismatic pair joins exactly two links", self.path, j.where.line, j.where.key)
+            if len(lk.joints) < 2 and not (lk.points and lk.name in driven):
+                raise self.error(f"link {lk.name} carries only the pair {lk.joints[0]}; a link needs two pairs "
+                                 "(one pair and a point only when it is the driven link of a revolute input)",
+                                 lk.where)
 
     def connected(self, links: tuple[Link, ...]) -> None:
-        reach = {links[0].name}
+        frame = next(lk for lk in links if lk.fixed)
+        reach = {frame.name}
         changed = True
         while changed:
             changed = False
@@ -293,9 +335,9 @@ class _Validator:
                     changed = True
         apart = [lk for lk in links if lk.name not in reach]
         if apart:
-            node = self.root.get("links")
-            raise self.r.error(node, "the mechanism is not connected: " + ", ".join(lk.name for lk in apart)
-                               + f" share no pair with {links[0].name} and the links joined to it")
+            raise self.error(f"the mechanism falls apart: link{'s' if len(apart) > 1 else ''} "
+                             f"{_names(lk.name for lk in apart)} share{'' if len(apart) > 1 else 's'} no pair with "
+                             f"the fixed link {frame.name} or the links joined to it", apart[0].where)
 
     def prismatic(self, joints: tuple[Joint, ...], links: tuple[Link, ...],
                   inputs: tuple[Input, ...]) -> tuple[Prismatic, ...]:
@@ -320,7 +362,8 @@ class _Validator:
         node = spec.get("relative_to")
         return self.r.name(node) if node is not None else ""
 
-    def resolve_prismatic_inputs(self, inputs: tuple[Input, ...], prismatic: tuple[Prismatic, ...]) -> tuple[Input, ...]:
+    def resolve_prismatic_inputs(self, inputs: tuple[Input, ...],
+                                 prismatic: tuple[Prismatic, ...]) -> tuple[Input, ...]:
         out = []
         for i in inputs:
             if i.kind == "prismatic":
@@ -333,29 +376,31 @@ class _Validator:
         node = self.root.get("outputs")
         if node is None:
             return (), None
-        seq = self.r.sequence(node, "the outputs, a list of pair, point and link names")
+        seq = self.r.sequence(node, "the outputs as a list of pair, point and link names, such as [B, P, rocker]")
         names: list[str] = []
         for item in seq.items:
-            name = self.r.name(item, "an output name")
+            name = self.r.name(item, "an output, a pair, point or link name")
             if name not in self.names:
-                raise self.r.error(item, f"{name!r} is not a pair, point or link of this mechanism")
+                raise self.r.error(item, f"the output {name} is not a pair, point or link of this mechanism"
+                                   f"{_did_you_mean(name, self.names)}")
             if name in names:
-                raise self.r.error(item, f"{name} is listed twice in outputs")
+                raise self.r.error(item, f"the output {name} is listed twice")
             names.append(name)
         if not names:
-            raise self.r.error(seq, "outputs is empty; leave it out for the default outputs")
+            raise self.r.error(seq, "outputs is empty; leave the key out for the default outputs")
         return tuple(names), _where(seq)
 
     def scalars(self) -> tuple[int, int]:
         order, samples = DEFAULT_ORDER, DEFAULT_SAMPLES
-        if self.root.get("order") is not None:
-            node = self.root.get("order")
-            order = self.r.integer(node, "0, 1 or 2")
+        node = self.root.get("order")
+        if node is not None:
+            order = self.r.integer(node, "the order 0, 1 or 2")
             if order not in (0, 1, 2):
-                raise self.r.error(node, f"order is 0 (displacement), 1 (+ velocity) or 2 (+ acceleration), got {order}")
-        if self.root.get("samples") is not None:
-            node = self.root.get("samples")
-            samples = self.r.integer(node, "a number of samples")
+                raise self.r.error(node, f"the order is 0 (displacement), 1 (+ velocity) or 2 (+ acceleration), "
+                                   f"got {order}")
+        node = self.root.get("samples")
+        if node is not None:
+            samples = self.r.integer(node, "the number of samples, a whole number")
             if samples < 2:
                 raise self.r.error(node, f"a sweep needs at least 2 samples, got {samples}")
         return order, samples
@@ -365,8 +410,9 @@ class _Validator:
         joints = self.joints()
         by_name = {j.name: j for j in joints}
         links = self.links(by_name)
+        self.pair_usage(joints, links)
         inputs = self.inputs(by_name, links)
-        self.pair_usage(joints, links, inputs)
+        self.single_pair_links(links, inputs)
         self.connected(links)
         prismatic = self.prismatic(joints, links, inputs)
         inputs = self.resolve_prismatic_inputs(inputs, prismatic)

@@ -12,7 +12,9 @@ from .. import __version__
 from ..primitives import PRIMITIVES
 from ..primitives.printers import c_function, octave_function, python_function
 from ..steplog import StepLog
-from .lang import C, Octave, Python
+from ..ljmatrix import states
+from .lang import C, Manual, Octave, Python, number
+from .svg import render_svg
 from .view import View, build_view
 
 
@@ -33,6 +35,9 @@ def make_env() -> jinja2.Environment:
         autoescape=False,
     )
     env.filters["cbody"] = lambda text: str(text).replace("*/", "* /")
+    env.filters["num"] = number
+    env.filters["capitalize_first"] = lambda text: text[:1].upper() + text[1:]
+    env.globals["zip"] = zip
     return env
 
 
@@ -144,6 +149,49 @@ def _m_files(view: View, banner) -> dict[str, bytes]:
     }
 
 
+def _constants(log: StepLog, spell: Manual) -> dict[int, list[str]]:
+    """Per step, the constants a reader needs: labelled numbers and constant records."""
+    out: dict[int, list[str]] = {}
+    for s in log.steps:
+        items = []
+        for a in s.args:
+            if a.kind == "real":
+                items.append(f"{a.label} = {number(float(a.value))}")
+            elif a.kind == "var" and log.variable(a.var).constant:
+                v = log.variable(a.var)
+                if v.role not in ("pair", "point"):
+                    items.append(f"{a.var} = {', '.join(number(x) for x in v.value)}")
+        out[s.number] = items
+    return out
+
+
+def _listing(view: View, spell: Manual) -> list[str]:
+    inside = {n for g in view.log.groups for n in g.steps}
+    lines = []
+    for s in view.log.steps:
+        mark = "|" if s.number in inside else " "
+        if s.function:
+            text = spell.call(s)
+        elif s.action == "fixed":
+            text = f"fixed_link({s.target})"
+        elif s.action == "add_link":
+            text = f"{s.target} = additional_link({', '.join(s.pairs)})"
+        else:
+            g = view.resolver(s.number)
+            text = f"add_link_optimizer({', '.join(g.group.residuals)} -> {', '.join(g.group.add_links)})"
+        lines.append(f"{s.number:>3} {mark} {text}")
+    return lines
+
+
+def _md_files(view: View, banner) -> dict[str, bytes]:
+    log = view.log
+    spell = Manual(log.order, {v.name: v for v in log.variables})
+    text = _render("md/NAME.md.j2", v=view, L=spell, banner=banner, name=log.name, lj=states(log),
+                   listing=_listing(view, spell), codes=log.status_codes, constants=_constants(log, spell),
+                   functions=_used(view), slides={p.name for p in log.pairs if p.kind == "prismatic"})
+    return {f"{log.name}.md": text, f"{log.name}.svg": render_svg(log).encode("utf-8")}
+
+
 def render_all(log: StepLog) -> dict[str, bytes]:
     view = build_view(log)
     banner = _banner(log)
@@ -151,4 +199,5 @@ def render_all(log: StepLog) -> dict[str, bytes]:
     files.update(_c_files(view, banner))
     files.update(_py_files(view, banner))
     files.update(_m_files(view, banner))
+    files.update(_md_files(view, banner))
     return files

@@ -197,3 +197,35 @@ class Octave(Spelling):
                             f"w = note(w, {step.number}, st);"]
         return lines + ["if st == 1", "    st = 1;", "    res = [];", "    return;", "end", "if live",
                         f"    w = note(w, {step.number}, st);", "end"]
+
+
+class Manual(Spelling):
+    """The manual's listing: calls written with the names a reader sees in the figure."""
+
+    name = "md"
+
+    def __init__(self, order: int, variables: dict[str, Variable]):
+        super().__init__(order)
+        self.variables = variables
+
+    def ref(self, var: str, scope: Group | None = None) -> str:
+        v = self.variables[var]
+        return v.entity if v.role in ("pair", "point", "input") else var
+
+    def arg(self, a: Arg, scope: Group | None = None) -> str:
+        if a.kind == "int":
+            return "%+d" % int(a.value)
+        if a.kind == "real":
+            return number(float(a.value))
+        return self.ref(a.var)
+
+    def call(self, step: Step, scope: Group | None = None) -> str:
+        outs = [self.ref(o) for o in step.outputs]
+        lhs = outs[0] if len(outs) == 1 else f"[{', '.join(outs)}]"
+        return f"{lhs} = {step.function}({', '.join(self.arg(a) for a in step.args)})"
+
+
+def number(x: float) -> str:
+    """A number for the manual: 10 significant digits, enough for a calculator."""
+    text = "%.10g" % x
+    return "0" if text == "-0" else text

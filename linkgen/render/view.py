@@ -52,6 +52,9 @@ class View:
     nmax: int  # the largest resolver group
     record_order: int  # derivative order of the records: a resolver needs velocities for its Jacobian
 
+    def resolver_of_group(self, number: int) -> Group:
+        return next(g for g in self.groups if g.group.number == number)
+
     def resolver(self, step: int) -> Group:
         """The group whose resolver is this step."""
         return next(g for g in self.groups if g.resolve.number == step)
