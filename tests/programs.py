@@ -42,8 +42,9 @@ def build(mechanism: Path, outdir: Path) -> StepLog:
 def run_c(log: StepLog, outdir: Path, extra: tuple[str, ...] = ()) -> str:
     cc = need("gcc")
     exe = outdir / f"{log.name}_c"
-    subprocess.run([cc, *CFLAGS, *extra, f"{log.name}.c", f"{log.name}_main.c", "-lm", "-o", str(exe)],
-                   cwd=outdir, check=True, capture_output=True, text=True)
+    done = subprocess.run([cc, *CFLAGS, *extra, f"{log.name}.c", f"{log.name}_main.c", "-lm", "-o", str(exe)],
+                          cwd=outdir, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
     return subprocess.run([str(exe)], cwd=outdir, check=True, capture_output=True, text=True).stdout
 
 

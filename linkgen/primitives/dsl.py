@@ -349,6 +349,10 @@ class Builder:
         self.results[name] = {k: wrap(v) for k, v in fields.items()}
 
     def build(self, status: Expr | None = None, sigma: Expr | None = None) -> Primitive:
+        names = {p.name for p in self.params} | {p.name for p in self.outputs}
+        clash = names & {let.name for let in self.body}
+        if clash:
+            raise ValueError(f"{self.name}: locals named like arguments: {sorted(clash)}")
         for out in self.outputs:
             wanted = set(record_fields(out.kind, 2))
             got = self.results[out.name]

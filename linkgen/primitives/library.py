@@ -308,7 +308,7 @@ def prr_links() -> Primitive:
     eu = b.let("eu", minv * rd)  # (jb - jr).u
     en = -pn  # (jb - jr).n
     e = (b.let("ex", eu * u[0] - en * u[1]), b.let("ey", eu * u[1] + en * u[0]))
-    s = b.let("s", eu - wu)
+    s = b.let("sv", eu - wu)
     jb = (b.let("jbx", pr[0] + e[0]), b.let("jby", pr[1] + e[1]))
     jp = (b.let("jpx", jb[0] - r[0]), b.let("jpy", jb[1] - r[1]))
     sigma = b.let("sigma", select(ln.v > 0, rd / ln.v, 0))
@@ -366,8 +366,8 @@ def prp_links() -> Primitive:
     cr = b.let("cr", _cross(u1, u2))
     icr = b.let("icr", select(cr.eq(0), NAN, 1 / cr))
     g = (b.let("gx", pb.x + r2[0] - pa.x - r1[0]), b.let("gy", pb.y + r2[1] - pa.y - r1[1]))
-    s1 = b.let("s1", _cross(g, u2) * icr)
-    s2 = b.let("s2", _cross(g, u1) * icr)
+    s1 = b.let("sv1", _cross(g, u2) * icr)
+    s2 = b.let("sv2", _cross(g, u1) * icr)
     jp1 = (b.let("jp1x", pa.x + s1 * u1[0]), b.let("jp1y", pa.y + s1 * u1[1]))
     jp2 = (b.let("jp2x", pb.x + s2 * u2[0]), b.let("jp2y", pb.y + s2 * u2[1]))
     sigma = b.let("sigma", fabs(cr))
@@ -435,8 +435,8 @@ def rpr_links() -> Primitive:
     iq = b.let("iq", select(q.eq(0), NAN, 1 / q))
     mt = b.let("mt", minv * t)  # d.u
     u = (b.let("ux", (mt * d[0] + hh * d[1]) * iq * iq), b.let("uy", (mt * d[1] - hh * d[0]) * iq * iq))
-    psi = b.let("psi", atan2(u[1], u[0]))
-    s = b.let("s", mt + (as_ - ag))
+    psi = b.let("th", atan2(u[1], u[0]))
+    s = b.let("sv", mt + (as_ - ag))
     r = _local(b, "r", u, as_, bs)
     sigma = b.let("sigma", t * iq)
     imt = b.let("imt", select(mt.eq(0), NAN, 1 / mt))
@@ -484,7 +484,7 @@ def ppr_links() -> Primitive:
     w = (b.let("wx", ax_[0] - pg.x - rb[0]), b.let("wy", ax_[1] - pg.y - rb[1]))
     cr = b.let("cr", _cross(u1, ux))
     icr = b.let("icr", select(cr.eq(0), NAN, 1 / cr))
-    s1 = b.let("s1", _cross(w, ux) * icr)
+    s1 = b.let("sv1", _cross(w, ux) * icr)
     m = (b.let("mx", w[0] - s1 * u1[0]), b.let("my", w[1] - s1 * u1[1]))  # a's copy - b's copy
     mu = b.let("mu", _dot(m, ux))
     jp1 = (b.let("jp1x", pg.x + s1 * u1[0]), b.let("jp1y", pg.y + s1 * u1[1]))

@@ -83,7 +83,7 @@ def _c_files(view: View, banner) -> dict[str, bytes]:
     width = {"point": 2, "angle": 1, "slide": 1}
     fields = {k: per_kind[k][: width[k] * (log.order + 1)] for k in per_kind}
     columns = [c.name for c in log.columns]
-    column_fields = [f"{spell.ident(o.name)}.{field}" for o in view.outputs for field, _ in o.fields]
+    column_fields = [f"{spell.ident(c.owner)}.{c.field}" for c in view.cells]
     common = dict(v=view, L=spell, banner=banner, name=name, upper=upper)
     return {
         f"{name}.h": _render("c/NAME.h.j2", **common, n_columns=len(columns), point_fields=fields["point"],
@@ -114,11 +114,10 @@ def _py_files(view: View, banner) -> dict[str, bytes]:
     order_of = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
                 "angular_acceleration": 2}
     values, levels = [], []
-    for o in view.outputs:
-        for _, c in o.fields:
-            index = spell.fields(o.variable.kind).index(c.field)
-            values.append(f"{spell.ref(c.variable, None)}[{index}]")
-            levels.append(str(order_of[c.quantity]))
+    for cell in view.cells:
+        index = spell.fields(cell.kind).index(cell.column.field)
+        values.append(f"{spell.ref(cell.column.variable, None)}[{index}]")
+        levels.append(str(order_of[cell.column.quantity]))
     lit = spell.lit
     text = _render("py/NAME.py.j2", v=view, L=spell, banner=banner, name=log.name, runtime=runtime,
                    columns=[c.name for c in log.columns], levels=levels, values=values,
@@ -136,13 +135,15 @@ def _m_files(view: View, banner) -> dict[str, bytes]:
     level = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
              "angular_acceleration": 2}
     outputs = [{"name": spell.ident(o.name),
-                "fields": [(field, f"{spell.ref(c.variable, None)}.{c.field}", level[c.quantity]) for field, c in o.fields]}
+                "fields": [(field, f"{spell.ref(c.variable, None)}.{c.field}", level[c.quantity])
+                           for field, c, _ in o.fields]}
                for o in view.outputs]
     lit = spell.lit
     common = dict(v=view, L=spell, banner=banner, name=log.name)
     inputs = {k: ", ".join(lit(getattr(i, k)) for i in log.inputs) for k in ("start", "stop", "speed")}
     return {
         f"{log.name}_solve.m": _render("m/NAME_solve.m.j2", **common, runtime=runtime, outputs=outputs,
+                                       cells=[f"out.{spell.ident(c.owner)}.{c.field}" for c in view.cells],
                                        sketch_in=", ".join(lit(i.sketch) for i in log.inputs),
                                        sketch_a=", ".join(f"[{a}]'" for a in _sketch_a(view, lit))),
         f"{log.name}.m": _render("m/NAME.m.j2", **common, columns=[c.name for c in log.columns], inputs=inputs),

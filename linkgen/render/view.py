@@ -12,22 +12,30 @@ from dataclasses import dataclass
 
 from ..steplog import Column, ResolverGroup, Step, StepLog, Variable
 
-KIND_OF_OUTPUT = {"POINT": "point", "ANGLE": "angle", "VARIABLE": "slide"}
+@dataclass(frozen=True)
+class Output:
+    """One named output of the public state: a pair or point, a link, or a prismatic
+    pair (its position and its slide displacement together)."""
+
+    name: str
+    kind: str  # point | angle | prismatic
+    columns: tuple[Column, ...]
+    kinds: tuple[str, ...]  # record kind (POINT, ANGLE, VARIABLE) of each column's variable
+
+    @property
+    def fields(self) -> tuple[tuple[str, Column, str], ...]:
+        """(public field, column, record kind): x, vx, ... phi, omega, ... s, ds, ..."""
+        return tuple((c.name.split(".", 1)[1], c, k) for c, k in zip(self.columns, self.kinds))
 
 
 @dataclass(frozen=True)
-class Output:
-    """One named output of the public state: a pair, point, link or slider."""
+class Cell:
+    """One output column of the CSV: its owner's public field."""
 
-    name: str
-    kind: str  # point | angle | slide
-    variable: Variable
-    columns: tuple[Column, ...]
-
-    @property
-    def fields(self) -> tuple[tuple[str, Column], ...]:
-        """(public field, column): x, vx, ... phi, omega, ... s, ds, ..."""
-        return tuple((c.name.split(".", 1)[1], c) for c in self.columns)
+    owner: str
+    field: str  # public field: x, vx, phi, s, ...
+    column: Column
+    kind: str  # record kind of the column's variable
 
 
 @dataclass(frozen=True)
@@ -47,6 +55,7 @@ class View:
     run: tuple[Step, ...]  # the steps executed in order; a resolve step stands for its group
     groups: tuple[Group, ...]
     outputs: tuple[Output, ...]
+    cells: tuple[Cell, ...]  # output columns in CSV order
     inputs: tuple[Variable, ...]
     sigma_steps: tuple[int, ...]  # steps that report a conditioning
     nmax: int  # the largest resolver group
@@ -62,17 +71,14 @@ class View:
 
 def _outputs(log: StepLog) -> tuple[Output, ...]:
     """Outputs in column order, each with its columns (an output appears once)."""
-    out: list[Output] = []
-    seen: dict[str, int] = {}
+    grouped: dict[str, list[Column]] = {}
     for c in log.columns[len(log.inputs):]:
-        owner = c.name.split(".")[0]
-        v = log.variable(c.variable)
-        key = f"{owner}/{KIND_OF_OUTPUT[v.kind]}"
-        if key not in seen:
-            seen[key] = len(out)
-            out.append(Output(owner, KIND_OF_OUTPUT[v.kind], v, ()))
-        o = out[seen[key]]
-        out[seen[key]] = Output(o.name, o.kind, o.variable, o.columns + (c,))
+        grouped.setdefault(c.name.split(".")[0], []).append(c)
+    out = []
+    for name, cols in grouped.items():
+        kinds = tuple(log.variable(c.variable).kind for c in cols)
+        kind = "angle" if kinds[0] == "ANGLE" else "prismatic" if "VARIABLE" in kinds else "point"
+        out.append(Output(name, kind, tuple(cols), kinds))
     return tuple(out)
 
 
@@ -94,6 +100,8 @@ def build_view(log: StepLog) -> View:
         run,
         tuple(groups),
         _outputs(log),
+        tuple(Cell(c.name.split(".")[0], c.name.split(".", 1)[1], c, log.variable(c.variable).kind)
+              for c in log.columns[len(log.inputs):]),
         inputs,
         tuple(s.number for s in log.steps if s.fails),
         max((len(g.add_links) for g in log.groups), default=1),
