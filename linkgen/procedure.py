@@ -21,6 +21,7 @@ import copy
 import math
 from dataclasses import dataclass, field, replace
 
+from . import exact
 from .errors import ProcedureError
 from .model import Input, Link
 from .steplog import AddLink, Arg, Candidate, LJColumn, LJMatrix, Residual, ResolverGroup, Step, Variable
@@ -80,7 +81,7 @@ class Procedure:
 
 def _rot(angle: float, x: float, y: float) -> tuple[float, float]:
     """Coordinates of (x, y) in a frame turned by ``angle``."""
-    c, s = math.cos(angle), math.sin(angle)
+    c, s = exact.cos(angle), exact.sin(angle)
     return c * x + s * y, -s * x + c * y
 
 
@@ -309,7 +310,7 @@ class Extractor:
             a = tied[0]
             b = next(n for n in tied[1:] if self.xy(n) != self.xy(a))
         (xa, ya), (xb, yb) = self.xy(a), self.xy(b)
-        off = wrap_angle(d.angle - math.atan2(yb - ya, xb - xa))
+        off = wrap_angle(d.angle - exact.atan2(yb - ya, xb - xa))
         var = self.new_var(f"phi_{link}", "ANGLE", "link", link, sketch=(wrap_angle(d.angle),))
         self.emit("angle", "link_angle", [Arg("var", self.pos[a]), Arg("var", self.pos[b]), Arg("real", value=off, label="off")],
                   [var], link, pairs=(a, b), links=(link,), fails=True,
@@ -555,7 +556,7 @@ class Extractor:
         j = self.m.joint(ep)
         g, psi = self.line(ep)
         pr, px, pp = self.xy(er), self.xy(x), self.xy(ep)
-        along = (px[0] - pr[0]) * math.cos(j.axis) + (px[1] - pr[1]) * math.sin(j.axis)
+        along = (px[0] - pr[0]) * exact.cos(j.axis) + (px[1] - pr[1]) * exact.sin(j.axis)
         sign = _sign(along)
         gsi, eta = _rot(j.axis, px[0] - pp[0], px[1] - pp[1])
         length = self.length_of(a.name, er, x)
@@ -605,7 +606,7 @@ class Extractor:
         ag, bg = _rot(j.axis, *(p - q for p, q in zip(self.xy(x), self.xy(eg))))
         as_, bs = _rot(j.axis, *(p - q for p, q in zip(self.xy(x), self.xy(es))))
         d = (self.xy(es)[0] - self.xy(eg)[0], self.xy(es)[1] - self.xy(eg)[1])
-        along = d[0] * math.cos(j.axis) + d[1] * math.sin(j.axis)
+        along = d[0] * exact.cos(j.axis) + d[1] * exact.sin(j.axis)
         sign = _sign(along)
         psi = self.new_var(f"psi_{x}", "ANGLE", "line", x, sketch=(wrap_angle(j.axis),))
         s = self.new_var(f"s_{x}", "VARIABLE", "slide", x, sketch=(0.0,))
@@ -629,7 +630,7 @@ class Extractor:
         if {a.name, b.name} != {px.guide, px.slider}:
             return False
         je, jx = self.m.joint(ep), self.m.joint(x)
-        if math.sin(jx.axis - je.axis) == 0.0:
+        if exact.sin(jx.axis - je.axis) == 0.0:
             return False  # parallel slides: the chain cannot fix the position
         g, psi = self.line(ep)
         xa, ya = _rot(je.axis, *(p - q for p, q in zip(self.xy(x), self.xy(er))))
@@ -710,6 +711,12 @@ def _probe(topo: Topology) -> tuple[float, ...]:
     )
 
 
+def _rounded(norm: float | None) -> float | None:
+    """Norms to 10 significant digits: the runtime's trigonometry differs in the last
+    digits between machines, and candidates with equal norms must tie everywhere."""
+    return None if norm is None else float(f"{norm:.10g}")
+
+
 def candidates(ex: Extractor) -> list[tuple[str, str]]:
     """Add-link candidates by section 3.3.1: a known pair K and an unknown pair U already
     joined to another known pair by a link, K and U on no common link; K first."""
@@ -758,7 +765,7 @@ def rank(ex: Extractor, evaluate_norm) -> tuple[Extractor, _AddLinkDraft]:
             trial.solve(stop_at_close=True)
             usable = not trial.group
             if usable:
-                norm = evaluate_norm(trial, probe)
+                norm = _rounded(evaluate_norm(trial, probe))
         except Unsupported:
             trial = None
         tried.append((not usable, norm is None, norm if norm is not None else 0.0, index, (k, u), norm, usable, trial))

@@ -14,7 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import InputError
+from . import exact
+from .errors import InputError, and_list
 from .model import Input, Link, Mechanism
 
 RANK_TOLERANCE = 1e-9  # relative, as the format specifies
@@ -77,7 +78,7 @@ def wrap_angle(a: float) -> float:
 
 def angle_between(m: Mechanism, origin: str, target: str) -> float:
     (x0, y0), (x1, y1) = sketch_position(m, origin), sketch_position(m, target)
-    return math.atan2(y1 - y0, x1 - x0)
+    return exact.atan2(y1 - y0, x1 - x0)
 
 
 def _carried(link: Link) -> list[str]:
@@ -231,11 +232,6 @@ def _describe_input(inp: Input) -> str:
     return f"the input on {inp.joint}"
 
 
-def _and(items) -> str:
-    items = list(items)
-    return ", ".join(items[:-1]) + " and " + items[-1] if len(items) > 1 else "".join(items)
-
-
 def _degrees(n: int) -> str:
     return f"{n} degree{'' if n == 1 else 's'} of freedom"
 
@@ -244,21 +240,20 @@ def _check_input_count(m: Mechanism, mobility: int, count: int) -> None:
     given = len(m.inputs)
     if given == mobility:
         return
-    why = f"(Grübler's count gives {count}"
+    why = f"Grübler's count gives {count}"
     if mobility != count:
         redundant = mobility - count
-        why += f", and {redundant} constraint{' is' if redundant == 1 else 's are'} redundant in the sketch, "
-        why += "as in a parallelogram drawn exactly"
-    why += ")"
+        why += (f"; {redundant} constraint{' is' if redundant == 1 else 's are'} redundant in the sketch, where links "
+                "are drawn exactly parallel, as in a parallelogram, or in line, as at a dead centre")
     if mobility == 0:
-        raise InputError(f"the mechanism cannot move: its links form a rigid structure {why}, so it takes no input",
+        raise InputError(f"the mechanism cannot move: its links form a rigid structure ({why}), so it takes no input",
                          m.path, m.inputs[0].where.line, m.inputs[0].where.key)
     if given > mobility:
         extra = m.inputs[mobility].where
-        raise InputError(f"the mechanism has {_degrees(mobility)} {why}, but {given} inputs are given; "
+        raise InputError(f"the mechanism has {_degrees(mobility)} ({why}), but {given} inputs are given; "
                          "give one input per degree of freedom", m.path, extra.line, extra.key)
-    raise InputError(f"the mechanism has {_degrees(mobility)} {why}, but only {given} input{'' if given == 1 else 's'} "
-                     f"{'is' if given == 1 else 'are'} given; give one input per degree of freedom, "
+    raise InputError(f"the mechanism has {_degrees(mobility)} ({why}), but only {given} "
+                     f"input{' is' if given == 1 else 's are'} given; give one input per degree of freedom, "
                      "or the rest of the mechanism is left free", m.path, m.inputs[0].where.line, "inputs")
 
 
@@ -288,10 +283,11 @@ def _check_inputs_determine(m: Mechanism, jac: _Jacobian, c: np.ndarray) -> None
         if k == 0:
             cause = _cannot_move(inp)
         else:
-            cause = f"{_describe_input(inp)} drives the same motion as {_and(_describe_input(i) for i in m.inputs[:k])}"
+            earlier = and_list(_describe_input(i) for i in m.inputs[:k])
+            cause = f"{_describe_input(inp)} drives the same motion as {earlier}"
         free = _free_links(jac, np.vstack([c, *rows]))
-        raise InputError(f"the inputs do not determine the sketch configuration: {cause}, so link"
-                         f"{'s' if len(free) > 1 else ''} {_and(free)} {'are' if len(free) > 1 else 'is'} left free; "
+        left = f"link {free[0]} is" if len(free) == 1 else f"links {and_list(free)} are"
+        raise InputError(f"the inputs do not determine the sketch configuration: {cause}, so {left} left free; "
                          "drive independent motions", m.path, inp.where.line, inp.where.key)
 
 
