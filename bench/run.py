@@ -15,10 +15,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+import numpy as np  # noqa: E402
+
 from linkgen.evaluate import evaluate, input_rows  # noqa: E402  (linkgen first: it sets BLAS threads)
 from linkgen.pipeline import build_log  # noqa: E402
-
-import numpy as np  # noqa: E402
 
 
 def median_time(fn, repeat: int) -> float:
@@ -77,6 +77,87 @@ def bench_evaluate() -> None:
 
 
 GROUPS = {"extract": bench_extract, "evaluate": bench_evaluate}
+
+
+C_DRIVER = r"""
+#define _POSIX_C_SOURCE 199309L
+#include <stdio.h>
+#include <time.h>
+#include "NAME.h"
+
+int main(void)
+{
+    static const double start[NAME_UP_N_INPUTS] = { START };
+    static const double stop[NAME_UP_N_INPUTS] = { STOP };
+    static const double speed[NAME_UP_N_INPUTS] = { SPEED };
+    NAME_state st;
+    double in[NAME_UP_N_INPUTS], ddin[NAME_UP_N_INPUTS], sink = 0.0;
+    struct timespec t0, t1;
+    const int rows = ROWS;
+    int k, i;
+    NAME_init(&st);
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (k = 0; k < rows; k++) {
+        for (i = 0; i < NAME_UP_N_INPUTS; i++) {
+            in[i] = start[i] + (double)k * (stop[i] - start[i]) / (double)(rows - 1);
+            ddin[i] = 0.0;
+        }
+        NAME_solve(in, speed, ddin, &st);
+        sink += st.sigma[NAME_UP_N_STEPS];
+    }
+    clock_gettime(CLOCK_MONOTONIC, &t1);
+    printf("%.6e %g\n", ((t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec)) / rows, sink);
+    return 0;
+}
+"""
+
+
+def _programs(sample: str, out: Path):
+    import subprocess
+
+    from linkgen.render import render_all
+    from linkgen.writer import write_all
+
+    log = build_log(str(ROOT / "samples" / sample / f"{sample}.yaml"))
+    files = render_all(log)
+    write_all(files, str(out))
+    return log, files, subprocess
+
+
+def bench_programs(rows: int = 20000) -> None:
+    print("## Generated programs: time per configuration (median of 5 runs) and file sizes")
+    out_root = ROOT / "bench" / "out"
+    for sample in ("fourbar", "sixbar_fig14"):
+        out = out_root / sample
+        log, files, subprocess = _programs(sample, out)
+        lit = repr
+        driver = (C_DRIVER.replace("NAME_UP", log.name.upper()).replace("NAME", log.name)
+                  .replace("START", ", ".join(lit(i.start) for i in log.inputs))
+                  .replace("STOP", ", ".join(lit(i.stop) for i in log.inputs))
+                  .replace("SPEED", ", ".join(lit(i.speed) for i in log.inputs)).replace("ROWS", str(rows)))
+        (out / "bench_driver.c").write_text(driver)
+        subprocess.run(["gcc", "-O2", "-std=c99", f"{log.name}.c", "bench_driver.c", "-lm", "-o", "bench_c"],
+                       cwd=out, check=True)
+        c_times = [float(subprocess.run(["./bench_c"], cwd=out, check=True, capture_output=True, text=True)
+                         .stdout.split()[0]) for _ in range(5)]
+        code = (f"import sys, time; sys.path.insert(0, '.'); import {log.name} as m\n"
+                f"n = {rows // 10}; state = {{}}; ins = m.INPUTS\n"
+                "t = time.perf_counter()\n"
+                "for k in range(n):\n"
+                "    x = [a + k * (b - a) / (n - 1) for a, b, _ in ins]\n"
+                "    m.solve(x, [s for _, _, s in ins], [0.0] * len(ins), m.ORDER, state)\n"
+                "print((time.perf_counter() - t) / n)\n")
+        py_times = [float(subprocess.run([sys.executable, "-I", "-c", code], cwd=out, check=True, capture_output=True,
+                                         text=True).stdout) for _ in range(5)]
+        c_t, py_t = statistics.median(c_times), statistics.median(py_times)
+        print(f"- {sample}: C {c_t * 1e9:.0f} ns, Python {py_t * 1e6:.1f} us per configuration "
+              f"(Python/C {py_t / c_t:.0f}x)")
+        sizes = ", ".join(f"{name} {len(data) / 1024:.1f} KiB" for name, data in sorted(files.items()))
+        print(f"  files: {sizes}")
+
+
+GROUPS["programs"] = bench_programs
+
 
 if __name__ == "__main__":
     for name in sys.argv[1:] or list(GROUPS):

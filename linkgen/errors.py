@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+
 
 class LinkgenError(Exception):
     """A problem with the user's input or request, reported as ``file:line: key: message``."""
@@ -27,3 +29,9 @@ class InputError(LinkgenError):
 
 class ProcedureError(LinkgenError):
     """No systematic-analysis procedure can be extracted for a valid mechanism."""
+
+
+def and_list(names: Iterable[str]) -> str:
+    """'a', 'a and b', 'a, b and c': names listed in a message."""
+    names = list(names)
+    return ", ".join(names[:-1]) + " and " + names[-1] if len(names) > 1 else "".join(names)

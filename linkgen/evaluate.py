@@ -21,6 +21,8 @@ from .primitives.dsl import record_fields
 from .steplog import ResolverGroup, Step, StepLog, Variable
 
 FAIL, NOT_CONVERGED, SINGULAR, NEAR = 1, 2, 3, 4
+STEP_ANGLE = 0.1  # continuation: the largest step of an angle input (radians)
+STEP_LENGTH = 0.05  # ... and of a length input, times the length scale
 
 
 def _record(kind: str, order: int, value: float, rate: float = 0.0, acc: float = 0.0, y: float = 0.0) -> tuple:
@@ -38,7 +40,7 @@ def constant_record(v: Variable, order: int) -> tuple:
 @functools.cache
 def _resolver_namespace() -> dict:
     source = resources.files("linkgen.runtime.py").joinpath("resolver.py").read_text(encoding="utf-8")
-    ns: dict = {"sqrt": math.sqrt, "NAN": math.nan}
+    ns: dict = {"sqrt": math.sqrt, "floor": math.floor, "NAN": math.nan, "PI": math.pi}
     exec(compile(source, "<linkgen resolver>", "exec"), ns)
     return ns
 
@@ -176,6 +178,8 @@ class Pass:
     report: dict
     env: dict
     solutions: dict  # group -> Add-link lengths
+    rates: dict  # group -> their rates
+    accs: dict  # group -> their accelerations
     iterations: dict  # group -> Newton steps
     failed_group: int  # the group whose resolver failed (0: none)
 
@@ -197,6 +201,8 @@ class RowSolver:
         self.sketch_a = {g.number: [sketch[a] for a in g.add_links] for g in log.groups}
         self.sketch_in = tuple(i.sketch for i in log.inputs)
         self.halvings = max(g.max_halvings for g in log.groups)
+        self.periodic = [i.kind == "revolute" for i in log.inputs]
+        self.limits = [STEP_ANGLE if p else STEP_LENGTH * log.length_scale for p in self.periodic]
 
     def run(self, values, rates, accs, order: int, start: dict[int, list[float]]) -> Pass:
         """One pass of the whole procedure, each resolver started from ``start``."""
@@ -204,7 +210,7 @@ class RowSolver:
         env = _base_env(self.log, order)
         for i, inp in enumerate(self.log.inputs):
             env[inp.variable] = _input_record(self.log, i, order, values[i], rates[i], accs[i])
-        out = Pass({}, env, {}, {}, 0)
+        out = Pass({}, env, {}, {}, {}, {}, 0)
         groups = {g.step: g for g in self.log.groups}
         inside = {n for g in self.log.groups for n in g.steps}
         for step in self.log.steps:
@@ -254,33 +260,53 @@ class RowSolver:
         out.report.update(last)
         out.report[g.step] = (SINGULAR if sigma < 1e-7 else NEAR if sigma < 1e-3 else 0, sigma)
         out.solutions[g.number], out.iterations[g.number] = a, its
+        out.rates[g.number], out.accs[g.number] = rates, accs
         return True
 
     def solve(self, values, rates, accs) -> Pass:
-        """Solve one row, following the sketch's assembly continuously from the warm start."""
-        base_in, base_a = self.warm if self.warm is not None else (self.sketch_in, self.sketch_a)
-        out = self.run(values, rates, accs, self.order, base_a)
-        if not out.failed_group:
+        """Solve one row on the sketch's assembly: from the previous row when it was solved
+        (Taylor-predicted start), else by continuation from the sketch."""
+        groups = [g.number for g in self.log.groups]
+        if self.warm is not None:
+            w_in, w_rates, a, ad, add = self.warm
+            start = dict(zip(groups, self.ns["predict"]((w_in, w_rates, [a[g] for g in groups],
+                                                        [ad[g] for g in groups], [add[g] for g in groups]), values)))
+            out = self.run(values, rates, accs, self.order, start)
             if out.ok:
-                self.warm = (tuple(values), out.solutions)
+                self._remember(values, rates, out)
+                return out
+            if out.failed_group == 0:
+                self.warm = None
+                return out
+            base, base_a = w_in, a
+        else:
+            base, base_a = self.sketch_in, self.sketch_a
+        a = self.ns["continuation"](self._path_run, list(base), [base_a[g] for g in groups], list(values),
+                                    self.limits, self.periodic, self.halvings)
+        if a is None:
+            self.warm = None
+            out = self.run(values, rates, accs, self.order, base_a)
+            if out.ok:  # solvable only on another assembly: not the sketch's
+                out.report[self.log.groups[0].step] = (NOT_CONVERGED, 0.0)
+                out.failed_group = self.log.groups[0].number
             return out
-        # continuation: walk from the warm start to the target, halving the step where it fails
-        t, dt, a = 0.0, 0.5, base_a
-        zeros = [0.0] * len(values)
-        while t < 1.0:
-            tt = min(1.0, t + dt)
-            trial = [b + tt * (v - b) for b, v in zip(base_in, values)] if tt < 1.0 else list(values)
-            step = self.run(trial, zeros, zeros, 0, a)
-            if step.ok:
-                t, a, dt = tt, step.solutions, dt * 2
-            else:
-                dt /= 2
-                if dt < 2.0 ** -self.halvings:
-                    return out
-        out = self.run(values, rates, accs, self.order, a)
+        out = self.run(values, rates, accs, self.order, dict(zip(groups, a)))
         if out.ok:
-            self.warm = (tuple(values), out.solutions)
+            self._remember(values, rates, out)
+        else:
+            self.warm = None
         return out
+
+    def _remember(self, values, rates, out: Pass) -> None:
+        self.warm = (tuple(values), tuple(rates), out.solutions, out.rates, out.accs)
+
+    def _path_run(self, inputs, rates, order, a):
+        """The continuation's view of a pass: (ok, lengths, their rates along the path)."""
+        groups = [g.number for g in self.log.groups]
+        out = self.run(inputs, rates, [0.0] * len(inputs), order, dict(zip(groups, a)))
+        if not out.ok:
+            return False, None, None
+        return True, [out.solutions[g] for g in groups], [out.rates[g] for g in groups]
 
 
 def _evaluate_rows(log: StepLog, values, rates, accs, order: int) -> Result:
@@ -293,10 +319,9 @@ def _evaluate_rows(log: StepLog, values, rates, accs, order: int) -> Result:
         reports.append(row.report)
         for g, n in row.iterations.items():
             its[g][r] = n
-    names = {n for env in envs for n in env}
     nan = {v.name: (math.nan,) * len(record_fields(v.kind, order)) for v in log.variables}
     env = {}
-    for name in sorted(names):
+    for name in sorted(nan):
         recs = [e.get(name, nan[name]) for e in envs]
         env[name] = tuple(np.array([rec[i] for rec in recs], dtype=float) for i in range(len(nan[name])))
     numbers = {n for rep in reports for n in rep}

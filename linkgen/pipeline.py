@@ -11,6 +11,7 @@ from .steplog import InputInfo, LinkInfo, PairInfo, StatusCode, StepLog
 from .topology import Topology, analyse
 from .validate import read_mechanism
 
+
 def _norm(ex: Extractor, probe: tuple[float, ...]) -> float | None:
     group = ex.groups[-1]
     return residual_norm(ex.variables, ex.steps, ex.inputs, probe, group.residuals)

@@ -25,7 +25,7 @@ from . import exact
 from .errors import ProcedureError
 from .model import Input, Link
 from .steplog import AddLink, Arg, Candidate, LJColumn, LJMatrix, Residual, ResolverGroup, Step, Variable
-from .topology import Topology, input_direction, wrap_angle
+from .topology import Topology, input_direction, reference_angle, wrap_angle
 
 RESOLVER_TOLERANCE = 1e-10  # relative to the length scale; one Newton step is taken past it
 RESOLVER_MAX_ITERATIONS = 25
@@ -228,9 +228,9 @@ class Extractor:
                     self.placed.add(lk.name)
                     changed = True
         for c in self.carriers:
-            if c.kind != "link" and c.name not in self.used and c.name not in self.residual_links:
-                if all(p in self.pos for p in c.pairs):
-                    self.add_residual(c.name, c.pairs[0], c.pairs[1], c.length)
+            unused = c.kind != "link" and c.name not in self.used and c.name not in self.residual_links
+            if unused and all(p in self.pos for p in c.pairs):
+                self.add_residual(c.name, c.pairs[0], c.pairs[1], c.length)
 
     def member_length(self, link: str, a: str, b: str) -> str:
         (xa, ya), (xb, yb) = self.xy(a), self.xy(b)
@@ -312,8 +312,9 @@ class Extractor:
         (xa, ya), (xb, yb) = self.xy(a), self.xy(b)
         off = wrap_angle(d.angle - exact.atan2(yb - ya, xb - xa))
         var = self.new_var(f"phi_{link}", "ANGLE", "link", link, sketch=(wrap_angle(d.angle),))
-        self.emit("angle", "link_angle", [Arg("var", self.pos[a]), Arg("var", self.pos[b]), Arg("real", value=off, label="off")],
-                  [var], link, pairs=(a, b), links=(link,), fails=True,
+        self.emit("angle", "link_angle",
+                  [Arg("var", self.pos[a]), Arg("var", self.pos[b]), Arg("real", value=off, label="off")], [var], link,
+                  pairs=(a, b), links=(link,), fails=True,
                   reason=f"{a} and {b} of link {link} are known, so its angle is")
         self.orient[link] = var
         self.angles[link] = var
@@ -368,7 +369,8 @@ class Extractor:
             self.pos[n] = self.new_var(f"p_{n}", "POINT", "pair" if n in fixed.joints else "point", n, self.xy(n))
         self.tied[fixed.name] = [n for n in self.own(fixed.name)]
         angle = wrap_angle(self.topo.direction(fixed.name).angle)
-        self.orient[fixed.name] = self.angles[fixed.name] = self.new_var(f"phi_{fixed.name}", "ANGLE", "link", fixed.name, (angle,))
+        frame = self.new_var(f"phi_{fixed.name}", "ANGLE", "link", fixed.name, (angle,))
+        self.orient[fixed.name] = self.angles[fixed.name] = frame
         self.placed.add(fixed.name)
         for inp, value in zip(self.m.inputs, self.topo.sketch_inputs):
             kind = "ANGLE" if inp.kind == "revolute" else "VARIABLE"
@@ -391,8 +393,7 @@ class Extractor:
             if inp.link in self.placed or inp.joint not in self.pos or inp.relative_to not in self.placed:
                 return False
             drive = input_direction(self.m, self.link(inp.link), inp.joint)
-            root = input_direction(self.m, self.link(inp.relative_to), inp.joint)
-            ref = self.reference(inp, root.angle)
+            ref = self.reference(inp, reference_angle(self.m, inp))
             target = drive.target
             if target in {j.name for j in self.m.joints}:
                 target = self.copy(target, inp.link)
@@ -583,7 +584,8 @@ class Extractor:
             j = self.m.joint(e)
             g, psi = self.line(e)
             gsi, eta = _rot(j.axis, *(p - q for p, q in zip(self.xy(x), self.xy(e))))
-            args += [Arg("var", g), Arg("var", psi), Arg("real", value=gsi, label="gsi"), Arg("real", value=eta, label="eta")]
+            args += [Arg("var", g), Arg("var", psi), Arg("real", value=gsi, label="gsi"),
+                     Arg("real", value=eta, label="eta")]
             self.slides[e] = self.new_var(f"s_{e}", "VARIABLE", "slide", e, sketch=(0.0,))
             self.pos[e] = self.point_var(e)
             outs += [self.slides[e], self.pos[e]]
@@ -616,7 +618,8 @@ class Extractor:
         self.mark(x, self.carrier(pr.slider))
         self.emit("chain", "RPR_links",
                   [Arg("var", self.pos[eg]), Arg("var", self.pos[es]), Arg("real", value=ag, label="ag"),
-                   Arg("real", value=bg, label="bg"), Arg("real", value=as_, label="as"), Arg("real", value=bs, label="bs"),
+                   Arg("real", value=bg, label="bg"), Arg("real", value=as_, label="as"),
+                   Arg("real", value=bs, label="bs"),
                    Arg("int", value=sign, label="minv")], [psi, s, self.pos[x]], x, chain="RPR", pairs=(eg, es),
                   links=(pr.guide, pr.slider), branch=sign, fails=True,
                   reason=f"the guide {pr.guide} turns about the known {eg} and the slider {pr.slider} about the "
@@ -646,7 +649,8 @@ class Extractor:
         self.mark(x, self.carrier(px.slider))
         self.emit("chain", "PPR_links",
                   [Arg("var", self.pos[er]), Arg("var", g), Arg("var", psi), Arg("real", value=xa, label="xa"),
-                   Arg("real", value=ya, label="ya"), Arg("real", value=xb, label="xb"), Arg("real", value=yb, label="yb"),
+                   Arg("real", value=ya, label="ya"), Arg("real", value=xb, label="xb"),
+                   Arg("real", value=yb, label="yb"),
                    Arg("real", value=wrap_angle(jx.axis - je.axis), label="cx"), Arg("int", value=sgn, label="sgn")],
                   [s1, self.pos[ep], sx, self.pos[x]], x, chain="PPR", pairs=(ep, er), links=(b.name, a.name),
                   fails=True, reason=f"the slider {b.name} rides on the known line {ep} and carries the slide {x} of "
@@ -808,8 +812,8 @@ def _freeze(ex: Extractor) -> Procedure:
     steps = tuple(replace(s, number=i + 1) for i, s in enumerate(ex.steps))
     residuals = tuple(replace(r, step=next(s.number for s in steps if r.name in s.outputs)) for r in ex.residuals)
     add_links = tuple(
-        AddLink(d.name, d.pairs, d.length, next(s.number for s in steps if s.action == "add_link" and s.target == d.name),
-                d.candidates, d.probe)
+        AddLink(d.name, d.pairs, d.length,
+                next(s.number for s in steps if s.action == "add_link" and s.target == d.name), d.candidates, d.probe)
         for d in ex.add_links
     )
     groups = []

@@ -138,11 +138,16 @@ def _nearest_turn(value: float, start: float, stop: float) -> float:
     return best[1]
 
 
+def reference_angle(m: Mechanism, inp: Input) -> float:
+    """phi_F of a revolute input: 0 for the fixed link, else its direction seen from the pair."""
+    ref = m.link(inp.relative_to)
+    return 0.0 if ref.fixed else input_direction(m, ref, inp.joint).angle
+
+
 def sketch_input(m: Mechanism, inp: Input) -> float:
     if inp.kind == "revolute":
         phi_l = input_direction(m, m.link(inp.link), inp.joint).angle
-        phi_f = input_direction(m, m.link(inp.relative_to), inp.joint).angle
-        return _nearest_turn(wrap_angle(phi_l - phi_f), inp.start, inp.stop)
+        return _nearest_turn(wrap_angle(phi_l - reference_angle(m, inp)), inp.start, inp.stop)
     if inp.kind == "prismatic":
         return 0.0
     (xa, ya), (xb, yb) = sketch_position(m, inp.between[0]), sketch_position(m, inp.between[1])

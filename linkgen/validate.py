@@ -11,7 +11,7 @@ import difflib
 import math
 import os
 
-from .errors import InputError
+from .errors import InputError, and_list
 from .loader import Mapping, Node, Reader, Sequence, describe, load
 from .model import Input, Joint, Link, Mechanism, Point, Prismatic, Where
 
@@ -30,11 +30,6 @@ def _where(node: Node) -> Where:
 def _did_you_mean(name: str, known) -> str:
     close = difflib.get_close_matches(name, list(known), n=1)
     return f" (did you mean {close[0]}?)" if close else ""
-
-
-def _names(items) -> str:
-    items = list(items)
-    return ", ".join(items[:-1]) + " and " + items[-1] if len(items) > 1 else "".join(items)
 
 
 class _Validator:
@@ -209,7 +204,7 @@ class _Validator:
                                  f"in the other link too, or make it a point of {on[0]} (points: {{{j.name}: [x, y]}})",
                                  j.where)
             if not j.revolute and len(on) != 2:
-                raise self.error(f"the prismatic pair {j.name} is on {len(on)} links ({_names(on)}); a prismatic "
+                raise self.error(f"the prismatic pair {j.name} is on {len(on)} links ({and_list(on)}); a prismatic "
                                  "pair joins exactly two links, the guide and the slider", j.where)
 
     def inputs(self, joints: dict[str, Joint], links: tuple[Link, ...]) -> tuple[Input, ...]:
@@ -271,7 +266,7 @@ class _Validator:
             raise self.r.error(node, f"{name} is not a link{_did_you_mean(name, by_name)}")
         if name not in on:
             raise self.r.error(node, f"link {name} does not carry the pair {joint}, so the input on {joint} "
-                               f"cannot move it; {joint} joins {_names(on)}")
+                               f"cannot move it; {joint} joins {and_list(on)}")
         return name
 
     def sweep(self, spec: Mapping, scale: float) -> tuple[float, float, float]:
@@ -336,7 +331,7 @@ class _Validator:
         apart = [lk for lk in links if lk.name not in reach]
         if apart:
             raise self.error(f"the mechanism falls apart: link{'s' if len(apart) > 1 else ''} "
-                             f"{_names(lk.name for lk in apart)} share{'' if len(apart) > 1 else 's'} no pair with "
+                             f"{and_list(lk.name for lk in apart)} share{'' if len(apart) > 1 else 's'} no pair with "
                              f"the fixed link {frame.name} or the links joined to it", apart[0].where)
 
     def prismatic(self, joints: tuple[Joint, ...], links: tuple[Link, ...],

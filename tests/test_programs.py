@@ -94,7 +94,7 @@ def test_octave_files_use_no_octave_only_syntax(sources):
     bad = [(r"!=", "!= (use ~=)"), (r"^\s*#", "# comment (use %)"), (r"\+\+|--\s*;|\+=|-=|\*=|/=", "++ or +="),
            (r"\bend(function|if|for|while|switch)\b", "endfunction/endif"), (r'"', "double-quoted string"),
            (r"\bprintf\(", "printf (use fprintf)"), (r"\bputs\(|\bdisp\(", "puts/disp")]
-    for name, (log, files) in sources.items():
+    for log, files in sources.values():
         for fname in (f"{log.name}_solve.m", f"{log.name}.m"):
             for n, line in enumerate(files[fname].decode().splitlines(), 1):
                 code = line.split("%", 1)[0] if "'" not in line.split("%", 1)[0] else line

@@ -25,7 +25,6 @@ from .dsl import (
     fabs,
     fmax,
     fmin,
-    hypot,
     select,
     sin,
     sqrt,
@@ -57,6 +56,12 @@ def _local(b: Builder, name: str, u: Vec, gsi: Expr, eta: Expr) -> Vec:
 
 def _dir(b: Builder, name: str, angle: Expr) -> Vec:
     return b.let(f"c{name}", cos(angle)), b.let(f"s{name}", sin(angle))
+
+
+def _norm(d: Vec) -> Expr:
+    """|d| as sqrt(dx^2 + dy^2): correctly rounded sqrt makes it the same bits in every
+    language (hypot implementations differ in the last bit between libraries)."""
+    return sqrt(d[0] * d[0] + d[1] * d[1])
 
 
 def _dot(a: Vec, c: Vec) -> Expr:
@@ -217,7 +222,7 @@ def link_residual() -> Primitive:
     j2 = b.record("j2", "POINT")
     ln = b.record("l", "VARIABLE")
     d, dv, da = _difference(b, j1, j2)
-    r = b.let("r", hypot(d[0], d[1]))
+    r = b.let("r", _norm(d))
     ir = b.let("ir", select(r.eq(0), NAN, 1 / r))
     rd = b.let("rd", _dot(d, dv) * ir)
     rdd = b.let("rdd", (_dot(dv, dv) + _dot(d, da) - rd * rd) * ir)
@@ -238,7 +243,7 @@ def rrr_links() -> Primitive:
     p1, v1, a1 = _point(j1)
     p2, v2, a2 = _point(j2)
     d = (b.let("dx", p2[0] - p1[0]), b.let("dy", p2[1] - p1[1]))
-    q = b.let("q", hypot(d[0], d[1]))
+    q = b.let("q", _norm(d))
     iq = b.let("iq", select(q.eq(0), NAN, 1 / q))
     u = (b.let("ux", d[0] * iq), b.let("uy", d[1] * iq))
     # Kahan's area formula on the sorted sides x >= y >= z
@@ -250,12 +255,13 @@ def rrr_links() -> Primitive:
     k = b.let("k", z - (x - y))
     fail = b.let("fail", either(either(k < -TOGGLE_SLACK * EPS * x, q.eq(0)), lo <= 0))
     kk = b.let("kk", fmax(k, 0))
-    h = b.let("h", sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z))) * iq / 2)
+    area4 = b.let("area4", sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z))))  # 4 x the triangle's area
+    h = b.let("h", area4 * iq / 2)
     a = b.let("a", (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2)
     a2_ = b.let("a2", (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2)
     hn = b.let("hn", minv * h)
     e1 = (b.let("e1x", a * u[0] - hn * u[1]), b.let("e1y", a * u[1] + hn * u[0]))
-    sigma = b.let("sigma", select(lo > 0, h * q / (l1.v * l2.v), 0))
+    sigma = b.let("sigma", select(fail, 0, fmin(area4 / (2 * l1.v * l2.v), 1)))
     # derivatives: (jb - ji).(jb' - ji') = li li', solved in the (u, n) frame:
     #   a bu + hn bn = r1,  -a2 bu + hn bn = r2   (determinant hn q)
     e2 = (b.let("e2x", -a2_ * u[0] - hn * u[1]), b.let("e2y", -a2_ * u[1] + hn * u[0]))
@@ -311,7 +317,7 @@ def prr_links() -> Primitive:
     s = b.let("sv", eu - wu)
     jb = (b.let("jbx", pr[0] + e[0]), b.let("jby", pr[1] + e[1]))
     jp = (b.let("jpx", jb[0] - r[0]), b.let("jpy", jb[1] - r[1]))
-    sigma = b.let("sigma", select(ln.v > 0, rd / ln.v, 0))
+    sigma = b.let("sigma", select(fail, 0, fmin(rd / ln.v, 1)))
     ieu = b.let("ieu", select(eu.eq(0), NAN, 1 / eu))
     sg = b.let("sgsi", s + gsi)
     rel = (b.let("relvx", v[0] - vr[0]), b.let("relvy", v[1] - vr[1]))
@@ -370,7 +376,7 @@ def prp_links() -> Primitive:
     s2 = b.let("sv2", _cross(g, u1) * icr)
     jp1 = (b.let("jp1x", pa.x + s1 * u1[0]), b.let("jp1y", pa.y + s1 * u1[1]))
     jp2 = (b.let("jp2x", pb.x + s2 * u2[0]), b.let("jp2y", pb.y + s2 * u2[1]))
-    sigma = b.let("sigma", fabs(cr))
+    sigma = b.let("sigma", fmin(fabs(cr), 1))
     rv1, ra1 = _rotating(b, "r1", r1, psa.dthe, psa.ddthe)
     rv2, ra2 = _rotating(b, "r2", r2, psb.dthe, psb.ddthe)
     # s1 u1 - s2 u2 = g  differentiated: s1' u1 - s2' u2 = gv
@@ -381,8 +387,10 @@ def prp_links() -> Primitive:
     )
     ds1 = b.let("ds1", _cross(gv, u2) * icr)
     ds2 = b.let("ds2", _cross(gv, u1) * icr)
-    jp1v = (b.let("jp1vx", pa.dx + ds1 * u1[0] - s1 * om1 * u1[1]), b.let("jp1vy", pa.dy + ds1 * u1[1] + s1 * om1 * u1[0]))
-    jp2v = (b.let("jp2vx", pb.dx + ds2 * u2[0] - s2 * om2 * u2[1]), b.let("jp2vy", pb.dy + ds2 * u2[1] + s2 * om2 * u2[0]))
+    jp1v = (b.let("jp1vx", pa.dx + ds1 * u1[0] - s1 * om1 * u1[1]),
+            b.let("jp1vy", pa.dy + ds1 * u1[1] + s1 * om1 * u1[0]))
+    jp2v = (b.let("jp2vx", pb.dx + ds2 * u2[0] - s2 * om2 * u2[1]),
+            b.let("jp2vy", pb.dy + ds2 * u2[1] + s2 * om2 * u2[0]))
     al1, al2 = psa.ddthe, psb.ddthe
     t1n = b.let("t1n", 2 * ds1 * om1 + s1 * al1)
     t2n = b.let("t2n", 2 * ds2 * om2 + s2 * al2)
@@ -427,7 +435,7 @@ def rpr_links() -> Primitive:
     minv = b.scalar("minv", "INT")
     d, dv, da = _difference(b, jg, js)
     hh = b.let("hh", bg - bs)  # distance of js from the line through jg, along n
-    q = b.let("q", hypot(d[0], d[1]))
+    q = b.let("q", _norm(d))
     ah = b.let("ah", fabs(hh))
     k = b.let("k", q - ah)
     fail = b.let("fail", either(k < -TOGGLE_SLACK * EPS * fmax(q, ah), q.eq(0)))
@@ -438,7 +446,7 @@ def rpr_links() -> Primitive:
     psi = b.let("th", atan2(u[1], u[0]))
     s = b.let("sv", mt + (as_ - ag))
     r = _local(b, "r", u, as_, bs)
-    sigma = b.let("sigma", t * iq)
+    sigma = b.let("sigma", select(fail, 0, fmin(t * iq, 1)))
     imt = b.let("imt", select(mt.eq(0), NAN, 1 / mt))
     dvn = b.let("dvn", _cross(u, dv))  # d'.n
     dvu = b.let("dvu", _dot(dv, u))
@@ -489,7 +497,7 @@ def ppr_links() -> Primitive:
     mu = b.let("mu", _dot(m, ux))
     jp1 = (b.let("jp1x", pg.x + s1 * u1[0]), b.let("jp1y", pg.y + s1 * u1[1]))
     bx_ = (b.let("pbx", jp1[0] + rb[0]), b.let("pby", jp1[1] + rb[1]))
-    sigma = b.let("sigma", fabs(cr))
+    sigma = b.let("sigma", fmin(fabs(cr), 1))
     rav, raa = _rotating(b, "ra", ra, om, al)
     rbv, rba = _rotating(b, "rb", rb, om, al)
     # m x ux = 0 differentiated: m' x ux + om (m.ux) = 0, m' = k1 - s1' u1
@@ -525,12 +533,8 @@ def ppr_links() -> Primitive:
         f: b.let(f"jx{f}", select(slider_a, fa, fb))
         for f, fa, fb in (("x", ax_[0], bx_[0]), ("y", ax_[1], bx_[1]))
     }
-    jx.update(
-        {f"d{f}": b.let(f"jxd{f}", select(slider_a, fa, fb)) for f, fa, fb in (("x", jav[0], jbv[0]), ("y", jav[1], jbv[1]))}
-    )
-    jx.update(
-        {f"dd{f}": b.let(f"jxdd{f}", select(slider_a, fa, fb)) for f, fa, fb in (("x", jaa[0], jba[0]), ("y", jaa[1], jba[1]))}
-    )
+    for f, fa, fb in (("dx", jav[0], jbv[0]), ("dy", jav[1], jbv[1]), ("ddx", jaa[0], jba[0]), ("ddy", jaa[1], jba[1])):
+        jx[f] = b.let(f"jx{f}", select(slider_a, fa, fb))
     b.output("s1", "VARIABLE", v=s1, dv=ds1, ddv=dds1)
     b.output("jp1", "POINT", **_point_result(jp1, jp1v, jp1a))
     b.output("sx", "VARIABLE", v=sgn * mu, dv=sgn * mvu, ddv=sgn * (_dot(ma, ux) + om * _cross(ux, mv)))

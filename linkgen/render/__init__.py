@@ -9,10 +9,11 @@ from pathlib import Path
 import jinja2
 
 from .. import __version__
+from ..evaluate import STEP_ANGLE, STEP_LENGTH
+from ..ljmatrix import states
 from ..primitives import PRIMITIVES
 from ..primitives.printers import c_function, octave_function, python_function
 from ..steplog import StepLog
-from ..ljmatrix import states
 from .lang import C, Manual, Octave, Python, number
 from .svg import render_svg
 from .view import View, build_view
@@ -90,12 +91,18 @@ def _c_files(view: View, banner) -> dict[str, bytes]:
                              angle_fields=fields["angle"], slide_fields=fields["slide"]),
         f"{name}.c": _render("c/NAME.c.j2", **common, runtime=runtime, record_fields=record_fields,
                              sketch_in=", ".join(lit(i.sketch) for i in log.inputs), sketch_a=", ".join(sketch_a),
-                             column_fields=column_fields),
+                             column_fields=column_fields, limits=", ".join(lit(x) for x in _limits(log)),
+                             periodic=", ".join("1" if i.kind == "revolute" else "0" for i in log.inputs)),
         f"{name}_main.c": _render("c/NAME_main.c.j2", **common, columns=columns, inputs={
             "start": ", ".join(lit(i.start) for i in log.inputs),
             "stop": ", ".join(lit(i.stop) for i in log.inputs),
             "speed": ", ".join(lit(i.speed) for i in log.inputs)}),
     }
+
+
+def _limits(log: StepLog) -> list[float]:
+    """The continuation's largest step of each input."""
+    return [STEP_ANGLE if i.kind == "revolute" else STEP_LENGTH * log.length_scale for i in log.inputs]
 
 
 def _sketch_a(view: View, lit) -> list[str]:
@@ -122,7 +129,8 @@ def _py_files(view: View, banner) -> dict[str, bytes]:
     text = _render("py/NAME.py.j2", v=view, L=spell, banner=banner, name=log.name, runtime=runtime,
                    columns=[c.name for c in log.columns], levels=levels, values=values,
                    inputs=[f"{lit(i.start)}, {lit(i.stop)}, {lit(i.speed)}" for i in log.inputs],
-                   sketch_a=_sketch_a(view, lit))
+                   sketch_a=_sketch_a(view, lit), limits=", ".join(lit(x) for x in _limits(log)),
+                   periodic=", ".join("True" if i.kind == "revolute" else "False" for i in log.inputs))
     return {f"{log.name}.py": text}
 
 
@@ -145,7 +153,9 @@ def _m_files(view: View, banner) -> dict[str, bytes]:
         f"{log.name}_solve.m": _render("m/NAME_solve.m.j2", **common, runtime=runtime, outputs=outputs,
                                        cells=[f"out.{spell.ident(c.owner)}.{c.field}" for c in view.cells],
                                        sketch_in=", ".join(lit(i.sketch) for i in log.inputs),
-                                       sketch_a=", ".join(f"[{a}]'" for a in _sketch_a(view, lit))),
+                                       sketch_a=", ".join(f"[{a}]'" for a in _sketch_a(view, lit)),
+                                       limits=", ".join(lit(x) for x in _limits(log)),
+                                       periodic=", ".join("1" if i.kind == "revolute" else "0" for i in log.inputs)),
         f"{log.name}.m": _render("m/NAME.m.j2", **common, columns=[c.name for c in log.columns], inputs=inputs),
     }
 

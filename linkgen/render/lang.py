@@ -15,14 +15,16 @@ from ..primitives.printers import literal
 from ..steplog import Arg, Step, Variable
 from .view import Group
 
-C_RESERVED = set("""auto break case char const continue default do double else enum extern float for goto if inline
-int long register restrict return short signed sizeof static struct switch typedef union unsigned void volatile
-while _Bool _Complex _Imaginary NAN INFINITY main errno assert""".split())
-M_RESERVED = set("""break case catch classdef continue else elseif end for function global if otherwise parfor
-persistent return spmd switch try while ans eps pi NaN Inf i j""".split())
+C_RESERVED = frozenset("""
+    auto break case char const continue default do double else enum extern float for goto if inline int long
+    register restrict return short signed sizeof static struct switch typedef union unsigned void volatile while
+    _Bool _Complex _Imaginary NAN INFINITY main errno assert""".split())
+M_RESERVED = frozenset("""
+    break case catch classdef continue else elseif end for function global if otherwise parfor persistent return
+    spmd switch try while ans eps pi NaN Inf i j""".split())
 
 
-def ident(name: str, reserved: set[str]) -> str:
+def ident(name: str, reserved: frozenset[str]) -> str:
     """A user name as an identifier of the target language (reserved words get a trailing _)."""
     return f"{name}_" if name in reserved else name
 
@@ -32,7 +34,7 @@ class Spelling:
 
     name = ""
     comment = ""
-    reserved: set[str] = set()
+    reserved: frozenset[str] = frozenset()
 
     def __init__(self, order: int):
         self.order = order
@@ -133,7 +135,8 @@ class Python(Spelling):
 
     def input_record(self, var: Variable, k: int) -> str:
         sources = ("inputs", "d_inputs", "dd_inputs")[: self.order + 1]
-        return f"w.{var.name} = (" + ", ".join(f"{src}[{k}]" for src in sources) + ("," if self.order == 0 else "") + ")"
+        fields = ", ".join(f"{src}[{k}]" for src in sources) + ("," if self.order == 0 else "")
+        return f"w.{var.name} = ({fields})"
 
     def initializer(self, v: Variable) -> str:
         zeros = [0.0] * (len(record_fields(v.kind, self.order)) - len(v.value))

@@ -66,7 +66,8 @@ def render_svg(log: StepLog) -> str:
                        f'stroke-width="3"{dash}/>')
         cx = sum(x for x, _ in pts) / len(pts)
         cy = sum(y for _, y in pts) / len(pts)
-        out.append(f'<text x="{_f(cx + 6)}" y="{_f(cy - 6)}" fill="{colour}" font-style="italic">{_esc(link.name)}</text>')
+        out.append(f'<text x="{_f(cx + 6)}" y="{_f(cy - 6)}" fill="{colour}" font-style="italic">'
+                   f"{_esc(link.name)}</text>")
     for add in log.add_links:
         (xa, ya), (xb, yb) = at(add.pairs[0]), at(add.pairs[1])
         out.append(f'<line x1="{_f(xa)}" y1="{_f(ya)}" x2="{_f(xb)}" y2="{_f(yb)}" stroke="#2ca02c" '
@@ -87,7 +88,7 @@ def render_svg(log: StepLog) -> str:
             out.append(f'<circle cx="{_f(x)}" cy="{_f(y)}" r="5" fill="{fill}" stroke="black" stroke-width="1.5"/>')
         label = p.name + (f" ({step_of[p.name]})" if p.name in step_of else "")
         out.append(f'<text x="{_f(x + 8)}" y="{_f(y + 16)}">{_esc(label)}</text>')
-    for name, (sx, sy) in spots.items():
+    for name in spots:
         if name in {p.name for p in log.pairs}:
             continue
         x, y = at(name)
@@ -95,6 +96,7 @@ def render_svg(log: StepLog) -> str:
         label = name + (f" ({step_of[name]})" if name in step_of else "")
         out.append(f'<text x="{_f(x + 6)}" y="{_f(y - 6)}">{_esc(label)}</text>')
     out.append(f'<text x="{_f(MARGIN / 3)}" y="{_f(height - 10)}" fill="#555555">'
-               "(k): the step that finds the pair; filled: fixed pivots; dashed outline: the fixed link; dotted: Add-links</text>")
+               "(k): the step that finds the pair; filled: fixed pivots; dashed outline: the fixed link; "
+               "dotted: Add-links</text>")
     out.append("</svg>")
     return "\n".join(out) + "\n"

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 from ..steplog import Column, ResolverGroup, Step, StepLog, Variable
 
+
 @dataclass(frozen=True)
 class Output:
     """One named output of the public state: a pair or point, a link, or a prismatic

@@ -104,10 +104,10 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
  * J addot = -d2f/dt2 at addot = 0, the same J), then the final pass with them.
  * Returns the status of the final pass. */
 static int addlink_rates(group_fn group, void *ctx, int n, const double a[], const double jac[][LINKGEN_NMAX],
-                         int order, double *sigma)
+                         int order, double rates[], double accs[], double *sigma)
 {
     VARIABLE rec[LINKGEN_NMAX], res[LINKGEN_NMAX];
-    double rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX], det;
+    double rhs[LINKGEN_NMAX], det;
     int i;
     for (i = 0; i < n; i++) { rec[i].v = a[i]; rec[i].dv = 0.0; rec[i].ddv = 0.0; rhs[i] = 0.0; rates[i] = 0.0; accs[i] = 0.0; }
     if (order >= 1) {
@@ -128,4 +128,62 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
     *sigma = conditioning(n, jac, det);
     for (i = 0; i < n; i++) { rec[i].v = a[i]; rec[i].dv = rates[i]; rec[i].ddv = accs[i]; }
     return group(ctx, rec, 1, res);
+}
+
+/* Resolver start values for new inputs: the warm lengths moved along their rates
+ * (second-order Taylor in the warm row's input direction). */
+static void predict(const double w_in[], const double w_din[], const double w_a[][LINKGEN_NMAX],
+                    const double w_ad[][LINKGEN_NMAX], const double w_add[][LINKGEN_NMAX], const double in[],
+                    double a[][LINKGEN_NMAX])
+{
+    double num = 0.0, den = 0.0, tau;
+    int g, i;
+    for (i = 0; i < LINKGEN_NINPUTS; i++) {
+        num += (in[i] - w_in[i]) * w_din[i];
+        den += w_din[i] * w_din[i];
+    }
+    tau = den > 0.0 ? num / den : 0.0;
+    for (g = 0; g < LINKGEN_NGROUPS; g++)
+        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = w_a[g][i] + tau * (w_ad[g][i] + 0.5 * tau * w_add[g][i]);
+}
+
+/* One pass of the procedure along a continuation path: returns 1 when it closes,
+ * with the Add-link lengths a (in: start values) and their rates along the path. */
+typedef int (*path_fn)(void *ctx, const double in[], const double din[], int order, double a[][LINKGEN_NMAX],
+                       double rates[][LINKGEN_NMAX]);
+
+/* Follow the assembly from inputs base (solved with lengths a) to target.  Angle
+ * inputs go the shorter way round; a step moves no input by more than its limit,
+ * starts Newton from the tangent predictor and is halved where Newton fails.
+ * Returns 1 with a the lengths at target, 0 when the path is cut. */
+static int continuation(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double target[],
+                        const double limits[], const int periodic[], int halvings)
+{
+    double goal[LINKGEN_NINPUTS], d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS];
+    double rate[LINKGEN_NGROUPS][LINKGEN_NMAX], guess[LINKGEN_NGROUPS][LINKGEN_NMAX], rate2[LINKGEN_NGROUPS][LINKGEN_NMAX];
+    double t = 0.0, h, h_max = 1.0, two_pi = 2.0 * 3.141592653589793;
+    int g, i;
+    for (i = 0; i < LINKGEN_NINPUTS; i++) {
+        goal[i] = periodic[i] ? target[i] - two_pi * floor((target[i] - base[i]) / two_pi + 0.5) : target[i];
+        d[i] = goal[i] - base[i];
+        if (d[i] != 0.0) h_max = fmin(h_max, limits[i] / fabs(d[i]));
+    }
+    if (!run(ctx, base, d, 1, a, rate)) return 0;
+    h = h_max;
+    while (t < 1.0) {
+        const double tt = fmin(1.0, t + h);
+        for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
+        for (g = 0; g < LINKGEN_NGROUPS; g++)
+            for (i = 0; i < LINKGEN_NMAX; i++) guess[g][i] = a[g][i] + (tt - t) * rate[g][i];
+        if (run(ctx, trial, d, 1, guess, rate2)) {
+            t = tt;
+            h = fmin(2.0 * h, h_max);
+            for (g = 0; g < LINKGEN_NGROUPS; g++)
+                for (i = 0; i < LINKGEN_NMAX; i++) { a[g][i] = guess[g][i]; rate[g][i] = rate2[g][i]; }
+        } else {
+            h /= 2.0;
+            if (h < h_max * ldexp(1.0, -halvings)) return 0;
+        }
+    }
+    return 1;
 }

@@ -86,7 +86,7 @@ function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter)
     end
 end
 
-function [st, sigma, w] = resolver_rates(group, w, a, jac, order)
+function [st, sigma, w, rates, accs] = resolver_rates(group, w, a, jac, order)
     % Exact Add-link rates by the implicit-function theorem, then the final pass.
     n = numel(a);
     rates = zeros(n, 1);
@@ -109,4 +109,69 @@ function [st, sigma, w] = resolver_rates(group, w, a, jac, order)
     end
     sigma = abs(det) / max(prod, 1);
     [st, ~, w] = group(w, struct('v', num2cell(a(:)'), 'dv', num2cell(rates'), 'ddv', num2cell(accs')), true);
+end
+
+function a = resolver_predict(warm, in)
+    % Resolver start values for new inputs: the warm lengths moved along their rates
+    % (second-order Taylor in the warm row's input direction).
+    den = sum(warm.din .^ 2);
+    tau = 0;
+    if den > 0
+        tau = sum((in - warm.in) .* warm.din) / den;
+    end
+    a = warm.a;
+    for g = 1:numel(a)
+        a{g} = warm.a{g} + tau * (warm.ad{g} + 0.5 * tau * warm.add{g});
+    end
+end
+
+function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings)
+    % Follow the assembly from inputs base (solved with lengths a) to target.  Angle
+    % inputs go the shorter way round; a step moves no input by more than its limit,
+    % starts Newton from the tangent predictor and is halved where Newton fails.
+    goal = target;
+    for i = 1:numel(goal)
+        if periodic(i)
+            goal(i) = target(i) - 2 * pi * floor((target(i) - base(i)) / (2 * pi) + 0.5);
+        end
+    end
+    d = goal - base;
+    h_max = 1;
+    for i = 1:numel(d)
+        if d(i) ~= 0
+            h_max = min(h_max, limits(i) / abs(d(i)));
+        end
+    end
+    [ok, a, rate] = run(base, d, 1, a);
+    if ~ok
+        return;
+    end
+    t = 0;
+    h = h_max;
+    while t < 1
+        tt = min(1, t + h);
+        if tt < 1
+            trial = base + tt * d;
+        else
+            trial = goal;
+        end
+        guess = a;
+        for g = 1:numel(a)
+            guess{g} = a{g} + (tt - t) * rate{g};
+        end
+        [closed, a2, rate2] = run(trial, d, 1, guess);
+        if closed
+            t = tt;
+            a = a2;
+            rate = rate2;
+            h = min(2 * h, h_max);
+        else
+            h = h / 2;
+            if h < h_max * 2 ^ -halvings
+                ok = false;
+                return;
+            end
+        end
+    end
+    ok = true;
 end

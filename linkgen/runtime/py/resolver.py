@@ -100,3 +100,41 @@ def addlink_rates(group, a, jac, order):
         rates, accs = [NAN] * n, [NAN] * n
     st, _ = group([(a[i], rates[i], accs[i]) for i in range(n)], True)
     return st, sigma, rates, accs
+
+
+def predict(warm, inputs):
+    """Resolver start values for new inputs: the warm lengths moved along their rates
+    (second-order Taylor in the warm row's input direction)."""
+    w_in, w_rates, a, ad, add = warm
+    den = sum(r * r for r in w_rates)
+    tau = sum((x - y) * r for x, y, r in zip(inputs, w_in, w_rates)) / den if den > 0 else 0.0
+    return [[v + tau * (dv + 0.5 * tau * ddv) for v, dv, ddv in zip(g, gd, gdd)] for g, gd, gdd in zip(a, ad, add)]
+
+
+def continuation(run, base, a, target, limits, periodic, halvings):
+    """Follow the assembly from inputs base (solved with lengths a) to target.
+
+    Angle inputs go the shorter way round; each step moves no input by more than its
+    limit, starts Newton from the tangent predictor and is halved where Newton fails.
+    run(inputs, rates, order, a) -> (ok, a, rates) solves with input rates per unit of
+    the path.  Returns the lengths at target, or None when the path is cut.
+    """
+    goal = [t - 2 * PI * floor((t - b) / (2 * PI) + 0.5) if p else t for t, b, p in zip(target, base, periodic)]
+    d = [g - b for g, b in zip(goal, base)]
+    h_max = min([1.0] + [lim / abs(x) for lim, x in zip(limits, d) if x != 0.0])
+    ok, a, rate = run(base, d, 1, a)
+    if not ok:
+        return None
+    t, h = 0.0, h_max
+    while t < 1.0:
+        tt = min(1.0, t + h)
+        trial = [b + tt * x for b, x in zip(base, d)] if tt < 1.0 else goal
+        guess = [[v + (tt - t) * r for v, r in zip(g, gr)] for g, gr in zip(a, rate)]
+        ok, a2, rate2 = run(trial, d, 1, guess)
+        if ok:
+            t, a, rate, h = tt, a2, rate2, min(2 * h, h_max)
+        else:
+            h /= 2
+            if h < h_max * 2.0 ** -halvings:
+                return None
+    return a

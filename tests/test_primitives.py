@@ -1,0 +1,1335 @@
+"""The runtime primitives proved against sympy, geometry and hand calculation.
+
+Random configurations are built as *motions*: every free quantity of an
+assembled chain (point coordinates, angles, slider displacements) is drawn with
+its first and second time derivative (a 2-jet), and the primitive's inputs are
+derived from the configuration with jet arithmetic (product and chain rule on
+50-digit mpmath numbers).  So every input is consistent to 50 digits, every
+branch sign is known, and the expected outputs, rates included, are known
+without reading the primitive.
+
+(a) each rate field equals sympy's time derivative of the field below it and
+    of the displacement field (sympy_oracle), at 50 digits;
+(b) the outputs satisfy the chain's constraints and reproduce the sampled motion;
+(c) hand-calculated cases through the generated Python;
+(d) the math and numpy backends agree bit for bit, at every order, and lower
+    orders are the leading fields of order 2; both agree with the 50-digit value
+    of the same DSL on the same float inputs;
+(e) status and sigma discipline.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+import random
+import struct
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import mpmath
+import numpy as np
+import pytest
+import sympy as sp
+from sympy_oracle import (
+    NAN,
+    RECORD_FIELDS,
+    Prim,
+    numeric,
+    oracle_rates,
+    program,
+    time_derivative,
+    to_sympy,
+)
+
+from linkgen.primitives import PRIMITIVES, dsl, numpy_backend, python_backend
+from linkgen.primitives.dsl import Let, Primitive, record_fields
+
+DPS = 50
+TOL = mpmath.mpf("1e-30")  # relative, at 50 digits
+SAMPLES = 12  # per primitive and branch sign
+MIN_CONDITION = 0.05  # samples closer than this to a singular position are redrawn
+mpf = mpmath.mpf
+
+
+# --------------------------------------------------------------------------- 2-jets
+
+
+def _lib(x):
+    """math for floats (the quick samples of the backend tests), mpmath otherwise."""
+    return math if isinstance(x, float) else mpmath
+
+
+class Jet:
+    """A quantity with its first and second time derivative (mpmath numbers, or floats)."""
+
+    __slots__ = ("v", "d", "dd")
+
+    def __init__(self, v, d=0, dd=0):
+        self.v, self.d, self.dd = v, d, dd
+
+    @staticmethod
+    def of(x) -> Jet:
+        return x if isinstance(x, Jet) else Jet(x)
+
+    def __add__(self, o):
+        o = Jet.of(o)
+        return Jet(self.v + o.v, self.d + o.d, self.dd + o.dd)
+
+    __radd__ = __add__
+
+    def __neg__(self):
+        return Jet(-self.v, -self.d, -self.dd)
+
+    def __sub__(self, o):
+        return self + (-Jet.of(o))
+
+    def __rsub__(self, o):
+        return Jet.of(o) - self
+
+    def __mul__(self, o):
+        o = Jet.of(o)
+        return Jet(self.v * o.v, self.d * o.v + self.v * o.d, self.dd * o.v + 2 * self.d * o.d + self.v * o.dd)
+
+    __rmul__ = __mul__
+
+
+def jcos(a: Jet) -> Jet:
+    c, s = _lib(a.v).cos(a.v), _lib(a.v).sin(a.v)
+    return Jet(c, -s * a.d, -c * a.d**2 - s * a.dd)
+
+
+def jsin(a: Jet) -> Jet:
+    c, s = _lib(a.v).cos(a.v), _lib(a.v).sin(a.v)
+    return Jet(s, c * a.d, -s * a.d**2 + c * a.dd)
+
+
+def jsqrt(a: Jet) -> Jet:
+    r = _lib(a.v).sqrt(a.v)
+    d = a.d / (2 * r)
+    return Jet(r, d, (a.dd - 2 * d * d) / (2 * r))  # (r^2)'' = 2 r r'' + 2 r'^2
+
+
+def vadd(*vs):
+    return tuple(sum(c, Jet(0)) for c in zip(*vs))
+
+
+def vsub(a, b):
+    return (a[0] - b[0], a[1] - b[1])
+
+
+def vscale(k, a):
+    return (k * a[0], k * a[1])
+
+
+def vdot(a, b):
+    return a[0] * b[0] + a[1] * b[1]
+
+
+def vcross(a, b):
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def direction(angle):
+    return (jcos(angle), jsin(angle))
+
+
+def normal(u):
+    return (-u[1], u[0])
+
+
+def local(u, gsi, eta):
+    """gsi * u + eta * n."""
+    return vadd(vscale(gsi, u), vscale(eta, normal(u)))
+
+
+def wrap(angle):
+    """Into (-pi, pi]."""
+    pi = _lib(angle).pi
+    while angle > pi:
+        angle -= 2 * pi
+    while angle <= -pi:
+        angle += 2 * pi
+    return angle
+
+
+# --------------------------------------------------------------------------- sampled motions
+
+
+@dataclass
+class Sample:
+    inputs: dict[str, object]  # record params: Jet or (Jet, Jet); scalars: mpf or int
+    expected: dict[str, object]  # outputs: Jet or (Jet, Jet)
+    name: str = ""
+
+    def values(self) -> dict[str, object]:
+        """Every parameter field as a number (the sympy symbols' names)."""
+        out: dict[str, object] = {}
+        for p in PRIMITIVES[self.name].params:
+            value = self.inputs[p.name]
+            if not p.is_record:
+                out[p.name] = value
+                continue
+            jets = value if isinstance(value, tuple) else (value,)
+            for level, names in enumerate(RECORD_FIELDS[p.kind]):
+                for jet, n in zip(jets, names):
+                    out[f"{p.name}_{n}"] = (jet.v, jet.d, jet.dd)[level]
+        return out
+
+    def scale(self) -> mpf:
+        with mpmath.workdps(DPS):
+            return max(abs(mpf(v)) for v in self.values().values())
+
+
+class Draw:
+    """Seeded random numbers; each is a double, taken exactly into mpmath when ``exact``."""
+
+    def __init__(self, seed: str, exact: bool = True):
+        self.rng = random.Random(seed)
+        self.size = 1.0
+        self.exact = exact
+
+    def num(self, lo=-1.0, hi=1.0):
+        x = self.rng.uniform(lo, hi)
+        return mpf(x) if self.exact else x
+
+    def length(self):
+        return self.num(-2 * self.size, 2 * self.size)
+
+    def jet(self, lo, hi, rate):
+        return Jet(self.num(lo, hi), self.num(-rate, rate), self.num(-rate, rate))
+
+    def point(self):
+        s = self.size
+        return (self.jet(-2 * s, 2 * s, 2 * s), self.jet(-2 * s, 2 * s, 2 * s))
+
+    def angle(self):
+        return self.jet(-3.1, 3.1, 2.0)
+
+    def variable(self, lo=-2.0, hi=2.0):
+        s = self.size
+        return self.jet(s * lo, s * hi, 2 * s)
+
+
+def sign(x) -> int:
+    return 1 if x > 0 else -1
+
+
+def sample_crank_input(r: Draw, branch: int):
+    j1, ln, theta, phi = r.point(), r.length(), r.angle(), r.angle()
+    j2 = vadd(j1, vscale(ln, direction(theta + phi)))
+    return Sample({"j1": j1, "l": ln, "theta": theta, "phi": phi}, {"j2": j2})
+
+
+def sample_coupler_point(r: Draw, branch: int):
+    j0, phi, gsi, eta = r.point(), r.angle(), r.length(), r.length()
+    jc = vadd(j0, local(direction(phi), gsi, eta))
+    return Sample({"j0": j0, "phi": phi, "gsi": gsi, "eta": eta}, {"jc": jc})
+
+
+def sample_slider_input(r: Draw, branch: int):
+    pg, psig, s, gsi, eta = r.point(), r.angle(), r.variable(), r.length(), r.length()
+    u = direction(psig)
+    jp = vadd(pg, vscale(s, u))
+    jc = vadd(jp, local(u, gsi, eta))
+    return Sample({"pg": pg, "psig": psig, "s": s, "gsi": gsi, "eta": eta}, {"jp": jp, "jc": jc})
+
+
+def _offset(r: Draw, phi: Jet):
+    """An offset in (-pi, pi] putting phi + off above pi, inside (-pi, pi] or below -pi in turn."""
+    lo, hi = ((3.2, 6.2), (-3.1, 3.1), (-6.2, -3.2))[r.rng.randrange(3)]
+    off = r.num(lo, hi) - phi.v
+    return off if -3.1 < off < 3.1 else None
+
+
+def sample_link_angle(r: Draw, branch: int):
+    j1, rad, phi = r.point(), r.variable(0.2, 2), r.angle()
+    off = _offset(r, phi)
+    if off is None:
+        return None
+    j2 = vadd(j1, vscale(rad, direction(phi)))
+    return Sample({"j1": j1, "j2": j2, "off": off}, {"angle": Jet(wrap(phi.v + off), phi.d, phi.dd)})
+
+
+def sample_offset_angle(r: Draw, branch: int):
+    phi = r.angle()
+    off = _offset(r, phi)
+    if off is None:
+        return None
+    return Sample({"phi": phi, "off": off}, {"angle": Jet(wrap(phi.v + off), phi.d, phi.dd)})
+
+
+def sample_link_residual(r: Draw, branch: int):
+    j1, rad, phi, ln = r.point(), r.variable(0.2, 2), r.angle(), r.variable()
+    j2 = vadd(j1, vscale(rad, direction(phi)))
+    return Sample({"j1": j1, "j2": j2, "l": ln}, {"f": rad - ln})
+
+
+def sample_rrr(r: Draw, branch: int):
+    j1, j2, jb = r.point(), r.point(), r.point()
+    e1, e2 = vsub(jb, j1), vsub(jb, j2)
+    l1, l2 = jsqrt(vdot(e1, e1)), jsqrt(vdot(e2, e2))
+    q = jsqrt(vdot(vsub(j2, j1), vsub(j2, j1))).v
+    if sign(vcross(vsub(j2, j1), e1).v) != branch or min(l1.v, l2.v, q) < MIN_CONDITION * r.size:
+        return None
+    if abs(vcross(e1, e2).v) / (l1.v * l2.v) < MIN_CONDITION:  # sine of the angle at jb
+        return None
+    return Sample({"j1": j1, "j2": j2, "l1": l1, "l2": l2, "minv": branch}, {"jb": jb})
+
+
+def sample_prr(r: Draw, branch: int):
+    jr, pg, psig, s, gsi, eta = r.point(), r.point(), r.angle(), r.variable(), r.length(), r.length()
+    u = direction(psig)
+    jp = vadd(pg, vscale(s, u))
+    jb = vadd(jp, local(u, gsi, eta))
+    e = vsub(jb, jr)
+    ln = jsqrt(vdot(e, e))
+    eu = vdot(e, u).v
+    if sign(eu) != branch or abs(eu) < MIN_CONDITION * ln.v or ln.v < MIN_CONDITION * r.size:
+        return None
+    inputs = {"jr": jr, "l": ln, "pg": pg, "psig": psig, "gsi": gsi, "eta": eta, "minv": branch}
+    return Sample(inputs, {"s": s, "jp": jp, "jb": jb})
+
+
+def sample_prp(r: Draw, branch: int):
+    pg1, psig1, s1, gsi1, eta1 = r.point(), r.angle(), r.variable(), r.length(), r.length()
+    psig2, s2, gsi2, eta2 = r.angle(), r.variable(), r.length(), r.length()
+    u1, u2 = direction(psig1), direction(psig2)
+    if abs(vcross(u1, u2).v) < MIN_CONDITION:
+        return None
+    jp1 = vadd(pg1, vscale(s1, u1))
+    jb = vadd(jp1, local(u1, gsi1, eta1))
+    jp2 = vsub(jb, local(u2, gsi2, eta2))
+    pg2 = vsub(jp2, vscale(s2, u2))
+    inputs = {"pg1": pg1, "psig1": psig1, "gsi1": gsi1, "eta1": eta1,
+              "pg2": pg2, "psig2": psig2, "gsi2": gsi2, "eta2": eta2}
+    return Sample(inputs, {"s1": s1, "jp1": jp1, "s2": s2, "jp2": jp2, "jb": jb})
+
+
+def sample_rpr(r: Draw, branch: int):
+    jg, psi, s = r.point(), r.angle(), r.variable()
+    ag, bg, as_, bs = r.length(), r.length(), r.length(), r.length()
+    u = direction(psi)
+    along = s + (ag - as_)  # (js - jg).u
+    js = vadd(jg, vscale(along, u), vscale(bg - bs, normal(u)))
+    q = _lib(along.v).sqrt(along.v**2 + (bg - bs) ** 2)
+    if sign(along.v) != branch or abs(along.v) < MIN_CONDITION * q or q < MIN_CONDITION * r.size:
+        return None
+    jp = vadd(js, local(u, as_, bs))
+    inputs = {"jg": jg, "js": js, "ag": ag, "bg": bg, "as_": as_, "bs": bs, "minv": branch}
+    return Sample(inputs, {"psi": psi, "s": s, "jp": jp})
+
+
+def sample_ppr(r: Draw, branch: int):
+    pg, psig, s1, sx = r.point(), r.angle(), r.variable(), r.variable()
+    xa, ya, xb, yb, cx = r.length(), r.length(), r.length(), r.length(), r.num(-3.1, 3.1)
+    if abs(_lib(cx).sin(cx)) < MIN_CONDITION:
+        return None
+    u1, ux = direction(psig), direction(psig + cx)
+    jp1 = vadd(pg, vscale(s1, u1))
+    pb = vadd(jp1, local(u1, xb, yb))  # b's copy of the second pair's point
+    pa = vadd(pb, vscale(branch * sx, ux))  # a's copy: (pa - pb).ux = sgn * sx
+    jr = vsub(pa, local(u1, xa, ya))
+    inputs = {"jr": jr, "pg": pg, "psig": psig, "xa": xa, "ya": ya, "xb": xb, "yb": yb, "cx": cx, "sgn": branch}
+    return Sample(inputs, {"s1": s1, "jp1": jp1, "sx": sx, "jpx": pa if branch > 0 else pb})
+
+
+SAMPLERS: dict[str, Callable] = {
+    "crank_input": sample_crank_input,
+    "slider_input": sample_slider_input,
+    "link_angle": sample_link_angle,
+    "offset_angle": sample_offset_angle,
+    "coupler_point": sample_coupler_point,
+    "RRR_links": sample_rrr,
+    "PRR_links": sample_prr,
+    "PRP_links": sample_prp,
+    "RPR_links": sample_rpr,
+    "PPR_links": sample_ppr,
+    "link_residual": sample_link_residual,
+}
+BRANCHED = {"RRR_links", "PRR_links", "RPR_links", "PPR_links"}
+CASES = [(n, b) for n in PRIMITIVES for b in ((1, -1) if n in BRANCHED else (1,))]
+CASE_IDS = [f"{n}{'' if n not in BRANCHED else ('+' if b > 0 else '-')}" for n, b in CASES]
+
+
+def test_every_primitive_is_sampled():
+    assert set(SAMPLERS) == set(PRIMITIVES)
+
+
+@functools.cache
+def samples(name: str, branch: int, count: int = SAMPLES, exact: bool = True) -> tuple[Sample, ...]:
+    """Assembled motions, seeded by primitive and branch; 50-digit, or floats when not ``exact``."""
+    draw = Draw(f"{name} {branch} {exact}", exact)
+    out = []
+    with mpmath.workdps(DPS):
+        while len(out) < count:
+            draw.size = 2.0 ** draw.rng.randint(-6, 6)  # scale: lengths from 1e-2 to 1e2
+            s = SAMPLERS[name](draw, branch)
+            if s is not None:
+                s.name = name
+                out.append(s)
+    return tuple(out)
+
+
+# --------------------------------------------------------------------------- 50-digit evaluation
+
+
+@dataclass(frozen=True)
+class Evaluated:
+    fields: dict[tuple[str, str], mpf]  # (output, field) -> value
+    status: object
+    sigma: object
+    rates: list[tuple[object, mpf, mpf, mpf]]  # (Rate, dsl, from_lower, from_displacement)
+
+
+@functools.cache
+def _compiled(p: Prim):
+    prog = program(p)
+    rates = oracle_rates(p)
+    keys = [(o.name, f) for o in prog.prim.outputs for f in record_fields(o.kind, 2)]
+    exprs = [prog.results[o][f] for o, f in keys]
+    exprs += [prog.status if prog.status is not None else sp.Integer(0)]
+    exprs += [prog.sigma if prog.sigma is not None else sp.Integer(1)]
+    for r in rates:
+        exprs += [r.dsl, r.from_lower, r.from_displacement]
+    return keys, rates, prog.compile(exprs)
+
+
+def evaluate(p: Prim, values: dict[str, object]) -> Evaluated:
+    """Outputs, status, sigma and every rate with its two sympy oracles, at 50 digits."""
+    keys, rates, fn = _compiled(p)
+    with mpmath.workdps(DPS):
+        out = fn(values)
+    n = len(keys)
+    fields = dict(zip(keys, out[:n]))
+    rest = out[n + 2:]
+    triples = [(r, *rest[3 * i: 3 * i + 3]) for i, r in enumerate(rates)]
+    return Evaluated(fields, out[n], out[n + 1], triples)
+
+
+def discrepancy(a, b, scale) -> mpf:
+    """|a - b| relative to |b| plus the sample's scale, at 50 digits; nan counts as infinitely wrong."""
+    with mpmath.workdps(DPS):
+        a, b = mpf(a), mpf(b)
+        if mpmath.isnan(a) or mpmath.isnan(b):
+            return mpmath.inf
+        return abs(a - b) / (abs(b) + scale)
+
+
+def jet_fields(kind: str, value) -> dict[str, mpf]:
+    jets = value if isinstance(value, tuple) else (value,)
+    return {
+        n: (jet.v, jet.d, jet.dd)[level]
+        for level, names in enumerate(RECORD_FIELDS[kind])
+        for jet, n in zip(jets, names)
+    }
+
+
+# --------------------------------------------------------------------------- (a) rates are derivatives
+
+
+def rate_errors(p: Prim, smps) -> dict[tuple[str, str, str], mpf]:
+    """Worst relative difference of each rate field from each sympy derivative, over the samples."""
+    worst: dict[tuple[str, str, str], mpf] = {}
+    for smp in smps:
+        ev = evaluate(p, smp.values())
+        scale = smp.scale()
+        for rate, own, from_lower, from_disp in ev.rates:
+            for route, oracle in (("d/dt of lower field", from_lower), ("d/dt of displacement", from_disp)):
+                key = (rate.output, rate.field, route)
+                worst[key] = max(worst.get(key, mpf(0)), discrepancy(own, oracle, scale))
+    return worst
+
+
+@pytest.mark.parametrize(("name", "branch"), CASES, ids=CASE_IDS)
+def test_rates_are_sympy_time_derivatives(name, branch):
+    worst = rate_errors(name, samples(name, branch))
+    assert len(worst) == 2 * sum(len(RECORD_FIELDS[o.kind][1]) * 2 for o in PRIMITIVES[name].outputs)
+    bad = {k: mpmath.nstr(v, 3) for k, v in worst.items() if not v <= TOL}
+    assert not bad, f"{name}: rate fields differ from sympy's time derivative: {bad}"
+
+
+def _mutant(name: str, let_name: str, expr) -> Primitive:
+    prim = PRIMITIVES[name]
+    assert let_name in [let.name for let in prim.body]
+    body = tuple(Let(let.name, expr, let.order) if let.name == let_name else let for let in prim.body)
+    return dataclasses.replace(prim, body=body)
+
+
+def _s(n):
+    return dsl.Sym(n)
+
+
+@pytest.mark.parametrize(
+    ("name", "let_name", "wrong", "field"),
+    [
+        # angular acceleration without its Coriolis-like term -2 om (d.dv)/r^2
+        ("link_angle", "al", (_s("dx") * _s("day") - _s("dy") * _s("dax")) * _s("ir2"), "ddthe"),
+        # the 3R chain's normal acceleration with a and a2 swapped in the 2x2 solve
+        ("RRR_links", "bna", (_s("a") * _s("r1a") + _s("a2") * _s("r2a")) * _s("ihq"), "ddx"),
+        # the slider velocity without the guide's rotation
+        ("PRR_links", "ds", (_s("l_v") * _s("l_dv") - (_s("ex") * _s("relvx") + _s("ey") * _s("relvy")))
+         * _s("ieu"), "dv"),
+    ],
+)
+def test_the_oracle_catches_a_planted_bug(name, let_name, wrong, field):
+    worst = rate_errors(_mutant(name, let_name, wrong), samples(name, 1)[:4])
+    caught = {k for k, v in worst.items() if v > mpf("1e-6")}
+    assert any(k[1] == field for k in caught), worst
+    right = rate_errors(name, samples(name, 1)[:4])
+    assert all(v <= TOL for v in right.values())
+
+
+# --------------------------------------------------------------------------- (b) constraints and motion
+
+
+def _pt(fields, out):
+    return (fields[(out, "x")], fields[(out, "y")])
+
+
+def _dir(a):
+    return (mpmath.cos(a), mpmath.sin(a))
+
+
+def _sub(a, b):
+    return (a[0] - b[0], a[1] - b[1])
+
+
+def _add(*vs):
+    return tuple(sum(c) for c in zip(*vs))
+
+
+def _dot(a, b):
+    return a[0] * b[0] + a[1] * b[1]
+
+
+def _cross(a, b):
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def _norm(a):
+    return mpmath.sqrt(_dot(a, a))
+
+
+def _local(u, gsi, eta):
+    return (gsi * u[0] - eta * u[1], gsi * u[1] + eta * u[0])
+
+
+def constraints(name: str, v: dict, f: dict) -> tuple[list, list]:
+    """Residuals that vanish on the chain (lengths) and conditions that must hold (sides).
+
+    Written from the geometry each primitive's docstring states, not from its formulas.
+    """
+
+    def p(n):
+        return (v[f"{n}_x"], v[f"{n}_y"])
+
+    if name == "crank_input":
+        d, u = _sub(_pt(f, "j2"), p("j1")), _dir(v["theta_the"] + v["phi_the"])
+        return [_cross(d, u), _dot(d, u) - v["l"]], []
+    if name == "coupler_point":
+        d, u = _sub(_pt(f, "jc"), p("j0")), _dir(v["phi_the"])
+        return [_dot(d, u) - v["gsi"], _cross(u, d) - v["eta"]], []
+    if name == "slider_input":
+        u = _dir(v["psig_the"])
+        jp, jc = _pt(f, "jp"), _pt(f, "jc")
+        res = [_cross(_sub(jp, p("pg")), u), _dot(_sub(jp, p("pg")), u) - v["s_v"]]
+        return res + [_dot(_sub(jc, jp), u) - v["gsi"], _cross(u, _sub(jc, jp)) - v["eta"]], []
+    if name in ("link_angle", "offset_angle"):
+        th = f[("angle", "the")]
+        base = v["phi_the"] if name == "offset_angle" else mpmath.atan2(*reversed(_sub(p("j2"), p("j1"))))
+        diff = th - base - v["off"]
+        return [mpmath.sin(diff), 1 - mpmath.cos(diff)], [-mpmath.pi < th <= mpmath.pi]
+    if name == "link_residual":
+        return [f[("f", "v")] - (_norm(_sub(p("j2"), p("j1"))) - v["l_v"])], []
+    if name == "RRR_links":
+        jb = _pt(f, "jb")
+        res = [_norm(_sub(jb, p("j1"))) - v["l1_v"], _norm(_sub(jb, p("j2"))) - v["l2_v"]]
+        return res, [sign(_cross(_sub(p("j2"), p("j1")), _sub(jb, p("j1")))) == v["minv"]]
+    if name == "PRR_links":
+        u = _dir(v["psig_the"])
+        jp, jb = _pt(f, "jp"), _pt(f, "jb")
+        res = [_norm(_sub(jb, p("jr"))) - v["l_v"], _cross(_sub(jp, p("pg")), u)]
+        res += [_dot(_sub(jp, p("pg")), u) - f[("s", "v")]]
+        res += list(_sub(_sub(jb, jp), _local(u, v["gsi"], v["eta"])))
+        return res, [sign(_dot(_sub(jb, p("jr")), u)) == v["minv"]]
+    if name == "PRP_links":
+        jb, res = _pt(f, "jb"), []
+        for i in (1, 2):
+            u, jp = _dir(v[f"psig{i}_the"]), _pt(f, f"jp{i}")
+            res += [_cross(_sub(jp, p(f"pg{i}")), u), _dot(_sub(jp, p(f"pg{i}")), u) - f[(f"s{i}", "v")]]
+            res += list(_sub(_sub(jb, jp), _local(u, v[f"gsi{i}"], v[f"eta{i}"])))
+        return res, []
+    if name == "RPR_links":
+        u = _dir(f[("psi", "the")])
+        jp = _pt(f, "jp")
+        res = list(_sub(_sub(jp, p("js")), _local(u, v["as_"], v["bs"])))  # the slider's copy
+        rel = _sub(jp, p("jg"))  # ... on the guide's line, at s from the guide's reference point
+        res += [_cross(u, rel) - v["bg"], _dot(rel, u) - (v["ag"] + f[("s", "v")])]
+        return res, [sign(_dot(_sub(p("js"), p("jg")), u)) == v["minv"]]
+    if name == "PPR_links":
+        u1, ux = _dir(v["psig_the"]), _dir(v["psig_the"] + v["cx"])
+        jp1 = _pt(f, "jp1")
+        res = [_cross(_sub(jp1, p("pg")), u1), _dot(_sub(jp1, p("pg")), u1) - f[("s1", "v")]]
+        pa = _add(p("jr"), _local(u1, v["xa"], v["ya"]))
+        pb = _add(jp1, _local(u1, v["xb"], v["yb"]))
+        res += [_cross(_sub(pa, pb), ux), f[("sx", "v")] - v["sgn"] * _dot(_sub(pa, pb), ux)]
+        res += list(_sub(_pt(f, "jpx"), pa if v["sgn"] > 0 else pb))
+        return res, []
+    raise KeyError(name)
+
+
+@pytest.mark.parametrize(("name", "branch"), CASES, ids=CASE_IDS)
+def test_outputs_satisfy_constraints_and_reproduce_the_motion(name, branch):
+    prim = PRIMITIVES[name]
+    for smp in samples(name, branch):
+        values = smp.values()
+        ev = evaluate(name, values)
+        scale = smp.scale()
+        with mpmath.workdps(DPS):
+            residuals, conditions = constraints(name, values, ev.fields)
+        for i, r in enumerate(residuals):
+            assert abs(r) <= TOL * scale, f"{name}: constraint {i} residual {mpmath.nstr(r, 5)}"
+        assert all(conditions), f"{name}: side condition violated"
+        assert ev.status == 0
+        assert 0 < ev.sigma <= 1
+        for out in prim.outputs:
+            for fname, want in jet_fields(out.kind, smp.expected[out.name]).items():
+                got = ev.fields[(out.name, fname)]
+                err = discrepancy(got, want, scale)
+                assert err <= TOL, f"{name}.{out.name}.{fname}: {got} vs sampled {want}"
+
+
+def test_samples_cover_every_sorting_of_the_3r_triangle():
+    """Kahan's formula sorts {l1, l2, q}: the samples must reach every largest side."""
+    largest = set()
+    for branch in (1, -1):
+        for smp in samples("RRR_links", branch):
+            v = smp.values()
+            q = _norm(_sub((v["j2_x"], v["j2_y"]), (v["j1_x"], v["j1_y"])))
+            sides = {"l1": v["l1_v"], "l2": v["l2_v"], "q": q}
+            largest.add(max(sides, key=sides.get))
+    assert largest == {"l1", "l2", "q"}
+
+
+def test_samples_cover_both_wraps_of_the_angles():
+    """phi + off leaves (-pi, pi] on both sides in the angle samples, so the wrap is exercised."""
+    for name in ("link_angle", "offset_angle"):
+        sums = []
+        for smp in samples(name, 1):
+            v = smp.values()
+            if name == "offset_angle":
+                base = v["phi_the"]
+            else:
+                base = mpmath.atan2(v["j2_y"] - v["j1_y"], v["j2_x"] - v["j1_x"])
+            sums.append(base + v["off"])
+        assert any(x > mpmath.pi for x in sums) and any(x <= -mpmath.pi for x in sums), name
+        assert any(-mpmath.pi < x <= mpmath.pi for x in sums), name
+
+
+# --------------------------------------------------------------------------- the two sympy routes agree
+
+
+def _literal_check(name: str, fields: list[tuple[str, str]], second: bool):
+    """sympy.diff on the substituted expressions (X(t) functions) = the program's chain rule."""
+    prog = program(name)
+    by_field = {(r.output, r.field): r for r in oracle_rates(name)}
+    literal, chained = [], []
+    for out, f0 in fields:
+        kind = next(o.kind for o in PRIMITIVES[name].outputs if o.name == out)
+        i = RECORD_FIELDS[kind][0].index(f0)
+        f1, f2 = RECORD_FIELDS[kind][1][i], RECORD_FIELDS[kind][2][i]
+        d1 = time_derivative(name, prog.expand(prog.results[out][f0]))
+        literal.append(d1)
+        chained.append(by_field[(out, f1)].from_displacement)
+        if second:
+            literal.append(time_derivative(name, d1))
+            chained.append(by_field[(out, f2)].from_displacement)
+    lit = numeric(name, literal)
+    chain = prog.compile(chained)
+    checked = 0
+    for smp in samples(name, 1)[:3]:
+        values = smp.values()
+        with mpmath.workdps(DPS):
+            a, b = lit(values), chain(values)
+        for x, y in zip(a, b):
+            assert discrepancy(x, y, smp.scale()) <= TOL
+            checked += 1
+    assert checked == 3 * len(literal)
+
+
+def _displacements(name: str) -> list[tuple[str, str]]:
+    return [(o.name, f) for o in PRIMITIVES[name].outputs for f in RECORD_FIELDS[o.kind][0]]
+
+
+@pytest.mark.parametrize(
+    "name", ["crank_input", "slider_input", "link_angle", "offset_angle", "coupler_point", "link_residual"]
+)
+def test_literal_sympy_diff_agrees_with_chain_rule(name):
+    _literal_check(name, _displacements(name), second=True)
+
+
+@pytest.mark.parametrize(
+    ("name", "fields"),
+    [
+        pytest.param("RRR_links", [("jb", "x")], marks=pytest.mark.slow),
+        ("PRR_links", [("s", "v"), ("jb", "y")]),
+        ("PRP_links", [("s1", "v"), ("jb", "x")]),
+        ("RPR_links", [("psi", "the"), ("s", "v"), ("jp", "x")]),
+        ("PPR_links", [("s1", "v"), ("sx", "v"), ("jpx", "y")]),
+    ],
+)
+def test_literal_sympy_diff_agrees_with_chain_rule_on_chains(name, fields):
+    _literal_check(name, fields, second=False)
+
+
+def test_to_sympy_is_in_parameter_symbols_only():
+    """to_sympy substitutes every let away, and agrees with the program view expanded."""
+    for name, order in (("crank_input", 2), ("link_angle", 2), ("coupler_point", 2), ("PRP_links", 0),
+                        ("PPR_links", 0), ("RPR_links", 0)):
+        sprim = to_sympy(name)
+        allowed = set(sprim.symbols.values()) | {NAN}
+        prog = program(name)
+        for o in PRIMITIVES[name].outputs:
+            for f in record_fields(o.kind, order):
+                e = sprim.results[o.name][f]
+                assert e.free_symbols <= allowed
+                assert sp.expand(prog.expand(prog.results[o.name][f]) - e) == 0
+        for let in sprim.lets.values():
+            assert let.free_symbols <= allowed
+
+
+def test_time_derivative_refuses_a_third_derivative():
+    with pytest.raises(ValueError):
+        time_derivative("crank_input", to_sympy("crank_input").results["j2"]["ddx"])
+
+
+# --------------------------------------------------------------------------- backends
+
+
+def _as_floats(smp: Sample) -> dict[str, object]:
+    return {k: (v if isinstance(v, int) else float(v)) for k, v in smp.values().items()}
+
+
+def _args(name: str, order: int, values: dict) -> list:
+    """Records as tuples of their fields up to ``order``, scalars as they are."""
+    args = []
+    for p in PRIMITIVES[name].params:
+        if p.is_record:
+            args.append(tuple(values[f"{p.name}_{f}"] for f in record_fields(p.kind, order)))
+        else:
+            args.append(values[p.name])
+    return args
+
+
+def call_python(name: str, order: int, values: dict):
+    """(status, sigma, outputs) from the generated math function; None where it has none."""
+    prim = PRIMITIVES[name]
+    res = python_backend(order)[name](*_args(name, order, values))
+    if prim.status is None:
+        return None, None, ((res,) if len(prim.outputs) == 1 else tuple(res))
+    st, *rest = res
+    sigma = rest.pop(0) if prim.sigma is not None else None
+    return st, sigma, tuple(rest)
+
+
+def call_numpy(name: str, order: int, rows: list[dict]):
+    values = {k: np.array([r[k] for r in rows]) for k in rows[0]}
+    with np.errstate(all="ignore"):
+        st, sigma, *outs = numpy_backend(order)[name](*_args(name, order, values))
+    return np.broadcast_to(st, (len(rows),)), np.broadcast_to(sigma, (len(rows),)), outs
+
+
+def bits(x: float) -> int:
+    return struct.unpack("<q", struct.pack("<d", float(x)))[0]
+
+
+def same(a: float, b: float) -> bool:
+    """Bit for bit, any nan equal to any nan."""
+    return (math.isnan(a) and math.isnan(b)) or bits(a) == bits(b)
+
+
+def special_inputs(name: str) -> list[tuple[str, int, dict]]:
+    """(what, expected status, float parameter values) at the status branches: toggles, failures, degeneracies."""
+
+    def pt(pname, x, y, dx=0.5, dy=-0.25, ddx=0.125, ddy=1.0):
+        return {f"{pname}_{k}": v for k, v in zip(("x", "y", "dx", "dy", "ddx", "ddy"), (x, y, dx, dy, ddx, ddy))}
+
+    def var(pname, v, dv=0.5, ddv=-0.5, kind="VARIABLE"):
+        names = RECORD_FIELDS[kind]
+        return {f"{pname}_{names[i][0]}": x for i, x in enumerate((v, dv, ddv))}
+
+    cases: list[tuple[str, int, dict]] = []
+    if name == "RRR_links":
+        for what, st, l1, l2, q in (("toggle", 3, 2.0, 3.0, 5.0), ("toggle", 3, 7.0, 2.0, 5.0),
+                                    ("fail", 1, 3.0, 4.0, 10.0), ("coincident", 1, 3.0, 4.0, 0.0),
+                                    ("fail", 1, 0.0, 5.0, 5.0)):
+            for minv in (1, -1):
+                cases.append((what, st, {**pt("j1", 0.0, 0.0), **pt("j2", q, 0.0, 1.0, 2.0, -1.0, 0.5),
+                                         **var("l1", l1), **var("l2", l2), "minv": minv}))
+    elif name == "PRR_links":
+        for what, st, ln, y in (("toggle", 3, 3.0, 3.0), ("toggle", 3, 3.0, -3.0), ("fail", 1, 2.0, 3.0),
+                                ("fail", 1, 0.0, 0.0)):
+            cases.append((what, st, {**pt("jr", 0.0, y), **var("l", ln), **pt("pg", 0.0, 0.0),
+                                     **var("psig", 0.0, 1.0, 0.5, "ANGLE"), "gsi": 0.0, "eta": 0.0, "minv": 1}))
+    elif name == "RPR_links":
+        for what, st, bg, q in (("toggle", 3, 3.0, 3.0), ("toggle", 3, -3.0, 3.0), ("fail", 1, 4.0, 3.0),
+                                ("coincident", 1, 0.0, 0.0)):
+            cases.append((what, st, {**pt("jg", 0.0, 0.0), **pt("js", q, 0.0, 0.0, 1.0),
+                                     "ag": 0.0, "bg": bg, "as_": 0.0, "bs": 0.0, "minv": 1}))
+    elif name == "PRP_links":
+        cases.append(("parallel", 1, {**pt("pg1", 0.0, 0.0), **var("psig1", 0.0, kind="ANGLE"), "gsi1": 0.0,
+                                      "eta1": 0.0, **pt("pg2", 0.0, 1.0), **var("psig2", 0.0, kind="ANGLE"),
+                                      "gsi2": 0.0, "eta2": 0.0}))
+    elif name == "PPR_links":
+        cases.append(("parallel", 1, {**pt("jr", 1.0, 2.0), **pt("pg", 0.0, 0.0), **var("psig", 0.0, kind="ANGLE"),
+                                      "xa": 0.0, "ya": 0.0, "xb": 0.0, "yb": 0.0, "cx": 0.0, "sgn": 1}))
+    elif name == "link_angle":
+        cases.append(("coincident", 1, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), "off": 0.5}))
+    elif name == "link_residual":
+        cases.append(("coincident", 3, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), **var("l", 1.0)}))
+    return cases
+
+
+FLOAT_SAMPLES = 150  # per primitive and branch: the libm functions differ in a few percent of last bits
+
+
+@functools.cache
+def float_rows(name: str) -> tuple[dict, ...]:
+    branches = (1, -1) if name in BRANCHED else (1,)
+    rows = [_as_floats(s) for b in branches for s in samples(name, b, FLOAT_SAMPLES, exact=False)]
+    return tuple(rows + [row for _, _, row in special_inputs(name)])
+
+
+def _flat(outs) -> list[float]:
+    """Every field of every output record, in order."""
+    return [float(x) for rec in outs for x in rec]
+
+
+# numpy's arctan2 is its own (vectorised) implementation, not the platform's libm: the
+# angles it gives may differ from math.atan2 in the last bits.  Everything else is the
+# same arithmetic in the same order, so it must give the same bits.
+ATAN2_FIELDS = {("link_angle", "angle", "the"), ("RPR_links", "psi", "the")}
+ATAN2_ULPS = 4
+
+
+def _ulps(a: float, b: float) -> float:
+    return abs(a - b) / math.ulp(max(abs(a), abs(b)))
+
+
+@pytest.mark.parametrize("order", [0, 1, 2])
+@pytest.mark.parametrize("name", list(PRIMITIVES))
+def test_python_and_numpy_backends_bit_identical(name, order):
+    rows = float_rows(name)
+    st_n, sig_n, outs_n = call_numpy(name, order, list(rows))
+    prim = PRIMITIVES[name]
+    mismatches = []
+    for i, row in enumerate(rows):
+        st, sigma, outs = call_python(name, order, row)
+        if st is not None:
+            assert st == st_n[i]
+        if sigma is not None:
+            assert same(sigma, sig_n[i])
+        fields = [(o.name, f) for o in prim.outputs for f in record_fields(o.kind, order)]
+        py = _flat(outs)
+        npv = [float(column[i]) for out in outs_n for column in out]
+        assert len(py) == len(npv) == len(fields)
+        for (o, f), a, b in zip(fields, py, npv):
+            if (name, o, f) in ATAN2_FIELDS and _ulps(a, b) <= ATAN2_ULPS:
+                continue
+            if not same(a, b):
+                mismatches.append(f"row {i} {o}.{f}: math {a!r} numpy {b!r}")
+    assert not mismatches, f"{name} order {order}: {len(mismatches)} fields differ, e.g. {mismatches[:3]}"
+
+
+@pytest.mark.parametrize("order", [0, 1])
+@pytest.mark.parametrize("name", list(PRIMITIVES))
+def test_lower_orders_are_leading_fields_of_order_2(name, order):
+    prim = PRIMITIVES[name]
+    rows = list(float_rows(name))
+    full_n = call_numpy(name, 2, rows)
+    low_n = call_numpy(name, order, rows)
+    assert np.array_equal(full_n[0], low_n[0])
+    assert np.array_equal(full_n[1], low_n[1], equal_nan=True)
+    for i, row in enumerate(rows):
+        full, low = call_python(name, 2, row), call_python(name, order, row)
+        assert full[0] == low[0]
+        assert full[1] is None or same(full[1], low[1])
+        for o, rec_full, rec_low, rn_full, rn_low in zip(prim.outputs, full[2], low[2], full_n[2], low_n[2]):
+            k = len(record_fields(o.kind, order))
+            assert len(rec_low) == k and len(rn_low) == k
+            for a, b, an, bn in zip(rec_full[:k], rec_low, rn_full[:k], rn_low):
+                assert same(a, b), f"{name}.{o.name} math order {order}: {a!r} != {b!r}"
+                assert same(float(an[i]), float(bn[i])), f"{name}.{o.name} numpy order {order}"
+
+
+@pytest.mark.parametrize(("name", "branch"), CASES, ids=CASE_IDS)
+def test_generated_python_matches_sympy_on_the_same_floats(name, branch):
+    """The printed code computes what the DSL says: 50 digits on the same binary inputs."""
+    prim = PRIMITIVES[name]
+    worst = 0.0
+    for smp in samples(name, branch):
+        row = _as_floats(smp)
+        ev = evaluate(name, {k: mpf(v) if not isinstance(v, int) else v for k, v in row.items()})
+        _, _, outs = call_python(name, 2, row)
+        scale = max(abs(v) for v in row.values())
+        for o, rec in zip(prim.outputs, outs):
+            for f, got in zip(record_fields(o.kind, 2), rec):
+                err = float(discrepancy(mpf(got), ev.fields[(o.name, f)], scale))
+                worst = max(worst, err)
+                assert err <= 1e-12, f"{name}.{o.name}.{f}: {got!r} vs {ev.fields[(o.name, f)]}"
+    assert worst <= 1e-12
+
+
+# --------------------------------------------------------------------------- (c) hand calculations
+
+
+def py2(name, *args):
+    return call_python(name, 2, dict(_named(name, args)))
+
+
+def _named(name, args):
+    """Positional arguments (records as tuples, possibly short of the higher orders) by field name."""
+    out = {}
+    for p, a in zip(PRIMITIVES[name].params, args):
+        if p.is_record:
+            out.update({f"{p.name}_{f}": x for f, x in zip(record_fields(p.kind, 2), a)})
+        else:
+            out[p.name] = a
+    return out
+
+
+def approx(values):
+    return pytest.approx(values, rel=1e-14, abs=1e-14)
+
+
+PI = math.pi
+STILL = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+
+@pytest.mark.parametrize(
+    ("j1", "j2", "l1", "l2", "minv", "jb"),
+    [
+        # 3-4-5: a = (25 + 9 - 16)/10 = 1.8, h = 12/5; l1 grows at 1 with j1, j2 fixed:
+        # 1.8 vx + 2.4 vy = 3, -3.2 vx + 2.4 vy = 0; 1.8 ax + 2.4 ay = 1 - |v|^2 = 0, -3.2 ax + 2.4 ay = -1
+        (STILL, (5.0, 0, 0, 0, 0, 0), (3.0, 1.0, 0.0), (4.0, 0.0, 0.0), 1, (1.8, 2.4, 0.6, 0.8, 0.2, -0.15)),
+        (STILL, (5.0, 0, 0, 0, 0, 0), (3.0, 1.0, 0.0), (4.0, 0.0, 0.0), -1, (1.8, -2.4, 0.6, -0.8, 0.2, 0.15)),
+        # sides swapped: a = (25 + 16 - 9)/10 = 3.2
+        (STILL, (5.0, 0, 0, 0, 0, 0), (4.0, 0.0, 0.0), (3.0, 0.0, 0.0), 1, (3.2, 2.4, 0, 0, 0, 0)),
+        # the first case turned a quarter turn and moved to (1, 1): jb = j1 + 1.8 u + 2.4 n, u = (0, 1)
+        ((1.0, 1.0, 0, 0, 0, 0), (1.0, 6.0, 0, 0, 0, 0), (3.0, 1.0, 0.0), (4.0, 0.0, 0.0), 1,
+         (-1.4, 2.8, -0.8, 0.6, 0.15, 0.2)),
+        # the whole triangle translating at (1, -2) with acceleration (3, 4): jb moves with it
+        ((0.0, 0.0, 1.0, -2.0, 3.0, 4.0), (5.0, 0.0, 1.0, -2.0, 3.0, 4.0), (3.0, 0.0, 0.0), (4.0, 0.0, 0.0), 1,
+         (1.8, 2.4, 1.0, -2.0, 3.0, 4.0)),
+        # ... and turning rigidly about j1 at omega = 1: jb' = (-2.4, 1.8), jb'' = -jb
+        (STILL, (5.0, 0.0, 0.0, 5.0, -5.0, 0.0), (3.0, 0.0, 0.0), (4.0, 0.0, 0.0), 1,
+         (1.8, 2.4, -2.4, 1.8, -1.8, -2.4)),
+    ],
+)
+def test_rrr_hand_cases(j1, j2, l1, l2, minv, jb):
+    st, sigma, (got,) = py2("RRR_links", j1, j2, l1, l2, minv)
+    assert st == 0
+    assert got == approx(jb)
+
+
+def test_rrr_right_angle_sigma_is_one():
+    st, sigma, _ = py2("RRR_links", STILL, (5.0, 0, 0, 0, 0, 0), (3.0, 0, 0), (4.0, 0, 0), 1)
+    assert sigma == approx(1.0)
+
+
+@pytest.mark.parametrize(
+    ("theta", "s"),
+    [
+        # outer dead centre, crank 1, rod 3, omega 2: x'' = -r w^2 (1 + r/l) = -16/3
+        (0.0, (4.0, 0.0, -16.0 / 3.0)),
+        # inner dead centre: x'' = w^2 (r - r^2/l) = 8/3
+        (PI, (2.0, 0.0, 8.0 / 3.0)),
+    ],
+)
+def test_slider_crank_at_dead_centre(theta, s):
+    (pin,) = py2("crank_input", STILL, 1.0, (theta, 2.0, 0.0), (0.0, 0.0, 0.0))[2]
+    # crank pin: (cos, sin), velocity w x r, acceleration -w^2 r
+    assert pin == approx((math.cos(theta), math.sin(theta), -2 * math.sin(theta), 2 * math.cos(theta),
+                          -4 * math.cos(theta), -4 * math.sin(theta)))
+    st, sigma, (s_out, jp, jb) = py2("PRR_links", pin, (3.0, 0.0, 0.0), STILL, (0.0, 0.0, 0.0), 0.0, 0.0, 1)
+    assert st == 0
+    assert sigma == approx(1.0)
+    assert s_out == approx(s)
+    assert jp == approx((s[0], 0.0, s[1], 0.0, s[2], 0.0))
+    assert jb == approx(jp)
+
+
+def test_slider_crank_offset_pair_on_slider():
+    """The pair sits at (gsi, eta) = (1, 0.5) on the slider: jb = jp + (1, 0.5) on a still guide."""
+    pin = (0.0, 2.0, -3.0, 0.0, 0.0, -4.5)  # crank of 2 at 90 deg, omega 1.5
+    # jb = (s + 1, 0.5); |jb - pin| = 2.5 = |(s + 1, -1.5)|: s + 1 = 2 ahead of the pin (minv = +1)
+    st, _, (s, jp, jb) = py2("PRR_links", pin, (2.5, 0.0, 0.0), STILL, (0.0, 0.0, 0.0), 1.0, 0.5, 1)
+    assert st == 0
+    assert s[0] == approx(1.0)
+    assert jp[:2] == approx((1.0, 0.0))
+    assert jb[:2] == approx((2.0, 0.5))
+    # (jb - pin).(jb' - pin') = 0 with jb' = (s', 0): 2 (s' + 3) - 1.5 * 0 = 0
+    assert s[1] == approx(-3.0)
+    # again: |jb' - pin'|^2 + (jb - pin).(jb'' - pin'') = 0: 0 + 2 s'' - 1.5 * 4.5 = 0
+    assert s[2] == approx(3.375)
+    assert jb[2:] == approx((-3.0, 0.0, 3.375, 0.0))
+
+
+@pytest.mark.parametrize(
+    ("j2", "off", "angle"),
+    [
+        # radius 2 at 90 deg turning at 1: v = (-2, 0), a = (0, -2)
+        ((1.0, 3.0, -2.0, 0.0, 0.0, -2.0), 0.0, (PI / 2, 1.0, 0.0)),
+        # plus angular acceleration 1: tangential a = (-2, 0)
+        ((1.0, 3.0, -2.0, 0.0, -2.0, -2.0), 0.0, (PI / 2, 1.0, 1.0)),
+        # offset 3 pi/4: 5 pi/4 wraps to -3 pi/4
+        ((1.0, 3.0, -2.0, 0.0, 0.0, -2.0), 3 * PI / 4, (-3 * PI / 4, 1.0, 0.0)),
+    ],
+)
+def test_link_angle_hand_cases(j2, off, angle):
+    st, _, (got,) = py2("link_angle", (1.0, 1.0, 0, 0, 0, 0), j2, off)
+    assert st == 0
+    assert got == approx(angle)
+
+
+@pytest.mark.parametrize(
+    ("j1", "j2", "off"),
+    [
+        ((0.0, 0.0), (-1.0, 0.0), 0.0),  # atan2 = pi stays pi
+        ((0.0, 0.0), (-1.0, -0.0), 0.0),  # atan2 = -pi wraps to pi
+        ((0.0, 0.0), (1.0, 0.0), -PI),  # 0 - pi wraps to pi
+    ],
+)
+def test_link_angle_wraps_to_half_open_interval(j1, j2, off):
+    st, _, ((th, _, _),) = py2("link_angle", (*j1, 0, 0, 0, 0), (*j2, 0, 0, 0, 0), off)
+    assert th == PI
+
+
+def test_offset_angle_hand():
+    (got,) = py2("offset_angle", (3.0, 1.0, 2.0), 1.0)[2]
+    assert got == approx((4.0 - 2 * PI, 1.0, 2.0))
+    (got,) = py2("offset_angle", (PI, 0.0, 0.0), PI)[2]  # 2 pi wraps to 0
+    assert got == approx((0.0, 0.0, 0.0))
+
+
+def test_crank_input_hand():
+    # direction pi/6 + pi/3 = pi/2, l = 2: r = (0, 2); omega 1.5: r' = (-3, 0), r'' = (0, -4.5)
+    (got,) = py2("crank_input", (1.0, 2.0, 0.5, 0.0, 0.0, 0.0), 2.0, (PI / 6, 1.0, 0.0), (PI / 3, 0.5, 0.0))[2]
+    assert got == approx((1.0, 4.0, -2.5, 0.0, 0.0, -4.5))
+
+
+def test_coupler_point_hand():
+    # R(90 deg)(2, 1) = (-1, 2); omega 2: v = 2 (-2, -1), a = -4 (-1, 2)
+    (got,) = py2("coupler_point", (1.0, 1.0, 0, 0, 0, 0), (PI / 2, 2.0, 0.0), 2.0, 1.0)[2]
+    assert got == approx((0.0, 3.0, -4.0, -2.0, 4.0, -8.0))
+
+
+def test_slider_input_hand():
+    jp, jc = py2("slider_input", STILL, (PI / 2, 0.0, 0.0), (3.0, 1.0, 0.0), 1.0, 0.0)[2]
+    assert jp == approx((0.0, 3.0, 0.0, 1.0, 0.0, 0.0))
+    assert jc == approx((0.0, 4.0, 0.0, 1.0, 0.0, 0.0))
+    # guide turning at 1 about pg, slider still at s = 2: jp' = s w n = (0, 2), jp'' = -s w^2 u = (-2, 0);
+    # jc = jp + n: jc' = jp' + w x n = (-1, 2), jc'' = jp'' - w^2 n = (-2, -1)
+    jp, jc = py2("slider_input", STILL, (0.0, 1.0, 0.0), (2.0, 0.0, 0.0), 0.0, 1.0)[2]
+    assert jp == approx((2.0, 0.0, 0.0, 2.0, -2.0, 0.0))
+    assert jc == approx((2.0, 1.0, -1.0, 2.0, -2.0, -1.0))
+
+
+def test_prp_hand():
+    # x axis and the vertical through (2, -1) moving right at 1: jb = (2, 0), s1 = 2, s2 = 1
+    st, sigma, (s1, jp1, s2, jp2, jb) = py2(
+        "PRP_links", STILL, (0.0, 0.0, 0.0), 0.0, 0.0, (2.0, -1.0, 1.0, 0.0, 0.0, 0.0), (PI / 2, 0.0, 0.0), 0.0, 0.0
+    )
+    assert st == 0
+    assert sigma == approx(1.0)
+    assert s1 == approx((2.0, 1.0, 0.0))
+    assert s2 == approx((1.0, 0.0, 0.0))
+    assert jp1 == approx((2.0, 0.0, 1.0, 0.0, 0.0, 0.0))
+    assert jp2 == approx(jp1)
+    assert jb == approx(jp1)
+
+
+def test_prp_offsets_hand():
+    # slider 1 on the x axis carries jb at (gsi, eta) = (0, 1): jb = jp1 + (0, 1);
+    # slider 2 on the vertical through (3, 0) carries it at (1, 0) in its frame: jb = jp2 + (0, 1)
+    st, _, (s1, jp1, s2, jp2, jb) = py2(
+        "PRP_links", STILL, (0.0, 0.0, 0.0), 0.0, 1.0, (3.0, 0.0, 0, 0, 0, 0), (PI / 2, 0.0, 0.0), 1.0, 0.0
+    )
+    # jb = (s1, 1) = (3, s2 + 1): s1 = 3, s2 = 0
+    assert jb[:2] == approx((3.0, 1.0))
+    assert (s1[0], s2[0]) == approx((3.0, 0.0))
+    assert jp1[:2] == approx((3.0, 0.0))
+    assert jp2[:2] == approx((3.0, 0.0))
+
+
+@pytest.mark.parametrize(
+    ("minv", "psi", "s"),
+    [(1, math.atan2(4.0, 3.0), (5.0, 0.0, 0.0)), (-1, math.atan2(-4.0, -3.0), (-5.0, 0.0, 0.0))],
+)
+def test_rpr_inverted_slider_crank_hand(minv, psi, s):
+    # js turns about jg at omega 1 at radius 5: the line jg-js turns with it, nothing slides
+    st, sigma, (ang, s_out, jp) = py2("RPR_links", STILL, (3.0, 4.0, -4.0, 3.0, -3.0, -4.0), 0.0, 0.0, 0.0, 0.0, minv)
+    assert st == 0
+    assert sigma == approx(1.0)
+    assert ang == approx((psi, 1.0, 0.0))
+    assert s_out == approx(s)
+    assert jp == approx((3.0, 4.0, -4.0, 3.0, -3.0, -4.0))
+
+
+def test_rpr_offset_line_hand():
+    # js = (4, 3) sits 3 to the left of the guide's line through jg: line along x, s = 4, jp = js
+    st, sigma, (ang, s, jp) = py2("RPR_links", STILL, (4.0, 3.0, 0, 0, 0, 0), 0.0, 3.0, 0.0, 0.0, 1)
+    assert st == 0
+    assert sigma == approx(0.8)  # t / q = 4 / 5
+    assert ang == approx((0.0, 0.0, 0.0))
+    assert s == approx((4.0, 0.0, 0.0))
+    assert jp == approx((4.0, 3.0, 0.0, 0.0, 0.0, 0.0))
+    # js sliding along x at 1: the line does not turn, s grows at 1
+    st, _, (ang, s, jp) = py2("RPR_links", STILL, (4.0, 3.0, 1.0, 0, 0, 0), 0.0, 3.0, 0.0, 0.0, 1)
+    assert ang == approx((0.0, 0.0, 0.0))
+    assert s == approx((4.0, 1.0, 0.0))
+
+
+@pytest.mark.parametrize(("sgn", "sx", "jpx"), [(1, 2.0, (1.0, 2.0)), (-1, -2.0, (1.0, 0.0))])
+def test_ppr_cross_slot_hand(sgn, sx, jpx):
+    # b slides on the x axis; a turns about jr = (1, 2) and slides on b along the y direction (cx = 90 deg)
+    jr = (1.0, 2.0, 1.0, 1.0, 0.0, 0.0)
+    st, sigma, (s1, jp1, sx_out, jpx_out) = py2(
+        "PPR_links", jr, STILL, (0.0, 0.0, 0.0), 0.0, 0.0, 0.0, 0.0, PI / 2, sgn
+    )
+    assert st == 0
+    assert sigma == approx(1.0)
+    assert s1 == approx((1.0, 1.0, 0.0))
+    assert jp1 == approx((1.0, 0.0, 1.0, 0.0, 0.0, 0.0))
+    assert sx_out == approx((sx, sgn * 1.0, 0.0))
+    assert jpx_out == approx((*jpx, 1.0, 1.0 if sgn > 0 else 0.0, 0.0, 0.0))
+
+
+def test_link_residual_hand():
+    # r = 5, r' = d.dv/r = 3/5, r'' = (|dv|^2 + d.da - r'^2)/r = (1 - 0.36)/5
+    st, _, (f,) = py2("link_residual", STILL, (3.0, 4.0, 1.0, 0.0, 0.0, 0.0), (4.0, 0.5, 0.25))
+    assert st == 0
+    assert f == approx((1.0, 0.6 - 0.5, 0.64 / 5 - 0.25))
+
+
+# --------------------------------------------------------------------------- (e) status discipline
+
+
+def _all_outputs(name, row, order):
+    prim = PRIMITIVES[name]
+    st, sigma, outs = call_python(name, order, row)
+    levels = [record_fields(o.kind, order) for o in prim.outputs]
+    return st, sigma, [(o.name, f, x) for o, fs, rec in zip(prim.outputs, levels, outs) for f, x in zip(fs, rec)]
+
+
+def _level(kind, f):
+    return next(i for i, names in enumerate(RECORD_FIELDS[kind]) if f in names)
+
+
+SPECIAL = [(n, *case) for n in PRIMITIVES for case in special_inputs(n)]
+
+
+@pytest.mark.parametrize(("name", "what", "status", "row"), SPECIAL,
+                         ids=[f"{n}-{w}-{i}" for i, (n, w, _, _) in enumerate(SPECIAL)])
+def test_status_masks_outputs(name, what, status, row):
+    """Status 1: every output nan; 3: displacements finite, rates nan; never inf; both backends."""
+    kinds = {o.name: o.kind for o in PRIMITIVES[name].outputs}
+    st_n, _, outs_n = call_numpy(name, 2, [row])
+    assert st_n[0] == status
+    for order in (0, 1, 2):
+        st, _, fields = _all_outputs(name, row, order)
+        assert st == status, f"{name} {what}: status {st}"
+        for out, f, x in fields:
+            assert not math.isinf(x), f"{name}.{out}.{f} is inf"
+            if st == 1 or (st == 3 and _level(kinds[out], f) > 0):
+                assert math.isnan(x), f"{name} status {st}: {out}.{f} = {x}"
+            else:
+                assert math.isfinite(x), f"{name} status {st}: {out}.{f} = {x}"
+    for out in outs_n:
+        for column in out:
+            assert not np.isinf(column).any()
+
+
+def _rrr_row(l1, l2, q, minv=1):
+    return _named("RRR_links", ((0.0, 0.0, 0.5, 0.25, 1.0, -1.0), (q, 0.0, -0.5, 1.0, 0.0, 2.0),
+                                (l1, 0.5, 0.25), (l2, -0.5, 0.125), minv))
+
+
+def test_rrr_cannot_close():
+    for l1, l2, q in ((3.0, 4.0, 10.0), (1.0, 10.0, 2.0), (10.0, 1.0, 2.0), (3.0, 4.0, 0.0), (0.0, 5.0, 5.0),
+                      (-1.0, 5.0, 5.0)):
+        st, _, fields = _all_outputs("RRR_links", _rrr_row(l1, l2, q), 2)
+        assert st == 1, (l1, l2, q)
+        assert all(math.isnan(x) for _, _, x in fields)
+
+
+@pytest.mark.parametrize(("l1", "l2", "q", "jbx"), [(2.0, 3.0, 5.0, 2.0), (7.0, 2.0, 5.0, 7.0), (2.0, 7.0, 5.0, -2.0)])
+@pytest.mark.parametrize("minv", [1, -1])
+def test_rrr_exact_toggle(l1, l2, q, jbx, minv):
+    st, sigma, fields = _all_outputs("RRR_links", _rrr_row(l1, l2, q, minv), 2)
+    assert st == 3
+    assert sigma == 0
+    values = {f: x for _, f, x in fields}
+    assert (values["x"], values["y"]) == (jbx, 0.0)
+    assert all(math.isnan(values[f]) for f in ("dx", "dy", "ddx", "ddy"))
+
+
+def test_rrr_toggle_within_slack_is_a_toggle():
+    """l1 + l2 a few ulps short of q (rounding on a real toggle) still closes, at the toggle."""
+    q = 5.0
+    l1 = 2.0
+    l2 = math.nextafter(3.0, 0.0)
+    st, sigma, fields = _all_outputs("RRR_links", _rrr_row(l1, l2, q), 2)
+    assert st == 3
+    values = {f: x for _, f, x in fields}
+    assert values["x"] == approx(2.0) and abs(values["y"]) < 1e-7
+
+
+def test_rrr_near_toggle_is_status_4():
+    # jb = (1, 1e-4) above the middle of j1 = (0, 0), j2 = (2, 0): sigma = sin(angle at jb) ~ 2e-4
+    ln = math.hypot(1.0, 1e-4)
+    st, sigma, fields = _all_outputs("RRR_links", _rrr_row(ln, ln, 2.0), 2)
+    assert st == 4
+    assert sigma == pytest.approx(2e-4 / (1 + 1e-8), rel=1e-9)
+    assert all(math.isfinite(x) for _, _, x in fields)
+
+
+@pytest.mark.parametrize("delta", [1e-8, 1e-16])
+def test_near_toggles_of_the_slider_chains(delta):
+    """A link almost square to the guide (PRR) or js almost on the normal (RPR): sigma ~ sqrt(2 delta).
+
+    1e-8 gives sigma ~ 1.4e-4: status 4 with every rate finite; 1e-16 gives ~1.4e-8: status 3.
+    """
+    ln = 3.0
+    near = ln * (1 - delta)  # the distance of jr from the slider's line, of js from the guide's line
+    want = math.sqrt((ln - near) * (ln + near)) / ln  # ln - near is exact (Sterbenz)
+    status = 4 if want > 1e-7 else 3
+    prr = _named("PRR_links", ((0.0, near, 1.0, 0.5, 0.0, 0.0), (ln, 0.5, 0.0), STILL,
+                               (0.0, 1.0, 0.5), 0.0, 0.0, 1))
+    rpr = _named("RPR_links", (STILL, (ln, 0.0, 0.0, 1.0, 0.0, 0.0), 0.0, near, 0.0, 0.0, 1))
+    for name, row in (("PRR_links", prr), ("RPR_links", rpr)):
+        st, sigma, fields = _all_outputs(name, row, 2)
+        assert st == status, name
+        assert sigma == pytest.approx(want, rel=1e-9), name
+        kinds = {o.name: o.kind for o in PRIMITIVES[name].outputs}
+        for out, f, x in fields:
+            if status == 4 or _level(kinds[out], f) == 0:
+                assert math.isfinite(x), f"{name}.{out}.{f}"
+            else:
+                assert math.isnan(x), f"{name}.{out}.{f}"
+
+
+@pytest.mark.parametrize(("gap", "status"), [(1e-4, 4), (1e-9, 3)])
+def test_almost_parallel_guides(gap, status):
+    """PRP with guides gap radians apart: sigma = |sin(gap)|; positions finite, rates nan at status 3."""
+    row = _named("PRP_links", (STILL, (0.0, 0.0, 0.0), 0.0, 0.0, (0.0, 1.0, 0.5, 0.0, 0.0, 0.0),
+                               (gap, 0.25, 0.0), 0.0, 0.0))
+    st, sigma, fields = _all_outputs("PRP_links", row, 2)
+    assert st == status
+    assert sigma == pytest.approx(math.sin(gap), rel=1e-6)
+    kinds = {o.name: o.kind for o in PRIMITIVES["PRP_links"].outputs}
+    for out, f, x in fields:
+        if status == 4 or _level(kinds[out], f) == 0:
+            assert math.isfinite(x), f"{out}.{f}"
+        else:
+            assert math.isnan(x), f"{out}.{f}"
+    values = {(o, f): x for o, f, x in fields}
+    # the second guide passes through (0, 1) at angle gap: it meets the x axis at x = -1/tan(gap)
+    assert values[("jb", "x")] == pytest.approx(-1 / math.tan(gap), rel=1e-6)
+
+
+def test_prr_toggle_and_failure():
+    def row(ln, y):
+        return _named("PRR_links", ((0.0, y, 1.0, 0.5, 0.0, 0.0), (ln, 0.5, 0.0), STILL, (0.0, 1.0, 0.5),
+                                    0.0, 0.0, 1))
+
+    st, sigma, fields = _all_outputs("PRR_links", row(3.0, 3.0), 2)
+    assert (st, sigma) == (3, 0)
+    values = {(o, f): x for o, f, x in fields}
+    assert (values[("s", "v")], values[("jb", "x")], values[("jb", "y")]) == (0.0, 0.0, 0.0)
+    assert all(math.isnan(x) for (o, f), x in values.items() if f.startswith("d"))
+    st, _, fields = _all_outputs("PRR_links", row(2.0, 3.0), 2)
+    assert st == 1
+    assert all(math.isnan(x) for _, _, x in fields)
+
+
+def test_rpr_toggle_and_failure():
+    def row(bg):
+        return _named("RPR_links", (STILL, (3.0, 0.0, 0.0, 1.0, 0.0, 0.0), 0.0, bg, 0.0, 0.0, 1))
+
+    st, sigma, fields = _all_outputs("RPR_links", row(3.0), 2)
+    assert (st, sigma) == (3, 0)
+    values = {(o, f): x for o, f, x in fields}
+    # js is on the normal through jg at distance 3: the line runs along -y through (3, 0)
+    assert values[("psi", "the")] == -PI / 2
+    assert (values[("s", "v")], values[("jp", "x")], values[("jp", "y")]) == (0.0, 3.0, 0.0)
+    assert all(math.isnan(x) for (o, f), x in values.items() if f.startswith("d"))
+    st, _, fields = _all_outputs("RPR_links", row(4.0), 2)
+    assert st == 1
+    assert all(math.isnan(x) for _, _, x in fields)
+
+
+WITH_SIGMA = [n for n in PRIMITIVES if PRIMITIVES[n].sigma is not None]
+
+
+@pytest.mark.parametrize("name", WITH_SIGMA)
+def test_sigma_in_unit_interval(name):
+    """On assembled motions, toggles and failures (coincident points apart, see below)."""
+    rows = [row for row in float_rows(name)]
+    rows = [r for r in rows if r not in [row for what, _, row in special_inputs(name) if what == "coincident"]]
+    for row in rows:
+        _, sigma, _ = call_python(name, 0, row)
+        assert 0 <= sigma <= 1, (name, row, sigma)
+    _, sig_n, _ = call_numpy(name, 0, rows)
+    assert ((sig_n >= 0) & (sig_n <= 1)).all()
+
+
+@pytest.mark.parametrize(
+    ("name", "row"),
+    [(n, row) for n in WITH_SIGMA for what, _, row in special_inputs(n) if what == "coincident"],
+)
+def test_sigma_is_a_number_when_points_coincide(name, row):
+    """j1 == j2 (RRR) or jg == js (RPR): the chain cannot close; sigma must still be in [0, 1], not nan."""
+    st, sigma, _ = call_python(name, 0, row)
+    assert st == 1
+    assert 0 <= sigma <= 1, f"{name}: sigma = {sigma!r} with status 1"
+
+
+def best_conditioned_rows(name: str, count: int = 400) -> list[dict]:
+    """Inputs at the best conditioning of each chain, where sigma is 1 in exact arithmetic."""
+    rng = random.Random(f"best {name}")
+    rows = []
+    for _ in range(count):
+        k = rng.choice([1, 3, 5, 7, 9, 11]) * 2.0 ** rng.randint(-20, 20)
+        a = rng.uniform(-3.1, 3.1)
+        if name == "RRR_links":
+            # right angle at jb: Pythagorean triples, exact in floats
+            p, r, hyp = rng.choice([(3, 4, 5), (5, 12, 13), (8, 15, 17), (7, 24, 25), (20, 21, 29)])
+            l1, l2 = (p, r) if rng.random() < 0.5 else (r, p)
+            args = ((0.0, 0.0), (hyp * k, 0.0), (l1 * k,), (l2 * k,), rng.choice([1, -1]))
+        elif name == "PRR_links":
+            # jr on the slider's line: the link is along the guide
+            args = ((rng.uniform(-5, 5), 0.0), (rng.uniform(0.1, 10.0),), (0.0, 0.0), (0.0,), 0.0, 0.0, 1)
+        elif name == "PRP_links":
+            args = ((0.0, 0.0), (a,), 0.0, 0.0, (1.0, 1.0), (a + rng.choice([1, -1]) * PI / 2,), 0.0, 0.0)
+        elif name == "RPR_links":
+            # js on the guide's line (bg == bs)
+            js = (rng.uniform(-5, 5) * k, rng.uniform(-5, 5) * k)
+            args = ((0.0, 0.0), js, 0.0, 1.0, 0.0, 1.0, rng.choice([1, -1]))
+        elif name == "PPR_links":
+            args = ((1.0, 2.0), (0.0, 0.0), (a,), 0.0, 0.0, 0.0, 0.0, rng.choice([1, -1]) * PI / 2, 1)
+        rows.append(_named(name, args))  # records given up to order 0
+    return rows
+
+
+@pytest.mark.parametrize("name", WITH_SIGMA)
+def test_sigma_never_rounds_above_one(name):
+    """sigma is a sine or a ratio of a leg to its hypotenuse: at a right angle it must not round past 1."""
+    over = []
+    for row in best_conditioned_rows(name):
+        _, sigma, _ = call_python(name, 0, row)
+        if sigma > 1:
+            over.append((sigma, row))
+    assert not over, f"{name}: sigma > 1 in {len(over)} of 400 cases, e.g. {over[0]}"
