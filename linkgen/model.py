@@ -99,6 +99,7 @@ class Mechanism:
     order: int
     samples: int
     where: Where  # the top of the file
+    inputs_where: Where  # the inputs: key
 
     @cached_property
     def _index(self) -> dict[str, dict]:

@@ -259,7 +259,7 @@ def _check_input_count(m: Mechanism, mobility: int, count: int) -> None:
                          "give one input per degree of freedom", m.path, extra.line, extra.key)
     raise InputError(f"the mechanism has {_degrees(mobility)} ({why}), but only {given} "
                      f"input{' is' if given == 1 else 's are'} given; give one input per degree of freedom, "
-                     "or the rest of the mechanism is left free", m.path, m.inputs[0].where.line, "inputs")
+                     "or the rest of the mechanism is left free", m.path, m.inputs_where.line, "inputs")
 
 
 def _free_links(jac: _Jacobian, full: np.ndarray) -> list[str]:

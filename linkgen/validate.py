@@ -8,14 +8,19 @@ the inputs determine the sketch are checked by ``topology``.
 from __future__ import annotations
 
 import difflib
+import keyword
 import math
 import os
 
 from .errors import InputError, and_list
 from .loader import Mapping, Node, Reader, Sequence, describe, load
 from .model import Input, Joint, Link, Mechanism, Point, Prismatic, Where
+from .names import C_RESERVED, M_RESERVED
 
 FORMAT_VERSION = 1
+MAX_SAMPLES = 10_000_000
+MAX_NAME = 57  # MATLAB's 63 characters for NAME_solve
+RESERVED_NAMES = frozenset(keyword.kwlist) | C_RESERVED | M_RESERVED | {"math", "sys"}
 DEFAULT_SAMPLES = 361
 DEFAULT_ORDER = 2
 _TOP_REQUIRED = ("linkgen", "name", "joints", "links", "inputs")
@@ -78,7 +83,9 @@ class _Validator:
         if version != FORMAT_VERSION:
             raise self.r.error(node, f"this file is format version {version}, "
                                f"but this linkgen reads format version {FORMAT_VERSION}")
-        name = self.r.name(root.get("name"), "a name for the mechanism, such as fourbar")
+        node = root.get("name")
+        name = self.r.name(node, "a name for the mechanism, such as fourbar")
+        self.program_name(name, node)
         title_node = root.get("title")
         title = self.r.text(title_node, "a title (text)") if title_node is not None else name
         length_unit, angle_unit = "", "deg"
@@ -385,6 +392,22 @@ class _Validator:
             raise self.r.error(seq, "outputs is empty; leave the key out for the default outputs")
         return tuple(names), _where(seq)
 
+    def program_name(self, name: str, node: Node) -> None:
+        """The mechanism's name names files and functions in C, Python and MATLAB."""
+        if name in RESERVED_NAMES:
+            raise self.r.error(node, f"{name!r} is a reserved word or a module the generated programs use "
+                               "(C, Python or MATLAB); choose another name for the mechanism")
+        if name.startswith("_"):
+            raise self.r.error(node, f"{name!r} starts with _, which MATLAB does not allow in a file name; "
+                               "choose a name that starts with a letter")
+        if len(name) > MAX_NAME:
+            raise self.r.error(node, f"the name has {len(name)} characters; MATLAB allows {MAX_NAME} for "
+                               f"{name}_solve, so use at most {MAX_NAME}")
+
+    def key_where(self, key: str) -> Where:
+        node = next(k for k, _ in self.root.items if k.text == key)
+        return Where(node.line, key)
+
     def scalars(self) -> tuple[int, int]:
         order, samples = DEFAULT_ORDER, DEFAULT_SAMPLES
         node = self.root.get("order")
@@ -398,6 +421,8 @@ class _Validator:
             samples = self.r.integer(node, "the number of samples, a whole number")
             if samples < 2:
                 raise self.r.error(node, f"a sweep needs at least 2 samples, got {samples}")
+            if samples > MAX_SAMPLES:
+                raise self.r.error(node, f"a sweep has at most {MAX_SAMPLES} samples, got {node.text}")
         return order, samples
 
     def run(self) -> Mechanism:
@@ -415,7 +440,7 @@ class _Validator:
         order, samples = self.scalars()
         return Mechanism(
             name, title, os.path.basename(self.path), self.path, length_unit, angle_unit, joints, links,
-            inputs, prismatic, outputs, outputs_where, order, samples, Where(1, ""),
+            inputs, prismatic, outputs, outputs_where, order, samples, Where(1, ""), self.key_where("inputs"),
         )
 
 

@@ -9,19 +9,12 @@ from __future__ import annotations
 
 import keyword
 
+from ..names import C_RESERVED, M_RESERVED
 from ..primitives import PRIMITIVES
 from ..primitives.dsl import record_fields
 from ..primitives.printers import literal
 from ..steplog import Arg, Step, Variable
 from .view import Group
-
-C_RESERVED = frozenset("""
-    auto break case char const continue default do double else enum extern float for goto if inline int long
-    register restrict return short signed sizeof static struct switch typedef union unsigned void volatile while
-    _Bool _Complex _Imaginary NAN INFINITY main errno assert""".split())
-M_RESERVED = frozenset("""
-    break case catch classdef continue else elseif end for function global if otherwise parfor persistent return
-    spmd switch try while ans eps pi NaN Inf i j""".split())
 
 
 def ident(name: str, reserved: frozenset[str]) -> str:
