@@ -28,7 +28,7 @@ def python_backend(order: int = 2) -> dict[str, Callable]:
     """Scalar functions on tuples of floats, with sigma (what generated Python runs)."""
     source = "\n\n".join(python_function(p, order, with_sigma=True) for p in PRIMITIVES.values())
     ns = {
-        "sqrt": math.sqrt, "hypot": math.hypot, "atan2": math.atan2, "cos": math.cos,
+        "sqrt": math.sqrt, "atan2": math.atan2, "cos": math.cos,
         "sin": math.sin, "EPS": sys.float_info.epsilon, "NAN": math.nan, "PI": math.pi,
     }
     _compile(source, f"<linkgen runtime python order {order}>", ns)

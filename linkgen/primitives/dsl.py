@@ -114,7 +114,7 @@ class Neg(Expr):
 
 @dataclass(frozen=True, eq=False)
 class Call(Expr):
-    """A math function: sqrt, hypot, atan2, cos, sin, abs, max, min."""
+    """A math function: sqrt, atan2, cos, sin, abs, max, min."""
 
     fn: str
     args: tuple[Expr, ...]
@@ -153,10 +153,6 @@ def wrap(value: object) -> Expr:
 
 def sqrt(a: Expr) -> Expr:
     return Call("sqrt", (a,))
-
-
-def hypot(a: Expr, b: Expr) -> Expr:
-    return Call("hypot", (a, b))
 
 
 def atan2(y: Expr, x: Expr) -> Expr:

@@ -108,7 +108,7 @@ class ExprPrinter:
 
 class PythonExprs(ExprPrinter):
     calls = {
-        "sqrt": "sqrt", "hypot": "hypot", "atan2": "atan2", "cos": "cos", "sin": "sin",
+        "sqrt": "sqrt", "atan2": "atan2", "cos": "cos", "sin": "sin",
         "abs": "abs", "max": "max", "min": "min",
     }
     consts = {"eps": "EPS", "nan": "NAN", "pi": "PI"}
@@ -119,7 +119,7 @@ class PythonExprs(ExprPrinter):
 
 class NumpyExprs(PythonExprs):
     calls = {
-        "sqrt": "np.sqrt", "hypot": "np.hypot", "atan2": "np.arctan2", "cos": "np.cos",
+        "sqrt": "np.sqrt", "atan2": "np.arctan2", "cos": "np.cos",
         "sin": "np.sin", "abs": "np.abs", "max": "np.maximum", "min": "np.minimum",
     }
     and_op = "&"
@@ -241,7 +241,7 @@ _C_FIELD = {"x": "P.x", "y": "P.y", "dx": "DP.x", "dy": "DP.y", "ddx": "DDP.x", 
 
 class CExprs(ExprPrinter):
     calls = {
-        "sqrt": "sqrt", "hypot": "hypot", "atan2": "atan2", "cos": "cos", "sin": "sin",
+        "sqrt": "sqrt", "atan2": "atan2", "cos": "cos", "sin": "sin",
         "abs": "fabs", "max": "fmax", "min": "fmin",
     }
     consts = {"eps": "DBL_EPSILON", "nan": "NAN", "pi": "3.141592653589793"}
@@ -311,7 +311,7 @@ def c_function(prim: Primitive, order: int) -> str:
 
 class OctaveExprs(ExprPrinter):
     calls = {
-        "sqrt": "sqrt", "hypot": "hypot", "atan2": "atan2", "cos": "cos", "sin": "sin",
+        "sqrt": "sqrt", "atan2": "atan2", "cos": "cos", "sin": "sin",
         "abs": "abs", "max": "max", "min": "min",
     }
     consts = {"eps": "eps", "nan": "NaN", "pi": "pi"}
