@@ -70,7 +70,7 @@ def run(mechanism: str, samples: int | None, order: int | None, outputs: str | N
     from .writer import write_all
 
     try:
-        log = build_log(mechanism, _outputs(outputs), order)
+        log = build_log(mechanism, _outputs(outputs), order, sweep=False)
     except LinkgenError as exc:
         _fail(exc)
     values, rates, accs = input_rows(log, samples or log.samples)
@@ -90,7 +90,7 @@ def lj(mechanism: str, at: int | None) -> None:
     from .pipeline import build_log
 
     try:
-        log = build_log(mechanism)
+        log = build_log(mechanism, sweep=False)
     except LinkgenError as exc:
         _fail(exc)
     chosen = states(log)
@@ -113,7 +113,7 @@ def candidates(mechanism: str, as_json: bool) -> None:
     from .pipeline import build_log
 
     try:
-        log = build_log(mechanism)
+        log = build_log(mechanism, sweep=False)
     except LinkgenError as exc:
         _fail(exc)
     if not log.add_links:
@@ -142,7 +142,7 @@ def procedure(mechanism: str) -> None:
     from .pipeline import build_log
 
     try:
-        log = build_log(mechanism)
+        log = build_log(mechanism, sweep=False)
     except LinkgenError as exc:
         _fail(exc)
     for s in log.steps:

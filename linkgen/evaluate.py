@@ -39,9 +39,11 @@ def constant_record(v: Variable, order: int) -> tuple:
 
 @functools.cache
 def _resolver_namespace() -> dict:
-    source = resources.files("linkgen.runtime.py").joinpath("resolver.py").read_text(encoding="utf-8")
+    """The Python runtime's resolver and branch functions, as the generated module has them."""
     ns: dict = {"sqrt": math.sqrt, "floor": math.floor, "NAN": math.nan, "PI": math.pi}
-    exec(compile(source, "<linkgen resolver>", "exec"), ns)
+    for name in ("resolver.py", "branch.py"):
+        source = resources.files("linkgen.runtime.py").joinpath(name).read_text(encoding="utf-8")
+        exec(compile(source, f"<linkgen runtime {name}>", "exec"), ns)
     return ns
 
 
@@ -76,10 +78,33 @@ def _args(step: Step, env: dict) -> list:
         if a.kind == "var":
             out.append(env[a.var])
         elif a.kind == "int":
-            out.append(int(a.value))
+            out.append(env[BRANCH, step.number] if step.change_points and a.label == "minv" else int(a.value))
         else:
             out.append(float(a.value))
     return out
+
+
+BRANCH = "branch"  # env key (with a step number) of a chain's branch where it passes change points
+
+
+def branches(log: StepLog, env: dict, theta, scalar: bool) -> None:
+    """The branch of every chain with change points, at the first input's value(s) theta."""
+    periodic = log.inputs[0].kind == "revolute" if log.inputs else False
+    theta0 = log.inputs[0].sketch if log.inputs else 0.0
+    for s in log.steps:
+        if not s.change_points:
+            continue
+        b0 = next(int(a.value) for a in s.args if a.label == "minv")
+        if scalar:
+            env[BRANCH, s.number] = _resolver_namespace()["branch_at"](theta, b0, theta0, s.change_points, periodic)
+            continue
+        n = np.zeros_like(np.asarray(theta, dtype=float))
+        for p in s.change_points:
+            if periodic:
+                n = n + np.floor((theta - p) / (2 * np.pi)) - np.floor((theta0 - p) / (2 * np.pi))
+            else:
+                n = n + (theta >= p).astype(float) - float(theta0 >= p)
+        env[BRANCH, s.number] = np.where(n % 2 == 0, b0, -b0)
 
 
 def execute(steps, env: dict, call) -> dict[int, tuple]:
@@ -128,6 +153,7 @@ class Result:
     status: np.ndarray
     sigma: dict[int, np.ndarray]  # step -> conditioning per row
     iterations: dict[int, np.ndarray] = field(default_factory=dict)  # group -> Newton steps per row
+    warm: list = field(default_factory=list)  # resolver warm start after each row (None where it failed)
 
 
 def _input_record(log: StepLog, i: int, order: int, value, rate, acc) -> tuple:
@@ -139,14 +165,21 @@ def _base_env(log: StepLog, order: int) -> dict:
     return {v.name: constant_record(v, order) for v in log.variables if v.constant}
 
 
-def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarray, order: int | None = None) -> Result:
-    """Evaluate the procedure at rows of input values, rates and accelerations."""
+def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarray, order: int | None = None,
+             warm=None, stop: int = 0) -> Result:
+    """Evaluate the procedure at rows of input values, rates and accelerations.
+
+    With resolvers the rows are solved in order, the first from ``warm`` (a previous
+    result's warm start) when given, else from the sketch; ``stop`` (a step number)
+    leaves the rows after the first one that fails at or before that step unsolved (nan).
+    """
     order = log.order if order is None else order
     if log.groups:
-        return _evaluate_rows(log, values, rates, accs, order)
+        return _evaluate_rows(log, values, rates, accs, order, warm, stop)
     env = _base_env(log, order)
     for i, inp in enumerate(log.inputs):
         env[inp.variable] = _input_record(log, i, order, values[:, i], rates[:, i], accs[:, i])
+    branches(log, env, values[:, 0] if log.inputs else 0.0, scalar=False)
     with np.errstate(all="ignore"):
         report = execute(log.steps, env, _numpy_call(order))
     return _finish(log, values, env, report, order)
@@ -210,6 +243,7 @@ class RowSolver:
         env = _base_env(self.log, order)
         for i, inp in enumerate(self.log.inputs):
             env[inp.variable] = _input_record(self.log, i, order, values[i], rates[i], accs[i])
+        branches(self.log, env, values[0] if len(values) else 0.0, scalar=True)
         out = Pass({}, env, {}, {}, {}, {}, 0)
         groups = {g.step: g for g in self.log.groups}
         inside = {n for g in self.log.groups for n in g.steps}
@@ -309,14 +343,24 @@ class RowSolver:
         return True, [out.solutions[g] for g in groups], [out.rates[g] for g in groups]
 
 
-def _evaluate_rows(log: StepLog, values, rates, accs, order: int) -> Result:
+def _evaluate_rows(log: StepLog, values, rates, accs, order: int, warm, stop: int) -> Result:
     solver = RowSolver(log, order)
+    solver.warm = warm
     rows = values.shape[0]
-    envs, reports, its = [], [], {g.number: np.zeros(rows, dtype=int) for g in log.groups}
+    envs, reports, warms, its = [], [], [], {g.number: np.zeros(rows, dtype=int) for g in log.groups}
+    stopped = False
     for r in range(rows):
+        if stopped:
+            envs.append({})
+            reports.append(failed)
+            warms.append(None)
+            continue
         row = solver.solve(values[r], rates[r], accs[r])
         envs.append(row.env)
         reports.append(row.report)
+        warms.append(solver.warm)
+        failed = {n: rep for n, rep in row.report.items() if rep[0] in (FAIL, NOT_CONVERGED)}
+        stopped = bool(stop) and any(n <= stop for n in failed)
         for g, n in row.iterations.items():
             its[g][r] = n
     nan = {v.name: (math.nan,) * len(record_fields(v.kind, order)) for v in log.variables}
@@ -330,7 +374,9 @@ def _evaluate_rows(log: StepLog, values, rates, accs, order: int) -> Result:
             np.array([rep.get(n, (0, math.nan))[1] for rep in reports], dtype=float))
         for n in sorted(numbers)
     }
-    return _finish(log, values, env, report, order, its)
+    result = _finish(log, values, env, report, order, its)
+    result.warm = warms
+    return result
 
 
 def residual_norm(variables: dict[str, Variable], steps: list[Step], inputs: list[str], values: tuple[float, ...],

@@ -7,6 +7,7 @@ from .columns import plan
 from .evaluate import residual_norm
 from .model import Mechanism
 from .procedure import Extractor, Procedure, extract
+from .singular import change_points, conditioning
 from .steplog import InputInfo, LinkInfo, PairInfo, StatusCode, StepLog
 from .topology import Topology, analyse
 from .validate import read_mechanism
@@ -81,9 +82,13 @@ def analyse_file(path: str) -> tuple[Mechanism, Topology, Procedure]:
     return m, topo, extract(topo, _norm)
 
 
-def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | None = None) -> StepLog:
+def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | None = None,
+              sweep: bool = True) -> StepLog:
+    """The step log of a mechanism file, with its change points and, when ``sweep``, its
+    conditioning over the sweep (for the manual; it takes a sweep and root finding)."""
     _, topo, proc = analyse_file(path)
-    return steplog(topo, proc, outputs, order)
+    log = change_points(steplog(topo, proc, outputs, order))
+    return conditioning(log) if sweep else log
 
 
 

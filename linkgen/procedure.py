@@ -28,7 +28,7 @@ from .steplog import AddLink, Arg, Candidate, LJColumn, LJMatrix, Residual, Reso
 from .topology import Topology, input_direction, reference_angle, wrap_angle
 
 RESOLVER_TOLERANCE = 1e-10  # relative to the length scale; one Newton step is taken past it
-RESOLVER_MAX_ITERATIONS = 25
+RESOLVER_MAX_ITERATIONS = 8
 CONTINUATION_HALVINGS = 10
 PROBE_ANGLE = math.radians(5.0)  # the paper's +5 degrees for ranking Add-link candidates
 PROBE_LENGTH = 0.05  # times the length scale, for prismatic and distance inputs

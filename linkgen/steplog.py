@@ -59,10 +59,7 @@ class Step:
     determines: tuple[str, ...]  # pairs that become known (their LJ entries turn negative)
     group: int  # resolver group the step is iterated in (0: none)
     fails: bool  # the function reports a status
-
-    @property
-    def status_base(self) -> int:
-        return 10 * self.number
+    change_points: tuple[float, ...] = ()  # input values where the branch flips (a change point)
 
 
 @dataclass(frozen=True)
@@ -177,6 +174,25 @@ class InputInfo:
 
 
 @dataclass(frozen=True)
+class Singular:
+    """An input value where a step's conditioning reaches zero, found by root finding."""
+
+    inputs: tuple[float, ...]
+    kind: str  # limit (the chain cannot close beyond) | change point (two branches cross) | minimum
+    sigma: float  # the conditioning there
+
+
+@dataclass(frozen=True)
+class Conditioning:
+    """A step's conditioning over the sweep (assembled rows only)."""
+
+    step: int
+    low: float
+    high: float
+    singular: tuple[Singular, ...]
+
+
+@dataclass(frozen=True)
 class StatusCode:
     code: int
     step: int
@@ -209,6 +225,7 @@ class StepLog:
     columns: tuple[Column, ...]
     status_codes: tuple[StatusCode, ...]
     runtime: tuple[str, ...]
+    conditioning: tuple[Conditioning, ...] = ()
 
     def variable(self, name: str) -> Variable:
         return next(v for v in self.variables if v.name == name)

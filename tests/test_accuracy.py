@@ -97,7 +97,7 @@ class Sweep:
 
 @functools.cache
 def sweep(path: Path) -> Sweep:
-    log = build_log(str(path), outputs=(), order=2)
+    log = build_log(str(path), outputs=(), order=2, sweep=False)
     values, rates, accs = input_rows(log, log.samples)
     result = evaluate(log, values, rates, accs)
     names, data = columns(log, result)

@@ -69,6 +69,8 @@ def _c_files(view: View, banner) -> dict[str, bytes]:
     spell = C(view.record_order, {v.name: v for v in log.variables})
     name, upper = log.name, log.name.upper()
     runtime = [c_function(PRIMITIVES[p], view.record_order) for p in _used(view)]
+    if "branch_at" in log.runtime:
+        runtime.append(_runtime_source("c", "branch.c"))
     if view.groups:
         runtime.append(_runtime_source("c", "resolver.c"))
     levels = ("P", "DP", "DDP")[: view.record_order + 1]
@@ -116,6 +118,8 @@ def _py_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
     spell = Python(view.record_order, {v.name: v for v in log.variables})
     runtime = [python_function(PRIMITIVES[p], view.record_order, with_sigma=True).rstrip("\n") for p in _used(view)]
+    if "branch_at" in log.runtime:
+        runtime.append(_runtime_source("py", "branch.py").rstrip("\n"))
     if view.groups:
         runtime.append(_runtime_source("py", "resolver.py").rstrip("\n"))
     order_of = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
@@ -138,6 +142,8 @@ def _m_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
     spell = Octave(view.record_order, {v.name: v for v in log.variables})
     runtime = [octave_function(PRIMITIVES[p], view.record_order).rstrip("\n") for p in _used(view)]
+    if "branch_at" in log.runtime:
+        runtime.append(_runtime_source("m", "branch.m").rstrip("\n"))
     if view.groups:
         runtime.append(_runtime_source("m", "resolver.m").rstrip("\n"))
     level = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,

@@ -39,12 +39,23 @@ class Spelling:
     def lit(value: float | int) -> str:
         return literal(value)
 
-    def arg(self, a: Arg, scope: Group | None) -> str:
+    def arg(self, a: Arg, scope: Group | None, step: Step | None = None) -> str:
         if a.kind == "var":
             return self.ref(a.var, scope)
         if a.kind == "int":
+            if step is not None and step.change_points and a.label == "minv":
+                return self.branch(step, int(a.value))
             return str(int(a.value))
         return self.lit(float(a.value))
+
+    def branch(self, step: Step, b0: int) -> str:
+        """The branch of a chain that flips at change points, computed from the first input."""
+        raise NotImplementedError
+
+    def first_input(self) -> tuple[Variable, float, bool]:
+        """The first input's record, its sketch value and whether it is an angle."""
+        v = next(v for v in self.variables.values() if v.role == "input")
+        return v, v.sketch[0], v.kind == "ANGLE"
 
     def ref(self, var: str, scope: Group | None) -> str:
         raise NotImplementedError
@@ -87,6 +98,13 @@ class C(Spelling):
     def field(self, kind: str, f: str) -> str:
         return self._field[f] if kind == "POINT" else f
 
+    def branch(self, step: Step, b0: int) -> str:
+        v, theta0, periodic = self.first_input()
+        points = ", ".join(self.lit(p) for p in step.change_points)
+        value = f"w->{v.name}.{'the' if periodic else 'v'}"
+        return (f"branch_at({value}, {b0}, {self.lit(theta0)}, (const double[]){{{points}}}, "
+                f"{len(step.change_points)}, {int(periodic)})")
+
     def input_record(self, var: Variable, k: int) -> str:
         sources = ("in", "din", "ddin")
         return " ".join(f"w->{var.name}.{f} = {src}[{k}];" for f, src in zip(self.fields(var.kind), sources))
@@ -100,7 +118,7 @@ class C(Spelling):
 
     def call(self, step: Step, scope: Group | None) -> list[str]:
         prim = PRIMITIVES[step.function]
-        args = [self.arg(a, scope) for a in step.args]
+        args = [self.arg(a, scope, step) for a in step.args]
         args += [f"&{self.ref(o, scope)}" for o in step.outputs]
         if prim.sigma is not None:
             args.append(f"&w->sigma[{step.number}]")
@@ -126,6 +144,11 @@ class Python(Spelling):
             return var
         return f"w.{var}"
 
+    def branch(self, step: Step, b0: int) -> str:
+        v, theta0, periodic = self.first_input()
+        points = ", ".join(self.lit(p) for p in step.change_points) + ","
+        return f"branch_at(w.{v.name}[0], {b0}, {self.lit(theta0)}, ({points}), {periodic})"
+
     def input_record(self, var: Variable, k: int) -> str:
         sources = ("inputs", "d_inputs", "dd_inputs")[: self.order + 1]
         fields = ", ".join(f"{src}[{k}]" for src in sources) + ("," if self.order == 0 else "")
@@ -138,7 +161,7 @@ class Python(Spelling):
 
     def call(self, step: Step, scope: Group | None) -> list[str]:
         prim = PRIMITIVES[step.function]
-        args = ", ".join(self.arg(a, scope) for a in step.args)
+        args = ", ".join(self.arg(a, scope, step) for a in step.args)
         targets = [self.ref(o, scope) for o in step.outputs]
         if prim.status is None:
             return [f"{', '.join(targets)} = {step.function}({args})"]
@@ -162,6 +185,12 @@ class Octave(Spelling):
         """Constants live in the work struct too (MATLAB has no file-level constants)."""
         return var if self.external(var, scope) else f"w.{var}"
 
+    def branch(self, step: Step, b0: int) -> str:
+        v, theta0, periodic = self.first_input()
+        points = ", ".join(self.lit(p) for p in step.change_points)
+        value = f"w.{v.name}.{'the' if periodic else 'v'}"
+        return f"branch_at({value}, {b0}, {self.lit(theta0)}, [{points}], {int(periodic)})"
+
     def input_record(self, var: Variable, k: int) -> str:
         sources = ("in", "din", "ddin")
         pairs = ", ".join(f"'{f}', {src}({k + 1})" for f, src in zip(self.fields(var.kind), sources))
@@ -178,7 +207,7 @@ class Octave(Spelling):
 
     def call(self, step: Step, scope: Group | None) -> list[str]:
         prim = PRIMITIVES[step.function]
-        args = ", ".join(self.arg(a, scope) for a in step.args)
+        args = ", ".join(self.arg(a, scope, step) for a in step.args)
         targets = [self.ref(o, scope) for o in step.outputs]
         if prim.status is not None:
             targets.append("st")
@@ -208,8 +237,10 @@ class Manual(Spelling):
         v = self.variables[var]
         return v.entity if v.role in ("pair", "point", "input") else var
 
-    def arg(self, a: Arg, scope: Group | None = None) -> str:
+    def arg(self, a: Arg, scope: Group | None = None, step: Step | None = None) -> str:
         if a.kind == "int":
+            if step is not None and step.change_points and a.label == "minv":
+                return f"{int(a.value):+d} flipped at change points"
             return "%+d" % int(a.value)
         if a.kind == "real":
             return number(float(a.value))
@@ -218,7 +249,7 @@ class Manual(Spelling):
     def call(self, step: Step, scope: Group | None = None) -> str:
         outs = [self.ref(o) for o in step.outputs]
         lhs = outs[0] if len(outs) == 1 else f"[{', '.join(outs)}]"
-        return f"{lhs} = {step.function}({', '.join(self.arg(a) for a in step.args)})"
+        return f"{lhs} = {step.function}({', '.join(self.arg(a, None, step) for a in step.args)})"
 
 
 def number(x: float) -> str:

@@ -11,7 +11,7 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_slider_crank_states_follow_table_1():
-    log = build_log(str(ROOT / "tests" / "mechanisms" / "slider_crank.yaml"))
+    log = build_log(str(ROOT / "tests" / "mechanisms" / "slider_crank.yaml"), sweep=False)
     seq = states(log)
     assert [c.name for c in seq[0].columns] == ["frame", "crank", "rod", "block", "theta_O"]
     assert seq[0].rows == ("O", "A", "B", "S")
@@ -26,7 +26,7 @@ def test_slider_crank_states_follow_table_1():
 
 
 def test_add_link_column_appears_at_its_step():
-    log = build_log(str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"))
+    log = build_log(str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"), sweep=False)
     seq = states(log)
     (add,) = log.add_links
     before, after = seq[add.step - 1], seq[add.step]
@@ -40,7 +40,7 @@ def test_add_link_column_appears_at_its_step():
 
 
 def test_text_table_is_aligned():
-    log = build_log(str(ROOT / "samples" / "fourbar" / "fourbar.yaml"))
+    log = build_log(str(ROOT / "samples" / "fourbar" / "fourbar.yaml"), sweep=False)
     lines = text(states(log)[0]).splitlines()
     assert lines[0].split() == ["frame", "crank", "coupler", "rocker", "theta_O1"]
     assert lines[1].split() == ["O1", "1", "1", "0", "0", "0"]

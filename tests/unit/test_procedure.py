@@ -35,7 +35,7 @@ def test_fig14_candidates_are_table_2_in_the_papers_order():
 
 
 def test_fig14_chosen_add_link_has_the_smallest_norm():
-    log = build_log(str(FIG14))
+    log = build_log(str(FIG14), sweep=False)
     (add,) = log.add_links
     norms = [c.norm for c in add.candidates]
     assert len(norms) == 9 and all(n is not None for n in norms)
@@ -45,7 +45,7 @@ def test_fig14_chosen_add_link_has_the_smallest_norm():
 
 
 def test_fig14_resolver_group_covers_the_class_iii_group():
-    log = build_log(str(FIG14))
+    log = build_log(str(FIG14), sweep=False)
     (group,) = log.groups
     (res,) = log.residuals
     assert group.add_links == ("add1",) and group.residuals == (res.name,)
@@ -57,7 +57,7 @@ def test_fig14_resolver_group_covers_the_class_iii_group():
 
 
 def test_fourbar_procedure_is_input_then_3r_chain():
-    log = build_log(str(FOURBAR))
+    log = build_log(str(FOURBAR), sweep=False)
     kinds = [(s.action, s.function, s.target) for s in log.steps[:3]]
     assert kinds == [("fixed", "", "frame"), ("input", "crank_input", "A"), ("chain", "RRR_links", "B")]
     rrr = log.steps[2]
@@ -69,7 +69,7 @@ def test_fourbar_procedure_is_input_then_3r_chain():
 @pytest.mark.parametrize("name, chain", [("slider_crank", "RRP"), ("inverted", "RPR"), ("scotch_yoke", "PPR"),
                                          ("cross_slot", "PRP")])
 def test_every_dyad_kind_is_found(name: str, chain: str):
-    log = build_log(str(ROOT / "tests" / "mechanisms" / f"{name}.yaml"))
+    log = build_log(str(ROOT / "tests" / "mechanisms" / f"{name}.yaml"), sweep=False)
     assert [s.chain for s in log.steps if s.chain] == [chain]
 
 
@@ -94,7 +94,7 @@ def _ladder(n: int, tmp: Path) -> Path:
 
 
 def test_a_chain_of_dyads_is_solved_in_order(tmp_path: Path):
-    log = build_log(str(_ladder(12, tmp_path)))
+    log = build_log(str(_ladder(12, tmp_path)), sweep=False)
     chains = [s.target for s in log.steps if s.chain]
     assert chains == [f"A{k}" for k in range(1, 13)]
     assert not log.add_links

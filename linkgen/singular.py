@@ -1,0 +1,232 @@
+"""Stage 5b: the sweep's singular positions, found by root finding, and change points.
+
+Along the sweep (all inputs moving together, lambda from 0 to 1) every step's
+conditioning is recorded; where a chain reaches a singular position the input
+value is located by zooming in on it: a limit position (the chain cannot close
+beyond it), a change point (its two assemblies cross and the motion goes on), or
+a near-singular minimum.
+
+A change point is a double root of the chain's closing margin (for a 3R chain the
+Kahan factor z - (x - y), zero at a toggle): the margin touches zero and comes
+back, as in a parallelogram four-bar with all pivots in line.  There the smooth
+motion continues on the other branch, so the chain's branch flips at every change
+point between the sketch and the input (mechanisms with one input).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from .evaluate import FAIL, NOT_CONVERGED, Result, evaluate
+from .steplog import Conditioning, Singular, Step, StepLog
+
+ZOOMS = 10  # refinements of a bracket around a minimum, each to 1/16 of the last
+EDGE_ZOOMS = 5  # refinements of a limit position, each to 1/32 of the last
+GRID = 33  # points per refinement
+TOUCH = 1e-9  # a margin within this of zero, relative to the length scale, touches zero
+SMALL = 1e-3  # minima of the margin or of sigma below this are examined
+
+
+def _lambdas(log: StepLog, lam: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    start = np.array([i.start for i in log.inputs])
+    stop = np.array([i.stop for i in log.inputs])
+    values = start + lam[:, None] * (stop - start)
+    rates = np.tile([i.speed for i in log.inputs], (len(lam), 1)).astype(float)
+    return values, rates, np.zeros_like(values)
+
+
+def _run(log: StepLog, lam: np.ndarray, warm=None, stop: int = 0) -> Result:
+    """Evaluate at sweep positions lam (in order); with resolvers, ``stop`` ends the rows at
+    the first one that fails at or before that step (the rest of a zoom grid would too)."""
+    with np.errstate(all="ignore"):
+        return evaluate(log, *_lambdas(log, lam), order=0, warm=warm, stop=stop)
+
+
+def _rec(result: Result, var: str, field: int = 0) -> np.ndarray:
+    return result.values[var][field]
+
+
+def margin(step: Step, result: Result) -> np.ndarray | None:
+    """The chain's closing margin per row: zero at a toggle, negative where it cannot close."""
+    a = {arg.label or f"#{k}": arg for k, arg in enumerate(step.args)}
+    args = step.args
+    if step.function == "RRR_links":
+        x1, y1 = _rec(result, args[0].var), _rec(result, args[0].var, 1)
+        x2, y2 = _rec(result, args[1].var), _rec(result, args[1].var, 1)
+        sides = np.stack([np.sqrt((x2 - x1) ** 2 + (y2 - y1) ** 2), _rec(result, args[2].var),
+                          _rec(result, args[3].var)])
+        big, small = sides.max(axis=0), sides.min(axis=0)
+        return small - (big - (sides.sum(axis=0) - big - small))
+    if step.function == "PRR_links":
+        jx, jy = _rec(result, args[0].var), _rec(result, args[0].var, 1)
+        length = _rec(result, args[1].var)
+        px, py = _rec(result, args[2].var), _rec(result, args[2].var, 1)
+        psi = _rec(result, args[3].var)
+        gsi, eta = float(a["gsi"].value), float(a["eta"].value)
+        c, s = np.cos(psi), np.sin(psi)
+        wx, wy = px + gsi * c - eta * s - jx, py + gsi * s + eta * c - jy
+        return length - np.abs(wx * s - wy * c)
+    if step.function == "RPR_links":
+        dx = _rec(result, args[1].var) - _rec(result, args[0].var)
+        dy = _rec(result, args[1].var, 1) - _rec(result, args[0].var, 1)
+        return np.sqrt(dx * dx + dy * dy) - abs(float(a["bg"].value) - float(a["bs"].value))
+    return None
+
+
+def _closes(result: Result, step: int) -> np.ndarray:
+    """Rows where the procedure gets past this step."""
+    st = result.status
+    failed = (st > 0) & np.isin(st % 10, (FAIL, NOT_CONVERGED)) & (st // 10 <= step)
+    return ~failed
+
+
+def _zoom_min(log: StepLog, lo: float, hi: float, value, warm=None) -> tuple[float, float]:
+    """(lambda, minimum) of value(result) on [lo, hi], by repeated grid refinement."""
+    best = (lo, np.inf)
+    for _ in range(ZOOMS):
+        lam = np.linspace(lo, hi, GRID)
+        v = value(_run(log, lam, warm))
+        if not np.any(np.isfinite(v)):
+            break
+        k = int(np.nanargmin(np.where(np.isfinite(v), v, np.nan)))
+        best = (float(lam[k]), float(v[k]))
+        step = (hi - lo) / (GRID - 1)
+        lo, hi = max(lo, lam[k] - step), min(hi, lam[k] + step)
+    return best
+
+
+def _vertex(log: StepLog, lam: float, delta: float, value) -> float:
+    """The vertex of the parabola through value at lam - delta, lam, lam + delta.
+
+    A double root's margin is smooth and quadratic: its vertex locates the root to
+    rounding / (curvature * delta), where the minimum itself is only good to sqrt(eps).
+    """
+    lo, mid, hi = value(_run(log, np.array([lam - delta, lam, lam + delta])))
+    curve = lo - 2 * mid + hi
+    return lam if not curve > 0 else lam + delta * (lo - hi) / (2 * curve)
+
+
+def _zoom_edge(log: StepLog, good: float, bad: float, number: int, warm=None) -> tuple[float, float]:
+    """The last lambda from good towards bad where the procedure gets past step number, and
+    the step's conditioning there, by repeated grid refinement."""
+    sigma = np.nan
+    for _ in range(EDGE_ZOOMS):
+        lam = np.linspace(good, bad, GRID)
+        result = _run(log, lam, warm, stop=number)
+        fine = _closes(result, number)
+        if not fine[0]:
+            break
+        k = int(np.argmin(fine)) if not fine.all() else GRID - 1
+        sigma = float(result.sigma[number][max(k - 1, 0)]) if number in result.sigma else np.nan
+        good, bad = float(lam[max(k - 1, 0)]), float(lam[k])
+    return good, sigma
+
+
+def _local_minima(v: np.ndarray, usable: np.ndarray, periodic: bool = False) -> list[int]:
+    """Rows where v has a local minimum; across the seam too when the grid closes on itself
+    (its last row is its first)."""
+    n = len(v)
+    out = []
+    for k in range(n - 1 if periodic else n - 1):
+        if not periodic and k == 0:
+            continue
+        before, after = (k - 1) % (n - 1) if periodic else k - 1, k + 1
+        if usable[before] and usable[k] and usable[after] and v[k] <= v[before] and v[k] <= v[after]:
+            out.append(k)
+    return out
+
+
+def _input_values(log: StepLog, lam: float) -> tuple[float, ...]:
+    return tuple(float(f"{i.start + lam * (i.stop - i.start):.10g}") for i in log.inputs)
+
+
+def _span(log: StepLog) -> tuple[float, float, bool]:
+    """The input interval searched for change points: a full turn around the sketch for an
+    angle (so the change points are complete modulo 2 pi), else the sweep and the sketch."""
+    inp = log.inputs[0]
+    if inp.kind == "revolute":
+        return inp.sketch - np.pi, inp.sketch + np.pi, True
+    return min(inp.start, inp.stop, inp.sketch), max(inp.start, inp.stop, inp.sketch), False
+
+
+def change_points(log: StepLog) -> StepLog:
+    """Find the chains that pass change points and give them the flipping branch policy."""
+    if len(log.inputs) != 1 or log.groups:
+        return log
+    lo, hi, periodic = _span(log)
+    n = max(2 * log.samples, 721)
+    span = replace(log, inputs=(replace(log.inputs[0], start=lo, stop=hi),))
+    grid = np.linspace(0.0, 1.0, n)
+    done: set[int] = set()
+    while True:
+        result = _run(span, grid)
+        for step in span.steps:
+            if step.number in done or step.branch == 0:
+                continue
+            m = margin(step, result)
+            if m is None:
+                continue
+            done.add(step.number)
+            usable = _closes(result, step.number - 1) & np.isfinite(m)
+            points = []
+            for k in _local_minima(m, usable, periodic):
+                if m[k] > SMALL * log.length_scale:
+                    continue
+                a, b = grid[k] - grid[1], grid[k] + grid[1]
+                lam, low = _zoom_min(span, a, b, lambda r, s=step: margin(s, r))
+                if abs(low) <= TOUCH * log.length_scale:
+                    lam = _vertex(span, lam, grid[1] / 8, lambda r, s=step: margin(s, r))
+                    points.append(float(f"{lo + lam * (hi - lo):.12g}"))
+            if points:
+                span = _with_points(span, step, tuple(sorted(set(points))))
+                break
+        else:
+            return replace(span, inputs=log.inputs)
+
+
+def _with_points(log: StepLog, step: Step, points: tuple[float, ...]) -> StepLog:
+    note = (f"{step.branch_reason}; the chain passes change points, where its two assemblies cross, at input "
+            f"{', '.join(f'{p:.10g}' for p in points)}, and its branch flips at each of them")
+    new = replace(step, change_points=points, branch_reason=note)
+    steps = tuple(new if s.number == step.number else s for s in log.steps)
+    runtime = tuple(sorted(set(log.runtime) | {"branch_at"}))
+    return replace(log, steps=steps, runtime=runtime)
+
+
+def _warm(result: Result, row: int):
+    """The resolver's warm start after a sweep row (None without resolvers)."""
+    return result.warm[row] if result.warm else None
+
+
+def conditioning(log: StepLog) -> StepLog:
+    """Every step's conditioning over the sweep, and the input values where it reaches zero."""
+    grid = np.linspace(0.0, 1.0, log.samples)
+    result = _run(log, grid)
+    out = []
+    for number in sorted(result.sigma):
+        step = log.step(number)
+        if not step.fails or step.action == "residual":
+            continue
+        sigma = result.sigma[number]
+        closes = _closes(result, number)
+        usable = closes & np.isfinite(sigma)
+        if not usable.any():
+            continue
+        found = [Singular((p,), "change point", 0.0) for p in step.change_points]
+        for k in range(len(grid) - 1):
+            if usable[k] != usable[k + 1] and closes[k] != closes[k + 1]:
+                good, bad = (k, k + 1) if usable[k] else (k + 1, k)
+                lam, s = _zoom_edge(log, grid[good], grid[bad], number, _warm(result, good))
+                found.append(Singular(_input_values(log, lam), "limit", float(f"{s:.3g}")))
+        for k in _local_minima(sigma, usable):
+            if sigma[k] >= SMALL or step.change_points:
+                continue
+            lam, low = _zoom_min(log, grid[k - 1], grid[k + 1], lambda r, n=number: r.sigma.get(n),
+                                 _warm(result, k - 1))
+            found.append(Singular(_input_values(log, lam), "minimum", float(f"{low:.3g}")))
+        found.sort(key=lambda s: s.inputs)
+        out.append(Conditioning(number, float(f"{sigma[usable].min():.3g}"), float(f"{sigma[usable].max():.3g}"),
+                                tuple(found)))
+    return replace(log, conditioning=tuple(out))
