@@ -348,7 +348,7 @@ def _evaluate_rows(log: StepLog, values, rates, accs, order: int, warm, stop: in
     solver.warm = warm
     rows = values.shape[0]
     envs, reports, warms, its = [], [], [], {g.number: np.zeros(rows, dtype=int) for g in log.groups}
-    stopped = False
+    stopped, failed = False, {}
     for r in range(rows):
         if stopped:
             envs.append({})
