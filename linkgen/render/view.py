@@ -94,9 +94,10 @@ def build_view(log: StepLog) -> View:
         first += len(g.add_links)
     inputs = tuple(v for v in log.variables if v.role == "input")
     computed = tuple(v for v in log.variables if not v.constant and v.role != "input")
+    used = {a.var for s in log.steps for a in s.args if a.kind == "var"} | {c.variable for c in log.columns}
     return View(
         log,
-        tuple(v for v in log.variables if v.constant),
+        tuple(v for v in log.variables if v.constant and v.name in used),
         inputs + computed,
         run,
         tuple(groups),
