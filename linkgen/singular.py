@@ -20,6 +20,7 @@ from dataclasses import replace
 import numpy as np
 
 from .evaluate import FAIL, NOT_CONVERGED, Result, evaluate
+from .primitives import PRIMITIVES
 from .steplog import Conditioning, Singular, Step, StepLog
 
 ZOOMS = 10  # refinements of a bracket around a minimum, each to 1/16 of the last
@@ -178,7 +179,8 @@ def change_points(log: StepLog) -> StepLog:
                 lam, low = _zoom_min(span, a, b, lambda r, s=step: margin(s, r))
                 if abs(low) <= TOUCH * log.length_scale:
                     lam = _vertex(span, lam, grid[1] / 8, lambda r, s=step: margin(s, r))
-                    points.append(float(f"{lo + lam * (hi - lo):.12g}"))
+                    value = lo + lam * (hi - lo)
+                    points.append(0.0 if abs(value) < 1e-10 * (hi - lo) else float(f"{value:.12g}"))
             if points:
                 span = _with_points(span, step, tuple(sorted(set(points))))
                 break
@@ -207,7 +209,7 @@ def conditioning(log: StepLog) -> StepLog:
     out = []
     for number in sorted(result.sigma):
         step = log.step(number)
-        if not step.fails or step.action == "residual":
+        if step.action != "resolve" and PRIMITIVES[step.function].sigma is None:
             continue
         sigma = result.sigma[number]
         closes = _closes(result, number)

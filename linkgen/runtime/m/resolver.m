@@ -127,14 +127,36 @@ end
 
 function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings)
     % Follow the assembly from inputs base (solved with lengths a) to target.  Angle
-    % inputs go the shorter way round; a step moves no input by more than its limit,
-    % starts Newton from the tangent predictor and is halved where Newton fails.
+    % inputs go the shorter way round, else the other way; a step moves no input by
+    % more than its limit, starts Newton from the tangent predictor and is halved where
+    % Newton fails.
     goal = target;
+    other = target;
+    differs = false;
     for i = 1:numel(goal)
         if periodic(i)
             goal(i) = target(i) - 2 * pi * floor((target(i) - base(i)) / (2 * pi) + 0.5);
+            other(i) = goal(i);
+            if goal(i) > base(i)
+                other(i) = goal(i) - 2 * pi;
+                differs = true;
+            elseif goal(i) < base(i)
+                other(i) = goal(i) + 2 * pi;
+                differs = true;
+            end
         end
     end
+    [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings);
+    if ~ok && differs
+        [ok, a2] = resolver_walk(run, base, a, other, limits, halvings);
+    end
+    if ok
+        a = a2;
+    end
+end
+
+function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings)
+    % Continuation along the straight path from base to goal (see resolver_continuation).
     d = goal - base;
     h_max = 1;
     for i = 1:numel(d)

@@ -308,40 +308,62 @@ static void predict(const double w_in[], const double w_din[], const double w_a[
 typedef int (*path_fn)(void *ctx, const double in[], const double din[], int order, double a[][LINKGEN_NMAX],
                        double rates[][LINKGEN_NMAX]);
 
-/* Follow the assembly from inputs base (solved with lengths a) to target.  Angle
- * inputs go the shorter way round; a step moves no input by more than its limit,
- * starts Newton from the tangent predictor and is halved where Newton fails.
- * Returns 1 with a the lengths at target, 0 when the path is cut. */
-static int continuation(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double target[],
-                        const double limits[], const int periodic[], int halvings)
+/* Continuation along the straight path from base to goal (see continuation). */
+static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double goal[],
+                const double limits[], int halvings)
 {
-    double goal[LINKGEN_NINPUTS], d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS];
+    double d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS], start[LINKGEN_NGROUPS][LINKGEN_NMAX];
     double rate[LINKGEN_NGROUPS][LINKGEN_NMAX], guess[LINKGEN_NGROUPS][LINKGEN_NMAX], rate2[LINKGEN_NGROUPS][LINKGEN_NMAX];
-    double t = 0.0, h, h_max = 1.0, two_pi = 2.0 * 3.141592653589793;
+    double t = 0.0, h, h_max = 1.0;
     int g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
-        goal[i] = periodic[i] ? target[i] - two_pi * floor((target[i] - base[i]) / two_pi + 0.5) : target[i];
         d[i] = goal[i] - base[i];
         if (d[i] != 0.0) h_max = fmin(h_max, limits[i] / fabs(d[i]));
     }
-    if (!run(ctx, base, d, 1, a, rate)) return 0;
+    for (g = 0; g < LINKGEN_NGROUPS; g++)
+        for (i = 0; i < LINKGEN_NMAX; i++) start[g][i] = a[g][i];
+    if (!run(ctx, base, d, 1, start, rate)) return 0;
     h = h_max;
     while (t < 1.0) {
         const double tt = fmin(1.0, t + h);
         for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
         for (g = 0; g < LINKGEN_NGROUPS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) guess[g][i] = a[g][i] + (tt - t) * rate[g][i];
+            for (i = 0; i < LINKGEN_NMAX; i++) guess[g][i] = start[g][i] + (tt - t) * rate[g][i];
         if (run(ctx, trial, d, 1, guess, rate2)) {
             t = tt;
             h = fmin(2.0 * h, h_max);
             for (g = 0; g < LINKGEN_NGROUPS; g++)
-                for (i = 0; i < LINKGEN_NMAX; i++) { a[g][i] = guess[g][i]; rate[g][i] = rate2[g][i]; }
+                for (i = 0; i < LINKGEN_NMAX; i++) { start[g][i] = guess[g][i]; rate[g][i] = rate2[g][i]; }
         } else {
             h /= 2.0;
             if (h < h_max * ldexp(1.0, -halvings)) return 0;
         }
     }
+    for (g = 0; g < LINKGEN_NGROUPS; g++)
+        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = start[g][i];
     return 1;
+}
+
+/* Follow the assembly from inputs base (solved with lengths a) to target.  Angle
+ * inputs go the shorter way round, else the other way; a step moves no input by more
+ * than its limit, starts Newton from the tangent predictor and is halved where Newton
+ * fails.  Returns 1 with a the lengths at target, 0 when both ways are cut. */
+static int continuation(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double target[],
+                        const double limits[], const int periodic[], int halvings)
+{
+    const double two_pi = 2.0 * 3.141592653589793;
+    double goal[LINKGEN_NINPUTS], other[LINKGEN_NINPUTS];
+    int i, differs = 0;
+    for (i = 0; i < LINKGEN_NINPUTS; i++) {
+        goal[i] = periodic[i] ? target[i] - two_pi * floor((target[i] - base[i]) / two_pi + 0.5) : target[i];
+        other[i] = goal[i];
+        if (periodic[i] && goal[i] != base[i]) {
+            other[i] = goal[i] > base[i] ? goal[i] - two_pi : goal[i] + two_pi;
+            differs = 1;
+        }
+    }
+    if (walk(run, ctx, base, a, goal, limits, halvings)) return 1;
+    return differs && walk(run, ctx, base, a, other, limits, halvings);
 }
 
 /* Length scale of the sketch: the largest distance between two of its pairs or points. */

@@ -338,12 +338,23 @@ def predict(warm, inputs):
 def continuation(run, base, a, target, limits, periodic, halvings):
     """Follow the assembly from inputs base (solved with lengths a) to target.
 
-    Angle inputs go the shorter way round; each step moves no input by more than its
-    limit, starts Newton from the tangent predictor and is halved where Newton fails.
-    run(inputs, rates, order, a) -> (ok, a, rates) solves with input rates per unit of
-    the path.  Returns the lengths at target, or None when the path is cut.
+    Angle inputs go the shorter way round, else the other way; each step moves no
+    input by more than its limit, starts Newton from the tangent predictor and is
+    halved where Newton fails.  run(inputs, rates, order, a) -> (ok, a, rates) solves
+    with input rates per unit of the path.  Returns the lengths at target, or None
+    when both ways are cut.
     """
     goal = [t - 2 * PI * floor((t - b) / (2 * PI) + 0.5) if p else t for t, b, p in zip(target, base, periodic)]
+    reached = _walk(run, base, a, goal, limits, halvings)
+    other = [(g - 2 * PI if g > b else g + 2 * PI if g < b else g) if p else g
+             for g, b, p in zip(goal, base, periodic)]
+    if reached is None and other != goal:
+        reached = _walk(run, base, a, other, limits, halvings)
+    return reached
+
+
+def _walk(run, base, a, goal, limits, halvings):
+    """Continuation along the straight path from base to goal (see continuation)."""
     d = [g - b for g, b in zip(goal, base)]
     h_max = min([1.0] + [lim / abs(x) for lim, x in zip(limits, d) if x != 0.0])
     ok, a, rate = run(base, d, 1, a)
