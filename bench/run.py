@@ -159,6 +159,15 @@ def bench_programs(rows: int = 20000) -> None:
 GROUPS["programs"] = bench_programs
 
 
+def bench_accuracy() -> None:
+    from accuracy import bench_accuracy as run
+
+    run()
+
+
+GROUPS["accuracy"] = bench_accuracy
+
+
 if __name__ == "__main__":
     for name in sys.argv[1:] or list(GROUPS):
         GROUPS[name]()
