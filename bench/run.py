@@ -112,48 +112,68 @@ int main(void)
 """
 
 
-def _programs(sample: str, out: Path):
-    import subprocess
-
+def _programs(sample: str, out: Path, outputs: tuple[str, ...] | None = None, order: int | None = None):
     from linkgen.render import render_all
     from linkgen.writer import write_all
 
-    log = build_log(str(ROOT / "samples" / sample / f"{sample}.yaml"))
+    log = build_log(str(ROOT / "samples" / sample / f"{sample}.yaml"), outputs, order)
     files = render_all(log)
     write_all(files, str(out))
-    return log, files, subprocess
+    return log, files
+
+
+def _time_programs(log, out: Path, rows: int) -> tuple[float, float]:
+    """Median seconds per configuration of the C and the Python program (5 runs each)."""
+    import subprocess
+
+    lit = repr
+    driver = (C_DRIVER.replace("NAME_UP", log.name.upper()).replace("NAME", log.name)
+              .replace("START", ", ".join(lit(i.start) for i in log.inputs))
+              .replace("STOP", ", ".join(lit(i.stop) for i in log.inputs))
+              .replace("SPEED", ", ".join(lit(i.speed) for i in log.inputs)).replace("ROWS", str(rows)))
+    (out / "bench_driver.c").write_text(driver)
+    subprocess.run(["gcc", "-O2", "-std=c99", f"{log.name}.c", "bench_driver.c", "-lm", "-o", "bench_c"],
+                   cwd=out, check=True)
+    c_times = [float(subprocess.run(["./bench_c"], cwd=out, check=True, capture_output=True, text=True)
+                     .stdout.split()[0]) for _ in range(5)]
+    code = (f"import sys, time; sys.path.insert(0, '.'); import {log.name} as m\n"
+            f"n = {rows // 10}; state = {{}}; ins = m.INPUTS\n"
+            "t = time.perf_counter()\n"
+            "for k in range(n):\n"
+            "    x = [a + k * (b - a) / (n - 1) for a, b, _ in ins]\n"
+            "    m.solve(x, [s for _, _, s in ins], [0.0] * len(ins), m.ORDER, state)\n"
+            "print((time.perf_counter() - t) / n)\n")
+    py_times = [float(subprocess.run([sys.executable, "-I", "-c", code], cwd=out, check=True, capture_output=True,
+                                     text=True).stdout) for _ in range(5)]
+    return statistics.median(c_times), statistics.median(py_times)
+
+
+# (sample, outputs, order): the whole build first, then pruned ones
+PRUNED = {
+    "sixbar_fig14": [(("J5", "coupler"), 2), (("J5",), 0), (("J6", "crank"), 1)],
+    "jansen": [(("foot",), 2), (("foot",), 1), (("foot",), 0), (("C", "triangle_bde"), 0)],
+}
 
 
 def bench_programs(rows: int = 20000) -> None:
     print("## Generated programs: time per configuration (median of 5 runs) and file sizes")
     out_root = ROOT / "bench" / "out"
-    for sample in ("fourbar", "sixbar_fig14"):
+    for sample in ("fourbar", "sixbar_fig14", "jansen"):
         out = out_root / sample
-        log, files, subprocess = _programs(sample, out)
-        lit = repr
-        driver = (C_DRIVER.replace("NAME_UP", log.name.upper()).replace("NAME", log.name)
-                  .replace("START", ", ".join(lit(i.start) for i in log.inputs))
-                  .replace("STOP", ", ".join(lit(i.stop) for i in log.inputs))
-                  .replace("SPEED", ", ".join(lit(i.speed) for i in log.inputs)).replace("ROWS", str(rows)))
-        (out / "bench_driver.c").write_text(driver)
-        subprocess.run(["gcc", "-O2", "-std=c99", f"{log.name}.c", "bench_driver.c", "-lm", "-o", "bench_c"],
-                       cwd=out, check=True)
-        c_times = [float(subprocess.run(["./bench_c"], cwd=out, check=True, capture_output=True, text=True)
-                         .stdout.split()[0]) for _ in range(5)]
-        code = (f"import sys, time; sys.path.insert(0, '.'); import {log.name} as m\n"
-                f"n = {rows // 10}; state = {{}}; ins = m.INPUTS\n"
-                "t = time.perf_counter()\n"
-                "for k in range(n):\n"
-                "    x = [a + k * (b - a) / (n - 1) for a, b, _ in ins]\n"
-                "    m.solve(x, [s for _, _, s in ins], [0.0] * len(ins), m.ORDER, state)\n"
-                "print((time.perf_counter() - t) / n)\n")
-        py_times = [float(subprocess.run([sys.executable, "-I", "-c", code], cwd=out, check=True, capture_output=True,
-                                         text=True).stdout) for _ in range(5)]
-        c_t, py_t = statistics.median(c_times), statistics.median(py_times)
+        log, files = _programs(sample, out)
+        c_t, py_t = _time_programs(log, out, rows)
         print(f"- {sample}: C {c_t * 1e9:.0f} ns, Python {py_t * 1e6:.1f} us per configuration "
               f"(Python/C {py_t / c_t:.0f}x)")
         sizes = ", ".join(f"{name} {len(data) / 1024:.1f} KiB" for name, data in sorted(files.items()))
         print(f"  files: {sizes}")
+        for n, (outputs, order) in enumerate(PRUNED.get(sample, [])):
+            pout = out_root / f"{sample}_pruned{n}"
+            plog, _ = _programs(sample, pout, outputs, order)
+            pc, pp = _time_programs(plog, pout, rows)
+            kept, whole = (sum(1 for st in lg.steps if not st.variant) for lg in (plog, log))
+            print(f"  - outputs {','.join(outputs)} order {order}: {kept} of {whole} steps; "
+                  f"C {pc * 1e9:.0f} ns ({pc / c_t:.2f} of the whole build), "
+                  f"Python {pp * 1e6:.1f} us ({pp / py_t:.2f})")
 
 
 GROUPS["programs"] = bench_programs

@@ -35,14 +35,20 @@ def cli() -> None:
 @click.argument("mechanism", type=click.Path(dir_okay=False))
 @click.option("-o", "--outdir", type=click.Path(file_okay=False), help="Output folder (default: build/NAME).")
 @click.option("--check", is_flag=True, help="Rebuild in memory; exit 1 with a diff if any file on disk differs.")
-def build(mechanism: str, outdir: str | None, check: bool) -> None:
-    """Write the step log (NAME.json) and the generated files."""
+@click.option("--outputs", help="Comma-separated outputs, e.g. P,rocker (default: the file's outputs).")
+@click.option("--order", type=click.IntRange(0, 2), help="Derivatives: 0, 1 or 2 (default: the file's order).")
+def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, order: int | None) -> None:
+    """Write the step log (NAME.json) and the generated files.
+
+    With --outputs or --order (or outputs/order in the file) the programs compute only
+    the steps and derivatives those outputs need; the manual says what was left out.
+    """
     from .pipeline import build_log
     from .render import render_all
     from .writer import differences, write_all
 
     try:
-        log = build_log(mechanism)
+        log = build_log(mechanism, _outputs(outputs), order)
         files = render_all(log)
     except LinkgenError as exc:
         _fail(exc)

@@ -210,9 +210,9 @@ def _pad(rec: tuple, kind: str, order: int, live: bool) -> tuple:
 class Pass:
     report: dict
     env: dict
-    solutions: dict  # group -> Add-link lengths
-    rates: dict  # group -> their rates
-    accs: dict  # group -> their accelerations
+    solutions: list  # per resolver block (a group or one of its variants): Add-link lengths
+    rates: list  # their rates
+    used: dict  # group -> the variant that solved it
     iterations: dict  # group -> Newton steps
     failed_group: int  # the group whose resolver failed (0: none)
 
@@ -221,47 +221,87 @@ class Pass:
         return not self.failed_group and all(st != FAIL for st, _ in self.report.values())
 
 
+def _pair_lengths(env: dict, pos: dict[str, str], pairs) -> tuple[list, list]:
+    """Distances between pairs (an Add-link's length in a solved configuration) with their
+    rates: link_residual against a zero length, as the generated programs measure them."""
+    call = _scalar_call(1)
+    a, ad = [], []
+    for k, u in pairs:
+        _, _, (f,) = call("link_residual", [env[pos[k]][:4], env[pos[u]][:4], (0.0, 0.0)])
+        a.append(f[0])
+        ad.append(f[1])
+    return a, ad
+
+
 class RowSolver:
-    """The generated programs' solve(): one row at a time, with warm starts."""
+    """The generated programs' solve(): one row at a time, with warm starts.
+
+    Each resolver group has blocks: the chosen Add-link candidate and its fallbacks.
+    The block that solved the previous row is tried first, then the others in rank
+    order; every block's Add-link lengths are then measured on the solved pairs, so
+    any of them can start the next row.
+    """
 
     def __init__(self, log: StepLog, order: int):
         self.log = log
         self.order = order
         self.ns = _resolver_namespace()
         self.kinds = {v.name: v.kind for v in log.variables}
-        self.warm: tuple[tuple[float, ...], dict[int, list[float]]] | None = None
-        sketch = {a.name: a.length for a in log.add_links}
-        self.sketch_a = {g.number: [sketch[a] for a in g.add_links] for g in log.groups}
+        self.pos = {v.entity: v.name for v in log.variables if v.role == "pair"}
+        self.blocks = [b for g in log.groups for b in (g, *g.variants)]
+        self.warm = None  # (inputs, rates, lengths, their rates, used variants)
         self.sketch_in = tuple(i.sketch for i in log.inputs)
+        self.sketch_a = [list(b.lengths) for b in self.blocks]
         self.halvings = max(g.max_halvings for g in log.groups)
         self.periodic = [i.kind == "revolute" for i in log.inputs]
         self.limits = [STEP_ANGLE if p else STEP_LENGTH * log.length_scale for p in self.periodic]
 
-    def run(self, values, rates, accs, order: int, start: dict[int, list[float]]) -> Pass:
-        """One pass of the whole procedure, each resolver started from ``start``."""
+    def run(self, values, rates, accs, order: int, start: list, prefer: dict) -> Pass:
+        """One pass of the whole procedure, each resolver block started from ``start``."""
         call = _scalar_call(order)
         env = _base_env(self.log, order)
         for i, inp in enumerate(self.log.inputs):
             env[inp.variable] = _input_record(self.log, i, order, values[i], rates[i], accs[i])
         branches(self.log, env, values[0] if len(values) else 0.0, scalar=True)
-        out = Pass({}, env, {}, {}, {}, {}, 0)
+        n = len(self.blocks)
+        out = Pass({}, env, [None] * n, [None] * n, {}, {}, 0)
         groups = {g.step: g for g in self.log.groups}
-        inside = {n for g in self.log.groups for n in g.steps}
+        inside = {n for b in self.blocks for n in b.steps}
         for step in self.log.steps:
             if step.action == "resolve":
                 g = groups[step.number]
-                if not self.resolve(g, out, order, start[g.number]):
+                if not self.resolve(g, out, order, start, prefer.get(g.number, 0)):
                     out.report[step.number] = (NOT_CONVERGED, 0.0)
                     out.failed_group = g.number
                     return out
-            elif step.function and step.number not in inside:
+            elif step.function and step.number not in inside and not step.variant:
                 out.report.update(execute([step], env, call))
                 if out.report[step.number][0] == FAIL:
                     return out
         return out
 
-    def resolve(self, g: ResolverGroup, out: Pass, order: int, a0: list[float]) -> bool:
-        """Newton on the group's Add-links (velocity channel at least, for the Jacobian)."""
+    def resolve(self, g: ResolverGroup, out: Pass, order: int, start: list, prefer: int) -> bool:
+        """The group's blocks, the preferred one first; then every block's lengths."""
+        first = self.blocks.index(g)
+        count = 1 + len(g.variants)
+        before = dict(out.env)
+        for k in [prefer] + [k for k in range(count) if k != prefer]:
+            block = self.blocks[first + k]
+            out.env.clear()
+            out.env.update(before)
+            status = self._newton(block, out, order, start[first + k])
+            if status is not None:
+                out.used[g.number] = k
+                out.report[g.step] = status
+                for j in range(count):
+                    b = self.blocks[first + j]
+                    out.solutions[first + j], out.rates[first + j] = _pair_lengths(out.env, self.pos, b.pairs)
+                return True
+        return False
+
+    def _newton(self, g: ResolverGroup, out: Pass, order: int, a0: list[float]) -> tuple | None:
+        """Newton on one block's Add-links (velocity channel at least, for the Jacobian);
+        the resolver's (status, sigma), or None when it does not converge."""
         env = out.env
         inner = max(order, 1)
         call = _scalar_call(inner)
@@ -282,49 +322,45 @@ class RowSolver:
             bad = any(st == FAIL for st, _ in last.values())
             return (1 if bad else 0), [env[f] for f in g.residuals]
 
-        ok, a, its, jac = self.ns["newton"](group, list(a0), g.tolerance * self.log.length_scale, g.max_iterations)
+        scale = self.log.length_scale
+        ok, a, its, jac = self.ns["newton"](group, list(a0), g.tolerance * scale, g.max_iterations, g.max_move * scale)
+        out.iterations[g.number] = its
         if not ok:
-            return False
-        st, sigma, rates, accs = self.ns["addlink_rates"](group, a, jac, order)
+            return None
+        st, sigma = self.ns["addlink_rates"](group, a, jac, order)
         width = {"POINT": 2}
         for name in list(g.writes) + list(g.add_links) + list(reads):
             env[name] = env[name][: width.get(self.kinds[name], 1) * (order + 1)]
-        for name, v, r, c in zip(g.add_links, a, rates, accs):
-            env[name] = (v, r, c)[: order + 1]
         out.report.update(last)
-        out.report[g.step] = (SINGULAR if sigma < 1e-7 else NEAR if sigma < 1e-3 else 0, sigma)
-        out.solutions[g.number], out.iterations[g.number] = a, its
-        out.rates[g.number], out.accs[g.number] = rates, accs
-        return True
+        return SINGULAR if sigma < 1e-7 else NEAR if sigma < 1e-3 else 0, sigma
 
     def solve(self, values, rates, accs) -> Pass:
         """Solve one row on the sketch's assembly: from the previous row when it was solved
         (Taylor-predicted start), else by continuation from the sketch."""
-        groups = [g.number for g in self.log.groups]
         if self.warm is not None:
-            w_in, w_rates, a, ad, add = self.warm
-            start = dict(zip(groups, self.ns["predict"]((w_in, w_rates, [a[g] for g in groups],
-                                                        [ad[g] for g in groups], [add[g] for g in groups]), values)))
-            out = self.run(values, rates, accs, self.order, start)
+            w_in, w_rates, a, ad, used = self.warm
+            start = self.ns["predict"]((w_in, w_rates, a, ad), values)
+            out = self.run(values, rates, accs, self.order, start, used)
             if out.ok:
                 self._remember(values, rates, out)
                 return out
             if out.failed_group == 0:
                 self.warm = None
                 return out
-            base, base_a = w_in, a
+            base, base_a, prefer = w_in, a, used
         else:
-            base, base_a = self.sketch_in, self.sketch_a
-        a = self.ns["continuation"](self._path_run, list(base), [base_a[g] for g in groups], list(values),
-                                    self.limits, self.periodic, self.halvings)
+            base, base_a, prefer = self.sketch_in, self.sketch_a, {}
+        path = lambda x, d, o, s: self._path_run(x, d, o, s, prefer)  # noqa: E731
+        a = self.ns["continuation"](path, list(base), [list(b) for b in base_a], list(values), self.limits,
+                                    self.periodic, self.halvings)
         if a is None:
             self.warm = None
-            out = self.run(values, rates, accs, self.order, base_a)
+            out = self.run(values, rates, accs, self.order, base_a, prefer)
             if out.ok:  # solvable only on another assembly: not the sketch's
                 out.report[self.log.groups[0].step] = (NOT_CONVERGED, 0.0)
                 out.failed_group = self.log.groups[0].number
             return out
-        out = self.run(values, rates, accs, self.order, dict(zip(groups, a)))
+        out = self.run(values, rates, accs, self.order, a, prefer)
         if out.ok:
             self._remember(values, rates, out)
         else:
@@ -332,19 +368,18 @@ class RowSolver:
         return out
 
     def _remember(self, values, rates, out: Pass) -> None:
-        self.warm = (tuple(values), tuple(rates), out.solutions, out.rates, out.accs)
+        self.warm = (tuple(values), tuple(rates), out.solutions, out.rates, dict(out.used))
 
-    def _path_run(self, inputs, rates, order, a):
+    def _path_run(self, inputs, rates, order, a, prefer):
         """The continuation's view of a pass: (ok, lengths, their rates along the path)."""
-        groups = [g.number for g in self.log.groups]
-        out = self.run(inputs, rates, [0.0] * len(inputs), order, dict(zip(groups, a)))
+        out = self.run(inputs, rates, [0.0] * len(inputs), order, a, prefer)
         if not out.ok:
             return False, None, None
-        return True, [out.solutions[g] for g in groups], [out.rates[g] for g in groups]
+        return True, out.solutions, out.rates
 
 
 def _evaluate_rows(log: StepLog, values, rates, accs, order: int, warm, stop: int) -> Result:
-    solver = RowSolver(log, order)
+    solver = RowSolver(log, max(order, 1))  # the resolver's rates start the next row at every order
     solver.warm = warm
     rows = values.shape[0]
     envs, reports, warms, its = [], [], [], {g.number: np.zeros(rows, dtype=int) for g in log.groups}

@@ -4,9 +4,11 @@ from __future__ import annotations
 
 from . import __version__
 from .columns import plan
+from .errors import InputError, and_list
 from .evaluate import residual_norm
 from .model import Mechanism
 from .procedure import Extractor, Procedure, extract
+from .prune import prune
 from .singular import change_points, conditioning
 from .steplog import InputInfo, LinkInfo, PairInfo, StatusCode, StepLog
 from .topology import Topology, analyse
@@ -66,13 +68,14 @@ def steplog(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = N
                   s, v)
         for i, s, v in zip(m.inputs, topo.sketch_inputs, input_vars)
     )
-    runtime = sorted({s.function for s in proc.steps if s.function} | ({"resolver"} if proc.groups else set()))
+    runtime = sorted({s.function for s in proc.steps if s.function}
+                     | ({"resolver", "link_residual"} if proc.groups else set()))
     return StepLog(
         __version__, m.name, m.title, m.source, m.length_unit, m.angle_unit, topo.length_scale, topo.grubler,
         topo.mobility, topo.redundant, order, m.samples, pairs, links, inputs, proc.variables, proc.steps,
         proc.lj, proc.add_links, proc.residuals, proc.groups,
         plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars),
-        _status_codes(proc), tuple(runtime),
+        _status_codes(proc), tuple(runtime), outputs=tuple(outputs),
     )
 
 
@@ -82,12 +85,26 @@ def analyse_file(path: str) -> tuple[Mechanism, Topology, Procedure]:
     return m, topo, extract(topo, _norm)
 
 
+def _check_outputs(m: Mechanism, outputs: tuple[str, ...]) -> None:
+    """Outputs given on the command line name pairs, points or links of the mechanism."""
+    names = [j.name for j in m.joints] + [p.name for p in m.points] + [lk.name for lk in m.links]
+    for name in outputs:
+        if name not in names:
+            raise InputError(f"{name} is not a pair, point or link of {m.name} (they are {and_list(names)})",
+                             "command line", 0, "--outputs")
+        if outputs.count(name) > 1:
+            raise InputError(f"the output {name} is listed twice", "command line", 0, "--outputs")
+
+
 def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | None = None,
               sweep: bool = True) -> StepLog:
-    """The step log of a mechanism file, with its change points and, when ``sweep``, its
+    """The step log of a mechanism file for the outputs and order asked for (default: the
+    file's), cut to the steps they need, with its change points and, when ``sweep``, its
     conditioning over the sweep (for the manual; it takes a sweep and root finding)."""
-    _, topo, proc = analyse_file(path)
-    log = change_points(steplog(topo, proc, outputs, order))
+    m, topo, proc = analyse_file(path)
+    if outputs is not None:
+        _check_outputs(m, outputs)
+    log = change_points(prune(steplog(topo, proc, outputs, order)))
     return conditioning(log) if sweep else log
 
 

@@ -30,6 +30,8 @@ from .topology import Topology, input_direction, reference_angle, wrap_angle
 RESOLVER_TOLERANCE = 1e-10  # relative to the length scale; one Newton step is taken past it
 RESOLVER_MAX_ITERATIONS = 8
 CONTINUATION_HALVINGS = 10
+RESOLVER_MAX_MOVE = 0.1  # relative to the length scale: farther from the start lengths is another assembly
+MAX_VARIANTS = 8  # fallback Add-link candidates per resolver group
 PROBE_ANGLE = math.radians(5.0)  # the paper's +5 degrees for ranking Add-link candidates
 PROBE_LENGTH = 0.05  # times the length scale, for prismatic and distance inputs
 
@@ -57,6 +59,18 @@ class _AddLinkDraft:
     group: int
     candidates: tuple[Candidate, ...] = ()
     probe: tuple[float, ...] = ()
+
+
+@dataclass
+class _VariantDraft:
+    """Another usable Add-link candidate of a group: its steps are a fallback the resolver
+    switches to where the chosen candidate's own chain degenerates."""
+
+    group: int
+    pairs: tuple[str, str]
+    length: float
+    steps: list[Step]
+    variables: dict[str, Variable]
 
 
 @dataclass
@@ -118,6 +132,7 @@ class Extractor:
         self.add_links: list[_AddLinkDraft] = []
         self.residuals: list[Residual] = []
         self.groups: list[_GroupDraft] = []
+        self.variants: list[_VariantDraft] = []
         self.group = 0
         self.residual_links: set[str] = set()
         self.joint_names = {j.name for j in self.m.joints}
@@ -783,6 +798,14 @@ def rank(ex: Extractor, evaluate_norm) -> tuple[Extractor, _AddLinkDraft]:
     draft = next(d for d in chosen.add_links if d.pairs == best[4] and not d.candidates)
     draft.candidates = tuple(Candidate(t[4], t[5], t[6]) for t in tried)
     draft.probe = probe
+    start = len(ex.steps)
+    others = [t for t in tried[1:] if t[6] and t[7] is not None and len(t[7].add_links) == len(chosen.add_links)]
+    for t in others[:MAX_VARIANTS]:
+        trial = t[7]
+        if True:
+            new = {name: v for name, v in trial.variables.items() if name not in ex.variables}
+            chosen.variants.append(_VariantDraft(chosen.groups[-1].number, t[4], trial.add_links[-1].length,
+                                                 trial.steps[start:], new))
     return chosen, draft
 
 
@@ -809,28 +832,78 @@ def extract(topo: Topology, evaluate_norm) -> Procedure:
 
 def _freeze(ex: Extractor) -> Procedure:
     """Number the steps and turn the drafts into step-log records."""
-    steps = tuple(replace(s, number=i + 1) for i, s in enumerate(ex.steps))
+    steps = [replace(s, number=i + 1) for i, s in enumerate(ex.steps)]
     residuals = tuple(replace(r, step=next(s.number for s in steps if r.name in s.outputs)) for r in ex.residuals)
     add_links = tuple(
         AddLink(d.name, d.pairs, d.length,
                 next(s.number for s in steps if s.action == "add_link" and s.target == d.name), d.candidates, d.probe)
         for d in ex.add_links
     )
+    variables = dict(ex.variables)
     groups = []
     for g in ex.groups:
-        inside = [s for s in steps if s.group == g.number and s.action not in ("add_link", "resolve")]
+        block = [s for s in steps if s.group == g.number and s.action not in ("add_link", "resolve")]
         resolve = next(s for s in steps if s.group == g.number and s.action == "resolve")
-        writes = [o for s in inside for o in s.outputs]
-        reads = []
-        for s in inside:
-            for a in s.args:
-                if (a.kind == "var" and a.var not in writes and a.var not in g.add_links and a.var not in reads
-                        and not ex.variables[a.var].constant):
-                    reads.append(a.var)
-        groups.append(ResolverGroup(g.number, resolve.number, "newton-addlink", tuple(g.add_links),
-                                    tuple(g.residuals), tuple(s.number for s in inside), tuple(reads), tuple(writes),
-                                    RESOLVER_TOLERANCE, RESOLVER_MAX_ITERATIONS, CONTINUATION_HALVINGS))
+        later = {a.var for s in steps if s.number > resolve.number for a in s.args if a.kind == "var"}
+        needed = {o for s in block for o in s.outputs} & (later | set(ex.pos.values()) | set(ex.angles.values())
+                                                          | set(ex.slides.values()))
+        variants = []
+        for draft in (d for d in ex.variants if d.group == g.number):
+            variant = _variant(draft, len(variants) + 1, len(steps), variables, needed)
+            if variant is not None:
+                vsteps, vgroup = variant
+                steps += vsteps
+                variants.append(vgroup)
+        adds = [a for a in add_links if a.name in g.add_links]
+        groups.append(replace(
+            _block_group(g.number, 0, block, tuple(g.add_links), tuple(g.residuals), variables),
+            step=resolve.number, pairs=tuple(a.pairs for a in adds), lengths=tuple(a.length for a in adds),
+            variants=tuple(variants)))
     lj = LJMatrix(tuple(j.name for j in ex.m.joints), tuple(not j.revolute for j in ex.m.joints),
                   tuple(ex.columns), ())
-    return Procedure(tuple(ex.variables.values()), steps, lj, add_links, residuals, tuple(groups),
+    return Procedure(tuple(variables.values()), tuple(steps), lj, add_links, residuals, tuple(groups),
                      dict(ex.pos), dict(ex.angles), dict(ex.slides))
+
+
+def _block_group(number: int, variant: int, block: list[Step], adds: tuple[str, ...], residuals: tuple[str, ...],
+                 variables: dict[str, Variable]) -> ResolverGroup:
+    """The resolver record of one block of steps (a group or one of its variants)."""
+    writes = [o for s in block for o in s.outputs]
+    reads: list[str] = []
+    for s in block:
+        for a in s.args:
+            if (a.kind == "var" and a.var not in writes and a.var not in adds and a.var not in reads
+                    and not variables[a.var].constant):
+                reads.append(a.var)
+    return ResolverGroup(number, 0, "newton-addlink", adds, residuals, tuple(s.number for s in block), tuple(reads),
+                         tuple(writes), RESOLVER_TOLERANCE, RESOLVER_MAX_ITERATIONS, CONTINUATION_HALVINGS,
+                         RESOLVER_MAX_MOVE,
+                         variant=variant)
+
+
+def _variant(draft: _VariantDraft, k: int, first: int, variables: dict[str, Variable],
+             needed: set[str]) -> tuple[list[Step], ResolverGroup] | None:
+    """A candidate's block as fallback k of its group: its own Add-link and residual records
+    (renamed), the same records for everything the rest of the procedure reads."""
+    rename = {}
+    for name, v in draft.variables.items():
+        same = name in variables and (variables[name].kind, variables[name].value) == (v.kind, v.value)
+        if v.role in ("addlink", "residual") or (name in variables and not same):
+            rename[name] = f"{name}_v{k}"
+    block = [s for s in draft.steps if s.action not in ("add_link", "resolve")]
+    writes = {rename.get(o, o) for s in block for o in s.outputs}
+    if not needed <= writes:
+        return None
+    for name, v in draft.variables.items():
+        variables.setdefault(rename.get(name, name), replace(v, name=rename.get(name, name)))
+    out = []
+    for s in block:
+        args = tuple(replace(a, var=rename.get(a.var, a.var)) if a.kind == "var" else a for a in s.args)
+        outputs = tuple(rename.get(o, o) for o in s.outputs)
+        out.append(replace(s, number=first + len(out) + 1, args=args, outputs=outputs, group=draft.steps[0].group,
+                           variant=k))
+    adds = tuple(rename[v.name] for v in draft.variables.values() if v.role == "addlink")
+    residuals = tuple(rename[v.name] for v in draft.variables.values() if v.role == "residual")
+    group = replace(_block_group(draft.group, k, out, adds, residuals, variables), pairs=(draft.pairs,),
+                    lengths=(draft.length,))
+    return out, group

@@ -7,6 +7,7 @@ deterministically.
 
 from __future__ import annotations
 
+import functools
 import json
 from dataclasses import dataclass, fields
 
@@ -60,6 +61,7 @@ class Step:
     group: int  # resolver group the step is iterated in (0: none)
     fails: bool  # the function reports a status
     change_points: tuple[float, ...] = ()  # input values where the branch flips (a change point)
+    variant: int = 0  # >0: the step belongs to fallback variant k of its resolver group
 
 
 @dataclass(frozen=True)
@@ -103,6 +105,11 @@ class ResolverGroup:
     tolerance: float  # relative to the length scale
     max_iterations: int
     max_halvings: int  # continuation: how often an input step may be halved
+    max_move: float  # relative to the length scale: a Newton solution farther from its start is another assembly
+    variant: int = 0  # 0: the chosen candidate; k: its k-th fallback
+    pairs: tuple[tuple[str, str], ...] = ()  # the Add-links' pairs (known, unknown)
+    lengths: tuple[float, ...] = ()  # the Add-links' sketch lengths
+    variants: tuple[ResolverGroup, ...] = ()  # fallbacks: other candidates, tried in this order
 
 
 @dataclass(frozen=True)
@@ -200,6 +207,14 @@ class StatusCode:
 
 
 @dataclass(frozen=True)
+class Omitted:
+    """A step of the whole procedure that the chosen outputs do not need."""
+
+    number: int
+    target: str
+
+
+@dataclass(frozen=True)
 class StepLog:
     linkgen_version: str
     name: str
@@ -226,12 +241,22 @@ class StepLog:
     status_codes: tuple[StatusCode, ...]
     runtime: tuple[str, ...]
     conditioning: tuple[Conditioning, ...] = ()
+    outputs: tuple[str, ...] = ()  # the outputs asked for (empty: the default set)
+    omitted: tuple[Omitted, ...] = ()  # steps left out: the outputs do not need them
 
     def variable(self, name: str) -> Variable:
-        return next(v for v in self.variables if v.name == name)
+        return self._variables[name]
 
     def step(self, number: int) -> Step:
-        return self.steps[number - 1]
+        return self._steps[number]
+
+    @functools.cached_property
+    def _variables(self) -> dict[str, Variable]:
+        return {v.name: v for v in self.variables}
+
+    @functools.cached_property
+    def _steps(self) -> dict[int, Step]:
+        return {s.number: s for s in self.steps}
 
     def to_json(self) -> str:
         return json.dumps(_plain(self), indent=2, allow_nan=False, ensure_ascii=False) + "\n"

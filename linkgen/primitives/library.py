@@ -372,10 +372,13 @@ def prp_links() -> Primitive:
     cr = b.let("cr", _cross(u1, u2))
     icr = b.let("icr", select(cr.eq(0), NAN, 1 / cr))
     g = (b.let("gx", pb.x + r2[0] - pa.x - r1[0]), b.let("gy", pb.y + r2[1] - pa.y - r1[1]))
+    # jb from guide 1, then jp2 = jb - r2 and s2 from it: every constraint then holds to
+    # rounding (computing s2 from g as well would put jp2 and jb apart by the conditioned error)
     s1 = b.let("sv1", _cross(g, u2) * icr)
-    s2 = b.let("sv2", _cross(g, u1) * icr)
     jp1 = (b.let("jp1x", pa.x + s1 * u1[0]), b.let("jp1y", pa.y + s1 * u1[1]))
-    jp2 = (b.let("jp2x", pb.x + s2 * u2[0]), b.let("jp2y", pb.y + s2 * u2[1]))
+    jbp = (b.let("jbx", jp1[0] + r1[0]), b.let("jby", jp1[1] + r1[1]))
+    jp2 = (b.let("jp2x", jbp[0] - r2[0]), b.let("jp2y", jbp[1] - r2[1]))
+    s2 = b.let("sv2", (jp2[0] - pb.x) * u2[0] + (jp2[1] - pb.y) * u2[1])
     sigma = b.let("sigma", fmin(fabs(cr), 1))
     rv1, ra1 = _rotating(b, "r1", r1, psa.dthe, psa.ddthe)
     rv2, ra2 = _rotating(b, "r2", r2, psb.dthe, psb.ddthe)
@@ -411,7 +414,7 @@ def prp_links() -> Primitive:
     b.output(
         "jb", "POINT",
         **_point_result(
-            (jp1[0] + r1[0], jp1[1] + r1[1]),
+            jbp,
             (jp1v[0] + rv1[0], jp1v[1] + rv1[1]),
             (jp1a[0] + ra1[0], jp1a[1] + ra1[1]),
         ),

@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import functools
+import re
 from importlib import resources
 from pathlib import Path
 
 import jinja2
 
 from .. import __version__
+from ..errors import and_list
 from ..evaluate import STEP_ANGLE, STEP_LENGTH
 from ..ljmatrix import states
 from ..primitives import PRIMITIVES
@@ -39,6 +41,7 @@ def make_env() -> jinja2.Environment:
     env.filters["num"] = number
     env.filters["capitalize_first"] = lambda text: text[:1].upper() + text[1:]
     env.globals["zip"] = zip
+    env.globals["and_list"] = and_list
     return env
 
 
@@ -51,8 +54,30 @@ def _banner(log: StepLog):
     return banner
 
 
-def _runtime_source(lang: str, name: str) -> str:
-    return resources.files("linkgen.runtime").joinpath(lang, name).read_text(encoding="utf-8")
+_MARKS = {"c": ("#if LINKGEN_ORDER >= 2", "#else", "#endif"), "py": ("# if order >= 2", "# else", "# endif"),
+          "m": ("% if order >= 2", "% else", "% endif")}
+
+
+def _runtime_source(lang: str, name: str, order: int) -> str:
+    """A runtime helper's source, its order-2 parts kept only for programs of order 2.
+
+    The marker lines (C: ``#if LINKGEN_ORDER >= 2`` / ``#else`` / ``#endif``; Python and
+    MATLAB: the same as comments) select the lines between them and are dropped.
+    """
+    text = resources.files("linkgen.runtime").joinpath(lang, name).read_text(encoding="utf-8")
+    start, other, end = _MARKS[lang]
+    out, keep = [], [True]
+    for line in text.splitlines(keepends=True):
+        mark = line.strip()
+        if mark == start:
+            keep.append(order >= 2)
+        elif mark == other:
+            keep[-1] = not keep[-1]
+        elif mark == end:
+            keep.pop()
+        elif all(keep):
+            out.append(line)
+    return "".join(out)
 
 
 def _used(view: View) -> list[str]:
@@ -70,9 +95,9 @@ def _c_files(view: View, banner) -> dict[str, bytes]:
     name, upper = log.name, log.name.upper()
     runtime = [c_function(PRIMITIVES[p], view.record_order) for p in _used(view)]
     if "branch_at" in log.runtime:
-        runtime.append(_runtime_source("c", "branch.c"))
+        runtime.append(_runtime_source("c", "branch.c", view.record_order))
     if view.groups:
-        runtime.append(_runtime_source("c", "resolver.c"))
+        runtime.append(_runtime_source("c", "resolver.c", view.record_order))
     levels = ("P", "DP", "DDP")[: view.record_order + 1]
     record_fields = {
         "POINT": f"VEC2 {', '.join(levels)};",
@@ -108,10 +133,9 @@ def _limits(log: StepLog) -> list[float]:
 
 
 def _sketch_a(view: View, lit) -> list[str]:
-    """Start lengths of each group's Add-links (padded to the largest group)."""
-    adds = {a.name: a.length for a in view.log.add_links}
-    return [", ".join([lit(adds[a]) for a in g.add_links] + ["0.0"] * (view.nmax - len(g.add_links)))
-            for g in view.log.groups]
+    """Start lengths of every resolver block's Add-links (padded to the largest block)."""
+    return [", ".join([lit(x) for x in b.group.lengths] + ["0.0"] * (view.nmax - len(b.group.lengths)))
+            for b in view.blocks]
 
 
 def _py_files(view: View, banner) -> dict[str, bytes]:
@@ -119,9 +143,9 @@ def _py_files(view: View, banner) -> dict[str, bytes]:
     spell = Python(view.record_order, {v.name: v for v in log.variables})
     runtime = [python_function(PRIMITIVES[p], view.record_order, with_sigma=True).rstrip("\n") for p in _used(view)]
     if "branch_at" in log.runtime:
-        runtime.append(_runtime_source("py", "branch.py").rstrip("\n"))
+        runtime.append(_runtime_source("py", "branch.py", view.record_order).rstrip("\n"))
     if view.groups:
-        runtime.append(_runtime_source("py", "resolver.py").rstrip("\n"))
+        runtime.append(_runtime_source("py", "resolver.py", view.record_order).rstrip("\n"))
     order_of = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
                 "angular_acceleration": 2}
     values, levels = [], []
@@ -130,7 +154,10 @@ def _py_files(view: View, banner) -> dict[str, bytes]:
         values.append(f"{spell.ref(cell.column.variable, None)}[{index}]")
         levels.append(str(order_of[cell.column.quantity]))
     lit = spell.lit
+    math_names = [f for f in ("atan2", "cos", "floor", "sin", "sqrt")
+                  if any(re.search(rf"\b{f}\(", text) for text in runtime)]
     text = _render("py/NAME.py.j2", v=view, L=spell, banner=banner, name=log.name, runtime=runtime,
+                   math_names=math_names,
                    columns=[c.name for c in log.columns], levels=levels, values=values,
                    inputs=[f"{lit(i.start)}, {lit(i.stop)}, {lit(i.speed)}" for i in log.inputs],
                    sketch_a=_sketch_a(view, lit), limits=", ".join(lit(x) for x in _limits(log)),
@@ -143,9 +170,9 @@ def _m_files(view: View, banner) -> dict[str, bytes]:
     spell = Octave(view.record_order, {v.name: v for v in log.variables})
     runtime = [octave_function(PRIMITIVES[p], view.record_order).rstrip("\n") for p in _used(view)]
     if "branch_at" in log.runtime:
-        runtime.append(_runtime_source("m", "branch.m").rstrip("\n"))
+        runtime.append(_runtime_source("m", "branch.m", view.record_order).rstrip("\n"))
     if view.groups:
-        runtime.append(_runtime_source("m", "resolver.m").rstrip("\n"))
+        runtime.append(_runtime_source("m", "resolver.m", view.record_order).rstrip("\n"))
     level = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
              "angular_acceleration": 2}
     outputs = [{"name": spell.ident(o.name),
@@ -182,10 +209,11 @@ def _constants(log: StepLog, spell: Manual) -> dict[int, list[str]]:
     return out
 
 
-def _listing(view: View, spell: Manual) -> list[str]:
+def _listing(view: View, spell: Manual, steps) -> list[str]:
+    """One line per step as the paper's listings; | marks a step the resolver iterates."""
     inside = {n for g in view.log.groups for n in g.steps}
     lines = []
-    for s in view.log.steps:
+    for s in steps:
         mark = "|" if s.number in inside else " "
         if s.function:
             text = spell.call(s)
@@ -200,11 +228,29 @@ def _listing(view: View, spell: Manual) -> list[str]:
     return lines
 
 
+def _omitted(log: StepLog) -> str:
+    """'steps 5-7 (J5, J6, J7) and 10 (rocker1)': the steps left out, in runs."""
+    runs: list[list] = []
+    for o in log.omitted:
+        if runs and runs[-1][-1].number == o.number - 1:
+            runs[-1].append(o)
+        else:
+            runs.append([o])
+    parts = [(f"{r[0].number}-{r[-1].number}" if len(r) > 1 else f"{r[0].number}")
+             + f" ({', '.join(o.target for o in r)})" for r in runs]
+    return ("steps " if len(log.omitted) > 1 else "step ") + and_list(parts)
+
+
 def _md_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
     spell = Manual(log.order, {v.name: v for v in log.variables})
-    text = _render("md/NAME.md.j2", v=view, L=spell, banner=banner, name=log.name, lj=states(log),
-                   listing=_listing(view, spell), codes=log.status_codes, constants=_constants(log, spell),
+    seq = states(log)
+    text = _render("md/NAME.md.j2", v=view, L=spell, banner=banner, name=log.name, lj=seq[0],
+                   lj_after={st.step: st for st in seq[1:]}, lj_before={b.step: a for a, b in zip(seq, seq[1:])},
+                   omitted=_omitted(log),
+                   listing=_listing(view, spell, view.main_steps),
+                   fallbacks={b.index: _listing(view, spell, b.steps) for b in view.blocks if b.group.variant},
+                   codes=log.status_codes, constants=_constants(log, spell),
                    functions=_used(view), slides={p.name for p in log.pairs if p.kind == "prismatic"})
     return {f"{log.name}.md": text, f"{log.name}.svg": render_svg(log).encode("utf-8")}
 

@@ -109,6 +109,10 @@ class C(Spelling):
         sources = ("in", "din", "ddin")
         return " ".join(f"w->{var.name}.{f} = {src}[{k}];" for f, src in zip(self.fields(var.kind), sources))
 
+    def zero_record(self) -> str:
+        """The fields of a zero VARIABLE record at the program's order."""
+        return ", ".join(["0.0"] * (self.order + 1))
+
     def initializer(self, v: Variable) -> str:
         """Braced initializer of a constant record (derivatives zero)."""
         if v.kind == "POINT":
@@ -154,6 +158,9 @@ class Python(Spelling):
         fields = ", ".join(f"{src}[{k}]" for src in sources) + ("," if self.order == 0 else "")
         return f"w.{var.name} = ({fields})"
 
+    def zero_record(self) -> str:
+        return ", ".join(["0.0"] * (self.order + 1))
+
     def initializer(self, v: Variable) -> str:
         zeros = [0.0] * (len(record_fields(v.kind, self.order)) - len(v.value))
         return "(" + ", ".join(self.lit(x) for x in (*v.value, *zeros)) + ("," if v.kind != "POINT" and
@@ -195,6 +202,10 @@ class Octave(Spelling):
         sources = ("in", "din", "ddin")
         pairs = ", ".join(f"'{f}', {src}({k + 1})" for f, src in zip(self.fields(var.kind), sources))
         return f"w.{var.name} = struct({pairs});"
+
+    def zero_struct(self) -> str:
+        """A zero VARIABLE record at the program's order."""
+        return "struct(" + ", ".join(f"'{f}', 0" for f in record_fields("VARIABLE", self.order)) + ")"
 
     def rates(self, kind: str) -> tuple[str, ...]:
         """The derivative fields of a record kind."""

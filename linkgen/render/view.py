@@ -41,11 +41,23 @@ class Cell:
 
 @dataclass(frozen=True)
 class Group:
-    group: ResolverGroup
+    """One resolver block: a group's chosen Add-link candidate (variant 0) or a fallback."""
+
+    group: ResolverGroup  # the block's own record
     steps: tuple[Step, ...]
     reads: tuple[Variable, ...]  # computed before the group: copied, rates zeroed on Jacobian passes
-    resolve: Step
-    first_add: int  # index of its first Add-link among all Add-links
+    resolve: Step  # the group's resolve step
+    index: int  # among all blocks
+    slot: int  # its group's index among the groups the program computes
+    first: int  # index of its group's first block
+    count: int  # blocks of its group
+    ends: tuple[tuple[str, str], ...]  # position variables of each Add-link's pairs
+
+    @property
+    def suffix(self) -> str:
+        """Names the block's function: 1 for group 1, 1_v2 for its second fallback."""
+        k = self.group.variant
+        return f"{self.group.number}" + (f"_v{k}" if k else "")
 
 
 @dataclass(frozen=True)
@@ -54,7 +66,8 @@ class View:
     constants: tuple[Variable, ...]
     records: tuple[Variable, ...]  # computed records, inputs first
     run: tuple[Step, ...]  # the steps executed in order; a resolve step stands for its group
-    groups: tuple[Group, ...]
+    groups: tuple[Group, ...]  # the chosen block of each resolver group
+    blocks: tuple[Group, ...]  # every block, fallbacks after their group's chosen one
     outputs: tuple[Output, ...]
     cells: tuple[Cell, ...]  # output columns in CSV order
     inputs: tuple[Variable, ...]
@@ -68,6 +81,19 @@ class View:
     def resolver(self, step: int) -> Group:
         """The group whose resolver is this step."""
         return next(g for g in self.groups if g.resolve.number == step)
+
+    def blocks_of(self, group: Group) -> tuple[Group, ...]:
+        return self.blocks[group.first:group.first + group.count]
+
+    @property
+    def last_step(self) -> int:
+        """The largest step number (the size of the per-step arrays)."""
+        return max(s.number for s in self.log.steps)
+
+    @property
+    def main_steps(self) -> tuple[Step, ...]:
+        """The procedure's steps, without the fallback blocks."""
+        return tuple(s for s in self.log.steps if not s.variant)
 
 
 def _outputs(log: StepLog) -> tuple[Output, ...]:
@@ -85,27 +111,33 @@ def _outputs(log: StepLog) -> tuple[Output, ...]:
 
 def build_view(log: StepLog) -> View:
     inside = {n for g in log.groups for n in g.steps}
-    run = tuple(s for s in log.steps if s.number not in inside)
-    groups = []
-    first = 0
-    for g in log.groups:
-        groups.append(Group(g, tuple(log.step(n) for n in g.steps), tuple(log.variable(v) for v in g.reads),
-                            log.step(g.step), first))
-        first += len(g.add_links)
+    run = tuple(s for s in log.steps if s.number not in inside and not s.variant)
+    pos = {v.entity: v.name for v in log.variables if v.role == "pair"}
+    blocks = []
+    for slot, g in enumerate(log.groups):
+        first = len(blocks)
+        records = (g, *g.variants)
+        for b in records:
+            blocks.append(Group(b, tuple(log.step(n) for n in b.steps), tuple(log.variable(v) for v in b.reads),
+                                log.step(g.step), len(blocks), slot, first, len(records),
+                                tuple((pos[k], pos[u]) for k, u in b.pairs)))
     inputs = tuple(v for v in log.variables if v.role == "input")
-    computed = tuple(v for v in log.variables if not v.constant and v.role != "input")
     used = {a.var for s in log.steps for a in s.args if a.kind == "var"} | {c.variable for c in log.columns}
+    used |= {name for b in blocks for pair in b.ends for name in pair}
+    written = {o for s in log.steps for o in s.outputs}
+    computed = tuple(v for v in log.variables if not v.constant and v.role != "input" and v.name in used | written)
     return View(
         log,
         tuple(v for v in log.variables if v.constant and v.name in used),
         inputs + computed,
         run,
-        tuple(groups),
+        tuple(b for b in blocks if not b.group.variant),
+        tuple(blocks),
         _outputs(log),
         tuple(Cell(c.name.split(".")[0], c.name.split(".", 1)[1], c, log.variable(c.variable).kind)
               for c in log.columns[len(log.inputs):]),
         inputs,
         tuple(s.number for s in log.steps if s.fails),
-        max((len(g.add_links) for g in log.groups), default=1),
+        max((len(b.group.add_links) for b in blocks), default=1),
         max(log.order, 1) if log.groups else log.order,
     )

@@ -46,7 +46,13 @@ static int jacobian(group_fn group, void *ctx, int n, const double a[], double f
     VARIABLE rec[LINKGEN_NMAX], res[LINKGEN_NMAX];
     int i, j;
     for (j = 0; j < n; j++) {
-        for (i = 0; i < n; i++) { rec[i].v = a[i]; rec[i].dv = (i == j) ? 1.0 : 0.0; rec[i].ddv = 0.0; }
+        for (i = 0; i < n; i++) {
+            rec[i].v = a[i];
+            rec[i].dv = (i == j) ? 1.0 : 0.0;
+#if LINKGEN_ORDER >= 2
+            rec[i].ddv = 0.0;
+#endif
+        }
         if (group(ctx, rec, 0, res)) return 1;
         for (i = 0; i < n; i++) { f[i] = res[i].v; jac[i][j] = res[i].dv; }
     }
@@ -67,15 +73,19 @@ static double conditioning(int n, const double jac[][LINKGEN_NMAX], double det)
 }
 
 /* Iterate the Add-link lengths until max|f| <= tol, then one step more.  A step
- * that makes a chain fail to close is halved (up to 8 times).  Returns 1 on
- * success with jac the Jacobian at the returned a. */
-static int newton(group_fn group, void *ctx, int n, double a[], double tol, int max_iter,
+ * that makes a chain fail to close is halved (up to 3 times; then the block
+ * fails and the next block is tried).  A solution farther than reach from the
+ * start is another assembly and refused.  Returns 1 on success with jac the
+ * Jacobian at the returned a. */
+static int newton(group_fn group, void *ctx, int n, double a[], double tol, int max_iter, double reach,
                   double jac[][LINKGEN_NMAX], int *iterations)
 {
+    double start[LINKGEN_NMAX];
     double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], dx[LINKGEN_NMAX], trial[LINKGEN_NMAX], rhs[LINKGEN_NMAX];
     double jac2[LINKGEN_NMAX][LINKGEN_NMAX];
     int it, i, j, halving;
     *iterations = 0;
+    for (i = 0; i < n; i++) start[i] = a[i];
     if (jacobian(group, ctx, n, a, f, jac)) return 0;
     for (it = 1; it <= max_iter; it++) {
         double t = 1.0, worst = 0.0;
@@ -83,7 +93,7 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
         *iterations = it;
         for (i = 0; i < n; i++) rhs[i] = -f[i];
         if (solve_linear(n, (const double (*)[LINKGEN_NMAX])jac, rhs, dx) == 0.0) return 0;
-        for (halving = 0; halving < 9; halving++) {
+        for (halving = 0; halving < 4; halving++) {
             for (i = 0; i < n; i++) trial[i] = a[i] + t * dx[i];
             if (!jacobian(group, ctx, n, trial, f2, jac2)) { closed = 1; break; }
             t /= 2;
@@ -95,46 +105,77 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
             f[i] = f2[i];
             for (j = 0; j < n; j++) jac[i][j] = jac2[i][j];
         }
-        if (worst <= tol) return 1;
+        if (worst <= tol) {
+            double moved = 0.0;
+            for (i = 0; i < n; i++) moved = fmax(moved, fabs(a[i] - start[i]));
+            return moved <= reach;
+        }
     }
     return 0;
 }
 
-/* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0,
- * J addot = -d2f/dt2 at addot = 0, the same J), then the final pass with them.
- * Returns the status of the final pass. */
+/* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
+ * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J), then
+ * the final pass with them.  The rates are found at every order (they start the next
+ * row).  Returns the status of the final pass. */
 static int addlink_rates(group_fn group, void *ctx, int n, const double a[], const double jac[][LINKGEN_NMAX],
-                         int order, double rates[], double accs[], double *sigma)
+                         int order, double *sigma)
 {
     VARIABLE rec[LINKGEN_NMAX], res[LINKGEN_NMAX];
-    double rhs[LINKGEN_NMAX], det;
+    double rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], det;
     int i;
-    for (i = 0; i < n; i++) { rec[i].v = a[i]; rec[i].dv = 0.0; rec[i].ddv = 0.0; rhs[i] = 0.0; rates[i] = 0.0; accs[i] = 0.0; }
-    if (order >= 1) {
-        group(ctx, rec, 1, res);
-        for (i = 0; i < n; i++) rhs[i] = -res[i].dv;
-        det = solve_linear(n, jac, rhs, rates);
-        if (order >= 2 && det != 0.0) {
-            for (i = 0; i < n; i++) rec[i].dv = rates[i];
-            group(ctx, rec, 1, res);
-            for (i = 0; i < n; i++) rhs[i] = -res[i].ddv;
-            solve_linear(n, jac, rhs, accs);
-        } else if (det == 0.0) {
-            for (i = 0; i < n; i++) accs[i] = NAN;
-        }
-    } else {
-        det = solve_linear(n, jac, rhs, rates);
+    for (i = 0; i < n; i++) {
+        rec[i].v = a[i];
+        rec[i].dv = 0.0;
+#if LINKGEN_ORDER >= 2
+        rec[i].ddv = 0.0;
+#endif
     }
+    group(ctx, rec, 1, res);
+    for (i = 0; i < n; i++) rhs[i] = -res[i].dv;
+    det = solve_linear(n, jac, rhs, rates);
+    for (i = 0; i < n; i++) rec[i].dv = rates[i];
+#if LINKGEN_ORDER >= 2
+    if (order >= 2) {
+        double accs[LINKGEN_NMAX];
+        group(ctx, rec, 1, res);
+        for (i = 0; i < n; i++) rhs[i] = -res[i].ddv;
+        solve_linear(n, jac, rhs, accs);
+        for (i = 0; i < n; i++) rec[i].ddv = det != 0.0 ? accs[i] : NAN;
+    }
+#else
+    (void)order;
+#endif
     *sigma = conditioning(n, jac, det);
-    for (i = 0; i < n; i++) { rec[i].v = a[i]; rec[i].dv = rates[i]; rec[i].ddv = accs[i]; }
     return group(ctx, rec, 1, res);
 }
 
+/* Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
+ * preferred block first, the others in order; the first that converges is kept.
+ * a[k] holds block k's start lengths (its solution on return).  Returns the block,
+ * or -1 when none converges. */
+static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
+                            double tol, int max_iter, double reach, int order, int prefer, int *its, double *sigma)
+{
+    double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX];
+    int t, k, i;
+    for (t = 0; t < count; t++) {
+        k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
+        for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
+        if (!newton(fns[k], ctx, sizes[k], x, tol, max_iter, reach, jac, its)) continue;
+        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) == 1)
+            continue;
+        for (i = 0; i < sizes[k]; i++) a[k][i] = x[i];
+        return k;
+    }
+    return -1;
+}
+
 /* Resolver start values for new inputs: the warm lengths moved along their rates
- * (second-order Taylor in the warm row's input direction). */
+ * (first-order Taylor in the warm row's input direction; the rates exist at every
+ * order, so the positions do not depend on the order computed). */
 static void predict(const double w_in[], const double w_din[], const double w_a[][LINKGEN_NMAX],
-                    const double w_ad[][LINKGEN_NMAX], const double w_add[][LINKGEN_NMAX], const double in[],
-                    double a[][LINKGEN_NMAX])
+                    const double w_ad[][LINKGEN_NMAX], const double in[], double a[][LINKGEN_NMAX])
 {
     double num = 0.0, den = 0.0, tau;
     int g, i;
@@ -143,8 +184,8 @@ static void predict(const double w_in[], const double w_din[], const double w_a[
         den += w_din[i] * w_din[i];
     }
     tau = den > 0.0 ? num / den : 0.0;
-    for (g = 0; g < LINKGEN_NGROUPS; g++)
-        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = w_a[g][i] + tau * (w_ad[g][i] + 0.5 * tau * w_add[g][i]);
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = w_a[g][i] + tau * w_ad[g][i];
 }
 
 /* One pass of the procedure along a continuation path: returns 1 when it closes,
@@ -156,34 +197,34 @@ typedef int (*path_fn)(void *ctx, const double in[], const double din[], int ord
 static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double goal[],
                 const double limits[], int halvings)
 {
-    double d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS], start[LINKGEN_NGROUPS][LINKGEN_NMAX];
-    double rate[LINKGEN_NGROUPS][LINKGEN_NMAX], guess[LINKGEN_NGROUPS][LINKGEN_NMAX], rate2[LINKGEN_NGROUPS][LINKGEN_NMAX];
+    double d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS], start[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double t = 0.0, h, h_max = 1.0;
     int g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         d[i] = goal[i] - base[i];
         if (d[i] != 0.0) h_max = fmin(h_max, limits[i] / fabs(d[i]));
     }
-    for (g = 0; g < LINKGEN_NGROUPS; g++)
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) start[g][i] = a[g][i];
     if (!run(ctx, base, d, 1, start, rate)) return 0;
     h = h_max;
     while (t < 1.0) {
         const double tt = fmin(1.0, t + h);
         for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
-        for (g = 0; g < LINKGEN_NGROUPS; g++)
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
             for (i = 0; i < LINKGEN_NMAX; i++) guess[g][i] = start[g][i] + (tt - t) * rate[g][i];
         if (run(ctx, trial, d, 1, guess, rate2)) {
             t = tt;
             h = fmin(2.0 * h, h_max);
-            for (g = 0; g < LINKGEN_NGROUPS; g++)
+            for (g = 0; g < LINKGEN_NBLOCKS; g++)
                 for (i = 0; i < LINKGEN_NMAX; i++) { start[g][i] = guess[g][i]; rate[g][i] = rate2[g][i]; }
         } else {
             h /= 2.0;
             if (h < h_max * ldexp(1.0, -halvings)) return 0;
         }
     }
-    for (g = 0; g < LINKGEN_NGROUPS; g++)
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = start[g][i];
     return 1;
 }

@@ -36,7 +36,10 @@ function [ok, f, jac, w] = resolver_jacobian(group, w, a)
     jac = zeros(n, n);
     f = zeros(n, 1);
     for j = 1:n
-        rec = struct('v', num2cell(a(:)'), 'dv', num2cell(double((1:n) == j)), 'ddv', num2cell(zeros(1, n)));
+        rec = struct('v', num2cell(a(:)'), 'dv', num2cell(double((1:n) == j)));
+% if order >= 2
+        [rec.ddv] = deal(0);
+% endif
         [st, res, w] = group(w, rec, false);
         if st
             ok = false;
@@ -48,10 +51,13 @@ function [ok, f, jac, w] = resolver_jacobian(group, w, a)
     ok = true;
 end
 
-function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter)
+function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reach)
     % Iterate the Add-link lengths until max|f| <= tol, then one step more; a step that
-    % makes a chain fail to close is halved (up to 8 times).
+    % makes a chain fail to close is halved (up to 3 times; then the block fails and
+    % the next block is tried).  A solution farther than reach from the start is
+    % another assembly and refused.
     its = 0;
+    start = a;
     [ok, f, jac, w] = resolver_jacobian(group, w, a);
     if ~ok
         return;
@@ -64,7 +70,7 @@ function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter)
             return;
         end
         t = 1;
-        for halving = 1:9
+        for halving = 1:4
             trial = a + t * dx;
             [closed, f2, jac2, w] = resolver_jacobian(group, w, trial);
             if closed
@@ -80,40 +86,70 @@ function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter)
         f = f2;
         jac = jac2;
         if done
-            ok = true;
+            ok = max(abs(a - start)) <= reach;
             return;
         end
     end
 end
 
-function [st, sigma, w, rates, accs] = resolver_rates(group, w, a, jac, order)
-    % Exact Add-link rates by the implicit-function theorem, then the final pass.
+function [st, sigma, w] = resolver_rates(group, w, a, jac, order)
+    % Exact Add-link rates by the implicit-function theorem (at every order: they start
+    % the next row), the accelerations at order 2, then the final pass with them.
     n = numel(a);
-    rates = zeros(n, 1);
-    accs = zeros(n, 1);
-    if order >= 1
-        [~, res, w] = group(w, struct('v', num2cell(a(:)'), 'dv', 0, 'ddv', 0), true);
-        [rates, det] = solve_linear(jac, -[res.dv]');
-        if order >= 2 && det ~= 0
-            [~, res, w] = group(w, struct('v', num2cell(a(:)'), 'dv', num2cell(rates'), 'ddv', 0), true);
-            accs = solve_linear(jac, -[res.ddv]');
-        elseif det == 0
+    rec = struct('v', num2cell(a(:)'), 'dv', 0);
+% if order >= 2
+    [rec.ddv] = deal(0);
+% endif
+    [~, res, w] = group(w, rec, true);
+    [rates, det] = solve_linear(jac, -[res.dv]');
+    rates = num2cell(rates');
+    [rec.dv] = deal(rates{:});
+% if order >= 2
+    if order >= 2
+        [~, res, w] = group(w, rec, true);
+        accs = solve_linear(jac, -[res.ddv]');
+        if det == 0
             accs = NaN(n, 1);
         end
-    else
-        [~, det] = solve_linear(jac, zeros(n, 1));
+        accs = num2cell(accs');
+        [rec.ddv] = deal(accs{:});
     end
+% endif
     prod = 1;
     for j = 1:n
         prod = prod * sqrt(sum(jac(:, j) .^ 2));
     end
     sigma = abs(det) / max(prod, 1);
-    [st, ~, w] = group(w, struct('v', num2cell(a(:)'), 'dv', num2cell(rates'), 'ddv', num2cell(accs')), true);
+    [st, ~, w] = group(w, rec, true);
+end
+
+function [k, a, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer)
+    % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
+    % preferred block first, the others in order; the first that converges is kept.
+    % a{first + k} is block k's start lengths (its solution on return); k = -1 when no
+    % block converges.
+    its = 0;
+    sigma = 0;
+    tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
+    for k = tries
+        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}, tol, max_iter, reach);
+        if ~ok
+            continue;
+        end
+        [st, sigma, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
+        if st == 1
+            continue;
+        end
+        a{first + k} = x;
+        return;
+    end
+    k = -1;
 end
 
 function a = resolver_predict(warm, in)
     % Resolver start values for new inputs: the warm lengths moved along their rates
-    % (second-order Taylor in the warm row's input direction).
+    % (first-order Taylor in the warm row's input direction; the rates exist at every
+    % order, so the positions do not depend on the order computed).
     den = sum(warm.din .^ 2);
     tau = 0;
     if den > 0
@@ -121,7 +157,7 @@ function a = resolver_predict(warm, in)
     end
     a = warm.a;
     for g = 1:numel(a)
-        a{g} = warm.a{g} + tau * (warm.ad{g} + 0.5 * tau * warm.add{g});
+        a{g} = warm.a{g} + tau * warm.ad{g};
     end
 end
 

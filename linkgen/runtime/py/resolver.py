@@ -28,13 +28,22 @@ def solve_linear(m, b):
     return x, det
 
 
+def _record(length, rate, acc):
+    """An Add-link record of the program's order (rates always: the Jacobian needs them)."""
+# if order >= 2
+    return (length, rate, acc)
+# else
+    return (length, rate)
+# endif
+
+
 def _jacobian(group, a):
     """Residuals and Jacobian at a (one pass per Add-link); None when a chain cannot close."""
     n = len(a)
     jac = [[0.0] * n for _ in range(n)]
     f = None
     for j in range(n):
-        st, rec = group([(a[i], 1.0 if i == j else 0.0, 0.0) for i in range(n)], False)
+        st, rec = group([_record(a[i], 1.0 if i == j else 0.0, 0.0) for i in range(n)], False)
         if st:
             return None, None
         f = [r[0] for r in rec]
@@ -51,12 +60,16 @@ def conditioning(jac, det):
     return abs(det) / max(prod, 1.0)
 
 
-def newton(group, a, tol, max_iter):
+def newton(group, a, tol, max_iter, reach):
     """Iterate the Add-link lengths until max|f| <= tol, then one step more.
 
+    A solution farther than reach from the start lengths is another assembly: refused.
+
     Returns (ok, a, iterations, jac) with jac the Jacobian at the returned a.
-    A step that makes a chain fail to close is halved (up to 8 times).
+    A step that makes a chain fail to close is halved (up to 3 times; then the block
+    fails and the next block is tried).
     """
+    start = a
     f, jac = _jacobian(group, a)
     if f is None:
         return False, a, 0, None
@@ -76,39 +89,63 @@ def newton(group, a, tol, max_iter):
         done = max(abs(v) for v in f) <= tol
         a, f, jac = trial, f2, jac2
         if done:
-            return True, a, it, jac
+            return max(abs(x - y) for x, y in zip(a, start)) <= reach, a, it, jac
     return False, a, max_iter, None
 
 
 def addlink_rates(group, a, jac, order):
     """Exact Add-link rates by the implicit-function theorem, then the final pass.
 
-    J adot = -df/dt|adot=0 and J addot = -d2f/dt2|addot=0 with the same J;
-    returns (status, sigma) of the final pass and the Jacobian.
+    J adot = -df/dt|adot=0 with J the Newton Jacobian gives the rates at every order (they
+    start the next row); at order 2, J addot = -d2f/dt2|addot=0 the accelerations.
+    Returns the final pass's status and sigma.
     """
     n = len(a)
-    rates, accs = [0.0] * n, [0.0] * n
     _, det = solve_linear(jac, [0.0] * n)
     sigma = conditioning(jac, det)
-    if order >= 1 and det != 0.0:
-        st, rec = group([(a[i], 0.0, 0.0) for i in range(n)], True)
+    rates = accs = [0.0] * n
+    if det != 0.0:
+        st, rec = group([_record(a[i], 0.0, 0.0) for i in range(n)], True)
         rates, _ = solve_linear(jac, [-r[1] for r in rec])
+# if order >= 2
         if order >= 2:
-            st, rec = group([(a[i], rates[i], 0.0) for i in range(n)], True)
+            st, rec = group([_record(a[i], rates[i], 0.0) for i in range(n)], True)
             accs, _ = solve_linear(jac, [-r[2] for r in rec])
-    elif order >= 1:
-        rates, accs = [NAN] * n, [NAN] * n
-    st, _ = group([(a[i], rates[i], accs[i]) for i in range(n)], True)
-    return st, sigma, rates, accs
+# endif
+    else:
+        rates = accs = [NAN] * n
+    st, _ = group([_record(a[i], rates[i], accs[i]) for i in range(n)], True)
+    return st, sigma
+
+
+def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer):
+    """Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
+    preferred block first, the others in order; the first that converges is kept.
+
+    a[first + k] is block k's start lengths (its solution on return).  Returns
+    (k, Newton steps, sigma), k = -1 when no block converges.
+    """
+    its = 0
+    for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
+        ok, x, its, jac = newton(groups[k], a[first + k], tol, max_iter, reach)
+        if not ok:
+            continue
+        st, sigma = addlink_rates(groups[k], x, jac, order)
+        if st == 1:
+            continue
+        a[first + k] = x
+        return k, its, sigma
+    return -1, its, 0.0
 
 
 def predict(warm, inputs):
     """Resolver start values for new inputs: the warm lengths moved along their rates
-    (second-order Taylor in the warm row's input direction)."""
-    w_in, w_rates, a, ad, add = warm
+    (first-order Taylor in the warm row's input direction; rates exist at every order,
+    so a program gives the same positions whatever order it computes)."""
+    w_in, w_rates, a, ad = warm
     den = sum(r * r for r in w_rates)
     tau = sum((x - y) * r for x, y, r in zip(inputs, w_in, w_rates)) / den if den > 0 else 0.0
-    return [[v + tau * (dv + 0.5 * tau * ddv) for v, dv, ddv in zip(g, gd, gdd)] for g, gd, gdd in zip(a, ad, add)]
+    return [[v + tau * dv for v, dv in zip(g, gd)] for g, gd in zip(a, ad)]
 
 
 def continuation(run, base, a, target, limits, periodic, halvings):

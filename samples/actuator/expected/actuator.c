@@ -200,14 +200,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    w->sigma[1] = 1.0;
-    w->sigma[2] = 1.0;
-    w->sigma[3] = 1.0;
-    w->sigma[4] = 1.0;
-    w->sigma[5] = 1.0;
-    w->sigma[6] = 1.0;
-    w->sigma[7] = 1.0;
-    w->sigma[8] = 1.0;
+    for (st = 0; st <= ACTUATOR_N_STEPS; st++) w->sigma[st] = 1.0;
     w->in1.v = in[0]; w->in1.dv = din[0]; w->in1.ddv = ddin[0];
 
     /* Step 1: fixed, stick. link stick is the frame: its pairs are fixed */

@@ -20,8 +20,7 @@ typedef struct { double phi, omega, alpha; } actuator_angle;
 typedef struct { double x, y, vx, vy, ax, ay, s, ds, dds; } actuator_prismatic;
 
 /* Everything one call of actuator_solve gives.  Zero it (or call
-   actuator_init) before the first call; keep it between calls so the
-   resolver starts from the previous solution. */
+   actuator_init) before the first call. */
 typedef struct {
     actuator_point S0;
     actuator_prismatic C;
@@ -40,7 +39,7 @@ typedef struct {
     double sigma[ACTUATOR_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } actuator_state;
 
-/* Clear a state: outputs, and the resolvers start from the sketch. */
+/* Clear a state. */
 void actuator_init(actuator_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of

@@ -81,11 +81,13 @@ static int PRP_links(POINT pg1, ANGLE psig1, double gsi1, double eta1, POINT pg2
     const double gx = pg2.P.x + r2x - pg1.P.x - r1x;
     const double gy = pg2.P.y + r2y - pg1.P.y - r1y;
     const double sv1 = (gx * sg2 - gy * cg2) * icr;
-    const double sv2 = (gx * sg1 - gy * cg1) * icr;
     const double jp1x = pg1.P.x + sv1 * cg1;
     const double jp1y = pg1.P.y + sv1 * sg1;
-    const double jp2x = pg2.P.x + sv2 * cg2;
-    const double jp2y = pg2.P.y + sv2 * sg2;
+    const double jbx = jp1x + r1x;
+    const double jby = jp1y + r1y;
+    const double jp2x = jbx - r2x;
+    const double jp2y = jby - r2y;
+    const double sv2 = (jp2x - pg2.P.x) * cg2 + (jp2y - pg2.P.y) * sg2;
     const double sigma = fmin(fabs(cr), 1);
     const double r1vx = -psig1.dthe * r1y;
     const double r1vy = psig1.dthe * r1x;
@@ -138,8 +140,8 @@ static int PRP_links(POINT pg1, ANGLE psig1, double gsi1, double eta1, POINT pg2
     jp2->DP.y = jp2vy;
     jp2->DDP.x = jp2ax;
     jp2->DDP.y = jp2ay;
-    jb->P.x = jp1x + r1x;
-    jb->P.y = jp1y + r1y;
+    jb->P.x = jbx;
+    jb->P.y = jby;
     jb->DP.x = jp1vx + r1vx;
     jb->DP.y = jp1vy + r1vy;
     jb->DDP.x = jp1ax + r1ax;
@@ -187,11 +189,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    w->sigma[1] = 1.0;
-    w->sigma[2] = 1.0;
-    w->sigma[3] = 1.0;
-    w->sigma[4] = 1.0;
-    w->sigma[5] = 1.0;
+    for (st = 0; st <= CROSS_SLOT_N_STEPS; st++) w->sigma[st] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */

@@ -20,8 +20,7 @@ typedef struct { double phi, omega, alpha; } cross_slot_angle;
 typedef struct { double x, y, vx, vy, ax, ay, s, ds, dds; } cross_slot_prismatic;
 
 /* Everything one call of cross_slot_solve gives.  Zero it (or call
-   cross_slot_init) before the first call; keep it between calls so the
-   resolver starts from the previous solution. */
+   cross_slot_init) before the first call. */
 typedef struct {
     cross_slot_point O;
     cross_slot_prismatic P1;
@@ -35,7 +34,7 @@ typedef struct {
     double sigma[CROSS_SLOT_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } cross_slot_state;
 
-/* Clear a state: outputs, and the resolvers start from the sketch. */
+/* Clear a state. */
 void cross_slot_init(cross_slot_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of

@@ -5,15 +5,13 @@
         inputs in radians and length units, in the order of the file's inputs,
         with their rates and accelerations (per second); returns every output
         column ("A.x", "crank.phi", ...), "status" and "sigma" (conditioning per
-        step).  Pass the same dict as state on every call of a sweep so the
-        resolver starts from the previous row.
-    python cross_slot.py
+        step).    python cross_slot.py
         writes the sweep over the inputs' ranges as CSV to standard output.
 """
 
 import math
 import sys
-from math import atan2, cos, floor, sin, sqrt
+from math import atan2, cos, sin
 
 EPS = sys.float_info.epsilon
 NAN = math.nan
@@ -138,11 +136,13 @@ def PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
     gx = pg2_x + r2x - pg1_x - r1x
     gy = pg2_y + r2y - pg1_y - r1y
     sv1 = (gx * sg2 - gy * cg2) * icr
-    sv2 = (gx * sg1 - gy * cg1) * icr
     jp1x = pg1_x + sv1 * cg1
     jp1y = pg1_y + sv1 * sg1
-    jp2x = pg2_x + sv2 * cg2
-    jp2y = pg2_y + sv2 * sg2
+    jbx = jp1x + r1x
+    jby = jp1y + r1y
+    jp2x = jbx - r2x
+    jp2y = jby - r2y
+    sv2 = (jp2x - pg2_x) * cg2 + (jp2y - pg2_y) * sg2
     sigma = min(abs(cr), 1)
     r1vx = -psig1_dthe * r1y
     r1vy = psig1_dthe * r1x
@@ -180,8 +180,8 @@ def PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
     if st == 1:
         return st, sigma, (NAN, NAN, NAN), (NAN, NAN, NAN, NAN, NAN, NAN), (NAN, NAN, NAN), (NAN, NAN, NAN, NAN, NAN, NAN), (NAN, NAN, NAN, NAN, NAN, NAN)
     if st == 3:
-        return st, sigma, (sv1, NAN, NAN), (jp1x, jp1y, NAN, NAN, NAN, NAN), (sv2, NAN, NAN), (jp2x, jp2y, NAN, NAN, NAN, NAN), (jp1x + r1x, jp1y + r1y, NAN, NAN, NAN, NAN)
-    return st, sigma, (sv1, ds1, dds1), (jp1x, jp1y, jp1vx, jp1vy, jp1ax, jp1ay), (sv2, ds2, dds2), (jp2x, jp2y, jp2vx, jp2vy, jp2ax, jp2ay), (jp1x + r1x, jp1y + r1y, jp1vx + r1vx, jp1vy + r1vy, jp1ax + r1ax, jp1ay + r1ay)
+        return st, sigma, (sv1, NAN, NAN), (jp1x, jp1y, NAN, NAN, NAN, NAN), (sv2, NAN, NAN), (jp2x, jp2y, NAN, NAN, NAN, NAN), (jbx, jby, NAN, NAN, NAN, NAN)
+    return st, sigma, (sv1, ds1, dds1), (jp1x, jp1y, jp1vx, jp1vy, jp1ax, jp1ay), (sv2, ds2, dds2), (jp2x, jp2y, jp2vx, jp2vy, jp2ax, jp2ay), (jbx, jby, jp1vx + r1vx, jp1vy + r1vy, jp1ax + r1ax, jp1ay + r1ay)
 
 # -- constants taken from the sketch -----------------------------------------
 

@@ -13,6 +13,7 @@ typedef struct { double v, dv, ddv; } VARIABLE;
 
 #define LINKGEN_NMAX 1
 #define LINKGEN_NGROUPS 2
+#define LINKGEN_NBLOCKS 16
 #define LINKGEN_NINPUTS 1
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
@@ -202,7 +203,11 @@ static int jacobian(group_fn group, void *ctx, int n, const double a[], double f
     VARIABLE rec[LINKGEN_NMAX], res[LINKGEN_NMAX];
     int i, j;
     for (j = 0; j < n; j++) {
-        for (i = 0; i < n; i++) { rec[i].v = a[i]; rec[i].dv = (i == j) ? 1.0 : 0.0; rec[i].ddv = 0.0; }
+        for (i = 0; i < n; i++) {
+            rec[i].v = a[i];
+            rec[i].dv = (i == j) ? 1.0 : 0.0;
+            rec[i].ddv = 0.0;
+        }
         if (group(ctx, rec, 0, res)) return 1;
         for (i = 0; i < n; i++) { f[i] = res[i].v; jac[i][j] = res[i].dv; }
     }
@@ -223,15 +228,19 @@ static double conditioning(int n, const double jac[][LINKGEN_NMAX], double det)
 }
 
 /* Iterate the Add-link lengths until max|f| <= tol, then one step more.  A step
- * that makes a chain fail to close is halved (up to 8 times).  Returns 1 on
- * success with jac the Jacobian at the returned a. */
-static int newton(group_fn group, void *ctx, int n, double a[], double tol, int max_iter,
+ * that makes a chain fail to close is halved (up to 3 times; then the block
+ * fails and the next block is tried).  A solution farther than reach from the
+ * start is another assembly and refused.  Returns 1 on success with jac the
+ * Jacobian at the returned a. */
+static int newton(group_fn group, void *ctx, int n, double a[], double tol, int max_iter, double reach,
                   double jac[][LINKGEN_NMAX], int *iterations)
 {
+    double start[LINKGEN_NMAX];
     double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], dx[LINKGEN_NMAX], trial[LINKGEN_NMAX], rhs[LINKGEN_NMAX];
     double jac2[LINKGEN_NMAX][LINKGEN_NMAX];
     int it, i, j, halving;
     *iterations = 0;
+    for (i = 0; i < n; i++) start[i] = a[i];
     if (jacobian(group, ctx, n, a, f, jac)) return 0;
     for (it = 1; it <= max_iter; it++) {
         double t = 1.0, worst = 0.0;
@@ -239,7 +248,7 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
         *iterations = it;
         for (i = 0; i < n; i++) rhs[i] = -f[i];
         if (solve_linear(n, (const double (*)[LINKGEN_NMAX])jac, rhs, dx) == 0.0) return 0;
-        for (halving = 0; halving < 9; halving++) {
+        for (halving = 0; halving < 4; halving++) {
             for (i = 0; i < n; i++) trial[i] = a[i] + t * dx[i];
             if (!jacobian(group, ctx, n, trial, f2, jac2)) { closed = 1; break; }
             t /= 2;
@@ -251,46 +260,71 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
             f[i] = f2[i];
             for (j = 0; j < n; j++) jac[i][j] = jac2[i][j];
         }
-        if (worst <= tol) return 1;
+        if (worst <= tol) {
+            double moved = 0.0;
+            for (i = 0; i < n; i++) moved = fmax(moved, fabs(a[i] - start[i]));
+            return moved <= reach;
+        }
     }
     return 0;
 }
 
-/* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0,
- * J addot = -d2f/dt2 at addot = 0, the same J), then the final pass with them.
- * Returns the status of the final pass. */
+/* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
+ * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J), then
+ * the final pass with them.  The rates are found at every order (they start the next
+ * row).  Returns the status of the final pass. */
 static int addlink_rates(group_fn group, void *ctx, int n, const double a[], const double jac[][LINKGEN_NMAX],
-                         int order, double rates[], double accs[], double *sigma)
+                         int order, double *sigma)
 {
     VARIABLE rec[LINKGEN_NMAX], res[LINKGEN_NMAX];
-    double rhs[LINKGEN_NMAX], det;
+    double rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], det;
     int i;
-    for (i = 0; i < n; i++) { rec[i].v = a[i]; rec[i].dv = 0.0; rec[i].ddv = 0.0; rhs[i] = 0.0; rates[i] = 0.0; accs[i] = 0.0; }
-    if (order >= 1) {
+    for (i = 0; i < n; i++) {
+        rec[i].v = a[i];
+        rec[i].dv = 0.0;
+        rec[i].ddv = 0.0;
+    }
+    group(ctx, rec, 1, res);
+    for (i = 0; i < n; i++) rhs[i] = -res[i].dv;
+    det = solve_linear(n, jac, rhs, rates);
+    for (i = 0; i < n; i++) rec[i].dv = rates[i];
+    if (order >= 2) {
+        double accs[LINKGEN_NMAX];
         group(ctx, rec, 1, res);
-        for (i = 0; i < n; i++) rhs[i] = -res[i].dv;
-        det = solve_linear(n, jac, rhs, rates);
-        if (order >= 2 && det != 0.0) {
-            for (i = 0; i < n; i++) rec[i].dv = rates[i];
-            group(ctx, rec, 1, res);
-            for (i = 0; i < n; i++) rhs[i] = -res[i].ddv;
-            solve_linear(n, jac, rhs, accs);
-        } else if (det == 0.0) {
-            for (i = 0; i < n; i++) accs[i] = NAN;
-        }
-    } else {
-        det = solve_linear(n, jac, rhs, rates);
+        for (i = 0; i < n; i++) rhs[i] = -res[i].ddv;
+        solve_linear(n, jac, rhs, accs);
+        for (i = 0; i < n; i++) rec[i].ddv = det != 0.0 ? accs[i] : NAN;
     }
     *sigma = conditioning(n, jac, det);
-    for (i = 0; i < n; i++) { rec[i].v = a[i]; rec[i].dv = rates[i]; rec[i].ddv = accs[i]; }
     return group(ctx, rec, 1, res);
 }
 
+/* Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
+ * preferred block first, the others in order; the first that converges is kept.
+ * a[k] holds block k's start lengths (its solution on return).  Returns the block,
+ * or -1 when none converges. */
+static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
+                            double tol, int max_iter, double reach, int order, int prefer, int *its, double *sigma)
+{
+    double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX];
+    int t, k, i;
+    for (t = 0; t < count; t++) {
+        k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
+        for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
+        if (!newton(fns[k], ctx, sizes[k], x, tol, max_iter, reach, jac, its)) continue;
+        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) == 1)
+            continue;
+        for (i = 0; i < sizes[k]; i++) a[k][i] = x[i];
+        return k;
+    }
+    return -1;
+}
+
 /* Resolver start values for new inputs: the warm lengths moved along their rates
- * (second-order Taylor in the warm row's input direction). */
+ * (first-order Taylor in the warm row's input direction; the rates exist at every
+ * order, so the positions do not depend on the order computed). */
 static void predict(const double w_in[], const double w_din[], const double w_a[][LINKGEN_NMAX],
-                    const double w_ad[][LINKGEN_NMAX], const double w_add[][LINKGEN_NMAX], const double in[],
-                    double a[][LINKGEN_NMAX])
+                    const double w_ad[][LINKGEN_NMAX], const double in[], double a[][LINKGEN_NMAX])
 {
     double num = 0.0, den = 0.0, tau;
     int g, i;
@@ -299,8 +333,8 @@ static void predict(const double w_in[], const double w_din[], const double w_a[
         den += w_din[i] * w_din[i];
     }
     tau = den > 0.0 ? num / den : 0.0;
-    for (g = 0; g < LINKGEN_NGROUPS; g++)
-        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = w_a[g][i] + tau * (w_ad[g][i] + 0.5 * tau * w_add[g][i]);
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = w_a[g][i] + tau * w_ad[g][i];
 }
 
 /* One pass of the procedure along a continuation path: returns 1 when it closes,
@@ -312,34 +346,34 @@ typedef int (*path_fn)(void *ctx, const double in[], const double din[], int ord
 static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double goal[],
                 const double limits[], int halvings)
 {
-    double d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS], start[LINKGEN_NGROUPS][LINKGEN_NMAX];
-    double rate[LINKGEN_NGROUPS][LINKGEN_NMAX], guess[LINKGEN_NGROUPS][LINKGEN_NMAX], rate2[LINKGEN_NGROUPS][LINKGEN_NMAX];
+    double d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS], start[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double t = 0.0, h, h_max = 1.0;
     int g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         d[i] = goal[i] - base[i];
         if (d[i] != 0.0) h_max = fmin(h_max, limits[i] / fabs(d[i]));
     }
-    for (g = 0; g < LINKGEN_NGROUPS; g++)
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) start[g][i] = a[g][i];
     if (!run(ctx, base, d, 1, start, rate)) return 0;
     h = h_max;
     while (t < 1.0) {
         const double tt = fmin(1.0, t + h);
         for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
-        for (g = 0; g < LINKGEN_NGROUPS; g++)
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
             for (i = 0; i < LINKGEN_NMAX; i++) guess[g][i] = start[g][i] + (tt - t) * rate[g][i];
         if (run(ctx, trial, d, 1, guess, rate2)) {
             t = tt;
             h = fmin(2.0 * h, h_max);
-            for (g = 0; g < LINKGEN_NGROUPS; g++)
+            for (g = 0; g < LINKGEN_NBLOCKS; g++)
                 for (i = 0; i < LINKGEN_NMAX; i++) { start[g][i] = guess[g][i]; rate[g][i] = rate2[g][i]; }
         } else {
             h /= 2.0;
             if (h < h_max * ldexp(1.0, -halvings)) return 0;
         }
     }
-    for (g = 0; g < LINKGEN_NGROUPS; g++)
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = start[g][i];
     return 1;
 }
@@ -385,6 +419,7 @@ static const VARIABLE l_left_rocker2 = {65.19202405202648, 0.0, 0.0};
 static const VARIABLE l_left_rocker1 = {70.0, 0.0, 0.0};
 static const VARIABLE l_left_ternary_K2_K4 = {105.11898020814318, 0.0, 0.0};
 static const VARIABLE l_left_coupler = {121.6552506059644, 0.0, 0.0};
+static const VARIABLE l_left_ternary_K2_K5 = {60.8276253029822, 0.0, 0.0};
 
 /* The records of one solution. */
 typedef struct {
@@ -409,8 +444,37 @@ typedef struct {
     ANGLE phi_left_rocker1;
     ANGLE phi_left_rocker2;
     ANGLE phi_left_coupler;
+    VARIABLE add1_v1;
+    VARIABLE f1_v1;
+    VARIABLE add1_v2;
+    VARIABLE f1_v2;
+    VARIABLE add1_v3;
+    VARIABLE f1_v3;
+    VARIABLE add1_v4;
+    VARIABLE f1_v4;
+    VARIABLE add1_v5;
+    VARIABLE f1_v5;
+    VARIABLE add1_v6;
+    VARIABLE f1_v6;
+    VARIABLE add2_v1;
+    VARIABLE f2_v1;
+    VARIABLE add2_v2;
+    VARIABLE f2_v2;
+    VARIABLE add2_v3;
+    VARIABLE f2_v3;
+    VARIABLE add2_v4;
+    VARIABLE f2_v4;
+    VARIABLE add2_v5;
+    VARIABLE f2_v5;
+    VARIABLE add2_v6;
+    VARIABLE f2_v6;
+    VARIABLE add2_v7;
+    VARIABLE f2_v7;
+    VARIABLE add2_v8;
+    VARIABLE f2_v8;
     double sigma[DOUBLE_TRIAD_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
+    int used[LINKGEN_NGROUPS];  /* the block that solved each resolver group */
 } work;
 
 /* Remember the first step at a singular (3) or near-singular (4) position. */
@@ -419,6 +483,8 @@ static void note(work *w, int step, int st)
     if (st == 3 && !w->singular) w->singular = 10 * step + 3;
     if (st == 4 && !w->near) w->near = 10 * step + 4;
 }
+
+static const VARIABLE ZERO_LENGTH = { 0.0, 0.0, 0.0 };
 
 /* Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9:
    the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
@@ -452,6 +518,222 @@ static int group_1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     if (st == 1) return 1;
     if (live) note(w, 8, st);
     f[0] = w->f1;
+    return 0;
+}
+
+
+/* Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9   (fallback 1: the Add-link J6-J2):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v1 = a[0];
+    /* Step 24: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, p_J6, l_right_rocker1, w->add1_v1, -1, &w->p_J2, &w->sigma[24]);
+    if (st == 1) return 1;
+    if (live) note(w, 24, st);
+    /* Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(w->p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, 1, &w->p_J4, &w->sigma[25]);
+    if (st == 1) return 1;
+    if (live) note(w, 25, st);
+    /* Step 26: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
+    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 26, st);
+    /* Step 27: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
+    /* Step 28: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v1);
+    if (st == 1) return 1;
+    if (live) note(w, 28, st);
+    f[0] = w->f1_v1;
+    return 0;
+}
+
+
+/* Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9   (fallback 2: the Add-link J7-J2):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v2 = a[0];
+    /* Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, p_J7, l_right_rocker1, w->add1_v2, -1, &w->p_J2, &w->sigma[29]);
+    if (st == 1) return 1;
+    if (live) note(w, 29, st);
+    /* Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(w->p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, 1, &w->p_J4, &w->sigma[30]);
+    if (st == 1) return 1;
+    if (live) note(w, 30, st);
+    /* Step 31: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
+    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 31, st);
+    /* Step 32: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
+    /* Step 33: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v2);
+    if (st == 1) return 1;
+    if (live) note(w, 33, st);
+    f[0] = w->f1_v2;
+    return 0;
+}
+
+
+/* Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9   (fallback 3: the Add-link J7-J4):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v3 = a[0];
+    /* Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J3, p_J7, l_right_rocker2, w->add1_v3, -1, &w->p_J4, &w->sigma[34]);
+    if (st == 1) return 1;
+    if (live) note(w, 34, st);
+    /* Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, w->p_J4, l_right_rocker1, l_right_ternary_J2_J4, 1, &w->p_J2, &w->sigma[35]);
+    if (st == 1) return 1;
+    if (live) note(w, 35, st);
+    /* Step 36: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
+    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 36, st);
+    /* Step 37: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
+    coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
+    /* Step 38: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v3);
+    if (st == 1) return 1;
+    if (live) note(w, 38, st);
+    f[0] = w->f1_v3;
+    return 0;
+}
+
+
+/* Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9   (fallback 4: the Add-link J1-J4):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v4 = a[0];
+    /* Step 39: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J3, p_J1, l_right_rocker2, w->add1_v4, -1, &w->p_J4, &w->sigma[39]);
+    if (st == 1) return 1;
+    if (live) note(w, 39, st);
+    /* Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, w->p_J4, l_right_rocker1, l_right_ternary_J2_J4, 1, &w->p_J2, &w->sigma[40]);
+    if (st == 1) return 1;
+    if (live) note(w, 40, st);
+    /* Step 41: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
+    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 41, st);
+    /* Step 42: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
+    coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
+    /* Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v4);
+    if (st == 1) return 1;
+    if (live) note(w, 43, st);
+    f[0] = w->f1_v4;
+    return 0;
+}
+
+
+/* Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9   (fallback 5: the Add-link J3-J2):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v5 = a[0];
+    /* Step 44: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, p_J3, l_right_rocker1, w->add1_v5, 1, &w->p_J2, &w->sigma[44]);
+    if (st == 1) return 1;
+    if (live) note(w, 44, st);
+    /* Step 45: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(w->p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, 1, &w->p_J4, &w->sigma[45]);
+    if (st == 1) return 1;
+    if (live) note(w, 45, st);
+    /* Step 46: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
+    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 46, st);
+    /* Step 47: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
+    /* Step 48: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v5);
+    if (st == 1) return 1;
+    if (live) note(w, 48, st);
+    f[0] = w->f1_v5;
+    return 0;
+}
+
+
+/* Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9   (fallback 6: the Add-link K1-J2):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v6 = a[0];
+    /* Step 49: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, p_K1, l_right_rocker1, w->add1_v6, -1, &w->p_J2, &w->sigma[49]);
+    if (st == 1) return 1;
+    if (live) note(w, 49, st);
+    /* Step 50: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(w->p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, 1, &w->p_J4, &w->sigma[50]);
+    if (st == 1) return 1;
+    if (live) note(w, 50, st);
+    /* Step 51: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
+    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 51, st);
+    /* Step 52: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
+    /* Step 53: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v6);
+    if (st == 1) return 1;
+    if (live) note(w, 53, st);
+    f[0] = w->f1_v6;
     return 0;
 }
 
@@ -492,37 +774,380 @@ static int group_2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
 }
 
 
+/* Steps 54, 55, 56, 57, 58, iterated by the resolver of step 16   (fallback 1: the Add-link J5-K2):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_2_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J5 = w->p_J5;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J5.DP.x = 0.0; p_J5.DP.y = 0.0; p_J5.DDP.x = 0.0; p_J5.DDP.y = 0.0;
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add2_v1 = a[0];
+    /* Step 54: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(p_K1, p_J5, l_left_rocker1, w->add2_v1, 1, &w->p_K2, &w->sigma[54]);
+    if (st == 1) return 1;
+    if (live) note(w, 54, st);
+    /* Step 55: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(w->p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, -1, &w->p_K4, &w->sigma[55]);
+    if (st == 1) return 1;
+    if (live) note(w, 55, st);
+    /* Step 56: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
+    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 56, st);
+    /* Step 57: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
+    coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
+    /* Step 58: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v1);
+    if (st == 1) return 1;
+    if (live) note(w, 58, st);
+    f[0] = w->f2_v1;
+    return 0;
+}
+
+
+/* Steps 59, 60, 61, 62, 63, iterated by the resolver of step 16   (fallback 2: the Add-link J5-K4):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_2_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J5 = w->p_J5;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J5.DP.x = 0.0; p_J5.DP.y = 0.0; p_J5.DDP.x = 0.0; p_J5.DDP.y = 0.0;
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add2_v2 = a[0];
+    /* Step 59: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(p_K3, p_J5, l_left_rocker2, w->add2_v2, 1, &w->p_K4, &w->sigma[59]);
+    if (st == 1) return 1;
+    if (live) note(w, 59, st);
+    /* Step 60: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(p_K1, w->p_K4, l_left_rocker1, l_left_ternary_K2_K4, -1, &w->p_K2, &w->sigma[60]);
+    if (st == 1) return 1;
+    if (live) note(w, 60, st);
+    /* Step 61: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
+    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 61, st);
+    /* Step 62: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
+    coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
+    /* Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v2);
+    if (st == 1) return 1;
+    if (live) note(w, 63, st);
+    f[0] = w->f2_v2;
+    return 0;
+}
+
+
+/* Steps 64, 65, 66, 67, 68, iterated by the resolver of step 16   (fallback 3: the Add-link J2-K4):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_2_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J2 = w->p_J2;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J2.DP.x = 0.0; p_J2.DP.y = 0.0; p_J2.DDP.x = 0.0; p_J2.DDP.y = 0.0;
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add2_v3 = a[0];
+    /* Step 64: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(p_K3, p_J2, l_left_rocker2, w->add2_v3, 1, &w->p_K4, &w->sigma[64]);
+    if (st == 1) return 1;
+    if (live) note(w, 64, st);
+    /* Step 65: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(p_K1, w->p_K4, l_left_rocker1, l_left_ternary_K2_K4, -1, &w->p_K2, &w->sigma[65]);
+    if (st == 1) return 1;
+    if (live) note(w, 65, st);
+    /* Step 66: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
+    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 66, st);
+    /* Step 67: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
+    coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
+    /* Step 68: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v3);
+    if (st == 1) return 1;
+    if (live) note(w, 68, st);
+    f[0] = w->f2_v3;
+    return 0;
+}
+
+
+/* Steps 69, 70, 71, 72, 73, iterated by the resolver of step 16   (fallback 4: the Add-link J4-K4):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_2_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J4 = w->p_J4;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J4.DP.x = 0.0; p_J4.DP.y = 0.0; p_J4.DDP.x = 0.0; p_J4.DDP.y = 0.0;
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add2_v4 = a[0];
+    /* Step 69: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(p_K3, p_J4, l_left_rocker2, w->add2_v4, 1, &w->p_K4, &w->sigma[69]);
+    if (st == 1) return 1;
+    if (live) note(w, 69, st);
+    /* Step 70: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(p_K1, w->p_K4, l_left_rocker1, l_left_ternary_K2_K4, -1, &w->p_K2, &w->sigma[70]);
+    if (st == 1) return 1;
+    if (live) note(w, 70, st);
+    /* Step 71: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
+    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 71, st);
+    /* Step 72: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
+    coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
+    /* Step 73: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v4);
+    if (st == 1) return 1;
+    if (live) note(w, 73, st);
+    f[0] = w->f2_v4;
+    return 0;
+}
+
+
+/* Steps 74, 75, 76, 77, 78, iterated by the resolver of step 16   (fallback 5: the Add-link J2-K2):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_2_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J2 = w->p_J2;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J2.DP.x = 0.0; p_J2.DP.y = 0.0; p_J2.DDP.x = 0.0; p_J2.DDP.y = 0.0;
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add2_v5 = a[0];
+    /* Step 74: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(p_K1, p_J2, l_left_rocker1, w->add2_v5, 1, &w->p_K2, &w->sigma[74]);
+    if (st == 1) return 1;
+    if (live) note(w, 74, st);
+    /* Step 75: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(w->p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, -1, &w->p_K4, &w->sigma[75]);
+    if (st == 1) return 1;
+    if (live) note(w, 75, st);
+    /* Step 76: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
+    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 76, st);
+    /* Step 77: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
+    coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
+    /* Step 78: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v5);
+    if (st == 1) return 1;
+    if (live) note(w, 78, st);
+    f[0] = w->f2_v5;
+    return 0;
+}
+
+
+/* Steps 79, 80, 81, 82, 83, iterated by the resolver of step 16   (fallback 6: the Add-link J4-K2):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_2_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J4 = w->p_J4;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J4.DP.x = 0.0; p_J4.DP.y = 0.0; p_J4.DDP.x = 0.0; p_J4.DDP.y = 0.0;
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add2_v6 = a[0];
+    /* Step 79: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(p_K1, p_J4, l_left_rocker1, w->add2_v6, 1, &w->p_K2, &w->sigma[79]);
+    if (st == 1) return 1;
+    if (live) note(w, 79, st);
+    /* Step 80: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(w->p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, -1, &w->p_K4, &w->sigma[80]);
+    if (st == 1) return 1;
+    if (live) note(w, 80, st);
+    /* Step 81: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
+    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 81, st);
+    /* Step 82: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
+    coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
+    /* Step 83: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v6);
+    if (st == 1) return 1;
+    if (live) note(w, 83, st);
+    f[0] = w->f2_v6;
+    return 0;
+}
+
+
+/* Steps 84, 85, 86, 87, 88, iterated by the resolver of step 16   (fallback 7: the Add-link J6-K2):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_2_v7(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add2_v7 = a[0];
+    /* Step 84: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(p_K1, p_J6, l_left_rocker1, w->add2_v7, 1, &w->p_K2, &w->sigma[84]);
+    if (st == 1) return 1;
+    if (live) note(w, 84, st);
+    /* Step 85: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(w->p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, -1, &w->p_K4, &w->sigma[85]);
+    if (st == 1) return 1;
+    if (live) note(w, 85, st);
+    /* Step 86: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
+    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 86, st);
+    /* Step 87: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
+    coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
+    /* Step 88: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v7);
+    if (st == 1) return 1;
+    if (live) note(w, 88, st);
+    f[0] = w->f2_v7;
+    return 0;
+}
+
+
+/* Steps 89, 90, 91, 92, 93, iterated by the resolver of step 16   (fallback 8: the Add-link J5-K5):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_2_v8(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    POINT p_J5 = w->p_J5;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+        p_J5.DP.x = 0.0; p_J5.DP.y = 0.0; p_J5.DDP.x = 0.0; p_J5.DDP.y = 0.0;
+    }
+    w->add2_v8 = a[0];
+    /* Step 89: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J6, p_J5, l_left_coupler, w->add2_v8, -1, &w->p_K5, &w->sigma[89]);
+    if (st == 1) return 1;
+    if (live) note(w, 89, st);
+    /* Step 90: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(p_K1, w->p_K5, l_left_rocker1, l_left_ternary_K2_K5, -1, &w->p_K2, &w->sigma[90]);
+    if (st == 1) return 1;
+    if (live) note(w, 90, st);
+    /* Step 91: link_angle, left_ternary. K5 and K2 of link left_ternary are known, so its angle is */
+    st = link_angle(w->p_K5, w->p_K2, -2.928860872898183, &w->phi_left_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 91, st);
+    /* Step 92: coupler_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it */
+    coupler_point(w->p_K5, w->phi_left_ternary, 45.662543438831435, 12.842590342171338, &w->p_K4);
+    /* Step 93: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_K3, w->p_K4, l_left_rocker2, &w->f2_v8);
+    if (st == 1) return 1;
+    if (live) note(w, 93, st);
+    f[0] = w->f2_v8;
+    return 0;
+}
+
+
+/* The Add-link lengths of every block of group 1, measured on the solved pairs. */
+static void lengths_1(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
+{
+    VARIABLE f;
+    link_residual(w->p_J6, w->p_J4, ZERO_LENGTH, &f);
+    a[0][0] = f.v;
+    ad[0][0] = f.dv;
+    link_residual(w->p_J6, w->p_J2, ZERO_LENGTH, &f);
+    a[1][0] = f.v;
+    ad[1][0] = f.dv;
+    link_residual(p_J7, w->p_J2, ZERO_LENGTH, &f);
+    a[2][0] = f.v;
+    ad[2][0] = f.dv;
+    link_residual(p_J7, w->p_J4, ZERO_LENGTH, &f);
+    a[3][0] = f.v;
+    ad[3][0] = f.dv;
+    link_residual(p_J1, w->p_J4, ZERO_LENGTH, &f);
+    a[4][0] = f.v;
+    ad[4][0] = f.dv;
+    link_residual(p_J3, w->p_J2, ZERO_LENGTH, &f);
+    a[5][0] = f.v;
+    ad[5][0] = f.dv;
+    link_residual(p_K1, w->p_J2, ZERO_LENGTH, &f);
+    a[6][0] = f.v;
+    ad[6][0] = f.dv;
+}
+
+
+/* The Add-link lengths of every block of group 2, measured on the solved pairs. */
+static void lengths_2(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
+{
+    VARIABLE f;
+    link_residual(w->p_J6, w->p_K4, ZERO_LENGTH, &f);
+    a[0][0] = f.v;
+    ad[0][0] = f.dv;
+    link_residual(w->p_J5, w->p_K2, ZERO_LENGTH, &f);
+    a[1][0] = f.v;
+    ad[1][0] = f.dv;
+    link_residual(w->p_J5, w->p_K4, ZERO_LENGTH, &f);
+    a[2][0] = f.v;
+    ad[2][0] = f.dv;
+    link_residual(w->p_J2, w->p_K4, ZERO_LENGTH, &f);
+    a[3][0] = f.v;
+    ad[3][0] = f.dv;
+    link_residual(w->p_J4, w->p_K4, ZERO_LENGTH, &f);
+    a[4][0] = f.v;
+    ad[4][0] = f.dv;
+    link_residual(w->p_J2, w->p_K2, ZERO_LENGTH, &f);
+    a[5][0] = f.v;
+    ad[5][0] = f.dv;
+    link_residual(w->p_J4, w->p_K2, ZERO_LENGTH, &f);
+    a[6][0] = f.v;
+    ad[6][0] = f.dv;
+    link_residual(w->p_J6, w->p_K2, ZERO_LENGTH, &f);
+    a[7][0] = f.v;
+    ad[7][0] = f.dv;
+    link_residual(w->p_J5, w->p_K5, ZERO_LENGTH, &f);
+    a[8][0] = f.v;
+    ad[8][0] = f.dv;
+}
+
+
 /* The procedure of double_triad.md, step by step. */
 static int run(work *w, const double in[], const double din[], const double ddin[], int order,
-               double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], double add[][LINKGEN_NMAX], int its[])
+               double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int its[],
+               int used[])
 {
     int st;
 
     w->singular = 0;
     w->near = 0;
-    w->sigma[1] = 1.0;
-    w->sigma[2] = 1.0;
-    w->sigma[3] = 1.0;
-    w->sigma[4] = 1.0;
-    w->sigma[5] = 1.0;
-    w->sigma[6] = 1.0;
-    w->sigma[7] = 1.0;
-    w->sigma[8] = 1.0;
-    w->sigma[9] = 1.0;
-    w->sigma[10] = 1.0;
-    w->sigma[11] = 1.0;
-    w->sigma[12] = 1.0;
-    w->sigma[13] = 1.0;
-    w->sigma[14] = 1.0;
-    w->sigma[15] = 1.0;
-    w->sigma[16] = 1.0;
-    w->sigma[17] = 1.0;
-    w->sigma[18] = 1.0;
-    w->sigma[19] = 1.0;
-    w->sigma[20] = 1.0;
-    w->sigma[21] = 1.0;
-    w->sigma[22] = 1.0;
-    w->sigma[23] = 1.0;
+    for (st = 0; st <= DOUBLE_TRIAD_N_STEPS; st++) w->sigma[st] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
@@ -537,14 +1162,15 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     /* Step 9: resolve, group1. Newton-Raphson on add1 until right_coupler regains its length */
     {
-        double jac[LINKGEN_NMAX][LINKGEN_NMAX];
-        const int n = 1;
-        const int k = 0;
-        if (!newton(group_1, w, n, a[k], 1e-10 * LENGTH_SCALE, 8, jac, &its[k]))
-            return 92;
-        st = addlink_rates(group_1, w, n, a[k], (const double (*)[LINKGEN_NMAX])jac, order, ad[k], add[k],
-                           &w->sigma[9]);
-        if (st == 1) return 92;
+        static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6 };
+        static const int sizes[] = { 1, 1, 1, 1, 1, 1, 1 };
+        const int k = resolve_variants(blocks, sizes, 7, w, &a[0],
+                                       1e-10 * LENGTH_SCALE, 8,
+                                       0.1 * LENGTH_SCALE, order, used[0],
+                                       &its[0], &w->sigma[9]);
+        if (k < 0) return 92;
+        used[0] = k;
+        lengths_1(w, &a[0], &ad[0]);
         note(w, 9, w->sigma[9] < 1e-07 ? 3 : w->sigma[9] < 0.001 ? 4 : 0);
     }
 
@@ -555,14 +1181,15 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     /* Step 16: resolve, group2. Newton-Raphson on add2 until left_coupler regains its length */
     {
-        double jac[LINKGEN_NMAX][LINKGEN_NMAX];
-        const int n = 1;
-        const int k = 1;
-        if (!newton(group_2, w, n, a[k], 1e-10 * LENGTH_SCALE, 8, jac, &its[k]))
-            return 162;
-        st = addlink_rates(group_2, w, n, a[k], (const double (*)[LINKGEN_NMAX])jac, order, ad[k], add[k],
-                           &w->sigma[16]);
-        if (st == 1) return 162;
+        static const group_fn blocks[] = { group_2, group_2_v1, group_2_v2, group_2_v3, group_2_v4, group_2_v5, group_2_v6, group_2_v7, group_2_v8 };
+        static const int sizes[] = { 1, 1, 1, 1, 1, 1, 1, 1, 1 };
+        const int k = resolve_variants(blocks, sizes, 9, w, &a[7],
+                                       1e-10 * LENGTH_SCALE, 8,
+                                       0.1 * LENGTH_SCALE, order, used[1],
+                                       &its[1], &w->sigma[16]);
+        if (k < 0) return 162;
+        used[1] = k;
+        lengths_2(w, &a[7], &ad[7]);
         note(w, 16, w->sigma[16] < 1e-07 ? 3 : w->sigma[16] < 0.001 ? 4 : 0);
     }
 
@@ -907,42 +1534,46 @@ static int path_run(void *ctx, const double in[], const double din[], int order,
                     double rates[][LINKGEN_NMAX])
 {
     static const double zero[LINKGEN_NINPUTS] = { 0.0 };
-    double accs[LINKGEN_NGROUPS][LINKGEN_NMAX];
-    int its[LINKGEN_NGROUPS];
-    return run((work *)ctx, in, din, zero, order, a, rates, accs, its) <= 0;
+    int its[LINKGEN_NGROUPS], used[LINKGEN_NGROUPS], g;
+    for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = ((work *)ctx)->used[g];
+    return run((work *)ctx, in, din, zero, order, a, rates, its, used) <= 0;
 }
 
 int double_triad_solve(const double in[], const double din[], const double ddin[], double_triad_state *out)
 {
     static const double sketch_in[LINKGEN_NINPUTS] = { 1.5707963267948966 };
-    static const double sketch_a[LINKGEN_NGROUPS][LINKGEN_NMAX] = { {168.67127793433}, {168.67127793433} };
+    static const double sketch_a[LINKGEN_NBLOCKS][LINKGEN_NMAX] = { {168.67127793433}, {67.08203932499369}, {60.8276253029822}, {165.6804152578089}, {123.4908903522847}, {122.06555615733703}, {138.92443989449805}, {168.67127793433}, {180.27756377319946}, {285.3944638566067}, {225.055548698538}, {330.0}, {120.0}, {225.055548698538}, {67.08203932499369}, {240.0} };
     static const double limits[LINKGEN_NINPUTS] = { 0.1 };
     static const int periodic[LINKGEN_NINPUTS] = { 1 };
     work w;
-    double base[LINKGEN_NINPUTS], a[LINKGEN_NGROUPS][LINKGEN_NMAX];
-    double ad[LINKGEN_NGROUPS][LINKGEN_NMAX], add[LINKGEN_NGROUPS][LINKGEN_NMAX];
+    double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double ad[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    int used[LINKGEN_NGROUPS];
     int code = 0, solved = 0, g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = sketch_in[i];
-    for (g = 0; g < LINKGEN_NGROUPS; g++)
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = sketch_a[g][i];
+    for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = out->warm_valid ? out->warm_used[g] : 0;
     if (out->warm_valid) {
         /* from the previous row, its lengths moved along their rates */
         predict(out->warm_in, out->warm_din, (const double (*)[LINKGEN_NMAX])out->warm_a,
-                (const double (*)[LINKGEN_NMAX])out->warm_ad, (const double (*)[LINKGEN_NMAX])out->warm_add, in, a);
-        code = run(&w, in, din, ddin, DOUBLE_TRIAD_ORDER, a, ad, add, out->iterations);
+                (const double (*)[LINKGEN_NMAX])out->warm_ad, in, a);
+        code = run(&w, in, din, ddin, DOUBLE_TRIAD_ORDER, a, ad, out->iterations, used);
         solved = code <= 0;
         if (!solved) {
             for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = out->warm_in[i];
-            for (g = 0; g < LINKGEN_NGROUPS; g++)
+            for (g = 0; g < LINKGEN_NBLOCKS; g++)
                 for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = out->warm_a[g][i];
+            for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = out->warm_used[g];
         }
     }
     if (!solved && (!out->warm_valid || code % 10 == 2)) {
         /* the sketch's assembly, followed from the sketch (or the last row) */
+        for (g = 0; g < LINKGEN_NGROUPS; g++) w.used[g] = used[g];
         if (continuation(path_run, &w, base, a, in, limits, periodic, 10)) {
-            code = run(&w, in, din, ddin, DOUBLE_TRIAD_ORDER, a, ad, add, out->iterations);
+            code = run(&w, in, din, ddin, DOUBLE_TRIAD_ORDER, a, ad, out->iterations, used);
         } else {
-            code = run(&w, in, din, ddin, DOUBLE_TRIAD_ORDER, a, ad, add, out->iterations);
+            code = run(&w, in, din, ddin, DOUBLE_TRIAD_ORDER, a, ad, out->iterations, used);
             if (code <= 0) code = 92;  /* another assembly only */
         }
         solved = code <= 0;
@@ -950,12 +1581,12 @@ int double_triad_solve(const double in[], const double din[], const double ddin[
     out->warm_valid = solved;
     if (solved) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) { out->warm_in[i] = in[i]; out->warm_din[i] = din[i]; }
-        for (g = 0; g < LINKGEN_NGROUPS; g++)
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
             for (i = 0; i < LINKGEN_NMAX; i++) {
                 out->warm_a[g][i] = a[g][i];
                 out->warm_ad[g][i] = ad[g][i];
-                out->warm_add[g][i] = add[g][i];
             }
+        for (g = 0; g < LINKGEN_NGROUPS; g++) out->warm_used[g] = used[g];
     }
     publish(&w, code, out);
     return code;

@@ -7,11 +7,12 @@ extern "C" {
 #endif
 
 #define DOUBLE_TRIAD_N_INPUTS 1
-#define DOUBLE_TRIAD_N_STEPS 23
+#define DOUBLE_TRIAD_N_STEPS 93
 #define DOUBLE_TRIAD_N_COLUMNS 103
 #define DOUBLE_TRIAD_ORDER 2
 #define DOUBLE_TRIAD_SAMPLES 361
 #define DOUBLE_TRIAD_N_GROUPS 2
+#define DOUBLE_TRIAD_N_BLOCKS 16
 #define DOUBLE_TRIAD_NMAX 1
 
 /* Motion of a pair or point (length units, seconds). */
@@ -52,8 +53,9 @@ typedef struct {
     int iterations[DOUBLE_TRIAD_N_GROUPS];   /* Newton steps of each resolver */
     int warm_valid;   /* 0: start the resolvers from the sketch */
     double warm_in[DOUBLE_TRIAD_N_INPUTS], warm_din[DOUBLE_TRIAD_N_INPUTS];
-    double warm_a[DOUBLE_TRIAD_N_GROUPS][DOUBLE_TRIAD_NMAX];   /* Add-link lengths of the last solved row */
-    double warm_ad[DOUBLE_TRIAD_N_GROUPS][DOUBLE_TRIAD_NMAX], warm_add[DOUBLE_TRIAD_N_GROUPS][DOUBLE_TRIAD_NMAX];
+    double warm_a[DOUBLE_TRIAD_N_BLOCKS][DOUBLE_TRIAD_NMAX];   /* Add-link lengths of the last solved row */
+    double warm_ad[DOUBLE_TRIAD_N_BLOCKS][DOUBLE_TRIAD_NMAX];
+    int warm_used[DOUBLE_TRIAD_N_GROUPS];   /* the resolver block that solved it */
 } double_triad_state;
 
 /* Clear a state: outputs, and the resolvers start from the sketch. */

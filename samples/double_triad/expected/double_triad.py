@@ -6,8 +6,7 @@
         with their rates and accelerations (per second); returns every output
         column ("A.x", "crank.phi", ...), "status" and "sigma" (conditioning per
         step).  Pass the same dict as state on every call of a sweep so the
-        resolver starts from the previous row.
-    python double_triad.py
+        resolver starts from the previous row.    python double_triad.py
         writes the sweep over the inputs' ranges as CSV to standard output.
 """
 
@@ -21,7 +20,7 @@ PI = math.pi
 
 ORDER = 2
 SAMPLES = 361
-N_STEPS = 23
+N_STEPS = 93
 INPUTS = ((0.0, 6.283185307179586, 6.283185307179586), )  # (start, stop, speed) of each input
 COLUMNS = (
     "theta_J7",
@@ -131,7 +130,9 @@ COLUMNS = (
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 LENGTH_SCALE = 331.436268383531
 SKETCH_INPUTS = (1.5707963267948966, )
-SKETCH_ADD_LINKS = ([168.67127793433], [168.67127793433], )
+SKETCH_ADD_LINKS = ([168.67127793433], [67.08203932499369], [60.8276253029822], [165.6804152578089], [123.4908903522847], [122.06555615733703], [138.92443989449805], [168.67127793433], [180.27756377319946], [285.3944638566067], [225.055548698538], [330.0], [120.0], [225.055548698538], [67.08203932499369], [240.0], )
+N_GROUPS = 2
+ZERO_LENGTH = (0.0, 0.0, 0.0,)
 LIMITS = (0.1,)  # the continuation's largest step of each input
 PERIODIC = (True,)  # angle inputs: the continuation goes the shorter way round
 
@@ -294,13 +295,18 @@ def solve_linear(m, b):
     return x, det
 
 
+def _record(length, rate, acc):
+    """An Add-link record of the program's order (rates always: the Jacobian needs them)."""
+    return (length, rate, acc)
+
+
 def _jacobian(group, a):
     """Residuals and Jacobian at a (one pass per Add-link); None when a chain cannot close."""
     n = len(a)
     jac = [[0.0] * n for _ in range(n)]
     f = None
     for j in range(n):
-        st, rec = group([(a[i], 1.0 if i == j else 0.0, 0.0) for i in range(n)], False)
+        st, rec = group([_record(a[i], 1.0 if i == j else 0.0, 0.0) for i in range(n)], False)
         if st:
             return None, None
         f = [r[0] for r in rec]
@@ -317,12 +323,16 @@ def conditioning(jac, det):
     return abs(det) / max(prod, 1.0)
 
 
-def newton(group, a, tol, max_iter):
+def newton(group, a, tol, max_iter, reach):
     """Iterate the Add-link lengths until max|f| <= tol, then one step more.
 
+    A solution farther than reach from the start lengths is another assembly: refused.
+
     Returns (ok, a, iterations, jac) with jac the Jacobian at the returned a.
-    A step that makes a chain fail to close is halved (up to 8 times).
+    A step that makes a chain fail to close is halved (up to 3 times; then the block
+    fails and the next block is tried).
     """
+    start = a
     f, jac = _jacobian(group, a)
     if f is None:
         return False, a, 0, None
@@ -342,39 +352,61 @@ def newton(group, a, tol, max_iter):
         done = max(abs(v) for v in f) <= tol
         a, f, jac = trial, f2, jac2
         if done:
-            return True, a, it, jac
+            return max(abs(x - y) for x, y in zip(a, start)) <= reach, a, it, jac
     return False, a, max_iter, None
 
 
 def addlink_rates(group, a, jac, order):
     """Exact Add-link rates by the implicit-function theorem, then the final pass.
 
-    J adot = -df/dt|adot=0 and J addot = -d2f/dt2|addot=0 with the same J;
-    returns (status, sigma) of the final pass and the Jacobian.
+    J adot = -df/dt|adot=0 with J the Newton Jacobian gives the rates at every order (they
+    start the next row); at order 2, J addot = -d2f/dt2|addot=0 the accelerations.
+    Returns the final pass's status and sigma.
     """
     n = len(a)
-    rates, accs = [0.0] * n, [0.0] * n
     _, det = solve_linear(jac, [0.0] * n)
     sigma = conditioning(jac, det)
-    if order >= 1 and det != 0.0:
-        st, rec = group([(a[i], 0.0, 0.0) for i in range(n)], True)
+    rates = accs = [0.0] * n
+    if det != 0.0:
+        st, rec = group([_record(a[i], 0.0, 0.0) for i in range(n)], True)
         rates, _ = solve_linear(jac, [-r[1] for r in rec])
         if order >= 2:
-            st, rec = group([(a[i], rates[i], 0.0) for i in range(n)], True)
+            st, rec = group([_record(a[i], rates[i], 0.0) for i in range(n)], True)
             accs, _ = solve_linear(jac, [-r[2] for r in rec])
-    elif order >= 1:
-        rates, accs = [NAN] * n, [NAN] * n
-    st, _ = group([(a[i], rates[i], accs[i]) for i in range(n)], True)
-    return st, sigma, rates, accs
+    else:
+        rates = accs = [NAN] * n
+    st, _ = group([_record(a[i], rates[i], accs[i]) for i in range(n)], True)
+    return st, sigma
+
+
+def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer):
+    """Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
+    preferred block first, the others in order; the first that converges is kept.
+
+    a[first + k] is block k's start lengths (its solution on return).  Returns
+    (k, Newton steps, sigma), k = -1 when no block converges.
+    """
+    its = 0
+    for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
+        ok, x, its, jac = newton(groups[k], a[first + k], tol, max_iter, reach)
+        if not ok:
+            continue
+        st, sigma = addlink_rates(groups[k], x, jac, order)
+        if st == 1:
+            continue
+        a[first + k] = x
+        return k, its, sigma
+    return -1, its, 0.0
 
 
 def predict(warm, inputs):
     """Resolver start values for new inputs: the warm lengths moved along their rates
-    (second-order Taylor in the warm row's input direction)."""
-    w_in, w_rates, a, ad, add = warm
+    (first-order Taylor in the warm row's input direction; rates exist at every order,
+    so a program gives the same positions whatever order it computes)."""
+    w_in, w_rates, a, ad = warm
     den = sum(r * r for r in w_rates)
     tau = sum((x - y) * r for x, y, r in zip(inputs, w_in, w_rates)) / den if den > 0 else 0.0
-    return [[v + tau * (dv + 0.5 * tau * ddv) for v, dv, ddv in zip(g, gd, gdd)] for g, gd, gdd in zip(a, ad, add)]
+    return [[v + tau * dv for v, dv in zip(g, gd)] for g, gd in zip(a, ad)]
 
 
 def continuation(run, base, a, target, limits, periodic, halvings):
@@ -433,12 +465,13 @@ l_left_rocker2 = (65.19202405202648, 0.0, 0.0)
 l_left_rocker1 = (70.0, 0.0, 0.0)
 l_left_ternary_K2_K4 = (105.11898020814318, 0.0, 0.0)
 l_left_coupler = (121.6552506059644, 0.0, 0.0)
+l_left_ternary_K2_K5 = (60.8276253029822, 0.0, 0.0)
 
 
 class _Work:
     """The records of one solution."""
 
-    __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "phi_right_ternary", "p_J5", "f1", "add2", "p_K4", "p_K2", "phi_left_ternary", "p_K5", "f2", "phi_crank", "phi_right_rocker1", "phi_right_rocker2", "phi_right_coupler", "phi_left_rocker1", "phi_left_rocker2", "phi_left_coupler", "sigma", "singular", "near")
+    __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "phi_right_ternary", "p_J5", "f1", "add2", "p_K4", "p_K2", "phi_left_ternary", "p_K5", "f2", "phi_crank", "phi_right_rocker1", "phi_right_rocker2", "phi_right_coupler", "phi_left_rocker1", "phi_left_rocker2", "phi_left_coupler", "add1_v1", "f1_v1", "add1_v2", "f1_v2", "add1_v3", "f1_v3", "add1_v4", "f1_v4", "add1_v5", "f1_v5", "add1_v6", "f1_v6", "add2_v1", "f2_v1", "add2_v2", "f2_v2", "add2_v3", "f2_v3", "add2_v4", "f2_v4", "add2_v5", "f2_v5", "add2_v6", "f2_v6", "add2_v7", "f2_v7", "add2_v8", "f2_v8", "sigma", "singular", "near")
 
     def note(self, step, st):
         """Remember the first step at a singular (3) or near-singular (4) position."""
@@ -487,6 +520,240 @@ def _group_1(w, a, live):
 
 
 
+def _group_1_v1(w, a, live):
+    """Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9 (fallback 1: the Add-link J6-J2).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v1 = a[0]
+    # Step 24: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[24], w.p_J2 = RRR_links(p_J1, p_J6, l_right_rocker1, w.add1_v1, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(24, st)
+    # Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[25], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(25, st)
+    # Step 26: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
+    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(26, st)
+    # Step 27: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134)
+    # Step 28: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v1 = link_residual(p_J6, w.p_J5, l_right_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(28, st)
+    return 0, [w.f1_v1, ]
+
+
+
+def _group_1_v2(w, a, live):
+    """Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9 (fallback 2: the Add-link J7-J2).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v2 = a[0]
+    # Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[29], w.p_J2 = RRR_links(p_J1, p_J7, l_right_rocker1, w.add1_v2, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(29, st)
+    # Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[30], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(30, st)
+    # Step 31: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
+    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(31, st)
+    # Step 32: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134)
+    # Step 33: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v2 = link_residual(p_J6, w.p_J5, l_right_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(33, st)
+    return 0, [w.f1_v2, ]
+
+
+
+def _group_1_v3(w, a, live):
+    """Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9 (fallback 3: the Add-link J7-J4).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v3 = a[0]
+    # Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[34], w.p_J4 = RRR_links(p_J3, p_J7, l_right_rocker2, w.add1_v3, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(34, st)
+    # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
+    st, w.sigma[35], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(35, st)
+    # Step 36: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
+    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(36, st)
+    # Step 37: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341)
+    # Step 38: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v3 = link_residual(p_J6, w.p_J5, l_right_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(38, st)
+    return 0, [w.f1_v3, ]
+
+
+
+def _group_1_v4(w, a, live):
+    """Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9 (fallback 4: the Add-link J1-J4).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v4 = a[0]
+    # Step 39: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[39], w.p_J4 = RRR_links(p_J3, p_J1, l_right_rocker2, w.add1_v4, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(39, st)
+    # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
+    st, w.sigma[40], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(40, st)
+    # Step 41: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
+    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(41, st)
+    # Step 42: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341)
+    # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v4 = link_residual(p_J6, w.p_J5, l_right_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(43, st)
+    return 0, [w.f1_v4, ]
+
+
+
+def _group_1_v5(w, a, live):
+    """Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9 (fallback 5: the Add-link J3-J2).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v5 = a[0]
+    # Step 44: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[44], w.p_J2 = RRR_links(p_J1, p_J3, l_right_rocker1, w.add1_v5, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(44, st)
+    # Step 45: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[45], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(45, st)
+    # Step 46: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
+    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(46, st)
+    # Step 47: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134)
+    # Step 48: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v5 = link_residual(p_J6, w.p_J5, l_right_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(48, st)
+    return 0, [w.f1_v5, ]
+
+
+
+def _group_1_v6(w, a, live):
+    """Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9 (fallback 6: the Add-link K1-J2).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v6 = a[0]
+    # Step 49: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[49], w.p_J2 = RRR_links(p_J1, p_K1, l_right_rocker1, w.add1_v6, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(49, st)
+    # Step 50: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[50], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(50, st)
+    # Step 51: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
+    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(51, st)
+    # Step 52: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134)
+    # Step 53: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v6 = link_residual(p_J6, w.p_J5, l_right_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(53, st)
+    return 0, [w.f1_v6, ]
+
+
+
 def _group_2(w, a, live):
     """Steps 11, 12, 13, 14, 15, iterated by the resolver of step 16.
 
@@ -526,7 +793,384 @@ def _group_2(w, a, live):
 
 
 
-def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, add, its):
+def _group_2_v1(w, a, live):
+    """Steps 54, 55, 56, 57, 58, iterated by the resolver of step 16 (fallback 1: the Add-link J5-K2).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J5 = w.p_J5 if live else (w.p_J5[0], w.p_J5[1]) + (0.0,) * (len(w.p_J5) - 2)
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add2_v1 = a[0]
+    # Step 54: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[54], w.p_K2 = RRR_links(p_K1, p_J5, l_left_rocker1, w.add2_v1, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(54, st)
+    # Step 55: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[55], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(55, st)
+    # Step 56: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
+    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(56, st)
+    # Step 57: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345)
+    # Step 58: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f2_v1 = link_residual(p_J6, w.p_K5, l_left_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(58, st)
+    return 0, [w.f2_v1, ]
+
+
+
+def _group_2_v2(w, a, live):
+    """Steps 59, 60, 61, 62, 63, iterated by the resolver of step 16 (fallback 2: the Add-link J5-K4).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J5 = w.p_J5 if live else (w.p_J5[0], w.p_J5[1]) + (0.0,) * (len(w.p_J5) - 2)
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add2_v2 = a[0]
+    # Step 59: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[59], w.p_K4 = RRR_links(p_K3, p_J5, l_left_rocker2, w.add2_v2, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(59, st)
+    # Step 60: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, w.sigma[60], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(60, st)
+    # Step 61: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
+    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(61, st)
+    # Step 62: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338)
+    # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f2_v2 = link_residual(p_J6, w.p_K5, l_left_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(63, st)
+    return 0, [w.f2_v2, ]
+
+
+
+def _group_2_v3(w, a, live):
+    """Steps 64, 65, 66, 67, 68, iterated by the resolver of step 16 (fallback 3: the Add-link J2-K4).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J2 = w.p_J2 if live else (w.p_J2[0], w.p_J2[1]) + (0.0,) * (len(w.p_J2) - 2)
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add2_v3 = a[0]
+    # Step 64: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[64], w.p_K4 = RRR_links(p_K3, p_J2, l_left_rocker2, w.add2_v3, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(64, st)
+    # Step 65: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, w.sigma[65], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(65, st)
+    # Step 66: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
+    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(66, st)
+    # Step 67: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338)
+    # Step 68: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f2_v3 = link_residual(p_J6, w.p_K5, l_left_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(68, st)
+    return 0, [w.f2_v3, ]
+
+
+
+def _group_2_v4(w, a, live):
+    """Steps 69, 70, 71, 72, 73, iterated by the resolver of step 16 (fallback 4: the Add-link J4-K4).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J4 = w.p_J4 if live else (w.p_J4[0], w.p_J4[1]) + (0.0,) * (len(w.p_J4) - 2)
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add2_v4 = a[0]
+    # Step 69: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[69], w.p_K4 = RRR_links(p_K3, p_J4, l_left_rocker2, w.add2_v4, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(69, st)
+    # Step 70: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, w.sigma[70], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(70, st)
+    # Step 71: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
+    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(71, st)
+    # Step 72: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338)
+    # Step 73: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f2_v4 = link_residual(p_J6, w.p_K5, l_left_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(73, st)
+    return 0, [w.f2_v4, ]
+
+
+
+def _group_2_v5(w, a, live):
+    """Steps 74, 75, 76, 77, 78, iterated by the resolver of step 16 (fallback 5: the Add-link J2-K2).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J2 = w.p_J2 if live else (w.p_J2[0], w.p_J2[1]) + (0.0,) * (len(w.p_J2) - 2)
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add2_v5 = a[0]
+    # Step 74: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[74], w.p_K2 = RRR_links(p_K1, p_J2, l_left_rocker1, w.add2_v5, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(74, st)
+    # Step 75: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[75], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(75, st)
+    # Step 76: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
+    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(76, st)
+    # Step 77: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345)
+    # Step 78: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f2_v5 = link_residual(p_J6, w.p_K5, l_left_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(78, st)
+    return 0, [w.f2_v5, ]
+
+
+
+def _group_2_v6(w, a, live):
+    """Steps 79, 80, 81, 82, 83, iterated by the resolver of step 16 (fallback 6: the Add-link J4-K2).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J4 = w.p_J4 if live else (w.p_J4[0], w.p_J4[1]) + (0.0,) * (len(w.p_J4) - 2)
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add2_v6 = a[0]
+    # Step 79: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[79], w.p_K2 = RRR_links(p_K1, p_J4, l_left_rocker1, w.add2_v6, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(79, st)
+    # Step 80: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[80], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(80, st)
+    # Step 81: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
+    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(81, st)
+    # Step 82: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345)
+    # Step 83: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f2_v6 = link_residual(p_J6, w.p_K5, l_left_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(83, st)
+    return 0, [w.f2_v6, ]
+
+
+
+def _group_2_v7(w, a, live):
+    """Steps 84, 85, 86, 87, 88, iterated by the resolver of step 16 (fallback 7: the Add-link J6-K2).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add2_v7 = a[0]
+    # Step 84: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[84], w.p_K2 = RRR_links(p_K1, p_J6, l_left_rocker1, w.add2_v7, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(84, st)
+    # Step 85: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[85], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(85, st)
+    # Step 86: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
+    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(86, st)
+    # Step 87: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345)
+    # Step 88: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f2_v7 = link_residual(p_J6, w.p_K5, l_left_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(88, st)
+    return 0, [w.f2_v7, ]
+
+
+
+def _group_2_v8(w, a, live):
+    """Steps 89, 90, 91, 92, 93, iterated by the resolver of step 16 (fallback 8: the Add-link J5-K5).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    p_J5 = w.p_J5 if live else (w.p_J5[0], w.p_J5[1]) + (0.0,) * (len(w.p_J5) - 2)
+    w.add2_v8 = a[0]
+    # Step 89: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[89], w.p_K5 = RRR_links(p_J6, p_J5, l_left_coupler, w.add2_v8, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(89, st)
+    # Step 90: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known
+    st, w.sigma[90], w.p_K2 = RRR_links(p_K1, w.p_K5, l_left_rocker1, l_left_ternary_K2_K5, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(90, st)
+    # Step 91: link_angle, left_ternary. K5 and K2 of link left_ternary are known, so its angle is
+    st, w.phi_left_ternary = link_angle(w.p_K5, w.p_K2, -2.928860872898183)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(91, st)
+    # Step 92: coupler_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
+    w.p_K4 = coupler_point(w.p_K5, w.phi_left_ternary, 45.662543438831435, 12.842590342171338)
+    # Step 93: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f2_v8 = link_residual(p_K3, w.p_K4, l_left_rocker2)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(93, st)
+    return 0, [w.f2_v8, ]
+
+
+
+def _lengths_1(w, a, ad):
+    """The Add-link lengths of every block of group 1, measured on the solved pairs."""
+    f = [link_residual(w.p_J6, w.p_J4, ZERO_LENGTH)[1]]
+    a[0] = [x[0] for x in f]
+    ad[0] = [x[1] for x in f]
+    f = [link_residual(w.p_J6, w.p_J2, ZERO_LENGTH)[1]]
+    a[1] = [x[0] for x in f]
+    ad[1] = [x[1] for x in f]
+    f = [link_residual(p_J7, w.p_J2, ZERO_LENGTH)[1]]
+    a[2] = [x[0] for x in f]
+    ad[2] = [x[1] for x in f]
+    f = [link_residual(p_J7, w.p_J4, ZERO_LENGTH)[1]]
+    a[3] = [x[0] for x in f]
+    ad[3] = [x[1] for x in f]
+    f = [link_residual(p_J1, w.p_J4, ZERO_LENGTH)[1]]
+    a[4] = [x[0] for x in f]
+    ad[4] = [x[1] for x in f]
+    f = [link_residual(p_J3, w.p_J2, ZERO_LENGTH)[1]]
+    a[5] = [x[0] for x in f]
+    ad[5] = [x[1] for x in f]
+    f = [link_residual(p_K1, w.p_J2, ZERO_LENGTH)[1]]
+    a[6] = [x[0] for x in f]
+    ad[6] = [x[1] for x in f]
+
+
+
+def _lengths_2(w, a, ad):
+    """The Add-link lengths of every block of group 2, measured on the solved pairs."""
+    f = [link_residual(w.p_J6, w.p_K4, ZERO_LENGTH)[1]]
+    a[7] = [x[0] for x in f]
+    ad[7] = [x[1] for x in f]
+    f = [link_residual(w.p_J5, w.p_K2, ZERO_LENGTH)[1]]
+    a[8] = [x[0] for x in f]
+    ad[8] = [x[1] for x in f]
+    f = [link_residual(w.p_J5, w.p_K4, ZERO_LENGTH)[1]]
+    a[9] = [x[0] for x in f]
+    ad[9] = [x[1] for x in f]
+    f = [link_residual(w.p_J2, w.p_K4, ZERO_LENGTH)[1]]
+    a[10] = [x[0] for x in f]
+    ad[10] = [x[1] for x in f]
+    f = [link_residual(w.p_J4, w.p_K4, ZERO_LENGTH)[1]]
+    a[11] = [x[0] for x in f]
+    ad[11] = [x[1] for x in f]
+    f = [link_residual(w.p_J2, w.p_K2, ZERO_LENGTH)[1]]
+    a[12] = [x[0] for x in f]
+    ad[12] = [x[1] for x in f]
+    f = [link_residual(w.p_J4, w.p_K2, ZERO_LENGTH)[1]]
+    a[13] = [x[0] for x in f]
+    ad[13] = [x[1] for x in f]
+    f = [link_residual(w.p_J6, w.p_K2, ZERO_LENGTH)[1]]
+    a[14] = [x[0] for x in f]
+    ad[14] = [x[1] for x in f]
+    f = [link_residual(w.p_J5, w.p_K5, ZERO_LENGTH)[1]]
+    a[15] = [x[0] for x in f]
+    ad[15] = [x[1] for x in f]
+
+
+
+def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     """The procedure of double_triad.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
@@ -539,28 +1183,28 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, add, its):
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
     # Step 9: resolve, group1. Newton-Raphson on add1 until right_coupler regains its length
-    k = 0
-    group = lambda r, live: _group_1(w, r, live)
-    ok, a[k], its[k], jac = newton(group, a[k], 1e-10 * LENGTH_SCALE, 8)
-    if not ok:
+    blocks = [lambda r, live: _group_1(w, r, live), lambda r, live: _group_1_v1(w, r, live), lambda r, live: _group_1_v2(w, r, live), lambda r, live: _group_1_v3(w, r, live), lambda r, live: _group_1_v4(w, r, live), lambda r, live: _group_1_v5(w, r, live), lambda r, live: _group_1_v6(w, r, live)]
+    k, its[0], w.sigma[9] = resolve_variants(
+        blocks, a, 0, 1e-10 * LENGTH_SCALE, 8,
+        0.1 * LENGTH_SCALE, order, used[0])
+    if k < 0:
         return 92
-    st, w.sigma[9], ad[k], add[k] = addlink_rates(group, a[k], jac, order)
-    if st == 1:
-        return 92
+    used[0] = k
+    _lengths_1(w, a, ad)
     w.note(9, 3 if w.sigma[9] < 1e-07 else 4 if w.sigma[9] < 0.001 else 0)
 
 
     # Step 10: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4
 
     # Step 16: resolve, group2. Newton-Raphson on add2 until left_coupler regains its length
-    k = 1
-    group = lambda r, live: _group_2(w, r, live)
-    ok, a[k], its[k], jac = newton(group, a[k], 1e-10 * LENGTH_SCALE, 8)
-    if not ok:
+    blocks = [lambda r, live: _group_2(w, r, live), lambda r, live: _group_2_v1(w, r, live), lambda r, live: _group_2_v2(w, r, live), lambda r, live: _group_2_v3(w, r, live), lambda r, live: _group_2_v4(w, r, live), lambda r, live: _group_2_v5(w, r, live), lambda r, live: _group_2_v6(w, r, live), lambda r, live: _group_2_v7(w, r, live), lambda r, live: _group_2_v8(w, r, live)]
+    k, its[1], w.sigma[16] = resolve_variants(
+        blocks, a, 7, 1e-10 * LENGTH_SCALE, 8,
+        0.1 * LENGTH_SCALE, order, used[1])
+    if k < 0:
         return 162
-    st, w.sigma[16], ad[k], add[k] = addlink_rates(group, a[k], jac, order)
-    if st == 1:
-        return 162
+    used[1] = k
+    _lengths_2(w, a, ad)
     w.note(16, 3 if w.sigma[16] < 1e-07 else 4 if w.sigma[16] < 0.001 else 0)
 
 
@@ -729,12 +1373,11 @@ def _publish(w, code, order):
     return out
 
 
-def _path_run(inputs, rates, order, a):
+def _path_run(inputs, rates, order, a, used):
     """One pass along a continuation path: (closes, Add-link lengths, their rates)."""
     a = [list(g) for g in a]
     ad = [[0.0] * len(g) for g in a]
-    add = [[0.0] * len(g) for g in a]
-    code = _run(_Work(), inputs, rates, [0.0] * len(inputs), order, a, ad, add, [0] * len(a))
+    code = _run(_Work(), inputs, rates, [0.0] * len(inputs), order, a, ad, [0] * N_GROUPS, list(used))
     return code <= 0, a, ad
 
 
@@ -746,27 +1389,29 @@ def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
     base = list(SKETCH_INPUTS)
     a = [list(g) for g in SKETCH_ADD_LINKS]
     ad = [[0.0] * len(g) for g in a]
-    add = [[0.0] * len(g) for g in a]
-    its = [0] * len(a)
+    its = [0] * N_GROUPS
+    used = list(warm[4]) if warm else [0] * N_GROUPS
     code, solved = 0, False
     if warm:
         # from the previous row, its lengths moved along their rates
-        a = predict(warm, inputs)
-        code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, add, its)
+        a = predict(warm[:4], inputs)
+        code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used)
         solved = code <= 0
         if not solved:
-            base, a = list(warm[0]), [list(g) for g in warm[2]]
+            base, a, used = list(warm[0]), [list(g) for g in warm[2]], list(warm[4])
     if not solved and (not warm or code % 10 == 2):
         # the sketch's assembly, followed from the sketch (or the last row)
-        reached = continuation(_path_run, base, a, list(inputs), LIMITS, PERIODIC, 10)
+        prefer = list(used)
+        path = lambda x, d, o, s: _path_run(x, d, o, s, prefer)  # noqa: E731
+        reached = continuation(path, base, a, list(inputs), LIMITS, PERIODIC, 10)
         if reached is not None:
             a = reached
-        code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, add, its)
+        code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used)
         if reached is None and code <= 0:
             code = 92  # another assembly only
         solved = code <= 0
     if state is not None:
-        state["warm"] = (list(inputs), list(d_inputs), a, ad, add) if solved else None
+        state["warm"] = (list(inputs), list(d_inputs), a, ad, used) if solved else None
     out = _publish(w, code, order)
     out["iterations"] = its
     return out

@@ -148,14 +148,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    w->sigma[1] = 1.0;
-    w->sigma[2] = 1.0;
-    w->sigma[3] = 1.0;
-    w->sigma[4] = 1.0;
-    w->sigma[5] = 1.0;
-    w->sigma[6] = 1.0;
-    w->sigma[7] = 1.0;
-    w->sigma[8] = 1.0;
+    for (st = 0; st <= FIVEBAR_N_STEPS; st++) w->sigma[st] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
     w->in2.the = in[1]; w->in2.dthe = din[1]; w->in2.ddthe = ddin[1];
 

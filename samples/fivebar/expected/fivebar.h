@@ -20,8 +20,7 @@ typedef struct { double phi, omega, alpha; } fivebar_angle;
 typedef struct { double x, y, vx, vy, ax, ay, s, ds, dds; } fivebar_prismatic;
 
 /* Everything one call of fivebar_solve gives.  Zero it (or call
-   fivebar_init) before the first call; keep it between calls so the
-   resolver starts from the previous solution. */
+   fivebar_init) before the first call. */
 typedef struct {
     fivebar_point O1;
     fivebar_point A;
@@ -37,7 +36,7 @@ typedef struct {
     double sigma[FIVEBAR_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } fivebar_state;
 
-/* Clear a state: outputs, and the resolvers start from the sketch. */
+/* Clear a state. */
 void fivebar_init(fivebar_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of

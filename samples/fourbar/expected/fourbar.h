@@ -20,8 +20,7 @@ typedef struct { double phi, omega, alpha; } fourbar_angle;
 typedef struct { double x, y, vx, vy, ax, ay, s, ds, dds; } fourbar_prismatic;
 
 /* Everything one call of fourbar_solve gives.  Zero it (or call
-   fourbar_init) before the first call; keep it between calls so the
-   resolver starts from the previous solution. */
+   fourbar_init) before the first call. */
 typedef struct {
     fourbar_point O1;
     fourbar_point A;
@@ -36,7 +35,7 @@ typedef struct {
     double sigma[FOURBAR_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } fourbar_state;
 
-/* Clear a state: outputs, and the resolvers start from the sketch. */
+/* Clear a state. */
 void fourbar_init(fourbar_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of

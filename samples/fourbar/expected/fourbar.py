@@ -5,15 +5,13 @@
         inputs in radians and length units, in the order of the file's inputs,
         with their rates and accelerations (per second); returns every output
         column ("A.x", "crank.phi", ...), "status" and "sigma" (conditioning per
-        step).  Pass the same dict as state on every call of a sweep so the
-        resolver starts from the previous row.
-    python fourbar.py
+        step).    python fourbar.py
         writes the sweep over the inputs' ranges as CSV to standard output.
 """
 
 import math
 import sys
-from math import atan2, cos, floor, sin, sqrt
+from math import atan2, cos, sin, sqrt
 
 EPS = sys.float_info.epsilon
 NAN = math.nan

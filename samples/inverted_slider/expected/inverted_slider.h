@@ -20,8 +20,7 @@ typedef struct { double phi, omega, alpha; } inverted_slider_angle;
 typedef struct { double x, y, vx, vy, ax, ay, s, ds, dds; } inverted_slider_prismatic;
 
 /* Everything one call of inverted_slider_solve gives.  Zero it (or call
-   inverted_slider_init) before the first call; keep it between calls so the
-   resolver starts from the previous solution. */
+   inverted_slider_init) before the first call. */
 typedef struct {
     inverted_slider_point O1;
     inverted_slider_point A;
@@ -36,7 +35,7 @@ typedef struct {
     double sigma[INVERTED_SLIDER_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } inverted_slider_state;
 
-/* Clear a state: outputs, and the resolvers start from the sketch. */
+/* Clear a state. */
 void inverted_slider_init(inverted_slider_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of

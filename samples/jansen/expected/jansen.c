@@ -175,20 +175,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    w->sigma[1] = 1.0;
-    w->sigma[2] = 1.0;
-    w->sigma[3] = 1.0;
-    w->sigma[4] = 1.0;
-    w->sigma[5] = 1.0;
-    w->sigma[6] = 1.0;
-    w->sigma[7] = 1.0;
-    w->sigma[8] = 1.0;
-    w->sigma[9] = 1.0;
-    w->sigma[10] = 1.0;
-    w->sigma[11] = 1.0;
-    w->sigma[12] = 1.0;
-    w->sigma[13] = 1.0;
-    w->sigma[14] = 1.0;
+    for (st = 0; st <= JANSEN_N_STEPS; st++) w->sigma[st] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */

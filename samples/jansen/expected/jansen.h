@@ -20,8 +20,7 @@ typedef struct { double phi, omega, alpha; } jansen_angle;
 typedef struct { double x, y, vx, vy, ax, ay, s, ds, dds; } jansen_prismatic;
 
 /* Everything one call of jansen_solve gives.  Zero it (or call
-   jansen_init) before the first call; keep it between calls so the
-   resolver starts from the previous solution. */
+   jansen_init) before the first call. */
 typedef struct {
     jansen_point O;
     jansen_point A;
@@ -43,7 +42,7 @@ typedef struct {
     double sigma[JANSEN_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } jansen_state;
 
-/* Clear a state: outputs, and the resolvers start from the sketch. */
+/* Clear a state. */
 void jansen_init(jansen_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of

@@ -20,8 +20,7 @@ typedef struct { double phi, omega, alpha; } scotch_yoke_angle;
 typedef struct { double x, y, vx, vy, ax, ay, s, ds, dds; } scotch_yoke_prismatic;
 
 /* Everything one call of scotch_yoke_solve gives.  Zero it (or call
-   scotch_yoke_init) before the first call; keep it between calls so the
-   resolver starts from the previous solution. */
+   scotch_yoke_init) before the first call. */
 typedef struct {
     scotch_yoke_point O;
     scotch_yoke_point A;
@@ -35,7 +34,7 @@ typedef struct {
     double sigma[SCOTCH_YOKE_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } scotch_yoke_state;
 
-/* Clear a state: outputs, and the resolvers start from the sketch. */
+/* Clear a state. */
 void scotch_yoke_init(scotch_yoke_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of

@@ -13,6 +13,7 @@ typedef struct { double v, dv, ddv; } VARIABLE;
 
 #define LINKGEN_NMAX 1
 #define LINKGEN_NGROUPS 1
+#define LINKGEN_NBLOCKS 9
 #define LINKGEN_NINPUTS 1
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
@@ -202,7 +203,11 @@ static int jacobian(group_fn group, void *ctx, int n, const double a[], double f
     VARIABLE rec[LINKGEN_NMAX], res[LINKGEN_NMAX];
     int i, j;
     for (j = 0; j < n; j++) {
-        for (i = 0; i < n; i++) { rec[i].v = a[i]; rec[i].dv = (i == j) ? 1.0 : 0.0; rec[i].ddv = 0.0; }
+        for (i = 0; i < n; i++) {
+            rec[i].v = a[i];
+            rec[i].dv = (i == j) ? 1.0 : 0.0;
+            rec[i].ddv = 0.0;
+        }
         if (group(ctx, rec, 0, res)) return 1;
         for (i = 0; i < n; i++) { f[i] = res[i].v; jac[i][j] = res[i].dv; }
     }
@@ -223,15 +228,19 @@ static double conditioning(int n, const double jac[][LINKGEN_NMAX], double det)
 }
 
 /* Iterate the Add-link lengths until max|f| <= tol, then one step more.  A step
- * that makes a chain fail to close is halved (up to 8 times).  Returns 1 on
- * success with jac the Jacobian at the returned a. */
-static int newton(group_fn group, void *ctx, int n, double a[], double tol, int max_iter,
+ * that makes a chain fail to close is halved (up to 3 times; then the block
+ * fails and the next block is tried).  A solution farther than reach from the
+ * start is another assembly and refused.  Returns 1 on success with jac the
+ * Jacobian at the returned a. */
+static int newton(group_fn group, void *ctx, int n, double a[], double tol, int max_iter, double reach,
                   double jac[][LINKGEN_NMAX], int *iterations)
 {
+    double start[LINKGEN_NMAX];
     double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], dx[LINKGEN_NMAX], trial[LINKGEN_NMAX], rhs[LINKGEN_NMAX];
     double jac2[LINKGEN_NMAX][LINKGEN_NMAX];
     int it, i, j, halving;
     *iterations = 0;
+    for (i = 0; i < n; i++) start[i] = a[i];
     if (jacobian(group, ctx, n, a, f, jac)) return 0;
     for (it = 1; it <= max_iter; it++) {
         double t = 1.0, worst = 0.0;
@@ -239,7 +248,7 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
         *iterations = it;
         for (i = 0; i < n; i++) rhs[i] = -f[i];
         if (solve_linear(n, (const double (*)[LINKGEN_NMAX])jac, rhs, dx) == 0.0) return 0;
-        for (halving = 0; halving < 9; halving++) {
+        for (halving = 0; halving < 4; halving++) {
             for (i = 0; i < n; i++) trial[i] = a[i] + t * dx[i];
             if (!jacobian(group, ctx, n, trial, f2, jac2)) { closed = 1; break; }
             t /= 2;
@@ -251,46 +260,71 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
             f[i] = f2[i];
             for (j = 0; j < n; j++) jac[i][j] = jac2[i][j];
         }
-        if (worst <= tol) return 1;
+        if (worst <= tol) {
+            double moved = 0.0;
+            for (i = 0; i < n; i++) moved = fmax(moved, fabs(a[i] - start[i]));
+            return moved <= reach;
+        }
     }
     return 0;
 }
 
-/* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0,
- * J addot = -d2f/dt2 at addot = 0, the same J), then the final pass with them.
- * Returns the status of the final pass. */
+/* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
+ * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J), then
+ * the final pass with them.  The rates are found at every order (they start the next
+ * row).  Returns the status of the final pass. */
 static int addlink_rates(group_fn group, void *ctx, int n, const double a[], const double jac[][LINKGEN_NMAX],
-                         int order, double rates[], double accs[], double *sigma)
+                         int order, double *sigma)
 {
     VARIABLE rec[LINKGEN_NMAX], res[LINKGEN_NMAX];
-    double rhs[LINKGEN_NMAX], det;
+    double rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], det;
     int i;
-    for (i = 0; i < n; i++) { rec[i].v = a[i]; rec[i].dv = 0.0; rec[i].ddv = 0.0; rhs[i] = 0.0; rates[i] = 0.0; accs[i] = 0.0; }
-    if (order >= 1) {
+    for (i = 0; i < n; i++) {
+        rec[i].v = a[i];
+        rec[i].dv = 0.0;
+        rec[i].ddv = 0.0;
+    }
+    group(ctx, rec, 1, res);
+    for (i = 0; i < n; i++) rhs[i] = -res[i].dv;
+    det = solve_linear(n, jac, rhs, rates);
+    for (i = 0; i < n; i++) rec[i].dv = rates[i];
+    if (order >= 2) {
+        double accs[LINKGEN_NMAX];
         group(ctx, rec, 1, res);
-        for (i = 0; i < n; i++) rhs[i] = -res[i].dv;
-        det = solve_linear(n, jac, rhs, rates);
-        if (order >= 2 && det != 0.0) {
-            for (i = 0; i < n; i++) rec[i].dv = rates[i];
-            group(ctx, rec, 1, res);
-            for (i = 0; i < n; i++) rhs[i] = -res[i].ddv;
-            solve_linear(n, jac, rhs, accs);
-        } else if (det == 0.0) {
-            for (i = 0; i < n; i++) accs[i] = NAN;
-        }
-    } else {
-        det = solve_linear(n, jac, rhs, rates);
+        for (i = 0; i < n; i++) rhs[i] = -res[i].ddv;
+        solve_linear(n, jac, rhs, accs);
+        for (i = 0; i < n; i++) rec[i].ddv = det != 0.0 ? accs[i] : NAN;
     }
     *sigma = conditioning(n, jac, det);
-    for (i = 0; i < n; i++) { rec[i].v = a[i]; rec[i].dv = rates[i]; rec[i].ddv = accs[i]; }
     return group(ctx, rec, 1, res);
 }
 
+/* Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
+ * preferred block first, the others in order; the first that converges is kept.
+ * a[k] holds block k's start lengths (its solution on return).  Returns the block,
+ * or -1 when none converges. */
+static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
+                            double tol, int max_iter, double reach, int order, int prefer, int *its, double *sigma)
+{
+    double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX];
+    int t, k, i;
+    for (t = 0; t < count; t++) {
+        k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
+        for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
+        if (!newton(fns[k], ctx, sizes[k], x, tol, max_iter, reach, jac, its)) continue;
+        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) == 1)
+            continue;
+        for (i = 0; i < sizes[k]; i++) a[k][i] = x[i];
+        return k;
+    }
+    return -1;
+}
+
 /* Resolver start values for new inputs: the warm lengths moved along their rates
- * (second-order Taylor in the warm row's input direction). */
+ * (first-order Taylor in the warm row's input direction; the rates exist at every
+ * order, so the positions do not depend on the order computed). */
 static void predict(const double w_in[], const double w_din[], const double w_a[][LINKGEN_NMAX],
-                    const double w_ad[][LINKGEN_NMAX], const double w_add[][LINKGEN_NMAX], const double in[],
-                    double a[][LINKGEN_NMAX])
+                    const double w_ad[][LINKGEN_NMAX], const double in[], double a[][LINKGEN_NMAX])
 {
     double num = 0.0, den = 0.0, tau;
     int g, i;
@@ -299,8 +333,8 @@ static void predict(const double w_in[], const double w_din[], const double w_a[
         den += w_din[i] * w_din[i];
     }
     tau = den > 0.0 ? num / den : 0.0;
-    for (g = 0; g < LINKGEN_NGROUPS; g++)
-        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = w_a[g][i] + tau * (w_ad[g][i] + 0.5 * tau * w_add[g][i]);
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = w_a[g][i] + tau * w_ad[g][i];
 }
 
 /* One pass of the procedure along a continuation path: returns 1 when it closes,
@@ -312,34 +346,34 @@ typedef int (*path_fn)(void *ctx, const double in[], const double din[], int ord
 static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double goal[],
                 const double limits[], int halvings)
 {
-    double d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS], start[LINKGEN_NGROUPS][LINKGEN_NMAX];
-    double rate[LINKGEN_NGROUPS][LINKGEN_NMAX], guess[LINKGEN_NGROUPS][LINKGEN_NMAX], rate2[LINKGEN_NGROUPS][LINKGEN_NMAX];
+    double d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS], start[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double t = 0.0, h, h_max = 1.0;
     int g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         d[i] = goal[i] - base[i];
         if (d[i] != 0.0) h_max = fmin(h_max, limits[i] / fabs(d[i]));
     }
-    for (g = 0; g < LINKGEN_NGROUPS; g++)
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) start[g][i] = a[g][i];
     if (!run(ctx, base, d, 1, start, rate)) return 0;
     h = h_max;
     while (t < 1.0) {
         const double tt = fmin(1.0, t + h);
         for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
-        for (g = 0; g < LINKGEN_NGROUPS; g++)
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
             for (i = 0; i < LINKGEN_NMAX; i++) guess[g][i] = start[g][i] + (tt - t) * rate[g][i];
         if (run(ctx, trial, d, 1, guess, rate2)) {
             t = tt;
             h = fmin(2.0 * h, h_max);
-            for (g = 0; g < LINKGEN_NGROUPS; g++)
+            for (g = 0; g < LINKGEN_NBLOCKS; g++)
                 for (i = 0; i < LINKGEN_NMAX; i++) { start[g][i] = guess[g][i]; rate[g][i] = rate2[g][i]; }
         } else {
             h /= 2.0;
             if (h < h_max * ldexp(1.0, -halvings)) return 0;
         }
     }
-    for (g = 0; g < LINKGEN_NGROUPS; g++)
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = start[g][i];
     return 1;
 }
@@ -379,6 +413,7 @@ static const VARIABLE l_rocker2 = {65.19202405202648, 0.0, 0.0};
 static const VARIABLE l_rocker1 = {70.0, 0.0, 0.0};
 static const VARIABLE l_ternary_J2_J4 = {105.11898020814318, 0.0, 0.0};
 static const VARIABLE l_coupler = {121.6552506059644, 0.0, 0.0};
+static const VARIABLE l_ternary_J2_J5 = {60.8276253029822, 0.0, 0.0};
 
 /* The records of one solution. */
 typedef struct {
@@ -394,8 +429,25 @@ typedef struct {
     ANGLE phi_rocker2;
     ANGLE phi_coupler;
     ANGLE phi_crank;
+    VARIABLE add1_v1;
+    VARIABLE f1_v1;
+    VARIABLE add1_v2;
+    VARIABLE f1_v2;
+    VARIABLE add1_v3;
+    VARIABLE f1_v3;
+    VARIABLE add1_v4;
+    VARIABLE f1_v4;
+    VARIABLE add1_v5;
+    VARIABLE f1_v5;
+    VARIABLE add1_v6;
+    VARIABLE f1_v6;
+    VARIABLE add1_v7;
+    VARIABLE f1_v7;
+    VARIABLE add1_v8;
+    VARIABLE f1_v8;
     double sigma[SIXBAR_FIG14_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
+    int used[LINKGEN_NGROUPS];  /* the block that solved each resolver group */
 } work;
 
 /* Remember the first step at a singular (3) or near-singular (4) position. */
@@ -404,6 +456,8 @@ static void note(work *w, int step, int st)
     if (st == 3 && !w->singular) w->singular = 10 * step + 3;
     if (st == 4 && !w->near) w->near = 10 * step + 4;
 }
+
+static const VARIABLE ZERO_LENGTH = { 0.0, 0.0, 0.0 };
 
 /* Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9:
    the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
@@ -441,27 +495,338 @@ static int group_1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
 }
 
 
+/* Steps 14, 15, 16, 17, 18, iterated by the resolver of step 9   (fallback 1: the Add-link J6-J2):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v1 = a[0];
+    /* Step 14: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, p_J6, l_rocker1, w->add1_v1, -1, &w->p_J2, &w->sigma[14]);
+    if (st == 1) return 1;
+    if (live) note(w, 14, st);
+    /* Step 15: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, 1, &w->p_J4, &w->sigma[15]);
+    if (st == 1) return 1;
+    if (live) note(w, 15, st);
+    /* Step 16: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
+    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 16, st);
+    /* Step 17: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    coupler_point(w->p_J2, w->phi_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
+    /* Step 18: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_J5, l_coupler, &w->f1_v1);
+    if (st == 1) return 1;
+    if (live) note(w, 18, st);
+    f[0] = w->f1_v1;
+    return 0;
+}
+
+
+/* Steps 19, 20, 21, 22, 23, iterated by the resolver of step 9   (fallback 2: the Add-link J1-J4):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v2 = a[0];
+    /* Step 19: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J3, p_J1, l_rocker2, w->add1_v2, -1, &w->p_J4, &w->sigma[19]);
+    if (st == 1) return 1;
+    if (live) note(w, 19, st);
+    /* Step 20: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, 1, &w->p_J2, &w->sigma[20]);
+    if (st == 1) return 1;
+    if (live) note(w, 20, st);
+    /* Step 21: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
+    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 21, st);
+    /* Step 22: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
+    coupler_point(w->p_J4, w->phi_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
+    /* Step 23: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_J5, l_coupler, &w->f1_v2);
+    if (st == 1) return 1;
+    if (live) note(w, 23, st);
+    f[0] = w->f1_v2;
+    return 0;
+}
+
+
+/* Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9   (fallback 3: the Add-link J3-J2):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v3 = a[0];
+    /* Step 24: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, p_J3, l_rocker1, w->add1_v3, 1, &w->p_J2, &w->sigma[24]);
+    if (st == 1) return 1;
+    if (live) note(w, 24, st);
+    /* Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, 1, &w->p_J4, &w->sigma[25]);
+    if (st == 1) return 1;
+    if (live) note(w, 25, st);
+    /* Step 26: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
+    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 26, st);
+    /* Step 27: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    coupler_point(w->p_J2, w->phi_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
+    /* Step 28: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_J5, l_coupler, &w->f1_v3);
+    if (st == 1) return 1;
+    if (live) note(w, 28, st);
+    f[0] = w->f1_v3;
+    return 0;
+}
+
+
+/* Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9   (fallback 4: the Add-link J7-J2):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v4 = a[0];
+    /* Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, p_J7, l_rocker1, w->add1_v4, -1, &w->p_J2, &w->sigma[29]);
+    if (st == 1) return 1;
+    if (live) note(w, 29, st);
+    /* Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, 1, &w->p_J4, &w->sigma[30]);
+    if (st == 1) return 1;
+    if (live) note(w, 30, st);
+    /* Step 31: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
+    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 31, st);
+    /* Step 32: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    coupler_point(w->p_J2, w->phi_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
+    /* Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_J5, l_coupler, &w->f1_v4);
+    if (st == 1) return 1;
+    if (live) note(w, 33, st);
+    f[0] = w->f1_v4;
+    return 0;
+}
+
+
+/* Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9   (fallback 5: the Add-link J7-J4):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v5 = a[0];
+    /* Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J3, p_J7, l_rocker2, w->add1_v5, -1, &w->p_J4, &w->sigma[34]);
+    if (st == 1) return 1;
+    if (live) note(w, 34, st);
+    /* Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, 1, &w->p_J2, &w->sigma[35]);
+    if (st == 1) return 1;
+    if (live) note(w, 35, st);
+    /* Step 36: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
+    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 36, st);
+    /* Step 37: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
+    coupler_point(w->p_J4, w->phi_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
+    /* Step 38: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J6, w->p_J5, l_coupler, &w->f1_v5);
+    if (st == 1) return 1;
+    if (live) note(w, 38, st);
+    f[0] = w->f1_v5;
+    return 0;
+}
+
+
+/* Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9   (fallback 6: the Add-link J3-J5):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v6 = a[0];
+    /* Step 39: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J6, p_J3, l_coupler, w->add1_v6, 1, &w->p_J5, &w->sigma[39]);
+    if (st == 1) return 1;
+    if (live) note(w, 39, st);
+    /* Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, 1, &w->p_J2, &w->sigma[40]);
+    if (st == 1) return 1;
+    if (live) note(w, 40, st);
+    /* Step 41: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is */
+    st = link_angle(w->p_J5, w->p_J2, 2.928860872898183, &w->phi_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 41, st);
+    /* Step 42: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
+    coupler_point(w->p_J5, w->phi_ternary, 45.662543438831435, -12.842590342171341, &w->p_J4);
+    /* Step 43: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J3, w->p_J4, l_rocker2, &w->f1_v6);
+    if (st == 1) return 1;
+    if (live) note(w, 43, st);
+    f[0] = w->f1_v6;
+    return 0;
+}
+
+
+/* Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9   (fallback 7: the Add-link J1-J5):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v7(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v7 = a[0];
+    /* Step 44: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J6, p_J1, l_coupler, w->add1_v7, 1, &w->p_J5, &w->sigma[44]);
+    if (st == 1) return 1;
+    if (live) note(w, 44, st);
+    /* Step 45: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, 1, &w->p_J2, &w->sigma[45]);
+    if (st == 1) return 1;
+    if (live) note(w, 45, st);
+    /* Step 46: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is */
+    st = link_angle(w->p_J5, w->p_J2, 2.928860872898183, &w->phi_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 46, st);
+    /* Step 47: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
+    coupler_point(w->p_J5, w->phi_ternary, 45.662543438831435, -12.842590342171341, &w->p_J4);
+    /* Step 48: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J3, w->p_J4, l_rocker2, &w->f1_v7);
+    if (st == 1) return 1;
+    if (live) note(w, 48, st);
+    f[0] = w->f1_v7;
+    return 0;
+}
+
+
+/* Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9   (fallback 8: the Add-link J7-J5):
+   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
+   rates of the records read from outside (a unit Add-link rate then gives one
+   Jacobian column).  Returns 1 when a chain cannot close. */
+static int group_1_v8(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+{
+    work *w = (work *)ctx;
+    POINT p_J6 = w->p_J6;
+    int st;
+    if (!live) {
+        p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
+    }
+    w->add1_v8 = a[0];
+    /* Step 49: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J6, p_J7, l_coupler, w->add1_v8, 1, &w->p_J5, &w->sigma[49]);
+    if (st == 1) return 1;
+    if (live) note(w, 49, st);
+    /* Step 50: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, 1, &w->p_J2, &w->sigma[50]);
+    if (st == 1) return 1;
+    if (live) note(w, 50, st);
+    /* Step 51: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is */
+    st = link_angle(w->p_J5, w->p_J2, 2.928860872898183, &w->phi_ternary);
+    if (st == 1) return 1;
+    if (live) note(w, 51, st);
+    /* Step 52: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
+    coupler_point(w->p_J5, w->phi_ternary, 45.662543438831435, -12.842590342171341, &w->p_J4);
+    /* Step 53: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
+    st = link_residual(p_J3, w->p_J4, l_rocker2, &w->f1_v8);
+    if (st == 1) return 1;
+    if (live) note(w, 53, st);
+    f[0] = w->f1_v8;
+    return 0;
+}
+
+
+/* The Add-link lengths of every block of group 1, measured on the solved pairs. */
+static void lengths_1(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
+{
+    VARIABLE f;
+    link_residual(w->p_J6, w->p_J4, ZERO_LENGTH, &f);
+    a[0][0] = f.v;
+    ad[0][0] = f.dv;
+    link_residual(w->p_J6, w->p_J2, ZERO_LENGTH, &f);
+    a[1][0] = f.v;
+    ad[1][0] = f.dv;
+    link_residual(p_J1, w->p_J4, ZERO_LENGTH, &f);
+    a[2][0] = f.v;
+    ad[2][0] = f.dv;
+    link_residual(p_J3, w->p_J2, ZERO_LENGTH, &f);
+    a[3][0] = f.v;
+    ad[3][0] = f.dv;
+    link_residual(p_J7, w->p_J2, ZERO_LENGTH, &f);
+    a[4][0] = f.v;
+    ad[4][0] = f.dv;
+    link_residual(p_J7, w->p_J4, ZERO_LENGTH, &f);
+    a[5][0] = f.v;
+    ad[5][0] = f.dv;
+    link_residual(p_J3, w->p_J5, ZERO_LENGTH, &f);
+    a[6][0] = f.v;
+    ad[6][0] = f.dv;
+    link_residual(p_J1, w->p_J5, ZERO_LENGTH, &f);
+    a[7][0] = f.v;
+    ad[7][0] = f.dv;
+    link_residual(p_J7, w->p_J5, ZERO_LENGTH, &f);
+    a[8][0] = f.v;
+    ad[8][0] = f.dv;
+}
+
+
 /* The procedure of sixbar_fig14.md, step by step. */
 static int run(work *w, const double in[], const double din[], const double ddin[], int order,
-               double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], double add[][LINKGEN_NMAX], int its[])
+               double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int its[],
+               int used[])
 {
     int st;
 
     w->singular = 0;
     w->near = 0;
-    w->sigma[1] = 1.0;
-    w->sigma[2] = 1.0;
-    w->sigma[3] = 1.0;
-    w->sigma[4] = 1.0;
-    w->sigma[5] = 1.0;
-    w->sigma[6] = 1.0;
-    w->sigma[7] = 1.0;
-    w->sigma[8] = 1.0;
-    w->sigma[9] = 1.0;
-    w->sigma[10] = 1.0;
-    w->sigma[11] = 1.0;
-    w->sigma[12] = 1.0;
-    w->sigma[13] = 1.0;
+    for (st = 0; st <= SIXBAR_FIG14_N_STEPS; st++) w->sigma[st] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
@@ -476,14 +841,15 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     /* Step 9: resolve, group1. Newton-Raphson on add1 until coupler regains its length */
     {
-        double jac[LINKGEN_NMAX][LINKGEN_NMAX];
-        const int n = 1;
-        const int k = 0;
-        if (!newton(group_1, w, n, a[k], 1e-10 * LENGTH_SCALE, 8, jac, &its[k]))
-            return 92;
-        st = addlink_rates(group_1, w, n, a[k], (const double (*)[LINKGEN_NMAX])jac, order, ad[k], add[k],
-                           &w->sigma[9]);
-        if (st == 1) return 92;
+        static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6, group_1_v7, group_1_v8 };
+        static const int sizes[] = { 1, 1, 1, 1, 1, 1, 1, 1, 1 };
+        const int k = resolve_variants(blocks, sizes, 9, w, &a[0],
+                                       1e-10 * LENGTH_SCALE, 8,
+                                       0.1 * LENGTH_SCALE, order, used[0],
+                                       &its[0], &w->sigma[9]);
+        if (k < 0) return 92;
+        used[0] = k;
+        lengths_1(w, &a[0], &ad[0]);
         note(w, 9, w->sigma[9] < 1e-07 ? 3 : w->sigma[9] < 0.001 ? 4 : 0);
     }
 
@@ -698,42 +1064,46 @@ static int path_run(void *ctx, const double in[], const double din[], int order,
                     double rates[][LINKGEN_NMAX])
 {
     static const double zero[LINKGEN_NINPUTS] = { 0.0 };
-    double accs[LINKGEN_NGROUPS][LINKGEN_NMAX];
-    int its[LINKGEN_NGROUPS];
-    return run((work *)ctx, in, din, zero, order, a, rates, accs, its) <= 0;
+    int its[LINKGEN_NGROUPS], used[LINKGEN_NGROUPS], g;
+    for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = ((work *)ctx)->used[g];
+    return run((work *)ctx, in, din, zero, order, a, rates, its, used) <= 0;
 }
 
 int sixbar_fig14_solve(const double in[], const double din[], const double ddin[], sixbar_fig14_state *out)
 {
     static const double sketch_in[LINKGEN_NINPUTS] = { 1.5707963267948966 };
-    static const double sketch_a[LINKGEN_NGROUPS][LINKGEN_NMAX] = { {168.67127793433} };
+    static const double sketch_a[LINKGEN_NBLOCKS][LINKGEN_NMAX] = { {168.67127793433}, {67.08203932499369}, {123.4908903522847}, {122.06555615733703}, {60.8276253029822}, {165.6804152578089}, {89.44271909999159}, {100.0}, {120.0} };
     static const double limits[LINKGEN_NINPUTS] = { 0.1 };
     static const int periodic[LINKGEN_NINPUTS] = { 1 };
     work w;
-    double base[LINKGEN_NINPUTS], a[LINKGEN_NGROUPS][LINKGEN_NMAX];
-    double ad[LINKGEN_NGROUPS][LINKGEN_NMAX], add[LINKGEN_NGROUPS][LINKGEN_NMAX];
+    double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double ad[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    int used[LINKGEN_NGROUPS];
     int code = 0, solved = 0, g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = sketch_in[i];
-    for (g = 0; g < LINKGEN_NGROUPS; g++)
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = sketch_a[g][i];
+    for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = out->warm_valid ? out->warm_used[g] : 0;
     if (out->warm_valid) {
         /* from the previous row, its lengths moved along their rates */
         predict(out->warm_in, out->warm_din, (const double (*)[LINKGEN_NMAX])out->warm_a,
-                (const double (*)[LINKGEN_NMAX])out->warm_ad, (const double (*)[LINKGEN_NMAX])out->warm_add, in, a);
-        code = run(&w, in, din, ddin, SIXBAR_FIG14_ORDER, a, ad, add, out->iterations);
+                (const double (*)[LINKGEN_NMAX])out->warm_ad, in, a);
+        code = run(&w, in, din, ddin, SIXBAR_FIG14_ORDER, a, ad, out->iterations, used);
         solved = code <= 0;
         if (!solved) {
             for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = out->warm_in[i];
-            for (g = 0; g < LINKGEN_NGROUPS; g++)
+            for (g = 0; g < LINKGEN_NBLOCKS; g++)
                 for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = out->warm_a[g][i];
+            for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = out->warm_used[g];
         }
     }
     if (!solved && (!out->warm_valid || code % 10 == 2)) {
         /* the sketch's assembly, followed from the sketch (or the last row) */
+        for (g = 0; g < LINKGEN_NGROUPS; g++) w.used[g] = used[g];
         if (continuation(path_run, &w, base, a, in, limits, periodic, 10)) {
-            code = run(&w, in, din, ddin, SIXBAR_FIG14_ORDER, a, ad, add, out->iterations);
+            code = run(&w, in, din, ddin, SIXBAR_FIG14_ORDER, a, ad, out->iterations, used);
         } else {
-            code = run(&w, in, din, ddin, SIXBAR_FIG14_ORDER, a, ad, add, out->iterations);
+            code = run(&w, in, din, ddin, SIXBAR_FIG14_ORDER, a, ad, out->iterations, used);
             if (code <= 0) code = 92;  /* another assembly only */
         }
         solved = code <= 0;
@@ -741,12 +1111,12 @@ int sixbar_fig14_solve(const double in[], const double din[], const double ddin[
     out->warm_valid = solved;
     if (solved) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) { out->warm_in[i] = in[i]; out->warm_din[i] = din[i]; }
-        for (g = 0; g < LINKGEN_NGROUPS; g++)
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
             for (i = 0; i < LINKGEN_NMAX; i++) {
                 out->warm_a[g][i] = a[g][i];
                 out->warm_ad[g][i] = ad[g][i];
-                out->warm_add[g][i] = add[g][i];
             }
+        for (g = 0; g < LINKGEN_NGROUPS; g++) out->warm_used[g] = used[g];
     }
     publish(&w, code, out);
     return code;

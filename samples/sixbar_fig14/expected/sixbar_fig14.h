@@ -7,11 +7,12 @@ extern "C" {
 #endif
 
 #define SIXBAR_FIG14_N_INPUTS 1
-#define SIXBAR_FIG14_N_STEPS 13
+#define SIXBAR_FIG14_N_STEPS 53
 #define SIXBAR_FIG14_N_COLUMNS 61
 #define SIXBAR_FIG14_ORDER 2
 #define SIXBAR_FIG14_SAMPLES 361
 #define SIXBAR_FIG14_N_GROUPS 1
+#define SIXBAR_FIG14_N_BLOCKS 9
 #define SIXBAR_FIG14_NMAX 1
 
 /* Motion of a pair or point (length units, seconds). */
@@ -43,8 +44,9 @@ typedef struct {
     int iterations[SIXBAR_FIG14_N_GROUPS];   /* Newton steps of each resolver */
     int warm_valid;   /* 0: start the resolvers from the sketch */
     double warm_in[SIXBAR_FIG14_N_INPUTS], warm_din[SIXBAR_FIG14_N_INPUTS];
-    double warm_a[SIXBAR_FIG14_N_GROUPS][SIXBAR_FIG14_NMAX];   /* Add-link lengths of the last solved row */
-    double warm_ad[SIXBAR_FIG14_N_GROUPS][SIXBAR_FIG14_NMAX], warm_add[SIXBAR_FIG14_N_GROUPS][SIXBAR_FIG14_NMAX];
+    double warm_a[SIXBAR_FIG14_N_BLOCKS][SIXBAR_FIG14_NMAX];   /* Add-link lengths of the last solved row */
+    double warm_ad[SIXBAR_FIG14_N_BLOCKS][SIXBAR_FIG14_NMAX];
+    int warm_used[SIXBAR_FIG14_N_GROUPS];   /* the resolver block that solved it */
 } sixbar_fig14_state;
 
 /* Clear a state: outputs, and the resolvers start from the sketch. */

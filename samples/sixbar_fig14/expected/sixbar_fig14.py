@@ -6,8 +6,7 @@
         with their rates and accelerations (per second); returns every output
         column ("A.x", "crank.phi", ...), "status" and "sigma" (conditioning per
         step).  Pass the same dict as state on every call of a sweep so the
-        resolver starts from the previous row.
-    python sixbar_fig14.py
+        resolver starts from the previous row.    python sixbar_fig14.py
         writes the sweep over the inputs' ranges as CSV to standard output.
 """
 
@@ -21,7 +20,7 @@ PI = math.pi
 
 ORDER = 2
 SAMPLES = 361
-N_STEPS = 13
+N_STEPS = 53
 INPUTS = ((0.0, 6.283185307179586, 6.283185307179586), )  # (start, stop, speed) of each input
 COLUMNS = (
     "theta_J7",
@@ -89,7 +88,9 @@ COLUMNS = (
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 LENGTH_SCALE = 188.67962264113208
 SKETCH_INPUTS = (1.5707963267948966, )
-SKETCH_ADD_LINKS = ([168.67127793433], )
+SKETCH_ADD_LINKS = ([168.67127793433], [67.08203932499369], [123.4908903522847], [122.06555615733703], [60.8276253029822], [165.6804152578089], [89.44271909999159], [100.0], [120.0], )
+N_GROUPS = 1
+ZERO_LENGTH = (0.0, 0.0, 0.0,)
 LIMITS = (0.1,)  # the continuation's largest step of each input
 PERIODIC = (True,)  # angle inputs: the continuation goes the shorter way round
 
@@ -252,13 +253,18 @@ def solve_linear(m, b):
     return x, det
 
 
+def _record(length, rate, acc):
+    """An Add-link record of the program's order (rates always: the Jacobian needs them)."""
+    return (length, rate, acc)
+
+
 def _jacobian(group, a):
     """Residuals and Jacobian at a (one pass per Add-link); None when a chain cannot close."""
     n = len(a)
     jac = [[0.0] * n for _ in range(n)]
     f = None
     for j in range(n):
-        st, rec = group([(a[i], 1.0 if i == j else 0.0, 0.0) for i in range(n)], False)
+        st, rec = group([_record(a[i], 1.0 if i == j else 0.0, 0.0) for i in range(n)], False)
         if st:
             return None, None
         f = [r[0] for r in rec]
@@ -275,12 +281,16 @@ def conditioning(jac, det):
     return abs(det) / max(prod, 1.0)
 
 
-def newton(group, a, tol, max_iter):
+def newton(group, a, tol, max_iter, reach):
     """Iterate the Add-link lengths until max|f| <= tol, then one step more.
 
+    A solution farther than reach from the start lengths is another assembly: refused.
+
     Returns (ok, a, iterations, jac) with jac the Jacobian at the returned a.
-    A step that makes a chain fail to close is halved (up to 8 times).
+    A step that makes a chain fail to close is halved (up to 3 times; then the block
+    fails and the next block is tried).
     """
+    start = a
     f, jac = _jacobian(group, a)
     if f is None:
         return False, a, 0, None
@@ -300,39 +310,61 @@ def newton(group, a, tol, max_iter):
         done = max(abs(v) for v in f) <= tol
         a, f, jac = trial, f2, jac2
         if done:
-            return True, a, it, jac
+            return max(abs(x - y) for x, y in zip(a, start)) <= reach, a, it, jac
     return False, a, max_iter, None
 
 
 def addlink_rates(group, a, jac, order):
     """Exact Add-link rates by the implicit-function theorem, then the final pass.
 
-    J adot = -df/dt|adot=0 and J addot = -d2f/dt2|addot=0 with the same J;
-    returns (status, sigma) of the final pass and the Jacobian.
+    J adot = -df/dt|adot=0 with J the Newton Jacobian gives the rates at every order (they
+    start the next row); at order 2, J addot = -d2f/dt2|addot=0 the accelerations.
+    Returns the final pass's status and sigma.
     """
     n = len(a)
-    rates, accs = [0.0] * n, [0.0] * n
     _, det = solve_linear(jac, [0.0] * n)
     sigma = conditioning(jac, det)
-    if order >= 1 and det != 0.0:
-        st, rec = group([(a[i], 0.0, 0.0) for i in range(n)], True)
+    rates = accs = [0.0] * n
+    if det != 0.0:
+        st, rec = group([_record(a[i], 0.0, 0.0) for i in range(n)], True)
         rates, _ = solve_linear(jac, [-r[1] for r in rec])
         if order >= 2:
-            st, rec = group([(a[i], rates[i], 0.0) for i in range(n)], True)
+            st, rec = group([_record(a[i], rates[i], 0.0) for i in range(n)], True)
             accs, _ = solve_linear(jac, [-r[2] for r in rec])
-    elif order >= 1:
-        rates, accs = [NAN] * n, [NAN] * n
-    st, _ = group([(a[i], rates[i], accs[i]) for i in range(n)], True)
-    return st, sigma, rates, accs
+    else:
+        rates = accs = [NAN] * n
+    st, _ = group([_record(a[i], rates[i], accs[i]) for i in range(n)], True)
+    return st, sigma
+
+
+def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer):
+    """Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
+    preferred block first, the others in order; the first that converges is kept.
+
+    a[first + k] is block k's start lengths (its solution on return).  Returns
+    (k, Newton steps, sigma), k = -1 when no block converges.
+    """
+    its = 0
+    for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
+        ok, x, its, jac = newton(groups[k], a[first + k], tol, max_iter, reach)
+        if not ok:
+            continue
+        st, sigma = addlink_rates(groups[k], x, jac, order)
+        if st == 1:
+            continue
+        a[first + k] = x
+        return k, its, sigma
+    return -1, its, 0.0
 
 
 def predict(warm, inputs):
     """Resolver start values for new inputs: the warm lengths moved along their rates
-    (second-order Taylor in the warm row's input direction)."""
-    w_in, w_rates, a, ad, add = warm
+    (first-order Taylor in the warm row's input direction; rates exist at every order,
+    so a program gives the same positions whatever order it computes)."""
+    w_in, w_rates, a, ad = warm
     den = sum(r * r for r in w_rates)
     tau = sum((x - y) * r for x, y, r in zip(inputs, w_in, w_rates)) / den if den > 0 else 0.0
-    return [[v + tau * (dv + 0.5 * tau * ddv) for v, dv, ddv in zip(g, gd, gdd)] for g, gd, gdd in zip(a, ad, add)]
+    return [[v + tau * dv for v, dv in zip(g, gd)] for g, gd in zip(a, ad)]
 
 
 def continuation(run, base, a, target, limits, periodic, halvings):
@@ -385,12 +417,13 @@ l_rocker2 = (65.19202405202648, 0.0, 0.0)
 l_rocker1 = (70.0, 0.0, 0.0)
 l_ternary_J2_J4 = (105.11898020814318, 0.0, 0.0)
 l_coupler = (121.6552506059644, 0.0, 0.0)
+l_ternary_J2_J5 = (60.8276253029822, 0.0, 0.0)
 
 
 class _Work:
     """The records of one solution."""
 
-    __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "phi_ternary", "p_J5", "f1", "phi_rocker1", "phi_rocker2", "phi_coupler", "phi_crank", "sigma", "singular", "near")
+    __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "phi_ternary", "p_J5", "f1", "phi_rocker1", "phi_rocker2", "phi_coupler", "phi_crank", "add1_v1", "f1_v1", "add1_v2", "f1_v2", "add1_v3", "f1_v3", "add1_v4", "f1_v4", "add1_v5", "f1_v5", "add1_v6", "f1_v6", "add1_v7", "f1_v7", "add1_v8", "f1_v8", "sigma", "singular", "near")
 
     def note(self, step, st):
         """Remember the first step at a singular (3) or near-singular (4) position."""
@@ -439,7 +472,351 @@ def _group_1(w, a, live):
 
 
 
-def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, add, its):
+def _group_1_v1(w, a, live):
+    """Steps 14, 15, 16, 17, 18, iterated by the resolver of step 9 (fallback 1: the Add-link J6-J2).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v1 = a[0]
+    # Step 14: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[14], w.p_J2 = RRR_links(p_J1, p_J6, l_rocker1, w.add1_v1, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(14, st)
+    # Step 15: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[15], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(15, st)
+    # Step 16: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
+    st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(16, st)
+    # Step 17: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134)
+    # Step 18: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v1 = link_residual(p_J6, w.p_J5, l_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(18, st)
+    return 0, [w.f1_v1, ]
+
+
+
+def _group_1_v2(w, a, live):
+    """Steps 19, 20, 21, 22, 23, iterated by the resolver of step 9 (fallback 2: the Add-link J1-J4).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v2 = a[0]
+    # Step 19: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[19], w.p_J4 = RRR_links(p_J3, p_J1, l_rocker2, w.add1_v2, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(19, st)
+    # Step 20: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
+    st, w.sigma[20], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(20, st)
+    # Step 21: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
+    st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(21, st)
+    # Step 22: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341)
+    # Step 23: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v2 = link_residual(p_J6, w.p_J5, l_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(23, st)
+    return 0, [w.f1_v2, ]
+
+
+
+def _group_1_v3(w, a, live):
+    """Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9 (fallback 3: the Add-link J3-J2).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v3 = a[0]
+    # Step 24: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[24], w.p_J2 = RRR_links(p_J1, p_J3, l_rocker1, w.add1_v3, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(24, st)
+    # Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[25], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(25, st)
+    # Step 26: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
+    st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(26, st)
+    # Step 27: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134)
+    # Step 28: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v3 = link_residual(p_J6, w.p_J5, l_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(28, st)
+    return 0, [w.f1_v3, ]
+
+
+
+def _group_1_v4(w, a, live):
+    """Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9 (fallback 4: the Add-link J7-J2).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v4 = a[0]
+    # Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[29], w.p_J2 = RRR_links(p_J1, p_J7, l_rocker1, w.add1_v4, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(29, st)
+    # Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[30], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(30, st)
+    # Step 31: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
+    st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(31, st)
+    # Step 32: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134)
+    # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v4 = link_residual(p_J6, w.p_J5, l_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(33, st)
+    return 0, [w.f1_v4, ]
+
+
+
+def _group_1_v5(w, a, live):
+    """Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9 (fallback 5: the Add-link J7-J4).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v5 = a[0]
+    # Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[34], w.p_J4 = RRR_links(p_J3, p_J7, l_rocker2, w.add1_v5, -1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(34, st)
+    # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
+    st, w.sigma[35], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(35, st)
+    # Step 36: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
+    st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(36, st)
+    # Step 37: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341)
+    # Step 38: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v5 = link_residual(p_J6, w.p_J5, l_coupler)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(38, st)
+    return 0, [w.f1_v5, ]
+
+
+
+def _group_1_v6(w, a, live):
+    """Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9 (fallback 6: the Add-link J3-J5).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v6 = a[0]
+    # Step 39: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[39], w.p_J5 = RRR_links(p_J6, p_J3, l_coupler, w.add1_v6, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(39, st)
+    # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    st, w.sigma[40], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(40, st)
+    # Step 41: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
+    st, w.phi_ternary = link_angle(w.p_J5, w.p_J2, 2.928860872898183)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(41, st)
+    # Step 42: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341)
+    # Step 43: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v6 = link_residual(p_J3, w.p_J4, l_rocker2)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(43, st)
+    return 0, [w.f1_v6, ]
+
+
+
+def _group_1_v7(w, a, live):
+    """Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9 (fallback 7: the Add-link J1-J5).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v7 = a[0]
+    # Step 44: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[44], w.p_J5 = RRR_links(p_J6, p_J1, l_coupler, w.add1_v7, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(44, st)
+    # Step 45: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    st, w.sigma[45], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(45, st)
+    # Step 46: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
+    st, w.phi_ternary = link_angle(w.p_J5, w.p_J2, 2.928860872898183)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(46, st)
+    # Step 47: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341)
+    # Step 48: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v7 = link_residual(p_J3, w.p_J4, l_rocker2)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(48, st)
+    return 0, [w.f1_v7, ]
+
+
+
+def _group_1_v8(w, a, live):
+    """Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9 (fallback 8: the Add-link J7-J5).
+
+    a: the Add-link records; returns (status, residual records).  live=False
+    zeroes the rates of the records read from outside, so a unit Add-link rate
+    gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v8 = a[0]
+    # Step 49: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[49], w.p_J5 = RRR_links(p_J6, p_J7, l_coupler, w.add1_v8, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(49, st)
+    # Step 50: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    st, w.sigma[50], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, 1)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(50, st)
+    # Step 51: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
+    st, w.phi_ternary = link_angle(w.p_J5, w.p_J2, 2.928860872898183)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(51, st)
+    # Step 52: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341)
+    # Step 53: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    st, w.f1_v8 = link_residual(p_J3, w.p_J4, l_rocker2)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(53, st)
+    return 0, [w.f1_v8, ]
+
+
+
+def _lengths_1(w, a, ad):
+    """The Add-link lengths of every block of group 1, measured on the solved pairs."""
+    f = [link_residual(w.p_J6, w.p_J4, ZERO_LENGTH)[1]]
+    a[0] = [x[0] for x in f]
+    ad[0] = [x[1] for x in f]
+    f = [link_residual(w.p_J6, w.p_J2, ZERO_LENGTH)[1]]
+    a[1] = [x[0] for x in f]
+    ad[1] = [x[1] for x in f]
+    f = [link_residual(p_J1, w.p_J4, ZERO_LENGTH)[1]]
+    a[2] = [x[0] for x in f]
+    ad[2] = [x[1] for x in f]
+    f = [link_residual(p_J3, w.p_J2, ZERO_LENGTH)[1]]
+    a[3] = [x[0] for x in f]
+    ad[3] = [x[1] for x in f]
+    f = [link_residual(p_J7, w.p_J2, ZERO_LENGTH)[1]]
+    a[4] = [x[0] for x in f]
+    ad[4] = [x[1] for x in f]
+    f = [link_residual(p_J7, w.p_J4, ZERO_LENGTH)[1]]
+    a[5] = [x[0] for x in f]
+    ad[5] = [x[1] for x in f]
+    f = [link_residual(p_J3, w.p_J5, ZERO_LENGTH)[1]]
+    a[6] = [x[0] for x in f]
+    ad[6] = [x[1] for x in f]
+    f = [link_residual(p_J1, w.p_J5, ZERO_LENGTH)[1]]
+    a[7] = [x[0] for x in f]
+    ad[7] = [x[1] for x in f]
+    f = [link_residual(p_J7, w.p_J5, ZERO_LENGTH)[1]]
+    a[8] = [x[0] for x in f]
+    ad[8] = [x[1] for x in f]
+
+
+
+def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     """The procedure of sixbar_fig14.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
@@ -452,14 +829,14 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, add, its):
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
     # Step 9: resolve, group1. Newton-Raphson on add1 until coupler regains its length
-    k = 0
-    group = lambda r, live: _group_1(w, r, live)
-    ok, a[k], its[k], jac = newton(group, a[k], 1e-10 * LENGTH_SCALE, 8)
-    if not ok:
+    blocks = [lambda r, live: _group_1(w, r, live), lambda r, live: _group_1_v1(w, r, live), lambda r, live: _group_1_v2(w, r, live), lambda r, live: _group_1_v3(w, r, live), lambda r, live: _group_1_v4(w, r, live), lambda r, live: _group_1_v5(w, r, live), lambda r, live: _group_1_v6(w, r, live), lambda r, live: _group_1_v7(w, r, live), lambda r, live: _group_1_v8(w, r, live)]
+    k, its[0], w.sigma[9] = resolve_variants(
+        blocks, a, 0, 1e-10 * LENGTH_SCALE, 8,
+        0.1 * LENGTH_SCALE, order, used[0])
+    if k < 0:
         return 92
-    st, w.sigma[9], ad[k], add[k] = addlink_rates(group, a[k], jac, order)
-    if st == 1:
-        return 92
+    used[0] = k
+    _lengths_1(w, a, ad)
     w.note(9, 3 if w.sigma[9] < 1e-07 else 4 if w.sigma[9] < 0.001 else 0)
 
 
@@ -568,12 +945,11 @@ def _publish(w, code, order):
     return out
 
 
-def _path_run(inputs, rates, order, a):
+def _path_run(inputs, rates, order, a, used):
     """One pass along a continuation path: (closes, Add-link lengths, their rates)."""
     a = [list(g) for g in a]
     ad = [[0.0] * len(g) for g in a]
-    add = [[0.0] * len(g) for g in a]
-    code = _run(_Work(), inputs, rates, [0.0] * len(inputs), order, a, ad, add, [0] * len(a))
+    code = _run(_Work(), inputs, rates, [0.0] * len(inputs), order, a, ad, [0] * N_GROUPS, list(used))
     return code <= 0, a, ad
 
 
@@ -585,27 +961,29 @@ def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
     base = list(SKETCH_INPUTS)
     a = [list(g) for g in SKETCH_ADD_LINKS]
     ad = [[0.0] * len(g) for g in a]
-    add = [[0.0] * len(g) for g in a]
-    its = [0] * len(a)
+    its = [0] * N_GROUPS
+    used = list(warm[4]) if warm else [0] * N_GROUPS
     code, solved = 0, False
     if warm:
         # from the previous row, its lengths moved along their rates
-        a = predict(warm, inputs)
-        code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, add, its)
+        a = predict(warm[:4], inputs)
+        code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used)
         solved = code <= 0
         if not solved:
-            base, a = list(warm[0]), [list(g) for g in warm[2]]
+            base, a, used = list(warm[0]), [list(g) for g in warm[2]], list(warm[4])
     if not solved and (not warm or code % 10 == 2):
         # the sketch's assembly, followed from the sketch (or the last row)
-        reached = continuation(_path_run, base, a, list(inputs), LIMITS, PERIODIC, 10)
+        prefer = list(used)
+        path = lambda x, d, o, s: _path_run(x, d, o, s, prefer)  # noqa: E731
+        reached = continuation(path, base, a, list(inputs), LIMITS, PERIODIC, 10)
         if reached is not None:
             a = reached
-        code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, add, its)
+        code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used)
         if reached is None and code <= 0:
             code = 92  # another assembly only
         solved = code <= 0
     if state is not None:
-        state["warm"] = (list(inputs), list(d_inputs), a, ad, add) if solved else None
+        state["warm"] = (list(inputs), list(d_inputs), a, ad, used) if solved else None
     out = _publish(w, code, order)
     out["iterations"] = its
     return out

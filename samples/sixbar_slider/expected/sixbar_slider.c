@@ -217,8 +217,6 @@ typedef struct {
     VARIABLE s_S;
     ANGLE phi_coupler;
     POINT p_P;
-    ANGLE phi_crank;
-    ANGLE phi_rod;
     double sigma[SIXBAR_SLIDER_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
@@ -237,16 +235,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    w->sigma[1] = 1.0;
-    w->sigma[2] = 1.0;
-    w->sigma[3] = 1.0;
-    w->sigma[4] = 1.0;
-    w->sigma[5] = 1.0;
-    w->sigma[6] = 1.0;
-    w->sigma[7] = 1.0;
-    w->sigma[8] = 1.0;
-    w->sigma[9] = 1.0;
-    w->sigma[10] = 1.0;
+    for (st = 0; st <= SIXBAR_SLIDER_N_STEPS; st++) w->sigma[st] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
@@ -286,18 +275,6 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     /* Step 8: coupler_point, P. point P of link coupler */
     coupler_point(w->p_A, w->phi_coupler, 43.422841325484725, 19.064544348653477, &w->p_P);
-
-
-    /* Step 9: link_angle, crank. O1 and A of link crank are known, so its angle is */
-    st = link_angle(p_O1, w->p_A, 0.0, &w->phi_crank);
-    if (st == 1) return 91;
-    note(w, 9, st);
-
-
-    /* Step 10: link_angle, rod. C and D of link rod are known, so its angle is */
-    st = link_angle(w->p_C, w->p_D, 0.0, &w->phi_rod);
-    if (st == 1) return 101;
-    note(w, 10, st);
 
     return w->singular ? w->singular : -w->near;
 }

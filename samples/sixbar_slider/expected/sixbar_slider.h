@@ -7,7 +7,7 @@ extern "C" {
 #endif
 
 #define SIXBAR_SLIDER_N_INPUTS 1
-#define SIXBAR_SLIDER_N_STEPS 10
+#define SIXBAR_SLIDER_N_STEPS 8
 #define SIXBAR_SLIDER_N_COLUMNS 19
 #define SIXBAR_SLIDER_ORDER 2
 #define SIXBAR_SLIDER_SAMPLES 361
@@ -20,8 +20,7 @@ typedef struct { double phi, omega, alpha; } sixbar_slider_angle;
 typedef struct { double x, y, vx, vy, ax, ay, s, ds, dds; } sixbar_slider_prismatic;
 
 /* Everything one call of sixbar_slider_solve gives.  Zero it (or call
-   sixbar_slider_init) before the first call; keep it between calls so the
-   resolver starts from the previous solution. */
+   sixbar_slider_init) before the first call. */
 typedef struct {
     sixbar_slider_prismatic S;
     sixbar_slider_point P;
@@ -30,7 +29,7 @@ typedef struct {
     double sigma[SIXBAR_SLIDER_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } sixbar_slider_state;
 
-/* Clear a state: outputs, and the resolvers start from the sketch. */
+/* Clear a state. */
 void sixbar_slider_init(sixbar_slider_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of

@@ -5,15 +5,13 @@
         inputs in radians and length units, in the order of the file's inputs,
         with their rates and accelerations (per second); returns every output
         column ("A.x", "crank.phi", ...), "status" and "sigma" (conditioning per
-        step).  Pass the same dict as state on every call of a sweep so the
-        resolver starts from the previous row.
-    python sixbar_slider.py
+        step).    python sixbar_slider.py
         writes the sweep over the inputs' ranges as CSV to standard output.
 """
 
 import math
 import sys
-from math import atan2, cos, floor, sin, sqrt
+from math import atan2, cos, sin, sqrt
 
 EPS = sys.float_info.epsilon
 NAN = math.nan
@@ -21,7 +19,7 @@ PI = math.pi
 
 ORDER = 2
 SAMPLES = 361
-N_STEPS = 10
+N_STEPS = 8
 INPUTS = ((0.0, 6.283185307179586, 6.283185307179586), )  # (start, stop, speed) of each input
 COLUMNS = (
     "theta_O1",
@@ -222,7 +220,7 @@ l_rod = (65.27633568147036, 0.0, 0.0)
 class _Work:
     """The records of one solution."""
 
-    __slots__ = ("in1", "p_A", "p_B", "phi_rocker", "p_C", "p_D", "p_S", "s_S", "phi_coupler", "p_P", "phi_crank", "phi_rod", "sigma", "singular", "near")
+    __slots__ = ("in1", "p_A", "p_B", "phi_rocker", "p_C", "p_D", "p_S", "s_S", "phi_coupler", "p_P", "sigma", "singular", "near")
 
     def note(self, step, st):
         """Remember the first step at a singular (3) or near-singular (4) position."""
@@ -271,18 +269,6 @@ def _run(w, inputs, d_inputs, dd_inputs):
 
     # Step 8: coupler_point, P. point P of link coupler
     w.p_P = coupler_point(w.p_A, w.phi_coupler, 43.422841325484725, 19.064544348653477)
-
-    # Step 9: link_angle, crank. O1 and A of link crank are known, so its angle is
-    st, w.phi_crank = link_angle(p_O1, w.p_A, 0.0)
-    if st == 1:
-        return 91
-    w.note(9, st)
-
-    # Step 10: link_angle, rod. C and D of link rod are known, so its angle is
-    st, w.phi_rod = link_angle(w.p_C, w.p_D, 0.0)
-    if st == 1:
-        return 101
-    w.note(10, st)
 
     return w.singular or -w.near
 

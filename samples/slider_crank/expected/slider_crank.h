@@ -20,8 +20,7 @@ typedef struct { double phi, omega, alpha; } slider_crank_angle;
 typedef struct { double x, y, vx, vy, ax, ay, s, ds, dds; } slider_crank_prismatic;
 
 /* Everything one call of slider_crank_solve gives.  Zero it (or call
-   slider_crank_init) before the first call; keep it between calls so the
-   resolver starts from the previous solution. */
+   slider_crank_init) before the first call. */
 typedef struct {
     slider_crank_point O;
     slider_crank_point A;
@@ -35,7 +34,7 @@ typedef struct {
     double sigma[SLIDER_CRANK_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } slider_crank_state;
 
-/* Clear a state: outputs, and the resolvers start from the sketch. */
+/* Clear a state. */
 void slider_crank_init(slider_crank_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of

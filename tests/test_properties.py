@@ -1,0 +1,949 @@
+"""Property tests on random assembled sketches, against independent 50-digit answers.
+
+Every example is drawn as positions (tests/sketches.py): pairs at random places times a
+scale from 1e-6 to 1e6, some segments short down to 1e-12 of the others, so every
+example is assembled.  Nothing expected is taken from linkgen: the chains are checked
+against closed-form geometry in 50-digit Taylor arithmetic (sketches.CHAINS), the
+mechanisms against tests/reference.py, reached by continuation from the sketch pose.
+L is the largest length or coordinate a step (a row) involves, eps = 2^-52.
+
+1. Chains (every runtime primitive) on assembled float inputs, needles and exact toggles
+   included: status discipline (1: every output nan; 3: positions finite, rates nan; never
+   inf; sigma in [0, 1] and on the right side of 1e-3 and 1e-7 for its status; an exact
+   toggle is status 3); no "cannot close" where the exact problem closes; constraint
+   residuals <= 4 eps L; positions within 8 eps L kappa of the 50-digit solution of the
+   same float inputs (kappa = 1/sigma, at most 1/sqrt(eps) at a toggle: the conditioning
+   of the problem; the figure in ulps of L at sigma >= 0.5 is recorded); sigma itself;
+   velocities within 1e-12 and accelerations within 1e-11 relative where sigma >= 0.1 and
+   the link ratio <= 100.
+2. Mechanisms through the evaluator (four-bars, slider-cranks, inverted slider-cranks, Watt
+   and Stephenson six-bars, the Fig. 14 six-bar, triads): the sketch row reproduces the
+   sketch; rows near the sketch agree with the reference (positions and angles within
+   2 eps L over the reference's scale-free conditioning, rates as above on regular rows); no
+   row fails where the reference follows the sketch's assembly; every row keeps the status
+   discipline; scaling by 2^k is bit-exact; scaling by 1e-6 or 1e6 (or any factor), turning
+   and moving the sketch keeps every row within the same bounds of its own reference.
+3. The resolver along a sweep from the sketch (one degree a row, as far as the reference
+   follows the sketch's assembly): Newton steps per warm-started row (mean <= 3.5, max <= 8),
+   no failed row, no other assembly, positions within 4 eps L where every sigma >= 0.5
+   (Fig.-14-like six-bars).
+4. Ten seeded mechanisms through the generated C, Python and Octave programs (and the
+   evaluator): every CSV row against the reference with the bounds above, and the status
+   discipline of the CSVs.
+
+The counterexamples found are kept as explicit tests at the end of the file.
+
+Hypothesis profiles: "properties-ci" (selected when CI is set: derandomized, every test at
+its full example count, 3300 examples in all) and "properties-dev" (the default: a fifth of
+the examples).  LINKGEN_PROPERTY_SCALE multiplies the counts; whole-mechanism tests shrink a
+failing example only when LINKGEN_PROPERTY_SHRINK is set.  Every worst error measured goes to
+sketches.WORST; tests/conftest.py prints the table at the end of the session (and writes
+it to $LINKGEN_PROPERTY_REPORT when set).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import os
+import struct
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sketches as sk
+from hypothesis import HealthCheck, Phase, assume, given, note, settings
+from hypothesis import strategies as st
+from programs import parse, run_c, run_octave, run_python
+from reference import Reference
+
+from linkgen.errors import LinkgenError
+from linkgen.evaluate import evaluate
+from linkgen.pipeline import build_log
+from linkgen.primitives import PRIMITIVES, python_backend
+from linkgen.render import render_all
+from linkgen.steplog import StepLog
+from linkgen.table import columns
+from linkgen.writer import write_all
+
+# hypothesis's report of a failing example imports a module that warns (pyproject turns warnings into errors)
+pytestmark = pytest.mark.filterwarnings("ignore:mypy_extensions.TypedDict is deprecated:DeprecationWarning")
+
+EPS = sk.EPS
+CI = bool(os.environ.get("CI"))
+_HEALTH = [HealthCheck.too_slow, HealthCheck.filter_too_much, HealthCheck.data_too_large]
+settings.register_profile("properties-ci", deadline=None, derandomize=True, database=None, print_blob=True,
+                          suppress_health_check=_HEALTH)
+settings.register_profile("properties-dev", deadline=None, print_blob=True, suppress_health_check=_HEALTH)
+PROFILE = settings.get_profile("properties-ci" if CI else "properties-dev")
+SCALE = float(os.environ.get("LINKGEN_PROPERTY_SCALE", "1"))
+SHRINK = bool(os.environ.get("LINKGEN_PROPERTY_SHRINK"))
+
+
+def examples(ci: int, heavy: bool = False) -> settings:
+    """The settings of a property test that runs ``ci`` examples under CI (a fifth locally).
+
+    ``heavy`` tests (whole mechanisms, whose failing rows cost the evaluator a continuation each) do not
+    shrink unless LINKGEN_PROPERTY_SHRINK is set, so a failure costs seconds, not minutes of shrinking;
+    the minimal counterexamples found so far are kept as explicit tests at the end of this file."""
+    n = ci if CI else max(5, ci // 5)
+    extra = {"phases": [p for p in Phase if p != Phase.shrink]} if heavy and not SHRINK else {}
+    return settings(PROFILE, max_examples=max(1, round(n * SCALE)), **extra)
+
+
+# --------------------------------------------------------------------------- bounds
+
+RESIDUAL = 4  # constraint residuals of a chain, in eps L
+FORWARD = 8  # a chain's position error, in eps L kappa (kappa = 1/sigma, capped at toggles)
+VELOCITY = 1e-12  # relative, where sigma >= REGULAR_SIGMA and the link ratio <= MAX_RATIO
+ACCELERATION = 1e-11
+REGULAR_SIGMA = 0.1
+MAX_RATIO = 100
+POSITION = 2  # a mechanism's position error, in eps L over the reference's conditioning
+RESOLVER_POSITION = 4  # eps L, the resolver's positions on regular rows (Fig. 14 family)
+NEAR, SINGULAR = 1e-3, 1e-7  # the status thresholds of sigma
+RATE_COND = 1e-6  # the reference's rates are compared where its conditioning is at least this
+FIELDS = {"POINT": ("x", "y", "dx", "dy", "ddx", "ddy"), "ANGLE": ("the", "dthe", "ddthe"),
+          "VARIABLE": ("v", "dv", "ddv")}
+WIDTH = {"POINT": 2, "ANGLE": 1, "VARIABLE": 1}
+
+
+# --------------------------------------------------------------------------- 1. chains
+
+
+def call(name: str, args: tuple) -> tuple[int, float | None, dict]:
+    """(status, sigma, {output: record}) of the generated Python primitive (status 0 and sigma None
+    where the primitive reports none)."""
+    prim = PRIMITIVES[name]
+    res = python_backend(2)[name](*args)
+    if prim.status is None:
+        outs = (res,) if len(prim.outputs) == 1 else res
+        code, sigma = 0, None
+    elif prim.sigma is None:
+        code, sigma, outs = res[0], None, res[1:]
+    else:
+        code, sigma, outs = res[0], res[1], res[2:]
+    return code, sigma, {o.name: tuple(rec) for o, rec in zip(prim.outputs, outs)}
+
+
+def _jet_fields(kind: str, value) -> list:
+    jets = value if isinstance(value, tuple) else (value,)
+    return [getattr(j, lv) for lv in ("v", "d", "dd") for j in jets]
+
+
+def _rate_scales(case: sk.Case) -> dict[str, float]:
+    """Near-zero scales of the case's rates: largest input and exact output rate of each kind."""
+    lin_v = lin_a = ang_v = ang_a = 0.0
+    kinds = {p.name: p.kind for p in PRIMITIVES[case.name].params if p.is_record}
+    for name, value in case.values.items():
+        if name not in kinds:
+            continue
+        f = [float(x) for x in _jet_fields(kinds[name], value)]
+        if kinds[name] == "POINT":
+            lin_v, lin_a = max(lin_v, math.hypot(f[2], f[3])), max(lin_a, math.hypot(f[4], f[5]))
+        elif kinds[name] == "ANGLE":
+            ang_v, ang_a = max(ang_v, abs(f[1])), max(ang_a, abs(f[2]))
+        else:
+            lin_v, lin_a = max(lin_v, abs(f[1])), max(lin_a, abs(f[2]))
+    for o in PRIMITIVES[case.name].outputs:
+        f = [abs(float(x)) for x in _jet_fields(o.kind, case.exact[o.name])]
+        if o.kind == "ANGLE":
+            ang_v, ang_a = max(ang_v, f[1]), max(ang_a, f[2])
+        else:
+            w = WIDTH[o.kind]
+            lin_v, lin_a = max(lin_v, max(f[w:2 * w])), max(lin_a, max(f[2 * w:]))
+    L = case.length
+    lin_v = max(lin_v, ang_v * L)
+    ang_v = max(ang_v, lin_v / L)
+    lin_a = max(lin_a, ang_a * L, lin_v * lin_v / L)  # (x * x: inf, not OverflowError, far out)
+    ang_a = max(ang_a, lin_a / L, ang_v * ang_v)
+    return {"velocity": lin_v, "acceleration": lin_a, "angular_velocity": ang_v, "angular_acceleration": ang_a}
+
+
+def check_chain(case: sk.Case) -> None:
+    """Every chain property of one assembled case."""
+    note(case.note())
+    name, prim = case.name, PRIMITIVES[case.name]
+    status, sigma, outs = call(name, case.args)
+    sub = f"{name} {case.what}".strip()
+    # status discipline
+    for o in prim.outputs:
+        for i, x in enumerate(outs[o.name]):
+            level = i // WIDTH[o.kind]
+            assert not math.isinf(x), f"{o.name}.{FIELDS[o.kind][i]} is inf (status {status})"
+            if status == 1 or (status == 3 and level > 0):
+                assert math.isnan(x), f"status {status}: {o.name}.{FIELDS[o.kind][i]} = {x!r}, not nan"
+            else:
+                assert math.isfinite(x), f"status {status}: {o.name}.{FIELDS[o.kind][i]} = {x!r}"
+    assert status in (0, 1, 3, 4), status
+    if sigma is not None:
+        assert 0 <= sigma <= 1, f"sigma = {sigma!r}"
+        if status == 0:
+            assert sigma >= NEAR, f"status 0 with sigma {sigma!r}"
+        elif status == 4:
+            assert SINGULAR <= sigma < NEAR, f"status 4 with sigma {sigma!r}"
+        elif status == 3:
+            assert sigma < SINGULAR, f"status 3 with sigma {sigma!r}"
+    if case.toggle:
+        assert status == 3, f"an exact toggle gives status {status} (sigma {sigma!r})"
+    if status == 1:
+        # slides within eps of parallel meet beyond what the float inputs resolve
+        assert case.exact is None or case.sigma < EPS, (
+            f"the exact problem on these inputs closes (sigma {case.sigma:.3g}), but the chain reports it cannot")
+        return
+    # L of the step: its inputs' lengths and coordinates, and its outputs' (far out near parallel slides)
+    length = max([case.length] + [abs(outs[o.name][i]) for o in prim.outputs if o.kind != "ANGLE"
+                                  for i in range(WIDTH[o.kind])])
+    # backward error: the constraints at the float outputs
+    res = max([abs(float(r)) for r in sk.residuals(case, outs)] + [0.0]) / (EPS * length)
+    sk.record("1 chain residual", sub, "residual [eps L]", res, case.note())
+    assert res <= RESIDUAL, f"constraint residual {res:.3g} eps L"
+    if case.exact is None:
+        return
+    # forward error of the positions against 50 digits
+    err = 0.0
+    for o in prim.outputs:
+        got, want = outs[o.name], _jet_fields(o.kind, case.exact[o.name])
+        for i in range(WIDTH[o.kind]):
+            if o.kind == "ANGLE":
+                err = max(err, abs(float(sk.wrap(sk.MP.mpf(got[i]) - want[i]))) * case.arm)
+            else:
+                err = max(err, abs(float(sk.MP.mpf(got[i]) - want[i])))
+    err /= EPS * length
+    # conditioning: 1/sigma, at most 1/sqrt(eps) where a square root meets a toggle (the error there is
+    # sqrt(eps) L); the intersection of nearly parallel slides has no such floor
+    floor = 1e-300 if name in ("PRP_links", "PPR_links") else math.sqrt(EPS)
+    kappa = 1 / max(case.sigma, floor) if not math.isnan(case.sigma) else 1.0
+    sk.record("1 chain position", sub, "error [eps L / kappa]", err / kappa, case.note())
+    if math.isnan(case.sigma) or case.sigma >= 0.5:
+        sk.record("1 chain position", name, "error at sigma>=0.5 [ulp(L)]",
+                  err * EPS * length / math.ulp(length), case.note())
+    assert err <= FORWARD * kappa, f"position error {err:.3g} eps L at sigma {case.sigma:.3g}"
+    if sigma is not None:
+        gap = abs(sigma**2 - case.sigma**2) / EPS
+        sk.record("1 chain sigma", name, "|sigma^2 - exact^2| [eps]", gap, case.note())
+        assert gap <= 64 * max(1.0, case.ratio), f"sigma {sigma!r}, exact {case.sigma!r}"
+    # rates where the chain is regular
+    regular = (math.isnan(case.sigma) or case.sigma >= REGULAR_SIGMA) and case.ratio <= MAX_RATIO and status == 0
+    if not regular:
+        return
+    scales = _rate_scales(case)
+    worst = {"velocity": 0.0, "acceleration": 0.0}
+    for o in prim.outputs:
+        got, want = outs[o.name], _jet_fields(o.kind, case.exact[o.name])
+        w = WIDTH[o.kind]
+        for i in range(w, 3 * w):
+            level = "velocity" if i < 2 * w else "acceleration"
+            cls = ("angular_" + level) if o.kind == "ANGLE" else level
+            e = float(abs(sk.MP.mpf(got[i]) - want[i])) / max(abs(got[i]), abs(float(want[i])), scales[cls], 1e-300)
+            worst[level] = max(worst[level], e)
+    sk.record("1 chain rates", name, "velocity [rel]", worst["velocity"], case.note())
+    sk.record("1 chain rates", name, "acceleration [rel]", worst["acceleration"], case.note())
+    assert worst["velocity"] <= VELOCITY, f"velocity error {worst['velocity']:.3g} relative"
+    assert worst["acceleration"] <= ACCELERATION, f"acceleration error {worst['acceleration']:.3g} relative"
+
+
+@st.composite
+def chain_cases(draw, name: str) -> sk.Case:
+    try:
+        return sk.CHAINS[name](sk.HypothesisSource(draw))
+    except sk.Degenerate:
+        assume(False)
+
+
+CHAIN_EXAMPLES = {"RRR_links": 500, "PRR_links": 400, "RPR_links": 400, "PRP_links": 300, "PPR_links": 300,
+                  "coupler_point": 150, "link_angle": 150, "crank_input": 100, "slider_input": 100,
+                  "offset_angle": 50, "link_residual": 100}
+
+
+def _chain_test(name: str):
+    @examples(CHAIN_EXAMPLES[name])
+    @given(case=chain_cases(name))
+    def test(case):
+        check_chain(case)
+
+    test.__name__ = f"test_chain_{name}"
+    test.__doc__ = f"{name}: status discipline, residual, position, sigma and rates on assembled inputs."
+    return test
+
+
+test_chain_RRR_links = _chain_test("RRR_links")
+test_chain_PRR_links = _chain_test("PRR_links")
+test_chain_RPR_links = _chain_test("RPR_links")
+test_chain_PRP_links = _chain_test("PRP_links")
+test_chain_PPR_links = _chain_test("PPR_links")
+test_chain_coupler_point = _chain_test("coupler_point")
+test_chain_link_angle = _chain_test("link_angle")
+test_chain_crank_input = _chain_test("crank_input")
+test_chain_slider_input = _chain_test("slider_input")
+test_chain_offset_angle = _chain_test("offset_angle")
+test_chain_link_residual = _chain_test("link_residual")
+
+
+def test_every_primitive_has_a_chain_property():
+    assert set(sk.CHAINS) == set(PRIMITIVES) == set(CHAIN_EXAMPLES)
+
+
+# --------------------------------------------------------------------------- 2. mechanisms
+
+KINDS = list(sk.MECHANISMS)
+NAMES = itertools.count()
+
+
+@pytest.fixture(scope="module")
+def work(tmp_path_factory) -> Path:
+    return tmp_path_factory.mktemp("sketches")
+
+
+@dataclass
+class Built:
+    sketch: sk.Sketch
+    path: Path
+    log: StepLog
+    ref: Reference
+    cond: float  # the sketch's conditioning (reference, scale-free)
+
+    @property
+    def length(self) -> float:
+        """L of the error bounds: the sketch's size, or its largest coordinate when it lies further out."""
+        return max(self.sketch.size(), self.sketch.extent())
+
+    @property
+    def ratio(self) -> float:
+        """The size over the shortest distance between two spots of one link."""
+        short = math.inf
+        for bd in self.sketch.bodies:
+            spots = [self.sketch.position(n) for n in bd.joints] + [(x, y) for _, x, y in bd.points]
+            for i, a in enumerate(spots):
+                for c in spots[i + 1:]:
+                    if a != c:
+                        short = min(short, math.hypot(a[0] - c[0], a[1] - c[1]))
+        return self.sketch.size() / short
+
+    @property
+    def theta0(self) -> float:
+        return float(self.ref.sketch_inputs()[0])
+
+
+REFUSE_COND = 1e-6  # linkgen may refuse a sketch (dead centre, redundancy) only below this conditioning
+
+
+def build(sketch: sk.Sketch, folder: Path, span=(-0.5, 0.5), samples: int = 5, speed: float = 1.0) -> Built:
+    """The sketch written and built.  Degenerate sketches are rejected; a refused regular one fails."""
+    assume(sketch.distinct(1e-13))
+    name = f"{sketch.kind}_{next(NAMES)}"
+    path = folder / f"{name}.yaml"
+    path.write_text(sketch.yaml(name, span, samples, speed))
+    note(f"sketch {path.name}:\n{path.read_text()}")
+    ref = Reference(str(path))
+    cond = sk.sketch_condition(ref)
+    try:
+        log = build_log(str(path), outputs=(), sweep=False)
+    except LinkgenError as exc:
+        assert cond < REFUSE_COND, f"linkgen refuses a sketch of conditioning {cond:.3g}: {exc}"
+        assume(False)
+    return Built(sketch, path, log, ref, cond)
+
+
+def run(b: Built, values, rates) -> tuple[list[str], np.ndarray, object]:
+    v = np.array(values, dtype=float).reshape(-1, 1)
+    r = np.array(rates, dtype=float).reshape(-1, 1)
+    with np.errstate(all="ignore"):
+        result = evaluate(b.log, v, r, np.zeros_like(v))
+    names, data = columns(b.log, result)
+    return names, data, result
+
+
+def step_sigmas(result, k: int) -> dict[int, float]:
+    return {n: float(s[k]) for n, s in result.sigma.items()}
+
+
+def check_status_rows(names: list[str], data: np.ndarray, status, sigmas: list[dict[int, float]], n_in: int,
+                      where: str) -> None:
+    """The status discipline of whole rows (evaluator or a program's CSV)."""
+    rate_cols = [k for k, n in enumerate(names[n_in:], n_in) if sk.quantity(n) not in ("position", "angle")]
+    pos_cols = [k for k in range(n_in, len(names)) if k not in rate_cols]
+    for k, code in enumerate(status):
+        row = data[k]
+        assert not np.isinf(row).any(), f"{where} row {k}: inf"
+        assert np.isfinite(row[:n_in]).all(), f"{where} row {k}: inputs not written"
+        sig = sigmas[k] if sigmas else {}
+        for n, s in sig.items():
+            assert math.isnan(s) or 0 <= s <= 1, f"{where} row {k}: step {n} sigma {s!r}"
+        if code > 0:
+            step, reason = divmod(int(code), 10)
+            assert reason in (1, 2, 3), f"{where} row {k}: status {code}"
+            if reason == 3:
+                assert np.isfinite(row[pos_cols]).all(), f"{where} row {k}: status {code} without positions"
+                assert np.isnan(row[rate_cols]).all(), f"{where} row {k}: status {code} with rates"
+                if sig:
+                    assert sig[step] < SINGULAR, f"{where} row {k}: status {code} at sigma {sig[step]!r}"
+            else:
+                assert np.isnan(row[n_in:]).all(), f"{where} row {k}: status {code} with outputs"
+        else:
+            assert np.isfinite(row).all(), f"{where} row {k}: status {code} with nan outputs"
+            if not sig:
+                continue
+            live = {n: s for n, s in sig.items() if not math.isnan(s)}
+            assert all(s >= SINGULAR for s in live.values()), f"{where} row {k}: singular step in status {code}"
+            if code < 0:
+                step, reason = divmod(-int(code), 10)
+                assert reason == 4 and SINGULAR <= sig[step] < NEAR, f"{where} row {k}: status {code}, {sig}"
+            else:
+                assert all(s >= NEAR for s in live.values()), f"{where} row {k}: status 0 with {live}"
+
+
+def regular_row(b: Built, sig: dict[int, float]) -> bool:
+    live = [s for s in sig.values() if not math.isnan(s)]
+    return min(live, default=1.0) >= REGULAR_SIGMA and b.ratio <= MAX_RATIO
+
+
+def compare_row(b: Built, prop: str, row: dict, status: int, reached: sk.Reached, regular: bool,
+                where: str) -> dict:
+    """A linkgen row against the reference: positions over the conditioning, rates on regular rows."""
+    errs = sk.row_errors(row, reached.columns, b.length, sk.link_sizes(b.sketch))
+    bound = POSITION / max(reached.cond, 1e-300)
+    kind = b.sketch.kind
+    for q in ("position", "angle"):
+        e, col = errs[q]
+        sk.record(prop, kind, f"{q} x cond [eps L]", e * reached.cond, where)
+        if regular:
+            sk.record(prop, kind, f"{q} regular [eps L]", e, where)
+        assert e <= bound, (f"{where}: {col} = {row[col]!r}, reference {float(reached.columns[col])!r}: "
+                            f"{e:.3g} eps L, bound {bound:.3g} (conditioning {reached.cond:.3g})")
+    if regular and status == 0 and reached.cond >= RATE_COND:
+        for q, tol in (("velocity", VELOCITY), ("acceleration", ACCELERATION),
+                       ("angular_velocity", VELOCITY), ("angular_acceleration", ACCELERATION)):
+            e, col = errs.get(q, (0.0, ""))
+            sk.record(prop, kind, f"{q} [rel]", e, where)
+            assert e <= tol, (f"{where}: {col} = {row[col]!r}, reference {float(reached.columns[col])!r}: "
+                              f"{e:.3g} relative")
+    return errs
+
+
+@st.composite
+def sketches(draw, kind: str) -> sk.Sketch:
+    return sk.MECHANISMS[kind](sk.HypothesisSource(draw))
+
+
+def deltas(draw) -> list[float]:
+    """Input offsets from the sketch: one tiny, one or two moderate."""
+    tiny = draw(st.floats(-1e-6, 1e-6, allow_nan=False, allow_subnormal=False))
+    moderate = draw(st.lists(st.floats(-0.5, 0.5, allow_nan=False, allow_subnormal=False), min_size=1, max_size=2))
+    return [tiny, *moderate]
+
+
+MECH_EXAMPLES = {"fourbar": 80, "slider_crank": 80, "inverted_slider": 80, "watt": 50, "stephenson": 50,
+                 "fig14": 40, "triad": 40}
+
+
+def check_sketch_row(b: Built, names: list[str], data: np.ndarray, status: int, sig: dict, prop: str) -> None:
+    """At the sketch's input value every pair is at its sketch position and every link at its sketch angle."""
+    where = f"{b.path.name} sketch row"
+    assert status <= 0 or status % 10 == 3, f"{where}: status {status}"
+    row = dict(zip(names, (float(x) for x in data)))
+    ref = b.ref
+    want = {}
+    for j in ref.m.joints:
+        want[f"{j.name}.x"], want[f"{j.name}.y"] = sk.MP.mpf(j.x), sk.MP.mpf(j.y)
+        if j.kind == "prismatic":
+            want[f"{j.name}.s"] = sk.MP.mpf(0)
+    for p in ref.m.points:
+        want[f"{p.name}.x"], want[f"{p.name}.y"] = sk.MP.mpf(p.x), sk.MP.mpf(p.y)
+    for lk in ref.m.links:
+        want[f"{lk.name}.phi"] = sk.wrap(ref.directions[True][lk.name])
+    errs = sk.row_errors(row, want, b.length, sk.link_sizes(b.sketch))
+    bound = POSITION / max(b.cond, 1e-300)
+    for q in ("position", "angle"):
+        e, col = errs[q]
+        sk.record(prop, b.sketch.kind, f"sketch row {q} x cond [eps L]", e * b.cond, where)
+        assert e <= bound, f"{where}: {col} = {row[col]!r}, drawn at {float(want[col])!r} ({e:.3g} eps L)"
+
+
+def mechanism_property(kind: str):
+    @examples(MECH_EXAMPLES[kind], heavy=True)
+    @given(data=st.data())
+    def test(work, data):
+        sketch = data.draw(sketches(kind))
+        b = build(sketch, work)
+        offs = deltas(data.draw)
+        speed = data.draw(st.floats(0.1, 10.0))
+        values = [b.theta0] + [b.theta0 + d for d in offs]
+        names, table, result = run(b, values, [speed] * len(values))
+        n_in = len(b.log.inputs)
+        sigmas = [step_sigmas(result, k) for k in range(len(values))]
+        check_status_rows(names, table, result.status, sigmas, n_in, b.path.name)
+        check_sketch_row(b, names, table[0], int(result.status[0]), sigmas[0], "2 mechanism")
+        for k, reached in enumerate(sk.reach(b.ref, values, [speed] * len(values))):
+            where = f"{b.path.name} input {values[k]!r} (sketch {offs[k - 1] if k else 0.0:+.3g})"
+            st_k = int(result.status[k])
+            if reached is None:
+                continue
+            if reached.cond >= sk.MIN_COND:
+                assert not (st_k > 0 and st_k % 10 in (1, 2)), (
+                    f"{where}: status {st_k}, but the sketch's assembly is reached there (conditioning "
+                    f"{reached.cond:.3g})")
+            if st_k > 0 and st_k % 10 in (1, 2):
+                continue
+            row = dict(zip(names, (float(x) for x in table[k])))
+            compare_row(b, "2 mechanism", row, st_k, reached, regular_row(b, sigmas[k]), where)
+
+    test.__name__ = f"test_mechanism_{kind}"
+    test.__doc__ = f"{kind}: the sketch row, rows near it against the reference, the status discipline."
+    return test
+
+
+test_mechanism_fourbar = mechanism_property("fourbar")
+test_mechanism_slider_crank = mechanism_property("slider_crank")
+test_mechanism_inverted_slider = mechanism_property("inverted_slider")
+test_mechanism_watt = mechanism_property("watt")
+test_mechanism_stephenson = mechanism_property("stephenson")
+test_mechanism_fig14 = mechanism_property("fig14")
+test_mechanism_triad = mechanism_property("triad")
+
+
+TINY = 2.0**-900
+
+
+def _bits(x: float) -> int:
+    return struct.unpack("<q", struct.pack("<d", float(x)))[0]
+
+
+def _same(a: float, b: float) -> bool:
+    return (math.isnan(a) and math.isnan(b)) or _bits(a) == _bits(b)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@examples(30, heavy=True)
+@given(data=st.data())
+def test_scaling_by_powers_of_two_is_bit_exact(kind, work, data):
+    """Every coordinate times 2^k: positions, velocities and accelerations exactly times 2^k; angles,
+    their rates, statuses, sigmas and Newton steps the same bits."""
+    sketch = data.draw(sketches(kind))
+    k = data.draw(st.integers(-20, 20).filter(bool))
+    a = build(sketch, work)
+    b = build(sketch.scaled(2.0**k), work)
+    assert _same(a.log.inputs[0].sketch, b.log.inputs[0].sketch)
+    offs = deltas(data.draw)
+    values = [a.log.inputs[0].sketch] + [a.log.inputs[0].sketch + d for d in offs]
+    names, ta, ra = run(a, values, [1.0] * len(values))
+    names_b, tb, rb = run(b, values, [1.0] * len(values))
+    assert names == names_b
+    assert list(ra.status) == list(rb.status)
+    for n in ra.sigma:
+        assert all(_same(x, y) for x, y in zip(ra.sigma[n], rb.sigma[n])), f"step {n} sigma"
+    for g in ra.iterations:
+        assert list(ra.iterations[g]) == list(rb.iterations[g])
+    f = 2.0**k
+    bad = []
+    for c, name in enumerate(names[1:], 1):
+        lin = sk.quantity(name) in ("position", "velocity", "acceleration")
+        for r in range(len(values)):
+            want = ta[r, c] * f if lin else ta[r, c]
+            if min(abs(ta[r, c]), abs(tb[r, c])) < TINY:
+                continue  # rounding residue of an exact zero, near the subnormal range: scaling is not exact there
+            if not _same(tb[r, c], want):
+                bad.append((r, name, ta[r, c], tb[r, c]))
+    sk.record("2 scale 2^k", kind, "columns not bit-exact", float(len(bad)))
+    assert not bad, f"scaled by 2^{k}: {bad[:5]}"
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@examples(15, heavy=True)
+@given(data=st.data())
+def test_scaled_turned_and_moved_sketch_keeps_its_accuracy(kind, work, data):
+    """The sketch scaled by 1e-6 or 1e6 (or any factor), turned and moved: every row is within the same
+    bounds of its own reference as the original's rows are of theirs."""
+    sketch = data.draw(sketches(kind))
+    factor = data.draw(st.sampled_from([1e-6, 1e6, 10.0 ** data.draw(st.floats(-6, 6))]))
+    turn = data.draw(st.floats(-math.pi, math.pi))
+    size = sketch.size()
+    shift = [data.draw(st.floats(-3, 3)) * size * factor for _ in range(2)]
+    moved = sketch.scaled(factor).moved(turn, *shift)
+    offs = deltas(data.draw)
+    worst = {}
+    for tag, s in (("original", sketch), ("transformed", moved)):
+        b = build(s, work)
+        values = [b.theta0 + d for d in offs]
+        names, table, result = run(b, values, [1.0] * len(values))
+        for k, reached in enumerate(sk.reach(b.ref, values, [1.0] * len(values))):
+            st_k = int(result.status[k])
+            if reached is None or (st_k > 0 and st_k % 10 in (1, 2)):
+                assert reached is None or reached.cond < sk.MIN_COND, f"{tag}: status {st_k} at a reached row"
+                continue
+            row = dict(zip(names, (float(x) for x in table[k])))
+            errs = compare_row(b, f"2 transformed ({tag})", row, st_k, reached,
+                               regular_row(b, step_sigmas(result, k)), f"{tag} {b.path.name} row {k}")
+            worst[tag] = max(worst.get(tag, 0.0), errs["position"][0] * reached.cond)
+    if "original" in worst and "transformed" in worst:
+        sk.record("2 transformed", kind, "position x cond: transformed - original [eps L]",
+                  worst["transformed"] - worst["original"])
+
+
+# --------------------------------------------------------------------------- 3. the resolver over a sweep
+
+SWEEP_ROWS = 361  # a full turn from the sketch, one degree a row (the format's default sampling)
+CHECK_EVERY = 3  # the reference follows every third row
+WELL = 0.5  # rows where every step's sigma is at least this are held to RESOLVER_POSITION
+RESOLVER_EXAMPLES = {"fig14": 15, "triad": 15}
+
+
+@pytest.mark.parametrize("kind", list(RESOLVER_EXAMPLES))
+@examples(15, heavy=True)
+@given(data=st.data())
+def test_resolver_sweep(kind, work, data):
+    """The crank turned from the sketch, one degree a row, as far as the reference follows the sketch's
+    assembly (up to a full turn): Newton steps per warm-started row (mean <= 3.5, max <= 8), no failed
+    row, no other assembly, positions within 4 eps L of the 50-digit reference where every sigma >= 0.5
+    (Fig. 14 family).  (The sweep stops where the reference does: rows past an assembly limit fail
+    anyway, and each costs the evaluator a continuation.)"""
+    sketch = data.draw(sketches(kind))
+    b = build(sketch, work)
+    assert b.log.groups, "a class-III six-bar without a resolver"
+    t0, ref = b.theta0, b.ref
+    direction = data.draw(st.sampled_from([1.0, -1.0]))
+    degree = 2 * math.pi / (SWEEP_ROWS - 1)
+    # the reference first: checkpoints every CHECK_EVERY rows, by continuation from the sketch pose
+    poses, q = [ref.sketch_pose()], ref.sketch_pose()
+    while CHECK_EVERY * len(poses) < SWEEP_ROWS:
+        k = CHECK_EVERY * len(poses)
+        q = sk.walk(ref, q, t0 + direction * (k - CHECK_EVERY) * degree, t0 + direction * k * degree,
+                    step=CHECK_EVERY * degree)
+        if q is None:
+            break
+        poses.append(q)
+    rows = CHECK_EVERY * (len(poses) - 1) + 1
+    values = [t0 + direction * k * degree for k in range(rows)]
+    names, table, result = run(b, values, [1.0] * rows)
+    status = result.status
+    sigmas = [step_sigmas(result, k) for k in range(rows)]
+    check_status_rows(names, table, status, sigmas, 1, b.path.name)
+    sk.record("3 resolver", kind, "rows on the sketch's assembly", float(rows))
+    its = np.array([max(int(v[k]) for v in result.iterations.values()) for k in range(rows)])
+    warm = [k for k in range(1, rows) if status[k] <= 0 and status[k - 1] <= 0]
+    if warm:
+        mean, top = float(its[warm].mean()), int(its[warm].max())
+        sk.record("3 resolver", kind, "Newton steps per row (mean)", mean, b.path.name)
+        sk.record("3 resolver", kind, "Newton steps per row (max)", float(top), b.path.name)
+        assert mean <= 3.5 and top <= 8, f"Newton steps per warm row: mean {mean:.2f}, max {top}"
+    checked = []
+    for i, q in enumerate(poses):
+        k = CHECK_EVERY * i
+        st_k = int(status[k])
+        where = f"{b.path.name} row {k} (input {values[k]!r})"
+        if k == 0 and b.cond < sk.MIN_COND:
+            continue  # a singular sketch: the resolver may fail there
+        assert not (st_k > 0 and st_k % 10 in (1, 2)), (
+            f"{where}: status {st_k} on the sketch's assembly (conditioning {b.cond if k == 0 else 'walked'})")
+        row = dict(zip(names, (float(x) for x in table[k])))
+        outs = ref.outputs(q)
+        off = max(abs(row[c] - float(x)) for c, x in outs.items() if sk.quantity(c) == "position")
+        assert off <= 1e-7 * b.length, f"{where}: {off / b.length:.3g} L from the sketch's assembly"
+        if st_k == 0 and regular_row(b, sigmas[k]):
+            checked.append((k, q))
+    for k, q in checked[:: max(1, len(checked) // 3)][:4]:
+        sol = ref.solve([values[k]], [1.0], q)
+        jac = ref.jacobian([float(x) for x in sol.q], [values[k]])
+        reached = sk.Reached(values[k], sol.columns, sk.conditioning(ref, jac))
+        row = dict(zip(names, (float(x) for x in table[k])))
+        errs = compare_row(b, "3 resolver", row, 0, reached, True, f"{b.path.name} row {k}")
+        low = min(s for s in sigmas[k].values() if not math.isnan(s))
+        sk.record("3 resolver", kind, "position x min sigma [eps L]", errs["position"][0] * low, b.path.name)
+        if kind == "fig14" and low >= WELL:
+            sk.record("3 resolver", kind, f"position, sigma >= {WELL} [eps L]", errs["position"][0], b.path.name)
+            assert errs["position"][0] <= RESOLVER_POSITION, (
+                f"row {k}: position error {errs['position'][0]:.3g} eps L where every sigma >= {WELL}")
+
+
+# --------------------------------------------------------------------------- 4. the generated programs
+
+PROGRAM_KINDS = ["fourbar", "slider_crank", "inverted_slider", "watt", "stephenson", "fig14", "triad", "fourbar",
+                 "slider_crank", "fig14"]
+PROGRAM_ROWS = 5
+
+
+def _program_sketches(folder: Path) -> list[Built]:
+    """Ten seeded mechanisms whose every row near the sketch is reached by the reference."""
+    out = []
+    for i, kind in enumerate(PROGRAM_KINDS):
+        for attempt in range(40):
+            sketch = sk.MECHANISMS[kind](sk.RandomSource(f"programs {i} {attempt}"))
+            if not sketch.distinct(1e-13):
+                continue
+            name = f"prog{i}_{kind}"
+            path = folder / f"{name}.yaml"
+            path.write_text(sketch.yaml(name, (-0.3, 0.3), PROGRAM_ROWS, 1.5))
+            try:
+                log = build_log(str(path))
+            except LinkgenError:
+                continue
+            ref = Reference(str(path))
+            b = Built(sketch, path, log, ref, sk.sketch_condition(ref))
+            inp = log.inputs[0]
+            vals = [inp.start + k * (inp.stop - inp.start) / (PROGRAM_ROWS - 1) for k in range(PROGRAM_ROWS)]
+            if all(r is not None and r.cond >= 1e-3 for r in sk.reach(ref, vals, [1.5] * PROGRAM_ROWS)):
+                out.append(b)
+                break
+    assert len(out) == len(PROGRAM_KINDS)
+    return out
+
+
+@pytest.fixture(scope="module")
+def programs(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("programs")
+    built = _program_sketches(folder)
+    runs = []
+    for b in built:
+        out = folder / b.path.stem
+        write_all(render_all(b.log), str(out))
+        texts = {"C": run_c(b.log, out), "Python": run_python(b.log, out), "Octave": run_octave(b.log, out)}
+        v = np.array([[b.log.inputs[0].start + k * (b.log.inputs[0].stop - b.log.inputs[0].start)
+                       / (PROGRAM_ROWS - 1)] for k in range(PROGRAM_ROWS)])
+        with np.errstate(all="ignore"):
+            result = evaluate(b.log, v, np.full_like(v, 1.5), np.zeros_like(v))
+        names, data = columns(b.log, result)
+        sigmas = [step_sigmas(result, k) for k in range(PROGRAM_ROWS)]
+        runs.append((b, texts, (names, data, list(result.status)), sigmas))
+    return runs
+
+
+def test_programs_agree_with_the_reference(programs):
+    """Every row of the C, Python and Octave CSVs (and the evaluator's) against the 50-digit reference."""
+    compared = 0
+    for b, texts, evaluator, sigmas in programs:
+        tables = {lang: parse(text) for lang, text in texts.items()}
+        tables["evaluator"] = (evaluator[0] + ["status"], [list(r) for r in evaluator[1]], evaluator[2])
+        inputs = [row[0] for row in tables["C"][1]]
+        reached = sk.reach(b.ref, inputs, [1.5] * len(inputs))
+        for lang, (header, rows, status) in tables.items():
+            names = header[:-1]
+            assert names == b.ref.column_names(), lang
+            check_status_rows(names, np.array(rows, dtype=float), status, [], 1, f"{lang} {b.path.name}")
+            for k, (row, st_k, r) in enumerate(zip(rows, status, reached)):
+                assert row[0] == inputs[k], f"{lang}: input column differs"
+                assert st_k <= 0, f"{lang} {b.path.name} row {k}: status {st_k} on a reached row"
+                regular = regular_row(b, sigmas[k]) and st_k == 0
+                compare_row(b, f"4 programs ({lang})", dict(zip(names, row)), st_k, r, regular,
+                            f"{lang} {b.path.name} row {k}")
+                compared += 1
+    assert compared == 4 * len(PROGRAM_KINDS) * PROGRAM_ROWS
+
+
+# --------------------------------------------------------------------------- counterexamples, kept
+
+
+def test_prp_second_slider_point_is_at_the_pair():
+    """PRP_links, found by test_chain_PRP_links: the second slider's point jp2 (and s2) is solved apart from
+    the pair jb, so near-parallel guides leave them inconsistent by about eps L / sigma.  Here both guides
+    carry jb with no offset (jp2 must be jb): guide 1 through (-0.405..., -0.631...) at 1 rad, guide 2
+    through the origin at 1.01 rad (sigma = sin 0.01); and the shrunk case of a wider search at sigma 1e-3."""
+    cases = [
+        ((-0.4052267294011048, -0.6311032386059223, 0.0, 0.0, 0.0, 0.0), (1.0, 0.0, 0.0), 0.0, 0.0,
+         (0.0, 0.0, 0.0, 0.0, 0.0, 0.0), (1.01, 0.0, 0.0), 0.0, 0.0),
+        ((-173.18505435381428, 152.76970667826177, 0.0, 0.0, 0.0, 0.0), (-2.013772364831983, 0.0, 0.0),
+         -48.191358375573834, 104.12383598226953,
+         (-113.82147463909433, 35.065909575648014, 0.0, 0.0, 0.0, 0.0), (1.1268118195415644, 0.0, 0.0), 0.0, -0.0),
+    ]
+    for args in cases:
+        code, sigma, out = call("PRP_links", args)
+        assert code == 0
+        psi = sk.MP.mpf(args[5][0])
+        u, g, e = (sk.MP.cos(psi), sk.MP.sin(psi)), sk.MP.mpf(args[6]), sk.MP.mpf(args[7])
+        jb, jp2 = out["jb"], out["jp2"]
+        gap = max(abs(sk.MP.mpf(jb[0]) - jp2[0] - (g * u[0] - e * u[1])),
+                  abs(sk.MP.mpf(jb[1]) - jp2[1] - (g * u[1] + e * u[0])))
+        length = max(abs(x) for x in (*args[0][:2], *args[4][:2], *args[2:4], *args[6:8], *jb[:2], *out["jp1"][:2],
+                                      *jp2[:2], out["s1"][0], out["s2"][0]))
+        err = float(gap) / (EPS * length)
+        assert err <= RESIDUAL, (
+            f"sigma {sigma:.3g}: jb - jp2 - (gsi2, eta2) is {err:.3g} eps L (jb {jb[:2]}, jp2 {jp2[:2]})")
+
+
+TRIAD_WARM = """linkgen: 1
+name: triad_warm
+units: {length: mm, angle: rad}
+joints:
+  J1: [-4365.268166397908, 324.3260479915376]
+  J2: [-4742.456054003082, 7173.80861350225]
+  J3: [5622.108520476608, -182.37699898917705]
+  J4: [7685.015393628696, 3552.504445522981]
+  J5: [-4856.688368036652, 368.0766450155046]
+  J6: [-7180.822357480535, 2557.8002159007783]
+  J7: [1081.8204736623145, 4097.110396767959]
+links:
+  rocker1: [J1, J2]
+  ternary: [J2, J4, J5]
+  rocker2: [J3, J4]
+  coupler: [J6, J5]
+  crank: [J7, J6]
+  frame: {joints: [J1, J3, J7], fixed: true}
+inputs:
+  - {joint: J7, link: crank, relative_to: frame, range: [-2.957406560612426, -2.657406560612426]}
+samples: 2
+"""
+
+TRIAD_CROSSING = """linkgen: 1
+name: triad_crossing
+units: {length: mm, angle: rad}
+joints:
+  J1: [0.0, 0.0]
+  J2: [0.0, 0.5]
+  J3: [1.0, 0.0]
+  J4: [0.0, 1.0]
+  J5: [1.0, 0.0]
+  J6: [0.0, 0.0]
+  J7: [0.0, 1.0]
+links:
+  rocker1: [J1, J2]
+  ternary: [J2, J4, J5]
+  rocker2: [J3, J4]
+  coupler: [J6, J5]
+  crank: [J7, J6]
+  frame: {joints: [J1, J3, J7], fixed: true}
+inputs:
+  - {joint: J7, link: crank, relative_to: frame, range: [-1.5707963267948966, -0.1707963267948966]}
+samples: 71
+"""
+
+TRIAD_FOLDED_ADDLINK = """linkgen: 1
+name: triad_folded
+units: {length: mm, angle: rad}
+joints:
+  J1: [0.0, 0.0]
+  J2: [0.0, 1.0]
+  J3: [1.0, 0.0]
+  J4: [0.0, 0.5]
+  J5: [0.0625, 0.0]
+  J6: [0.0, 0.0]
+  J7: [0.0, 1.0]
+links:
+  rocker1: [J1, J2]
+  ternary: [J2, J4, J5]
+  rocker2: [J3, J4]
+  coupler: [J6, J5]
+  crank: [J7, J6]
+  frame: {joints: [J1, J3, J7], fixed: true}
+inputs:
+  - {joint: J7, link: crank, relative_to: frame, range: [-1.5707963267948966, -1.4707963267948966]}
+samples: 2
+"""
+
+TRIAD_TINY = """linkgen: 1
+name: triad_tiny
+units: {length: mm, angle: rad}
+joints:
+  J1: [0.0, -3.3665499181205005e-301]
+  J2: [-3.413169799802014e-157, -90226.31384575632]
+  J3: [94373.57679344293, 94373.57679344293]
+  J4: [0.0, 37712.3617443026]
+  J5: [8377.123304785322, -34635.91721686309]
+  J6: [1.1919511169217865e-168, 0.0]
+  J7: [0.0, -118406.89632660277]
+links:
+  rocker1: [J1, J2]
+  ternary: [J2, J4, J5]
+  rocker2: [J3, J4]
+  coupler: [J6, J5]
+  crank: [J7, J6]
+  frame: {joints: [J1, J3, J7], fixed: true}
+inputs:
+  - {joint: J7, link: crank, relative_to: frame, range: [1.5707963267948966, 1.6707963267948966]}
+samples: 2
+"""
+
+
+def _triad_rows(tmp_path: Path, text: str, name: str) -> tuple[list, np.ndarray, object, Reference, list]:
+    path = tmp_path / f"{name}.yaml"
+    path.write_text(text)
+    log = build_log(str(path), outputs=(), sweep=False)
+    ref = Reference(str(path))
+    inp = log.inputs[0]
+    values = [inp.start + k * (inp.stop - inp.start) / (log.samples - 1) for k in range(log.samples)]
+    v = np.array(values).reshape(-1, 1)
+    with np.errstate(all="ignore"):
+        result = evaluate(log, v, np.ones_like(v), np.zeros_like(v))
+    names, data = columns(log, result)
+    return names, data, result, ref, values
+
+
+def _off_assembly(names, data, ref: Reference, values: list[float]) -> list[tuple]:
+    """(row, input, largest position difference / L) from the sketch's assembly reached by continuation."""
+    out = []
+    for k, r in enumerate(sk.reach(ref, values, [1.0] * len(values))):
+        assert r is not None and r.cond > 1e-4, f"row {k}: the reference does not follow the sketch there"
+        row = dict(zip(names, (float(x) for x in data[k])))
+        off = max(abs(row[c] - float(x)) for c, x in r.columns.items() if sk.quantity(c) == "position")
+        out.append((k, values[k], off / ref.length_scale))
+    return out
+
+
+TRIAD_NEAR = """linkgen: 1
+name: triad_near
+units: {length: mm, angle: rad}
+joints:
+  J1: [0.0, 6.384206765659337]
+  J2: [5.831391071690299, 0.0]
+  J3: [6.384206765659337, 6.384206765659337]
+  J4: [-10.394043716885086, 8.592187228352941]
+  J5: [2.4871096818883816, -5.567568505093775]
+  J6: [0.0, 3.881268442529924]
+  J7: [-10.394043716885086, -8.470218966865087]
+links:
+  rocker1: [J1, J2]
+  ternary: [J2, J4, J5]
+  rocker2: [J3, J4]
+  coupler: [J6, J5]
+  crank: [J7, J6]
+  frame: {joints: [J1, J3, J7], fixed: true}
+inputs:
+  - {joint: J7, link: crank, relative_to: frame, range: [0.8712450374861811, 0.8711840374861811]}
+samples: 2
+"""
+
+
+@pytest.mark.parametrize(("text", "name"), [(TRIAD_WARM, "triad_warm"), (TRIAD_NEAR, "triad_near")],
+                         ids=["triad_warm", "triad_near"])
+def test_warm_start_stays_on_the_sketch_assembly(tmp_path, text, name):
+    """Found by test_mechanism_triad: sweeps of two rows, the sketch and a second input.  Solved alone,
+    the second row is on the sketch's assembly; warm-started from the sketch row, Newton lands on another
+    assembly of the triad and reports status 0.  triad_warm: 0.3 rad past the sketch, J5 at (-8594.9,
+    -2092.9) instead of (-3167.6, 27.7).  triad_near: only 6.1e-5 rad before the sketch, but the
+    mechanism is close to a singular position there (conditioning 1.3e-4, J5 moves 2400 times as fast as
+    the crank): J5 at (2.1728, -5.6456) instead of (2.6367, -5.5278).  The spec: a row never moves the
+    mechanism to another assembly."""
+    names, data, result, ref, values = _triad_rows(tmp_path, text, name)
+    bad = [(k, v, off) for k, v, off in _off_assembly(names, data, ref, values) if off > 1e-9]
+    assert not bad, f"rows on another assembly (row, input, distance / L): {bad}; statuses {list(result.status)}"
+
+
+def test_addlink_toggle_does_not_switch_the_assembly(tmp_path):
+    """Found by test_resolver_sweep[triad] (shrunk): the triad turns smoothly (the reference's conditioning
+    stays at 0.06 .. 0.075), but the dyad that carries the chosen Add-link (J7-J5) folds to a toggle near
+    input -0.28 (its sigma falls to 0.006); one row later the resolver has changed to a fallback candidate
+    and returns another assembly, 1.8 L away, with status 0 (rows 65 to 70)."""
+    names, data, result, ref, values = _triad_rows(tmp_path, TRIAD_CROSSING, "triad_crossing")
+    bad = [(k, v, off) for k, v, off in _off_assembly(names, data, ref, values) if off > 1e-9]
+    assert not bad, f"rows on another assembly (row, input, distance / L): {bad}; statuses {list(result.status)}"
+
+
+def test_sketch_row_solves_when_the_addlink_dyad_is_folded(tmp_path):
+    """Found by test_resolver_sweep[triad] (shrunk): J1, J4 and J2 lie on one line, so the dyad of the
+    chosen Add-link J1-J4 is folded flat in the sketch, while the mechanism itself is regular there
+    (the reference's scale-free conditioning is 0.01).  The sketch row fails with status 92 (the resolver
+    did not converge) instead of reproducing the sketch."""
+    names, data, result, ref, values = _triad_rows(tmp_path, TRIAD_FOLDED_ADDLINK, "triad_folded")
+    assert sk.sketch_condition(ref) > 1e-3
+    assert result.status[0] <= 0, f"the sketch row fails with status {result.status[0]}"
+    row = dict(zip(names, (float(x) for x in data[0])))
+    for j in ref.m.joints:
+        assert (row[f"{j.name}.x"], row[f"{j.name}.y"]) == pytest.approx((j.x, j.y), abs=1e-12)
+
+
+def test_status_zero_rows_have_every_output(tmp_path):
+    """Found by test_resolver_sweep[triad]: a triad drawn with a few coordinates at 1e-301 and 1e-157
+    (zero for every practical purpose; the mechanism is regular, conditioning 3e-3).  The sketch row
+    reports status 0 with J2 and J4 (and what follows from them) nan."""
+    names, data, result, ref, values = _triad_rows(tmp_path, TRIAD_TINY, "triad_tiny")
+    check_status_rows(names, data, result.status, [step_sigmas(result, k) for k in range(len(values))], 1,
+                      "triad_tiny")
