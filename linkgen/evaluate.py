@@ -289,7 +289,7 @@ class RowSolver:
             block = self.blocks[first + k]
             out.env.clear()
             out.env.update(before)
-            status = self._newton(block, out, order, start[first + k], 1.0 if k == prefer else self.ns["SWITCH"])
+            status = self._newton(block, out, order, start[first + k])
             if status is not None:
                 out.used[g.number] = k
                 out.report[g.step] = status
@@ -299,7 +299,7 @@ class RowSolver:
                 return True
         return False
 
-    def _newton(self, g: ResolverGroup, out: Pass, order: int, a0: list[float], share: float) -> tuple | None:
+    def _newton(self, g: ResolverGroup, out: Pass, order: int, a0: list[float]) -> tuple | None:
         """Newton on one block's Add-links (velocity channel at least, for the Jacobian);
         the resolver's (status, sigma), or None when it does not converge."""
         env = out.env
@@ -323,8 +323,7 @@ class RowSolver:
             return (1 if bad else 0), [env[f] for f in g.residuals]
 
         scale = self.log.length_scale
-        ok, a, its, jac = self.ns["newton"](group, list(a0), g.tolerance * scale, g.max_iterations,
-                                            share * g.max_move * scale)
+        ok, a, its, jac = self.ns["newton"](group, list(a0), g.tolerance * scale, g.max_iterations, g.max_move * scale)
         out.iterations[g.number] = its
         if not ok:
             return None

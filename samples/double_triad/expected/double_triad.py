@@ -272,9 +272,6 @@ def link_residual(j1, j2, l):
 # unit Add-link rate gives one exact Jacobian column through the velocity channel.
 
 
-SWITCH = 0.01  # a block switch's reach, relative to the preferred block's
-
-
 def solve_linear(m, b):
     """Solve m x = b by Gaussian elimination with partial pivoting; return (x, det)."""
     n = len(b)
@@ -329,9 +326,7 @@ def conditioning(jac, det):
 def newton(group, a, tol, max_iter, reach):
     """Iterate the Add-link lengths until max|f| <= tol, then one step more.
 
-    A start whose residuals exceed reach, or a solution farther than reach from it, is
-    another assembly: refused (a fallback block whose chains' branches no longer match the
-    assembly would otherwise solve to another one).
+    A solution farther than reach from the start lengths is another assembly: refused.
 
     Returns (ok, a, iterations, jac) with jac the Jacobian at the returned a.
     A step that makes a chain fail to close is halved (up to 3 times; then the block
@@ -339,7 +334,7 @@ def newton(group, a, tol, max_iter, reach):
     """
     start = a
     f, jac = _jacobian(group, a)
-    if f is None or max(abs(v) for v in f) > reach:
+    if f is None:
         return False, a, 0, None
     for it in range(1, max_iter + 1):
         dx, det = solve_linear(jac, [-v for v in f])
@@ -388,14 +383,12 @@ def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer):
     """Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
     preferred block first, the others in order; the first that converges is kept.
 
-    a[first + k] is block k's start lengths (its solution on return).  Another block
-    than the preferred one must start within SWITCH * reach: its branches, fixed from the
-    sketch, may no longer match the assembly, and then its residuals do not vanish as the
-    input step shrinks.  Returns (k, Newton steps, sigma), k = -1 when no block converges.
+    a[first + k] is block k's start lengths (its solution on return).  Returns
+    (k, Newton steps, sigma), k = -1 when no block converges.
     """
     its = 0
     for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
-        ok, x, its, jac = newton(groups[k], a[first + k], tol, max_iter, reach if k == prefer else SWITCH * reach)
+        ok, x, its, jac = newton(groups[k], a[first + k], tol, max_iter, reach)
         if not ok:
             continue
         st, sigma = addlink_rates(groups[k], x, jac, order)

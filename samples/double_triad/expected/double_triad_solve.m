@@ -1806,13 +1806,12 @@ end
 function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reach)
     % Iterate the Add-link lengths until max|f| <= tol, then one step more; a step that
     % makes a chain fail to close is halved (up to 3 times; then the block fails and
-    % the next block is tried).  A start whose residuals exceed reach, or a solution
-    % farther than reach from it, is another assembly and refused.
+    % the next block is tried).  A solution farther than reach from the start is
+    % another assembly and refused.
     its = 0;
     start = a;
     [ok, f, jac, w] = resolver_jacobian(group, w, a);
-    if ~ok || max(abs(f)) > reach
-        ok = false;
+    if ~ok
         return;
     end
     for it = 1:max_iter
@@ -1876,17 +1875,12 @@ function [k, a, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max
     % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
     % preferred block first, the others in order; the first that converges is kept.
     % a{first + k} is block k's start lengths (its solution on return); k = -1 when no
-    % block converges.  Another block than the preferred one must start within 0.01 reach:
-    % its branches, fixed from the sketch, may no longer match the assembly.
+    % block converges.
     its = 0;
     sigma = 0;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
     for k = tries
-        lim = reach;
-        if k ~= prefer
-            lim = 0.01 * reach;
-        end
-        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}, tol, max_iter, lim);
+        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}, tol, max_iter, reach);
         if ~ok
             continue;
         end

@@ -229,8 +229,8 @@ static double conditioning(int n, const double jac[][LINKGEN_NMAX], double det)
 
 /* Iterate the Add-link lengths until max|f| <= tol, then one step more.  A step
  * that makes a chain fail to close is halved (up to 3 times; then the block
- * fails and the next block is tried).  A start whose residuals exceed reach, or a
- * solution farther than reach from it, is another assembly and refused.  Returns 1 on success with jac the
+ * fails and the next block is tried).  A solution farther than reach from the
+ * start is another assembly and refused.  Returns 1 on success with jac the
  * Jacobian at the returned a. */
 static int newton(group_fn group, void *ctx, int n, double a[], double tol, int max_iter, double reach,
                   double jac[][LINKGEN_NMAX], int *iterations)
@@ -242,7 +242,6 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
     *iterations = 0;
     for (i = 0; i < n; i++) start[i] = a[i];
     if (jacobian(group, ctx, n, a, f, jac)) return 0;
-    for (i = 0; i < n; i++) if (fabs(f[i]) > reach) return 0;
     for (it = 1; it <= max_iter; it++) {
         double t = 1.0, worst = 0.0;
         int closed = 0;
@@ -302,10 +301,8 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
 
 /* Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
  * preferred block first, the others in order; the first that converges is kept.
- * a[k] holds block k's start lengths (its solution on return).  Another block than
- * the preferred one must start within 0.01 reach: its branches, fixed from the sketch,
- * may no longer match the assembly, and then its residuals do not vanish as the input
- * step shrinks.  Returns the block, or -1 when none converges. */
+ * a[k] holds block k's start lengths (its solution on return).  Returns the block,
+ * or -1 when none converges. */
 static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
                             double tol, int max_iter, double reach, int order, int prefer, int *its, double *sigma)
 {
@@ -314,7 +311,7 @@ static int resolve_variants(const group_fn fns[], const int sizes[], int count, 
     for (t = 0; t < count; t++) {
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
-        if (!newton(fns[k], ctx, sizes[k], x, tol, max_iter, k == prefer ? reach : 0.01 * reach, jac, its)) continue;
+        if (!newton(fns[k], ctx, sizes[k], x, tol, max_iter, reach, jac, its)) continue;
         if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) == 1)
             continue;
         for (i = 0; i < sizes[k]; i++) a[k][i] = x[i];
