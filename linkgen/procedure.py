@@ -802,10 +802,9 @@ def rank(ex: Extractor, evaluate_norm) -> tuple[Extractor, _AddLinkDraft]:
     others = [t for t in tried[1:] if t[6] and t[7] is not None and len(t[7].add_links) == len(chosen.add_links)]
     for t in others[:MAX_VARIANTS]:
         trial = t[7]
-        if True:
-            new = {name: v for name, v in trial.variables.items() if name not in ex.variables}
-            chosen.variants.append(_VariantDraft(chosen.groups[-1].number, t[4], trial.add_links[-1].length,
-                                                 trial.steps[start:], new))
+        new = {name: v for name, v in trial.variables.items() if name not in ex.variables}
+        chosen.variants.append(_VariantDraft(chosen.groups[-1].number, t[4], trial.add_links[-1].length,
+                                             trial.steps[start:], new))
     return chosen, draft
 
 
@@ -877,8 +876,7 @@ def _block_group(number: int, variant: int, block: list[Step], adds: tuple[str, 
                 reads.append(a.var)
     return ResolverGroup(number, 0, "newton-addlink", adds, residuals, tuple(s.number for s in block), tuple(reads),
                          tuple(writes), RESOLVER_TOLERANCE, RESOLVER_MAX_ITERATIONS, CONTINUATION_HALVINGS,
-                         RESOLVER_MAX_MOVE,
-                         variant=variant)
+                         RESOLVER_MAX_MOVE, variant=variant)
 
 
 def _variant(draft: _VariantDraft, k: int, first: int, variables: dict[str, Variable],

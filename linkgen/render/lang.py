@@ -39,6 +39,10 @@ class Spelling:
     def lit(value: float | int) -> str:
         return literal(value)
 
+    def zero_record(self) -> str:
+        """The fields of a zero VARIABLE record at the program's order."""
+        return ", ".join(["0.0"] * (self.order + 1))
+
     def arg(self, a: Arg, scope: Group | None, step: Step | None = None) -> str:
         if a.kind == "var":
             return self.ref(a.var, scope)
@@ -109,10 +113,6 @@ class C(Spelling):
         sources = ("in", "din", "ddin")
         return " ".join(f"w->{var.name}.{f} = {src}[{k}];" for f, src in zip(self.fields(var.kind), sources))
 
-    def zero_record(self) -> str:
-        """The fields of a zero VARIABLE record at the program's order."""
-        return ", ".join(["0.0"] * (self.order + 1))
-
     def initializer(self, v: Variable) -> str:
         """Braced initializer of a constant record (derivatives zero)."""
         if v.kind == "POINT":
@@ -157,9 +157,6 @@ class Python(Spelling):
         sources = ("inputs", "d_inputs", "dd_inputs")[: self.order + 1]
         fields = ", ".join(f"{src}[{k}]" for src in sources) + ("," if self.order == 0 else "")
         return f"w.{var.name} = ({fields})"
-
-    def zero_record(self) -> str:
-        return ", ".join(["0.0"] * (self.order + 1))
 
     def initializer(self, v: Variable) -> str:
         zeros = [0.0] * (len(record_fields(v.kind, self.order)) - len(v.value))

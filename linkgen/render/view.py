@@ -124,8 +124,8 @@ def build_view(log: StepLog) -> View:
     inputs = tuple(v for v in log.variables if v.role == "input")
     used = {a.var for s in log.steps for a in s.args if a.kind == "var"} | {c.variable for c in log.columns}
     used |= {name for b in blocks for pair in b.ends for name in pair}
-    written = {o for s in log.steps for o in s.outputs}
-    computed = tuple(v for v in log.variables if not v.constant and v.role != "input" and v.name in used | written)
+    live = used | {o for s in log.steps for o in s.outputs}
+    computed = tuple(v for v in log.variables if not v.constant and v.role != "input" and v.name in live)
     return View(
         log,
         tuple(v for v in log.variables if v.constant and v.name in used),

@@ -123,11 +123,11 @@ function [st, sigma, w] = resolver_rates(group, w, a, jac, order)
     [st, ~, w] = group(w, rec, true);
 end
 
-function [k, a, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer)
+function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer)
     % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
-    % preferred block first, the others in order; the first that converges is kept.
-    % a{first + k} is block k's start lengths (its solution on return); k = -1 when no
-    % block converges.
+    % preferred block first, the others in order; the first that converges is kept (the
+    % caller then measures every block's lengths on the solved pairs).  a{first + k} is
+    % block k's start lengths; k = -1 when no block converges.
     its = 0;
     sigma = 0;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
@@ -137,11 +137,9 @@ function [k, a, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max
             continue;
         end
         [st, sigma, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
-        if st == 1
-            continue;
+        if st ~= 1
+            return;
         end
-        a{first + k} = x;
-        return;
     end
     k = -1;
 end

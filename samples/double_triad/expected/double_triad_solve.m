@@ -101,7 +101,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
 
     % Step 9: resolve, group1. Newton-Raphson on add1 until right_coupler regains its length
     blocks = { @group_1, @group_1_v1, @group_1_v2, @group_1_v3, @group_1_v4, @group_1_v5, @group_1_v6 };
-    [k, a, its, w.sigma(9), w] = resolver_variants(blocks, w, a, 1, ...
+    [k, its, w.sigma(9), w] = resolver_variants(blocks, w, a, 1, ...
         1e-10 * w.length_scale, 8, 0.1 * w.length_scale, order, used(1));
     w.iterations(1) = its;
     if k < 0
@@ -121,7 +121,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
 
     % Step 16: resolve, group2. Newton-Raphson on add2 until left_coupler regains its length
     blocks = { @group_2, @group_2_v1, @group_2_v2, @group_2_v3, @group_2_v4, @group_2_v5, @group_2_v6, @group_2_v7, @group_2_v8 };
-    [k, a, its, w.sigma(16), w] = resolver_variants(blocks, w, a, 8, ...
+    [k, its, w.sigma(16), w] = resolver_variants(blocks, w, a, 8, ...
         1e-10 * w.length_scale, 8, 0.1 * w.length_scale, order, used(2));
     w.iterations(2) = its;
     if k < 0
@@ -1871,11 +1871,11 @@ function [st, sigma, w] = resolver_rates(group, w, a, jac, order)
     [st, ~, w] = group(w, rec, true);
 end
 
-function [k, a, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer)
+function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer)
     % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
-    % preferred block first, the others in order; the first that converges is kept.
-    % a{first + k} is block k's start lengths (its solution on return); k = -1 when no
-    % block converges.
+    % preferred block first, the others in order; the first that converges is kept (the
+    % caller then measures every block's lengths on the solved pairs).  a{first + k} is
+    % block k's start lengths; k = -1 when no block converges.
     its = 0;
     sigma = 0;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
@@ -1885,11 +1885,9 @@ function [k, a, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max
             continue;
         end
         [st, sigma, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
-        if st == 1
-            continue;
+        if st ~= 1
+            return;
         end
-        a{first + k} = x;
-        return;
     end
     k = -1;
 end

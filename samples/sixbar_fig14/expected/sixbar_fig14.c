@@ -300,9 +300,9 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
 }
 
 /* Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
- * preferred block first, the others in order; the first that converges is kept.
- * a[k] holds block k's start lengths (its solution on return).  Returns the block,
- * or -1 when none converges. */
+ * preferred block first, the others in order; the first that converges is kept (the
+ * caller then measures every block's lengths on the solved pairs).  a[k] holds block
+ * k's start lengths.  Returns the block, or -1 when none converges. */
 static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
                             double tol, int max_iter, double reach, int order, int prefer, int *its, double *sigma)
 {
@@ -312,10 +312,8 @@ static int resolve_variants(const group_fn fns[], const int sizes[], int count, 
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
         if (!newton(fns[k], ctx, sizes[k], x, tol, max_iter, reach, jac, its)) continue;
-        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) == 1)
-            continue;
-        for (i = 0; i < sizes[k]; i++) a[k][i] = x[i];
-        return k;
+        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) != 1)
+            return k;
     }
     return -1;
 }

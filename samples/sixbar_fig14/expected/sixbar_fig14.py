@@ -339,10 +339,11 @@ def addlink_rates(group, a, jac, order):
 
 def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer):
     """Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
-    preferred block first, the others in order; the first that converges is kept.
+    preferred block first, the others in order; the first that converges is kept (the
+    caller then measures every block's lengths on the solved pairs).
 
-    a[first + k] is block k's start lengths (its solution on return).  Returns
-    (k, Newton steps, sigma), k = -1 when no block converges.
+    a[first + k] is block k's start lengths.  Returns (k, Newton steps, sigma), k = -1
+    when no block converges.
     """
     its = 0
     for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
@@ -350,10 +351,8 @@ def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer):
         if not ok:
             continue
         st, sigma = addlink_rates(groups[k], x, jac, order)
-        if st == 1:
-            continue
-        a[first + k] = x
-        return k, its, sigma
+        if st != 1:
+            return k, its, sigma
     return -1, its, 0.0
 
 
