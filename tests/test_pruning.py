@@ -33,25 +33,19 @@ def _selections(log: StepLog) -> list[tuple[tuple[str, ...], int]]:
     return [(tuple(dict.fromkeys(p)), order) for p, order in picks]
 
 
-_FULL: dict[tuple[str, str], tuple[StepLog, str]] = {}
-
-
 def _full(path: Path, lang: str, tmp: Path) -> tuple[StepLog, str]:
-    """The whole build (the file's outputs at order 2): its log and CSV in one language,
-    built once per test session."""
-    if (path.stem, lang) not in _FULL:
-        log = build_log(str(path), order=2, sweep=False)
-        out = tmp / "full"
-        write_all(render_all(log), str(out))
-        _FULL[path.stem, lang] = log, RUNNERS[lang](log, out)
-    return _FULL[path.stem, lang]
+    """The whole build (the file's outputs at order 2): its log and CSV in one language."""
+    log = build_log(str(path), order=2, sweep=False)
+    out = tmp / "full"
+    write_all(render_all(log), str(out))
+    return log, RUNNERS[lang](log, out)
 
 
 def _compare(full: str, pruned: str, log: StepLog) -> int:
     """Kept columns text-identical on every row both builds assemble; rows the pruned build
     fails, the whole build fails with the same code.  Returns the rows compared."""
-    hf, df, sf = parse(full)
-    hp, dp, sp = parse(pruned)
+    hf, _, sf = parse(full)
+    hp, _, sp = parse(pruned)
     index = [hf.index(name) for name in hp[:-1]]
     rows_f = [r.split(",") for r in full.splitlines()[1:]]
     rows_p = [r.split(",") for r in pruned.splitlines()[1:]]
