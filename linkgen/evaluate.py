@@ -78,13 +78,13 @@ def _args(step: Step, env: dict) -> list:
         if a.kind == "var":
             out.append(env[a.var])
         elif a.kind == "int":
-            out.append(env[BRANCH, step.number] if step.change_points and a.label == "minv" else int(a.value))
+            out.append(env.get((BRANCH, step.number), int(a.value)) if a.label == "minv" else int(a.value))
         else:
             out.append(float(a.value))
     return out
 
 
-BRANCH = "branch"  # env key (with a step number) of a chain's branch where it passes change points
+BRANCH = "branch"  # env key (with a step number) of a chain's branch where it is not the sketch's
 
 
 def branches(log: StepLog, env: dict, theta, scalar: bool) -> None:
@@ -221,16 +221,39 @@ class Pass:
         return not self.failed_group and all(st != FAIL for st, _ in self.report.values())
 
 
-def _pair_lengths(env: dict, pos: dict[str, str], pairs) -> tuple[list, list]:
-    """Distances between pairs (an Add-link's length in a solved configuration) with their
-    rates: link_residual against a zero length, as the generated programs measure them."""
+def _block_state(env: dict, pos: dict[str, str], block: ResolverGroup, start: list) -> tuple[list, list]:
+    """A block's state read off a solved configuration, with its rates: the Add-link lengths
+    (link_residual against a zero length, as the generated programs measure them), then the
+    branches of its chains (rate 0; a sign of zero keeps the branch of ``start``)."""
     call = _scalar_call(1)
     a, ad = [], []
-    for k, u in pairs:
+    for k, u in block.pairs:
         _, _, (f,) = call("link_residual", [env[pos[k]][:4], env[pos[u]][:4], (0.0, 0.0)])
         a.append(f[0])
         ad.append(f[1])
+    n = len(block.pairs)
+    for j, b in enumerate(block.branches):
+        p = [env[v] for v in b.points]
+        if b.kind == "side":
+            m = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0])
+        else:
+            t = env[b.angle][0]
+            m = (p[1][0] - p[0][0]) * math.cos(t) + (p[1][1] - p[0][1]) * math.sin(t)
+        a.append(1.0 if m > 0 else -1.0 if m < 0 else start[n + j])
+        ad.append(0.0)
     return a, ad
+
+
+def path_slack(log: StepLog) -> float:
+    """How far a solution may sit off the predicted path beyond a tenth of the predicted
+    move, relative to the length scale: a thousand times the resolver's tolerance (a
+    repeated input moves nothing)."""
+    return 1e3 * log.groups[0].tolerance
+
+
+def block_start(block: ResolverGroup) -> list[float]:
+    """A block's state in the sketch: Add-link lengths, then its chains' branches."""
+    return [*block.lengths, *(float(b.sketch) for b in block.branches)]
 
 
 class RowSolver:
@@ -251,8 +274,10 @@ class RowSolver:
         self.blocks = [b for g in log.groups for b in (g, *g.variants)]
         self.warm = None  # (inputs, rates, lengths, their rates, used variants)
         self.sketch_in = tuple(i.sketch for i in log.inputs)
-        self.sketch_a = [list(b.lengths) for b in self.blocks]
+        self.sketch_a = [block_start(b) for b in self.blocks]
         self.halvings = max(g.max_halvings for g in log.groups)
+        self.sizes = [len(b.add_links) for b in self.blocks]
+        self.slack = path_slack(log) * log.length_scale
         self.periodic = [i.kind == "revolute" for i in log.inputs]
         self.limits = [STEP_ANGLE if p else STEP_LENGTH * log.length_scale for p in self.periodic]
 
@@ -281,28 +306,53 @@ class RowSolver:
         return out
 
     def resolve(self, g: ResolverGroup, out: Pass, order: int, start: list, prefer: int) -> bool:
-        """The group's blocks, the preferred one first; then every block's lengths."""
+        """The group's blocks, the preferred one first: the first that converges with its chains
+        conditioned at least ``g.min_chain_sigma`` is taken, else the best conditioned one that
+        converges; then every block's state is read off the solved pairs."""
         first = self.blocks.index(g)
         count = 1 + len(g.variants)
         before = dict(out.env)
-        for k in [prefer] + [k for k in range(count) if k != prefer]:
-            block = self.blocks[first + k]
+
+        def attempt(k: int):
             out.env.clear()
             out.env.update(before)
-            status = self._newton(block, out, order, start[first + k])
-            if status is not None:
-                out.used[g.number] = k
-                out.report[g.step] = status
-                for j in range(count):
-                    b = self.blocks[first + j]
-                    out.solutions[first + j], out.rates[first + j] = _pair_lengths(out.env, self.pos, b.pairs)
-                return True
-        return False
+            return self._newton(self.blocks[first + k], out, order, start[first + k])
 
-    def _newton(self, g: ResolverGroup, out: Pass, order: int, a0: list[float]) -> tuple | None:
-        """Newton on one block's Add-links (velocity channel at least, for the Jacobian);
-        the resolver's (status, sigma), or None when it does not converge."""
+        def take(k: int, finish) -> bool:
+            status = finish()
+            if status is None:
+                return False
+            out.used[g.number] = k
+            out.report[g.step] = status
+            for j in range(count):
+                b = self.blocks[first + j]
+                out.solutions[first + j], out.rates[first + j] = _block_state(out.env, self.pos, b, start[first + j])
+            return True
+
+        best: tuple[float, int] | None = None  # the best of the converged blocks with poorly conditioned chains
+        for k in [prefer] + [k for k in range(count) if k != prefer]:
+            solved = attempt(k)
+            if solved is None:
+                continue
+            if solved[0] < g.min_chain_sigma:
+                best = max(best or (solved[0], k), (solved[0], k), key=lambda b: b[0])
+                continue
+            if take(k, solved[1]):
+                return True
+        if best is None:
+            return False
+        solved = attempt(best[1])
+        return solved is not None and take(best[1], solved[1])
+
+    def _newton(self, g: ResolverGroup, out: Pass, order: int, a0: list[float]):
+        """Newton on one block's Add-links from its state a0 (lengths, then branches), with
+        the velocity channel at least, for the Jacobian.  None when it does not converge, else
+        (the worst conditioning of the block's chains there, finish) where finish() computes
+        the exact rates and returns the resolver's (status, sigma), or None when a chain fails."""
         env = out.env
+        n = len(g.add_links)
+        for j, b in enumerate(g.branches):
+            env[BRANCH, b.step] = int(a0[n + j])
         inner = max(order, 1)
         call = _scalar_call(inner)
         steps = [self.log.step(n) for n in g.steps]
@@ -323,36 +373,46 @@ class RowSolver:
             return (1 if bad else 0), [env[f] for f in g.residuals]
 
         scale = self.log.length_scale
-        ok, a, its, jac = self.ns["newton"](group, list(a0), g.tolerance * scale, g.max_iterations, g.max_move * scale)
+        ok, a, its, jac = self.ns["newton"](group, list(a0[:n]), g.tolerance * scale, g.max_iterations,
+                                            g.max_move * scale)
         out.iterations[g.number] = its
         if not ok:
             return None
-        st, sigma = self.ns["addlink_rates"](group, a, jac, order)
-        width = {"POINT": 2}
-        for name in list(g.writes) + list(g.add_links) + list(reads):
-            env[name] = env[name][: width.get(self.kinds[name], 1) * (order + 1)]
-        out.report.update(last)
-        return SINGULAR if sigma < 1e-7 else NEAR if sigma < 1e-3 else 0, sigma
+        worst = min(sigma for _, sigma in last.values())
+
+        def finish():
+            st, sigma = self.ns["addlink_rates"](group, a, jac, order)
+            if st == FAIL:
+                return None
+            width = {"POINT": 2}
+            for name in list(g.writes) + list(g.add_links) + list(reads):
+                env[name] = env[name][: width.get(self.kinds[name], 1) * (order + 1)]
+            out.report.update(last)
+            return SINGULAR if sigma < 1e-7 else NEAR if sigma < 1e-3 else 0, sigma
+
+        return worst, finish
 
     def solve(self, values, rates, accs) -> Pass:
-        """Solve one row on the sketch's assembly: from the previous row when it was solved
-        (Taylor-predicted start), else by continuation from the sketch."""
+        """Solve one row on the sketch's assembly: from the previous row when it was solved and
+        no input has moved farther than a continuation step (Taylor-predicted start), else by
+        continuation from the previous row or, without one, from the sketch."""
         if self.warm is not None:
             w_in, w_rates, a, ad, used = self.warm
-            start = self.ns["predict"]((w_in, w_rates, a, ad), values)
-            out = self.run(values, rates, accs, self.order, start, used)
-            if out.ok:
-                self._remember(values, rates, out)
-                return out
-            if out.failed_group == 0:
-                self.warm = None
-                return out
+            if all(abs(x - y) <= lim for x, y, lim in zip(values, w_in, self.limits)):
+                start = self.ns["predict"]((w_in, w_rates, a, ad), values)
+                out = self.run(values, rates, accs, self.order, start, used)
+                if out.ok and self.ns["on_path"](a, start, out.solutions, self.sizes, self.slack):
+                    self._remember(values, rates, out)
+                    return out
+                if not out.ok and out.failed_group == 0:
+                    self.warm = None
+                    return out
             base, base_a, prefer = w_in, a, used
         else:
             base, base_a, prefer = self.sketch_in, self.sketch_a, {}
         path = lambda x, d, o, s: self._path_run(x, d, o, s, prefer)  # noqa: E731
         a = self.ns["continuation"](path, list(base), [list(b) for b in base_a], list(values), self.limits,
-                                    self.periodic, self.halvings)
+                                    self.periodic, self.halvings, self.sizes, self.slack)
         if a is None:
             self.warm = None
             out = self.run(values, rates, accs, self.order, base_a, prefer)

@@ -24,13 +24,14 @@ from dataclasses import dataclass, field, replace
 from . import exact
 from .errors import ProcedureError
 from .model import Input, Link
-from .steplog import AddLink, Arg, Candidate, LJColumn, LJMatrix, Residual, ResolverGroup, Step, Variable
+from .steplog import AddLink, Arg, BranchSign, Candidate, LJColumn, LJMatrix, Residual, ResolverGroup, Step, Variable
 from .topology import Topology, input_direction, reference_angle, wrap_angle
 
 RESOLVER_TOLERANCE = 1e-10  # relative to the length scale; one Newton step is taken past it
 RESOLVER_MAX_ITERATIONS = 8
-CONTINUATION_HALVINGS = 10
+CONTINUATION_HALVINGS = 20
 RESOLVER_MAX_MOVE = 0.1  # relative to the length scale: farther from the start lengths is another assembly
+RESOLVER_MIN_CHAIN_SIGMA = 0.05  # below it, a block's Add-links are a poor coordinate of the assembly
 MAX_VARIANTS = 8  # fallback Add-link candidates per resolver group
 PROBE_ANGLE = math.radians(5.0)  # the paper's +5 degrees for ranking Add-link candidates
 PROBE_LENGTH = 0.05  # times the length scale, for prismatic and distance inputs
@@ -854,14 +855,49 @@ def _freeze(ex: Extractor) -> Procedure:
                 steps += vsteps
                 variants.append(vgroup)
         adds = [a for a in add_links if a.name in g.add_links]
-        groups.append(replace(
-            _block_group(g.number, 0, block, tuple(g.add_links), tuple(g.residuals), variables),
-            step=resolve.number, pairs=tuple(a.pairs for a in adds), lengths=tuple(a.length for a in adds),
-            variants=tuple(variants)))
+        main = replace(_block_group(g.number, 0, block, tuple(g.add_links), tuple(g.residuals), variables),
+                       step=resolve.number, pairs=tuple(a.pairs for a in adds), lengths=tuple(a.length for a in adds))
+        groups.append(_with_branch_signs(main, variants, {s.number: s for s in steps}, variables))
     lj = LJMatrix(tuple(j.name for j in ex.m.joints), tuple(not j.revolute for j in ex.m.joints),
                   tuple(ex.columns), ())
     return Procedure(tuple(variables.values()), tuple(steps), lj, add_links, residuals, tuple(groups),
                      dict(ex.pos), dict(ex.angles), dict(ex.slides))
+
+
+def _with_branch_signs(main: ResolverGroup, variants: list[ResolverGroup], steps: dict[int, Step],
+                       variables: dict[str, Variable]) -> ResolverGroup:
+    """The group with its fallbacks, every block knowing how to read its chains' branches
+    off a solved configuration (so that any block can take over where the assembly has
+    moved: its chains' branches are those of the configuration, not of the sketch)."""
+    blocks = (main, *variants)
+    every = set.intersection(*(set(b.writes) for b in blocks))
+
+    def known(name: str, block: ResolverGroup) -> bool:
+        return name in every or name in block.reads or variables[name].constant
+
+    def signs(block: ResolverGroup) -> ResolverGroup:
+        out = []
+        for s in (steps[n] for n in block.steps):
+            sign = _branch_sign(s)
+            if sign is not None and all(known(v, block) for v in (*sign.points, sign.angle) if v):
+                out.append(sign)
+        return replace(block, branches=tuple(out))
+
+    return replace(signs(main), variants=tuple(signs(v) for v in variants))
+
+
+def _branch_sign(s: Step) -> BranchSign | None:
+    """How to read step s's branch off a configuration (None: it has no branch)."""
+    if not s.branch:
+        return None
+    var = [a.var for a in s.args if a.kind == "var"]
+    if s.function == "RRR_links":  # jb left of j1 -> j2
+        return BranchSign(s.number, "side", (var[0], var[1], s.outputs[0]), "", s.branch)
+    if s.function == "PRR_links":  # (jb - jr).u of the guide
+        return BranchSign(s.number, "along", (var[0], s.outputs[2]), var[3], s.branch)
+    if s.function == "RPR_links":  # (js - jg).u of the line
+        return BranchSign(s.number, "along", (var[0], var[1]), s.outputs[0], s.branch)
+    raise ValueError(f"no branch sign for {s.function}")
 
 
 def _block_group(number: int, variant: int, block: list[Step], adds: tuple[str, ...], residuals: tuple[str, ...],
@@ -876,7 +912,7 @@ def _block_group(number: int, variant: int, block: list[Step], adds: tuple[str, 
                 reads.append(a.var)
     return ResolverGroup(number, 0, "newton-addlink", adds, residuals, tuple(s.number for s in block), tuple(reads),
                          tuple(writes), RESOLVER_TOLERANCE, RESOLVER_MAX_ITERATIONS, CONTINUATION_HALVINGS,
-                         RESOLVER_MAX_MOVE, variant=variant)
+                         RESOLVER_MAX_MOVE, RESOLVER_MIN_CHAIN_SIGMA, variant=variant)
 
 
 def _variant(draft: _VariantDraft, k: int, first: int, variables: dict[str, Variable],

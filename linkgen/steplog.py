@@ -91,6 +91,22 @@ class Residual:
 
 
 @dataclass(frozen=True)
+class BranchSign:
+    """How a resolver block reads one chain's branch off a solved configuration.
+
+    ``side``: the sign of (b - a) x (c - a) for points (a, b, c), the 3R chain's c left
+    of a->b.  ``along``: the sign of (c - a).u for points (a, c) and u the direction
+    of ``angle``.  A zero keeps the branch the block had.
+    """
+
+    step: int
+    kind: str  # side | along
+    points: tuple[str, ...]  # position variables
+    angle: str  # the line's angle variable (along only)
+    sketch: int  # the branch in the sketch
+
+
+@dataclass(frozen=True)
 class ResolverGroup:
     """Newton-Raphson on Add-link lengths until every unused link regains its length."""
 
@@ -106,10 +122,12 @@ class ResolverGroup:
     max_iterations: int
     max_halvings: int  # continuation: how often an input step may be halved
     max_move: float  # relative to the length scale: a Newton solution farther from its start is another assembly
+    min_chain_sigma: float  # a block whose chains are worse conditioned yields to a better one
     variant: int = 0  # 0: the chosen candidate; k: its k-th fallback
     pairs: tuple[tuple[str, str], ...] = ()  # the Add-links' pairs (known, unknown)
     lengths: tuple[float, ...] = ()  # the Add-links' sketch lengths
     variants: tuple[ResolverGroup, ...] = ()  # fallbacks: other candidates, tried in this order
+    branches: tuple[BranchSign, ...] = ()  # chains whose branch follows the last solution
 
 
 @dataclass(frozen=True)

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import sketches as sk
 from reference import Reference, wrap
 
 from linkgen.evaluate import evaluate, input_rows
@@ -317,8 +318,32 @@ def test_no_jumps(path):
         limit = JUMP_FACTOR * float(np.median(steps)) + floor
         x = sw.col(name)
         bad += [(int(k), name, float(x[k]), float(x[k + 1]), float(s), limit)
-                for k, s in zip(rows, steps) if s > limit]
+                for k, s in zip(rows, steps) if s > limit and not _followed(sw, int(k))]
     assert not bad, describe(path, "(row k, column, value at k, at k + 1, step, limit)", bad)
+
+
+@functools.cache
+def _follow_cache() -> dict:
+    return {}
+
+
+def _followed(sw: Sweep, k: int) -> bool:
+    """Whether the reference, started at row k's pose and turned in small steps to row k + 1's
+    inputs, arrives at row k + 1 (a large step near a limit position is motion, not a jump)."""
+    key = (sw.log.name, k)
+    cache = _follow_cache()
+    if key not in cache:
+        n_in = len(sw.ref.m.inputs)
+        q = sw.ref.guess(sw.row(k))
+        q = sk.walk(sw.ref, q, float(sw.data[k, 0]), float(sw.data[k + 1, 0]), step=math.radians(0.01)) \
+            if n_in == 1 else None
+        if q is None:
+            cache[key] = False
+        else:
+            got, want = sw.row(k + 1), sw.ref.outputs(q)
+            cache[key] = all(abs(got[c] - float(v)) <= 1e-6 * sw.length
+                             for c, v in want.items() if quantity(c) == "position")
+    return cache[key]
 
 
 @pytest.mark.parametrize("path", MECHANISMS, ids=IDS)

@@ -288,15 +288,6 @@ def test_every_primitive_has_a_chain_property():
 # --------------------------------------------------------------------------- 2. mechanisms
 
 KINDS = list(sk.MECHANISMS)
-# Known limitation (issue 4, open): a fallback block's chains keep the branches the sketch gave
-# them; where the assembly has moved so that they no longer match, no block can take over, and
-# rows of the sketch's assembly fail (status 92) or, started again from the sketch, are found on
-# another assembly.  Strict under CI (derandomized): the day these pass, the marks must go.
-RESOLVER_LIMIT = pytest.mark.xfail(strict=CI, reason="fallback blocks keep the sketch's branches (issue 4)")
-
-
-def _known(kinds: list[str], *failing: str) -> list:
-    return [pytest.param(k, marks=RESOLVER_LIMIT) if k in failing else k for k in kinds]
 NAMES = itertools.count()
 
 
@@ -558,7 +549,7 @@ def test_scaling_by_powers_of_two_is_bit_exact(kind, work, data):
     assert not bad, f"scaled by 2^{k}: {bad[:5]}"
 
 
-@pytest.mark.parametrize("kind", _known(KINDS, "triad"))
+@pytest.mark.parametrize("kind", KINDS)
 @examples(15, heavy=True)
 @given(data=st.data())
 def test_scaled_turned_and_moved_sketch_keeps_its_accuracy(kind, work, data):
@@ -598,7 +589,7 @@ WELL = 0.5  # rows where every step's sigma is at least this are held to RESOLVE
 RESOLVER_EXAMPLES = {"fig14": 15, "triad": 15}
 
 
-@pytest.mark.parametrize("kind", _known(list(RESOLVER_EXAMPLES), "triad"))
+@pytest.mark.parametrize("kind", list(RESOLVER_EXAMPLES))
 @examples(15, heavy=True)
 @given(data=st.data())
 def test_resolver_sweep(kind, work, data):
@@ -911,8 +902,8 @@ samples: 2
 """
 
 
-@pytest.mark.parametrize(("text", "name"), [pytest.param(TRIAD_WARM, "triad_warm", marks=RESOLVER_LIMIT),
-                                             (TRIAD_NEAR, "triad_near")], ids=["triad_warm", "triad_near"])
+@pytest.mark.parametrize(("text", "name"), [(TRIAD_WARM, "triad_warm"), (TRIAD_NEAR, "triad_near")],
+                         ids=["triad_warm", "triad_near"])
 def test_warm_start_stays_on_the_sketch_assembly(tmp_path, text, name):
     """Found by test_mechanism_triad: sweeps of two rows, the sketch and a second input.  Solved alone,
     the second row is on the sketch's assembly; warm-started from the sketch row, Newton lands on another
@@ -926,7 +917,6 @@ def test_warm_start_stays_on_the_sketch_assembly(tmp_path, text, name):
     assert not bad, f"rows on another assembly (row, input, distance / L): {bad}; statuses {list(result.status)}"
 
 
-@RESOLVER_LIMIT
 def test_addlink_toggle_does_not_switch_the_assembly(tmp_path):
     """Found by test_resolver_sweep[triad] (shrunk): the triad turns smoothly (the reference's conditioning
     stays at 0.06 .. 0.075), but the dyad that carries the chosen Add-link (J7-J5) folds to a toggle near

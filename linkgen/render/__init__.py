@@ -11,7 +11,7 @@ import jinja2
 
 from .. import __version__
 from ..errors import and_list
-from ..evaluate import STEP_ANGLE, STEP_LENGTH
+from ..evaluate import STEP_ANGLE, STEP_LENGTH, block_start, path_slack
 from ..ljmatrix import states
 from ..primitives import PRIMITIVES
 from ..primitives.printers import c_function, octave_function, python_function
@@ -91,7 +91,7 @@ def _render(template: str, **context) -> bytes:
 
 def _c_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
-    spell = C(view.record_order, {v.name: v for v in log.variables})
+    spell = C(view.record_order, {v.name: v for v in log.variables}, view.measured)
     name, upper = log.name, log.name.upper()
     runtime = [c_function(PRIMITIVES[p], view.record_order) for p in _used(view)]
     if "branch_at" in log.runtime:
@@ -119,6 +119,7 @@ def _c_files(view: View, banner) -> dict[str, bytes]:
         f"{name}.c": _render("c/NAME.c.j2", **common, runtime=runtime, record_fields=record_fields,
                              sketch_in=", ".join(lit(i.sketch) for i in log.inputs), sketch_a=", ".join(sketch_a),
                              column_fields=column_fields, limits=", ".join(lit(x) for x in _limits(log)),
+                             slack=_slack(log, lit),
                              periodic=", ".join("1" if i.kind == "revolute" else "0" for i in log.inputs)),
         f"{name}_main.c": _render("c/NAME_main.c.j2", **common, columns=columns, inputs={
             "start": ", ".join(lit(i.start) for i in log.inputs),
@@ -127,20 +128,29 @@ def _c_files(view: View, banner) -> dict[str, bytes]:
     }
 
 
+def _slack(log: StepLog, lit) -> str:
+    """How far off the predicted path a resolver solution may sit, relative to the length scale."""
+    return lit(path_slack(log)) if log.groups else ""
+
+
 def _limits(log: StepLog) -> list[float]:
     """The continuation's largest step of each input."""
     return [STEP_ANGLE if i.kind == "revolute" else STEP_LENGTH * log.length_scale for i in log.inputs]
 
 
 def _sketch_a(view: View, lit) -> list[str]:
-    """Start lengths of every resolver block's Add-links (padded to the largest block)."""
-    return [", ".join([lit(x) for x in b.group.lengths] + ["0.0"] * (view.nmax - len(b.group.lengths)))
-            for b in view.blocks]
+    """Every resolver block's state in the sketch: its Add-link lengths, then its chains'
+    branches (padded to the largest block)."""
+    out = []
+    for b in view.blocks:
+        state = [lit(x) for x in block_start(b.group)]
+        out.append(", ".join(state + ["0.0"] * (view.nmax - len(state))))
+    return out
 
 
 def _py_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
-    spell = Python(view.record_order, {v.name: v for v in log.variables})
+    spell = Python(view.record_order, {v.name: v for v in log.variables}, view.measured)
     runtime = [python_function(PRIMITIVES[p], view.record_order, with_sigma=True).rstrip("\n") for p in _used(view)]
     if "branch_at" in log.runtime:
         runtime.append(_runtime_source("py", "branch.py", view.record_order).rstrip("\n"))
@@ -154,20 +164,22 @@ def _py_files(view: View, banner) -> dict[str, bytes]:
         values.append(f"{spell.ref(cell.column.variable, None)}[{index}]")
         levels.append(str(order_of[cell.column.quantity]))
     lit = spell.lit
+    along = any(b.kind == "along" for g in view.blocks for b in g.group.branches)
     math_names = [f for f in ("atan2", "cos", "floor", "sin", "sqrt")
-                  if any(re.search(rf"\b{f}\(", text) for text in runtime)]
+                  if any(re.search(rf"\b{f}\(", text) for text in runtime) or (along and f in ("cos", "sin"))]
     text = _render("py/NAME.py.j2", v=view, L=spell, banner=banner, name=log.name, runtime=runtime,
                    math_names=math_names,
                    columns=[c.name for c in log.columns], levels=levels, values=values,
                    inputs=[f"{lit(i.start)}, {lit(i.stop)}, {lit(i.speed)}" for i in log.inputs],
                    sketch_a=_sketch_a(view, lit), limits=", ".join(lit(x) for x in _limits(log)),
+                   slack=_slack(log, lit),
                    periodic=", ".join("True" if i.kind == "revolute" else "False" for i in log.inputs))
     return {f"{log.name}.py": text}
 
 
 def _m_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
-    spell = Octave(view.record_order, {v.name: v for v in log.variables})
+    spell = Octave(view.record_order, {v.name: v for v in log.variables}, view.measured)
     runtime = [octave_function(PRIMITIVES[p], view.record_order).rstrip("\n") for p in _used(view)]
     if "branch_at" in log.runtime:
         runtime.append(_runtime_source("m", "branch.m", view.record_order).rstrip("\n"))
@@ -187,7 +199,7 @@ def _m_files(view: View, banner) -> dict[str, bytes]:
                                        cells=[f"out.{spell.ident(c.owner)}.{c.field}" for c in view.cells],
                                        sketch_in=", ".join(lit(i.sketch) for i in log.inputs),
                                        sketch_a=", ".join(f"[{a}]'" for a in _sketch_a(view, lit)),
-                                       limits=", ".join(lit(x) for x in _limits(log)),
+                                       limits=", ".join(lit(x) for x in _limits(log)), slack=_slack(log, lit),
                                        periodic=", ".join("1" if i.kind == "revolute" else "0" for i in log.inputs)),
         f"{log.name}.m": _render("m/NAME.m.j2", **common, columns=[c.name for c in log.columns], inputs=inputs),
     }
@@ -243,7 +255,7 @@ def _omitted(log: StepLog) -> str:
 
 def _md_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
-    spell = Manual(log.order, {v.name: v for v in log.variables})
+    spell = Manual(log.order, {v.name: v for v in log.variables}, view.measured)
     seq = states(log)
     text = _render("md/NAME.md.j2", v=view, L=spell, banner=banner, name=log.name, lj=seq[0],
                    lj_after={st.step: st for st in seq[1:]}, lj_before={b.step: a for a, b in zip(seq, seq[1:])},
@@ -251,7 +263,8 @@ def _md_files(view: View, banner) -> dict[str, bytes]:
                    listing=_listing(view, spell, view.main_steps),
                    fallbacks={b.index: _listing(view, spell, b.steps) for b in view.blocks if b.group.variant},
                    codes=log.status_codes, constants=_constants(log, spell),
-                   functions=_used(view), slides={p.name for p in log.pairs if p.kind == "prismatic"})
+                   functions=_used(view), slides={p.name for p in log.pairs if p.kind == "prismatic"},
+                   limits=and_list([f"{number(x)} for {i.column}" for x, i in zip(_limits(log), log.inputs)]))
     return {f"{log.name}.md": text, f"{log.name}.svg": render_svg(log).encode("utf-8")}
 
 

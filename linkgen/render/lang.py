@@ -13,7 +13,7 @@ from ..names import C_RESERVED, M_RESERVED
 from ..primitives import PRIMITIVES
 from ..primitives.dsl import record_fields
 from ..primitives.printers import literal
-from ..steplog import Arg, Step, Variable
+from ..steplog import Arg, BranchSign, Step, Variable
 from .view import Group
 
 
@@ -29,8 +29,10 @@ class Spelling:
     comment = ""
     reserved: frozenset[str] = frozenset()
 
-    def __init__(self, order: int):
+    def __init__(self, order: int, variables: dict[str, Variable], measured: frozenset[int] = frozenset()):
         self.order = order
+        self.variables = variables
+        self.measured = measured  # steps whose branch is read off the last solution
 
     def ident(self, name: str) -> str:
         return ident(name, self.reserved)
@@ -49,8 +51,31 @@ class Spelling:
         if a.kind == "int":
             if step is not None and step.change_points and a.label == "minv":
                 return self.branch(step, int(a.value))
+            if step is not None and step.number in self.measured and a.label == "minv":
+                return self.work(f"br{step.number}")
             return str(int(a.value))
         return self.lit(float(a.value))
+
+    def work(self, field: str) -> str:
+        """A field of the work record."""
+        return f"w.{field}"
+
+    def sign_measure(self, b: BranchSign) -> str:
+        """The expression whose sign is a chain's branch in a solved configuration."""
+        p = [self.xy(v) for v in b.points]
+        if b.kind == "side":
+            return (f"({p[1][0]} - {p[0][0]}) * ({p[2][1]} - {p[0][1]}) - "
+                    f"({p[1][1]} - {p[0][1]}) * ({p[2][0]} - {p[0][0]})")
+        t = self.angle(b.angle)
+        return f"({p[1][0]} - {p[0][0]}) * cos({t}) + ({p[1][1]} - {p[0][1]}) * sin({t})"
+
+    def xy(self, var: str) -> tuple[str, str]:
+        """A position record's x and y."""
+        raise NotImplementedError
+
+    def angle(self, var: str) -> str:
+        """An angle record's value."""
+        raise NotImplementedError
 
     def branch(self, step: Step, b0: int) -> str:
         """The branch of a chain that flips at change points, computed from the first input."""
@@ -90,10 +115,6 @@ class C(Spelling):
     reserved = C_RESERVED
     _field = {"x": "P.x", "y": "P.y", "dx": "DP.x", "dy": "DP.y", "ddx": "DDP.x", "ddy": "DDP.y"}
 
-    def __init__(self, order: int, variables: dict[str, Variable]):
-        super().__init__(order)
-        self.variables = variables
-
     def ref(self, var: str, scope: Group | None) -> str:
         if self.variables[var].constant or self.external(var, scope):
             return var
@@ -101,6 +122,16 @@ class C(Spelling):
 
     def field(self, kind: str, f: str) -> str:
         return self._field[f] if kind == "POINT" else f
+
+    def work(self, field: str) -> str:
+        return f"w->{field}"
+
+    def xy(self, var: str) -> tuple[str, str]:
+        r = self.ref(var, None)
+        return f"{r}.P.x", f"{r}.P.y"
+
+    def angle(self, var: str) -> str:
+        return f"{self.ref(var, None)}.the"
 
     def branch(self, step: Step, b0: int) -> str:
         v, theta0, periodic = self.first_input()
@@ -131,7 +162,10 @@ class C(Spelling):
             return [text]
         if scope is None:
             return [f"st = {text}", f"if (st == 1) return {self.status_code(step, 1)};", f"note(w, {step.number}, st);"]
-        return [f"st = {text}", "if (st == 1) return 1;", f"if (live) note(w, {step.number}, st);"]
+        lines = [f"st = {text}", "if (st == 1) return 1;", f"if (live) note(w, {step.number}, st);"]
+        if prim.sigma is not None:
+            lines.append(f"w->chains = fmin(w->chains, w->sigma[{step.number}]);")
+        return lines
 
 
 class Python(Spelling):
@@ -139,14 +173,17 @@ class Python(Spelling):
     comment = "#"
     reserved = set(keyword.kwlist)
 
-    def __init__(self, order: int, variables: dict[str, Variable]):
-        super().__init__(order)
-        self.variables = variables
-
     def ref(self, var: str, scope: Group | None) -> str:
         if self.variables[var].constant or self.external(var, scope):
             return var
         return f"w.{var}"
+
+    def xy(self, var: str) -> tuple[str, str]:
+        r = self.ref(var, None)
+        return f"{r}[0]", f"{r}[1]"
+
+    def angle(self, var: str) -> str:
+        return f"{self.ref(var, None)}[0]"
 
     def branch(self, step: Step, b0: int) -> str:
         v, theta0, periodic = self.first_input()
@@ -173,7 +210,10 @@ class Python(Spelling):
         lines = [f"{', '.join(head + targets)} = {step.function}({args})"]
         if scope is None:
             return lines + ["if st == 1:", f"    return {self.status_code(step, 1)}", f"w.note({step.number}, st)"]
-        return lines + ["if st == 1:", "    return 1, None", "if live:", f"    w.note({step.number}, st)"]
+        lines += ["if st == 1:", "    return 1, None", "if live:", f"    w.note({step.number}, st)"]
+        if prim.sigma is not None:
+            lines.append(f"w.chains = min(w.chains, w.sigma[{step.number}])")
+        return lines
 
 
 class Octave(Spelling):
@@ -181,13 +221,16 @@ class Octave(Spelling):
     comment = "%"
     reserved = M_RESERVED
 
-    def __init__(self, order: int, variables: dict[str, Variable]):
-        super().__init__(order)
-        self.variables = variables
-
     def ref(self, var: str, scope: Group | None) -> str:
         """Constants live in the work struct too (MATLAB has no file-level constants)."""
         return var if self.external(var, scope) else f"w.{var}"
+
+    def xy(self, var: str) -> tuple[str, str]:
+        r = self.ref(var, None)
+        return f"{r}.x", f"{r}.y"
+
+    def angle(self, var: str) -> str:
+        return f"{self.ref(var, None)}.the"
 
     def branch(self, step: Step, b0: int) -> str:
         v, theta0, periodic = self.first_input()
@@ -228,18 +271,17 @@ class Octave(Spelling):
         if scope is None:
             return lines + ["if st == 1", f"    status = {self.status_code(step, 1)};", "    return;", "end",
                             f"w = note(w, {step.number}, st);"]
-        return lines + ["if st == 1", "    st = 1;", "    res = [];", "    return;", "end", "if live",
-                        f"    w = note(w, {step.number}, st);", "end"]
+        lines += ["if st == 1", "    st = 1;", "    res = [];", "    return;", "end", "if live",
+                  f"    w = note(w, {step.number}, st);", "end"]
+        if prim.sigma is not None:
+            lines.append(f"w.chains = min(w.chains, w.sigma({step.number}));")
+        return lines
 
 
 class Manual(Spelling):
     """The manual's listing: calls written with the names a reader sees in the figure."""
 
     name = "md"
-
-    def __init__(self, order: int, variables: dict[str, Variable]):
-        super().__init__(order)
-        self.variables = variables
 
     def ref(self, var: str, scope: Group | None = None) -> str:
         v = self.variables[var]
@@ -249,6 +291,8 @@ class Manual(Spelling):
         if a.kind == "int":
             if step is not None and step.change_points and a.label == "minv":
                 return f"{int(a.value):+d} flipped at change points"
+            if step is not None and step.number in self.measured and a.label == "minv":
+                return f"{int(a.value):+d} then as solved"
             return "%+d" % int(a.value)
         if a.kind == "real":
             return number(float(a.value))

@@ -54,6 +54,11 @@ class Group:
     ends: tuple[tuple[str, str], ...]  # position variables of each Add-link's pairs
 
     @property
+    def size(self) -> int:
+        """Add-links of the block: its state holds their lengths, then its chains' branches."""
+        return len(self.group.add_links)
+
+    @property
     def suffix(self) -> str:
         """Names the block's function: 1 for group 1, 1_v2 for its second fallback."""
         k = self.group.variant
@@ -72,7 +77,7 @@ class View:
     cells: tuple[Cell, ...]  # output columns in CSV order
     inputs: tuple[Variable, ...]
     sigma_steps: tuple[int, ...]  # steps that report a conditioning
-    nmax: int  # the largest resolver group
+    nmax: int  # the largest block state (Add-link lengths and measured branches)
     record_order: int  # derivative order of the records: a resolver needs velocities for its Jacobian
 
     def resolver_of_group(self, number: int) -> Group:
@@ -81,6 +86,11 @@ class View:
     def resolver(self, step: int) -> Group:
         """The group whose resolver is this step."""
         return next(g for g in self.groups if g.resolve.number == step)
+
+    @property
+    def measured(self) -> frozenset[int]:
+        """Steps whose branch a block reads off the last solution (a work field each)."""
+        return frozenset(b.step for g in self.blocks for b in g.group.branches)
 
     def blocks_of(self, group: Group) -> tuple[Group, ...]:
         return self.blocks[group.first:group.first + group.count]
@@ -138,6 +148,6 @@ def build_view(log: StepLog) -> View:
               for c in log.columns[len(log.inputs):]),
         inputs,
         tuple(s.number for s in log.steps if s.fails),
-        max((len(b.group.add_links) for b in blocks), default=1),
+        max((len(b.group.add_links) + len(b.group.branches) for b in blocks), default=1),
         max(log.order, 1) if log.groups else log.order,
     )

@@ -124,6 +124,8 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
     VARIABLE rec[LINKGEN_NMAX], res[LINKGEN_NMAX];
     double rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], det;
     int i;
+    memset(rec, 0, sizeof rec);  /* entries past n are never read; zeroed for the compiler's sake */
+    memset(rhs, 0, sizeof rhs);
     for (i = 0; i < n; i++) {
         rec[i].v = a[i];
         rec[i].dv = 0.0;
@@ -151,22 +153,64 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
 }
 
 /* Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
- * preferred block first, the others in order; the first that converges is kept (the
- * caller then measures every block's lengths on the solved pairs).  a[k] holds block
- * k's start lengths.  Returns the block, or -1 when none converges. */
+ * preferred block first, the others in order.  The first that converges with its chains
+ * conditioned at least min_sigma (*chains: the worst of the last pass) is kept; else the
+ * best conditioned of those that converge (a block whose chains are near a toggle is a
+ * poor coordinate of the assembly).  a[k] holds block k's start lengths; the caller then
+ * measures every block's state on the solved pairs.  Returns the block, or -1 when none
+ * converges. */
 static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
-                            double tol, int max_iter, double reach, int order, int prefer, int *its, double *sigma)
+                            double tol, int max_iter, double reach, int order, int prefer, int *its, double *sigma,
+                            const double *chains, double min_sigma)
 {
-    double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX];
-    int t, k, i;
+    double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
+    int t, k, i, best = -1;
     for (t = 0; t < count; t++) {
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
         if (!newton(fns[k], ctx, sizes[k], x, tol, max_iter, reach, jac, its)) continue;
+        if (*chains < min_sigma) {
+            if (*chains > best_sigma) {
+                best_sigma = *chains;
+                best = k;
+            }
+            continue;
+        }
         if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) != 1)
             return k;
     }
+    if (best < 0) return -1;
+    for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
+    if (newton(fns[best], ctx, sizes[best], x, tol, max_iter, reach, jac, its)
+        && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) != 1)
+        return best;
     return -1;
+}
+
+/* Whether a solved state is where the predictor pointed from prev: no block's Add-link
+ * length moved from the guess by more than a tenth of the largest predicted move (plus
+ * slack).  A larger correction is a jump to another assembly, or a step too long for
+ * the curve; a block's state after its sizes[k] lengths is its branches. */
+static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
+                   const double now[][LINKGEN_NMAX], const int sizes[], double slack)
+{
+    double move = 0.0, err = 0.0;
+    int g, i;
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < sizes[g]; i++) {
+            move = fmax(move, fabs(guess[g][i] - prev[g][i]));
+            err = fmax(err, fabs(now[g][i] - guess[g][i]));
+        }
+    return err <= 0.1 * move + slack;
+}
+
+/* Whether no input moved farther from the last row than a continuation step. */
+static int within(const double in[], const double last[], const double limits[])
+{
+    int i;
+    for (i = 0; i < LINKGEN_NINPUTS; i++)
+        if (!(fabs(in[i] - last[i]) <= limits[i])) return 0;
+    return 1;
 }
 
 /* Resolver start values for new inputs: the warm lengths moved along their rates
@@ -193,10 +237,11 @@ typedef int (*path_fn)(void *ctx, const double in[], const double din[], int ord
 
 /* Continuation along the straight path from base to goal (see continuation). */
 static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double goal[],
-                const double limits[], int halvings)
+                const double limits[], int halvings, const int sizes[], double slack)
 {
     double d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS], start[LINKGEN_NBLOCKS][LINKGEN_NMAX];
-    double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double now[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double t = 0.0, h, h_max = 1.0;
     int g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
@@ -211,12 +256,14 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
         const double tt = fmin(1.0, t + h);
         for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) guess[g][i] = start[g][i] + (tt - t) * rate[g][i];
-        if (run(ctx, trial, d, 1, guess, rate2)) {
+            for (i = 0; i < LINKGEN_NMAX; i++) now[g][i] = guess[g][i] = start[g][i] + (tt - t) * rate[g][i];
+        if (run(ctx, trial, d, 1, now, rate2)
+            && on_path((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])guess,
+                       (const double (*)[LINKGEN_NMAX])now, sizes, slack)) {
             t = tt;
             h = fmin(2.0 * h, h_max);
             for (g = 0; g < LINKGEN_NBLOCKS; g++)
-                for (i = 0; i < LINKGEN_NMAX; i++) { start[g][i] = guess[g][i]; rate[g][i] = rate2[g][i]; }
+                for (i = 0; i < LINKGEN_NMAX; i++) { start[g][i] = now[g][i]; rate[g][i] = rate2[g][i]; }
         } else {
             h /= 2.0;
             if (h < h_max * ldexp(1.0, -halvings)) return 0;
@@ -227,12 +274,13 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
     return 1;
 }
 
-/* Follow the assembly from inputs base (solved with lengths a) to target.  Angle
+/* Follow the assembly from inputs base (solved with block states a) to target.  Angle
  * inputs go the shorter way round, else the other way; a step moves no input by more
  * than its limit, starts Newton from the tangent predictor and is halved where Newton
- * fails.  Returns 1 with a the lengths at target, 0 when both ways are cut. */
+ * fails or lands off the path (see on_path).  Returns 1 with a the block states at
+ * target, 0 when both ways are cut. */
 static int continuation(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double target[],
-                        const double limits[], const int periodic[], int halvings)
+                        const double limits[], const int periodic[], int halvings, const int sizes[], double slack)
 {
     const double two_pi = 2.0 * 3.141592653589793;
     double goal[LINKGEN_NINPUTS], other[LINKGEN_NINPUTS];
@@ -245,6 +293,6 @@ static int continuation(path_fn run, void *ctx, const double base[], double a[][
             differs = 1;
         }
     }
-    if (walk(run, ctx, base, a, goal, limits, halvings)) return 1;
-    return differs && walk(run, ctx, base, a, other, limits, halvings);
+    if (walk(run, ctx, base, a, goal, limits, halvings, sizes, slack)) return 1;
+    return differs && walk(run, ctx, base, a, other, limits, halvings, sizes, slack);
 }

@@ -123,17 +123,30 @@ function [st, sigma, w] = resolver_rates(group, w, a, jac, order)
     [st, ~, w] = group(w, rec, true);
 end
 
-function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer)
+function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer, ...
+                                                sizes, min_sigma)
     % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
-    % preferred block first, the others in order; the first that converges is kept (the
-    % caller then measures every block's lengths on the solved pairs).  a{first + k} is
-    % block k's start lengths; k = -1 when no block converges.
+    % preferred block first, the others in order.  The first that converges with its
+    % chains conditioned at least min_sigma (w.chains: the worst of the last pass) is
+    % kept; else the best conditioned of those that converge (a block whose chains are
+    % near a toggle is a poor coordinate of the assembly).  The caller then measures
+    % every block's state on the solved pairs.  a{first + k} is block k's state: its
+    % sizes(k + 1) start lengths, then its branches; k = -1 when no block converges.
     its = 0;
     sigma = 0;
+    best = -1;
+    best_sigma = -1;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
     for k = tries
-        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}, tol, max_iter, reach);
+        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, max_iter, reach);
         if ~ok
+            continue;
+        end
+        if w.chains < min_sigma
+            if w.chains > best_sigma
+                best = k;
+                best_sigma = w.chains;
+            end
             continue;
         end
         [st, sigma, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
@@ -141,7 +154,32 @@ function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_it
             return;
         end
     end
+    k = best;
+    if k >= 0
+        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, max_iter, reach);
+        if ok
+            [st, sigma, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
+            if st ~= 1
+                return;
+            end
+        end
+    end
     k = -1;
+end
+
+function ok = resolver_on_path(prev, guess, now, sizes, slack)
+    % Whether a solved state is where the predictor pointed from prev: no block's
+    % Add-link length moved from the guess by more than a tenth of the largest predicted
+    % move (plus slack).  A larger correction is a jump to another assembly, or a step
+    % too long for the curve; a block's state after its sizes(k) lengths is its branches.
+    move = 0;
+    err = 0;
+    for g = 1:numel(sizes)
+        n = sizes(g);
+        move = max([move; abs(guess{g}(1:n) - prev{g}(1:n))]);
+        err = max([err; abs(now{g}(1:n) - guess{g}(1:n))]);
+    end
+    ok = err <= 0.1 * move + slack;
 end
 
 function a = resolver_predict(warm, in)
@@ -159,11 +197,11 @@ function a = resolver_predict(warm, in)
     end
 end
 
-function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings)
-    % Follow the assembly from inputs base (solved with lengths a) to target.  Angle
-    % inputs go the shorter way round, else the other way; a step moves no input by
-    % more than its limit, starts Newton from the tangent predictor and is halved where
-    % Newton fails.
+function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings, sizes, slack)
+    % Follow the assembly from inputs base (solved with block states a) to target.
+    % Angle inputs go the shorter way round, else the other way; a step moves no input
+    % by more than its limit, starts Newton from the tangent predictor and is halved
+    % where Newton fails or lands off the path (see resolver_on_path).
     goal = target;
     other = target;
     differs = false;
@@ -180,16 +218,16 @@ function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic,
             end
         end
     end
-    [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings);
+    [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack);
     if ~ok && differs
-        [ok, a2] = resolver_walk(run, base, a, other, limits, halvings);
+        [ok, a2] = resolver_walk(run, base, a, other, limits, halvings, sizes, slack);
     end
     if ok
         a = a2;
     end
 end
 
-function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings)
+function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack)
     % Continuation along the straight path from base to goal (see resolver_continuation).
     d = goal - base;
     h_max = 1;
@@ -216,7 +254,7 @@ function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings)
             guess{g} = a{g} + (tt - t) * rate{g};
         end
         [closed, a2, rate2] = run(trial, d, 1, guess);
-        if closed
+        if closed && resolver_on_path(a, guess, a2, sizes, slack)
             t = tt;
             a = a2;
             rate = rate2;

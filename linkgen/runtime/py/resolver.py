@@ -118,22 +118,35 @@ def addlink_rates(group, a, jac, order):
     return st, sigma
 
 
-def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer):
+def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, sizes, chains, min_sigma):
     """Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
-    preferred block first, the others in order; the first that converges is kept (the
-    caller then measures every block's lengths on the solved pairs).
+    preferred block first, the others in order.  The first that converges with its chains
+    conditioned at least min_sigma (chains(): the worst of the last pass) is kept; else the
+    best conditioned of those that converge (a block whose chains are near a toggle is a
+    poor coordinate of the assembly).  The caller then measures every block's state on
+    the solved pairs.
 
-    a[first + k] is block k's start lengths.  Returns (k, Newton steps, sigma), k = -1
-    when no block converges.
+    a[first + k] is block k's state: its sizes[k] start lengths, then its branches.
+    Returns (k, Newton steps, sigma), k = -1 when no block converges.
     """
-    its = 0
+    its, best, best_sigma = 0, -1, -1.0
     for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
-        ok, x, its, jac = newton(groups[k], a[first + k], tol, max_iter, reach)
+        ok, x, its, jac = newton(groups[k], a[first + k][:sizes[k]], tol, max_iter, reach)
         if not ok:
+            continue
+        if chains() < min_sigma:
+            if chains() > best_sigma:
+                best, best_sigma = k, chains()
             continue
         st, sigma = addlink_rates(groups[k], x, jac, order)
         if st != 1:
             return k, its, sigma
+    if best >= 0:
+        ok, x, its, jac = newton(groups[best], a[first + best][:sizes[best]], tol, max_iter, reach)
+        if ok:
+            st, sigma = addlink_rates(groups[best], x, jac, order)
+            if st != 1:
+                return best, its, sigma
     return -1, its, 0.0
 
 
@@ -147,25 +160,38 @@ def predict(warm, inputs):
     return [[v + tau * dv for v, dv in zip(g, gd)] for g, gd in zip(a, ad)]
 
 
-def continuation(run, base, a, target, limits, periodic, halvings):
-    """Follow the assembly from inputs base (solved with lengths a) to target.
+def on_path(prev, guess, new, sizes, slack):
+    """Whether a solved state new is where the predictor guess pointed from prev: no
+    block's Add-link length moved from the guess by more than a tenth of the largest predicted
+    move (plus slack).  A larger correction is a jump to another assembly, or a step
+    too long for the curve; a block's state after its sizes[k] lengths is its branches."""
+    move = err = 0.0
+    for p, g, x, n in zip(prev, guess, new, sizes):
+        for i in range(n):
+            move = max(move, abs(g[i] - p[i]))
+            err = max(err, abs(x[i] - g[i]))
+    return err <= 0.1 * move + slack
+
+
+def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack):
+    """Follow the assembly from inputs base (solved with block states a) to target.
 
     Angle inputs go the shorter way round, else the other way; each step moves no
     input by more than its limit, starts Newton from the tangent predictor and is
-    halved where Newton fails.  run(inputs, rates, order, a) -> (ok, a, rates) solves
-    with input rates per unit of the path.  Returns the lengths at target, or None
-    when both ways are cut.
+    halved where Newton fails or lands off the path (see on_path).  run(inputs, rates,
+    order, a) -> (ok, a, rates) solves with input rates per unit of the path.  Returns
+    the block states at target, or None when both ways are cut.
     """
     goal = [t - 2 * PI * floor((t - b) / (2 * PI) + 0.5) if p else t for t, b, p in zip(target, base, periodic)]
-    reached = _walk(run, base, a, goal, limits, halvings)
+    reached = _walk(run, base, a, goal, limits, halvings, sizes, slack)
     other = [(g - 2 * PI if g > b else g + 2 * PI if g < b else g) if p else g
              for g, b, p in zip(goal, base, periodic)]
     if reached is None and other != goal:
-        reached = _walk(run, base, a, other, limits, halvings)
+        reached = _walk(run, base, a, other, limits, halvings, sizes, slack)
     return reached
 
 
-def _walk(run, base, a, goal, limits, halvings):
+def _walk(run, base, a, goal, limits, halvings, sizes, slack):
     """Continuation along the straight path from base to goal (see continuation)."""
     d = [g - b for g, b in zip(goal, base)]
     h_max = min([1.0] + [lim / abs(x) for lim, x in zip(limits, d) if x != 0.0])
@@ -178,7 +204,7 @@ def _walk(run, base, a, goal, limits, halvings):
         trial = [b + tt * x for b, x in zip(base, d)] if tt < 1.0 else goal
         guess = [[v + (tt - t) * r for v, r in zip(g, gr)] for g, gr in zip(a, rate)]
         ok, a2, rate2 = run(trial, d, 1, guess)
-        if ok:
+        if ok and on_path(a, guess, a2, sizes, slack):
             t, a, rate, h = tt, a2, rate2, min(2 * h, h_max)
         else:
             h /= 2

@@ -130,7 +130,9 @@ COLUMNS = (
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 LENGTH_SCALE = 331.436268383531
 SKETCH_INPUTS = (1.5707963267948966, )
-SKETCH_ADD_LINKS = ([168.67127793433], [67.08203932499369], [60.8276253029822], [165.6804152578089], [123.4908903522847], [122.06555615733703], [138.92443989449805], [168.67127793433], [180.27756377319946], [285.3944638566067], [225.055548698538], [330.0], [120.0], [225.055548698538], [67.08203932499369], [240.0], )
+SKETCH_ADD_LINKS = ([168.67127793433, -1.0, 1.0], [67.08203932499369, -1.0, 1.0], [60.8276253029822, -1.0, 1.0], [165.6804152578089, -1.0, 1.0], [123.4908903522847, -1.0, 1.0], [122.06555615733703, 1.0, 1.0], [138.92443989449805, -1.0, 1.0], [168.67127793433, 1.0, -1.0], [180.27756377319946, 1.0, -1.0], [285.3944638566067, 1.0, -1.0], [225.055548698538, 1.0, -1.0], [330.0, 1.0, -1.0], [120.0, 1.0, -1.0], [225.055548698538, 1.0, -1.0], [67.08203932499369, 1.0, -1.0], [240.0, -1.0, -1.0], )  # per block: lengths, then branches
+BLOCK_SIZES = (1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, )  # Add-links of each block
+SLACK = 1.0000000000000001e-07  # how far off the predicted path a solution may sit, relative to the length scale
 N_GROUPS = 2
 ZERO_LENGTH = (0.0, 0.0, 0.0,)
 LIMITS = (0.1,)  # the continuation's largest step of each input
@@ -379,22 +381,35 @@ def addlink_rates(group, a, jac, order):
     return st, sigma
 
 
-def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer):
+def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, sizes, chains, min_sigma):
     """Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
-    preferred block first, the others in order; the first that converges is kept (the
-    caller then measures every block's lengths on the solved pairs).
+    preferred block first, the others in order.  The first that converges with its chains
+    conditioned at least min_sigma (chains(): the worst of the last pass) is kept; else the
+    best conditioned of those that converge (a block whose chains are near a toggle is a
+    poor coordinate of the assembly).  The caller then measures every block's state on
+    the solved pairs.
 
-    a[first + k] is block k's start lengths.  Returns (k, Newton steps, sigma), k = -1
-    when no block converges.
+    a[first + k] is block k's state: its sizes[k] start lengths, then its branches.
+    Returns (k, Newton steps, sigma), k = -1 when no block converges.
     """
-    its = 0
+    its, best, best_sigma = 0, -1, -1.0
     for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
-        ok, x, its, jac = newton(groups[k], a[first + k], tol, max_iter, reach)
+        ok, x, its, jac = newton(groups[k], a[first + k][:sizes[k]], tol, max_iter, reach)
         if not ok:
+            continue
+        if chains() < min_sigma:
+            if chains() > best_sigma:
+                best, best_sigma = k, chains()
             continue
         st, sigma = addlink_rates(groups[k], x, jac, order)
         if st != 1:
             return k, its, sigma
+    if best >= 0:
+        ok, x, its, jac = newton(groups[best], a[first + best][:sizes[best]], tol, max_iter, reach)
+        if ok:
+            st, sigma = addlink_rates(groups[best], x, jac, order)
+            if st != 1:
+                return best, its, sigma
     return -1, its, 0.0
 
 
@@ -408,25 +423,38 @@ def predict(warm, inputs):
     return [[v + tau * dv for v, dv in zip(g, gd)] for g, gd in zip(a, ad)]
 
 
-def continuation(run, base, a, target, limits, periodic, halvings):
-    """Follow the assembly from inputs base (solved with lengths a) to target.
+def on_path(prev, guess, new, sizes, slack):
+    """Whether a solved state new is where the predictor guess pointed from prev: no
+    block's Add-link length moved from the guess by more than a tenth of the largest predicted
+    move (plus slack).  A larger correction is a jump to another assembly, or a step
+    too long for the curve; a block's state after its sizes[k] lengths is its branches."""
+    move = err = 0.0
+    for p, g, x, n in zip(prev, guess, new, sizes):
+        for i in range(n):
+            move = max(move, abs(g[i] - p[i]))
+            err = max(err, abs(x[i] - g[i]))
+    return err <= 0.1 * move + slack
+
+
+def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack):
+    """Follow the assembly from inputs base (solved with block states a) to target.
 
     Angle inputs go the shorter way round, else the other way; each step moves no
     input by more than its limit, starts Newton from the tangent predictor and is
-    halved where Newton fails.  run(inputs, rates, order, a) -> (ok, a, rates) solves
-    with input rates per unit of the path.  Returns the lengths at target, or None
-    when both ways are cut.
+    halved where Newton fails or lands off the path (see on_path).  run(inputs, rates,
+    order, a) -> (ok, a, rates) solves with input rates per unit of the path.  Returns
+    the block states at target, or None when both ways are cut.
     """
     goal = [t - 2 * PI * floor((t - b) / (2 * PI) + 0.5) if p else t for t, b, p in zip(target, base, periodic)]
-    reached = _walk(run, base, a, goal, limits, halvings)
+    reached = _walk(run, base, a, goal, limits, halvings, sizes, slack)
     other = [(g - 2 * PI if g > b else g + 2 * PI if g < b else g) if p else g
              for g, b, p in zip(goal, base, periodic)]
     if reached is None and other != goal:
-        reached = _walk(run, base, a, other, limits, halvings)
+        reached = _walk(run, base, a, other, limits, halvings, sizes, slack)
     return reached
 
 
-def _walk(run, base, a, goal, limits, halvings):
+def _walk(run, base, a, goal, limits, halvings, sizes, slack):
     """Continuation along the straight path from base to goal (see continuation)."""
     d = [g - b for g, b in zip(goal, base)]
     h_max = min([1.0] + [lim / abs(x) for lim, x in zip(limits, d) if x != 0.0])
@@ -439,7 +467,7 @@ def _walk(run, base, a, goal, limits, halvings):
         trial = [b + tt * x for b, x in zip(base, d)] if tt < 1.0 else goal
         guess = [[v + (tt - t) * r for v, r in zip(g, gr)] for g, gr in zip(a, rate)]
         ok, a2, rate2 = run(trial, d, 1, guess)
-        if ok:
+        if ok and on_path(a, guess, a2, sizes, slack):
             t, a, rate, h = tt, a2, rate2, min(2 * h, h_max)
         else:
             h /= 2
@@ -470,7 +498,7 @@ l_left_ternary_K2_K5 = (60.8276253029822, 0.0, 0.0)
 class _Work:
     """The records of one solution."""
 
-    __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "phi_right_ternary", "p_J5", "f1", "add2", "p_K4", "p_K2", "phi_left_ternary", "p_K5", "f2", "phi_crank", "phi_right_rocker1", "phi_right_rocker2", "phi_right_coupler", "phi_left_rocker1", "phi_left_rocker2", "phi_left_coupler", "add1_v1", "f1_v1", "add1_v2", "f1_v2", "add1_v3", "f1_v3", "add1_v4", "f1_v4", "add1_v5", "f1_v5", "add1_v6", "f1_v6", "add2_v1", "f2_v1", "add2_v2", "f2_v2", "add2_v3", "f2_v3", "add2_v4", "f2_v4", "add2_v5", "f2_v5", "add2_v6", "f2_v6", "add2_v7", "f2_v7", "add2_v8", "f2_v8", "sigma", "singular", "near")
+    __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "phi_right_ternary", "p_J5", "f1", "add2", "p_K4", "p_K2", "phi_left_ternary", "p_K5", "f2", "phi_crank", "phi_right_rocker1", "phi_right_rocker2", "phi_right_coupler", "phi_left_rocker1", "phi_left_rocker2", "phi_left_coupler", "add1_v1", "f1_v1", "add1_v2", "f1_v2", "add1_v3", "f1_v3", "add1_v4", "f1_v4", "add1_v5", "f1_v5", "add1_v6", "f1_v6", "add2_v1", "f2_v1", "add2_v2", "f2_v2", "add2_v3", "f2_v3", "add2_v4", "f2_v4", "add2_v5", "f2_v5", "add2_v6", "f2_v6", "add2_v7", "f2_v7", "add2_v8", "f2_v8", "sigma", "singular", "near", "chains", "br4", "br5", "br11", "br12", "br24", "br25", "br29", "br30", "br34", "br35", "br39", "br40", "br44", "br45", "br49", "br50", "br54", "br55", "br59", "br60", "br64", "br65", "br69", "br70", "br74", "br75", "br79", "br80", "br84", "br85", "br89", "br90")
 
     def note(self, step, st):
         """Remember the first step at a singular (3) or near-singular (4) position."""
@@ -489,18 +517,21 @@ def _group_1(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1 = a[0]
+    w.chains = 1.0
     # Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[4], w.p_J4 = RRR_links(p_J3, p_J6, l_right_rocker2, w.add1, -1)
+    st, w.sigma[4], w.p_J4 = RRR_links(p_J3, p_J6, l_right_rocker2, w.add1, w.br4)
     if st == 1:
         return 1, None
     if live:
         w.note(4, st)
+    w.chains = min(w.chains, w.sigma[4])
     # Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[5], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, 1)
+    st, w.sigma[5], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, w.br5)
     if st == 1:
         return 1, None
     if live:
         w.note(5, st)
+    w.chains = min(w.chains, w.sigma[5])
     # Step 6: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
@@ -528,18 +559,21 @@ def _group_1_v1(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v1 = a[0]
+    w.chains = 1.0
     # Step 24: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[24], w.p_J2 = RRR_links(p_J1, p_J6, l_right_rocker1, w.add1_v1, -1)
+    st, w.sigma[24], w.p_J2 = RRR_links(p_J1, p_J6, l_right_rocker1, w.add1_v1, w.br24)
     if st == 1:
         return 1, None
     if live:
         w.note(24, st)
+    w.chains = min(w.chains, w.sigma[24])
     # Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[25], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, 1)
+    st, w.sigma[25], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w.br25)
     if st == 1:
         return 1, None
     if live:
         w.note(25, st)
+    w.chains = min(w.chains, w.sigma[25])
     # Step 26: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
@@ -567,18 +601,21 @@ def _group_1_v2(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v2 = a[0]
+    w.chains = 1.0
     # Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[29], w.p_J2 = RRR_links(p_J1, p_J7, l_right_rocker1, w.add1_v2, -1)
+    st, w.sigma[29], w.p_J2 = RRR_links(p_J1, p_J7, l_right_rocker1, w.add1_v2, w.br29)
     if st == 1:
         return 1, None
     if live:
         w.note(29, st)
+    w.chains = min(w.chains, w.sigma[29])
     # Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[30], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, 1)
+    st, w.sigma[30], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w.br30)
     if st == 1:
         return 1, None
     if live:
         w.note(30, st)
+    w.chains = min(w.chains, w.sigma[30])
     # Step 31: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
@@ -606,18 +643,21 @@ def _group_1_v3(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v3 = a[0]
+    w.chains = 1.0
     # Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[34], w.p_J4 = RRR_links(p_J3, p_J7, l_right_rocker2, w.add1_v3, -1)
+    st, w.sigma[34], w.p_J4 = RRR_links(p_J3, p_J7, l_right_rocker2, w.add1_v3, w.br34)
     if st == 1:
         return 1, None
     if live:
         w.note(34, st)
+    w.chains = min(w.chains, w.sigma[34])
     # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[35], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, 1)
+    st, w.sigma[35], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, w.br35)
     if st == 1:
         return 1, None
     if live:
         w.note(35, st)
+    w.chains = min(w.chains, w.sigma[35])
     # Step 36: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
@@ -645,18 +685,21 @@ def _group_1_v4(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v4 = a[0]
+    w.chains = 1.0
     # Step 39: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[39], w.p_J4 = RRR_links(p_J3, p_J1, l_right_rocker2, w.add1_v4, -1)
+    st, w.sigma[39], w.p_J4 = RRR_links(p_J3, p_J1, l_right_rocker2, w.add1_v4, w.br39)
     if st == 1:
         return 1, None
     if live:
         w.note(39, st)
+    w.chains = min(w.chains, w.sigma[39])
     # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[40], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, 1)
+    st, w.sigma[40], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, w.br40)
     if st == 1:
         return 1, None
     if live:
         w.note(40, st)
+    w.chains = min(w.chains, w.sigma[40])
     # Step 41: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
@@ -684,18 +727,21 @@ def _group_1_v5(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v5 = a[0]
+    w.chains = 1.0
     # Step 44: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[44], w.p_J2 = RRR_links(p_J1, p_J3, l_right_rocker1, w.add1_v5, 1)
+    st, w.sigma[44], w.p_J2 = RRR_links(p_J1, p_J3, l_right_rocker1, w.add1_v5, w.br44)
     if st == 1:
         return 1, None
     if live:
         w.note(44, st)
+    w.chains = min(w.chains, w.sigma[44])
     # Step 45: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[45], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, 1)
+    st, w.sigma[45], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w.br45)
     if st == 1:
         return 1, None
     if live:
         w.note(45, st)
+    w.chains = min(w.chains, w.sigma[45])
     # Step 46: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
@@ -723,18 +769,21 @@ def _group_1_v6(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v6 = a[0]
+    w.chains = 1.0
     # Step 49: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[49], w.p_J2 = RRR_links(p_J1, p_K1, l_right_rocker1, w.add1_v6, -1)
+    st, w.sigma[49], w.p_J2 = RRR_links(p_J1, p_K1, l_right_rocker1, w.add1_v6, w.br49)
     if st == 1:
         return 1, None
     if live:
         w.note(49, st)
+    w.chains = min(w.chains, w.sigma[49])
     # Step 50: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[50], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, 1)
+    st, w.sigma[50], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w.br50)
     if st == 1:
         return 1, None
     if live:
         w.note(50, st)
+    w.chains = min(w.chains, w.sigma[50])
     # Step 51: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
@@ -762,18 +811,21 @@ def _group_2(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2 = a[0]
+    w.chains = 1.0
     # Step 11: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[11], w.p_K4 = RRR_links(p_K3, p_J6, l_left_rocker2, w.add2, 1)
+    st, w.sigma[11], w.p_K4 = RRR_links(p_K3, p_J6, l_left_rocker2, w.add2, w.br11)
     if st == 1:
         return 1, None
     if live:
         w.note(11, st)
+    w.chains = min(w.chains, w.sigma[11])
     # Step 12: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[12], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, -1)
+    st, w.sigma[12], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br12)
     if st == 1:
         return 1, None
     if live:
         w.note(12, st)
+    w.chains = min(w.chains, w.sigma[12])
     # Step 13: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
@@ -802,18 +854,21 @@ def _group_2_v1(w, a, live):
     p_J5 = w.p_J5 if live else (w.p_J5[0], w.p_J5[1]) + (0.0,) * (len(w.p_J5) - 2)
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v1 = a[0]
+    w.chains = 1.0
     # Step 54: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[54], w.p_K2 = RRR_links(p_K1, p_J5, l_left_rocker1, w.add2_v1, 1)
+    st, w.sigma[54], w.p_K2 = RRR_links(p_K1, p_J5, l_left_rocker1, w.add2_v1, w.br54)
     if st == 1:
         return 1, None
     if live:
         w.note(54, st)
+    w.chains = min(w.chains, w.sigma[54])
     # Step 55: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[55], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, -1)
+    st, w.sigma[55], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br55)
     if st == 1:
         return 1, None
     if live:
         w.note(55, st)
+    w.chains = min(w.chains, w.sigma[55])
     # Step 56: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
@@ -842,18 +897,21 @@ def _group_2_v2(w, a, live):
     p_J5 = w.p_J5 if live else (w.p_J5[0], w.p_J5[1]) + (0.0,) * (len(w.p_J5) - 2)
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v2 = a[0]
+    w.chains = 1.0
     # Step 59: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[59], w.p_K4 = RRR_links(p_K3, p_J5, l_left_rocker2, w.add2_v2, 1)
+    st, w.sigma[59], w.p_K4 = RRR_links(p_K3, p_J5, l_left_rocker2, w.add2_v2, w.br59)
     if st == 1:
         return 1, None
     if live:
         w.note(59, st)
+    w.chains = min(w.chains, w.sigma[59])
     # Step 60: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[60], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, -1)
+    st, w.sigma[60], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br60)
     if st == 1:
         return 1, None
     if live:
         w.note(60, st)
+    w.chains = min(w.chains, w.sigma[60])
     # Step 61: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
@@ -882,18 +940,21 @@ def _group_2_v3(w, a, live):
     p_J2 = w.p_J2 if live else (w.p_J2[0], w.p_J2[1]) + (0.0,) * (len(w.p_J2) - 2)
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v3 = a[0]
+    w.chains = 1.0
     # Step 64: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[64], w.p_K4 = RRR_links(p_K3, p_J2, l_left_rocker2, w.add2_v3, 1)
+    st, w.sigma[64], w.p_K4 = RRR_links(p_K3, p_J2, l_left_rocker2, w.add2_v3, w.br64)
     if st == 1:
         return 1, None
     if live:
         w.note(64, st)
+    w.chains = min(w.chains, w.sigma[64])
     # Step 65: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[65], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, -1)
+    st, w.sigma[65], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br65)
     if st == 1:
         return 1, None
     if live:
         w.note(65, st)
+    w.chains = min(w.chains, w.sigma[65])
     # Step 66: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
@@ -922,18 +983,21 @@ def _group_2_v4(w, a, live):
     p_J4 = w.p_J4 if live else (w.p_J4[0], w.p_J4[1]) + (0.0,) * (len(w.p_J4) - 2)
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v4 = a[0]
+    w.chains = 1.0
     # Step 69: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[69], w.p_K4 = RRR_links(p_K3, p_J4, l_left_rocker2, w.add2_v4, 1)
+    st, w.sigma[69], w.p_K4 = RRR_links(p_K3, p_J4, l_left_rocker2, w.add2_v4, w.br69)
     if st == 1:
         return 1, None
     if live:
         w.note(69, st)
+    w.chains = min(w.chains, w.sigma[69])
     # Step 70: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[70], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, -1)
+    st, w.sigma[70], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br70)
     if st == 1:
         return 1, None
     if live:
         w.note(70, st)
+    w.chains = min(w.chains, w.sigma[70])
     # Step 71: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
@@ -962,18 +1026,21 @@ def _group_2_v5(w, a, live):
     p_J2 = w.p_J2 if live else (w.p_J2[0], w.p_J2[1]) + (0.0,) * (len(w.p_J2) - 2)
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v5 = a[0]
+    w.chains = 1.0
     # Step 74: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[74], w.p_K2 = RRR_links(p_K1, p_J2, l_left_rocker1, w.add2_v5, 1)
+    st, w.sigma[74], w.p_K2 = RRR_links(p_K1, p_J2, l_left_rocker1, w.add2_v5, w.br74)
     if st == 1:
         return 1, None
     if live:
         w.note(74, st)
+    w.chains = min(w.chains, w.sigma[74])
     # Step 75: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[75], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, -1)
+    st, w.sigma[75], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br75)
     if st == 1:
         return 1, None
     if live:
         w.note(75, st)
+    w.chains = min(w.chains, w.sigma[75])
     # Step 76: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
@@ -1002,18 +1069,21 @@ def _group_2_v6(w, a, live):
     p_J4 = w.p_J4 if live else (w.p_J4[0], w.p_J4[1]) + (0.0,) * (len(w.p_J4) - 2)
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v6 = a[0]
+    w.chains = 1.0
     # Step 79: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[79], w.p_K2 = RRR_links(p_K1, p_J4, l_left_rocker1, w.add2_v6, 1)
+    st, w.sigma[79], w.p_K2 = RRR_links(p_K1, p_J4, l_left_rocker1, w.add2_v6, w.br79)
     if st == 1:
         return 1, None
     if live:
         w.note(79, st)
+    w.chains = min(w.chains, w.sigma[79])
     # Step 80: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[80], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, -1)
+    st, w.sigma[80], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br80)
     if st == 1:
         return 1, None
     if live:
         w.note(80, st)
+    w.chains = min(w.chains, w.sigma[80])
     # Step 81: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
@@ -1041,18 +1111,21 @@ def _group_2_v7(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v7 = a[0]
+    w.chains = 1.0
     # Step 84: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[84], w.p_K2 = RRR_links(p_K1, p_J6, l_left_rocker1, w.add2_v7, 1)
+    st, w.sigma[84], w.p_K2 = RRR_links(p_K1, p_J6, l_left_rocker1, w.add2_v7, w.br84)
     if st == 1:
         return 1, None
     if live:
         w.note(84, st)
+    w.chains = min(w.chains, w.sigma[84])
     # Step 85: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[85], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, -1)
+    st, w.sigma[85], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br85)
     if st == 1:
         return 1, None
     if live:
         w.note(85, st)
+    w.chains = min(w.chains, w.sigma[85])
     # Step 86: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
@@ -1081,18 +1154,21 @@ def _group_2_v8(w, a, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     p_J5 = w.p_J5 if live else (w.p_J5[0], w.p_J5[1]) + (0.0,) * (len(w.p_J5) - 2)
     w.add2_v8 = a[0]
+    w.chains = 1.0
     # Step 89: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[89], w.p_K5 = RRR_links(p_J6, p_J5, l_left_coupler, w.add2_v8, -1)
+    st, w.sigma[89], w.p_K5 = RRR_links(p_J6, p_J5, l_left_coupler, w.add2_v8, w.br89)
     if st == 1:
         return 1, None
     if live:
         w.note(89, st)
+    w.chains = min(w.chains, w.sigma[89])
     # Step 90: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[90], w.p_K2 = RRR_links(p_K1, w.p_K5, l_left_rocker1, l_left_ternary_K2_K5, -1)
+    st, w.sigma[90], w.p_K2 = RRR_links(p_K1, w.p_K5, l_left_rocker1, l_left_ternary_K2_K5, w.br90)
     if st == 1:
         return 1, None
     if live:
         w.note(90, st)
+    w.chains = min(w.chains, w.sigma[90])
     # Step 91: link_angle, left_ternary. K5 and K2 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K5, w.p_K2, -2.928860872898183)
     if st == 1:
@@ -1112,60 +1188,94 @@ def _group_2_v8(w, a, live):
 
 
 def _lengths_1(w, a, ad):
-    """The Add-link lengths of every block of group 1, measured on the solved pairs."""
+    """The state of every block of group 1, read off the solved pairs: its Add-link
+    lengths, then the branches of its chains (a zero keeps the branch it had)."""
     f = [link_residual(w.p_J6, w.p_J4, ZERO_LENGTH)[1]]
-    a[0] = [x[0] for x in f]
-    ad[0] = [x[1] for x in f]
+    m = [(w.p_J6[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (w.p_J6[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
+    a[0] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[0][1:])]
+    ad[0] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(w.p_J6, w.p_J2, ZERO_LENGTH)[1]]
-    a[1] = [x[0] for x in f]
-    ad[1] = [x[1] for x in f]
+    m = [(w.p_J6[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J6[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
+    a[1] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[1][1:])]
+    ad[1] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(p_J7, w.p_J2, ZERO_LENGTH)[1]]
-    a[2] = [x[0] for x in f]
-    ad[2] = [x[1] for x in f]
+    m = [(p_J7[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (p_J7[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
+    a[2] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[2][1:])]
+    ad[2] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(p_J7, w.p_J4, ZERO_LENGTH)[1]]
-    a[3] = [x[0] for x in f]
-    ad[3] = [x[1] for x in f]
+    m = [(p_J7[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (p_J7[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
+    a[3] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[3][1:])]
+    ad[3] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(p_J1, w.p_J4, ZERO_LENGTH)[1]]
-    a[4] = [x[0] for x in f]
-    ad[4] = [x[1] for x in f]
+    m = [(p_J1[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (p_J1[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
+    a[4] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[4][1:])]
+    ad[4] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(p_J3, w.p_J2, ZERO_LENGTH)[1]]
-    a[5] = [x[0] for x in f]
-    ad[5] = [x[1] for x in f]
+    m = [(p_J3[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (p_J3[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
+    a[5] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[5][1:])]
+    ad[5] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(p_K1, w.p_J2, ZERO_LENGTH)[1]]
-    a[6] = [x[0] for x in f]
-    ad[6] = [x[1] for x in f]
+    m = [(p_K1[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (p_K1[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
+    a[6] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[6][1:])]
+    ad[6] = [x[1] for x in f] + [0.0] * 2
 
 
 
 def _lengths_2(w, a, ad):
-    """The Add-link lengths of every block of group 2, measured on the solved pairs."""
+    """The state of every block of group 2, read off the solved pairs: its Add-link
+    lengths, then the branches of its chains (a zero keeps the branch it had)."""
     f = [link_residual(w.p_J6, w.p_K4, ZERO_LENGTH)[1]]
-    a[7] = [x[0] for x in f]
-    ad[7] = [x[1] for x in f]
+    m = [(w.p_J6[0] - p_K3[0]) * (w.p_K4[1] - p_K3[1]) - (w.p_J6[1] - p_K3[1]) * (w.p_K4[0] - p_K3[0]), (w.p_K4[0] - p_K1[0]) * (w.p_K2[1] - p_K1[1]) - (w.p_K4[1] - p_K1[1]) * (w.p_K2[0] - p_K1[0])]
+    a[7] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[7][1:])]
+    ad[7] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(w.p_J5, w.p_K2, ZERO_LENGTH)[1]]
-    a[8] = [x[0] for x in f]
-    ad[8] = [x[1] for x in f]
+    m = [(w.p_J5[0] - p_K1[0]) * (w.p_K2[1] - p_K1[1]) - (w.p_J5[1] - p_K1[1]) * (w.p_K2[0] - p_K1[0]), (p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0])]
+    a[8] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[8][1:])]
+    ad[8] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(w.p_J5, w.p_K4, ZERO_LENGTH)[1]]
-    a[9] = [x[0] for x in f]
-    ad[9] = [x[1] for x in f]
+    m = [(w.p_J5[0] - p_K3[0]) * (w.p_K4[1] - p_K3[1]) - (w.p_J5[1] - p_K3[1]) * (w.p_K4[0] - p_K3[0]), (w.p_K4[0] - p_K1[0]) * (w.p_K2[1] - p_K1[1]) - (w.p_K4[1] - p_K1[1]) * (w.p_K2[0] - p_K1[0])]
+    a[9] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[9][1:])]
+    ad[9] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(w.p_J2, w.p_K4, ZERO_LENGTH)[1]]
-    a[10] = [x[0] for x in f]
-    ad[10] = [x[1] for x in f]
+    m = [(w.p_J2[0] - p_K3[0]) * (w.p_K4[1] - p_K3[1]) - (w.p_J2[1] - p_K3[1]) * (w.p_K4[0] - p_K3[0]), (w.p_K4[0] - p_K1[0]) * (w.p_K2[1] - p_K1[1]) - (w.p_K4[1] - p_K1[1]) * (w.p_K2[0] - p_K1[0])]
+    a[10] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[10][1:])]
+    ad[10] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(w.p_J4, w.p_K4, ZERO_LENGTH)[1]]
-    a[11] = [x[0] for x in f]
-    ad[11] = [x[1] for x in f]
+    m = [(w.p_J4[0] - p_K3[0]) * (w.p_K4[1] - p_K3[1]) - (w.p_J4[1] - p_K3[1]) * (w.p_K4[0] - p_K3[0]), (w.p_K4[0] - p_K1[0]) * (w.p_K2[1] - p_K1[1]) - (w.p_K4[1] - p_K1[1]) * (w.p_K2[0] - p_K1[0])]
+    a[11] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[11][1:])]
+    ad[11] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(w.p_J2, w.p_K2, ZERO_LENGTH)[1]]
-    a[12] = [x[0] for x in f]
-    ad[12] = [x[1] for x in f]
+    m = [(w.p_J2[0] - p_K1[0]) * (w.p_K2[1] - p_K1[1]) - (w.p_J2[1] - p_K1[1]) * (w.p_K2[0] - p_K1[0]), (p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0])]
+    a[12] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[12][1:])]
+    ad[12] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(w.p_J4, w.p_K2, ZERO_LENGTH)[1]]
-    a[13] = [x[0] for x in f]
-    ad[13] = [x[1] for x in f]
+    m = [(w.p_J4[0] - p_K1[0]) * (w.p_K2[1] - p_K1[1]) - (w.p_J4[1] - p_K1[1]) * (w.p_K2[0] - p_K1[0]), (p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0])]
+    a[13] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[13][1:])]
+    ad[13] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(w.p_J6, w.p_K2, ZERO_LENGTH)[1]]
-    a[14] = [x[0] for x in f]
-    ad[14] = [x[1] for x in f]
+    m = [(w.p_J6[0] - p_K1[0]) * (w.p_K2[1] - p_K1[1]) - (w.p_J6[1] - p_K1[1]) * (w.p_K2[0] - p_K1[0]), (p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0])]
+    a[14] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[14][1:])]
+    ad[14] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(w.p_J5, w.p_K5, ZERO_LENGTH)[1]]
-    a[15] = [x[0] for x in f]
-    ad[15] = [x[1] for x in f]
+    m = [(w.p_J5[0] - w.p_J6[0]) * (w.p_K5[1] - w.p_J6[1]) - (w.p_J5[1] - w.p_J6[1]) * (w.p_K5[0] - w.p_J6[0]), (w.p_K5[0] - p_K1[0]) * (w.p_K2[1] - p_K1[1]) - (w.p_K5[1] - p_K1[1]) * (w.p_K2[0] - p_K1[0])]
+    a[15] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[15][1:])]
+    ad[15] = [x[1] for x in f] + [0.0] * 2
 
 
 
@@ -1182,10 +1292,25 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
     # Step 9: resolve, group1. Newton-Raphson on add1 until right_coupler regains its length
+    w.br4 = -1 if a[0][1] < 0 else 1
+    w.br5 = -1 if a[0][2] < 0 else 1
+    w.br24 = -1 if a[1][1] < 0 else 1
+    w.br25 = -1 if a[1][2] < 0 else 1
+    w.br29 = -1 if a[2][1] < 0 else 1
+    w.br30 = -1 if a[2][2] < 0 else 1
+    w.br34 = -1 if a[3][1] < 0 else 1
+    w.br35 = -1 if a[3][2] < 0 else 1
+    w.br39 = -1 if a[4][1] < 0 else 1
+    w.br40 = -1 if a[4][2] < 0 else 1
+    w.br44 = -1 if a[5][1] < 0 else 1
+    w.br45 = -1 if a[5][2] < 0 else 1
+    w.br49 = -1 if a[6][1] < 0 else 1
+    w.br50 = -1 if a[6][2] < 0 else 1
     blocks = [lambda r, live: _group_1(w, r, live), lambda r, live: _group_1_v1(w, r, live), lambda r, live: _group_1_v2(w, r, live), lambda r, live: _group_1_v3(w, r, live), lambda r, live: _group_1_v4(w, r, live), lambda r, live: _group_1_v5(w, r, live), lambda r, live: _group_1_v6(w, r, live)]
     k, its[0], w.sigma[9] = resolve_variants(
         blocks, a, 0, 1e-10 * LENGTH_SCALE, 8,
-        0.1 * LENGTH_SCALE, order, used[0])
+        0.1 * LENGTH_SCALE, order, used[0],
+        BLOCK_SIZES[0:7], lambda: w.chains, 0.05)
     if k < 0:
         return 92
     used[0] = k
@@ -1196,10 +1321,29 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     # Step 10: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4
 
     # Step 16: resolve, group2. Newton-Raphson on add2 until left_coupler regains its length
+    w.br11 = -1 if a[7][1] < 0 else 1
+    w.br12 = -1 if a[7][2] < 0 else 1
+    w.br54 = -1 if a[8][1] < 0 else 1
+    w.br55 = -1 if a[8][2] < 0 else 1
+    w.br59 = -1 if a[9][1] < 0 else 1
+    w.br60 = -1 if a[9][2] < 0 else 1
+    w.br64 = -1 if a[10][1] < 0 else 1
+    w.br65 = -1 if a[10][2] < 0 else 1
+    w.br69 = -1 if a[11][1] < 0 else 1
+    w.br70 = -1 if a[11][2] < 0 else 1
+    w.br74 = -1 if a[12][1] < 0 else 1
+    w.br75 = -1 if a[12][2] < 0 else 1
+    w.br79 = -1 if a[13][1] < 0 else 1
+    w.br80 = -1 if a[13][2] < 0 else 1
+    w.br84 = -1 if a[14][1] < 0 else 1
+    w.br85 = -1 if a[14][2] < 0 else 1
+    w.br89 = -1 if a[15][1] < 0 else 1
+    w.br90 = -1 if a[15][2] < 0 else 1
     blocks = [lambda r, live: _group_2(w, r, live), lambda r, live: _group_2_v1(w, r, live), lambda r, live: _group_2_v2(w, r, live), lambda r, live: _group_2_v3(w, r, live), lambda r, live: _group_2_v4(w, r, live), lambda r, live: _group_2_v5(w, r, live), lambda r, live: _group_2_v6(w, r, live), lambda r, live: _group_2_v7(w, r, live), lambda r, live: _group_2_v8(w, r, live)]
     k, its[1], w.sigma[16] = resolve_variants(
         blocks, a, 7, 1e-10 * LENGTH_SCALE, 8,
-        0.1 * LENGTH_SCALE, order, used[1])
+        0.1 * LENGTH_SCALE, order, used[1],
+        BLOCK_SIZES[7:16], lambda: w.chains, 0.05)
     if k < 0:
         return 162
     used[1] = k
@@ -1391,18 +1535,20 @@ def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
     its = [0] * N_GROUPS
     used = list(warm[4]) if warm else [0] * N_GROUPS
     code, solved = 0, False
-    if warm:
-        # from the previous row, its lengths moved along their rates
-        a = predict(warm[:4], inputs)
+    if warm and all(abs(x - y) <= lim for x, y, lim in zip(inputs, warm[0], LIMITS)):
+        # from the previous row, its block states moved along their rates
+        guess = predict(warm[:4], inputs)
+        a = [list(g) for g in guess]
         code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used)
-        solved = code <= 0
-        if not solved:
-            base, a, used = list(warm[0]), [list(g) for g in warm[2]], list(warm[4])
-    if not solved and (not warm or code % 10 == 2):
+        solved = code <= 0 and on_path(warm[2], guess, a, BLOCK_SIZES, SLACK * LENGTH_SCALE)
+    if warm and not solved:
+        base, a, used = list(warm[0]), [list(g) for g in warm[2]], list(warm[4])
+    if not solved and (code <= 0 or code % 10 == 2):
         # the sketch's assembly, followed from the sketch (or the last row)
         prefer = list(used)
         path = lambda x, d, o, s: _path_run(x, d, o, s, prefer)  # noqa: E731
-        reached = continuation(path, base, a, list(inputs), LIMITS, PERIODIC, 10)
+        reached = continuation(path, base, a, list(inputs), LIMITS, PERIODIC, 20,
+                               BLOCK_SIZES, SLACK * LENGTH_SCALE)
         if reached is not None:
             a = reached
         code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used)

@@ -11,7 +11,7 @@ typedef struct { VEC2 P, DP, DDP; } POINT;
 typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
-#define LINKGEN_NMAX 1
+#define LINKGEN_NMAX 3
 #define LINKGEN_NGROUPS 1
 #define LINKGEN_NBLOCKS 9
 #define LINKGEN_NINPUTS 1
@@ -279,6 +279,8 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
     VARIABLE rec[LINKGEN_NMAX], res[LINKGEN_NMAX];
     double rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], det;
     int i;
+    memset(rec, 0, sizeof rec);  /* entries past n are never read; zeroed for the compiler's sake */
+    memset(rhs, 0, sizeof rhs);
     for (i = 0; i < n; i++) {
         rec[i].v = a[i];
         rec[i].dv = 0.0;
@@ -300,22 +302,64 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
 }
 
 /* Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
- * preferred block first, the others in order; the first that converges is kept (the
- * caller then measures every block's lengths on the solved pairs).  a[k] holds block
- * k's start lengths.  Returns the block, or -1 when none converges. */
+ * preferred block first, the others in order.  The first that converges with its chains
+ * conditioned at least min_sigma (*chains: the worst of the last pass) is kept; else the
+ * best conditioned of those that converge (a block whose chains are near a toggle is a
+ * poor coordinate of the assembly).  a[k] holds block k's start lengths; the caller then
+ * measures every block's state on the solved pairs.  Returns the block, or -1 when none
+ * converges. */
 static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
-                            double tol, int max_iter, double reach, int order, int prefer, int *its, double *sigma)
+                            double tol, int max_iter, double reach, int order, int prefer, int *its, double *sigma,
+                            const double *chains, double min_sigma)
 {
-    double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX];
-    int t, k, i;
+    double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
+    int t, k, i, best = -1;
     for (t = 0; t < count; t++) {
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
         if (!newton(fns[k], ctx, sizes[k], x, tol, max_iter, reach, jac, its)) continue;
+        if (*chains < min_sigma) {
+            if (*chains > best_sigma) {
+                best_sigma = *chains;
+                best = k;
+            }
+            continue;
+        }
         if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) != 1)
             return k;
     }
+    if (best < 0) return -1;
+    for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
+    if (newton(fns[best], ctx, sizes[best], x, tol, max_iter, reach, jac, its)
+        && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) != 1)
+        return best;
     return -1;
+}
+
+/* Whether a solved state is where the predictor pointed from prev: no block's Add-link
+ * length moved from the guess by more than a tenth of the largest predicted move (plus
+ * slack).  A larger correction is a jump to another assembly, or a step too long for
+ * the curve; a block's state after its sizes[k] lengths is its branches. */
+static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
+                   const double now[][LINKGEN_NMAX], const int sizes[], double slack)
+{
+    double move = 0.0, err = 0.0;
+    int g, i;
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < sizes[g]; i++) {
+            move = fmax(move, fabs(guess[g][i] - prev[g][i]));
+            err = fmax(err, fabs(now[g][i] - guess[g][i]));
+        }
+    return err <= 0.1 * move + slack;
+}
+
+/* Whether no input moved farther from the last row than a continuation step. */
+static int within(const double in[], const double last[], const double limits[])
+{
+    int i;
+    for (i = 0; i < LINKGEN_NINPUTS; i++)
+        if (!(fabs(in[i] - last[i]) <= limits[i])) return 0;
+    return 1;
 }
 
 /* Resolver start values for new inputs: the warm lengths moved along their rates
@@ -342,10 +386,11 @@ typedef int (*path_fn)(void *ctx, const double in[], const double din[], int ord
 
 /* Continuation along the straight path from base to goal (see continuation). */
 static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double goal[],
-                const double limits[], int halvings)
+                const double limits[], int halvings, const int sizes[], double slack)
 {
     double d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS], start[LINKGEN_NBLOCKS][LINKGEN_NMAX];
-    double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double now[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double t = 0.0, h, h_max = 1.0;
     int g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
@@ -360,12 +405,14 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
         const double tt = fmin(1.0, t + h);
         for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) guess[g][i] = start[g][i] + (tt - t) * rate[g][i];
-        if (run(ctx, trial, d, 1, guess, rate2)) {
+            for (i = 0; i < LINKGEN_NMAX; i++) now[g][i] = guess[g][i] = start[g][i] + (tt - t) * rate[g][i];
+        if (run(ctx, trial, d, 1, now, rate2)
+            && on_path((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])guess,
+                       (const double (*)[LINKGEN_NMAX])now, sizes, slack)) {
             t = tt;
             h = fmin(2.0 * h, h_max);
             for (g = 0; g < LINKGEN_NBLOCKS; g++)
-                for (i = 0; i < LINKGEN_NMAX; i++) { start[g][i] = guess[g][i]; rate[g][i] = rate2[g][i]; }
+                for (i = 0; i < LINKGEN_NMAX; i++) { start[g][i] = now[g][i]; rate[g][i] = rate2[g][i]; }
         } else {
             h /= 2.0;
             if (h < h_max * ldexp(1.0, -halvings)) return 0;
@@ -376,12 +423,13 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
     return 1;
 }
 
-/* Follow the assembly from inputs base (solved with lengths a) to target.  Angle
+/* Follow the assembly from inputs base (solved with block states a) to target.  Angle
  * inputs go the shorter way round, else the other way; a step moves no input by more
  * than its limit, starts Newton from the tangent predictor and is halved where Newton
- * fails.  Returns 1 with a the lengths at target, 0 when both ways are cut. */
+ * fails or lands off the path (see on_path).  Returns 1 with a the block states at
+ * target, 0 when both ways are cut. */
 static int continuation(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double target[],
-                        const double limits[], const int periodic[], int halvings)
+                        const double limits[], const int periodic[], int halvings, const int sizes[], double slack)
 {
     const double two_pi = 2.0 * 3.141592653589793;
     double goal[LINKGEN_NINPUTS], other[LINKGEN_NINPUTS];
@@ -394,8 +442,8 @@ static int continuation(path_fn run, void *ctx, const double base[], double a[][
             differs = 1;
         }
     }
-    if (walk(run, ctx, base, a, goal, limits, halvings)) return 1;
-    return differs && walk(run, ctx, base, a, other, limits, halvings);
+    if (walk(run, ctx, base, a, goal, limits, halvings, sizes, slack)) return 1;
+    return differs && walk(run, ctx, base, a, other, limits, halvings, sizes, slack);
 }
 
 /* Length scale of the sketch: the largest distance between two of its pairs or points. */
@@ -446,6 +494,25 @@ typedef struct {
     double sigma[SIXBAR_FIG14_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
     int used[LINKGEN_NGROUPS];  /* the block that solved each resolver group */
+    double chains;  /* the worst conditioning of a block's chains in its last pass */
+    int br4;  /* the branch of step 4, as the last solution left it */
+    int br5;  /* the branch of step 5, as the last solution left it */
+    int br14;  /* the branch of step 14, as the last solution left it */
+    int br15;  /* the branch of step 15, as the last solution left it */
+    int br19;  /* the branch of step 19, as the last solution left it */
+    int br20;  /* the branch of step 20, as the last solution left it */
+    int br24;  /* the branch of step 24, as the last solution left it */
+    int br25;  /* the branch of step 25, as the last solution left it */
+    int br29;  /* the branch of step 29, as the last solution left it */
+    int br30;  /* the branch of step 30, as the last solution left it */
+    int br34;  /* the branch of step 34, as the last solution left it */
+    int br35;  /* the branch of step 35, as the last solution left it */
+    int br39;  /* the branch of step 39, as the last solution left it */
+    int br40;  /* the branch of step 40, as the last solution left it */
+    int br44;  /* the branch of step 44, as the last solution left it */
+    int br45;  /* the branch of step 45, as the last solution left it */
+    int br49;  /* the branch of step 49, as the last solution left it */
+    int br50;  /* the branch of step 50, as the last solution left it */
 } work;
 
 /* Remember the first step at a singular (3) or near-singular (4) position. */
@@ -470,14 +537,17 @@ static int group_1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1 = a[0];
+    w->chains = 1.0;
     /* Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J3, p_J6, l_rocker2, w->add1, -1, &w->p_J4, &w->sigma[4]);
+    st = RRR_links(p_J3, p_J6, l_rocker2, w->add1, w->br4, &w->p_J4, &w->sigma[4]);
     if (st == 1) return 1;
     if (live) note(w, 4, st);
+    w->chains = fmin(w->chains, w->sigma[4]);
     /* Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, 1, &w->p_J2, &w->sigma[5]);
+    st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, w->br5, &w->p_J2, &w->sigma[5]);
     if (st == 1) return 1;
     if (live) note(w, 5, st);
+    w->chains = fmin(w->chains, w->sigma[5]);
     /* Step 6: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
     if (st == 1) return 1;
@@ -506,14 +576,17 @@ static int group_1_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v1 = a[0];
+    w->chains = 1.0;
     /* Step 14: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, p_J6, l_rocker1, w->add1_v1, -1, &w->p_J2, &w->sigma[14]);
+    st = RRR_links(p_J1, p_J6, l_rocker1, w->add1_v1, w->br14, &w->p_J2, &w->sigma[14]);
     if (st == 1) return 1;
     if (live) note(w, 14, st);
+    w->chains = fmin(w->chains, w->sigma[14]);
     /* Step 15: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, 1, &w->p_J4, &w->sigma[15]);
+    st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w->br15, &w->p_J4, &w->sigma[15]);
     if (st == 1) return 1;
     if (live) note(w, 15, st);
+    w->chains = fmin(w->chains, w->sigma[15]);
     /* Step 16: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
     if (st == 1) return 1;
@@ -542,14 +615,17 @@ static int group_1_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v2 = a[0];
+    w->chains = 1.0;
     /* Step 19: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J3, p_J1, l_rocker2, w->add1_v2, -1, &w->p_J4, &w->sigma[19]);
+    st = RRR_links(p_J3, p_J1, l_rocker2, w->add1_v2, w->br19, &w->p_J4, &w->sigma[19]);
     if (st == 1) return 1;
     if (live) note(w, 19, st);
+    w->chains = fmin(w->chains, w->sigma[19]);
     /* Step 20: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, 1, &w->p_J2, &w->sigma[20]);
+    st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, w->br20, &w->p_J2, &w->sigma[20]);
     if (st == 1) return 1;
     if (live) note(w, 20, st);
+    w->chains = fmin(w->chains, w->sigma[20]);
     /* Step 21: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
     if (st == 1) return 1;
@@ -578,14 +654,17 @@ static int group_1_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v3 = a[0];
+    w->chains = 1.0;
     /* Step 24: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, p_J3, l_rocker1, w->add1_v3, 1, &w->p_J2, &w->sigma[24]);
+    st = RRR_links(p_J1, p_J3, l_rocker1, w->add1_v3, w->br24, &w->p_J2, &w->sigma[24]);
     if (st == 1) return 1;
     if (live) note(w, 24, st);
+    w->chains = fmin(w->chains, w->sigma[24]);
     /* Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, 1, &w->p_J4, &w->sigma[25]);
+    st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w->br25, &w->p_J4, &w->sigma[25]);
     if (st == 1) return 1;
     if (live) note(w, 25, st);
+    w->chains = fmin(w->chains, w->sigma[25]);
     /* Step 26: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
     if (st == 1) return 1;
@@ -614,14 +693,17 @@ static int group_1_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v4 = a[0];
+    w->chains = 1.0;
     /* Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, p_J7, l_rocker1, w->add1_v4, -1, &w->p_J2, &w->sigma[29]);
+    st = RRR_links(p_J1, p_J7, l_rocker1, w->add1_v4, w->br29, &w->p_J2, &w->sigma[29]);
     if (st == 1) return 1;
     if (live) note(w, 29, st);
+    w->chains = fmin(w->chains, w->sigma[29]);
     /* Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, 1, &w->p_J4, &w->sigma[30]);
+    st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w->br30, &w->p_J4, &w->sigma[30]);
     if (st == 1) return 1;
     if (live) note(w, 30, st);
+    w->chains = fmin(w->chains, w->sigma[30]);
     /* Step 31: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
     if (st == 1) return 1;
@@ -650,14 +732,17 @@ static int group_1_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v5 = a[0];
+    w->chains = 1.0;
     /* Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J3, p_J7, l_rocker2, w->add1_v5, -1, &w->p_J4, &w->sigma[34]);
+    st = RRR_links(p_J3, p_J7, l_rocker2, w->add1_v5, w->br34, &w->p_J4, &w->sigma[34]);
     if (st == 1) return 1;
     if (live) note(w, 34, st);
+    w->chains = fmin(w->chains, w->sigma[34]);
     /* Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, 1, &w->p_J2, &w->sigma[35]);
+    st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, w->br35, &w->p_J2, &w->sigma[35]);
     if (st == 1) return 1;
     if (live) note(w, 35, st);
+    w->chains = fmin(w->chains, w->sigma[35]);
     /* Step 36: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
     if (st == 1) return 1;
@@ -686,14 +771,17 @@ static int group_1_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v6 = a[0];
+    w->chains = 1.0;
     /* Step 39: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J6, p_J3, l_coupler, w->add1_v6, 1, &w->p_J5, &w->sigma[39]);
+    st = RRR_links(p_J6, p_J3, l_coupler, w->add1_v6, w->br39, &w->p_J5, &w->sigma[39]);
     if (st == 1) return 1;
     if (live) note(w, 39, st);
+    w->chains = fmin(w->chains, w->sigma[39]);
     /* Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, 1, &w->p_J2, &w->sigma[40]);
+    st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, w->br40, &w->p_J2, &w->sigma[40]);
     if (st == 1) return 1;
     if (live) note(w, 40, st);
+    w->chains = fmin(w->chains, w->sigma[40]);
     /* Step 41: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is */
     st = link_angle(w->p_J5, w->p_J2, 2.928860872898183, &w->phi_ternary);
     if (st == 1) return 1;
@@ -722,14 +810,17 @@ static int group_1_v7(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v7 = a[0];
+    w->chains = 1.0;
     /* Step 44: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J6, p_J1, l_coupler, w->add1_v7, 1, &w->p_J5, &w->sigma[44]);
+    st = RRR_links(p_J6, p_J1, l_coupler, w->add1_v7, w->br44, &w->p_J5, &w->sigma[44]);
     if (st == 1) return 1;
     if (live) note(w, 44, st);
+    w->chains = fmin(w->chains, w->sigma[44]);
     /* Step 45: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, 1, &w->p_J2, &w->sigma[45]);
+    st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, w->br45, &w->p_J2, &w->sigma[45]);
     if (st == 1) return 1;
     if (live) note(w, 45, st);
+    w->chains = fmin(w->chains, w->sigma[45]);
     /* Step 46: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is */
     st = link_angle(w->p_J5, w->p_J2, 2.928860872898183, &w->phi_ternary);
     if (st == 1) return 1;
@@ -758,14 +849,17 @@ static int group_1_v8(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v8 = a[0];
+    w->chains = 1.0;
     /* Step 49: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J6, p_J7, l_coupler, w->add1_v8, 1, &w->p_J5, &w->sigma[49]);
+    st = RRR_links(p_J6, p_J7, l_coupler, w->add1_v8, w->br49, &w->p_J5, &w->sigma[49]);
     if (st == 1) return 1;
     if (live) note(w, 49, st);
+    w->chains = fmin(w->chains, w->sigma[49]);
     /* Step 50: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, 1, &w->p_J2, &w->sigma[50]);
+    st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, w->br50, &w->p_J2, &w->sigma[50]);
     if (st == 1) return 1;
     if (live) note(w, 50, st);
+    w->chains = fmin(w->chains, w->sigma[50]);
     /* Step 51: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is */
     st = link_angle(w->p_J5, w->p_J2, 2.928860872898183, &w->phi_ternary);
     if (st == 1) return 1;
@@ -781,37 +875,93 @@ static int group_1_v8(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
 }
 
 
-/* The Add-link lengths of every block of group 1, measured on the solved pairs. */
+/* The state of every block of group 1, read off the solved pairs: its Add-link
+   lengths, then the branches of its chains (a zero keeps the branch it had). */
 static void lengths_1(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
 {
     VARIABLE f;
+    double m;
     link_residual(w->p_J6, w->p_J4, ZERO_LENGTH, &f);
     a[0][0] = f.v;
     ad[0][0] = f.dv;
+    m = (w->p_J6.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (w->p_J6.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
+    a[0][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][1];
+    ad[0][1] = 0.0;
+    m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+    a[0][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][2];
+    ad[0][2] = 0.0;
     link_residual(w->p_J6, w->p_J2, ZERO_LENGTH, &f);
     a[1][0] = f.v;
     ad[1][0] = f.dv;
+    m = (w->p_J6.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J6.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+    a[1][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][1];
+    ad[1][1] = 0.0;
+    m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
+    a[1][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][2];
+    ad[1][2] = 0.0;
     link_residual(p_J1, w->p_J4, ZERO_LENGTH, &f);
     a[2][0] = f.v;
     ad[2][0] = f.dv;
+    m = (p_J1.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J1.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
+    a[2][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][1];
+    ad[2][1] = 0.0;
+    m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+    a[2][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][2];
+    ad[2][2] = 0.0;
     link_residual(p_J3, w->p_J2, ZERO_LENGTH, &f);
     a[3][0] = f.v;
     ad[3][0] = f.dv;
+    m = (p_J3.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J3.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+    a[3][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][1];
+    ad[3][1] = 0.0;
+    m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
+    a[3][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][2];
+    ad[3][2] = 0.0;
     link_residual(p_J7, w->p_J2, ZERO_LENGTH, &f);
     a[4][0] = f.v;
     ad[4][0] = f.dv;
+    m = (p_J7.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J7.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+    a[4][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][1];
+    ad[4][1] = 0.0;
+    m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
+    a[4][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][2];
+    ad[4][2] = 0.0;
     link_residual(p_J7, w->p_J4, ZERO_LENGTH, &f);
     a[5][0] = f.v;
     ad[5][0] = f.dv;
+    m = (p_J7.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J7.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
+    a[5][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][1];
+    ad[5][1] = 0.0;
+    m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+    a[5][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][2];
+    ad[5][2] = 0.0;
     link_residual(p_J3, w->p_J5, ZERO_LENGTH, &f);
     a[6][0] = f.v;
     ad[6][0] = f.dv;
+    m = (p_J3.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J3.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
+    a[6][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[6][1];
+    ad[6][1] = 0.0;
+    m = (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+    a[6][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[6][2];
+    ad[6][2] = 0.0;
     link_residual(p_J1, w->p_J5, ZERO_LENGTH, &f);
     a[7][0] = f.v;
     ad[7][0] = f.dv;
+    m = (p_J1.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J1.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
+    a[7][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[7][1];
+    ad[7][1] = 0.0;
+    m = (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+    a[7][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[7][2];
+    ad[7][2] = 0.0;
     link_residual(p_J7, w->p_J5, ZERO_LENGTH, &f);
     a[8][0] = f.v;
     ad[8][0] = f.dv;
+    m = (p_J7.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J7.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
+    a[8][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[8][1];
+    ad[8][1] = 0.0;
+    m = (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+    a[8][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[8][2];
+    ad[8][2] = 0.0;
 }
 
 
@@ -839,12 +989,31 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     /* Step 9: resolve, group1. Newton-Raphson on add1 until coupler regains its length */
     {
+        w->br4 = a[0][1] < 0.0 ? -1 : 1;
+        w->br5 = a[0][2] < 0.0 ? -1 : 1;
+        w->br14 = a[1][1] < 0.0 ? -1 : 1;
+        w->br15 = a[1][2] < 0.0 ? -1 : 1;
+        w->br19 = a[2][1] < 0.0 ? -1 : 1;
+        w->br20 = a[2][2] < 0.0 ? -1 : 1;
+        w->br24 = a[3][1] < 0.0 ? -1 : 1;
+        w->br25 = a[3][2] < 0.0 ? -1 : 1;
+        w->br29 = a[4][1] < 0.0 ? -1 : 1;
+        w->br30 = a[4][2] < 0.0 ? -1 : 1;
+        w->br34 = a[5][1] < 0.0 ? -1 : 1;
+        w->br35 = a[5][2] < 0.0 ? -1 : 1;
+        w->br39 = a[6][1] < 0.0 ? -1 : 1;
+        w->br40 = a[6][2] < 0.0 ? -1 : 1;
+        w->br44 = a[7][1] < 0.0 ? -1 : 1;
+        w->br45 = a[7][2] < 0.0 ? -1 : 1;
+        w->br49 = a[8][1] < 0.0 ? -1 : 1;
+        w->br50 = a[8][2] < 0.0 ? -1 : 1;
         static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6, group_1_v7, group_1_v8 };
         static const int sizes[] = { 1, 1, 1, 1, 1, 1, 1, 1, 1 };
         const int k = resolve_variants(blocks, sizes, 9, w, &a[0],
                                        1e-10 * LENGTH_SCALE, 8,
                                        0.1 * LENGTH_SCALE, order, used[0],
-                                       &its[0], &w->sigma[9]);
+                                       &its[0], &w->sigma[9],
+                                       &w->chains, 0.05);
         if (k < 0) return 92;
         used[0] = k;
         lengths_1(w, &a[0], &ad[0]);
@@ -1070,35 +1239,42 @@ static int path_run(void *ctx, const double in[], const double din[], int order,
 int sixbar_fig14_solve(const double in[], const double din[], const double ddin[], sixbar_fig14_state *out)
 {
     static const double sketch_in[LINKGEN_NINPUTS] = { 1.5707963267948966 };
-    static const double sketch_a[LINKGEN_NBLOCKS][LINKGEN_NMAX] = { {168.67127793433}, {67.08203932499369}, {123.4908903522847}, {122.06555615733703}, {60.8276253029822}, {165.6804152578089}, {89.44271909999159}, {100.0}, {120.0} };
+    static const double sketch_a[LINKGEN_NBLOCKS][LINKGEN_NMAX] = { {168.67127793433, -1.0, 1.0}, {67.08203932499369, -1.0, 1.0}, {123.4908903522847, -1.0, 1.0}, {122.06555615733703, 1.0, 1.0}, {60.8276253029822, -1.0, 1.0}, {165.6804152578089, -1.0, 1.0}, {89.44271909999159, 1.0, 1.0}, {100.0, 1.0, 1.0}, {120.0, 1.0, 1.0} };
     static const double limits[LINKGEN_NINPUTS] = { 0.1 };
     static const int periodic[LINKGEN_NINPUTS] = { 1 };
+    static const int block_sizes[LINKGEN_NBLOCKS] = { 1, 1, 1, 1, 1, 1, 1, 1, 1 };
+    const double slack = 1.0000000000000001e-07 * LENGTH_SCALE;
     work w;
     double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX];
-    double ad[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double ad[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     int used[LINKGEN_NGROUPS];
     int code = 0, solved = 0, g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = sketch_in[i];
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = sketch_a[g][i];
     for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = out->warm_valid ? out->warm_used[g] : 0;
-    if (out->warm_valid) {
-        /* from the previous row, its lengths moved along their rates */
+    if (out->warm_valid && within(in, out->warm_in, limits)) {
+        /* from the previous row, its block states moved along their rates */
         predict(out->warm_in, out->warm_din, (const double (*)[LINKGEN_NMAX])out->warm_a,
-                (const double (*)[LINKGEN_NMAX])out->warm_ad, in, a);
+                (const double (*)[LINKGEN_NMAX])out->warm_ad, in, guess);
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
+            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = guess[g][i];
         code = run(&w, in, din, ddin, SIXBAR_FIG14_ORDER, a, ad, out->iterations, used);
-        solved = code <= 0;
-        if (!solved) {
-            for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = out->warm_in[i];
-            for (g = 0; g < LINKGEN_NBLOCKS; g++)
-                for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = out->warm_a[g][i];
-            for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = out->warm_used[g];
-        }
+        solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])out->warm_a,
+                                      (const double (*)[LINKGEN_NMAX])guess, (const double (*)[LINKGEN_NMAX])a,
+                                      block_sizes, slack);
     }
-    if (!solved && (!out->warm_valid || code % 10 == 2)) {
+    if (!solved && out->warm_valid) {
+        for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = out->warm_in[i];
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
+            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = out->warm_a[g][i];
+        for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = out->warm_used[g];
+    }
+    if (!solved && (code <= 0 || code % 10 == 2)) {
         /* the sketch's assembly, followed from the sketch (or the last row) */
         for (g = 0; g < LINKGEN_NGROUPS; g++) w.used[g] = used[g];
-        if (continuation(path_run, &w, base, a, in, limits, periodic, 10)) {
+        if (continuation(path_run, &w, base, a, in, limits, periodic, 20,
+                         block_sizes, slack)) {
             code = run(&w, in, din, ddin, SIXBAR_FIG14_ORDER, a, ad, out->iterations, used);
         } else {
             code = run(&w, in, din, ddin, SIXBAR_FIG14_ORDER, a, ad, out->iterations, used);

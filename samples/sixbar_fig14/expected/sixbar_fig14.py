@@ -88,7 +88,9 @@ COLUMNS = (
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 LENGTH_SCALE = 188.67962264113208
 SKETCH_INPUTS = (1.5707963267948966, )
-SKETCH_ADD_LINKS = ([168.67127793433], [67.08203932499369], [123.4908903522847], [122.06555615733703], [60.8276253029822], [165.6804152578089], [89.44271909999159], [100.0], [120.0], )
+SKETCH_ADD_LINKS = ([168.67127793433, -1.0, 1.0], [67.08203932499369, -1.0, 1.0], [123.4908903522847, -1.0, 1.0], [122.06555615733703, 1.0, 1.0], [60.8276253029822, -1.0, 1.0], [165.6804152578089, -1.0, 1.0], [89.44271909999159, 1.0, 1.0], [100.0, 1.0, 1.0], [120.0, 1.0, 1.0], )  # per block: lengths, then branches
+BLOCK_SIZES = (1, 1, 1, 1, 1, 1, 1, 1, 1, )  # Add-links of each block
+SLACK = 1.0000000000000001e-07  # how far off the predicted path a solution may sit, relative to the length scale
 N_GROUPS = 1
 ZERO_LENGTH = (0.0, 0.0, 0.0,)
 LIMITS = (0.1,)  # the continuation's largest step of each input
@@ -337,22 +339,35 @@ def addlink_rates(group, a, jac, order):
     return st, sigma
 
 
-def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer):
+def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, sizes, chains, min_sigma):
     """Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
-    preferred block first, the others in order; the first that converges is kept (the
-    caller then measures every block's lengths on the solved pairs).
+    preferred block first, the others in order.  The first that converges with its chains
+    conditioned at least min_sigma (chains(): the worst of the last pass) is kept; else the
+    best conditioned of those that converge (a block whose chains are near a toggle is a
+    poor coordinate of the assembly).  The caller then measures every block's state on
+    the solved pairs.
 
-    a[first + k] is block k's start lengths.  Returns (k, Newton steps, sigma), k = -1
-    when no block converges.
+    a[first + k] is block k's state: its sizes[k] start lengths, then its branches.
+    Returns (k, Newton steps, sigma), k = -1 when no block converges.
     """
-    its = 0
+    its, best, best_sigma = 0, -1, -1.0
     for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
-        ok, x, its, jac = newton(groups[k], a[first + k], tol, max_iter, reach)
+        ok, x, its, jac = newton(groups[k], a[first + k][:sizes[k]], tol, max_iter, reach)
         if not ok:
+            continue
+        if chains() < min_sigma:
+            if chains() > best_sigma:
+                best, best_sigma = k, chains()
             continue
         st, sigma = addlink_rates(groups[k], x, jac, order)
         if st != 1:
             return k, its, sigma
+    if best >= 0:
+        ok, x, its, jac = newton(groups[best], a[first + best][:sizes[best]], tol, max_iter, reach)
+        if ok:
+            st, sigma = addlink_rates(groups[best], x, jac, order)
+            if st != 1:
+                return best, its, sigma
     return -1, its, 0.0
 
 
@@ -366,25 +381,38 @@ def predict(warm, inputs):
     return [[v + tau * dv for v, dv in zip(g, gd)] for g, gd in zip(a, ad)]
 
 
-def continuation(run, base, a, target, limits, periodic, halvings):
-    """Follow the assembly from inputs base (solved with lengths a) to target.
+def on_path(prev, guess, new, sizes, slack):
+    """Whether a solved state new is where the predictor guess pointed from prev: no
+    block's Add-link length moved from the guess by more than a tenth of the largest predicted
+    move (plus slack).  A larger correction is a jump to another assembly, or a step
+    too long for the curve; a block's state after its sizes[k] lengths is its branches."""
+    move = err = 0.0
+    for p, g, x, n in zip(prev, guess, new, sizes):
+        for i in range(n):
+            move = max(move, abs(g[i] - p[i]))
+            err = max(err, abs(x[i] - g[i]))
+    return err <= 0.1 * move + slack
+
+
+def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack):
+    """Follow the assembly from inputs base (solved with block states a) to target.
 
     Angle inputs go the shorter way round, else the other way; each step moves no
     input by more than its limit, starts Newton from the tangent predictor and is
-    halved where Newton fails.  run(inputs, rates, order, a) -> (ok, a, rates) solves
-    with input rates per unit of the path.  Returns the lengths at target, or None
-    when both ways are cut.
+    halved where Newton fails or lands off the path (see on_path).  run(inputs, rates,
+    order, a) -> (ok, a, rates) solves with input rates per unit of the path.  Returns
+    the block states at target, or None when both ways are cut.
     """
     goal = [t - 2 * PI * floor((t - b) / (2 * PI) + 0.5) if p else t for t, b, p in zip(target, base, periodic)]
-    reached = _walk(run, base, a, goal, limits, halvings)
+    reached = _walk(run, base, a, goal, limits, halvings, sizes, slack)
     other = [(g - 2 * PI if g > b else g + 2 * PI if g < b else g) if p else g
              for g, b, p in zip(goal, base, periodic)]
     if reached is None and other != goal:
-        reached = _walk(run, base, a, other, limits, halvings)
+        reached = _walk(run, base, a, other, limits, halvings, sizes, slack)
     return reached
 
 
-def _walk(run, base, a, goal, limits, halvings):
+def _walk(run, base, a, goal, limits, halvings, sizes, slack):
     """Continuation along the straight path from base to goal (see continuation)."""
     d = [g - b for g, b in zip(goal, base)]
     h_max = min([1.0] + [lim / abs(x) for lim, x in zip(limits, d) if x != 0.0])
@@ -397,7 +425,7 @@ def _walk(run, base, a, goal, limits, halvings):
         trial = [b + tt * x for b, x in zip(base, d)] if tt < 1.0 else goal
         guess = [[v + (tt - t) * r for v, r in zip(g, gr)] for g, gr in zip(a, rate)]
         ok, a2, rate2 = run(trial, d, 1, guess)
-        if ok:
+        if ok and on_path(a, guess, a2, sizes, slack):
             t, a, rate, h = tt, a2, rate2, min(2 * h, h_max)
         else:
             h /= 2
@@ -422,7 +450,7 @@ l_ternary_J2_J5 = (60.8276253029822, 0.0, 0.0)
 class _Work:
     """The records of one solution."""
 
-    __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "phi_ternary", "p_J5", "f1", "phi_rocker1", "phi_rocker2", "phi_coupler", "phi_crank", "add1_v1", "f1_v1", "add1_v2", "f1_v2", "add1_v3", "f1_v3", "add1_v4", "f1_v4", "add1_v5", "f1_v5", "add1_v6", "f1_v6", "add1_v7", "f1_v7", "add1_v8", "f1_v8", "sigma", "singular", "near")
+    __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "phi_ternary", "p_J5", "f1", "phi_rocker1", "phi_rocker2", "phi_coupler", "phi_crank", "add1_v1", "f1_v1", "add1_v2", "f1_v2", "add1_v3", "f1_v3", "add1_v4", "f1_v4", "add1_v5", "f1_v5", "add1_v6", "f1_v6", "add1_v7", "f1_v7", "add1_v8", "f1_v8", "sigma", "singular", "near", "chains", "br4", "br5", "br14", "br15", "br19", "br20", "br24", "br25", "br29", "br30", "br34", "br35", "br39", "br40", "br44", "br45", "br49", "br50")
 
     def note(self, step, st):
         """Remember the first step at a singular (3) or near-singular (4) position."""
@@ -441,18 +469,21 @@ def _group_1(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1 = a[0]
+    w.chains = 1.0
     # Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[4], w.p_J4 = RRR_links(p_J3, p_J6, l_rocker2, w.add1, -1)
+    st, w.sigma[4], w.p_J4 = RRR_links(p_J3, p_J6, l_rocker2, w.add1, w.br4)
     if st == 1:
         return 1, None
     if live:
         w.note(4, st)
+    w.chains = min(w.chains, w.sigma[4])
     # Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    st, w.sigma[5], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, 1)
+    st, w.sigma[5], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, w.br5)
     if st == 1:
         return 1, None
     if live:
         w.note(5, st)
+    w.chains = min(w.chains, w.sigma[5])
     # Step 6: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
@@ -480,18 +511,21 @@ def _group_1_v1(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v1 = a[0]
+    w.chains = 1.0
     # Step 14: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[14], w.p_J2 = RRR_links(p_J1, p_J6, l_rocker1, w.add1_v1, -1)
+    st, w.sigma[14], w.p_J2 = RRR_links(p_J1, p_J6, l_rocker1, w.add1_v1, w.br14)
     if st == 1:
         return 1, None
     if live:
         w.note(14, st)
+    w.chains = min(w.chains, w.sigma[14])
     # Step 15: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[15], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, 1)
+    st, w.sigma[15], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w.br15)
     if st == 1:
         return 1, None
     if live:
         w.note(15, st)
+    w.chains = min(w.chains, w.sigma[15])
     # Step 16: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
@@ -519,18 +553,21 @@ def _group_1_v2(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v2 = a[0]
+    w.chains = 1.0
     # Step 19: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[19], w.p_J4 = RRR_links(p_J3, p_J1, l_rocker2, w.add1_v2, -1)
+    st, w.sigma[19], w.p_J4 = RRR_links(p_J3, p_J1, l_rocker2, w.add1_v2, w.br19)
     if st == 1:
         return 1, None
     if live:
         w.note(19, st)
+    w.chains = min(w.chains, w.sigma[19])
     # Step 20: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    st, w.sigma[20], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, 1)
+    st, w.sigma[20], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, w.br20)
     if st == 1:
         return 1, None
     if live:
         w.note(20, st)
+    w.chains = min(w.chains, w.sigma[20])
     # Step 21: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
@@ -558,18 +595,21 @@ def _group_1_v3(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v3 = a[0]
+    w.chains = 1.0
     # Step 24: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[24], w.p_J2 = RRR_links(p_J1, p_J3, l_rocker1, w.add1_v3, 1)
+    st, w.sigma[24], w.p_J2 = RRR_links(p_J1, p_J3, l_rocker1, w.add1_v3, w.br24)
     if st == 1:
         return 1, None
     if live:
         w.note(24, st)
+    w.chains = min(w.chains, w.sigma[24])
     # Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[25], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, 1)
+    st, w.sigma[25], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w.br25)
     if st == 1:
         return 1, None
     if live:
         w.note(25, st)
+    w.chains = min(w.chains, w.sigma[25])
     # Step 26: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
@@ -597,18 +637,21 @@ def _group_1_v4(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v4 = a[0]
+    w.chains = 1.0
     # Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[29], w.p_J2 = RRR_links(p_J1, p_J7, l_rocker1, w.add1_v4, -1)
+    st, w.sigma[29], w.p_J2 = RRR_links(p_J1, p_J7, l_rocker1, w.add1_v4, w.br29)
     if st == 1:
         return 1, None
     if live:
         w.note(29, st)
+    w.chains = min(w.chains, w.sigma[29])
     # Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[30], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, 1)
+    st, w.sigma[30], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w.br30)
     if st == 1:
         return 1, None
     if live:
         w.note(30, st)
+    w.chains = min(w.chains, w.sigma[30])
     # Step 31: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
@@ -636,18 +679,21 @@ def _group_1_v5(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v5 = a[0]
+    w.chains = 1.0
     # Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[34], w.p_J4 = RRR_links(p_J3, p_J7, l_rocker2, w.add1_v5, -1)
+    st, w.sigma[34], w.p_J4 = RRR_links(p_J3, p_J7, l_rocker2, w.add1_v5, w.br34)
     if st == 1:
         return 1, None
     if live:
         w.note(34, st)
+    w.chains = min(w.chains, w.sigma[34])
     # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    st, w.sigma[35], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, 1)
+    st, w.sigma[35], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, w.br35)
     if st == 1:
         return 1, None
     if live:
         w.note(35, st)
+    w.chains = min(w.chains, w.sigma[35])
     # Step 36: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
@@ -675,18 +721,21 @@ def _group_1_v6(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v6 = a[0]
+    w.chains = 1.0
     # Step 39: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[39], w.p_J5 = RRR_links(p_J6, p_J3, l_coupler, w.add1_v6, 1)
+    st, w.sigma[39], w.p_J5 = RRR_links(p_J6, p_J3, l_coupler, w.add1_v6, w.br39)
     if st == 1:
         return 1, None
     if live:
         w.note(39, st)
+    w.chains = min(w.chains, w.sigma[39])
     # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    st, w.sigma[40], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, 1)
+    st, w.sigma[40], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, w.br40)
     if st == 1:
         return 1, None
     if live:
         w.note(40, st)
+    w.chains = min(w.chains, w.sigma[40])
     # Step 41: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J5, w.p_J2, 2.928860872898183)
     if st == 1:
@@ -714,18 +763,21 @@ def _group_1_v7(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v7 = a[0]
+    w.chains = 1.0
     # Step 44: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[44], w.p_J5 = RRR_links(p_J6, p_J1, l_coupler, w.add1_v7, 1)
+    st, w.sigma[44], w.p_J5 = RRR_links(p_J6, p_J1, l_coupler, w.add1_v7, w.br44)
     if st == 1:
         return 1, None
     if live:
         w.note(44, st)
+    w.chains = min(w.chains, w.sigma[44])
     # Step 45: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    st, w.sigma[45], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, 1)
+    st, w.sigma[45], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, w.br45)
     if st == 1:
         return 1, None
     if live:
         w.note(45, st)
+    w.chains = min(w.chains, w.sigma[45])
     # Step 46: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J5, w.p_J2, 2.928860872898183)
     if st == 1:
@@ -753,18 +805,21 @@ def _group_1_v8(w, a, live):
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v8 = a[0]
+    w.chains = 1.0
     # Step 49: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[49], w.p_J5 = RRR_links(p_J6, p_J7, l_coupler, w.add1_v8, 1)
+    st, w.sigma[49], w.p_J5 = RRR_links(p_J6, p_J7, l_coupler, w.add1_v8, w.br49)
     if st == 1:
         return 1, None
     if live:
         w.note(49, st)
+    w.chains = min(w.chains, w.sigma[49])
     # Step 50: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    st, w.sigma[50], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, 1)
+    st, w.sigma[50], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, w.br50)
     if st == 1:
         return 1, None
     if live:
         w.note(50, st)
+    w.chains = min(w.chains, w.sigma[50])
     # Step 51: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J5, w.p_J2, 2.928860872898183)
     if st == 1:
@@ -784,34 +839,53 @@ def _group_1_v8(w, a, live):
 
 
 def _lengths_1(w, a, ad):
-    """The Add-link lengths of every block of group 1, measured on the solved pairs."""
+    """The state of every block of group 1, read off the solved pairs: its Add-link
+    lengths, then the branches of its chains (a zero keeps the branch it had)."""
     f = [link_residual(w.p_J6, w.p_J4, ZERO_LENGTH)[1]]
-    a[0] = [x[0] for x in f]
-    ad[0] = [x[1] for x in f]
+    m = [(w.p_J6[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (w.p_J6[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
+    a[0] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[0][1:])]
+    ad[0] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(w.p_J6, w.p_J2, ZERO_LENGTH)[1]]
-    a[1] = [x[0] for x in f]
-    ad[1] = [x[1] for x in f]
+    m = [(w.p_J6[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J6[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
+    a[1] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[1][1:])]
+    ad[1] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(p_J1, w.p_J4, ZERO_LENGTH)[1]]
-    a[2] = [x[0] for x in f]
-    ad[2] = [x[1] for x in f]
+    m = [(p_J1[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (p_J1[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
+    a[2] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[2][1:])]
+    ad[2] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(p_J3, w.p_J2, ZERO_LENGTH)[1]]
-    a[3] = [x[0] for x in f]
-    ad[3] = [x[1] for x in f]
+    m = [(p_J3[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (p_J3[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
+    a[3] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[3][1:])]
+    ad[3] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(p_J7, w.p_J2, ZERO_LENGTH)[1]]
-    a[4] = [x[0] for x in f]
-    ad[4] = [x[1] for x in f]
+    m = [(p_J7[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (p_J7[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
+    a[4] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[4][1:])]
+    ad[4] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(p_J7, w.p_J4, ZERO_LENGTH)[1]]
-    a[5] = [x[0] for x in f]
-    ad[5] = [x[1] for x in f]
+    m = [(p_J7[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (p_J7[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
+    a[5] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[5][1:])]
+    ad[5] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(p_J3, w.p_J5, ZERO_LENGTH)[1]]
-    a[6] = [x[0] for x in f]
-    ad[6] = [x[1] for x in f]
+    m = [(p_J3[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (p_J3[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
+    a[6] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[6][1:])]
+    ad[6] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(p_J1, w.p_J5, ZERO_LENGTH)[1]]
-    a[7] = [x[0] for x in f]
-    ad[7] = [x[1] for x in f]
+    m = [(p_J1[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (p_J1[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
+    a[7] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[7][1:])]
+    ad[7] = [x[1] for x in f] + [0.0] * 2
     f = [link_residual(p_J7, w.p_J5, ZERO_LENGTH)[1]]
-    a[8] = [x[0] for x in f]
-    ad[8] = [x[1] for x in f]
+    m = [(p_J7[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (p_J7[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
+    a[8] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
+                                  for x, old in zip(m, a[8][1:])]
+    ad[8] = [x[1] for x in f] + [0.0] * 2
 
 
 
@@ -828,10 +902,29 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
     # Step 9: resolve, group1. Newton-Raphson on add1 until coupler regains its length
+    w.br4 = -1 if a[0][1] < 0 else 1
+    w.br5 = -1 if a[0][2] < 0 else 1
+    w.br14 = -1 if a[1][1] < 0 else 1
+    w.br15 = -1 if a[1][2] < 0 else 1
+    w.br19 = -1 if a[2][1] < 0 else 1
+    w.br20 = -1 if a[2][2] < 0 else 1
+    w.br24 = -1 if a[3][1] < 0 else 1
+    w.br25 = -1 if a[3][2] < 0 else 1
+    w.br29 = -1 if a[4][1] < 0 else 1
+    w.br30 = -1 if a[4][2] < 0 else 1
+    w.br34 = -1 if a[5][1] < 0 else 1
+    w.br35 = -1 if a[5][2] < 0 else 1
+    w.br39 = -1 if a[6][1] < 0 else 1
+    w.br40 = -1 if a[6][2] < 0 else 1
+    w.br44 = -1 if a[7][1] < 0 else 1
+    w.br45 = -1 if a[7][2] < 0 else 1
+    w.br49 = -1 if a[8][1] < 0 else 1
+    w.br50 = -1 if a[8][2] < 0 else 1
     blocks = [lambda r, live: _group_1(w, r, live), lambda r, live: _group_1_v1(w, r, live), lambda r, live: _group_1_v2(w, r, live), lambda r, live: _group_1_v3(w, r, live), lambda r, live: _group_1_v4(w, r, live), lambda r, live: _group_1_v5(w, r, live), lambda r, live: _group_1_v6(w, r, live), lambda r, live: _group_1_v7(w, r, live), lambda r, live: _group_1_v8(w, r, live)]
     k, its[0], w.sigma[9] = resolve_variants(
         blocks, a, 0, 1e-10 * LENGTH_SCALE, 8,
-        0.1 * LENGTH_SCALE, order, used[0])
+        0.1 * LENGTH_SCALE, order, used[0],
+        BLOCK_SIZES[0:9], lambda: w.chains, 0.05)
     if k < 0:
         return 92
     used[0] = k
@@ -963,18 +1056,20 @@ def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
     its = [0] * N_GROUPS
     used = list(warm[4]) if warm else [0] * N_GROUPS
     code, solved = 0, False
-    if warm:
-        # from the previous row, its lengths moved along their rates
-        a = predict(warm[:4], inputs)
+    if warm and all(abs(x - y) <= lim for x, y, lim in zip(inputs, warm[0], LIMITS)):
+        # from the previous row, its block states moved along their rates
+        guess = predict(warm[:4], inputs)
+        a = [list(g) for g in guess]
         code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used)
-        solved = code <= 0
-        if not solved:
-            base, a, used = list(warm[0]), [list(g) for g in warm[2]], list(warm[4])
-    if not solved and (not warm or code % 10 == 2):
+        solved = code <= 0 and on_path(warm[2], guess, a, BLOCK_SIZES, SLACK * LENGTH_SCALE)
+    if warm and not solved:
+        base, a, used = list(warm[0]), [list(g) for g in warm[2]], list(warm[4])
+    if not solved and (code <= 0 or code % 10 == 2):
         # the sketch's assembly, followed from the sketch (or the last row)
         prefer = list(used)
         path = lambda x, d, o, s: _path_run(x, d, o, s, prefer)  # noqa: E731
-        reached = continuation(path, base, a, list(inputs), LIMITS, PERIODIC, 10)
+        reached = continuation(path, base, a, list(inputs), LIMITS, PERIODIC, 20,
+                               BLOCK_SIZES, SLACK * LENGTH_SCALE)
         if reached is not None:
             a = reached
         code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used)

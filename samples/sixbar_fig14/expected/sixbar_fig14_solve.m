@@ -13,27 +13,33 @@ function [out, status, warm] = sixbar_fig14_solve(in, din, ddin, warm)
     ddin = ddin(:)';
     w = new_work();
     base = [1.5707963267948966];
-    a = {[168.67127793433]', [67.08203932499369]', [123.4908903522847]', [122.06555615733703]', [60.8276253029822]', [165.6804152578089]', [89.44271909999159]', [100.0]', [120.0]'};
+    a = {[168.67127793433, -1.0, 1.0]', [67.08203932499369, -1.0, 1.0]', [123.4908903522847, -1.0, 1.0]', [122.06555615733703, 1.0, 1.0]', [60.8276253029822, -1.0, 1.0]', [165.6804152578089, -1.0, 1.0]', [89.44271909999159, 1.0, 1.0]', [100.0, 1.0, 1.0]', [120.0, 1.0, 1.0]'};
     ad = a;
     used = zeros(1, 1);
     status = 0;
     solved = false;
+    limits = [0.1];
+    sizes = [1, 1, 1, 1, 1, 1, 1, 1, 1];
+    slack = 1.0000000000000001e-07 * w.length_scale;
     if warm.valid
-        % from the previous row, its lengths moved along their rates
         used = warm.used;
-        [status, w, a, ad, used] = run(w, in, din, ddin, 2, resolver_predict(warm, in), ad, used);
-        solved = status <= 0;
+        if all(abs(in - warm.in) <= limits)
+            % from the previous row, its block states moved along their rates
+            guess = resolver_predict(warm, in);
+            [status, w, a, ad, used] = run(w, in, din, ddin, 2, guess, ad, used);
+            solved = status <= 0 && resolver_on_path(warm.a, guess, a, sizes, slack);
+        end
         if ~solved
             base = warm.in;
             a = warm.a;
             used = warm.used;
         end
     end
-    if ~solved && (~warm.valid || mod(status, 10) == 2)
+    if ~solved && (status <= 0 || mod(status, 10) == 2)
         % the sketch's assembly, followed from the sketch (or the last row)
         prefer = used;
-        [reached, a2] = resolver_continuation(@(x, d, o, s) path_run(x, d, o, s, prefer), base, a, in, [0.1], ...
-            [1], 10);
+        [reached, a2] = resolver_continuation(@(x, d, o, s) path_run(x, d, o, s, prefer), base, a, in, limits, ...
+            [1], 20, sizes, slack);
         if reached
             a = a2;
         end
@@ -94,9 +100,28 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
     % Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
     % Step 9: resolve, group1. Newton-Raphson on add1 until coupler regains its length
+    w.br4 = 1 - 2 * (a{1}(2) < 0);
+    w.br5 = 1 - 2 * (a{1}(3) < 0);
+    w.br14 = 1 - 2 * (a{2}(2) < 0);
+    w.br15 = 1 - 2 * (a{2}(3) < 0);
+    w.br19 = 1 - 2 * (a{3}(2) < 0);
+    w.br20 = 1 - 2 * (a{3}(3) < 0);
+    w.br24 = 1 - 2 * (a{4}(2) < 0);
+    w.br25 = 1 - 2 * (a{4}(3) < 0);
+    w.br29 = 1 - 2 * (a{5}(2) < 0);
+    w.br30 = 1 - 2 * (a{5}(3) < 0);
+    w.br34 = 1 - 2 * (a{6}(2) < 0);
+    w.br35 = 1 - 2 * (a{6}(3) < 0);
+    w.br39 = 1 - 2 * (a{7}(2) < 0);
+    w.br40 = 1 - 2 * (a{7}(3) < 0);
+    w.br44 = 1 - 2 * (a{8}(2) < 0);
+    w.br45 = 1 - 2 * (a{8}(3) < 0);
+    w.br49 = 1 - 2 * (a{9}(2) < 0);
+    w.br50 = 1 - 2 * (a{9}(3) < 0);
     blocks = { @group_1, @group_1_v1, @group_1_v2, @group_1_v3, @group_1_v4, @group_1_v5, @group_1_v6, @group_1_v7, @group_1_v8 };
     [k, its, w.sigma(9), w] = resolver_variants(blocks, w, a, 1, ...
-        1e-10 * w.length_scale, 8, 0.1 * w.length_scale, order, used(1));
+        1e-10 * w.length_scale, 8, 0.1 * w.length_scale, order, used(1), ...
+        [1, 1, 1, 1, 1, 1, 1, 1, 1], 0.05);
     w.iterations(1) = its;
     if k < 0
         status = 92;
@@ -162,8 +187,9 @@ function [st, res, w] = group_1(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1 = a(1);
+    w.chains = 1;
     % Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(4)] = RRR_links(w.p_J3, p_J6, w.l_rocker2, w.add1, -1);
+    [w.p_J4, st, w.sigma(4)] = RRR_links(w.p_J3, p_J6, w.l_rocker2, w.add1, w.br4);
     if st == 1
         st = 1;
         res = [];
@@ -172,8 +198,9 @@ function [st, res, w] = group_1(w, a, live)
     if live
         w = note(w, 4, st);
     end
+    w.chains = min(w.chains, w.sigma(4));
     % Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(5)] = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, 1);
+    [w.p_J2, st, w.sigma(5)] = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br5);
     if st == 1
         st = 1;
         res = [];
@@ -182,6 +209,7 @@ function [st, res, w] = group_1(w, a, live)
     if live
         w = note(w, 5, st);
     end
+    w.chains = min(w.chains, w.sigma(5));
     % Step 6: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
     if st == 1
@@ -222,8 +250,9 @@ function [st, res, w] = group_1_v1(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v1 = a(1);
+    w.chains = 1;
     % Step 14: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(14)] = RRR_links(w.p_J1, p_J6, w.l_rocker1, w.add1_v1, -1);
+    [w.p_J2, st, w.sigma(14)] = RRR_links(w.p_J1, p_J6, w.l_rocker1, w.add1_v1, w.br14);
     if st == 1
         st = 1;
         res = [];
@@ -232,8 +261,9 @@ function [st, res, w] = group_1_v1(w, a, live)
     if live
         w = note(w, 14, st);
     end
+    w.chains = min(w.chains, w.sigma(14));
     % Step 15: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(15)] = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, 1);
+    [w.p_J4, st, w.sigma(15)] = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br15);
     if st == 1
         st = 1;
         res = [];
@@ -242,6 +272,7 @@ function [st, res, w] = group_1_v1(w, a, live)
     if live
         w = note(w, 15, st);
     end
+    w.chains = min(w.chains, w.sigma(15));
     % Step 16: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
     if st == 1
@@ -282,8 +313,9 @@ function [st, res, w] = group_1_v2(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v2 = a(1);
+    w.chains = 1;
     % Step 19: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(19)] = RRR_links(w.p_J3, w.p_J1, w.l_rocker2, w.add1_v2, -1);
+    [w.p_J4, st, w.sigma(19)] = RRR_links(w.p_J3, w.p_J1, w.l_rocker2, w.add1_v2, w.br19);
     if st == 1
         st = 1;
         res = [];
@@ -292,8 +324,9 @@ function [st, res, w] = group_1_v2(w, a, live)
     if live
         w = note(w, 19, st);
     end
+    w.chains = min(w.chains, w.sigma(19));
     % Step 20: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(20)] = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, 1);
+    [w.p_J2, st, w.sigma(20)] = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br20);
     if st == 1
         st = 1;
         res = [];
@@ -302,6 +335,7 @@ function [st, res, w] = group_1_v2(w, a, live)
     if live
         w = note(w, 20, st);
     end
+    w.chains = min(w.chains, w.sigma(20));
     % Step 21: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
     if st == 1
@@ -342,8 +376,9 @@ function [st, res, w] = group_1_v3(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v3 = a(1);
+    w.chains = 1;
     % Step 24: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(24)] = RRR_links(w.p_J1, w.p_J3, w.l_rocker1, w.add1_v3, 1);
+    [w.p_J2, st, w.sigma(24)] = RRR_links(w.p_J1, w.p_J3, w.l_rocker1, w.add1_v3, w.br24);
     if st == 1
         st = 1;
         res = [];
@@ -352,8 +387,9 @@ function [st, res, w] = group_1_v3(w, a, live)
     if live
         w = note(w, 24, st);
     end
+    w.chains = min(w.chains, w.sigma(24));
     % Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(25)] = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, 1);
+    [w.p_J4, st, w.sigma(25)] = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br25);
     if st == 1
         st = 1;
         res = [];
@@ -362,6 +398,7 @@ function [st, res, w] = group_1_v3(w, a, live)
     if live
         w = note(w, 25, st);
     end
+    w.chains = min(w.chains, w.sigma(25));
     % Step 26: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
     if st == 1
@@ -402,8 +439,9 @@ function [st, res, w] = group_1_v4(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v4 = a(1);
+    w.chains = 1;
     % Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(29)] = RRR_links(w.p_J1, w.p_J7, w.l_rocker1, w.add1_v4, -1);
+    [w.p_J2, st, w.sigma(29)] = RRR_links(w.p_J1, w.p_J7, w.l_rocker1, w.add1_v4, w.br29);
     if st == 1
         st = 1;
         res = [];
@@ -412,8 +450,9 @@ function [st, res, w] = group_1_v4(w, a, live)
     if live
         w = note(w, 29, st);
     end
+    w.chains = min(w.chains, w.sigma(29));
     % Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(30)] = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, 1);
+    [w.p_J4, st, w.sigma(30)] = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br30);
     if st == 1
         st = 1;
         res = [];
@@ -422,6 +461,7 @@ function [st, res, w] = group_1_v4(w, a, live)
     if live
         w = note(w, 30, st);
     end
+    w.chains = min(w.chains, w.sigma(30));
     % Step 31: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
     if st == 1
@@ -462,8 +502,9 @@ function [st, res, w] = group_1_v5(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v5 = a(1);
+    w.chains = 1;
     % Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(34)] = RRR_links(w.p_J3, w.p_J7, w.l_rocker2, w.add1_v5, -1);
+    [w.p_J4, st, w.sigma(34)] = RRR_links(w.p_J3, w.p_J7, w.l_rocker2, w.add1_v5, w.br34);
     if st == 1
         st = 1;
         res = [];
@@ -472,8 +513,9 @@ function [st, res, w] = group_1_v5(w, a, live)
     if live
         w = note(w, 34, st);
     end
+    w.chains = min(w.chains, w.sigma(34));
     % Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(35)] = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, 1);
+    [w.p_J2, st, w.sigma(35)] = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br35);
     if st == 1
         st = 1;
         res = [];
@@ -482,6 +524,7 @@ function [st, res, w] = group_1_v5(w, a, live)
     if live
         w = note(w, 35, st);
     end
+    w.chains = min(w.chains, w.sigma(35));
     % Step 36: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
     if st == 1
@@ -522,8 +565,9 @@ function [st, res, w] = group_1_v6(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v6 = a(1);
+    w.chains = 1;
     % Step 39: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known
-    [w.p_J5, st, w.sigma(39)] = RRR_links(p_J6, w.p_J3, w.l_coupler, w.add1_v6, 1);
+    [w.p_J5, st, w.sigma(39)] = RRR_links(p_J6, w.p_J3, w.l_coupler, w.add1_v6, w.br39);
     if st == 1
         st = 1;
         res = [];
@@ -532,8 +576,9 @@ function [st, res, w] = group_1_v6(w, a, live)
     if live
         w = note(w, 39, st);
     end
+    w.chains = min(w.chains, w.sigma(39));
     % Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(40)] = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, 1);
+    [w.p_J2, st, w.sigma(40)] = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br40);
     if st == 1
         st = 1;
         res = [];
@@ -542,6 +587,7 @@ function [st, res, w] = group_1_v6(w, a, live)
     if live
         w = note(w, 40, st);
     end
+    w.chains = min(w.chains, w.sigma(40));
     % Step 41: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
     [w.phi_ternary, st] = link_angle(w.p_J5, w.p_J2, 2.928860872898183);
     if st == 1
@@ -582,8 +628,9 @@ function [st, res, w] = group_1_v7(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v7 = a(1);
+    w.chains = 1;
     % Step 44: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known
-    [w.p_J5, st, w.sigma(44)] = RRR_links(p_J6, w.p_J1, w.l_coupler, w.add1_v7, 1);
+    [w.p_J5, st, w.sigma(44)] = RRR_links(p_J6, w.p_J1, w.l_coupler, w.add1_v7, w.br44);
     if st == 1
         st = 1;
         res = [];
@@ -592,8 +639,9 @@ function [st, res, w] = group_1_v7(w, a, live)
     if live
         w = note(w, 44, st);
     end
+    w.chains = min(w.chains, w.sigma(44));
     % Step 45: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(45)] = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, 1);
+    [w.p_J2, st, w.sigma(45)] = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br45);
     if st == 1
         st = 1;
         res = [];
@@ -602,6 +650,7 @@ function [st, res, w] = group_1_v7(w, a, live)
     if live
         w = note(w, 45, st);
     end
+    w.chains = min(w.chains, w.sigma(45));
     % Step 46: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
     [w.phi_ternary, st] = link_angle(w.p_J5, w.p_J2, 2.928860872898183);
     if st == 1
@@ -642,8 +691,9 @@ function [st, res, w] = group_1_v8(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v8 = a(1);
+    w.chains = 1;
     % Step 49: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known
-    [w.p_J5, st, w.sigma(49)] = RRR_links(p_J6, w.p_J7, w.l_coupler, w.add1_v8, 1);
+    [w.p_J5, st, w.sigma(49)] = RRR_links(p_J6, w.p_J7, w.l_coupler, w.add1_v8, w.br49);
     if st == 1
         st = 1;
         res = [];
@@ -652,8 +702,9 @@ function [st, res, w] = group_1_v8(w, a, live)
     if live
         w = note(w, 49, st);
     end
+    w.chains = min(w.chains, w.sigma(49));
     % Step 50: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(50)] = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, 1);
+    [w.p_J2, st, w.sigma(50)] = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br50);
     if st == 1
         st = 1;
         res = [];
@@ -662,6 +713,7 @@ function [st, res, w] = group_1_v8(w, a, live)
     if live
         w = note(w, 50, st);
     end
+    w.chains = min(w.chains, w.sigma(50));
     % Step 51: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
     [w.phi_ternary, st] = link_angle(w.p_J5, w.p_J2, 2.928860872898183);
     if st == 1
@@ -690,35 +742,63 @@ end
 
 
 function [a, ad] = lengths_1(w, a, ad)
-    % The Add-link lengths of every block of group 1, measured on the solved pairs.
+    % The state of every block of group 1, read off the solved pairs: its Add-link
+    % lengths, then the branches of its chains (a zero keeps the branch it had).
     zero = struct('v', 0, 'dv', 0, 'ddv', 0);
     f = [link_residual(w.p_J6, w.p_J4, zero)];
-    a{1} = [f.v]';
-    ad{1} = [f.dv]';
+    m = [(w.p_J6.x - w.p_J3.x) * (w.p_J4.y - w.p_J3.y) - (w.p_J6.y - w.p_J3.y) * (w.p_J4.x - w.p_J3.x); (w.p_J4.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J4.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x)];
+    old = a{1}(2:3);
+    m(m == 0) = old(m == 0);
+    a{1} = [[f.v]'; sign(m)];
+    ad{1} = [[f.dv]'; zeros(2, 1)];
     f = [link_residual(w.p_J6, w.p_J2, zero)];
-    a{2} = [f.v]';
-    ad{2} = [f.dv]';
+    m = [(w.p_J6.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J6.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x); (w.p_J3.x - w.p_J2.x) * (w.p_J4.y - w.p_J2.y) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.x - w.p_J2.x)];
+    old = a{2}(2:3);
+    m(m == 0) = old(m == 0);
+    a{2} = [[f.v]'; sign(m)];
+    ad{2} = [[f.dv]'; zeros(2, 1)];
     f = [link_residual(w.p_J1, w.p_J4, zero)];
-    a{3} = [f.v]';
-    ad{3} = [f.dv]';
+    m = [(w.p_J1.x - w.p_J3.x) * (w.p_J4.y - w.p_J3.y) - (w.p_J1.y - w.p_J3.y) * (w.p_J4.x - w.p_J3.x); (w.p_J4.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J4.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x)];
+    old = a{3}(2:3);
+    m(m == 0) = old(m == 0);
+    a{3} = [[f.v]'; sign(m)];
+    ad{3} = [[f.dv]'; zeros(2, 1)];
     f = [link_residual(w.p_J3, w.p_J2, zero)];
-    a{4} = [f.v]';
-    ad{4} = [f.dv]';
+    m = [(w.p_J3.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J3.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x); (w.p_J3.x - w.p_J2.x) * (w.p_J4.y - w.p_J2.y) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.x - w.p_J2.x)];
+    old = a{4}(2:3);
+    m(m == 0) = old(m == 0);
+    a{4} = [[f.v]'; sign(m)];
+    ad{4} = [[f.dv]'; zeros(2, 1)];
     f = [link_residual(w.p_J7, w.p_J2, zero)];
-    a{5} = [f.v]';
-    ad{5} = [f.dv]';
+    m = [(w.p_J7.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J7.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x); (w.p_J3.x - w.p_J2.x) * (w.p_J4.y - w.p_J2.y) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.x - w.p_J2.x)];
+    old = a{5}(2:3);
+    m(m == 0) = old(m == 0);
+    a{5} = [[f.v]'; sign(m)];
+    ad{5} = [[f.dv]'; zeros(2, 1)];
     f = [link_residual(w.p_J7, w.p_J4, zero)];
-    a{6} = [f.v]';
-    ad{6} = [f.dv]';
+    m = [(w.p_J7.x - w.p_J3.x) * (w.p_J4.y - w.p_J3.y) - (w.p_J7.y - w.p_J3.y) * (w.p_J4.x - w.p_J3.x); (w.p_J4.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J4.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x)];
+    old = a{6}(2:3);
+    m(m == 0) = old(m == 0);
+    a{6} = [[f.v]'; sign(m)];
+    ad{6} = [[f.dv]'; zeros(2, 1)];
     f = [link_residual(w.p_J3, w.p_J5, zero)];
-    a{7} = [f.v]';
-    ad{7} = [f.dv]';
+    m = [(w.p_J3.x - w.p_J6.x) * (w.p_J5.y - w.p_J6.y) - (w.p_J3.y - w.p_J6.y) * (w.p_J5.x - w.p_J6.x); (w.p_J5.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J5.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x)];
+    old = a{7}(2:3);
+    m(m == 0) = old(m == 0);
+    a{7} = [[f.v]'; sign(m)];
+    ad{7} = [[f.dv]'; zeros(2, 1)];
     f = [link_residual(w.p_J1, w.p_J5, zero)];
-    a{8} = [f.v]';
-    ad{8} = [f.dv]';
+    m = [(w.p_J1.x - w.p_J6.x) * (w.p_J5.y - w.p_J6.y) - (w.p_J1.y - w.p_J6.y) * (w.p_J5.x - w.p_J6.x); (w.p_J5.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J5.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x)];
+    old = a{8}(2:3);
+    m(m == 0) = old(m == 0);
+    a{8} = [[f.v]'; sign(m)];
+    ad{8} = [[f.dv]'; zeros(2, 1)];
     f = [link_residual(w.p_J7, w.p_J5, zero)];
-    a{9} = [f.v]';
-    ad{9} = [f.dv]';
+    m = [(w.p_J7.x - w.p_J6.x) * (w.p_J5.y - w.p_J6.y) - (w.p_J7.y - w.p_J6.y) * (w.p_J5.x - w.p_J6.x); (w.p_J5.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J5.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x)];
+    old = a{9}(2:3);
+    m(m == 0) = old(m == 0);
+    a{9} = [[f.v]'; sign(m)];
+    ad{9} = [[f.dv]'; zeros(2, 1)];
 end
 
 
@@ -1228,17 +1308,30 @@ function [st, sigma, w] = resolver_rates(group, w, a, jac, order)
     [st, ~, w] = group(w, rec, true);
 end
 
-function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer)
+function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer, ...
+                                                sizes, min_sigma)
     % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
-    % preferred block first, the others in order; the first that converges is kept (the
-    % caller then measures every block's lengths on the solved pairs).  a{first + k} is
-    % block k's start lengths; k = -1 when no block converges.
+    % preferred block first, the others in order.  The first that converges with its
+    % chains conditioned at least min_sigma (w.chains: the worst of the last pass) is
+    % kept; else the best conditioned of those that converge (a block whose chains are
+    % near a toggle is a poor coordinate of the assembly).  The caller then measures
+    % every block's state on the solved pairs.  a{first + k} is block k's state: its
+    % sizes(k + 1) start lengths, then its branches; k = -1 when no block converges.
     its = 0;
     sigma = 0;
+    best = -1;
+    best_sigma = -1;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
     for k = tries
-        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}, tol, max_iter, reach);
+        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, max_iter, reach);
         if ~ok
+            continue;
+        end
+        if w.chains < min_sigma
+            if w.chains > best_sigma
+                best = k;
+                best_sigma = w.chains;
+            end
             continue;
         end
         [st, sigma, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
@@ -1246,7 +1339,32 @@ function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_it
             return;
         end
     end
+    k = best;
+    if k >= 0
+        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, max_iter, reach);
+        if ok
+            [st, sigma, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
+            if st ~= 1
+                return;
+            end
+        end
+    end
     k = -1;
+end
+
+function ok = resolver_on_path(prev, guess, now, sizes, slack)
+    % Whether a solved state is where the predictor pointed from prev: no block's
+    % Add-link length moved from the guess by more than a tenth of the largest predicted
+    % move (plus slack).  A larger correction is a jump to another assembly, or a step
+    % too long for the curve; a block's state after its sizes(k) lengths is its branches.
+    move = 0;
+    err = 0;
+    for g = 1:numel(sizes)
+        n = sizes(g);
+        move = max([move; abs(guess{g}(1:n) - prev{g}(1:n))]);
+        err = max([err; abs(now{g}(1:n) - guess{g}(1:n))]);
+    end
+    ok = err <= 0.1 * move + slack;
 end
 
 function a = resolver_predict(warm, in)
@@ -1264,11 +1382,11 @@ function a = resolver_predict(warm, in)
     end
 end
 
-function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings)
-    % Follow the assembly from inputs base (solved with lengths a) to target.  Angle
-    % inputs go the shorter way round, else the other way; a step moves no input by
-    % more than its limit, starts Newton from the tangent predictor and is halved where
-    % Newton fails.
+function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings, sizes, slack)
+    % Follow the assembly from inputs base (solved with block states a) to target.
+    % Angle inputs go the shorter way round, else the other way; a step moves no input
+    % by more than its limit, starts Newton from the tangent predictor and is halved
+    % where Newton fails or lands off the path (see resolver_on_path).
     goal = target;
     other = target;
     differs = false;
@@ -1285,16 +1403,16 @@ function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic,
             end
         end
     end
-    [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings);
+    [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack);
     if ~ok && differs
-        [ok, a2] = resolver_walk(run, base, a, other, limits, halvings);
+        [ok, a2] = resolver_walk(run, base, a, other, limits, halvings, sizes, slack);
     end
     if ok
         a = a2;
     end
 end
 
-function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings)
+function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack)
     % Continuation along the straight path from base to goal (see resolver_continuation).
     d = goal - base;
     h_max = 1;
@@ -1321,7 +1439,7 @@ function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings)
             guess{g} = a{g} + (tt - t) * rate{g};
         end
         [closed, a2, rate2] = run(trial, d, 1, guess);
-        if closed
+        if closed && resolver_on_path(a, guess, a2, sizes, slack)
             t = tt;
             a = a2;
             rate = rate2;
