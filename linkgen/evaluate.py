@@ -272,7 +272,7 @@ class RowSolver:
         self.kinds = {v.name: v.kind for v in log.variables}
         self.pos = {v.entity: v.name for v in log.variables if v.role == "pair"}
         self.blocks = [b for g in log.groups for b in (g, *g.variants)]
-        self.warm = None  # (inputs, rates, lengths, their rates, used variants)
+        self.warm = None  # (inputs, rates, block states, their rates, used variants)
         self.sketch_in = tuple(i.sketch for i in log.inputs)
         self.sketch_a = [block_start(b) for b in self.blocks]
         self.halvings = max(g.max_halvings for g in log.groups)
@@ -335,7 +335,8 @@ class RowSolver:
             if solved is None:
                 continue
             if solved[0] < g.min_chain_sigma:
-                best = max(best or (solved[0], k), (solved[0], k), key=lambda b: b[0])
+                if best is None or solved[0] > best[0]:
+                    best = (solved[0], k)
                 continue
             if take(k, solved[1]):
                 return True
@@ -398,7 +399,7 @@ class RowSolver:
         continuation from the previous row or, without one, from the sketch."""
         if self.warm is not None:
             w_in, w_rates, a, ad, used = self.warm
-            if all(abs(x - y) <= lim for x, y, lim in zip(values, w_in, self.limits)):
+            if self.ns["within"](values, w_in, self.limits):
                 start = self.ns["predict"]((w_in, w_rates, a, ad), values)
                 out = self.run(values, rates, accs, self.order, start, used)
                 if out.ok and self.ns["on_path"](a, start, out.solutions, self.sizes, self.slack):

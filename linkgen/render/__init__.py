@@ -164,9 +164,9 @@ def _py_files(view: View, banner) -> dict[str, bytes]:
         values.append(f"{spell.ref(cell.column.variable, None)}[{index}]")
         levels.append(str(order_of[cell.column.quantity]))
     lit = spell.lit
-    along = any(b.kind == "along" for g in view.blocks for b in g.group.branches)
+    code = runtime + [spell.sign_measure(b) for g in view.blocks for b in g.group.branches]
     math_names = [f for f in ("atan2", "cos", "floor", "sin", "sqrt")
-                  if any(re.search(rf"\b{f}\(", text) for text in runtime) or (along and f in ("cos", "sin"))]
+                  if any(re.search(rf"\b{f}\(", text) for text in code)]
     text = _render("py/NAME.py.j2", v=view, L=spell, banner=banner, name=log.name, runtime=runtime,
                    math_names=math_names,
                    columns=[c.name for c in log.columns], levels=levels, values=values,

@@ -160,6 +160,11 @@ def predict(warm, inputs):
     return [[v + tau * dv for v, dv in zip(g, gd)] for g, gd in zip(a, ad)]
 
 
+def within(inputs, last, limits):
+    """Whether no input moved farther from the last row than a continuation step."""
+    return all(abs(x - y) <= lim for x, y, lim in zip(inputs, last, limits))
+
+
 def on_path(prev, guess, new, sizes, slack):
     """Whether a solved state new is where the predictor guess pointed from prev: no
     block's Add-link length moved from the guess by more than a tenth of the largest predicted

@@ -53,7 +53,7 @@ typedef struct {
     int iterations[DOUBLE_TRIAD_N_GROUPS];   /* Newton steps of each resolver */
     int warm_valid;   /* 0: start the resolvers from the sketch */
     double warm_in[DOUBLE_TRIAD_N_INPUTS], warm_din[DOUBLE_TRIAD_N_INPUTS];
-    double warm_a[DOUBLE_TRIAD_N_BLOCKS][DOUBLE_TRIAD_NMAX];   /* Add-link lengths of the last solved row */
+    double warm_a[DOUBLE_TRIAD_N_BLOCKS][DOUBLE_TRIAD_NMAX];   /* block states of the last solved row: Add-link lengths, then branches */
     double warm_ad[DOUBLE_TRIAD_N_BLOCKS][DOUBLE_TRIAD_NMAX];
     int warm_used[DOUBLE_TRIAD_N_GROUPS];   /* the resolver block that solved it */
 } double_triad_state;

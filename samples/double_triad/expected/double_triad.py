@@ -423,6 +423,11 @@ def predict(warm, inputs):
     return [[v + tau * dv for v, dv in zip(g, gd)] for g, gd in zip(a, ad)]
 
 
+def within(inputs, last, limits):
+    """Whether no input moved farther from the last row than a continuation step."""
+    return all(abs(x - y) <= lim for x, y, lim in zip(inputs, last, limits))
+
+
 def on_path(prev, guess, new, sizes, slack):
     """Whether a solved state new is where the predictor guess pointed from prev: no
     block's Add-link length moved from the guess by more than a tenth of the largest predicted
@@ -1535,7 +1540,7 @@ def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
     its = [0] * N_GROUPS
     used = list(warm[4]) if warm else [0] * N_GROUPS
     code, solved = 0, False
-    if warm and all(abs(x - y) <= lim for x, y, lim in zip(inputs, warm[0], LIMITS)):
+    if warm and within(inputs, warm[0], LIMITS):
         # from the previous row, its block states moved along their rates
         guess = predict(warm[:4], inputs)
         a = [list(g) for g in guess]

@@ -44,7 +44,7 @@ typedef struct {
     int iterations[SIXBAR_FIG14_N_GROUPS];   /* Newton steps of each resolver */
     int warm_valid;   /* 0: start the resolvers from the sketch */
     double warm_in[SIXBAR_FIG14_N_INPUTS], warm_din[SIXBAR_FIG14_N_INPUTS];
-    double warm_a[SIXBAR_FIG14_N_BLOCKS][SIXBAR_FIG14_NMAX];   /* Add-link lengths of the last solved row */
+    double warm_a[SIXBAR_FIG14_N_BLOCKS][SIXBAR_FIG14_NMAX];   /* block states of the last solved row: Add-link lengths, then branches */
     double warm_ad[SIXBAR_FIG14_N_BLOCKS][SIXBAR_FIG14_NMAX];
     int warm_used[SIXBAR_FIG14_N_GROUPS];   /* the resolver block that solved it */
 } sixbar_fig14_state;
