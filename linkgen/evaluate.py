@@ -308,7 +308,8 @@ class RowSolver:
     def resolve(self, g: ResolverGroup, out: Pass, order: int, start: list, prefer: int) -> bool:
         """The group's blocks, the preferred one first: the first that converges with its chains
         conditioned at least ``g.min_chain_sigma`` is taken, else the best conditioned one that
-        converges; then every block's state is read off the solved pairs."""
+        converges (a later one only when more than twice as well conditioned); then every
+        block's state is read off the solved pairs."""
         first = self.blocks.index(g)
         count = 1 + len(g.variants)
         before = dict(out.env)
@@ -335,7 +336,7 @@ class RowSolver:
             if solved is None:
                 continue
             if solved[0] < g.min_chain_sigma:
-                if best is None or solved[0] > best[0]:
+                if best is None or solved[0] > 2 * best[0]:
                     best = (solved[0], k)
                 continue
             if take(k, solved[1]):
@@ -379,7 +380,7 @@ class RowSolver:
         out.iterations[g.number] = its
         if not ok:
             return None
-        worst = min(sigma for _, sigma in last.values())
+        worst = min([g.lever, *(sigma for _, sigma in last.values())])
 
         def finish():
             st, sigma = self.ns["addlink_rates"](group, a, jac, order)
@@ -400,7 +401,7 @@ class RowSolver:
         if self.warm is not None:
             w_in, w_rates, a, ad, used = self.warm
             if self.ns["within"](values, w_in, self.limits):
-                start = self.ns["predict"]((w_in, w_rates, a, ad), values)
+                start = self.ns["predict"]((w_in, w_rates, a, ad), values, self.sizes)
                 out = self.run(values, rates, accs, self.order, start, used)
                 if out.ok and self.ns["on_path"](a, start, out.solutions, self.sizes, self.slack):
                     self._remember(values, rates, out)

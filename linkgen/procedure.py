@@ -857,7 +857,9 @@ def _freeze(ex: Extractor) -> Procedure:
         adds = [a for a in add_links if a.name in g.add_links]
         main = replace(_block_group(g.number, 0, block, tuple(g.add_links), tuple(g.residuals), variables),
                        step=resolve.number, pairs=tuple(a.pairs for a in adds), lengths=tuple(a.length for a in adds))
-        groups.append(_with_branch_signs(main, variants, {s.number: s for s in steps}, variables))
+        by_number = {s.number: s for s in steps}
+        main, *variants = (replace(b, lever=_lever(b, by_number, variables)) for b in (main, *variants))
+        groups.append(_with_branch_signs(main, variants, by_number, variables))
     lj = LJMatrix(tuple(j.name for j in ex.m.joints), tuple(not j.revolute for j in ex.m.joints),
                   tuple(ex.columns), ())
     return Procedure(tuple(variables.values()), tuple(steps), lj, add_links, residuals, tuple(groups),
@@ -884,6 +886,35 @@ def _with_branch_signs(main: ResolverGroup, variants: list[ResolverGroup], steps
         return replace(block, branches=tuple(out))
 
     return replace(signs(main), variants=tuple(signs(v) for v in variants))
+
+
+def _lever(block: ResolverGroup, steps: dict[int, Step], variables: dict[str, Variable]) -> float:
+    """The worst ratio, over the block's point placements, of the base its frame angle is
+    measured on to the arm of the placed point (at most 1).  A placement magnifies the
+    angle's error by the inverse: a block that must turn a needle to place a far pair is
+    a poor coordinate of the assembly, whatever its chains' conditioning."""
+    producer = {o: s for s in steps.values() for o in s.outputs}
+
+    def base(frame: str) -> float | None:
+        s = producer.get(frame)
+        if s is None:
+            return None
+        if s.function == "offset_angle":
+            return base(s.args[0].var)
+        if s.function == "link_angle":
+            (xa, ya), (xb, yb) = (variables[a.var].sketch[:2] for a in s.args[:2])
+            return math.hypot(xb - xa, yb - ya)
+        return None
+
+    worst = 1.0
+    for s in (steps[n] for n in block.steps):
+        if s.function != "coupler_point":
+            continue
+        b = base(s.args[1].var)
+        arm = math.hypot(s.args[2].value, s.args[3].value)
+        if b is not None and arm > b:
+            worst = min(worst, b / arm)
+    return worst
 
 
 def _branch_sign(s: Step) -> BranchSign | None:

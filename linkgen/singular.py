@@ -109,10 +109,9 @@ def _vertex(log: StepLog, lam: float, delta: float, value) -> float:
     return lam if not curve > 0 else lam + delta * (lo - hi) / (2 * curve)
 
 
-def _zoom_edge(log: StepLog, good: float, bad: float, number: int, warm=None) -> tuple[float, float]:
+def _zoom_edge(log: StepLog, good: float, bad: float, number: int, sigma: float, warm=None) -> tuple[float, float]:
     """The last lambda from good towards bad where the procedure gets past step number, and
-    the step's conditioning there, by repeated grid refinement."""
-    sigma = np.nan
+    the step's conditioning there (sigma: at good), by repeated grid refinement."""
     for _ in range(EDGE_ZOOMS):
         lam = np.linspace(good, bad, GRID)
         result = _run(log, lam, warm, stop=number)
@@ -120,7 +119,8 @@ def _zoom_edge(log: StepLog, good: float, bad: float, number: int, warm=None) ->
         if not fine[0]:
             break
         k = int(np.argmin(fine)) if not fine.all() else GRID - 1
-        sigma = float(result.sigma[number][max(k - 1, 0)]) if number in result.sigma else np.nan
+        last = result.sigma[number][max(k - 1, 0)] if number in result.sigma else np.nan
+        sigma = float(last) if np.isfinite(last) else sigma
         good, bad = float(lam[max(k - 1, 0)]), float(lam[k])
     return good, sigma
 
@@ -206,6 +206,7 @@ def conditioning(log: StepLog) -> StepLog:
     """Every step's conditioning over the sweep, and the input values where it reaches zero."""
     grid = np.linspace(0.0, 1.0, log.samples)
     result = _run(log, grid)
+    inner = {n for g in log.groups for b in (g, *g.variants) for n in b.steps}
     out = []
     for number in sorted(result.sigma):
         step = log.step(number)
@@ -218,9 +219,10 @@ def conditioning(log: StepLog) -> StepLog:
             continue
         found = [Singular((p,), "change point", 0.0) for p in step.change_points]
         for k in range(len(grid) - 1):
-            if usable[k] != usable[k + 1] and closes[k] != closes[k + 1]:
+            # a resolver block's chain fails only as its group does: the group's step has the limit
+            if usable[k] != usable[k + 1] and closes[k] != closes[k + 1] and number not in inner:
                 good, bad = (k, k + 1) if usable[k] else (k + 1, k)
-                lam, s = _zoom_edge(log, grid[good], grid[bad], number, _warm(result, good))
+                lam, s = _zoom_edge(log, grid[good], grid[bad], number, float(sigma[good]), _warm(result, good))
                 found.append(Singular(_input_values(log, lam), "limit", float(f"{s:.3g}")))
         for k in _local_minima(sigma, usable):
             if sigma[k] >= SMALL or step.change_points:

@@ -123,6 +123,7 @@ class ResolverGroup:
     max_halvings: int  # continuation: how often an input step may be halved
     max_move: float  # relative to the length scale: a Newton solution farther from its start is another assembly
     min_chain_sigma: float  # a block whose chains are worse conditioned yields to a better one
+    lever: float = 1.0  # worst frame base over arm of the block's point placements (<= 1): conditioning starts there
     variant: int = 0  # 0: the chosen candidate; k: its k-th fallback
     pairs: tuple[tuple[str, str], ...] = ()  # the Add-links' pairs (known, unknown)
     lengths: tuple[float, ...] = ()  # the Add-links' sketch lengths

@@ -99,7 +99,8 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
             t /= 2;
         }
         if (!closed) return 0;
-        for (i = 0; i < n; i++) worst = fmax(worst, fabs(f[i]));
+        for (i = 0; i < n; i++)
+            if (!(fabs(f[i]) <= worst)) worst = fabs(f[i]); /* a nan stays (fmax would drop it) */
         for (i = 0; i < n; i++) {
             a[i] = trial[i];
             f[i] = f2[i];
@@ -107,7 +108,8 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
         }
         if (worst <= tol) {
             double moved = 0.0;
-            for (i = 0; i < n; i++) moved = fmax(moved, fabs(a[i] - start[i]));
+            for (i = 0; i < n; i++)
+                if (!(fabs(a[i] - start[i]) <= moved)) moved = fabs(a[i] - start[i]);
             return moved <= reach;
         }
     }
@@ -154,9 +156,11 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
 
 /* Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
  * preferred block first, the others in order.  The first that converges with its chains
- * conditioned at least min_sigma (*chains: the worst of the last pass) is kept; else the
- * best conditioned of those that converge (a block whose chains are near a toggle is a
- * poor coordinate of the assembly).  a[k] holds block k's start lengths; the caller then
+ * conditioned at least min_sigma (*chains: the worst of the last pass, from the block's
+ * lever down) is kept; else the best conditioned of those that converge, a later block
+ * only when more than twice as well conditioned (a block whose chains are near a toggle
+ * is a poor coordinate of the assembly; blocks that share that chain tie up to rounding,
+ * and the order, not the rounding, decides).  a[k] holds block k's start lengths; the caller then
  * measures every block's state on the solved pairs.  Returns the block, or -1 when none
  * converges. */
 static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
@@ -170,7 +174,7 @@ static int resolve_variants(const group_fn fns[], const int sizes[], int count, 
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
         if (!newton(fns[k], ctx, sizes[k], x, tol, max_iter, reach, jac, its)) continue;
         if (*chains < min_sigma) {
-            if (*chains > best_sigma) {
+            if (*chains > 2.0 * best_sigma) {
                 best_sigma = *chains;
                 best = k;
             }
@@ -194,14 +198,14 @@ static int resolve_variants(const group_fn fns[], const int sizes[], int count, 
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
                    const double now[][LINKGEN_NMAX], const int sizes[], double slack)
 {
-    double move = 0.0, err = 0.0;
+    double move = 0.0;
     int g, i;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < sizes[g]; i++) {
-            move = fmax(move, fabs(guess[g][i] - prev[g][i]));
-            err = fmax(err, fabs(now[g][i] - guess[g][i]));
-        }
-    return err <= 0.1 * move + slack;
+        for (i = 0; i < sizes[g]; i++) move = fmax(move, fabs(guess[g][i] - prev[g][i]));
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < sizes[g]; i++)
+            if (!(fabs(now[g][i] - guess[g][i]) <= 0.1 * move + slack)) return 0; /* a nan too */
+    return 1;
 }
 
 /* Whether no input moved farther from the last row than a continuation step. */
@@ -213,21 +217,34 @@ static int within(const double in[], const double last[], const double limits[])
     return 1;
 }
 
-/* Resolver start values for new inputs: the warm lengths moved along their rates
+/* Block states a moved by step along their rates into out.  An Add-link length is a
+ * distance: where its prediction passes zero the two pairs pass each other, so it is
+ * reflected. */
+static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_NMAX], double step,
+                    const int sizes[], double out[][LINKGEN_NMAX])
+{
+    int g, i;
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < LINKGEN_NMAX; i++) {
+            out[g][i] = a[g][i] + step * rate[g][i];
+            if (i < sizes[g]) out[g][i] = fabs(out[g][i]);
+        }
+}
+
+/* Resolver start values for new inputs: the warm states advanced along their rates
  * (first-order Taylor in the warm row's input direction; the rates exist at every
  * order, so the positions do not depend on the order computed). */
 static void predict(const double w_in[], const double w_din[], const double w_a[][LINKGEN_NMAX],
-                    const double w_ad[][LINKGEN_NMAX], const double in[], double a[][LINKGEN_NMAX])
+                    const double w_ad[][LINKGEN_NMAX], const double in[], const int sizes[],
+                    double a[][LINKGEN_NMAX])
 {
-    double num = 0.0, den = 0.0, tau;
-    int g, i;
+    double num = 0.0, den = 0.0;
+    int i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         num += (in[i] - w_in[i]) * w_din[i];
         den += w_din[i] * w_din[i];
     }
-    tau = den > 0.0 ? num / den : 0.0;
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = w_a[g][i] + tau * w_ad[g][i];
+    advance(w_a, w_ad, den > 0.0 ? num / den : 0.0, sizes, a);
 }
 
 /* One pass of the procedure along a continuation path: returns 1 when it closes,
@@ -255,8 +272,9 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
     while (t < 1.0) {
         const double tt = fmin(1.0, t + h);
         for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
+        advance((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])rate, tt - t, sizes, guess);
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) now[g][i] = guess[g][i] = start[g][i] + (tt - t) * rate[g][i];
+            for (i = 0; i < LINKGEN_NMAX; i++) now[g][i] = guess[g][i];
         if (run(ctx, trial, d, 1, now, rate2)
             && on_path((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])guess,
                        (const double (*)[LINKGEN_NMAX])now, sizes, slack)) {

@@ -81,12 +81,12 @@ function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reac
         if ~closed
             return;
         end
-        done = max(abs(f)) <= tol;
+        done = all(abs(f) <= tol);  % a NaN fails every comparison (max would skip it)
         a = trial;
         f = f2;
         jac = jac2;
         if done
-            ok = max(abs(a - start)) <= reach;
+            ok = all(abs(a - start) <= reach);
             return;
         end
     end
@@ -127,10 +127,11 @@ function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_it
                                                 sizes, min_sigma)
     % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
     % preferred block first, the others in order.  The first that converges with its
-    % chains conditioned at least min_sigma (w.chains: the worst of the last pass) is
-    % kept; else the best conditioned of those that converge (a block whose chains are
-    % near a toggle is a poor coordinate of the assembly).  The caller then measures
-    % every block's state on the solved pairs.  a{first + k} is block k's state: its
+    % chains conditioned at least min_sigma (w.chains: the worst of the last pass, from
+    % the block's lever down) is kept; else the best conditioned of those that converge,
+    % a later block only when more than twice as well conditioned (blocks that share a
+    % chain near a toggle tie up to rounding: the order decides).  The caller then
+    % measures every block's state on the solved pairs.  a{first + k} is block k's state: its
     % sizes(k + 1) start lengths, then its branches; k = -1 when no block converges.
     its = 0;
     sigma = 0;
@@ -143,7 +144,7 @@ function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_it
             continue;
         end
         if w.chains < min_sigma
-            if w.chains > best_sigma
+            if w.chains > 2 * best_sigma
                 best = k;
                 best_sigma = w.chains;
             end
@@ -173,17 +174,26 @@ function ok = resolver_on_path(prev, guess, now, sizes, slack)
     % move (plus slack).  A larger correction is a jump to another assembly, or a step
     % too long for the curve; a block's state after its sizes(k) lengths is its branches.
     move = 0;
-    err = 0;
     for g = 1:numel(sizes)
-        n = sizes(g);
-        move = max([move; abs(guess{g}(1:n) - prev{g}(1:n))]);
-        err = max([err; abs(now{g}(1:n) - guess{g}(1:n))]);
+        move = max([move; abs(guess{g}(1:sizes(g)) - prev{g}(1:sizes(g)))]);
     end
-    ok = err <= 0.1 * move + slack;
+    ok = true;
+    for g = 1:numel(sizes)
+        ok = ok && all(abs(now{g}(1:sizes(g)) - guess{g}(1:sizes(g))) <= 0.1 * move + slack);
+    end
 end
 
-function a = resolver_predict(warm, in)
-    % Resolver start values for new inputs: the warm lengths moved along their rates
+function a = resolver_advance(a, rate, step, sizes)
+    % Block states moved by step along their rates.  An Add-link length is a distance:
+    % where its prediction passes zero the two pairs pass each other, so it is reflected.
+    for g = 1:numel(a)
+        a{g} = a{g} + step * rate{g};
+        a{g}(1:sizes(g)) = abs(a{g}(1:sizes(g)));
+    end
+end
+
+function a = resolver_predict(warm, in, sizes)
+    % Resolver start values for new inputs: the warm states advanced along their rates
     % (first-order Taylor in the warm row's input direction; the rates exist at every
     % order, so the positions do not depend on the order computed).
     den = sum(warm.din .^ 2);
@@ -191,10 +201,7 @@ function a = resolver_predict(warm, in)
     if den > 0
         tau = sum((in - warm.in) .* warm.din) / den;
     end
-    a = warm.a;
-    for g = 1:numel(a)
-        a{g} = warm.a{g} + tau * warm.ad{g};
-    end
+    a = resolver_advance(warm.a, warm.ad, tau, sizes);
 end
 
 function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings, sizes, slack)
@@ -249,10 +256,7 @@ function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, sl
         else
             trial = goal;
         end
-        guess = a;
-        for g = 1:numel(a)
-            guess{g} = a{g} + (tt - t) * rate{g};
-        end
+        guess = resolver_advance(a, rate, tt - t, sizes);
         [closed, a2, rate2] = run(trial, d, 1, guess);
         if closed && resolver_on_path(a, guess, a2, sizes, slack)
             t = tt;

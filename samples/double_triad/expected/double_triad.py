@@ -351,10 +351,10 @@ def newton(group, a, tol, max_iter, reach):
             t /= 2
         else:
             return False, a, it, None
-        done = max(abs(v) for v in f) <= tol
+        done = all(abs(v) <= tol for v in f)  # a nan fails every comparison
         a, f, jac = trial, f2, jac2
         if done:
-            return max(abs(x - y) for x, y in zip(a, start)) <= reach, a, it, jac
+            return all(abs(x - y) <= reach for x, y in zip(a, start)), a, it, jac
     return False, a, max_iter, None
 
 
@@ -384,9 +384,11 @@ def addlink_rates(group, a, jac, order):
 def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, sizes, chains, min_sigma):
     """Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
     preferred block first, the others in order.  The first that converges with its chains
-    conditioned at least min_sigma (chains(): the worst of the last pass) is kept; else the
-    best conditioned of those that converge (a block whose chains are near a toggle is a
-    poor coordinate of the assembly).  The caller then measures every block's state on
+    conditioned at least min_sigma (chains(): the worst of the last pass, from the block's
+    lever down) is kept; else the best conditioned of those that converge, a later block
+    only when more than twice as well conditioned (a block whose chains are near a toggle is
+    a poor coordinate of the assembly; blocks that share that chain tie up to rounding, and
+    the order, not the rounding, decides).  The caller then measures every block's state on
     the solved pairs.
 
     a[first + k] is block k's state: its sizes[k] start lengths, then its branches.
@@ -398,7 +400,7 @@ def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, size
         if not ok:
             continue
         if chains() < min_sigma:
-            if chains() > best_sigma:
+            if chains() > 2 * best_sigma:
                 best, best_sigma = k, chains()
             continue
         st, sigma = addlink_rates(groups[k], x, jac, order)
@@ -413,14 +415,21 @@ def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, size
     return -1, its, 0.0
 
 
-def predict(warm, inputs):
-    """Resolver start values for new inputs: the warm lengths moved along their rates
+def advance(a, rates, step, sizes):
+    """Block states moved by step along their rates.  An Add-link length is a distance:
+    where its prediction passes zero the two pairs pass each other, so it is reflected."""
+    return [[abs(v + step * r) if i < n else v + step * r for i, (v, r) in enumerate(zip(g, gr))]
+            for g, gr, n in zip(a, rates, sizes)]
+
+
+def predict(warm, inputs, sizes):
+    """Resolver start values for new inputs: the warm states advanced along their rates
     (first-order Taylor in the warm row's input direction; rates exist at every order,
     so a program gives the same positions whatever order it computes)."""
     w_in, w_rates, a, ad = warm
     den = sum(r * r for r in w_rates)
     tau = sum((x - y) * r for x, y, r in zip(inputs, w_in, w_rates)) / den if den > 0 else 0.0
-    return [[v + tau * dv for v, dv in zip(g, gd)] for g, gd in zip(a, ad)]
+    return advance(a, ad, tau, sizes)
 
 
 def within(inputs, last, limits):
@@ -433,12 +442,8 @@ def on_path(prev, guess, new, sizes, slack):
     block's Add-link length moved from the guess by more than a tenth of the largest predicted
     move (plus slack).  A larger correction is a jump to another assembly, or a step
     too long for the curve; a block's state after its sizes[k] lengths is its branches."""
-    move = err = 0.0
-    for p, g, x, n in zip(prev, guess, new, sizes):
-        for i in range(n):
-            move = max(move, abs(g[i] - p[i]))
-            err = max(err, abs(x[i] - g[i]))
-    return err <= 0.1 * move + slack
+    move = max((abs(g[i] - p[i]) for p, g, n in zip(prev, guess, sizes) for i in range(n)), default=0.0)
+    return all(abs(x[i] - g[i]) <= 0.1 * move + slack for g, x, n in zip(guess, new, sizes) for i in range(n))
 
 
 def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack):
@@ -470,7 +475,7 @@ def _walk(run, base, a, goal, limits, halvings, sizes, slack):
     while t < 1.0:
         tt = min(1.0, t + h)
         trial = [b + tt * x for b, x in zip(base, d)] if tt < 1.0 else goal
-        guess = [[v + (tt - t) * r for v, r in zip(g, gr)] for g, gr in zip(a, rate)]
+        guess = advance(a, rate, tt - t, sizes)
         ok, a2, rate2 = run(trial, d, 1, guess)
         if ok and on_path(a, guess, a2, sizes, slack):
             t, a, rate, h = tt, a2, rate2, min(2 * h, h_max)
@@ -1542,7 +1547,7 @@ def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
     code, solved = 0, False
     if warm and within(inputs, warm[0], LIMITS):
         # from the previous row, its block states moved along their rates
-        guess = predict(warm[:4], inputs)
+        guess = predict(warm[:4], inputs, BLOCK_SIZES)
         a = [list(g) for g in guess]
         code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used)
         solved = code <= 0 and on_path(warm[2], guess, a, BLOCK_SIZES, SLACK * LENGTH_SCALE)

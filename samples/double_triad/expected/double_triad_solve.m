@@ -25,7 +25,7 @@ function [out, status, warm] = double_triad_solve(in, din, ddin, warm)
         used = warm.used;
         if all(abs(in - warm.in) <= limits)
             % from the previous row, its block states moved along their rates
-            guess = resolver_predict(warm, in);
+            guess = resolver_predict(warm, in, sizes);
             [status, w, a, ad, used] = run(w, in, din, ddin, 2, guess, ad, used);
             solved = status <= 0 && resolver_on_path(warm.a, guess, a, sizes, slack);
         end
@@ -252,7 +252,7 @@ function [st, res, w] = group_1(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known
     [w.p_J4, st, w.sigma(4)] = RRR_links(w.p_J3, p_J6, w.l_right_rocker2, w.add1, w.br4);
     if st == 1
@@ -315,7 +315,7 @@ function [st, res, w] = group_1_v1(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v1 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 24: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known
     [w.p_J2, st, w.sigma(24)] = RRR_links(w.p_J1, p_J6, w.l_right_rocker1, w.add1_v1, w.br24);
     if st == 1
@@ -378,7 +378,7 @@ function [st, res, w] = group_1_v2(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v2 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
     [w.p_J2, st, w.sigma(29)] = RRR_links(w.p_J1, w.p_J7, w.l_right_rocker1, w.add1_v2, w.br29);
     if st == 1
@@ -441,7 +441,7 @@ function [st, res, w] = group_1_v3(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v3 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
     [w.p_J4, st, w.sigma(34)] = RRR_links(w.p_J3, w.p_J7, w.l_right_rocker2, w.add1_v3, w.br34);
     if st == 1
@@ -504,7 +504,7 @@ function [st, res, w] = group_1_v4(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v4 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 39: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
     [w.p_J4, st, w.sigma(39)] = RRR_links(w.p_J3, w.p_J1, w.l_right_rocker2, w.add1_v4, w.br39);
     if st == 1
@@ -567,7 +567,7 @@ function [st, res, w] = group_1_v5(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v5 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 44: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
     [w.p_J2, st, w.sigma(44)] = RRR_links(w.p_J1, w.p_J3, w.l_right_rocker1, w.add1_v5, w.br44);
     if st == 1
@@ -630,7 +630,7 @@ function [st, res, w] = group_1_v6(w, a, live)
         p_J6.ddy = 0;
     end
     w.add1_v6 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 49: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known
     [w.p_J2, st, w.sigma(49)] = RRR_links(w.p_J1, w.p_K1, w.l_right_rocker1, w.add1_v6, w.br49);
     if st == 1
@@ -692,7 +692,7 @@ function [st, res, w] = group_2(w, a, live)
         p_J6.ddy = 0;
     end
     w.add2 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 11: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known
     [w.p_K4, st, w.sigma(11)] = RRR_links(w.p_K3, p_J6, w.l_left_rocker2, w.add2, w.br11);
     if st == 1
@@ -760,7 +760,7 @@ function [st, res, w] = group_2_v1(w, a, live)
         p_J6.ddy = 0;
     end
     w.add2_v1 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 54: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known
     [w.p_K2, st, w.sigma(54)] = RRR_links(w.p_K1, p_J5, w.l_left_rocker1, w.add2_v1, w.br54);
     if st == 1
@@ -828,7 +828,7 @@ function [st, res, w] = group_2_v2(w, a, live)
         p_J6.ddy = 0;
     end
     w.add2_v2 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 59: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known
     [w.p_K4, st, w.sigma(59)] = RRR_links(w.p_K3, p_J5, w.l_left_rocker2, w.add2_v2, w.br59);
     if st == 1
@@ -896,7 +896,7 @@ function [st, res, w] = group_2_v3(w, a, live)
         p_J6.ddy = 0;
     end
     w.add2_v3 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 64: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known
     [w.p_K4, st, w.sigma(64)] = RRR_links(w.p_K3, p_J2, w.l_left_rocker2, w.add2_v3, w.br64);
     if st == 1
@@ -964,7 +964,7 @@ function [st, res, w] = group_2_v4(w, a, live)
         p_J6.ddy = 0;
     end
     w.add2_v4 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 69: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known
     [w.p_K4, st, w.sigma(69)] = RRR_links(w.p_K3, p_J4, w.l_left_rocker2, w.add2_v4, w.br69);
     if st == 1
@@ -1032,7 +1032,7 @@ function [st, res, w] = group_2_v5(w, a, live)
         p_J6.ddy = 0;
     end
     w.add2_v5 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 74: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known
     [w.p_K2, st, w.sigma(74)] = RRR_links(w.p_K1, p_J2, w.l_left_rocker1, w.add2_v5, w.br74);
     if st == 1
@@ -1100,7 +1100,7 @@ function [st, res, w] = group_2_v6(w, a, live)
         p_J6.ddy = 0;
     end
     w.add2_v6 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 79: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known
     [w.p_K2, st, w.sigma(79)] = RRR_links(w.p_K1, p_J4, w.l_left_rocker1, w.add2_v6, w.br79);
     if st == 1
@@ -1163,7 +1163,7 @@ function [st, res, w] = group_2_v7(w, a, live)
         p_J6.ddy = 0;
     end
     w.add2_v7 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 84: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known
     [w.p_K2, st, w.sigma(84)] = RRR_links(w.p_K1, p_J6, w.l_left_rocker1, w.add2_v7, w.br84);
     if st == 1
@@ -1231,7 +1231,7 @@ function [st, res, w] = group_2_v8(w, a, live)
         p_J5.ddy = 0;
     end
     w.add2_v8 = a(1);
-    w.chains = 1;
+    w.chains = 1.0;
     % Step 89: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known
     [w.p_K5, st, w.sigma(89)] = RRR_links(p_J6, p_J5, w.l_left_coupler, w.add2_v8, w.br89);
     if st == 1
@@ -1971,12 +1971,12 @@ function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reac
         if ~closed
             return;
         end
-        done = max(abs(f)) <= tol;
+        done = all(abs(f) <= tol);  % a NaN fails every comparison (max would skip it)
         a = trial;
         f = f2;
         jac = jac2;
         if done
-            ok = max(abs(a - start)) <= reach;
+            ok = all(abs(a - start) <= reach);
             return;
         end
     end
@@ -2013,10 +2013,11 @@ function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_it
                                                 sizes, min_sigma)
     % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
     % preferred block first, the others in order.  The first that converges with its
-    % chains conditioned at least min_sigma (w.chains: the worst of the last pass) is
-    % kept; else the best conditioned of those that converge (a block whose chains are
-    % near a toggle is a poor coordinate of the assembly).  The caller then measures
-    % every block's state on the solved pairs.  a{first + k} is block k's state: its
+    % chains conditioned at least min_sigma (w.chains: the worst of the last pass, from
+    % the block's lever down) is kept; else the best conditioned of those that converge,
+    % a later block only when more than twice as well conditioned (blocks that share a
+    % chain near a toggle tie up to rounding: the order decides).  The caller then
+    % measures every block's state on the solved pairs.  a{first + k} is block k's state: its
     % sizes(k + 1) start lengths, then its branches; k = -1 when no block converges.
     its = 0;
     sigma = 0;
@@ -2029,7 +2030,7 @@ function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_it
             continue;
         end
         if w.chains < min_sigma
-            if w.chains > best_sigma
+            if w.chains > 2 * best_sigma
                 best = k;
                 best_sigma = w.chains;
             end
@@ -2059,17 +2060,26 @@ function ok = resolver_on_path(prev, guess, now, sizes, slack)
     % move (plus slack).  A larger correction is a jump to another assembly, or a step
     % too long for the curve; a block's state after its sizes(k) lengths is its branches.
     move = 0;
-    err = 0;
     for g = 1:numel(sizes)
-        n = sizes(g);
-        move = max([move; abs(guess{g}(1:n) - prev{g}(1:n))]);
-        err = max([err; abs(now{g}(1:n) - guess{g}(1:n))]);
+        move = max([move; abs(guess{g}(1:sizes(g)) - prev{g}(1:sizes(g)))]);
     end
-    ok = err <= 0.1 * move + slack;
+    ok = true;
+    for g = 1:numel(sizes)
+        ok = ok && all(abs(now{g}(1:sizes(g)) - guess{g}(1:sizes(g))) <= 0.1 * move + slack);
+    end
 end
 
-function a = resolver_predict(warm, in)
-    % Resolver start values for new inputs: the warm lengths moved along their rates
+function a = resolver_advance(a, rate, step, sizes)
+    % Block states moved by step along their rates.  An Add-link length is a distance:
+    % where its prediction passes zero the two pairs pass each other, so it is reflected.
+    for g = 1:numel(a)
+        a{g} = a{g} + step * rate{g};
+        a{g}(1:sizes(g)) = abs(a{g}(1:sizes(g)));
+    end
+end
+
+function a = resolver_predict(warm, in, sizes)
+    % Resolver start values for new inputs: the warm states advanced along their rates
     % (first-order Taylor in the warm row's input direction; the rates exist at every
     % order, so the positions do not depend on the order computed).
     den = sum(warm.din .^ 2);
@@ -2077,10 +2087,7 @@ function a = resolver_predict(warm, in)
     if den > 0
         tau = sum((in - warm.in) .* warm.din) / den;
     end
-    a = warm.a;
-    for g = 1:numel(a)
-        a{g} = warm.a{g} + tau * warm.ad{g};
-    end
+    a = resolver_advance(warm.a, warm.ad, tau, sizes);
 end
 
 function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings, sizes, slack)
@@ -2135,10 +2142,7 @@ function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, sl
         else
             trial = goal;
         end
-        guess = a;
-        for g = 1:numel(a)
-            guess{g} = a{g} + (tt - t) * rate{g};
-        end
+        guess = resolver_advance(a, rate, tt - t, sizes);
         [closed, a2, rate2] = run(trial, d, 1, guess);
         if closed && resolver_on_path(a, guess, a2, sizes, slack)
             t = tt;
