@@ -415,6 +415,15 @@ def test_branch_followed_from_sketch(path):
     the sketch) and compared to 1e-7 L; a row linkgen fails right after an assembled row must
     not be reachable from it along a well-conditioned path.
     """
+    bad, checked = _off_branch(path)
+    assert not bad, describe(path, "(row, column, linkgen, followed from the sketch)", bad)
+    if not checked:
+        pytest.skip("no assembled row is reachable from the sketch by continuation")
+
+
+def _off_branch(path: Path) -> tuple[list, int]:
+    """Rows off the branch an independent float continuation follows from the sketch, and the
+    number of rows checked (see test_branch_followed_from_sketch)."""
     sw = sweep(path)
     ref = sw.ref
     n_in = len(ref.m.inputs)
@@ -442,6 +451,101 @@ def test_branch_followed_from_sketch(path):
         checked += 1
         if len(bad) > 12:
             break
+    return bad, checked
+
+
+# -- change points: zero wrong-branch rows at any sampling -------------------------------------------
+
+BRANCH_SAMPLES = (36, 37, 360, 361)  # with 37 and 361 rows fall on the change points (0 and 180 degrees)
+PARALLELOGRAM = """linkgen: 1
+name: {name}
+joints:
+  O1: [0, 0]
+  A: [20, 20]
+  B: [80, 20]
+  O2: [{o2}, 0]
+links:
+  frame: {{joints: [O1, O2], fixed: true}}
+  crank: [O1, A]
+  coupler: [A, B]
+  rocker: [O2, B]
+inputs:
+  - {{joint: O1, link: crank, relative_to: frame, range: [0, 360]}}
+samples: {samples}
+"""
+
+
+def _parallelogram(folder: Path, o2: str, samples: int) -> Path:
+    path = folder / f"parallelogram_{samples}.yaml"
+    path.write_text(PARALLELOGRAM.format(name=f"parallelogram_{samples}", o2=o2, samples=samples))
+    return path
+
+
+@pytest.mark.parametrize("samples", BRANCH_SAMPLES)
+def test_parallelogram_stays_a_parallelogram(tmp_path, samples):
+    """The exact parallelogram passes its change points (all four pivots in line, both branches
+    meet) on its own branch: on every row the coupler is the frame moved, B - A = O2 - O1 (the closed
+    form), never the anti-parallelogram."""
+    sw = sweep(_parallelogram(tmp_path, "60", samples))
+    assert all(s <= 0 or s % 10 == 3 for s in sw.status), list(sw.status)
+    dx, dy = sw.col("B.x") - sw.col("A.x"), sw.col("B.y") - sw.col("A.y")
+    bad = [(k, float(dx[k]), float(dy[k])) for k in range(samples)
+           if not (abs(dx[k] - 60.0) <= 1e-12 * sw.length and abs(dy[k]) <= 1e-12 * sw.length)]
+    assert not bad, f"rows off the parallelogram (row, B.x - A.x, B.y - A.y): {bad[:8]}"
+
+
+def _fine_walk(ref: Reference, q: list, start: float, stop: float) -> list | None:
+    """Follow the assembly at q (one angle input at ``start``) to ``stop`` in steps of a fifth of
+    the conditioning (radians, 3e-5 to 1 degree): fine enough where two branches pass within
+    1e-3 of each other.  None where Newton fails (past a limit position)."""
+    t, step, h = start, math.copysign(1.0, stop - start), 3e-5
+    while t != stop:
+        t = stop if abs(stop - t) <= h else t + step * h
+        try:
+            try:
+                q, jac, _ = ref.newton(q, ref.turned_inputs(q, [t]), exact=False, max_iter=10)
+            except ArithmeticError:  # float Newton stalls where the conditioning is 1e-4: 50 digits
+                q, jac, _ = ref.newton(q, ref.turned_inputs(q, [t]), exact=True, max_iter=30)
+        except (ArithmeticError, ZeroDivisionError, np.linalg.LinAlgError):
+            return None
+        h = min(max(float(ref.cond(jac)), 3e-5), SPANS[0])
+    return q
+
+
+@pytest.mark.parametrize("samples", BRANCH_SAMPLES)
+@pytest.mark.parametrize("o2", ["59.99994", "60.00006"], ids=["grashof", "non-grashof"])
+def test_perturbed_grashof_equality_keeps_its_branch(tmp_path, samples, o2):
+    """The parallelogram with its frame 1e-6 shorter (s + l - p - q = -1.8e-5: a crank that passes
+    within conditioning 2e-4 of the change point twice a turn, where its motion turns from the
+    parallelogram's to the anti-parallelogram's) or longer (+1.8e-5: limit positions near 0 and 180
+    degrees).  Neither has a change point.  Every row is on the branch a fine float continuation
+    follows from the sketch (a 1-degree one jumps between the branches there), and every row that
+    continuation reaches is solved."""
+    path = _parallelogram(tmp_path, o2, samples)
+    sw = sweep(path)
+    ref = sw.ref
+    assert not any(s.change_points for s in sw.log.steps), "a near change point taken for a change point"
+    t0 = ref.sketch_inputs()[0]
+    bad, checked, q, last = [], 0, None, None
+    for k in range(samples):
+        target = float(sw.data[k, 0])
+        q = _fine_walk(ref, q, last, target) if q is not None else None
+        if q is None:  # from the sketch, either way round
+            for end in (target, target - math.copysign(2 * math.pi, target - t0)):
+                q = _fine_walk(ref, ref.sketch_pose(), t0, end)
+                if q is not None:
+                    break
+        last = target
+        if q is None:
+            continue
+        if sw.status[k] > 0 and sw.status[k] % 10 != 3:
+            bad.append((k, f"status {sw.status[k]}", "but the continuation reaches it"))
+            continue
+        row = sw.row(k)
+        for name, want in ref.outputs(q).items():
+            err = abs(wrap(row[name] - want)) if name.endswith(".phi") else abs(row[name] - want) / sw.length
+            if err > 1e-7:
+                bad.append((k, name, row[name], float(want)))
+        checked += 1
     assert not bad, describe(path, "(row, column, linkgen, followed from the sketch)", bad)
-    if not checked:
-        pytest.skip("no assembled row is reachable from the sketch by continuation")
+    assert checked >= samples // 3
