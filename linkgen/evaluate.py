@@ -278,6 +278,7 @@ class RowSolver:
         self.halvings = max(g.max_halvings for g in log.groups)
         self.sizes = [len(b.add_links) for b in self.blocks]
         self.slack = path_slack(log) * log.length_scale
+        self.reach = log.groups[0].max_move * log.length_scale
         self.periodic = [i.kind == "revolute" for i in log.inputs]
         self.limits = [STEP_ANGLE if p else STEP_LENGTH * log.length_scale for p in self.periodic]
 
@@ -414,7 +415,7 @@ class RowSolver:
             base, base_a, prefer = self.sketch_in, self.sketch_a, {}
         path = lambda x, d, o, s: self._path_run(x, d, o, s, prefer)  # noqa: E731
         a = self.ns["continuation"](path, list(base), [list(b) for b in base_a], list(values), self.limits,
-                                    self.periodic, self.halvings, self.sizes, self.slack)
+                                    self.periodic, self.halvings, self.sizes, self.slack, self.reach)
         if a is None:
             self.warm = None
             out = self.run(values, rates, accs, self.order, base_a, prefer)

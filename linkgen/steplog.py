@@ -120,8 +120,9 @@ class ResolverGroup:
     writes: tuple[str, ...]  # variables the group computes
     tolerance: float  # relative to the length scale
     max_iterations: int
-    max_halvings: int  # continuation: how often an input step may be halved
-    max_move: float  # relative to the length scale: a Newton solution farther from its start is another assembly
+    max_halvings: int  # continuation: how often in a row a step may be halved
+    max_move: float  # relative to the length scale: a Newton solution farther from its start is another assembly,
+    # and a continuation step moves no predicted Add-link length farther
     min_chain_sigma: float  # a block whose chains are worse conditioned yields to a better one
     lever: float = 1.0  # worst frame base over arm of the block's point placements (<= 1): conditioning starts there
     variant: int = 0  # 0: the chosen candidate; k: its k-th fallback

@@ -1162,24 +1162,34 @@ def newton_float(ref: Reference, q: list, u: list, max_iter: int = 12) -> tuple[
 
 STEP = math.radians(1)  # the reference's continuation step in the input angle
 MIN_COND = 1e-7  # a continuation step closer than this to a singular position is cut
+FINE_STEP = 1e-4  # the shortest continuation step (radians): the conditioning bounds the step down to this
 
 
 def walk(ref: Reference, q: list, start: float, stop: float, step: float = STEP) -> list | None:
     """Follow the assembly at q (inputs ``start``) to ``stop`` in float steps; None where it is cut.
 
-    Cut where Newton fails, the pose jumps, or the path comes near a singular position.
+    A step is at most ``step`` and at most the conditioning at its start (down to FINE_STEP):
+    where two branches pass within c L of each other (conditioning c), a longer step can land
+    on the other one.  Cut where Newton fails, the pose jumps, or the path comes near a
+    singular position.
     """
-    n = max(1, math.ceil(abs(stop - start) / step))
     scale = [ref.length_scale, ref.length_scale, 1.0] * len(ref.moving)
-    for i in range(1, n + 1):
-        u = start + (stop - start) * i / n
+    sign = math.copysign(1.0, stop - start)
+    t, h = start, min(step, max(conditioning(ref, ref.jacobian(q, [start])), FINE_STEP))
+    while t != stop:
+        u = stop if abs(stop - t) <= h else t + sign * h
         try:
-            new, jac = newton_float(ref, q, ref.turned_inputs(q, [u]))
+            try:
+                new, jac = newton_float(ref, q, ref.turned_inputs(q, [u]))
+            except ArithmeticError:  # float Newton stalls where the conditioning is 1e-4: 50 digits
+                new, jac, _ = ref.newton(q, ref.turned_inputs(q, [u]), exact=True, max_iter=30)
+                new = [float(x) for x in new]
         except (ArithmeticError, np.linalg.LinAlgError, ZeroDivisionError, OverflowError, ValueError):
             return None
-        if conditioning(ref, jac) < MIN_COND or max(abs(a - b) / s for a, b, s in zip(new, q, scale)) > 0.3:
+        c = conditioning(ref, jac)
+        if c < MIN_COND or max(abs(a - b) / s for a, b, s in zip(new, q, scale)) > 0.3:
             return None
-        q = new
+        q, t, h = new, u, min(step, max(c, FINE_STEP))
     return q
 
 

@@ -995,3 +995,29 @@ def test_needle_lever_makes_a_block_yield(tmp_path):
     assert all(blocks[w[4][1]].lever == 1.0 for w in result.warm), "a needle block gave a row"
     for k, err, cond in _reference_errors(names, data, ref, values):
         assert err <= POSITION / cond, f"row {k}: {err:.3g} eps L, conditioning {cond:.3g}"
+
+
+def test_addlink_of_coincident_pairs_is_followed(tmp_path):
+    """Found by test_resolver_sweep[triad] (triad_863): J4 sits on the fixed J1 and stays there, so the
+    fallback Add-link J1-J4 has length zero; its rate was 0/0, every continuation step predicted nan for
+    that block and was refused, and rows the mechanism reaches failed with status 92.  A distance's rates
+    where its pairs coincide are now the ones as they part (|d'|, reflected by the prediction)."""
+    text = (MECHANISMS / "triad_coincident.yaml").read_text()
+    names, data, result, ref, values = _triad_rows(tmp_path, text, "triad_coincident")
+    assert list(result.status) == [0] * len(values)
+    for k, err, cond in _reference_errors(names, data, ref, values):
+        assert err <= POSITION / cond, f"row {k}: {err:.3g} eps L, conditioning {cond:.3g}"
+
+
+def test_continuation_from_a_nearly_singular_sketch(tmp_path):
+    """Found by test_scaled_turned_and_moved_sketch_keeps_its_accuracy[triad] (triad_1231): the sketch is
+    8.6e-6 from a singular position, where the Add-link lengths move 2500 times as fast as the crank.  A
+    first continuation step of 0.0175 rad predicted moves of 43 L; the tenth-of-the-move test then let a
+    solution on another assembly through, and the rows 0.125 to 0.5 rad away failed with status 92.  A step
+    now moves no predicted length by more than the resolver's reach (0.1 L)."""
+    text = (MECHANISMS / "triad_near_singular.yaml").read_text()
+    names, data, result, ref, values = _triad_rows(tmp_path, text, "triad_near_singular")
+    assert sk.sketch_condition(ref) < 1e-5
+    assert list(result.status[:-1]) == [0] * (len(values) - 1) and result.status[-1] < 0
+    for k, err, cond in _reference_errors(names, data, ref, values):
+        assert err <= POSITION / cond, f"row {k}: {err:.3g} eps L, conditioning {cond:.3g}"

@@ -216,7 +216,8 @@ def offset_angle() -> Primitive:
 def link_residual() -> Primitive:
     b = Builder(
         "link_residual",
-        "Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates.",
+        "Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates "
+        "(where the pairs coincide, the distance's rates as they part).",
     )
     j1 = b.record("j1", "POINT")
     j2 = b.record("j2", "POINT")
@@ -224,10 +225,14 @@ def link_residual() -> Primitive:
     d, dv, da = _difference(b, j1, j2)
     r = b.let("r", _norm(d))
     ir = b.let("ir", select(r.eq(0), NAN, 1 / r))
-    rd = b.let("rd", _dot(d, dv) * ir)
-    rdd = b.let("rdd", (_dot(dv, dv) + _dot(d, da) - rd * rd) * ir)
+    # coincident pairs: |d(t)| = t |dv| + t^2 dv.da / (2 |dv|) + ... (t^2 |da| / 2 where dv = 0)
+    s = b.let("s", _norm(dv))
+    iv = b.let("iv", select(s.eq(0), NAN, 1 / s))
+    rd = b.let("rd", select(r.eq(0), s, _dot(d, dv) * ir))
+    parting = b.let("rp", select(s.eq(0), _norm(da), _dot(dv, da) * iv))
+    rdd = b.let("rdd", select(r.eq(0), parting, (_dot(dv, dv) + _dot(d, da) - rd * rd) * ir))
     b.output("f", "VARIABLE", v=r - ln.v, dv=rd - ln.dv, ddv=rdd - ln.ddv)
-    return b.build(status=select(r.eq(0), 3, 0))
+    return b.build()
 
 
 def rrr_links() -> Primitive:

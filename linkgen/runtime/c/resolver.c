@@ -252,15 +252,17 @@ static void predict(const double w_in[], const double w_din[], const double w_a[
 typedef int (*path_fn)(void *ctx, const double in[], const double din[], int order, double a[][LINKGEN_NMAX],
                        double rates[][LINKGEN_NMAX]);
 
-/* Continuation along the straight path from base to goal (see continuation). */
+/* Continuation along the straight path from base to goal (see continuation).  Near a
+ * singular position the lengths' rates are large and the steps short (the prediction
+ * holds only there); a step that makes no progress in floating point cuts the path. */
 static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double goal[],
-                const double limits[], int halvings, const int sizes[], double slack)
+                const double limits[], int halvings, const int sizes[], double slack, double reach)
 {
     double d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS], start[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double now[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
-    double t = 0.0, h, h_max = 1.0;
-    int g, i;
+    double t = 0.0, h, h_max = 1.0, fast;
+    int g, i, cuts = 0;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         d[i] = goal[i] - base[i];
         if (d[i] != 0.0) h_max = fmin(h_max, limits[i] / fabs(d[i]));
@@ -270,7 +272,13 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
     if (!run(ctx, base, d, 1, start, rate)) return 0;
     h = h_max;
     while (t < 1.0) {
-        const double tt = fmin(1.0, t + h);
+        double tt;
+        fast = 0.0;
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
+            for (i = 0; i < sizes[g]; i++) fast = fmax(fast, fabs(rate[g][i]));
+        if (fast * h > reach) h = reach / fast;
+        tt = fmin(1.0, t + h);
+        if (tt == t) return 0;
         for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
         advance((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])rate, tt - t, sizes, guess);
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
@@ -280,11 +288,12 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
                        (const double (*)[LINKGEN_NMAX])now, sizes, slack)) {
             t = tt;
             h = fmin(2.0 * h, h_max);
+            cuts = 0;
             for (g = 0; g < LINKGEN_NBLOCKS; g++)
                 for (i = 0; i < LINKGEN_NMAX; i++) { start[g][i] = now[g][i]; rate[g][i] = rate2[g][i]; }
         } else {
             h /= 2.0;
-            if (h < h_max * ldexp(1.0, -halvings)) return 0;
+            if (++cuts > halvings) return 0;
         }
     }
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
@@ -294,11 +303,13 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
 
 /* Follow the assembly from inputs base (solved with block states a) to target.  Angle
  * inputs go the shorter way round, else the other way; a step moves no input by more
- * than its limit, starts Newton from the tangent predictor and is halved where Newton
- * fails or lands off the path (see on_path).  Returns 1 with a the block states at
- * target, 0 when both ways are cut. */
+ * than its limit and no Add-link length, as predicted, by more than reach; it starts
+ * Newton from the tangent predictor and is halved where Newton fails or lands off the
+ * path (see on_path), up to halvings times in a row.  Returns 1 with a the block states
+ * at target, 0 when both ways are cut. */
 static int continuation(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double target[],
-                        const double limits[], const int periodic[], int halvings, const int sizes[], double slack)
+                        const double limits[], const int periodic[], int halvings, const int sizes[], double slack,
+                        double reach)
 {
     const double two_pi = 2.0 * 3.141592653589793;
     double goal[LINKGEN_NINPUTS], other[LINKGEN_NINPUTS];
@@ -311,6 +322,6 @@ static int continuation(path_fn run, void *ctx, const double base[], double a[][
             differs = 1;
         }
     }
-    if (walk(run, ctx, base, a, goal, limits, halvings, sizes, slack)) return 1;
-    return differs && walk(run, ctx, base, a, other, limits, halvings, sizes, slack);
+    if (walk(run, ctx, base, a, goal, limits, halvings, sizes, slack, reach)) return 1;
+    return differs && walk(run, ctx, base, a, other, limits, halvings, sizes, slack, reach);
 }

@@ -204,11 +204,12 @@ function a = resolver_predict(warm, in, sizes)
     a = resolver_advance(warm.a, warm.ad, tau, sizes);
 end
 
-function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings, sizes, slack)
+function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach)
     % Follow the assembly from inputs base (solved with block states a) to target.
     % Angle inputs go the shorter way round, else the other way; a step moves no input
-    % by more than its limit, starts Newton from the tangent predictor and is halved
-    % where Newton fails or lands off the path (see resolver_on_path).
+    % by more than its limit and no Add-link length, as predicted, by more than reach; it
+    % starts Newton from the tangent predictor and is halved where Newton fails or lands
+    % off the path (see resolver_on_path), up to halvings times in a row.
     goal = target;
     other = target;
     differs = false;
@@ -225,17 +226,19 @@ function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic,
             end
         end
     end
-    [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack);
+    [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack, reach);
     if ~ok && differs
-        [ok, a2] = resolver_walk(run, base, a, other, limits, halvings, sizes, slack);
+        [ok, a2] = resolver_walk(run, base, a, other, limits, halvings, sizes, slack, reach);
     end
     if ok
         a = a2;
     end
 end
 
-function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack)
+function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack, reach)
     % Continuation along the straight path from base to goal (see resolver_continuation).
+    % Near a singular position the lengths' rates are large and the steps short (the
+    % prediction holds only there); a step that makes no progress cuts the path.
     d = goal - base;
     h_max = 1;
     for i = 1:numel(d)
@@ -249,8 +252,20 @@ function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, sl
     end
     t = 0;
     h = h_max;
+    cuts = 0;
     while t < 1
+        fast = 0;
+        for g = 1:numel(sizes)
+            fast = max([fast; abs(rate{g}(1:sizes(g)))]);
+        end
+        if fast * h > reach
+            h = reach / fast;
+        end
         tt = min(1, t + h);
+        if tt == t
+            ok = false;
+            return;
+        end
         if tt < 1
             trial = base + tt * d;
         else
@@ -263,9 +278,11 @@ function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, sl
             a = a2;
             rate = rate2;
             h = min(2 * h, h_max);
+            cuts = 0;
         else
             h = h / 2;
-            if h < h_max * 2 ^ -halvings
+            cuts = cuts + 1;
+            if cuts > halvings
                 ok = false;
                 return;
             end

@@ -183,41 +183,49 @@ def on_path(prev, guess, new, sizes, slack):
     return all(abs(x[i] - g[i]) <= 0.1 * move + slack for g, x, n in zip(guess, new, sizes) for i in range(n))
 
 
-def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack):
+def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach):
     """Follow the assembly from inputs base (solved with block states a) to target.
 
     Angle inputs go the shorter way round, else the other way; each step moves no
-    input by more than its limit, starts Newton from the tangent predictor and is
-    halved where Newton fails or lands off the path (see on_path).  run(inputs, rates,
-    order, a) -> (ok, a, rates) solves with input rates per unit of the path.  Returns
-    the block states at target, or None when both ways are cut.
+    input by more than its limit and no Add-link length, as predicted, by more than
+    reach; it starts Newton from the tangent predictor and is halved where Newton fails
+    or lands off the path (see on_path), up to halvings times in a row.  run(inputs,
+    rates, order, a) -> (ok, a, rates) solves with input rates per unit of the path.
+    Returns the block states at target, or None when both ways are cut.
     """
     goal = [t - 2 * PI * floor((t - b) / (2 * PI) + 0.5) if p else t for t, b, p in zip(target, base, periodic)]
-    reached = _walk(run, base, a, goal, limits, halvings, sizes, slack)
+    reached = _walk(run, base, a, goal, limits, halvings, sizes, slack, reach)
     other = [(g - 2 * PI if g > b else g + 2 * PI if g < b else g) if p else g
              for g, b, p in zip(goal, base, periodic)]
     if reached is None and other != goal:
-        reached = _walk(run, base, a, other, limits, halvings, sizes, slack)
+        reached = _walk(run, base, a, other, limits, halvings, sizes, slack, reach)
     return reached
 
 
-def _walk(run, base, a, goal, limits, halvings, sizes, slack):
-    """Continuation along the straight path from base to goal (see continuation)."""
+def _walk(run, base, a, goal, limits, halvings, sizes, slack, reach):
+    """Continuation along the straight path from base to goal (see continuation).  Near a
+    singular position the lengths' rates are large and the steps short (the prediction
+    holds only there); a step that makes no progress in floating point cuts the path."""
     d = [g - b for g, b in zip(goal, base)]
     h_max = min([1.0] + [lim / abs(x) for lim, x in zip(limits, d) if x != 0.0])
     ok, a, rate = run(base, d, 1, a)
     if not ok:
         return None
-    t, h = 0.0, h_max
+    t, h, cuts = 0.0, h_max, 0
     while t < 1.0:
+        fast = max((abs(r[i]) for r, n in zip(rate, sizes) for i in range(n) if r[i] == r[i]), default=0.0)
+        if fast * h > reach:
+            h = reach / fast
         tt = min(1.0, t + h)
+        if tt == t:
+            return None
         trial = [b + tt * x for b, x in zip(base, d)] if tt < 1.0 else goal
         guess = advance(a, rate, tt - t, sizes)
         ok, a2, rate2 = run(trial, d, 1, guess)
         if ok and on_path(a, guess, a2, sizes, slack):
-            t, a, rate, h = tt, a2, rate2, min(2 * h, h_max)
+            t, a, rate, h, cuts = tt, a2, rate2, min(2 * h, h_max), 0
         else:
-            h /= 2
-            if h < h_max * 2.0 ** -halvings:
+            h, cuts = h / 2, cuts + 1
+            if cuts > halvings:
                 return None
     return a

@@ -133,8 +133,8 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
     return st;
 }
 
-/* Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates. */
-static int link_residual(POINT j1, POINT j2, VARIABLE l, VARIABLE *f)
+/* Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part). */
+static void link_residual(POINT j1, POINT j2, VARIABLE l, VARIABLE *f)
 {
     const double dx = j2.P.x - j1.P.x;
     const double dy = j2.P.y - j1.P.y;
@@ -144,15 +144,14 @@ static int link_residual(POINT j1, POINT j2, VARIABLE l, VARIABLE *f)
     const double day = j2.DDP.y - j1.DDP.y;
     const double r = sqrt(dx * dx + dy * dy);
     const double ir = r == 0 ? NAN : 1 / r;
-    const double rd = (dx * dvx + dy * dvy) * ir;
-    const double rdd = (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir;
-    const int st = r == 0 ? 3 : 0;
+    const double s = sqrt(dvx * dvx + dvy * dvy);
+    const double iv = s == 0 ? NAN : 1 / s;
+    const double rd = r == 0 ? s : (dx * dvx + dy * dvy) * ir;
+    const double rp = s == 0 ? sqrt(dax * dax + day * day) : (dvx * dax + dvy * day) * iv;
+    const double rdd = r == 0 ? rp : (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir;
     f->v = r - l.v;
     f->dv = rd - l.dv;
     f->ddv = rdd - l.ddv;
-    if (st == 1) { f->v = NAN; f->dv = NAN; f->ddv = NAN; }
-    if (st == 1 || st == 3) { f->dv = NAN; f->ddv = NAN; }
-    return st;
 }
 
 /* Over-constraint resolver: Newton-Raphson on the Add-link lengths.
@@ -401,15 +400,17 @@ static void predict(const double w_in[], const double w_din[], const double w_a[
 typedef int (*path_fn)(void *ctx, const double in[], const double din[], int order, double a[][LINKGEN_NMAX],
                        double rates[][LINKGEN_NMAX]);
 
-/* Continuation along the straight path from base to goal (see continuation). */
+/* Continuation along the straight path from base to goal (see continuation).  Near a
+ * singular position the lengths' rates are large and the steps short (the prediction
+ * holds only there); a step that makes no progress in floating point cuts the path. */
 static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double goal[],
-                const double limits[], int halvings, const int sizes[], double slack)
+                const double limits[], int halvings, const int sizes[], double slack, double reach)
 {
     double d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS], start[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double now[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
-    double t = 0.0, h, h_max = 1.0;
-    int g, i;
+    double t = 0.0, h, h_max = 1.0, fast;
+    int g, i, cuts = 0;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         d[i] = goal[i] - base[i];
         if (d[i] != 0.0) h_max = fmin(h_max, limits[i] / fabs(d[i]));
@@ -419,7 +420,13 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
     if (!run(ctx, base, d, 1, start, rate)) return 0;
     h = h_max;
     while (t < 1.0) {
-        const double tt = fmin(1.0, t + h);
+        double tt;
+        fast = 0.0;
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
+            for (i = 0; i < sizes[g]; i++) fast = fmax(fast, fabs(rate[g][i]));
+        if (fast * h > reach) h = reach / fast;
+        tt = fmin(1.0, t + h);
+        if (tt == t) return 0;
         for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
         advance((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])rate, tt - t, sizes, guess);
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
@@ -429,11 +436,12 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
                        (const double (*)[LINKGEN_NMAX])now, sizes, slack)) {
             t = tt;
             h = fmin(2.0 * h, h_max);
+            cuts = 0;
             for (g = 0; g < LINKGEN_NBLOCKS; g++)
                 for (i = 0; i < LINKGEN_NMAX; i++) { start[g][i] = now[g][i]; rate[g][i] = rate2[g][i]; }
         } else {
             h /= 2.0;
-            if (h < h_max * ldexp(1.0, -halvings)) return 0;
+            if (++cuts > halvings) return 0;
         }
     }
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
@@ -443,11 +451,13 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
 
 /* Follow the assembly from inputs base (solved with block states a) to target.  Angle
  * inputs go the shorter way round, else the other way; a step moves no input by more
- * than its limit, starts Newton from the tangent predictor and is halved where Newton
- * fails or lands off the path (see on_path).  Returns 1 with a the block states at
- * target, 0 when both ways are cut. */
+ * than its limit and no Add-link length, as predicted, by more than reach; it starts
+ * Newton from the tangent predictor and is halved where Newton fails or lands off the
+ * path (see on_path), up to halvings times in a row.  Returns 1 with a the block states
+ * at target, 0 when both ways are cut. */
 static int continuation(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double target[],
-                        const double limits[], const int periodic[], int halvings, const int sizes[], double slack)
+                        const double limits[], const int periodic[], int halvings, const int sizes[], double slack,
+                        double reach)
 {
     const double two_pi = 2.0 * 3.141592653589793;
     double goal[LINKGEN_NINPUTS], other[LINKGEN_NINPUTS];
@@ -460,8 +470,8 @@ static int continuation(path_fn run, void *ctx, const double base[], double a[][
             differs = 1;
         }
     }
-    if (walk(run, ctx, base, a, goal, limits, halvings, sizes, slack)) return 1;
-    return differs && walk(run, ctx, base, a, other, limits, halvings, sizes, slack);
+    if (walk(run, ctx, base, a, goal, limits, halvings, sizes, slack, reach)) return 1;
+    return differs && walk(run, ctx, base, a, other, limits, halvings, sizes, slack, reach);
 }
 
 /* Length scale of the sketch: the largest distance between two of its pairs or points. */
@@ -614,9 +624,7 @@ static int group_1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 7: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
     coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
     /* Step 8: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1);
-    if (st == 1) return 1;
-    if (live) note(w, 8, st);
+    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1);
     f[0] = w->f1;
     return 0;
 }
@@ -653,9 +661,7 @@ static int group_1_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 27: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
     coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 28: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v1);
-    if (st == 1) return 1;
-    if (live) note(w, 28, st);
+    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v1);
     f[0] = w->f1_v1;
     return 0;
 }
@@ -692,9 +698,7 @@ static int group_1_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 32: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
     coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 33: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v2);
-    if (st == 1) return 1;
-    if (live) note(w, 33, st);
+    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v2);
     f[0] = w->f1_v2;
     return 0;
 }
@@ -731,9 +735,7 @@ static int group_1_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 37: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
     coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
     /* Step 38: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v3);
-    if (st == 1) return 1;
-    if (live) note(w, 38, st);
+    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v3);
     f[0] = w->f1_v3;
     return 0;
 }
@@ -770,9 +772,7 @@ static int group_1_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 42: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
     coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
     /* Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v4);
-    if (st == 1) return 1;
-    if (live) note(w, 43, st);
+    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v4);
     f[0] = w->f1_v4;
     return 0;
 }
@@ -809,9 +809,7 @@ static int group_1_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 47: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
     coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 48: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v5);
-    if (st == 1) return 1;
-    if (live) note(w, 48, st);
+    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v5);
     f[0] = w->f1_v5;
     return 0;
 }
@@ -848,9 +846,7 @@ static int group_1_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 52: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
     coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 53: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v6);
-    if (st == 1) return 1;
-    if (live) note(w, 53, st);
+    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v6);
     f[0] = w->f1_v6;
     return 0;
 }
@@ -887,9 +883,7 @@ static int group_2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 14: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
     coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
     /* Step 15: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2);
-    if (st == 1) return 1;
-    if (live) note(w, 15, st);
+    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2);
     f[0] = w->f2;
     return 0;
 }
@@ -928,9 +922,7 @@ static int group_2_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 57: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
     coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
     /* Step 58: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v1);
-    if (st == 1) return 1;
-    if (live) note(w, 58, st);
+    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v1);
     f[0] = w->f2_v1;
     return 0;
 }
@@ -969,9 +961,7 @@ static int group_2_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 62: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
     coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
     /* Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v2);
-    if (st == 1) return 1;
-    if (live) note(w, 63, st);
+    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v2);
     f[0] = w->f2_v2;
     return 0;
 }
@@ -1010,9 +1000,7 @@ static int group_2_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 67: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
     coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
     /* Step 68: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v3);
-    if (st == 1) return 1;
-    if (live) note(w, 68, st);
+    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v3);
     f[0] = w->f2_v3;
     return 0;
 }
@@ -1051,9 +1039,7 @@ static int group_2_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 72: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
     coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
     /* Step 73: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v4);
-    if (st == 1) return 1;
-    if (live) note(w, 73, st);
+    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v4);
     f[0] = w->f2_v4;
     return 0;
 }
@@ -1092,9 +1078,7 @@ static int group_2_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 77: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
     coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
     /* Step 78: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v5);
-    if (st == 1) return 1;
-    if (live) note(w, 78, st);
+    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v5);
     f[0] = w->f2_v5;
     return 0;
 }
@@ -1133,9 +1117,7 @@ static int group_2_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 82: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
     coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
     /* Step 83: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v6);
-    if (st == 1) return 1;
-    if (live) note(w, 83, st);
+    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v6);
     f[0] = w->f2_v6;
     return 0;
 }
@@ -1172,9 +1154,7 @@ static int group_2_v7(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 87: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
     coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
     /* Step 88: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v7);
-    if (st == 1) return 1;
-    if (live) note(w, 88, st);
+    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v7);
     f[0] = w->f2_v7;
     return 0;
 }
@@ -1213,9 +1193,7 @@ static int group_2_v8(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 92: coupler_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it */
     coupler_point(w->p_K5, w->phi_left_ternary, 45.662543438831435, 12.842590342171338, &w->p_K4);
     /* Step 93: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures */
-    st = link_residual(p_K3, w->p_K4, l_left_rocker2, &w->f2_v8);
-    if (st == 1) return 1;
-    if (live) note(w, 93, st);
+    link_residual(p_K3, w->p_K4, l_left_rocker2, &w->f2_v8);
     f[0] = w->f2_v8;
     return 0;
 }
@@ -1856,7 +1834,7 @@ int double_triad_solve(const double in[], const double din[], const double ddin[
         /* the sketch's assembly, followed from the sketch (or the last row) */
         for (g = 0; g < LINKGEN_NGROUPS; g++) w.used[g] = used[g];
         if (continuation(path_run, &w, base, a, in, limits, periodic, 20,
-                         block_sizes, slack)) {
+                         block_sizes, slack, 0.1 * LENGTH_SCALE)) {
             code = run(&w, in, din, ddin, DOUBLE_TRIAD_ORDER, a, ad, out->iterations, used);
         } else {
             code = run(&w, in, din, ddin, DOUBLE_TRIAD_ORDER, a, ad, out->iterations, used);

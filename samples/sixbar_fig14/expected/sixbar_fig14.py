@@ -94,6 +94,7 @@ SLACK = 1.0000000000000001e-07  # how far off the predicted path a solution may 
 N_GROUPS = 1
 ZERO_LENGTH = (0.0, 0.0, 0.0,)
 LIMITS = (0.1,)  # the continuation's largest step of each input
+REACH = 0.1  # ... and of a predicted Add-link length, relative to the length scale
 PERIODIC = (True,)  # angle inputs: the continuation goes the shorter way round
 
 
@@ -204,7 +205,7 @@ def RRR_links(j1, j2, l1, l2, minv):
     return st, sigma, (j1_x + e1x, j1_y + e1y, bvx, bvy, bax, bay)
 
 def link_residual(j1, j2, l):
-    """Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates."""
+    """Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     l_v, l_dv, l_ddv = l
@@ -216,14 +217,12 @@ def link_residual(j1, j2, l):
     day = j2_ddy - j1_ddy
     r = sqrt(dx * dx + dy * dy)
     ir = NAN if r == 0 else 1 / r
-    rd = (dx * dvx + dy * dvy) * ir
-    rdd = (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir
-    st = 3 if r == 0 else 0
-    if st == 1:
-        return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (r - l_v, NAN, NAN)
-    return st, (r - l_v, rd - l_dv, rdd - l_ddv)
+    s = sqrt(dvx * dvx + dvy * dvy)
+    iv = NAN if s == 0 else 1 / s
+    rd = s if r == 0 else (dx * dvx + dy * dvy) * ir
+    rp = sqrt(dax * dax + day * day) if s == 0 else (dvx * dax + dvy * day) * iv
+    rdd = rp if r == 0 else (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir
+    return (r - l_v, rd - l_dv, rdd - l_ddv)
 
 # Over-constraint resolver: Newton-Raphson on the Add-link lengths.
 # group(a, live) runs the steps of one resolver group with the Add-link records
@@ -404,42 +403,50 @@ def on_path(prev, guess, new, sizes, slack):
     return all(abs(x[i] - g[i]) <= 0.1 * move + slack for g, x, n in zip(guess, new, sizes) for i in range(n))
 
 
-def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack):
+def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach):
     """Follow the assembly from inputs base (solved with block states a) to target.
 
     Angle inputs go the shorter way round, else the other way; each step moves no
-    input by more than its limit, starts Newton from the tangent predictor and is
-    halved where Newton fails or lands off the path (see on_path).  run(inputs, rates,
-    order, a) -> (ok, a, rates) solves with input rates per unit of the path.  Returns
-    the block states at target, or None when both ways are cut.
+    input by more than its limit and no Add-link length, as predicted, by more than
+    reach; it starts Newton from the tangent predictor and is halved where Newton fails
+    or lands off the path (see on_path), up to halvings times in a row.  run(inputs,
+    rates, order, a) -> (ok, a, rates) solves with input rates per unit of the path.
+    Returns the block states at target, or None when both ways are cut.
     """
     goal = [t - 2 * PI * floor((t - b) / (2 * PI) + 0.5) if p else t for t, b, p in zip(target, base, periodic)]
-    reached = _walk(run, base, a, goal, limits, halvings, sizes, slack)
+    reached = _walk(run, base, a, goal, limits, halvings, sizes, slack, reach)
     other = [(g - 2 * PI if g > b else g + 2 * PI if g < b else g) if p else g
              for g, b, p in zip(goal, base, periodic)]
     if reached is None and other != goal:
-        reached = _walk(run, base, a, other, limits, halvings, sizes, slack)
+        reached = _walk(run, base, a, other, limits, halvings, sizes, slack, reach)
     return reached
 
 
-def _walk(run, base, a, goal, limits, halvings, sizes, slack):
-    """Continuation along the straight path from base to goal (see continuation)."""
+def _walk(run, base, a, goal, limits, halvings, sizes, slack, reach):
+    """Continuation along the straight path from base to goal (see continuation).  Near a
+    singular position the lengths' rates are large and the steps short (the prediction
+    holds only there); a step that makes no progress in floating point cuts the path."""
     d = [g - b for g, b in zip(goal, base)]
     h_max = min([1.0] + [lim / abs(x) for lim, x in zip(limits, d) if x != 0.0])
     ok, a, rate = run(base, d, 1, a)
     if not ok:
         return None
-    t, h = 0.0, h_max
+    t, h, cuts = 0.0, h_max, 0
     while t < 1.0:
+        fast = max((abs(r[i]) for r, n in zip(rate, sizes) for i in range(n) if r[i] == r[i]), default=0.0)
+        if fast * h > reach:
+            h = reach / fast
         tt = min(1.0, t + h)
+        if tt == t:
+            return None
         trial = [b + tt * x for b, x in zip(base, d)] if tt < 1.0 else goal
         guess = advance(a, rate, tt - t, sizes)
         ok, a2, rate2 = run(trial, d, 1, guess)
         if ok and on_path(a, guess, a2, sizes, slack):
-            t, a, rate, h = tt, a2, rate2, min(2 * h, h_max)
+            t, a, rate, h, cuts = tt, a2, rate2, min(2 * h, h_max), 0
         else:
-            h /= 2
-            if h < h_max * 2.0 ** -halvings:
+            h, cuts = h / 2, cuts + 1
+            if cuts > halvings:
                 return None
     return a
 
@@ -503,11 +510,7 @@ def _group_1(w, a, live):
     # Step 7: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341)
     # Step 8: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
-    st, w.f1 = link_residual(p_J6, w.p_J5, l_coupler)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(8, st)
+    w.f1 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1, ]
 
 
@@ -545,11 +548,7 @@ def _group_1_v1(w, a, live):
     # Step 17: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134)
     # Step 18: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
-    st, w.f1_v1 = link_residual(p_J6, w.p_J5, l_coupler)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(18, st)
+    w.f1_v1 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v1, ]
 
 
@@ -587,11 +586,7 @@ def _group_1_v2(w, a, live):
     # Step 22: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341)
     # Step 23: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
-    st, w.f1_v2 = link_residual(p_J6, w.p_J5, l_coupler)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(23, st)
+    w.f1_v2 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v2, ]
 
 
@@ -629,11 +624,7 @@ def _group_1_v3(w, a, live):
     # Step 27: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134)
     # Step 28: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
-    st, w.f1_v3 = link_residual(p_J6, w.p_J5, l_coupler)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(28, st)
+    w.f1_v3 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v3, ]
 
 
@@ -671,11 +662,7 @@ def _group_1_v4(w, a, live):
     # Step 32: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134)
     # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
-    st, w.f1_v4 = link_residual(p_J6, w.p_J5, l_coupler)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(33, st)
+    w.f1_v4 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v4, ]
 
 
@@ -713,11 +700,7 @@ def _group_1_v5(w, a, live):
     # Step 37: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341)
     # Step 38: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
-    st, w.f1_v5 = link_residual(p_J6, w.p_J5, l_coupler)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(38, st)
+    w.f1_v5 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v5, ]
 
 
@@ -755,11 +738,7 @@ def _group_1_v6(w, a, live):
     # Step 42: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
     w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341)
     # Step 43: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
-    st, w.f1_v6 = link_residual(p_J3, w.p_J4, l_rocker2)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(43, st)
+    w.f1_v6 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v6, ]
 
 
@@ -797,11 +776,7 @@ def _group_1_v7(w, a, live):
     # Step 47: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
     w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341)
     # Step 48: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
-    st, w.f1_v7 = link_residual(p_J3, w.p_J4, l_rocker2)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(48, st)
+    w.f1_v7 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v7, ]
 
 
@@ -839,11 +814,7 @@ def _group_1_v8(w, a, live):
     # Step 52: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
     w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341)
     # Step 53: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
-    st, w.f1_v8 = link_residual(p_J3, w.p_J4, l_rocker2)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(53, st)
+    w.f1_v8 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v8, ]
 
 
@@ -851,47 +822,47 @@ def _group_1_v8(w, a, live):
 def _lengths_1(w, a, ad):
     """The state of every block of group 1, read off the solved pairs: its Add-link
     lengths, then the branches of its chains (a zero keeps the branch it had)."""
-    f = [link_residual(w.p_J6, w.p_J4, ZERO_LENGTH)[1]]
+    f = [link_residual(w.p_J6, w.p_J4, ZERO_LENGTH)]
     m = [(w.p_J6[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (w.p_J6[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
     a[0] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
                                   for x, old in zip(m, a[0][1:])]
     ad[0] = [x[1] for x in f] + [0.0] * 2
-    f = [link_residual(w.p_J6, w.p_J2, ZERO_LENGTH)[1]]
+    f = [link_residual(w.p_J6, w.p_J2, ZERO_LENGTH)]
     m = [(w.p_J6[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J6[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
     a[1] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
                                   for x, old in zip(m, a[1][1:])]
     ad[1] = [x[1] for x in f] + [0.0] * 2
-    f = [link_residual(p_J1, w.p_J4, ZERO_LENGTH)[1]]
+    f = [link_residual(p_J1, w.p_J4, ZERO_LENGTH)]
     m = [(p_J1[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (p_J1[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
     a[2] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
                                   for x, old in zip(m, a[2][1:])]
     ad[2] = [x[1] for x in f] + [0.0] * 2
-    f = [link_residual(p_J3, w.p_J2, ZERO_LENGTH)[1]]
+    f = [link_residual(p_J3, w.p_J2, ZERO_LENGTH)]
     m = [(p_J3[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (p_J3[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
     a[3] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
                                   for x, old in zip(m, a[3][1:])]
     ad[3] = [x[1] for x in f] + [0.0] * 2
-    f = [link_residual(p_J7, w.p_J2, ZERO_LENGTH)[1]]
+    f = [link_residual(p_J7, w.p_J2, ZERO_LENGTH)]
     m = [(p_J7[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (p_J7[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
     a[4] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
                                   for x, old in zip(m, a[4][1:])]
     ad[4] = [x[1] for x in f] + [0.0] * 2
-    f = [link_residual(p_J7, w.p_J4, ZERO_LENGTH)[1]]
+    f = [link_residual(p_J7, w.p_J4, ZERO_LENGTH)]
     m = [(p_J7[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (p_J7[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
     a[5] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
                                   for x, old in zip(m, a[5][1:])]
     ad[5] = [x[1] for x in f] + [0.0] * 2
-    f = [link_residual(p_J3, w.p_J5, ZERO_LENGTH)[1]]
+    f = [link_residual(p_J3, w.p_J5, ZERO_LENGTH)]
     m = [(p_J3[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (p_J3[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
     a[6] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
                                   for x, old in zip(m, a[6][1:])]
     ad[6] = [x[1] for x in f] + [0.0] * 2
-    f = [link_residual(p_J1, w.p_J5, ZERO_LENGTH)[1]]
+    f = [link_residual(p_J1, w.p_J5, ZERO_LENGTH)]
     m = [(p_J1[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (p_J1[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
     a[7] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
                                   for x, old in zip(m, a[7][1:])]
     ad[7] = [x[1] for x in f] + [0.0] * 2
-    f = [link_residual(p_J7, w.p_J5, ZERO_LENGTH)[1]]
+    f = [link_residual(p_J7, w.p_J5, ZERO_LENGTH)]
     m = [(p_J7[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (p_J7[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
     a[8] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
                                   for x, old in zip(m, a[8][1:])]
@@ -1079,7 +1050,7 @@ def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
         prefer = list(used)
         path = lambda x, d, o, s: _path_run(x, d, o, s, prefer)  # noqa: E731
         reached = continuation(path, base, a, list(inputs), LIMITS, PERIODIC, 20,
-                               BLOCK_SIZES, SLACK * LENGTH_SCALE)
+                               BLOCK_SIZES, SLACK * LENGTH_SCALE, REACH * LENGTH_SCALE)
         if reached is not None:
             a = reached
         code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used)

@@ -39,7 +39,7 @@ function [out, status, warm] = sixbar_fig14_solve(in, din, ddin, warm)
         % the sketch's assembly, followed from the sketch (or the last row)
         prefer = used;
         [reached, a2] = resolver_continuation(@(x, d, o, s) path_run(x, d, o, s, prefer), base, a, in, limits, ...
-            [1], 20, sizes, slack);
+            [1], 20, sizes, slack, 0.1 * w.length_scale);
         if reached
             a = a2;
         end
@@ -223,15 +223,7 @@ function [st, res, w] = group_1(w, a, live)
     % Step 7: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341);
     % Step 8: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
-    [w.f1, st] = link_residual(p_J6, w.p_J5, w.l_coupler);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, 8, st);
-    end
+    w.f1 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
     res = [w.f1];
 end
@@ -286,15 +278,7 @@ function [st, res, w] = group_1_v1(w, a, live)
     % Step 17: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134);
     % Step 18: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
-    [w.f1_v1, st] = link_residual(p_J6, w.p_J5, w.l_coupler);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, 18, st);
-    end
+    w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
     res = [w.f1_v1];
 end
@@ -349,15 +333,7 @@ function [st, res, w] = group_1_v2(w, a, live)
     % Step 22: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341);
     % Step 23: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
-    [w.f1_v2, st] = link_residual(p_J6, w.p_J5, w.l_coupler);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, 23, st);
-    end
+    w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
     res = [w.f1_v2];
 end
@@ -412,15 +388,7 @@ function [st, res, w] = group_1_v3(w, a, live)
     % Step 27: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134);
     % Step 28: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
-    [w.f1_v3, st] = link_residual(p_J6, w.p_J5, w.l_coupler);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, 28, st);
-    end
+    w.f1_v3 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
     res = [w.f1_v3];
 end
@@ -475,15 +443,7 @@ function [st, res, w] = group_1_v4(w, a, live)
     % Step 32: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134);
     % Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
-    [w.f1_v4, st] = link_residual(p_J6, w.p_J5, w.l_coupler);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, 33, st);
-    end
+    w.f1_v4 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
     res = [w.f1_v4];
 end
@@ -538,15 +498,7 @@ function [st, res, w] = group_1_v5(w, a, live)
     % Step 37: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341);
     % Step 38: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
-    [w.f1_v5, st] = link_residual(p_J6, w.p_J5, w.l_coupler);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, 38, st);
-    end
+    w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
     res = [w.f1_v5];
 end
@@ -601,15 +553,7 @@ function [st, res, w] = group_1_v6(w, a, live)
     % Step 42: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
     w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341);
     % Step 43: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
-    [w.f1_v6, st] = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, 43, st);
-    end
+    w.f1_v6 = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
     st = 0;
     res = [w.f1_v6];
 end
@@ -664,15 +608,7 @@ function [st, res, w] = group_1_v7(w, a, live)
     % Step 47: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
     w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341);
     % Step 48: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
-    [w.f1_v7, st] = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, 48, st);
-    end
+    w.f1_v7 = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
     st = 0;
     res = [w.f1_v7];
 end
@@ -727,15 +663,7 @@ function [st, res, w] = group_1_v8(w, a, live)
     % Step 52: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
     w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341);
     % Step 53: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
-    [w.f1_v8, st] = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, 53, st);
-    end
+    w.f1_v8 = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
     st = 0;
     res = [w.f1_v8];
 end
@@ -1154,8 +1082,8 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     end
 end
 
-function [f, st] = link_residual(j1, j2, l)
-    % Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates.
+function f = link_residual(j1, j2, l)
+    % Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
     dvx = j2.dx - j1.dx;
@@ -1168,25 +1096,30 @@ function [f, st] = link_residual(j1, j2, l)
     else
         ir = 1 / r;
     end
-    rd = (dx * dvx + dy * dvy) * ir;
-    rdd = (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir;
-    if r == 0
-        st = 3;
+    s = sqrt(dvx * dvx + dvy * dvy);
+    if s == 0
+        iv = NaN;
     else
-        st = 0;
+        iv = 1 / s;
+    end
+    if r == 0
+        rd = s;
+    else
+        rd = (dx * dvx + dy * dvy) * ir;
+    end
+    if s == 0
+        rp = sqrt(dax * dax + day * day);
+    else
+        rp = (dvx * dax + dvy * day) * iv;
+    end
+    if r == 0
+        rdd = rp;
+    else
+        rdd = (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir;
     end
     f.v = r - l.v;
     f.dv = rd - l.dv;
     f.ddv = rdd - l.ddv;
-    if st == 1
-        f.v = NaN;
-        f.dv = NaN;
-        f.ddv = NaN;
-    end
-    if st == 1 || st == 3
-        f.dv = NaN;
-        f.ddv = NaN;
-    end
 end
 
 function [x, det] = solve_linear(m, b)
@@ -1389,11 +1322,12 @@ function a = resolver_predict(warm, in, sizes)
     a = resolver_advance(warm.a, warm.ad, tau, sizes);
 end
 
-function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings, sizes, slack)
+function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach)
     % Follow the assembly from inputs base (solved with block states a) to target.
     % Angle inputs go the shorter way round, else the other way; a step moves no input
-    % by more than its limit, starts Newton from the tangent predictor and is halved
-    % where Newton fails or lands off the path (see resolver_on_path).
+    % by more than its limit and no Add-link length, as predicted, by more than reach; it
+    % starts Newton from the tangent predictor and is halved where Newton fails or lands
+    % off the path (see resolver_on_path), up to halvings times in a row.
     goal = target;
     other = target;
     differs = false;
@@ -1410,17 +1344,19 @@ function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic,
             end
         end
     end
-    [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack);
+    [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack, reach);
     if ~ok && differs
-        [ok, a2] = resolver_walk(run, base, a, other, limits, halvings, sizes, slack);
+        [ok, a2] = resolver_walk(run, base, a, other, limits, halvings, sizes, slack, reach);
     end
     if ok
         a = a2;
     end
 end
 
-function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack)
+function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack, reach)
     % Continuation along the straight path from base to goal (see resolver_continuation).
+    % Near a singular position the lengths' rates are large and the steps short (the
+    % prediction holds only there); a step that makes no progress cuts the path.
     d = goal - base;
     h_max = 1;
     for i = 1:numel(d)
@@ -1434,8 +1370,20 @@ function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, sl
     end
     t = 0;
     h = h_max;
+    cuts = 0;
     while t < 1
+        fast = 0;
+        for g = 1:numel(sizes)
+            fast = max([fast; abs(rate{g}(1:sizes(g)))]);
+        end
+        if fast * h > reach
+            h = reach / fast;
+        end
         tt = min(1, t + h);
+        if tt == t
+            ok = false;
+            return;
+        end
         if tt < 1
             trial = base + tt * d;
         else
@@ -1448,9 +1396,11 @@ function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, sl
             a = a2;
             rate = rate2;
             h = min(2 * h, h_max);
+            cuts = 0;
         else
             h = h / 2;
-            if h < h_max * 2 ^ -halvings
+            cuts = cuts + 1;
+            if cuts > halvings
                 ok = false;
                 return;
             end
