@@ -500,11 +500,6 @@ test_mechanism_inverted_slider = mechanism_property("inverted_slider")
 test_mechanism_watt = mechanism_property("watt")
 test_mechanism_stephenson = mechanism_property("stephenson")
 test_mechanism_fig14 = mechanism_property("fig14")
-# Known limitation (issue 4, left open): two derandomized CI examples of triads near singular
-# positions (triad_509: a row 0.333 rad from a sketch of conditioning 0.0153 fails with status 92
-# although the reference reaches it; triad_1189: a sketch row at conditioning 9.4e-6 off by 1.1e7
-# eps L).  Not strict: they are not reproduced in the default profile.
-RESOLVER_LIMIT = pytest.mark.xfail(strict=False, reason="triads near singular positions (issue 4)")
 test_mechanism_triad = mechanism_property("triad")
 
 
