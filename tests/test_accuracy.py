@@ -373,23 +373,32 @@ SPANS = (math.radians(1), 1 / 100)  # largest continuation step: angle inputs, l
 
 
 def _walk(ref: Reference, q: list, start: list, stop: list) -> list | None:
-    """Follow the assembly in float from inputs ``start`` to ``stop`` in small steps.
+    """Follow the assembly in float from inputs ``start`` to ``stop`` in small steps: at most one
+    span, and no longer than the scale-free conditioning c allows (c radians, down to 1e-4 of a
+    span), since where two branches pass within c L of each other a longer step can land on the
+    other one.
 
     None where it cannot: Newton fails, the pose jumps, or the path comes near a singular
     position (there the branch is no longer defined by continuation).
     """
     spans = [SPANS[0] if i.kind == "revolute" else SPANS[1] * ref.length_scale for i in ref.m.inputs]
-    n = max(1, max(math.ceil(abs(b - a) / s) for a, b, s in zip(start, stop, spans)))
+    length = max([abs(b - a) / s for a, b, s in zip(start, stop, spans)] + [1e-300])  # in spans
     scale = [ref.length_scale, ref.length_scale, 1.0] * len(ref.moving)
-    for i in range(1, n + 1):
-        u = [a + (b - a) * i / n for a, b in zip(start, stop)]
+    t, h = 0.0, 1e-4 / length
+    while t < 1.0:
+        t = min(1.0, t + h)
+        u = [a + (b - a) * t for a, b in zip(start, stop)] if t < 1.0 else list(stop)
         try:
-            new, jac, _ = ref.newton(q, ref.turned_inputs(q, u), exact=False, max_iter=10)
-        except (ArithmeticError, np.linalg.LinAlgError):
+            try:
+                new, jac, _ = ref.newton(q, ref.turned_inputs(q, u), exact=False, max_iter=10)
+            except ArithmeticError:  # float Newton stalls where the conditioning is 1e-4: 50 digits
+                new, jac, _ = ref.newton(q, ref.turned_inputs(q, u), exact=True, max_iter=30)
+                new = [float(x) for x in new]
+        except (ArithmeticError, np.linalg.LinAlgError, ZeroDivisionError):
             return None
         if ref.cond(jac) < 1e-6 or max(abs(a - b) / s for a, b, s in zip(new, q, scale)) > 0.5:
             return None
-        q = new
+        q, h = new, min(1.0, max(sk.conditioning(ref, jac) / SPANS[0], 1e-4)) / length
     return q
 
 

@@ -1016,3 +1016,25 @@ def test_continuation_from_a_nearly_singular_sketch(tmp_path):
     assert list(result.status[:-1]) == [0] * (len(values) - 1) and result.status[-1] < 0
     for k, err, cond in _reference_errors(names, data, ref, values):
         assert err <= POSITION / cond, f"row {k}: {err:.3g} eps L, conditioning {cond:.3g}"
+
+
+def test_reference_walk_keeps_its_branch_next_to_another(tmp_path):
+    """Found by test_mechanism_triad (triad_520), a fault of the reference, not of linkgen: from a sketch
+    at conditioning 3.3e-4, next to a singular position where another branch passes close by, 1-degree
+    steps of the reference's walk landed on that branch, 0.23 L away, and a correct row looked wrong.
+    sketches.walk now steps by the conditioning; it agrees with _fine_walk of test_accuracy (an
+    independent walk, mpmath where float stalls), and linkgen's rows agree with both."""
+    from test_accuracy import _fine_walk
+
+    text = (MECHANISMS / "triad_branch_nearby.yaml").read_text()
+    names, data, result, ref, values = _triad_rows(tmp_path, text, "triad_branch_nearby")
+    assert sk.sketch_condition(ref) < 1e-3
+    t0 = ref.sketch_inputs()[0]
+    for k, r in enumerate(sk.reach(ref, values, [1.0] * len(values))):
+        q = _fine_walk(ref, ref.sketch_pose(), t0, values[k])
+        fine = ref.outputs(q)
+        gap = max(abs(x - fine[c]) for c, x in r.columns.items() if sk.quantity(c) == "position")
+        assert gap <= 1e-9 * ref.length_scale, f"row {k}: the two walks end {float(gap):.3g} apart"
+    assert list(result.status) == [0] * len(values)
+    for k, err, cond in _reference_errors(names, data, ref, values):
+        assert err <= POSITION / cond, f"row {k}: {err:.3g} eps L, conditioning {cond:.3g}"
