@@ -952,15 +952,19 @@ def test_status_zero_rows_have_every_output(tmp_path):
 MECHANISMS = Path(__file__).parent / "mechanisms"
 
 
-def _reference_errors(names, data, ref: Reference, values: list[float]) -> list[tuple[int, float, float]]:
-    """(row, worst position error in eps L, the reference's conditioning) on the sketch's assembly."""
-    out = []
+def _regression_rows(tmp_path: Path, name: str) -> tuple[list, np.ndarray, object, Reference, list]:
+    """_triad_rows of tests/mechanisms/<name>.yaml."""
+    return _triad_rows(tmp_path, (MECHANISMS / f"{name}.yaml").read_text(), name)
+
+
+def _assert_on_reference(names, data, ref: Reference, values: list[float]) -> None:
+    """Every row within POSITION eps L over the reference's conditioning of the sketch's assembly."""
     for k, r in enumerate(sk.reach(ref, values, [1.0] * len(values))):
         assert r is not None, f"row {k}: the reference does not follow the sketch there"
         row = dict(zip(names, (float(x) for x in data[k])))
         err = max(abs(sk.MP.mpf(row[c]) - x) for c, x in r.columns.items() if sk.quantity(c) == "position")
-        out.append((k, float(err / (sk.EPS * ref.length_scale)), r.cond))
-    return out
+        err = float(err / (sk.EPS * ref.length_scale))
+        assert err <= POSITION / r.cond, f"row {k}: {err:.3g} eps L, conditioning {r.cond:.3g}"
 
 
 def test_addlink_length_through_zero_is_followed(tmp_path):
@@ -969,11 +973,9 @@ def test_addlink_length_through_zero_is_followed(tmp_path):
     2e-7 rad.  Its linear prediction went negative; every continuation step saw the block 'corrected' by
     twice its move, and the row 0.333 rad on failed with status 92 after 20 halvings although the
     mechanism reaches it.  A predicted length is now reflected at zero."""
-    text = (MECHANISMS / "triad_passing.yaml").read_text()
-    names, data, result, ref, values = _triad_rows(tmp_path, text, "triad_passing")
+    names, data, result, ref, values = _regression_rows(tmp_path, "triad_passing")
     assert list(result.status) == [0] * len(values)
-    for k, err, cond in _reference_errors(names, data, ref, values):
-        assert err <= POSITION / cond, f"row {k}: {err:.3g} eps L, conditioning {cond:.3g}"
+    _assert_on_reference(names, data, ref, values)
 
 
 def test_needle_lever_makes_a_block_yield(tmp_path):
@@ -982,14 +984,12 @@ def test_needle_lever_makes_a_block_yield(tmp_path):
     block that measures the ternary's angle on that side and places J4 0.14 away from it: J4 off by
     1.1e7 eps L.  Blocks that place J4 from the long side J2-J4 were at hand.  A block's conditioning now
     includes its lever (base over arm, here 1.1e-9), so such a block yields."""
-    text = (MECHANISMS / "triad_needle.yaml").read_text()
-    names, data, result, ref, values = _triad_rows(tmp_path, text, "triad_needle")
+    names, data, result, ref, values = _regression_rows(tmp_path, "triad_needle")
     log = build_log(str(tmp_path / "triad_needle.yaml"), outputs=(), sweep=False)
     blocks = [b for g in log.groups for b in (g, *g.variants)]
     assert min(b.lever for b in blocks) < 1e-8 and max(b.lever for b in blocks) == 1.0
     assert all(blocks[w[4][1]].lever == 1.0 for w in result.warm), "a needle block gave a row"
-    for k, err, cond in _reference_errors(names, data, ref, values):
-        assert err <= POSITION / cond, f"row {k}: {err:.3g} eps L, conditioning {cond:.3g}"
+    _assert_on_reference(names, data, ref, values)
 
 
 def test_addlink_of_coincident_pairs_is_followed(tmp_path):
@@ -997,11 +997,9 @@ def test_addlink_of_coincident_pairs_is_followed(tmp_path):
     fallback Add-link J1-J4 has length zero; its rate was 0/0, every continuation step predicted nan for
     that block and was refused, and rows the mechanism reaches failed with status 92.  A distance's rates
     where its pairs coincide are now the ones as they part (|d'|, reflected by the prediction)."""
-    text = (MECHANISMS / "triad_coincident.yaml").read_text()
-    names, data, result, ref, values = _triad_rows(tmp_path, text, "triad_coincident")
+    names, data, result, ref, values = _regression_rows(tmp_path, "triad_coincident")
     assert list(result.status) == [0] * len(values)
-    for k, err, cond in _reference_errors(names, data, ref, values):
-        assert err <= POSITION / cond, f"row {k}: {err:.3g} eps L, conditioning {cond:.3g}"
+    _assert_on_reference(names, data, ref, values)
 
 
 def test_continuation_from_a_nearly_singular_sketch(tmp_path):
@@ -1010,12 +1008,10 @@ def test_continuation_from_a_nearly_singular_sketch(tmp_path):
     first continuation step of 0.0175 rad predicted moves of 43 L; the tenth-of-the-move test then let a
     solution on another assembly through, and the rows 0.125 to 0.5 rad away failed with status 92.  A step
     now moves no predicted length by more than the resolver's reach (0.1 L)."""
-    text = (MECHANISMS / "triad_near_singular.yaml").read_text()
-    names, data, result, ref, values = _triad_rows(tmp_path, text, "triad_near_singular")
+    names, data, result, ref, values = _regression_rows(tmp_path, "triad_near_singular")
     assert sk.sketch_condition(ref) < 1e-5
     assert list(result.status[:-1]) == [0] * (len(values) - 1) and result.status[-1] < 0
-    for k, err, cond in _reference_errors(names, data, ref, values):
-        assert err <= POSITION / cond, f"row {k}: {err:.3g} eps L, conditioning {cond:.3g}"
+    _assert_on_reference(names, data, ref, values)
 
 
 def test_reference_walk_keeps_its_branch_next_to_another(tmp_path):
@@ -1026,8 +1022,7 @@ def test_reference_walk_keeps_its_branch_next_to_another(tmp_path):
     independent walk, mpmath where float stalls), and linkgen's rows agree with both."""
     from test_accuracy import _fine_walk
 
-    text = (MECHANISMS / "triad_branch_nearby.yaml").read_text()
-    names, data, result, ref, values = _triad_rows(tmp_path, text, "triad_branch_nearby")
+    names, data, result, ref, values = _regression_rows(tmp_path, "triad_branch_nearby")
     assert sk.sketch_condition(ref) < 1e-3
     t0 = ref.sketch_inputs()[0]
     for k, r in enumerate(sk.reach(ref, values, [1.0] * len(values))):
@@ -1036,5 +1031,4 @@ def test_reference_walk_keeps_its_branch_next_to_another(tmp_path):
         gap = max(abs(x - fine[c]) for c, x in r.columns.items() if sk.quantity(c) == "position")
         assert gap <= 1e-9 * ref.length_scale, f"row {k}: the two walks end {float(gap):.3g} apart"
     assert list(result.status) == [0] * len(values)
-    for k, err, cond in _reference_errors(names, data, ref, values):
-        assert err <= POSITION / cond, f"row {k}: {err:.3g} eps L, conditioning {cond:.3g}"
+    _assert_on_reference(names, data, ref, values)
