@@ -18,7 +18,7 @@ import numpy as np
 
 from .primitives import PRIMITIVES, numpy_backend, python_backend
 from .primitives.dsl import record_fields
-from .steplog import ResolverGroup, Step, StepLog, Variable
+from .steplog import ResolverGroup, Step, StepLog, Variable, held
 
 FAIL, NOT_CONVERGED, SINGULAR, NEAR = 1, 2, 3, 4
 STEP_ANGLE = 0.1  # continuation: the largest step of an angle input (radians)
@@ -31,10 +31,12 @@ def _record(kind: str, order: int, value: float, rate: float = 0.0, acc: float =
     return (value, rate, acc)[: order + 1]
 
 
-def constant_record(v: Variable, order: int) -> tuple:
+def constant_record(v: Variable, order: int, origin: tuple[float, float]) -> tuple:
+    """A constant record as the programs hold it (points relative to ``origin``)."""
+    value = held(v, origin)
     if v.kind == "POINT":
-        return _record("POINT", order, v.value[0], y=v.value[1])
-    return _record(v.kind, order, v.value[0])
+        return _record("POINT", order, value[0], y=value[1])
+    return _record(v.kind, order, value[0])
 
 
 @functools.cache
@@ -149,7 +151,7 @@ def input_rows(log: StepLog, samples: int) -> tuple[np.ndarray, np.ndarray, np.n
 @dataclass
 class Result:
     inputs: np.ndarray  # rows x inputs
-    values: dict[str, tuple]  # variable -> tuple of arrays (rows)
+    values: dict[str, tuple]  # variable -> tuple of arrays (rows), as computed: points relative to the origin
     status: np.ndarray
     sigma: dict[int, np.ndarray]  # step -> conditioning per row
     iterations: dict[int, np.ndarray] = field(default_factory=dict)  # group -> Newton steps per row
@@ -162,7 +164,7 @@ def _input_record(log: StepLog, i: int, order: int, value, rate, acc) -> tuple:
 
 
 def _base_env(log: StepLog, order: int) -> dict:
-    return {v.name: constant_record(v, order) for v in log.variables if v.constant}
+    return {v.name: constant_record(v, order, log.origin) for v in log.variables if v.constant}
 
 
 def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarray, order: int | None = None,
@@ -478,9 +480,9 @@ def _evaluate_rows(log: StepLog, values, rates, accs, order: int, warm, stop: in
 
 
 def residual_norm(variables: dict[str, Variable], steps: list[Step], inputs: list[str], values: tuple[float, ...],
-                  residuals: list[str]) -> float | None:
+                  residuals: list[str], origin: tuple[float, float]) -> float | None:
     """|f| with every Add-link at its sketch length (the paper's ranking of candidates)."""
-    env = {v.name: constant_record(v, 0) for v in variables.values() if v.constant}
+    env = {v.name: constant_record(v, 0, origin) for v in variables.values() if v.constant}
     for name, value in zip(inputs, values):
         env[name] = (value,)
     for v in variables.values():

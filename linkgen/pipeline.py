@@ -17,7 +17,7 @@ from .validate import read_mechanism
 
 def _norm(ex: Extractor, probe: tuple[float, ...]) -> float | None:
     group = ex.groups[-1]
-    return residual_norm(ex.variables, ex.steps, ex.inputs, probe, group.residuals)
+    return residual_norm(ex.variables, ex.steps, ex.inputs, probe, group.residuals, ex.topo.origin)
 
 
 def _status_codes(proc: Procedure) -> tuple[StatusCode, ...]:
@@ -71,8 +71,8 @@ def steplog(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = N
     runtime = sorted({s.function for s in proc.steps if s.function}
                      | ({"resolver", "link_residual"} if proc.groups else set()))
     return StepLog(
-        __version__, m.name, m.title, m.source, m.length_unit, m.angle_unit, topo.length_scale, topo.grubler,
-        topo.mobility, topo.redundant, order, m.samples, pairs, links, inputs, proc.variables, proc.steps,
+        __version__, m.name, m.title, m.source, m.length_unit, m.angle_unit, topo.length_scale, topo.origin,
+        topo.grubler, topo.mobility, topo.redundant, order, m.samples, pairs, links, inputs, proc.variables, proc.steps,
         proc.lj, proc.add_links, proc.residuals, proc.groups,
         plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars),
         _status_codes(proc), tuple(runtime), outputs=tuple(outputs),

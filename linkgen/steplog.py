@@ -19,6 +19,8 @@ class Variable:
     ``value`` holds the displacement fields of a constant record (its derivatives
     are zero); computed records have ``value == ()``.  ``sketch`` holds the
     displacement fields at the sketch, which every local coordinate refers to.
+    Both give points as drawn; the programs hold them relative to the step log's
+    ``origin`` (``held``).
     """
 
     name: str
@@ -31,6 +33,14 @@ class Variable:
     @property
     def constant(self) -> bool:
         return bool(self.value)
+
+
+def held(v: Variable, origin: tuple[float, float]) -> tuple[float, ...]:
+    """A constant record's displacement fields as the programs hold them: points relative
+    to the step log's origin."""
+    if v.kind != "POINT":
+        return v.value
+    return v.value[0] - origin[0], v.value[1] - origin[1]
 
 
 @dataclass(frozen=True)
@@ -243,6 +253,7 @@ class StepLog:
     length_unit: str
     angle_unit: str
     length_scale: float
+    origin: tuple[float, float]  # the programs compute points relative to it (topology.sketch_origin)
     grubler: int
     mobility: int
     redundant: int
@@ -277,6 +288,22 @@ class StepLog:
     @functools.cached_property
     def _steps(self) -> dict[int, Step]:
         return {s.number: s for s in self.steps}
+
+    def drawn(self, c: Column) -> float | None:
+        """An output column of a constant record: its value as drawn (0 for a rate); None
+        for a computed record."""
+        v = self.variable(c.variable)
+        if not v.constant:
+            return None
+        fields = ("x", "y") if v.kind == "POINT" else ("the", "v")
+        return v.value[fields.index(c.field)] if c.field in fields else 0.0
+
+    def offset(self, c: Column) -> float:
+        """What a program adds to a computed record's field to publish it: the origin's
+        coordinate for a point's x and y, else 0."""
+        if self.variable(c.variable).kind != "POINT" or c.field not in ("x", "y"):
+            return 0.0
+        return self.origin[c.field == "y"]
 
     def to_json(self) -> str:
         return json.dumps(_plain(self), indent=2, allow_nan=False, ensure_ascii=False) + "\n"

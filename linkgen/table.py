@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from .evaluate import Result
+from .primitives.dsl import record_fields
 from .steplog import StepLog
 
 _DERIVATIVES = {"velocity", "acceleration", "angular_velocity", "angular_acceleration"}
@@ -18,7 +19,8 @@ def number(x: float) -> str:
 
 
 def columns(log: StepLog, result: Result) -> tuple[list[str], np.ndarray]:
-    """Header and a rows x columns array with the spec's nan rules applied (status excluded)."""
+    """Header and a rows x columns array with the spec's nan rules applied (status excluded):
+    constant records as drawn, computed points with the origin added back."""
     names = [c.name for c in log.columns]
     data = np.empty((result.inputs.shape[0], len(names)))
     n_inputs = len(log.inputs)
@@ -26,10 +28,14 @@ def columns(log: StepLog, result: Result) -> tuple[list[str], np.ndarray]:
         if k < n_inputs:
             data[:, k] = result.inputs[:, k]
             continue
-        v = log.variable(c.variable)
-        fields = {"POINT": ("x", "y", "dx", "dy", "ddx", "ddy"), "ANGLE": ("the", "dthe", "ddthe"),
-                  "VARIABLE": ("v", "dv", "ddv")}[v.kind]
+        drawn, offset = log.drawn(c), log.offset(c)
+        if drawn is not None:
+            data[:, k] = drawn
+            continue
+        fields = record_fields(log.variable(c.variable).kind, 2)
         data[:, k] = result.values[c.variable][fields.index(c.field)]
+        if offset:
+            data[:, k] += offset
     fail = (result.status > 0) & np.isin(result.status % 10, (1, 2))
     singular = (result.status > 0) & (result.status % 10 == 3)
     data[fail, n_inputs:] = np.nan

@@ -50,6 +50,7 @@ class Direction:
 class Topology:
     mechanism: Mechanism
     length_scale: float
+    origin: tuple[float, float]
     grubler: int
     mobility: int
     redundant: int
@@ -226,6 +227,17 @@ def length_scale(m: Mechanism) -> float:
     return float(np.max(np.hypot(d[..., 0], d[..., 1])))
 
 
+def sketch_origin(m: Mechanism, scale: float) -> tuple[float, float]:
+    """The centre of the sketch's bounding box, rounded to a multiple of a sixteenth of the
+    largest power of two not above the length scale (a short number).  The programs compute
+    points relative to it, so their errors follow the mechanism's size wherever it is drawn;
+    scaling the sketch by 2^k scales it exactly."""
+    grid = math.ldexp(1.0, math.frexp(scale)[1] - 5)
+    spots = [(j.x, j.y) for j in m.joints] + [(p.x, p.y) for p in m.points]
+    x, y = ((min(c) + max(c)) / 2 for c in zip(*spots))
+    return math.floor(x / grid + 0.5) * grid, math.floor(y / grid + 0.5) * grid
+
+
 def grubler(m: Mechanism) -> int:
     pairs = sum(len(m.links_of(j.name)) - 1 if j.revolute else 1 for j in m.joints)
     return 3 * (len(m.links) - 1) - 2 * pairs
@@ -312,4 +324,4 @@ def analyse(m: Mechanism) -> Topology:
     directions = tuple(link_direction(m, lk) for lk in m.links)
     members = tuple(mb for lk in m.links for mb in truss(m, lk))
     sketch = tuple(sketch_input(m, i) for i in m.inputs)
-    return Topology(m, scale, count, mobility, mobility - count, members, directions, sketch)
+    return Topology(m, scale, sketch_origin(m, scale), count, mobility, mobility - count, members, directions, sketch)

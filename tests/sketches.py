@@ -663,13 +663,13 @@ def link_angle_case(src: Source) -> Case:
     args = (_pt_arg(j1, _rates(src, s, w)), _pt_arg(j2, _rates(src, s, w)), off)
     J1, J2 = _pt_jet(args[0]), _pt_jet(args[1])
     d = vsub(J2, J1)
-    length = _magnitude(*j1, *j2)
     values = {"j1": J1, "j2": J2, "off": mp(off)}
     if d[0].v == 0 and d[1].v == 0:
         raise Degenerate("link_angle: the points coincide")
     th = jatan2(d[1], d[0])
     th = Jet(wrap(th.v + mp(off)), th.d, th.dd)
     r = float(MP.sqrt(vdot(d, d).v))
+    length = max(r, _magnitude(*j1, *j2))  # the link itself may be longer than any coordinate
     return Case("link_angle", args, values, {"angle": th}, length, length / r, math.nan, False,
                 "short" if short else "random", r)
 

@@ -91,7 +91,7 @@ def _render(template: str, **context) -> bytes:
 
 def _c_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
-    spell = C(view.record_order, {v.name: v for v in log.variables}, view.measured)
+    spell = C(view.record_order, log, view.measured)
     name, upper = log.name, log.name.upper()
     runtime = [c_function(PRIMITIVES[p], view.record_order) for p in _used(view)]
     if "branch_at" in log.runtime:
@@ -150,7 +150,7 @@ def _sketch_a(view: View, lit) -> list[str]:
 
 def _py_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
-    spell = Python(view.record_order, {v.name: v for v in log.variables}, view.measured)
+    spell = Python(view.record_order, log, view.measured)
     runtime = [python_function(PRIMITIVES[p], view.record_order, with_sigma=True).rstrip("\n") for p in _used(view)]
     if "branch_at" in log.runtime:
         runtime.append(_runtime_source("py", "branch.py", view.record_order).rstrip("\n"))
@@ -158,11 +158,8 @@ def _py_files(view: View, banner) -> dict[str, bytes]:
         runtime.append(_runtime_source("py", "resolver.py", view.record_order).rstrip("\n"))
     order_of = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
                 "angular_acceleration": 2}
-    values, levels = [], []
-    for cell in view.cells:
-        index = spell.fields(cell.kind).index(cell.column.field)
-        values.append(f"{spell.ref(cell.column.variable, None)}[{index}]")
-        levels.append(str(order_of[cell.column.quantity]))
+    values = [spell.published(cell.column) for cell in view.cells]
+    levels = [str(order_of[cell.column.quantity]) for cell in view.cells]
     lit = spell.lit
     code = runtime + [spell.sign_measure(b) for g in view.blocks for b in g.group.branches]
     math_names = [f for f in ("atan2", "cos", "floor", "sin", "sqrt")
@@ -179,7 +176,7 @@ def _py_files(view: View, banner) -> dict[str, bytes]:
 
 def _m_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
-    spell = Octave(view.record_order, {v.name: v for v in log.variables}, view.measured)
+    spell = Octave(view.record_order, log, view.measured)
     runtime = [octave_function(PRIMITIVES[p], view.record_order).rstrip("\n") for p in _used(view)]
     if "branch_at" in log.runtime:
         runtime.append(_runtime_source("m", "branch.m", view.record_order).rstrip("\n"))
@@ -188,7 +185,7 @@ def _m_files(view: View, banner) -> dict[str, bytes]:
     level = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
              "angular_acceleration": 2}
     outputs = [{"name": spell.ident(o.name),
-                "fields": [(field, f"{spell.ref(c.variable, None)}.{c.field}", level[c.quantity])
+                "fields": [(field, spell.published(c), level[c.quantity])
                            for field, c, _ in o.fields]}
                for o in view.outputs]
     lit = spell.lit
@@ -255,7 +252,7 @@ def _omitted(log: StepLog) -> str:
 
 def _md_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
-    spell = Manual(log.order, {v.name: v for v in log.variables}, view.measured)
+    spell = Manual(log.order, log, view.measured)
     seq = states(log)
     text = _render("md/NAME.md.j2", v=view, L=spell, banner=banner, name=log.name, lj=seq[0],
                    lj_after={st.step: st for st in seq[1:]}, lj_before={b.step: a for a, b in zip(seq, seq[1:])},

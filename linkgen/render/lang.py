@@ -13,7 +13,7 @@ from ..names import C_RESERVED, M_RESERVED
 from ..primitives import PRIMITIVES
 from ..primitives.dsl import record_fields
 from ..primitives.printers import literal
-from ..steplog import Arg, BranchSign, Step, Variable
+from ..steplog import Arg, BranchSign, Column, Step, StepLog, Variable, held
 from .view import Group
 
 
@@ -29,9 +29,10 @@ class Spelling:
     comment = ""
     reserved: frozenset[str] = frozenset()
 
-    def __init__(self, order: int, variables: dict[str, Variable], measured: frozenset[int] = frozenset()):
+    def __init__(self, order: int, log: StepLog, measured: frozenset[int] = frozenset()):
         self.order = order
-        self.variables = variables
+        self.log = log
+        self.variables = {v.name: v for v in log.variables}
         self.measured = measured  # steps whose branch is read off the last solution
 
     def ident(self, name: str) -> str:
@@ -72,6 +73,21 @@ class Spelling:
     def xy(self, var: str) -> tuple[str, str]:
         """A position record's x and y."""
         raise NotImplementedError
+
+    def get(self, var: str, field: str) -> str:
+        """One field of a record (x, dy, the, ddv, ...)."""
+        raise NotImplementedError
+
+    def published(self, c: Column) -> str:
+        """What a program writes into an output column: a constant record's field as drawn,
+        a computed point's x and y with the origin added back, any other field as computed."""
+        drawn = self.log.drawn(c)
+        if drawn is not None:
+            return self.lit(drawn)
+        text, offset = self.get(c.variable, c.field), self.log.offset(c)
+        if not offset:
+            return text
+        return f"{text} + {self.lit(offset)}" if offset > 0 else f"{text} - {self.lit(-offset)}"
 
     def angle(self, var: str) -> str:
         """An angle record's value."""
@@ -130,6 +146,9 @@ class C(Spelling):
         r = self.ref(var, None)
         return f"{r}.P.x", f"{r}.P.y"
 
+    def get(self, var: str, field: str) -> str:
+        return f"{self.ref(var, None)}.{self.field(self.variables[var].kind, field)}"
+
     def angle(self, var: str) -> str:
         return f"{self.ref(var, None)}.the"
 
@@ -146,10 +165,11 @@ class C(Spelling):
 
     def initializer(self, v: Variable) -> str:
         """Braced initializer of a constant record (derivatives zero)."""
+        value = held(v, self.log.origin)
         if v.kind == "POINT":
-            levels = [f"{{{self.lit(v.value[0])}, {self.lit(v.value[1])}}}"] + ["{0.0, 0.0}"] * self.order
+            levels = [f"{{{self.lit(value[0])}, {self.lit(value[1])}}}"] + ["{0.0, 0.0}"] * self.order
             return "{" + ", ".join(levels) + "}"
-        return "{" + ", ".join([self.lit(v.value[0])] + ["0.0"] * self.order) + "}"
+        return "{" + ", ".join([self.lit(value[0])] + ["0.0"] * self.order) + "}"
 
     def call(self, step: Step, scope: Group | None) -> list[str]:
         prim = PRIMITIVES[step.function]
@@ -182,6 +202,9 @@ class Python(Spelling):
         r = self.ref(var, None)
         return f"{r}[0]", f"{r}[1]"
 
+    def get(self, var: str, field: str) -> str:
+        return f"{self.ref(var, None)}[{self.fields(self.variables[var].kind).index(field)}]"
+
     def angle(self, var: str) -> str:
         return f"{self.ref(var, None)}[0]"
 
@@ -196,8 +219,9 @@ class Python(Spelling):
         return f"w.{var.name} = ({fields})"
 
     def initializer(self, v: Variable) -> str:
-        zeros = [0.0] * (len(record_fields(v.kind, self.order)) - len(v.value))
-        return "(" + ", ".join(self.lit(x) for x in (*v.value, *zeros)) + ("," if v.kind != "POINT" and
+        value = held(v, self.log.origin)
+        zeros = [0.0] * (len(record_fields(v.kind, self.order)) - len(value))
+        return "(" + ", ".join(self.lit(x) for x in (*value, *zeros)) + ("," if v.kind != "POINT" and
                                                                           self.order == 0 else "") + ")"
 
     def call(self, step: Step, scope: Group | None) -> list[str]:
@@ -229,6 +253,9 @@ class Octave(Spelling):
         r = self.ref(var, None)
         return f"{r}.x", f"{r}.y"
 
+    def get(self, var: str, field: str) -> str:
+        return f"{self.ref(var, None)}.{field}"
+
     def angle(self, var: str) -> str:
         return f"{self.ref(var, None)}.the"
 
@@ -253,7 +280,8 @@ class Octave(Spelling):
 
     def initializer(self, v: Variable) -> str:
         names = record_fields(v.kind, self.order)
-        values = [*v.value, *([0.0] * (len(names) - len(v.value)))]
+        value = held(v, self.log.origin)
+        values = [*value, *([0.0] * (len(names) - len(value)))]
         return "struct(" + ", ".join(f"'{n}', {self.lit(x)}" for n, x in zip(names, values)) + ")"
 
     def call(self, step: Step, scope: Group | None) -> list[str]:

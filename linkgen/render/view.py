@@ -132,9 +132,9 @@ def build_view(log: StepLog) -> View:
                                 log.step(g.step), len(blocks), slot, first, len(records),
                                 tuple((pos[k], pos[u]) for k, u in b.pairs)))
     inputs = tuple(v for v in log.variables if v.role == "input")
-    used = {a.var for s in log.steps for a in s.args if a.kind == "var"} | {c.variable for c in log.columns}
-    used |= {name for b in blocks for pair in b.ends for name in pair}
-    live = used | {o for s in log.steps for o in s.outputs}
+    used = {a.var for s in log.steps for a in s.args if a.kind == "var"}
+    used |= {name for b in blocks for pair in b.ends for name in pair}  # (constant outputs are published as drawn)
+    live = used | {c.variable for c in log.columns} | {o for s in log.steps for o in s.outputs}
     computed = tuple(v for v in log.variables if not v.constant and v.role != "input" and v.name in live)
     return View(
         log,

@@ -161,11 +161,11 @@ static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, doubl
 }
 
 
-/* Constants taken from the sketch. */
-static const POINT p_S0 = {{-2000.0, 300.0}, {0.0, 0.0}, {0.0, 0.0}};
-static const POINT p_R = {{-400.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
-static const POINT p_Q = {{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
-static const ANGLE phi_stick = {-0.18534794999569476, 0.0, 0.0};
+/* Constants taken from the sketch; points are held relative to
+   (-640.0, -256.0), which publish() adds back to the computed ones. */
+static const POINT p_S0 = {{-1360.0, 556.0}, {0.0, 0.0}, {0.0, 0.0}};
+static const POINT p_R = {{240.0, 256.0}, {0.0, 0.0}, {0.0, 0.0}};
+static const POINT p_Q = {{640.0, 256.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const VARIABLE l_side_link = {565.685424949238, 0.0, 0.0};
 static const VARIABLE l_power_link = {545.8937625582472, 0.0, 0.0};
 static const VARIABLE l_bucket = {340.0, 0.0, 0.0};
@@ -320,14 +320,14 @@ static void publish(const work *w, int code, actuator_state *out)
         out->bucket.alpha = NAN;
         return;
     }
-    out->S0.x = p_S0.P.x;
-    out->S0.y = p_S0.P.y;
-    out->S0.vx = p_S0.DP.x;
-    out->S0.vy = p_S0.DP.y;
-    out->S0.ax = p_S0.DDP.x;
-    out->S0.ay = p_S0.DDP.y;
-    out->C.x = w->p_C.P.x;
-    out->C.y = w->p_C.P.y;
+    out->S0.x = -2000.0;
+    out->S0.y = 300.0;
+    out->S0.vx = 0.0;
+    out->S0.vy = 0.0;
+    out->S0.ax = 0.0;
+    out->S0.ay = 0.0;
+    out->C.x = w->p_C.P.x - 640.0;
+    out->C.y = w->p_C.P.y - 256.0;
     out->C.vx = w->p_C.DP.x;
     out->C.vy = w->p_C.DP.y;
     out->C.ax = w->p_C.DDP.x;
@@ -335,39 +335,39 @@ static void publish(const work *w, int code, actuator_state *out)
     out->C.s = w->s_C.v;
     out->C.ds = w->s_C.dv;
     out->C.dds = w->s_C.ddv;
-    out->K.x = w->p_K.P.x;
-    out->K.y = w->p_K.P.y;
+    out->K.x = w->p_K.P.x - 640.0;
+    out->K.y = w->p_K.P.y - 256.0;
     out->K.vx = w->p_K.DP.x;
     out->K.vy = w->p_K.DP.y;
     out->K.ax = w->p_K.DDP.x;
     out->K.ay = w->p_K.DDP.y;
-    out->R.x = p_R.P.x;
-    out->R.y = p_R.P.y;
-    out->R.vx = p_R.DP.x;
-    out->R.vy = p_R.DP.y;
-    out->R.ax = p_R.DDP.x;
-    out->R.ay = p_R.DDP.y;
-    out->M.x = w->p_M.P.x;
-    out->M.y = w->p_M.P.y;
+    out->R.x = -400.0;
+    out->R.y = 0.0;
+    out->R.vx = 0.0;
+    out->R.vy = 0.0;
+    out->R.ax = 0.0;
+    out->R.ay = 0.0;
+    out->M.x = w->p_M.P.x - 640.0;
+    out->M.y = w->p_M.P.y - 256.0;
     out->M.vx = w->p_M.DP.x;
     out->M.vy = w->p_M.DP.y;
     out->M.ax = w->p_M.DDP.x;
     out->M.ay = w->p_M.DDP.y;
-    out->Q.x = p_Q.P.x;
-    out->Q.y = p_Q.P.y;
-    out->Q.vx = p_Q.DP.x;
-    out->Q.vy = p_Q.DP.y;
-    out->Q.ax = p_Q.DDP.x;
-    out->Q.ay = p_Q.DDP.y;
-    out->tip.x = w->p_tip.P.x;
-    out->tip.y = w->p_tip.P.y;
+    out->Q.x = 0.0;
+    out->Q.y = 0.0;
+    out->Q.vx = 0.0;
+    out->Q.vy = 0.0;
+    out->Q.ax = 0.0;
+    out->Q.ay = 0.0;
+    out->tip.x = w->p_tip.P.x - 640.0;
+    out->tip.y = w->p_tip.P.y - 256.0;
     out->tip.vx = w->p_tip.DP.x;
     out->tip.vy = w->p_tip.DP.y;
     out->tip.ax = w->p_tip.DDP.x;
     out->tip.ay = w->p_tip.DDP.y;
-    out->stick.phi = phi_stick.the;
-    out->stick.omega = phi_stick.dthe;
-    out->stick.alpha = phi_stick.ddthe;
+    out->stick.phi = -0.18534794999569476;
+    out->stick.omega = 0.0;
+    out->stick.alpha = 0.0;
     out->barrel.phi = w->psi_C.the;
     out->barrel.omega = w->psi_C.dthe;
     out->barrel.alpha = w->psi_C.ddthe;

@@ -222,11 +222,12 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     return st, sigma, (th, om, al), (sv, ds, dds), (js_x + rx, js_y + ry, js_dx + rvx, js_dy + rvy, js_ddx + rax, js_ddy + ray)
 
 # -- constants taken from the sketch -----------------------------------------
+# Points are held relative to (-640.0, -256.0), which _publish adds back
+# to the computed ones.
 
-p_S0 = (-2000.0, 300.0, 0.0, 0.0, 0.0, 0.0)
-p_R = (-400.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-p_Q = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-phi_stick = (-0.18534794999569476, 0.0, 0.0)
+p_S0 = (-1360.0, 556.0, 0.0, 0.0, 0.0, 0.0)
+p_R = (240.0, 256.0, 0.0, 0.0, 0.0, 0.0)
+p_Q = (640.0, 256.0, 0.0, 0.0, 0.0, 0.0)
 l_side_link = (565.685424949238, 0.0, 0.0)
 l_power_link = (545.8937625582472, 0.0, 0.0)
 l_bucket = (340.0, 0.0, 0.0)
@@ -302,51 +303,51 @@ def _publish(w, code, order):
         values = (NAN,) * len(_LEVELS)
     else:
         values = (
-            p_S0[0],
-            p_S0[1],
-            p_S0[2],
-            p_S0[3],
-            p_S0[4],
-            p_S0[5],
-            w.p_C[0],
-            w.p_C[1],
+            -2000.0,
+            300.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            w.p_C[0] - 640.0,
+            w.p_C[1] - 256.0,
             w.p_C[2],
             w.p_C[3],
             w.p_C[4],
             w.p_C[5],
-            w.p_K[0],
-            w.p_K[1],
+            w.p_K[0] - 640.0,
+            w.p_K[1] - 256.0,
             w.p_K[2],
             w.p_K[3],
             w.p_K[4],
             w.p_K[5],
-            p_R[0],
-            p_R[1],
-            p_R[2],
-            p_R[3],
-            p_R[4],
-            p_R[5],
-            w.p_M[0],
-            w.p_M[1],
+            -400.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            w.p_M[0] - 640.0,
+            w.p_M[1] - 256.0,
             w.p_M[2],
             w.p_M[3],
             w.p_M[4],
             w.p_M[5],
-            p_Q[0],
-            p_Q[1],
-            p_Q[2],
-            p_Q[3],
-            p_Q[4],
-            p_Q[5],
-            w.p_tip[0],
-            w.p_tip[1],
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            w.p_tip[0] - 640.0,
+            w.p_tip[1] - 256.0,
             w.p_tip[2],
             w.p_tip[3],
             w.p_tip[4],
             w.p_tip[5],
-            phi_stick[0],
-            phi_stick[1],
-            phi_stick[2],
+            -0.18534794999569476,
+            0.0,
+            0.0,
             w.psi_C[0],
             w.psi_C[1],
             w.psi_C[2],

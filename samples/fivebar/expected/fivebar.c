@@ -110,10 +110,10 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
 }
 
 
-/* Constants taken from the sketch. */
-static const POINT p_O1 = {{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
-static const POINT p_O2 = {{60.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
-static const ANGLE phi_frame = {0.0, 0.0, 0.0};
+/* Constants taken from the sketch; points are held relative to
+   (36.0, 20.0), which publish() adds back to the computed ones. */
+static const POINT p_O1 = {{-36.0, -20.0}, {0.0, 0.0}, {0.0, 0.0}};
+static const POINT p_O2 = {{24.0, -20.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const ANGLE ref_O1 = {0.0, 0.0, 0.0};
 static const ANGLE ref_O2 = {0.0, 0.0, 0.0};
 static const VARIABLE l_link1 = {50.0, 0.0, 0.0};
@@ -249,39 +249,39 @@ static void publish(const work *w, int code, fivebar_state *out)
         out->crank2.alpha = NAN;
         return;
     }
-    out->O1.x = p_O1.P.x;
-    out->O1.y = p_O1.P.y;
-    out->O1.vx = p_O1.DP.x;
-    out->O1.vy = p_O1.DP.y;
-    out->O1.ax = p_O1.DDP.x;
-    out->O1.ay = p_O1.DDP.y;
-    out->A.x = w->p_A.P.x;
-    out->A.y = w->p_A.P.y;
+    out->O1.x = 0.0;
+    out->O1.y = 0.0;
+    out->O1.vx = 0.0;
+    out->O1.vy = 0.0;
+    out->O1.ax = 0.0;
+    out->O1.ay = 0.0;
+    out->A.x = w->p_A.P.x + 36.0;
+    out->A.y = w->p_A.P.y + 20.0;
     out->A.vx = w->p_A.DP.x;
     out->A.vy = w->p_A.DP.y;
     out->A.ax = w->p_A.DDP.x;
     out->A.ay = w->p_A.DDP.y;
-    out->P.x = w->p_P.P.x;
-    out->P.y = w->p_P.P.y;
+    out->P.x = w->p_P.P.x + 36.0;
+    out->P.y = w->p_P.P.y + 20.0;
     out->P.vx = w->p_P.DP.x;
     out->P.vy = w->p_P.DP.y;
     out->P.ax = w->p_P.DDP.x;
     out->P.ay = w->p_P.DDP.y;
-    out->B.x = w->p_B.P.x;
-    out->B.y = w->p_B.P.y;
+    out->B.x = w->p_B.P.x + 36.0;
+    out->B.y = w->p_B.P.y + 20.0;
     out->B.vx = w->p_B.DP.x;
     out->B.vy = w->p_B.DP.y;
     out->B.ax = w->p_B.DDP.x;
     out->B.ay = w->p_B.DDP.y;
-    out->O2.x = p_O2.P.x;
-    out->O2.y = p_O2.P.y;
-    out->O2.vx = p_O2.DP.x;
-    out->O2.vy = p_O2.DP.y;
-    out->O2.ax = p_O2.DDP.x;
-    out->O2.ay = p_O2.DDP.y;
-    out->frame.phi = phi_frame.the;
-    out->frame.omega = phi_frame.dthe;
-    out->frame.alpha = phi_frame.ddthe;
+    out->O2.x = 60.0;
+    out->O2.y = 0.0;
+    out->O2.vx = 0.0;
+    out->O2.vy = 0.0;
+    out->O2.ax = 0.0;
+    out->O2.ay = 0.0;
+    out->frame.phi = 0.0;
+    out->frame.omega = 0.0;
+    out->frame.alpha = 0.0;
     out->crank1.phi = w->phi_crank1.the;
     out->crank1.omega = w->phi_crank1.dthe;
     out->crank1.alpha = w->phi_crank1.ddthe;

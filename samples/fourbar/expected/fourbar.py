@@ -176,10 +176,11 @@ def RRR_links(j1, j2, l1, l2, minv):
     return st, sigma, (j1_x + e1x, j1_y + e1y, bvx, bvy, bax, bay)
 
 # -- constants taken from the sketch -----------------------------------------
+# Points are held relative to (44.0, 36.0), which _publish adds back
+# to the computed ones.
 
-p_O1 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-p_O2 = (90.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-phi_frame = (0.0, 0.0, 0.0)
+p_O1 = (-44.0, -36.0, 0.0, 0.0, 0.0, 0.0)
+p_O2 = (46.0, -36.0, 0.0, 0.0, 0.0, 0.0)
 ref_O1 = (0.0, 0.0, 0.0)
 l_coupler = (78.10249675906654, 0.0, 0.0)
 l_rocker = (50.99019513592785, 0.0, 0.0)
@@ -246,39 +247,39 @@ def _publish(w, code, order):
         values = (NAN,) * len(_LEVELS)
     else:
         values = (
-            p_O1[0],
-            p_O1[1],
-            p_O1[2],
-            p_O1[3],
-            p_O1[4],
-            p_O1[5],
-            w.p_A[0],
-            w.p_A[1],
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            w.p_A[0] + 44.0,
+            w.p_A[1] + 36.0,
             w.p_A[2],
             w.p_A[3],
             w.p_A[4],
             w.p_A[5],
-            w.p_B[0],
-            w.p_B[1],
+            w.p_B[0] + 44.0,
+            w.p_B[1] + 36.0,
             w.p_B[2],
             w.p_B[3],
             w.p_B[4],
             w.p_B[5],
-            p_O2[0],
-            p_O2[1],
-            p_O2[2],
-            p_O2[3],
-            p_O2[4],
-            p_O2[5],
-            w.p_P[0],
-            w.p_P[1],
+            90.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            w.p_P[0] + 44.0,
+            w.p_P[1] + 36.0,
             w.p_P[2],
             w.p_P[3],
             w.p_P[4],
             w.p_P[5],
-            phi_frame[0],
-            phi_frame[1],
-            phi_frame[2],
+            0.0,
+            0.0,
+            0.0,
             w.phi_crank[0],
             w.phi_crank[1],
             w.phi_crank[2],

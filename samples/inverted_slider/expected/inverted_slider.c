@@ -130,10 +130,10 @@ static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, doubl
 }
 
 
-/* Constants taken from the sketch. */
-static const POINT p_O1 = {{0.0, 50.0}, {0.0, 0.0}, {0.0, 0.0}};
-static const POINT p_O2 = {{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
-static const ANGLE phi_frame = {-1.5707963267948966, 0.0, 0.0};
+/* Constants taken from the sketch; points are held relative to
+   (12.0, 60.0), which publish() adds back to the computed ones. */
+static const POINT p_O1 = {{-12.0, -10.0}, {0.0, 0.0}, {0.0, 0.0}};
+static const POINT p_O2 = {{-12.0, -60.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const ANGLE ref_O1 = {0.0, 0.0, 0.0};
 
 /* The records of one solution. */
@@ -245,26 +245,26 @@ static void publish(const work *w, int code, inverted_slider_state *out)
         out->block.alpha = NAN;
         return;
     }
-    out->O1.x = p_O1.P.x;
-    out->O1.y = p_O1.P.y;
-    out->O1.vx = p_O1.DP.x;
-    out->O1.vy = p_O1.DP.y;
-    out->O1.ax = p_O1.DDP.x;
-    out->O1.ay = p_O1.DDP.y;
-    out->A.x = w->p_A.P.x;
-    out->A.y = w->p_A.P.y;
+    out->O1.x = 0.0;
+    out->O1.y = 50.0;
+    out->O1.vx = 0.0;
+    out->O1.vy = 0.0;
+    out->O1.ax = 0.0;
+    out->O1.ay = 0.0;
+    out->A.x = w->p_A.P.x + 12.0;
+    out->A.y = w->p_A.P.y + 60.0;
     out->A.vx = w->p_A.DP.x;
     out->A.vy = w->p_A.DP.y;
     out->A.ax = w->p_A.DDP.x;
     out->A.ay = w->p_A.DDP.y;
-    out->O2.x = p_O2.P.x;
-    out->O2.y = p_O2.P.y;
-    out->O2.vx = p_O2.DP.x;
-    out->O2.vy = p_O2.DP.y;
-    out->O2.ax = p_O2.DDP.x;
-    out->O2.ay = p_O2.DDP.y;
-    out->S.x = w->p_S.P.x;
-    out->S.y = w->p_S.P.y;
+    out->O2.x = 0.0;
+    out->O2.y = 0.0;
+    out->O2.vx = 0.0;
+    out->O2.vy = 0.0;
+    out->O2.ax = 0.0;
+    out->O2.ay = 0.0;
+    out->S.x = w->p_S.P.x + 12.0;
+    out->S.y = w->p_S.P.y + 60.0;
     out->S.vx = w->p_S.DP.x;
     out->S.vy = w->p_S.DP.y;
     out->S.ax = w->p_S.DDP.x;
@@ -272,15 +272,15 @@ static void publish(const work *w, int code, inverted_slider_state *out)
     out->S.s = w->s_S.v;
     out->S.ds = w->s_S.dv;
     out->S.dds = w->s_S.ddv;
-    out->P.x = w->p_P.P.x;
-    out->P.y = w->p_P.P.y;
+    out->P.x = w->p_P.P.x + 12.0;
+    out->P.y = w->p_P.P.y + 60.0;
     out->P.vx = w->p_P.DP.x;
     out->P.vy = w->p_P.DP.y;
     out->P.ax = w->p_P.DDP.x;
     out->P.ay = w->p_P.DDP.y;
-    out->frame.phi = phi_frame.the;
-    out->frame.omega = phi_frame.dthe;
-    out->frame.alpha = phi_frame.ddthe;
+    out->frame.phi = -1.5707963267948966;
+    out->frame.omega = 0.0;
+    out->frame.alpha = 0.0;
     out->crank.phi = w->phi_crank.the;
     out->crank.omega = w->phi_crank.dthe;
     out->crank.alpha = w->phi_crank.ddthe;

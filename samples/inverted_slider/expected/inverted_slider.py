@@ -172,10 +172,11 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     return st, sigma, (th, om, al), (sv, ds, dds), (js_x + rx, js_y + ry, js_dx + rvx, js_dy + rvy, js_ddx + rax, js_ddy + ray)
 
 # -- constants taken from the sketch -----------------------------------------
+# Points are held relative to (12.0, 60.0), which _publish adds back
+# to the computed ones.
 
-p_O1 = (0.0, 50.0, 0.0, 0.0, 0.0, 0.0)
-p_O2 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-phi_frame = (-1.5707963267948966, 0.0, 0.0)
+p_O1 = (-12.0, -10.0, 0.0, 0.0, 0.0, 0.0)
+p_O2 = (-12.0, -60.0, 0.0, 0.0, 0.0, 0.0)
 ref_O1 = (0.0, 0.0, 0.0)
 
 
@@ -228,39 +229,39 @@ def _publish(w, code, order):
         values = (NAN,) * len(_LEVELS)
     else:
         values = (
-            p_O1[0],
-            p_O1[1],
-            p_O1[2],
-            p_O1[3],
-            p_O1[4],
-            p_O1[5],
-            w.p_A[0],
-            w.p_A[1],
+            0.0,
+            50.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            w.p_A[0] + 12.0,
+            w.p_A[1] + 60.0,
             w.p_A[2],
             w.p_A[3],
             w.p_A[4],
             w.p_A[5],
-            p_O2[0],
-            p_O2[1],
-            p_O2[2],
-            p_O2[3],
-            p_O2[4],
-            p_O2[5],
-            w.p_S[0],
-            w.p_S[1],
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            w.p_S[0] + 12.0,
+            w.p_S[1] + 60.0,
             w.p_S[2],
             w.p_S[3],
             w.p_S[4],
             w.p_S[5],
-            w.p_P[0],
-            w.p_P[1],
+            w.p_P[0] + 12.0,
+            w.p_P[1] + 60.0,
             w.p_P[2],
             w.p_P[3],
             w.p_P[4],
             w.p_P[5],
-            phi_frame[0],
-            phi_frame[1],
-            phi_frame[2],
+            -1.5707963267948966,
+            0.0,
+            0.0,
             w.phi_crank[0],
             w.phi_crank[1],
             w.phi_crank[2],

@@ -17,10 +17,11 @@ end
 
 function w = new_work()
     % The constants taken from the sketch and the records of one solution.
+    % Points are held relative to (12.0, 60.0), which publish adds back
+    % to the computed ones.
     w = struct();
-    w.p_O1 = struct('x', 0.0, 'y', 50.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
-    w.p_O2 = struct('x', 0.0, 'y', 0.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
-    w.phi_frame = struct('the', -1.5707963267948966, 'dthe', 0.0, 'ddthe', 0.0);
+    w.p_O1 = struct('x', -12.0, 'y', -10.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
+    w.p_O2 = struct('x', -12.0, 'y', -60.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
     w.ref_O1 = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
 end
 
@@ -124,26 +125,26 @@ function out = publish(w, status, in)
         out.block.omega = NaN;
         out.block.alpha = NaN;
     else
-        out.O1.x = w.p_O1.x;
-        out.O1.y = w.p_O1.y;
-        out.O1.vx = w.p_O1.dx;
-        out.O1.vy = w.p_O1.dy;
-        out.O1.ax = w.p_O1.ddx;
-        out.O1.ay = w.p_O1.ddy;
-        out.A.x = w.p_A.x;
-        out.A.y = w.p_A.y;
+        out.O1.x = 0.0;
+        out.O1.y = 50.0;
+        out.O1.vx = 0.0;
+        out.O1.vy = 0.0;
+        out.O1.ax = 0.0;
+        out.O1.ay = 0.0;
+        out.A.x = w.p_A.x + 12.0;
+        out.A.y = w.p_A.y + 60.0;
         out.A.vx = w.p_A.dx;
         out.A.vy = w.p_A.dy;
         out.A.ax = w.p_A.ddx;
         out.A.ay = w.p_A.ddy;
-        out.O2.x = w.p_O2.x;
-        out.O2.y = w.p_O2.y;
-        out.O2.vx = w.p_O2.dx;
-        out.O2.vy = w.p_O2.dy;
-        out.O2.ax = w.p_O2.ddx;
-        out.O2.ay = w.p_O2.ddy;
-        out.S.x = w.p_S.x;
-        out.S.y = w.p_S.y;
+        out.O2.x = 0.0;
+        out.O2.y = 0.0;
+        out.O2.vx = 0.0;
+        out.O2.vy = 0.0;
+        out.O2.ax = 0.0;
+        out.O2.ay = 0.0;
+        out.S.x = w.p_S.x + 12.0;
+        out.S.y = w.p_S.y + 60.0;
         out.S.vx = w.p_S.dx;
         out.S.vy = w.p_S.dy;
         out.S.ax = w.p_S.ddx;
@@ -151,15 +152,15 @@ function out = publish(w, status, in)
         out.S.s = w.s_S.v;
         out.S.ds = w.s_S.dv;
         out.S.dds = w.s_S.ddv;
-        out.P.x = w.p_P.x;
-        out.P.y = w.p_P.y;
+        out.P.x = w.p_P.x + 12.0;
+        out.P.y = w.p_P.y + 60.0;
         out.P.vx = w.p_P.dx;
         out.P.vy = w.p_P.dy;
         out.P.ax = w.p_P.ddx;
         out.P.ay = w.p_P.ddy;
-        out.frame.phi = w.phi_frame.the;
-        out.frame.omega = w.phi_frame.dthe;
-        out.frame.alpha = w.phi_frame.ddthe;
+        out.frame.phi = -1.5707963267948966;
+        out.frame.omega = 0.0;
+        out.frame.alpha = 0.0;
         out.crank.phi = w.phi_crank.the;
         out.crank.omega = w.phi_crank.dthe;
         out.crank.alpha = w.phi_crank.ddthe;

@@ -108,9 +108,10 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
 }
 
 
-/* Constants taken from the sketch. */
-static const POINT p_O = {{0.0, 0.0}, {0.0, 0.0}};
-static const POINT p_B = {{-38.0, -7.8}, {0.0, 0.0}};
+/* Constants taken from the sketch; points are held relative to
+   (-28.0, -32.0), which publish() adds back to the computed ones. */
+static const POINT p_O = {{28.0, 32.0}, {0.0, 0.0}};
+static const POINT p_B = {{-10.0, 24.2}, {0.0, 0.0}};
 static const ANGLE ref_O = {0.0, 0.0};
 static const VARIABLE l_rod_j = {49.999999999951626, 0.0};
 static const VARIABLE l_triangle_bde_C_B = {41.499999999969184, 0.0};
@@ -221,8 +222,8 @@ static void publish(const work *w, int code, jansen_foot_state *out)
         out->crank.omega = NAN;
         return;
     }
-    out->foot.x = w->p_foot.P.x;
-    out->foot.y = w->p_foot.P.y;
+    out->foot.x = w->p_foot.P.x - 28.0;
+    out->foot.y = w->p_foot.P.y - 32.0;
     out->foot.vx = w->p_foot.DP.x;
     out->foot.vy = w->p_foot.DP.y;
     out->crank.phi = w->phi_crank.the;

@@ -126,9 +126,11 @@ def RRR_links(j1, j2, l1, l2, minv):
     return st, sigma, (j1_x + e1x, j1_y + e1y, bvx, bvy)
 
 # -- constants taken from the sketch -----------------------------------------
+# Points are held relative to (-28.0, -32.0), which _publish adds back
+# to the computed ones.
 
-p_O = (0.0, 0.0, 0.0, 0.0)
-p_B = (-38.0, -7.8, 0.0, 0.0)
+p_O = (28.0, 32.0, 0.0, 0.0)
+p_B = (-10.0, 24.2, 0.0, 0.0)
 ref_O = (0.0, 0.0)
 l_rod_j = (49.999999999951626, 0.0)
 l_triangle_bde_C_B = (41.499999999969184, 0.0)
@@ -214,8 +216,8 @@ def _publish(w, code, order):
         values = (NAN,) * len(_LEVELS)
     else:
         values = (
-            w.p_foot[0],
-            w.p_foot[1],
+            w.p_foot[0] - 28.0,
+            w.p_foot[1] - 32.0,
             w.p_foot[2],
             w.p_foot[3],
             w.phi_crank[0],

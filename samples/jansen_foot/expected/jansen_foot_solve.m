@@ -17,9 +17,11 @@ end
 
 function w = new_work()
     % The constants taken from the sketch and the records of one solution.
+    % Points are held relative to (-28.0, -32.0), which publish adds back
+    % to the computed ones.
     w = struct();
-    w.p_O = struct('x', 0.0, 'y', 0.0, 'dx', 0.0, 'dy', 0.0);
-    w.p_B = struct('x', -38.0, 'y', -7.8, 'dx', 0.0, 'dy', 0.0);
+    w.p_O = struct('x', 28.0, 'y', 32.0, 'dx', 0.0, 'dy', 0.0);
+    w.p_B = struct('x', -10.0, 'y', 24.2, 'dx', 0.0, 'dy', 0.0);
     w.ref_O = struct('the', 0.0, 'dthe', 0.0);
     w.l_rod_j = struct('v', 49.999999999951626, 'dv', 0.0);
     w.l_triangle_bde_C_B = struct('v', 41.499999999969184, 'dv', 0.0);
@@ -125,8 +127,8 @@ function out = publish(w, status, in)
         out.crank.phi = NaN;
         out.crank.omega = NaN;
     else
-        out.foot.x = w.p_foot.x;
-        out.foot.y = w.p_foot.y;
+        out.foot.x = w.p_foot.x - 28.0;
+        out.foot.y = w.p_foot.y - 32.0;
         out.foot.vx = w.p_foot.dx;
         out.foot.vy = w.p_foot.dy;
         out.crank.phi = w.phi_crank.the;

@@ -146,11 +146,12 @@ static int PPR_links(POINT jr, POINT pg, ANGLE psig, double xa, double ya, doubl
 }
 
 
-/* Constants taken from the sketch. */
-static const POINT p_O = {{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+/* Constants taken from the sketch; points are held relative to
+   (40.0, 8.0), which publish() adds back to the computed ones. */
+static const POINT p_O = {{-40.0, -8.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const ANGLE phi_frame = {0.0, 0.0, 0.0};
 static const ANGLE ref_O = {0.0, 0.0, 0.0};
-static const POINT g_Q = {{80.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+static const POINT g_Q = {{40.0, -8.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const ANGLE psi_Q = {0.0, 0.0, 0.0};
 
 /* The records of one solution. */
@@ -265,20 +266,20 @@ static void publish(const work *w, int code, scotch_yoke_state *out)
         out->block.alpha = NAN;
         return;
     }
-    out->O.x = p_O.P.x;
-    out->O.y = p_O.P.y;
-    out->O.vx = p_O.DP.x;
-    out->O.vy = p_O.DP.y;
-    out->O.ax = p_O.DDP.x;
-    out->O.ay = p_O.DDP.y;
-    out->A.x = w->p_A.P.x;
-    out->A.y = w->p_A.P.y;
+    out->O.x = 0.0;
+    out->O.y = 0.0;
+    out->O.vx = 0.0;
+    out->O.vy = 0.0;
+    out->O.ax = 0.0;
+    out->O.ay = 0.0;
+    out->A.x = w->p_A.P.x + 40.0;
+    out->A.y = w->p_A.P.y + 8.0;
     out->A.vx = w->p_A.DP.x;
     out->A.vy = w->p_A.DP.y;
     out->A.ax = w->p_A.DDP.x;
     out->A.ay = w->p_A.DDP.y;
-    out->P.x = w->p_P.P.x;
-    out->P.y = w->p_P.P.y;
+    out->P.x = w->p_P.P.x + 40.0;
+    out->P.y = w->p_P.P.y + 8.0;
     out->P.vx = w->p_P.DP.x;
     out->P.vy = w->p_P.DP.y;
     out->P.ax = w->p_P.DDP.x;
@@ -286,8 +287,8 @@ static void publish(const work *w, int code, scotch_yoke_state *out)
     out->P.s = w->s_P.v;
     out->P.ds = w->s_P.dv;
     out->P.dds = w->s_P.ddv;
-    out->Q.x = w->p_Q.P.x;
-    out->Q.y = w->p_Q.P.y;
+    out->Q.x = w->p_Q.P.x + 40.0;
+    out->Q.y = w->p_Q.P.y + 8.0;
     out->Q.vx = w->p_Q.DP.x;
     out->Q.vy = w->p_Q.DP.y;
     out->Q.ax = w->p_Q.DDP.x;
@@ -295,9 +296,9 @@ static void publish(const work *w, int code, scotch_yoke_state *out)
     out->Q.s = w->s_Q.v;
     out->Q.ds = w->s_Q.dv;
     out->Q.dds = w->s_Q.ddv;
-    out->frame.phi = phi_frame.the;
-    out->frame.omega = phi_frame.dthe;
-    out->frame.alpha = phi_frame.ddthe;
+    out->frame.phi = 0.0;
+    out->frame.omega = 0.0;
+    out->frame.alpha = 0.0;
     out->crank.phi = w->phi_crank.the;
     out->crank.omega = w->phi_crank.dthe;
     out->crank.alpha = w->phi_crank.ddthe;

@@ -182,11 +182,13 @@ def PPR_links(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
     return st, sigma, (sv1, ds1, dds1), (jp1x, jp1y, jp1vx, jp1vy, jp1ax, jp1ay), (sgn * mu, sgn * mvu, sgn * ((k2x - dds1 * cg) * cax + (k2y - dds1 * sg) * sax + psig_dthe * (cax * mvy - sax * mvx))), (jxx, jxy, jxdx, jxdy, jxddx, jxddy)
 
 # -- constants taken from the sketch -----------------------------------------
+# Points are held relative to (40.0, 8.0), which _publish adds back
+# to the computed ones.
 
-p_O = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+p_O = (-40.0, -8.0, 0.0, 0.0, 0.0, 0.0)
 phi_frame = (0.0, 0.0, 0.0)
 ref_O = (0.0, 0.0, 0.0)
-g_Q = (80.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+g_Q = (40.0, -8.0, 0.0, 0.0, 0.0, 0.0)
 psi_Q = (0.0, 0.0, 0.0)
 
 
@@ -242,33 +244,33 @@ def _publish(w, code, order):
         values = (NAN,) * len(_LEVELS)
     else:
         values = (
-            p_O[0],
-            p_O[1],
-            p_O[2],
-            p_O[3],
-            p_O[4],
-            p_O[5],
-            w.p_A[0],
-            w.p_A[1],
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            w.p_A[0] + 40.0,
+            w.p_A[1] + 8.0,
             w.p_A[2],
             w.p_A[3],
             w.p_A[4],
             w.p_A[5],
-            w.p_P[0],
-            w.p_P[1],
+            w.p_P[0] + 40.0,
+            w.p_P[1] + 8.0,
             w.p_P[2],
             w.p_P[3],
             w.p_P[4],
             w.p_P[5],
-            w.p_Q[0],
-            w.p_Q[1],
+            w.p_Q[0] + 40.0,
+            w.p_Q[1] + 8.0,
             w.p_Q[2],
             w.p_Q[3],
             w.p_Q[4],
             w.p_Q[5],
-            phi_frame[0],
-            phi_frame[1],
-            phi_frame[2],
+            0.0,
+            0.0,
+            0.0,
             w.phi_crank[0],
             w.phi_crank[1],
             w.phi_crank[2],

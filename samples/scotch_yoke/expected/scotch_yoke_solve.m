@@ -17,11 +17,13 @@ end
 
 function w = new_work()
     % The constants taken from the sketch and the records of one solution.
+    % Points are held relative to (40.0, 8.0), which publish adds back
+    % to the computed ones.
     w = struct();
-    w.p_O = struct('x', 0.0, 'y', 0.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
+    w.p_O = struct('x', -40.0, 'y', -8.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
     w.phi_frame = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
     w.ref_O = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
-    w.g_Q = struct('x', 80.0, 'y', 0.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
+    w.g_Q = struct('x', 40.0, 'y', -8.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
     w.psi_Q = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
 end
 
@@ -125,20 +127,20 @@ function out = publish(w, status, in)
         out.block.omega = NaN;
         out.block.alpha = NaN;
     else
-        out.O.x = w.p_O.x;
-        out.O.y = w.p_O.y;
-        out.O.vx = w.p_O.dx;
-        out.O.vy = w.p_O.dy;
-        out.O.ax = w.p_O.ddx;
-        out.O.ay = w.p_O.ddy;
-        out.A.x = w.p_A.x;
-        out.A.y = w.p_A.y;
+        out.O.x = 0.0;
+        out.O.y = 0.0;
+        out.O.vx = 0.0;
+        out.O.vy = 0.0;
+        out.O.ax = 0.0;
+        out.O.ay = 0.0;
+        out.A.x = w.p_A.x + 40.0;
+        out.A.y = w.p_A.y + 8.0;
         out.A.vx = w.p_A.dx;
         out.A.vy = w.p_A.dy;
         out.A.ax = w.p_A.ddx;
         out.A.ay = w.p_A.ddy;
-        out.P.x = w.p_P.x;
-        out.P.y = w.p_P.y;
+        out.P.x = w.p_P.x + 40.0;
+        out.P.y = w.p_P.y + 8.0;
         out.P.vx = w.p_P.dx;
         out.P.vy = w.p_P.dy;
         out.P.ax = w.p_P.ddx;
@@ -146,8 +148,8 @@ function out = publish(w, status, in)
         out.P.s = w.s_P.v;
         out.P.ds = w.s_P.dv;
         out.P.dds = w.s_P.ddv;
-        out.Q.x = w.p_Q.x;
-        out.Q.y = w.p_Q.y;
+        out.Q.x = w.p_Q.x + 40.0;
+        out.Q.y = w.p_Q.y + 8.0;
         out.Q.vx = w.p_Q.dx;
         out.Q.vy = w.p_Q.dy;
         out.Q.ax = w.p_Q.ddx;
@@ -155,9 +157,9 @@ function out = publish(w, status, in)
         out.Q.s = w.s_Q.v;
         out.Q.ds = w.s_Q.dv;
         out.Q.dds = w.s_Q.ddv;
-        out.frame.phi = w.phi_frame.the;
-        out.frame.omega = w.phi_frame.dthe;
-        out.frame.alpha = w.phi_frame.ddthe;
+        out.frame.phi = 0.0;
+        out.frame.omega = 0.0;
+        out.frame.alpha = 0.0;
         out.crank.phi = w.phi_crank.the;
         out.crank.omega = w.phi_crank.dthe;
         out.crank.alpha = w.phi_crank.ddthe;

@@ -477,11 +477,11 @@ static int continuation(path_fn run, void *ctx, const double base[], double a[][
 /* Length scale of the sketch: the largest distance between two of its pairs or points. */
 static const double LENGTH_SCALE = 188.67962264113208;
 
-/* Constants taken from the sketch. */
-static const POINT p_J1 = {{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
-static const POINT p_J3 = {{100.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
-static const POINT p_J7 = {{-60.0, 80.0}, {0.0, 0.0}, {0.0, 0.0}};
-static const ANGLE phi_frame = {0.0, 0.0, 0.0};
+/* Constants taken from the sketch; points are held relative to
+   (24.0, 48.0), which publish() adds back to the computed ones. */
+static const POINT p_J1 = {{-24.0, -48.0}, {0.0, 0.0}, {0.0, 0.0}};
+static const POINT p_J3 = {{76.0, -48.0}, {0.0, 0.0}, {0.0, 0.0}};
+static const POINT p_J7 = {{-84.0, 32.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const ANGLE ref_J7 = {0.0, 0.0, 0.0};
 static const VARIABLE l_rocker2 = {65.19202405202648, 0.0, 0.0};
 static const VARIABLE l_rocker1 = {70.0, 0.0, 0.0};
@@ -1127,48 +1127,48 @@ static void publish(const work *w, int code, sixbar_fig14_state *out)
         out->frame.alpha = NAN;
         return;
     }
-    out->J1.x = p_J1.P.x;
-    out->J1.y = p_J1.P.y;
-    out->J1.vx = p_J1.DP.x;
-    out->J1.vy = p_J1.DP.y;
-    out->J1.ax = p_J1.DDP.x;
-    out->J1.ay = p_J1.DDP.y;
-    out->J2.x = w->p_J2.P.x;
-    out->J2.y = w->p_J2.P.y;
+    out->J1.x = 0.0;
+    out->J1.y = 0.0;
+    out->J1.vx = 0.0;
+    out->J1.vy = 0.0;
+    out->J1.ax = 0.0;
+    out->J1.ay = 0.0;
+    out->J2.x = w->p_J2.P.x + 24.0;
+    out->J2.y = w->p_J2.P.y + 48.0;
     out->J2.vx = w->p_J2.DP.x;
     out->J2.vy = w->p_J2.DP.y;
     out->J2.ax = w->p_J2.DDP.x;
     out->J2.ay = w->p_J2.DDP.y;
-    out->J3.x = p_J3.P.x;
-    out->J3.y = p_J3.P.y;
-    out->J3.vx = p_J3.DP.x;
-    out->J3.vy = p_J3.DP.y;
-    out->J3.ax = p_J3.DDP.x;
-    out->J3.ay = p_J3.DDP.y;
-    out->J4.x = w->p_J4.P.x;
-    out->J4.y = w->p_J4.P.y;
+    out->J3.x = 100.0;
+    out->J3.y = 0.0;
+    out->J3.vx = 0.0;
+    out->J3.vy = 0.0;
+    out->J3.ax = 0.0;
+    out->J3.ay = 0.0;
+    out->J4.x = w->p_J4.P.x + 24.0;
+    out->J4.y = w->p_J4.P.y + 48.0;
     out->J4.vx = w->p_J4.DP.x;
     out->J4.vy = w->p_J4.DP.y;
     out->J4.ax = w->p_J4.DDP.x;
     out->J4.ay = w->p_J4.DDP.y;
-    out->J5.x = w->p_J5.P.x;
-    out->J5.y = w->p_J5.P.y;
+    out->J5.x = w->p_J5.P.x + 24.0;
+    out->J5.y = w->p_J5.P.y + 48.0;
     out->J5.vx = w->p_J5.DP.x;
     out->J5.vy = w->p_J5.DP.y;
     out->J5.ax = w->p_J5.DDP.x;
     out->J5.ay = w->p_J5.DDP.y;
-    out->J6.x = w->p_J6.P.x;
-    out->J6.y = w->p_J6.P.y;
+    out->J6.x = w->p_J6.P.x + 24.0;
+    out->J6.y = w->p_J6.P.y + 48.0;
     out->J6.vx = w->p_J6.DP.x;
     out->J6.vy = w->p_J6.DP.y;
     out->J6.ax = w->p_J6.DDP.x;
     out->J6.ay = w->p_J6.DDP.y;
-    out->J7.x = p_J7.P.x;
-    out->J7.y = p_J7.P.y;
-    out->J7.vx = p_J7.DP.x;
-    out->J7.vy = p_J7.DP.y;
-    out->J7.ax = p_J7.DDP.x;
-    out->J7.ay = p_J7.DDP.y;
+    out->J7.x = -60.0;
+    out->J7.y = 80.0;
+    out->J7.vx = 0.0;
+    out->J7.vy = 0.0;
+    out->J7.ax = 0.0;
+    out->J7.ay = 0.0;
     out->rocker1.phi = w->phi_rocker1.the;
     out->rocker1.omega = w->phi_rocker1.dthe;
     out->rocker1.alpha = w->phi_rocker1.ddthe;
@@ -1184,9 +1184,9 @@ static void publish(const work *w, int code, sixbar_fig14_state *out)
     out->crank.phi = w->phi_crank.the;
     out->crank.omega = w->phi_crank.dthe;
     out->crank.alpha = w->phi_crank.ddthe;
-    out->frame.phi = phi_frame.the;
-    out->frame.omega = phi_frame.dthe;
-    out->frame.alpha = phi_frame.ddthe;
+    out->frame.phi = 0.0;
+    out->frame.omega = 0.0;
+    out->frame.alpha = 0.0;
     if (code > 0 && code % 10 == 3) {
         out->J1.vx = NAN;
         out->J1.vy = NAN;

@@ -451,11 +451,12 @@ def _walk(run, base, a, goal, limits, halvings, sizes, slack, reach):
     return a
 
 # -- constants taken from the sketch -----------------------------------------
+# Points are held relative to (24.0, 48.0), which _publish adds back
+# to the computed ones.
 
-p_J1 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-p_J3 = (100.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-p_J7 = (-60.0, 80.0, 0.0, 0.0, 0.0, 0.0)
-phi_frame = (0.0, 0.0, 0.0)
+p_J1 = (-24.0, -48.0, 0.0, 0.0, 0.0, 0.0)
+p_J3 = (76.0, -48.0, 0.0, 0.0, 0.0, 0.0)
+p_J7 = (-84.0, 32.0, 0.0, 0.0, 0.0, 0.0)
 ref_J7 = (0.0, 0.0, 0.0)
 l_rocker2 = (65.19202405202648, 0.0, 0.0)
 l_rocker1 = (70.0, 0.0, 0.0)
@@ -948,48 +949,48 @@ def _publish(w, code, order):
         values = (NAN,) * len(_LEVELS)
     else:
         values = (
-            p_J1[0],
-            p_J1[1],
-            p_J1[2],
-            p_J1[3],
-            p_J1[4],
-            p_J1[5],
-            w.p_J2[0],
-            w.p_J2[1],
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            w.p_J2[0] + 24.0,
+            w.p_J2[1] + 48.0,
             w.p_J2[2],
             w.p_J2[3],
             w.p_J2[4],
             w.p_J2[5],
-            p_J3[0],
-            p_J3[1],
-            p_J3[2],
-            p_J3[3],
-            p_J3[4],
-            p_J3[5],
-            w.p_J4[0],
-            w.p_J4[1],
+            100.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            w.p_J4[0] + 24.0,
+            w.p_J4[1] + 48.0,
             w.p_J4[2],
             w.p_J4[3],
             w.p_J4[4],
             w.p_J4[5],
-            w.p_J5[0],
-            w.p_J5[1],
+            w.p_J5[0] + 24.0,
+            w.p_J5[1] + 48.0,
             w.p_J5[2],
             w.p_J5[3],
             w.p_J5[4],
             w.p_J5[5],
-            w.p_J6[0],
-            w.p_J6[1],
+            w.p_J6[0] + 24.0,
+            w.p_J6[1] + 48.0,
             w.p_J6[2],
             w.p_J6[3],
             w.p_J6[4],
             w.p_J6[5],
-            p_J7[0],
-            p_J7[1],
-            p_J7[2],
-            p_J7[3],
-            p_J7[4],
-            p_J7[5],
+            -60.0,
+            80.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
             w.phi_rocker1[0],
             w.phi_rocker1[1],
             w.phi_rocker1[2],
@@ -1005,9 +1006,9 @@ def _publish(w, code, order):
             w.phi_crank[0],
             w.phi_crank[1],
             w.phi_crank[2],
-            phi_frame[0],
-            phi_frame[1],
-            phi_frame[2],
+            0.0,
+            0.0,
+            0.0,
         )
     out = {}
     for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):

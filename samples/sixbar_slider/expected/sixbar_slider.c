@@ -195,13 +195,14 @@ static int PRR_links(POINT jr, VARIABLE l, POINT pg, ANGLE psig, double gsi, dou
 }
 
 
-/* Constants taken from the sketch. */
-static const POINT p_O1 = {{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
-static const POINT p_O2 = {{60.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+/* Constants taken from the sketch; points are held relative to
+   (72.0, 32.0), which publish() adds back to the computed ones. */
+static const POINT p_O1 = {{-72.0, -32.0}, {0.0, 0.0}, {0.0, 0.0}};
+static const POINT p_O2 = {{-12.0, -32.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const ANGLE ref_O1 = {0.0, 0.0, 0.0};
 static const VARIABLE l_coupler = {56.859475903318, 0.0, 0.0};
 static const VARIABLE l_rocker_B_O2 = {52.0, 0.0, 0.0};
-static const POINT g_S = {{160.0, 36.0}, {0.0, 0.0}, {0.0, 0.0}};
+static const POINT g_S = {{88.0, 4.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const ANGLE psi_S = {0.0, 0.0, 0.0};
 static const VARIABLE l_rod = {65.27633568147036, 0.0, 0.0};
 
@@ -306,8 +307,8 @@ static void publish(const work *w, int code, sixbar_slider_state *out)
         out->rocker.alpha = NAN;
         return;
     }
-    out->S.x = w->p_S.P.x;
-    out->S.y = w->p_S.P.y;
+    out->S.x = w->p_S.P.x + 72.0;
+    out->S.y = w->p_S.P.y + 32.0;
     out->S.vx = w->p_S.DP.x;
     out->S.vy = w->p_S.DP.y;
     out->S.ax = w->p_S.DDP.x;
@@ -315,8 +316,8 @@ static void publish(const work *w, int code, sixbar_slider_state *out)
     out->S.s = w->s_S.v;
     out->S.ds = w->s_S.dv;
     out->S.dds = w->s_S.ddv;
-    out->P.x = w->p_P.P.x;
-    out->P.y = w->p_P.P.y;
+    out->P.x = w->p_P.P.x + 72.0;
+    out->P.y = w->p_P.P.y + 32.0;
     out->P.vx = w->p_P.DP.x;
     out->P.vy = w->p_P.DP.y;
     out->P.ax = w->p_P.DDP.x;

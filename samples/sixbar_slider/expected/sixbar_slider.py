@@ -206,13 +206,15 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     return st, sigma, (sv, ds, dds), (jpx, jpy, jpvx, jpvy, jpax, jpay), (jbx, jby, jbvx, jbvy, jpax + rax, jpay + ray)
 
 # -- constants taken from the sketch -----------------------------------------
+# Points are held relative to (72.0, 32.0), which _publish adds back
+# to the computed ones.
 
-p_O1 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-p_O2 = (60.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+p_O1 = (-72.0, -32.0, 0.0, 0.0, 0.0, 0.0)
+p_O2 = (-12.0, -32.0, 0.0, 0.0, 0.0, 0.0)
 ref_O1 = (0.0, 0.0, 0.0)
 l_coupler = (56.859475903318, 0.0, 0.0)
 l_rocker_B_O2 = (52.0, 0.0, 0.0)
-g_S = (160.0, 36.0, 0.0, 0.0, 0.0, 0.0)
+g_S = (88.0, 4.0, 0.0, 0.0, 0.0, 0.0)
 psi_S = (0.0, 0.0, 0.0)
 l_rod = (65.27633568147036, 0.0, 0.0)
 
@@ -281,8 +283,8 @@ def _publish(w, code, order):
         values = (NAN,) * len(_LEVELS)
     else:
         values = (
-            w.p_S[0],
-            w.p_S[1],
+            w.p_S[0] + 72.0,
+            w.p_S[1] + 32.0,
             w.p_S[2],
             w.p_S[3],
             w.p_S[4],
@@ -290,8 +292,8 @@ def _publish(w, code, order):
             w.s_S[0],
             w.s_S[1],
             w.s_S[2],
-            w.p_P[0],
-            w.p_P[1],
+            w.p_P[0] + 72.0,
+            w.p_P[1] + 32.0,
             w.p_P[2],
             w.p_P[3],
             w.p_P[4],

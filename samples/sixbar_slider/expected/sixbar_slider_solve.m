@@ -17,13 +17,15 @@ end
 
 function w = new_work()
     % The constants taken from the sketch and the records of one solution.
+    % Points are held relative to (72.0, 32.0), which publish adds back
+    % to the computed ones.
     w = struct();
-    w.p_O1 = struct('x', 0.0, 'y', 0.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
-    w.p_O2 = struct('x', 60.0, 'y', 0.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
+    w.p_O1 = struct('x', -72.0, 'y', -32.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
+    w.p_O2 = struct('x', -12.0, 'y', -32.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
     w.ref_O1 = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
     w.l_coupler = struct('v', 56.859475903318, 'dv', 0.0, 'ddv', 0.0);
     w.l_rocker_B_O2 = struct('v', 52.0, 'dv', 0.0, 'ddv', 0.0);
-    w.g_S = struct('x', 160.0, 'y', 36.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
+    w.g_S = struct('x', 88.0, 'y', 4.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
     w.psi_S = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
     w.l_rod = struct('v', 65.27633568147036, 'dv', 0.0, 'ddv', 0.0);
 end
@@ -120,8 +122,8 @@ function out = publish(w, status, in)
         out.rocker.omega = NaN;
         out.rocker.alpha = NaN;
     else
-        out.S.x = w.p_S.x;
-        out.S.y = w.p_S.y;
+        out.S.x = w.p_S.x + 72.0;
+        out.S.y = w.p_S.y + 32.0;
         out.S.vx = w.p_S.dx;
         out.S.vy = w.p_S.dy;
         out.S.ax = w.p_S.ddx;
@@ -129,8 +131,8 @@ function out = publish(w, status, in)
         out.S.s = w.s_S.v;
         out.S.ds = w.s_S.dv;
         out.S.dds = w.s_S.ddv;
-        out.P.x = w.p_P.x;
-        out.P.y = w.p_P.y;
+        out.P.x = w.p_P.x + 72.0;
+        out.P.y = w.p_P.y + 32.0;
         out.P.vx = w.p_P.dx;
         out.P.vy = w.p_P.dy;
         out.P.ax = w.p_P.ddx;

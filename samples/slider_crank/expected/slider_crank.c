@@ -132,11 +132,12 @@ static int PRR_links(POINT jr, VARIABLE l, POINT pg, ANGLE psig, double gsi, dou
 }
 
 
-/* Constants taken from the sketch. */
-static const POINT p_O = {{0.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+/* Constants taken from the sketch; points are held relative to
+   (40.0, 0.0), which publish() adds back to the computed ones. */
+static const POINT p_O = {{-40.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const ANGLE phi_frame = {-0.16941304388961834, 0.0, 0.0};
 static const ANGLE ref_O = {0.0, 0.0, 0.0};
-static const POINT g_S = {{76.0, -13.0}, {0.0, 0.0}, {0.0, 0.0}};
+static const POINT g_S = {{36.0, -13.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const ANGLE psi_S = {0.0, 0.0, 0.0};
 static const VARIABLE l_rod = {65.0, 0.0, 0.0};
 
@@ -250,25 +251,25 @@ static void publish(const work *w, int code, slider_crank_state *out)
         out->block.alpha = NAN;
         return;
     }
-    out->O.x = p_O.P.x;
-    out->O.y = p_O.P.y;
-    out->O.vx = p_O.DP.x;
-    out->O.vy = p_O.DP.y;
-    out->O.ax = p_O.DDP.x;
-    out->O.ay = p_O.DDP.y;
-    out->A.x = w->p_A.P.x;
+    out->O.x = 0.0;
+    out->O.y = 0.0;
+    out->O.vx = 0.0;
+    out->O.vy = 0.0;
+    out->O.ax = 0.0;
+    out->O.ay = 0.0;
+    out->A.x = w->p_A.P.x + 40.0;
     out->A.y = w->p_A.P.y;
     out->A.vx = w->p_A.DP.x;
     out->A.vy = w->p_A.DP.y;
     out->A.ax = w->p_A.DDP.x;
     out->A.ay = w->p_A.DDP.y;
-    out->B.x = w->p_B.P.x;
+    out->B.x = w->p_B.P.x + 40.0;
     out->B.y = w->p_B.P.y;
     out->B.vx = w->p_B.DP.x;
     out->B.vy = w->p_B.DP.y;
     out->B.ax = w->p_B.DDP.x;
     out->B.ay = w->p_B.DDP.y;
-    out->S.x = w->p_S.P.x;
+    out->S.x = w->p_S.P.x + 40.0;
     out->S.y = w->p_S.P.y;
     out->S.vx = w->p_S.DP.x;
     out->S.vy = w->p_S.DP.y;
@@ -277,9 +278,9 @@ static void publish(const work *w, int code, slider_crank_state *out)
     out->S.s = w->s_S.v;
     out->S.ds = w->s_S.dv;
     out->S.dds = w->s_S.ddv;
-    out->frame.phi = phi_frame.the;
-    out->frame.omega = phi_frame.dthe;
-    out->frame.alpha = phi_frame.ddthe;
+    out->frame.phi = -0.16941304388961834;
+    out->frame.omega = 0.0;
+    out->frame.alpha = 0.0;
     out->crank.phi = w->phi_crank.the;
     out->crank.omega = w->phi_crank.dthe;
     out->crank.alpha = w->phi_crank.ddthe;

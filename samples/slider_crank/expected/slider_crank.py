@@ -169,11 +169,13 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     return st, sigma, (sv, ds, dds), (jpx, jpy, jpvx, jpvy, jpax, jpay), (jbx, jby, jbvx, jbvy, jpax + rax, jpay + ray)
 
 # -- constants taken from the sketch -----------------------------------------
+# Points are held relative to (40.0, 0.0), which _publish adds back
+# to the computed ones.
 
-p_O = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+p_O = (-40.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 phi_frame = (-0.16941304388961834, 0.0, 0.0)
 ref_O = (0.0, 0.0, 0.0)
-g_S = (76.0, -13.0, 0.0, 0.0, 0.0, 0.0)
+g_S = (36.0, -13.0, 0.0, 0.0, 0.0, 0.0)
 psi_S = (0.0, 0.0, 0.0)
 l_rod = (65.0, 0.0, 0.0)
 
@@ -233,33 +235,33 @@ def _publish(w, code, order):
         values = (NAN,) * len(_LEVELS)
     else:
         values = (
-            p_O[0],
-            p_O[1],
-            p_O[2],
-            p_O[3],
-            p_O[4],
-            p_O[5],
-            w.p_A[0],
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            0.0,
+            w.p_A[0] + 40.0,
             w.p_A[1],
             w.p_A[2],
             w.p_A[3],
             w.p_A[4],
             w.p_A[5],
-            w.p_B[0],
+            w.p_B[0] + 40.0,
             w.p_B[1],
             w.p_B[2],
             w.p_B[3],
             w.p_B[4],
             w.p_B[5],
-            w.p_S[0],
+            w.p_S[0] + 40.0,
             w.p_S[1],
             w.p_S[2],
             w.p_S[3],
             w.p_S[4],
             w.p_S[5],
-            phi_frame[0],
-            phi_frame[1],
-            phi_frame[2],
+            -0.16941304388961834,
+            0.0,
+            0.0,
             w.phi_crank[0],
             w.phi_crank[1],
             w.phi_crank[2],

@@ -17,11 +17,13 @@ end
 
 function w = new_work()
     % The constants taken from the sketch and the records of one solution.
+    % Points are held relative to (40.0, 0.0), which publish adds back
+    % to the computed ones.
     w = struct();
-    w.p_O = struct('x', 0.0, 'y', 0.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
+    w.p_O = struct('x', -40.0, 'y', 0.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
     w.phi_frame = struct('the', -0.16941304388961834, 'dthe', 0.0, 'ddthe', 0.0);
     w.ref_O = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
-    w.g_S = struct('x', 76.0, 'y', -13.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
+    w.g_S = struct('x', 36.0, 'y', -13.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
     w.psi_S = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
     w.l_rod = struct('v', 65.0, 'dv', 0.0, 'ddv', 0.0);
 end
@@ -128,25 +130,25 @@ function out = publish(w, status, in)
         out.block.omega = NaN;
         out.block.alpha = NaN;
     else
-        out.O.x = w.p_O.x;
-        out.O.y = w.p_O.y;
-        out.O.vx = w.p_O.dx;
-        out.O.vy = w.p_O.dy;
-        out.O.ax = w.p_O.ddx;
-        out.O.ay = w.p_O.ddy;
-        out.A.x = w.p_A.x;
+        out.O.x = 0.0;
+        out.O.y = 0.0;
+        out.O.vx = 0.0;
+        out.O.vy = 0.0;
+        out.O.ax = 0.0;
+        out.O.ay = 0.0;
+        out.A.x = w.p_A.x + 40.0;
         out.A.y = w.p_A.y;
         out.A.vx = w.p_A.dx;
         out.A.vy = w.p_A.dy;
         out.A.ax = w.p_A.ddx;
         out.A.ay = w.p_A.ddy;
-        out.B.x = w.p_B.x;
+        out.B.x = w.p_B.x + 40.0;
         out.B.y = w.p_B.y;
         out.B.vx = w.p_B.dx;
         out.B.vy = w.p_B.dy;
         out.B.ax = w.p_B.ddx;
         out.B.ay = w.p_B.ddy;
-        out.S.x = w.p_S.x;
+        out.S.x = w.p_S.x + 40.0;
         out.S.y = w.p_S.y;
         out.S.vx = w.p_S.dx;
         out.S.vy = w.p_S.dy;
@@ -155,9 +157,9 @@ function out = publish(w, status, in)
         out.S.s = w.s_S.v;
         out.S.ds = w.s_S.dv;
         out.S.dds = w.s_S.ddv;
-        out.frame.phi = w.phi_frame.the;
-        out.frame.omega = w.phi_frame.dthe;
-        out.frame.alpha = w.phi_frame.ddthe;
+        out.frame.phi = -0.16941304388961834;
+        out.frame.omega = 0.0;
+        out.frame.alpha = 0.0;
         out.crank.phi = w.phi_crank.the;
         out.crank.omega = w.phi_crank.dthe;
         out.crank.alpha = w.phi_crank.ddthe;
