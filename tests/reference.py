@@ -253,6 +253,16 @@ class Reference:
         pg = self.place(q, self.guide[joint], j.x, j.y)
         return ps, (ps[0] - pg[0], ps[1] - pg[1])
 
+    def constraint_scales(self) -> list[float]:
+        """What each entry of ``constraints`` is measured against: L for a length, 1 for an angle."""
+        out: list[float] = []
+        for j in self.m.joints:
+            if j.kind == "revolute":
+                out += [self.length_scale] * (2 * (len(self.on[j.name]) - 1))
+            else:
+                out += [self.length_scale, 1.0]
+        return out + [1.0 if inp.kind == "revolute" else self.length_scale for inp in self.m.inputs]
+
     def constraints(self, q, u) -> list:
         """Residuals of every pair and of the driving constraints at input values ``u``."""
         out = []

@@ -1142,7 +1142,9 @@ def sketch_condition(ref: Reference) -> float:
 
 
 def newton_float(ref: Reference, q: list, u: list, max_iter: int = 12) -> tuple[list, list]:
-    """Newton in float on the reference's constraints, converged on a scale-free step size.
+    """Newton in float on the reference's constraints, converged on a scale-free step size and
+    then required to close them (past a limit position least squares converges too, to the
+    nearest pose that does not close: triad_1454).
 
     (Reference.newton's float mode stops on an absolute residual that angle rows cannot reach
     at small length scales.)"""
@@ -1156,8 +1158,14 @@ def newton_float(ref: Reference, q: list, u: list, max_iter: int = 12) -> tuple[
             break
         q = [a - b for a, b in zip(q, dq)]
         if max(abs(d) / s for d, s in zip(dq, scale)) < 1e-13:
+            res = [float(r) for r in ref.constraints(q, u)]
+            if max(abs(r) / s for r, s in zip(res, ref.constraint_scales())) > CLOSED:
+                break
             return q, ref.jacobian(q, u)
     raise ArithmeticError("float Newton did not converge")
+
+
+CLOSED = 1e-9  # the largest constraint residual (over L, or in radians) of a pose that closes
 
 
 STEP = math.radians(1)  # the reference's continuation step in the input angle

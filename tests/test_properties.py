@@ -1084,3 +1084,25 @@ def test_far_from_the_origin_keeps_the_accuracy_near_it(tmp_path):
                   "acceleration": ACCELERATION, "angular_acceleration": ACCELERATION}
         for q, bound in bounds.items():
             assert errs[q][0] <= bound, f"row {k}: {errs[q][1]} {errs[q][0]:.3g} relative"
+
+
+def test_reference_walk_stops_at_a_limit_position(tmp_path):
+    """Found by test_resolver_sweep[triad] (triad_1454), a fault of the reference, not of linkgen: the
+    crank meets a limit position 16.5 degrees below the sketch.  Past it, float Newton's least squares
+    converged to the nearest pose that does not close (its crank 2 degrees short of the input), the walk
+    went on from there, and linkgen's failing rows looked like failures on the sketch's assembly.
+    newton_float now requires the constraints to close; _fine_walk (test_accuracy) agrees."""
+    from test_accuracy import _fine_walk
+
+    names, data, result, ref, values = _regression_rows(tmp_path, "triad_limit")
+    reached = sk.reach(ref, values, [1.0] * len(values))
+    t0, degree = ref.sketch_inputs()[0], math.radians(1)
+    q = sk.walk(ref, ref.sketch_pose(), t0, t0 - 15 * degree, step=3 * degree)  # test_resolver_sweep's walk
+    assert q is not None and sk.walk(ref, q, t0 - 15 * degree, values[0], step=3 * degree) is None
+    assert reached[0] is None and _fine_walk(ref, ref.sketch_pose(), t0, values[0]) is None
+    assert result.status[0] > 0 and result.status[0] % 10 in (1, 2)
+    for k, r in enumerate(reached[1:], 1):
+        assert r is not None and result.status[k] <= 0, f"row {k}: status {result.status[k]}"
+        row = dict(zip(names, (float(x) for x in data[k])))
+        err = max(abs(sk.MP.mpf(row[c]) - x) for c, x in r.columns.items() if sk.quantity(c) == "position")
+        assert float(err / (sk.EPS * ref.length_scale)) <= POSITION / r.cond, f"row {k}"

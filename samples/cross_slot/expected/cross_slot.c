@@ -154,11 +154,11 @@ static int PRP_links(POINT pg1, ANGLE psig1, double gsi1, double eta1, POINT pg2
 
 
 /* Constants taken from the sketch; points are held relative to
-   (24.0, 0.0), which publish() adds back to the computed ones. */
-static const POINT p_O = {{-24.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+   (26.0, 0.0), which publish() adds back to the computed ones. */
+static const POINT p_O = {{-26.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const ANGLE phi_frame = {0.0, 0.0, 0.0};
 static const ANGLE ref_O = {0.0, 0.0, 0.0};
-static const POINT g_P2 = {{26.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
+static const POINT g_P2 = {{24.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const ANGLE psi_P2 = {1.5707963267948966, 0.0, 0.0};
 
 /* The records of one solution. */
@@ -275,7 +275,7 @@ static void publish(const work *w, int code, cross_slot_state *out)
     out->O.vy = 0.0;
     out->O.ax = 0.0;
     out->O.ay = 0.0;
-    out->P1.x = w->p_P1.P.x + 24.0;
+    out->P1.x = w->p_P1.P.x + 26.0;
     out->P1.y = w->p_P1.P.y;
     out->P1.vx = w->p_P1.DP.x;
     out->P1.vy = w->p_P1.DP.y;
@@ -284,13 +284,13 @@ static void publish(const work *w, int code, cross_slot_state *out)
     out->P1.s = w->s_P1.v;
     out->P1.ds = w->s_P1.dv;
     out->P1.dds = w->s_P1.ddv;
-    out->X.x = w->p_X.P.x + 24.0;
+    out->X.x = w->p_X.P.x + 26.0;
     out->X.y = w->p_X.P.y;
     out->X.vx = w->p_X.DP.x;
     out->X.vy = w->p_X.DP.y;
     out->X.ax = w->p_X.DDP.x;
     out->X.ay = w->p_X.DDP.y;
-    out->P2.x = w->p_P2.P.x + 24.0;
+    out->P2.x = w->p_P2.P.x + 26.0;
     out->P2.y = w->p_P2.P.y;
     out->P2.vx = w->p_P2.DP.x;
     out->P2.vy = w->p_P2.DP.y;

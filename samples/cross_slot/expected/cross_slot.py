@@ -184,13 +184,13 @@ def PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
     return st, sigma, (sv1, ds1, dds1), (jp1x, jp1y, jp1vx, jp1vy, jp1ax, jp1ay), (sv2, ds2, dds2), (jp2x, jp2y, jp2vx, jp2vy, jp2ax, jp2ay), (jbx, jby, jp1vx + r1vx, jp1vy + r1vy, jp1ax + r1ax, jp1ay + r1ay)
 
 # -- constants taken from the sketch -----------------------------------------
-# Points are held relative to (24.0, 0.0), which _publish adds back
+# Points are held relative to (26.0, 0.0), which _publish adds back
 # to the computed ones.
 
-p_O = (-24.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+p_O = (-26.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 phi_frame = (0.0, 0.0, 0.0)
 ref_O = (0.0, 0.0, 0.0)
-g_P2 = (26.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+g_P2 = (24.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 psi_P2 = (1.5707963267948966, 0.0, 0.0)
 
 
@@ -249,19 +249,19 @@ def _publish(w, code, order):
             0.0,
             0.0,
             0.0,
-            w.p_P1[0] + 24.0,
+            w.p_P1[0] + 26.0,
             w.p_P1[1],
             w.p_P1[2],
             w.p_P1[3],
             w.p_P1[4],
             w.p_P1[5],
-            w.p_X[0] + 24.0,
+            w.p_X[0] + 26.0,
             w.p_X[1],
             w.p_X[2],
             w.p_X[3],
             w.p_X[4],
             w.p_X[5],
-            w.p_P2[0] + 24.0,
+            w.p_P2[0] + 26.0,
             w.p_P2[1],
             w.p_P2[2],
             w.p_P2[3],

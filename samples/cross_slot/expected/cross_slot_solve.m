@@ -17,13 +17,13 @@ end
 
 function w = new_work()
     % The constants taken from the sketch and the records of one solution.
-    % Points are held relative to (24.0, 0.0), which publish adds back
+    % Points are held relative to (26.0, 0.0), which publish adds back
     % to the computed ones.
     w = struct();
-    w.p_O = struct('x', -24.0, 'y', 0.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
+    w.p_O = struct('x', -26.0, 'y', 0.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
     w.phi_frame = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
     w.ref_O = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
-    w.g_P2 = struct('x', 26.0, 'y', 0.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
+    w.g_P2 = struct('x', 24.0, 'y', 0.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
     w.psi_P2 = struct('the', 1.5707963267948966, 'dthe', 0.0, 'ddthe', 0.0);
 end
 
@@ -130,7 +130,7 @@ function out = publish(w, status, in)
         out.O.vy = 0.0;
         out.O.ax = 0.0;
         out.O.ay = 0.0;
-        out.P1.x = w.p_P1.x + 24.0;
+        out.P1.x = w.p_P1.x + 26.0;
         out.P1.y = w.p_P1.y;
         out.P1.vx = w.p_P1.dx;
         out.P1.vy = w.p_P1.dy;
@@ -139,13 +139,13 @@ function out = publish(w, status, in)
         out.P1.s = w.s_P1.v;
         out.P1.ds = w.s_P1.dv;
         out.P1.dds = w.s_P1.ddv;
-        out.X.x = w.p_X.x + 24.0;
+        out.X.x = w.p_X.x + 26.0;
         out.X.y = w.p_X.y;
         out.X.vx = w.p_X.dx;
         out.X.vy = w.p_X.dy;
         out.X.ax = w.p_X.ddx;
         out.X.ay = w.p_X.ddy;
-        out.P2.x = w.p_P2.x + 24.0;
+        out.P2.x = w.p_P2.x + 26.0;
         out.P2.y = w.p_P2.y;
         out.P2.vx = w.p_P2.dx;
         out.P2.vy = w.p_P2.dy;

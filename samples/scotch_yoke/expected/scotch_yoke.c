@@ -147,11 +147,11 @@ static int PPR_links(POINT jr, POINT pg, ANGLE psig, double xa, double ya, doubl
 
 
 /* Constants taken from the sketch; points are held relative to
-   (40.0, 8.0), which publish() adds back to the computed ones. */
-static const POINT p_O = {{-40.0, -8.0}, {0.0, 0.0}, {0.0, 0.0}};
+   (40.0, 12.0), which publish() adds back to the computed ones. */
+static const POINT p_O = {{-40.0, -12.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const ANGLE phi_frame = {0.0, 0.0, 0.0};
 static const ANGLE ref_O = {0.0, 0.0, 0.0};
-static const POINT g_Q = {{40.0, -8.0}, {0.0, 0.0}, {0.0, 0.0}};
+static const POINT g_Q = {{40.0, -12.0}, {0.0, 0.0}, {0.0, 0.0}};
 static const ANGLE psi_Q = {0.0, 0.0, 0.0};
 
 /* The records of one solution. */
@@ -273,13 +273,13 @@ static void publish(const work *w, int code, scotch_yoke_state *out)
     out->O.ax = 0.0;
     out->O.ay = 0.0;
     out->A.x = w->p_A.P.x + 40.0;
-    out->A.y = w->p_A.P.y + 8.0;
+    out->A.y = w->p_A.P.y + 12.0;
     out->A.vx = w->p_A.DP.x;
     out->A.vy = w->p_A.DP.y;
     out->A.ax = w->p_A.DDP.x;
     out->A.ay = w->p_A.DDP.y;
     out->P.x = w->p_P.P.x + 40.0;
-    out->P.y = w->p_P.P.y + 8.0;
+    out->P.y = w->p_P.P.y + 12.0;
     out->P.vx = w->p_P.DP.x;
     out->P.vy = w->p_P.DP.y;
     out->P.ax = w->p_P.DDP.x;
@@ -288,7 +288,7 @@ static void publish(const work *w, int code, scotch_yoke_state *out)
     out->P.ds = w->s_P.dv;
     out->P.dds = w->s_P.ddv;
     out->Q.x = w->p_Q.P.x + 40.0;
-    out->Q.y = w->p_Q.P.y + 8.0;
+    out->Q.y = w->p_Q.P.y + 12.0;
     out->Q.vx = w->p_Q.DP.x;
     out->Q.vy = w->p_Q.DP.y;
     out->Q.ax = w->p_Q.DDP.x;

@@ -182,13 +182,13 @@ def PPR_links(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
     return st, sigma, (sv1, ds1, dds1), (jp1x, jp1y, jp1vx, jp1vy, jp1ax, jp1ay), (sgn * mu, sgn * mvu, sgn * ((k2x - dds1 * cg) * cax + (k2y - dds1 * sg) * sax + psig_dthe * (cax * mvy - sax * mvx))), (jxx, jxy, jxdx, jxdy, jxddx, jxddy)
 
 # -- constants taken from the sketch -----------------------------------------
-# Points are held relative to (40.0, 8.0), which _publish adds back
+# Points are held relative to (40.0, 12.0), which _publish adds back
 # to the computed ones.
 
-p_O = (-40.0, -8.0, 0.0, 0.0, 0.0, 0.0)
+p_O = (-40.0, -12.0, 0.0, 0.0, 0.0, 0.0)
 phi_frame = (0.0, 0.0, 0.0)
 ref_O = (0.0, 0.0, 0.0)
-g_Q = (40.0, -8.0, 0.0, 0.0, 0.0, 0.0)
+g_Q = (40.0, -12.0, 0.0, 0.0, 0.0, 0.0)
 psi_Q = (0.0, 0.0, 0.0)
 
 
@@ -251,19 +251,19 @@ def _publish(w, code, order):
             0.0,
             0.0,
             w.p_A[0] + 40.0,
-            w.p_A[1] + 8.0,
+            w.p_A[1] + 12.0,
             w.p_A[2],
             w.p_A[3],
             w.p_A[4],
             w.p_A[5],
             w.p_P[0] + 40.0,
-            w.p_P[1] + 8.0,
+            w.p_P[1] + 12.0,
             w.p_P[2],
             w.p_P[3],
             w.p_P[4],
             w.p_P[5],
             w.p_Q[0] + 40.0,
-            w.p_Q[1] + 8.0,
+            w.p_Q[1] + 12.0,
             w.p_Q[2],
             w.p_Q[3],
             w.p_Q[4],

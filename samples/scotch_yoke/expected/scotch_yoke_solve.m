@@ -17,13 +17,13 @@ end
 
 function w = new_work()
     % The constants taken from the sketch and the records of one solution.
-    % Points are held relative to (40.0, 8.0), which publish adds back
+    % Points are held relative to (40.0, 12.0), which publish adds back
     % to the computed ones.
     w = struct();
-    w.p_O = struct('x', -40.0, 'y', -8.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
+    w.p_O = struct('x', -40.0, 'y', -12.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
     w.phi_frame = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
     w.ref_O = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
-    w.g_Q = struct('x', 40.0, 'y', -8.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
+    w.g_Q = struct('x', 40.0, 'y', -12.0, 'dx', 0.0, 'dy', 0.0, 'ddx', 0.0, 'ddy', 0.0);
     w.psi_Q = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
 end
 
@@ -134,13 +134,13 @@ function out = publish(w, status, in)
         out.O.ax = 0.0;
         out.O.ay = 0.0;
         out.A.x = w.p_A.x + 40.0;
-        out.A.y = w.p_A.y + 8.0;
+        out.A.y = w.p_A.y + 12.0;
         out.A.vx = w.p_A.dx;
         out.A.vy = w.p_A.dy;
         out.A.ax = w.p_A.ddx;
         out.A.ay = w.p_A.ddy;
         out.P.x = w.p_P.x + 40.0;
-        out.P.y = w.p_P.y + 8.0;
+        out.P.y = w.p_P.y + 12.0;
         out.P.vx = w.p_P.dx;
         out.P.vy = w.p_P.dy;
         out.P.ax = w.p_P.ddx;
@@ -149,7 +149,7 @@ function out = publish(w, status, in)
         out.P.ds = w.s_P.dv;
         out.P.dds = w.s_P.ddv;
         out.Q.x = w.p_Q.x + 40.0;
-        out.Q.y = w.p_Q.y + 8.0;
+        out.Q.y = w.p_Q.y + 12.0;
         out.Q.vx = w.p_Q.dx;
         out.Q.vy = w.p_Q.dy;
         out.Q.ax = w.p_Q.ddx;
