@@ -11,6 +11,8 @@ import functools
 import json
 from dataclasses import dataclass, fields
 
+from .primitives.dsl import record_fields
+
 
 @dataclass(frozen=True)
 class Variable:
@@ -295,15 +297,20 @@ class StepLog:
         v = self.variable(c.variable)
         if not v.constant:
             return None
-        fields = ("x", "y") if v.kind == "POINT" else ("the", "v")
+        fields = record_fields(v.kind, 0)
         return v.value[fields.index(c.field)] if c.field in fields else 0.0
 
     def offset(self, c: Column) -> float:
         """What a program adds to a computed record's field to publish it: the origin's
         coordinate for a point's x and y, else 0."""
-        if self.variable(c.variable).kind != "POINT" or c.field not in ("x", "y"):
+        if self.variable(c.variable).kind != "POINT" or c.field not in record_fields("POINT", 0):
             return 0.0
         return self.origin[c.field == "y"]
+
+    @property
+    def shifted(self) -> bool:
+        """Whether the programs hold points relative to an origin other than (0, 0)."""
+        return self.origin != (0.0, 0.0)
 
     def to_json(self) -> str:
         return json.dumps(_plain(self), indent=2, allow_nan=False, ensure_ascii=False) + "\n"
