@@ -223,10 +223,11 @@ class Pass:
         return not self.failed_group and all(st != FAIL for st, _ in self.report.values())
 
 
-def _block_state(env: dict, pos: dict[str, str], block: ResolverGroup, start: list) -> tuple[list, list]:
+def _block_state(env: dict, pos: dict[str, str], block: ResolverGroup, start: list, turn: int) -> tuple[list, list]:
     """A block's state read off a solved configuration, with its rates: the Add-link lengths
-    (link_residual against a zero length, as the generated programs measure them), then the
-    branches of its chains (rate 0; a sign of zero keeps the branch of ``start``)."""
+    (link_residual against a zero length, as the generated programs measure them), the
+    branches of its chains (rate 0; a sign of zero keeps the branch of ``start``), then its
+    orientation ``turn`` (the sign of its Jacobian's determinant where it solved, else 0)."""
     call = _scalar_call(1)
     a, ad = [], []
     for k, u in block.pairs:
@@ -243,7 +244,7 @@ def _block_state(env: dict, pos: dict[str, str], block: ResolverGroup, start: li
             m = (p[1][0] - p[0][0]) * math.cos(t) + (p[1][1] - p[0][1]) * math.sin(t)
         a.append(1.0 if m > 0 else -1.0 if m < 0 else start[n + j])
         ad.append(0.0)
-    return a, ad
+    return a + [float(turn)], ad + [0.0]
 
 
 def path_slack(log: StepLog) -> float:
@@ -254,8 +255,9 @@ def path_slack(log: StepLog) -> float:
 
 
 def block_start(block: ResolverGroup) -> list[float]:
-    """A block's state in the sketch: Add-link lengths, then its chains' branches."""
-    return [*block.lengths, *(float(b.sketch) for b in block.branches)]
+    """A block's state in the sketch: Add-link lengths, its chains' branches, then its
+    orientation (0: not known until a block solves; see the runtime's on_path)."""
+    return [*block.lengths, *(float(b.sketch) for b in block.branches), 0.0]
 
 
 class RowSolver:
@@ -323,14 +325,15 @@ class RowSolver:
             return self._newton(self.blocks[first + k], out, order, start[first + k])
 
         def take(k: int, finish) -> bool:
-            status = finish()
-            if status is None:
+            done = finish()
+            if done is None:
                 return False
             out.used[g.number] = k
-            out.report[g.step] = status
+            out.report[g.step], turn = done
             for j in range(count):
                 b = self.blocks[first + j]
-                out.solutions[first + j], out.rates[first + j] = _block_state(out.env, self.pos, b, start[first + j])
+                out.solutions[first + j], out.rates[first + j] = _block_state(out.env, self.pos, b, start[first + j],
+                                                                              turn if j == k else 0)
             return True
 
         best: tuple[float, int] | None = None  # the best of the converged blocks with poorly conditioned chains
@@ -386,14 +389,14 @@ class RowSolver:
         worst = min([g.lever, *(sigma for _, sigma in last.values())])
 
         def finish():
-            st, sigma = self.ns["addlink_rates"](group, a, jac, order)
+            st, sigma, turn = self.ns["addlink_rates"](group, a, jac, order)
             if st == FAIL:
                 return None
             width = {"POINT": 2}
             for name in list(g.writes) + list(g.add_links) + list(reads):
                 env[name] = env[name][: width.get(self.kinds[name], 1) * (order + 1)]
             out.report.update(last)
-            return SINGULAR if sigma < 1e-7 else NEAR if sigma < 1e-3 else 0, sigma
+            return (SINGULAR if sigma < 1e-7 else NEAR if sigma < 1e-3 else 0, sigma), turn
 
         return worst, finish
 

@@ -1103,6 +1103,26 @@ def test_far_from_the_origin_keeps_the_accuracy_near_it(tmp_path):
             assert errs[q][0] <= bound, f"row {k}: {errs[q][1]} {errs[q][0]:.3g} relative"
 
 
+def test_sharp_turn_next_to_another_assembly_is_followed(tmp_path):
+    """Found by test_mechanism_triad (triad_515): the sketch is drawn 0.004 rad before its assembly turns
+    sharply (J5 starts at rest, then moves 10 L/rad), where another assembly passes 2e-3 L away.  From the
+    sketch, one step along the tangent landed on that one: its Add-link lengths were within a tenth of the
+    predicted move, and every row after followed it, up to 1.7 L off.  Its solving block's Jacobian has
+    the other sign, which no regular path can reach without passing a singular position: a turned block
+    is now off the path, and the step is halved until it follows the turn."""
+    names, data, result, ref, values = _regression_rows(tmp_path, "triad_sharp_turn")
+    assert sk.sketch_condition(ref) < 1e-3
+    assert list(result.status) == [0] * len(values)
+    _assert_on_reference(names, data, ref, values)
+    log = build_log(str(tmp_path / "triad_sharp_turn.yaml"), outputs=(), sweep=False)
+    t0 = log.inputs[0].sketch
+    for near in ([t0 + 0.005], [t0 + k * math.radians(1) for k in range(8)]):
+        v = np.array(near).reshape(-1, 1)
+        result = evaluate(log, v, np.ones_like(v), np.zeros_like(v))
+        assert list(result.status) == [0] * len(near)
+        _assert_on_reference(*columns(log, result), ref, near)
+
+
 def test_reference_walk_stops_at_a_limit_position(tmp_path):
     """Found by test_resolver_sweep[triad] (triad_1454), a fault of the reference, not of linkgen: the
     crank meets a limit position 16.5 degrees below the sketch.  Past it, float Newton's least squares

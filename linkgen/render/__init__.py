@@ -139,8 +139,8 @@ def _limits(log: StepLog) -> list[float]:
 
 
 def _sketch_a(view: View, lit) -> list[str]:
-    """Every resolver block's state in the sketch: its Add-link lengths, then its chains'
-    branches (padded to the largest block)."""
+    """Every resolver block's state in the sketch: its Add-link lengths, its chains' branches
+    and its orientation (unknown: 0), padded to the largest block."""
     out = []
     for b in view.blocks:
         state = [lit(x) for x in block_start(b.group)]

@@ -77,7 +77,7 @@ class View:
     cells: tuple[Cell, ...]  # output columns in CSV order
     inputs: tuple[Variable, ...]
     sigma_steps: tuple[int, ...]  # steps that report a conditioning
-    nmax: int  # the largest block state (Add-link lengths and measured branches)
+    nmax: int  # the largest block state (Add-link lengths, measured branches, orientation)
     record_order: int  # derivative order of the records: a resolver needs velocities for its Jacobian
 
     def resolver_of_group(self, number: int) -> Group:
@@ -148,6 +148,6 @@ def build_view(log: StepLog) -> View:
               for c in log.columns[len(log.inputs):]),
         inputs,
         tuple(s.number for s in log.steps if s.fails),
-        max((len(b.group.add_links) + len(b.group.branches) for b in blocks), default=1),
+        max((len(b.group.add_links) + len(b.group.branches) + 1 for b in blocks), default=1),
         max(log.order, 1) if log.groups else log.order,
     )

@@ -119,9 +119,12 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
 /* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
  * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J), then
  * the final pass with them.  The rates are found at every order (they start the next
- * row).  Returns the status of the final pass. */
+ * row).  *turn is the block's orientation, the sign of det J: it stays the same along the
+ * assembly while the block's chains keep their branches (it changes only at a singular
+ * position; a solution of the other sign is another assembly).  Returns the status of
+ * the final pass. */
 static int addlink_rates(group_fn group, void *ctx, int n, const double a[], const double jac[][LINKGEN_NMAX],
-                         int order, double *sigma)
+                         int order, double *sigma, double *turn)
 {
     VARIABLE rec[LINKGEN_NMAX], res[LINKGEN_NMAX];
     double rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], det;
@@ -151,6 +154,7 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
     (void)order;
 #endif
     *sigma = conditioning(n, jac, det);
+    *turn = det > 0.0 ? 1.0 : det < 0.0 ? -1.0 : 0.0;
     return group(ctx, rec, 1, res);
 }
 
@@ -162,10 +166,10 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
  * is a poor coordinate of the assembly; blocks that share that chain tie up to rounding,
  * and the order, not the rounding, decides).  a[k] holds block k's start lengths; the caller then
  * measures every block's state on the solved pairs.  Returns the block, or -1 when none
- * converges. */
+ * converges; *turn is its orientation (see addlink_rates). */
 static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
                             double tol, int max_iter, double reach, int order, int prefer, int *its, double *sigma,
-                            const double *chains, double min_sigma)
+                            double *turn, const double *chains, double min_sigma)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
     int t, k, i, best = -1;
@@ -180,21 +184,24 @@ static int resolve_variants(const group_fn fns[], const int sizes[], int count, 
             }
             continue;
         }
-        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) != 1)
+        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
             return k;
     }
     if (best < 0) return -1;
     for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
     if (newton(fns[best], ctx, sizes[best], x, tol, max_iter, reach, jac, its)
-        && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) != 1)
+        && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
         return best;
     return -1;
 }
 
 /* Whether a solved state is where the predictor pointed from prev: no block's Add-link
  * length moved from the guess by more than a tenth of the largest predicted move (plus
- * slack).  A larger correction is a jump to another assembly, or a step too long for
- * the curve; a block's state after its sizes[k] lengths is its branches. */
+ * slack), and no block that solved both has turned its orientation (the state's last
+ * entry, after its sizes[k] lengths and its branches; 0 where the block did not solve).
+ * A larger correction, or a turned block, is a jump to another assembly (where two of
+ * them pass close, near a singular position, the nearer one can lie within the tenth), or
+ * a step too long for the curve. */
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
                    const double now[][LINKGEN_NMAX], const int sizes[], double slack)
 {
@@ -205,6 +212,8 @@ static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKG
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < sizes[g]; i++)
             if (!(fabs(now[g][i] - guess[g][i]) <= 0.1 * move + slack)) return 0; /* a nan too */
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) return 0;
     return 1;
 }
 

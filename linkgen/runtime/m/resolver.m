@@ -92,9 +92,11 @@ function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reac
     end
 end
 
-function [st, sigma, w] = resolver_rates(group, w, a, jac, order)
+function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order)
     % Exact Add-link rates by the implicit-function theorem (at every order: they start
-    % the next row), the accelerations at order 2, then the final pass with them.
+    % the next row), the accelerations at order 2, then the final pass with them.  turn is
+    % the block's orientation, sign(det J): it stays the same along the assembly while the
+    % block's chains keep their branches (a solution of the other sign is another assembly).
     n = numel(a);
     rec = struct('v', num2cell(a(:)'), 'dv', 0);
 % if order >= 2
@@ -120,10 +122,11 @@ function [st, sigma, w] = resolver_rates(group, w, a, jac, order)
         prod = prod * sqrt(sum(jac(:, j) .^ 2));
     end
     sigma = abs(det) / max(prod, 1);
+    turn = sign(det);
     [st, ~, w] = group(w, rec, true);
 end
 
-function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer, ...
+function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer, ...
                                                 sizes, min_sigma)
     % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
     % preferred block first, the others in order.  The first that converges with its
@@ -132,9 +135,11 @@ function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_it
     % a later block only when more than twice as well conditioned (blocks that share a
     % chain near a toggle tie up to rounding: the order decides).  The caller then
     % measures every block's state on the solved pairs.  a{first + k} is block k's state: its
-    % sizes(k + 1) start lengths, then its branches; k = -1 when no block converges.
+    % sizes(k + 1) start lengths, its branches, its orientation; k = -1 when no block
+    % converges; turn is the orientation of block k (see resolver_rates).
     its = 0;
     sigma = 0;
+    turn = 0;
     best = -1;
     best_sigma = -1;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
@@ -150,7 +155,7 @@ function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_it
             end
             continue;
         end
-        [st, sigma, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
+        [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
         if st ~= 1
             return;
         end
@@ -159,7 +164,7 @@ function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_it
     if k >= 0
         [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, max_iter, reach);
         if ok
-            [st, sigma, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
+            [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
             if st ~= 1
                 return;
             end
@@ -171,15 +176,19 @@ end
 function ok = resolver_on_path(prev, guess, now, sizes, slack)
     % Whether a solved state is where the predictor pointed from prev: no block's
     % Add-link length moved from the guess by more than a tenth of the largest predicted
-    % move (plus slack).  A larger correction is a jump to another assembly, or a step
-    % too long for the curve; a block's state after its sizes(k) lengths is its branches.
+    % move (plus slack), and no block that solved both has turned its orientation (the
+    % state's last entry, after its sizes(k) lengths and its branches; 0 where the block did
+    % not solve).  A larger correction, or a turned block, is a jump to another assembly
+    % (where two pass close, near a singular position, the nearer one can lie within the
+    % tenth), or a step too long for the curve.
     move = 0;
     for g = 1:numel(sizes)
         move = max([move; abs(guess{g}(1:sizes(g)) - prev{g}(1:sizes(g)))]);
     end
     ok = true;
     for g = 1:numel(sizes)
-        ok = ok && all(abs(now{g}(1:sizes(g)) - guess{g}(1:sizes(g))) <= 0.1 * move + slack);
+        ok = ok && all(abs(now{g}(1:sizes(g)) - guess{g}(1:sizes(g))) <= 0.1 * move + slack) ...
+             && prev{g}(end) * now{g}(end) >= 0;
     end
 end
 

@@ -98,7 +98,9 @@ def addlink_rates(group, a, jac, order):
 
     J adot = -df/dt|adot=0 with J the Newton Jacobian gives the rates at every order (they
     start the next row); at order 2, J addot = -d2f/dt2|addot=0 the accelerations.
-    Returns the final pass's status and sigma.
+    Returns the final pass's status, sigma and the block's orientation: the sign of det J,
+    which stays the same along the assembly while the block's chains keep their branches
+    (it changes only at a singular position; a solution of the other sign is another assembly).
     """
     n = len(a)
     _, det = solve_linear(jac, [0.0] * n)
@@ -115,7 +117,7 @@ def addlink_rates(group, a, jac, order):
     else:
         rates = accs = [NAN] * n
     st, _ = group([_record(a[i], rates[i], accs[i]) for i in range(n)], True)
-    return st, sigma
+    return st, sigma, 1 if det > 0.0 else -1 if det < 0.0 else 0
 
 
 def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, sizes, chains, min_sigma):
@@ -128,8 +130,8 @@ def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, size
     the order, not the rounding, decides).  The caller then measures every block's state on
     the solved pairs.
 
-    a[first + k] is block k's state: its sizes[k] start lengths, then its branches.
-    Returns (k, Newton steps, sigma), k = -1 when no block converges.
+    a[first + k] is block k's state: its sizes[k] start lengths, its branches, its orientation.
+    Returns (k, Newton steps, sigma, orientation), k = -1 when no block converges.
     """
     its, best, best_sigma = 0, -1, -1.0
     for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
@@ -140,16 +142,16 @@ def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, size
             if chains() > 2 * best_sigma:
                 best, best_sigma = k, chains()
             continue
-        st, sigma = addlink_rates(groups[k], x, jac, order)
+        st, sigma, turn = addlink_rates(groups[k], x, jac, order)
         if st != 1:
-            return k, its, sigma
+            return k, its, sigma, turn
     if best >= 0:
         ok, x, its, jac = newton(groups[best], a[first + best][:sizes[best]], tol, max_iter, reach)
         if ok:
-            st, sigma = addlink_rates(groups[best], x, jac, order)
+            st, sigma, turn = addlink_rates(groups[best], x, jac, order)
             if st != 1:
-                return best, its, sigma
-    return -1, its, 0.0
+                return best, its, sigma, turn
+    return -1, its, 0.0, 0
 
 
 def advance(a, rates, step, sizes):
@@ -177,10 +179,14 @@ def within(inputs, last, limits):
 def on_path(prev, guess, new, sizes, slack):
     """Whether a solved state new is where the predictor guess pointed from prev: no
     block's Add-link length moved from the guess by more than a tenth of the largest predicted
-    move (plus slack).  A larger correction is a jump to another assembly, or a step
-    too long for the curve; a block's state after its sizes[k] lengths is its branches."""
+    move (plus slack), and no block that solved both has turned its orientation (the last entry
+    of a block's state, after its sizes[k] lengths and its branches; 0 where it did not solve).
+    A larger correction, or a turned block, is a jump to another assembly (where two of them
+    pass close, near a singular position, the nearer one can lie within the tenth), or a
+    step too long for the curve."""
     move = max((abs(g[i] - p[i]) for p, g, n in zip(prev, guess, sizes) for i in range(n)), default=0.0)
-    return all(abs(x[i] - g[i]) <= 0.1 * move + slack for g, x, n in zip(guess, new, sizes) for i in range(n))
+    near = all(abs(x[i] - g[i]) <= 0.1 * move + slack for g, x, n in zip(guess, new, sizes) for i in range(n))
+    return near and all(p[-1] * x[-1] >= 0.0 for p, x in zip(prev, new))
 
 
 def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach):

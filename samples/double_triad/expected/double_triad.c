@@ -11,7 +11,7 @@ typedef struct { VEC2 P, DP, DDP; } POINT;
 typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
-#define LINKGEN_NMAX 3
+#define LINKGEN_NMAX 4
 #define LINKGEN_NGROUPS 2
 #define LINKGEN_NBLOCKS 16
 #define LINKGEN_NINPUTS 1
@@ -273,9 +273,12 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
 /* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
  * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J), then
  * the final pass with them.  The rates are found at every order (they start the next
- * row).  Returns the status of the final pass. */
+ * row).  *turn is the block's orientation, the sign of det J: it stays the same along the
+ * assembly while the block's chains keep their branches (it changes only at a singular
+ * position; a solution of the other sign is another assembly).  Returns the status of
+ * the final pass. */
 static int addlink_rates(group_fn group, void *ctx, int n, const double a[], const double jac[][LINKGEN_NMAX],
-                         int order, double *sigma)
+                         int order, double *sigma, double *turn)
 {
     VARIABLE rec[LINKGEN_NMAX], res[LINKGEN_NMAX];
     double rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], det;
@@ -299,6 +302,7 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
         for (i = 0; i < n; i++) rec[i].ddv = det != 0.0 ? accs[i] : NAN;
     }
     *sigma = conditioning(n, jac, det);
+    *turn = det > 0.0 ? 1.0 : det < 0.0 ? -1.0 : 0.0;
     return group(ctx, rec, 1, res);
 }
 
@@ -310,10 +314,10 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
  * is a poor coordinate of the assembly; blocks that share that chain tie up to rounding,
  * and the order, not the rounding, decides).  a[k] holds block k's start lengths; the caller then
  * measures every block's state on the solved pairs.  Returns the block, or -1 when none
- * converges. */
+ * converges; *turn is its orientation (see addlink_rates). */
 static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
                             double tol, int max_iter, double reach, int order, int prefer, int *its, double *sigma,
-                            const double *chains, double min_sigma)
+                            double *turn, const double *chains, double min_sigma)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
     int t, k, i, best = -1;
@@ -328,21 +332,24 @@ static int resolve_variants(const group_fn fns[], const int sizes[], int count, 
             }
             continue;
         }
-        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) != 1)
+        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
             return k;
     }
     if (best < 0) return -1;
     for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
     if (newton(fns[best], ctx, sizes[best], x, tol, max_iter, reach, jac, its)
-        && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma) != 1)
+        && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
         return best;
     return -1;
 }
 
 /* Whether a solved state is where the predictor pointed from prev: no block's Add-link
  * length moved from the guess by more than a tenth of the largest predicted move (plus
- * slack).  A larger correction is a jump to another assembly, or a step too long for
- * the curve; a block's state after its sizes[k] lengths is its branches. */
+ * slack), and no block that solved both has turned its orientation (the state's last
+ * entry, after its sizes[k] lengths and its branches; 0 where the block did not solve).
+ * A larger correction, or a turned block, is a jump to another assembly (where two of
+ * them pass close, near a singular position, the nearer one can lie within the tenth), or
+ * a step too long for the curve. */
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
                    const double now[][LINKGEN_NMAX], const int sizes[], double slack)
 {
@@ -353,6 +360,8 @@ static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKG
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < sizes[g]; i++)
             if (!(fabs(now[g][i] - guess[g][i]) <= 0.1 * move + slack)) return 0; /* a nan too */
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) return 0;
     return 1;
 }
 
@@ -1200,7 +1209,8 @@ static int group_2_v8(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
 
 
 /* The state of every block of group 1, read off the solved pairs: its Add-link
-   lengths, then the branches of its chains (a zero keeps the branch it had). */
+   lengths, the branches of its chains (a zero keeps the branch it had), then, in the last
+   entry, its orientation (0 here: the solving block's is set by the resolver). */
 static void lengths_1(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
 {
     VARIABLE f;
@@ -1214,6 +1224,7 @@ static void lengths_1(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
     a[0][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][2];
     ad[0][2] = 0.0;
+    a[0][LINKGEN_NMAX - 1] = ad[0][LINKGEN_NMAX - 1] = 0.0;
     link_residual(w->p_J6, w->p_J2, ZERO_LENGTH, &f);
     a[1][0] = f.v;
     ad[1][0] = f.dv;
@@ -1223,6 +1234,7 @@ static void lengths_1(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
     a[1][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][2];
     ad[1][2] = 0.0;
+    a[1][LINKGEN_NMAX - 1] = ad[1][LINKGEN_NMAX - 1] = 0.0;
     link_residual(p_J7, w->p_J2, ZERO_LENGTH, &f);
     a[2][0] = f.v;
     ad[2][0] = f.dv;
@@ -1232,6 +1244,7 @@ static void lengths_1(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
     a[2][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][2];
     ad[2][2] = 0.0;
+    a[2][LINKGEN_NMAX - 1] = ad[2][LINKGEN_NMAX - 1] = 0.0;
     link_residual(p_J7, w->p_J4, ZERO_LENGTH, &f);
     a[3][0] = f.v;
     ad[3][0] = f.dv;
@@ -1241,6 +1254,7 @@ static void lengths_1(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
     a[3][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][2];
     ad[3][2] = 0.0;
+    a[3][LINKGEN_NMAX - 1] = ad[3][LINKGEN_NMAX - 1] = 0.0;
     link_residual(p_J1, w->p_J4, ZERO_LENGTH, &f);
     a[4][0] = f.v;
     ad[4][0] = f.dv;
@@ -1250,6 +1264,7 @@ static void lengths_1(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
     a[4][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][2];
     ad[4][2] = 0.0;
+    a[4][LINKGEN_NMAX - 1] = ad[4][LINKGEN_NMAX - 1] = 0.0;
     link_residual(p_J3, w->p_J2, ZERO_LENGTH, &f);
     a[5][0] = f.v;
     ad[5][0] = f.dv;
@@ -1259,6 +1274,7 @@ static void lengths_1(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
     a[5][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][2];
     ad[5][2] = 0.0;
+    a[5][LINKGEN_NMAX - 1] = ad[5][LINKGEN_NMAX - 1] = 0.0;
     link_residual(p_K1, w->p_J2, ZERO_LENGTH, &f);
     a[6][0] = f.v;
     ad[6][0] = f.dv;
@@ -1268,11 +1284,13 @@ static void lengths_1(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
     a[6][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[6][2];
     ad[6][2] = 0.0;
+    a[6][LINKGEN_NMAX - 1] = ad[6][LINKGEN_NMAX - 1] = 0.0;
 }
 
 
 /* The state of every block of group 2, read off the solved pairs: its Add-link
-   lengths, then the branches of its chains (a zero keeps the branch it had). */
+   lengths, the branches of its chains (a zero keeps the branch it had), then, in the last
+   entry, its orientation (0 here: the solving block's is set by the resolver). */
 static void lengths_2(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
 {
     VARIABLE f;
@@ -1286,6 +1304,7 @@ static void lengths_2(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (w->p_K4.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_K4.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
     a[0][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][2];
     ad[0][2] = 0.0;
+    a[0][LINKGEN_NMAX - 1] = ad[0][LINKGEN_NMAX - 1] = 0.0;
     link_residual(w->p_J5, w->p_K2, ZERO_LENGTH, &f);
     a[1][0] = f.v;
     ad[1][0] = f.dv;
@@ -1295,6 +1314,7 @@ static void lengths_2(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (p_K3.P.x - w->p_K2.P.x) * (w->p_K4.P.y - w->p_K2.P.y) - (p_K3.P.y - w->p_K2.P.y) * (w->p_K4.P.x - w->p_K2.P.x);
     a[1][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][2];
     ad[1][2] = 0.0;
+    a[1][LINKGEN_NMAX - 1] = ad[1][LINKGEN_NMAX - 1] = 0.0;
     link_residual(w->p_J5, w->p_K4, ZERO_LENGTH, &f);
     a[2][0] = f.v;
     ad[2][0] = f.dv;
@@ -1304,6 +1324,7 @@ static void lengths_2(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (w->p_K4.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_K4.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
     a[2][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][2];
     ad[2][2] = 0.0;
+    a[2][LINKGEN_NMAX - 1] = ad[2][LINKGEN_NMAX - 1] = 0.0;
     link_residual(w->p_J2, w->p_K4, ZERO_LENGTH, &f);
     a[3][0] = f.v;
     ad[3][0] = f.dv;
@@ -1313,6 +1334,7 @@ static void lengths_2(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (w->p_K4.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_K4.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
     a[3][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][2];
     ad[3][2] = 0.0;
+    a[3][LINKGEN_NMAX - 1] = ad[3][LINKGEN_NMAX - 1] = 0.0;
     link_residual(w->p_J4, w->p_K4, ZERO_LENGTH, &f);
     a[4][0] = f.v;
     ad[4][0] = f.dv;
@@ -1322,6 +1344,7 @@ static void lengths_2(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (w->p_K4.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_K4.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
     a[4][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][2];
     ad[4][2] = 0.0;
+    a[4][LINKGEN_NMAX - 1] = ad[4][LINKGEN_NMAX - 1] = 0.0;
     link_residual(w->p_J2, w->p_K2, ZERO_LENGTH, &f);
     a[5][0] = f.v;
     ad[5][0] = f.dv;
@@ -1331,6 +1354,7 @@ static void lengths_2(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (p_K3.P.x - w->p_K2.P.x) * (w->p_K4.P.y - w->p_K2.P.y) - (p_K3.P.y - w->p_K2.P.y) * (w->p_K4.P.x - w->p_K2.P.x);
     a[5][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][2];
     ad[5][2] = 0.0;
+    a[5][LINKGEN_NMAX - 1] = ad[5][LINKGEN_NMAX - 1] = 0.0;
     link_residual(w->p_J4, w->p_K2, ZERO_LENGTH, &f);
     a[6][0] = f.v;
     ad[6][0] = f.dv;
@@ -1340,6 +1364,7 @@ static void lengths_2(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (p_K3.P.x - w->p_K2.P.x) * (w->p_K4.P.y - w->p_K2.P.y) - (p_K3.P.y - w->p_K2.P.y) * (w->p_K4.P.x - w->p_K2.P.x);
     a[6][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[6][2];
     ad[6][2] = 0.0;
+    a[6][LINKGEN_NMAX - 1] = ad[6][LINKGEN_NMAX - 1] = 0.0;
     link_residual(w->p_J6, w->p_K2, ZERO_LENGTH, &f);
     a[7][0] = f.v;
     ad[7][0] = f.dv;
@@ -1349,6 +1374,7 @@ static void lengths_2(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (p_K3.P.x - w->p_K2.P.x) * (w->p_K4.P.y - w->p_K2.P.y) - (p_K3.P.y - w->p_K2.P.y) * (w->p_K4.P.x - w->p_K2.P.x);
     a[7][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[7][2];
     ad[7][2] = 0.0;
+    a[7][LINKGEN_NMAX - 1] = ad[7][LINKGEN_NMAX - 1] = 0.0;
     link_residual(w->p_J5, w->p_K5, ZERO_LENGTH, &f);
     a[8][0] = f.v;
     ad[8][0] = f.dv;
@@ -1358,6 +1384,7 @@ static void lengths_2(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
     m = (w->p_K5.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_K5.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
     a[8][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[8][2];
     ad[8][2] = 0.0;
+    a[8][LINKGEN_NMAX - 1] = ad[8][LINKGEN_NMAX - 1] = 0.0;
 }
 
 
@@ -1401,14 +1428,16 @@ static int run(work *w, const double in[], const double din[], const double ddin
         w->br50 = a[6][2] < 0.0 ? -1 : 1;
         static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6 };
         static const int sizes[] = { 1, 1, 1, 1, 1, 1, 1 };
+        double turn;
         const int k = resolve_variants(blocks, sizes, 7, w, &a[0],
                                        1e-10 * LENGTH_SCALE, 8,
                                        0.1 * LENGTH_SCALE, order, used[0],
-                                       &its[0], &w->sigma[9],
+                                       &its[0], &w->sigma[9], &turn,
                                        &w->chains, 0.05);
         if (k < 0) return 92;
         used[0] = k;
         lengths_1(w, &a[0], &ad[0]);
+        a[0 + k][LINKGEN_NMAX - 1] = turn;
         note(w, 9, w->sigma[9] < 1e-07 ? 3 : w->sigma[9] < 0.001 ? 4 : 0);
     }
 
@@ -1439,14 +1468,16 @@ static int run(work *w, const double in[], const double din[], const double ddin
         w->br90 = a[15][2] < 0.0 ? -1 : 1;
         static const group_fn blocks[] = { group_2, group_2_v1, group_2_v2, group_2_v3, group_2_v4, group_2_v5, group_2_v6, group_2_v7, group_2_v8 };
         static const int sizes[] = { 1, 1, 1, 1, 1, 1, 1, 1, 1 };
+        double turn;
         const int k = resolve_variants(blocks, sizes, 9, w, &a[7],
                                        1e-10 * LENGTH_SCALE, 8,
                                        0.1 * LENGTH_SCALE, order, used[1],
-                                       &its[1], &w->sigma[16],
+                                       &its[1], &w->sigma[16], &turn,
                                        &w->chains, 0.05);
         if (k < 0) return 162;
         used[1] = k;
         lengths_2(w, &a[7], &ad[7]);
+        a[7 + k][LINKGEN_NMAX - 1] = turn;
         note(w, 16, w->sigma[16] < 1e-07 ? 3 : w->sigma[16] < 0.001 ? 4 : 0);
     }
 
@@ -1799,7 +1830,7 @@ static int path_run(void *ctx, const double in[], const double din[], int order,
 int double_triad_solve(const double in[], const double din[], const double ddin[], double_triad_state *out)
 {
     static const double sketch_in[LINKGEN_NINPUTS] = { 1.5707963267948966 };
-    static const double sketch_a[LINKGEN_NBLOCKS][LINKGEN_NMAX] = { {168.67127793433, -1.0, 1.0}, {67.08203932499369, -1.0, 1.0}, {60.8276253029822, -1.0, 1.0}, {165.6804152578089, -1.0, 1.0}, {123.4908903522847, -1.0, 1.0}, {122.06555615733703, 1.0, 1.0}, {138.92443989449805, -1.0, 1.0}, {168.67127793433, 1.0, -1.0}, {180.27756377319946, 1.0, -1.0}, {285.3944638566067, 1.0, -1.0}, {225.055548698538, 1.0, -1.0}, {330.0, 1.0, -1.0}, {120.0, 1.0, -1.0}, {225.055548698538, 1.0, -1.0}, {67.08203932499369, 1.0, -1.0}, {240.0, -1.0, -1.0} };
+    static const double sketch_a[LINKGEN_NBLOCKS][LINKGEN_NMAX] = { {168.67127793433, -1.0, 1.0, 0.0}, {67.08203932499369, -1.0, 1.0, 0.0}, {60.8276253029822, -1.0, 1.0, 0.0}, {165.6804152578089, -1.0, 1.0, 0.0}, {123.4908903522847, -1.0, 1.0, 0.0}, {122.06555615733703, 1.0, 1.0, 0.0}, {138.92443989449805, -1.0, 1.0, 0.0}, {168.67127793433, 1.0, -1.0, 0.0}, {180.27756377319946, 1.0, -1.0, 0.0}, {285.3944638566067, 1.0, -1.0, 0.0}, {225.055548698538, 1.0, -1.0, 0.0}, {330.0, 1.0, -1.0, 0.0}, {120.0, 1.0, -1.0, 0.0}, {225.055548698538, 1.0, -1.0, 0.0}, {67.08203932499369, 1.0, -1.0, 0.0}, {240.0, -1.0, -1.0, 0.0} };
     static const double limits[LINKGEN_NINPUTS] = { 0.1 };
     static const int periodic[LINKGEN_NINPUTS] = { 1 };
     static const int block_sizes[LINKGEN_NBLOCKS] = { 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1 };

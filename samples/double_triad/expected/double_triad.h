@@ -13,7 +13,7 @@ extern "C" {
 #define DOUBLE_TRIAD_SAMPLES 361
 #define DOUBLE_TRIAD_N_GROUPS 2
 #define DOUBLE_TRIAD_N_BLOCKS 16
-#define DOUBLE_TRIAD_NMAX 3
+#define DOUBLE_TRIAD_NMAX 4
 
 /* Motion of a pair or point (length units, seconds). */
 typedef struct { double x, y, vx, vy, ax, ay; } double_triad_point;

@@ -13,7 +13,7 @@ function [out, status, warm] = double_triad_solve(in, din, ddin, warm)
     ddin = ddin(:)';
     w = new_work();
     base = [1.5707963267948966];
-    a = {[168.67127793433, -1.0, 1.0]', [67.08203932499369, -1.0, 1.0]', [60.8276253029822, -1.0, 1.0]', [165.6804152578089, -1.0, 1.0]', [123.4908903522847, -1.0, 1.0]', [122.06555615733703, 1.0, 1.0]', [138.92443989449805, -1.0, 1.0]', [168.67127793433, 1.0, -1.0]', [180.27756377319946, 1.0, -1.0]', [285.3944638566067, 1.0, -1.0]', [225.055548698538, 1.0, -1.0]', [330.0, 1.0, -1.0]', [120.0, 1.0, -1.0]', [225.055548698538, 1.0, -1.0]', [67.08203932499369, 1.0, -1.0]', [240.0, -1.0, -1.0]'};
+    a = {[168.67127793433, -1.0, 1.0, 0.0]', [67.08203932499369, -1.0, 1.0, 0.0]', [60.8276253029822, -1.0, 1.0, 0.0]', [165.6804152578089, -1.0, 1.0, 0.0]', [123.4908903522847, -1.0, 1.0, 0.0]', [122.06555615733703, 1.0, 1.0, 0.0]', [138.92443989449805, -1.0, 1.0, 0.0]', [168.67127793433, 1.0, -1.0, 0.0]', [180.27756377319946, 1.0, -1.0, 0.0]', [285.3944638566067, 1.0, -1.0, 0.0]', [225.055548698538, 1.0, -1.0, 0.0]', [330.0, 1.0, -1.0, 0.0]', [120.0, 1.0, -1.0, 0.0]', [225.055548698538, 1.0, -1.0, 0.0]', [67.08203932499369, 1.0, -1.0, 0.0]', [240.0, -1.0, -1.0, 0.0]'};
     ad = a;
     used = zeros(1, 2);
     status = 0;
@@ -122,7 +122,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
     w.br49 = 1 - 2 * (a{7}(2) < 0);
     w.br50 = 1 - 2 * (a{7}(3) < 0);
     blocks = { @group_1, @group_1_v1, @group_1_v2, @group_1_v3, @group_1_v4, @group_1_v5, @group_1_v6 };
-    [k, its, w.sigma(9), w] = resolver_variants(blocks, w, a, 1, ...
+    [k, its, w.sigma(9), turn, w] = resolver_variants(blocks, w, a, 1, ...
         1e-10 * w.length_scale, 8, 0.1 * w.length_scale, order, used(1), ...
         [1, 1, 1, 1, 1, 1, 1], 0.05);
     w.iterations(1) = its;
@@ -132,6 +132,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
     end
     used(1) = k;
     [a, ad] = lengths_1(w, a, ad);
+    a{1 + k}(end) = turn;
     if w.sigma(9) < 1e-07
         w = note(w, 9, 3);
     elseif w.sigma(9) < 0.001
@@ -161,7 +162,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
     w.br89 = 1 - 2 * (a{16}(2) < 0);
     w.br90 = 1 - 2 * (a{16}(3) < 0);
     blocks = { @group_2, @group_2_v1, @group_2_v2, @group_2_v3, @group_2_v4, @group_2_v5, @group_2_v6, @group_2_v7, @group_2_v8 };
-    [k, its, w.sigma(16), w] = resolver_variants(blocks, w, a, 8, ...
+    [k, its, w.sigma(16), turn, w] = resolver_variants(blocks, w, a, 8, ...
         1e-10 * w.length_scale, 8, 0.1 * w.length_scale, order, used(2), ...
         [1, 1, 1, 1, 1, 1, 1, 1, 1], 0.05);
     w.iterations(2) = its;
@@ -171,6 +172,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
     end
     used(2) = k;
     [a, ad] = lengths_2(w, a, ad);
+    a{8 + k}(end) = turn;
     if w.sigma(16) < 1e-07
         w = note(w, 16, 3);
     elseif w.sigma(16) < 0.001
@@ -1156,111 +1158,113 @@ end
 
 function [a, ad] = lengths_1(w, a, ad)
     % The state of every block of group 1, read off the solved pairs: its Add-link
-    % lengths, then the branches of its chains (a zero keeps the branch it had).
+    % lengths, the branches of its chains (a zero keeps the branch it had), then its
+    % orientation (0 here: the solving block's is set by the resolver).
     zero = struct('v', 0, 'dv', 0, 'ddv', 0);
     f = [link_residual(w.p_J6, w.p_J4, zero)];
     m = [(w.p_J6.x - w.p_J3.x) * (w.p_J4.y - w.p_J3.y) - (w.p_J6.y - w.p_J3.y) * (w.p_J4.x - w.p_J3.x); (w.p_J4.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J4.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x)];
     old = a{1}(2:3);
     m(m == 0) = old(m == 0);
-    a{1} = [[f.v]'; sign(m)];
-    ad{1} = [[f.dv]'; zeros(2, 1)];
+    a{1} = [[f.v]'; sign(m); 0];
+    ad{1} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_J6, w.p_J2, zero)];
     m = [(w.p_J6.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J6.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x); (w.p_J3.x - w.p_J2.x) * (w.p_J4.y - w.p_J2.y) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.x - w.p_J2.x)];
     old = a{2}(2:3);
     m(m == 0) = old(m == 0);
-    a{2} = [[f.v]'; sign(m)];
-    ad{2} = [[f.dv]'; zeros(2, 1)];
+    a{2} = [[f.v]'; sign(m); 0];
+    ad{2} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_J7, w.p_J2, zero)];
     m = [(w.p_J7.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J7.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x); (w.p_J3.x - w.p_J2.x) * (w.p_J4.y - w.p_J2.y) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.x - w.p_J2.x)];
     old = a{3}(2:3);
     m(m == 0) = old(m == 0);
-    a{3} = [[f.v]'; sign(m)];
-    ad{3} = [[f.dv]'; zeros(2, 1)];
+    a{3} = [[f.v]'; sign(m); 0];
+    ad{3} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_J7, w.p_J4, zero)];
     m = [(w.p_J7.x - w.p_J3.x) * (w.p_J4.y - w.p_J3.y) - (w.p_J7.y - w.p_J3.y) * (w.p_J4.x - w.p_J3.x); (w.p_J4.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J4.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x)];
     old = a{4}(2:3);
     m(m == 0) = old(m == 0);
-    a{4} = [[f.v]'; sign(m)];
-    ad{4} = [[f.dv]'; zeros(2, 1)];
+    a{4} = [[f.v]'; sign(m); 0];
+    ad{4} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_J1, w.p_J4, zero)];
     m = [(w.p_J1.x - w.p_J3.x) * (w.p_J4.y - w.p_J3.y) - (w.p_J1.y - w.p_J3.y) * (w.p_J4.x - w.p_J3.x); (w.p_J4.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J4.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x)];
     old = a{5}(2:3);
     m(m == 0) = old(m == 0);
-    a{5} = [[f.v]'; sign(m)];
-    ad{5} = [[f.dv]'; zeros(2, 1)];
+    a{5} = [[f.v]'; sign(m); 0];
+    ad{5} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_J3, w.p_J2, zero)];
     m = [(w.p_J3.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J3.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x); (w.p_J3.x - w.p_J2.x) * (w.p_J4.y - w.p_J2.y) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.x - w.p_J2.x)];
     old = a{6}(2:3);
     m(m == 0) = old(m == 0);
-    a{6} = [[f.v]'; sign(m)];
-    ad{6} = [[f.dv]'; zeros(2, 1)];
+    a{6} = [[f.v]'; sign(m); 0];
+    ad{6} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_K1, w.p_J2, zero)];
     m = [(w.p_K1.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_K1.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x); (w.p_J3.x - w.p_J2.x) * (w.p_J4.y - w.p_J2.y) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.x - w.p_J2.x)];
     old = a{7}(2:3);
     m(m == 0) = old(m == 0);
-    a{7} = [[f.v]'; sign(m)];
-    ad{7} = [[f.dv]'; zeros(2, 1)];
+    a{7} = [[f.v]'; sign(m); 0];
+    ad{7} = [[f.dv]'; zeros(3, 1)];
 end
 
 
 function [a, ad] = lengths_2(w, a, ad)
     % The state of every block of group 2, read off the solved pairs: its Add-link
-    % lengths, then the branches of its chains (a zero keeps the branch it had).
+    % lengths, the branches of its chains (a zero keeps the branch it had), then its
+    % orientation (0 here: the solving block's is set by the resolver).
     zero = struct('v', 0, 'dv', 0, 'ddv', 0);
     f = [link_residual(w.p_J6, w.p_K4, zero)];
     m = [(w.p_J6.x - w.p_K3.x) * (w.p_K4.y - w.p_K3.y) - (w.p_J6.y - w.p_K3.y) * (w.p_K4.x - w.p_K3.x); (w.p_K4.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_K4.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x)];
     old = a{8}(2:3);
     m(m == 0) = old(m == 0);
-    a{8} = [[f.v]'; sign(m)];
-    ad{8} = [[f.dv]'; zeros(2, 1)];
+    a{8} = [[f.v]'; sign(m); 0];
+    ad{8} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_J5, w.p_K2, zero)];
     m = [(w.p_J5.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_J5.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x); (w.p_K3.x - w.p_K2.x) * (w.p_K4.y - w.p_K2.y) - (w.p_K3.y - w.p_K2.y) * (w.p_K4.x - w.p_K2.x)];
     old = a{9}(2:3);
     m(m == 0) = old(m == 0);
-    a{9} = [[f.v]'; sign(m)];
-    ad{9} = [[f.dv]'; zeros(2, 1)];
+    a{9} = [[f.v]'; sign(m); 0];
+    ad{9} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_J5, w.p_K4, zero)];
     m = [(w.p_J5.x - w.p_K3.x) * (w.p_K4.y - w.p_K3.y) - (w.p_J5.y - w.p_K3.y) * (w.p_K4.x - w.p_K3.x); (w.p_K4.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_K4.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x)];
     old = a{10}(2:3);
     m(m == 0) = old(m == 0);
-    a{10} = [[f.v]'; sign(m)];
-    ad{10} = [[f.dv]'; zeros(2, 1)];
+    a{10} = [[f.v]'; sign(m); 0];
+    ad{10} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_J2, w.p_K4, zero)];
     m = [(w.p_J2.x - w.p_K3.x) * (w.p_K4.y - w.p_K3.y) - (w.p_J2.y - w.p_K3.y) * (w.p_K4.x - w.p_K3.x); (w.p_K4.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_K4.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x)];
     old = a{11}(2:3);
     m(m == 0) = old(m == 0);
-    a{11} = [[f.v]'; sign(m)];
-    ad{11} = [[f.dv]'; zeros(2, 1)];
+    a{11} = [[f.v]'; sign(m); 0];
+    ad{11} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_J4, w.p_K4, zero)];
     m = [(w.p_J4.x - w.p_K3.x) * (w.p_K4.y - w.p_K3.y) - (w.p_J4.y - w.p_K3.y) * (w.p_K4.x - w.p_K3.x); (w.p_K4.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_K4.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x)];
     old = a{12}(2:3);
     m(m == 0) = old(m == 0);
-    a{12} = [[f.v]'; sign(m)];
-    ad{12} = [[f.dv]'; zeros(2, 1)];
+    a{12} = [[f.v]'; sign(m); 0];
+    ad{12} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_J2, w.p_K2, zero)];
     m = [(w.p_J2.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_J2.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x); (w.p_K3.x - w.p_K2.x) * (w.p_K4.y - w.p_K2.y) - (w.p_K3.y - w.p_K2.y) * (w.p_K4.x - w.p_K2.x)];
     old = a{13}(2:3);
     m(m == 0) = old(m == 0);
-    a{13} = [[f.v]'; sign(m)];
-    ad{13} = [[f.dv]'; zeros(2, 1)];
+    a{13} = [[f.v]'; sign(m); 0];
+    ad{13} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_J4, w.p_K2, zero)];
     m = [(w.p_J4.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_J4.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x); (w.p_K3.x - w.p_K2.x) * (w.p_K4.y - w.p_K2.y) - (w.p_K3.y - w.p_K2.y) * (w.p_K4.x - w.p_K2.x)];
     old = a{14}(2:3);
     m(m == 0) = old(m == 0);
-    a{14} = [[f.v]'; sign(m)];
-    ad{14} = [[f.dv]'; zeros(2, 1)];
+    a{14} = [[f.v]'; sign(m); 0];
+    ad{14} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_J6, w.p_K2, zero)];
     m = [(w.p_J6.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_J6.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x); (w.p_K3.x - w.p_K2.x) * (w.p_K4.y - w.p_K2.y) - (w.p_K3.y - w.p_K2.y) * (w.p_K4.x - w.p_K2.x)];
     old = a{15}(2:3);
     m(m == 0) = old(m == 0);
-    a{15} = [[f.v]'; sign(m)];
-    ad{15} = [[f.dv]'; zeros(2, 1)];
+    a{15} = [[f.v]'; sign(m); 0];
+    ad{15} = [[f.dv]'; zeros(3, 1)];
     f = [link_residual(w.p_J5, w.p_K5, zero)];
     m = [(w.p_J5.x - w.p_J6.x) * (w.p_K5.y - w.p_J6.y) - (w.p_J5.y - w.p_J6.y) * (w.p_K5.x - w.p_J6.x); (w.p_K5.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_K5.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x)];
     old = a{16}(2:3);
     m(m == 0) = old(m == 0);
-    a{16} = [[f.v]'; sign(m)];
-    ad{16} = [[f.dv]'; zeros(2, 1)];
+    a{16} = [[f.v]'; sign(m); 0];
+    ad{16} = [[f.dv]'; zeros(3, 1)];
 end
 
 
@@ -1860,9 +1864,11 @@ function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reac
     end
 end
 
-function [st, sigma, w] = resolver_rates(group, w, a, jac, order)
+function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order)
     % Exact Add-link rates by the implicit-function theorem (at every order: they start
-    % the next row), the accelerations at order 2, then the final pass with them.
+    % the next row), the accelerations at order 2, then the final pass with them.  turn is
+    % the block's orientation, sign(det J): it stays the same along the assembly while the
+    % block's chains keep their branches (a solution of the other sign is another assembly).
     n = numel(a);
     rec = struct('v', num2cell(a(:)'), 'dv', 0);
     [rec.ddv] = deal(0);
@@ -1884,10 +1890,11 @@ function [st, sigma, w] = resolver_rates(group, w, a, jac, order)
         prod = prod * sqrt(sum(jac(:, j) .^ 2));
     end
     sigma = abs(det) / max(prod, 1);
+    turn = sign(det);
     [st, ~, w] = group(w, rec, true);
 end
 
-function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer, ...
+function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer, ...
                                                 sizes, min_sigma)
     % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
     % preferred block first, the others in order.  The first that converges with its
@@ -1896,9 +1903,11 @@ function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_it
     % a later block only when more than twice as well conditioned (blocks that share a
     % chain near a toggle tie up to rounding: the order decides).  The caller then
     % measures every block's state on the solved pairs.  a{first + k} is block k's state: its
-    % sizes(k + 1) start lengths, then its branches; k = -1 when no block converges.
+    % sizes(k + 1) start lengths, its branches, its orientation; k = -1 when no block
+    % converges; turn is the orientation of block k (see resolver_rates).
     its = 0;
     sigma = 0;
+    turn = 0;
     best = -1;
     best_sigma = -1;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
@@ -1914,7 +1923,7 @@ function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_it
             end
             continue;
         end
-        [st, sigma, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
+        [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
         if st ~= 1
             return;
         end
@@ -1923,7 +1932,7 @@ function [k, its, sigma, w] = resolver_variants(groups, w, a, first, tol, max_it
     if k >= 0
         [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, max_iter, reach);
         if ok
-            [st, sigma, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
+            [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
             if st ~= 1
                 return;
             end
@@ -1935,15 +1944,19 @@ end
 function ok = resolver_on_path(prev, guess, now, sizes, slack)
     % Whether a solved state is where the predictor pointed from prev: no block's
     % Add-link length moved from the guess by more than a tenth of the largest predicted
-    % move (plus slack).  A larger correction is a jump to another assembly, or a step
-    % too long for the curve; a block's state after its sizes(k) lengths is its branches.
+    % move (plus slack), and no block that solved both has turned its orientation (the
+    % state's last entry, after its sizes(k) lengths and its branches; 0 where the block did
+    % not solve).  A larger correction, or a turned block, is a jump to another assembly
+    % (where two pass close, near a singular position, the nearer one can lie within the
+    % tenth), or a step too long for the curve.
     move = 0;
     for g = 1:numel(sizes)
         move = max([move; abs(guess{g}(1:sizes(g)) - prev{g}(1:sizes(g)))]);
     end
     ok = true;
     for g = 1:numel(sizes)
-        ok = ok && all(abs(now{g}(1:sizes(g)) - guess{g}(1:sizes(g))) <= 0.1 * move + slack);
+        ok = ok && all(abs(now{g}(1:sizes(g)) - guess{g}(1:sizes(g))) <= 0.1 * move + slack) ...
+             && prev{g}(end) * now{g}(end) >= 0;
     end
 end
 

@@ -13,7 +13,7 @@ extern "C" {
 #define SIXBAR_FIG14_SAMPLES 361
 #define SIXBAR_FIG14_N_GROUPS 1
 #define SIXBAR_FIG14_N_BLOCKS 9
-#define SIXBAR_FIG14_NMAX 3
+#define SIXBAR_FIG14_NMAX 4
 
 /* Motion of a pair or point (length units, seconds). */
 typedef struct { double x, y, vx, vy, ax, ay; } sixbar_fig14_point;

@@ -88,7 +88,7 @@ COLUMNS = (
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 LENGTH_SCALE = 188.67962264113208
 SKETCH_INPUTS = (1.5707963267948966, )
-SKETCH_ADD_LINKS = ([168.67127793433, -1.0, 1.0], [67.08203932499369, -1.0, 1.0], [123.4908903522847, -1.0, 1.0], [122.06555615733703, 1.0, 1.0], [60.8276253029822, -1.0, 1.0], [165.6804152578089, -1.0, 1.0], [89.44271909999159, 1.0, 1.0], [100.0, 1.0, 1.0], [120.0, 1.0, 1.0], )  # per block: lengths, then branches
+SKETCH_ADD_LINKS = ([168.67127793433, -1.0, 1.0, 0.0], [67.08203932499369, -1.0, 1.0, 0.0], [123.4908903522847, -1.0, 1.0, 0.0], [122.06555615733703, 1.0, 1.0, 0.0], [60.8276253029822, -1.0, 1.0, 0.0], [165.6804152578089, -1.0, 1.0, 0.0], [89.44271909999159, 1.0, 1.0, 0.0], [100.0, 1.0, 1.0, 0.0], [120.0, 1.0, 1.0, 0.0], )  # per block: lengths, branches, orientation
 BLOCK_SIZES = (1, 1, 1, 1, 1, 1, 1, 1, 1, )  # Add-links of each block
 SLACK = 1.0000000000000001e-07  # how far off the predicted path a solution may sit, relative to the length scale
 N_GROUPS = 1
@@ -320,7 +320,9 @@ def addlink_rates(group, a, jac, order):
 
     J adot = -df/dt|adot=0 with J the Newton Jacobian gives the rates at every order (they
     start the next row); at order 2, J addot = -d2f/dt2|addot=0 the accelerations.
-    Returns the final pass's status and sigma.
+    Returns the final pass's status, sigma and the block's orientation: the sign of det J,
+    which stays the same along the assembly while the block's chains keep their branches
+    (it changes only at a singular position; a solution of the other sign is another assembly).
     """
     n = len(a)
     _, det = solve_linear(jac, [0.0] * n)
@@ -335,7 +337,7 @@ def addlink_rates(group, a, jac, order):
     else:
         rates = accs = [NAN] * n
     st, _ = group([_record(a[i], rates[i], accs[i]) for i in range(n)], True)
-    return st, sigma
+    return st, sigma, 1 if det > 0.0 else -1 if det < 0.0 else 0
 
 
 def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, sizes, chains, min_sigma):
@@ -348,8 +350,8 @@ def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, size
     the order, not the rounding, decides).  The caller then measures every block's state on
     the solved pairs.
 
-    a[first + k] is block k's state: its sizes[k] start lengths, then its branches.
-    Returns (k, Newton steps, sigma), k = -1 when no block converges.
+    a[first + k] is block k's state: its sizes[k] start lengths, its branches, its orientation.
+    Returns (k, Newton steps, sigma, orientation), k = -1 when no block converges.
     """
     its, best, best_sigma = 0, -1, -1.0
     for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
@@ -360,16 +362,16 @@ def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, size
             if chains() > 2 * best_sigma:
                 best, best_sigma = k, chains()
             continue
-        st, sigma = addlink_rates(groups[k], x, jac, order)
+        st, sigma, turn = addlink_rates(groups[k], x, jac, order)
         if st != 1:
-            return k, its, sigma
+            return k, its, sigma, turn
     if best >= 0:
         ok, x, its, jac = newton(groups[best], a[first + best][:sizes[best]], tol, max_iter, reach)
         if ok:
-            st, sigma = addlink_rates(groups[best], x, jac, order)
+            st, sigma, turn = addlink_rates(groups[best], x, jac, order)
             if st != 1:
-                return best, its, sigma
-    return -1, its, 0.0
+                return best, its, sigma, turn
+    return -1, its, 0.0, 0
 
 
 def advance(a, rates, step, sizes):
@@ -397,10 +399,14 @@ def within(inputs, last, limits):
 def on_path(prev, guess, new, sizes, slack):
     """Whether a solved state new is where the predictor guess pointed from prev: no
     block's Add-link length moved from the guess by more than a tenth of the largest predicted
-    move (plus slack).  A larger correction is a jump to another assembly, or a step
-    too long for the curve; a block's state after its sizes[k] lengths is its branches."""
+    move (plus slack), and no block that solved both has turned its orientation (the last entry
+    of a block's state, after its sizes[k] lengths and its branches; 0 where it did not solve).
+    A larger correction, or a turned block, is a jump to another assembly (where two of them
+    pass close, near a singular position, the nearer one can lie within the tenth), or a
+    step too long for the curve."""
     move = max((abs(g[i] - p[i]) for p, g, n in zip(prev, guess, sizes) for i in range(n)), default=0.0)
-    return all(abs(x[i] - g[i]) <= 0.1 * move + slack for g, x, n in zip(guess, new, sizes) for i in range(n))
+    near = all(abs(x[i] - g[i]) <= 0.1 * move + slack for g, x, n in zip(guess, new, sizes) for i in range(n))
+    return near and all(p[-1] * x[-1] >= 0.0 for p, x in zip(prev, new))
 
 
 def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach):
@@ -822,52 +828,53 @@ def _group_1_v8(w, a, live):
 
 def _lengths_1(w, a, ad):
     """The state of every block of group 1, read off the solved pairs: its Add-link
-    lengths, then the branches of its chains (a zero keeps the branch it had)."""
+    lengths, the branches of its chains (a zero keeps the branch it had), then its orientation
+    (0 here: the solving block's is set by the resolver)."""
     f = [link_residual(w.p_J6, w.p_J4, ZERO_LENGTH)]
     m = [(w.p_J6[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (w.p_J6[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
     a[0] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[0][1:])]
-    ad[0] = [x[1] for x in f] + [0.0] * 2
+                                  for x, old in zip(m, a[0][1:])] + [0.0]
+    ad[0] = [x[1] for x in f] + [0.0] * 3
     f = [link_residual(w.p_J6, w.p_J2, ZERO_LENGTH)]
     m = [(w.p_J6[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J6[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
     a[1] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[1][1:])]
-    ad[1] = [x[1] for x in f] + [0.0] * 2
+                                  for x, old in zip(m, a[1][1:])] + [0.0]
+    ad[1] = [x[1] for x in f] + [0.0] * 3
     f = [link_residual(p_J1, w.p_J4, ZERO_LENGTH)]
     m = [(p_J1[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (p_J1[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
     a[2] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[2][1:])]
-    ad[2] = [x[1] for x in f] + [0.0] * 2
+                                  for x, old in zip(m, a[2][1:])] + [0.0]
+    ad[2] = [x[1] for x in f] + [0.0] * 3
     f = [link_residual(p_J3, w.p_J2, ZERO_LENGTH)]
     m = [(p_J3[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (p_J3[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
     a[3] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[3][1:])]
-    ad[3] = [x[1] for x in f] + [0.0] * 2
+                                  for x, old in zip(m, a[3][1:])] + [0.0]
+    ad[3] = [x[1] for x in f] + [0.0] * 3
     f = [link_residual(p_J7, w.p_J2, ZERO_LENGTH)]
     m = [(p_J7[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (p_J7[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
     a[4] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[4][1:])]
-    ad[4] = [x[1] for x in f] + [0.0] * 2
+                                  for x, old in zip(m, a[4][1:])] + [0.0]
+    ad[4] = [x[1] for x in f] + [0.0] * 3
     f = [link_residual(p_J7, w.p_J4, ZERO_LENGTH)]
     m = [(p_J7[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (p_J7[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
     a[5] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[5][1:])]
-    ad[5] = [x[1] for x in f] + [0.0] * 2
+                                  for x, old in zip(m, a[5][1:])] + [0.0]
+    ad[5] = [x[1] for x in f] + [0.0] * 3
     f = [link_residual(p_J3, w.p_J5, ZERO_LENGTH)]
     m = [(p_J3[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (p_J3[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
     a[6] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[6][1:])]
-    ad[6] = [x[1] for x in f] + [0.0] * 2
+                                  for x, old in zip(m, a[6][1:])] + [0.0]
+    ad[6] = [x[1] for x in f] + [0.0] * 3
     f = [link_residual(p_J1, w.p_J5, ZERO_LENGTH)]
     m = [(p_J1[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (p_J1[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
     a[7] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[7][1:])]
-    ad[7] = [x[1] for x in f] + [0.0] * 2
+                                  for x, old in zip(m, a[7][1:])] + [0.0]
+    ad[7] = [x[1] for x in f] + [0.0] * 3
     f = [link_residual(p_J7, w.p_J5, ZERO_LENGTH)]
     m = [(p_J7[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (p_J7[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
     a[8] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[8][1:])]
-    ad[8] = [x[1] for x in f] + [0.0] * 2
+                                  for x, old in zip(m, a[8][1:])] + [0.0]
+    ad[8] = [x[1] for x in f] + [0.0] * 3
 
 
 
@@ -903,7 +910,7 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     w.br49 = -1 if a[8][1] < 0 else 1
     w.br50 = -1 if a[8][2] < 0 else 1
     blocks = [lambda r, live: _group_1(w, r, live), lambda r, live: _group_1_v1(w, r, live), lambda r, live: _group_1_v2(w, r, live), lambda r, live: _group_1_v3(w, r, live), lambda r, live: _group_1_v4(w, r, live), lambda r, live: _group_1_v5(w, r, live), lambda r, live: _group_1_v6(w, r, live), lambda r, live: _group_1_v7(w, r, live), lambda r, live: _group_1_v8(w, r, live)]
-    k, its[0], w.sigma[9] = resolve_variants(
+    k, its[0], w.sigma[9], turn = resolve_variants(
         blocks, a, 0, 1e-10 * LENGTH_SCALE, 8,
         0.1 * LENGTH_SCALE, order, used[0],
         BLOCK_SIZES[0:9], lambda: w.chains, 0.05)
@@ -911,6 +918,7 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
         return 92
     used[0] = k
     _lengths_1(w, a, ad)
+    a[0 + k][-1] = float(turn)
     w.note(9, 3 if w.sigma[9] < 1e-07 else 4 if w.sigma[9] < 0.001 else 0)
 
 
