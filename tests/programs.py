@@ -67,14 +67,34 @@ def parse(text: str) -> tuple[list[str], list[list[float]], list[int]]:
     return header, [[float(x) for x in r[:-1]] for r in body], [int(r[-1]) for r in body]
 
 
+QUANTITIES = ("position", "velocity", "acceleration", "angle", "angular_velocity", "angular_acceleration")
+
+
+def noise_floors(largest: dict[str, float], length: float) -> dict[str, float]:
+    """Scales S per quantity class from the largest magnitudes in a CSV (angles at least 1).
+
+    A class that can be zero in exact arithmetic (the angular accelerations of a Scotch yoke, a
+    triad at rest) would leave S at rounding noise, so S is also at least the scale that noise
+    comes from: S_omega >= S_v / L, S_a >= S_v^2 / L, S_alpha >= max(S_a / L, S_omega^2).
+    """
+    out = {q: largest.get(q, 0.0) for q in QUANTITIES}
+    out["angle"] = max(out["angle"], 1.0)
+    out["angular_velocity"] = max(out["angular_velocity"], out["velocity"] / length)
+    out["acceleration"] = max(out["acceleration"], out["velocity"] ** 2 / length)
+    out["angular_acceleration"] = max(out["angular_acceleration"], out["acceleration"] / length,
+                                      out["angular_velocity"] ** 2)
+    return out
+
+
 def scales(log: StepLog, data: list[list[float]]) -> list[float]:
-    """Per column, the largest magnitude of its quantity class in the CSV (angles: at least 1)."""
+    """Per column, the scale of its quantity class in the CSV (noise_floors)."""
     by_class: dict[str, float] = {}
     for row in data:
         for c, x in zip(log.columns, row):
             if math.isfinite(x):
                 by_class[c.quantity] = max(by_class.get(c.quantity, 0.0), abs(x))
-    return [max(by_class.get(c.quantity, 0.0), 1.0 if c.quantity == "angle" else 0.0) for c in log.columns]
+    floors = noise_floors(by_class, log.length_scale)
+    return [floors[c.quantity] for c in log.columns]
 
 
 def compare(log: StepLog, a: str, b: str, tol: float = 1e-9) -> float:
@@ -97,3 +117,12 @@ def compare(log: StepLog, a: str, b: str, tol: float = 1e-9) -> float:
             if st == 0:
                 worst = max(worst, diff)
     return worst
+
+
+def different_bits(a: str, b: str) -> list[tuple]:
+    """The cells of two CSVs of one sweep that are not the same double: (row, column, a, b)."""
+    ha, da, sa = parse(a)
+    hb, db, sb = parse(b)
+    assert ha == hb and sa == sb
+    return [(k, h, x, y) for k, (ra, rb) in enumerate(zip(da, db)) for h, x, y in zip(ha, ra, rb)
+            if not (x == y or (x != x and y != y))]

@@ -116,6 +116,16 @@ def wrap(x):
     return x - 2 * MP.pi * MP.ceil((x - MP.pi) / (2 * MP.pi))
 
 
+def nearest_turn(x, start: float, stop: float):
+    """The angle x plus the whole turns that bring it nearest the range [start, stop]: inside it
+    where possible, the turn nearest start among equals."""
+    two_pi = 2 * math.pi if _plain(x) else 2 * MP.pi
+    lo, hi = min(start, stop), max(start, stop)
+    first = math.floor(float((lo - x) / two_pi)) - 1
+    turns = [x + k * two_pi for k in range(first, first + 4 + math.ceil((hi - lo) / float(two_pi)))]
+    return min(turns, key=lambda t: (max(lo - t, t - hi, 0), abs(t - start)))
+
+
 def _atan2(y, x, exact: bool):
     return MP.atan2(MP.mpf(y), MP.mpf(x)) if exact else math.atan2(y, x)
 
@@ -197,11 +207,13 @@ class Reference:
         return off
 
     def sketch_inputs(self, exact: bool = False) -> list:
-        """Input values at which the mechanism is assembled as drawn (angles wrapped to (-pi, pi])."""
+        """Input values at which the mechanism is assembled as drawn: an angle as the spec's
+        representative nearest its range (a row a whole turn away is another pose where the
+        mechanism passes a change point)."""
         out = []
         for i, inp in enumerate(self.m.inputs):
             if inp.kind == "revolute":
-                out.append(wrap(self.input_offset(i, exact)))
+                out.append(nearest_turn(wrap(self.input_offset(i, exact)), inp.start, inp.stop))
             elif inp.kind == "prismatic":
                 out.append(MP.mpf(0) if exact else 0.0)
             else:

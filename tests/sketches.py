@@ -550,7 +550,7 @@ def rpr_case(src: Source) -> Case:
     psi_j = jatan2(u[1], u[0]) if t2.v > 0 else Jet(MP.atan2(u[1].v, u[0].v), MP.nan, MP.nan)
     sv = mt + (mp(as_) - mp(ag))
     jp = vadd(JS, local(u, mp(as_), mp(bs)))
-    sigma = float(t.v / MP.sqrt(q2.v))
+    sigma = float(t.v / max(MP.sqrt(q2.v), *(abs(mp(x)) for x in (ag, bg, as_, bs))))
     return Case("RPR_links", args, values, {"psi": psi_j, "s": sv, "jp": jp}, length, ratio, sigma, toggle, mode, q)
 
 

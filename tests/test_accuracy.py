@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sketches as sk
+from programs import noise_floors
 from reference import Reference, wrap
 
 from linkgen.evaluate import evaluate, input_rows
@@ -73,28 +74,16 @@ class Sweep:
 
     @functools.cached_property
     def scales(self) -> dict:
-        """S per quantity class: the largest magnitude in the CSV (angles at least 1).
-
-        A class that can be zero in exact arithmetic (the angular accelerations of a Scotch
-        yoke, the accelerations of a constant-speed translation) would leave S at rounding
-        noise, so S is also at least the scale that noise comes from: S_omega >= S_v / L,
-        S_a >= S_v^2 / L, S_alpha >= max(S_a / L, S_omega^2).
-        """
+        """S per quantity class: the largest magnitude in the CSV's solved rows, with the floors of
+        programs.noise_floors."""
         ok = self.status <= 0
-        out = dict.fromkeys(("position", "velocity", "acceleration", "angle", "angular_velocity",
-                             "angular_acceleration"), 0.0)
+        largest = {}
         for k, name in enumerate(self.names):
             vals = self.data[ok, k]
             vals = vals[np.isfinite(vals)]
             if vals.size:
-                out[quantity(name)] = max(out[quantity(name)], float(np.max(np.abs(vals))))
-        out["angle"] = max(out["angle"], 1.0)
-        length = self.length
-        out["angular_velocity"] = max(out["angular_velocity"], out["velocity"] / length)
-        out["acceleration"] = max(out["acceleration"], out["velocity"] ** 2 / length)
-        out["angular_acceleration"] = max(out["angular_acceleration"], out["acceleration"] / length,
-                                          out["angular_velocity"] ** 2)
-        return out
+                largest[quantity(name)] = max(largest.get(quantity(name), 0.0), float(np.max(np.abs(vals))))
+        return noise_floors(largest, self.length)
 
 
 @functools.cache

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+import sysconfig
 import venv
 from pathlib import Path
 
@@ -23,8 +24,13 @@ def test_installed_wheel_builds_a_sample(tmp_path: Path):
                     str(wheels), str(ROOT)], check=True, capture_output=True)
     (wheel,) = wheels.glob("linkgen-*.whl")
     env_dir = tmp_path / "venv"
-    venv.create(env_dir, system_site_packages=True, with_pip=True)
+    venv.create(env_dir, with_pip=True)
     python = env_dir / "bin" / "python"
+    # the dependencies come from the environment running the tests (a path line in a .pth file adds
+    # its folder only: the editable linkgen installed there is not seen)
+    purelib = subprocess.run([str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+                             check=True, capture_output=True, text=True).stdout.strip()
+    Path(purelib, "dependencies.pth").write_text(sysconfig.get_paths()["purelib"] + "\n", encoding="utf-8")
     subprocess.run([str(python), "-m", "pip", "install", "--no-deps", "-q", str(wheel)], check=True,
                    capture_output=True)
     where = subprocess.run([str(python), "-c", "import linkgen.render as r; print(r.template_dir())"],

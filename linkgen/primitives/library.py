@@ -454,7 +454,10 @@ def rpr_links() -> Primitive:
     psi = b.let("th", atan2(u[1], u[0]))
     s = b.let("sv", mt + (as_ - ag))
     r = _local(b, "r", u, as_, bs)
-    sigma = b.let("sigma", select(fail, 0, fmin(t * iq, 1)))
+    # t = |d.u| over the chain's largest length: the line's angle is the direction of d, so it is
+    # ill-conditioned at the toggle (d square to the line) and where the pivots nearly meet
+    arm = b.let("arm", fmax(fmax(fabs(ag), fabs(as_)), fmax(fabs(bg), fabs(bs))))
+    sigma = b.let("sigma", select(fail, 0, fmin(t / fmax(q, arm), 1)))
     imt = b.let("imt", select(mt.eq(0), NAN, 1 / mt))
     dvn = b.let("dvn", _cross(u, dv))  # d'.n
     dvu = b.let("dvu", _dot(dv, u))

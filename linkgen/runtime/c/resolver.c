@@ -197,23 +197,24 @@ static int resolve_variants(const group_fn fns[], const int sizes[], int count, 
 
 /* Whether a solved state is where the predictor pointed from prev: no block's Add-link
  * length moved from the guess by more than a tenth of the largest predicted move (plus
- * slack), and no block that solved both has turned its orientation (the state's last
- * entry, after its sizes[k] lengths and its branches; 0 where the block did not solve).
- * A larger correction, or a turned block, is a jump to another assembly (where two of
- * them pass close, near a singular position, the nearer one can lie within the tenth), or
- * a step too long for the curve. */
+ * slack); a larger correction is a jump to another assembly, or a step too long for the
+ * curve.  A block that solved both and turned its orientation (the state's last entry,
+ * after its sizes[k] lengths and its branches; 0 where the block did not solve) has passed
+ * a singular position.  Where two assemblies pass close the nearer one can lie within the
+ * tenth, so a turned block must be within a hundredth: the path crosses the singular
+ * position along its tangent, as a mechanism goes straight through a change point. */
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
                    const double now[][LINKGEN_NMAX], const int sizes[], double slack)
 {
-    double move = 0.0;
+    double move = 0.0, share = 0.1;
     int g, i;
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+    for (g = 0; g < LINKGEN_NBLOCKS; g++) {
         for (i = 0; i < sizes[g]; i++) move = fmax(move, fabs(guess[g][i] - prev[g][i]));
+        if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = 0.01;
+    }
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < sizes[g]; i++)
-            if (!(fabs(now[g][i] - guess[g][i]) <= 0.1 * move + slack)) return 0; /* a nan too */
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) return 0;
+            if (!(fabs(now[g][i] - guess[g][i]) <= share * move + slack)) return 0; /* a nan too */
     return 1;
 }
 

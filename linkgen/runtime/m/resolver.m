@@ -174,21 +174,26 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, tol, 
 end
 
 function ok = resolver_on_path(prev, guess, now, sizes, slack)
-    % Whether a solved state is where the predictor pointed from prev: no block's
-    % Add-link length moved from the guess by more than a tenth of the largest predicted
-    % move (plus slack), and no block that solved both has turned its orientation (the
-    % state's last entry, after its sizes(k) lengths and its branches; 0 where the block did
-    % not solve).  A larger correction, or a turned block, is a jump to another assembly
-    % (where two pass close, near a singular position, the nearer one can lie within the
-    % tenth), or a step too long for the curve.
+    % Whether a solved state is where the predictor pointed from prev: no block's Add-link
+    % length moved from the guess by more than a tenth of the largest predicted move (plus
+    % slack); a larger correction is a jump to another assembly, or a step too long for
+    % the curve.  A block that solved both and turned its orientation (the state's last
+    % entry, after its sizes(k) lengths and its branches; 0 where the block did not solve)
+    % has passed a singular position.  Where two assemblies pass close the nearer one can
+    % lie within the tenth, so a turned block must be within a hundredth: the path crosses
+    % the singular position along its tangent, as a mechanism goes straight through a
+    % change point.
     move = 0;
+    share = 0.1;
     for g = 1:numel(sizes)
         move = max([move; abs(guess{g}(1:sizes(g)) - prev{g}(1:sizes(g)))]);
+        if prev{g}(end) * now{g}(end) < 0
+            share = 0.01;
+        end
     end
     ok = true;
     for g = 1:numel(sizes)
-        ok = ok && all(abs(now{g}(1:sizes(g)) - guess{g}(1:sizes(g))) <= 0.1 * move + slack) ...
-             && prev{g}(end) * now{g}(end) >= 0;
+        ok = ok && all(abs(now{g}(1:sizes(g)) - guess{g}(1:sizes(g))) <= share * move + slack);
     end
 end
 

@@ -98,7 +98,8 @@ static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, doubl
     const double sv = mt + (as_ - ag);
     const double rx = as_ * ux - bs * uy;
     const double ry = as_ * uy + bs * ux;
-    const double sigma = fail ? 0 : fmin(t * iq, 1);
+    const double arm = fmax(fmax(fabs(ag), fabs(as_)), fmax(fabs(bg), fabs(bs)));
+    const double sigma = fail ? 0 : fmin(t / fmax(q, arm), 1);
     const double imt = mt == 0 ? NAN : 1 / mt;
     const double dvn = ux * dvy - uy * dvx;
     const double dvu = dvx * ux + dvy * uy;

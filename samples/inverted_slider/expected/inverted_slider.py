@@ -152,7 +152,8 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     sv = mt + (as_ - ag)
     rx = as_ * ux - bs * uy
     ry = as_ * uy + bs * ux
-    sigma = 0 if fail else min(t * iq, 1)
+    arm = max(max(abs(ag), abs(as_)), max(abs(bg), abs(bs)))
+    sigma = 0 if fail else min(t / max(q, arm), 1)
     imt = NAN if mt == 0 else 1 / mt
     dvn = ux * dvy - uy * dvx
     dvu = dvx * ux + dvy * uy

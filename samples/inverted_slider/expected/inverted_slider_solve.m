@@ -314,10 +314,11 @@ function [psi, s, jp, st, sigma] = RPR_links(jg, js, ag, bg, as_, bs, minv)
     sv = mt + (as_ - ag);
     rx = as_ * ux - bs * uy;
     ry = as_ * uy + bs * ux;
+    arm = max(max(abs(ag), abs(as_)), max(abs(bg), abs(bs)));
     if fail
         sigma = 0;
     else
-        sigma = min(t * iq, 1);
+        sigma = min(t / max(q, arm), 1);
     end
     if mt == 0
         imt = NaN;

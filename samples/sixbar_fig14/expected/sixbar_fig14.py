@@ -300,7 +300,7 @@ def newton(group, a, tol, max_iter, reach):
         if det == 0.0:
             return False, a, it, None
         t = 1.0
-        for _ in range(9):
+        for _ in range(4):
             trial = [a[i] + t * dx[i] for i in range(len(a))]
             f2, jac2 = _jacobian(group, trial)
             if f2 is not None:
@@ -399,14 +399,15 @@ def within(inputs, last, limits):
 def on_path(prev, guess, new, sizes, slack):
     """Whether a solved state new is where the predictor guess pointed from prev: no
     block's Add-link length moved from the guess by more than a tenth of the largest predicted
-    move (plus slack), and no block that solved both has turned its orientation (the last entry
-    of a block's state, after its sizes[k] lengths and its branches; 0 where it did not solve).
-    A larger correction, or a turned block, is a jump to another assembly (where two of them
-    pass close, near a singular position, the nearer one can lie within the tenth), or a
-    step too long for the curve."""
+    move (plus slack); a larger correction is a jump to another assembly, or a step too long
+    for the curve.  A block that solved both and turned its orientation (the last entry of a
+    block's state, after its sizes[k] lengths and its branches; 0 where it did not solve) has
+    passed a singular position.  Where two assemblies pass close the nearer one can lie within
+    the tenth, so a turned block must be within a hundredth: the path crosses the singular
+    position along its tangent, as a mechanism goes straight through a change point."""
     move = max((abs(g[i] - p[i]) for p, g, n in zip(prev, guess, sizes) for i in range(n)), default=0.0)
-    near = all(abs(x[i] - g[i]) <= 0.1 * move + slack for g, x, n in zip(guess, new, sizes) for i in range(n))
-    return near and all(p[-1] * x[-1] >= 0.0 for p, x in zip(prev, new))
+    share = 0.01 if any(p[-1] * x[-1] < 0.0 for p, x in zip(prev, new)) else 0.1
+    return all(abs(x[i] - g[i]) <= share * move + slack for g, x, n in zip(guess, new, sizes) for i in range(n))
 
 
 def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach):
