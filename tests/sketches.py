@@ -1229,6 +1229,36 @@ def reach(ref: Reference, values: list[float], rates: list[float]) -> list[Reach
     return out
 
 
+def follow(ref: Reference, values: list[float], rates: list[float]) -> list[Reached | None]:
+    """The sketch's assembly row after row, as the generated programs follow it (one revolute input):
+    each row from the last one reached (the first from the sketch), the shorter way round, else the
+    other way round past a limit position; a row reached neither way is None, and the next row starts
+    from the sketch again.  Rows reached the other way round are counted in WORST."""
+    t0 = ref.sketch_inputs()[0]
+    q, t = ref.sketch_pose(), t0
+    out = []
+    for v, w in zip(values, rates):
+        goal = v - 2 * math.pi * math.floor((v - t) / (2 * math.pi) + 0.5)
+        new = walk(ref, q, t, goal)
+        if new is None and goal != t:
+            new = walk(ref, q, t, goal - math.copysign(2 * math.pi, goal - t))
+            if new is not None:
+                record("2 went round", "rows", "rows reached the other way round", 1.0)
+        sol = None
+        if new is not None:
+            try:
+                sol = ref.solve([v], [w], new)
+            except (ArithmeticError, ZeroDivisionError):
+                sol = None
+        if sol is None:
+            out.append(None)
+            q, t = ref.sketch_pose(), t0
+            continue
+        q, t = [float(x) for x in sol.q], v
+        out.append(Reached(v, sol.columns, conditioning(ref, ref.jacobian(q, [v])), sol.q))
+    return out
+
+
 # --------------------------------------------------------------------------- comparing rows
 
 CLASS = {"x": "position", "y": "position", "s": "position", "vx": "velocity", "vy": "velocity", "ds": "velocity",
