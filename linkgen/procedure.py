@@ -732,9 +732,14 @@ def _probe(topo: Topology) -> tuple[float, ...]:
 
 
 def _rounded(norm: float | None) -> float | None:
-    """Norms to 10 significant digits: the runtime's trigonometry differs in the last
-    digits between machines, and candidates with equal norms must tie everywhere."""
-    return None if norm is None else float(f"{norm:.10g}")
+    """Norms to 33 significant bits (10 digits): the runtime's trigonometry differs in the
+    last digits between machines, and candidates with equal norms must tie everywhere.
+    Binary digits, so that a sketch scaled by 2^k ranks its candidates the same (decimal
+    digits broke a four-way tie differently at two scales: triad_1953)."""
+    if norm is None:
+        return None
+    mantissa, exponent = math.frexp(norm)
+    return math.ldexp(round(mantissa * 2.0**33) / 2.0**33, exponent)
 
 
 def candidates(ex: Extractor) -> list[tuple[str, str]]:
