@@ -345,9 +345,13 @@ class Reference:
         return [x[i] for i in range(self.n)]
 
     def cond(self, jac: list) -> float:
-        """Smallest over largest singular value of the Jacobian, rotations scaled by the length scale."""
+        """Smallest over largest singular value of the Jacobian, made scale-free: rotation columns
+        scaled by the length scale and every row to unit length, so the number is the same for a
+        sketch and for the sketch scaled (a row that drives an angle would otherwise move with it)."""
         a = np.array([[float(x) for x in row] for row in jac])
         a[:, 2::3] /= self.length_scale
+        norms = np.linalg.norm(a, axis=1)
+        a = a[norms > 0] / norms[norms > 0, None]
         s = np.linalg.svd(a, compute_uv=False)
         return float(s[-1] / s[0]) if s[0] > 0 else 0.0
 

@@ -1122,18 +1122,8 @@ MECHANISMS = {
 
 
 def conditioning(ref: Reference, jac) -> float:
-    """Smallest over largest singular value of the reference's Jacobian, made scale-free.
-
-    Rotation columns are scaled by the length scale and every row to unit length, so the number
-    is the same for a sketch and for the sketch scaled (Reference.cond leaves the angle rows
-    unscaled, so its value moves with the length scale).
-    """
-    a = np.array([[float(x) for x in row] for row in jac])
-    a[:, 2::3] /= ref.length_scale
-    norms = np.linalg.norm(a, axis=1)
-    a = a[norms > 0] / norms[norms > 0, None]
-    s = np.linalg.svd(a, compute_uv=False)
-    return float(s[-1] / s[0]) if s[0] > 0 else 0.0
+    """The reference's scale-free conditioning of a Jacobian (Reference.cond)."""
+    return ref.cond(jac)
 
 
 def sketch_condition(ref: Reference) -> float:
