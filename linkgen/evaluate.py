@@ -18,7 +18,7 @@ import numpy as np
 
 from .primitives import PRIMITIVES, numpy_backend, python_backend
 from .primitives.dsl import record_fields
-from .steplog import ResolverGroup, Step, StepLog, Variable, held
+from .steplog import Reach, ResolverGroup, Step, StepLog, Variable, held
 
 FAIL, NOT_CONVERGED, SINGULAR, NEAR = 1, 2, 3, 4
 STEP_ANGLE = 0.1  # continuation: the largest step of an angle input (radians)
@@ -184,7 +184,23 @@ def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarr
     branches(log, env, values[:, 0] if log.inputs else 0.0, scalar=False)
     with np.errstate(all="ignore"):
         report = execute(log.steps, env, _numpy_call(order))
-    return _finish(log, values, env, report, order)
+    result = _finish(log, values, env, report, order)
+    if log.reach is not None:
+        side = reach_side(log.reach, values[:, 0])
+        result.status[side < 0] = 10 * log.reach.low_step + FAIL
+        result.status[side > 0] = 10 * log.reach.high_step + FAIL
+    return result
+
+
+def reach_side(reach: Reach, theta: np.ndarray) -> np.ndarray:
+    """The runtime's reach_at for every row: 0 where the input value is reached from the
+    sketch, -1 past the gap below, 1 past the gap above."""
+    low = np.nan if reach.low is None else reach.low
+    high = np.nan if reach.high is None else reach.high
+    if reach.periodic:
+        t = theta - 2 * np.pi * np.floor((theta - low) / (2 * np.pi))
+        return np.where(t < high, 0, np.where(t - high <= low + 2 * np.pi - t, 1, -1))
+    return np.where(theta <= low, -1, np.where(theta >= high, 1, 0))
 
 
 def _finish(log: StepLog, values: np.ndarray, env: dict, report: dict, order: int,

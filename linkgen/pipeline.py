@@ -9,7 +9,7 @@ from .evaluate import residual_norm
 from .model import Mechanism
 from .procedure import Extractor, Procedure, extract
 from .prune import prune
-from .singular import change_points, conditioning
+from .singular import change_points, conditioning, reach_interval
 from .steplog import InputInfo, LinkInfo, PairInfo, StatusCode, StepLog
 from .topology import Topology, analyse
 from .validate import read_mechanism
@@ -99,12 +99,13 @@ def _check_outputs(m: Mechanism, outputs: tuple[str, ...]) -> None:
 def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | None = None,
               sweep: bool = True) -> StepLog:
     """The step log of a mechanism file for the outputs and order asked for (default: the
-    file's), cut to the steps they need, with its change points and, when ``sweep``, its
-    conditioning over the sweep (for the manual; it takes a sweep and root finding)."""
+    file's), cut to the steps they need, with its change points and reach and, when
+    ``sweep``, its conditioning over the sweep (for the manual; it takes a sweep and root
+    finding)."""
     m, topo, proc = analyse_file(path)
     if outputs is not None:
         _check_outputs(m, outputs)
-    log = change_points(prune(steplog(topo, proc, outputs, order)))
+    log = reach_interval(change_points(prune(steplog(topo, proc, outputs, order))))
     return conditioning(log) if sweep else log
 
 

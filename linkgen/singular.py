@@ -21,7 +21,7 @@ import numpy as np
 
 from .evaluate import FAIL, NOT_CONVERGED, Result, evaluate
 from .primitives import PRIMITIVES
-from .steplog import Conditioning, Singular, Step, StepLog
+from .steplog import Conditioning, Reach, Singular, Step, StepLog
 
 ZOOMS = 10  # refinements of a bracket around a minimum, each to 1/16 of the last
 EDGE_ZOOMS = 5  # refinements of a limit position, each to 1/32 of the last
@@ -186,6 +186,73 @@ def change_points(log: StepLog) -> StepLog:
                 break
         else:
             return replace(span, inputs=log.inputs)
+
+
+def _gaps(log: StepLog, span: StepLog, grid: np.ndarray, periodic: bool) -> list[tuple[float, int]]:
+    """(input value, step) of every gap of the span where a chain with two assemblies cannot
+    close: the middle of a run of failing grid rows (its ends located by root finding; of a
+    run cut by the span's end, its failing row next to the rows that close), and the deepest
+    point of a chain's closing margin where it dips below zero between two rows.  A chain
+    with one assembly (PRP, PPR) fails only where it is singular, and passes through."""
+    result = _run(span, grid)
+    st = result.status
+    two = [s.number for s in span.steps if margin(s, result) is not None]
+    fails = (st > 0) & np.isin(st % 10, (FAIL, NOT_CONVERGED)) & np.isin(st // 10, two)
+    n = len(grid) - 1 if periodic else len(grid)  # a full turn: the last row is the first
+    first, width = span.inputs[0].start, span.inputs[0].stop - span.inputs[0].start
+
+    def lam(j: int) -> float:  # grid position of row j, counted on past the end of a turn
+        return float(grid[j % n] + j // n)
+
+    def edge(good: int, bad: int) -> float:  # the last position from row good towards row bad that closes
+        return _zoom_edge(span, lam(good), lam(bad), int(st[bad % n] // 10), 0.0)[0]
+
+    out = []
+    for k in range(n):
+        if not fails[k] or (fails[(k - 1) % n] if periodic else k > 0 and fails[k - 1]):
+            continue  # not the first row of a run of failing rows
+        end = k
+        while fails[(end + 1) % n] and (end + 1 < k + n if periodic else end + 1 < n):
+            end += 1
+        opens, closes = periodic or k > 0, periodic or end < n - 1  # whether the run has each end in the span
+        if opens and closes:
+            a, b = edge(k - 1, k), edge(end + 1, end)
+            middle = a + (b - a) / 2
+        else:
+            middle = lam(k) if opens else lam(end)
+        out.append((first + middle * width, int(st[k] // 10)))
+    for s in span.steps:
+        m = margin(s, result)
+        if m is None:
+            continue
+        usable = _closes(result, s.number) & np.isfinite(m)
+        for k in _local_minima(m, usable, periodic):
+            at, low = _zoom_min(span, grid[k] - grid[1], grid[k] + grid[1], lambda r, s=s: margin(s, r))
+            if low < -TOUCH * log.length_scale:
+                out.append((first + at * width, s.number))
+    return out
+
+
+def reach_interval(log: StepLog) -> StepLog:
+    """The input values the mechanism reaches from the sketch (one input, no resolver: a
+    resolver's continuation finds them row by row): between the middles of the nearest gaps,
+    below and above the sketch's value, where a chain cannot close.  Past a gap a chain can
+    close again, on another circuit that the mechanism cannot reach without being taken apart."""
+    if len(log.inputs) != 1 or log.groups:
+        return log
+    lo, hi, periodic = _span(log)
+    span = replace(log, inputs=(replace(log.inputs[0], start=lo, stop=hi),))
+    gaps = _gaps(log, span, np.linspace(0.0, 1.0, max(2 * log.samples, 721) | 1), periodic)
+    if len(gaps) < (2 if periodic else 1):
+        return log  # an angle with one gap is reached all round but in the gap (where rows fail anyway)
+    theta0, turn = log.inputs[0].sketch, 2 * np.pi
+    if periodic:  # every gap bounds the reach on both sides, a turn apart
+        gaps = [(g + k * turn, step) for g, step in gaps for k in (-1, 0, 1)]
+    high, high_step = min(((g, step) for g, step in gaps if g > theta0), default=(None, 0))
+    low, low_step = max(((g, step) for g, step in gaps if g < theta0), default=(None, 0))
+    found = Reach(None if low is None else float(f"{low:.12g}"), low_step,
+                  None if high is None else float(f"{high:.12g}"), high_step, periodic)
+    return replace(log, reach=found, runtime=tuple(sorted(set(log.runtime) | {"reach_at"})))
 
 
 def _with_points(log: StepLog, step: Step, points: tuple[float, ...]) -> StepLog:

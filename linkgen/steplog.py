@@ -232,6 +232,21 @@ class Conditioning:
 
 
 @dataclass(frozen=True)
+class Reach:
+    """The values of a mechanism's one input that it reaches from the sketch: between the
+    middles of the nearest gaps, below and above the sketch's value, where a chain cannot
+    close (None: no gap on that side).  An angle is reached modulo whole turns.  Beyond a
+    gap a chain can close again, on another circuit of the mechanism: rows there fail with
+    the code of the step whose chain cannot close in the gap."""
+
+    low: float | None
+    low_step: int  # the step whose chain cannot close in the gap below (0: none)
+    high: float | None
+    high_step: int
+    periodic: bool
+
+
+@dataclass(frozen=True)
 class StatusCode:
     code: int
     step: int
@@ -276,6 +291,7 @@ class StepLog:
     conditioning: tuple[Conditioning, ...] = ()
     outputs: tuple[str, ...] = ()  # the outputs asked for (empty: the default set)
     omitted: tuple[Omitted, ...] = ()  # steps left out: the outputs do not need them
+    reach: Reach | None = None  # one input, no resolver: the input values reached from the sketch
 
     def variable(self, name: str) -> Variable:
         return self._variables[name]

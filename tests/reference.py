@@ -339,7 +339,15 @@ class Reference:
 
     def _lstsq(self, a: list, b: list, exact: bool) -> list:
         if not exact:
-            return list(np.linalg.lstsq(np.array(a, dtype=float), np.array(b, dtype=float), rcond=None)[0])
+            # equilibrated as in cond: rotations in length units, rows of unit length (else a sketch
+            # drawn far out leaves singular values 1e19 apart, and lstsq drops the input's row)
+            cols = np.ones(self.n)
+            cols[2::3] = self.length_scale
+            m = np.array(a, dtype=float) / cols
+            rows = np.linalg.norm(m, axis=1)
+            rows[rows == 0] = 1.0
+            y = np.linalg.lstsq(m / rows[:, None], np.array(b, dtype=float) / rows, rcond=None)[0]
+            return list(y / cols)
         am, bm = MP.matrix(a), MP.matrix(b)
         x = MP.lu_solve(am, bm) if len(a) == self.n else MP.qr_solve(am, bm)[0]
         return [x[i] for i in range(self.n)]

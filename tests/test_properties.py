@@ -52,7 +52,7 @@ import math
 import os
 import re
 import struct
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -1317,3 +1317,37 @@ def test_candidates_rank_the_same_at_every_power_of_two_scale(tmp_path):
         for a, b in zip(sketch.add_links[0].candidates, log.add_links[0].candidates):
             assert a.pairs == b.pairs
             assert (a.norm is None and b.norm is None) or a.norm * 2.0**k == b.norm, (k, a, b)
+
+
+@pytest.mark.parametrize("name", ["stephenson_circuit", "watt_circuit"])
+def test_rows_past_a_gap_are_on_another_circuit(tmp_path, name):
+    """Found by test_mechanism_stephenson (stephenson_381) and test_mechanism_watt (watt_674): a rocker
+    meets a limit position a little above the sketch's input, its chain cannot close over an interval
+    (a gap), and past the gap it closes again: on another circuit, which the mechanism cannot reach
+    without being taken apart (the crank meets another gap the other way round).  Those rows gave status
+    0.  linkgen now finds the gaps when building (its reach) and fails the rows past them with the gap's
+    code.  Reference: the mechanism followed row after row from the sketch, either way round."""
+    names, data, result, ref, values = _regression_rows(tmp_path, name)
+    log = build_log(str(tmp_path / f"{name}.yaml"), outputs=(), sweep=False)
+    reach = log.reach
+    assert reach is not None and reach.periodic
+    v = np.array(values).reshape(-1, 1)
+    with np.errstate(all="ignore"):
+        unchecked = evaluate(replace(log, reach=None), v, np.ones_like(v), np.zeros_like(v))
+    past = 0
+    for k, r in enumerate(sk.follow(ref, values, [1.0] * len(values))):
+        row = dict(zip(names, (float(x) for x in data[k])))
+        if r is None:  # in the gap or past it: the programs' row fails, whether its chains close or not
+            assert result.status[k] == 10 * reach.high_step + 1, f"row {k}: status {result.status[k]}"
+            assert all(math.isnan(x) for c, x in row.items() if c != log.inputs[0].column)
+            past += values[k] > reach.high and unchecked.status[k] == 0
+            continue
+        assert values[k] < reach.high and result.status[k] <= 0, f"row {k}: status {result.status[k]}"
+        err = max(abs(sk.MP.mpf(row[c]) - x) for c, x in r.columns.items() if sk.quantity(c) == "position")
+        err = float(err / (EPS * ref.length_scale))
+        assert err <= POSITION / r.cond, f"row {k}: {err:.3g} eps L, conditioning {r.cond:.3g}"
+    assert past >= 3, "rows where the chains close again, on another circuit"
+    middle = np.array([[reach.high]])
+    with np.errstate(all="ignore"):
+        gap = evaluate(replace(log, reach=None), middle, np.ones_like(middle), np.zeros_like(middle))
+    assert gap.status[0] == 10 * reach.high_step + 1, "the reach ends in the middle of a gap"

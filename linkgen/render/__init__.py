@@ -96,6 +96,8 @@ def _c_files(view: View, banner) -> dict[str, bytes]:
     runtime = [c_function(PRIMITIVES[p], view.record_order) for p in _used(view)]
     if "branch_at" in log.runtime:
         runtime.append(_runtime_source("c", "branch.c", view.record_order))
+    if "reach_at" in log.runtime:
+        runtime.append(_runtime_source("c", "reach.c", view.record_order))
     if view.groups:
         runtime.append(_runtime_source("c", "resolver.c", view.record_order))
     levels = ("P", "DP", "DDP")[: view.record_order + 1]
@@ -154,6 +156,8 @@ def _py_files(view: View, banner) -> dict[str, bytes]:
     runtime = [python_function(PRIMITIVES[p], view.record_order, with_sigma=True).rstrip("\n") for p in _used(view)]
     if "branch_at" in log.runtime:
         runtime.append(_runtime_source("py", "branch.py", view.record_order).rstrip("\n"))
+    if "reach_at" in log.runtime:
+        runtime.append(_runtime_source("py", "reach.py", view.record_order).rstrip("\n"))
     if view.groups:
         runtime.append(_runtime_source("py", "resolver.py", view.record_order).rstrip("\n"))
     order_of = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
@@ -180,6 +184,8 @@ def _m_files(view: View, banner) -> dict[str, bytes]:
     runtime = [octave_function(PRIMITIVES[p], view.record_order).rstrip("\n") for p in _used(view)]
     if "branch_at" in log.runtime:
         runtime.append(_runtime_source("m", "branch.m", view.record_order).rstrip("\n"))
+    if "reach_at" in log.runtime:
+        runtime.append(_runtime_source("m", "reach.m", view.record_order).rstrip("\n"))
     if view.groups:
         runtime.append(_runtime_source("m", "resolver.m", view.record_order).rstrip("\n"))
     level = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,

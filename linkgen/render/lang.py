@@ -124,6 +124,25 @@ class Spelling:
         """The statement that builds an input record from the k-th input, rate and acceleration."""
         raise NotImplementedError
 
+    nan = "NAN"  # a bound of the reach with no gap on its side
+
+    def reach_call(self, value: str) -> str:
+        """reach_at(...) of the step log's reach for the input value expression ``value``."""
+        r = self.log.reach
+        low, high = (self.nan if x is None else self.lit(x) for x in (r.low, r.high))
+        return f"reach_at({value}, {low}, {high}, {int(r.periodic)})"
+
+    def reach_codes(self) -> tuple[int, int]:
+        """The codes of a row past the gap below and above (a side without a gap takes the other's)."""
+        r = self.log.reach
+        low = 10 * (r.low_step or r.high_step) + 1
+        high = 10 * (r.high_step or r.low_step) + 1
+        return low, high
+
+    def reach_check(self) -> list[str]:
+        """The lines that fail a row the mechanism does not reach from the sketch (none without a reach)."""
+        raise NotImplementedError
+
 
 class C(Spelling):
     name = "c"
@@ -162,6 +181,12 @@ class C(Spelling):
     def input_record(self, var: Variable, k: int) -> str:
         sources = ("in", "din", "ddin")
         return " ".join(f"w->{var.name}.{f} = {src}[{k}];" for f, src in zip(self.fields(var.kind), sources))
+
+    def reach_check(self) -> list[str]:
+        if self.log.reach is None:
+            return []
+        low, high = self.reach_codes()
+        return [f"st = {self.reach_call('in[0]')};", f"if (st != 0) return st < 0 ? {low} : {high};"]
 
     def initializer(self, v: Variable) -> str:
         """Braced initializer of a constant record (derivatives zero)."""
@@ -212,6 +237,12 @@ class Python(Spelling):
         v, theta0, periodic = self.first_input()
         points = ", ".join(self.lit(p) for p in step.change_points) + ","
         return f"branch_at(w.{v.name}[0], {b0}, {self.lit(theta0)}, ({points}), {periodic})"
+
+    def reach_check(self) -> list[str]:
+        if self.log.reach is None:
+            return []
+        low, high = self.reach_codes()
+        return [f"st = {self.reach_call('inputs[0]')}", "if st:", f"    return {low} if st < 0 else {high}"]
 
     def input_record(self, var: Variable, k: int) -> str:
         sources = ("inputs", "d_inputs", "dd_inputs")[: self.order + 1]
@@ -264,6 +295,15 @@ class Octave(Spelling):
         points = ", ".join(self.lit(p) for p in step.change_points)
         value = f"w.{v.name}.{'the' if periodic else 'v'}"
         return f"branch_at({value}, {b0}, {self.lit(theta0)}, [{points}], {int(periodic)})"
+
+    nan = "NaN"
+
+    def reach_check(self) -> list[str]:
+        if self.log.reach is None:
+            return []
+        low, high = self.reach_codes()
+        return [f"st = {self.reach_call('in(1)')};", "if st ~= 0", f"    status = {high};", "    if st < 0",
+                f"        status = {low};", "    end", "    return;", "end"]
 
     def input_record(self, var: Variable, k: int) -> str:
         sources = ("in", "din", "ddin")
