@@ -20,6 +20,7 @@ from __future__ import annotations
 import copy
 import math
 from dataclasses import dataclass, field, replace
+from typing import NamedTuple
 
 from . import exact
 from .errors import ProcedureError
@@ -33,6 +34,7 @@ CONTINUATION_HALVINGS = 20
 RESOLVER_MAX_MOVE = 0.1  # relative to the length scale: farther from the start lengths is another assembly
 RESOLVER_MIN_CHAIN_SIGMA = 0.05  # below it, a block's Add-links are a poor coordinate of the assembly
 MAX_VARIANTS = 8  # fallback Add-link candidates per resolver group
+GOOD_LEVER = 0.5  # a block that magnifies its frame angle's error by more than 2 ranks after the others
 PROBE_ANGLE = math.radians(5.0)  # the paper's +5 degrees for ranking Add-link candidates
 PROBE_LENGTH = 0.05  # times the length scale, for prismatic and distance inputs
 
@@ -778,38 +780,57 @@ def install(ex: Extractor, k: str, u: str) -> None:
         raise Unsupported(f"the Add-link {k}-{u} does not complete a chain")
 
 
+class _Trial(NamedTuple):
+    """One Add-link candidate tried: its rank key first (usable, a norm, a good lever, the norm, order)."""
+
+    unusable: bool
+    no_norm: bool
+    poor_lever: bool
+    norm_key: float
+    index: int
+    pairs: tuple[str, str]
+    norm: float | None
+    usable: bool
+    lever: float | None
+    extractor: Extractor | None
+
+
 def rank(ex: Extractor, evaluate_norm) -> tuple[Extractor, _AddLinkDraft]:
-    """Try every candidate; keep the one with the smallest norm of f at the probe."""
+    """Try every candidate; keep the one with the smallest norm of f at the probe among
+    those whose lever is at least GOOD_LEVER (else among all)."""
     probe = _probe(ex.topo)
     tried = []
     for index, (k, u) in enumerate(candidates(ex)):
-        trial = copy.deepcopy(ex)
-        usable, norm = False, None
+        trial: Extractor | None = copy.deepcopy(ex)
+        usable, norm, lever = False, None, None
         try:
             install(trial, k, u)
             trial.solve(stop_at_close=True)
             usable = not trial.group
             if usable:
                 norm = _rounded(evaluate_norm(trial, probe))
+                lever = _placement_lever(trial.steps[len(ex.steps):], trial.steps, trial.variables)
         except Unsupported:
             trial = None
-        tried.append((not usable, norm is None, norm if norm is not None else 0.0, index, (k, u), norm, usable, trial))
+        tried.append(_Trial(not usable, norm is None, lever is None or lever < GOOD_LEVER,
+                            norm if norm is not None else 0.0, index, (k, u), norm, usable, lever, trial))
     if not tried:
         raise Unsupported("no Add-link candidate exists")
-    tried.sort(key=lambda t: t[:4])
+    tried.sort(key=lambda t: t[:5])
     best = tried[0]
-    if best[7] is None:
+    if best.extractor is None:
         raise Unsupported("no Add-link candidate completes a chain")
-    chosen: Extractor = best[7]
-    draft = next(d for d in chosen.add_links if d.pairs == best[4] and not d.candidates)
-    draft.candidates = tuple(Candidate(t[4], t[5], t[6]) for t in tried)
+    chosen: Extractor = best.extractor
+    draft = next(d for d in chosen.add_links if d.pairs == best.pairs and not d.candidates)
+    draft.candidates = tuple(Candidate(t.pairs, t.norm, t.usable, t.lever) for t in tried)
     draft.probe = probe
     start = len(ex.steps)
-    others = [t for t in tried[1:] if t[6] and t[7] is not None and len(t[7].add_links) == len(chosen.add_links)]
+    others = [t for t in tried[1:] if t.usable and t.extractor is not None
+              and len(t.extractor.add_links) == len(chosen.add_links)]
     for t in others[:MAX_VARIANTS]:
-        trial = t[7]
+        trial = t.extractor
         new = {name: v for name, v in trial.variables.items() if name not in ex.variables}
-        chosen.variants.append(_VariantDraft(chosen.groups[-1].number, t[4], trial.add_links[-1].length,
+        chosen.variants.append(_VariantDraft(chosen.groups[-1].number, t.pairs, trial.add_links[-1].length,
                                              trial.steps[start:], new))
     return chosen, draft
 
@@ -894,11 +915,17 @@ def _with_branch_signs(main: ResolverGroup, variants: list[ResolverGroup], steps
 
 
 def _lever(block: ResolverGroup, steps: dict[int, Step], variables: dict[str, Variable]) -> float:
+    """The block's lever: _placement_lever of its steps."""
+    return _placement_lever([steps[n] for n in block.steps], list(steps.values()), variables)
+
+
+def _placement_lever(block: list[Step], steps: list[Step], variables: dict[str, Variable]) -> float:
     """The worst ratio, over the block's point placements, of the base its frame angle is
     measured on to the arm of the placed point (at most 1).  A placement magnifies the
     angle's error by the inverse: a block that must turn a needle to place a far pair is
     a poor coordinate of the assembly, whatever its chains' conditioning."""
-    producer = {o: s for s in steps.values() for o in s.outputs}
+    producer = {o: s for s in steps for o in s.outputs}
+    producer.update({o: s for s in block for o in s.outputs})  # fallback blocks write the same variables
 
     def base(frame: str) -> float | None:
         s = producer.get(frame)
@@ -912,7 +939,7 @@ def _lever(block: ResolverGroup, steps: dict[int, Step], variables: dict[str, Va
         return None
 
     worst = 1.0
-    for s in (steps[n] for n in block.steps):
+    for s in block:
         if s.function != "coupler_point":
             continue
         b = base(s.args[1].var)

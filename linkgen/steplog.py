@@ -81,6 +81,7 @@ class Candidate:
     pairs: tuple[str, str]  # (known pair, unknown pair)
     norm: float | None  # |f| at the probe input, None when a chain cannot close there
     usable: bool  # the Solver completes its group with it
+    lever: float | None = None  # the block's lever (None where a chain cannot close)
 
 
 @dataclass(frozen=True)

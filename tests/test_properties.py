@@ -67,6 +67,7 @@ from linkgen.errors import LinkgenError
 from linkgen.evaluate import evaluate
 from linkgen.pipeline import build_log
 from linkgen.primitives import PRIMITIVES, python_backend
+from linkgen.procedure import GOOD_LEVER
 from linkgen.render import render_all
 from linkgen.steplog import StepLog
 from linkgen.table import columns
@@ -1351,3 +1352,29 @@ def test_rows_past_a_gap_are_on_another_circuit(tmp_path, name):
     with np.errstate(all="ignore"):
         gap = evaluate(replace(log, reach=None), middle, np.ones_like(middle), np.zeros_like(middle))
     assert gap.status[0] == 10 * reach.high_step + 1, "the reach ends in the middle of a gap"
+
+
+def test_addlink_with_a_poor_lever_ranks_after_the_others(tmp_path):
+    """Found by test_mechanism_triad (triad_554): the Add-link with the smallest norm of f placed J4, 0.065
+    from J5, from the ternary's angle measured on J5-J2, 0.0052 long (lever 0.081), so its rounding was
+    magnified twelvefold: J4 33 eps L and P 54 eps L off where moving the sketch by an ulp moves the
+    ternary's angle by 6e-17 rad.  (The lever the blocks reported was also read off another block's
+    angle step.)  Candidates whose lever is at least GOOD_LEVER now rank first, and the row 0.05 rad
+    from the sketch is 6.6 eps L off.  Reference: the lever from the sketch by hand, the rows against
+    the reference followed from the sketch."""
+    names, data, result, ref, values = _regression_rows(tmp_path, "triad_short_base")
+    log = build_log(str(tmp_path / "triad_short_base.yaml"), outputs=(), sweep=False)
+    add = log.add_links[0]
+    j = {n: (ref.joints[n].x, ref.joints[n].y) for n in ("J2", "J4", "J5")}
+    short = math.dist(j["J5"], j["J2"]) / math.dist(j["J5"], j["J4"])  # J4 placed from J5 on J5-J2
+    poor = [c for c in add.candidates if c.lever is not None and c.lever < GOOD_LEVER]
+    assert poor and all(c.lever == pytest.approx(short, rel=1e-12) for c in poor)
+    best_poor = min(c.norm for c in poor if c.norm is not None)
+    assert best_poor < add.candidates[0].norm, "the paper's rank alone installs a poor lever"
+    assert add.candidates[0].lever >= GOOD_LEVER and log.groups[0].lever == add.candidates[0].lever
+    assert all(st == 0 for st in result.status)
+    for k, r in enumerate(sk.follow(ref, values, [1.0] * len(values))):
+        row = dict(zip(names, (float(x) for x in data[k])))
+        err = max(abs(sk.MP.mpf(row[c]) - x) for c, x in r.columns.items() if sk.quantity(c) == "position")
+        err = float(err / (EPS * ref.length_scale))
+        assert err <= 2 * RESOLVER_POSITION, f"row {k}: {err:.3g} eps L (54 with the poor lever)"

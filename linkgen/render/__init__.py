@@ -15,6 +15,7 @@ from ..evaluate import STEP_ANGLE, STEP_LENGTH, block_start, path_slack
 from ..ljmatrix import states
 from ..primitives import PRIMITIVES
 from ..primitives.printers import c_function, octave_function, python_function
+from ..procedure import GOOD_LEVER
 from ..steplog import StepLog
 from .lang import C, Manual, Octave, Python, number
 from .svg import render_svg
@@ -267,7 +268,8 @@ def _md_files(view: View, banner) -> dict[str, bytes]:
                    fallbacks={b.index: _listing(view, spell, b.steps) for b in view.blocks if b.group.variant},
                    codes=log.status_codes, constants=_constants(log, spell),
                    functions=_used(view), slides={p.name for p in log.pairs if p.kind == "prismatic"},
-                   limits=and_list([f"{number(x)} for {i.column}" for x, i in zip(_limits(log), log.inputs)]))
+                   limits=and_list([f"{number(x)} for {i.column}" for x, i in zip(_limits(log), log.inputs)]),
+                   good_lever=GOOD_LEVER)
     return {f"{log.name}.md": text, f"{log.name}.svg": render_svg(log).encode("utf-8")}
 
 
