@@ -113,10 +113,12 @@ def lj(mechanism: str, at: int | None) -> None:
 
 @cli.command()
 @click.argument("mechanism", type=click.Path(dir_okay=False))
-@click.option("--json", "as_json", is_flag=True, help="Print a JSON array of {pairs, norm}, ranked.")
+@click.option("--json", "as_json", is_flag=True, help="Print a JSON array of {pairs, norm, usable, lever}, ranked.")
 def candidates(mechanism: str, as_json: bool) -> None:
-    """List the Add-link candidates where the Solver first stops, ranked by the norm of f."""
+    """List the Add-link candidates where the Solver first stops, ranked by the norm of f
+    (those whose lever is below 0.5 after the others)."""
     from .pipeline import build_log
+    from .procedure import GOOD_LEVER
 
     try:
         log = build_log(mechanism, sweep=False)
@@ -129,16 +131,19 @@ def candidates(mechanism: str, as_json: bool) -> None:
             click.echo("The Solver completes without an Add-link: every step is a computable two-link chain.")
         return
     for k, add in enumerate(log.add_links):
-        rows = [{"pairs": list(c.pairs), "norm": c.norm, "usable": c.usable} for c in add.candidates]
+        rows = [{"pairs": list(c.pairs), "norm": c.norm, "usable": c.usable, "lever": c.lever}
+                for c in add.candidates]
         if as_json:
             if k == 0:
                 click.echo(json.dumps(rows, indent=2))
             continue
-        click.echo(f"Add-link {add.name} (step {add.step}): {len(rows)} candidates, ranked by |f| at the probe input")
+        click.echo(f"Add-link {add.name} (step {add.step}): {len(rows)} candidates, ranked by |f| at the probe input "
+                   f"(a lever below {GOOD_LEVER:g} last)")
         for rank, c in enumerate(add.candidates, 1):
             norm = "cannot close" if c.norm is None else f"{c.norm:.6g}"
+            lever = "" if c.lever is None else f"  lever {c.lever:.3g}"
             mark = "  <- chosen" if c.pairs == add.pairs else ""
-            click.echo(f"  {rank}. {c.pairs[0]}-{c.pairs[1]}  |f| = {norm}{mark}")
+            click.echo(f"  {rank}. {c.pairs[0]}-{c.pairs[1]}  |f| = {norm}{lever}{mark}")
 
 
 @cli.command()
