@@ -116,7 +116,7 @@ def lj(mechanism: str, at: int | None) -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON array of {pairs, norm, usable, lever}, ranked.")
 def candidates(mechanism: str, as_json: bool) -> None:
     """List the Add-link candidates where the Solver first stops, ranked by the norm of f
-    (those whose lever is below 0.5 after the others)."""
+    (those whose lever is below GOOD_LEVER after the others)."""
     from .pipeline import build_log
     from .procedure import GOOD_LEVER
 
