@@ -187,8 +187,7 @@ def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarr
     result = _finish(log, values, env, report, order)
     if log.reach is not None:
         side = reach_side(log.reach, values[:, 0])
-        result.status[side < 0] = 10 * log.reach.low_step + FAIL
-        result.status[side > 0] = 10 * log.reach.high_step + FAIL
+        result.status[side < 0], result.status[side > 0] = log.reach.codes()
     return result
 
 

@@ -196,7 +196,8 @@ def _gaps(log: StepLog, span: StepLog, grid: np.ndarray, periodic: bool) -> list
     with one assembly (PRP, PPR) fails only where it is singular, and passes through."""
     result = _run(span, grid)
     st = result.status
-    two = [s.number for s in span.steps if margin(s, result) is not None]
+    margins = {s.number: margin(s, result) for s in span.steps}
+    two = [number for number, m in margins.items() if m is not None]
     fails = (st > 0) & np.isin(st % 10, (FAIL, NOT_CONVERGED)) & np.isin(st // 10, two)
     n = len(grid) - 1 if periodic else len(grid)  # a full turn: the last row is the first
     first, width = span.inputs[0].start, span.inputs[0].stop - span.inputs[0].start
@@ -222,7 +223,7 @@ def _gaps(log: StepLog, span: StepLog, grid: np.ndarray, periodic: bool) -> list
             middle = lam(k) if opens else lam(end)
         out.append((first + middle * width, int(st[k] // 10)))
     for s in span.steps:
-        m = margin(s, result)
+        m = margins[s.number]
         if m is None:
             continue
         usable = _closes(result, s.number) & np.isfinite(m)

@@ -81,7 +81,7 @@ class Candidate:
     pairs: tuple[str, str]  # (known pair, unknown pair)
     norm: float | None  # |f| at the probe input, None when a chain cannot close there
     usable: bool  # the Solver completes its group with it
-    lever: float | None = None  # the block's lever (None where a chain cannot close)
+    lever: float | None = None  # the block's lever (None where the candidate does not complete its group)
 
 
 @dataclass(frozen=True)
@@ -245,6 +245,11 @@ class Reach:
     high: float | None
     high_step: int
     periodic: bool
+
+    def codes(self) -> tuple[int, int]:
+        """The status of a row past the gap below and above (a side without a gap takes the
+        other's code: its check never fires); reason 1, the chain cannot close."""
+        return 10 * (self.low_step or self.high_step) + 1, 10 * (self.high_step or self.low_step) + 1
 
 
 @dataclass(frozen=True)

@@ -132,13 +132,6 @@ class Spelling:
         low, high = (self.nan if x is None else self.lit(x) for x in (r.low, r.high))
         return f"reach_at({value}, {low}, {high}, {int(r.periodic)})"
 
-    def reach_codes(self) -> tuple[int, int]:
-        """The codes of a row past the gap below and above (a side without a gap takes the other's)."""
-        r = self.log.reach
-        low = 10 * (r.low_step or r.high_step) + 1
-        high = 10 * (r.high_step or r.low_step) + 1
-        return low, high
-
     def reach_check(self) -> list[str]:
         """The lines that fail a row the mechanism does not reach from the sketch (none without a reach)."""
         raise NotImplementedError
@@ -185,7 +178,7 @@ class C(Spelling):
     def reach_check(self) -> list[str]:
         if self.log.reach is None:
             return []
-        low, high = self.reach_codes()
+        low, high = self.log.reach.codes()
         return [f"st = {self.reach_call('in[0]')};", f"if (st != 0) return st < 0 ? {low} : {high};"]
 
     def initializer(self, v: Variable) -> str:
@@ -241,7 +234,7 @@ class Python(Spelling):
     def reach_check(self) -> list[str]:
         if self.log.reach is None:
             return []
-        low, high = self.reach_codes()
+        low, high = self.log.reach.codes()
         return [f"st = {self.reach_call('inputs[0]')}", "if st:", f"    return {low} if st < 0 else {high}"]
 
     def input_record(self, var: Variable, k: int) -> str:
@@ -301,7 +294,7 @@ class Octave(Spelling):
     def reach_check(self) -> list[str]:
         if self.log.reach is None:
             return []
-        low, high = self.reach_codes()
+        low, high = self.log.reach.codes()
         return [f"st = {self.reach_call('in(1)')};", "if st ~= 0", f"    status = {high};", "    if st < 0",
                 f"        status = {low};", "    end", "    return;", "end"]
 
