@@ -118,7 +118,7 @@ def candidates(mechanism: str, as_json: bool) -> None:
     """List the Add-link candidates where the Solver first stops, ranked by the norm of f
     (those whose lever is below GOOD_LEVER after the others)."""
     from .pipeline import build_log
-    from .procedure import GOOD_LEVER
+    from .policy import GOOD_LEVER
 
     try:
         log = build_log(mechanism, sweep=False)

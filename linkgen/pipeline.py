@@ -5,19 +5,13 @@ from __future__ import annotations
 from . import __version__
 from .columns import plan
 from .errors import InputError, and_list
-from .evaluate import residual_norm
+from .extraction import Procedure, extract
 from .model import Mechanism
-from .procedure import Extractor, Procedure, extract
 from .prune import prune
 from .singular import change_points, conditioning, reach_interval
 from .steplog import InputInfo, LinkInfo, PairInfo, StatusCode, StepLog
 from .topology import Topology, analyse
 from .validate import read_mechanism
-
-
-def _norm(ex: Extractor, probe: tuple[float, ...]) -> float | None:
-    group = ex.groups[-1]
-    return residual_norm(ex.variables, ex.steps, ex.inputs, probe, group.residuals, ex.topo.origin)
 
 
 def _status_codes(proc: Procedure) -> tuple[StatusCode, ...]:
@@ -82,7 +76,7 @@ def steplog(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = N
 def analyse_file(path: str) -> tuple[Mechanism, Topology, Procedure]:
     m = read_mechanism(path)
     topo = analyse(m)
-    return m, topo, extract(topo, _norm)
+    return m, topo, extract(topo)
 
 
 def _check_outputs(m: Mechanism, outputs: tuple[str, ...]) -> None:

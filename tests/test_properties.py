@@ -66,8 +66,8 @@ from reference import Reference
 from linkgen.errors import LinkgenError
 from linkgen.evaluate import evaluate
 from linkgen.pipeline import build_log
+from linkgen.policy import GOOD_LEVER
 from linkgen.primitives import PRIMITIVES, python_backend
-from linkgen.procedure import GOOD_LEVER
 from linkgen.render import render_all
 from linkgen.steplog import StepLog
 from linkgen.table import columns

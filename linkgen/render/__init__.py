@@ -13,9 +13,9 @@ from .. import __version__
 from ..errors import and_list
 from ..evaluate import STEP_ANGLE, STEP_LENGTH, block_start, path_slack
 from ..ljmatrix import states
+from ..policy import GOOD_LEVER
 from ..primitives import PRIMITIVES
 from ..primitives.printers import c_function, octave_function, python_function
-from ..procedure import GOOD_LEVER
 from ..steplog import StepLog
 from .lang import C, Manual, Octave, Python, number
 from .svg import render_svg

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
+from linkgen.extraction import SolverState, candidates, stuck
 from linkgen.pipeline import build_log
-from linkgen.procedure import Extractor, candidates
 from linkgen.topology import analyse
 from linkgen.validate import read_mechanism
 
@@ -19,11 +19,10 @@ TABLE_2 = {("J1", "J4"), ("J1", "J5"), ("J2", "J3"), ("J3", "J5"), ("J2", "J6"),
            ("J4", "J7"), ("J5", "J7")}
 
 
-def _stuck(path: Path) -> Extractor:
-    ex = Extractor(analyse(read_mechanism(str(path))))
-    ex.start()
-    assert not ex.solve()
-    return ex
+def _stuck(path: Path) -> SolverState:
+    state = stuck(analyse(read_mechanism(str(path))))
+    assert state is not None
+    return state
 
 
 def test_fig14_candidates_are_table_2_in_the_papers_order():

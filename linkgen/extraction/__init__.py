@@ -1,0 +1,74 @@
+"""Stage 4: extract the systematic-analysis procedure.
+
+The Solver (``solver``) computes pairs in a computable order; where it stops, the
+Add-link process (``addlink``) installs a temporary binary link; each link the
+Solver then leaves unused gives a residual, and the over-constraint resolver
+(``resolver``) iterates the Add-link lengths until every residual vanishes.  The
+stages pass a frozen ``SolverState``; ``extract`` returns the ``Procedure``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+from ..errors import ProcedureError
+from ..steplog import AddLink, LJMatrix, Residual, ResolverGroup, Step, Variable
+from ..topology import Topology
+from .addlink import candidates, rank
+from .resolver import resolver_groups
+from .solver import finish, solve, start
+from .state import SolverState, Unsupported, Workspace
+
+__all__ = ["Procedure", "SolverState", "candidates", "extract", "stuck"]
+
+
+@dataclass(frozen=True)
+class Procedure:
+    variables: tuple[Variable, ...]
+    steps: tuple[Step, ...]
+    lj: LJMatrix
+    add_links: tuple[AddLink, ...]
+    residuals: tuple[Residual, ...]
+    groups: tuple[ResolverGroup, ...]
+    positions: dict[str, str]  # pair/point -> POINT variable
+    angles: dict[str, str]  # link -> ANGLE variable of its angle
+    slides: dict[str, str]  # prismatic pair -> VARIABLE of its displacement
+
+
+def stuck(topo: Topology) -> SolverState | None:
+    """The state where the Solver first stops (None when it completes without an Add-link)."""
+    ws = start(topo)
+    return None if solve(ws) else ws.frozen()
+
+
+def extract(topo: Topology) -> Procedure:
+    """Run the Solver, installing Add-links where it stops, and finish with angles and points."""
+    ws = start(topo)
+    try:
+        while not solve(ws):
+            ws = Workspace.thaw(rank(ws.frozen()))
+        if ws.group:
+            raise Unsupported("an Add-link group is left open")
+        finish(ws)
+    except Unsupported as exc:
+        m = topo.mechanism
+        raise ProcedureError(f"linkgen cannot extract a procedure for this mechanism: {exc}",
+                             m.path, m.where.line, "links") from None
+    return _procedure(ws)
+
+
+def _procedure(ws: Workspace) -> Procedure:
+    """Number the steps and turn the drafts into step-log records."""
+    steps = [replace(s, number=i + 1) for i, s in enumerate(ws.steps)]
+    residuals = tuple(replace(r, step=next(s.number for s in steps if r.name in s.outputs)) for r in ws.residuals)
+    add_links = tuple(
+        AddLink(d.name, d.pairs, d.length,
+                next(s.number for s in steps if s.action == "add_link" and s.target == d.name), d.candidates, d.probe)
+        for d in ws.add_links
+    )
+    variables = dict(ws.variables)
+    groups = resolver_groups(ws, steps, variables, add_links)
+    m = ws.m
+    lj = LJMatrix(tuple(j.name for j in m.joints), tuple(not j.revolute for j in m.joints), tuple(ws.columns), ())
+    return Procedure(tuple(variables.values()), tuple(steps), lj, add_links, residuals, tuple(groups),
+                     dict(ws.pos), dict(ws.angles), dict(ws.slides))

@@ -1,0 +1,110 @@
+"""Placing things on placed links: a link's angle, a slide's line, a point at its offset."""
+
+from __future__ import annotations
+
+from .. import exact
+from ..model import Input
+from ..steplog import Arg
+from ..topology import wrap_angle
+from .emit import emit
+from .state import Workspace
+
+
+def rot(angle: float, x: float, y: float) -> tuple[float, float]:
+    """Coordinates of (x, y) in a frame turned by ``angle``."""
+    c, s = exact.cos(angle), exact.sin(angle)
+    return c * x + s * y, -s * x + c * y
+
+
+def frame(ws: Workspace, link: str) -> str:
+    """An ANGLE variable turning with the link (emitting link_angle if needed)."""
+    if link in ws.orient:
+        return ws.orient[link]
+    if link in ws.coupled:
+        ws.orient[link] = frame(ws, ws.coupled[link])
+        return ws.orient[link]
+    tied = ws.tied[link]
+    d = ws.topo.direction(link)
+    origin, target = ws.named(d.origin, link), ws.named(d.target, link) if d.target else ""
+    if target and origin in tied and target in tied:
+        a, b = origin, target
+    else:
+        a = tied[0]
+        b = next(n for n in tied[1:] if ws.xy(n) != ws.xy(a))
+    (xa, ya), (xb, yb) = ws.xy(a), ws.xy(b)
+    off = wrap_angle(d.angle - exact.atan2(yb - ya, xb - xa))
+    var = ws.new_var(f"phi_{link}", "ANGLE", "link", link, sketch=(wrap_angle(d.angle),))
+    emit(ws, "angle", "link_angle", [Arg("var", ws.pos[a]), Arg("var", ws.pos[b]), Arg("real", value=off, label="off")],
+         [var], link, pairs=(a, b), links=(link,), fails=True,
+         reason=f"{a} and {b} of link {link} are known, so its angle is")
+    ws.orient[link] = var
+    ws.angles[link] = var
+    return var
+
+
+def offset(ws: Workspace, base: str, off: float, name: str, role: str, entity: str, sketch: float, target: str,
+           links: tuple[str, ...], reason: str) -> str:
+    """An angle a constant ``off`` from the angle ``base`` (base itself when off is 0)."""
+    if off == 0.0:
+        return base
+    var = ws.new_var(name, "ANGLE", role, entity, sketch=(wrap_angle(sketch),))
+    emit(ws, "angle" if role != "line" else "line", "offset_angle",
+         [Arg("var", base), Arg("real", value=off, label="off")], [var], target, links=links, reason=reason)
+    return var
+
+
+def line(ws: Workspace, pair: str) -> tuple[str, str]:
+    """(guide point, line angle) of a prismatic pair whose guide is placed."""
+    if pair in ws.lines:
+        return ws.lines[pair]
+    j = ws.m.joint(pair)
+    guide = ws.m.prismatic_of(pair).guide
+    if ws.link(guide).fixed:
+        g = ws.new_var(f"g_{pair}", "POINT", "guide", pair, (j.x, j.y))
+        psi = ws.new_var(f"psi_{pair}", "ANGLE", "line", pair, (wrap_angle(j.axis),))
+    else:
+        base = frame(ws, guide)
+        psi = offset(ws, base, wrap_angle(j.axis - ws.angle0(base)), f"psi_{pair}", "line", pair, j.axis, pair,
+                     (guide,), f"the slide axis of {pair} turns with its guide {guide}")
+        g = ws.pos.get(f"{pair}@{guide}")
+        if g is None:
+            g = ws.new_var(f"g_{pair}", "POINT", "guide", pair, sketch=(j.x, j.y))
+            ws.pos[f"{pair}@{guide}"] = g
+            ws.tied[guide].append(f"{pair}@{guide}")
+            point_on(ws, guide, pair, g, psi,
+                     f"the guide {guide} of {pair} is placed, so its copy of the reference point is known")
+    ws.lines[pair] = (g, psi)
+    return ws.lines[pair]
+
+
+def point_on(ws: Workspace, link: str, name: str, out: str, angle: str, reason: str) -> None:
+    """coupler_point: ``name`` at its sketch offset from a tied point of a placed link."""
+    base = ws.tied[link][0]
+    gsi, eta = rot(ws.angle0(angle), *(a - b for a, b in zip(ws.xy(name), ws.xy(base))))
+    emit(ws, "point", "coupler_point",
+         [Arg("var", ws.pos[base]), Arg("var", angle), Arg("real", value=gsi, label="gsi"),
+          Arg("real", value=eta, label="eta")], [out], name, pairs=(base,), links=(link,), reason=reason)
+
+
+def reference(ws: Workspace, inp: Input, root_angle: float) -> str:
+    """The ANGLE of the reference link seen from the input pair."""
+    name = f"ref_{inp.joint}"
+    if ws.link(inp.relative_to).fixed:
+        return ws.new_var(name, "ANGLE", "reference", inp.joint, (wrap_angle(root_angle),))
+    base = frame(ws, inp.relative_to)
+    return offset(ws, base, wrap_angle(root_angle - ws.angle0(base)), name, "reference", inp.joint, root_angle,
+                  inp.joint, (inp.relative_to,),
+                  f"the input at {inp.joint} is measured from this direction of link {inp.relative_to}")
+
+
+def link_angle(ws: Workspace, link: str) -> None:
+    """The link's own angle (its direction from the sketch), for the outputs."""
+    if link in ws.angles:
+        return
+    d = ws.topo.direction(link)
+    if link in ws.orient or link in ws.coupled:
+        base = frame(ws, link)
+        ws.angles[link] = offset(ws, base, wrap_angle(d.angle - ws.angle0(base)), f"phi_{link}", "link", link,
+                                 d.angle, link, (link,), f"link {link} keeps a constant angle to its slide")
+        return
+    ws.angles[link] = frame(ws, link)
