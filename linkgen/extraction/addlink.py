@@ -97,7 +97,7 @@ class _Trial(NamedTuple):
     no_norm: bool
     poor_lever: bool
     norm_key: float
-    index: int
+    order: int
     pairs: tuple[str, str]
     norm: float | None
     usable: bool
@@ -105,9 +105,9 @@ class _Trial(NamedTuple):
     workspace: Workspace | None
 
 
-def _try(state: SolverState, index: int, k: str, u: str, at: tuple[float, ...]) -> _Trial:
+def _try(state: SolverState, order: int, k: str, u: str, at: tuple[float, ...]) -> _Trial:
     """Install candidate k-u from the state and run the Solver until its group closes."""
-    trial: Workspace | None = Workspace.thaw(state)
+    trial = Workspace.thaw(state)
     usable, norm, lever = False, None, None
     try:
         install(trial, k, u)
@@ -117,9 +117,9 @@ def _try(state: SolverState, index: int, k: str, u: str, at: tuple[float, ...]) 
             norm = _rounded(residual_norm(trial, at))
             lever = placement_lever(trial.steps[len(state.steps):], trial.steps, trial.variables)
     except Unsupported:
-        trial = None
+        return _Trial(True, True, True, 0.0, order, (k, u), None, False, None, None)
     return _Trial(not usable, norm is None, lever is None or lever < GOOD_LEVER, norm if norm is not None else 0.0,
-                  index, (k, u), norm, usable, lever, trial)
+                  order, (k, u), norm, usable, lever, trial)
 
 
 def rank(state: SolverState) -> SolverState:
@@ -127,7 +127,7 @@ def rank(state: SolverState) -> SolverState:
     among those whose lever is at least GOOD_LEVER (else among all), keeping the other
     usable ones as fallback blocks of its group."""
     at = probe(state.topo)
-    tried = sorted((_try(state, index, k, u, at) for index, (k, u) in enumerate(candidates(state))),
+    tried = sorted((_try(state, order, k, u, at) for order, (k, u) in enumerate(candidates(state))),
                    key=lambda t: t[:5])
     if not tried:
         raise Unsupported("no Add-link candidate exists")
@@ -144,6 +144,7 @@ def rank(state: SolverState) -> SolverState:
               and len(t.workspace.add_links) == len(chosen.add_links)]
     for t in others[:MAX_VARIANTS]:
         trial = t.workspace
+        assert trial is not None
         new = tuple(v for name, v in trial.variables.items() if name not in state.variables)
         chosen.variants.append(VariantDraft(chosen.groups[-1].number, t.pairs, trial.add_links[-1].length,
                                             tuple(trial.steps[start:]), new))

@@ -66,8 +66,10 @@ def line(ws: Workspace, pair: str) -> tuple[str, str]:
         base = frame(ws, guide)
         psi = offset(ws, base, wrap_angle(j.axis - ws.angle0(base)), f"psi_{pair}", "line", pair, j.axis, pair,
                      (guide,), f"the slide axis of {pair} turns with its guide {guide}")
-        g = ws.pos.get(f"{pair}@{guide}")
-        if g is None:
+        copy = ws.pos.get(f"{pair}@{guide}")
+        if copy is not None:
+            g = copy
+        else:
             g = ws.new_var(f"g_{pair}", "POINT", "guide", pair, sketch=(j.x, j.y))
             ws.pos[f"{pair}@{guide}"] = g
             ws.tied[guide].append(f"{pair}@{guide}")

@@ -19,7 +19,7 @@ from ..policy import (
     RESOLVER_MIN_CHAIN_SIGMA,
     RESOLVER_TOLERANCE,
 )
-from ..steplog import Arg, BranchSign, Residual, ResolverGroup, Step, Variable
+from ..steplog import AddLink, Arg, BranchSign, Residual, ResolverGroup, Step, Variable
 from .state import Unsupported, VariantDraft, Workspace
 
 # -- while the Solver runs -------------------------------------------------------------
@@ -81,7 +81,8 @@ def _hoist(ws: Workspace, number: int, adds: tuple[str, ...], residuals: tuple[s
 # -- when extraction is done -------------------------------------------------------------
 
 
-def resolver_groups(ws: Workspace, steps: list[Step], variables: dict[str, Variable], add_links) -> list[ResolverGroup]:
+def resolver_groups(ws: Workspace, steps: list[Step], variables: dict[str, Variable],
+                    add_links: tuple[AddLink, ...]) -> list[ResolverGroup]:
     """The ResolverGroup record of every group, with its fallback blocks; the fallbacks'
     steps are appended to ``steps`` (numbered after the procedure) and their records to
     ``variables``."""
@@ -92,7 +93,7 @@ def resolver_groups(ws: Workspace, steps: list[Step], variables: dict[str, Varia
         later = {a.var for s in steps if s.number > resolve.number for a in s.args if a.kind == "var"}
         needed = {o for s in block for o in s.outputs} & (later | set(ws.pos.values()) | set(ws.angles.values())
                                                           | set(ws.slides.values()))
-        variants = []
+        variants: list[ResolverGroup] = []
         for draft in (d for d in ws.variants if d.group == g.number):
             variant = _variant(draft, len(variants) + 1, len(steps), variables, needed)
             if variant is not None:
@@ -210,7 +211,7 @@ def _variant(draft: VariantDraft, k: int, first: int, variables: dict[str, Varia
     for v in draft.variables:
         name = rename.get(v.name, v.name)
         variables.setdefault(name, replace(v, name=name))
-    out = []
+    out: list[Step] = []
     for s in block:
         args = tuple(replace(a, var=rename.get(a.var, a.var)) if a.kind == "var" else a for a in s.args)
         outputs = tuple(rename.get(o, o) for o in s.outputs)

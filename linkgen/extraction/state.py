@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, fields, replace
 from types import MappingProxyType
+from typing import Any
 
 from ..model import Link
 from ..steplog import Arg, Candidate, LJColumn, Residual, Step, Variable
@@ -151,12 +152,14 @@ class Workspace:
 
     @classmethod
     def thaw(cls, state: SolverState) -> Workspace:
-        ws = cls(**{f.name: _thawed(getattr(state, f.name)) for f in fields(SolverState)})
+        values: dict[str, Any] = {f.name: _thawed(getattr(state, f.name)) for f in fields(SolverState)}
+        ws = cls(**values)
         ws.tied = {link: list(names) for link, names in ws.tied.items()}
         return ws
 
     def frozen(self) -> SolverState:
-        return SolverState(**{f.name: _frozen(getattr(self, f.name)) for f in fields(SolverState)})
+        values: dict[str, Any] = {f.name: _frozen(getattr(self, f.name)) for f in fields(SolverState)}
+        return SolverState(**values)
 
     # -- names and variables ---------------------------------------------------
     def new_var(self, name: str, kind: str, role: str, entity: str, value: tuple[float, ...] = (),
