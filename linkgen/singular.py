@@ -354,7 +354,7 @@ def _limit(log: StepLog, solver: RowSolver, stop: float) -> tuple[float | None, 
         if bad is not None and (abs(bad - good.value) <= 2 * tol or tries >= REFINE):
             past = attempt(bad, good.warm, full)
             if past is None and _at_limit(attempt, theta0, reached, bad, unit, 10 * tol):
-                return float(bad), min(good.sigma, key=lambda n: (good.sigma[n], n))
+                return _outward(bad, sign), min(good.sigma, key=lambda n: (good.sigma[n], n))
             if past is None:  # a hard stretch: a row farther on, as a sweep takes it
                 past = attempt(good.value + sign * min(row, abs(stop - good.value)), good.warm, full)
             if past is None:
@@ -382,6 +382,15 @@ def _limit(log: StepLog, solver: RowSolver, stop: float) -> tuple[float | None, 
             aim = min(2 * aim, AIM)
         else:
             bad, aim = trial, aim / 4
+
+
+def _outward(value: float, sign: float) -> float:
+    """value to 12 significant digits (as a closed-form reach), rounded away from the sketch
+    (sign: the way from it), so the bound stays past the limit position."""
+    rounded = float(f"{value:.12g}")
+    if (rounded - value) * sign < 0:
+        rounded = float(f"{rounded + sign * 10.0 ** (math.floor(math.log10(abs(value))) - 11):.12g}")
+    return rounded
 
 
 def _roots(last: list[_Point], sign: float) -> list[float]:
