@@ -321,10 +321,11 @@ def _limit(log: StepLog, solver: RowSolver, stop: float) -> tuple[float | None, 
     through the last two values reached points at the limit (so does that of the smallest
     sigma^2 of a step): the next value tried is AIM of the way to the nearer (a row past it
     fails, which costs far more; a quarter of the share after a miss, twice after a hit, up
-    to AIM), then, within PRECISION, just past it.  Without a root ahead, the next row is tried, and once a value
-    has failed, one PROBE of the way into the bracket.  These tries halve a continuation
-    step at most FEW_HALVINGS times; the last value is then tried as the programs try it,
-    and the cut is a limit position where the speed follows the law (see _at_limit)."""
+    to AIM), then, within PRECISION, just past it.  Without a root ahead, the next row is
+    tried, and once a value has failed, one PROBE of the way into the bracket.  These tries
+    halve a continuation step at most FEW_HALVINGS times; the last value is then tried as
+    the programs try it, and the cut is a limit position where the speed follows the law
+    there (see _at_limit)."""
     theta0 = log.inputs[0].sketch
     lo, hi, periodic = _span(log)
     unit = 1.0 if periodic else log.length_scale
@@ -409,10 +410,10 @@ def _roots(last: list[_Point], sign: float) -> list[float]:
 def _at_limit(attempt, theta0: float, reached: list[_Point], bad: float, unit: float, finest: float) -> bool:
     """Whether the way is cut at bad by a limit position: there speed^2 times the distance
     to it tends to a constant, so it is the same, within a factor two, a millionth of the
-    input value (or of 1 rad, or the length scale) before it (or half the way from the sketch, nearer the sketch) and a
-    hundredth of that, each followed from the last value reached before it.  Elsewhere (a
-    singular position the mechanism goes straight through, a hard stretch
-    for the continuation) the speed stays finite and the product tends to zero."""
+    input value (at least 1 rad, or the length scale) before it (or half the way from the
+    sketch, nearer the sketch) and a hundredth of that, each followed from the last value
+    reached before it.  Elsewhere (a singular position the mechanism goes straight through,
+    a hard stretch for the continuation) the speed stays finite and the product tends to 0."""
     far = min(1e-6 * max(abs(bad), unit), abs(bad - theta0) / 2)
     sign = np.sign(bad - theta0)
     laws = []
@@ -454,7 +455,7 @@ def _reach_limit(log: StepLog, good: float, bad: float) -> float | None:
         return None
     bound = reach.high if after > before else reach.low
     if reach.periodic:  # the bound's turn between the two
-        bound += before - (before - 2 * np.pi * np.floor((before - reach.low) / (2 * np.pi)))
+        bound += 2 * np.pi * np.floor((before - reach.low) / (2 * np.pi))
     return (bound - inp.start) / (inp.stop - inp.start)
 
 
