@@ -165,10 +165,11 @@ class C(Spelling):
         return f"{self.ref(var, None)}.the"
 
     def branch(self, step: Step, b0: int) -> str:
+        """branch_at(...) on the array change_N that call() declares before the step (an array, not a
+        compound literal: C++ has none)."""
         v, theta0, periodic = self.first_input()
-        points = ", ".join(self.lit(p) for p in step.change_points)
         value = f"w->{v.name}.{'the' if periodic else 'v'}"
-        return (f"branch_at({value}, {b0}, {self.lit(theta0)}, (const double[]){{{points}}}, "
+        return (f"branch_at({value}, {b0}, {self.lit(theta0)}, change_{step.number}, "
                 f"{len(step.change_points)}, {int(periodic)})")
 
     def input_record(self, var: Variable, k: int) -> str:
@@ -196,11 +197,14 @@ class C(Spelling):
         if prim.sigma is not None:
             args.append(f"&w->sigma[{step.number}]")
         text = f"{step.function}({', '.join(args)});"
+        points = ", ".join(self.lit(p) for p in step.change_points)
+        head = [f"static const double change_{step.number}[] = {{{points}}};"] if step.change_points else []
         if prim.status is None:
-            return [text]
+            return [*head, text]
         if scope is None:
-            return [f"st = {text}", f"if (st == 1) return {self.status_code(step, 1)};", f"note(w, {step.number}, st);"]
-        lines = [f"st = {text}", "if (st == 1) return 1;", f"if (live) note(w, {step.number}, st);"]
+            return [*head, f"st = {text}", f"if (st == 1) return {self.status_code(step, 1)};",
+                    f"note(w, {step.number}, st);"]
+        lines = [*head, f"st = {text}", "if (st == 1) return 1;", f"if (live) note(w, {step.number}, st);"]
         if prim.sigma is not None:
             lines.append(f"w->chains = fmin(w->chains, w->sigma[{step.number}]);")
         return lines
