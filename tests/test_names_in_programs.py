@@ -77,6 +77,8 @@ def test_the_words_are_fields_with_a_trailing_underscore(programs):
         assert f"out.{name}_.x = " in solve or f"out.{name}_.phi = " in solve, name
     for name in ("NAN", "class", "zeros", "print"):
         assert f"out.{name}." in solve, name
+    fields = "end_, NAN, class, EOF, stdin, errno, M_PI, print, new, for_, linux, zeros, until_"
+    assert f"out has a field per output ({fields})" in " ".join(solve.replace("%", " ").split())
     assert log.columns[1].name == "end.x"
 
 
