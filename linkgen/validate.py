@@ -20,7 +20,8 @@ from .names import entity_name_problem, mechanism_name_problem, spellings
 FORMAT_VERSION = 1
 MAX_SAMPLES = 10_000_000
 MAX_MAGNITUDE = 1e30  # largest coordinate, range bound and speed, in file units (docs/mechanism-format.md)
-# Characters no title or unit label may hold: they would break a comment or a line of a generated file.
+# Bidirectional-text controls: no title or unit label may hold them (nor a control character or line break),
+# which would make a line of a generated file read other than it compiles.
 _BIDI = frozenset("\u061c\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069")
 DEFAULT_SAMPLES = 361
 DEFAULT_ORDER = 2
