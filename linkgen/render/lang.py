@@ -7,9 +7,7 @@ computed: that is the step log's job.
 
 from __future__ import annotations
 
-import keyword
-
-from ..names import C_RESERVED, M_RESERVED
+from ..names import c_field, m_field
 from ..primitives import PRIMITIVES
 from ..primitives.dsl import record_fields
 from ..primitives.printers import literal
@@ -17,17 +15,11 @@ from ..steplog import Arg, BranchSign, Column, Step, StepLog, Variable, held
 from .view import Group
 
 
-def ident(name: str, reserved: frozenset[str]) -> str:
-    """A user name as an identifier of the target language (reserved words get a trailing _)."""
-    return f"{name}_" if name in reserved else name
-
-
 class Spelling:
     """Shared rules; subclasses spell records, references and calls."""
 
     name = ""
     comment = ""
-    reserved: frozenset[str] = frozenset()
 
     def __init__(self, order: int, log: StepLog, measured: frozenset[int] = frozenset()):
         self.order = order
@@ -36,7 +28,8 @@ class Spelling:
         self.measured = measured  # steps whose branch is read off the last solution
 
     def ident(self, name: str) -> str:
-        return ident(name, self.reserved)
+        """A pair, point or link name as a field of the program's outputs (linkgen.names)."""
+        return name
 
     @staticmethod
     def lit(value: float | int) -> str:
@@ -140,8 +133,10 @@ class Spelling:
 class C(Spelling):
     name = "c"
     comment = "/*"
-    reserved = C_RESERVED
     _field = {"x": "P.x", "y": "P.y", "dx": "DP.x", "dy": "DP.y", "ddx": "DDP.x", "ddy": "DDP.y"}
+
+    def ident(self, name: str) -> str:
+        return c_field(name)
 
     def ref(self, var: str, scope: Group | None) -> str:
         if self.variables[var].constant or self.external(var, scope):
@@ -213,7 +208,6 @@ class C(Spelling):
 class Python(Spelling):
     name = "py"
     comment = "#"
-    reserved = set(keyword.kwlist)
 
     def ref(self, var: str, scope: Group | None) -> str:
         if self.variables[var].constant or self.external(var, scope):
@@ -271,7 +265,9 @@ class Python(Spelling):
 class Octave(Spelling):
     name = "m"
     comment = "%"
-    reserved = M_RESERVED
+
+    def ident(self, name: str) -> str:
+        return m_field(name)
 
     def ref(self, var: str, scope: Group | None) -> str:
         """Constants live in the work struct too (MATLAB has no file-level constants)."""
