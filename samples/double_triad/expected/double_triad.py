@@ -6,13 +6,20 @@
         with their rates and accelerations (per second); returns every output
         column ("A.x", "crank.phi", ...), "status" and "sigma" (conditioning per
         step).  Pass the same dict as state on every call of a sweep so the
-        resolver starts from the previous row.    python double_triad.py
-        writes the sweep over the inputs' ranges as CSV to standard output.
+        resolver starts from the previous row.
+
+        inputs, d_inputs and dd_inputs hold N_INPUTS numbers each; another count
+        raises ValueError, and so does a number that is not finite in
+        inputs, d_inputs or dd_inputs.
+    python double_triad.py
+        writes the sweep over the inputs' ranges as CSV to standard output (and stops
+        quietly where the reader leaves: python double_triad.py | head).
 """
 
 import math
+import os
 import sys
-from math import atan2, cos, floor, sin, sqrt
+from math import atan2, cos, floor, isfinite, sin, sqrt
 
 EPS = sys.float_info.epsilon
 NAN = math.nan
@@ -20,6 +27,7 @@ PI = math.pi
 
 ORDER = 2
 SAMPLES = 361
+N_INPUTS = 1
 N_STEPS = 93
 INPUTS = ((0.0, 6.283185307179586, 6.283185307179586), )  # (start, stop, speed) of each input
 COLUMNS = (
@@ -1496,6 +1504,30 @@ def _publish(w, code, order):
     return out
 
 
+def _check(inputs, d_inputs, dd_inputs):
+    """Refuse a call solve() cannot answer: a count other than N_INPUTS, or a number it reads that is not finite."""
+    try:
+        counts = len(inputs) == len(d_inputs) == len(dd_inputs) == N_INPUTS
+    except TypeError:
+        counts = False
+    if not counts:
+        for what, values in (("inputs", inputs), ("d_inputs", d_inputs), ("dd_inputs", dd_inputs)):
+            if not hasattr(values, "__len__"):
+                raise TypeError(f"double_triad.solve: {what} must be a sequence of {N_INPUTS} numbers, "
+                                f"not {type(values).__name__}")
+            if len(values) != N_INPUTS:
+                raise ValueError(f"double_triad.solve: expected {N_INPUTS} {what}, got {len(values)}")
+    for k, x in enumerate(inputs):
+        if not isfinite(x):
+            raise ValueError(f"double_triad.solve: inputs[{k}] is not finite: {x!r}")
+    for k, x in enumerate(d_inputs):
+        if not isfinite(x):
+            raise ValueError(f"double_triad.solve: d_inputs[{k}] is not finite: {x!r}")
+    for k, x in enumerate(dd_inputs):
+        if not isfinite(x):
+            raise ValueError(f"double_triad.solve: dd_inputs[{k}] is not finite: {x!r}")
+
+
 def _path_run(inputs, rates, order, a, used):
     """One pass along a continuation path: (closes, Add-link lengths, their rates)."""
     a = [list(g) for g in a]
@@ -1506,6 +1538,7 @@ def _path_run(inputs, rates, order, a, used):
 
 def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
     """Solve at the given inputs, rates and accelerations; see the module docstring."""
+    _check(inputs, d_inputs, dd_inputs)
     w = _Work()
     order = min(order, ORDER)
     warm = state.get("warm") if state is not None else None
@@ -1562,4 +1595,10 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+        sys.stdout.flush()
+    except BrokenPipeError:
+        # the reader left: stop quietly, with stdout on devnull for the interpreter's last flush
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        sys.exit(1)

@@ -1095,6 +1095,71 @@ static int run(work *w, const double in[], const double din[], const double ddin
     return w->singular ? w->singular : -w->near;
 }
 
+/* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
+static void no_outputs(sixbar_fig14_state *out)
+{
+    out->J1.x = NAN;
+    out->J1.y = NAN;
+    out->J1.vx = NAN;
+    out->J1.vy = NAN;
+    out->J1.ax = NAN;
+    out->J1.ay = NAN;
+    out->J2.x = NAN;
+    out->J2.y = NAN;
+    out->J2.vx = NAN;
+    out->J2.vy = NAN;
+    out->J2.ax = NAN;
+    out->J2.ay = NAN;
+    out->J3.x = NAN;
+    out->J3.y = NAN;
+    out->J3.vx = NAN;
+    out->J3.vy = NAN;
+    out->J3.ax = NAN;
+    out->J3.ay = NAN;
+    out->J4.x = NAN;
+    out->J4.y = NAN;
+    out->J4.vx = NAN;
+    out->J4.vy = NAN;
+    out->J4.ax = NAN;
+    out->J4.ay = NAN;
+    out->J5.x = NAN;
+    out->J5.y = NAN;
+    out->J5.vx = NAN;
+    out->J5.vy = NAN;
+    out->J5.ax = NAN;
+    out->J5.ay = NAN;
+    out->J6.x = NAN;
+    out->J6.y = NAN;
+    out->J6.vx = NAN;
+    out->J6.vy = NAN;
+    out->J6.ax = NAN;
+    out->J6.ay = NAN;
+    out->J7.x = NAN;
+    out->J7.y = NAN;
+    out->J7.vx = NAN;
+    out->J7.vy = NAN;
+    out->J7.ax = NAN;
+    out->J7.ay = NAN;
+    out->rocker1.phi = NAN;
+    out->rocker1.omega = NAN;
+    out->rocker1.alpha = NAN;
+    out->ternary.phi = NAN;
+    out->ternary.omega = NAN;
+    out->ternary.alpha = NAN;
+    out->rocker2.phi = NAN;
+    out->rocker2.omega = NAN;
+    out->rocker2.alpha = NAN;
+    out->coupler.phi = NAN;
+    out->coupler.omega = NAN;
+    out->coupler.alpha = NAN;
+    out->crank.phi = NAN;
+    out->crank.omega = NAN;
+    out->crank.alpha = NAN;
+    out->frame.phi = NAN;
+    out->frame.omega = NAN;
+    out->frame.alpha = NAN;
+}
+
 /* Copy the records into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, sixbar_fig14_state *out)
 {
@@ -1102,66 +1167,7 @@ static void publish(const work *w, int code, sixbar_fig14_state *out)
     out->status = code;
     for (k = 0; k <= SIXBAR_FIG14_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
-        out->J1.x = NAN;
-        out->J1.y = NAN;
-        out->J1.vx = NAN;
-        out->J1.vy = NAN;
-        out->J1.ax = NAN;
-        out->J1.ay = NAN;
-        out->J2.x = NAN;
-        out->J2.y = NAN;
-        out->J2.vx = NAN;
-        out->J2.vy = NAN;
-        out->J2.ax = NAN;
-        out->J2.ay = NAN;
-        out->J3.x = NAN;
-        out->J3.y = NAN;
-        out->J3.vx = NAN;
-        out->J3.vy = NAN;
-        out->J3.ax = NAN;
-        out->J3.ay = NAN;
-        out->J4.x = NAN;
-        out->J4.y = NAN;
-        out->J4.vx = NAN;
-        out->J4.vy = NAN;
-        out->J4.ax = NAN;
-        out->J4.ay = NAN;
-        out->J5.x = NAN;
-        out->J5.y = NAN;
-        out->J5.vx = NAN;
-        out->J5.vy = NAN;
-        out->J5.ax = NAN;
-        out->J5.ay = NAN;
-        out->J6.x = NAN;
-        out->J6.y = NAN;
-        out->J6.vx = NAN;
-        out->J6.vy = NAN;
-        out->J6.ax = NAN;
-        out->J6.ay = NAN;
-        out->J7.x = NAN;
-        out->J7.y = NAN;
-        out->J7.vx = NAN;
-        out->J7.vy = NAN;
-        out->J7.ax = NAN;
-        out->J7.ay = NAN;
-        out->rocker1.phi = NAN;
-        out->rocker1.omega = NAN;
-        out->rocker1.alpha = NAN;
-        out->ternary.phi = NAN;
-        out->ternary.omega = NAN;
-        out->ternary.alpha = NAN;
-        out->rocker2.phi = NAN;
-        out->rocker2.omega = NAN;
-        out->rocker2.alpha = NAN;
-        out->coupler.phi = NAN;
-        out->coupler.omega = NAN;
-        out->coupler.alpha = NAN;
-        out->crank.phi = NAN;
-        out->crank.omega = NAN;
-        out->crank.alpha = NAN;
-        out->frame.phi = NAN;
-        out->frame.omega = NAN;
-        out->frame.alpha = NAN;
+        no_outputs(out);
         return;
     }
     out->J1.x = 0.0;
@@ -1273,6 +1279,27 @@ void sixbar_fig14_init(sixbar_fig14_state *out)
     memset(out, 0, sizeof *out);
 }
 
+/* Whether every number the program reads of its inputs is finite: in[], din[] and ddin[]. */
+static int finite_inputs(const double in[], const double din[], const double ddin[])
+{
+    int i;
+    for (i = 0; i < SIXBAR_FIG14_N_INPUTS; i++)
+        if (!isfinite(in[i]) || !isfinite(din[i]) || !isfinite(ddin[i])) return 0;
+    return 1;
+}
+
+/* Refuse a call with an input that is not finite: every output and sigma nan, no
+   Newton steps; the warm start is kept for the next call. */
+static int refuse(sixbar_fig14_state *out)
+{
+    int k;
+    out->status = SIXBAR_FIG14_STATUS_BAD_INPUT;
+    for (k = 0; k <= SIXBAR_FIG14_N_STEPS; k++) out->sigma[k] = NAN;
+    for (k = 0; k < SIXBAR_FIG14_N_GROUPS; k++) out->iterations[k] = 0;
+    no_outputs(out);
+    return out->status;
+}
+
 /* One pass along a continuation path (rates per unit of the path, no accelerations). */
 static int path_run(void *ctx, const double in[], const double din[], int order, double a[][LINKGEN_NMAX],
                     double rates[][LINKGEN_NMAX])
@@ -1296,6 +1323,8 @@ int sixbar_fig14_solve(const double in[], const double din[], const double ddin[
     double ad[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     int used[LINKGEN_NGROUPS];
     int code = 0, solved = 0, g, i;
+    if (!finite_inputs(in, din, ddin)) return refuse(out);
+    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = sketch_in[i];
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = sketch_a[g][i];
