@@ -80,7 +80,8 @@ STATE_FIELDS = {
 HEADER_SUFFIXES = ("point", "angle", "prismatic", "state", "init", "solve", "columns")
 HEADER_MACRO_SUFFIXES = ("H", "N_INPUTS", "N_STEPS", "N_COLUMNS", "ORDER", "SAMPLES", "N_GROUPS", "N_BLOCKS", "NMAX",
                          "STATUS_BAD_INPUT")
-SOURCE_MACROS = frozenset(("LINKGEN_NMAX", "LINKGEN_NGROUPS", "LINKGEN_NBLOCKS", "LINKGEN_NINPUTS"))
+SOURCE_MACROS = frozenset(("LINKGEN_NMAX", "LINKGEN_NGROUPS", "LINKGEN_NBLOCKS", "LINKGEN_NINPUTS",
+                           "LINKGEN_WALK_PASSES"))
 MAX_NAME = 57  # MATLAB's 63 characters for NAME_solve
 MAX_FIELD = 63  # MATLAB's namelengthmax for a struct field
 

@@ -128,17 +128,12 @@ def truss(m: Mechanism, link: Link) -> list[Member]:
 
 
 def _nearest_turn(value: float, start: float, stop: float) -> float:
-    """The representative of an angle (mod 2 pi) nearest the range, preferring the start."""
-    lo, hi = min(start, stop), max(start, stop)
-    best = None
-    for k in range(math.floor((lo - value) / (2 * math.pi)) - 1, math.ceil((hi - value) / (2 * math.pi)) + 2):
-        cand = value + 2 * math.pi * k
-        gap = max(lo - cand, cand - hi, 0.0)
-        key = (gap, abs(cand - start))
-        if best is None or key < best[0]:
-            best = (key, cand)
-    assert best is not None
-    return best[1]
+    """The representative of an angle (mod 2 pi) nearest the range, preferring the start:
+    among the turns next to either end of the range (inside it when one is), so a range of
+    any width takes the same few steps."""
+    lo, hi, turn = min(start, stop), max(start, stop), 2 * math.pi
+    turns = {k + j for k in (math.floor((lo - value) / turn), math.floor((hi - value) / turn)) for j in (-1, 0, 1, 2)}
+    return min((value + turn * k for k in turns), key=lambda c: (max(lo - c, c - hi, 0.0), abs(c - start)))
 
 
 def reference_angle(m: Mechanism, inp: Input) -> float:

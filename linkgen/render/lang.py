@@ -129,6 +129,11 @@ class Spelling:
         """The lines that fail a row the mechanism does not reach from the sketch (none without a reach)."""
         raise NotImplementedError
 
+    def reach_low(self) -> str:
+        """The reach's lower end, from which the continuation counts an angle's turns (nan without one)."""
+        r = self.log.reach
+        return self.nan if r is None or r.low is None else self.lit(r.low)
+
 
 class C(Spelling):
     name = "c"
