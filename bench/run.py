@@ -188,6 +188,22 @@ def bench_accuracy() -> None:
 GROUPS["accuracy"] = bench_accuracy
 
 
+def bench_rows() -> None:
+    from rows import bench_rows as run
+
+    run()
+
+
+def bench_builds() -> None:
+    from rows import bench_builds as run
+
+    run()
+
+
+GROUPS["rows"] = bench_rows
+GROUPS["builds"] = bench_builds
+
+
 if __name__ == "__main__":
     for name in sys.argv[1:] or list(GROUPS):
         GROUPS[name]()

@@ -9,31 +9,63 @@ import sys
 import click
 
 from . import __version__
-from .errors import LinkgenError
+from .errors import FileSystemError, LinkgenError, os_reason
+
+USAGE_ERROR = 2  # exit status of a wrong command line; 1 is every other failure
+ANY_PATH = click.Path(readable=False)  # a path click does not check: its faults are linkgen's, exit 1
 
 
-def _fail(exc: LinkgenError) -> None:
-    click.echo(f"linkgen: error: {exc}", err=True)
-    sys.exit(1)
+def _report(message: str, status: int) -> None:
+    """Print ``linkgen: error: message`` on one line of stderr and exit with status."""
+    click.echo("linkgen: error: " + " ".join(message.splitlines()), err=True)
+    sys.exit(status)
+
+
+class _Linkgen(click.Group):
+    """The command group; every failure is reported as ``linkgen: error: ...``."""
+
+    def main(self, *args, standalone_mode: bool = True, **kwargs):
+        if not standalone_mode:
+            return super().main(*args, standalone_mode=False, **kwargs)
+        try:
+            status = super().main(*args, standalone_mode=False, **kwargs)
+        except LinkgenError as exc:
+            _report(str(exc), 1)
+        except click.UsageError as exc:
+            message = exc.format_message()
+            end = "" if message.endswith((".", "?")) else "."
+            command = exc.ctx.command_path if exc.ctx else "linkgen"
+            _report(f"{message[:1].lower()}{message[1:]}{end} See '{command} --help'.", USAGE_ERROR)
+        except click.ClickException as exc:
+            _report(exc.format_message(), exc.exit_code)
+        except click.Abort:
+            _report("interrupted", 1)
+        except OSError as exc:  # writing to standard output: a full disk, ...
+            _report(f"{exc.filename or 'standard output'}: {os_reason(exc)}", 1)
+        sys.exit(status if isinstance(status, int) else 0)
 
 
 def _outputs(value: str | None) -> tuple[str, ...] | None:
     return tuple(v.strip() for v in value.split(",") if v.strip()) if value else None
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.group("linkgen", cls=_Linkgen, invoke_without_command=True, subcommand_metavar="COMMAND [ARGS]...",
+             context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="linkgen")
-def cli() -> None:
+@click.pass_context
+def cli(ctx: click.Context) -> None:
     """Systematic kinematic analysis of closed-loop planar linkages.
 
     Reads a mechanism file (pairs at their sketch positions, links, the fixed
     link, the inputs) and extracts the analysis procedure of two-link chains.
     """
+    if ctx.invoked_subcommand is None:
+        raise click.UsageError(f"missing command: one of {', '.join(sorted(cli.commands))}.", ctx)
 
 
 @cli.command()
-@click.argument("mechanism", type=click.Path(dir_okay=False))
-@click.option("-o", "--outdir", type=click.Path(file_okay=False), help="Output folder (default: build/NAME).")
+@click.argument("mechanism", type=ANY_PATH)
+@click.option("-o", "--outdir", type=ANY_PATH, help="Output folder (default: build/NAME).")
 @click.option("--check", is_flag=True, help="Rebuild in memory; exit 1 with a diff if any file on disk differs.")
 @click.option("--outputs", help="Comma-separated outputs, e.g. P,rocker (default: the file's outputs).")
 @click.option("--order", type=click.IntRange(0, 2), help="Derivatives: 0, 1 or 2 (default: the file's order).")
@@ -47,11 +79,8 @@ def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, 
     from .render import render_all
     from .writer import differences, write_all
 
-    try:
-        log = build_log(mechanism, _outputs(outputs), order)
-        files = render_all(log)
-    except LinkgenError as exc:
-        _fail(exc)
+    log = build_log(mechanism, _outputs(outputs), order)
+    files = render_all(log)
     target = outdir or os.path.join("build", log.name)
     if check:
         diffs = differences(files, target)
@@ -63,11 +92,11 @@ def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, 
 
 
 @cli.command()
-@click.argument("mechanism", type=click.Path(dir_okay=False))
+@click.argument("mechanism", type=ANY_PATH)
 @click.option("--samples", type=click.IntRange(min=2), help="Rows in the sweep (default: the file's samples).")
 @click.option("--order", type=click.IntRange(0, 2), help="Derivatives: 0, 1 or 2 (default: the file's order).")
 @click.option("--outputs", help="Comma-separated outputs (default: the file's outputs).")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the CSV here instead of stdout.")
+@click.option("-o", "--output", type=ANY_PATH, help="Write the CSV here instead of stdout.")
 def run(mechanism: str, samples: int | None, order: int | None, outputs: str | None, output: str | None) -> None:
     """Evaluate the sweep in-process and print it as CSV."""
     from .evaluate import evaluate, input_rows
@@ -75,34 +104,32 @@ def run(mechanism: str, samples: int | None, order: int | None, outputs: str | N
     from .table import csv
     from .writer import write_all
 
-    try:
-        log = build_log(mechanism, _outputs(outputs), order, sweep=False)
-    except LinkgenError as exc:
-        _fail(exc)
+    log = build_log(mechanism, _outputs(outputs), order, sweep=False)
     values, rates, accs = input_rows(log, samples or log.samples)
     text = csv(log, evaluate(log, values, rates, accs))
     if output:
-        write_all({os.path.basename(output): text.encode()}, os.path.dirname(output) or ".")
+        directory, name = os.path.split(output)
+        if not name:
+            raise FileSystemError("names a directory; give the file to write the CSV to", output)
+        write_all({name: text.encode()}, directory)
     else:
         click.echo(text, nl=False)
 
 
 @cli.command()
-@click.argument("mechanism", type=click.Path(dir_okay=False))
+@click.argument("mechanism", type=ANY_PATH)
 @click.option("--step", "at", type=int, help="Print only the state after this step (0: before step 1).")
 def lj(mechanism: str, at: int | None) -> None:
     """Print the LJ-matrix before the first step and after each step."""
     from .ljmatrix import states, text
     from .pipeline import build_log
 
-    try:
-        log = build_log(mechanism, sweep=False)
-    except LinkgenError as exc:
-        _fail(exc)
+    log = build_log(mechanism, sweep=False)
     chosen = states(log)
     if at is not None:
         if not 0 <= at < len(chosen):
-            raise click.BadParameter(f"the procedure has steps 1 to {len(chosen) - 1}", param_hint="--step")
+            raise click.BadParameter(f"{at} is not a step: give 0 (before step 1) to {len(chosen) - 1}",
+                                     param_hint="'--step'")
         chosen = [chosen[at]]
     blocks = []
     for state in chosen:
@@ -112,7 +139,7 @@ def lj(mechanism: str, at: int | None) -> None:
 
 
 @cli.command()
-@click.argument("mechanism", type=click.Path(dir_okay=False))
+@click.argument("mechanism", type=ANY_PATH)
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON array of {pairs, norm, usable, lever}, ranked.")
 def candidates(mechanism: str, as_json: bool) -> None:
     """List the Add-link candidates where the Solver first stops, ranked by the norm of f
@@ -120,10 +147,7 @@ def candidates(mechanism: str, as_json: bool) -> None:
     from .pipeline import build_log
     from .policy import GOOD_LEVER
 
-    try:
-        log = build_log(mechanism, sweep=False)
-    except LinkgenError as exc:
-        _fail(exc)
+    log = build_log(mechanism, sweep=False)
     if not log.add_links:
         if as_json:
             click.echo("[]")
@@ -147,15 +171,12 @@ def candidates(mechanism: str, as_json: bool) -> None:
 
 
 @cli.command()
-@click.argument("mechanism", type=click.Path(dir_okay=False))
+@click.argument("mechanism", type=ANY_PATH)
 def procedure(mechanism: str) -> None:
     """Print the numbered procedure, one call per step."""
     from .pipeline import build_log
 
-    try:
-        log = build_log(mechanism, sweep=False)
-    except LinkgenError as exc:
-        _fail(exc)
+    log = build_log(mechanism, sweep=False)
     for s in log.steps:
         click.echo(f"{s.number:3d}  {s.function or s.action:<14} {s.target:<10} {s.reason}")
 

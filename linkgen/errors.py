@@ -1,7 +1,8 @@
-"""Errors a user can act on: each names the file, the line and the key."""
+"""Errors a user can act on: each names the file (and for input errors the line and the key)."""
 
 from __future__ import annotations
 
+import errno
 from collections.abc import Iterable
 
 
@@ -29,6 +30,26 @@ class InputError(LinkgenError):
 
 class ProcedureError(LinkgenError):
     """No systematic-analysis procedure can be extracted for a valid mechanism."""
+
+
+class FileSystemError(LinkgenError):
+    """A file or directory linkgen must read or write cannot be used, reported as ``path: message``."""
+
+
+# The system's wording where it would puzzle a user in linkgen's sentences.
+_REASONS = {
+    errno.ENOENT: "no such file or directory",
+    errno.ENOTDIR: "a part of the path is not a directory",
+    errno.EISDIR: "it is a directory",
+    errno.EROFS: "the file system is read-only",
+    errno.ENOSPC: "no space left on the device",
+}
+
+
+def os_reason(exc: OSError) -> str:
+    """Why an operating-system call failed, in lower case: 'permission denied', ..."""
+    reason = _REASONS.get(exc.errno) or exc.strerror or str(exc)
+    return reason[:1].lower() + reason[1:]
 
 
 def and_list(names: Iterable[str]) -> str:

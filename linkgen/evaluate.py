@@ -300,6 +300,7 @@ class RowSolver:
         self.reach = log.groups[0].max_move * log.length_scale
         self.periodic = [i.kind == "revolute" for i in log.inputs]
         self.limits = [STEP_ANGLE if p else STEP_LENGTH * log.length_scale for p in self.periodic]
+        self.low = math.nan if log.reach is None or log.reach.low is None else log.reach.low
 
     def run(self, values, rates, accs, order: int, start: list, prefer: dict) -> Pass:
         """One pass of the whole procedure, each resolver block started from ``start``."""
@@ -310,6 +311,12 @@ class RowSolver:
         branches(self.log, env, values[0] if len(values) else 0.0, scalar=True)
         n = len(self.blocks)
         out = Pass({}, env, [None] * n, [None] * n, {}, {}, 0)
+        if self.log.reach is not None:
+            side = int(reach_side(self.log.reach, np.array([values[0]]))[0])
+            if side:  # past a limit position: fails at once
+                code = self.log.reach.codes()[side > 0]
+                out.report[code // 10] = (FAIL, math.nan)
+                return out
         groups = {g.step: g for g in self.log.groups}
         inside = {n for b in self.blocks for n in b.steps}
         for step in self.log.steps:
@@ -415,10 +422,15 @@ class RowSolver:
 
         return worst, finish
 
-    def solve(self, values, rates, accs) -> Pass:
+    def solve(self, values, rates, accs, one_way: bool = False) -> Pass:
         """Solve one row on the sketch's assembly: from the previous row when it was solved and
         no input has moved farther than a continuation step (Taylor-predicted start), else by
-        continuation from the previous row or, without one, from the sketch."""
+        continuation from the previous row or, without one, from the sketch.  A row past the
+        reach fails at once.  ``one_way``: the continuation takes the straight path only, never
+        the other way round (the build's search for limit positions)."""
+        if self.log.reach is not None and reach_side(self.log.reach, np.array([values[0]]))[0]:
+            self.warm = None
+            return self.run(values, rates, accs, self.order, self.sketch_a, {})
         if self.warm is not None:
             w_in, w_rates, a, ad, used = self.warm
             if self.ns["within"](values, w_in, self.limits):
@@ -434,8 +446,13 @@ class RowSolver:
         else:
             base, base_a, prefer = self.sketch_in, self.sketch_a, {}
         path = lambda x, d, o, s: self._path_run(x, d, o, s, prefer)  # noqa: E731
-        a = self.ns["continuation"](path, list(base), [list(b) for b in base_a], list(values), self.limits,
-                                    self.periodic, self.halvings, self.sizes, self.slack, self.reach)
+        states = [list(b) for b in base_a]
+        if one_way:
+            a = self.ns["walk"](path, list(base), states, list(values), self.limits, self.halvings, self.sizes,
+                                self.slack, self.reach)
+        else:
+            a = self.ns["continuation"](path, list(base), states, list(values), self.limits, self.periodic,
+                                        self.halvings, self.sizes, self.slack, self.reach, self.low)
         if a is None:
             self.warm = None
             out = self.run(values, rates, accs, self.order, base_a, prefer)

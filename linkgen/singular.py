@@ -15,19 +15,27 @@ point between the sketch and the input (mechanisms with one input).
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
+from typing import NamedTuple
 
 import numpy as np
 
-from .evaluate import FAIL, NOT_CONVERGED, Result, evaluate
+from .evaluate import FAIL, NOT_CONVERGED, Result, RowSolver, evaluate, reach_side
 from .primitives import PRIMITIVES
-from .steplog import Conditioning, Reach, Singular, Step, StepLog
+from .steplog import Conditioning, Reach, Singular, StatusCode, Step, StepLog
 
 ZOOMS = 10  # refinements of a bracket around a minimum, each to 1/16 of the last
 EDGE_ZOOMS = 5  # refinements of a limit position, each to 1/32 of the last
 GRID = 33  # points per refinement
 TOUCH = 1e-9  # a margin within this of zero, relative to the length scale, touches zero
 SMALL = 1e-3  # minima of the margin or of sigma below this are examined
+FOLLOW = 180  # rows of a turn (or of the span of a sliding input) that the search for limit positions follows
+REFINE = 60  # values tried at most to locate a limit position once a value past it failed
+FEW_HALVINGS = 4  # the search's continuation halves a step this often (a cut is then checked as the programs cut)
+AIM = 0.9  # the search tries this share of the way to the limit position it expects (less after a miss)
+PROBE = 0.125  # without a root ahead, the value tried lies this far into the bracket (a row past a limit costs more)
+PRECISION = 1e-12  # a limit position is located to this, relative to its input value (or to 1 rad, or the length scale)
 
 
 def _lambdas(log: StepLog, lam: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -235,25 +243,191 @@ def _gaps(log: StepLog, span: StepLog, grid: np.ndarray, periodic: bool) -> list
 
 
 def reach_interval(log: StepLog) -> StepLog:
-    """The input values the mechanism reaches from the sketch (one input, no resolver: a
-    resolver's continuation finds them row by row): between the middles of the nearest gaps,
-    below and above the sketch's value, where a chain cannot close.  Past a gap a chain can
-    close again, on another circuit that the mechanism cannot reach without being taken apart."""
-    if len(log.inputs) != 1 or log.groups:
+    """The input values the mechanism reaches from the sketch (one input): between the nearest
+    gaps, below and above the sketch's value, where a chain cannot close (the middles of the
+    gaps), or, with resolvers, the nearest limit positions."""
+    if len(log.inputs) != 1:
         return log
+    found = _resolver_reach(log) if log.groups else _closed_form_reach(log)
+    if found is None or (found.low is None and found.high is None):
+        return log
+    codes = list(log.status_codes)
+    for step in {found.low_step, found.high_step} - {0}:
+        if log.step(step).action == "resolve":  # a resolver's limit position: its own reason 1
+            codes.append(StatusCode(10 * step + 1, step,
+                                    f"step {step} ({log.step(step).target}): cannot assemble past a limit position"))
+    return replace(log, reach=found, runtime=tuple(sorted(set(log.runtime) | {"reach_at"})),
+                   status_codes=tuple(sorted(codes, key=lambda c: (c.step, abs(c.code) % 10))))
+
+
+def _closed_form_reach(log: StepLog) -> Reach | None:
+    """Without resolvers: between the middles of the nearest gaps, below and above the sketch's
+    value, where a chain cannot close.  Past a gap a chain can close again, on another circuit
+    that the mechanism cannot reach without being taken apart."""
     lo, hi, periodic = _span(log)
     span = replace(log, inputs=(replace(log.inputs[0], start=lo, stop=hi),))
     gaps = _gaps(log, span, np.linspace(0.0, 1.0, max(2 * log.samples, 721) | 1), periodic)
     if len(gaps) < (2 if periodic else 1):
-        return log  # an angle with one gap is reached all round but in the gap (where rows fail anyway)
+        return None  # an angle with one gap is reached all round but in the gap (where rows fail anyway)
     theta0, turn = log.inputs[0].sketch, 2 * np.pi
     if periodic:  # every gap bounds the reach on both sides, a turn apart
         gaps = [(g + k * turn, step) for g, step in gaps for k in (-1, 0, 1)]
     high, high_step = min(((g, step) for g, step in gaps if g > theta0), default=(None, 0))
     low, low_step = max(((g, step) for g, step in gaps if g < theta0), default=(None, 0))
-    found = Reach(None if low is None else float(f"{low:.12g}"), low_step,
-                  None if high is None else float(f"{high:.12g}"), high_step, periodic)
-    return replace(log, reach=found, runtime=tuple(sorted(set(log.runtime) | {"reach_at"})))
+    return Reach(None if low is None else float(f"{low:.12g}"), low_step,
+                 None if high is None else float(f"{high:.12g}"), high_step, periodic)
+
+
+def _resolver_reach(log: StepLog) -> Reach | None:
+    """With resolvers: the nearest limit positions below and above the sketch's value, where
+    the sketch's assembly, followed from the sketch as the programs follow it, cannot be
+    continued.  An angle is followed at most a turn in all: a mechanism that gets that far has
+    no reach (it turns fully, or its circuit covers a turn); nor has one whose way is cut
+    where it is not at a limit position (see _limit), on either side for an angle."""
+    inp = log.inputs[0]
+    solver = RowSolver(log, 1)
+    if inp.kind == "revolute":
+        high = _limit(log, solver, inp.sketch + 2 * np.pi)
+        low = None if high is None or high[0] is None else _limit(log, solver, high[0] - 2 * np.pi)
+        if low is None or low[0] is None:
+            return None
+    else:
+        lo, hi, _ = _span(log)
+        high, low = _limit(log, solver, hi) or (None, 0), _limit(log, solver, lo) or (None, 0)
+    return Reach(low[0], low[1], high[0], high[1], inp.kind == "revolute")
+
+
+class _Point(NamedTuple):
+    """A value the search for a limit position reached: the solver's warm start there, the
+    fastest point's speed per unit input rate, relative to the length scale, and the
+    conditioning of the steps outside the resolver blocks."""
+
+    value: float
+    warm: tuple
+    speed: float
+    sigma: dict
+
+
+def _limit(log: StepLog, solver: RowSolver, stop: float) -> tuple[float | None, int] | None:
+    """The first limit position from the sketch's input value towards stop: (the first value
+    not reached, the limit's step: the one whose conditioning is the smallest before it);
+    None where the way to stop is not cut; (None, 0) where it is cut elsewhere (as where the
+    mechanism goes straight through a singular position, which the programs pass with longer
+    steps, and this search does too: its way is cut only where a row farther on fails too).
+
+    The sketch's assembly is followed one way only, in rows FOLLOW a turn (or a span of a
+    sliding input) apart at most.  Near a limit position the fastest point's speed goes as
+    one over the square root of the distance, so speed^-2 is linear there, and the secant
+    through the last two values reached points at the limit (so does that of the smallest
+    sigma^2 of a step): the next value tried is AIM of the way to the nearer (a row past it
+    fails, which costs far more; a quarter of the share after a miss, twice after a hit, up
+    to AIM), then, within PRECISION, just past it.  Without a root ahead, the next row is
+    tried, and once a value has failed, one PROBE of the way into the bracket.  These tries
+    halve a continuation step at most FEW_HALVINGS times; the last value is then tried as
+    the programs try it, and the cut is a limit position where the speed follows the law
+    there (see _at_limit)."""
+    theta0 = log.inputs[0].sketch
+    lo, hi, periodic = _span(log)
+    unit = 1.0 if periodic else log.length_scale
+    rows = int(np.ceil(FOLLOW * abs(stop - theta0) / ((2 * np.pi) if periodic else max(hi - lo, unit))))
+    row, sign = abs(stop - theta0) / max(rows, 1), np.sign(stop - theta0)
+    inner = {n for g in log.groups for b in (g, *g.variants) for n in b.steps}
+    points = {v.name for v in log.variables if v.kind == "POINT" and not v.constant}
+
+    def attempt(value: float, warm, halvings: int) -> _Point | None:
+        solver.warm, solver.halvings = warm, halvings
+        out = solver.solve([value], [1.0], [0.0], one_way=True)
+        solver.halvings = full
+        if not out.ok:
+            return None
+        speed = max((math.hypot(*out.env[p][2:4]) for p in points), default=0.0) / log.length_scale
+        sigma = {n: s for n, (_, s) in out.report.items() if n not in inner and np.isfinite(s)}
+        return _Point(value, solver.warm, speed, sigma)
+
+    full = solver.halvings
+    first = attempt(theta0, None, full)
+    if first is None:
+        return None, 0
+    reached, bad, root, tries, aim = [first], None, None, 0, AIM  # the values reached, the last one failed
+    while True:
+        good = reached[-1]
+        tol = PRECISION * max(abs(good.value), unit)
+        if bad is not None and (abs(bad - good.value) <= 2 * tol or tries >= REFINE):
+            past = attempt(bad, good.warm, full)
+            if past is None and _at_limit(attempt, theta0, reached, bad, unit, 10 * tol):
+                return _outward(bad, sign), min(good.sigma, key=lambda n: (good.sigma[n], n))
+            if past is None:  # a hard stretch: a row farther on, as a sweep takes it
+                past = attempt(good.value + sign * min(row, abs(stop - good.value)), good.warm, full)
+            if past is None:
+                return None, 0
+            reached, bad, root, tries = [past], None, None, 0
+            continue
+        if bad is None and good.value == stop:
+            return None
+        ahead = bad if bad is not None else (stop if abs(stop - good.value) <= row else good.value + sign * row)
+        roots = _roots(reached[-2:], sign) if len(reached) > 1 else []
+        if roots:
+            root = good.value + sign * min(roots)
+        elif bad is None:
+            root = None  # no limit ahead (in a bracket the last estimate stands: it is rounding there)
+        if root is not None and (root - good.value) * sign <= tol:
+            trial = good.value + sign * tol  # the limit within rounding: the value just past it
+        elif root is not None and (root - good.value) * sign < (ahead - good.value) * sign:
+            trial = good.value + aim * (root - good.value)
+        else:
+            trial = ahead if bad is None else good.value + (bad - good.value) * PROBE
+        now = attempt(trial, good.warm, FEW_HALVINGS)
+        tries += bad is not None
+        if now is not None:
+            reached.append(now)
+            aim = min(2 * aim, AIM)
+        else:
+            bad, aim = trial, aim / 4
+
+
+def _outward(value: float, sign: float) -> float:
+    """value to 12 significant digits (as a closed-form reach), rounded away from the sketch
+    (sign: the way from it), so the bound stays past the limit position."""
+    rounded = float(f"{value:.12g}")
+    if (rounded - value) * sign < 0:
+        rounded = float(f"{rounded + sign * 10.0 ** (math.floor(math.log10(abs(value))) - 11):.12g}")
+    return rounded
+
+
+def _roots(last: list[_Point], sign: float) -> list[float]:
+    """How far ahead of the last of two values reached a limit position lies, by the secant
+    through them of speed^-2 and of the sigma^2 of the step whose conditioning is the
+    smallest (both linear near a limit position; only those that fall towards it)."""
+    (before, good), roots = last, []
+    step = min(good.sigma, key=lambda n: (good.sigma[n], n))
+    for a, b in ((before.speed ** -2 if before.speed else np.inf, good.speed ** -2 if good.speed else np.inf),
+                 (before.sigma.get(step, np.inf) ** 2, good.sigma[step] ** 2)):
+        if a > b:
+            roots.append(b * (good.value - before.value) / (a - b) * sign)
+    return roots
+
+
+def _at_limit(attempt, theta0: float, reached: list[_Point], bad: float, unit: float, finest: float) -> bool:
+    """Whether the way is cut at bad by a limit position: there speed^2 times the distance
+    to it tends to a constant, so it is the same, within a factor two, a millionth of the
+    input value (at least 1 rad, or the length scale) before it (or half the way from the
+    sketch, nearer the sketch) and a hundredth of that, each followed from the last value
+    reached before it.  Elsewhere (a singular position the mechanism goes straight through,
+    a hard stretch for the continuation) the speed stays finite and the product tends to 0."""
+    far = min(1e-6 * max(abs(bad), unit), abs(bad - theta0) / 2)
+    sign = np.sign(bad - theta0)
+    laws = []
+    for distance in (far, far / 100):
+        value = bad - sign * distance
+        before = [p for p in reached if (value - p.value) * sign >= 0]
+        if distance < finest or not before:
+            return False
+        point = attempt(value, before[-1].warm, FEW_HALVINGS)
+        if point is None:
+            return False
+        reached = [*before, point]
+        laws.append(point.speed ** 2 * distance)
+    return 0.5 <= laws[1] / laws[0] <= 2.0 if laws[0] > 0 else False
 
 
 def _with_points(log: StepLog, step: Step, points: tuple[float, ...]) -> StepLog:
@@ -268,6 +442,21 @@ def _with_points(log: StepLog, step: Step, points: tuple[float, ...]) -> StepLog
 def _warm(result: Result, row: int):
     """The resolver's warm start after a sweep row (None without resolvers)."""
     return result.warm[row] if result.warm else None
+
+
+def _reach_limit(log: StepLog, good: float, bad: float) -> float | None:
+    """The sweep position of the resolver mechanism's limit position between sweep positions
+    good (reached) and bad (past the reach), or None (no resolver, or the reach not between)."""
+    reach, inp = log.reach, log.inputs[0] if log.inputs else None
+    if not log.groups or reach is None or inp.start == inp.stop:
+        return None
+    before, after = (inp.start + lam * (inp.stop - inp.start) for lam in (good, bad))
+    if reach_side(reach, np.array([before]))[0] or not reach_side(reach, np.array([after]))[0]:
+        return None
+    bound = reach.high if after > before else reach.low
+    if reach.periodic:  # the bound's turn between the two
+        bound += 2 * np.pi * np.floor((before - reach.low) / (2 * np.pi))
+    return (bound - inp.start) / (inp.stop - inp.start)
 
 
 def conditioning(log: StepLog) -> StepLog:
@@ -290,6 +479,10 @@ def conditioning(log: StepLog) -> StepLog:
             # a resolver block's chain fails only as its group does: the group's step has the limit
             if usable[k] != usable[k + 1] and closes[k] != closes[k + 1] and number not in inner:
                 good, bad = (k, k + 1) if usable[k] else (k + 1, k)
+                lam = _reach_limit(log, grid[good], grid[bad])
+                if lam is not None:  # located when the reach was: sigma is 0 there
+                    found.append(Singular(_input_values(log, lam), "limit", 0.0))
+                    continue
                 lam, s = _zoom_edge(log, grid[good], grid[bad], number, float(sigma[good]), _warm(result, good))
                 found.append(Singular(_input_values(log, lam), "limit", float(f"{s:.3g}")))
         for k in _local_minima(sigma, usable):

@@ -236,9 +236,10 @@ class Conditioning:
 class Reach:
     """The values of a mechanism's one input that it reaches from the sketch: between the
     middles of the nearest gaps, below and above the sketch's value, where a chain cannot
-    close (None: no gap on that side).  An angle is reached modulo whole turns.  Beyond a
-    gap a chain can close again, on another circuit of the mechanism: rows there fail with
-    the code of the step whose chain cannot close in the gap."""
+    close, or, with resolvers, between the nearest limit positions (None: none on that
+    side).  An angle is reached modulo whole turns.  Beyond a gap a chain can close again,
+    on another circuit of the mechanism; beyond a limit position the sketch's assembly does
+    not go on: rows there fail with the code of the gap's or the limit's step."""
 
     low: float | None
     low_step: int  # the step whose chain cannot close in the gap below (0: none)
@@ -247,8 +248,9 @@ class Reach:
     periodic: bool
 
     def codes(self) -> tuple[int, int]:
-        """The status of a row past the gap below and above (a side without a gap takes the
-        other's code: its check never fires); reason 1, the chain cannot close."""
+        """The status of a row past the gap or limit below and above (a side without one takes
+        the other's code: its check never fires); reason 1, the chain cannot close (or the
+        resolver cannot assemble past a limit position)."""
         return 10 * (self.low_step or self.high_step) + 1, 10 * (self.high_step or self.low_step) + 1
 
 
@@ -297,7 +299,7 @@ class StepLog:
     conditioning: tuple[Conditioning, ...] = ()
     outputs: tuple[str, ...] = ()  # the outputs asked for (empty: the default set)
     omitted: tuple[Omitted, ...] = ()  # steps left out: the outputs do not need them
-    reach: Reach | None = None  # one input, no resolver: the input values reached from the sketch
+    reach: Reach | None = None  # one input: the input values reached from the sketch
 
     def variable(self, name: str) -> Variable:
         return self._variables[name]

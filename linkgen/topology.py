@@ -19,6 +19,8 @@ from .errors import InputError, and_list
 from .model import Input, Link, Mechanism
 
 RANK_TOLERANCE = 1e-9  # relative, as the format specifies
+LENGTH_SCALES = (1e-30, 1e30)  # the sketch sizes linkgen supports, in file units (docs/mechanism-format.md)
+OFF_LINE = 1e-3  # how far (relative to the length scale) a pair in line is moved to see if it causes a rank drop
 
 
 @dataclass(frozen=True)
@@ -126,17 +128,12 @@ def truss(m: Mechanism, link: Link) -> list[Member]:
 
 
 def _nearest_turn(value: float, start: float, stop: float) -> float:
-    """The representative of an angle (mod 2 pi) nearest the range, preferring the start."""
-    lo, hi = min(start, stop), max(start, stop)
-    best = None
-    for k in range(math.floor((lo - value) / (2 * math.pi)) - 1, math.ceil((hi - value) / (2 * math.pi)) + 2):
-        cand = value + 2 * math.pi * k
-        gap = max(lo - cand, cand - hi, 0.0)
-        key = (gap, abs(cand - start))
-        if best is None or key < best[0]:
-            best = (key, cand)
-    assert best is not None
-    return best[1]
+    """The representative of an angle (mod 2 pi) nearest the range, preferring the start:
+    among the turns next to either end of the range (inside it when one is), so a range of
+    any width takes the same few steps."""
+    lo, hi, turn = min(start, stop), max(start, stop), 2 * math.pi
+    turns = {k + j for k in (math.floor((lo - value) / turn), math.floor((hi - value) / turn)) for j in (-1, 0, 1, 2)}
+    return min((value + turn * k for k in turns), key=lambda c: (max(lo - c, c - hi, 0.0), abs(c - start)))
 
 
 def reference_angle(m: Mechanism, inp: Input) -> float:
@@ -156,11 +153,13 @@ def sketch_input(m: Mechanism, inp: Input) -> float:
 
 
 class _Jacobian:
-    """Velocity constraints at the sketch, columns (vx, vy, omega * L) per moving link."""
+    """Velocity constraints at the sketch (or at the positions given), columns (vx, vy, omega * L)
+    per moving link."""
 
-    def __init__(self, m: Mechanism, scale: float):
+    def __init__(self, m: Mechanism, scale: float, positions: dict[str, tuple[float, float]] | None = None):
         self.m = m
         self.scale = scale
+        self.positions = positions or m.positions
         self.moving = [lk for lk in m.links if not lk.fixed]
         self.col = {lk.name: 3 * i for i, lk in enumerate(self.moving)}
         self.n = 3 * len(self.moving)
@@ -171,8 +170,8 @@ class _Jacobian:
         if link not in self.col:
             return block
         c = self.col[link]
-        ref = sketch_position(self.m, self.m.link(link).joints[0])
-        x, y = sketch_position(self.m, name)
+        ref = self.positions[self.m.link(link).joints[0]]
+        x, y = self.positions[name]
         block[0, c], block[1, c + 1] = 1.0, 1.0
         block[0, c + 2] = -(y - ref[1]) / self.scale
         block[1, c + 2] = (x - ref[0]) / self.scale
@@ -207,7 +206,7 @@ class _Jacobian:
             axis = np.array([math.cos(j.axis), math.sin(j.axis)])
             return axis @ (self.point_rows(inp.link, j.name) - self.point_rows(inp.relative_to, j.name))
         a, b = inp.between
-        (xa, ya), (xb, yb) = sketch_position(self.m, a), sketch_position(self.m, b)
+        (xa, ya), (xb, yb) = self.positions[a], self.positions[b]
         u = np.array([xb - xa, yb - ya]) / math.hypot(xb - xa, yb - ya)
         la, lb = self.m.links_of(a)[0].name, self.m.links_of(b)[0].name
         return u @ (self.point_rows(lb, b) - self.point_rows(la, a))
@@ -220,11 +219,37 @@ def _rank(a: np.ndarray) -> int:
     return int(np.sum(s > RANK_TOLERANCE * max(s[0], 1.0)))
 
 
+def _farthest(m: Mechanism) -> tuple[str, str, float]:
+    """The two pairs or points of the sketch farthest apart, and their distance."""
+    names = list(m.positions)
+    spots = np.array([m.positions[n] for n in names])
+    d = spots[:, None, :] - spots[None, :, :]
+    dist = np.hypot(d[..., 0], d[..., 1])
+    i, k = np.unravel_index(int(np.argmax(dist)), dist.shape)
+    return names[min(i, k)], names[max(i, k)], float(dist[i, k])
+
+
 def length_scale(m: Mechanism) -> float:
     """The largest distance between two pairs or points of the sketch."""
-    spots = np.array([(j.x, j.y) for j in m.joints] + [(p.x, p.y) for p in m.points])
-    d = spots[:, None, :] - spots[None, :, :]
-    return float(np.max(np.hypot(d[..., 0], d[..., 1])))
+    return _farthest(m)[2]
+
+
+def _check_scale(m: Mechanism) -> float:
+    """The length scale, refused outside the supported range (and when every pair is at one spot)."""
+    a, b, scale = _farthest(m)
+    if scale == 0:
+        first = m.joints[0].where
+        raise InputError("all pairs and points lie at one position; draw the mechanism as it is assembled, "
+                         "with every pair at its place", m.path, first.line, "joints")
+    low, high = LENGTH_SCALES
+    if not low <= scale <= high:
+        where = next(e.where for e in (*m.joints, *m.points) if e.name == b)
+        size = f"{scale:.3g}".replace("e+", "e") + (f" {m.length_unit}" if m.length_unit else "")
+        raise InputError(f"the sketch measures {size} (from {a} to {b}, the largest distance between two "
+                         "pairs or points), but linkgen supports sketches from 1e-30 to 1e30 in the file's length "
+                         f"unit; give the positions in a unit that makes their numbers "
+                         f"{'larger' if scale < low else 'smaller'}", m.path, where.line, where.key)
+    return scale
 
 
 def sketch_origin(m: Mechanism, scale: float) -> tuple[float, float]:
@@ -274,6 +299,55 @@ def _check_input_count(m: Mechanism, mobility: int, count: int) -> None:
                      "or the rest of the mechanism is left free", m.path, m.inputs_where.line, "inputs")
 
 
+def _in_line(m: Mechanism) -> list[tuple[str, str, str, str, str]]:
+    """Two-link chains drawn in line: (p, q, r, link1, link2) where the revolute pair q joins
+    link1, which carries the pair p, to link2, which carries r, and p, q, r lie on one line."""
+    out = []
+    pos = m.positions
+    for q in m.joints:
+        if not q.revolute:
+            continue
+        on = m.links_of(q.name)
+        for i, l1 in enumerate(on):
+            for l2 in on[i + 1:]:
+                for p in l1.joints:
+                    for r in l2.joints:
+                        if q.name in (p, r) or p == r:
+                            continue
+                        (px, py), (qx, qy), (rx, ry) = pos[p], pos[q.name], pos[r]
+                        a, b = math.hypot(px - qx, py - qy), math.hypot(rx - qx, ry - qy)
+                        cross = (px - qx) * (ry - qy) - (py - qy) * (rx - qx)
+                        if a > 0 and b > 0 and abs(cross) <= RANK_TOLERANCE * a * b:
+                            out.append((p, q.name, r, l1.name, l2.name))
+    return out
+
+
+def _check_dead_centre(m: Mechanism, scale: float, mobility: int) -> None:
+    """The constraints lose rank at the sketch (more degrees of freedom than Grübler's count): when
+    moving the middle pair of a chain drawn in line off that line restores the rank, the sketch
+    is at a dead centre, not a mechanism with a redundant constraint (a parallelogram)."""
+    rank = _Jacobian(m, scale).n - mobility
+    found = []
+    for p, q, r, l1, l2 in _in_line(m):
+        (px, py), (qx, qy), (rx, ry) = m.positions[p], m.positions[q], m.positions[r]
+        dx, dy = (rx - px, ry - py) if (rx, ry) != (px, py) else (qx - px, qy - py)
+        step = OFF_LINE * scale / math.hypot(dx, dy)
+        moved = {**m.positions, q: (qx - dy * step, qy + dx * step)}
+        if _rank(_Jacobian(m, scale, moved).constraints()) > rank:
+            found.append((p, q, r, l1, l2))
+    moving = [f for f in found if not (m.link(f[3]).fixed or m.link(f[4]).fixed)]
+    found = moving or found
+    if not found:
+        return
+    p, q, r, l1, l2 = found[0]
+    chains = and_list(f"{a}, {b} and {c} (links {x} and {y})" for a, b, c, x, y in found)
+    where = m.joint(q).where
+    raise InputError(f"the sketch is drawn at a dead centre: the pairs {chains} are in line, "
+                     f"so the links can move there in more ways than the mechanism can (the sketch has "
+                     f"{_degrees(mobility)}, Grübler's count gives {grubler(m)}); redraw the sketch with {l1} and {l2} "
+                     f"off the dead centre ({q} off the line through {p} and {r})", m.path, where.line, where.key)
+
+
 def _free_links(jac: _Jacobian, full: np.ndarray) -> list[str]:
     """The moving links that still move when every input is held: the null space of the full Jacobian."""
     _, s, vt = np.linalg.svd(full)
@@ -310,15 +384,13 @@ def _check_inputs_determine(m: Mechanism, jac: _Jacobian, c: np.ndarray) -> None
 
 def analyse(m: Mechanism) -> Topology:
     """Build the topology and check that the inputs drive the mechanism exactly."""
-    scale = length_scale(m)
-    if scale == 0:
-        first = m.joints[0].where
-        raise InputError("all pairs and points lie at one position; draw the mechanism as it is assembled, "
-                         "with every pair at its place", m.path, first.line, "joints")
+    scale = _check_scale(m)
     jac = _Jacobian(m, scale)
     c = jac.constraints()
     mobility = jac.n - _rank(c)
     count = grubler(m)
+    if mobility > count:
+        _check_dead_centre(m, scale, mobility)
     _check_input_count(m, mobility, count)
     _check_inputs_determine(m, jac, c)
     directions = tuple(link_direction(m, lk) for lk in m.links)

@@ -8,19 +8,21 @@ the inputs determine the sketch are checked by ``topology``.
 from __future__ import annotations
 
 import difflib
-import keyword
 import math
 import os
+import unicodedata
 
 from .errors import InputError, and_list
-from .loader import Mapping, Node, Reader, Sequence, describe, load
+from .loader import IDENTIFIER, Mapping, Node, Reader, Sequence, describe, load
 from .model import Input, Joint, Link, Mechanism, Point, Prismatic, Where
-from .names import C_RESERVED, M_RESERVED
+from .names import entity_name_problem, mechanism_name_problem, spellings
 
 FORMAT_VERSION = 1
 MAX_SAMPLES = 10_000_000
-MAX_NAME = 57  # MATLAB's 63 characters for NAME_solve
-RESERVED_NAMES = frozenset(keyword.kwlist) | C_RESERVED | M_RESERVED | {"math", "sys"}
+MAX_MAGNITUDE = 1e30  # largest coordinate, range bound and speed, in file units (docs/mechanism-format.md)
+# Bidirectional-text controls: no title or unit label may hold them (nor a control character or line break),
+# which would make a line of a generated file read other than it compiles.
+_BIDI = frozenset("\u061c\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069")
 DEFAULT_SAMPLES = 361
 DEFAULT_ORDER = 2
 _TOP_REQUIRED = ("linkgen", "name", "joints", "links", "inputs")
@@ -37,6 +39,34 @@ def _did_you_mean(name: str, known) -> str:
     return f" (did you mean {close[0]}?)" if close else ""
 
 
+def _bad_character(text: str) -> str:
+    """The first character of a text that a line of a generated file cannot carry ('' when none)."""
+    for ch in text:
+        if unicodedata.category(ch) in ("Cc", "Cs", "Zl", "Zp") or ch in _BIDI:
+            return ch
+    return ""
+
+
+def file_label(path: str) -> str:
+    """The file's base name as the generated files' banners and manual give it: printable ASCII;
+    every other character, the backslash and the characters that end a comment or start markup
+    in one of the generated languages (* < > & ` ") are written as Python's escapes \\xNN,
+    \\uNNNN or \\UNNNNNNNN of their code point.  The same bytes on every machine (no Unicode
+    tables are consulted), and valid in any file even for a name that is not UTF-8."""
+    out = []
+    for ch in os.path.basename(path):
+        code = ord(ch)
+        if 0x20 <= code < 0x7F and ch not in '\\*<>&`"':
+            out.append(ch)
+        elif code < 0x100:
+            out.append(f"\\x{code:02x}")
+        elif code < 0x10000:
+            out.append(f"\\u{code:04x}")
+        else:
+            out.append(f"\\U{code:08x}")
+    return "".join(out)
+
+
 class _Validator:
     def __init__(self, root: Mapping, path: str):
         self.root = root
@@ -44,6 +74,7 @@ class _Validator:
         self.r = Reader(path)
         self.names: dict[str, Node] = {}  # pairs, points and links share one namespace
         self.angle_scale = math.pi / 180
+        self.length_unit = ""
 
     # -- helpers -------------------------------------------------------------
     def error(self, message: str, where: Where) -> InputError:
@@ -61,9 +92,28 @@ class _Validator:
         if len(seq.items) != 2:
             raise self.r.error(node, f"expected the position of {what} as [x, y], two numbers, "
                                f"got {len(seq.items)} value{'' if len(seq.items) == 1 else 's'}")
-        x = self.r.number(seq.items[0], f"the x coordinate of {what}, a number")
-        y = self.r.number(seq.items[1], f"the y coordinate of {what}, a number")
+        x = self.magnitude(seq.items[0], f"the x coordinate of {what}")
+        y = self.magnitude(seq.items[1], f"the y coordinate of {what}")
         return x, y
+
+    def magnitude(self, node: Node, what: str, unit: str = "") -> float:
+        """A number of at most MAX_MAGNITUDE in size (file units)."""
+        value = self.r.number(node, f"{what}, a number")
+        if abs(value) > MAX_MAGNITUDE:
+            unit = unit or self.length_unit or "the file's length unit"
+            raise self.r.error(node, f"{what} is {node.text}, outside the range linkgen supports: at most "
+                               f"1e30 in size (in {unit})")
+        return value
+
+    def one_line(self, node: Node, what: str, label: str) -> str:
+        """A text the generated files carry in comments and headings: one line, no control character."""
+        text = self.r.text(node, what)
+        bad = _bad_character(text)
+        if bad:
+            kind = "line break" if bad in "\n\r\x85\u2028\u2029" else "control character"
+            raise self.r.error(node, f"{label} holds the {kind} U+{ord(bad):04X}, which the generated files cannot "
+                               "carry in their comments and headings; write it as one line of plain text")
+        return text
 
     def angle(self, node: Node, what: str) -> float:
         return self.r.number(node, what) * self.angle_scale
@@ -87,20 +137,21 @@ class _Validator:
         name = self.r.name(node, "a name for the mechanism, such as fourbar")
         self.program_name(name, node)
         title_node = root.get("title")
-        title = self.r.text(title_node, "a title (text)") if title_node is not None else name
+        title = self.one_line(title_node, "a title (text)", "the title") if title_node is not None else name
         length_unit, angle_unit = "", "deg"
         units = root.get("units")
         if units is not None:
             units = self.r.mapping(units, "the units as {length: mm, angle: deg}")
             self.r.keys(units, (), ("length", "angle"), "units")
             if units.get("length") is not None:
-                length_unit = self.r.text(units.get("length"), "a length unit label such as mm")
+                length_unit = self.one_line(units.get("length"), "a length unit label such as mm", "the length unit")
             node = units.get("angle")
             if node is not None:
                 angle_unit = self.r.text(node, "the angle unit deg or rad")
                 if angle_unit not in ("deg", "rad"):
                     raise self.r.error(node, f"the angle unit is deg (degrees) or rad (radians), got {angle_unit!r}")
         self.angle_scale = math.pi / 180 if angle_unit == "deg" else 1.0
+        self.length_unit = length_unit
         return name, title, length_unit, angle_unit
 
     def joints(self) -> tuple[Joint, ...]:
@@ -250,7 +301,7 @@ class _Validator:
             if both and self.r.name(spec.get("link")) == self.r.name(spec.get("relative_to")):
                 raise self.r.error(spec.get("relative_to"), "an input moves one link against another link, "
                                        "not against itself")
-            start, stop, speed = self.sweep(spec, 1.0)
+            start, stop, speed = self.sweep(spec, False)
             return Input(index, "prismatic", jname, "", "", (), start, stop, speed, _where(spec))
         for key, what in (("link", "the driven link"), ("relative_to", "the link it turns against")):
             if spec.get(key) is None:
@@ -264,7 +315,7 @@ class _Validator:
         if link == ref:
             raise self.r.error(spec.get("relative_to"), f"an input turns link {link} against another link, "
                                "not against itself")
-        start, stop, speed = self.sweep(spec, self.angle_scale)
+        start, stop, speed = self.sweep(spec, True)
         return Input(index, "revolute", jname, link, ref, (), start, stop, speed, _where(spec))
 
     def input_link(self, node: Node, joint: str, on: list[str], by_name: dict[str, Link]) -> str:
@@ -276,15 +327,18 @@ class _Validator:
                                f"cannot move it; {joint} joins {and_list(on)}")
         return name
 
-    def sweep(self, spec: Mapping, scale: float) -> tuple[float, float, float]:
+    def sweep(self, spec: Mapping, angular: bool) -> tuple[float, float, float]:
         """The input's range and speed, in radians or length units."""
         rng = self.r.sequence(spec.get("range"), "the input range as [from, to]")
         if len(rng.items) != 2:
             raise self.r.error(rng, f"expected the input range as [from, to], two numbers, got {len(rng.items)}")
-        start = self.r.number(rng.items[0], "the start of the range, a number")
-        stop = self.r.number(rng.items[1], "the end of the range, a number")
+        unit = ("degrees" if self.angle_scale != 1.0 else "radians") if angular else ""
+        start = self.magnitude(rng.items[0], "the start of the range", unit)
+        stop = self.magnitude(rng.items[1], "the end of the range", unit)
         speed_node = spec.get("speed")
-        speed = self.r.number(speed_node, "the input speed, a number") if speed_node is not None else 1.0
+        per_second = f"{unit or self.length_unit or 'length units'} per second"
+        speed = self.magnitude(speed_node, "the input speed", per_second) if speed_node is not None else 1.0
+        scale = self.angle_scale if angular else 1.0
         return start * scale, stop * scale, speed * scale
 
     def distance_input(self, index: int, spec: Mapping, joints: dict[str, Joint], links: tuple[Link, ...],
@@ -314,7 +368,7 @@ class _Validator:
             raise self.r.error(bnode, f"an actuator between {pair[0]} and {pair[1]} is already given "
                                f"(line {driven[key].line})")
         driven[key] = bnode
-        start, stop, speed = self.sweep(spec, 1.0)
+        start, stop, speed = self.sweep(spec, False)
         return Input(index, "distance", "", "", "", tuple(pair), start, stop, speed, _where(spec))
 
     def single_pair_links(self, links: tuple[Link, ...], inputs: tuple[Input, ...]) -> None:
@@ -393,16 +447,46 @@ class _Validator:
         return tuple(names), _where(seq)
 
     def program_name(self, name: str, node: Node) -> None:
-        """The mechanism's name names files and functions in C, Python and MATLAB."""
-        if name in RESERVED_NAMES:
-            raise self.r.error(node, f"{name!r} is a reserved word or a module the generated programs use "
-                               "(C, Python or MATLAB); choose another name for the mechanism")
-        if name.startswith("_"):
-            raise self.r.error(node, f"{name!r} starts with _, which MATLAB does not allow in a file name; "
-                               "choose a name that starts with a letter")
-        if len(name) > MAX_NAME:
-            raise self.r.error(node, f"the name has {len(name)} characters; MATLAB allows {MAX_NAME} for "
-                               f"{name}_solve, so use at most {MAX_NAME}")
+        """The mechanism's name names files, a module, a script and functions (linkgen.names)."""
+        problem = mechanism_name_problem(name)
+        if problem:
+            better = next((n for n in (name.lstrip("_"), f"{name}_linkage", f"{name[:40]}_linkage")
+                           if n and n != name and IDENTIFIER.fullmatch(n) and not mechanism_name_problem(n)), "")
+            raise self.r.error(node, f"{name} {problem}; choose another name for the mechanism"
+                               + (f", such as {better}" if better else ""))
+
+    def entity_names(self, joints: tuple[Joint, ...], links: tuple[Link, ...], mechanism: str) -> None:
+        """Pairs, points and links are fields of the programs' outputs (linkgen.names), whether outputs
+        lists them or not: a name a program cannot carry is refused, and so are two names a program
+        would write alike (end and end_ in MATLAB, where the keyword end is written end_)."""
+        entities = [(j.name, j.where, "pair") for j in joints] + [(lk.name, lk.where, "link") for lk in links]
+        entities += [(p.name, p.where, "point") for lk in links for p in lk.points]
+        written: dict[tuple[str, str], str] = {}
+        for name, where, what in sorted(entities, key=lambda e: e[1].line):
+            problem = entity_name_problem(name, mechanism)
+            for lang, spelling, why in spellings(name):
+                other = written.setdefault((lang, spelling), name)
+                if other != name and not problem:
+                    word, why = (name, why) if why else (other, next(w for g, _, w in spellings(other) if g == lang))
+                    problem = (f"is written {spelling} in the generated {lang} program, as is {other} (line "
+                               f"{self.names[other].line}), because {word} is {why} and gets a trailing _ there")
+            if problem:
+                base = "_".join(filter(None, name.split("_")))
+                better = next((n for n in (base, f"{base}_{what}", f"{what}_{base}")
+                               if IDENTIFIER.fullmatch(n) and n not in self.names
+                               and not entity_name_problem(n, mechanism)), "")
+                advice = f"call the {what} {better} or similar" if better else f"choose another name for the {what}"
+                raise self.error(f"{name} {problem}; {advice}", where)
+
+    def input_columns(self, inputs: tuple[Input, ...]) -> None:
+        """Input columns (theta_J, s_J, d_J1_J2) name the CSV's first columns: they must differ."""
+        seen: dict[str, Input] = {}
+        for i in inputs:
+            if i.column in seen:
+                first = seen[i.column]
+                raise self.error(f"this input's CSV column would be {i.column}, as is the column of the input on "
+                                 f"line {first.where.line}; rename one of the pairs", i.where)
+            seen[i.column] = i
 
     def key_where(self, key: str) -> Where:
         node = next(k for k, _ in self.root.items if k.text == key)
@@ -430,8 +514,10 @@ class _Validator:
         joints = self.joints()
         by_name = {j.name: j for j in joints}
         links = self.links(by_name)
+        self.entity_names(joints, links, name)
         self.pair_usage(joints, links)
         inputs = self.inputs(by_name, links)
+        self.input_columns(inputs)
         self.single_pair_links(links, inputs)
         self.connected(links)
         prismatic = self.prismatic(joints, links, inputs)
@@ -439,7 +525,7 @@ class _Validator:
         outputs, outputs_where = self.outputs()
         order, samples = self.scalars()
         return Mechanism(
-            name, title, os.path.basename(self.path), self.path, length_unit, angle_unit, joints, links,
+            name, title, file_label(self.path), self.path, length_unit, angle_unit, joints, links,
             inputs, prismatic, outputs, outputs_where, order, samples, Where(1, ""), self.key_where("inputs"),
         )
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import functools
 import io
 import math
 import os
@@ -33,8 +34,14 @@ def need(tool: str) -> str:
     return path
 
 
+@functools.cache
+def _log(path: str, text: str) -> StepLog:
+    """The step log of a mechanism file, built once per session and content (test modules share it)."""
+    return build_log(path)
+
+
 def build(mechanism: Path, outdir: Path) -> StepLog:
-    log = build_log(str(mechanism))
+    log = _log(str(mechanism), Path(mechanism).read_text(encoding="utf-8"))
     write_all(render_all(log), str(outdir))
     return log
 
@@ -126,3 +133,105 @@ def different_bits(a: str, b: str) -> list[tuple]:
     assert ha == hb and sa == sb
     return [(k, h, x, y) for k, (ra, rb) in enumerate(zip(da, db)) for h, x, y in zip(ha, ra, rb)
             if not (x == y or (x != x and y != y))]
+
+
+# -- compilers and hosts -------------------------------------------------------
+
+STRICT = [*CFLAGS, "-Wshadow", "-Wstrict-prototypes", "-Wmissing-prototypes"]
+CXXFLAGS = ["-std=c++11", "-Wall", "-Wextra", "-Werror", "-pedantic"]
+SANITIZE = ["-g", "-fsanitize=address,undefined", "-fno-sanitize-recover=all"]
+
+
+def compile_step(cmd: list[str], cwd: Path) -> None:
+    """Run one compiler command; fail with its diagnostics."""
+    done = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True)
+    assert done.returncode == 0 and not done.stderr, f"{' '.join(cmd)}\n{done.stderr}"
+
+
+def host_source(log: StepLog, reads: int) -> str:
+    """A program that calls NAME_solve as a host project would, in the common subset of C99 and C++.
+
+    It writes the sweep of NAME_main.c (same CSV).  Half way it makes the calls a caller must not
+    make: nan, inf and -inf in each entry of in, din and ddin.  In the first `reads` arrays (those
+    the program's order reads) each must be refused with NAME_STATUS_BAD_INPUT, every output and
+    sigma nan; the state keeps its warm start, so the rest of the sweep is still NAME_main.c's.  In
+    the others the value is not read: the call gives what the finite one gives.  Exits 2 on a
+    failed check, naming it on stderr.
+    """
+    name, upper = log.name, log.name.upper()
+    lit = ", ".join
+    return f"""#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "{name}.h"
+
+static const double start[{upper}_N_INPUTS] = {{ {lit(repr(float(i.start)) for i in log.inputs)} }};
+static const double stop[{upper}_N_INPUTS] = {{ {lit(repr(float(i.stop)) for i in log.inputs)} }};
+static const double speed[{upper}_N_INPUTS] = {{ {lit(repr(float(i.speed)) for i in log.inputs)} }};
+
+static int all_nan(const double x[], int n)
+{{
+    int i;
+    for (i = 0; i < n; i++)
+        if (!isnan(x[i])) return 0;
+    return 1;
+}}
+
+/* Call with value at entry i of array a (0: in, 1: din, 2: ddin); 1 when the answer is right. */
+static int bad_call(double rows[3][{upper}_N_INPUTS], int a, int i, double value, {name}_state *st)
+{{
+    double bad[3][{upper}_N_INPUTS], col[{upper}_N_COLUMNS], col_ok[{upper}_N_COLUMNS];
+    {name}_state scratch, good;
+    int code;
+    memcpy(bad, rows, sizeof bad);
+    bad[a][i] = value;
+    if (a < {reads}) {{
+        code = {name}_solve(bad[0], bad[1], bad[2], st);
+        {name}_columns(bad[0], st, col);
+        return code == {upper}_STATUS_BAD_INPUT && st->status == code
+               && all_nan(col + {upper}_N_INPUTS, {upper}_N_COLUMNS - {upper}_N_INPUTS)
+               && all_nan(st->sigma, {upper}_N_STEPS + 1);
+    }}
+    scratch = *st;
+    good = *st;
+    code = {name}_solve(bad[0], bad[1], bad[2], &scratch);
+    {name}_columns(bad[0], &scratch, col);
+    {name}_solve(rows[0], rows[1], rows[2], &good);
+    {name}_columns(rows[0], &good, col_ok);
+    return code == good.status && memcmp(col, col_ok, sizeof col) == 0;
+}}
+
+int main(void)
+{{
+    static const double values[3] = {{ NAN, INFINITY, -INFINITY }};
+    {name}_state st;
+    double rows[3][{upper}_N_INPUTS], col[{upper}_N_COLUMNS];
+    int k, i, a, v;
+    {name}_init(&st);
+    printf("{",".join(c.name for c in log.columns)},status\\n");
+    for (k = 0; k < {upper}_SAMPLES; k++) {{
+        for (i = 0; i < {upper}_N_INPUTS; i++) {{
+            rows[0][i] = start[i] + (double)k * (stop[i] - start[i]) / (double)({upper}_SAMPLES - 1);
+            rows[1][i] = speed[i];
+            rows[2][i] = 0.0;
+        }}
+        if (k == {upper}_SAMPLES / 2)
+            for (a = 0; a < 3; a++)
+                for (i = 0; i < {upper}_N_INPUTS; i++)
+                    for (v = 0; v < 3; v++)
+                        if (!bad_call(rows, a, i, values[v], &st)) {{
+                            fprintf(stderr, "wrong answer: array %d, entry %d, value %g\\n", a, i, values[v]);
+                            return 2;
+                        }}
+        {name}_solve(rows[0], rows[1], rows[2], &st);
+        {name}_columns(rows[0], &st, col);
+        for (i = 0; i < {upper}_N_COLUMNS; i++) {{
+            if (isfinite(col[i])) printf("%.17g,", col[i]);
+            else printf("nan,");
+        }}
+        printf("%d\\n", st.status);
+    }}
+    return 0;
+}}
+"""

@@ -5,7 +5,8 @@ for number literals.  Only dimensionless numbers may appear: 0, 1, 2 and 0.5 of
 the formulas, 8 (eps multiples at a toggle), the conditioning thresholds 1e-3 and
 1e-7, the status codes 3 and 4, the continuation's 0.1 and 0.01 (a
 correction over a tenth of the predicted move is off the path, over a hundredth where the
-solving block turned), and pi.  A length such as the lecture's
+solving block turned), pi, and the 1000 passes after which a continuation's walk gives up
+(a count).  A length such as the lecture's
 10e-20 would fail at millimetre or kilometre scale.
 """
 
@@ -19,7 +20,7 @@ import pytest
 from linkgen.primitives import PRIMITIVES
 from linkgen.primitives.printers import c_function, octave_function, python_function
 
-ALLOWED = {0.0, 1.0, 2.0, 0.5, 0.1, 0.01, 8.0, 1e-3, 1e-7, 3.0, 4.0, 3.141592653589793}
+ALLOWED = {0.0, 1.0, 2.0, 0.5, 0.1, 0.01, 8.0, 1e-3, 1e-7, 3.0, 4.0, 3.141592653589793, 1000.0}
 NUMBER = re.compile(r"(?<![\w.])(\d+\.\d*(?:e[-+]?\d+)?|\d+e[-+]?\d+|\d+)(?![\w.])")
 
 

@@ -10,14 +10,39 @@ the three programs compute the same bits.
 from __future__ import annotations
 
 import dataclasses
+import functools
+import importlib.util
+import math
 import re
+import signal
+import subprocess
+import sys
+from collections.abc import Callable
 from pathlib import Path
 
+import mpmath
 import pytest
-from programs import ROOT, SAMPLES, build, compare, different_bits, parse, run_c, run_octave, run_python
+import sympy as sp
+from programs import (
+    ROOT,
+    SAMPLES,
+    STRICT,
+    build,
+    compare,
+    compile_step,
+    different_bits,
+    host_source,
+    need,
+    parse,
+    run_c,
+    run_octave,
+    run_python,
+    scales,
+)
 
 from linkgen.evaluate import evaluate, input_rows
 from linkgen.render import render_all
+from linkgen.render.view import build_view
 from linkgen.table import csv
 from linkgen.writer import write_all
 
@@ -150,3 +175,189 @@ def test_only_used_runtime_functions_are_emitted(sources):
             assert (f"\ndef {fn}(" in py_text) == (fn in used)
             assert bool(re.search(rf"^function .*= {fn}\(", m_text, re.M)) == (fn in used)
         assert ("newton" in c_text) == bool(log.groups)
+
+
+# -- callers: wrong calls are refused, a closed pipe ends a sweep quietly -------
+
+CALLERS = {  # one input at order 2; two inputs; a resolver; order 1 (ddin is not read)
+    name: ROOT / "samples" / name / f"{name}.yaml" for name in ("fourbar", "fivebar", "sixbar_fig14", "jansen_foot")}
+ARRAYS = ("inputs", "d_inputs", "dd_inputs")
+
+
+@pytest.fixture(scope="module", params=sorted(CALLERS), ids=str)
+def caller(request, tmp_path_factory):
+    outdir = tmp_path_factory.mktemp(f"caller_{request.param}")
+    log = build(CALLERS[request.param], outdir)
+    spec = importlib.util.spec_from_file_location(f"caller_{log.name}", outdir / f"{log.name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return log, outdir, module, build_view(log).record_order + 1
+
+
+def _good_call(log) -> list[list[float]]:
+    return [[float(x) for x in rows[1]] for rows in input_rows(log, 3)]
+
+
+def test_python_refuses_a_wrong_count(caller):
+    log, _, module, _ = caller
+    n = len(log.inputs)
+    assert module.solve(*_good_call(log))["status"] <= 0
+    for a, what in enumerate(ARRAYS):
+        for count in (0, n + 1):
+            args = _good_call(log)
+            args[a] = [0.5] * count
+            with pytest.raises(ValueError, match=rf"^{log.name}\.solve: expected {n} {what}, got {count}$"):
+                module.solve(*args)
+        args = _good_call(log)
+        args[a] = 0.5
+        with pytest.raises(TypeError, match=rf"^{log.name}\.solve: {what} must be a sequence of {n} numbers"):
+            module.solve(*args)
+
+
+def test_python_refuses_a_number_that_is_not_finite(caller):
+    log, _, module, reads = caller
+    for a, what in enumerate(ARRAYS):
+        for k in range(len(log.inputs)):
+            for value in (math.nan, math.inf, -math.inf):
+                args = _good_call(log)
+                args[a][k] = value
+                if a < reads:
+                    with pytest.raises(ValueError, match=rf"^{log.name}\.solve: {what}\[{k}\] is not finite: "):
+                        module.solve(*args)
+                else:  # not read at this order: the same answer as the finite call
+                    assert repr(module.solve(*args)) == repr(module.solve(*_good_call(log)))
+
+
+def test_octave_refuses_wrong_calls_with_identifiers(caller):
+    log, outdir, _, reads = caller
+    n = len(log.inputs)
+    cases = []  # (the statement that spoils the call, the error identifier expected: none where not read)
+    for a in range(3):
+        cases += [(f"args{{{a + 1}}} = zeros(1, {count});", "inputs") for count in (0, n + 1)]
+        cases += [(f"args{{{a + 1}}}({k + 1}) = {value};", "finite" if a < reads else "")
+                  for k in range(n) for value in ("NaN", "Inf", "-Inf")]
+    good = ", ".join("[" + " ".join(repr(x) for x in row) + "]" for row in _good_call(log))
+    lines = []
+    for bad, _ in cases:
+        lines += [f"args = {{{good}}};", bad,
+                  f"try; [out, status] = {log.name}_solve(args{{:}}); disp(sprintf('ok %d', status)); "
+                  "catch e; disp(e.identifier); end"]
+    (outdir / "refusals.m").write_text("\n".join(lines) + "\n")
+    done = subprocess.run([need("octave-cli"), "--no-gui", "--no-init-file", "--no-history", "--quiet",
+                           "refusals.m"], cwd=outdir, capture_output=True, text=True)
+    assert done.returncode == 0 and not done.stderr, done.stderr
+    answers = done.stdout.split("\n")[:-1]
+    assert len(answers) == len(cases)
+    for (bad, kind), answer in zip(cases, answers):
+        assert answer == (f"{log.name}:solve:{kind}" if kind else "ok 0"), (bad, answer)
+
+
+def test_c_refuses_a_number_that_is_not_finite(caller):
+    """The host calls with nan, inf and -inf in every entry half way through the sweep: status
+    NAME_STATUS_BAD_INPUT with every output nan where the program reads the entry, the finite
+    call's answer where it does not; the state keeps its warm start (the rest of the sweep is
+    NAME_main.c's)."""
+    log, outdir, _, reads = caller
+    (outdir / "host.c").write_text(host_source(log, reads))
+    cc = need("gcc")
+    compile_step([cc, *STRICT, "-O2", "host.c", f"{log.name}.c", "-lm", "-o", "host"], outdir)
+    host = subprocess.run(["./host"], cwd=outdir, capture_output=True, text=True)
+    assert host.returncode == 0 and not host.stderr, host.stderr
+    assert host.stdout == run_c(log, outdir)
+
+
+def _into_head(cmd: list[str], cwd: Path, ignore_sigpipe: bool = False) -> tuple[bytes, bytes, int]:
+    """Run cmd | head -n 2: what head printed, what cmd wrote to stderr, cmd's exit status."""
+    def ignore():
+        signal.signal(signal.SIGPIPE, signal.SIG_IGN)
+    writer = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                              preexec_fn=ignore if ignore_sigpipe else None)
+    head = subprocess.Popen(["head", "-n", "2"], stdin=writer.stdout, stdout=subprocess.PIPE)
+    writer.stdout.close()  # head holds the only reader: when it exits, the pipe is closed
+    printed = head.communicate()[0]
+    err = writer.stderr.read()
+    writer.stderr.close()
+    return printed, err, writer.wait()
+
+
+@pytest.fixture(scope="module")
+def sweep(tmp_path_factory):
+    """fourbar's 361 rows (about 300 kB, more than a pipe holds) in the three languages, and the full C output."""
+    outdir = tmp_path_factory.mktemp("pipe")
+    log = build(CALLERS["fourbar"], outdir)
+    full = run_c(log, outdir)
+    assert len(full) > 1 << 17
+    return log, outdir, full.encode().split(b"\n", 2)
+
+
+def test_c_sweep_ends_quietly_on_a_closed_pipe(sweep):
+    log, outdir, first = sweep
+    printed, err, status = _into_head([f"./{log.name}_c"], outdir)
+    assert (printed, err, status) == (first[0] + b"\n" + first[1] + b"\n", b"", -signal.SIGPIPE)
+    printed, err, status = _into_head([f"./{log.name}_c"], outdir, ignore_sigpipe=True)  # write errors instead
+    assert (printed, err, status) == (first[0] + b"\n" + first[1] + b"\n", b"", 1)
+
+
+def test_python_sweep_ends_quietly_on_a_closed_pipe(sweep):
+    log, outdir, first = sweep
+    printed, err, status = _into_head([sys.executable, "-I", f"{log.name}.py"], outdir)
+    assert (printed, err, status) == (first[0] + b"\n" + first[1] + b"\n", b"", 1)
+
+
+def test_octave_sweep_ends_quietly_on_a_closed_pipe(sweep):
+    """Octave sees no write error on a closed pipe: the sweep runs to its end, silently (with
+    --no-history: Octave 7 otherwise reports at every exit that it cannot save its history)."""
+    log, outdir, first = sweep
+    printed, err, status = _into_head([need("octave-cli"), "--no-gui", "--no-init-file", "--no-history", "--quiet",
+                                       f"{log.name}.m"], outdir)
+    assert (printed, err, status) == (first[0] + b"\n" + first[1] + b"\n", b"", 0)
+
+
+@functools.cache
+def _whitworth_closed_form() -> tuple[list[tuple[str, int]], Callable]:
+    """The Whitworth quick-return of tests/mechanisms/whitworth.yaml by hand, not by its procedure:
+    ([(column, derivative order)], f(t) -> the columns' values at unit crank rate, in mpmath).
+
+    The crank pin A = O1 + r (cos t, sin t) (O1 = (0, 20), r = |(30, 20)|) lies on the slot, a line
+    through the lever's pivot O2 = (0, 0), so the lever's angle is psi = atan2(A); its far arm ends
+    at C = -30 (cos psi, sin psi); the ram D rides on y = -10 at 50 from C, to the right (the
+    sketch's D = (30, -10)), and R's s is D.x - 30.  Velocities and accelerations are sympy's first
+    and second derivatives in the crank angle (times omega and omega^2: the crank turns uniformly).
+    """
+    t = sp.Symbol("t", real=True)
+    r = sp.sqrt(30**2 + 20**2)
+    ax, ay = r * sp.cos(t), 20 + r * sp.sin(t)
+    cx, cy = -30 * ax / sp.sqrt(ax**2 + ay**2), -30 * ay / sp.sqrt(ax**2 + ay**2)
+    dx = cx + sp.sqrt(50**2 - (-10 - cy) ** 2)
+    fields = {"x": ("x", "vx", "ax"), "y": ("y", "vy", "ay"), "s": ("s", "ds", "dds"), "phi": ("phi", "omega", "alpha")}
+    names, exprs = [], []
+    for name, e in (("R.x", dx), ("R.y", sp.Integer(-10)), ("R.s", dx - 30), ("C.x", cx), ("C.y", cy),
+                    ("lever.phi", sp.atan2(ay, ax)), ("rod.phi", sp.atan2(-10 - cy, dx - cx))):
+        stem, field = name.split(".")
+        d1 = sp.diff(e, t)
+        names += [(f"{stem}.{n}", k) for k, n in enumerate(fields[field])]
+        exprs += [e, d1, sp.diff(d1, t)]
+    return names, sp.lambdify(t, exprs, "mpmath")
+
+
+def test_whitworth_agrees_with_its_closed_form(tmp_path):
+    """The RPR chain (the slotted lever) and the 2R1P chain (the ram) against geometry alone, every
+    row of the C sweep, by the spec's rule (1e-9 of the column's class scale); the other languages
+    agree with C in the tests above."""
+    log = build(ROOT / "tests" / "mechanisms" / "whitworth.yaml", tmp_path)
+    header, data, status = parse(run_c(log, tmp_path))
+    assert set(status) == {0}
+    scale = dict(zip(header, scales(log, data)))
+    omega = log.inputs[0].speed  # rad/s (the file gives 60 deg/s)
+    names, closed_form = _whitworth_closed_form()
+    assert sorted(n for n, _ in names) == sorted(header[1:-1])
+    for row in data:
+        got = dict(zip(header, row))
+        with mpmath.workdps(30):
+            values = closed_form(mpmath.mpf(row[0]))
+        for (name, order), value in zip(names, values):
+            want = float(value) * omega**order
+            diff = got[name] - want
+            if name.endswith(".phi"):
+                diff = math.remainder(diff, 2 * math.pi)
+            assert abs(diff) <= 1e-9 * max(abs(got[name]), abs(want), scale[name]), (row[0], name, got[name], want)

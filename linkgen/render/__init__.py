@@ -39,11 +39,23 @@ def make_env() -> jinja2.Environment:
         autoescape=False,
     )
     env.filters["cbody"] = lambda text: str(text).replace("*/", "* /")
+    env.filters["pytext"] = python_text
+    env.filters["mdtext"] = markdown_text
     env.filters["num"] = number
     env.filters["capitalize_first"] = lambda text: text[:1].upper() + text[1:]
     env.globals["zip"] = zip
     env.globals["and_list"] = and_list
     return env
+
+
+def python_text(text: str) -> str:
+    """Text inside a Python string literal (the module's docstring): \\ and " escaped."""
+    return text.replace("\\", "\\\\").replace('"', '\\"')
+
+
+def markdown_text(text: str) -> str:
+    """Text as itself in Markdown: the characters that start markup, links or HTML backslash-escaped."""
+    return re.sub(r"([\\`*_\[\]<>&#|~])", r"\\\1", text)
 
 
 def _banner(log: StepLog):

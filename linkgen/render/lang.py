@@ -7,9 +7,7 @@ computed: that is the step log's job.
 
 from __future__ import annotations
 
-import keyword
-
-from ..names import C_RESERVED, M_RESERVED
+from ..names import c_field, m_field
 from ..primitives import PRIMITIVES
 from ..primitives.dsl import record_fields
 from ..primitives.printers import literal
@@ -17,17 +15,11 @@ from ..steplog import Arg, BranchSign, Column, Step, StepLog, Variable, held
 from .view import Group
 
 
-def ident(name: str, reserved: frozenset[str]) -> str:
-    """A user name as an identifier of the target language (reserved words get a trailing _)."""
-    return f"{name}_" if name in reserved else name
-
-
 class Spelling:
     """Shared rules; subclasses spell records, references and calls."""
 
     name = ""
     comment = ""
-    reserved: frozenset[str] = frozenset()
 
     def __init__(self, order: int, log: StepLog, measured: frozenset[int] = frozenset()):
         self.order = order
@@ -36,7 +28,8 @@ class Spelling:
         self.measured = measured  # steps whose branch is read off the last solution
 
     def ident(self, name: str) -> str:
-        return ident(name, self.reserved)
+        """A pair, point or link name as a field of the program's outputs (linkgen.names)."""
+        return name
 
     @staticmethod
     def lit(value: float | int) -> str:
@@ -136,12 +129,19 @@ class Spelling:
         """The lines that fail a row the mechanism does not reach from the sketch (none without a reach)."""
         raise NotImplementedError
 
+    def reach_low(self) -> str:
+        """The reach's lower end, from which the continuation counts an angle's turns (nan without one)."""
+        r = self.log.reach
+        return self.nan if r is None or r.low is None else self.lit(r.low)
+
 
 class C(Spelling):
     name = "c"
     comment = "/*"
-    reserved = C_RESERVED
     _field = {"x": "P.x", "y": "P.y", "dx": "DP.x", "dy": "DP.y", "ddx": "DDP.x", "ddy": "DDP.y"}
+
+    def ident(self, name: str) -> str:
+        return c_field(name)
 
     def ref(self, var: str, scope: Group | None) -> str:
         if self.variables[var].constant or self.external(var, scope):
@@ -165,10 +165,11 @@ class C(Spelling):
         return f"{self.ref(var, None)}.the"
 
     def branch(self, step: Step, b0: int) -> str:
+        """branch_at(...) on the array change_N that call() declares before the step (an array, not a
+        compound literal: C++ has none)."""
         v, theta0, periodic = self.first_input()
-        points = ", ".join(self.lit(p) for p in step.change_points)
         value = f"w->{v.name}.{'the' if periodic else 'v'}"
-        return (f"branch_at({value}, {b0}, {self.lit(theta0)}, (const double[]){{{points}}}, "
+        return (f"branch_at({value}, {b0}, {self.lit(theta0)}, change_{step.number}, "
                 f"{len(step.change_points)}, {int(periodic)})")
 
     def input_record(self, var: Variable, k: int) -> str:
@@ -196,11 +197,14 @@ class C(Spelling):
         if prim.sigma is not None:
             args.append(f"&w->sigma[{step.number}]")
         text = f"{step.function}({', '.join(args)});"
+        points = ", ".join(self.lit(p) for p in step.change_points)
+        head = [f"static const double change_{step.number}[] = {{{points}}};"] if step.change_points else []
         if prim.status is None:
-            return [text]
+            return [*head, text]
         if scope is None:
-            return [f"st = {text}", f"if (st == 1) return {self.status_code(step, 1)};", f"note(w, {step.number}, st);"]
-        lines = [f"st = {text}", "if (st == 1) return 1;", f"if (live) note(w, {step.number}, st);"]
+            return [*head, f"st = {text}", f"if (st == 1) return {self.status_code(step, 1)};",
+                    f"note(w, {step.number}, st);"]
+        lines = [*head, f"st = {text}", "if (st == 1) return 1;", f"if (live) note(w, {step.number}, st);"]
         if prim.sigma is not None:
             lines.append(f"w->chains = fmin(w->chains, w->sigma[{step.number}]);")
         return lines
@@ -209,7 +213,6 @@ class C(Spelling):
 class Python(Spelling):
     name = "py"
     comment = "#"
-    reserved = set(keyword.kwlist)
 
     def ref(self, var: str, scope: Group | None) -> str:
         if self.variables[var].constant or self.external(var, scope):
@@ -267,7 +270,9 @@ class Python(Spelling):
 class Octave(Spelling):
     name = "m"
     comment = "%"
-    reserved = M_RESERVED
+
+    def ident(self, name: str) -> str:
+        return m_field(name)
 
     def ref(self, var: str, scope: Group | None) -> str:
         """Constants live in the work struct too (MATLAB has no file-level constants)."""

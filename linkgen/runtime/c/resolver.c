@@ -262,9 +262,13 @@ static void predict(const double w_in[], const double w_din[], const double w_a[
 typedef int (*path_fn)(void *ctx, const double in[], const double din[], int order, double a[][LINKGEN_NMAX],
                        double rates[][LINKGEN_NMAX]);
 
+/* A walk gives up after this many passes of the procedure. */
+#define LINKGEN_WALK_PASSES 1000
+
 /* Continuation along the straight path from base to goal (see continuation).  Near a
  * singular position the lengths' rates are large and the steps short (the prediction
- * holds only there); a step that makes no progress in floating point cuts the path. */
+ * holds only there); a step that makes no progress in floating point cuts the path, and
+ * so do LINKGEN_WALK_PASSES passes (at once where the path needs more steps than that). */
 static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double goal[],
                 const double limits[], int halvings, const int sizes[], double slack, double reach)
 {
@@ -272,17 +276,19 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
     double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double now[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double t = 0.0, h, h_max = 1.0, fast;
-    int g, i, cuts = 0;
+    int g, i, cuts = 0, passes = 1;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         d[i] = goal[i] - base[i];
         if (d[i] != 0.0) h_max = fmin(h_max, limits[i] / fabs(d[i]));
     }
+    if (h_max * LINKGEN_WALK_PASSES < 1.0) return 0;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) start[g][i] = a[g][i];
     if (!run(ctx, base, d, 1, start, rate)) return 0;
     h = h_max;
     while (t < 1.0) {
         double tt;
+        if (passes++ == LINKGEN_WALK_PASSES) return 0;
         fast = 0.0;
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
             for (i = 0; i < sizes[g]; i++) fast = fmax(fast, fabs(rate[g][i]));
@@ -312,18 +318,27 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
 }
 
 /* Follow the assembly from inputs base (solved with block states a) to target.  Angle
- * inputs go the shorter way round, else the other way; a step moves no input by more
- * than its limit and no Add-link length, as predicted, by more than reach; it starts
- * Newton from the tangent predictor and is halved where Newton fails or lands off the
- * path (see on_path), up to halvings times in a row.  Returns 1 with a the block states
- * at target, 0 when both ways are cut. */
+ * inputs go the shorter way round, else the other way; where the one input is an angle
+ * with a reach (the values it reaches from the sketch, modulo whole turns, from low up; low
+ * is nan without one; base and target are inside it), it goes the one way round that stays
+ * inside the reach.  A step moves no input by more than its limit and no Add-link length,
+ * as predicted, by more than reach; it starts Newton from the tangent predictor and is
+ * halved where Newton fails or lands off the path (see on_path), up to halvings times in a
+ * row.  Returns 1 with a the block states at target, 0 when the way (both ways without a
+ * reach) is cut. */
 static int continuation(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double target[],
                         const double limits[], const int periodic[], int halvings, const int sizes[], double slack,
-                        double reach)
+                        double reach, double low)
 {
     const double two_pi = 2.0 * 3.141592653589793;
     double goal[LINKGEN_NINPUTS], other[LINKGEN_NINPUTS];
     int i, differs = 0;
+    if (periodic[0] && !isnan(low)) {
+        for (i = 0; i < LINKGEN_NINPUTS; i++) goal[i] = target[i];
+        goal[0] = base[0] + (target[0] - two_pi * floor((target[0] - low) / two_pi))
+                  - (base[0] - two_pi * floor((base[0] - low) / two_pi));
+        return walk(run, ctx, base, a, goal, limits, halvings, sizes, slack, reach);
+    }
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         goal[i] = periodic[i] ? target[i] - two_pi * floor((target[i] - base[i]) / two_pi + 0.5) : target[i];
         other[i] = goal[i];

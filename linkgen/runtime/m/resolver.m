@@ -218,12 +218,25 @@ function a = resolver_predict(warm, in, sizes)
     a = resolver_advance(warm.a, warm.ad, tau, sizes);
 end
 
-function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach)
+function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach, low)
     % Follow the assembly from inputs base (solved with block states a) to target.
-    % Angle inputs go the shorter way round, else the other way; a step moves no input
-    % by more than its limit and no Add-link length, as predicted, by more than reach; it
-    % starts Newton from the tangent predictor and is halved where Newton fails or lands
-    % off the path (see resolver_on_path), up to halvings times in a row.
+    % Angle inputs go the shorter way round, else the other way; where the one input is an
+    % angle with a reach (the values it reaches from the sketch, modulo whole turns, from
+    % low up; low is NaN without one; base and target are inside it), it goes the one way
+    % round that stays inside the reach.  A step moves no input by more than its limit and
+    % no Add-link length, as predicted, by more than reach; it starts Newton from the
+    % tangent predictor and is halved where Newton fails or lands off the path (see
+    % resolver_on_path), up to halvings times in a row.
+    if periodic(1) && ~isnan(low)
+        goal = target;
+        goal(1) = base(1) + (target(1) - 2 * pi * floor((target(1) - low) / (2 * pi))) ...
+                  - (base(1) - 2 * pi * floor((base(1) - low) / (2 * pi)));
+        [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack, reach);
+        if ok
+            a = a2;
+        end
+        return;
+    end
     goal = target;
     other = target;
     differs = false;
@@ -252,13 +265,19 @@ end
 function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack, reach)
     % Continuation along the straight path from base to goal (see resolver_continuation).
     % Near a singular position the lengths' rates are large and the steps short (the
-    % prediction holds only there); a step that makes no progress cuts the path.
+    % prediction holds only there); a step that makes no progress cuts the path, and so
+    % do max_passes passes (at once where the path needs more steps than that).
+    max_passes = 1000;
     d = goal - base;
     h_max = 1;
     for i = 1:numel(d)
         if d(i) ~= 0
             h_max = min(h_max, limits(i) / abs(d(i)));
         end
+    end
+    ok = false;
+    if h_max * max_passes < 1
+        return;
     end
     [ok, a, rate] = run(base, d, 1, a);
     if ~ok
@@ -267,7 +286,13 @@ function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, sl
     t = 0;
     h = h_max;
     cuts = 0;
+    passes = 1;
     while t < 1
+        if passes == max_passes
+            ok = false;
+            return;
+        end
+        passes = passes + 1;
         fast = 0;
         for g = 1:numel(sizes)
             fast = max([fast; abs(rate{g}(1:sizes(g)))]);

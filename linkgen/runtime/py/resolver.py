@@ -190,36 +190,51 @@ def on_path(prev, guess, new, sizes, slack):
     return all(abs(x[i] - g[i]) <= share * move + slack for g, x, n in zip(guess, new, sizes) for i in range(n))
 
 
-def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach):
+def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach, low):
     """Follow the assembly from inputs base (solved with block states a) to target.
 
-    Angle inputs go the shorter way round, else the other way; each step moves no
-    input by more than its limit and no Add-link length, as predicted, by more than
-    reach; it starts Newton from the tangent predictor and is halved where Newton fails
-    or lands off the path (see on_path), up to halvings times in a row.  run(inputs,
-    rates, order, a) -> (ok, a, rates) solves with input rates per unit of the path.
-    Returns the block states at target, or None when both ways are cut.
+    Angle inputs go the shorter way round, else the other way; where the one input is an
+    angle with a reach (the values it reaches from the sketch, modulo whole turns, from low
+    up; low is nan without one; base and target are inside it), it goes the one way round
+    that stays inside the reach.  Each step moves no input by
+    more than its limit and no Add-link length, as predicted, by more than reach; it starts
+    Newton from the tangent predictor and is halved where Newton fails or lands off the path
+    (see on_path), up to halvings times in a row.  run(inputs, rates, order, a) -> (ok, a,
+    rates) solves with input rates per unit of the path.  Returns the block states at
+    target, or None when the way (both ways without a reach) is cut.
     """
+    if periodic[0] and low == low:
+        turns = [x - 2 * PI * floor((x - low) / (2 * PI)) for x in (base[0], target[0])]
+        return walk(run, base, a, [base[0] + turns[1] - turns[0]], limits, halvings, sizes, slack, reach)
     goal = [t - 2 * PI * floor((t - b) / (2 * PI) + 0.5) if p else t for t, b, p in zip(target, base, periodic)]
-    reached = _walk(run, base, a, goal, limits, halvings, sizes, slack, reach)
+    reached = walk(run, base, a, goal, limits, halvings, sizes, slack, reach)
     other = [(g - 2 * PI if g > b else g + 2 * PI if g < b else g) if p else g
              for g, b, p in zip(goal, base, periodic)]
     if reached is None and other != goal:
-        reached = _walk(run, base, a, other, limits, halvings, sizes, slack, reach)
+        reached = walk(run, base, a, other, limits, halvings, sizes, slack, reach)
     return reached
 
 
-def _walk(run, base, a, goal, limits, halvings, sizes, slack, reach):
+WALK_PASSES = 1000  # a walk gives up after this many passes of the procedure
+
+
+def walk(run, base, a, goal, limits, halvings, sizes, slack, reach):
     """Continuation along the straight path from base to goal (see continuation).  Near a
     singular position the lengths' rates are large and the steps short (the prediction
-    holds only there); a step that makes no progress in floating point cuts the path."""
+    holds only there); a step that makes no progress in floating point cuts the path, and
+    so do WALK_PASSES passes (at once where the path needs more steps than that)."""
     d = [g - b for g, b in zip(goal, base)]
     h_max = min([1.0] + [lim / abs(x) for lim, x in zip(limits, d) if x != 0.0])
+    if h_max * WALK_PASSES < 1.0:
+        return None
     ok, a, rate = run(base, d, 1, a)
     if not ok:
         return None
-    t, h, cuts = 0.0, h_max, 0
+    t, h, cuts, passes = 0.0, h_max, 0, 1
     while t < 1.0:
+        if passes == WALK_PASSES:
+            return None
+        passes += 1
         fast = max((abs(r[i]) for r, n in zip(rate, sizes) for i in range(n) if r[i] == r[i]), default=0.0)
         if fast * h > reach:
             h = reach / fast

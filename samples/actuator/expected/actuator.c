@@ -249,6 +249,74 @@ static int run(work *w, const double in[], const double din[], const double ddin
     return w->singular ? w->singular : -w->near;
 }
 
+/* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
+static void no_outputs(actuator_state *out)
+{
+    out->S0.x = NAN;
+    out->S0.y = NAN;
+    out->S0.vx = NAN;
+    out->S0.vy = NAN;
+    out->S0.ax = NAN;
+    out->S0.ay = NAN;
+    out->C.x = NAN;
+    out->C.y = NAN;
+    out->C.vx = NAN;
+    out->C.vy = NAN;
+    out->C.ax = NAN;
+    out->C.ay = NAN;
+    out->C.s = NAN;
+    out->C.ds = NAN;
+    out->C.dds = NAN;
+    out->K.x = NAN;
+    out->K.y = NAN;
+    out->K.vx = NAN;
+    out->K.vy = NAN;
+    out->K.ax = NAN;
+    out->K.ay = NAN;
+    out->R.x = NAN;
+    out->R.y = NAN;
+    out->R.vx = NAN;
+    out->R.vy = NAN;
+    out->R.ax = NAN;
+    out->R.ay = NAN;
+    out->M.x = NAN;
+    out->M.y = NAN;
+    out->M.vx = NAN;
+    out->M.vy = NAN;
+    out->M.ax = NAN;
+    out->M.ay = NAN;
+    out->Q.x = NAN;
+    out->Q.y = NAN;
+    out->Q.vx = NAN;
+    out->Q.vy = NAN;
+    out->Q.ax = NAN;
+    out->Q.ay = NAN;
+    out->tip.x = NAN;
+    out->tip.y = NAN;
+    out->tip.vx = NAN;
+    out->tip.vy = NAN;
+    out->tip.ax = NAN;
+    out->tip.ay = NAN;
+    out->stick.phi = NAN;
+    out->stick.omega = NAN;
+    out->stick.alpha = NAN;
+    out->barrel.phi = NAN;
+    out->barrel.omega = NAN;
+    out->barrel.alpha = NAN;
+    out->rod.phi = NAN;
+    out->rod.omega = NAN;
+    out->rod.alpha = NAN;
+    out->side_link.phi = NAN;
+    out->side_link.omega = NAN;
+    out->side_link.alpha = NAN;
+    out->power_link.phi = NAN;
+    out->power_link.omega = NAN;
+    out->power_link.alpha = NAN;
+    out->bucket.phi = NAN;
+    out->bucket.omega = NAN;
+    out->bucket.alpha = NAN;
+}
+
 /* Copy the records into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, actuator_state *out)
 {
@@ -256,69 +324,7 @@ static void publish(const work *w, int code, actuator_state *out)
     out->status = code;
     for (k = 0; k <= ACTUATOR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
-        out->S0.x = NAN;
-        out->S0.y = NAN;
-        out->S0.vx = NAN;
-        out->S0.vy = NAN;
-        out->S0.ax = NAN;
-        out->S0.ay = NAN;
-        out->C.x = NAN;
-        out->C.y = NAN;
-        out->C.vx = NAN;
-        out->C.vy = NAN;
-        out->C.ax = NAN;
-        out->C.ay = NAN;
-        out->C.s = NAN;
-        out->C.ds = NAN;
-        out->C.dds = NAN;
-        out->K.x = NAN;
-        out->K.y = NAN;
-        out->K.vx = NAN;
-        out->K.vy = NAN;
-        out->K.ax = NAN;
-        out->K.ay = NAN;
-        out->R.x = NAN;
-        out->R.y = NAN;
-        out->R.vx = NAN;
-        out->R.vy = NAN;
-        out->R.ax = NAN;
-        out->R.ay = NAN;
-        out->M.x = NAN;
-        out->M.y = NAN;
-        out->M.vx = NAN;
-        out->M.vy = NAN;
-        out->M.ax = NAN;
-        out->M.ay = NAN;
-        out->Q.x = NAN;
-        out->Q.y = NAN;
-        out->Q.vx = NAN;
-        out->Q.vy = NAN;
-        out->Q.ax = NAN;
-        out->Q.ay = NAN;
-        out->tip.x = NAN;
-        out->tip.y = NAN;
-        out->tip.vx = NAN;
-        out->tip.vy = NAN;
-        out->tip.ax = NAN;
-        out->tip.ay = NAN;
-        out->stick.phi = NAN;
-        out->stick.omega = NAN;
-        out->stick.alpha = NAN;
-        out->barrel.phi = NAN;
-        out->barrel.omega = NAN;
-        out->barrel.alpha = NAN;
-        out->rod.phi = NAN;
-        out->rod.omega = NAN;
-        out->rod.alpha = NAN;
-        out->side_link.phi = NAN;
-        out->side_link.omega = NAN;
-        out->side_link.alpha = NAN;
-        out->power_link.phi = NAN;
-        out->power_link.omega = NAN;
-        out->power_link.alpha = NAN;
-        out->bucket.phi = NAN;
-        out->bucket.omega = NAN;
-        out->bucket.alpha = NAN;
+        no_outputs(out);
         return;
     }
     out->S0.x = -2000.0;
@@ -435,10 +441,32 @@ void actuator_init(actuator_state *out)
     memset(out, 0, sizeof *out);
 }
 
+/* Whether every number the program reads of its inputs is finite: in[], din[] and ddin[]. */
+static int finite_inputs(const double in[], const double din[], const double ddin[])
+{
+    int i;
+    for (i = 0; i < ACTUATOR_N_INPUTS; i++)
+        if (!isfinite(in[i]) || !isfinite(din[i]) || !isfinite(ddin[i])) return 0;
+    return 1;
+}
+
+/* Refuse a call with an input that is not finite: every output and sigma nan. */
+static int refuse(actuator_state *out)
+{
+    int k;
+    out->status = ACTUATOR_STATUS_BAD_INPUT;
+    for (k = 0; k <= ACTUATOR_N_STEPS; k++) out->sigma[k] = NAN;
+    no_outputs(out);
+    return out->status;
+}
+
 int actuator_solve(const double in[], const double din[], const double ddin[], actuator_state *out)
 {
     work w;
-    const int code = run(&w, in, din, ddin);
+    int code;
+    if (!finite_inputs(in, din, ddin)) return refuse(out);
+    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
+    code = run(&w, in, din, ddin);
     publish(&w, code, out);
     return code;
 }

@@ -6,11 +6,16 @@
 extern "C" {
 #endif
 
+/* Array lengths: in[], din[] and ddin[] of actuator_solve hold ACTUATOR_N_INPUTS numbers,
+   col[] of actuator_columns ACTUATOR_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define ACTUATOR_N_INPUTS 1
 #define ACTUATOR_N_STEPS 8
 #define ACTUATOR_N_COLUMNS 64
 #define ACTUATOR_ORDER 2
 #define ACTUATOR_SAMPLES 301
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+   every output nan.  The other codes are listed in actuator.md. */
+#define ACTUATOR_STATUS_BAD_INPUT 5
 
 /* Motion of a pair or point (length units, seconds). */
 typedef struct { double x, y, vx, vy, ax, ay; } actuator_point;
@@ -35,7 +40,7 @@ typedef struct {
     actuator_angle side_link;
     actuator_angle power_link;
     actuator_angle bucket;
-    int status;   /* 0, or a status code listed in actuator.md */
+    int status;   /* 0, a status code listed in actuator.md, or ACTUATOR_STATUS_BAD_INPUT */
     double sigma[ACTUATOR_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } actuator_state;
 
@@ -43,8 +48,9 @@ typedef struct {
 void actuator_init(actuator_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
-   the file's inputs), their rates din[] and accelerations ddin[] (per second).
-   Returns 0 or the status code (also in out->status). */
+   the file's inputs), their rates din[] and accelerations ddin[] (per second),
+   ACTUATOR_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
+   ACTUATOR_STATUS_BAD_INPUT where an input is not finite. */
 int actuator_solve(const double in[], const double din[], const double ddin[], actuator_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -218,6 +218,53 @@ static int run(work *w, const double in[], const double din[], const double ddin
     return w->singular ? w->singular : -w->near;
 }
 
+/* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
+static void no_outputs(cross_slot_state *out)
+{
+    out->O.x = NAN;
+    out->O.y = NAN;
+    out->O.vx = NAN;
+    out->O.vy = NAN;
+    out->O.ax = NAN;
+    out->O.ay = NAN;
+    out->P1.x = NAN;
+    out->P1.y = NAN;
+    out->P1.vx = NAN;
+    out->P1.vy = NAN;
+    out->P1.ax = NAN;
+    out->P1.ay = NAN;
+    out->P1.s = NAN;
+    out->P1.ds = NAN;
+    out->P1.dds = NAN;
+    out->X.x = NAN;
+    out->X.y = NAN;
+    out->X.vx = NAN;
+    out->X.vy = NAN;
+    out->X.ax = NAN;
+    out->X.ay = NAN;
+    out->P2.x = NAN;
+    out->P2.y = NAN;
+    out->P2.vx = NAN;
+    out->P2.vy = NAN;
+    out->P2.ax = NAN;
+    out->P2.ay = NAN;
+    out->P2.s = NAN;
+    out->P2.ds = NAN;
+    out->P2.dds = NAN;
+    out->frame.phi = NAN;
+    out->frame.omega = NAN;
+    out->frame.alpha = NAN;
+    out->arm.phi = NAN;
+    out->arm.omega = NAN;
+    out->arm.alpha = NAN;
+    out->block1.phi = NAN;
+    out->block1.omega = NAN;
+    out->block1.alpha = NAN;
+    out->block2.phi = NAN;
+    out->block2.omega = NAN;
+    out->block2.alpha = NAN;
+}
+
 /* Copy the records into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, cross_slot_state *out)
 {
@@ -225,48 +272,7 @@ static void publish(const work *w, int code, cross_slot_state *out)
     out->status = code;
     for (k = 0; k <= CROSS_SLOT_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
-        out->O.x = NAN;
-        out->O.y = NAN;
-        out->O.vx = NAN;
-        out->O.vy = NAN;
-        out->O.ax = NAN;
-        out->O.ay = NAN;
-        out->P1.x = NAN;
-        out->P1.y = NAN;
-        out->P1.vx = NAN;
-        out->P1.vy = NAN;
-        out->P1.ax = NAN;
-        out->P1.ay = NAN;
-        out->P1.s = NAN;
-        out->P1.ds = NAN;
-        out->P1.dds = NAN;
-        out->X.x = NAN;
-        out->X.y = NAN;
-        out->X.vx = NAN;
-        out->X.vy = NAN;
-        out->X.ax = NAN;
-        out->X.ay = NAN;
-        out->P2.x = NAN;
-        out->P2.y = NAN;
-        out->P2.vx = NAN;
-        out->P2.vy = NAN;
-        out->P2.ax = NAN;
-        out->P2.ay = NAN;
-        out->P2.s = NAN;
-        out->P2.ds = NAN;
-        out->P2.dds = NAN;
-        out->frame.phi = NAN;
-        out->frame.omega = NAN;
-        out->frame.alpha = NAN;
-        out->arm.phi = NAN;
-        out->arm.omega = NAN;
-        out->arm.alpha = NAN;
-        out->block1.phi = NAN;
-        out->block1.omega = NAN;
-        out->block1.alpha = NAN;
-        out->block2.phi = NAN;
-        out->block2.omega = NAN;
-        out->block2.alpha = NAN;
+        no_outputs(out);
         return;
     }
     out->O.x = 0.0;
@@ -348,10 +354,32 @@ void cross_slot_init(cross_slot_state *out)
     memset(out, 0, sizeof *out);
 }
 
+/* Whether every number the program reads of its inputs is finite: in[], din[] and ddin[]. */
+static int finite_inputs(const double in[], const double din[], const double ddin[])
+{
+    int i;
+    for (i = 0; i < CROSS_SLOT_N_INPUTS; i++)
+        if (!isfinite(in[i]) || !isfinite(din[i]) || !isfinite(ddin[i])) return 0;
+    return 1;
+}
+
+/* Refuse a call with an input that is not finite: every output and sigma nan. */
+static int refuse(cross_slot_state *out)
+{
+    int k;
+    out->status = CROSS_SLOT_STATUS_BAD_INPUT;
+    for (k = 0; k <= CROSS_SLOT_N_STEPS; k++) out->sigma[k] = NAN;
+    no_outputs(out);
+    return out->status;
+}
+
 int cross_slot_solve(const double in[], const double din[], const double ddin[], cross_slot_state *out)
 {
     work w;
-    const int code = run(&w, in, din, ddin);
+    int code;
+    if (!finite_inputs(in, din, ddin)) return refuse(out);
+    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
+    code = run(&w, in, din, ddin);
     publish(&w, code, out);
     return code;
 }

@@ -6,11 +6,16 @@
 extern "C" {
 #endif
 
+/* Array lengths: in[], din[] and ddin[] of cross_slot_solve hold CROSS_SLOT_N_INPUTS numbers,
+   col[] of cross_slot_columns CROSS_SLOT_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define CROSS_SLOT_N_INPUTS 1
 #define CROSS_SLOT_N_STEPS 5
 #define CROSS_SLOT_N_COLUMNS 43
 #define CROSS_SLOT_ORDER 2
 #define CROSS_SLOT_SAMPLES 201
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+   every output nan.  The other codes are listed in cross_slot.md. */
+#define CROSS_SLOT_STATUS_BAD_INPUT 5
 
 /* Motion of a pair or point (length units, seconds). */
 typedef struct { double x, y, vx, vy, ax, ay; } cross_slot_point;
@@ -30,7 +35,7 @@ typedef struct {
     cross_slot_angle arm;
     cross_slot_angle block1;
     cross_slot_angle block2;
-    int status;   /* 0, or a status code listed in cross_slot.md */
+    int status;   /* 0, a status code listed in cross_slot.md, or CROSS_SLOT_STATUS_BAD_INPUT */
     double sigma[CROSS_SLOT_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } cross_slot_state;
 
@@ -38,8 +43,9 @@ typedef struct {
 void cross_slot_init(cross_slot_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
-   the file's inputs), their rates din[] and accelerations ddin[] (per second).
-   Returns 0 or the status code (also in out->status). */
+   the file's inputs), their rates din[] and accelerations ddin[] (per second),
+   CROSS_SLOT_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
+   CROSS_SLOT_STATUS_BAD_INPUT where an input is not finite. */
 int cross_slot_solve(const double in[], const double din[], const double ddin[], cross_slot_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -6,11 +6,16 @@
 extern "C" {
 #endif
 
+/* Array lengths: in[], din[] and ddin[] of double_triad_solve hold DOUBLE_TRIAD_N_INPUTS numbers,
+   col[] of double_triad_columns DOUBLE_TRIAD_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define DOUBLE_TRIAD_N_INPUTS 1
 #define DOUBLE_TRIAD_N_STEPS 93
 #define DOUBLE_TRIAD_N_COLUMNS 103
 #define DOUBLE_TRIAD_ORDER 2
 #define DOUBLE_TRIAD_SAMPLES 361
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+   every output nan, the warm start kept.  The other codes are listed in double_triad.md. */
+#define DOUBLE_TRIAD_STATUS_BAD_INPUT 5
 #define DOUBLE_TRIAD_N_GROUPS 2
 #define DOUBLE_TRIAD_N_BLOCKS 16
 #define DOUBLE_TRIAD_NMAX 4
@@ -48,7 +53,7 @@ typedef struct {
     double_triad_angle left_ternary;
     double_triad_angle left_rocker2;
     double_triad_angle left_coupler;
-    int status;   /* 0, or a status code listed in double_triad.md */
+    int status;   /* 0, a status code listed in double_triad.md, or DOUBLE_TRIAD_STATUS_BAD_INPUT */
     double sigma[DOUBLE_TRIAD_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
     int iterations[DOUBLE_TRIAD_N_GROUPS];   /* Newton steps of each resolver */
     int warm_valid;   /* 0: start the resolvers from the sketch */
@@ -62,8 +67,9 @@ typedef struct {
 void double_triad_init(double_triad_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
-   the file's inputs), their rates din[] and accelerations ddin[] (per second).
-   Returns 0 or the status code (also in out->status). */
+   the file's inputs), their rates din[] and accelerations ddin[] (per second),
+   DOUBLE_TRIAD_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
+   DOUBLE_TRIAD_STATUS_BAD_INPUT where an input is not finite. */
 int double_triad_solve(const double in[], const double din[], const double ddin[], double_triad_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -195,6 +195,56 @@ static int run(work *w, const double in[], const double din[], const double ddin
     return w->singular ? w->singular : -w->near;
 }
 
+/* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
+static void no_outputs(fivebar_state *out)
+{
+    out->O1.x = NAN;
+    out->O1.y = NAN;
+    out->O1.vx = NAN;
+    out->O1.vy = NAN;
+    out->O1.ax = NAN;
+    out->O1.ay = NAN;
+    out->A.x = NAN;
+    out->A.y = NAN;
+    out->A.vx = NAN;
+    out->A.vy = NAN;
+    out->A.ax = NAN;
+    out->A.ay = NAN;
+    out->P.x = NAN;
+    out->P.y = NAN;
+    out->P.vx = NAN;
+    out->P.vy = NAN;
+    out->P.ax = NAN;
+    out->P.ay = NAN;
+    out->B.x = NAN;
+    out->B.y = NAN;
+    out->B.vx = NAN;
+    out->B.vy = NAN;
+    out->B.ax = NAN;
+    out->B.ay = NAN;
+    out->O2.x = NAN;
+    out->O2.y = NAN;
+    out->O2.vx = NAN;
+    out->O2.vy = NAN;
+    out->O2.ax = NAN;
+    out->O2.ay = NAN;
+    out->frame.phi = NAN;
+    out->frame.omega = NAN;
+    out->frame.alpha = NAN;
+    out->crank1.phi = NAN;
+    out->crank1.omega = NAN;
+    out->crank1.alpha = NAN;
+    out->link1.phi = NAN;
+    out->link1.omega = NAN;
+    out->link1.alpha = NAN;
+    out->link2.phi = NAN;
+    out->link2.omega = NAN;
+    out->link2.alpha = NAN;
+    out->crank2.phi = NAN;
+    out->crank2.omega = NAN;
+    out->crank2.alpha = NAN;
+}
+
 /* Copy the records into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, fivebar_state *out)
 {
@@ -202,51 +252,7 @@ static void publish(const work *w, int code, fivebar_state *out)
     out->status = code;
     for (k = 0; k <= FIVEBAR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
-        out->O1.x = NAN;
-        out->O1.y = NAN;
-        out->O1.vx = NAN;
-        out->O1.vy = NAN;
-        out->O1.ax = NAN;
-        out->O1.ay = NAN;
-        out->A.x = NAN;
-        out->A.y = NAN;
-        out->A.vx = NAN;
-        out->A.vy = NAN;
-        out->A.ax = NAN;
-        out->A.ay = NAN;
-        out->P.x = NAN;
-        out->P.y = NAN;
-        out->P.vx = NAN;
-        out->P.vy = NAN;
-        out->P.ax = NAN;
-        out->P.ay = NAN;
-        out->B.x = NAN;
-        out->B.y = NAN;
-        out->B.vx = NAN;
-        out->B.vy = NAN;
-        out->B.ax = NAN;
-        out->B.ay = NAN;
-        out->O2.x = NAN;
-        out->O2.y = NAN;
-        out->O2.vx = NAN;
-        out->O2.vy = NAN;
-        out->O2.ax = NAN;
-        out->O2.ay = NAN;
-        out->frame.phi = NAN;
-        out->frame.omega = NAN;
-        out->frame.alpha = NAN;
-        out->crank1.phi = NAN;
-        out->crank1.omega = NAN;
-        out->crank1.alpha = NAN;
-        out->link1.phi = NAN;
-        out->link1.omega = NAN;
-        out->link1.alpha = NAN;
-        out->link2.phi = NAN;
-        out->link2.omega = NAN;
-        out->link2.alpha = NAN;
-        out->crank2.phi = NAN;
-        out->crank2.omega = NAN;
-        out->crank2.alpha = NAN;
+        no_outputs(out);
         return;
     }
     out->O1.x = 0.0;
@@ -333,10 +339,32 @@ void fivebar_init(fivebar_state *out)
     memset(out, 0, sizeof *out);
 }
 
+/* Whether every number the program reads of its inputs is finite: in[], din[] and ddin[]. */
+static int finite_inputs(const double in[], const double din[], const double ddin[])
+{
+    int i;
+    for (i = 0; i < FIVEBAR_N_INPUTS; i++)
+        if (!isfinite(in[i]) || !isfinite(din[i]) || !isfinite(ddin[i])) return 0;
+    return 1;
+}
+
+/* Refuse a call with an input that is not finite: every output and sigma nan. */
+static int refuse(fivebar_state *out)
+{
+    int k;
+    out->status = FIVEBAR_STATUS_BAD_INPUT;
+    for (k = 0; k <= FIVEBAR_N_STEPS; k++) out->sigma[k] = NAN;
+    no_outputs(out);
+    return out->status;
+}
+
 int fivebar_solve(const double in[], const double din[], const double ddin[], fivebar_state *out)
 {
     work w;
-    const int code = run(&w, in, din, ddin);
+    int code;
+    if (!finite_inputs(in, din, ddin)) return refuse(out);
+    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
+    code = run(&w, in, din, ddin);
     publish(&w, code, out);
     return code;
 }

@@ -6,11 +6,16 @@
 extern "C" {
 #endif
 
+/* Array lengths: in[], din[] and ddin[] of fivebar_solve hold FIVEBAR_N_INPUTS numbers,
+   col[] of fivebar_columns FIVEBAR_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define FIVEBAR_N_INPUTS 2
 #define FIVEBAR_N_STEPS 8
 #define FIVEBAR_N_COLUMNS 47
 #define FIVEBAR_ORDER 2
 #define FIVEBAR_SAMPLES 361
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+   every output nan.  The other codes are listed in fivebar.md. */
+#define FIVEBAR_STATUS_BAD_INPUT 5
 
 /* Motion of a pair or point (length units, seconds). */
 typedef struct { double x, y, vx, vy, ax, ay; } fivebar_point;
@@ -32,7 +37,7 @@ typedef struct {
     fivebar_angle link1;
     fivebar_angle link2;
     fivebar_angle crank2;
-    int status;   /* 0, or a status code listed in fivebar.md */
+    int status;   /* 0, a status code listed in fivebar.md, or FIVEBAR_STATUS_BAD_INPUT */
     double sigma[FIVEBAR_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } fivebar_state;
 
@@ -40,8 +45,9 @@ typedef struct {
 void fivebar_init(fivebar_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
-   the file's inputs), their rates din[] and accelerations ddin[] (per second).
-   Returns 0 or the status code (also in out->status). */
+   the file's inputs), their rates din[] and accelerations ddin[] (per second),
+   FIVEBAR_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
+   FIVEBAR_STATUS_BAD_INPUT where an input is not finite. */
 int fivebar_solve(const double in[], const double din[], const double ddin[], fivebar_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -6,11 +6,16 @@
 extern "C" {
 #endif
 
+/* Array lengths: in[], din[] and ddin[] of fourbar_solve hold FOURBAR_N_INPUTS numbers,
+   col[] of fourbar_columns FOURBAR_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define FOURBAR_N_INPUTS 1
 #define FOURBAR_N_STEPS 7
 #define FOURBAR_N_COLUMNS 43
 #define FOURBAR_ORDER 2
 #define FOURBAR_SAMPLES 361
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+   every output nan.  The other codes are listed in fourbar.md. */
+#define FOURBAR_STATUS_BAD_INPUT 5
 
 /* Motion of a pair or point (length units, seconds). */
 typedef struct { double x, y, vx, vy, ax, ay; } fourbar_point;
@@ -31,7 +36,7 @@ typedef struct {
     fourbar_angle crank;
     fourbar_angle coupler;
     fourbar_angle rocker;
-    int status;   /* 0, or a status code listed in fourbar.md */
+    int status;   /* 0, a status code listed in fourbar.md, or FOURBAR_STATUS_BAD_INPUT */
     double sigma[FOURBAR_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } fourbar_state;
 
@@ -39,8 +44,9 @@ typedef struct {
 void fourbar_init(fourbar_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
-   the file's inputs), their rates din[] and accelerations ddin[] (per second).
-   Returns 0 or the status code (also in out->status). */
+   the file's inputs), their rates din[] and accelerations ddin[] (per second),
+   FOURBAR_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
+   FOURBAR_STATUS_BAD_INPUT where an input is not finite. */
 int fourbar_solve(const double in[], const double din[], const double ddin[], fourbar_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -192,6 +192,56 @@ static int run(work *w, const double in[], const double din[], const double ddin
     return w->singular ? w->singular : -w->near;
 }
 
+/* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
+static void no_outputs(inverted_slider_state *out)
+{
+    out->O1.x = NAN;
+    out->O1.y = NAN;
+    out->O1.vx = NAN;
+    out->O1.vy = NAN;
+    out->O1.ax = NAN;
+    out->O1.ay = NAN;
+    out->A.x = NAN;
+    out->A.y = NAN;
+    out->A.vx = NAN;
+    out->A.vy = NAN;
+    out->A.ax = NAN;
+    out->A.ay = NAN;
+    out->O2.x = NAN;
+    out->O2.y = NAN;
+    out->O2.vx = NAN;
+    out->O2.vy = NAN;
+    out->O2.ax = NAN;
+    out->O2.ay = NAN;
+    out->S.x = NAN;
+    out->S.y = NAN;
+    out->S.vx = NAN;
+    out->S.vy = NAN;
+    out->S.ax = NAN;
+    out->S.ay = NAN;
+    out->S.s = NAN;
+    out->S.ds = NAN;
+    out->S.dds = NAN;
+    out->P.x = NAN;
+    out->P.y = NAN;
+    out->P.vx = NAN;
+    out->P.vy = NAN;
+    out->P.ax = NAN;
+    out->P.ay = NAN;
+    out->frame.phi = NAN;
+    out->frame.omega = NAN;
+    out->frame.alpha = NAN;
+    out->crank.phi = NAN;
+    out->crank.omega = NAN;
+    out->crank.alpha = NAN;
+    out->lever.phi = NAN;
+    out->lever.omega = NAN;
+    out->lever.alpha = NAN;
+    out->block.phi = NAN;
+    out->block.omega = NAN;
+    out->block.alpha = NAN;
+}
+
 /* Copy the records into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, inverted_slider_state *out)
 {
@@ -199,51 +249,7 @@ static void publish(const work *w, int code, inverted_slider_state *out)
     out->status = code;
     for (k = 0; k <= INVERTED_SLIDER_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
-        out->O1.x = NAN;
-        out->O1.y = NAN;
-        out->O1.vx = NAN;
-        out->O1.vy = NAN;
-        out->O1.ax = NAN;
-        out->O1.ay = NAN;
-        out->A.x = NAN;
-        out->A.y = NAN;
-        out->A.vx = NAN;
-        out->A.vy = NAN;
-        out->A.ax = NAN;
-        out->A.ay = NAN;
-        out->O2.x = NAN;
-        out->O2.y = NAN;
-        out->O2.vx = NAN;
-        out->O2.vy = NAN;
-        out->O2.ax = NAN;
-        out->O2.ay = NAN;
-        out->S.x = NAN;
-        out->S.y = NAN;
-        out->S.vx = NAN;
-        out->S.vy = NAN;
-        out->S.ax = NAN;
-        out->S.ay = NAN;
-        out->S.s = NAN;
-        out->S.ds = NAN;
-        out->S.dds = NAN;
-        out->P.x = NAN;
-        out->P.y = NAN;
-        out->P.vx = NAN;
-        out->P.vy = NAN;
-        out->P.ax = NAN;
-        out->P.ay = NAN;
-        out->frame.phi = NAN;
-        out->frame.omega = NAN;
-        out->frame.alpha = NAN;
-        out->crank.phi = NAN;
-        out->crank.omega = NAN;
-        out->crank.alpha = NAN;
-        out->lever.phi = NAN;
-        out->lever.omega = NAN;
-        out->lever.alpha = NAN;
-        out->block.phi = NAN;
-        out->block.omega = NAN;
-        out->block.alpha = NAN;
+        no_outputs(out);
         return;
     }
     out->O1.x = 0.0;
@@ -330,10 +336,32 @@ void inverted_slider_init(inverted_slider_state *out)
     memset(out, 0, sizeof *out);
 }
 
+/* Whether every number the program reads of its inputs is finite: in[], din[] and ddin[]. */
+static int finite_inputs(const double in[], const double din[], const double ddin[])
+{
+    int i;
+    for (i = 0; i < INVERTED_SLIDER_N_INPUTS; i++)
+        if (!isfinite(in[i]) || !isfinite(din[i]) || !isfinite(ddin[i])) return 0;
+    return 1;
+}
+
+/* Refuse a call with an input that is not finite: every output and sigma nan. */
+static int refuse(inverted_slider_state *out)
+{
+    int k;
+    out->status = INVERTED_SLIDER_STATUS_BAD_INPUT;
+    for (k = 0; k <= INVERTED_SLIDER_N_STEPS; k++) out->sigma[k] = NAN;
+    no_outputs(out);
+    return out->status;
+}
+
 int inverted_slider_solve(const double in[], const double din[], const double ddin[], inverted_slider_state *out)
 {
     work w;
-    const int code = run(&w, in, din, ddin);
+    int code;
+    if (!finite_inputs(in, din, ddin)) return refuse(out);
+    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
+    code = run(&w, in, din, ddin);
     publish(&w, code, out);
     return code;
 }

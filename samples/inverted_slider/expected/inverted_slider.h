@@ -6,11 +6,16 @@
 extern "C" {
 #endif
 
+/* Array lengths: in[], din[] and ddin[] of inverted_slider_solve hold INVERTED_SLIDER_N_INPUTS numbers,
+   col[] of inverted_slider_columns INVERTED_SLIDER_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define INVERTED_SLIDER_N_INPUTS 1
 #define INVERTED_SLIDER_N_STEPS 5
 #define INVERTED_SLIDER_N_COLUMNS 46
 #define INVERTED_SLIDER_ORDER 2
 #define INVERTED_SLIDER_SAMPLES 361
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+   every output nan.  The other codes are listed in inverted_slider.md. */
+#define INVERTED_SLIDER_STATUS_BAD_INPUT 5
 
 /* Motion of a pair or point (length units, seconds). */
 typedef struct { double x, y, vx, vy, ax, ay; } inverted_slider_point;
@@ -31,7 +36,7 @@ typedef struct {
     inverted_slider_angle crank;
     inverted_slider_angle lever;
     inverted_slider_angle block;
-    int status;   /* 0, or a status code listed in inverted_slider.md */
+    int status;   /* 0, a status code listed in inverted_slider.md, or INVERTED_SLIDER_STATUS_BAD_INPUT */
     double sigma[INVERTED_SLIDER_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } inverted_slider_state;
 
@@ -39,8 +44,9 @@ typedef struct {
 void inverted_slider_init(inverted_slider_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
-   the file's inputs), their rates din[] and accelerations ddin[] (per second).
-   Returns 0 or the status code (also in out->status). */
+   the file's inputs), their rates din[] and accelerations ddin[] (per second),
+   INVERTED_SLIDER_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
+   INVERTED_SLIDER_STATUS_BAD_INPUT where an input is not finite. */
 int inverted_slider_solve(const double in[], const double din[], const double ddin[], inverted_slider_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -84,6 +84,7 @@ int main(void)
         inverted_slider_columns(in, &st, col);
         for (i = 0; i < INVERTED_SLIDER_N_COLUMNS; i++) print_number(col[i]);
         printf("%d\n", st.status);
+        if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }
-    return 0;
+    return fflush(stdout) == 0 ? 0 : 1;
 }

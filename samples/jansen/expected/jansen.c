@@ -255,6 +255,83 @@ static int run(work *w, const double in[], const double din[], const double ddin
     return w->singular ? w->singular : -w->near;
 }
 
+/* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
+static void no_outputs(jansen_state *out)
+{
+    out->O.x = NAN;
+    out->O.y = NAN;
+    out->O.vx = NAN;
+    out->O.vy = NAN;
+    out->O.ax = NAN;
+    out->O.ay = NAN;
+    out->A.x = NAN;
+    out->A.y = NAN;
+    out->A.vx = NAN;
+    out->A.vy = NAN;
+    out->A.ax = NAN;
+    out->A.ay = NAN;
+    out->B.x = NAN;
+    out->B.y = NAN;
+    out->B.vx = NAN;
+    out->B.vy = NAN;
+    out->B.ax = NAN;
+    out->B.ay = NAN;
+    out->C.x = NAN;
+    out->C.y = NAN;
+    out->C.vx = NAN;
+    out->C.vy = NAN;
+    out->C.ax = NAN;
+    out->C.ay = NAN;
+    out->D.x = NAN;
+    out->D.y = NAN;
+    out->D.vx = NAN;
+    out->D.vy = NAN;
+    out->D.ax = NAN;
+    out->D.ay = NAN;
+    out->E.x = NAN;
+    out->E.y = NAN;
+    out->E.vx = NAN;
+    out->E.vy = NAN;
+    out->E.ax = NAN;
+    out->E.ay = NAN;
+    out->F.x = NAN;
+    out->F.y = NAN;
+    out->F.vx = NAN;
+    out->F.vy = NAN;
+    out->F.ax = NAN;
+    out->F.ay = NAN;
+    out->foot.x = NAN;
+    out->foot.y = NAN;
+    out->foot.vx = NAN;
+    out->foot.vy = NAN;
+    out->foot.ax = NAN;
+    out->foot.ay = NAN;
+    out->frame.phi = NAN;
+    out->frame.omega = NAN;
+    out->frame.alpha = NAN;
+    out->crank.phi = NAN;
+    out->crank.omega = NAN;
+    out->crank.alpha = NAN;
+    out->rod_j.phi = NAN;
+    out->rod_j.omega = NAN;
+    out->rod_j.alpha = NAN;
+    out->rod_k.phi = NAN;
+    out->rod_k.omega = NAN;
+    out->rod_k.alpha = NAN;
+    out->triangle_bde.phi = NAN;
+    out->triangle_bde.omega = NAN;
+    out->triangle_bde.alpha = NAN;
+    out->rocker_c.phi = NAN;
+    out->rocker_c.omega = NAN;
+    out->rocker_c.alpha = NAN;
+    out->rod_f.phi = NAN;
+    out->rod_f.omega = NAN;
+    out->rod_f.alpha = NAN;
+    out->leg_ghi.phi = NAN;
+    out->leg_ghi.omega = NAN;
+    out->leg_ghi.alpha = NAN;
+}
+
 /* Copy the records into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, jansen_state *out)
 {
@@ -262,78 +339,7 @@ static void publish(const work *w, int code, jansen_state *out)
     out->status = code;
     for (k = 0; k <= JANSEN_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
-        out->O.x = NAN;
-        out->O.y = NAN;
-        out->O.vx = NAN;
-        out->O.vy = NAN;
-        out->O.ax = NAN;
-        out->O.ay = NAN;
-        out->A.x = NAN;
-        out->A.y = NAN;
-        out->A.vx = NAN;
-        out->A.vy = NAN;
-        out->A.ax = NAN;
-        out->A.ay = NAN;
-        out->B.x = NAN;
-        out->B.y = NAN;
-        out->B.vx = NAN;
-        out->B.vy = NAN;
-        out->B.ax = NAN;
-        out->B.ay = NAN;
-        out->C.x = NAN;
-        out->C.y = NAN;
-        out->C.vx = NAN;
-        out->C.vy = NAN;
-        out->C.ax = NAN;
-        out->C.ay = NAN;
-        out->D.x = NAN;
-        out->D.y = NAN;
-        out->D.vx = NAN;
-        out->D.vy = NAN;
-        out->D.ax = NAN;
-        out->D.ay = NAN;
-        out->E.x = NAN;
-        out->E.y = NAN;
-        out->E.vx = NAN;
-        out->E.vy = NAN;
-        out->E.ax = NAN;
-        out->E.ay = NAN;
-        out->F.x = NAN;
-        out->F.y = NAN;
-        out->F.vx = NAN;
-        out->F.vy = NAN;
-        out->F.ax = NAN;
-        out->F.ay = NAN;
-        out->foot.x = NAN;
-        out->foot.y = NAN;
-        out->foot.vx = NAN;
-        out->foot.vy = NAN;
-        out->foot.ax = NAN;
-        out->foot.ay = NAN;
-        out->frame.phi = NAN;
-        out->frame.omega = NAN;
-        out->frame.alpha = NAN;
-        out->crank.phi = NAN;
-        out->crank.omega = NAN;
-        out->crank.alpha = NAN;
-        out->rod_j.phi = NAN;
-        out->rod_j.omega = NAN;
-        out->rod_j.alpha = NAN;
-        out->rod_k.phi = NAN;
-        out->rod_k.omega = NAN;
-        out->rod_k.alpha = NAN;
-        out->triangle_bde.phi = NAN;
-        out->triangle_bde.omega = NAN;
-        out->triangle_bde.alpha = NAN;
-        out->rocker_c.phi = NAN;
-        out->rocker_c.omega = NAN;
-        out->rocker_c.alpha = NAN;
-        out->rod_f.phi = NAN;
-        out->rod_f.omega = NAN;
-        out->rod_f.alpha = NAN;
-        out->leg_ghi.phi = NAN;
-        out->leg_ghi.omega = NAN;
-        out->leg_ghi.alpha = NAN;
+        no_outputs(out);
         return;
     }
     out->O.x = 0.0;
@@ -465,10 +471,32 @@ void jansen_init(jansen_state *out)
     memset(out, 0, sizeof *out);
 }
 
+/* Whether every number the program reads of its inputs is finite: in[], din[] and ddin[]. */
+static int finite_inputs(const double in[], const double din[], const double ddin[])
+{
+    int i;
+    for (i = 0; i < JANSEN_N_INPUTS; i++)
+        if (!isfinite(in[i]) || !isfinite(din[i]) || !isfinite(ddin[i])) return 0;
+    return 1;
+}
+
+/* Refuse a call with an input that is not finite: every output and sigma nan. */
+static int refuse(jansen_state *out)
+{
+    int k;
+    out->status = JANSEN_STATUS_BAD_INPUT;
+    for (k = 0; k <= JANSEN_N_STEPS; k++) out->sigma[k] = NAN;
+    no_outputs(out);
+    return out->status;
+}
+
 int jansen_solve(const double in[], const double din[], const double ddin[], jansen_state *out)
 {
     work w;
-    const int code = run(&w, in, din, ddin);
+    int code;
+    if (!finite_inputs(in, din, ddin)) return refuse(out);
+    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
+    code = run(&w, in, din, ddin);
     publish(&w, code, out);
     return code;
 }

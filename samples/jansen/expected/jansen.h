@@ -6,11 +6,16 @@
 extern "C" {
 #endif
 
+/* Array lengths: in[], din[] and ddin[] of jansen_solve hold JANSEN_N_INPUTS numbers,
+   col[] of jansen_columns JANSEN_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define JANSEN_N_INPUTS 1
 #define JANSEN_N_STEPS 14
 #define JANSEN_N_COLUMNS 73
 #define JANSEN_ORDER 2
 #define JANSEN_SAMPLES 361
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+   every output nan.  The other codes are listed in jansen.md. */
+#define JANSEN_STATUS_BAD_INPUT 5
 
 /* Motion of a pair or point (length units, seconds). */
 typedef struct { double x, y, vx, vy, ax, ay; } jansen_point;
@@ -38,7 +43,7 @@ typedef struct {
     jansen_angle rocker_c;
     jansen_angle rod_f;
     jansen_angle leg_ghi;
-    int status;   /* 0, or a status code listed in jansen.md */
+    int status;   /* 0, a status code listed in jansen.md, or JANSEN_STATUS_BAD_INPUT */
     double sigma[JANSEN_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } jansen_state;
 
@@ -46,8 +51,9 @@ typedef struct {
 void jansen_init(jansen_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
-   the file's inputs), their rates din[] and accelerations ddin[] (per second).
-   Returns 0 or the status code (also in out->status). */
+   the file's inputs), their rates din[] and accelerations ddin[] (per second),
+   JANSEN_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
+   JANSEN_STATUS_BAD_INPUT where an input is not finite. */
 int jansen_solve(const double in[], const double din[], const double ddin[], jansen_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -5,13 +5,20 @@
         inputs in radians and length units, in the order of the file's inputs,
         with their rates and accelerations (per second); returns every output
         column ("A.x", "crank.phi", ...), "status" and "sigma" (conditioning per
-        step).    python jansen.py
-        writes the sweep over the inputs' ranges as CSV to standard output.
+        step).
+
+        inputs, d_inputs and dd_inputs hold N_INPUTS numbers each; another count
+        raises ValueError, and so does a number that is not finite in
+        inputs, d_inputs or dd_inputs.
+    python jansen.py
+        writes the sweep over the inputs' ranges as CSV to standard output (and stops
+        quietly where the reader leaves: python jansen.py | head).
 """
 
 import math
+import os
 import sys
-from math import atan2, cos, sin, sqrt
+from math import atan2, cos, isfinite, sin, sqrt
 
 EPS = sys.float_info.epsilon
 NAN = math.nan
@@ -19,6 +26,7 @@ PI = math.pi
 
 ORDER = 2
 SAMPLES = 361
+N_INPUTS = 1
 N_STEPS = 14
 INPUTS = ((0.0, 6.283185307179586, 6.283185307179586), )  # (start, stop, speed) of each input
 COLUMNS = (
@@ -402,8 +410,33 @@ def _publish(w, code, order):
     return out
 
 
+def _check(inputs, d_inputs, dd_inputs):
+    """Refuse a call solve() cannot answer: a count other than N_INPUTS, or a number it reads that is not finite."""
+    try:
+        counts = len(inputs) == len(d_inputs) == len(dd_inputs) == N_INPUTS
+    except TypeError:
+        counts = False
+    if not counts:
+        for what, values in (("inputs", inputs), ("d_inputs", d_inputs), ("dd_inputs", dd_inputs)):
+            if not hasattr(values, "__len__"):
+                raise TypeError(f"jansen.solve: {what} must be a sequence of {N_INPUTS} numbers, "
+                                f"not {type(values).__name__}")
+            if len(values) != N_INPUTS:
+                raise ValueError(f"jansen.solve: expected {N_INPUTS} {what}, got {len(values)}")
+    for k, x in enumerate(inputs):
+        if not isfinite(x):
+            raise ValueError(f"jansen.solve: inputs[{k}] is not finite: {x!r}")
+    for k, x in enumerate(d_inputs):
+        if not isfinite(x):
+            raise ValueError(f"jansen.solve: d_inputs[{k}] is not finite: {x!r}")
+    for k, x in enumerate(dd_inputs):
+        if not isfinite(x):
+            raise ValueError(f"jansen.solve: dd_inputs[{k}] is not finite: {x!r}")
+
+
 def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
     """Solve at the given inputs, rates and accelerations; see the module docstring."""
+    _check(inputs, d_inputs, dd_inputs)
     w = _Work()
     code = _run(w, inputs, d_inputs, dd_inputs)
     return _publish(w, code, order)
@@ -428,4 +461,10 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+        sys.stdout.flush()
+    except BrokenPipeError:
+        # the reader left: stop quietly, with stdout on devnull for the interpreter's last flush
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        sys.exit(1)

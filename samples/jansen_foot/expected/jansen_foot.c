@@ -207,6 +207,17 @@ static int run(work *w, const double in[], const double din[], const double ddin
     return w->singular ? w->singular : -w->near;
 }
 
+/* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
+static void no_outputs(jansen_foot_state *out)
+{
+    out->foot.x = NAN;
+    out->foot.y = NAN;
+    out->foot.vx = NAN;
+    out->foot.vy = NAN;
+    out->crank.phi = NAN;
+    out->crank.omega = NAN;
+}
+
 /* Copy the records into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, jansen_foot_state *out)
 {
@@ -214,12 +225,7 @@ static void publish(const work *w, int code, jansen_foot_state *out)
     out->status = code;
     for (k = 0; k <= JANSEN_FOOT_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
-        out->foot.x = NAN;
-        out->foot.y = NAN;
-        out->foot.vx = NAN;
-        out->foot.vy = NAN;
-        out->crank.phi = NAN;
-        out->crank.omega = NAN;
+        no_outputs(out);
         return;
     }
     out->foot.x = w->p_foot.P.x - 28.0;
@@ -240,10 +246,33 @@ void jansen_foot_init(jansen_foot_state *out)
     memset(out, 0, sizeof *out);
 }
 
+/* Whether every number the program reads of its inputs is finite: in[] and din[]. */
+static int finite_inputs(const double in[], const double din[], const double ddin[])
+{
+    int i;
+    (void)ddin;
+    for (i = 0; i < JANSEN_FOOT_N_INPUTS; i++)
+        if (!isfinite(in[i]) || !isfinite(din[i])) return 0;
+    return 1;
+}
+
+/* Refuse a call with an input that is not finite: every output and sigma nan. */
+static int refuse(jansen_foot_state *out)
+{
+    int k;
+    out->status = JANSEN_FOOT_STATUS_BAD_INPUT;
+    for (k = 0; k <= JANSEN_FOOT_N_STEPS; k++) out->sigma[k] = NAN;
+    no_outputs(out);
+    return out->status;
+}
+
 int jansen_foot_solve(const double in[], const double din[], const double ddin[], jansen_foot_state *out)
 {
     work w;
-    const int code = run(&w, in, din, ddin);
+    int code;
+    if (!finite_inputs(in, din, ddin)) return refuse(out);
+    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
+    code = run(&w, in, din, ddin);
     publish(&w, code, out);
     return code;
 }

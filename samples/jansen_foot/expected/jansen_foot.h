@@ -6,11 +6,16 @@
 extern "C" {
 #endif
 
+/* Array lengths: in[], din[] and ddin[] of jansen_foot_solve hold JANSEN_FOOT_N_INPUTS numbers,
+   col[] of jansen_foot_columns JANSEN_FOOT_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define JANSEN_FOOT_N_INPUTS 1
 #define JANSEN_FOOT_N_STEPS 10
 #define JANSEN_FOOT_N_COLUMNS 7
 #define JANSEN_FOOT_ORDER 1
 #define JANSEN_FOOT_SAMPLES 361
+/* Returned when a number in in[] or din[] is not finite (nan or inf); ddin[] is not read:
+   every output nan.  The other codes are listed in jansen_foot.md. */
+#define JANSEN_FOOT_STATUS_BAD_INPUT 5
 
 /* Motion of a pair or point (length units, seconds). */
 typedef struct { double x, y, vx, vy; } jansen_foot_point;
@@ -24,7 +29,7 @@ typedef struct { double x, y, vx, vy, s, ds; } jansen_foot_prismatic;
 typedef struct {
     jansen_foot_point foot;
     jansen_foot_angle crank;
-    int status;   /* 0, or a status code listed in jansen_foot.md */
+    int status;   /* 0, a status code listed in jansen_foot.md, or JANSEN_FOOT_STATUS_BAD_INPUT */
     double sigma[JANSEN_FOOT_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } jansen_foot_state;
 
@@ -32,8 +37,9 @@ typedef struct {
 void jansen_foot_init(jansen_foot_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
-   the file's inputs), their rates din[] and accelerations ddin[] (per second).
-   Returns 0 or the status code (also in out->status). */
+   the file's inputs), their rates din[] and accelerations ddin[] (per second),
+   JANSEN_FOOT_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
+   JANSEN_FOOT_STATUS_BAD_INPUT where an input is not finite. */
 int jansen_foot_solve(const double in[], const double din[], const double ddin[], jansen_foot_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -215,6 +215,53 @@ static int run(work *w, const double in[], const double din[], const double ddin
     return w->singular ? w->singular : -w->near;
 }
 
+/* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
+static void no_outputs(scotch_yoke_state *out)
+{
+    out->O.x = NAN;
+    out->O.y = NAN;
+    out->O.vx = NAN;
+    out->O.vy = NAN;
+    out->O.ax = NAN;
+    out->O.ay = NAN;
+    out->A.x = NAN;
+    out->A.y = NAN;
+    out->A.vx = NAN;
+    out->A.vy = NAN;
+    out->A.ax = NAN;
+    out->A.ay = NAN;
+    out->P.x = NAN;
+    out->P.y = NAN;
+    out->P.vx = NAN;
+    out->P.vy = NAN;
+    out->P.ax = NAN;
+    out->P.ay = NAN;
+    out->P.s = NAN;
+    out->P.ds = NAN;
+    out->P.dds = NAN;
+    out->Q.x = NAN;
+    out->Q.y = NAN;
+    out->Q.vx = NAN;
+    out->Q.vy = NAN;
+    out->Q.ax = NAN;
+    out->Q.ay = NAN;
+    out->Q.s = NAN;
+    out->Q.ds = NAN;
+    out->Q.dds = NAN;
+    out->frame.phi = NAN;
+    out->frame.omega = NAN;
+    out->frame.alpha = NAN;
+    out->crank.phi = NAN;
+    out->crank.omega = NAN;
+    out->crank.alpha = NAN;
+    out->yoke.phi = NAN;
+    out->yoke.omega = NAN;
+    out->yoke.alpha = NAN;
+    out->block.phi = NAN;
+    out->block.omega = NAN;
+    out->block.alpha = NAN;
+}
+
 /* Copy the records into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, scotch_yoke_state *out)
 {
@@ -222,48 +269,7 @@ static void publish(const work *w, int code, scotch_yoke_state *out)
     out->status = code;
     for (k = 0; k <= SCOTCH_YOKE_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
-        out->O.x = NAN;
-        out->O.y = NAN;
-        out->O.vx = NAN;
-        out->O.vy = NAN;
-        out->O.ax = NAN;
-        out->O.ay = NAN;
-        out->A.x = NAN;
-        out->A.y = NAN;
-        out->A.vx = NAN;
-        out->A.vy = NAN;
-        out->A.ax = NAN;
-        out->A.ay = NAN;
-        out->P.x = NAN;
-        out->P.y = NAN;
-        out->P.vx = NAN;
-        out->P.vy = NAN;
-        out->P.ax = NAN;
-        out->P.ay = NAN;
-        out->P.s = NAN;
-        out->P.ds = NAN;
-        out->P.dds = NAN;
-        out->Q.x = NAN;
-        out->Q.y = NAN;
-        out->Q.vx = NAN;
-        out->Q.vy = NAN;
-        out->Q.ax = NAN;
-        out->Q.ay = NAN;
-        out->Q.s = NAN;
-        out->Q.ds = NAN;
-        out->Q.dds = NAN;
-        out->frame.phi = NAN;
-        out->frame.omega = NAN;
-        out->frame.alpha = NAN;
-        out->crank.phi = NAN;
-        out->crank.omega = NAN;
-        out->crank.alpha = NAN;
-        out->yoke.phi = NAN;
-        out->yoke.omega = NAN;
-        out->yoke.alpha = NAN;
-        out->block.phi = NAN;
-        out->block.omega = NAN;
-        out->block.alpha = NAN;
+        no_outputs(out);
         return;
     }
     out->O.x = 0.0;
@@ -345,10 +351,32 @@ void scotch_yoke_init(scotch_yoke_state *out)
     memset(out, 0, sizeof *out);
 }
 
+/* Whether every number the program reads of its inputs is finite: in[], din[] and ddin[]. */
+static int finite_inputs(const double in[], const double din[], const double ddin[])
+{
+    int i;
+    for (i = 0; i < SCOTCH_YOKE_N_INPUTS; i++)
+        if (!isfinite(in[i]) || !isfinite(din[i]) || !isfinite(ddin[i])) return 0;
+    return 1;
+}
+
+/* Refuse a call with an input that is not finite: every output and sigma nan. */
+static int refuse(scotch_yoke_state *out)
+{
+    int k;
+    out->status = SCOTCH_YOKE_STATUS_BAD_INPUT;
+    for (k = 0; k <= SCOTCH_YOKE_N_STEPS; k++) out->sigma[k] = NAN;
+    no_outputs(out);
+    return out->status;
+}
+
 int scotch_yoke_solve(const double in[], const double din[], const double ddin[], scotch_yoke_state *out)
 {
     work w;
-    const int code = run(&w, in, din, ddin);
+    int code;
+    if (!finite_inputs(in, din, ddin)) return refuse(out);
+    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
+    code = run(&w, in, din, ddin);
     publish(&w, code, out);
     return code;
 }

@@ -6,11 +6,16 @@
 extern "C" {
 #endif
 
+/* Array lengths: in[], din[] and ddin[] of scotch_yoke_solve hold SCOTCH_YOKE_N_INPUTS numbers,
+   col[] of scotch_yoke_columns SCOTCH_YOKE_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define SCOTCH_YOKE_N_INPUTS 1
 #define SCOTCH_YOKE_N_STEPS 6
 #define SCOTCH_YOKE_N_COLUMNS 43
 #define SCOTCH_YOKE_ORDER 2
 #define SCOTCH_YOKE_SAMPLES 361
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+   every output nan.  The other codes are listed in scotch_yoke.md. */
+#define SCOTCH_YOKE_STATUS_BAD_INPUT 5
 
 /* Motion of a pair or point (length units, seconds). */
 typedef struct { double x, y, vx, vy, ax, ay; } scotch_yoke_point;
@@ -30,7 +35,7 @@ typedef struct {
     scotch_yoke_angle crank;
     scotch_yoke_angle yoke;
     scotch_yoke_angle block;
-    int status;   /* 0, or a status code listed in scotch_yoke.md */
+    int status;   /* 0, a status code listed in scotch_yoke.md, or SCOTCH_YOKE_STATUS_BAD_INPUT */
     double sigma[SCOTCH_YOKE_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } scotch_yoke_state;
 
@@ -38,8 +43,9 @@ typedef struct {
 void scotch_yoke_init(scotch_yoke_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
-   the file's inputs), their rates din[] and accelerations ddin[] (per second).
-   Returns 0 or the status code (also in out->status). */
+   the file's inputs), their rates din[] and accelerations ddin[] (per second),
+   SCOTCH_YOKE_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
+   SCOTCH_YOKE_STATUS_BAD_INPUT where an input is not finite. */
 int scotch_yoke_solve(const double in[], const double din[], const double ddin[], scotch_yoke_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -81,6 +81,7 @@ int main(void)
         scotch_yoke_columns(in, &st, col);
         for (i = 0; i < SCOTCH_YOKE_N_COLUMNS; i++) print_number(col[i]);
         printf("%d\n", st.status);
+        if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }
-    return 0;
+    return fflush(stdout) == 0 ? 0 : 1;
 }

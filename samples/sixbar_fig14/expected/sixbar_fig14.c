@@ -410,9 +410,13 @@ static void predict(const double w_in[], const double w_din[], const double w_a[
 typedef int (*path_fn)(void *ctx, const double in[], const double din[], int order, double a[][LINKGEN_NMAX],
                        double rates[][LINKGEN_NMAX]);
 
+/* A walk gives up after this many passes of the procedure. */
+#define LINKGEN_WALK_PASSES 1000
+
 /* Continuation along the straight path from base to goal (see continuation).  Near a
  * singular position the lengths' rates are large and the steps short (the prediction
- * holds only there); a step that makes no progress in floating point cuts the path. */
+ * holds only there); a step that makes no progress in floating point cuts the path, and
+ * so do LINKGEN_WALK_PASSES passes (at once where the path needs more steps than that). */
 static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double goal[],
                 const double limits[], int halvings, const int sizes[], double slack, double reach)
 {
@@ -420,17 +424,19 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
     double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double now[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double t = 0.0, h, h_max = 1.0, fast;
-    int g, i, cuts = 0;
+    int g, i, cuts = 0, passes = 1;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         d[i] = goal[i] - base[i];
         if (d[i] != 0.0) h_max = fmin(h_max, limits[i] / fabs(d[i]));
     }
+    if (h_max * LINKGEN_WALK_PASSES < 1.0) return 0;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) start[g][i] = a[g][i];
     if (!run(ctx, base, d, 1, start, rate)) return 0;
     h = h_max;
     while (t < 1.0) {
         double tt;
+        if (passes++ == LINKGEN_WALK_PASSES) return 0;
         fast = 0.0;
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
             for (i = 0; i < sizes[g]; i++) fast = fmax(fast, fabs(rate[g][i]));
@@ -460,18 +466,27 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
 }
 
 /* Follow the assembly from inputs base (solved with block states a) to target.  Angle
- * inputs go the shorter way round, else the other way; a step moves no input by more
- * than its limit and no Add-link length, as predicted, by more than reach; it starts
- * Newton from the tangent predictor and is halved where Newton fails or lands off the
- * path (see on_path), up to halvings times in a row.  Returns 1 with a the block states
- * at target, 0 when both ways are cut. */
+ * inputs go the shorter way round, else the other way; where the one input is an angle
+ * with a reach (the values it reaches from the sketch, modulo whole turns, from low up; low
+ * is nan without one; base and target are inside it), it goes the one way round that stays
+ * inside the reach.  A step moves no input by more than its limit and no Add-link length,
+ * as predicted, by more than reach; it starts Newton from the tangent predictor and is
+ * halved where Newton fails or lands off the path (see on_path), up to halvings times in a
+ * row.  Returns 1 with a the block states at target, 0 when the way (both ways without a
+ * reach) is cut. */
 static int continuation(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double target[],
                         const double limits[], const int periodic[], int halvings, const int sizes[], double slack,
-                        double reach)
+                        double reach, double low)
 {
     const double two_pi = 2.0 * 3.141592653589793;
     double goal[LINKGEN_NINPUTS], other[LINKGEN_NINPUTS];
     int i, differs = 0;
+    if (periodic[0] && !isnan(low)) {
+        for (i = 0; i < LINKGEN_NINPUTS; i++) goal[i] = target[i];
+        goal[0] = base[0] + (target[0] - two_pi * floor((target[0] - low) / two_pi))
+                  - (base[0] - two_pi * floor((base[0] - low) / two_pi));
+        return walk(run, ctx, base, a, goal, limits, halvings, sizes, slack, reach);
+    }
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         goal[i] = periodic[i] ? target[i] - two_pi * floor((target[i] - base[i]) / two_pi + 0.5) : target[i];
         other[i] = goal[i];
@@ -1080,6 +1095,71 @@ static int run(work *w, const double in[], const double din[], const double ddin
     return w->singular ? w->singular : -w->near;
 }
 
+/* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
+static void no_outputs(sixbar_fig14_state *out)
+{
+    out->J1.x = NAN;
+    out->J1.y = NAN;
+    out->J1.vx = NAN;
+    out->J1.vy = NAN;
+    out->J1.ax = NAN;
+    out->J1.ay = NAN;
+    out->J2.x = NAN;
+    out->J2.y = NAN;
+    out->J2.vx = NAN;
+    out->J2.vy = NAN;
+    out->J2.ax = NAN;
+    out->J2.ay = NAN;
+    out->J3.x = NAN;
+    out->J3.y = NAN;
+    out->J3.vx = NAN;
+    out->J3.vy = NAN;
+    out->J3.ax = NAN;
+    out->J3.ay = NAN;
+    out->J4.x = NAN;
+    out->J4.y = NAN;
+    out->J4.vx = NAN;
+    out->J4.vy = NAN;
+    out->J4.ax = NAN;
+    out->J4.ay = NAN;
+    out->J5.x = NAN;
+    out->J5.y = NAN;
+    out->J5.vx = NAN;
+    out->J5.vy = NAN;
+    out->J5.ax = NAN;
+    out->J5.ay = NAN;
+    out->J6.x = NAN;
+    out->J6.y = NAN;
+    out->J6.vx = NAN;
+    out->J6.vy = NAN;
+    out->J6.ax = NAN;
+    out->J6.ay = NAN;
+    out->J7.x = NAN;
+    out->J7.y = NAN;
+    out->J7.vx = NAN;
+    out->J7.vy = NAN;
+    out->J7.ax = NAN;
+    out->J7.ay = NAN;
+    out->rocker1.phi = NAN;
+    out->rocker1.omega = NAN;
+    out->rocker1.alpha = NAN;
+    out->ternary.phi = NAN;
+    out->ternary.omega = NAN;
+    out->ternary.alpha = NAN;
+    out->rocker2.phi = NAN;
+    out->rocker2.omega = NAN;
+    out->rocker2.alpha = NAN;
+    out->coupler.phi = NAN;
+    out->coupler.omega = NAN;
+    out->coupler.alpha = NAN;
+    out->crank.phi = NAN;
+    out->crank.omega = NAN;
+    out->crank.alpha = NAN;
+    out->frame.phi = NAN;
+    out->frame.omega = NAN;
+    out->frame.alpha = NAN;
+}
+
 /* Copy the records into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, sixbar_fig14_state *out)
 {
@@ -1087,66 +1167,7 @@ static void publish(const work *w, int code, sixbar_fig14_state *out)
     out->status = code;
     for (k = 0; k <= SIXBAR_FIG14_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
-        out->J1.x = NAN;
-        out->J1.y = NAN;
-        out->J1.vx = NAN;
-        out->J1.vy = NAN;
-        out->J1.ax = NAN;
-        out->J1.ay = NAN;
-        out->J2.x = NAN;
-        out->J2.y = NAN;
-        out->J2.vx = NAN;
-        out->J2.vy = NAN;
-        out->J2.ax = NAN;
-        out->J2.ay = NAN;
-        out->J3.x = NAN;
-        out->J3.y = NAN;
-        out->J3.vx = NAN;
-        out->J3.vy = NAN;
-        out->J3.ax = NAN;
-        out->J3.ay = NAN;
-        out->J4.x = NAN;
-        out->J4.y = NAN;
-        out->J4.vx = NAN;
-        out->J4.vy = NAN;
-        out->J4.ax = NAN;
-        out->J4.ay = NAN;
-        out->J5.x = NAN;
-        out->J5.y = NAN;
-        out->J5.vx = NAN;
-        out->J5.vy = NAN;
-        out->J5.ax = NAN;
-        out->J5.ay = NAN;
-        out->J6.x = NAN;
-        out->J6.y = NAN;
-        out->J6.vx = NAN;
-        out->J6.vy = NAN;
-        out->J6.ax = NAN;
-        out->J6.ay = NAN;
-        out->J7.x = NAN;
-        out->J7.y = NAN;
-        out->J7.vx = NAN;
-        out->J7.vy = NAN;
-        out->J7.ax = NAN;
-        out->J7.ay = NAN;
-        out->rocker1.phi = NAN;
-        out->rocker1.omega = NAN;
-        out->rocker1.alpha = NAN;
-        out->ternary.phi = NAN;
-        out->ternary.omega = NAN;
-        out->ternary.alpha = NAN;
-        out->rocker2.phi = NAN;
-        out->rocker2.omega = NAN;
-        out->rocker2.alpha = NAN;
-        out->coupler.phi = NAN;
-        out->coupler.omega = NAN;
-        out->coupler.alpha = NAN;
-        out->crank.phi = NAN;
-        out->crank.omega = NAN;
-        out->crank.alpha = NAN;
-        out->frame.phi = NAN;
-        out->frame.omega = NAN;
-        out->frame.alpha = NAN;
+        no_outputs(out);
         return;
     }
     out->J1.x = 0.0;
@@ -1258,6 +1279,27 @@ void sixbar_fig14_init(sixbar_fig14_state *out)
     memset(out, 0, sizeof *out);
 }
 
+/* Whether every number the program reads of its inputs is finite: in[], din[] and ddin[]. */
+static int finite_inputs(const double in[], const double din[], const double ddin[])
+{
+    int i;
+    for (i = 0; i < SIXBAR_FIG14_N_INPUTS; i++)
+        if (!isfinite(in[i]) || !isfinite(din[i]) || !isfinite(ddin[i])) return 0;
+    return 1;
+}
+
+/* Refuse a call with an input that is not finite: every output and sigma nan, no
+   Newton steps; the warm start is kept for the next call. */
+static int refuse(sixbar_fig14_state *out)
+{
+    int k;
+    out->status = SIXBAR_FIG14_STATUS_BAD_INPUT;
+    for (k = 0; k <= SIXBAR_FIG14_N_STEPS; k++) out->sigma[k] = NAN;
+    for (k = 0; k < SIXBAR_FIG14_N_GROUPS; k++) out->iterations[k] = 0;
+    no_outputs(out);
+    return out->status;
+}
+
 /* One pass along a continuation path (rates per unit of the path, no accelerations). */
 static int path_run(void *ctx, const double in[], const double din[], int order, double a[][LINKGEN_NMAX],
                     double rates[][LINKGEN_NMAX])
@@ -1281,6 +1323,8 @@ int sixbar_fig14_solve(const double in[], const double din[], const double ddin[
     double ad[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     int used[LINKGEN_NGROUPS];
     int code = 0, solved = 0, g, i;
+    if (!finite_inputs(in, din, ddin)) return refuse(out);
+    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = sketch_in[i];
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = sketch_a[g][i];
@@ -1306,7 +1350,7 @@ int sixbar_fig14_solve(const double in[], const double din[], const double ddin[
         /* the sketch's assembly, followed from the sketch (or the last row) */
         for (g = 0; g < LINKGEN_NGROUPS; g++) w.used[g] = used[g];
         if (continuation(path_run, &w, base, a, in, limits, periodic, 20,
-                         block_sizes, slack, 0.1 * LENGTH_SCALE)) {
+                         block_sizes, slack, 0.1 * LENGTH_SCALE, NAN)) {
             code = run(&w, in, din, ddin, SIXBAR_FIG14_ORDER, a, ad, out->iterations, used);
         } else {
             code = run(&w, in, din, ddin, SIXBAR_FIG14_ORDER, a, ad, out->iterations, used);

@@ -6,11 +6,16 @@
 extern "C" {
 #endif
 
+/* Array lengths: in[], din[] and ddin[] of sixbar_fig14_solve hold SIXBAR_FIG14_N_INPUTS numbers,
+   col[] of sixbar_fig14_columns SIXBAR_FIG14_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define SIXBAR_FIG14_N_INPUTS 1
 #define SIXBAR_FIG14_N_STEPS 53
 #define SIXBAR_FIG14_N_COLUMNS 61
 #define SIXBAR_FIG14_ORDER 2
 #define SIXBAR_FIG14_SAMPLES 361
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+   every output nan, the warm start kept.  The other codes are listed in sixbar_fig14.md. */
+#define SIXBAR_FIG14_STATUS_BAD_INPUT 5
 #define SIXBAR_FIG14_N_GROUPS 1
 #define SIXBAR_FIG14_N_BLOCKS 9
 #define SIXBAR_FIG14_NMAX 4
@@ -39,7 +44,7 @@ typedef struct {
     sixbar_fig14_angle coupler;
     sixbar_fig14_angle crank;
     sixbar_fig14_angle frame;
-    int status;   /* 0, or a status code listed in sixbar_fig14.md */
+    int status;   /* 0, a status code listed in sixbar_fig14.md, or SIXBAR_FIG14_STATUS_BAD_INPUT */
     double sigma[SIXBAR_FIG14_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
     int iterations[SIXBAR_FIG14_N_GROUPS];   /* Newton steps of each resolver */
     int warm_valid;   /* 0: start the resolvers from the sketch */
@@ -53,8 +58,9 @@ typedef struct {
 void sixbar_fig14_init(sixbar_fig14_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
-   the file's inputs), their rates din[] and accelerations ddin[] (per second).
-   Returns 0 or the status code (also in out->status). */
+   the file's inputs), their rates din[] and accelerations ddin[] (per second),
+   SIXBAR_FIG14_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
+   SIXBAR_FIG14_STATUS_BAD_INPUT where an input is not finite. */
 int sixbar_fig14_solve(const double in[], const double din[], const double ddin[], sixbar_fig14_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -6,13 +6,20 @@
         with their rates and accelerations (per second); returns every output
         column ("A.x", "crank.phi", ...), "status" and "sigma" (conditioning per
         step).  Pass the same dict as state on every call of a sweep so the
-        resolver starts from the previous row.    python sixbar_fig14.py
-        writes the sweep over the inputs' ranges as CSV to standard output.
+        resolver starts from the previous row.
+
+        inputs, d_inputs and dd_inputs hold N_INPUTS numbers each; another count
+        raises ValueError, and so does a number that is not finite in
+        inputs, d_inputs or dd_inputs.
+    python sixbar_fig14.py
+        writes the sweep over the inputs' ranges as CSV to standard output (and stops
+        quietly where the reader leaves: python sixbar_fig14.py | head).
 """
 
 import math
+import os
 import sys
-from math import atan2, cos, floor, sin, sqrt
+from math import atan2, cos, floor, isfinite, sin, sqrt
 
 EPS = sys.float_info.epsilon
 NAN = math.nan
@@ -20,6 +27,7 @@ PI = math.pi
 
 ORDER = 2
 SAMPLES = 361
+N_INPUTS = 1
 N_STEPS = 53
 INPUTS = ((0.0, 6.283185307179586, 6.283185307179586), )  # (start, stop, speed) of each input
 COLUMNS = (
@@ -410,36 +418,51 @@ def on_path(prev, guess, new, sizes, slack):
     return all(abs(x[i] - g[i]) <= share * move + slack for g, x, n in zip(guess, new, sizes) for i in range(n))
 
 
-def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach):
+def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach, low):
     """Follow the assembly from inputs base (solved with block states a) to target.
 
-    Angle inputs go the shorter way round, else the other way; each step moves no
-    input by more than its limit and no Add-link length, as predicted, by more than
-    reach; it starts Newton from the tangent predictor and is halved where Newton fails
-    or lands off the path (see on_path), up to halvings times in a row.  run(inputs,
-    rates, order, a) -> (ok, a, rates) solves with input rates per unit of the path.
-    Returns the block states at target, or None when both ways are cut.
+    Angle inputs go the shorter way round, else the other way; where the one input is an
+    angle with a reach (the values it reaches from the sketch, modulo whole turns, from low
+    up; low is nan without one; base and target are inside it), it goes the one way round
+    that stays inside the reach.  Each step moves no input by
+    more than its limit and no Add-link length, as predicted, by more than reach; it starts
+    Newton from the tangent predictor and is halved where Newton fails or lands off the path
+    (see on_path), up to halvings times in a row.  run(inputs, rates, order, a) -> (ok, a,
+    rates) solves with input rates per unit of the path.  Returns the block states at
+    target, or None when the way (both ways without a reach) is cut.
     """
+    if periodic[0] and low == low:
+        turns = [x - 2 * PI * floor((x - low) / (2 * PI)) for x in (base[0], target[0])]
+        return walk(run, base, a, [base[0] + turns[1] - turns[0]], limits, halvings, sizes, slack, reach)
     goal = [t - 2 * PI * floor((t - b) / (2 * PI) + 0.5) if p else t for t, b, p in zip(target, base, periodic)]
-    reached = _walk(run, base, a, goal, limits, halvings, sizes, slack, reach)
+    reached = walk(run, base, a, goal, limits, halvings, sizes, slack, reach)
     other = [(g - 2 * PI if g > b else g + 2 * PI if g < b else g) if p else g
              for g, b, p in zip(goal, base, periodic)]
     if reached is None and other != goal:
-        reached = _walk(run, base, a, other, limits, halvings, sizes, slack, reach)
+        reached = walk(run, base, a, other, limits, halvings, sizes, slack, reach)
     return reached
 
 
-def _walk(run, base, a, goal, limits, halvings, sizes, slack, reach):
+WALK_PASSES = 1000  # a walk gives up after this many passes of the procedure
+
+
+def walk(run, base, a, goal, limits, halvings, sizes, slack, reach):
     """Continuation along the straight path from base to goal (see continuation).  Near a
     singular position the lengths' rates are large and the steps short (the prediction
-    holds only there); a step that makes no progress in floating point cuts the path."""
+    holds only there); a step that makes no progress in floating point cuts the path, and
+    so do WALK_PASSES passes (at once where the path needs more steps than that)."""
     d = [g - b for g, b in zip(goal, base)]
     h_max = min([1.0] + [lim / abs(x) for lim, x in zip(limits, d) if x != 0.0])
+    if h_max * WALK_PASSES < 1.0:
+        return None
     ok, a, rate = run(base, d, 1, a)
     if not ok:
         return None
-    t, h, cuts = 0.0, h_max, 0
+    t, h, cuts, passes = 0.0, h_max, 0, 1
     while t < 1.0:
+        if passes == WALK_PASSES:
+            return None
+        passes += 1
         fast = max((abs(r[i]) for r, n in zip(rate, sizes) for i in range(n) if r[i] == r[i]), default=0.0)
         if fast * h > reach:
             h = reach / fast
@@ -1028,6 +1051,30 @@ def _publish(w, code, order):
     return out
 
 
+def _check(inputs, d_inputs, dd_inputs):
+    """Refuse a call solve() cannot answer: a count other than N_INPUTS, or a number it reads that is not finite."""
+    try:
+        counts = len(inputs) == len(d_inputs) == len(dd_inputs) == N_INPUTS
+    except TypeError:
+        counts = False
+    if not counts:
+        for what, values in (("inputs", inputs), ("d_inputs", d_inputs), ("dd_inputs", dd_inputs)):
+            if not hasattr(values, "__len__"):
+                raise TypeError(f"sixbar_fig14.solve: {what} must be a sequence of {N_INPUTS} numbers, "
+                                f"not {type(values).__name__}")
+            if len(values) != N_INPUTS:
+                raise ValueError(f"sixbar_fig14.solve: expected {N_INPUTS} {what}, got {len(values)}")
+    for k, x in enumerate(inputs):
+        if not isfinite(x):
+            raise ValueError(f"sixbar_fig14.solve: inputs[{k}] is not finite: {x!r}")
+    for k, x in enumerate(d_inputs):
+        if not isfinite(x):
+            raise ValueError(f"sixbar_fig14.solve: d_inputs[{k}] is not finite: {x!r}")
+    for k, x in enumerate(dd_inputs):
+        if not isfinite(x):
+            raise ValueError(f"sixbar_fig14.solve: dd_inputs[{k}] is not finite: {x!r}")
+
+
 def _path_run(inputs, rates, order, a, used):
     """One pass along a continuation path: (closes, Add-link lengths, their rates)."""
     a = [list(g) for g in a]
@@ -1038,6 +1085,7 @@ def _path_run(inputs, rates, order, a, used):
 
 def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
     """Solve at the given inputs, rates and accelerations; see the module docstring."""
+    _check(inputs, d_inputs, dd_inputs)
     w = _Work()
     order = min(order, ORDER)
     warm = state.get("warm") if state is not None else None
@@ -1060,7 +1108,7 @@ def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
         prefer = list(used)
         path = lambda x, d, o, s: _path_run(x, d, o, s, prefer)  # noqa: E731
         reached = continuation(path, base, a, list(inputs), LIMITS, PERIODIC, 20,
-                               BLOCK_SIZES, SLACK * LENGTH_SCALE, REACH * LENGTH_SCALE)
+                               BLOCK_SIZES, SLACK * LENGTH_SCALE, REACH * LENGTH_SCALE, NAN)
         if reached is not None:
             a = reached
         code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used)
@@ -1094,4 +1142,10 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+        sys.stdout.flush()
+    except BrokenPipeError:
+        # the reader left: stop quietly, with stdout on devnull for the interpreter's last flush
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        sys.exit(1)

@@ -280,6 +280,29 @@ static int run(work *w, const double in[], const double din[], const double ddin
     return w->singular ? w->singular : -w->near;
 }
 
+/* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
+static void no_outputs(sixbar_slider_state *out)
+{
+    out->S.x = NAN;
+    out->S.y = NAN;
+    out->S.vx = NAN;
+    out->S.vy = NAN;
+    out->S.ax = NAN;
+    out->S.ay = NAN;
+    out->S.s = NAN;
+    out->S.ds = NAN;
+    out->S.dds = NAN;
+    out->P.x = NAN;
+    out->P.y = NAN;
+    out->P.vx = NAN;
+    out->P.vy = NAN;
+    out->P.ax = NAN;
+    out->P.ay = NAN;
+    out->rocker.phi = NAN;
+    out->rocker.omega = NAN;
+    out->rocker.alpha = NAN;
+}
+
 /* Copy the records into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, sixbar_slider_state *out)
 {
@@ -287,24 +310,7 @@ static void publish(const work *w, int code, sixbar_slider_state *out)
     out->status = code;
     for (k = 0; k <= SIXBAR_SLIDER_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
-        out->S.x = NAN;
-        out->S.y = NAN;
-        out->S.vx = NAN;
-        out->S.vy = NAN;
-        out->S.ax = NAN;
-        out->S.ay = NAN;
-        out->S.s = NAN;
-        out->S.ds = NAN;
-        out->S.dds = NAN;
-        out->P.x = NAN;
-        out->P.y = NAN;
-        out->P.vx = NAN;
-        out->P.vy = NAN;
-        out->P.ax = NAN;
-        out->P.ay = NAN;
-        out->rocker.phi = NAN;
-        out->rocker.omega = NAN;
-        out->rocker.alpha = NAN;
+        no_outputs(out);
         return;
     }
     out->S.x = w->p_S.P.x + 72.0;
@@ -346,10 +352,32 @@ void sixbar_slider_init(sixbar_slider_state *out)
     memset(out, 0, sizeof *out);
 }
 
+/* Whether every number the program reads of its inputs is finite: in[], din[] and ddin[]. */
+static int finite_inputs(const double in[], const double din[], const double ddin[])
+{
+    int i;
+    for (i = 0; i < SIXBAR_SLIDER_N_INPUTS; i++)
+        if (!isfinite(in[i]) || !isfinite(din[i]) || !isfinite(ddin[i])) return 0;
+    return 1;
+}
+
+/* Refuse a call with an input that is not finite: every output and sigma nan. */
+static int refuse(sixbar_slider_state *out)
+{
+    int k;
+    out->status = SIXBAR_SLIDER_STATUS_BAD_INPUT;
+    for (k = 0; k <= SIXBAR_SLIDER_N_STEPS; k++) out->sigma[k] = NAN;
+    no_outputs(out);
+    return out->status;
+}
+
 int sixbar_slider_solve(const double in[], const double din[], const double ddin[], sixbar_slider_state *out)
 {
     work w;
-    const int code = run(&w, in, din, ddin);
+    int code;
+    if (!finite_inputs(in, din, ddin)) return refuse(out);
+    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
+    code = run(&w, in, din, ddin);
     publish(&w, code, out);
     return code;
 }

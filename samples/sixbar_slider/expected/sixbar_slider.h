@@ -6,11 +6,16 @@
 extern "C" {
 #endif
 
+/* Array lengths: in[], din[] and ddin[] of sixbar_slider_solve hold SIXBAR_SLIDER_N_INPUTS numbers,
+   col[] of sixbar_slider_columns SIXBAR_SLIDER_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define SIXBAR_SLIDER_N_INPUTS 1
 #define SIXBAR_SLIDER_N_STEPS 8
 #define SIXBAR_SLIDER_N_COLUMNS 19
 #define SIXBAR_SLIDER_ORDER 2
 #define SIXBAR_SLIDER_SAMPLES 361
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+   every output nan.  The other codes are listed in sixbar_slider.md. */
+#define SIXBAR_SLIDER_STATUS_BAD_INPUT 5
 
 /* Motion of a pair or point (length units, seconds). */
 typedef struct { double x, y, vx, vy, ax, ay; } sixbar_slider_point;
@@ -25,7 +30,7 @@ typedef struct {
     sixbar_slider_prismatic S;
     sixbar_slider_point P;
     sixbar_slider_angle rocker;
-    int status;   /* 0, or a status code listed in sixbar_slider.md */
+    int status;   /* 0, a status code listed in sixbar_slider.md, or SIXBAR_SLIDER_STATUS_BAD_INPUT */
     double sigma[SIXBAR_SLIDER_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } sixbar_slider_state;
 
@@ -33,8 +38,9 @@ typedef struct {
 void sixbar_slider_init(sixbar_slider_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
-   the file's inputs), their rates din[] and accelerations ddin[] (per second).
-   Returns 0 or the status code (also in out->status). */
+   the file's inputs), their rates din[] and accelerations ddin[] (per second),
+   SIXBAR_SLIDER_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
+   SIXBAR_SLIDER_STATUS_BAD_INPUT where an input is not finite. */
 int sixbar_slider_solve(const double in[], const double din[], const double ddin[], sixbar_slider_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

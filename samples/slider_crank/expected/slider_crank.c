@@ -203,6 +203,50 @@ static int run(work *w, const double in[], const double din[], const double ddin
     return w->singular ? w->singular : -w->near;
 }
 
+/* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
+static void no_outputs(slider_crank_state *out)
+{
+    out->O.x = NAN;
+    out->O.y = NAN;
+    out->O.vx = NAN;
+    out->O.vy = NAN;
+    out->O.ax = NAN;
+    out->O.ay = NAN;
+    out->A.x = NAN;
+    out->A.y = NAN;
+    out->A.vx = NAN;
+    out->A.vy = NAN;
+    out->A.ax = NAN;
+    out->A.ay = NAN;
+    out->B.x = NAN;
+    out->B.y = NAN;
+    out->B.vx = NAN;
+    out->B.vy = NAN;
+    out->B.ax = NAN;
+    out->B.ay = NAN;
+    out->S.x = NAN;
+    out->S.y = NAN;
+    out->S.vx = NAN;
+    out->S.vy = NAN;
+    out->S.ax = NAN;
+    out->S.ay = NAN;
+    out->S.s = NAN;
+    out->S.ds = NAN;
+    out->S.dds = NAN;
+    out->frame.phi = NAN;
+    out->frame.omega = NAN;
+    out->frame.alpha = NAN;
+    out->crank.phi = NAN;
+    out->crank.omega = NAN;
+    out->crank.alpha = NAN;
+    out->rod.phi = NAN;
+    out->rod.omega = NAN;
+    out->rod.alpha = NAN;
+    out->block.phi = NAN;
+    out->block.omega = NAN;
+    out->block.alpha = NAN;
+}
+
 /* Copy the records into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, slider_crank_state *out)
 {
@@ -210,45 +254,7 @@ static void publish(const work *w, int code, slider_crank_state *out)
     out->status = code;
     for (k = 0; k <= SLIDER_CRANK_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
-        out->O.x = NAN;
-        out->O.y = NAN;
-        out->O.vx = NAN;
-        out->O.vy = NAN;
-        out->O.ax = NAN;
-        out->O.ay = NAN;
-        out->A.x = NAN;
-        out->A.y = NAN;
-        out->A.vx = NAN;
-        out->A.vy = NAN;
-        out->A.ax = NAN;
-        out->A.ay = NAN;
-        out->B.x = NAN;
-        out->B.y = NAN;
-        out->B.vx = NAN;
-        out->B.vy = NAN;
-        out->B.ax = NAN;
-        out->B.ay = NAN;
-        out->S.x = NAN;
-        out->S.y = NAN;
-        out->S.vx = NAN;
-        out->S.vy = NAN;
-        out->S.ax = NAN;
-        out->S.ay = NAN;
-        out->S.s = NAN;
-        out->S.ds = NAN;
-        out->S.dds = NAN;
-        out->frame.phi = NAN;
-        out->frame.omega = NAN;
-        out->frame.alpha = NAN;
-        out->crank.phi = NAN;
-        out->crank.omega = NAN;
-        out->crank.alpha = NAN;
-        out->rod.phi = NAN;
-        out->rod.omega = NAN;
-        out->rod.alpha = NAN;
-        out->block.phi = NAN;
-        out->block.omega = NAN;
-        out->block.alpha = NAN;
+        no_outputs(out);
         return;
     }
     out->O.x = 0.0;
@@ -325,10 +331,32 @@ void slider_crank_init(slider_crank_state *out)
     memset(out, 0, sizeof *out);
 }
 
+/* Whether every number the program reads of its inputs is finite: in[], din[] and ddin[]. */
+static int finite_inputs(const double in[], const double din[], const double ddin[])
+{
+    int i;
+    for (i = 0; i < SLIDER_CRANK_N_INPUTS; i++)
+        if (!isfinite(in[i]) || !isfinite(din[i]) || !isfinite(ddin[i])) return 0;
+    return 1;
+}
+
+/* Refuse a call with an input that is not finite: every output and sigma nan. */
+static int refuse(slider_crank_state *out)
+{
+    int k;
+    out->status = SLIDER_CRANK_STATUS_BAD_INPUT;
+    for (k = 0; k <= SLIDER_CRANK_N_STEPS; k++) out->sigma[k] = NAN;
+    no_outputs(out);
+    return out->status;
+}
+
 int slider_crank_solve(const double in[], const double din[], const double ddin[], slider_crank_state *out)
 {
     work w;
-    const int code = run(&w, in, din, ddin);
+    int code;
+    if (!finite_inputs(in, din, ddin)) return refuse(out);
+    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
+    code = run(&w, in, din, ddin);
     publish(&w, code, out);
     return code;
 }

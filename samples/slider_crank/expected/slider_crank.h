@@ -6,11 +6,16 @@
 extern "C" {
 #endif
 
+/* Array lengths: in[], din[] and ddin[] of slider_crank_solve hold SLIDER_CRANK_N_INPUTS numbers,
+   col[] of slider_crank_columns SLIDER_CRANK_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define SLIDER_CRANK_N_INPUTS 1
 #define SLIDER_CRANK_N_STEPS 6
 #define SLIDER_CRANK_N_COLUMNS 40
 #define SLIDER_CRANK_ORDER 2
 #define SLIDER_CRANK_SAMPLES 361
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+   every output nan.  The other codes are listed in slider_crank.md. */
+#define SLIDER_CRANK_STATUS_BAD_INPUT 5
 
 /* Motion of a pair or point (length units, seconds). */
 typedef struct { double x, y, vx, vy, ax, ay; } slider_crank_point;
@@ -30,7 +35,7 @@ typedef struct {
     slider_crank_angle crank;
     slider_crank_angle rod;
     slider_crank_angle block;
-    int status;   /* 0, or a status code listed in slider_crank.md */
+    int status;   /* 0, a status code listed in slider_crank.md, or SLIDER_CRANK_STATUS_BAD_INPUT */
     double sigma[SLIDER_CRANK_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
 } slider_crank_state;
 
@@ -38,8 +43,9 @@ typedef struct {
 void slider_crank_init(slider_crank_state *out);
 
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
-   the file's inputs), their rates din[] and accelerations ddin[] (per second).
-   Returns 0 or the status code (also in out->status). */
+   the file's inputs), their rates din[] and accelerations ddin[] (per second),
+   SLIDER_CRANK_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
+   SLIDER_CRANK_STATUS_BAD_INPUT where an input is not finite. */
 int slider_crank_solve(const double in[], const double din[], const double ddin[], slider_crank_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

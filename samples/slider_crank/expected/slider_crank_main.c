@@ -78,6 +78,7 @@ int main(void)
         slider_crank_columns(in, &st, col);
         for (i = 0; i < SLIDER_CRANK_N_COLUMNS; i++) print_number(col[i]);
         printf("%d\n", st.status);
+        if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }
-    return 0;
+    return fflush(stdout) == 0 ? 0 : 1;
 }
