@@ -25,10 +25,10 @@ settings.load_profile("test")  # `--hypothesis-profile NAME` loads another
 
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config, log):
-    """`--dist loadgroup` (Makefile): tests of one module with the same parameters (a mechanism, a kind) are one
-    work unit on one worker, so they share the module's fixtures and caches (test_programs' built, test_accuracy's
-    sweep).  An xdist_group mark still groups as documented where xdist can read it (pytest 9.2 hides it:
-    pytest-xdist issue 1386, which is why the grouping is done here)."""
+    """`--dist loadgroup` (Makefile): tests of one module with the same parameters (a mechanism, a kind, or none)
+    are one work unit on one worker, so they share the module's fixtures and caches (test_programs' built and
+    sources, test_accuracy's sweep).  An xdist_group mark still groups as documented where xdist can read it
+    (pytest 9.2 hides it: pytest-xdist issue 1386, which is why the grouping is done here)."""
     if config.getvalue("dist") != "loadgroup":
         return None
     from xdist.scheduler import LoadGroupScheduling
@@ -37,8 +37,7 @@ def pytest_xdist_make_scheduler(config, log):
         def _split_scope(self, nodeid: str) -> str:
             scope = super()._split_scope(nodeid)  # the group of an xdist_group mark, else the nodeid
             module, _, test = nodeid.partition("::")
-            _, bracket, params = test.partition("[")
-            return f"{module}[{params}" if scope == nodeid and bracket else scope
+            return f"{module}[{test.partition('[')[2]}" if scope == nodeid else scope
 
     return ByParameters(config, log)
 
