@@ -9,7 +9,6 @@ SAMPLES := $(wildcard samples/*/*.yaml)
 STAMP := $(VENV)/.installed
 JOBS ?= auto
 PYTEST := $(PY) -m pytest -q -n $(JOBS) --dist loadgroup
-SEED ?= $(shell od -An -N4 -tu4 /dev/urandom | tr -d ' ')
 
 .PHONY: install octave demo test test-long explore lint bench regen check clean
 
@@ -41,8 +40,9 @@ test-long: install octave
 # Random examples: a failure prints its blob and this seed (`make explore SEED=N` repeats the run); keep
 # the counterexample as an @example or a regression test.
 explore: install octave
-	@echo "make explore SEED=$(SEED)"
-	$(PYTEST) -m hypothesis --hypothesis-profile=explore --hypothesis-seed=$(SEED)
+	@seed=$(SEED); seed=$${seed:-$$(od -An -N4 -tu4 /dev/urandom | tr -d ' ')}; \
+	echo "hypothesis seed $$seed: make explore SEED=$$seed repeats this run"; \
+	$(PYTEST) -m hypothesis --hypothesis-profile=explore --hypothesis-seed=$$seed
 
 lint: install
 	$(VENV)/bin/ruff check linkgen tests bench
