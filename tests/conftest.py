@@ -22,19 +22,6 @@ settings.register_profile("long", derandomize=True, **_COMMON)
 settings.register_profile("explore", derandomize=False, **_COMMON)
 settings.load_profile("test")  # `--hypothesis-profile NAME` loads another
 
-# Test mechanisms whose sweeps are mostly rows the resolver cannot solve: each such row costs 100-500 times a
-# good one (issue 17, item 7; sixbar_partial: 28 s to build, 200 s of make test's CPU), so the tests of such a
-# mechanism (a Path parameter) run in `make test-long` until rows like these are cheap.
-SLOW_MECHANISMS = {"sixbar_partial"}
-
-
-def pytest_collection_modifyitems(items):
-    for item in items:
-        params = getattr(getattr(item, "callspec", None), "params", {}).values()
-        if any(getattr(p, "stem", None) in SLOW_MECHANISMS for p in params):
-            item.add_marker(pytest.mark.long)
-
-
 @pytest.hookimpl(optionalhook=True)
 def pytest_xdist_make_scheduler(config, log):
     """`--dist loadgroup` (Makefile): tests of one module with the same parameters (a mechanism, a kind, or none)
