@@ -1,12 +1,16 @@
 # linkgen: `make demo` builds a sample, `make test` passes the tests; both install what they need.
+# Test tiers: `make test` before every commit (deterministic, a few minutes), `make test-long` the tests
+# marked long and the property tests at full counts (CI runs both), `make explore` random property tests.
 PYTHON ?= python3
 VENV ?= .venv
 PY := $(VENV)/bin/python
 LINKGEN := $(VENV)/bin/linkgen
 SAMPLES := $(wildcard samples/*/*.yaml)
 STAMP := $(VENV)/.installed
+JOBS ?= auto
+PYTEST := $(PY) -m pytest -q -n $(JOBS) --dist loadgroup
 
-.PHONY: install octave demo test lint bench regen check clean
+.PHONY: install octave demo test test-long explore lint bench regen check clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -28,7 +32,17 @@ demo: install
 	$(LINKGEN) run samples/fourbar/fourbar.yaml --samples 5
 
 test: install octave
-	$(PY) -m pytest -q
+	$(PYTEST) -m "not long" --hypothesis-profile=test
+
+test-long: install octave
+	$(PYTEST) -m "long or hypothesis" --hypothesis-profile=long
+
+# Random examples: a failure prints its blob and this seed (`make explore SEED=N` repeats the run); keep
+# the counterexample as an @example or a regression test.
+explore: install octave
+	@seed=$(SEED); seed=$${seed:-$$(od -An -N4 -tu4 /dev/urandom | tr -d ' ')}; \
+	echo "hypothesis seed $$seed: make explore SEED=$$seed repeats this run"; \
+	$(PYTEST) -m hypothesis --hypothesis-profile=explore --hypothesis-seed=$$seed
 
 lint: install
 	$(VENV)/bin/ruff check linkgen tests bench

@@ -5,8 +5,11 @@ two-link chain, at random places times a scale from 1e-6 to 1e6, some segments s
 down to 1e-12 of the others.  Lengths and offsets are only ever derived from positions,
 so every example is assembled (up to the rounding of the derived numbers).
 
-* ``Source``: the random numbers, from hypothesis (``HypothesisSource``, shrinkable) or
-  from a seeded ``random.Random`` (``RandomSource``, for the deterministic program runs).
+* ``Source``: the random numbers, from hypothesis (``HypothesisSource``, shrinkable), from
+  a seeded ``random.Random`` (``RandomSource``, for the deterministic program runs) or
+  replayed from a list (``ReplaySource``: a counterexample kept as an explicit example).
+  Every number drawn is inside the supported range (docs/mechanism-format.md): never
+  subnormal, and 0 or at least ``TINY`` of its range's bound in magnitude (``reals``).
 * Chains: ``CHAINS[name](src)`` gives a :class:`Case`, the float arguments of one runtime
   primitive (rates drawn at random: a chain has no freedom, so any rates are consistent),
   with an independent 50-digit answer (closed-form geometry in truncated Taylor arithmetic,
@@ -35,6 +38,7 @@ MP = mpmath.MPContext()
 MP.dps = 50
 SCALE_DIGITS = 6  # scales from 1e-6 to 1e6
 NEEDLE_DIGITS = 12  # short segments down to 1e-12 of the others
+TINY = 1e-30  # the supported range: a number drawn is 0 or at least this times its range's bound
 
 
 # --------------------------------------------------------------------------- worst errors
@@ -50,13 +54,24 @@ class Worst:
 WORST: dict[tuple[str, str, str], Worst] = {}
 
 
-def record(prop: str, subject: str, quantity: str, value: float, note: str = "") -> float:
+def record(prop: str, subject: str, quantity: str, value: float, note: str = "", count: int = 1) -> float:
     """Keep the largest value of (property, subject, quantity), where it was seen, and the count."""
     w = WORST.setdefault((prop, subject, quantity), Worst())
-    w.count += 1
+    w.count += count
     if value > w.value or (math.isnan(value) and not math.isnan(w.value)):
         w.value, w.note = value, note
     return value
+
+
+def rows() -> list[list]:
+    """WORST as plain rows (property, subject, quantity, value, count, note), for another process."""
+    return [[*key, w.value, w.count, w.note] for key, w in WORST.items()]
+
+
+def merge(table: list[list]) -> None:
+    """Rows of another process's WORST (an xdist worker's) into this one's."""
+    for prop, subject, quantity, value, count, note in table:
+        record(prop, subject, quantity, value, note, count)
 
 
 def summary() -> str:
@@ -111,17 +126,49 @@ class Source:
         return (p[0] + length * math.cos(a), p[1] + length * math.sin(a))
 
 
+def reals(lo: float, hi: float):
+    """The hypothesis strategy of the reals from lo to hi inside the supported range: never subnormal, and
+    a magnitude below TINY times the range's bound drawn as 0 (lengths and coordinates stay within 1e-30 ..
+    1e30 of the scale; decisions of issue 17)."""
+    from hypothesis import strategies as st
+
+    floor = TINY * max(abs(lo), abs(hi)) if lo <= 0 <= hi else 0.0
+    return st.floats(lo, hi, allow_nan=False, allow_infinity=False, allow_subnormal=False).map(
+        lambda x: x if abs(x) >= floor else 0.0)
+
+
 class HypothesisSource(Source):
+    """Numbers from hypothesis; ``drawn`` lists them in order, for a ReplaySource."""
+
     def __init__(self, draw):
         from hypothesis import strategies as st
 
-        self.draw, self.st = draw, st
+        self.draw, self.st, self.drawn = draw, st, []
 
     def real(self, lo, hi):
-        return self.draw(self.st.floats(lo, hi, allow_nan=False, allow_infinity=False))
+        self.drawn.append(self.draw(reals(lo, hi)))
+        return self.drawn[-1]
 
     def integer(self, lo, hi):
-        return self.draw(self.st.integers(lo, hi))
+        self.drawn.append(self.draw(self.st.integers(lo, hi)))
+        return self.drawn[-1]
+
+
+class ReplaySource(Source):
+    """The numbers a HypothesisSource drew, in order: a counterexample found by a property test."""
+
+    def __init__(self, numbers):
+        self.numbers = list(numbers)
+
+    def real(self, lo, hi):
+        x = self.numbers.pop(0)
+        assert isinstance(x, float) and lo <= x <= hi, (x, lo, hi)
+        return x
+
+    def integer(self, lo, hi):
+        n = self.numbers.pop(0)
+        assert isinstance(n, int) and lo <= n <= hi, (n, lo, hi)
+        return n
 
 
 class RandomSource(Source):
@@ -282,9 +329,10 @@ class Case:
     toggle: bool = False
     what: str = ""
     arm: float = 1.0  # length that turns an angle output's error into a length
+    drawn: tuple = ()  # the numbers drawn (sketches.replay makes the case again from them)
 
     def note(self) -> str:
-        return f"{self.name} {self.what} args={self.args!r}"
+        return f"{self.name} {self.what} args={self.args!r}\nreplay: sketches.replay({self.name!r}, {self.drawn!r})"
 
 
 def _rates(src: Source, s: float, w: float) -> tuple[float, float, float, float]:
@@ -741,6 +789,7 @@ def _checked(make):
         c = make(src)
         if not c.length > 0:
             raise Degenerate(f"{c.name}: every position at the origin")
+        c.drawn = tuple(getattr(src, "drawn", ()))
         return c
 
     return case
@@ -760,6 +809,11 @@ CHAINS = {
     "link_residual": link_residual_case,
 }
 CHAINS = {name: _checked(make) for name, make in CHAINS.items()}
+
+
+def replay(name: str, numbers) -> Case:
+    """The case of chain ``name`` made from the numbers a property test drew (its note prints them)."""
+    return CHAINS[name](ReplaySource(numbers))
 
 
 # --------------------------------------------------------------------------- chain residuals

@@ -673,7 +673,7 @@ def test_literal_sympy_diff_agrees_with_chain_rule(name):
 @pytest.mark.parametrize(
     ("name", "fields"),
     [
-        pytest.param("RRR_links", [("jb", "x")], marks=pytest.mark.slow),
+        ("RRR_links", [("jb", "x")]),
         ("PRR_links", [("s", "v"), ("jb", "y")]),
         ("PRP_links", [("s1", "v"), ("jb", "x")]),
         ("RPR_links", [("psi", "the"), ("s", "v"), ("jp", "x")]),

@@ -48,6 +48,8 @@ from linkgen.writer import write_all
 
 MECHANISMS = SAMPLES + sorted((ROOT / "tests" / "mechanisms").glob("*.yaml"))
 OCTAVE_ROWS = 25  # Octave is slow: its sweep is checked on fewer rows of the same ranges
+# Octave on every sample in `make test`, on the test mechanisms in `make test-long`
+OCTAVE = [pytest.param(p, id=p.stem, marks=() if p in SAMPLES else pytest.mark.long) for p in MECHANISMS]
 
 
 def _id(path: Path) -> str:
@@ -92,6 +94,7 @@ def test_c_is_clean_under_sanitizers(built):
     assert checked == plain
 
 
+@pytest.mark.parametrize("built", OCTAVE, indirect=True)
 def test_octave_agrees_with_c(built, tmp_path):
     log, _, _ = built
     small = dataclasses.replace(log, samples=OCTAVE_ROWS)

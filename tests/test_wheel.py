@@ -16,7 +16,7 @@ from linkgen.render import render_all
 ROOT = Path(__file__).resolve().parents[1]
 
 
-@pytest.mark.slow
+@pytest.mark.long
 def test_installed_wheel_builds_a_sample(tmp_path: Path):
     pytest.importorskip("hatchling")
     wheels = tmp_path / "wheels"
