@@ -13,3 +13,5 @@ MAX_VARIANTS = 8  # fallback Add-link candidates per resolver group
 GOOD_LEVER = 0.25  # a block that magnifies its frame angle's error more than fourfold ranks after the others
 PROBE_ANGLE = math.radians(5.0)  # the paper's +5 degrees for ranking Add-link candidates
 PROBE_LENGTH = 0.05  # times the length scale, for prismatic and distance inputs
+MAX_MAGNITUDE = 1e30  # the largest coordinate, range bound, speed and program input, in size (file units)
+LENGTH_SCALES = (1e-30, 1e30)  # the sketch sizes linkgen supports, in file units

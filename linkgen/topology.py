@@ -17,9 +17,9 @@ import numpy as np
 from . import exact
 from .errors import InputError, and_list
 from .model import Input, Link, Mechanism
+from .policy import LENGTH_SCALES
 
 RANK_TOLERANCE = 1e-9  # relative, as the format specifies
-LENGTH_SCALES = (1e-30, 1e30)  # the sketch sizes linkgen supports, in file units (docs/mechanism-format.md)
 OFF_LINE = 1e-3  # how far (relative to the length scale) a pair in line is moved to see if it causes a rank drop
 
 

@@ -16,10 +16,10 @@ from .errors import InputError, and_list
 from .loader import IDENTIFIER, Mapping, Node, Reader, Sequence, describe, load
 from .model import Input, Joint, Link, Mechanism, Point, Prismatic, Where
 from .names import entity_name_problem, mechanism_name_problem, spellings
+from .policy import MAX_MAGNITUDE
 
 FORMAT_VERSION = 1
 MAX_SAMPLES = 10_000_000
-MAX_MAGNITUDE = 1e30  # largest coordinate, range bound and speed, in file units (docs/mechanism-format.md)
 # Bidirectional-text controls: no title or unit label may hold them (nor a control character or line break),
 # which would make a line of a generated file read other than it compiles.
 _BIDI = frozenset("\u061c\u200e\u200f\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069")

@@ -152,10 +152,11 @@ def host_source(log: StepLog, reads: int) -> str:
     """A program that calls NAME_solve as a host project would, in the common subset of C99 and C++.
 
     It writes the sweep of NAME_main.c (same CSV).  Half way it makes the calls a caller must not
-    make: nan, inf and -inf in each entry of in, din and ddin.  In the first `reads` arrays (those
-    the program's order reads) each must be refused with NAME_STATUS_BAD_INPUT, every output and
-    sigma nan; the state keeps its warm start, so the rest of the sweep is still NAME_main.c's.  In
-    the others the value is not read: the call gives what the finite one gives.  Exits 2 on a
+    make: nan, inf, -inf, 1e300 and -1.5e30 (out of the supported range) in each entry of in, din
+    and ddin.  In the first `reads` arrays (those the program's order reads) each must be refused
+    with NAME_STATUS_BAD_INPUT, every output and sigma nan; the state keeps its warm start, so the
+    rest of the sweep is still NAME_main.c's.  In the others the value is not read: the call gives
+    what the finite one gives.  Exits 2 on a
     failed check, naming it on stderr.
     """
     name, upper = log.name, log.name.upper()
@@ -204,7 +205,7 @@ static int bad_call(double rows[3][{upper}_N_INPUTS], int a, int i, double value
 
 int main(void)
 {{
-    static const double values[3] = {{ NAN, INFINITY, -INFINITY }};
+    static const double values[5] = {{ NAN, INFINITY, -INFINITY, 1e300, -1.5e30 }};
     {name}_state st;
     double rows[3][{upper}_N_INPUTS], col[{upper}_N_COLUMNS];
     int k, i, a, v;
@@ -219,7 +220,7 @@ int main(void)
         if (k == {upper}_SAMPLES / 2)
             for (a = 0; a < 3; a++)
                 for (i = 0; i < {upper}_N_INPUTS; i++)
-                    for (v = 0; v < 3; v++)
+                    for (v = 0; v < 5; v++)
                         if (!bad_call(rows, a, i, values[v], &st)) {{
                             fprintf(stderr, "wrong answer: array %d, entry %d, value %g\\n", a, i, values[v]);
                             return 2;

@@ -264,8 +264,14 @@ def rrr_links() -> Primitive:
     h = b.let("h", area4 * iq / 2)
     a = b.let("a", (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2)
     a2_ = b.let("a2", (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2)
+    # At a toggle (k <= 0: the circles touch, or miss by rounding) jb lies on the line: halfway
+    # between the circles' nearest points, as a is at an exact toggle.  a's division by q would
+    # magnify the miss there by l/q (a folded chain with a needle: 4 eps L off its circles).
+    flat = b.let("flat", select(q >= hi, (l1.v + (q - l2.v)) / 2,
+                                select(l1.v >= l2.v, (l1.v + (q + l2.v)) / 2, (q - (l1.v + l2.v)) / 2)))
+    at = b.let("at", select(k > 0, a, flat))
     hn = b.let("hn", minv * h)
-    e1 = (b.let("e1x", a * u[0] - hn * u[1]), b.let("e1y", a * u[1] + hn * u[0]))
+    e1 = (b.let("e1x", at * u[0] - hn * u[1]), b.let("e1y", at * u[1] + hn * u[0]))
     sigma = b.let("sigma", select(fail, 0, fmin(area4 / (2 * l1.v * l2.v), 1)))
     # derivatives: (jb - ji).(jb' - ji') = li li', solved in the (u, n) frame:
     #   a bu + hn bn = r1,  -a2 bu + hn bn = r2   (determinant hn q)

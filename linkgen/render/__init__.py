@@ -13,7 +13,7 @@ from .. import __version__
 from ..errors import and_list
 from ..evaluate import STEP_ANGLE, STEP_LENGTH, block_start, path_slack
 from ..ljmatrix import states
-from ..policy import GOOD_LEVER
+from ..policy import GOOD_LEVER, MAX_MAGNITUDE
 from ..primitives import PRIMITIVES
 from ..primitives.printers import c_function, octave_function, python_function
 from ..steplog import StepLog
@@ -45,6 +45,7 @@ def make_env() -> jinja2.Environment:
     env.filters["capitalize_first"] = lambda text: text[:1].upper() + text[1:]
     env.globals["zip"] = zip
     env.globals["and_list"] = and_list
+    env.globals["max_input"] = MAX_MAGNITUDE
     return env
 
 

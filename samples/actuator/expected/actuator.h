@@ -13,7 +13,7 @@ extern "C" {
 #define ACTUATOR_N_COLUMNS 64
 #define ACTUATOR_ORDER 2
 #define ACTUATOR_SAMPLES 301
-/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in actuator.md. */
 #define ACTUATOR_STATUS_BAD_INPUT 5
 
@@ -50,7 +50,7 @@ void actuator_init(actuator_state *out);
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
    the file's inputs), their rates din[] and accelerations ddin[] (per second),
    ACTUATOR_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
-   ACTUATOR_STATUS_BAD_INPUT where an input is not finite. */
+   ACTUATOR_STATUS_BAD_INPUT where an input is not finite or larger than 1e+30. */
 int actuator_solve(const double in[], const double din[], const double ddin[], actuator_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -13,7 +13,7 @@ extern "C" {
 #define CROSS_SLOT_N_COLUMNS 43
 #define CROSS_SLOT_ORDER 2
 #define CROSS_SLOT_SAMPLES 201
-/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in cross_slot.md. */
 #define CROSS_SLOT_STATUS_BAD_INPUT 5
 
@@ -45,7 +45,7 @@ void cross_slot_init(cross_slot_state *out);
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
    the file's inputs), their rates din[] and accelerations ddin[] (per second),
    CROSS_SLOT_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
-   CROSS_SLOT_STATUS_BAD_INPUT where an input is not finite. */
+   CROSS_SLOT_STATUS_BAD_INPUT where an input is not finite or larger than 1e+30. */
 int cross_slot_solve(const double in[], const double din[], const double ddin[], cross_slot_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

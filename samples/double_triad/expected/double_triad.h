@@ -13,7 +13,7 @@ extern "C" {
 #define DOUBLE_TRIAD_N_COLUMNS 103
 #define DOUBLE_TRIAD_ORDER 2
 #define DOUBLE_TRIAD_SAMPLES 361
-/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan, the warm start kept.  The other codes are listed in double_triad.md. */
 #define DOUBLE_TRIAD_STATUS_BAD_INPUT 5
 #define DOUBLE_TRIAD_N_GROUPS 2
@@ -69,7 +69,7 @@ void double_triad_init(double_triad_state *out);
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
    the file's inputs), their rates din[] and accelerations ddin[] (per second),
    DOUBLE_TRIAD_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
-   DOUBLE_TRIAD_STATUS_BAD_INPUT where an input is not finite. */
+   DOUBLE_TRIAD_STATUS_BAD_INPUT where an input is not finite or larger than 1e+30. */
 int double_triad_solve(const double in[], const double din[], const double ddin[], double_triad_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

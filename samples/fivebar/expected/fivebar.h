@@ -13,7 +13,7 @@ extern "C" {
 #define FIVEBAR_N_COLUMNS 47
 #define FIVEBAR_ORDER 2
 #define FIVEBAR_SAMPLES 361
-/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in fivebar.md. */
 #define FIVEBAR_STATUS_BAD_INPUT 5
 
@@ -47,7 +47,7 @@ void fivebar_init(fivebar_state *out);
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
    the file's inputs), their rates din[] and accelerations ddin[] (per second),
    FIVEBAR_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
-   FIVEBAR_STATUS_BAD_INPUT where an input is not finite. */
+   FIVEBAR_STATUS_BAD_INPUT where an input is not finite or larger than 1e+30. */
 int fivebar_solve(const double in[], const double din[], const double ddin[], fivebar_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

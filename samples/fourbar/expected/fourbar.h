@@ -13,7 +13,7 @@ extern "C" {
 #define FOURBAR_N_COLUMNS 43
 #define FOURBAR_ORDER 2
 #define FOURBAR_SAMPLES 361
-/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in fourbar.md. */
 #define FOURBAR_STATUS_BAD_INPUT 5
 
@@ -46,7 +46,7 @@ void fourbar_init(fourbar_state *out);
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
    the file's inputs), their rates din[] and accelerations ddin[] (per second),
    FOURBAR_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
-   FOURBAR_STATUS_BAD_INPUT where an input is not finite. */
+   FOURBAR_STATUS_BAD_INPUT where an input is not finite or larger than 1e+30. */
 int fourbar_solve(const double in[], const double din[], const double ddin[], fourbar_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

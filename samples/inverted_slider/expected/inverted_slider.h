@@ -13,7 +13,7 @@ extern "C" {
 #define INVERTED_SLIDER_N_COLUMNS 46
 #define INVERTED_SLIDER_ORDER 2
 #define INVERTED_SLIDER_SAMPLES 361
-/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in inverted_slider.md. */
 #define INVERTED_SLIDER_STATUS_BAD_INPUT 5
 
@@ -46,7 +46,7 @@ void inverted_slider_init(inverted_slider_state *out);
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
    the file's inputs), their rates din[] and accelerations ddin[] (per second),
    INVERTED_SLIDER_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
-   INVERTED_SLIDER_STATUS_BAD_INPUT where an input is not finite. */
+   INVERTED_SLIDER_STATUS_BAD_INPUT where an input is not finite or larger than 1e+30. */
 int inverted_slider_solve(const double in[], const double din[], const double ddin[], inverted_slider_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -8,7 +8,8 @@
         step).
 
         inputs, d_inputs and dd_inputs hold N_INPUTS numbers each; another count
-        raises ValueError, and so does a number that is not finite in
+        raises ValueError, and so does a number that is not finite or larger than
+        1e+30 in size in
         inputs, d_inputs or dd_inputs.
     python inverted_slider.py
         writes the sweep over the inputs' ranges as CSV to standard output (and stops
@@ -18,7 +19,7 @@
 import math
 import os
 import sys
-from math import atan2, cos, isfinite, sin, sqrt
+from math import atan2, cos, sin, sqrt
 
 EPS = sys.float_info.epsilon
 NAN = math.nan
@@ -294,7 +295,8 @@ def _publish(w, code, order):
 
 
 def _check(inputs, d_inputs, dd_inputs):
-    """Refuse a call solve() cannot answer: a count other than N_INPUTS, or a number it reads that is not finite."""
+    """Refuse a call solve() cannot answer: a count other than N_INPUTS, or a number it reads that is not finite
+    or larger than 1e+30 in size (the supported range)."""
     try:
         counts = len(inputs) == len(d_inputs) == len(dd_inputs) == N_INPUTS
     except TypeError:
@@ -307,14 +309,14 @@ def _check(inputs, d_inputs, dd_inputs):
             if len(values) != N_INPUTS:
                 raise ValueError(f"inverted_slider.solve: expected {N_INPUTS} {what}, got {len(values)}")
     for k, x in enumerate(inputs):
-        if not isfinite(x):
-            raise ValueError(f"inverted_slider.solve: inputs[{k}] is not finite: {x!r}")
+        if not abs(x) <= 1e+30:
+            raise ValueError(f"inverted_slider.solve: inputs[{k}] is not finite or larger than 1e+30: {x!r}")
     for k, x in enumerate(d_inputs):
-        if not isfinite(x):
-            raise ValueError(f"inverted_slider.solve: d_inputs[{k}] is not finite: {x!r}")
+        if not abs(x) <= 1e+30:
+            raise ValueError(f"inverted_slider.solve: d_inputs[{k}] is not finite or larger than 1e+30: {x!r}")
     for k, x in enumerate(dd_inputs):
-        if not isfinite(x):
-            raise ValueError(f"inverted_slider.solve: dd_inputs[{k}] is not finite: {x!r}")
+        if not abs(x) <= 1e+30:
+            raise ValueError(f"inverted_slider.solve: dd_inputs[{k}] is not finite or larger than 1e+30: {x!r}")
 
 
 def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):

@@ -96,9 +96,11 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
     const double h = area4 * iq / 2;
     const double a = (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2;
     const double a2 = (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2;
+    const double flat = q >= hi ? (l1.v + (q - l2.v)) / 2 : l1.v >= l2.v ? (l1.v + (q + l2.v)) / 2 : (q - (l1.v + l2.v)) / 2;
+    const double at = k > 0 ? a : flat;
     const double hn = minv * h;
-    const double e1x = a * ux - hn * uy;
-    const double e1y = a * uy + hn * ux;
+    const double e1x = at * ux - hn * uy;
+    const double e1y = at * uy + hn * ux;
     const double sigma = fail ? 0 : fmin(area4 / (2 * l1.v * l2.v), 1);
     const double e2x = -a2 * ux - hn * uy;
     const double e2y = -a2 * uy + hn * ux;
@@ -471,16 +473,17 @@ void jansen_init(jansen_state *out)
     memset(out, 0, sizeof *out);
 }
 
-/* Whether every number the program reads of its inputs is finite: in[], din[] and ddin[]. */
+/* Whether every number the program reads of its inputs is finite and at most 1e+30 in size (the
+   supported range): in[], din[] and ddin[]. */
 static int finite_inputs(const double in[], const double din[], const double ddin[])
 {
     int i;
     for (i = 0; i < JANSEN_N_INPUTS; i++)
-        if (!isfinite(in[i]) || !isfinite(din[i]) || !isfinite(ddin[i])) return 0;
+        if (!(fabs(in[i]) <= 1e+30) || !(fabs(din[i]) <= 1e+30) || !(fabs(ddin[i]) <= 1e+30)) return 0;
     return 1;
 }
 
-/* Refuse a call with an input that is not finite: every output and sigma nan. */
+/* Refuse a call with an input that is not finite or too large: every output and sigma nan. */
 static int refuse(jansen_state *out)
 {
     int k;

@@ -13,7 +13,7 @@ extern "C" {
 #define JANSEN_N_COLUMNS 73
 #define JANSEN_ORDER 2
 #define JANSEN_SAMPLES 361
-/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in jansen.md. */
 #define JANSEN_STATUS_BAD_INPUT 5
 
@@ -53,7 +53,7 @@ void jansen_init(jansen_state *out);
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
    the file's inputs), their rates din[] and accelerations ddin[] (per second),
    JANSEN_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
-   JANSEN_STATUS_BAD_INPUT where an input is not finite. */
+   JANSEN_STATUS_BAD_INPUT where an input is not finite or larger than 1e+30. */
 int jansen_solve(const double in[], const double din[], const double ddin[], jansen_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -13,7 +13,7 @@ extern "C" {
 #define JANSEN_FOOT_N_COLUMNS 7
 #define JANSEN_FOOT_ORDER 1
 #define JANSEN_FOOT_SAMPLES 361
-/* Returned when a number in in[] or din[] is not finite (nan or inf); ddin[] is not read:
+/* Returned when a number in in[] or din[] is not finite (nan or inf) or larger than 1e+30 in size; ddin[] is not read:
    every output nan.  The other codes are listed in jansen_foot.md. */
 #define JANSEN_FOOT_STATUS_BAD_INPUT 5
 
@@ -39,7 +39,7 @@ void jansen_foot_init(jansen_foot_state *out);
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
    the file's inputs), their rates din[] and accelerations ddin[] (per second),
    JANSEN_FOOT_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
-   JANSEN_FOOT_STATUS_BAD_INPUT where an input is not finite. */
+   JANSEN_FOOT_STATUS_BAD_INPUT where an input is not finite or larger than 1e+30. */
 int jansen_foot_solve(const double in[], const double din[], const double ddin[], jansen_foot_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -351,16 +351,17 @@ void scotch_yoke_init(scotch_yoke_state *out)
     memset(out, 0, sizeof *out);
 }
 
-/* Whether every number the program reads of its inputs is finite: in[], din[] and ddin[]. */
+/* Whether every number the program reads of its inputs is finite and at most 1e+30 in size (the
+   supported range): in[], din[] and ddin[]. */
 static int finite_inputs(const double in[], const double din[], const double ddin[])
 {
     int i;
     for (i = 0; i < SCOTCH_YOKE_N_INPUTS; i++)
-        if (!isfinite(in[i]) || !isfinite(din[i]) || !isfinite(ddin[i])) return 0;
+        if (!(fabs(in[i]) <= 1e+30) || !(fabs(din[i]) <= 1e+30) || !(fabs(ddin[i]) <= 1e+30)) return 0;
     return 1;
 }
 
-/* Refuse a call with an input that is not finite: every output and sigma nan. */
+/* Refuse a call with an input that is not finite or too large: every output and sigma nan. */
 static int refuse(scotch_yoke_state *out)
 {
     int k;

@@ -13,7 +13,7 @@ extern "C" {
 #define SCOTCH_YOKE_N_COLUMNS 43
 #define SCOTCH_YOKE_ORDER 2
 #define SCOTCH_YOKE_SAMPLES 361
-/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in scotch_yoke.md. */
 #define SCOTCH_YOKE_STATUS_BAD_INPUT 5
 
@@ -45,7 +45,7 @@ void scotch_yoke_init(scotch_yoke_state *out);
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
    the file's inputs), their rates din[] and accelerations ddin[] (per second),
    SCOTCH_YOKE_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
-   SCOTCH_YOKE_STATUS_BAD_INPUT where an input is not finite. */
+   SCOTCH_YOKE_STATUS_BAD_INPUT where an input is not finite or larger than 1e+30. */
 int scotch_yoke_solve(const double in[], const double din[], const double ddin[], scotch_yoke_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

@@ -13,7 +13,7 @@ extern "C" {
 #define SIXBAR_FIG14_N_COLUMNS 61
 #define SIXBAR_FIG14_ORDER 2
 #define SIXBAR_FIG14_SAMPLES 361
-/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan, the warm start kept.  The other codes are listed in sixbar_fig14.md. */
 #define SIXBAR_FIG14_STATUS_BAD_INPUT 5
 #define SIXBAR_FIG14_N_GROUPS 1
@@ -60,7 +60,7 @@ void sixbar_fig14_init(sixbar_fig14_state *out);
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
    the file's inputs), their rates din[] and accelerations ddin[] (per second),
    SIXBAR_FIG14_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
-   SIXBAR_FIG14_STATUS_BAD_INPUT where an input is not finite. */
+   SIXBAR_FIG14_STATUS_BAD_INPUT where an input is not finite or larger than 1e+30. */
 int sixbar_fig14_solve(const double in[], const double din[], const double ddin[], sixbar_fig14_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

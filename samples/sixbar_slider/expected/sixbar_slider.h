@@ -13,7 +13,7 @@ extern "C" {
 #define SIXBAR_SLIDER_N_COLUMNS 19
 #define SIXBAR_SLIDER_ORDER 2
 #define SIXBAR_SLIDER_SAMPLES 361
-/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in sixbar_slider.md. */
 #define SIXBAR_SLIDER_STATUS_BAD_INPUT 5
 
@@ -40,7 +40,7 @@ void sixbar_slider_init(sixbar_slider_state *out);
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
    the file's inputs), their rates din[] and accelerations ddin[] (per second),
    SIXBAR_SLIDER_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
-   SIXBAR_SLIDER_STATUS_BAD_INPUT where an input is not finite. */
+   SIXBAR_SLIDER_STATUS_BAD_INPUT where an input is not finite or larger than 1e+30. */
 int sixbar_slider_solve(const double in[], const double din[], const double ddin[], sixbar_slider_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */

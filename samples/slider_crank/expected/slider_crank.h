@@ -13,7 +13,7 @@ extern "C" {
 #define SLIDER_CRANK_N_COLUMNS 40
 #define SLIDER_CRANK_ORDER 2
 #define SLIDER_CRANK_SAMPLES 361
-/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf):
+/* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in slider_crank.md. */
 #define SLIDER_CRANK_STATUS_BAD_INPUT 5
 
@@ -45,7 +45,7 @@ void slider_crank_init(slider_crank_state *out);
 /* Solve the mechanism at inputs in[] (radians or length units, in the order of
    the file's inputs), their rates din[] and accelerations ddin[] (per second),
    SLIDER_CRANK_N_INPUTS numbers each.  Returns 0 or the status code (also in out->status);
-   SLIDER_CRANK_STATUS_BAD_INPUT where an input is not finite. */
+   SLIDER_CRANK_STATUS_BAD_INPUT where an input is not finite or larger than 1e+30. */
 int slider_crank_solve(const double in[], const double din[], const double ddin[], slider_crank_state *out);
 
 /* The CSV row of a solved state: inputs first, then the outputs, in column order. */
