@@ -10,7 +10,7 @@ STAMP := $(VENV)/.installed
 JOBS ?= auto
 PYTEST := $(PY) -m pytest -q -n $(JOBS) --dist loadgroup
 
-.PHONY: install octave demo test test-long explore lint bench regen check clean
+.PHONY: install tools demo test test-long explore lint bench regen check clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -20,26 +20,35 @@ $(STAMP): pyproject.toml
 
 install: $(STAMP)
 
-# GNU Octave runs the generated MATLAB/Octave programs in the tests.
-octave:
-	@command -v octave-cli >/dev/null 2>&1 || { \
+# The tools the tests run the generated programs with, from apt where missing: GNU Octave, clang
+# and clang's sanitizer runtime (gcc and g++ come with the machine).
+tools:
+	@missing=""; \
+	command -v octave-cli >/dev/null 2>&1 || missing="$$missing octave"; \
+	command -v clang >/dev/null 2>&1 || missing="$$missing clang"; \
+	if [ -n "$$missing" ]; then \
 	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
-	  $$SUDO apt-get update -qq && $$SUDO apt-get install -y -qq --no-install-recommends octave >/dev/null; }
+	  $$SUDO apt-get update -qq && $$SUDO apt-get install -y -qq --no-install-recommends $$missing >/dev/null; \
+	fi; \
+	rt=libclang-rt-$$(clang -dumpversion | cut -d. -f1)-dev; \
+	dpkg -s $$rt >/dev/null 2>&1 || { \
+	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
+	  $$SUDO apt-get install -y -qq --no-install-recommends $$rt >/dev/null; }
 
 demo: install
 	$(LINKGEN) build samples/fourbar/fourbar.yaml -o build/fourbar
 	$(LINKGEN) procedure samples/fourbar/fourbar.yaml
 	$(LINKGEN) run samples/fourbar/fourbar.yaml --samples 5
 
-test: install octave
+test: install tools
 	$(PYTEST) -m "not long" --hypothesis-profile=test
 
-test-long: install octave
+test-long: install tools
 	$(PYTEST) -m "long or hypothesis" --hypothesis-profile=long
 
 # Random examples: a failure prints its blob and this seed (`make explore SEED=N` repeats the run); keep
 # the counterexample as an @example or a regression test.
-explore: install octave
+explore: install tools
 	@seed=$(SEED); seed=$${seed:-$$(od -An -N4 -tu4 /dev/urandom | tr -d ' ')}; \
 	echo "hypothesis seed $$seed: make explore SEED=$$seed repeats this run"; \
 	$(PYTEST) -m hypothesis --hypothesis-profile=explore --hypothesis-seed=$$seed
