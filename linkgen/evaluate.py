@@ -16,13 +16,12 @@ from importlib import resources
 
 import numpy as np
 
+from . import status
 from .primitives import PRIMITIVES, numpy_backend, python_backend
 from .primitives.dsl import record_fields
 from .steplog import Reach, ResolverGroup, Step, StepLog, Variable, held
 
-FAIL, NOT_CONVERGED, SINGULAR, NEAR = 1, 2, 3, 4
-STEP_ANGLE = 0.1  # continuation: the largest step of an angle input (radians)
-STEP_LENGTH = 0.05  # ... and of a length input, times the length scale
+FAIL, NOT_CONVERGED, SINGULAR, NEAR = status.CANNOT_CLOSE, status.NOT_CONVERGED, status.SINGULAR, status.NEAR_SINGULAR
 
 
 def _record(kind: str, order: int, value: float, rate: float = 0.0, acc: float = 0.0, y: float = 0.0) -> tuple:
@@ -130,11 +129,11 @@ class Codes:
         self.singular = np.zeros(rows, dtype=int)
         self.near = np.zeros(rows, dtype=int)
 
-    def add(self, number: int, status) -> None:
-        st = np.asarray(status)
+    def add(self, number: int, reported) -> None:
+        st = np.asarray(reported)
         for target, codes in ((self.fail, (FAIL, NOT_CONVERGED)), (self.singular, (SINGULAR,)), (self.near, (NEAR,))):
             hit = np.isin(st, codes) & (target == 0)
-            target[hit] = (10 * number + st * np.ones_like(target))[hit]
+            target[hit] = np.abs(status.code(number, st * np.ones_like(target)))[hit]
 
     def status(self) -> np.ndarray:
         return np.where(self.fail > 0, self.fail,
@@ -262,19 +261,6 @@ def _block_state(env: dict, pos: dict[str, str], block: ResolverGroup, start: li
     return a + [float(turn)], ad + [0.0]
 
 
-def path_slack(log: StepLog) -> float:
-    """How far a solution may sit off the predicted path beyond a tenth of the predicted
-    move, relative to the length scale: a thousand times the resolver's tolerance (a
-    repeated input moves nothing)."""
-    return 1e3 * log.groups[0].tolerance
-
-
-def block_start(block: ResolverGroup) -> list[float]:
-    """A block's state in the sketch: Add-link lengths, its chains' branches, then its
-    orientation (0: not known until a block solves; see the runtime's on_path)."""
-    return [*block.lengths, *(float(b.sketch) for b in block.branches), 0.0]
-
-
 class RowSolver:
     """The generated programs' solve(): one row at a time, with warm starts.
 
@@ -293,13 +279,13 @@ class RowSolver:
         self.blocks = [b for g in log.groups for b in (g, *g.variants)]
         self.warm = None  # (inputs, rates, block states, their rates, used variants)
         self.sketch_in = tuple(i.sketch for i in log.inputs)
-        self.sketch_a = [block_start(b) for b in self.blocks]
-        self.halvings = max(g.max_halvings for g in log.groups)
+        self.sketch_a = [b.start() for b in self.blocks]
+        self.halvings = log.policy.max_halvings
         self.sizes = [len(b.add_links) for b in self.blocks]
-        self.slack = path_slack(log) * log.length_scale
-        self.reach = log.groups[0].max_move * log.length_scale
+        self.slack = log.policy.path_slack * log.length_scale
+        self.reach = log.policy.max_move * log.length_scale
         self.periodic = [i.kind == "revolute" for i in log.inputs]
-        self.limits = [STEP_ANGLE if p else STEP_LENGTH * log.length_scale for p in self.periodic]
+        self.limits = list(log.step_limits())
         self.low = math.nan if log.reach is None or log.reach.low is None else log.reach.low
 
     def run(self, values, rates, accs, order: int, start: list, prefer: dict) -> Pass:
@@ -315,7 +301,7 @@ class RowSolver:
             side = int(reach_side(self.log.reach, np.array([values[0]]))[0])
             if side:  # past a limit position: fails at once
                 code = self.log.reach.codes()[side > 0]
-                out.report[code // 10] = (FAIL, math.nan)
+                out.report[status.step(code)] = (FAIL, math.nan)
                 return out
         groups = {g.step: g for g in self.log.groups}
         inside = {n for b in self.blocks for n in b.steps}
@@ -334,7 +320,7 @@ class RowSolver:
 
     def resolve(self, g: ResolverGroup, out: Pass, order: int, start: list, prefer: int) -> bool:
         """The group's blocks, the preferred one first: the first that converges with its chains
-        conditioned at least ``g.min_chain_sigma`` is taken, else the best conditioned one that
+        conditioned at least the policy's ``min_chain_sigma`` is taken, else the best conditioned one that
         converges (a later one only when more than twice as well conditioned); then every
         block's state is read off the solved pairs."""
         first = self.blocks.index(g)
@@ -363,7 +349,7 @@ class RowSolver:
             solved = attempt(k)
             if solved is None:
                 continue
-            if solved[0] < g.min_chain_sigma:
+            if solved[0] < self.log.policy.min_chain_sigma:
                 if best is None or solved[0] > 2 * best[0]:
                     best = (solved[0], k)
                 continue
@@ -403,8 +389,9 @@ class RowSolver:
             return (1 if bad else 0), [env[f] for f in g.residuals]
 
         scale = self.log.length_scale
-        ok, a, its, jac = self.ns["newton"](group, list(a0[:n]), g.tolerance * scale, g.max_iterations,
-                                            g.max_move * scale)
+        p = self.log.policy
+        ok, a, its, jac = self.ns["newton"](group, list(a0[:n]), p.tolerance * scale, p.max_iterations,
+                                            p.max_move * scale)
         out.iterations[g.number] = its
         if not ok:
             return None
@@ -418,7 +405,7 @@ class RowSolver:
             for name in list(g.writes) + list(g.add_links) + list(reads):
                 env[name] = env[name][: width.get(self.kinds[name], 1) * (order + 1)]
             out.report.update(last)
-            return (SINGULAR if sigma < 1e-7 else NEAR if sigma < 1e-3 else 0, sigma), turn
+            return (SINGULAR if sigma < p.singular else NEAR if sigma < p.near_singular else 0, sigma), turn
 
         return worst, finish
 

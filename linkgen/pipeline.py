@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-from . import __version__
+from . import __version__, status
 from .columns import plan
 from .errors import InputError, and_list
 from .extraction import Procedure, extract
 from .model import Mechanism
+from .policy import POLICY
 from .prune import prune
 from .singular import change_points, conditioning, reach_interval
 from .steplog import InputInfo, LinkInfo, PairInfo, StatusCode, StepLog
@@ -14,8 +15,11 @@ from .topology import Topology, analyse
 from .validate import read_mechanism
 
 
-def _status_codes(proc: Procedure) -> tuple[StatusCode, ...]:
-    out = []
+def _status_codes(name: str, proc: Procedure) -> tuple[StatusCode, ...]:
+    out = [StatusCode(status.code(0, status.BAD_INPUT), 0,
+                      f"step 0: an input is not finite (nan or inf) or larger than {POLICY.max_input!r} in size; "
+                      f"C only: `{name}_solve` returns `{name.upper()}_STATUS_BAD_INPUT`, Python and MATLAB refuse "
+                      "the call with an error")]
     for s in proc.steps:
         if not s.fails:
             continue
@@ -30,8 +34,7 @@ def _status_codes(proc: Procedure) -> tuple[StatusCode, ...]:
             reasons = {1: "the chain cannot close", 3: "singular position (toggle)",
                        4: "near a singular position"}
         for r, meaning in reasons.items():
-            code = 10 * s.number + r
-            out.append(StatusCode(-code if r == 4 else code, s.number, f"step {s.number} ({s.target}): {meaning}"))
+            out.append(StatusCode(status.code(s.number, r), s.number, f"step {s.number} ({s.target}): {meaning}"))
     return tuple(out)
 
 
@@ -69,7 +72,7 @@ def steplog(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = N
         topo.grubler, topo.mobility, topo.redundant, order, m.samples, pairs, links, inputs, proc.variables, proc.steps,
         proc.lj, proc.add_links, proc.residuals, proc.groups,
         plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars),
-        _status_codes(proc), tuple(runtime), outputs=tuple(outputs),
+        _status_codes(m.name, proc), tuple(runtime), POLICY, outputs=tuple(outputs),
     )
 
 

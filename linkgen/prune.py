@@ -58,7 +58,7 @@ def prune(log: StepLog) -> StepLog:
         add_links=tuple(a for a in log.add_links if a.step in numbers),
         residuals=tuple(r for r in log.residuals if r.step in numbers),
         groups=tuple(g for g in log.groups if g.number in kept_groups),
-        status_codes=tuple(c for c in log.status_codes if c.step in numbers),
+        status_codes=tuple(c for c in log.status_codes if not c.step or c.step in numbers),
         runtime=tuple(sorted(runtime)),
         omitted=omitted,
     )

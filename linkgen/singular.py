@@ -21,7 +21,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .evaluate import FAIL, NOT_CONVERGED, Result, RowSolver, evaluate, reach_side
+from . import status
+from .evaluate import Result, RowSolver, evaluate, reach_side
 from .primitives import PRIMITIVES
 from .steplog import Conditioning, Reach, Singular, StatusCode, Step, StepLog
 
@@ -87,8 +88,7 @@ def margin(step: Step, result: Result) -> np.ndarray | None:
 def _closes(result: Result, step: int) -> np.ndarray:
     """Rows where the procedure gets past this step."""
     st = result.status
-    failed = (st > 0) & np.isin(st % 10, (FAIL, NOT_CONVERGED)) & (st // 10 <= step)
-    return ~failed
+    return ~(status.failed(st) & (status.step(st) <= step))
 
 
 def _zoom_min(log: StepLog, lo: float, hi: float, value, warm=None) -> tuple[float, float]:
@@ -206,7 +206,7 @@ def _gaps(log: StepLog, span: StepLog, grid: np.ndarray, periodic: bool) -> list
     st = result.status
     margins = {s.number: margin(s, result) for s in span.steps}
     two = [number for number, m in margins.items() if m is not None]
-    fails = (st > 0) & np.isin(st % 10, (FAIL, NOT_CONVERGED)) & np.isin(st // 10, two)
+    fails = status.failed(st) & np.isin(status.step(st), two)
     n = len(grid) - 1 if periodic else len(grid)  # a full turn: the last row is the first
     first, width = span.inputs[0].start, span.inputs[0].stop - span.inputs[0].start
 
@@ -214,7 +214,7 @@ def _gaps(log: StepLog, span: StepLog, grid: np.ndarray, periodic: bool) -> list
         return float(grid[j % n] + j // n)
 
     def edge(good: int, bad: int) -> float:  # the last position from row good towards row bad that closes
-        return _zoom_edge(span, lam(good), lam(bad), int(st[bad % n] // 10), 0.0)[0]
+        return _zoom_edge(span, lam(good), lam(bad), int(status.step(st[bad % n])), 0.0)[0]
 
     out = []
     for k in range(n):
@@ -229,7 +229,7 @@ def _gaps(log: StepLog, span: StepLog, grid: np.ndarray, periodic: bool) -> list
             middle = a + (b - a) / 2
         else:
             middle = lam(k) if opens else lam(end)
-        out.append((first + middle * width, int(st[k] // 10)))
+        out.append((first + middle * width, int(status.step(st[k]))))
     for s in span.steps:
         m = margins[s.number]
         if m is None:
@@ -254,10 +254,10 @@ def reach_interval(log: StepLog) -> StepLog:
     codes = list(log.status_codes)
     for step in {found.low_step, found.high_step} - {0}:
         if log.step(step).action == "resolve":  # a resolver's limit position: its own reason 1
-            codes.append(StatusCode(10 * step + 1, step,
+            codes.append(StatusCode(status.code(step, status.CANNOT_CLOSE), step,
                                     f"step {step} ({log.step(step).target}): cannot assemble past a limit position"))
     return replace(log, reach=found, runtime=tuple(sorted(set(log.runtime) | {"reach_at"})),
-                   status_codes=tuple(sorted(codes, key=lambda c: (c.step, abs(c.code) % 10))))
+                   status_codes=tuple(sorted(codes, key=lambda c: (c.step, status.reason(c.code)))))
 
 
 def _closed_form_reach(log: StepLog) -> Reach | None:

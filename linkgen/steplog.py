@@ -11,6 +11,8 @@ import functools
 import json
 from dataclasses import dataclass, fields
 
+from . import status
+from .policy import Policy
 from .primitives.dsl import record_fields
 
 
@@ -125,24 +127,22 @@ class ResolverGroup:
 
     number: int
     step: int  # the resolve step
-    strategy: str  # "newton-addlink"
     add_links: tuple[str, ...]
     residuals: tuple[str, ...]
     steps: tuple[int, ...]  # steps iterated, in order
     reads: tuple[str, ...]  # variables computed before the group that it reads
     writes: tuple[str, ...]  # variables the group computes
-    tolerance: float  # relative to the length scale
-    max_iterations: int
-    max_halvings: int  # continuation: how often in a row a step may be halved
-    max_move: float  # relative to the length scale: a Newton solution farther from its start is another assembly,
-    # and a continuation step moves no predicted Add-link length farther
-    min_chain_sigma: float  # a block whose chains are worse conditioned yields to a better one
     lever: float = 1.0  # worst frame base over arm of the block's point placements (<= 1): conditioning starts there
     variant: int = 0  # 0: the chosen candidate; k: its k-th fallback
     pairs: tuple[tuple[str, str], ...] = ()  # the Add-links' pairs (known, unknown)
     lengths: tuple[float, ...] = ()  # the Add-links' sketch lengths
     variants: tuple[ResolverGroup, ...] = ()  # fallbacks: other candidates, tried in this order
     branches: tuple[BranchSign, ...] = ()  # chains whose branch follows the last solution
+
+    def start(self) -> list[float]:
+        """The block's state in the sketch: Add-link lengths, its chains' branches, then its
+        orientation (0: not known until a block solves; see the runtime's on_path)."""
+        return [*self.lengths, *(float(b.sketch) for b in self.branches), 0.0]
 
 
 @dataclass(frozen=True)
@@ -251,7 +251,8 @@ class Reach:
         """The status of a row past the gap or limit below and above (a side without one takes
         the other's code: its check never fires); reason 1, the chain cannot close (or the
         resolver cannot assemble past a limit position)."""
-        return 10 * (self.low_step or self.high_step) + 1, 10 * (self.high_step or self.low_step) + 1
+        return (status.code(self.low_step or self.high_step, status.CANNOT_CLOSE),
+                status.code(self.high_step or self.low_step, status.CANNOT_CLOSE))
 
 
 @dataclass(frozen=True)
@@ -296,6 +297,7 @@ class StepLog:
     columns: tuple[Column, ...]
     status_codes: tuple[StatusCode, ...]
     runtime: tuple[str, ...]
+    policy: Policy
     conditioning: tuple[Conditioning, ...] = ()
     outputs: tuple[str, ...] = ()  # the outputs asked for (empty: the default set)
     omitted: tuple[Omitted, ...] = ()  # steps left out: the outputs do not need them
@@ -314,6 +316,12 @@ class StepLog:
     @functools.cached_property
     def _steps(self) -> dict[int, Step]:
         return {s.number: s for s in self.steps}
+
+    def step_limits(self) -> tuple[float, ...]:
+        """The continuation's largest step of each input: an angle's in radians, a length's
+        in length units."""
+        p = self.policy
+        return tuple(p.step_angle if i.kind == "revolute" else p.step_length * self.length_scale for i in self.inputs)
 
     def drawn(self, c: Column) -> float | None:
         """An output column of a constant record: its value as drawn (0 for a rate); None

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from . import status
 from .evaluate import Result
 from .primitives.dsl import record_fields
 from .steplog import StepLog
@@ -36,8 +37,8 @@ def columns(log: StepLog, result: Result) -> tuple[list[str], np.ndarray]:
         data[:, k] = result.values[c.variable][fields.index(c.field)]
         if offset:
             data[:, k] += offset
-    fail = (result.status > 0) & np.isin(result.status % 10, (1, 2))
-    singular = (result.status > 0) & (result.status % 10 == 3)
+    fail = status.failed(result.status)
+    singular = status.singular(result.status)
     data[fail, n_inputs:] = np.nan
     for k, c in enumerate(log.columns):
         if k >= n_inputs and c.quantity in _DERIVATIVES:

@@ -12,13 +12,6 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-from ..policy import (
-    CONTINUATION_HALVINGS,
-    RESOLVER_MAX_ITERATIONS,
-    RESOLVER_MAX_MOVE,
-    RESOLVER_MIN_CHAIN_SIGMA,
-    RESOLVER_TOLERANCE,
-)
 from ..steplog import AddLink, Arg, BranchSign, Residual, ResolverGroup, Step, Variable
 from .state import Unsupported, VariantDraft, Workspace
 
@@ -190,9 +183,8 @@ def _block_group(number: int, variant: int, block: list[Step], adds: tuple[str, 
             if (a.kind == "var" and a.var not in writes and a.var not in adds and a.var not in reads
                     and not variables[a.var].constant):
                 reads.append(a.var)
-    return ResolverGroup(number, 0, "newton-addlink", adds, residuals, tuple(s.number for s in block), tuple(reads),
-                         tuple(writes), RESOLVER_TOLERANCE, RESOLVER_MAX_ITERATIONS, CONTINUATION_HALVINGS,
-                         RESOLVER_MAX_MOVE, RESOLVER_MIN_CHAIN_SIGMA, variant=variant)
+    return ResolverGroup(number, 0, adds, residuals, tuple(s.number for s in block), tuple(reads), tuple(writes),
+                         variant=variant)
 
 
 def _variant(draft: VariantDraft, k: int, first: int, variables: dict[str, Variable],

@@ -12,6 +12,7 @@ Vectors are pairs of expressions; ``u`` is a unit direction, ``n`` its left norm
 
 from __future__ import annotations
 
+from ..policy import NEAR_SINGULAR, SINGULAR, TOGGLE_SLACK
 from .dsl import (
     EPS,
     NAN,
@@ -29,10 +30,6 @@ from .dsl import (
     sin,
     sqrt,
 )
-
-NEAR_SINGULAR = 1e-3  # sigma below this: derivatives grow without bound (status 4)
-SINGULAR = 1e-7  # sigma below this: derivatives are not given (status 3)
-TOGGLE_SLACK = 8  # a closing factor in [-8 eps x, 0) is a toggle, not a failure
 
 Vec = tuple[Expr, Expr]
 

@@ -9,9 +9,8 @@ from pathlib import Path
 
 import jinja2
 
-from .. import __version__
+from .. import __version__, status
 from ..errors import and_list
-from ..evaluate import STEP_ANGLE, STEP_LENGTH, block_start, path_slack
 from ..ljmatrix import states
 from ..policy import GOOD_LEVER, MAX_MAGNITUDE
 from ..primitives import PRIMITIVES
@@ -46,6 +45,7 @@ def make_env() -> jinja2.Environment:
     env.globals["zip"] = zip
     env.globals["and_list"] = and_list
     env.globals["max_input"] = MAX_MAGNITUDE
+    env.globals["status"] = status
     return env
 
 
@@ -108,6 +108,7 @@ def _c_files(view: View, banner) -> dict[str, bytes]:
     spell = C(view.record_order, log, view.measured)
     name, upper = log.name, log.name.upper()
     runtime = [c_function(PRIMITIVES[p], view.record_order) for p in _used(view)]
+    runtime.append(_runtime_source("c", "status.c", view.record_order))
     if "branch_at" in log.runtime:
         runtime.append(_runtime_source("c", "branch.c", view.record_order))
     if "reach_at" in log.runtime:
@@ -134,8 +135,8 @@ def _c_files(view: View, banner) -> dict[str, bytes]:
                              angle_fields=fields["angle"], slide_fields=fields["slide"]),
         f"{name}.c": _render("c/NAME.c.j2", **common, runtime=runtime, record_fields=record_fields,
                              sketch_in=", ".join(lit(i.sketch) for i in log.inputs), sketch_a=", ".join(sketch_a),
-                             column_fields=column_fields, limits=", ".join(lit(x) for x in _limits(log)),
-                             slack=_slack(log, lit),
+                             column_fields=column_fields, limits=", ".join(lit(x) for x in log.step_limits()),
+                             slack=lit(log.policy.path_slack),
                              periodic=", ".join("1" if i.kind == "revolute" else "0" for i in log.inputs)),
         f"{name}_main.c": _render("c/NAME_main.c.j2", **common, columns=columns, inputs={
             "start": ", ".join(lit(i.start) for i in log.inputs),
@@ -144,22 +145,12 @@ def _c_files(view: View, banner) -> dict[str, bytes]:
     }
 
 
-def _slack(log: StepLog, lit) -> str:
-    """How far off the predicted path a resolver solution may sit, relative to the length scale."""
-    return lit(path_slack(log)) if log.groups else ""
-
-
-def _limits(log: StepLog) -> list[float]:
-    """The continuation's largest step of each input."""
-    return [STEP_ANGLE if i.kind == "revolute" else STEP_LENGTH * log.length_scale for i in log.inputs]
-
-
 def _sketch_a(view: View, lit) -> list[str]:
     """Every resolver block's state in the sketch: its Add-link lengths, its chains' branches
     and its orientation (unknown: 0), padded to the largest block."""
     out = []
     for b in view.blocks:
-        state = [lit(x) for x in block_start(b.group)]
+        state = [lit(x) for x in b.group.start()]
         out.append(", ".join(state + ["0.0"] * (view.nmax - len(state))))
     return out
 
@@ -168,6 +159,7 @@ def _py_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
     spell = Python(view.record_order, log, view.measured)
     runtime = [python_function(PRIMITIVES[p], view.record_order, with_sigma=True).rstrip("\n") for p in _used(view)]
+    runtime.append(_runtime_source("py", "status.py", view.record_order).rstrip("\n"))
     if "branch_at" in log.runtime:
         runtime.append(_runtime_source("py", "branch.py", view.record_order).rstrip("\n"))
     if "reach_at" in log.runtime:
@@ -186,8 +178,8 @@ def _py_files(view: View, banner) -> dict[str, bytes]:
                    math_names=math_names,
                    columns=[c.name for c in log.columns], levels=levels, values=values,
                    inputs=[f"{lit(i.start)}, {lit(i.stop)}, {lit(i.speed)}" for i in log.inputs],
-                   sketch_a=_sketch_a(view, lit), limits=", ".join(lit(x) for x in _limits(log)),
-                   slack=_slack(log, lit),
+                   sketch_a=_sketch_a(view, lit), limits=", ".join(lit(x) for x in log.step_limits()),
+                   slack=lit(log.policy.path_slack),
                    periodic=", ".join("True" if i.kind == "revolute" else "False" for i in log.inputs))
     return {f"{log.name}.py": text}
 
@@ -196,6 +188,7 @@ def _m_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
     spell = Octave(view.record_order, log, view.measured)
     runtime = [octave_function(PRIMITIVES[p], view.record_order).rstrip("\n") for p in _used(view)]
+    runtime.append(_runtime_source("m", "status.m", view.record_order).rstrip("\n"))
     if "branch_at" in log.runtime:
         runtime.append(_runtime_source("m", "branch.m", view.record_order).rstrip("\n"))
     if "reach_at" in log.runtime:
@@ -216,7 +209,8 @@ def _m_files(view: View, banner) -> dict[str, bytes]:
                                        cells=[f"out.{spell.ident(c.owner)}.{c.field}" for c in view.cells],
                                        sketch_in=", ".join(lit(i.sketch) for i in log.inputs),
                                        sketch_a=", ".join(f"[{a}]'" for a in _sketch_a(view, lit)),
-                                       limits=", ".join(lit(x) for x in _limits(log)), slack=_slack(log, lit),
+                                       limits=", ".join(lit(x) for x in log.step_limits()),
+                                       slack=lit(log.policy.path_slack),
                                        periodic=", ".join("1" if i.kind == "revolute" else "0" for i in log.inputs)),
         f"{log.name}.m": _render("m/NAME.m.j2", **common, columns=[c.name for c in log.columns], inputs=inputs),
     }
@@ -281,7 +275,7 @@ def _md_files(view: View, banner) -> dict[str, bytes]:
                    fallbacks={b.index: _listing(view, spell, b.steps) for b in view.blocks if b.group.variant},
                    codes=log.status_codes, constants=_constants(log, spell),
                    functions=_used(view), slides={p.name for p in log.pairs if p.kind == "prismatic"},
-                   limits=and_list([f"{number(x)} for {i.column}" for x, i in zip(_limits(log), log.inputs)]),
+                   limits=and_list([f"{number(x)} for {i.column}" for x, i in zip(log.step_limits(), log.inputs)]),
                    good_lever=GOOD_LEVER)
     return {f"{log.name}.md": text, f"{log.name}.svg": render_svg(log).encode("utf-8")}
 

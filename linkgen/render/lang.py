@@ -7,6 +7,7 @@ computed: that is the step log's job.
 
 from __future__ import annotations
 
+from .. import status
 from ..names import c_field, m_field
 from ..primitives import PRIMITIVES
 from ..primitives.dsl import record_fields
@@ -108,7 +109,17 @@ class Spelling:
 
     @staticmethod
     def status_code(step: Step, reason: int) -> int:
-        return 10 * step.number + reason
+        return status.code(step.number, reason)
+
+    @staticmethod
+    def note_codes(step: Step) -> str:
+        """note()'s codes of a step: where it is singular, where it is near singular."""
+        return f"{status.code(step.number, status.SINGULAR)}, {status.code(step.number, status.NEAR_SINGULAR)}"
+
+    def sigma_status(self, sigma: str) -> tuple[str, str]:
+        """The conditions on a conditioning ``sigma`` for a singular and a near-singular position."""
+        p = self.log.policy
+        return f"{sigma} < {self.lit(p.singular)}", f"{sigma} < {self.lit(p.near_singular)}"
 
     def fields(self, kind: str) -> tuple[str, ...]:
         return record_fields(kind, self.order)
@@ -190,6 +201,13 @@ class C(Spelling):
             return "{" + ", ".join(levels) + "}"
         return "{" + ", ".join([self.lit(value[0])] + ["0.0"] * self.order) + "}"
 
+    def note_sigma(self, step: Step) -> str:
+        """note() of a resolver's step, whose status its conditioning gives."""
+        sig = f"w->sigma[{step.number}]"
+        singular, near = self.sigma_status(sig)
+        return (f"note(w, {singular} ? {status.SINGULAR} : {near} ? {status.NEAR_SINGULAR} : 0, "
+                f"{self.note_codes(step)});")
+
     def call(self, step: Step, scope: Group | None) -> list[str]:
         prim = PRIMITIVES[step.function]
         args = [self.arg(a, scope, step) for a in step.args]
@@ -203,8 +221,8 @@ class C(Spelling):
             return [*head, text]
         if scope is None:
             return [*head, f"st = {text}", f"if (st == 1) return {self.status_code(step, 1)};",
-                    f"note(w, {step.number}, st);"]
-        lines = [*head, f"st = {text}", "if (st == 1) return 1;", f"if (live) note(w, {step.number}, st);"]
+                    f"note(w, st, {self.note_codes(step)});"]
+        lines = [*head, f"st = {text}", "if (st == 1) return 1;", f"if (live) note(w, st, {self.note_codes(step)});"]
         if prim.sigma is not None:
             lines.append(f"w->chains = fmin(w->chains, w->sigma[{step.number}]);")
         return lines
@@ -251,6 +269,12 @@ class Python(Spelling):
         return "(" + ", ".join(self.lit(x) for x in (*value, *zeros)) + ("," if v.kind != "POINT" and
                                                                           self.order == 0 else "") + ")"
 
+    def note_sigma(self, step: Step) -> str:
+        """note() of a resolver's step, whose status its conditioning gives."""
+        singular, near = self.sigma_status(f"w.sigma[{step.number}]")
+        return (f"w.note({status.SINGULAR} if {singular} else {status.NEAR_SINGULAR} if {near} else 0, "
+                f"{self.note_codes(step)})")
+
     def call(self, step: Step, scope: Group | None) -> list[str]:
         prim = PRIMITIVES[step.function]
         args = ", ".join(self.arg(a, scope, step) for a in step.args)
@@ -260,8 +284,9 @@ class Python(Spelling):
         head = ["st"] + ([f"w.sigma[{step.number}]"] if prim.sigma is not None else [])
         lines = [f"{', '.join(head + targets)} = {step.function}({args})"]
         if scope is None:
-            return lines + ["if st == 1:", f"    return {self.status_code(step, 1)}", f"w.note({step.number}, st)"]
-        lines += ["if st == 1:", "    return 1, None", "if live:", f"    w.note({step.number}, st)"]
+            return lines + ["if st == 1:", f"    return {self.status_code(step, 1)}",
+                            f"w.note(st, {self.note_codes(step)})"]
+        lines += ["if st == 1:", "    return 1, None", "if live:", f"    w.note(st, {self.note_codes(step)})"]
         if prim.sigma is not None:
             lines.append(f"w.chains = min(w.chains, w.sigma[{step.number}])")
         return lines
@@ -322,6 +347,12 @@ class Octave(Spelling):
         values = [*value, *([0.0] * (len(names) - len(value)))]
         return "struct(" + ", ".join(f"'{n}', {self.lit(x)}" for n, x in zip(names, values)) + ")"
 
+    def note_sigma(self, step: Step) -> list[str]:
+        """note() of a resolver's step, whose status its conditioning gives."""
+        singular, near = self.sigma_status(f"w.sigma({step.number})")
+        return [f"if {singular}", f"    w = note(w, {status.SINGULAR}, {self.note_codes(step)});", f"elseif {near}",
+                f"    w = note(w, {status.NEAR_SINGULAR}, {self.note_codes(step)});", "end"]
+
     def call(self, step: Step, scope: Group | None) -> list[str]:
         prim = PRIMITIVES[step.function]
         args = ", ".join(self.arg(a, scope, step) for a in step.args)
@@ -336,9 +367,9 @@ class Octave(Spelling):
             return lines
         if scope is None:
             return lines + ["if st == 1", f"    status = {self.status_code(step, 1)};", "    return;", "end",
-                            f"w = note(w, {step.number}, st);"]
+                            f"w = note(w, st, {self.note_codes(step)});"]
         lines += ["if st == 1", "    st = 1;", "    res = [];", "    return;", "end", "if live",
-                  f"    w = note(w, {step.number}, st);", "end"]
+                  f"    w = note(w, st, {self.note_codes(step)});", "end"]
         if prim.sigma is not None:
             lines.append(f"w.chains = min(w.chains, w.sigma({step.number}));")
         return lines

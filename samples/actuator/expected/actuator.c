@@ -163,6 +163,14 @@ static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, doubl
     return st;
 }
 
+/* The reason of a status code (linkgen/status.py): the last digit of a positive code
+ * (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+ * 0 for status 0 and the negative codes of rows computed near a singular position. */
+static int reason_of(int code)
+{
+    return code > 0 ? code % 10 : 0;
+}
+
 
 /* Constants taken from the sketch; points are held relative to
    (-640.0, -256.0), which publish() adds back to the computed ones. */
@@ -189,11 +197,11 @@ typedef struct {
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
-/* Remember the first step at a singular (3) or near-singular (4) position. */
-static void note(work *w, int step, int st)
+/* Remember the code of the first step at a singular or a near-singular position (st: the step's). */
+static void note(work *w, int st, int singular, int near)
 {
-    if (st == 3 && !w->singular) w->singular = 10 * step + 3;
-    if (st == 4 && !w->near) w->near = 10 * step + 4;
+    if (st == 3 && !w->singular) w->singular = singular;
+    if (st == 4 && !w->near) w->near = near;
 }
 
 /* The procedure of actuator.md, step by step. */
@@ -212,25 +220,25 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 2: RRR_links, K (branch -1). K is joined to the known R by side_link and to the known S0 by d_S0_K: a 3R two-link chain with both ends known */
     st = RRR_links(p_R, p_S0, l_side_link, w->in1, -1, &w->p_K, &w->sigma[2]);
     if (st == 1) return 21;
-    note(w, 2, st);
+    note(w, st, 23, -24);
 
 
     /* Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known */
     st = RPR_links(p_S0, w->p_K, 850.0, 0.0, -850.0, 0.0, 1, &w->psi_C, &w->s_C, &w->p_C, &w->sigma[3]);
     if (st == 1) return 31;
-    note(w, 3, st);
+    note(w, st, 33, -34);
 
 
     /* Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_K, p_Q, l_power_link, l_bucket, 1, &w->p_M, &w->sigma[4]);
     if (st == 1) return 41;
-    note(w, 4, st);
+    note(w, st, 43, -44);
 
 
     /* Step 5: link_angle, bucket. Q and M of link bucket are known, so its angle is */
     st = link_angle(p_Q, w->p_M, 0.0, &w->phi_bucket);
     if (st == 1) return 51;
-    note(w, 5, st);
+    note(w, st, 53, -54);
 
 
     /* Step 6: coupler_point, tip. point tip of link bucket */
@@ -240,15 +248,15 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 7: link_angle, side_link. R and K of link side_link are known, so its angle is */
     st = link_angle(p_R, w->p_K, 0.0, &w->phi_side_link);
     if (st == 1) return 71;
-    note(w, 7, st);
+    note(w, st, 73, -74);
 
 
     /* Step 8: link_angle, power_link. K and M of link power_link are known, so its angle is */
     st = link_angle(w->p_K, w->p_M, 0.0, &w->phi_power_link);
     if (st == 1) return 81;
-    note(w, 8, st);
+    note(w, st, 83, -84);
 
-    return w->singular ? w->singular : -w->near;
+    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -325,7 +333,7 @@ static void publish(const work *w, int code, actuator_state *out)
     int k;
     out->status = code;
     for (k = 0; k <= ACTUATOR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
+    if (reason_of(code) == 1 || reason_of(code) == 2) {
         no_outputs(out);
         return;
     }
@@ -392,7 +400,7 @@ static void publish(const work *w, int code, actuator_state *out)
     out->bucket.phi = w->phi_bucket.the;
     out->bucket.omega = w->phi_bucket.dthe;
     out->bucket.alpha = w->phi_bucket.ddthe;
-    if (code > 0 && code % 10 == 3) {
+    if (reason_of(code) == 3) {
         out->S0.vx = NAN;
         out->S0.vy = NAN;
         out->S0.ax = NAN;

@@ -233,6 +233,12 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
         return st, sigma, (th, NAN, NAN), (sv, NAN, NAN), (js_x + rx, js_y + ry, NAN, NAN, NAN, NAN)
     return st, sigma, (th, om, al), (sv, ds, dds), (js_x + rx, js_y + ry, js_dx + rvx, js_dy + rvy, js_ddx + rax, js_ddy + ray)
 
+def reason_of(code):
+    """The reason of a status code (linkgen/status.py): the last digit of a positive code
+    (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    0 for status 0 and the negative codes of rows computed near a singular position."""
+    return code % 10 if code > 0 else 0
+
 # -- constants taken from the sketch -----------------------------------------
 # Points are held relative to (-640.0, -256.0), which _publish adds back
 # to the computed ones.
@@ -250,12 +256,12 @@ class _Work:
 
     __slots__ = ("in1", "p_K", "psi_C", "s_C", "p_C", "p_M", "phi_bucket", "p_tip", "phi_side_link", "phi_power_link", "sigma", "singular", "near")
 
-    def note(self, step, st):
-        """Remember the first step at a singular (3) or near-singular (4) position."""
+    def note(self, st, singular, near):
+        """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
         if st == 3 and not self.singular:
-            self.singular = 10 * step + 3
+            self.singular = singular
         if st == 4 and not self.near:
-            self.near = 10 * step + 4
+            self.near = near
 
 
 def _run(w, inputs, d_inputs, dd_inputs):
@@ -269,25 +275,25 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[2], w.p_K = RRR_links(p_R, p_S0, l_side_link, w.in1, -1)
     if st == 1:
         return 21
-    w.note(2, st)
+    w.note(st, 23, -24)
 
     # Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known
     st, w.sigma[3], w.psi_C, w.s_C, w.p_C = RPR_links(p_S0, w.p_K, 850.0, 0.0, -850.0, 0.0, 1)
     if st == 1:
         return 31
-    w.note(3, st)
+    w.note(st, 33, -34)
 
     # Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known
     st, w.sigma[4], w.p_M = RRR_links(w.p_K, p_Q, l_power_link, l_bucket, 1)
     if st == 1:
         return 41
-    w.note(4, st)
+    w.note(st, 43, -44)
 
     # Step 5: link_angle, bucket. Q and M of link bucket are known, so its angle is
     st, w.phi_bucket = link_angle(p_Q, w.p_M, 0.0)
     if st == 1:
         return 51
-    w.note(5, st)
+    w.note(st, 53, -54)
 
     # Step 6: coupler_point, tip. point tip of link bucket
     w.p_tip = coupler_point(p_Q, w.phi_bucket, -550.5882352941176, -1177.6470588235293)
@@ -296,21 +302,21 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.phi_side_link = link_angle(p_R, w.p_K, 0.0)
     if st == 1:
         return 71
-    w.note(7, st)
+    w.note(st, 73, -74)
 
     # Step 8: link_angle, power_link. K and M of link power_link are known, so its angle is
     st, w.phi_power_link = link_angle(w.p_K, w.p_M, 0.0)
     if st == 1:
         return 81
-    w.note(8, st)
+    w.note(st, 83, -84)
 
-    return w.singular or -w.near
+    return w.singular or w.near
 
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = code > 0 and code % 10 in (1, 2)
-    singular = code > 0 and code % 10 == 3
+    failed = reason_of(code) in (1, 2)
+    singular = reason_of(code) == 3
     if failed:
         values = (NAN,) * len(_LEVELS)
     else:

@@ -59,13 +59,13 @@ function w = new_work()
     w.l_bucket = struct('v', 340.0, 'dv', 0.0, 'ddv', 0.0);
 end
 
-function w = note(w, step, st)
-    % Remember the first step at a singular (3) or near-singular (4) position.
+function w = note(w, st, singular, near)
+    % Remember the code of the first step at a singular or a near-singular position (st: the step's).
     if st == 3 && w.singular == 0
-        w.singular = 10 * step + 3;
+        w.singular = singular;
     end
     if st == 4 && w.near == 0
-        w.near = 10 * step + 4;
+        w.near = near;
     end
 end
 
@@ -84,7 +84,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 21;
         return;
     end
-    w = note(w, 2, st);
+    w = note(w, st, 23, -24);
 
     % Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known
     [w.psi_C, w.s_C, w.p_C, st, w.sigma(3)] = RPR_links(w.p_S0, w.p_K, 850.0, 0.0, -850.0, 0.0, 1);
@@ -92,7 +92,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 31;
         return;
     end
-    w = note(w, 3, st);
+    w = note(w, st, 33, -34);
 
     % Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known
     [w.p_M, st, w.sigma(4)] = RRR_links(w.p_K, w.p_Q, w.l_power_link, w.l_bucket, 1);
@@ -100,7 +100,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 41;
         return;
     end
-    w = note(w, 4, st);
+    w = note(w, st, 43, -44);
 
     % Step 5: link_angle, bucket. Q and M of link bucket are known, so its angle is
     [w.phi_bucket, st] = link_angle(w.p_Q, w.p_M, 0.0);
@@ -108,7 +108,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 51;
         return;
     end
-    w = note(w, 5, st);
+    w = note(w, st, 53, -54);
 
     % Step 6: coupler_point, tip. point tip of link bucket
     w.p_tip = coupler_point(w.p_Q, w.phi_bucket, -550.5882352941176, -1177.6470588235293);
@@ -119,7 +119,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 71;
         return;
     end
-    w = note(w, 7, st);
+    w = note(w, st, 73, -74);
 
     % Step 8: link_angle, power_link. K and M of link power_link are known, so its angle is
     [w.phi_power_link, st] = link_angle(w.p_K, w.p_M, 0.0);
@@ -127,19 +127,19 @@ function [status, w] = run(w, in, din, ddin)
         status = 81;
         return;
     end
-    w = note(w, 8, st);
+    w = note(w, st, 83, -84);
 
     if w.singular > 0
         status = w.singular;
     else
-        status = -w.near;
+        status = w.near;
     end
 end
 
 function out = publish(w, status, in)
     % The outputs as a struct, with the status rules of the CSV.
-    failed = status > 0 && (mod(status, 10) == 1 || mod(status, 10) == 2);
-    singular = status > 0 && mod(status, 10) == 3;
+    failed = reason_of(status) == 1 || reason_of(status) == 2;
+    singular = reason_of(status) == 3;
     out = struct();
     if failed
         out.S0.x = NaN;
@@ -569,5 +569,15 @@ function [psi, s, jp, st, sigma] = RPR_links(jg, js, ag, bg, as_, bs, minv)
         jp.dy = NaN;
         jp.ddx = NaN;
         jp.ddy = NaN;
+    end
+end
+
+function r = reason_of(code)
+    % The reason of a status code (linkgen/status.py): the last digit of a positive code
+    % (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    % 0 for status 0 and the negative codes of rows computed near a singular position.
+    r = 0;
+    if code > 0
+        r = mod(code, 10);
     end
 end

@@ -152,6 +152,14 @@ static int PRP_links(POINT pg1, ANGLE psig1, double gsi1, double eta1, POINT pg2
     return st;
 }
 
+/* The reason of a status code (linkgen/status.py): the last digit of a positive code
+ * (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+ * 0 for status 0 and the negative codes of rows computed near a singular position. */
+static int reason_of(int code)
+{
+    return code > 0 ? code % 10 : 0;
+}
+
 
 /* Constants taken from the sketch; points are held relative to
    (26.0, 0.0), which publish() adds back to the computed ones. */
@@ -176,11 +184,11 @@ typedef struct {
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
-/* Remember the first step at a singular (3) or near-singular (4) position. */
-static void note(work *w, int step, int st)
+/* Remember the code of the first step at a singular or a near-singular position (st: the step's). */
+static void note(work *w, int st, int singular, int near)
 {
-    if (st == 3 && !w->singular) w->singular = 10 * step + 3;
-    if (st == 4 && !w->near) w->near = 10 * step + 4;
+    if (st == 3 && !w->singular) w->singular = singular;
+    if (st == 4 && !w->near) w->near = near;
 }
 
 /* The procedure of cross_slot.md, step by step. */
@@ -203,19 +211,19 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is */
     st = link_angle(p_O, w->g_P1, 0.0, &w->phi_arm);
     if (st == 1) return 31;
-    note(w, 3, st);
+    note(w, st, 33, -34);
 
 
     /* Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution) */
     st = PRP_links(w->g_P1, w->phi_arm, 0.0, 0.0, g_P2, psi_P2, 0.0, 0.0, &w->s_P1, &w->p_P1, &w->s_P2, &w->p_P2, &w->p_X, &w->sigma[4]);
     if (st == 1) return 41;
-    note(w, 4, st);
+    note(w, st, 43, -44);
 
 
     /* Step 5: offset_angle, block2. link block2 keeps a constant angle to its slide */
     offset_angle(phi_frame, 1.5707963267948966, &w->phi_block2);
 
-    return w->singular ? w->singular : -w->near;
+    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -271,7 +279,7 @@ static void publish(const work *w, int code, cross_slot_state *out)
     int k;
     out->status = code;
     for (k = 0; k <= CROSS_SLOT_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
+    if (reason_of(code) == 1 || reason_of(code) == 2) {
         no_outputs(out);
         return;
     }
@@ -317,7 +325,7 @@ static void publish(const work *w, int code, cross_slot_state *out)
     out->block2.phi = w->phi_block2.the;
     out->block2.omega = w->phi_block2.dthe;
     out->block2.alpha = w->phi_block2.ddthe;
-    if (code > 0 && code % 10 == 3) {
+    if (reason_of(code) == 3) {
         out->O.vx = NAN;
         out->O.vy = NAN;
         out->O.ax = NAN;

@@ -192,6 +192,12 @@ def PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
         return st, sigma, (sv1, NAN, NAN), (jp1x, jp1y, NAN, NAN, NAN, NAN), (sv2, NAN, NAN), (jp2x, jp2y, NAN, NAN, NAN, NAN), (jbx, jby, NAN, NAN, NAN, NAN)
     return st, sigma, (sv1, ds1, dds1), (jp1x, jp1y, jp1vx, jp1vy, jp1ax, jp1ay), (sv2, ds2, dds2), (jp2x, jp2y, jp2vx, jp2vy, jp2ax, jp2ay), (jbx, jby, jp1vx + r1vx, jp1vy + r1vy, jp1ax + r1ax, jp1ay + r1ay)
 
+def reason_of(code):
+    """The reason of a status code (linkgen/status.py): the last digit of a positive code
+    (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    0 for status 0 and the negative codes of rows computed near a singular position."""
+    return code % 10 if code > 0 else 0
+
 # -- constants taken from the sketch -----------------------------------------
 # Points are held relative to (26.0, 0.0), which _publish adds back
 # to the computed ones.
@@ -208,12 +214,12 @@ class _Work:
 
     __slots__ = ("in1", "g_P1", "phi_arm", "s_P1", "p_P1", "s_P2", "p_P2", "p_X", "phi_block2", "sigma", "singular", "near")
 
-    def note(self, step, st):
-        """Remember the first step at a singular (3) or near-singular (4) position."""
+    def note(self, st, singular, near):
+        """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
         if st == 3 and not self.singular:
-            self.singular = 10 * step + 3
+            self.singular = singular
         if st == 4 and not self.near:
-            self.near = 10 * step + 4
+            self.near = near
 
 
 def _run(w, inputs, d_inputs, dd_inputs):
@@ -230,24 +236,24 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.phi_arm = link_angle(p_O, w.g_P1, 0.0)
     if st == 1:
         return 31
-    w.note(3, st)
+    w.note(st, 33, -34)
 
     # Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution)
     st, w.sigma[4], w.s_P1, w.p_P1, w.s_P2, w.p_P2, w.p_X = PRP_links(w.g_P1, w.phi_arm, 0.0, 0.0, g_P2, psi_P2, 0.0, 0.0)
     if st == 1:
         return 41
-    w.note(4, st)
+    w.note(st, 43, -44)
 
     # Step 5: offset_angle, block2. link block2 keeps a constant angle to its slide
     w.phi_block2 = offset_angle(phi_frame, 1.5707963267948966)
 
-    return w.singular or -w.near
+    return w.singular or w.near
 
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = code > 0 and code % 10 in (1, 2)
-    singular = code > 0 and code % 10 == 3
+    failed = reason_of(code) in (1, 2)
+    singular = reason_of(code) == 3
     if failed:
         values = (NAN,) * len(_LEVELS)
     else:

@@ -58,13 +58,13 @@ function w = new_work()
     w.psi_P2 = struct('the', 1.5707963267948966, 'dthe', 0.0, 'ddthe', 0.0);
 end
 
-function w = note(w, step, st)
-    % Remember the first step at a singular (3) or near-singular (4) position.
+function w = note(w, st, singular, near)
+    % Remember the code of the first step at a singular or a near-singular position (st: the step's).
     if st == 3 && w.singular == 0
-        w.singular = 10 * step + 3;
+        w.singular = singular;
     end
     if st == 4 && w.near == 0
-        w.near = 10 * step + 4;
+        w.near = near;
     end
 end
 
@@ -86,7 +86,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 31;
         return;
     end
-    w = note(w, 3, st);
+    w = note(w, st, 33, -34);
 
     % Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution)
     [w.s_P1, w.p_P1, w.s_P2, w.p_P2, w.p_X, st, w.sigma(4)] = PRP_links(w.g_P1, w.phi_arm, 0.0, 0.0, w.g_P2, w.psi_P2, 0.0, 0.0);
@@ -94,7 +94,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 41;
         return;
     end
-    w = note(w, 4, st);
+    w = note(w, st, 43, -44);
 
     % Step 5: offset_angle, block2. link block2 keeps a constant angle to its slide
     w.phi_block2 = offset_angle(w.phi_frame, 1.5707963267948966);
@@ -102,14 +102,14 @@ function [status, w] = run(w, in, din, ddin)
     if w.singular > 0
         status = w.singular;
     else
-        status = -w.near;
+        status = w.near;
     end
 end
 
 function out = publish(w, status, in)
     % The outputs as a struct, with the status rules of the CSV.
-    failed = status > 0 && (mod(status, 10) == 1 || mod(status, 10) == 2);
-    singular = status > 0 && mod(status, 10) == 3;
+    failed = reason_of(status) == 1 || reason_of(status) == 2;
+    singular = reason_of(status) == 3;
     out = struct();
     if failed
         out.O.x = NaN;
@@ -444,5 +444,15 @@ function [s1, jp1, s2, jp2, jb, st, sigma] = PRP_links(pg1, psig1, gsi1, eta1, p
         jb.dy = NaN;
         jb.ddx = NaN;
         jb.ddy = NaN;
+    end
+end
+
+function r = reason_of(code)
+    % The reason of a status code (linkgen/status.py): the last digit of a positive code
+    % (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    % 0 for status 0 and the negative codes of rows computed near a singular position.
+    r = 0;
+    if code > 0
+        r = mod(code, 10);
     end
 end

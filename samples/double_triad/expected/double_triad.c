@@ -156,6 +156,14 @@ static void link_residual(POINT j1, POINT j2, VARIABLE l, VARIABLE *f)
     f->ddv = rdd - l.ddv;
 }
 
+/* The reason of a status code (linkgen/status.py): the last digit of a positive code
+ * (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+ * 0 for status 0 and the negative codes of rows computed near a singular position. */
+static int reason_of(int code)
+{
+    return code > 0 ? code % 10 : 0;
+}
+
 /* Over-constraint resolver: Newton-Raphson on the Add-link lengths.
  * group(ctx, a, live, f) runs the steps of one resolver group with the Add-link
  * records a and writes the residual records f; live == 0 zeroes the rates of
@@ -611,11 +619,11 @@ typedef struct {
     int br90;  /* the branch of step 90, as the last solution left it */
 } work;
 
-/* Remember the first step at a singular (3) or near-singular (4) position. */
-static void note(work *w, int step, int st)
+/* Remember the code of the first step at a singular or a near-singular position (st: the step's). */
+static void note(work *w, int st, int singular, int near)
 {
-    if (st == 3 && !w->singular) w->singular = 10 * step + 3;
-    if (st == 4 && !w->near) w->near = 10 * step + 4;
+    if (st == 3 && !w->singular) w->singular = singular;
+    if (st == 4 && !w->near) w->near = near;
 }
 
 static const VARIABLE ZERO_LENGTH = { 0.0, 0.0, 0.0 };
@@ -637,17 +645,17 @@ static int group_1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J3, p_J6, l_right_rocker2, w->add1, w->br4, &w->p_J4, &w->sigma[4]);
     if (st == 1) return 1;
-    if (live) note(w, 4, st);
+    if (live) note(w, st, 43, -44);
     w->chains = fmin(w->chains, w->sigma[4]);
     /* Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, w->p_J4, l_right_rocker1, l_right_ternary_J2_J4, w->br5, &w->p_J2, &w->sigma[5]);
     if (st == 1) return 1;
-    if (live) note(w, 5, st);
+    if (live) note(w, st, 53, -54);
     w->chains = fmin(w->chains, w->sigma[5]);
     /* Step 6: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 6, st);
+    if (live) note(w, st, 63, -64);
     /* Step 7: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
     coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
     /* Step 8: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -674,17 +682,17 @@ static int group_1_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 24: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, p_J6, l_right_rocker1, w->add1_v1, w->br24, &w->p_J2, &w->sigma[24]);
     if (st == 1) return 1;
-    if (live) note(w, 24, st);
+    if (live) note(w, st, 243, -244);
     w->chains = fmin(w->chains, w->sigma[24]);
     /* Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w->br25, &w->p_J4, &w->sigma[25]);
     if (st == 1) return 1;
-    if (live) note(w, 25, st);
+    if (live) note(w, st, 253, -254);
     w->chains = fmin(w->chains, w->sigma[25]);
     /* Step 26: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 26, st);
+    if (live) note(w, st, 263, -264);
     /* Step 27: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
     coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 28: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -711,17 +719,17 @@ static int group_1_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, p_J7, l_right_rocker1, w->add1_v2, w->br29, &w->p_J2, &w->sigma[29]);
     if (st == 1) return 1;
-    if (live) note(w, 29, st);
+    if (live) note(w, st, 293, -294);
     w->chains = fmin(w->chains, w->sigma[29]);
     /* Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w->br30, &w->p_J4, &w->sigma[30]);
     if (st == 1) return 1;
-    if (live) note(w, 30, st);
+    if (live) note(w, st, 303, -304);
     w->chains = fmin(w->chains, w->sigma[30]);
     /* Step 31: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 31, st);
+    if (live) note(w, st, 313, -314);
     /* Step 32: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
     coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 33: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -748,17 +756,17 @@ static int group_1_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J3, p_J7, l_right_rocker2, w->add1_v3, w->br34, &w->p_J4, &w->sigma[34]);
     if (st == 1) return 1;
-    if (live) note(w, 34, st);
+    if (live) note(w, st, 343, -344);
     w->chains = fmin(w->chains, w->sigma[34]);
     /* Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, w->p_J4, l_right_rocker1, l_right_ternary_J2_J4, w->br35, &w->p_J2, &w->sigma[35]);
     if (st == 1) return 1;
-    if (live) note(w, 35, st);
+    if (live) note(w, st, 353, -354);
     w->chains = fmin(w->chains, w->sigma[35]);
     /* Step 36: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 36, st);
+    if (live) note(w, st, 363, -364);
     /* Step 37: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
     coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
     /* Step 38: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -785,17 +793,17 @@ static int group_1_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 39: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J3, p_J1, l_right_rocker2, w->add1_v4, w->br39, &w->p_J4, &w->sigma[39]);
     if (st == 1) return 1;
-    if (live) note(w, 39, st);
+    if (live) note(w, st, 393, -394);
     w->chains = fmin(w->chains, w->sigma[39]);
     /* Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, w->p_J4, l_right_rocker1, l_right_ternary_J2_J4, w->br40, &w->p_J2, &w->sigma[40]);
     if (st == 1) return 1;
-    if (live) note(w, 40, st);
+    if (live) note(w, st, 403, -404);
     w->chains = fmin(w->chains, w->sigma[40]);
     /* Step 41: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 41, st);
+    if (live) note(w, st, 413, -414);
     /* Step 42: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
     coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
     /* Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -822,17 +830,17 @@ static int group_1_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 44: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, p_J3, l_right_rocker1, w->add1_v5, w->br44, &w->p_J2, &w->sigma[44]);
     if (st == 1) return 1;
-    if (live) note(w, 44, st);
+    if (live) note(w, st, 443, -444);
     w->chains = fmin(w->chains, w->sigma[44]);
     /* Step 45: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w->br45, &w->p_J4, &w->sigma[45]);
     if (st == 1) return 1;
-    if (live) note(w, 45, st);
+    if (live) note(w, st, 453, -454);
     w->chains = fmin(w->chains, w->sigma[45]);
     /* Step 46: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 46, st);
+    if (live) note(w, st, 463, -464);
     /* Step 47: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
     coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 48: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -859,17 +867,17 @@ static int group_1_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 49: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, p_K1, l_right_rocker1, w->add1_v6, w->br49, &w->p_J2, &w->sigma[49]);
     if (st == 1) return 1;
-    if (live) note(w, 49, st);
+    if (live) note(w, st, 493, -494);
     w->chains = fmin(w->chains, w->sigma[49]);
     /* Step 50: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w->br50, &w->p_J4, &w->sigma[50]);
     if (st == 1) return 1;
-    if (live) note(w, 50, st);
+    if (live) note(w, st, 503, -504);
     w->chains = fmin(w->chains, w->sigma[50]);
     /* Step 51: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 51, st);
+    if (live) note(w, st, 513, -514);
     /* Step 52: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
     coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 53: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -896,17 +904,17 @@ static int group_2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 11: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K3, p_J6, l_left_rocker2, w->add2, w->br11, &w->p_K4, &w->sigma[11]);
     if (st == 1) return 1;
-    if (live) note(w, 11, st);
+    if (live) note(w, st, 113, -114);
     w->chains = fmin(w->chains, w->sigma[11]);
     /* Step 12: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_K1, w->p_K4, l_left_rocker1, l_left_ternary_K2_K4, w->br12, &w->p_K2, &w->sigma[12]);
     if (st == 1) return 1;
-    if (live) note(w, 12, st);
+    if (live) note(w, st, 123, -124);
     w->chains = fmin(w->chains, w->sigma[12]);
     /* Step 13: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
     st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 13, st);
+    if (live) note(w, st, 133, -134);
     /* Step 14: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
     coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
     /* Step 15: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -935,17 +943,17 @@ static int group_2_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 54: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K1, p_J5, l_left_rocker1, w->add2_v1, w->br54, &w->p_K2, &w->sigma[54]);
     if (st == 1) return 1;
-    if (live) note(w, 54, st);
+    if (live) note(w, st, 543, -544);
     w->chains = fmin(w->chains, w->sigma[54]);
     /* Step 55: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w->br55, &w->p_K4, &w->sigma[55]);
     if (st == 1) return 1;
-    if (live) note(w, 55, st);
+    if (live) note(w, st, 553, -554);
     w->chains = fmin(w->chains, w->sigma[55]);
     /* Step 56: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
     st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 56, st);
+    if (live) note(w, st, 563, -564);
     /* Step 57: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
     coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
     /* Step 58: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -974,17 +982,17 @@ static int group_2_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 59: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K3, p_J5, l_left_rocker2, w->add2_v2, w->br59, &w->p_K4, &w->sigma[59]);
     if (st == 1) return 1;
-    if (live) note(w, 59, st);
+    if (live) note(w, st, 593, -594);
     w->chains = fmin(w->chains, w->sigma[59]);
     /* Step 60: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_K1, w->p_K4, l_left_rocker1, l_left_ternary_K2_K4, w->br60, &w->p_K2, &w->sigma[60]);
     if (st == 1) return 1;
-    if (live) note(w, 60, st);
+    if (live) note(w, st, 603, -604);
     w->chains = fmin(w->chains, w->sigma[60]);
     /* Step 61: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
     st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 61, st);
+    if (live) note(w, st, 613, -614);
     /* Step 62: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
     coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
     /* Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -1013,17 +1021,17 @@ static int group_2_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 64: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K3, p_J2, l_left_rocker2, w->add2_v3, w->br64, &w->p_K4, &w->sigma[64]);
     if (st == 1) return 1;
-    if (live) note(w, 64, st);
+    if (live) note(w, st, 643, -644);
     w->chains = fmin(w->chains, w->sigma[64]);
     /* Step 65: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_K1, w->p_K4, l_left_rocker1, l_left_ternary_K2_K4, w->br65, &w->p_K2, &w->sigma[65]);
     if (st == 1) return 1;
-    if (live) note(w, 65, st);
+    if (live) note(w, st, 653, -654);
     w->chains = fmin(w->chains, w->sigma[65]);
     /* Step 66: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
     st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 66, st);
+    if (live) note(w, st, 663, -664);
     /* Step 67: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
     coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
     /* Step 68: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -1052,17 +1060,17 @@ static int group_2_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 69: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K3, p_J4, l_left_rocker2, w->add2_v4, w->br69, &w->p_K4, &w->sigma[69]);
     if (st == 1) return 1;
-    if (live) note(w, 69, st);
+    if (live) note(w, st, 693, -694);
     w->chains = fmin(w->chains, w->sigma[69]);
     /* Step 70: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_K1, w->p_K4, l_left_rocker1, l_left_ternary_K2_K4, w->br70, &w->p_K2, &w->sigma[70]);
     if (st == 1) return 1;
-    if (live) note(w, 70, st);
+    if (live) note(w, st, 703, -704);
     w->chains = fmin(w->chains, w->sigma[70]);
     /* Step 71: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
     st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 71, st);
+    if (live) note(w, st, 713, -714);
     /* Step 72: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
     coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
     /* Step 73: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -1091,17 +1099,17 @@ static int group_2_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 74: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K1, p_J2, l_left_rocker1, w->add2_v5, w->br74, &w->p_K2, &w->sigma[74]);
     if (st == 1) return 1;
-    if (live) note(w, 74, st);
+    if (live) note(w, st, 743, -744);
     w->chains = fmin(w->chains, w->sigma[74]);
     /* Step 75: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w->br75, &w->p_K4, &w->sigma[75]);
     if (st == 1) return 1;
-    if (live) note(w, 75, st);
+    if (live) note(w, st, 753, -754);
     w->chains = fmin(w->chains, w->sigma[75]);
     /* Step 76: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
     st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 76, st);
+    if (live) note(w, st, 763, -764);
     /* Step 77: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
     coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
     /* Step 78: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -1130,17 +1138,17 @@ static int group_2_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 79: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K1, p_J4, l_left_rocker1, w->add2_v6, w->br79, &w->p_K2, &w->sigma[79]);
     if (st == 1) return 1;
-    if (live) note(w, 79, st);
+    if (live) note(w, st, 793, -794);
     w->chains = fmin(w->chains, w->sigma[79]);
     /* Step 80: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w->br80, &w->p_K4, &w->sigma[80]);
     if (st == 1) return 1;
-    if (live) note(w, 80, st);
+    if (live) note(w, st, 803, -804);
     w->chains = fmin(w->chains, w->sigma[80]);
     /* Step 81: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
     st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 81, st);
+    if (live) note(w, st, 813, -814);
     /* Step 82: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
     coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
     /* Step 83: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -1167,17 +1175,17 @@ static int group_2_v7(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 84: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K1, p_J6, l_left_rocker1, w->add2_v7, w->br84, &w->p_K2, &w->sigma[84]);
     if (st == 1) return 1;
-    if (live) note(w, 84, st);
+    if (live) note(w, st, 843, -844);
     w->chains = fmin(w->chains, w->sigma[84]);
     /* Step 85: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w->br85, &w->p_K4, &w->sigma[85]);
     if (st == 1) return 1;
-    if (live) note(w, 85, st);
+    if (live) note(w, st, 853, -854);
     w->chains = fmin(w->chains, w->sigma[85]);
     /* Step 86: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
     st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 86, st);
+    if (live) note(w, st, 863, -864);
     /* Step 87: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
     coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
     /* Step 88: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -1206,17 +1214,17 @@ static int group_2_v8(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 89: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_J6, p_J5, l_left_coupler, w->add2_v8, w->br89, &w->p_K5, &w->sigma[89]);
     if (st == 1) return 1;
-    if (live) note(w, 89, st);
+    if (live) note(w, st, 893, -894);
     w->chains = fmin(w->chains, w->sigma[89]);
     /* Step 90: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_K1, w->p_K5, l_left_rocker1, l_left_ternary_K2_K5, w->br90, &w->p_K2, &w->sigma[90]);
     if (st == 1) return 1;
-    if (live) note(w, 90, st);
+    if (live) note(w, st, 903, -904);
     w->chains = fmin(w->chains, w->sigma[90]);
     /* Step 91: link_angle, left_ternary. K5 and K2 of link left_ternary are known, so its angle is */
     st = link_angle(w->p_K5, w->p_K2, -2.928860872898183, &w->phi_left_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 91, st);
+    if (live) note(w, st, 913, -914);
     /* Step 92: coupler_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it */
     coupler_point(w->p_K5, w->phi_left_ternary, 45.662543438831435, 12.842590342171338, &w->p_K4);
     /* Step 93: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures */
@@ -1456,7 +1464,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
         used[0] = k;
         lengths_1(w, &a[0], &ad[0]);
         a[0 + k][LINKGEN_NMAX - 1] = turn;
-        note(w, 9, w->sigma[9] < 1e-07 ? 3 : w->sigma[9] < 0.001 ? 4 : 0);
+        note(w, w->sigma[9] < 1e-07 ? 3 : w->sigma[9] < 0.001 ? 4 : 0, 93, -94);
     }
 
 
@@ -1496,7 +1504,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
         used[1] = k;
         lengths_2(w, &a[7], &ad[7]);
         a[7 + k][LINKGEN_NMAX - 1] = turn;
-        note(w, 16, w->sigma[16] < 1e-07 ? 3 : w->sigma[16] < 0.001 ? 4 : 0);
+        note(w, w->sigma[16] < 1e-07 ? 3 : w->sigma[16] < 0.001 ? 4 : 0, 163, -164);
     }
 
 
@@ -1504,45 +1512,45 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 17: link_angle, crank. J7 and J6 of link crank are known, so its angle is */
     st = link_angle(p_J7, w->p_J6, 0.0, &w->phi_crank);
     if (st == 1) return 171;
-    note(w, 17, st);
+    note(w, st, 173, -174);
 
 
     /* Step 18: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is */
     st = link_angle(p_J1, w->p_J2, 0.0, &w->phi_right_rocker1);
     if (st == 1) return 181;
-    note(w, 18, st);
+    note(w, st, 183, -184);
 
 
     /* Step 19: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is */
     st = link_angle(p_J3, w->p_J4, 0.0, &w->phi_right_rocker2);
     if (st == 1) return 191;
-    note(w, 19, st);
+    note(w, st, 193, -194);
 
 
     /* Step 20: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is */
     st = link_angle(w->p_J6, w->p_J5, 0.0, &w->phi_right_coupler);
     if (st == 1) return 201;
-    note(w, 20, st);
+    note(w, st, 203, -204);
 
 
     /* Step 21: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is */
     st = link_angle(p_K1, w->p_K2, 0.0, &w->phi_left_rocker1);
     if (st == 1) return 211;
-    note(w, 21, st);
+    note(w, st, 213, -214);
 
 
     /* Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is */
     st = link_angle(p_K3, w->p_K4, 0.0, &w->phi_left_rocker2);
     if (st == 1) return 221;
-    note(w, 22, st);
+    note(w, st, 223, -224);
 
 
     /* Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is */
     st = link_angle(w->p_J6, w->p_K5, 0.0, &w->phi_left_coupler);
     if (st == 1) return 231;
-    note(w, 23, st);
+    note(w, st, 233, -234);
 
-    return w->singular ? w->singular : -w->near;
+    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -1658,7 +1666,7 @@ static void publish(const work *w, int code, double_triad_state *out)
     int k;
     out->status = code;
     for (k = 0; k <= DOUBLE_TRIAD_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
+    if (reason_of(code) == 1 || reason_of(code) == 2) {
         no_outputs(out);
         return;
     }
@@ -1764,7 +1772,7 @@ static void publish(const work *w, int code, double_triad_state *out)
     out->left_coupler.phi = w->phi_left_coupler.the;
     out->left_coupler.omega = w->phi_left_coupler.dthe;
     out->left_coupler.alpha = w->phi_left_coupler.ddthe;
-    if (code > 0 && code % 10 == 3) {
+    if (reason_of(code) == 3) {
         out->J7.vx = NAN;
         out->J7.vy = NAN;
         out->J7.ax = NAN;
@@ -1909,7 +1917,7 @@ int double_triad_solve(const double in[], const double din[], const double ddin[
             for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = out->warm_a[g][i];
         for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = out->warm_used[g];
     }
-    if (!solved && (code <= 0 || code % 10 == 2)) {
+    if (!solved && (code <= 0 || reason_of(code) == 2)) {
         /* the sketch's assembly, followed from the sketch (or the last row) */
         for (g = 0; g < LINKGEN_NGROUPS; g++) w.used[g] = used[g];
         if (continuation(path_run, &w, base, a, in, limits, periodic, 20,

@@ -277,6 +277,12 @@ def link_residual(j1, j2, l):
     rdd = rp if r == 0 else (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir
     return (r - l_v, rd - l_dv, rdd - l_ddv)
 
+def reason_of(code):
+    """The reason of a status code (linkgen/status.py): the last digit of a positive code
+    (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    0 for status 0 and the negative codes of rows computed near a singular position."""
+    return code % 10 if code > 0 else 0
+
 # Over-constraint resolver: Newton-Raphson on the Add-link lengths.
 # group(a, live) runs the steps of one resolver group with the Add-link records
 # a = [(length, rate, acc), ...] and returns (status, f) with f the residual
@@ -551,12 +557,12 @@ class _Work:
 
     __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "phi_right_ternary", "p_J5", "f1", "add2", "p_K4", "p_K2", "phi_left_ternary", "p_K5", "f2", "phi_crank", "phi_right_rocker1", "phi_right_rocker2", "phi_right_coupler", "phi_left_rocker1", "phi_left_rocker2", "phi_left_coupler", "add1_v1", "f1_v1", "add1_v2", "f1_v2", "add1_v3", "f1_v3", "add1_v4", "f1_v4", "add1_v5", "f1_v5", "add1_v6", "f1_v6", "add2_v1", "f2_v1", "add2_v2", "f2_v2", "add2_v3", "f2_v3", "add2_v4", "f2_v4", "add2_v5", "f2_v5", "add2_v6", "f2_v6", "add2_v7", "f2_v7", "add2_v8", "f2_v8", "sigma", "singular", "near", "chains", "br4", "br5", "br11", "br12", "br24", "br25", "br29", "br30", "br34", "br35", "br39", "br40", "br44", "br45", "br49", "br50", "br54", "br55", "br59", "br60", "br64", "br65", "br69", "br70", "br74", "br75", "br79", "br80", "br84", "br85", "br89", "br90")
 
-    def note(self, step, st):
-        """Remember the first step at a singular (3) or near-singular (4) position."""
+    def note(self, st, singular, near):
+        """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
         if st == 3 and not self.singular:
-            self.singular = 10 * step + 3
+            self.singular = singular
         if st == 4 and not self.near:
-            self.near = 10 * step + 4
+            self.near = near
 
 
 def _group_1(w, a, live):
@@ -574,21 +580,21 @@ def _group_1(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(4, st)
+        w.note(st, 43, -44)
     w.chains = min(w.chains, w.sigma[4])
     # Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
     st, w.sigma[5], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, w.br5)
     if st == 1:
         return 1, None
     if live:
-        w.note(5, st)
+        w.note(st, 53, -54)
     w.chains = min(w.chains, w.sigma[5])
     # Step 6: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(6, st)
+        w.note(st, 63, -64)
     # Step 7: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341)
     # Step 8: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -612,21 +618,21 @@ def _group_1_v1(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(24, st)
+        w.note(st, 243, -244)
     w.chains = min(w.chains, w.sigma[24])
     # Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
     st, w.sigma[25], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w.br25)
     if st == 1:
         return 1, None
     if live:
-        w.note(25, st)
+        w.note(st, 253, -254)
     w.chains = min(w.chains, w.sigma[25])
     # Step 26: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(26, st)
+        w.note(st, 263, -264)
     # Step 27: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134)
     # Step 28: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -650,21 +656,21 @@ def _group_1_v2(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(29, st)
+        w.note(st, 293, -294)
     w.chains = min(w.chains, w.sigma[29])
     # Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
     st, w.sigma[30], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w.br30)
     if st == 1:
         return 1, None
     if live:
-        w.note(30, st)
+        w.note(st, 303, -304)
     w.chains = min(w.chains, w.sigma[30])
     # Step 31: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(31, st)
+        w.note(st, 313, -314)
     # Step 32: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134)
     # Step 33: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -688,21 +694,21 @@ def _group_1_v3(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(34, st)
+        w.note(st, 343, -344)
     w.chains = min(w.chains, w.sigma[34])
     # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
     st, w.sigma[35], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, w.br35)
     if st == 1:
         return 1, None
     if live:
-        w.note(35, st)
+        w.note(st, 353, -354)
     w.chains = min(w.chains, w.sigma[35])
     # Step 36: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(36, st)
+        w.note(st, 363, -364)
     # Step 37: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341)
     # Step 38: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -726,21 +732,21 @@ def _group_1_v4(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(39, st)
+        w.note(st, 393, -394)
     w.chains = min(w.chains, w.sigma[39])
     # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
     st, w.sigma[40], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, w.br40)
     if st == 1:
         return 1, None
     if live:
-        w.note(40, st)
+        w.note(st, 403, -404)
     w.chains = min(w.chains, w.sigma[40])
     # Step 41: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(41, st)
+        w.note(st, 413, -414)
     # Step 42: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341)
     # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -764,21 +770,21 @@ def _group_1_v5(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(44, st)
+        w.note(st, 443, -444)
     w.chains = min(w.chains, w.sigma[44])
     # Step 45: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
     st, w.sigma[45], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w.br45)
     if st == 1:
         return 1, None
     if live:
-        w.note(45, st)
+        w.note(st, 453, -454)
     w.chains = min(w.chains, w.sigma[45])
     # Step 46: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(46, st)
+        w.note(st, 463, -464)
     # Step 47: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134)
     # Step 48: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -802,21 +808,21 @@ def _group_1_v6(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(49, st)
+        w.note(st, 493, -494)
     w.chains = min(w.chains, w.sigma[49])
     # Step 50: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
     st, w.sigma[50], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w.br50)
     if st == 1:
         return 1, None
     if live:
-        w.note(50, st)
+        w.note(st, 503, -504)
     w.chains = min(w.chains, w.sigma[50])
     # Step 51: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(51, st)
+        w.note(st, 513, -514)
     # Step 52: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134)
     # Step 53: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -840,21 +846,21 @@ def _group_2(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(11, st)
+        w.note(st, 113, -114)
     w.chains = min(w.chains, w.sigma[11])
     # Step 12: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
     st, w.sigma[12], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br12)
     if st == 1:
         return 1, None
     if live:
-        w.note(12, st)
+        w.note(st, 123, -124)
     w.chains = min(w.chains, w.sigma[12])
     # Step 13: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(13, st)
+        w.note(st, 133, -134)
     # Step 14: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338)
     # Step 15: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -879,21 +885,21 @@ def _group_2_v1(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(54, st)
+        w.note(st, 543, -544)
     w.chains = min(w.chains, w.sigma[54])
     # Step 55: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
     st, w.sigma[55], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br55)
     if st == 1:
         return 1, None
     if live:
-        w.note(55, st)
+        w.note(st, 553, -554)
     w.chains = min(w.chains, w.sigma[55])
     # Step 56: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(56, st)
+        w.note(st, 563, -564)
     # Step 57: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345)
     # Step 58: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -918,21 +924,21 @@ def _group_2_v2(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(59, st)
+        w.note(st, 593, -594)
     w.chains = min(w.chains, w.sigma[59])
     # Step 60: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
     st, w.sigma[60], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br60)
     if st == 1:
         return 1, None
     if live:
-        w.note(60, st)
+        w.note(st, 603, -604)
     w.chains = min(w.chains, w.sigma[60])
     # Step 61: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(61, st)
+        w.note(st, 613, -614)
     # Step 62: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338)
     # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -957,21 +963,21 @@ def _group_2_v3(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(64, st)
+        w.note(st, 643, -644)
     w.chains = min(w.chains, w.sigma[64])
     # Step 65: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
     st, w.sigma[65], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br65)
     if st == 1:
         return 1, None
     if live:
-        w.note(65, st)
+        w.note(st, 653, -654)
     w.chains = min(w.chains, w.sigma[65])
     # Step 66: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(66, st)
+        w.note(st, 663, -664)
     # Step 67: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338)
     # Step 68: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -996,21 +1002,21 @@ def _group_2_v4(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(69, st)
+        w.note(st, 693, -694)
     w.chains = min(w.chains, w.sigma[69])
     # Step 70: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
     st, w.sigma[70], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br70)
     if st == 1:
         return 1, None
     if live:
-        w.note(70, st)
+        w.note(st, 703, -704)
     w.chains = min(w.chains, w.sigma[70])
     # Step 71: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(71, st)
+        w.note(st, 713, -714)
     # Step 72: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338)
     # Step 73: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -1035,21 +1041,21 @@ def _group_2_v5(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(74, st)
+        w.note(st, 743, -744)
     w.chains = min(w.chains, w.sigma[74])
     # Step 75: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
     st, w.sigma[75], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br75)
     if st == 1:
         return 1, None
     if live:
-        w.note(75, st)
+        w.note(st, 753, -754)
     w.chains = min(w.chains, w.sigma[75])
     # Step 76: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(76, st)
+        w.note(st, 763, -764)
     # Step 77: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345)
     # Step 78: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -1074,21 +1080,21 @@ def _group_2_v6(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(79, st)
+        w.note(st, 793, -794)
     w.chains = min(w.chains, w.sigma[79])
     # Step 80: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
     st, w.sigma[80], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br80)
     if st == 1:
         return 1, None
     if live:
-        w.note(80, st)
+        w.note(st, 803, -804)
     w.chains = min(w.chains, w.sigma[80])
     # Step 81: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(81, st)
+        w.note(st, 813, -814)
     # Step 82: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345)
     # Step 83: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -1112,21 +1118,21 @@ def _group_2_v7(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(84, st)
+        w.note(st, 843, -844)
     w.chains = min(w.chains, w.sigma[84])
     # Step 85: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
     st, w.sigma[85], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br85)
     if st == 1:
         return 1, None
     if live:
-        w.note(85, st)
+        w.note(st, 853, -854)
     w.chains = min(w.chains, w.sigma[85])
     # Step 86: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(86, st)
+        w.note(st, 863, -864)
     # Step 87: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345)
     # Step 88: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -1151,21 +1157,21 @@ def _group_2_v8(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(89, st)
+        w.note(st, 893, -894)
     w.chains = min(w.chains, w.sigma[89])
     # Step 90: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known
     st, w.sigma[90], w.p_K2 = RRR_links(p_K1, w.p_K5, l_left_rocker1, l_left_ternary_K2_K5, w.br90)
     if st == 1:
         return 1, None
     if live:
-        w.note(90, st)
+        w.note(st, 903, -904)
     w.chains = min(w.chains, w.sigma[90])
     # Step 91: link_angle, left_ternary. K5 and K2 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K5, w.p_K2, -2.928860872898183)
     if st == 1:
         return 1, None
     if live:
-        w.note(91, st)
+        w.note(st, 913, -914)
     # Step 92: coupler_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
     w.p_K4 = coupler_point(w.p_K5, w.phi_left_ternary, 45.662543438831435, 12.842590342171338)
     # Step 93: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
@@ -1305,7 +1311,7 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     used[0] = k
     _lengths_1(w, a, ad)
     a[0 + k][-1] = float(turn)
-    w.note(9, 3 if w.sigma[9] < 1e-07 else 4 if w.sigma[9] < 0.001 else 0)
+    w.note(3 if w.sigma[9] < 1e-07 else 4 if w.sigma[9] < 0.001 else 0, 93, -94)
 
 
     # Step 10: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4
@@ -1339,58 +1345,58 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     used[1] = k
     _lengths_2(w, a, ad)
     a[7 + k][-1] = float(turn)
-    w.note(16, 3 if w.sigma[16] < 1e-07 else 4 if w.sigma[16] < 0.001 else 0)
+    w.note(3 if w.sigma[16] < 1e-07 else 4 if w.sigma[16] < 0.001 else 0, 163, -164)
 
 
     # Step 17: link_angle, crank. J7 and J6 of link crank are known, so its angle is
     st, w.phi_crank = link_angle(p_J7, w.p_J6, 0.0)
     if st == 1:
         return 171
-    w.note(17, st)
+    w.note(st, 173, -174)
 
     # Step 18: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is
     st, w.phi_right_rocker1 = link_angle(p_J1, w.p_J2, 0.0)
     if st == 1:
         return 181
-    w.note(18, st)
+    w.note(st, 183, -184)
 
     # Step 19: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is
     st, w.phi_right_rocker2 = link_angle(p_J3, w.p_J4, 0.0)
     if st == 1:
         return 191
-    w.note(19, st)
+    w.note(st, 193, -194)
 
     # Step 20: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is
     st, w.phi_right_coupler = link_angle(w.p_J6, w.p_J5, 0.0)
     if st == 1:
         return 201
-    w.note(20, st)
+    w.note(st, 203, -204)
 
     # Step 21: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is
     st, w.phi_left_rocker1 = link_angle(p_K1, w.p_K2, 0.0)
     if st == 1:
         return 211
-    w.note(21, st)
+    w.note(st, 213, -214)
 
     # Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is
     st, w.phi_left_rocker2 = link_angle(p_K3, w.p_K4, 0.0)
     if st == 1:
         return 221
-    w.note(22, st)
+    w.note(st, 223, -224)
 
     # Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is
     st, w.phi_left_coupler = link_angle(w.p_J6, w.p_K5, 0.0)
     if st == 1:
         return 231
-    w.note(23, st)
+    w.note(st, 233, -234)
 
-    return w.singular or -w.near
+    return w.singular or w.near
 
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = code > 0 and code % 10 in (1, 2)
-    singular = code > 0 and code % 10 == 3
+    failed = reason_of(code) in (1, 2)
+    singular = reason_of(code) == 3
     if failed:
         values = (NAN,) * len(_LEVELS)
     else:
@@ -1560,7 +1566,7 @@ def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
         solved = code <= 0 and on_path(warm[2], guess, a, BLOCK_SIZES, SLACK * LENGTH_SCALE)
     if warm and not solved:
         base, a, used = list(warm[0]), [list(g) for g in warm[2]], list(warm[4])
-    if not solved and (code <= 0 or code % 10 == 2):
+    if not solved and (code <= 0 or reason_of(code) == 2):
         # the sketch's assembly, followed from the sketch (or the last row)
         prefer = list(used)
         path = lambda x, d, o, s: _path_run(x, d, o, s, prefer)  # noqa: E731

@@ -40,7 +40,7 @@ function [out, status, warm] = double_triad_solve(in, din, ddin, warm)
             used = warm.used;
         end
     end
-    if ~solved && (status <= 0 || mod(status, 10) == 2)
+    if ~solved && (status <= 0 || reason_of(status) == 2)
         % the sketch's assembly, followed from the sketch (or the last row)
         prefer = used;
         [reached, a2] = resolver_continuation(@(x, d, o, s) path_run(x, d, o, s, prefer), base, a, in, limits, ...
@@ -114,13 +114,13 @@ function w = new_work()
     w.iterations = zeros(1, 2);
 end
 
-function w = note(w, step, st)
-    % Remember the first step at a singular (3) or near-singular (4) position.
+function w = note(w, st, singular, near)
+    % Remember the code of the first step at a singular or a near-singular position (st: the step's).
     if st == 3 && w.singular == 0
-        w.singular = 10 * step + 3;
+        w.singular = singular;
     end
     if st == 4 && w.near == 0
-        w.near = 10 * step + 4;
+        w.near = near;
     end
 end
 
@@ -166,9 +166,9 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
     [a, ad] = lengths_1(w, a, ad);
     a{1 + k}(end) = turn;
     if w.sigma(9) < 1e-07
-        w = note(w, 9, 3);
+        w = note(w, 3, 93, -94);
     elseif w.sigma(9) < 0.001
-        w = note(w, 9, 4);
+        w = note(w, 4, 93, -94);
     end
 
 
@@ -206,9 +206,9 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
     [a, ad] = lengths_2(w, a, ad);
     a{8 + k}(end) = turn;
     if w.sigma(16) < 1e-07
-        w = note(w, 16, 3);
+        w = note(w, 3, 163, -164);
     elseif w.sigma(16) < 0.001
-        w = note(w, 16, 4);
+        w = note(w, 4, 163, -164);
     end
 
 
@@ -218,7 +218,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
         status = 171;
         return;
     end
-    w = note(w, 17, st);
+    w = note(w, st, 173, -174);
 
     % Step 18: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is
     [w.phi_right_rocker1, st] = link_angle(w.p_J1, w.p_J2, 0.0);
@@ -226,7 +226,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
         status = 181;
         return;
     end
-    w = note(w, 18, st);
+    w = note(w, st, 183, -184);
 
     % Step 19: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is
     [w.phi_right_rocker2, st] = link_angle(w.p_J3, w.p_J4, 0.0);
@@ -234,7 +234,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
         status = 191;
         return;
     end
-    w = note(w, 19, st);
+    w = note(w, st, 193, -194);
 
     % Step 20: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is
     [w.phi_right_coupler, st] = link_angle(w.p_J6, w.p_J5, 0.0);
@@ -242,7 +242,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
         status = 201;
         return;
     end
-    w = note(w, 20, st);
+    w = note(w, st, 203, -204);
 
     % Step 21: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is
     [w.phi_left_rocker1, st] = link_angle(w.p_K1, w.p_K2, 0.0);
@@ -250,7 +250,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
         status = 211;
         return;
     end
-    w = note(w, 21, st);
+    w = note(w, st, 213, -214);
 
     % Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is
     [w.phi_left_rocker2, st] = link_angle(w.p_K3, w.p_K4, 0.0);
@@ -258,7 +258,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
         status = 221;
         return;
     end
-    w = note(w, 22, st);
+    w = note(w, st, 223, -224);
 
     % Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is
     [w.phi_left_coupler, st] = link_angle(w.p_J6, w.p_K5, 0.0);
@@ -266,12 +266,12 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
         status = 231;
         return;
     end
-    w = note(w, 23, st);
+    w = note(w, st, 233, -234);
 
     if w.singular > 0
         status = w.singular;
     else
-        status = -w.near;
+        status = w.near;
     end
 end
 
@@ -296,7 +296,7 @@ function [st, res, w] = group_1(w, a, live)
         return;
     end
     if live
-        w = note(w, 4, st);
+        w = note(w, st, 43, -44);
     end
     w.chains = min(w.chains, w.sigma(4));
     % Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
@@ -307,7 +307,7 @@ function [st, res, w] = group_1(w, a, live)
         return;
     end
     if live
-        w = note(w, 5, st);
+        w = note(w, st, 53, -54);
     end
     w.chains = min(w.chains, w.sigma(5));
     % Step 6: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
@@ -318,7 +318,7 @@ function [st, res, w] = group_1(w, a, live)
         return;
     end
     if live
-        w = note(w, 6, st);
+        w = note(w, st, 63, -64);
     end
     % Step 7: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341);
@@ -351,7 +351,7 @@ function [st, res, w] = group_1_v1(w, a, live)
         return;
     end
     if live
-        w = note(w, 24, st);
+        w = note(w, st, 243, -244);
     end
     w.chains = min(w.chains, w.sigma(24));
     % Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
@@ -362,7 +362,7 @@ function [st, res, w] = group_1_v1(w, a, live)
         return;
     end
     if live
-        w = note(w, 25, st);
+        w = note(w, st, 253, -254);
     end
     w.chains = min(w.chains, w.sigma(25));
     % Step 26: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
@@ -373,7 +373,7 @@ function [st, res, w] = group_1_v1(w, a, live)
         return;
     end
     if live
-        w = note(w, 26, st);
+        w = note(w, st, 263, -264);
     end
     % Step 27: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134);
@@ -406,7 +406,7 @@ function [st, res, w] = group_1_v2(w, a, live)
         return;
     end
     if live
-        w = note(w, 29, st);
+        w = note(w, st, 293, -294);
     end
     w.chains = min(w.chains, w.sigma(29));
     % Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
@@ -417,7 +417,7 @@ function [st, res, w] = group_1_v2(w, a, live)
         return;
     end
     if live
-        w = note(w, 30, st);
+        w = note(w, st, 303, -304);
     end
     w.chains = min(w.chains, w.sigma(30));
     % Step 31: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
@@ -428,7 +428,7 @@ function [st, res, w] = group_1_v2(w, a, live)
         return;
     end
     if live
-        w = note(w, 31, st);
+        w = note(w, st, 313, -314);
     end
     % Step 32: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134);
@@ -461,7 +461,7 @@ function [st, res, w] = group_1_v3(w, a, live)
         return;
     end
     if live
-        w = note(w, 34, st);
+        w = note(w, st, 343, -344);
     end
     w.chains = min(w.chains, w.sigma(34));
     % Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
@@ -472,7 +472,7 @@ function [st, res, w] = group_1_v3(w, a, live)
         return;
     end
     if live
-        w = note(w, 35, st);
+        w = note(w, st, 353, -354);
     end
     w.chains = min(w.chains, w.sigma(35));
     % Step 36: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
@@ -483,7 +483,7 @@ function [st, res, w] = group_1_v3(w, a, live)
         return;
     end
     if live
-        w = note(w, 36, st);
+        w = note(w, st, 363, -364);
     end
     % Step 37: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341);
@@ -516,7 +516,7 @@ function [st, res, w] = group_1_v4(w, a, live)
         return;
     end
     if live
-        w = note(w, 39, st);
+        w = note(w, st, 393, -394);
     end
     w.chains = min(w.chains, w.sigma(39));
     % Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
@@ -527,7 +527,7 @@ function [st, res, w] = group_1_v4(w, a, live)
         return;
     end
     if live
-        w = note(w, 40, st);
+        w = note(w, st, 403, -404);
     end
     w.chains = min(w.chains, w.sigma(40));
     % Step 41: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
@@ -538,7 +538,7 @@ function [st, res, w] = group_1_v4(w, a, live)
         return;
     end
     if live
-        w = note(w, 41, st);
+        w = note(w, st, 413, -414);
     end
     % Step 42: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341);
@@ -571,7 +571,7 @@ function [st, res, w] = group_1_v5(w, a, live)
         return;
     end
     if live
-        w = note(w, 44, st);
+        w = note(w, st, 443, -444);
     end
     w.chains = min(w.chains, w.sigma(44));
     % Step 45: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
@@ -582,7 +582,7 @@ function [st, res, w] = group_1_v5(w, a, live)
         return;
     end
     if live
-        w = note(w, 45, st);
+        w = note(w, st, 453, -454);
     end
     w.chains = min(w.chains, w.sigma(45));
     % Step 46: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
@@ -593,7 +593,7 @@ function [st, res, w] = group_1_v5(w, a, live)
         return;
     end
     if live
-        w = note(w, 46, st);
+        w = note(w, st, 463, -464);
     end
     % Step 47: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134);
@@ -626,7 +626,7 @@ function [st, res, w] = group_1_v6(w, a, live)
         return;
     end
     if live
-        w = note(w, 49, st);
+        w = note(w, st, 493, -494);
     end
     w.chains = min(w.chains, w.sigma(49));
     % Step 50: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
@@ -637,7 +637,7 @@ function [st, res, w] = group_1_v6(w, a, live)
         return;
     end
     if live
-        w = note(w, 50, st);
+        w = note(w, st, 503, -504);
     end
     w.chains = min(w.chains, w.sigma(50));
     % Step 51: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
@@ -648,7 +648,7 @@ function [st, res, w] = group_1_v6(w, a, live)
         return;
     end
     if live
-        w = note(w, 51, st);
+        w = note(w, st, 513, -514);
     end
     % Step 52: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134);
@@ -680,7 +680,7 @@ function [st, res, w] = group_2(w, a, live)
         return;
     end
     if live
-        w = note(w, 11, st);
+        w = note(w, st, 113, -114);
     end
     w.chains = min(w.chains, w.sigma(11));
     % Step 12: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
@@ -691,7 +691,7 @@ function [st, res, w] = group_2(w, a, live)
         return;
     end
     if live
-        w = note(w, 12, st);
+        w = note(w, st, 123, -124);
     end
     w.chains = min(w.chains, w.sigma(12));
     % Step 13: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
@@ -702,7 +702,7 @@ function [st, res, w] = group_2(w, a, live)
         return;
     end
     if live
-        w = note(w, 13, st);
+        w = note(w, st, 133, -134);
     end
     % Step 14: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338);
@@ -740,7 +740,7 @@ function [st, res, w] = group_2_v1(w, a, live)
         return;
     end
     if live
-        w = note(w, 54, st);
+        w = note(w, st, 543, -544);
     end
     w.chains = min(w.chains, w.sigma(54));
     % Step 55: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
@@ -751,7 +751,7 @@ function [st, res, w] = group_2_v1(w, a, live)
         return;
     end
     if live
-        w = note(w, 55, st);
+        w = note(w, st, 553, -554);
     end
     w.chains = min(w.chains, w.sigma(55));
     % Step 56: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
@@ -762,7 +762,7 @@ function [st, res, w] = group_2_v1(w, a, live)
         return;
     end
     if live
-        w = note(w, 56, st);
+        w = note(w, st, 563, -564);
     end
     % Step 57: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345);
@@ -800,7 +800,7 @@ function [st, res, w] = group_2_v2(w, a, live)
         return;
     end
     if live
-        w = note(w, 59, st);
+        w = note(w, st, 593, -594);
     end
     w.chains = min(w.chains, w.sigma(59));
     % Step 60: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
@@ -811,7 +811,7 @@ function [st, res, w] = group_2_v2(w, a, live)
         return;
     end
     if live
-        w = note(w, 60, st);
+        w = note(w, st, 603, -604);
     end
     w.chains = min(w.chains, w.sigma(60));
     % Step 61: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
@@ -822,7 +822,7 @@ function [st, res, w] = group_2_v2(w, a, live)
         return;
     end
     if live
-        w = note(w, 61, st);
+        w = note(w, st, 613, -614);
     end
     % Step 62: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338);
@@ -860,7 +860,7 @@ function [st, res, w] = group_2_v3(w, a, live)
         return;
     end
     if live
-        w = note(w, 64, st);
+        w = note(w, st, 643, -644);
     end
     w.chains = min(w.chains, w.sigma(64));
     % Step 65: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
@@ -871,7 +871,7 @@ function [st, res, w] = group_2_v3(w, a, live)
         return;
     end
     if live
-        w = note(w, 65, st);
+        w = note(w, st, 653, -654);
     end
     w.chains = min(w.chains, w.sigma(65));
     % Step 66: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
@@ -882,7 +882,7 @@ function [st, res, w] = group_2_v3(w, a, live)
         return;
     end
     if live
-        w = note(w, 66, st);
+        w = note(w, st, 663, -664);
     end
     % Step 67: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338);
@@ -920,7 +920,7 @@ function [st, res, w] = group_2_v4(w, a, live)
         return;
     end
     if live
-        w = note(w, 69, st);
+        w = note(w, st, 693, -694);
     end
     w.chains = min(w.chains, w.sigma(69));
     % Step 70: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
@@ -931,7 +931,7 @@ function [st, res, w] = group_2_v4(w, a, live)
         return;
     end
     if live
-        w = note(w, 70, st);
+        w = note(w, st, 703, -704);
     end
     w.chains = min(w.chains, w.sigma(70));
     % Step 71: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
@@ -942,7 +942,7 @@ function [st, res, w] = group_2_v4(w, a, live)
         return;
     end
     if live
-        w = note(w, 71, st);
+        w = note(w, st, 713, -714);
     end
     % Step 72: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338);
@@ -980,7 +980,7 @@ function [st, res, w] = group_2_v5(w, a, live)
         return;
     end
     if live
-        w = note(w, 74, st);
+        w = note(w, st, 743, -744);
     end
     w.chains = min(w.chains, w.sigma(74));
     % Step 75: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
@@ -991,7 +991,7 @@ function [st, res, w] = group_2_v5(w, a, live)
         return;
     end
     if live
-        w = note(w, 75, st);
+        w = note(w, st, 753, -754);
     end
     w.chains = min(w.chains, w.sigma(75));
     % Step 76: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
@@ -1002,7 +1002,7 @@ function [st, res, w] = group_2_v5(w, a, live)
         return;
     end
     if live
-        w = note(w, 76, st);
+        w = note(w, st, 763, -764);
     end
     % Step 77: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345);
@@ -1040,7 +1040,7 @@ function [st, res, w] = group_2_v6(w, a, live)
         return;
     end
     if live
-        w = note(w, 79, st);
+        w = note(w, st, 793, -794);
     end
     w.chains = min(w.chains, w.sigma(79));
     % Step 80: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
@@ -1051,7 +1051,7 @@ function [st, res, w] = group_2_v6(w, a, live)
         return;
     end
     if live
-        w = note(w, 80, st);
+        w = note(w, st, 803, -804);
     end
     w.chains = min(w.chains, w.sigma(80));
     % Step 81: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
@@ -1062,7 +1062,7 @@ function [st, res, w] = group_2_v6(w, a, live)
         return;
     end
     if live
-        w = note(w, 81, st);
+        w = note(w, st, 813, -814);
     end
     % Step 82: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345);
@@ -1095,7 +1095,7 @@ function [st, res, w] = group_2_v7(w, a, live)
         return;
     end
     if live
-        w = note(w, 84, st);
+        w = note(w, st, 843, -844);
     end
     w.chains = min(w.chains, w.sigma(84));
     % Step 85: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
@@ -1106,7 +1106,7 @@ function [st, res, w] = group_2_v7(w, a, live)
         return;
     end
     if live
-        w = note(w, 85, st);
+        w = note(w, st, 853, -854);
     end
     w.chains = min(w.chains, w.sigma(85));
     % Step 86: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
@@ -1117,7 +1117,7 @@ function [st, res, w] = group_2_v7(w, a, live)
         return;
     end
     if live
-        w = note(w, 86, st);
+        w = note(w, st, 863, -864);
     end
     % Step 87: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
     w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345);
@@ -1155,7 +1155,7 @@ function [st, res, w] = group_2_v8(w, a, live)
         return;
     end
     if live
-        w = note(w, 89, st);
+        w = note(w, st, 893, -894);
     end
     w.chains = min(w.chains, w.sigma(89));
     % Step 90: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known
@@ -1166,7 +1166,7 @@ function [st, res, w] = group_2_v8(w, a, live)
         return;
     end
     if live
-        w = note(w, 90, st);
+        w = note(w, st, 903, -904);
     end
     w.chains = min(w.chains, w.sigma(90));
     % Step 91: link_angle, left_ternary. K5 and K2 of link left_ternary are known, so its angle is
@@ -1177,7 +1177,7 @@ function [st, res, w] = group_2_v8(w, a, live)
         return;
     end
     if live
-        w = note(w, 91, st);
+        w = note(w, st, 913, -914);
     end
     % Step 92: coupler_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
     w.p_K4 = coupler_point(w.p_K5, w.phi_left_ternary, 45.662543438831435, 12.842590342171338);
@@ -1310,8 +1310,8 @@ end
 
 function out = publish(w, status, in)
     % The outputs as a struct, with the status rules of the CSV.
-    failed = status > 0 && (mod(status, 10) == 1 || mod(status, 10) == 2);
-    singular = status > 0 && mod(status, 10) == 3;
+    failed = reason_of(status) == 1 || reason_of(status) == 2;
+    singular = reason_of(status) == 3;
     out = struct();
     if failed
         out.J7.x = NaN;
@@ -1814,6 +1814,16 @@ function f = link_residual(j1, j2, l)
     f.v = r - l.v;
     f.dv = rd - l.dv;
     f.ddv = rdd - l.ddv;
+end
+
+function r = reason_of(code)
+    % The reason of a status code (linkgen/status.py): the last digit of a positive code
+    % (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    % 0 for status 0 and the negative codes of rows computed near a singular position.
+    r = 0;
+    if code > 0
+        r = mod(code, 10);
+    end
 end
 
 function [x, det] = solve_linear(m, b)

@@ -111,6 +111,14 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
     return st;
 }
 
+/* The reason of a status code (linkgen/status.py): the last digit of a positive code
+ * (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+ * 0 for status 0 and the negative codes of rows computed near a singular position. */
+static int reason_of(int code)
+{
+    return code > 0 ? code % 10 : 0;
+}
+
 
 /* Constants taken from the sketch; points are held relative to
    (36.0, 20.0), which publish() adds back to the computed ones. */
@@ -136,11 +144,11 @@ typedef struct {
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
-/* Remember the first step at a singular (3) or near-singular (4) position. */
-static void note(work *w, int step, int st)
+/* Remember the code of the first step at a singular or a near-singular position (st: the step's). */
+static void note(work *w, int st, int singular, int near)
 {
-    if (st == 3 && !w->singular) w->singular = 10 * step + 3;
-    if (st == 4 && !w->near) w->near = 10 * step + 4;
+    if (st == 3 && !w->singular) w->singular = singular;
+    if (st == 4 && !w->near) w->near = near;
 }
 
 /* The procedure of fivebar.md, step by step. */
@@ -168,33 +176,33 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 4: RRR_links, P (branch +1). P is joined to the known A by link1 and to the known B by link2: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_A, w->p_B, l_link1, l_link2, 1, &w->p_P, &w->sigma[4]);
     if (st == 1) return 41;
-    note(w, 4, st);
+    note(w, st, 43, -44);
 
 
     /* Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is */
     st = link_angle(p_O1, w->p_A, 0.0, &w->phi_crank1);
     if (st == 1) return 51;
-    note(w, 5, st);
+    note(w, st, 53, -54);
 
 
     /* Step 6: link_angle, link1. A and P of link link1 are known, so its angle is */
     st = link_angle(w->p_A, w->p_P, 0.0, &w->phi_link1);
     if (st == 1) return 61;
-    note(w, 6, st);
+    note(w, st, 63, -64);
 
 
     /* Step 7: link_angle, link2. P and B of link link2 are known, so its angle is */
     st = link_angle(w->p_P, w->p_B, 0.0, &w->phi_link2);
     if (st == 1) return 71;
-    note(w, 7, st);
+    note(w, st, 73, -74);
 
 
     /* Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is */
     st = link_angle(p_O2, w->p_B, 0.0, &w->phi_crank2);
     if (st == 1) return 81;
-    note(w, 8, st);
+    note(w, st, 83, -84);
 
-    return w->singular ? w->singular : -w->near;
+    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -253,7 +261,7 @@ static void publish(const work *w, int code, fivebar_state *out)
     int k;
     out->status = code;
     for (k = 0; k <= FIVEBAR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
+    if (reason_of(code) == 1 || reason_of(code) == 2) {
         no_outputs(out);
         return;
     }
@@ -302,7 +310,7 @@ static void publish(const work *w, int code, fivebar_state *out)
     out->crank2.phi = w->phi_crank2.the;
     out->crank2.omega = w->phi_crank2.dthe;
     out->crank2.alpha = w->phi_crank2.ddthe;
-    if (code > 0 && code % 10 == 3) {
+    if (reason_of(code) == 3) {
         out->O1.vx = NAN;
         out->O1.vy = NAN;
         out->O1.ax = NAN;

@@ -59,13 +59,13 @@ function w = new_work()
     w.l_link2 = struct('v', 50.0, 'dv', 0.0, 'ddv', 0.0);
 end
 
-function w = note(w, step, st)
-    % Remember the first step at a singular (3) or near-singular (4) position.
+function w = note(w, st, singular, near)
+    % Remember the code of the first step at a singular or a near-singular position (st: the step's).
     if st == 3 && w.singular == 0
-        w.singular = 10 * step + 3;
+        w.singular = singular;
     end
     if st == 4 && w.near == 0
-        w.near = 10 * step + 4;
+        w.near = near;
     end
 end
 
@@ -91,7 +91,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 41;
         return;
     end
-    w = note(w, 4, st);
+    w = note(w, st, 43, -44);
 
     % Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is
     [w.phi_crank1, st] = link_angle(w.p_O1, w.p_A, 0.0);
@@ -99,7 +99,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 51;
         return;
     end
-    w = note(w, 5, st);
+    w = note(w, st, 53, -54);
 
     % Step 6: link_angle, link1. A and P of link link1 are known, so its angle is
     [w.phi_link1, st] = link_angle(w.p_A, w.p_P, 0.0);
@@ -107,7 +107,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 61;
         return;
     end
-    w = note(w, 6, st);
+    w = note(w, st, 63, -64);
 
     % Step 7: link_angle, link2. P and B of link link2 are known, so its angle is
     [w.phi_link2, st] = link_angle(w.p_P, w.p_B, 0.0);
@@ -115,7 +115,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 71;
         return;
     end
-    w = note(w, 7, st);
+    w = note(w, st, 73, -74);
 
     % Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is
     [w.phi_crank2, st] = link_angle(w.p_O2, w.p_B, 0.0);
@@ -123,19 +123,19 @@ function [status, w] = run(w, in, din, ddin)
         status = 81;
         return;
     end
-    w = note(w, 8, st);
+    w = note(w, st, 83, -84);
 
     if w.singular > 0
         status = w.singular;
     else
-        status = -w.near;
+        status = w.near;
     end
 end
 
 function out = publish(w, status, in)
     % The outputs as a struct, with the status rules of the CSV.
-    failed = status > 0 && (mod(status, 10) == 1 || mod(status, 10) == 2);
-    singular = status > 0 && mod(status, 10) == 3;
+    failed = reason_of(status) == 1 || reason_of(status) == 2;
+    singular = reason_of(status) == 3;
     out = struct();
     if failed
         out.O1.x = NaN;
@@ -426,5 +426,15 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
         jb.dy = NaN;
         jb.ddx = NaN;
         jb.ddy = NaN;
+    end
+end
+
+function r = reason_of(code)
+    % The reason of a status code (linkgen/status.py): the last digit of a positive code
+    % (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    % 0 for status 0 and the negative codes of rows computed near a singular position.
+    r = 0;
+    if code > 0
+        r = mod(code, 10);
     end
 end

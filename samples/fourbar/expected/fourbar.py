@@ -186,6 +186,12 @@ def RRR_links(j1, j2, l1, l2, minv):
         return st, sigma, (j1_x + e1x, j1_y + e1y, NAN, NAN, NAN, NAN)
     return st, sigma, (j1_x + e1x, j1_y + e1y, bvx, bvy, bax, bay)
 
+def reason_of(code):
+    """The reason of a status code (linkgen/status.py): the last digit of a positive code
+    (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    0 for status 0 and the negative codes of rows computed near a singular position."""
+    return code % 10 if code > 0 else 0
+
 # -- constants taken from the sketch -----------------------------------------
 # Points are held relative to (44.0, 36.0), which _publish adds back
 # to the computed ones.
@@ -202,12 +208,12 @@ class _Work:
 
     __slots__ = ("in1", "p_A", "p_B", "phi_coupler", "p_P", "phi_crank", "phi_rocker", "sigma", "singular", "near")
 
-    def note(self, step, st):
-        """Remember the first step at a singular (3) or near-singular (4) position."""
+    def note(self, st, singular, near):
+        """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
         if st == 3 and not self.singular:
-            self.singular = 10 * step + 3
+            self.singular = singular
         if st == 4 and not self.near:
-            self.near = 10 * step + 4
+            self.near = near
 
 
 def _run(w, inputs, d_inputs, dd_inputs):
@@ -224,13 +230,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.p_B = RRR_links(w.p_A, p_O2, l_coupler, l_rocker, 1)
     if st == 1:
         return 31
-    w.note(3, st)
+    w.note(st, 33, -34)
 
     # Step 4: link_angle, coupler. A and B of link coupler are known, so its angle is
     st, w.phi_coupler = link_angle(w.p_A, w.p_B, 0.0)
     if st == 1:
         return 41
-    w.note(4, st)
+    w.note(st, 43, -44)
 
     # Step 5: coupler_point, P. point P of link coupler
     w.p_P = coupler_point(w.p_A, w.phi_coupler, 75.54175916040862, 28.168113585237116)
@@ -239,21 +245,21 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.phi_crank = link_angle(p_O1, w.p_A, 0.0)
     if st == 1:
         return 61
-    w.note(6, st)
+    w.note(st, 63, -64)
 
     # Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is
     st, w.phi_rocker = link_angle(p_O2, w.p_B, 0.0)
     if st == 1:
         return 71
-    w.note(7, st)
+    w.note(st, 73, -74)
 
-    return w.singular or -w.near
+    return w.singular or w.near
 
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = code > 0 and code % 10 in (1, 2)
-    singular = code > 0 and code % 10 == 3
+    failed = reason_of(code) in (1, 2)
+    singular = reason_of(code) == 3
     if failed:
         values = (NAN,) * len(_LEVELS)
     else:

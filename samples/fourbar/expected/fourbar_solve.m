@@ -58,13 +58,13 @@ function w = new_work()
     w.l_rocker = struct('v', 50.99019513592785, 'dv', 0.0, 'ddv', 0.0);
 end
 
-function w = note(w, step, st)
-    % Remember the first step at a singular (3) or near-singular (4) position.
+function w = note(w, st, singular, near)
+    % Remember the code of the first step at a singular or a near-singular position (st: the step's).
     if st == 3 && w.singular == 0
-        w.singular = 10 * step + 3;
+        w.singular = singular;
     end
     if st == 4 && w.near == 0
-        w.near = 10 * step + 4;
+        w.near = near;
     end
 end
 
@@ -86,7 +86,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 31;
         return;
     end
-    w = note(w, 3, st);
+    w = note(w, st, 33, -34);
 
     % Step 4: link_angle, coupler. A and B of link coupler are known, so its angle is
     [w.phi_coupler, st] = link_angle(w.p_A, w.p_B, 0.0);
@@ -94,7 +94,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 41;
         return;
     end
-    w = note(w, 4, st);
+    w = note(w, st, 43, -44);
 
     % Step 5: coupler_point, P. point P of link coupler
     w.p_P = coupler_point(w.p_A, w.phi_coupler, 75.54175916040862, 28.168113585237116);
@@ -105,7 +105,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 61;
         return;
     end
-    w = note(w, 6, st);
+    w = note(w, st, 63, -64);
 
     % Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is
     [w.phi_rocker, st] = link_angle(w.p_O2, w.p_B, 0.0);
@@ -113,19 +113,19 @@ function [status, w] = run(w, in, din, ddin)
         status = 71;
         return;
     end
-    w = note(w, 7, st);
+    w = note(w, st, 73, -74);
 
     if w.singular > 0
         status = w.singular;
     else
-        status = -w.near;
+        status = w.near;
     end
 end
 
 function out = publish(w, status, in)
     % The outputs as a struct, with the status rules of the CSV.
-    failed = status > 0 && (mod(status, 10) == 1 || mod(status, 10) == 2);
-    singular = status > 0 && mod(status, 10) == 3;
+    failed = reason_of(status) == 1 || reason_of(status) == 2;
+    singular = reason_of(status) == 3;
     out = struct();
     if failed
         out.O1.x = NaN;
@@ -426,5 +426,15 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
         jb.dy = NaN;
         jb.ddx = NaN;
         jb.ddy = NaN;
+    end
+end
+
+function r = reason_of(code)
+    % The reason of a status code (linkgen/status.py): the last digit of a positive code
+    % (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    % 0 for status 0 and the negative codes of rows computed near a singular position.
+    r = 0;
+    if code > 0
+        r = mod(code, 10);
     end
 end

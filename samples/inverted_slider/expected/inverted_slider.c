@@ -130,6 +130,14 @@ static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, doubl
     return st;
 }
 
+/* The reason of a status code (linkgen/status.py): the last digit of a positive code
+ * (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+ * 0 for status 0 and the negative codes of rows computed near a singular position. */
+static int reason_of(int code)
+{
+    return code > 0 ? code % 10 : 0;
+}
+
 
 /* Constants taken from the sketch; points are held relative to
    (12.0, 60.0), which publish() adds back to the computed ones. */
@@ -150,11 +158,11 @@ typedef struct {
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
-/* Remember the first step at a singular (3) or near-singular (4) position. */
-static void note(work *w, int step, int st)
+/* Remember the code of the first step at a singular or a near-singular position (st: the step's). */
+static void note(work *w, int st, int singular, int near)
 {
-    if (st == 3 && !w->singular) w->singular = 10 * step + 3;
-    if (st == 4 && !w->near) w->near = 10 * step + 4;
+    if (st == 3 && !w->singular) w->singular = singular;
+    if (st == 4 && !w->near) w->near = near;
 }
 
 /* The procedure of inverted_slider.md, step by step. */
@@ -177,7 +185,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 3: RPR_links, S (branch +1). the guide lever turns about the known O2 and the slider block about the known A, sliding along one line at S: an RPR two-link chain with both ends known */
     st = RPR_links(p_O2, w->p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1, &w->psi_S, &w->s_S, &w->p_S, &w->sigma[3]);
     if (st == 1) return 31;
-    note(w, 3, st);
+    note(w, st, 33, -34);
 
 
     /* Step 4: coupler_point, P. point P of link lever */
@@ -187,9 +195,9 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is */
     st = link_angle(p_O1, w->p_A, 0.0, &w->phi_crank);
     if (st == 1) return 51;
-    note(w, 5, st);
+    note(w, st, 53, -54);
 
-    return w->singular ? w->singular : -w->near;
+    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -248,7 +256,7 @@ static void publish(const work *w, int code, inverted_slider_state *out)
     int k;
     out->status = code;
     for (k = 0; k <= INVERTED_SLIDER_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
+    if (reason_of(code) == 1 || reason_of(code) == 2) {
         no_outputs(out);
         return;
     }
@@ -297,7 +305,7 @@ static void publish(const work *w, int code, inverted_slider_state *out)
     out->block.phi = w->psi_S.the;
     out->block.omega = w->psi_S.dthe;
     out->block.alpha = w->psi_S.ddthe;
-    if (code > 0 && code % 10 == 3) {
+    if (reason_of(code) == 3) {
         out->O1.vx = NAN;
         out->O1.vy = NAN;
         out->O1.ax = NAN;

@@ -181,6 +181,12 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
         return st, sigma, (th, NAN, NAN), (sv, NAN, NAN), (js_x + rx, js_y + ry, NAN, NAN, NAN, NAN)
     return st, sigma, (th, om, al), (sv, ds, dds), (js_x + rx, js_y + ry, js_dx + rvx, js_dy + rvy, js_ddx + rax, js_ddy + ray)
 
+def reason_of(code):
+    """The reason of a status code (linkgen/status.py): the last digit of a positive code
+    (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    0 for status 0 and the negative codes of rows computed near a singular position."""
+    return code % 10 if code > 0 else 0
+
 # -- constants taken from the sketch -----------------------------------------
 # Points are held relative to (12.0, 60.0), which _publish adds back
 # to the computed ones.
@@ -195,12 +201,12 @@ class _Work:
 
     __slots__ = ("in1", "p_A", "psi_S", "s_S", "p_S", "p_P", "phi_crank", "sigma", "singular", "near")
 
-    def note(self, step, st):
-        """Remember the first step at a singular (3) or near-singular (4) position."""
+    def note(self, st, singular, near):
+        """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
         if st == 3 and not self.singular:
-            self.singular = 10 * step + 3
+            self.singular = singular
         if st == 4 and not self.near:
-            self.near = 10 * step + 4
+            self.near = near
 
 
 def _run(w, inputs, d_inputs, dd_inputs):
@@ -217,7 +223,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.psi_S, w.s_S, w.p_S = RPR_links(p_O2, w.p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1)
     if st == 1:
         return 31
-    w.note(3, st)
+    w.note(st, 33, -34)
 
     # Step 4: coupler_point, P. point P of link lever
     w.p_P = coupler_point(p_O2, w.psi_S, 120.00000000000001, 0.0)
@@ -226,15 +232,15 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.phi_crank = link_angle(p_O1, w.p_A, 0.0)
     if st == 1:
         return 51
-    w.note(5, st)
+    w.note(st, 53, -54)
 
-    return w.singular or -w.near
+    return w.singular or w.near
 
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = code > 0 and code % 10 in (1, 2)
-    singular = code > 0 and code % 10 == 3
+    failed = reason_of(code) in (1, 2)
+    singular = reason_of(code) == 3
     if failed:
         values = (NAN,) * len(_LEVELS)
     else:

@@ -56,13 +56,13 @@ function w = new_work()
     w.ref_O1 = struct('the', 0.0, 'dthe', 0.0, 'ddthe', 0.0);
 end
 
-function w = note(w, step, st)
-    % Remember the first step at a singular (3) or near-singular (4) position.
+function w = note(w, st, singular, near)
+    % Remember the code of the first step at a singular or a near-singular position (st: the step's).
     if st == 3 && w.singular == 0
-        w.singular = 10 * step + 3;
+        w.singular = singular;
     end
     if st == 4 && w.near == 0
-        w.near = 10 * step + 4;
+        w.near = near;
     end
 end
 
@@ -84,7 +84,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 31;
         return;
     end
-    w = note(w, 3, st);
+    w = note(w, st, 33, -34);
 
     % Step 4: coupler_point, P. point P of link lever
     w.p_P = coupler_point(w.p_O2, w.psi_S, 120.00000000000001, 0.0);
@@ -95,19 +95,19 @@ function [status, w] = run(w, in, din, ddin)
         status = 51;
         return;
     end
-    w = note(w, 5, st);
+    w = note(w, st, 53, -54);
 
     if w.singular > 0
         status = w.singular;
     else
-        status = -w.near;
+        status = w.near;
     end
 end
 
 function out = publish(w, status, in)
     % The outputs as a struct, with the status rules of the CSV.
-    failed = status > 0 && (mod(status, 10) == 1 || mod(status, 10) == 2);
-    singular = status > 0 && mod(status, 10) == 3;
+    failed = reason_of(status) == 1 || reason_of(status) == 2;
+    singular = reason_of(status) == 3;
     out = struct();
     if failed
         out.O1.x = NaN;
@@ -410,5 +410,15 @@ function [psi, s, jp, st, sigma] = RPR_links(jg, js, ag, bg, as_, bs, minv)
         jp.dy = NaN;
         jp.ddx = NaN;
         jp.ddy = NaN;
+    end
+end
+
+function r = reason_of(code)
+    % The reason of a status code (linkgen/status.py): the last digit of a positive code
+    % (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    % 0 for status 0 and the negative codes of rows computed near a singular position.
+    r = 0;
+    if code > 0
+        r = mod(code, 10);
     end
 end

@@ -62,13 +62,13 @@ function w = new_work()
     w.l_leg_ghi = struct('v', 36.69999999999471, 'dv', 0.0, 'ddv', 0.0);
 end
 
-function w = note(w, step, st)
-    % Remember the first step at a singular (3) or near-singular (4) position.
+function w = note(w, st, singular, near)
+    % Remember the code of the first step at a singular or a near-singular position (st: the step's).
     if st == 3 && w.singular == 0
-        w.singular = 10 * step + 3;
+        w.singular = singular;
     end
     if st == 4 && w.near == 0
-        w.near = 10 * step + 4;
+        w.near = near;
     end
 end
 
@@ -90,7 +90,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 31;
         return;
     end
-    w = note(w, 3, st);
+    w = note(w, st, 33, -34);
 
     % Step 4: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is
     [w.phi_triangle_bde, st] = link_angle(w.p_B, w.p_C, 0.0);
@@ -98,7 +98,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 41;
         return;
     end
-    w = note(w, 4, st);
+    w = note(w, st, 43, -44);
 
     % Step 5: coupler_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
     w.p_D = coupler_point(w.p_B, w.phi_triangle_bde, 2.6098795180489684, 40.01497880667612);
@@ -109,7 +109,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 61;
         return;
     end
-    w = note(w, 6, st);
+    w = note(w, st, 63, -64);
 
     % Step 7: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known
     [w.p_F, st, w.sigma(7)] = RRR_links(w.p_D, w.p_E, w.l_rod_f, w.l_leg_ghi, -1);
@@ -117,7 +117,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 71;
         return;
     end
-    w = note(w, 7, st);
+    w = note(w, st, 73, -74);
 
     % Step 8: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is
     [w.phi_leg_ghi, st] = link_angle(w.p_E, w.p_F, 0.0);
@@ -125,7 +125,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 81;
         return;
     end
-    w = note(w, 8, st);
+    w = note(w, st, 83, -84);
 
     % Step 9: coupler_point, foot. point foot of link leg_ghi
     w.p_foot = coupler_point(w.p_E, w.phi_leg_ghi, -7.746594005561125, 48.38378118035099);
@@ -136,7 +136,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 101;
         return;
     end
-    w = note(w, 10, st);
+    w = note(w, st, 103, -104);
 
     % Step 11: link_angle, rod_j. A and C of link rod_j are known, so its angle is
     [w.phi_rod_j, st] = link_angle(w.p_A, w.p_C, 0.0);
@@ -144,7 +144,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 111;
         return;
     end
-    w = note(w, 11, st);
+    w = note(w, st, 113, -114);
 
     % Step 12: link_angle, rod_k. A and E of link rod_k are known, so its angle is
     [w.phi_rod_k, st] = link_angle(w.p_A, w.p_E, 0.0);
@@ -152,7 +152,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 121;
         return;
     end
-    w = note(w, 12, st);
+    w = note(w, st, 123, -124);
 
     % Step 13: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is
     [w.phi_rocker_c, st] = link_angle(w.p_B, w.p_E, 0.0);
@@ -160,7 +160,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 131;
         return;
     end
-    w = note(w, 13, st);
+    w = note(w, st, 133, -134);
 
     % Step 14: link_angle, rod_f. D and F of link rod_f are known, so its angle is
     [w.phi_rod_f, st] = link_angle(w.p_D, w.p_F, 0.0);
@@ -168,19 +168,19 @@ function [status, w] = run(w, in, din, ddin)
         status = 141;
         return;
     end
-    w = note(w, 14, st);
+    w = note(w, st, 143, -144);
 
     if w.singular > 0
         status = w.singular;
     else
-        status = -w.near;
+        status = w.near;
     end
 end
 
 function out = publish(w, status, in)
     % The outputs as a struct, with the status rules of the CSV.
-    failed = status > 0 && (mod(status, 10) == 1 || mod(status, 10) == 2);
-    singular = status > 0 && mod(status, 10) == 3;
+    failed = reason_of(status) == 1 || reason_of(status) == 2;
+    singular = reason_of(status) == 3;
     out = struct();
     if failed
         out.O.x = NaN;
@@ -561,5 +561,15 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
         jb.dy = NaN;
         jb.ddx = NaN;
         jb.ddy = NaN;
+    end
+end
+
+function r = reason_of(code)
+    % The reason of a status code (linkgen/status.py): the last digit of a positive code
+    % (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    % 0 for status 0 and the negative codes of rows computed near a singular position.
+    r = 0;
+    if code > 0
+        r = mod(code, 10);
     end
 end

@@ -109,6 +109,14 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
     return st;
 }
 
+/* The reason of a status code (linkgen/status.py): the last digit of a positive code
+ * (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+ * 0 for status 0 and the negative codes of rows computed near a singular position. */
+static int reason_of(int code)
+{
+    return code > 0 ? code % 10 : 0;
+}
+
 
 /* Constants taken from the sketch; points are held relative to
    (-28.0, -32.0), which publish() adds back to the computed ones. */
@@ -138,11 +146,11 @@ typedef struct {
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
-/* Remember the first step at a singular (3) or near-singular (4) position. */
-static void note(work *w, int step, int st)
+/* Remember the code of the first step at a singular or a near-singular position (st: the step's). */
+static void note(work *w, int st, int singular, int near)
 {
-    if (st == 3 && !w->singular) w->singular = 10 * step + 3;
-    if (st == 4 && !w->near) w->near = 10 * step + 4;
+    if (st == 3 && !w->singular) w->singular = singular;
+    if (st == 4 && !w->near) w->near = near;
 }
 
 /* The procedure of jansen_foot.md, step by step. */
@@ -166,13 +174,13 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 3: RRR_links, C (branch -1). C is joined to the known A by rod_j and to the known B by triangle_bde: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_A, p_B, l_rod_j, l_triangle_bde_C_B, -1, &w->p_C, &w->sigma[3]);
     if (st == 1) return 31;
-    note(w, 3, st);
+    note(w, st, 33, -34);
 
 
     /* Step 4: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is */
     st = link_angle(p_B, w->p_C, 0.0, &w->phi_triangle_bde);
     if (st == 1) return 41;
-    note(w, 4, st);
+    note(w, st, 43, -44);
 
 
     /* Step 5: coupler_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it */
@@ -182,19 +190,19 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 6: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_A, p_B, l_rod_k, l_rocker_c, 1, &w->p_E, &w->sigma[6]);
     if (st == 1) return 61;
-    note(w, 6, st);
+    note(w, st, 63, -64);
 
 
     /* Step 7: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_D, w->p_E, l_rod_f, l_leg_ghi, -1, &w->p_F, &w->sigma[7]);
     if (st == 1) return 71;
-    note(w, 7, st);
+    note(w, st, 73, -74);
 
 
     /* Step 8: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is */
     st = link_angle(w->p_E, w->p_F, 0.0, &w->phi_leg_ghi);
     if (st == 1) return 81;
-    note(w, 8, st);
+    note(w, st, 83, -84);
 
 
     /* Step 9: coupler_point, foot. point foot of link leg_ghi */
@@ -204,9 +212,9 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 10: link_angle, crank. O and A of link crank are known, so its angle is */
     st = link_angle(p_O, w->p_A, 0.0, &w->phi_crank);
     if (st == 1) return 101;
-    note(w, 10, st);
+    note(w, st, 103, -104);
 
-    return w->singular ? w->singular : -w->near;
+    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -226,7 +234,7 @@ static void publish(const work *w, int code, jansen_foot_state *out)
     int k;
     out->status = code;
     for (k = 0; k <= JANSEN_FOOT_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
+    if (reason_of(code) == 1 || reason_of(code) == 2) {
         no_outputs(out);
         return;
     }
@@ -236,7 +244,7 @@ static void publish(const work *w, int code, jansen_foot_state *out)
     out->foot.vy = w->p_foot.DP.y;
     out->crank.phi = w->phi_crank.the;
     out->crank.omega = w->phi_crank.dthe;
-    if (code > 0 && code % 10 == 3) {
+    if (reason_of(code) == 3) {
         out->foot.vx = NAN;
         out->foot.vy = NAN;
         out->crank.omega = NAN;

@@ -136,6 +136,12 @@ def RRR_links(j1, j2, l1, l2, minv):
         return st, sigma, (j1_x + e1x, j1_y + e1y, NAN, NAN)
     return st, sigma, (j1_x + e1x, j1_y + e1y, bvx, bvy)
 
+def reason_of(code):
+    """The reason of a status code (linkgen/status.py): the last digit of a positive code
+    (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    0 for status 0 and the negative codes of rows computed near a singular position."""
+    return code % 10 if code > 0 else 0
+
 # -- constants taken from the sketch -----------------------------------------
 # Points are held relative to (-28.0, -32.0), which _publish adds back
 # to the computed ones.
@@ -156,12 +162,12 @@ class _Work:
 
     __slots__ = ("in1", "p_A", "p_C", "phi_triangle_bde", "p_D", "p_E", "p_F", "phi_leg_ghi", "p_foot", "phi_crank", "sigma", "singular", "near")
 
-    def note(self, step, st):
-        """Remember the first step at a singular (3) or near-singular (4) position."""
+    def note(self, st, singular, near):
+        """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
         if st == 3 and not self.singular:
-            self.singular = 10 * step + 3
+            self.singular = singular
         if st == 4 and not self.near:
-            self.near = 10 * step + 4
+            self.near = near
 
 
 def _run(w, inputs, d_inputs, dd_inputs):
@@ -178,13 +184,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.p_C = RRR_links(w.p_A, p_B, l_rod_j, l_triangle_bde_C_B, -1)
     if st == 1:
         return 31
-    w.note(3, st)
+    w.note(st, 33, -34)
 
     # Step 4: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is
     st, w.phi_triangle_bde = link_angle(p_B, w.p_C, 0.0)
     if st == 1:
         return 41
-    w.note(4, st)
+    w.note(st, 43, -44)
 
     # Step 5: coupler_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
     w.p_D = coupler_point(p_B, w.phi_triangle_bde, 2.6098795180489684, 40.01497880667612)
@@ -193,19 +199,19 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[6], w.p_E = RRR_links(w.p_A, p_B, l_rod_k, l_rocker_c, 1)
     if st == 1:
         return 61
-    w.note(6, st)
+    w.note(st, 63, -64)
 
     # Step 7: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known
     st, w.sigma[7], w.p_F = RRR_links(w.p_D, w.p_E, l_rod_f, l_leg_ghi, -1)
     if st == 1:
         return 71
-    w.note(7, st)
+    w.note(st, 73, -74)
 
     # Step 8: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is
     st, w.phi_leg_ghi = link_angle(w.p_E, w.p_F, 0.0)
     if st == 1:
         return 81
-    w.note(8, st)
+    w.note(st, 83, -84)
 
     # Step 9: coupler_point, foot. point foot of link leg_ghi
     w.p_foot = coupler_point(w.p_E, w.phi_leg_ghi, -7.746594005561125, 48.38378118035099)
@@ -214,15 +220,15 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
     if st == 1:
         return 101
-    w.note(10, st)
+    w.note(st, 103, -104)
 
-    return w.singular or -w.near
+    return w.singular or w.near
 
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = code > 0 and code % 10 in (1, 2)
-    singular = code > 0 and code % 10 == 3
+    failed = reason_of(code) in (1, 2)
+    singular = reason_of(code) == 3
     if failed:
         values = (NAN,) * len(_LEVELS)
     else:

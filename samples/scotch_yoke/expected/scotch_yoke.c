@@ -145,6 +145,14 @@ static int PPR_links(POINT jr, POINT pg, ANGLE psig, double xa, double ya, doubl
     return st;
 }
 
+/* The reason of a status code (linkgen/status.py): the last digit of a positive code
+ * (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+ * 0 for status 0 and the negative codes of rows computed near a singular position. */
+static int reason_of(int code)
+{
+    return code > 0 ? code % 10 : 0;
+}
+
 
 /* Constants taken from the sketch; points are held relative to
    (40.0, 12.0), which publish() adds back to the computed ones. */
@@ -169,11 +177,11 @@ typedef struct {
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
-/* Remember the first step at a singular (3) or near-singular (4) position. */
-static void note(work *w, int step, int st)
+/* Remember the code of the first step at a singular or a near-singular position (st: the step's). */
+static void note(work *w, int st, int singular, int near)
 {
-    if (st == 3 && !w->singular) w->singular = 10 * step + 3;
-    if (st == 4 && !w->near) w->near = 10 * step + 4;
+    if (st == 3 && !w->singular) w->singular = singular;
+    if (st == 4 && !w->near) w->near = near;
 }
 
 /* The procedure of scotch_yoke.md, step by step. */
@@ -196,13 +204,13 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 3: PPR_links, P. the slider yoke rides on the known line Q and carries the slide P of block, which turns about the known A: a PPR two-link chain (one solution) */
     st = PPR_links(w->p_A, g_Q, psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1, &w->s_Q, &w->p_Q, &w->s_P, &w->p_P, &w->sigma[3]);
     if (st == 1) return 31;
-    note(w, 3, st);
+    note(w, st, 33, -34);
 
 
     /* Step 4: link_angle, crank. O and A of link crank are known, so its angle is */
     st = link_angle(p_O, w->p_A, 0.0, &w->phi_crank);
     if (st == 1) return 41;
-    note(w, 4, st);
+    note(w, st, 43, -44);
 
 
     /* Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide */
@@ -212,7 +220,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 6: offset_angle, block. link block keeps a constant angle to its slide */
     offset_angle(psi_Q, 1.5707963267948966, &w->phi_block);
 
-    return w->singular ? w->singular : -w->near;
+    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -268,7 +276,7 @@ static void publish(const work *w, int code, scotch_yoke_state *out)
     int k;
     out->status = code;
     for (k = 0; k <= SCOTCH_YOKE_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
+    if (reason_of(code) == 1 || reason_of(code) == 2) {
         no_outputs(out);
         return;
     }
@@ -314,7 +322,7 @@ static void publish(const work *w, int code, scotch_yoke_state *out)
     out->block.phi = w->phi_block.the;
     out->block.omega = w->phi_block.dthe;
     out->block.alpha = w->phi_block.ddthe;
-    if (code > 0 && code % 10 == 3) {
+    if (reason_of(code) == 3) {
         out->O.vx = NAN;
         out->O.vy = NAN;
         out->O.ax = NAN;

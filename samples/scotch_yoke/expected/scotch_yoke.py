@@ -190,6 +190,12 @@ def PPR_links(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
         return st, sigma, (sv1, NAN, NAN), (jp1x, jp1y, NAN, NAN, NAN, NAN), (sgn * mu, NAN, NAN), (jxx, jxy, NAN, NAN, NAN, NAN)
     return st, sigma, (sv1, ds1, dds1), (jp1x, jp1y, jp1vx, jp1vy, jp1ax, jp1ay), (sgn * mu, sgn * mvu, sgn * ((k2x - dds1 * cg) * cax + (k2y - dds1 * sg) * sax + psig_dthe * (cax * mvy - sax * mvx))), (jxx, jxy, jxdx, jxdy, jxddx, jxddy)
 
+def reason_of(code):
+    """The reason of a status code (linkgen/status.py): the last digit of a positive code
+    (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    0 for status 0 and the negative codes of rows computed near a singular position."""
+    return code % 10 if code > 0 else 0
+
 # -- constants taken from the sketch -----------------------------------------
 # Points are held relative to (40.0, 12.0), which _publish adds back
 # to the computed ones.
@@ -206,12 +212,12 @@ class _Work:
 
     __slots__ = ("in1", "p_A", "s_Q", "s_P", "p_Q", "p_P", "phi_crank", "phi_yoke", "phi_block", "sigma", "singular", "near")
 
-    def note(self, step, st):
-        """Remember the first step at a singular (3) or near-singular (4) position."""
+    def note(self, st, singular, near):
+        """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
         if st == 3 and not self.singular:
-            self.singular = 10 * step + 3
+            self.singular = singular
         if st == 4 and not self.near:
-            self.near = 10 * step + 4
+            self.near = near
 
 
 def _run(w, inputs, d_inputs, dd_inputs):
@@ -228,13 +234,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.s_Q, w.p_Q, w.s_P, w.p_P = PPR_links(w.p_A, g_Q, psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1)
     if st == 1:
         return 31
-    w.note(3, st)
+    w.note(st, 33, -34)
 
     # Step 4: link_angle, crank. O and A of link crank are known, so its angle is
     st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
     if st == 1:
         return 41
-    w.note(4, st)
+    w.note(st, 43, -44)
 
     # Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide
     w.phi_yoke = offset_angle(phi_frame, -0.2984989315861793)
@@ -242,13 +248,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # Step 6: offset_angle, block. link block keeps a constant angle to its slide
     w.phi_block = offset_angle(psi_Q, 1.5707963267948966)
 
-    return w.singular or -w.near
+    return w.singular or w.near
 
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = code > 0 and code % 10 in (1, 2)
-    singular = code > 0 and code % 10 == 3
+    failed = reason_of(code) in (1, 2)
+    singular = reason_of(code) == 3
     if failed:
         values = (NAN,) * len(_LEVELS)
     else:

@@ -156,6 +156,14 @@ static void link_residual(POINT j1, POINT j2, VARIABLE l, VARIABLE *f)
     f->ddv = rdd - l.ddv;
 }
 
+/* The reason of a status code (linkgen/status.py): the last digit of a positive code
+ * (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+ * 0 for status 0 and the negative codes of rows computed near a singular position. */
+static int reason_of(int code)
+{
+    return code > 0 ? code % 10 : 0;
+}
+
 /* Over-constraint resolver: Newton-Raphson on the Add-link lengths.
  * group(ctx, a, live, f) runs the steps of one resolver group with the Add-link
  * records a and writes the residual records f; live == 0 zeroes the rates of
@@ -570,11 +578,11 @@ typedef struct {
     int br50;  /* the branch of step 50, as the last solution left it */
 } work;
 
-/* Remember the first step at a singular (3) or near-singular (4) position. */
-static void note(work *w, int step, int st)
+/* Remember the code of the first step at a singular or a near-singular position (st: the step's). */
+static void note(work *w, int st, int singular, int near)
 {
-    if (st == 3 && !w->singular) w->singular = 10 * step + 3;
-    if (st == 4 && !w->near) w->near = 10 * step + 4;
+    if (st == 3 && !w->singular) w->singular = singular;
+    if (st == 4 && !w->near) w->near = near;
 }
 
 static const VARIABLE ZERO_LENGTH = { 0.0, 0.0, 0.0 };
@@ -596,17 +604,17 @@ static int group_1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J3, p_J6, l_rocker2, w->add1, w->br4, &w->p_J4, &w->sigma[4]);
     if (st == 1) return 1;
-    if (live) note(w, 4, st);
+    if (live) note(w, st, 43, -44);
     w->chains = fmin(w->chains, w->sigma[4]);
     /* Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, w->br5, &w->p_J2, &w->sigma[5]);
     if (st == 1) return 1;
-    if (live) note(w, 5, st);
+    if (live) note(w, st, 53, -54);
     w->chains = fmin(w->chains, w->sigma[5]);
     /* Step 6: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 6, st);
+    if (live) note(w, st, 63, -64);
     /* Step 7: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
     coupler_point(w->p_J4, w->phi_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
     /* Step 8: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -633,17 +641,17 @@ static int group_1_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 14: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, p_J6, l_rocker1, w->add1_v1, w->br14, &w->p_J2, &w->sigma[14]);
     if (st == 1) return 1;
-    if (live) note(w, 14, st);
+    if (live) note(w, st, 143, -144);
     w->chains = fmin(w->chains, w->sigma[14]);
     /* Step 15: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w->br15, &w->p_J4, &w->sigma[15]);
     if (st == 1) return 1;
-    if (live) note(w, 15, st);
+    if (live) note(w, st, 153, -154);
     w->chains = fmin(w->chains, w->sigma[15]);
     /* Step 16: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 16, st);
+    if (live) note(w, st, 163, -164);
     /* Step 17: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
     coupler_point(w->p_J2, w->phi_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 18: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -670,17 +678,17 @@ static int group_1_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 19: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J3, p_J1, l_rocker2, w->add1_v2, w->br19, &w->p_J4, &w->sigma[19]);
     if (st == 1) return 1;
-    if (live) note(w, 19, st);
+    if (live) note(w, st, 193, -194);
     w->chains = fmin(w->chains, w->sigma[19]);
     /* Step 20: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, w->br20, &w->p_J2, &w->sigma[20]);
     if (st == 1) return 1;
-    if (live) note(w, 20, st);
+    if (live) note(w, st, 203, -204);
     w->chains = fmin(w->chains, w->sigma[20]);
     /* Step 21: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 21, st);
+    if (live) note(w, st, 213, -214);
     /* Step 22: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
     coupler_point(w->p_J4, w->phi_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
     /* Step 23: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -707,17 +715,17 @@ static int group_1_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 24: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, p_J3, l_rocker1, w->add1_v3, w->br24, &w->p_J2, &w->sigma[24]);
     if (st == 1) return 1;
-    if (live) note(w, 24, st);
+    if (live) note(w, st, 243, -244);
     w->chains = fmin(w->chains, w->sigma[24]);
     /* Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w->br25, &w->p_J4, &w->sigma[25]);
     if (st == 1) return 1;
-    if (live) note(w, 25, st);
+    if (live) note(w, st, 253, -254);
     w->chains = fmin(w->chains, w->sigma[25]);
     /* Step 26: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 26, st);
+    if (live) note(w, st, 263, -264);
     /* Step 27: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
     coupler_point(w->p_J2, w->phi_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 28: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -744,17 +752,17 @@ static int group_1_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, p_J7, l_rocker1, w->add1_v4, w->br29, &w->p_J2, &w->sigma[29]);
     if (st == 1) return 1;
-    if (live) note(w, 29, st);
+    if (live) note(w, st, 293, -294);
     w->chains = fmin(w->chains, w->sigma[29]);
     /* Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w->br30, &w->p_J4, &w->sigma[30]);
     if (st == 1) return 1;
-    if (live) note(w, 30, st);
+    if (live) note(w, st, 303, -304);
     w->chains = fmin(w->chains, w->sigma[30]);
     /* Step 31: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 31, st);
+    if (live) note(w, st, 313, -314);
     /* Step 32: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
     coupler_point(w->p_J2, w->phi_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -781,17 +789,17 @@ static int group_1_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J3, p_J7, l_rocker2, w->add1_v5, w->br34, &w->p_J4, &w->sigma[34]);
     if (st == 1) return 1;
-    if (live) note(w, 34, st);
+    if (live) note(w, st, 343, -344);
     w->chains = fmin(w->chains, w->sigma[34]);
     /* Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, w->br35, &w->p_J2, &w->sigma[35]);
     if (st == 1) return 1;
-    if (live) note(w, 35, st);
+    if (live) note(w, st, 353, -354);
     w->chains = fmin(w->chains, w->sigma[35]);
     /* Step 36: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
     st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 36, st);
+    if (live) note(w, st, 363, -364);
     /* Step 37: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
     coupler_point(w->p_J4, w->phi_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
     /* Step 38: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
@@ -818,17 +826,17 @@ static int group_1_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 39: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J6, p_J3, l_coupler, w->add1_v6, w->br39, &w->p_J5, &w->sigma[39]);
     if (st == 1) return 1;
-    if (live) note(w, 39, st);
+    if (live) note(w, st, 393, -394);
     w->chains = fmin(w->chains, w->sigma[39]);
     /* Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, w->br40, &w->p_J2, &w->sigma[40]);
     if (st == 1) return 1;
-    if (live) note(w, 40, st);
+    if (live) note(w, st, 403, -404);
     w->chains = fmin(w->chains, w->sigma[40]);
     /* Step 41: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is */
     st = link_angle(w->p_J5, w->p_J2, 2.928860872898183, &w->phi_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 41, st);
+    if (live) note(w, st, 413, -414);
     /* Step 42: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
     coupler_point(w->p_J5, w->phi_ternary, 45.662543438831435, -12.842590342171341, &w->p_J4);
     /* Step 43: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
@@ -855,17 +863,17 @@ static int group_1_v7(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 44: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J6, p_J1, l_coupler, w->add1_v7, w->br44, &w->p_J5, &w->sigma[44]);
     if (st == 1) return 1;
-    if (live) note(w, 44, st);
+    if (live) note(w, st, 443, -444);
     w->chains = fmin(w->chains, w->sigma[44]);
     /* Step 45: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, w->br45, &w->p_J2, &w->sigma[45]);
     if (st == 1) return 1;
-    if (live) note(w, 45, st);
+    if (live) note(w, st, 453, -454);
     w->chains = fmin(w->chains, w->sigma[45]);
     /* Step 46: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is */
     st = link_angle(w->p_J5, w->p_J2, 2.928860872898183, &w->phi_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 46, st);
+    if (live) note(w, st, 463, -464);
     /* Step 47: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
     coupler_point(w->p_J5, w->phi_ternary, 45.662543438831435, -12.842590342171341, &w->p_J4);
     /* Step 48: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
@@ -892,17 +900,17 @@ static int group_1_v8(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     /* Step 49: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J6, p_J7, l_coupler, w->add1_v8, w->br49, &w->p_J5, &w->sigma[49]);
     if (st == 1) return 1;
-    if (live) note(w, 49, st);
+    if (live) note(w, st, 493, -494);
     w->chains = fmin(w->chains, w->sigma[49]);
     /* Step 50: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, w->br50, &w->p_J2, &w->sigma[50]);
     if (st == 1) return 1;
-    if (live) note(w, 50, st);
+    if (live) note(w, st, 503, -504);
     w->chains = fmin(w->chains, w->sigma[50]);
     /* Step 51: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is */
     st = link_angle(w->p_J5, w->p_J2, 2.928860872898183, &w->phi_ternary);
     if (st == 1) return 1;
-    if (live) note(w, 51, st);
+    if (live) note(w, st, 513, -514);
     /* Step 52: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
     coupler_point(w->p_J5, w->phi_ternary, 45.662543438831435, -12.842590342171341, &w->p_J4);
     /* Step 53: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
@@ -1066,7 +1074,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
         used[0] = k;
         lengths_1(w, &a[0], &ad[0]);
         a[0 + k][LINKGEN_NMAX - 1] = turn;
-        note(w, 9, w->sigma[9] < 1e-07 ? 3 : w->sigma[9] < 0.001 ? 4 : 0);
+        note(w, w->sigma[9] < 1e-07 ? 3 : w->sigma[9] < 0.001 ? 4 : 0, 93, -94);
     }
 
 
@@ -1074,27 +1082,27 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 10: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is */
     st = link_angle(p_J1, w->p_J2, 0.0, &w->phi_rocker1);
     if (st == 1) return 101;
-    note(w, 10, st);
+    note(w, st, 103, -104);
 
 
     /* Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is */
     st = link_angle(p_J3, w->p_J4, 0.0, &w->phi_rocker2);
     if (st == 1) return 111;
-    note(w, 11, st);
+    note(w, st, 113, -114);
 
 
     /* Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is */
     st = link_angle(w->p_J6, w->p_J5, 0.0, &w->phi_coupler);
     if (st == 1) return 121;
-    note(w, 12, st);
+    note(w, st, 123, -124);
 
 
     /* Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is */
     st = link_angle(p_J7, w->p_J6, 0.0, &w->phi_crank);
     if (st == 1) return 131;
-    note(w, 13, st);
+    note(w, st, 133, -134);
 
-    return w->singular ? w->singular : -w->near;
+    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -1168,7 +1176,7 @@ static void publish(const work *w, int code, sixbar_fig14_state *out)
     int k;
     out->status = code;
     for (k = 0; k <= SIXBAR_FIG14_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
+    if (reason_of(code) == 1 || reason_of(code) == 2) {
         no_outputs(out);
         return;
     }
@@ -1232,7 +1240,7 @@ static void publish(const work *w, int code, sixbar_fig14_state *out)
     out->frame.phi = 0.0;
     out->frame.omega = 0.0;
     out->frame.alpha = 0.0;
-    if (code > 0 && code % 10 == 3) {
+    if (reason_of(code) == 3) {
         out->J1.vx = NAN;
         out->J1.vy = NAN;
         out->J1.ax = NAN;
@@ -1349,7 +1357,7 @@ int sixbar_fig14_solve(const double in[], const double din[], const double ddin[
             for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = out->warm_a[g][i];
         for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = out->warm_used[g];
     }
-    if (!solved && (code <= 0 || code % 10 == 2)) {
+    if (!solved && (code <= 0 || reason_of(code) == 2)) {
         /* the sketch's assembly, followed from the sketch (or the last row) */
         for (g = 0; g < LINKGEN_NGROUPS; g++) w.used[g] = used[g];
         if (continuation(path_run, &w, base, a, in, limits, periodic, 20,

@@ -235,6 +235,12 @@ def link_residual(j1, j2, l):
     rdd = rp if r == 0 else (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir
     return (r - l_v, rd - l_dv, rdd - l_ddv)
 
+def reason_of(code):
+    """The reason of a status code (linkgen/status.py): the last digit of a positive code
+    (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    0 for status 0 and the negative codes of rows computed near a singular position."""
+    return code % 10 if code > 0 else 0
+
 # Over-constraint resolver: Newton-Raphson on the Add-link lengths.
 # group(a, live) runs the steps of one resolver group with the Add-link records
 # a = [(length, rate, acc), ...] and returns (status, f) with f the residual
@@ -503,12 +509,12 @@ class _Work:
 
     __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "phi_ternary", "p_J5", "f1", "phi_rocker1", "phi_rocker2", "phi_coupler", "phi_crank", "add1_v1", "f1_v1", "add1_v2", "f1_v2", "add1_v3", "f1_v3", "add1_v4", "f1_v4", "add1_v5", "f1_v5", "add1_v6", "f1_v6", "add1_v7", "f1_v7", "add1_v8", "f1_v8", "sigma", "singular", "near", "chains", "br4", "br5", "br14", "br15", "br19", "br20", "br24", "br25", "br29", "br30", "br34", "br35", "br39", "br40", "br44", "br45", "br49", "br50")
 
-    def note(self, step, st):
-        """Remember the first step at a singular (3) or near-singular (4) position."""
+    def note(self, st, singular, near):
+        """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
         if st == 3 and not self.singular:
-            self.singular = 10 * step + 3
+            self.singular = singular
         if st == 4 and not self.near:
-            self.near = 10 * step + 4
+            self.near = near
 
 
 def _group_1(w, a, live):
@@ -526,21 +532,21 @@ def _group_1(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(4, st)
+        w.note(st, 43, -44)
     w.chains = min(w.chains, w.sigma[4])
     # Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
     st, w.sigma[5], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, w.br5)
     if st == 1:
         return 1, None
     if live:
-        w.note(5, st)
+        w.note(st, 53, -54)
     w.chains = min(w.chains, w.sigma[5])
     # Step 6: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(6, st)
+        w.note(st, 63, -64)
     # Step 7: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341)
     # Step 8: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -564,21 +570,21 @@ def _group_1_v1(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(14, st)
+        w.note(st, 143, -144)
     w.chains = min(w.chains, w.sigma[14])
     # Step 15: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
     st, w.sigma[15], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w.br15)
     if st == 1:
         return 1, None
     if live:
-        w.note(15, st)
+        w.note(st, 153, -154)
     w.chains = min(w.chains, w.sigma[15])
     # Step 16: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(16, st)
+        w.note(st, 163, -164)
     # Step 17: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134)
     # Step 18: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -602,21 +608,21 @@ def _group_1_v2(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(19, st)
+        w.note(st, 193, -194)
     w.chains = min(w.chains, w.sigma[19])
     # Step 20: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
     st, w.sigma[20], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, w.br20)
     if st == 1:
         return 1, None
     if live:
-        w.note(20, st)
+        w.note(st, 203, -204)
     w.chains = min(w.chains, w.sigma[20])
     # Step 21: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(21, st)
+        w.note(st, 213, -214)
     # Step 22: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341)
     # Step 23: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -640,21 +646,21 @@ def _group_1_v3(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(24, st)
+        w.note(st, 243, -244)
     w.chains = min(w.chains, w.sigma[24])
     # Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
     st, w.sigma[25], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w.br25)
     if st == 1:
         return 1, None
     if live:
-        w.note(25, st)
+        w.note(st, 253, -254)
     w.chains = min(w.chains, w.sigma[25])
     # Step 26: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(26, st)
+        w.note(st, 263, -264)
     # Step 27: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134)
     # Step 28: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -678,21 +684,21 @@ def _group_1_v4(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(29, st)
+        w.note(st, 293, -294)
     w.chains = min(w.chains, w.sigma[29])
     # Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
     st, w.sigma[30], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w.br30)
     if st == 1:
         return 1, None
     if live:
-        w.note(30, st)
+        w.note(st, 303, -304)
     w.chains = min(w.chains, w.sigma[30])
     # Step 31: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(31, st)
+        w.note(st, 313, -314)
     # Step 32: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134)
     # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -716,21 +722,21 @@ def _group_1_v5(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(34, st)
+        w.note(st, 343, -344)
     w.chains = min(w.chains, w.sigma[34])
     # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
     st, w.sigma[35], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, w.br35)
     if st == 1:
         return 1, None
     if live:
-        w.note(35, st)
+        w.note(st, 353, -354)
     w.chains = min(w.chains, w.sigma[35])
     # Step 36: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 1, None
     if live:
-        w.note(36, st)
+        w.note(st, 363, -364)
     # Step 37: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341)
     # Step 38: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
@@ -754,21 +760,21 @@ def _group_1_v6(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(39, st)
+        w.note(st, 393, -394)
     w.chains = min(w.chains, w.sigma[39])
     # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
     st, w.sigma[40], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, w.br40)
     if st == 1:
         return 1, None
     if live:
-        w.note(40, st)
+        w.note(st, 403, -404)
     w.chains = min(w.chains, w.sigma[40])
     # Step 41: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J5, w.p_J2, 2.928860872898183)
     if st == 1:
         return 1, None
     if live:
-        w.note(41, st)
+        w.note(st, 413, -414)
     # Step 42: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
     w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341)
     # Step 43: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
@@ -792,21 +798,21 @@ def _group_1_v7(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(44, st)
+        w.note(st, 443, -444)
     w.chains = min(w.chains, w.sigma[44])
     # Step 45: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
     st, w.sigma[45], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, w.br45)
     if st == 1:
         return 1, None
     if live:
-        w.note(45, st)
+        w.note(st, 453, -454)
     w.chains = min(w.chains, w.sigma[45])
     # Step 46: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J5, w.p_J2, 2.928860872898183)
     if st == 1:
         return 1, None
     if live:
-        w.note(46, st)
+        w.note(st, 463, -464)
     # Step 47: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
     w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341)
     # Step 48: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
@@ -830,21 +836,21 @@ def _group_1_v8(w, a, live):
     if st == 1:
         return 1, None
     if live:
-        w.note(49, st)
+        w.note(st, 493, -494)
     w.chains = min(w.chains, w.sigma[49])
     # Step 50: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
     st, w.sigma[50], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, w.br50)
     if st == 1:
         return 1, None
     if live:
-        w.note(50, st)
+        w.note(st, 503, -504)
     w.chains = min(w.chains, w.sigma[50])
     # Step 51: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J5, w.p_J2, 2.928860872898183)
     if st == 1:
         return 1, None
     if live:
-        w.note(51, st)
+        w.note(st, 513, -514)
     # Step 52: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
     w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341)
     # Step 53: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
@@ -946,40 +952,40 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     used[0] = k
     _lengths_1(w, a, ad)
     a[0 + k][-1] = float(turn)
-    w.note(9, 3 if w.sigma[9] < 1e-07 else 4 if w.sigma[9] < 0.001 else 0)
+    w.note(3 if w.sigma[9] < 1e-07 else 4 if w.sigma[9] < 0.001 else 0, 93, -94)
 
 
     # Step 10: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is
     st, w.phi_rocker1 = link_angle(p_J1, w.p_J2, 0.0)
     if st == 1:
         return 101
-    w.note(10, st)
+    w.note(st, 103, -104)
 
     # Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is
     st, w.phi_rocker2 = link_angle(p_J3, w.p_J4, 0.0)
     if st == 1:
         return 111
-    w.note(11, st)
+    w.note(st, 113, -114)
 
     # Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is
     st, w.phi_coupler = link_angle(w.p_J6, w.p_J5, 0.0)
     if st == 1:
         return 121
-    w.note(12, st)
+    w.note(st, 123, -124)
 
     # Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is
     st, w.phi_crank = link_angle(p_J7, w.p_J6, 0.0)
     if st == 1:
         return 131
-    w.note(13, st)
+    w.note(st, 133, -134)
 
-    return w.singular or -w.near
+    return w.singular or w.near
 
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = code > 0 and code % 10 in (1, 2)
-    singular = code > 0 and code % 10 == 3
+    failed = reason_of(code) in (1, 2)
+    singular = reason_of(code) == 3
     if failed:
         values = (NAN,) * len(_LEVELS)
     else:
@@ -1107,7 +1113,7 @@ def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
         solved = code <= 0 and on_path(warm[2], guess, a, BLOCK_SIZES, SLACK * LENGTH_SCALE)
     if warm and not solved:
         base, a, used = list(warm[0]), [list(g) for g in warm[2]], list(warm[4])
-    if not solved and (code <= 0 or code % 10 == 2):
+    if not solved and (code <= 0 or reason_of(code) == 2):
         # the sketch's assembly, followed from the sketch (or the last row)
         prefer = list(used)
         path = lambda x, d, o, s: _path_run(x, d, o, s, prefer)  # noqa: E731

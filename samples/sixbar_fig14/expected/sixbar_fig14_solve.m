@@ -40,7 +40,7 @@ function [out, status, warm] = sixbar_fig14_solve(in, din, ddin, warm)
             used = warm.used;
         end
     end
-    if ~solved && (status <= 0 || mod(status, 10) == 2)
+    if ~solved && (status <= 0 || reason_of(status) == 2)
         % the sketch's assembly, followed from the sketch (or the last row)
         prefer = used;
         [reached, a2] = resolver_continuation(@(x, d, o, s) path_run(x, d, o, s, prefer), base, a, in, limits, ...
@@ -108,13 +108,13 @@ function w = new_work()
     w.iterations = zeros(1, 1);
 end
 
-function w = note(w, step, st)
-    % Remember the first step at a singular (3) or near-singular (4) position.
+function w = note(w, st, singular, near)
+    % Remember the code of the first step at a singular or a near-singular position (st: the step's).
     if st == 3 && w.singular == 0
-        w.singular = 10 * step + 3;
+        w.singular = singular;
     end
     if st == 4 && w.near == 0
-        w.near = 10 * step + 4;
+        w.near = near;
     end
 end
 
@@ -164,9 +164,9 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
     [a, ad] = lengths_1(w, a, ad);
     a{1 + k}(end) = turn;
     if w.sigma(9) < 1e-07
-        w = note(w, 9, 3);
+        w = note(w, 3, 93, -94);
     elseif w.sigma(9) < 0.001
-        w = note(w, 9, 4);
+        w = note(w, 4, 93, -94);
     end
 
 
@@ -176,7 +176,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
         status = 101;
         return;
     end
-    w = note(w, 10, st);
+    w = note(w, st, 103, -104);
 
     % Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is
     [w.phi_rocker2, st] = link_angle(w.p_J3, w.p_J4, 0.0);
@@ -184,7 +184,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
         status = 111;
         return;
     end
-    w = note(w, 11, st);
+    w = note(w, st, 113, -114);
 
     % Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is
     [w.phi_coupler, st] = link_angle(w.p_J6, w.p_J5, 0.0);
@@ -192,7 +192,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
         status = 121;
         return;
     end
-    w = note(w, 12, st);
+    w = note(w, st, 123, -124);
 
     % Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is
     [w.phi_crank, st] = link_angle(w.p_J7, w.p_J6, 0.0);
@@ -200,12 +200,12 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
         status = 131;
         return;
     end
-    w = note(w, 13, st);
+    w = note(w, st, 133, -134);
 
     if w.singular > 0
         status = w.singular;
     else
-        status = -w.near;
+        status = w.near;
     end
 end
 
@@ -230,7 +230,7 @@ function [st, res, w] = group_1(w, a, live)
         return;
     end
     if live
-        w = note(w, 4, st);
+        w = note(w, st, 43, -44);
     end
     w.chains = min(w.chains, w.sigma(4));
     % Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
@@ -241,7 +241,7 @@ function [st, res, w] = group_1(w, a, live)
         return;
     end
     if live
-        w = note(w, 5, st);
+        w = note(w, st, 53, -54);
     end
     w.chains = min(w.chains, w.sigma(5));
     % Step 6: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
@@ -252,7 +252,7 @@ function [st, res, w] = group_1(w, a, live)
         return;
     end
     if live
-        w = note(w, 6, st);
+        w = note(w, st, 63, -64);
     end
     % Step 7: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341);
@@ -285,7 +285,7 @@ function [st, res, w] = group_1_v1(w, a, live)
         return;
     end
     if live
-        w = note(w, 14, st);
+        w = note(w, st, 143, -144);
     end
     w.chains = min(w.chains, w.sigma(14));
     % Step 15: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
@@ -296,7 +296,7 @@ function [st, res, w] = group_1_v1(w, a, live)
         return;
     end
     if live
-        w = note(w, 15, st);
+        w = note(w, st, 153, -154);
     end
     w.chains = min(w.chains, w.sigma(15));
     % Step 16: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
@@ -307,7 +307,7 @@ function [st, res, w] = group_1_v1(w, a, live)
         return;
     end
     if live
-        w = note(w, 16, st);
+        w = note(w, st, 163, -164);
     end
     % Step 17: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134);
@@ -340,7 +340,7 @@ function [st, res, w] = group_1_v2(w, a, live)
         return;
     end
     if live
-        w = note(w, 19, st);
+        w = note(w, st, 193, -194);
     end
     w.chains = min(w.chains, w.sigma(19));
     % Step 20: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
@@ -351,7 +351,7 @@ function [st, res, w] = group_1_v2(w, a, live)
         return;
     end
     if live
-        w = note(w, 20, st);
+        w = note(w, st, 203, -204);
     end
     w.chains = min(w.chains, w.sigma(20));
     % Step 21: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
@@ -362,7 +362,7 @@ function [st, res, w] = group_1_v2(w, a, live)
         return;
     end
     if live
-        w = note(w, 21, st);
+        w = note(w, st, 213, -214);
     end
     % Step 22: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341);
@@ -395,7 +395,7 @@ function [st, res, w] = group_1_v3(w, a, live)
         return;
     end
     if live
-        w = note(w, 24, st);
+        w = note(w, st, 243, -244);
     end
     w.chains = min(w.chains, w.sigma(24));
     % Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
@@ -406,7 +406,7 @@ function [st, res, w] = group_1_v3(w, a, live)
         return;
     end
     if live
-        w = note(w, 25, st);
+        w = note(w, st, 253, -254);
     end
     w.chains = min(w.chains, w.sigma(25));
     % Step 26: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
@@ -417,7 +417,7 @@ function [st, res, w] = group_1_v3(w, a, live)
         return;
     end
     if live
-        w = note(w, 26, st);
+        w = note(w, st, 263, -264);
     end
     % Step 27: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134);
@@ -450,7 +450,7 @@ function [st, res, w] = group_1_v4(w, a, live)
         return;
     end
     if live
-        w = note(w, 29, st);
+        w = note(w, st, 293, -294);
     end
     w.chains = min(w.chains, w.sigma(29));
     % Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
@@ -461,7 +461,7 @@ function [st, res, w] = group_1_v4(w, a, live)
         return;
     end
     if live
-        w = note(w, 30, st);
+        w = note(w, st, 303, -304);
     end
     w.chains = min(w.chains, w.sigma(30));
     % Step 31: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
@@ -472,7 +472,7 @@ function [st, res, w] = group_1_v4(w, a, live)
         return;
     end
     if live
-        w = note(w, 31, st);
+        w = note(w, st, 313, -314);
     end
     % Step 32: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134);
@@ -505,7 +505,7 @@ function [st, res, w] = group_1_v5(w, a, live)
         return;
     end
     if live
-        w = note(w, 34, st);
+        w = note(w, st, 343, -344);
     end
     w.chains = min(w.chains, w.sigma(34));
     % Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
@@ -516,7 +516,7 @@ function [st, res, w] = group_1_v5(w, a, live)
         return;
     end
     if live
-        w = note(w, 35, st);
+        w = note(w, st, 353, -354);
     end
     w.chains = min(w.chains, w.sigma(35));
     % Step 36: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
@@ -527,7 +527,7 @@ function [st, res, w] = group_1_v5(w, a, live)
         return;
     end
     if live
-        w = note(w, 36, st);
+        w = note(w, st, 363, -364);
     end
     % Step 37: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
     w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341);
@@ -560,7 +560,7 @@ function [st, res, w] = group_1_v6(w, a, live)
         return;
     end
     if live
-        w = note(w, 39, st);
+        w = note(w, st, 393, -394);
     end
     w.chains = min(w.chains, w.sigma(39));
     % Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
@@ -571,7 +571,7 @@ function [st, res, w] = group_1_v6(w, a, live)
         return;
     end
     if live
-        w = note(w, 40, st);
+        w = note(w, st, 403, -404);
     end
     w.chains = min(w.chains, w.sigma(40));
     % Step 41: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
@@ -582,7 +582,7 @@ function [st, res, w] = group_1_v6(w, a, live)
         return;
     end
     if live
-        w = note(w, 41, st);
+        w = note(w, st, 413, -414);
     end
     % Step 42: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
     w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341);
@@ -615,7 +615,7 @@ function [st, res, w] = group_1_v7(w, a, live)
         return;
     end
     if live
-        w = note(w, 44, st);
+        w = note(w, st, 443, -444);
     end
     w.chains = min(w.chains, w.sigma(44));
     % Step 45: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
@@ -626,7 +626,7 @@ function [st, res, w] = group_1_v7(w, a, live)
         return;
     end
     if live
-        w = note(w, 45, st);
+        w = note(w, st, 453, -454);
     end
     w.chains = min(w.chains, w.sigma(45));
     % Step 46: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
@@ -637,7 +637,7 @@ function [st, res, w] = group_1_v7(w, a, live)
         return;
     end
     if live
-        w = note(w, 46, st);
+        w = note(w, st, 463, -464);
     end
     % Step 47: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
     w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341);
@@ -670,7 +670,7 @@ function [st, res, w] = group_1_v8(w, a, live)
         return;
     end
     if live
-        w = note(w, 49, st);
+        w = note(w, st, 493, -494);
     end
     w.chains = min(w.chains, w.sigma(49));
     % Step 50: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
@@ -681,7 +681,7 @@ function [st, res, w] = group_1_v8(w, a, live)
         return;
     end
     if live
-        w = note(w, 50, st);
+        w = note(w, st, 503, -504);
     end
     w.chains = min(w.chains, w.sigma(50));
     % Step 51: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
@@ -692,7 +692,7 @@ function [st, res, w] = group_1_v8(w, a, live)
         return;
     end
     if live
-        w = note(w, 51, st);
+        w = note(w, st, 513, -514);
     end
     % Step 52: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
     w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341);
@@ -775,8 +775,8 @@ end
 
 function out = publish(w, status, in)
     % The outputs as a struct, with the status rules of the CSV.
-    failed = status > 0 && (mod(status, 10) == 1 || mod(status, 10) == 2);
-    singular = status > 0 && mod(status, 10) == 3;
+    failed = reason_of(status) == 1 || reason_of(status) == 2;
+    singular = reason_of(status) == 3;
     out = struct();
     if failed
         out.J1.x = NaN;
@@ -1167,6 +1167,16 @@ function f = link_residual(j1, j2, l)
     f.v = r - l.v;
     f.dv = rd - l.dv;
     f.ddv = rdd - l.ddv;
+end
+
+function r = reason_of(code)
+    % The reason of a status code (linkgen/status.py): the last digit of a positive code
+    % (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    % 0 for status 0 and the negative codes of rows computed near a singular position.
+    r = 0;
+    if code > 0
+        r = mod(code, 10);
+    end
 end
 
 function [x, det] = solve_linear(m, b)

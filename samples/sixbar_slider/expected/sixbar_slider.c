@@ -196,6 +196,14 @@ static int PRR_links(POINT jr, VARIABLE l, POINT pg, ANGLE psig, double gsi, dou
     return st;
 }
 
+/* The reason of a status code (linkgen/status.py): the last digit of a positive code
+ * (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+ * 0 for status 0 and the negative codes of rows computed near a singular position. */
+static int reason_of(int code)
+{
+    return code > 0 ? code % 10 : 0;
+}
+
 
 /* Constants taken from the sketch; points are held relative to
    (72.0, 32.0), which publish() adds back to the computed ones. */
@@ -224,11 +232,11 @@ typedef struct {
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
-/* Remember the first step at a singular (3) or near-singular (4) position. */
-static void note(work *w, int step, int st)
+/* Remember the code of the first step at a singular or a near-singular position (st: the step's). */
+static void note(work *w, int st, int singular, int near)
 {
-    if (st == 3 && !w->singular) w->singular = 10 * step + 3;
-    if (st == 4 && !w->near) w->near = 10 * step + 4;
+    if (st == 3 && !w->singular) w->singular = singular;
+    if (st == 4 && !w->near) w->near = near;
 }
 
 /* The procedure of sixbar_slider.md, step by step. */
@@ -251,13 +259,13 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known */
     st = RRR_links(w->p_A, p_O2, l_coupler, l_rocker_B_O2, 1, &w->p_B, &w->sigma[3]);
     if (st == 1) return 31;
-    note(w, 3, st);
+    note(w, st, 33, -34);
 
 
     /* Step 4: link_angle, rocker. O2 and B of link rocker are known, so its angle is */
     st = link_angle(p_O2, w->p_B, 0.0, &w->phi_rocker);
     if (st == 1) return 41;
-    note(w, 4, st);
+    note(w, st, 43, -44);
 
 
     /* Step 5: coupler_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it */
@@ -267,19 +275,19 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 6: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known */
     st = PRR_links(w->p_C, l_rod, g_S, psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_D, &w->sigma[6]);
     if (st == 1) return 61;
-    note(w, 6, st);
+    note(w, st, 63, -64);
 
 
     /* Step 7: link_angle, coupler. A and B of link coupler are known, so its angle is */
     st = link_angle(w->p_A, w->p_B, 0.0, &w->phi_coupler);
     if (st == 1) return 71;
-    note(w, 7, st);
+    note(w, st, 73, -74);
 
 
     /* Step 8: coupler_point, P. point P of link coupler */
     coupler_point(w->p_A, w->phi_coupler, 43.422841325484725, 19.064544348653477, &w->p_P);
 
-    return w->singular ? w->singular : -w->near;
+    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -311,7 +319,7 @@ static void publish(const work *w, int code, sixbar_slider_state *out)
     int k;
     out->status = code;
     for (k = 0; k <= SIXBAR_SLIDER_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
+    if (reason_of(code) == 1 || reason_of(code) == 2) {
         no_outputs(out);
         return;
     }
@@ -333,7 +341,7 @@ static void publish(const work *w, int code, sixbar_slider_state *out)
     out->rocker.phi = w->phi_rocker.the;
     out->rocker.omega = w->phi_rocker.dthe;
     out->rocker.alpha = w->phi_rocker.ddthe;
-    if (code > 0 && code % 10 == 3) {
+    if (reason_of(code) == 3) {
         out->S.vx = NAN;
         out->S.vy = NAN;
         out->S.ax = NAN;

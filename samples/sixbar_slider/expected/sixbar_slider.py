@@ -216,6 +216,12 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
         return st, sigma, (sv, NAN, NAN), (jpx, jpy, NAN, NAN, NAN, NAN), (jbx, jby, NAN, NAN, NAN, NAN)
     return st, sigma, (sv, ds, dds), (jpx, jpy, jpvx, jpvy, jpax, jpay), (jbx, jby, jbvx, jbvy, jpax + rax, jpay + ray)
 
+def reason_of(code):
+    """The reason of a status code (linkgen/status.py): the last digit of a positive code
+    (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    0 for status 0 and the negative codes of rows computed near a singular position."""
+    return code % 10 if code > 0 else 0
+
 # -- constants taken from the sketch -----------------------------------------
 # Points are held relative to (72.0, 32.0), which _publish adds back
 # to the computed ones.
@@ -235,12 +241,12 @@ class _Work:
 
     __slots__ = ("in1", "p_A", "p_B", "phi_rocker", "p_C", "p_D", "p_S", "s_S", "phi_coupler", "p_P", "sigma", "singular", "near")
 
-    def note(self, step, st):
-        """Remember the first step at a singular (3) or near-singular (4) position."""
+    def note(self, st, singular, near):
+        """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
         if st == 3 and not self.singular:
-            self.singular = 10 * step + 3
+            self.singular = singular
         if st == 4 and not self.near:
-            self.near = 10 * step + 4
+            self.near = near
 
 
 def _run(w, inputs, d_inputs, dd_inputs):
@@ -257,13 +263,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.p_B = RRR_links(w.p_A, p_O2, l_coupler, l_rocker_B_O2, 1)
     if st == 1:
         return 31
-    w.note(3, st)
+    w.note(st, 33, -34)
 
     # Step 4: link_angle, rocker. O2 and B of link rocker are known, so its angle is
     st, w.phi_rocker = link_angle(p_O2, w.p_B, 0.0)
     if st == 1:
         return 41
-    w.note(4, st)
+    w.note(st, 43, -44)
 
     # Step 5: coupler_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
     w.p_C = coupler_point(p_O2, w.phi_rocker, 25.307692307692314, -48.46153846153846)
@@ -272,24 +278,24 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[6], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, l_rod, g_S, psi_S, 0.0, 0.0, 1)
     if st == 1:
         return 61
-    w.note(6, st)
+    w.note(st, 63, -64)
 
     # Step 7: link_angle, coupler. A and B of link coupler are known, so its angle is
     st, w.phi_coupler = link_angle(w.p_A, w.p_B, 0.0)
     if st == 1:
         return 71
-    w.note(7, st)
+    w.note(st, 73, -74)
 
     # Step 8: coupler_point, P. point P of link coupler
     w.p_P = coupler_point(w.p_A, w.phi_coupler, 43.422841325484725, 19.064544348653477)
 
-    return w.singular or -w.near
+    return w.singular or w.near
 
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = code > 0 and code % 10 in (1, 2)
-    singular = code > 0 and code % 10 == 3
+    failed = reason_of(code) in (1, 2)
+    singular = reason_of(code) == 3
     if failed:
         values = (NAN,) * len(_LEVELS)
     else:

@@ -61,13 +61,13 @@ function w = new_work()
     w.l_rod = struct('v', 65.27633568147036, 'dv', 0.0, 'ddv', 0.0);
 end
 
-function w = note(w, step, st)
-    % Remember the first step at a singular (3) or near-singular (4) position.
+function w = note(w, st, singular, near)
+    % Remember the code of the first step at a singular or a near-singular position (st: the step's).
     if st == 3 && w.singular == 0
-        w.singular = 10 * step + 3;
+        w.singular = singular;
     end
     if st == 4 && w.near == 0
-        w.near = 10 * step + 4;
+        w.near = near;
     end
 end
 
@@ -89,7 +89,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 31;
         return;
     end
-    w = note(w, 3, st);
+    w = note(w, st, 33, -34);
 
     % Step 4: link_angle, rocker. O2 and B of link rocker are known, so its angle is
     [w.phi_rocker, st] = link_angle(w.p_O2, w.p_B, 0.0);
@@ -97,7 +97,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 41;
         return;
     end
-    w = note(w, 4, st);
+    w = note(w, st, 43, -44);
 
     % Step 5: coupler_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
     w.p_C = coupler_point(w.p_O2, w.phi_rocker, 25.307692307692314, -48.46153846153846);
@@ -108,7 +108,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 61;
         return;
     end
-    w = note(w, 6, st);
+    w = note(w, st, 63, -64);
 
     % Step 7: link_angle, coupler. A and B of link coupler are known, so its angle is
     [w.phi_coupler, st] = link_angle(w.p_A, w.p_B, 0.0);
@@ -116,7 +116,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 71;
         return;
     end
-    w = note(w, 7, st);
+    w = note(w, st, 73, -74);
 
     % Step 8: coupler_point, P. point P of link coupler
     w.p_P = coupler_point(w.p_A, w.phi_coupler, 43.422841325484725, 19.064544348653477);
@@ -124,14 +124,14 @@ function [status, w] = run(w, in, din, ddin)
     if w.singular > 0
         status = w.singular;
     else
-        status = -w.near;
+        status = w.near;
     end
 end
 
 function out = publish(w, status, in)
     % The outputs as a struct, with the status rules of the CSV.
-    failed = status > 0 && (mod(status, 10) == 1 || mod(status, 10) == 2);
-    singular = status > 0 && mod(status, 10) == 3;
+    failed = reason_of(status) == 1 || reason_of(status) == 2;
+    singular = reason_of(status) == 3;
     out = struct();
     if failed
         out.S.x = NaN;
@@ -474,5 +474,15 @@ function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
         jb.dy = NaN;
         jb.ddx = NaN;
         jb.ddy = NaN;
+    end
+end
+
+function r = reason_of(code)
+    % The reason of a status code (linkgen/status.py): the last digit of a positive code
+    % (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    % 0 for status 0 and the negative codes of rows computed near a singular position.
+    r = 0;
+    if code > 0
+        r = mod(code, 10);
     end
 end

@@ -131,6 +131,14 @@ static int PRR_links(POINT jr, VARIABLE l, POINT pg, ANGLE psig, double gsi, dou
     return st;
 }
 
+/* The reason of a status code (linkgen/status.py): the last digit of a positive code
+ * (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+ * 0 for status 0 and the negative codes of rows computed near a singular position. */
+static int reason_of(int code)
+{
+    return code > 0 ? code % 10 : 0;
+}
+
 
 /* Constants taken from the sketch; points are held relative to
    (40.0, 0.0), which publish() adds back to the computed ones. */
@@ -155,11 +163,11 @@ typedef struct {
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
-/* Remember the first step at a singular (3) or near-singular (4) position. */
-static void note(work *w, int step, int st)
+/* Remember the code of the first step at a singular or a near-singular position (st: the step's). */
+static void note(work *w, int st, int singular, int near)
 {
-    if (st == 3 && !w->singular) w->singular = 10 * step + 3;
-    if (st == 4 && !w->near) w->near = 10 * step + 4;
+    if (st == 3 && !w->singular) w->singular = singular;
+    if (st == 4 && !w->near) w->near = near;
 }
 
 /* The procedure of slider_crank.md, step by step. */
@@ -182,25 +190,25 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 3: PRR_links, B (branch +1). B is joined to the known A by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known */
     st = PRR_links(w->p_A, l_rod, g_S, psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_B, &w->sigma[3]);
     if (st == 1) return 31;
-    note(w, 3, st);
+    note(w, st, 33, -34);
 
 
     /* Step 4: link_angle, crank. O and A of link crank are known, so its angle is */
     st = link_angle(p_O, w->p_A, 0.0, &w->phi_crank);
     if (st == 1) return 41;
-    note(w, 4, st);
+    note(w, st, 43, -44);
 
 
     /* Step 5: link_angle, rod. A and B of link rod are known, so its angle is */
     st = link_angle(w->p_A, w->p_B, 0.0, &w->phi_rod);
     if (st == 1) return 51;
-    note(w, 5, st);
+    note(w, st, 53, -54);
 
 
     /* Step 6: offset_angle, block. link block keeps a constant angle to its slide */
     offset_angle(phi_frame, 0.16941304388961834, &w->phi_block);
 
-    return w->singular ? w->singular : -w->near;
+    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -253,7 +261,7 @@ static void publish(const work *w, int code, slider_crank_state *out)
     int k;
     out->status = code;
     for (k = 0; k <= SLIDER_CRANK_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (code > 0 && (code % 10 == 1 || code % 10 == 2)) {
+    if (reason_of(code) == 1 || reason_of(code) == 2) {
         no_outputs(out);
         return;
     }
@@ -296,7 +304,7 @@ static void publish(const work *w, int code, slider_crank_state *out)
     out->block.phi = w->phi_block.the;
     out->block.omega = w->phi_block.dthe;
     out->block.alpha = w->phi_block.ddthe;
-    if (code > 0 && code % 10 == 3) {
+    if (reason_of(code) == 3) {
         out->O.vx = NAN;
         out->O.vy = NAN;
         out->O.ax = NAN;

@@ -177,6 +177,12 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
         return st, sigma, (sv, NAN, NAN), (jpx, jpy, NAN, NAN, NAN, NAN), (jbx, jby, NAN, NAN, NAN, NAN)
     return st, sigma, (sv, ds, dds), (jpx, jpy, jpvx, jpvy, jpax, jpay), (jbx, jby, jbvx, jbvy, jpax + rax, jpay + ray)
 
+def reason_of(code):
+    """The reason of a status code (linkgen/status.py): the last digit of a positive code
+    (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    0 for status 0 and the negative codes of rows computed near a singular position."""
+    return code % 10 if code > 0 else 0
+
 # -- constants taken from the sketch -----------------------------------------
 # Points are held relative to (40.0, 0.0), which _publish adds back
 # to the computed ones.
@@ -194,12 +200,12 @@ class _Work:
 
     __slots__ = ("in1", "p_A", "p_B", "p_S", "s_S", "phi_crank", "phi_rod", "phi_block", "sigma", "singular", "near")
 
-    def note(self, step, st):
-        """Remember the first step at a singular (3) or near-singular (4) position."""
+    def note(self, st, singular, near):
+        """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
         if st == 3 and not self.singular:
-            self.singular = 10 * step + 3
+            self.singular = singular
         if st == 4 and not self.near:
-            self.near = 10 * step + 4
+            self.near = near
 
 
 def _run(w, inputs, d_inputs, dd_inputs):
@@ -216,30 +222,30 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.s_S, w.p_S, w.p_B = PRR_links(w.p_A, l_rod, g_S, psi_S, 0.0, 0.0, 1)
     if st == 1:
         return 31
-    w.note(3, st)
+    w.note(st, 33, -34)
 
     # Step 4: link_angle, crank. O and A of link crank are known, so its angle is
     st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
     if st == 1:
         return 41
-    w.note(4, st)
+    w.note(st, 43, -44)
 
     # Step 5: link_angle, rod. A and B of link rod are known, so its angle is
     st, w.phi_rod = link_angle(w.p_A, w.p_B, 0.0)
     if st == 1:
         return 51
-    w.note(5, st)
+    w.note(st, 53, -54)
 
     # Step 6: offset_angle, block. link block keeps a constant angle to its slide
     w.phi_block = offset_angle(phi_frame, 0.16941304388961834)
 
-    return w.singular or -w.near
+    return w.singular or w.near
 
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = code > 0 and code % 10 in (1, 2)
-    singular = code > 0 and code % 10 == 3
+    failed = reason_of(code) in (1, 2)
+    singular = reason_of(code) == 3
     if failed:
         values = (NAN,) * len(_LEVELS)
     else:

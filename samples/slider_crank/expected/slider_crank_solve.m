@@ -59,13 +59,13 @@ function w = new_work()
     w.l_rod = struct('v', 65.0, 'dv', 0.0, 'ddv', 0.0);
 end
 
-function w = note(w, step, st)
-    % Remember the first step at a singular (3) or near-singular (4) position.
+function w = note(w, st, singular, near)
+    % Remember the code of the first step at a singular or a near-singular position (st: the step's).
     if st == 3 && w.singular == 0
-        w.singular = 10 * step + 3;
+        w.singular = singular;
     end
     if st == 4 && w.near == 0
-        w.near = 10 * step + 4;
+        w.near = near;
     end
 end
 
@@ -87,7 +87,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 31;
         return;
     end
-    w = note(w, 3, st);
+    w = note(w, st, 33, -34);
 
     % Step 4: link_angle, crank. O and A of link crank are known, so its angle is
     [w.phi_crank, st] = link_angle(w.p_O, w.p_A, 0.0);
@@ -95,7 +95,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 41;
         return;
     end
-    w = note(w, 4, st);
+    w = note(w, st, 43, -44);
 
     % Step 5: link_angle, rod. A and B of link rod are known, so its angle is
     [w.phi_rod, st] = link_angle(w.p_A, w.p_B, 0.0);
@@ -103,7 +103,7 @@ function [status, w] = run(w, in, din, ddin)
         status = 51;
         return;
     end
-    w = note(w, 5, st);
+    w = note(w, st, 53, -54);
 
     % Step 6: offset_angle, block. link block keeps a constant angle to its slide
     w.phi_block = offset_angle(w.phi_frame, 0.16941304388961834);
@@ -111,14 +111,14 @@ function [status, w] = run(w, in, din, ddin)
     if w.singular > 0
         status = w.singular;
     else
-        status = -w.near;
+        status = w.near;
     end
 end
 
 function out = publish(w, status, in)
     % The outputs as a struct, with the status rules of the CSV.
-    failed = status > 0 && (mod(status, 10) == 1 || mod(status, 10) == 2);
-    singular = status > 0 && mod(status, 10) == 3;
+    failed = reason_of(status) == 1 || reason_of(status) == 2;
+    singular = reason_of(status) == 3;
     out = struct();
     if failed
         out.O.x = NaN;
@@ -413,5 +413,15 @@ function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
         jb.dy = NaN;
         jb.ddx = NaN;
         jb.ddy = NaN;
+    end
+end
+
+function r = reason_of(code)
+    % The reason of a status code (linkgen/status.py): the last digit of a positive code
+    % (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+    % 0 for status 0 and the negative codes of rows computed near a singular position.
+    r = 0;
+    if code > 0
+        r = mod(code, 10);
     end
 end

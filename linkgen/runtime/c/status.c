@@ -1,0 +1,7 @@
+/* The reason of a status code (linkgen/status.py): the last digit of a positive code
+ * (1: a chain cannot close, 2: the Add-link iteration did not converge, 3: a singular position);
+ * 0 for status 0 and the negative codes of rows computed near a singular position. */
+static int reason_of(int code)
+{
+    return code > 0 ? code % 10 : 0;
+}
