@@ -92,6 +92,13 @@ class Mapping(Node):
                 return v
         return None
 
+    def __getitem__(self, name: str) -> Node:
+        """The value of a key that ``Reader.keys`` has required (KeyError where it is absent)."""
+        node = self.get(name)
+        if node is None:
+            raise KeyError(name)
+        return node
+
 
 @dataclass
 class Sequence(Node):
