@@ -13,6 +13,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from . import exact
 from .errors import InputError, and_list
@@ -21,6 +22,7 @@ from .policy import LENGTH_SCALES
 
 RANK_TOLERANCE = 1e-9  # relative, as the format specifies
 OFF_LINE = 1e-3  # how far (relative to the length scale) a pair in line is moved to see if it causes a rank drop
+Array = npt.NDArray[np.float64]
 
 
 @dataclass(frozen=True)
@@ -164,7 +166,7 @@ class _Jacobian:
         self.col = {lk.name: 3 * i for i, lk in enumerate(self.moving)}
         self.n = 3 * len(self.moving)
 
-    def point_rows(self, link: str, name: str) -> np.ndarray:
+    def point_rows(self, link: str, name: str) -> Array:
         """d(velocity of a point on link)/d(unknowns): a 2 x n block."""
         block = np.zeros((2, self.n))
         if link not in self.col:
@@ -177,14 +179,14 @@ class _Jacobian:
         block[1, c + 2] = (x - ref[0]) / self.scale
         return block
 
-    def turn_row(self, link: str) -> np.ndarray:
+    def turn_row(self, link: str) -> Array:
         row = np.zeros(self.n)
         if link in self.col:
             row[self.col[link] + 2] = 1.0
         return row
 
-    def constraints(self) -> np.ndarray:
-        rows: list[np.ndarray] = []
+    def constraints(self) -> Array:
+        rows: list[Array] = []
         for j in self.m.joints:
             on = [lk.name for lk in self.m.links_of(j.name)]
             if j.revolute:
@@ -198,7 +200,7 @@ class _Jacobian:
                 rows.append(self.turn_row(p.slider) - self.turn_row(p.guide))
         return np.array(rows).reshape(-1, self.n)
 
-    def input_row(self, inp: Input) -> np.ndarray:
+    def input_row(self, inp: Input) -> Array:
         if inp.kind == "revolute":
             return self.turn_row(inp.link) - self.turn_row(inp.relative_to)
         if inp.kind == "prismatic":
@@ -212,7 +214,7 @@ class _Jacobian:
         return u @ (self.point_rows(lb, b) - self.point_rows(la, a))
 
 
-def _rank(a: np.ndarray) -> int:
+def _rank(a: Array) -> int:
     if a.size == 0:
         return 0
     s = np.linalg.svd(a, compute_uv=False)
@@ -243,7 +245,7 @@ def _check_scale(m: Mechanism) -> float:
                          "with every pair at its place", m.path, first.line, "joints")
     low, high = LENGTH_SCALES
     if not low <= scale <= high:
-        where = next(e.where for e in (*m.joints, *m.points) if e.name == b)
+        where = next(e.where for e in m.joints + m.points if e.name == b)
         size = f"{scale:.3g}".replace("e+", "e") + (f" {m.length_unit}" if m.length_unit else "")
         raise InputError(f"the sketch measures {size} (from {a} to {b}, the largest distance between two "
                          "pairs or points), but linkgen supports sketches from 1e-30 to 1e30 in the file's length "
@@ -348,7 +350,7 @@ def _check_dead_centre(m: Mechanism, scale: float, mobility: int) -> None:
                      f"off the dead centre ({q} off the line through {p} and {r})", m.path, where.line, where.key)
 
 
-def _free_links(jac: _Jacobian, full: np.ndarray) -> list[str]:
+def _free_links(jac: _Jacobian, full: Array) -> list[str]:
     """The moving links that still move when every input is held: the null space of the full Jacobian."""
     _, s, vt = np.linalg.svd(full)
     rank = int(np.sum(s > RANK_TOLERANCE * max(s[0], 1.0)))
@@ -364,7 +366,7 @@ def _cannot_move(inp: Input) -> str:
             "or the sketch is at a dead centre for this input)")
 
 
-def _check_inputs_determine(m: Mechanism, jac: _Jacobian, c: np.ndarray) -> None:
+def _check_inputs_determine(m: Mechanism, jac: _Jacobian, c: Array) -> None:
     """Each input must fix a motion that the constraints and the inputs before it leave free."""
     rows = [jac.input_row(i) for i in m.inputs]
     for k, inp in enumerate(m.inputs):
