@@ -53,8 +53,10 @@ explore: install tools
 	echo "hypothesis seed $$seed: make explore SEED=$$seed repeats this run"; \
 	$(PYTEST) -m hypothesis --hypothesis-profile=explore --hypothesis-seed=$$seed
 
+# ruff, and mypy as [tool.mypy] in pyproject.toml configures it (strict, on the package)
 lint: install
 	$(VENV)/bin/ruff check linkgen tests bench
+	$(VENV)/bin/mypy
 
 bench: install
 	$(PY) bench/run.py

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import os
 import sys
+from typing import Any
 
 import click
 
@@ -24,11 +25,12 @@ def _report(message: str, status: int) -> None:
 class _Linkgen(click.Group):
     """The command group; every failure is reported as ``linkgen: error: ...``."""
 
-    def main(self, *args, standalone_mode: bool = True, **kwargs):
-        if not standalone_mode:
-            return super().main(*args, standalone_mode=False, **kwargs)
+    def main(self, *args: Any, **kwargs: Any) -> Any:
+        if not kwargs.setdefault("standalone_mode", True):
+            return super().main(*args, **kwargs)
+        kwargs["standalone_mode"] = False
         try:
-            status = super().main(*args, standalone_mode=False, **kwargs)
+            status = super().main(*args, **kwargs)
         except LinkgenError as exc:
             _report(str(exc), 1)
         except click.UsageError as exc:

@@ -9,10 +9,10 @@ _POINT = (("x", "x", "position"), ("y", "y", "position"), ("vx", "dx", "velocity
           ("ax", "ddx", "acceleration"), ("ay", "ddy", "acceleration"))
 _ANGLE = (("phi", "the", "angle"), ("omega", "dthe", "angular_velocity"), ("alpha", "ddthe", "angular_acceleration"))
 _SLIDE = (("s", "v", "position"), ("ds", "dv", "velocity"), ("dds", "ddv", "acceleration"))
-_PER_ORDER = {"point": 2, "angle": 1, "slide": 1}
 
 
-def _take(spec: tuple, per: int, order: int) -> tuple:
+def _take(spec: tuple[tuple[str, str, str], ...], per: int, order: int) -> tuple[tuple[str, str, str], ...]:
+    """The fields of a record up to the order: ``per`` a derivative."""
     return spec[: per * (order + 1)]
 
 

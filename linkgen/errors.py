@@ -37,7 +37,7 @@ class FileSystemError(LinkgenError):
 
 
 # The system's wording where it would puzzle a user in linkgen's sentences.
-_REASONS = {
+_REASONS: dict[int | None, str] = {
     errno.ENOENT: "no such file or directory",
     errno.ENOTDIR: "a part of the path is not a directory",
     errno.EISDIR: "it is a directory",

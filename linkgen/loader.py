@@ -25,6 +25,7 @@ from ruamel.yaml.events import (
     SequenceStartEvent,
 )
 from ruamel.yaml.nodes import MappingNode, ScalarNode, SequenceNode
+from ruamel.yaml.nodes import Node as YAMLNode
 from ruamel.yaml.reader import ReaderError
 
 from .errors import InputError
@@ -91,6 +92,13 @@ class Mapping(Node):
             if k.text == name:
                 return v
         return None
+
+    def __getitem__(self, name: str) -> Node:
+        """The value of a key that ``Reader.keys`` has required (KeyError where it is absent)."""
+        node = self.get(name)
+        if node is None:
+            raise KeyError(name)
+        return node
 
 
 @dataclass
@@ -213,7 +221,7 @@ def _join(parent: str, key: str) -> str:
     return f"{parent}.{key}" if parent else key
 
 
-def _convert(raw, key: str, reader: Reader) -> Node:
+def _convert(raw: YAMLNode, key: str, reader: Reader) -> Node:
     line = raw.start_mark.line + 1
     if raw.ctag.handle is not None:
         raise InputError(f"a YAML tag ({raw.ctag.handle}{raw.ctag.suffix}) is not used in a mechanism file; "
@@ -241,9 +249,20 @@ def _convert(raw, key: str, reader: Reader) -> Node:
     return out
 
 
+@dataclass
+class _Open:
+    """A collection open where an error is found: the index or key of its entry being written, and
+    whether that entry's value has started."""
+
+    mapping: bool
+    index: int = -1
+    key: str = "?"
+    inside: bool = False
+
+
 def _path_at(text: str) -> str:
     """The key path of the value being written where ``text`` (the file up to an error) ends."""
-    frames: list[list] = []  # per open collection: [is_mapping, key or index, inside that entry's value]
+    frames: list[_Open] = []
     try:
         for event in YAML(typ="rt", pure=True).parse(text):
             if event.start_mark.index >= len(text):
@@ -251,28 +270,28 @@ def _path_at(text: str) -> str:
             if isinstance(event, CollectionEndEvent):
                 frames.pop()
                 if frames:
-                    frames[-1][2] = False
+                    frames[-1].inside = False
                 continue
             if not isinstance(event, NodeEvent):
                 continue
             opens = isinstance(event, (MappingStartEvent, SequenceStartEvent))
             if frames:
                 top = frames[-1]
-                if not top[0]:
-                    top[1], top[2] = top[1] + 1, opens
-                elif not top[2]:
-                    top[1], top[2] = event.value if isinstance(event, ScalarEvent) else "?", True
+                if not top.mapping:
+                    top.index, top.inside = top.index + 1, opens
+                elif not top.inside:
+                    top.key, top.inside = str(event.value) if isinstance(event, ScalarEvent) else "?", True
                 else:
-                    top[2] = opens
+                    top.inside = opens
             if opens:
-                frames.append([isinstance(event, MappingStartEvent), -1, False])
+                frames.append(_Open(isinstance(event, MappingStartEvent)))
     except YAMLError:
         pass
     path = ""
-    for is_mapping, k, inside in frames:
-        if not inside:
+    for frame in frames:
+        if not frame.inside:
             break
-        path = _join(path, str(k)) if is_mapping else f"{path}[{k}]"
+        path = _join(path, frame.key) if frame.mapping else f"{path}[{frame.index}]"
     return path
 
 

@@ -102,29 +102,33 @@ class Mechanism:
     inputs_where: Where  # the inputs: key
 
     @cached_property
-    def _index(self) -> dict[str, dict]:
-        carried: dict[str, list[Link]] = {j.name: [] for j in self.joints}
-        for lk in self.links:
-            for j in lk.joints:
-                carried[j].append(lk)
-        return {
-            "joint": {j.name: j for j in self.joints},
-            "link": {lk.name: lk for lk in self.links},
-            "links_of": {k: tuple(v) for k, v in carried.items()},
-            "prismatic": {p.joint: p for p in self.prismatic},
-        }
+    def _joints(self) -> dict[str, Joint]:
+        return {j.name: j for j in self.joints}
+
+    @cached_property
+    def _links(self) -> dict[str, Link]:
+        return {lk.name: lk for lk in self.links}
+
+    @cached_property
+    def _carriers(self) -> dict[str, tuple[Link, ...]]:
+        return {j.name: tuple(lk for lk in self.links if j.name in lk.joints) for j in self.joints}
+
+    @cached_property
+    def _prismatic(self) -> dict[str, Prismatic]:
+        return {p.joint: p for p in self.prismatic}
 
     def joint(self, name: str) -> Joint:
-        return self._index["joint"][name]
+        return self._joints[name]
 
     def link(self, name: str) -> Link:
-        return self._index["link"][name]
+        return self._links[name]
 
     def links_of(self, joint: str) -> tuple[Link, ...]:
-        return self._index["links_of"][joint]
+        """The links that carry the pair, in links order."""
+        return self._carriers[joint]
 
     def prismatic_of(self, joint: str) -> Prismatic:
-        return self._index["prismatic"][joint]
+        return self._prismatic[joint]
 
     @cached_property
     def points(self) -> tuple[Point, ...]:

@@ -27,7 +27,7 @@ from importlib import resources
 
 
 def _data(name: str) -> frozenset[str]:
-    text = resources.files("linkgen").joinpath("data", name).read_text(encoding="utf-8")
+    text = (resources.files("linkgen") / "data" / name).read_text(encoding="utf-8")
     return frozenset(line for line in text.splitlines() if line and not line.startswith("#"))
 
 

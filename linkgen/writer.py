@@ -32,6 +32,7 @@ from __future__ import annotations
 import contextlib
 import difflib
 import errno
+import functools
 import os
 import secrets
 import stat
@@ -79,7 +80,7 @@ def _make_directory(outdir: str, undo: list[Callable[[], None]]) -> None:
     for path in reversed(missing):
         with _doing("cannot create the directory", path, creating=True):
             os.mkdir(path)
-        undo.append(lambda path=path: os.rmdir(path))
+        undo.append(functools.partial(os.rmdir, path))
 
 
 def _check_target(path: str) -> bool:
@@ -169,7 +170,7 @@ def write_all(files: dict[str, bytes], outdir: str) -> list[str]:
             with _doing("cannot replace the file" if old else "cannot create the file", final):
                 os.replace(tmp, final)
             if not old:
-                undo.append(lambda final=final: os.unlink(final))
+                undo.append(functools.partial(os.unlink, final))
     except FileSystemError as exc:
         failed = _roll_back(undo)
         if failed:

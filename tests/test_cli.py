@@ -1,4 +1,5 @@
-"""The command line's faults and usage errors: one ``linkgen: error: ...`` line, no traceback.
+"""The command line: what each command prints, and its faults and usage errors: one
+``linkgen: error: ...`` line, no traceback.
 
 File-system faults and bad mechanism files exit 1, command-line usage errors 2 (README,
 Usage).  Every case runs in-process through click's CliRunner and as a real process
@@ -8,6 +9,8 @@ tests run as root they run linkgen as ``nobody``.
 
 from __future__ import annotations
 
+import json
+import math
 import os
 import pwd
 import shutil
@@ -22,6 +25,7 @@ import pytest
 from click.testing import CliRunner
 
 from linkgen.cli import cli
+from linkgen.policy import GOOD_LEVER
 
 ROOT = Path(__file__).resolve().parents[1]
 LINKGEN = Path(sys.executable).with_name("linkgen")
@@ -259,3 +263,79 @@ def test_version(linkgen, tmp_path: Path):
 
     outcome = linkgen(["--version"], tmp_path)
     assert (outcome.code, outcome.out, outcome.err) == (0, f"linkgen, version {__version__}\n", "")
+
+
+# -- what the commands print (in-process) ---------------------------------------------
+
+def _ok(args: list, cwd: Path, monkeypatch: pytest.MonkeyPatch) -> str:
+    outcome = _in_process(args, cwd, monkeypatch)
+    assert (outcome.code, outcome.err) == (0, ""), outcome.err
+    return outcome.out
+
+
+def test_procedure_is_the_four_bars_by_the_paper(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    """Fix the frame, turn the crank to A by the input, close the 3R chain A-B-O2, then angles and P."""
+    lines = _ok(["procedure", FOURBAR], tmp_path, monkeypatch).splitlines()
+    assert [line[:30].split() for line in lines[:3]] == [["1", "fixed", "frame"], ["2", "crank_input", "A"],
+                                                         ["3", "RRR_links", "B"]]
+    assert sorted(line[20:30].strip() for line in lines[3:]) == ["P", "coupler", "crank", "rocker"]
+    assert all(line[3:5] == "  " and line[19] == " " for line in lines)
+
+
+def test_run_prints_the_sweep_solved_by_hand(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    """At theta = pi the crank puts A at (-20, 0); B is where circles of radius sqrt(6100) about A and
+    sqrt(2600) about O2 (90, 0) meet above the axis: x = -20 + 15600/220, y = sqrt(6100 - (15600/220)^2)."""
+    args = ["run", FOURBAR, "--samples", "3", "--order", "0", "--outputs", "B"]
+    text = _ok(args, tmp_path, monkeypatch)
+    head, *rows = [line.split(",") for line in text.splitlines()]
+    assert head == ["theta_O1", "B.x", "B.y", "status"]
+    assert [float(v) for v in rows[0]] == [0.0, 80.0, 50.0, 0.0]  # the sketch
+    theta, x, y, status = (float(v) for v in rows[1])
+    assert (theta, status) == (math.pi, 0)
+    along = 15600 / 220
+    assert x == pytest.approx(-20 + along, rel=1e-14) and y == pytest.approx(math.sqrt(6100 - along**2), rel=1e-14)
+    assert float(rows[2][0]) == 2 * math.pi and rows[2][1:] == rows[0][1:]
+    assert _ok([*args, "-o", "sweep.csv"], tmp_path, monkeypatch) == ""
+    assert (tmp_path / "sweep.csv").read_text() == text
+
+
+def test_lj_prints_the_pairs_on_each_link_before_step_1(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    """Before step 1 every pair is unknown: 1 where the file lists a pair on a link."""
+    text = _ok(["lj", FOURBAR, "--step", "0"], tmp_path, monkeypatch)
+    title, head, *rows = text.splitlines()
+    assert title == "# LJ-matrix before step 1"
+    links = head.split()
+    assert links[:4] == ["frame", "crank", "coupler", "rocker"]
+    on = {"frame": {"O1", "O2"}, "crank": {"O1", "A"}, "coupler": {"A", "B"}, "rocker": {"O2", "B"}}
+    for row in rows:
+        pair, *entries = row.split()
+        assert [int(e) for e in entries[:4]] == [int(pair in on[lk]) for lk in links[:4]]
+    last = _ok(["lj", FOURBAR], tmp_path, monkeypatch).split("\n\n")[-1].splitlines()
+    assert all(int(e) <= 0 for row in last[2:] for e in row.split()[1:])  # every pair known at the end
+
+
+def test_candidates_without_and_with_an_add_link(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    assert _ok(["candidates", FOURBAR, "--json"], tmp_path, monkeypatch) == "[]\n"
+    assert "without an Add-link" in _ok(["candidates", FOURBAR], tmp_path, monkeypatch)
+    sixbar = ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"
+    ranked = json.loads(_ok(["candidates", sixbar, "--json"], tmp_path, monkeypatch))
+    usable = [c for c in ranked if c["usable"] and c["lever"] >= GOOD_LEVER]
+    assert usable and ranked[: len(usable)] == usable  # a poor lever or no closure after the others
+    assert [c["norm"] for c in usable] == sorted(c["norm"] for c in usable)  # ranked by |f|
+    lines = _ok(["candidates", sixbar], tmp_path, monkeypatch).splitlines()
+    assert lines[0].endswith(f"{len(ranked)} candidates, ranked by |f| at the probe input (a lever below "
+                             f"{GOOD_LEVER:g} last)")
+    assert lines[1].startswith(f"  1. {'-'.join(ranked[0]['pairs'])}  |f| = ") and lines[1].endswith("<- chosen")
+
+
+def test_check_passes_on_a_fresh_build_and_shows_a_changed_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    written = _ok(["build", FOURBAR, "-o", "out"], tmp_path, monkeypatch).split()
+    assert sorted(Path(p).name for p in written) == OUTPUTS
+    assert _ok(["build", FOURBAR, "--check", "-o", "out"], tmp_path, monkeypatch) == ""
+    page = tmp_path / "out" / "fourbar.md"
+    page.write_text(page.read_text().replace("fourbar", "FOURBAR", 1))
+    outcome = _in_process(["build", FOURBAR, "--check", "-o", "out"], tmp_path, monkeypatch)
+    assert outcome.code == 1
+    assert outcome.out.startswith("--- out/fourbar.md (on disk)\n+++ out/fourbar.md (rebuilt)\n")
+    assert "\n-" in outcome.out and "FOURBAR" in outcome.out
+

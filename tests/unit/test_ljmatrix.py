@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from linkgen.ljmatrix import states, text
+from linkgen.ljmatrix import LJState, states, text
 from linkgen.pipeline import build_log
+from linkgen.steplog import LJColumn
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -44,3 +45,13 @@ def test_text_table_is_aligned():
     lines = text(states(log)[0]).splitlines()
     assert lines[0].split() == ["frame", "crank", "coupler", "rocker", "theta_O1"]
     assert lines[1].split() == ["O1", "1", "1", "0", "0", "0"]
+
+
+def test_text_right_aligns_the_entries_under_their_link():
+    columns = (LJColumn("frame", "member", ("O", "S"), "frame"), LJColumn("theta_O", "input", ("O", "A"), "crank"))
+    state = LJState(1, columns, ("O", "A", "S"), ((-1, -1), (0, 1), (-2, 0)))
+    # widths 1, 5 and 7; two spaces between columns; the row names left-aligned
+    assert text(state) == ("   frame  theta_O\n"
+                           "O     -1       -1\n"
+                           "A      0        1\n"
+                           "S     -2        0\n")

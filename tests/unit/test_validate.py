@@ -1,26 +1,20 @@
-"""What the validator refuses or rewrites before anything is generated: names against every
-list of linkgen.names, text that reaches comments and headings, the supported magnitudes,
-and the file name as the banners give it."""
+"""What the validator refuses or rewrites before anything is generated: names the programs cannot
+carry (with the message and advice; the lists themselves are tests/unit/test_names.py's), text that
+reaches comments and headings, the supported magnitudes, and the file name as the banners give it."""
 
 from __future__ import annotations
 
-import json as js
-import keyword
 import re
-import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from linkgen import names
 from linkgen.errors import InputError
-from linkgen.loader import IDENTIFIER, parse
+from linkgen.loader import parse
 from linkgen.topology import analyse
 from linkgen.validate import file_label, validate
 
-ROOT = Path(__file__).resolve().parents[2]
 PATH = "m.yaml"
 FOURBAR = """linkgen: 1
 name: fourbar
@@ -61,26 +55,6 @@ def refused(text: str) -> InputError:
 
 # -- the mechanism name ---------------------------------------------------------
 
-MECHANISM_LISTS = {
-    "Python keyword": frozenset(keyword.kwlist),
-    "MATLAB/Octave keyword": names.M_KEYWORDS,
-    "MATLAB/Octave function": names.M_FUNCTIONS,
-    "variable of the sweep script": names.M_SCRIPT_VARIABLES,
-    "Python module": frozenset(n for n in sys.stdlib_module_names if not n.startswith("_")),
-    "Python built-in": names.PY_BUILTINS,
-    "C header": names.C_HEADERS | frozenset(h.upper() for h in names.C_HEADERS),
-    "Windows device": names.WINDOWS_DEVICES | frozenset(d.upper() for d in names.WINDOWS_DEVICES),
-}
-
-
-@pytest.mark.parametrize("listed", sorted(MECHANISM_LISTS))
-def test_every_name_of_every_list_is_refused_as_the_mechanism_name(listed: str):
-    members = MECHANISM_LISTS[listed]
-    assert len(members) >= 4
-    accepted = [n for n in members if not names.mechanism_name_problem(n)]
-    assert accepted == []
-
-
 @pytest.mark.parametrize("name, reason", [
     ("zeros", "is a MATLAB/Octave function, which the script zeros.m would hide"),
     ("size", "is a MATLAB/Octave function, which the script size.m would hide"),
@@ -107,17 +81,6 @@ def test_a_refused_mechanism_name_says_why_and_suggests_one(name: str, reason: s
 def test_c_words_and_near_misses_are_fine_mechanism_names(name: str):
     """The mechanism name is never a C identifier by itself (NAME_state, NAME_solve, ...)."""
     assert check(fourbar(fourbar=name)).mechanism.name == name
-
-
-def test_no_octave_function_ends_in_solve():
-    """So NAME_solve.m hides none (the data file says so)."""
-    assert [f for f in names.M_FUNCTIONS if f.endswith("_solve")] == []
-
-
-def test_the_headers_macros_are_no_library_macro_for_any_mechanism_name():
-    """NAME_N_INPUTS, NAME_H, ...: no macro of the C library ends like one of them."""
-    clash = [m for m in names.C_MACROS for s in names.HEADER_MACRO_SUFFIXES if m.endswith(f"_{s}")]
-    assert clash == []
 
 
 # -- pair, point and link names ---------------------------------------------------
@@ -147,29 +110,6 @@ def test_a_state_field_names_the_structures_that_have_it():
         "status is a field of the generated state (C fourbar_state); call the pair status_pair or similar")
     assert refused(fourbar(crank="columns")).message == (
         "columns is a field of the generated state (MATLAB/Octave out); call the link columns_link or similar")
-
-
-RENAMED = {
-    "C keyword": (names.C_KEYWORDS, "C"),
-    "C++ keyword": (names.CPP_KEYWORDS, "C"),
-    "C library macro": (names.C_MACROS, "C"),
-    "MATLAB/Octave keyword": (names.M_KEYWORDS, "MATLAB/Octave"),
-}
-
-
-@pytest.mark.parametrize("listed", sorted(RENAMED))
-def test_every_word_of_a_language_is_written_with_a_trailing_underscore_there(listed: str):
-    members, lang = RENAMED[listed]
-    assert len(members) >= 20
-    for name in members:
-        assert IDENTIFIER.fullmatch(name) and not name.startswith("_")
-        spelled = dict((g, s) for g, s, _ in names.spellings(name))
-        assert spelled[lang] == f"{name}_"
-        assert names.entity_name_problem(name, "fourbar") == ""
-        # the spelling is no word of either language, and no field or macro of the programs
-        written = f"{name}_"
-        assert names.c_field(written) == names.m_field(written) == written
-        assert names.entity_name_problem(written, "fourbar") == ""
 
 
 def test_a_renamed_name_and_its_spelling_cannot_both_be_given():
@@ -278,97 +218,3 @@ def test_magnitudes_outside_the_range_are_refused(text: str, key: str, what: str
     error = refused(text)
     assert error.key == key
     assert error.message.startswith(what), error.message
-
-
-# -- the lists agree with the generated programs --------------------------------------
-
-SAMPLES = sorted(p for p in (ROOT / "samples").glob("*/expected/*.json"))
-
-
-def _generated(json: Path, suffix: str) -> str:
-    return json.with_name(json.stem + suffix).read_text(encoding="utf-8")
-
-
-def _uncommented_c(text: str) -> str:
-    return re.sub(r"/\*.*?\*/", "", text, flags=re.S)
-
-
-def _outputs(json: Path) -> list[str]:
-    """The pair, point and link names of a sample (the C state's and out's own fields besides these)."""
-    log = js.loads(json.read_text(encoding="utf-8"))
-    return [c["name"].split(".")[0] for c in log["columns"] if "." in c["name"]]
-
-
-@pytest.mark.parametrize("json", SAMPLES, ids=lambda p: p.stem)
-def test_the_c_header_defines_only_the_names_the_lists_hold(json: Path):
-    header = _uncommented_c(_generated(json, ".h"))
-    name = json.stem
-    body = re.search(r"typedef struct \{([^{}]*)\} " + name + r"_state;", header)[1]
-    members = set()
-    for declaration in body.split(";"):
-        words = declaration.split(None, 1)
-        if len(words) == 2:
-            members.update(re.sub(r"\[.*?\]", "", d).strip() for d in words[1].split(","))
-    own = members - {names.c_field(o) for o in _outputs(json)}
-    assert own and own <= {f for f, where in names.STATE_FIELDS.items() if names.C_STATE in where}
-    defined = set(re.findall(r"#define (\w+)", header)) | set(re.findall(r"\} (\w+);", header))
-    defined |= set(re.findall(r"^\w+ (\w+)\(", header, re.M))
-    assert defined <= names.header_names(name) | {f"{name.upper()}_H"}
-    source = _uncommented_c(_generated(json, ".c"))
-    assert set(re.findall(r"#define (\w+)", source)) <= names.SOURCE_MACROS
-
-
-@pytest.mark.parametrize("json", SAMPLES, ids=lambda p: p.stem)
-def test_the_matlab_programs_use_only_the_names_the_lists_hold(json: Path):
-    solve = _generated(json, "_solve.m")
-    own = set(re.findall(r"\bout\.(\w+)\s*=", solve)) - {names.m_field(o) for o in _outputs(json)}
-    assert own and own <= {f for f, where in names.STATE_FIELDS.items() if names.M_OUT in where}
-    script = _generated(json, ".m")
-    assigned = set(re.findall(r"^\s*(?:for\s+)?(\w+)\s*=[^=]", script, re.M))
-    assigned |= {v.strip() for group in re.findall(r"^\s*\[([^\]]*)\]\s*=", script, re.M) for v in group.split(",")}
-    assert assigned and assigned <= names.M_SCRIPT_VARIABLES
-    # every function the two files call is a function of the list (or one of NAME_solve.m's own)
-    calls, local, variables = set(), set(), set()
-    for text in (solve, script):
-        code = re.sub(r"(?<=[(,={\s])'[^'\n]*'", "''", text)
-        code = re.sub(r"%.*", "", code)
-        calls |= set(re.findall(r"(?<![.\w@])([A-Za-z]\w*)\s*\(", code))
-        for head in re.findall(r"^function\s+(.*)", code, re.M):
-            out, _, rest = head.rpartition("=")
-            local.add(rest.split("(")[0].strip())
-            variables |= set(re.findall(r"\w+", out + rest.partition("(")[2]))
-        variables |= set(re.findall(r"(\w+)\s*(?:\([^()]*\))?\s*=[^=]", code))
-        variables |= {v for group in re.findall(r"\[([^\]]*)\]\s*=[^=]", code) for v in re.findall(r"\w+", group)}
-    called = calls - local - variables - {f"{json.stem}_solve"}
-    assert {"fprintf", "zeros", "size", "atan2"} <= called
-    assert called <= names.M_FUNCTIONS, called - names.M_FUNCTIONS
-
-
-def test_the_c_macro_list_holds_every_macro_of_the_headers_here():
-    """Regenerate the data file's list with this machine's compiler: nothing may be missing."""
-    gcc = shutil.which("gcc")
-    if gcc is None:
-        pytest.skip("gcc is not installed")
-    includes = "".join(f"#include <{h}.h>\n" for h in ("math", "float", "stdio", "string"))
-    for mode in ("-std=c99", "-std=c2x", "-D_GNU_SOURCE", "-D_XOPEN_SOURCE=700"):
-        text = subprocess.run([gcc, mode, "-dM", "-E", "-x", "c", "-"], input=includes, capture_output=True,
-                              text=True, check=True).stdout
-        macros = {m for m in re.findall(r"^#define (\w+)(?![\w(])", text, re.M) if not m.startswith("_")}
-        assert "NAN" in macros and macros <= names.C_MACROS, macros - names.C_MACROS
-
-
-def test_the_octave_list_is_what_this_octave_gives(tmp_path: Path):
-    """The data file says how it was made; with that Octave version, making it again gives the same."""
-    octave = shutil.which("octave-cli")
-    if octave is None:
-        pytest.skip("octave-cli is not installed")
-    data = (ROOT / "linkgen" / "data" / "octave_functions.txt").read_text(encoding="utf-8").splitlines()
-    version = re.search(r"GNU Octave (\S+)", data[0])[1]
-    script = "\n".join(line[4:] for line in data if line.startswith("#   "))
-    here = subprocess.run([octave, "--norc", "--no-init-file", "--quiet", "--eval", "disp(OCTAVE_VERSION)"],
-                          capture_output=True, text=True).stdout.strip()
-    if here != version:
-        pytest.skip(f"the list was made with Octave {version}, this is {here}")
-    made = subprocess.run([octave, "--norc", "--no-init-file", "--quiet", "--eval", script], cwd=tmp_path,
-                          capture_output=True, text=True).stdout.split()
-    assert made == sorted(names.M_FUNCTIONS)
