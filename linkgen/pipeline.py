@@ -2,44 +2,23 @@
 
 from __future__ import annotations
 
-from . import __version__, status
+from . import __version__
+from .analysis import motion_facts, with_facts
 from .columns import plan
 from .errors import InputError, and_list
 from .extraction import Procedure, extract
 from .model import Mechanism
 from .policy import POLICY
 from .prune import prune
-from .singular import change_points, conditioning, reach_interval
-from .steplog import InputInfo, LinkInfo, PairInfo, StatusCode, StepLog
+from .steplog import Draft, InputInfo, LinkInfo, PairInfo, StepLog
 from .topology import Topology, analyse
 from .validate import read_mechanism
 
 
-def _status_codes(name: str, proc: Procedure) -> tuple[StatusCode, ...]:
-    out = [StatusCode(status.code(0, status.BAD_INPUT), 0,
-                      f"step 0: an input is not finite (nan or inf) or larger than {POLICY.max_input!r} in size; "
-                      f"C only: `{name}_solve` returns `{name.upper()}_STATUS_BAD_INPUT`, Python and MATLAB refuse "
-                      "the call with an error")]
-    for s in proc.steps:
-        if not s.fails:
-            continue
-        if s.action == "resolve":
-            reasons = {2: "the resolver did not converge", 3: "the resolver's Jacobian is singular",
-                       4: "the resolver's Jacobian is near singular"}
-        elif s.action == "residual":
-            reasons = {3: f"the pairs of {s.target} coincide, so the resolver has no rate"}
-        elif s.function == "link_angle":
-            reasons = {1: f"the two points of {s.target} coincide"}
-        else:
-            reasons = {1: "the chain cannot close", 3: "singular position (toggle)",
-                       4: "near a singular position"}
-        for r, meaning in reasons.items():
-            out.append(StatusCode(status.code(s.number, r), s.number, f"step {s.number} ({s.target}): {meaning}"))
-    return tuple(out)
-
-
-def steplog(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = None,
-            order: int | None = None) -> StepLog:
+def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = None,
+          order: int | None = None) -> Draft:
+    """The step log of the whole procedure without its motion facts, with the columns of the
+    outputs and order asked for (default: the file's)."""
     m = topo.mechanism
     order = m.order if order is None else order
     outputs = m.outputs if outputs is None else outputs
@@ -65,15 +44,12 @@ def steplog(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = N
                   s, v)
         for i, s, v in zip(m.inputs, topo.sketch_inputs, input_vars)
     )
-    runtime = sorted({s.function for s in proc.steps if s.function}
-                     | ({"resolver", "link_residual"} if proc.groups else set()))
-    return StepLog(
+    return Draft(StepLog(
         __version__, m.name, m.title, m.source, m.length_unit, m.angle_unit, topo.length_scale, topo.origin,
         topo.grubler, topo.mobility, topo.redundant, order, m.samples, pairs, links, inputs, proc.variables, proc.steps,
         proc.lj, proc.add_links, proc.residuals, proc.groups,
-        plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars),
-        _status_codes(m.name, proc), tuple(runtime), POLICY, outputs=tuple(outputs),
-    )
+        plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars), POLICY, outputs=tuple(outputs),
+    ))
 
 
 def analyse_file(path: str) -> tuple[Mechanism, Topology, Procedure]:
@@ -96,14 +72,14 @@ def _check_outputs(m: Mechanism, outputs: tuple[str, ...]) -> None:
 def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | None = None,
               sweep: bool = True) -> StepLog:
     """The step log of a mechanism file for the outputs and order asked for (default: the
-    file's), cut to the steps they need, with its change points and reach and, when
-    ``sweep``, its conditioning over the sweep (for the manual; it takes a sweep and root
-    finding)."""
+    file's), cut to the steps they need: made once from the draft of the whole procedure
+    and its motion facts (with ``sweep``, the conditioning over the sweep too, for the
+    manual: it takes a sweep and root finding), then pruned."""
     m, topo, proc = analyse_file(path)
     if outputs is not None:
         _check_outputs(m, outputs)
-    log = reach_interval(change_points(prune(steplog(topo, proc, outputs, order))))
-    return conditioning(log) if sweep else log
+    whole = draft(topo, proc, outputs, order)
+    return prune(with_facts(whole, motion_facts(whole, sweep)))
 
 
 

@@ -9,9 +9,14 @@ from __future__ import annotations
 
 import functools
 import json
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
+from typing import NewType
 
 from . import status
+from .motion import Conditioning as Conditioning
+from .motion import Gap as Gap
+from .motion import Reach as Reach
+from .motion import Singular as Singular
 from .policy import Policy
 from .primitives.dsl import record_fields
 
@@ -214,48 +219,6 @@ class InputInfo:
 
 
 @dataclass(frozen=True)
-class Singular:
-    """An input value where a step's conditioning reaches zero, found by root finding."""
-
-    inputs: tuple[float, ...]
-    kind: str  # limit (the chain cannot close beyond) | change point (two branches cross) | minimum
-    sigma: float  # the conditioning there
-
-
-@dataclass(frozen=True)
-class Conditioning:
-    """A step's conditioning over the sweep (assembled rows only)."""
-
-    step: int
-    low: float
-    high: float
-    singular: tuple[Singular, ...]
-
-
-@dataclass(frozen=True)
-class Reach:
-    """The values of a mechanism's one input that it reaches from the sketch: between the
-    middles of the nearest gaps, below and above the sketch's value, where a chain cannot
-    close, or, with resolvers, between the nearest limit positions (None: none on that
-    side).  An angle is reached modulo whole turns.  Beyond a gap a chain can close again,
-    on another circuit of the mechanism; beyond a limit position the sketch's assembly does
-    not go on: rows there fail with the code of the gap's or the limit's step."""
-
-    low: float | None
-    low_step: int  # the step whose chain cannot close in the gap below (0: none)
-    high: float | None
-    high_step: int
-    periodic: bool
-
-    def codes(self) -> tuple[int, int]:
-        """The status of a row past the gap or limit below and above (a side without one takes
-        the other's code: its check never fires); reason 1, the chain cannot close (or the
-        resolver cannot assemble past a limit position)."""
-        return (status.code(self.low_step or self.high_step, status.CANNOT_CLOSE),
-                status.code(self.high_step or self.low_step, status.CANNOT_CLOSE))
-
-
-@dataclass(frozen=True)
 class StatusCode:
     code: int
     step: int
@@ -295,13 +258,18 @@ class StepLog:
     residuals: tuple[Residual, ...]
     groups: tuple[ResolverGroup, ...]
     columns: tuple[Column, ...]
-    status_codes: tuple[StatusCode, ...]
-    runtime: tuple[str, ...]
+    status_codes: tuple[StatusCode, ...] = field(init=False)  # status_codes(): what each status means
+    runtime: tuple[str, ...] = field(init=False)  # runtime(): the runtime functions the programs need
     policy: Policy
     conditioning: tuple[Conditioning, ...] = ()
     outputs: tuple[str, ...] = ()  # the outputs asked for (empty: the default set)
     omitted: tuple[Omitted, ...] = ()  # steps left out: the outputs do not need them
     reach: Reach | None = None  # one input: the input values reached from the sketch
+    gaps: tuple[Gap, ...] = ()  # one input: where each chain cannot close
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "status_codes", status_codes(self))
+        object.__setattr__(self, "runtime", runtime(self))
 
     def variable(self, name: str) -> Variable:
         return self._variables[name]
@@ -346,6 +314,58 @@ class StepLog:
 
     def to_json(self) -> str:
         return json.dumps(_plain(self), indent=2, allow_nan=False, ensure_ascii=False) + "\n"
+
+
+Draft = NewType("Draft", StepLog)
+"""A step log without its motion facts (change points, gaps, reach, conditioning): what
+``linkgen.analysis`` reads to find them.  Never rendered; the log is made from it and them."""
+
+
+def runtime(log: StepLog) -> tuple[str, ...]:
+    """The runtime functions the log's programs call: its steps', the resolver's with resolver
+    groups, branch_at with change points and reach_at with a reach."""
+    names = {s.function for s in log.steps if s.function}
+    if log.groups:
+        names |= {"resolver", "link_residual"}
+    if any(s.change_points for s in log.steps):
+        names.add("branch_at")
+    if log.reach is not None:
+        names.add("reach_at")
+    return tuple(sorted(names))
+
+
+def _reasons(s: Step) -> dict[int, str]:
+    """What each failure of a step means, by reason."""
+    if s.action == "resolve":
+        return {status.NOT_CONVERGED: "the resolver did not converge",
+                status.SINGULAR: "the resolver's Jacobian is singular",
+                status.NEAR_SINGULAR: "the resolver's Jacobian is near singular"}
+    if s.action == "residual":
+        return {status.SINGULAR: f"the pairs of {s.target} coincide, so the resolver has no rate"}
+    if s.function == "link_angle":
+        return {status.CANNOT_CLOSE: f"the two points of {s.target} coincide"}
+    return {status.CANNOT_CLOSE: "the chain cannot close", status.SINGULAR: "singular position (toggle)",
+            status.NEAR_SINGULAR: "near a singular position"}
+
+
+def status_codes(log: StepLog) -> tuple[StatusCode, ...]:
+    """Every status the log's programs can report, with its meaning, by step and reason: a
+    refused input, each failing step's reasons, and a resolver's limit positions of the reach."""
+    out = [StatusCode(status.code(0, status.BAD_INPUT), 0,
+                      f"step 0: an input is not finite (nan or inf) or larger than {log.policy.max_input!r} in size; "
+                      f"C only: `{log.name}_solve` returns `{log.name.upper()}_STATUS_BAD_INPUT`, Python and MATLAB "
+                      "refuse the call with an error")]
+    for s in log.steps:
+        if s.fails:
+            out += [StatusCode(status.code(s.number, r), s.number, f"step {s.number} ({s.target}): {meaning}")
+                    for r, meaning in _reasons(s).items()]
+    limits = {log.reach.low_step, log.reach.high_step} - {0} if log.reach is not None else set()
+    for number in sorted(limits):
+        s = log.step(number)
+        if s.action == "resolve":
+            out.append(StatusCode(status.code(number, status.CANNOT_CLOSE), number,
+                                  f"step {number} ({s.target}): cannot assemble past a limit position"))
+    return tuple(sorted(out, key=lambda c: (c.step, status.reason(c.code))))
 
 
 def _plain(obj: object) -> object:

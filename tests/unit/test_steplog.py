@@ -1,5 +1,5 @@
 """The step log is plain data: builtins only, JSON that reads back to the same log, deterministic
-across processes."""
+across processes; its status codes and runtime functions are made from its steps and reach."""
 
 from __future__ import annotations
 
@@ -45,7 +45,11 @@ def _decode(kind, data):
     if is_dataclass(kind):
         hints = typing.get_type_hints(kind)
         assert sorted(data) == sorted(f.name for f in fields(kind)), kind.__name__
-        return kind(**{f.name: _decode(hints[f.name], data[f.name]) for f in fields(kind)})
+        decoded = {f.name: _decode(hints[f.name], data[f.name]) for f in fields(kind)}
+        obj = kind(**{f.name: decoded[f.name] for f in fields(kind) if f.init})
+        derived = [f.name for f in fields(kind) if not f.init]  # made from the others: as written
+        assert [getattr(obj, name) for name in derived] == [decoded[name] for name in derived], kind.__name__
+        return obj
     args = typing.get_args(kind)
     if typing.get_origin(kind) is tuple:
         assert isinstance(data, list), (kind, data)

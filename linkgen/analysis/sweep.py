@@ -1,0 +1,170 @@
+"""Sweeps of a step log and the root finding on them that the analyses share.
+
+A sweep runs all inputs together, lambda from 0 to 1 between each input's start and
+stop; ``spanning`` gives the log whose one input sweeps the span searched for change
+points and gaps instead.  ``own`` is the procedure of one step: what a step finds holds
+in every procedure that contains it (a pruned one included).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from .. import status
+from ..evaluate import Result, evaluate
+from ..prune import keep
+from ..steplog import Step, StepLog
+
+Array = np.ndarray[Any, np.dtype[Any]]
+Measure = Callable[[Result], Array | None]
+
+ZOOMS = 10  # refinements of a bracket around a minimum, each to 1/16 of the last
+EDGE_ZOOMS = 5  # refinements of a limit position, each to 1/32 of the last
+GRID = 33  # points per refinement
+TOUCH = 1e-9  # a margin within this of zero, relative to the length scale, touches zero
+SMALL = 1e-3  # minima of the margin or of sigma below this are examined
+
+
+def rows(log: StepLog) -> int:
+    """Rows of a search over the span: twice the samples, 721 (a quarter degree) at least."""
+    return max(2 * log.samples, 721)
+
+
+def span(log: StepLog) -> tuple[float, float, bool]:
+    """The input interval searched for change points and gaps: a full turn around the sketch
+    for an angle (so what is found is complete modulo 2 pi), else the sweep and the sketch."""
+    inp = log.inputs[0]
+    if inp.kind == "revolute":
+        return inp.sketch - np.pi, inp.sketch + np.pi, True
+    return min(inp.start, inp.stop, inp.sketch), max(inp.start, inp.stop, inp.sketch), False
+
+
+def spanning(log: StepLog) -> StepLog:
+    """The log with its one input sweeping ``span``."""
+    lo, hi, _ = span(log)
+    return replace(log, inputs=(replace(log.inputs[0], start=lo, stop=hi),))
+
+
+def own(log: StepLog, step: Step) -> StepLog:
+    """The procedure of ``step``: it and the steps it reads from."""
+    return keep(log, set(step.outputs))
+
+
+def run(log: StepLog, lam: Array, warm: Any = None, stop: int = 0) -> Result:
+    """Evaluate at sweep positions lam (in order); with resolvers, ``stop`` ends the rows at
+    the first one that fails at or before that step (the rest of a zoom grid would too)."""
+    start = np.array([i.start for i in log.inputs])
+    stop_at = np.array([i.stop for i in log.inputs])
+    values = start + lam[:, None] * (stop_at - start)
+    rates = np.tile([i.speed for i in log.inputs], (len(lam), 1)).astype(float)
+    with np.errstate(all="ignore"):
+        return evaluate(log, values, rates, np.zeros_like(values), order=0, warm=warm, stop=stop)
+
+
+def closes(result: Result, step: int) -> Array:
+    """Rows where the procedure gets past this step."""
+    st = result.status
+    out: Array = ~(status.failed(st) & (status.step(st) <= step))
+    return out
+
+
+def warm_after(result: Result, row: int) -> Any:
+    """The resolver's warm start after a sweep row (None without resolvers)."""
+    return result.warm[row] if result.warm else None
+
+
+def zoom_min(log: StepLog, lo: float, hi: float, value: Measure, warm: Any = None) -> tuple[float, float]:
+    """(lambda, minimum) of value(result) on [lo, hi], by repeated grid refinement."""
+    best = (lo, np.inf)
+    for _ in range(ZOOMS):
+        lam = np.linspace(lo, hi, GRID)
+        v = value(run(log, lam, warm))
+        if v is None or not np.any(np.isfinite(v)):
+            break
+        k = int(np.nanargmin(np.where(np.isfinite(v), v, np.nan)))
+        best = (float(lam[k]), float(v[k]))
+        step = (hi - lo) / (GRID - 1)
+        lo, hi = max(lo, lam[k] - step), min(hi, lam[k] + step)
+    return best
+
+
+def vertex(log: StepLog, lam: float, delta: float, value: Measure) -> float:
+    """The vertex of the parabola through value at lam - delta, lam, lam + delta.
+
+    A double root's margin is smooth and quadratic: its vertex locates the root to
+    rounding / (curvature * delta), where the minimum itself is only good to sqrt(eps).
+    """
+    v = value(run(log, np.array([lam - delta, lam, lam + delta])))
+    assert v is not None
+    lo, mid, hi = (float(x) for x in v)
+    curve = lo - 2 * mid + hi
+    return lam if not curve > 0 else lam + delta * (lo - hi) / (2 * curve)
+
+
+def zoom_edge(log: StepLog, good: float, bad: float, number: int, sigma: float,
+              warm: Any = None) -> tuple[float, float]:
+    """The last lambda from good towards bad where the procedure gets past step number, and
+    the step's conditioning there (sigma: at good), by repeated grid refinement."""
+    for _ in range(EDGE_ZOOMS):
+        lam = np.linspace(good, bad, GRID)
+        result = run(log, lam, warm, stop=number)
+        fine = closes(result, number)
+        if not fine[0]:
+            break
+        k = int(np.argmin(fine)) if not fine.all() else GRID - 1
+        last = result.sigma[number][max(k - 1, 0)] if number in result.sigma else np.nan
+        sigma = float(last) if np.isfinite(last) else sigma
+        good, bad = float(lam[max(k - 1, 0)]), float(lam[k])
+    return good, sigma
+
+
+def local_minima(v: Array, usable: Array, periodic: bool = False) -> list[int]:
+    """Rows where v has a local minimum; across the seam too when the grid closes on itself
+    (its last row is its first)."""
+    n = len(v)
+    out = []
+    for k in range(n - 1):
+        if not periodic and k == 0:
+            continue
+        before, after = (k - 1) % (n - 1) if periodic else k - 1, k + 1
+        if usable[before] and usable[k] and usable[after] and v[k] <= v[before] and v[k] <= v[after]:
+            out.append(k)
+    return out
+
+
+def margin(step: Step, result: Result) -> Array | None:
+    """The chain's closing margin per row: zero at a toggle, negative where it cannot close."""
+    a = {arg.label or f"#{k}": arg for k, arg in enumerate(step.args)}
+    args = step.args
+
+    def rec(var: str, field: int = 0) -> Array:
+        out: Array = result.values[var][field]
+        return out
+
+    if step.function == "RRR_links":
+        x1, y1 = rec(args[0].var), rec(args[0].var, 1)
+        x2, y2 = rec(args[1].var), rec(args[1].var, 1)
+        sides = np.stack([np.sqrt((x2 - x1) ** 2 + (y2 - y1) ** 2), rec(args[2].var), rec(args[3].var)])
+        big, small = sides.max(axis=0), sides.min(axis=0)
+        out: Array = small - (big - (sides.sum(axis=0) - big - small))
+        return out
+    if step.function == "PRR_links":
+        jx, jy = rec(args[0].var), rec(args[0].var, 1)
+        length = rec(args[1].var)
+        px, py = rec(args[2].var), rec(args[2].var, 1)
+        psi = rec(args[3].var)
+        gsi, eta = float(a["gsi"].value), float(a["eta"].value)
+        c, s = np.cos(psi), np.sin(psi)
+        wx, wy = px + gsi * c - eta * s - jx, py + gsi * s + eta * c - jy
+        out = length - np.abs(wx * s - wy * c)
+        return out
+    if step.function == "RPR_links":
+        dx = rec(args[1].var) - rec(args[0].var)
+        dy = rec(args[1].var, 1) - rec(args[0].var, 1)
+        out = np.sqrt(dx * dx + dy * dy) - abs(float(a["bg"].value) - float(a["bs"].value))
+        return out
+    return None
