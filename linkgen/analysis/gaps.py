@@ -24,7 +24,8 @@ TWO_ASSEMBLIES = ("RRR_links", "PRR_links", "RPR_links")  # the chains margin() 
 
 
 def gaps(log: StepLog) -> tuple[Gap, ...]:
-    """Every gap of every chain outside the resolver groups with two assemblies, by step."""
+    """Every gap of every chain outside the resolver groups with two assemblies, by step (a
+    dip found from two rows, once)."""
     grid = np.linspace(0.0, 1.0, rows(log) | 1)
     spanned = spanning(log)
     out: list[Gap] = []
@@ -34,7 +35,7 @@ def gaps(log: StepLog) -> tuple[Gap, ...]:
         procedure = own(spanned, step)
         if not procedure.groups:
             out += _gaps(procedure, step, grid)
-    return tuple(out)
+    return tuple(dict.fromkeys(out))
 
 
 def _gaps(log: StepLog, step: Step, grid: Array) -> list[Gap]:

@@ -9,7 +9,7 @@ import subprocess
 import sys
 import types
 import typing
-from dataclasses import fields, is_dataclass
+from dataclasses import fields, is_dataclass, replace
 from pathlib import Path
 
 import pytest
@@ -88,3 +88,33 @@ def test_json_is_identical_under_other_hash_seeds(tmp_path: Path):
         outs.append(subprocess.run([sys.executable, "-c", code, str(FIG14)], capture_output=True, text=True,
                                    env=env, cwd=tmp_path, check=True).stdout)
     assert outs[0] == outs[1] == outs[2] == build_log(str(FIG14)).to_json()
+
+
+def test_runtime_and_status_codes_are_made_from_the_steps_and_reach():
+    """A change made to a log's steps or reach changes its runtime functions and status codes
+    with it: the parallelogram without its change points needs no branch_at; sixbar_partial
+    without its reach has no code for rows past a limit position (91)."""
+    flat = build_log(str(ROOT / "tests" / "mechanisms" / "parallelogram.yaml"), sweep=False)
+    assert "branch_at" in flat.runtime
+    assert "branch_at" not in replace(flat, steps=tuple(replace(s, change_points=()) for s in flat.steps)).runtime
+    partial = build_log(str(ROOT / "tests" / "mechanisms" / "sixbar_partial.yaml"), sweep=False)
+    assert "reach_at" in partial.runtime and 91 in [c.code for c in partial.status_codes]
+    free = replace(partial, reach=None)
+    assert "reach_at" not in free.runtime and 91 not in [c.code for c in free.status_codes]
+
+
+def test_each_failing_step_has_its_reasons():
+    """The six-bar of Fig. 14: a chain fails (1), is singular (3) or near it (4); the resolver
+    does not converge (2) or its Jacobian is (near) singular; a residual's pairs coincide (3); a
+    link angle's points coincide (1); and an input out of range is step 0's 5."""
+    log = build_log(str(FIG14), sweep=False)
+    reasons: dict[int, set[int]] = {}
+    for c in log.status_codes:
+        reasons.setdefault(c.step, set()).add(abs(c.code) % 10)
+    want = {"resolve": {2, 3, 4}, "residual": {3}, "link_angle": {1}, "RRR_links": {1, 3, 4}}
+    for s in log.steps:
+        kind = s.action if s.action in ("resolve", "residual") else s.function
+        if s.fails and kind in want:
+            assert reasons.pop(s.number) == want[kind], s
+    assert reasons == {0: {5}}
+    assert [c.step for c in log.status_codes] == sorted(c.step for c in log.status_codes)

@@ -1,0 +1,38 @@
+"""pipeline: the draft of the whole procedure, made into the log once, then pruned."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from linkgen.errors import InputError
+from linkgen.pipeline import analyse_file, build_log, draft
+
+ROOT = Path(__file__).resolve().parents[2]
+PARALLELOGRAM = ROOT / "tests" / "mechanisms" / "parallelogram.yaml"
+JANSEN = ROOT / "samples" / "jansen" / "jansen.yaml"
+
+
+def test_the_draft_has_no_motion_facts():
+    _, topo, proc = analyse_file(str(PARALLELOGRAM))
+    flat = draft(topo, proc)
+    assert not any(s.change_points for s in flat.steps)
+    assert (flat.gaps, flat.reach, flat.conditioning, flat.omitted) == ((), None, (), ())
+    assert flat.steps == proc.steps and flat.variables == proc.variables
+
+
+def test_a_build_for_some_outputs_keeps_the_whole_builds_facts_of_its_steps():
+    """Jansen's leg for its foot at order 1: the columns asked for, fewer steps, and of them the
+    conditioning the whole build found."""
+    whole = build_log(str(JANSEN))
+    log = build_log(str(JANSEN), ("foot",), 1)
+    kept = {s.number for s in log.steps}
+    assert {c.name.split(".")[0] for c in log.columns[1:]} == {"foot"} and log.order == 1
+    assert len(kept) < len(whole.steps) and [o.number for o in log.omitted] == sorted(set(range(1, 15)) - kept)
+    assert log.conditioning == tuple(c for c in whole.conditioning if c.step in kept) and log.conditioning
+
+
+def test_an_unknown_output_is_refused():
+    with pytest.raises(InputError, match="nope is not a pair, point or link of parallelogram"):
+        build_log(str(PARALLELOGRAM), ("nope",))
