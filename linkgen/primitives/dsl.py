@@ -82,10 +82,24 @@ class Const(Expr):
 
 
 @dataclass(frozen=True, eq=False)
-class Bin(Expr):
+class Binary(Expr):
+    """An operator on two operands; the subclass says which kind."""
+
     op: str
     a: Expr
     b: Expr
+
+
+class Bin(Binary):
+    """Arithmetic: + - * /."""
+
+
+class Cmp(Binary):
+    """A comparison: < <= > >= ==."""
+
+
+class Logic(Binary):
+    """``or`` (``either``) or ``and``."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -99,20 +113,6 @@ class Call(Expr):
 
     fn: str
     args: tuple[Expr, ...]
-
-
-@dataclass(frozen=True, eq=False)
-class Cmp(Expr):
-    op: str
-    a: Expr
-    b: Expr
-
-
-@dataclass(frozen=True, eq=False)
-class Logic(Expr):
-    op: str  # "and" | "or"
-    a: Expr
-    b: Expr
 
 
 @dataclass(frozen=True, eq=False)
@@ -205,7 +205,7 @@ class Let:
 
 
 def children(e: Expr) -> tuple[Expr, ...]:
-    if isinstance(e, (Bin, Cmp, Logic)):
+    if isinstance(e, Binary):
         return (e.a, e.b)
     if isinstance(e, Neg):
         return (e.a,)
@@ -304,6 +304,10 @@ class Builder:
         self.params.append(Param(name, kind))
         self._orders[name] = 0
         return Sym(name)
+
+    def scalars(self, *names: str) -> tuple[Sym, ...]:
+        """Several REAL parameters, in this order."""
+        return tuple(self.scalar(name) for name in names)
 
     def order_of(self, e: Expr) -> int:
         return max((self._orders[s] for s in symbols(e)), default=0)
