@@ -276,7 +276,7 @@ class Primitive:
         for e in [e for _, _, e in self.result_fields(order)] + [self.status, self.sigma]:
             if e is not None:
                 used |= symbols(e)
-        return used
+        return used - {let.name for let in self.body}
 
 
 class Builder:
