@@ -12,7 +12,6 @@ from typing import Any
 import numpy as np
 
 from .library import PRIMITIVES
-from .printers import numpy_function, python_function
 
 __all__ = ["PRIMITIVES", "RuntimeFunction", "python_backend", "numpy_backend"]
 
@@ -32,7 +31,9 @@ def _compile(source: str, filename: str, namespace: dict[str, Any]) -> dict[str,
 @functools.cache
 def python_backend(order: int = 2) -> dict[str, RuntimeFunction]:
     """Scalar functions on tuples of floats, with sigma (what generated Python runs)."""
-    source = "\n\n".join(python_function(p, order, with_sigma=True) for p in PRIMITIVES.values())
+    from ..backends.py.printer import python_function
+
+    source = "\n\n".join(python_function(p, order) for p in PRIMITIVES.values())
     ns: dict[str, Any] = {
         "sqrt": math.sqrt, "atan2": math.atan2, "cos": math.cos,
         "sin": math.sin, "EPS": sys.float_info.epsilon, "NAN": math.nan, "PI": math.pi,
@@ -44,6 +45,8 @@ def python_backend(order: int = 2) -> dict[str, RuntimeFunction]:
 @functools.cache
 def numpy_backend(order: int = 2) -> dict[str, RuntimeFunction]:
     """Vectorised functions on tuples of arrays, returning (status, sigma, outputs...)."""
+    from ..backends.py.printer import numpy_function
+
     source = "\n\n".join(numpy_function(p, order) for p in PRIMITIVES.values())
     ns: dict[str, Any] = {"np": np, "EPS": float(np.finfo(float).eps), "NAN": np.nan, "PI": np.pi}
     _compile(source, f"<linkgen runtime numpy order {order}>", ns)
