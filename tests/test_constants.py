@@ -40,9 +40,9 @@ def test_runtime_functions_have_only_dimensionless_numbers(name, printer):
     assert _numbers(code) <= ALLOWED, sorted(_numbers(code) - ALLOWED)
 
 
-@pytest.mark.parametrize("path", ["c/resolver.c", "m/resolver.m", "py/resolver.py"])
+@pytest.mark.parametrize("path", ["c/runtime/resolver.c", "m/runtime/resolver.m", "py/runtime/resolver.py"])
 def test_resolver_has_only_dimensionless_numbers(path):
-    code = resources.files("linkgen.runtime").joinpath(path).read_text()
+    code = resources.files("linkgen.backends").joinpath(path).read_text()
     assert _numbers(code) <= ALLOWED, sorted(_numbers(code) - ALLOWED)
 
 

@@ -37,19 +37,19 @@ def test_the_backends_are_the_folders_and_what_each_provides():
     assert [b.name for b in backends()] == folders
     assert {b.name: _parts(b) for b in backends()} == {
         "c": {"templates": "c", "files": ("NAME.h", "NAME.c", "NAME_main.c"), "comment": ("/*", " */"),
-              "spelling": "C", "filters": ["cbody"], "printer": "c_function", "runtime": ("c", ".c"),
+              "spelling": "C", "filters": ["cbody"], "printer": "c_function", "runtime": ("runtime", ".c"),
               "state": "C NAME_state"},
         "m": {"templates": "m", "files": ("NAME_solve.m", "NAME.m"), "comment": ("%", ""), "spelling": "Octave",
-              "filters": [], "printer": "octave_function", "runtime": ("m", ".m"), "state": "MATLAB/Octave out"},
+              "filters": [], "printer": "octave_function", "runtime": ("runtime", ".m"), "state": "MATLAB/Octave out"},
         "md": {"templates": "md", "files": ("NAME.md",), "comment": ("<!--", " -->"), "spelling": "Manual",
                "filters": ["mdtext", "num"], "printer": None, "runtime": None, "state": ""},
         "py": {"templates": "py", "files": ("NAME.py",), "comment": ("#", ""), "spelling": "Python",
-               "filters": ["pytext"], "printer": "python_function", "runtime": ("py", ".py"), "state": ""},
+               "filters": ["pytext"], "printer": "python_function", "runtime": ("runtime", ".py"), "state": ""},
     }
 
 
 @pytest.mark.parametrize("backend", backends(), ids=lambda b: b.name)
-def test_a_backend_has_its_readme_and_its_templates(backend: Backend):
+def test_a_backend_has_its_readme_templates_and_runtime(backend: Backend):
     readme = (FOLDER / backend.name / "README.md").read_text(encoding="utf-8")
     assert f"`templates/{backend.templates}/`" in readme
     for name in backend.files:
@@ -57,6 +57,10 @@ def test_a_backend_has_its_readme_and_its_templates(backend: Backend):
     templates = template_dir() / backend.templates
     assert sorted(p.name for p in templates.glob("NAME*.j2")) == sorted(f"{name}.j2" for name in backend.files)
     assert issubclass(backend.spelling, Spelling)
+    if backend.runtime is not None:
+        assert backend.runtime.package == f"linkgen.backends.{backend.name}"
+        sources = {p.name for p in (FOLDER / backend.name / backend.runtime.folder).iterdir() if p.is_file()}
+        assert sources == {f"{s}{backend.runtime.suffix}" for s in ("status", "branch", "reach", "resolver")}
 
 
 @pytest.fixture(scope="module")

@@ -14,7 +14,7 @@ from .words import WORDS
 if TYPE_CHECKING:
     from ...render.view import View
 
-RUNTIME = Runtime("linkgen.runtime", "py", ".py", ("# if order >= 2", "# else", "# endif"))
+RUNTIME = Runtime(__name__, "runtime", ".py", ("# if order >= 2", "# else", "# endif"))
 
 
 def python_text(text: str) -> str:
