@@ -31,10 +31,11 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from linkgen.backends.c.printer import c_function  # noqa: E402
+from linkgen.backends.m.printer import octave_function  # noqa: E402
 from linkgen.evaluate import evaluate, input_rows  # noqa: E402
 from linkgen.pipeline import build_log  # noqa: E402
 from linkgen.primitives import PRIMITIVES, numpy_backend, python_backend  # noqa: E402
-from linkgen.primitives.printers import c_function, octave_function  # noqa: E402
 
 MP = mpmath.MPContext()
 MP.dps = 50

@@ -43,7 +43,7 @@ def _resolver_namespace() -> dict:
     """The Python runtime's resolver and branch functions, as the generated module has them."""
     ns: dict = {"sqrt": math.sqrt, "floor": math.floor, "NAN": math.nan, "PI": math.pi}
     for name in ("resolver.py", "branch.py"):
-        source = resources.files("linkgen.runtime.py").joinpath(name).read_text(encoding="utf-8")
+        source = resources.files("linkgen.backends.py").joinpath("runtime").joinpath(name).read_text(encoding="utf-8")
         exec(compile(source, f"<linkgen runtime {name}>", "exec"), ns)
     return ns
 

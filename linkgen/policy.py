@@ -1,7 +1,7 @@
 """The numbers that steer extraction, the resolver and the status rules, each defined once.
 
 ``POLICY`` is the step log's record of them (the programs and the manual read it there);
-the primitives (linkgen/primitives/library.py) take their thresholds from here too.
+the primitives (linkgen/primitives/vectors.py, dyads.py) take their thresholds from here too.
 """
 
 from __future__ import annotations

@@ -47,6 +47,9 @@ class Direction:
 
 @dataclass(frozen=True)
 class Topology:
+    """The mechanism with its truss members, link directions, sketch inputs, mobility counts
+    and the length scale and origin the programs compute with."""
+
     mechanism: Mechanism
     length_scale: float
     origin: tuple[float, float]

@@ -17,8 +17,10 @@ from importlib import resources
 
 import pytest
 
+from linkgen.backends.c.printer import c_function
+from linkgen.backends.m.printer import octave_function
+from linkgen.backends.py.printer import python_function
 from linkgen.primitives import PRIMITIVES
-from linkgen.primitives.printers import c_function, octave_function, python_function
 
 ALLOWED = {0.0, 1.0, 2.0, 0.5, 0.1, 0.01, 8.0, 1e-3, 1e-7, 3.0, 4.0, 3.141592653589793, 1000.0}
 NUMBER = re.compile(r"(?<![\w.])(\d+\.\d*(?:e[-+]?\d+)?|\d+e[-+]?\d+|\d+)(?![\w.])")
@@ -38,9 +40,9 @@ def test_runtime_functions_have_only_dimensionless_numbers(name, printer):
     assert _numbers(code) <= ALLOWED, sorted(_numbers(code) - ALLOWED)
 
 
-@pytest.mark.parametrize("path", ["c/resolver.c", "m/resolver.m", "py/resolver.py"])
+@pytest.mark.parametrize("path", ["c/runtime/resolver.c", "m/runtime/resolver.m", "py/runtime/resolver.py"])
 def test_resolver_has_only_dimensionless_numbers(path):
-    code = resources.files("linkgen.runtime").joinpath(path).read_text()
+    code = resources.files("linkgen.backends").joinpath(path).read_text()
     assert _numbers(code) <= ALLOWED, sorted(_numbers(code) - ALLOWED)
 
 

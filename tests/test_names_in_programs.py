@@ -1,4 +1,4 @@
-"""Pair, point and link names that are words of a generated language (linkgen.names: C and C++
+"""Pair, point and link names that are words of a generated language (linkgen.backends' words: C and C++
 keywords, macros of the C library, MATLAB/Octave keywords) are written with a trailing _ where
 they become fields, and the programs compile and compute what the same mechanism with plain
 names computes: C under -std=c99 and -std=gnu11 (where linux is a macro), the header from a C++
@@ -16,7 +16,9 @@ from pathlib import Path
 import pytest
 from programs import build, need, parse, run_c, run_octave, run_python
 
-from linkgen import names
+from linkgen.backends.c import words as c_words
+from linkgen.backends.m import words as m_words
+from linkgen.backends.py import words as py_words
 
 FOURBAR = """linkgen: 1
 name: plain
@@ -58,9 +60,9 @@ def programs(tmp_path_factory):
 
 
 def test_every_list_is_represented():
-    lists = {"C keyword": names.C_KEYWORDS, "C++ keyword": names.CPP_KEYWORDS, "C macro": names.C_MACROS,
-             "MATLAB/Octave keyword": names.M_KEYWORDS, "Octave function": names.M_FUNCTIONS,
-             "Python built-in": names.PY_BUILTINS}
+    lists = {"C keyword": c_words.KEYWORDS, "C++ keyword": c_words.CPP_KEYWORDS, "C macro": c_words.MACROS,
+             "MATLAB/Octave keyword": m_words.KEYWORDS, "Octave function": m_words.FUNCTIONS,
+             "Python built-in": py_words.BUILTINS}
     for members in lists.values():
         assert set(WORDS.values()) & members
 

@@ -19,7 +19,7 @@ import pytest
 from programs import ROOT, build, need, run_c, run_octave, run_python
 
 from linkgen import __version__
-from linkgen.render import markdown_text
+from linkgen.backends.md import markdown_text
 from linkgen.validate import file_label
 
 SOURCE = (ROOT / "samples" / "fourbar" / "fourbar.yaml").read_text(encoding="utf-8").replace("samples: 361",

@@ -24,6 +24,9 @@ __all__ = ["Procedure", "SolverState", "candidates", "extract", "stuck"]
 
 @dataclass(frozen=True)
 class Procedure:
+    """What extraction hands the step log: the numbered steps with their records, and where
+    the outputs are found."""
+
     variables: tuple[Variable, ...]
     steps: tuple[Step, ...]
     lj: LJMatrix

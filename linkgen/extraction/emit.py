@@ -2,15 +2,31 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, TypedDict
+
 from ..steplog import Arg
 from .resolver import add_residual, close_group
 from .state import Unsupported, Workspace
 
+if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+
+class StepDetails(TypedDict, total=False):
+    """The keywords of ``Workspace.append``: what a step records besides its call."""
+
+    chain: str
+    pairs: tuple[str, ...]
+    links: tuple[str, ...]
+    branch: int
+    reason: str
+    branch_reason: str
+    fails: bool
+
 
 def emit(ws: Workspace, action: str, function: str, args: list[Arg], outputs: list[str], target: str,
-         **details) -> None:
-    """Append a step (``details``: chain, pairs, links, branch, reason, branch_reason, fails),
-    then place what it makes placeable and record the pairs it determines."""
+         **details: Unpack[StepDetails]) -> None:
+    """Append a step, then place what it makes placeable and record the pairs it determines."""
     index = ws.append(action, function, args, outputs, target, **details)
     refresh(ws)
     ws.set_determines(index, ws.newly_known())

@@ -28,11 +28,10 @@ def add_residual(ws: Workspace, link: str, a: str, b: str, length: str) -> None:
     f = ws.new_var(f"f{len(ws.residuals) + 1}", "VARIABLE", "residual", link)
     ws.residuals.append(Residual(f, link, (a, b), length, 0))
     ws.groups[-1] = replace(ws.groups[-1], residuals=ws.groups[-1].residuals + (f,))
-    ws.steps.append(Step(
-        len(ws.steps) + 1, "residual", "link_residual",
-        (Arg("var", ws.pos[a]), Arg("var", ws.pos[b]), Arg("var", length)), (f,), link, "", (a, b),
-        (link,), 0, f"{a} and {b} are both known, but link {link} was not used to find them: its length "
-        "must come out right, which the resolver ensures", "", (), ws.group, True))
+    ws.append("residual", "link_residual", [Arg("var", ws.pos[a]), Arg("var", ws.pos[b]), Arg("var", length)], [f],
+              link, pairs=(a, b), links=(link,), fails=True,
+              reason=f"{a} and {b} are both known, but link {link} was not used to find them: its length "
+                     "must come out right, which the resolver ensures")
 
 
 def close_group(ws: Workspace) -> None:
@@ -46,11 +45,9 @@ def close_group(ws: Workspace) -> None:
         return
     _hoist(ws, g.number, g.add_links, g.residuals)
     links = [r.link for r in ws.residuals if r.name in g.residuals]
-    ws.steps.append(Step(
-        len(ws.steps) + 1, "resolve", "", (), g.add_links, f"group{g.number}", "", (), (), 0,
-        f"Newton-Raphson on {', '.join(g.add_links)} until " + " and ".join(links)
-        + (" regains its length" if len(links) == 1 else " regain their lengths"),
-        "", (), g.number, True))
+    ws.append("resolve", "", [], list(g.add_links), f"group{g.number}", fails=True,
+              reason=f"Newton-Raphson on {', '.join(g.add_links)} until " + " and ".join(links)
+              + (" regains its length" if len(links) == 1 else " regain their lengths"))
     ws.group = 0
 
 

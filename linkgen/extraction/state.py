@@ -35,6 +35,9 @@ class Carrier:
 
 @dataclass(frozen=True)
 class AddLinkDraft:
+    """An installed Add-link before the steps are numbered: its VARIABLE ``var``, its sketch
+    length, its resolver group, and (once ranked) the candidates and the probe inputs."""
+
     name: str
     var: str
     pairs: tuple[str, str]
@@ -58,6 +61,8 @@ class VariantDraft:
 
 @dataclass(frozen=True)
 class GroupDraft:
+    """A resolver group while the Solver runs: its Add-link and residual variables so far."""
+
     number: int
     add_links: tuple[str, ...] = ()
     residuals: tuple[str, ...] = ()
@@ -88,16 +93,16 @@ class SolverState:
     """Everything the Solver knows and has emitted (see Workspace for the fields)."""
 
     topo: Topology
-    variables: MappingProxyType
+    variables: MappingProxyType[str, Variable]
     steps: tuple[Step, ...]
-    pos: MappingProxyType
-    orient: MappingProxyType
-    coupled: MappingProxyType
-    tied: MappingProxyType
+    pos: MappingProxyType[str, str]
+    orient: MappingProxyType[str, str]
+    coupled: MappingProxyType[str, str]
+    tied: MappingProxyType[str, tuple[str, ...]]
     placed: frozenset[str]
-    lines: MappingProxyType
-    slides: MappingProxyType
-    angles: MappingProxyType
+    lines: MappingProxyType[str, tuple[str, str]]
+    slides: MappingProxyType[str, str]
+    angles: MappingProxyType[str, str]
     applied: frozenset[int]
     used: frozenset[str]
     carriers: tuple[Carrier, ...]

@@ -7,27 +7,34 @@ import linecache
 import math
 import sys
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
 from .library import PRIMITIVES
-from .printers import numpy_function, python_function
 
-__all__ = ["PRIMITIVES", "python_backend", "numpy_backend"]
+__all__ = ["PRIMITIVES", "RuntimeFunction", "python_backend", "numpy_backend"]
+
+# A printed primitive: records (tuples) and scalars in; a tuple out, whose items (floats, records or
+# arrays; with status and sigma first where the primitive has them) follow its Primitive.
+RuntimeFunction = Callable[..., tuple[Any, ...]]
 
 
-def _compile(source: str, filename: str, namespace: dict) -> dict:
-    """Exec generated source under a fake file name so tracebacks show it."""
+def _compile(source: str, filename: str, namespace: dict[str, Any]) -> dict[str, Any]:
+    """Exec generated source under a fake file name so tracebacks show it (the namespace is
+    exec's globals: it holds whatever the source defines)."""
     linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
     exec(compile(source, filename, "exec"), namespace)
     return namespace
 
 
 @functools.cache
-def python_backend(order: int = 2) -> dict[str, Callable]:
+def python_backend(order: int = 2) -> dict[str, RuntimeFunction]:
     """Scalar functions on tuples of floats, with sigma (what generated Python runs)."""
-    source = "\n\n".join(python_function(p, order, with_sigma=True) for p in PRIMITIVES.values())
-    ns = {
+    from ..backends.py.printer import python_function
+
+    source = "\n\n".join(python_function(p, order) for p in PRIMITIVES.values())
+    ns: dict[str, Any] = {
         "sqrt": math.sqrt, "atan2": math.atan2, "cos": math.cos,
         "sin": math.sin, "EPS": sys.float_info.epsilon, "NAN": math.nan, "PI": math.pi,
     }
@@ -36,9 +43,11 @@ def python_backend(order: int = 2) -> dict[str, Callable]:
 
 
 @functools.cache
-def numpy_backend(order: int = 2) -> dict[str, Callable]:
+def numpy_backend(order: int = 2) -> dict[str, RuntimeFunction]:
     """Vectorised functions on tuples of arrays, returning (status, sigma, outputs...)."""
+    from ..backends.py.printer import numpy_function
+
     source = "\n\n".join(numpy_function(p, order) for p in PRIMITIVES.values())
-    ns = {"np": np, "EPS": float(np.finfo(float).eps), "NAN": np.nan, "PI": np.pi}
+    ns: dict[str, Any] = {"np": np, "EPS": float(np.finfo(float).eps), "NAN": np.nan, "PI": np.pi}
     _compile(source, f"<linkgen runtime numpy order {order}>", ns)
     return {name: ns[name] for name in PRIMITIVES}

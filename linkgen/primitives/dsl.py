@@ -12,6 +12,7 @@ of the higher-order code.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 # Record kinds and their scalar fields, by derivative order (mech.cpp's POINT,
@@ -21,7 +22,6 @@ RECORD_FIELDS: dict[str, tuple[tuple[str, ...], ...]] = {
     "ANGLE": (("the",), ("dthe",), ("ddthe",)),
     "VARIABLE": (("v",), ("dv",), ("ddv",)),
 }
-SCALAR_KINDS = ("REAL", "INT")
 
 
 def record_fields(kind: str, order: int) -> tuple[str, ...]:
@@ -37,50 +37,31 @@ def field_order(kind: str, name: str) -> int:
     raise KeyError(f"{kind} has no field {name}")
 
 
+Operator = Callable[["Expr", object], "Expr"]
+
+
+def _arithmetic(op: str) -> tuple[Operator, Operator]:
+    """An arithmetic operator and its reflected form (``2 * x`` as well as ``x * 2``)."""
+    return (lambda a, b: Bin(op, a, wrap(b))), (lambda a, b: Bin(op, wrap(b), a))
+
+
+def _comparison(op: str) -> Operator:
+    return lambda a, b: Cmp(op, a, wrap(b))
+
+
 class Expr:
-    """An expression node; Python operators build new nodes."""
+    """An expression node; Python operators build new nodes (``eq`` stands for ``==``,
+    which dataclasses and sets need as identity)."""
 
-    def __add__(self, other: object) -> Expr:
-        return Bin("+", self, wrap(other))
-
-    def __radd__(self, other: object) -> Expr:
-        return Bin("+", wrap(other), self)
-
-    def __sub__(self, other: object) -> Expr:
-        return Bin("-", self, wrap(other))
-
-    def __rsub__(self, other: object) -> Expr:
-        return Bin("-", wrap(other), self)
-
-    def __mul__(self, other: object) -> Expr:
-        return Bin("*", self, wrap(other))
-
-    def __rmul__(self, other: object) -> Expr:
-        return Bin("*", wrap(other), self)
-
-    def __truediv__(self, other: object) -> Expr:
-        return Bin("/", self, wrap(other))
-
-    def __rtruediv__(self, other: object) -> Expr:
-        return Bin("/", wrap(other), self)
+    __add__, __radd__ = _arithmetic("+")
+    __sub__, __rsub__ = _arithmetic("-")
+    __mul__, __rmul__ = _arithmetic("*")
+    __truediv__, __rtruediv__ = _arithmetic("/")
+    __lt__, __le__, __gt__, __ge__ = (_comparison(op) for op in ("<", "<=", ">", ">="))
+    eq = _comparison("==")
 
     def __neg__(self) -> Expr:
         return Neg(self)
-
-    def __lt__(self, other: object) -> Expr:
-        return Cmp("<", self, wrap(other))
-
-    def __le__(self, other: object) -> Expr:
-        return Cmp("<=", self, wrap(other))
-
-    def __gt__(self, other: object) -> Expr:
-        return Cmp(">", self, wrap(other))
-
-    def __ge__(self, other: object) -> Expr:
-        return Cmp(">=", self, wrap(other))
-
-    def eq(self, other: object) -> Expr:
-        return Cmp("==", self, wrap(other))
 
 
 @dataclass(frozen=True, eq=False)
@@ -101,10 +82,24 @@ class Const(Expr):
 
 
 @dataclass(frozen=True, eq=False)
-class Bin(Expr):
+class Binary(Expr):
+    """An operator on two operands; the subclass says which kind."""
+
     op: str
     a: Expr
     b: Expr
+
+
+class Bin(Binary):
+    """Arithmetic: + - * /."""
+
+
+class Cmp(Binary):
+    """A comparison: < <= > >= ==."""
+
+
+class Logic(Binary):
+    """``or`` (``either``) or ``and``."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -118,20 +113,6 @@ class Call(Expr):
 
     fn: str
     args: tuple[Expr, ...]
-
-
-@dataclass(frozen=True, eq=False)
-class Cmp(Expr):
-    op: str
-    a: Expr
-    b: Expr
-
-
-@dataclass(frozen=True, eq=False)
-class Logic(Expr):
-    op: str  # "and" | "or"
-    a: Expr
-    b: Expr
 
 
 @dataclass(frozen=True, eq=False)
@@ -179,10 +160,6 @@ def fmin(a: object, b: object) -> Expr:
     return Call("min", (wrap(a), wrap(b)))
 
 
-def both(a: Expr, b: Expr) -> Expr:
-    return Logic("and", a, b)
-
-
 def either(a: Expr, b: Expr) -> Expr:
     return Logic("or", a, b)
 
@@ -199,7 +176,7 @@ PI = Const("pi")
 @dataclass(frozen=True)
 class Param:
     name: str
-    kind: str  # a RECORD_FIELDS key or a SCALAR_KINDS entry
+    kind: str  # a RECORD_FIELDS key, or REAL or INT for a scalar
 
     @property
     def is_record(self) -> bool:
@@ -228,7 +205,7 @@ class Let:
 
 
 def children(e: Expr) -> tuple[Expr, ...]:
-    if isinstance(e, (Bin, Cmp, Logic)):
+    if isinstance(e, Binary):
         return (e.a, e.b)
     if isinstance(e, Neg):
         return (e.a,)
@@ -299,7 +276,7 @@ class Primitive:
         for e in [e for _, _, e in self.result_fields(order)] + [self.status, self.sigma]:
             if e is not None:
                 used |= symbols(e)
-        return used
+        return used - {let.name for let in self.body}
 
 
 class Builder:
@@ -327,6 +304,10 @@ class Builder:
         self.params.append(Param(name, kind))
         self._orders[name] = 0
         return Sym(name)
+
+    def scalars(self, *names: str) -> tuple[Sym, ...]:
+        """Several REAL parameters, in this order."""
+        return tuple(self.scalar(name) for name in names)
 
     def order_of(self, e: Expr) -> int:
         return max((self._orders[s] for s in symbols(e)), default=0)
@@ -357,8 +338,8 @@ class Builder:
             for f, e in got.items():
                 if self.order_of(e) > field_order(out.kind, f):
                     raise ValueError(f"{self.name}: {out.name}.{f} reads a higher derivative")
-        for e in (status, sigma):
-            if e is not None and self.order_of(e) > 0:
+        for flag in (status, sigma):
+            if flag is not None and self.order_of(flag) > 0:
                 raise ValueError(f"{self.name}: status and sigma must come from displacements")
         return Primitive(
             self.name, self.doc, tuple(self.params), tuple(self.outputs), tuple(self.body),

@@ -1,4 +1,4 @@
-"""Print a DSL primitive as source code of one language.
+"""What every language's printer of a DSL primitive shares (linkgen/backends/<lang>/printer.py print).
 
 The expression printer keeps the evaluation order written in the DSL exactly
 (a right operand of the same precedence is always parenthesised), so every
@@ -8,25 +8,12 @@ symbols, constants, calls and selections, and how a function is laid out.
 
 from __future__ import annotations
 
-from .dsl import (
-    RECORD_FIELDS,
-    Bin,
-    Call,
-    Cmp,
-    Const,
-    Expr,
-    Logic,
-    Neg,
-    Num,
-    Param,
-    Primitive,
-    Select,
-    Sym,
-    record_fields,
-)
+from collections.abc import Callable
+
+from .dsl import Bin, Call, Cmp, Const, Expr, Logic, Neg, Num, Param, Primitive, Select, Sym, field_order, record_fields
 
 _PREC = {"select": 1, "or": 2, "and": 3, "cmp": 5, "+": 6, "-": 6, "*": 7, "/": 7, "neg": 8, "atom": 10}
-_MASKS = ((1, 0), (3, 1))  # status -> first derivative order that is nan
+MASKS = ((1, 0), (3, 1))  # status -> first derivative order that is nan
 
 
 def literal(value: float | int) -> str:
@@ -45,7 +32,7 @@ class ExprPrinter:
 
     and_op = "and"
     or_op = "or"
-    calls: dict[str, str] = {}
+    calls = {f: f for f in ("sqrt", "atan2", "cos", "sin", "abs", "max", "min")}  # the DSL's functions by their names
     consts: dict[str, str] = {}
 
     def sym(self, name: str) -> str:
@@ -106,272 +93,47 @@ class ExprPrinter:
         return f"{left} {op} {right}"
 
 
-class PythonExprs(ExprPrinter):
-    calls = {
-        "sqrt": "sqrt", "atan2": "atan2", "cos": "cos", "sin": "sin",
-        "abs": "abs", "max": "max", "min": "min",
-    }
-    consts = {"eps": "EPS", "nan": "NAN", "pi": "PI"}
+class RecordExprs(ExprPrinter):
+    """A printer of a function whose record parameters are structs (``j1_dx`` is ``j1.<field>``) in
+    a language that writes and and or as && and || (C, MATLAB)."""
 
-    def select(self, cond: str, a: str, b: str) -> str:
-        return f"{a} if {cond} else {b}"
+    and_op = "&&"
+    or_op = "||"
 
+    def __init__(self, prim: Primitive):
+        self.fields = {f"{p.name}_{f}": f"{p.name}.{self.field(p.kind, f)}"
+                       for p in prim.params if p.is_record for f in record_fields(p.kind, 2)}
 
-class NumpyExprs(PythonExprs):
-    calls = {
-        "sqrt": "np.sqrt", "atan2": "np.arctan2", "cos": "np.cos",
-        "sin": "np.sin", "abs": "np.abs", "max": "np.maximum", "min": "np.minimum",
-    }
-    and_op = "&"
-    or_op = "|"
+    @staticmethod
+    def field(kind: str, name: str) -> str:
+        """A record field as the language's structs name it."""
+        return name
 
-    def select(self, cond: str, a: str, b: str) -> str:
-        return f"np.where({cond}, {a}, {b})"
-
-    def logic(self, e: Logic) -> str:
-        op = self.and_op if e.op == "and" else self.or_op
-        return f"({self.expr(e.a)}) {op} ({self.expr(e.b)})"
+    def sym(self, name: str) -> str:
+        return self.fields.get(name, name)
 
 
-def _field_names(p: Param, order: int) -> list[str]:
-    return [f"{p.name}_{f}" for f in record_fields(p.kind, order)]
+def statements(prim: Primitive, order: int, exprs: ExprPrinter,
+               assign: Callable[[str, Expr, str], list[str]], store: Callable[[Param, str, Expr], list[str]]
+               ) -> list[str]:
+    """A function body in statements: the live definitions, the status and the conditioning
+    (``assign(name, expression, type)``, type int, double or '' to infer), then every result
+    field (``store``)."""
+    lines = [line for let in prim.live(order) for line in assign(let.name, let.expr, "")]
+    if prim.status is not None:
+        lines += assign("st", prim.status, "int")
+    if prim.sigma is not None and exprs.expr(prim.sigma) != "sigma":
+        lines += assign("sigma", prim.sigma, "double")
+    return lines + [line for p, f, e in prim.result_fields(order) for line in store(p, f, e)]
 
 
-def _python_lines(prim: Primitive, order: int, exprs: ExprPrinter, with_sigma: bool) -> list[str]:
-    """Body shared by the math and numpy flavours (they differ in leaves and masking)."""
-    used = prim.params_used(order, with_sigma)
-    lines = [f'    """{prim.doc}"""']
-    for p in prim.params:
-        if p.is_record:
-            names = [n if n in used else "_" for n in _field_names(p, order)]
-            if any(n != "_" for n in names):
-                lines.append(f"    {', '.join(names)}{',' if len(names) == 1 else ''} = {p.name}")
-    for let in prim.live(order, with_sigma):
-        lines.append(f"    {let.name} = {exprs.expr(let.expr)}")
-    return lines
-
-
-def _result_tuples(prim: Primitive, order: int, exprs: ExprPrinter, nan_from: int | None) -> list[str]:
-    """One tuple per output; fields of order >= nan_from are nan."""
+def masks(prim: Primitive, order: int, or_op: str) -> list[tuple[str, list[tuple[Param, str]]]]:
+    """Per failing status, the condition on ``st`` and the result fields it makes nan: a chain
+    that cannot close (1) every field, a singular position (3) the derivatives."""
     out = []
-    for p in prim.outputs:
-        fields = []
-        for f in record_fields(p.kind, order):
-            level = next(i for i, names in enumerate(RECORD_FIELDS[p.kind]) if f in names)
-            if nan_from is not None and level >= nan_from:
-                fields.append(exprs.consts["nan"])
-            else:
-                fields.append(exprs.expr(prim.results[p.name][f]))
-        out.append("(" + ", ".join(fields) + ("," if len(fields) == 1 else "") + ")")
+    for _, nan_from in MASKS:
+        fields = [(p, f) for p, f, _ in prim.result_fields(order) if nan_from <= field_order(p.kind, f)]
+        if fields:
+            codes = [c for c, n in MASKS if n <= nan_from]
+            out.append((f" {or_op} ".join(f"st == {c}" for c in codes), fields))
     return out
-
-
-def _head(prim: Primitive, with_sigma: bool) -> list[str]:
-    head = ["st"] if prim.status is not None else []
-    if with_sigma and prim.sigma is not None:
-        head.append("sigma")
-    return head
-
-
-def python_function(prim: Primitive, order: int, with_sigma: bool = False) -> str:
-    """A standard-library Python function: records are tuples of floats.
-
-    Returns ``outputs`` (one record, or a tuple of them); functions that can fail
-    return ``(status, [sigma,] outputs...)``.
-    """
-    exprs = PythonExprs()
-    lines = [f"def {prim.name}({', '.join(p.name for p in prim.params)}):"]
-    lines += _python_lines(prim, order, exprs, with_sigma)
-    head = _head(prim, with_sigma)
-    if prim.status is not None:
-        lines.append(f"    st = {exprs.expr(prim.status)}")
-        if with_sigma and prim.sigma is not None and exprs.expr(prim.sigma) != "sigma":
-            lines.append(f"    sigma = {exprs.expr(prim.sigma)}")
-        for code, nan_from in _MASKS:
-            if nan_from <= order:
-                values = ", ".join(head + _result_tuples(prim, order, exprs, nan_from))
-                lines.append(f"    if st == {code}:")
-                lines.append(f"        return {values}")
-    values = ", ".join(head + _result_tuples(prim, order, exprs, None))
-    lines.append(f"    return {values}")
-    return "\n".join(lines) + "\n"
-
-
-def numpy_function(prim: Primitive, order: int) -> str:
-    """The evaluator's vectorised twin: same formulas over numpy arrays.
-
-    Always returns ``(status, sigma, outputs...)``: status 0 and sigma 1 where
-    the function cannot fail.
-    """
-    exprs = NumpyExprs()
-    lines = [f"def {prim.name}({', '.join(p.name for p in prim.params)}):"]
-    lines += _python_lines(prim, order, exprs, True)
-    status = exprs.expr(prim.status) if prim.status is not None else "0"
-    sigma = exprs.expr(prim.sigma) if prim.sigma is not None else "1.0"
-    lines.append(f"    st = np.asarray({status})")
-    lines.append(f"    sigma = np.asarray({sigma}, dtype=float)")
-    outs = []
-    for p in prim.outputs:
-        fields = []
-        for f in record_fields(p.kind, order):
-            level = next(i for i, names in enumerate(RECORD_FIELDS[p.kind]) if f in names)
-            value = exprs.expr(prim.results[p.name][f])
-            bad = "(st == 1)" if level == 0 else "(st == 1) | (st == 3)"
-            fields.append(f"np.where({bad}, np.nan, {value})")
-        outs.append("(" + ", ".join(fields) + ("," if len(fields) == 1 else "") + ")")
-    lines.append(f"    return st, sigma, {', '.join(outs)}")
-    return "\n".join(lines) + "\n"
-
-
-def _is_int(e: Expr, ints: set[str]) -> bool:
-    """Whether an expression is integer-valued in C (flags, comparisons, status codes)."""
-    if isinstance(e, (Cmp, Logic)):
-        return True
-    if isinstance(e, Num):
-        return isinstance(e.value, int)
-    if isinstance(e, Sym):
-        return e.name in ints
-    if isinstance(e, Select):
-        return _is_int(e.a, ints) and _is_int(e.b, ints)
-    return False
-
-
-_C_FIELD = {"x": "P.x", "y": "P.y", "dx": "DP.x", "dy": "DP.y", "ddx": "DDP.x", "ddy": "DDP.y"}
-
-
-class CExprs(ExprPrinter):
-    calls = {
-        "sqrt": "sqrt", "atan2": "atan2", "cos": "cos", "sin": "sin",
-        "abs": "fabs", "max": "fmax", "min": "fmin",
-    }
-    consts = {"eps": "DBL_EPSILON", "nan": "NAN", "pi": "3.141592653589793"}
-    and_op = "&&"
-    or_op = "||"
-
-    def __init__(self, prim: Primitive):
-        self.fields: dict[str, str] = {}
-        for p in prim.params:
-            if p.is_record:
-                for f in record_fields(p.kind, 2):
-                    self.fields[f"{p.name}_{f}"] = f"{p.name}.{_C_FIELD[f] if p.kind == 'POINT' else f}"
-
-    def sym(self, name: str) -> str:
-        return self.fields.get(name, name)
-
-    def select(self, cond: str, a: str, b: str) -> str:
-        return f"{cond} ? {a} : {b}"
-
-
-def _c_type(kind: str) -> str:
-    return {"REAL": "double", "INT": "int"}.get(kind, kind)
-
-
-def c_function(prim: Primitive, order: int) -> str:
-    """A static C99 function shaped like mech.cpp: records by value, outputs by pointer,
-    the status as return value (void when the function cannot fail)."""
-    exprs = CExprs(prim)
-    params = [f"{_c_type(p.kind)} {p.name}" for p in prim.params]
-    params += [f"{p.kind} *{p.name}" for p in prim.outputs]
-    if prim.sigma is not None:
-        params.append("double *sigma_out")
-    head = "static int" if prim.status is not None else "static void"
-    lines = [f"/* {prim.doc} */", f"{head} {prim.name}({', '.join(params)})", "{"]
-    used = prim.params_used(order)
-    for p in prim.params:
-        touched = used & ({f"{p.name}_{f}" for f in record_fields(p.kind, order)} if p.is_record else {p.name})
-        if not touched:
-            lines.append(f"    (void){p.name};")
-    ints = {p.name for p in prim.params if p.kind == "INT"}
-    for let in prim.live(order):
-        ctype = "int" if _is_int(let.expr, ints) else "double"
-        if ctype == "int":
-            ints.add(let.name)
-        lines.append(f"    const {ctype} {let.name} = {exprs.expr(let.expr)};")
-    if prim.status is not None:
-        lines.append(f"    const int st = {exprs.expr(prim.status)};")
-    if prim.sigma is not None and exprs.expr(prim.sigma) != "sigma":
-        lines.append(f"    const double sigma = {exprs.expr(prim.sigma)};")
-    for p, f, e in prim.result_fields(order):
-        field = _C_FIELD[f] if p.kind == "POINT" else f
-        lines.append(f"    {p.name}->{field} = {exprs.expr(e)};")
-    if prim.sigma is not None:
-        lines.append("    *sigma_out = sigma;")
-    if prim.status is not None:
-        for code, nan_from in _MASKS:
-            fields = [(p, f) for p, f, _ in prim.result_fields(order)
-                      if nan_from <= next(i for i, n in enumerate(RECORD_FIELDS[p.kind]) if f in n)]
-            if fields:
-                cond = "st == 1" if code == 1 else "st == 1 || st == 3"
-                sets = " ".join(f"{p.name}->{_C_FIELD[f] if p.kind == 'POINT' else f} = NAN;" for p, f in fields)
-                lines.append(f"    if ({cond}) {{ {sets} }}")
-        lines.append("    return st;")
-    lines.append("}")
-    return "\n".join(lines) + "\n"
-
-
-class OctaveExprs(ExprPrinter):
-    calls = {
-        "sqrt": "sqrt", "atan2": "atan2", "cos": "cos", "sin": "sin",
-        "abs": "abs", "max": "max", "min": "min",
-    }
-    consts = {"eps": "eps", "nan": "NaN", "pi": "pi"}
-    and_op = "&&"
-    or_op = "||"
-
-    def __init__(self, prim: Primitive):
-        self.fields: dict[str, str] = {}
-        for p in prim.params:
-            if p.is_record:
-                for f in record_fields(p.kind, 2):
-                    self.fields[f"{p.name}_{f}"] = f"{p.name}.{f}"
-
-    def sym(self, name: str) -> str:
-        return self.fields.get(name, name)
-
-    def select(self, cond: str, a: str, b: str) -> str:
-        raise ValueError("MATLAB has no conditional expression; selections are statements")
-
-    def assign(self, target: str, e: Expr, indent: str = "    ") -> list[str]:
-        """``target = e`` where e may be a chain of selections: if / elseif / else."""
-        if not isinstance(e, Select):
-            return [f"{indent}{target} = {self.expr(e)};"]
-        out = []
-        keyword = "if"
-        while isinstance(e, Select):
-            out.append(f"{indent}{keyword} {self.expr(e.cond)}")
-            out.append(f"{indent}    {target} = {self.expr(e.a)};")
-            keyword = "elseif"
-            e = e.b
-        out += [f"{indent}else", f"{indent}    {target} = {self.expr(e)};", f"{indent}end"]
-        return out
-
-
-def octave_function(prim: Primitive, order: int) -> str:
-    """A MATLAB/Octave subfunction: records are structs, outputs then status and sigma."""
-    exprs = OctaveExprs(prim)
-    outs = [p.name for p in prim.outputs]
-    if prim.status is not None:
-        outs.append("st")
-    if prim.sigma is not None:
-        outs.append("sigma")
-    ret = f"[{', '.join(outs)}]" if len(outs) > 1 else outs[0]
-    lines = [f"function {ret} = {prim.name}({', '.join(p.name for p in prim.params)})", f"    % {prim.doc}"]
-    for let in prim.live(order):
-        lines += exprs.assign(let.name, let.expr)
-    if prim.status is not None:
-        lines += exprs.assign("st", prim.status)
-    if prim.sigma is not None and exprs.expr(prim.sigma) != "sigma":
-        lines += exprs.assign("sigma", prim.sigma)
-    for p, f, e in prim.result_fields(order):
-        lines += exprs.assign(f"{p.name}.{f}", e)
-    if prim.status is not None:
-        for code, nan_from in _MASKS:
-            fields = [(p, f) for p, f, _ in prim.result_fields(order)
-                      if nan_from <= next(i for i, n in enumerate(RECORD_FIELDS[p.kind]) if f in n)]
-            if fields:
-                cond = "st == 1" if code == 1 else "st == 1 || st == 3"
-                lines.append(f"    if {cond}")
-                lines += [f"        {p.name}.{f} = NaN;" for p, f in fields]
-                lines.append("    end")
-    lines.append("end")
-    return "\n".join(lines) + "\n"

@@ -25,6 +25,10 @@ def _esc(text: str) -> str:
     return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
 
 
+def _line(a: tuple[float, float], b: tuple[float, float], style: str) -> str:
+    return f'<line x1="{_f(a[0])}" y1="{_f(a[1])}" x2="{_f(b[0])}" y2="{_f(b[1])}" {style}/>'
+
+
 def render_svg(log: StepLog) -> str:
     spots = {p.name: (p.x, p.y) for p in log.pairs}
     for v in log.variables:
@@ -61,26 +65,23 @@ def render_svg(log: StepLog) -> str:
             out.append(f'<polygon points="{poly}" fill="{colour}" fill-opacity="0.12" stroke="{colour}" '
                        f'stroke-width="3"{dash}/>')
         elif len(pts) == 2:
-            (xa, ya), (xb, yb) = pts
-            out.append(f'<line x1="{_f(xa)}" y1="{_f(ya)}" x2="{_f(xb)}" y2="{_f(yb)}" stroke="{colour}" '
-                       f'stroke-width="3"{dash}/>')
+            out.append(_line(pts[0], pts[1], f'stroke="{colour}" stroke-width="3"{dash}'))
         cx = sum(x for x, _ in pts) / len(pts)
         cy = sum(y for _, y in pts) / len(pts)
         out.append(f'<text x="{_f(cx + 6)}" y="{_f(cy - 6)}" fill="{colour}" font-style="italic">'
                    f"{_esc(link.name)}</text>")
     for add in log.add_links:
         (xa, ya), (xb, yb) = at(add.pairs[0]), at(add.pairs[1])
-        out.append(f'<line x1="{_f(xa)}" y1="{_f(ya)}" x2="{_f(xb)}" y2="{_f(yb)}" stroke="#2ca02c" '
-                   f'stroke-width="2" stroke-dasharray="2 4"/>')
+        out.append(_line((xa, ya), (xb, yb), 'stroke="#2ca02c" stroke-width="2" stroke-dasharray="2 4"'))
         out.append(f'<text x="{_f((xa + xb) / 2)}" y="{_f((ya + yb) / 2 + 14)}" fill="#2ca02c">'
                    f"Add-link {_esc(add.name)}</text>")
     for p in log.pairs:
         x, y = at(p.name)
         fixed = any(lk.fixed and p.name in lk.pairs for lk in log.links)
         if p.kind == "prismatic":
-            c, s = math.cos(p.axis), -math.sin(p.axis)
-            out.append(f'<line x1="{_f(x - 40 * c)}" y1="{_f(y - 40 * s)}" x2="{_f(x + 40 * c)}" y2="{_f(y + 40 * s)}" '
-                       'stroke="black" stroke-width="1" stroke-dasharray="4 2"/>')
+            ux, uy = math.cos(p.axis), -math.sin(p.axis)  # the axis on the page (y points down)
+            out.append(_line((x - 40 * ux, y - 40 * uy), (x + 40 * ux, y + 40 * uy),
+                             'stroke="black" stroke-width="1" stroke-dasharray="4 2"'))
             out.append(f'<rect x="{_f(x - 7)}" y="{_f(y - 5)}" width="14" height="10" fill="white" stroke="black" '
                        f'transform="rotate({_f(-math.degrees(p.axis))} {_f(x)} {_f(y)})"/>')
         else:

@@ -123,7 +123,7 @@ def build_view(log: StepLog) -> View:
     inside = {n for g in log.groups for n in g.steps}
     run = tuple(s for s in log.steps if s.number not in inside and not s.variant)
     pos = {v.entity: v.name for v in log.variables if v.role == "pair"}
-    blocks = []
+    blocks: list[Group] = []
     for slot, g in enumerate(log.groups):
         first = len(blocks)
         records = (g, *g.variants)

@@ -15,6 +15,9 @@ from pathlib import Path
 import pytest
 
 from linkgen import names
+from linkgen.backends.c import words as c_words
+from linkgen.backends.m import words as m_words
+from linkgen.backends.py import words as py_words
 from linkgen.loader import IDENTIFIER
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -24,13 +27,13 @@ ROOT = Path(__file__).resolve().parents[2]
 
 MECHANISM_LISTS = {
     "Python keyword": frozenset(keyword.kwlist),
-    "MATLAB/Octave keyword": names.M_KEYWORDS,
-    "MATLAB/Octave function": names.M_FUNCTIONS,
-    "variable of the sweep script": names.M_SCRIPT_VARIABLES,
+    "MATLAB/Octave keyword": m_words.KEYWORDS,
+    "MATLAB/Octave function": m_words.FUNCTIONS,
+    "variable of the sweep script": m_words.SCRIPT_VARIABLES,
     "Python module": frozenset(n for n in sys.stdlib_module_names if not n.startswith("_")),
-    "Python built-in": names.PY_BUILTINS,
-    "C header": names.C_HEADERS | frozenset(h.upper() for h in names.C_HEADERS),
-    "Windows device": names.WINDOWS_DEVICES | frozenset(d.upper() for d in names.WINDOWS_DEVICES),
+    "Python built-in": py_words.BUILTINS,
+    "C header": c_words.HEADERS | frozenset(h.upper() for h in c_words.HEADERS),
+    "Windows device": c_words.WINDOWS_DEVICES | frozenset(d.upper() for d in c_words.WINDOWS_DEVICES),
 }
 
 
@@ -44,37 +47,37 @@ def test_every_name_of_every_list_is_refused_as_the_mechanism_name(listed: str):
 
 def test_no_octave_function_ends_in_solve():
     """So NAME_solve.m hides none (the data file says so)."""
-    assert [f for f in names.M_FUNCTIONS if f.endswith("_solve")] == []
+    assert [f for f in m_words.FUNCTIONS if f.endswith("_solve")] == []
 
 
 def test_the_headers_macros_are_no_library_macro_for_any_mechanism_name():
     """NAME_N_INPUTS, NAME_H, ...: no macro of the C library ends like one of them."""
-    clash = [m for m in names.C_MACROS for s in names.HEADER_MACRO_SUFFIXES if m.endswith(f"_{s}")]
+    clash = [m for m in c_words.MACROS for s in c_words.HEADER_MACRO_SUFFIXES if m.endswith(f"_{s}")]
     assert clash == []
 
 
 def test_the_longest_mechanism_name_leaves_room_for_the_solve_function():
     """MATLAB's namelengthmax is 63: NAME_solve must fit."""
-    longest = "m" * names.MAX_NAME
+    longest = "m" * m_words.MAX_NAME
     assert names.mechanism_name_problem(longest) == ""
     assert len(f"{longest}_solve") == 63
-    assert names.mechanism_name_problem(longest + "m").startswith(f"has {names.MAX_NAME + 1} characters")
+    assert names.mechanism_name_problem(longest + "m").startswith(f"has {m_words.MAX_NAME + 1} characters")
 
 
 def test_a_field_has_at_most_63_characters_as_matlab_writes_it():
     assert names.entity_name_problem("B" * 63, "fourbar") == ""
     assert names.entity_name_problem("B" * 64, "fourbar").startswith("has 64 characters")
     # end_ is what MATLAB writes for end: a 62-character keyword would need 63 (none is that long)
-    assert max(len(k) for k in names.M_KEYWORDS) + 1 <= 63
+    assert max(len(k) for k in m_words.KEYWORDS) + 1 <= 63
 
 
 # -- pair, point and link names ----------------------------------------------------
 
 RENAMED = {
-    "C keyword": (names.C_KEYWORDS, "C"),
-    "C++ keyword": (names.CPP_KEYWORDS, "C"),
-    "C library macro": (names.C_MACROS, "C"),
-    "MATLAB/Octave keyword": (names.M_KEYWORDS, "MATLAB/Octave"),
+    "C keyword": (c_words.KEYWORDS, "C"),
+    "C++ keyword": (c_words.CPP_KEYWORDS, "C"),
+    "C library macro": (c_words.MACROS, "C"),
+    "MATLAB/Octave keyword": (m_words.KEYWORDS, "MATLAB/Octave"),
 }
 
 
@@ -89,7 +92,7 @@ def test_every_word_of_a_language_is_written_with_a_trailing_underscore_there(li
         assert names.entity_name_problem(name, "fourbar") == ""
         # the spelling is no word of either language, and no field or macro of the programs
         written = f"{name}_"
-        assert names.c_field(written) == names.m_field(written) == written
+        assert c_words.WORDS.field(written) == m_words.WORDS.field(written) == written
         assert names.entity_name_problem(written, "fourbar") == ""
 
 
@@ -122,24 +125,24 @@ def test_the_c_header_defines_only_the_names_the_lists_hold(json: Path):
         words = declaration.split(None, 1)
         if len(words) == 2:
             members.update(re.sub(r"\[.*?\]", "", d).strip() for d in words[1].split(","))
-    own = members - {names.c_field(o) for o in _outputs(json)}
-    assert own and own <= {f for f, where in names.STATE_FIELDS.items() if names.C_STATE in where}
+    own = members - {c_words.WORDS.field(o) for o in _outputs(json)}
+    assert own and own <= c_words.STATE_FIELDS
     defined = set(re.findall(r"#define (\w+)", header)) | set(re.findall(r"\} (\w+);", header))
     defined |= set(re.findall(r"^\w+ (\w+)\(", header, re.M))
-    assert defined <= names.header_names(name) | {f"{name.upper()}_H"}
+    assert defined <= c_words.header_names(name) | {f"{name.upper()}_H"}
     source = _uncommented_c(_generated(json, ".c"))
-    assert set(re.findall(r"#define (\w+)", source)) <= names.SOURCE_MACROS
+    assert set(re.findall(r"#define (\w+)", source)) <= c_words.SOURCE_MACROS
 
 
 @pytest.mark.parametrize("json", SAMPLES, ids=lambda p: p.stem)
 def test_the_matlab_programs_use_only_the_names_the_lists_hold(json: Path):
     solve = _generated(json, "_solve.m")
-    own = set(re.findall(r"\bout\.(\w+)\s*=", solve)) - {names.m_field(o) for o in _outputs(json)}
-    assert own and own <= {f for f, where in names.STATE_FIELDS.items() if names.M_OUT in where}
+    own = set(re.findall(r"\bout\.(\w+)\s*=", solve)) - {m_words.WORDS.field(o) for o in _outputs(json)}
+    assert own and own <= m_words.STATE_FIELDS
     script = _generated(json, ".m")
     assigned = set(re.findall(r"^\s*(?:for\s+)?(\w+)\s*=[^=]", script, re.M))
     assigned |= {v.strip() for group in re.findall(r"^\s*\[([^\]]*)\]\s*=", script, re.M) for v in group.split(",")}
-    assert assigned and assigned <= names.M_SCRIPT_VARIABLES
+    assert assigned and assigned <= m_words.SCRIPT_VARIABLES
     # every function the two files call is a function of the list (or one of NAME_solve.m's own)
     calls, local, variables = set(), set(), set()
     for text in (solve, script):
@@ -154,7 +157,7 @@ def test_the_matlab_programs_use_only_the_names_the_lists_hold(json: Path):
         variables |= {v for group in re.findall(r"\[([^\]]*)\]\s*=[^=]", code) for v in re.findall(r"\w+", group)}
     called = calls - local - variables - {f"{json.stem}_solve"}
     assert {"fprintf", "zeros", "size", "atan2"} <= called
-    assert called <= names.M_FUNCTIONS, called - names.M_FUNCTIONS
+    assert called <= m_words.FUNCTIONS, called - m_words.FUNCTIONS
 
 
 def test_the_c_macro_list_holds_every_macro_of_the_headers_here():
@@ -167,7 +170,7 @@ def test_the_c_macro_list_holds_every_macro_of_the_headers_here():
         text = subprocess.run([gcc, mode, "-dM", "-E", "-x", "c", "-"], input=includes, capture_output=True,
                               text=True, check=True).stdout
         macros = {m for m in re.findall(r"^#define (\w+)(?![\w(])", text, re.M) if not m.startswith("_")}
-        assert "NAN" in macros and macros <= names.C_MACROS, macros - names.C_MACROS
+        assert "NAN" in macros and macros <= c_words.MACROS, macros - c_words.MACROS
 
 
 def test_the_octave_list_is_what_this_octave_gives(tmp_path: Path):
@@ -175,7 +178,7 @@ def test_the_octave_list_is_what_this_octave_gives(tmp_path: Path):
     octave = shutil.which("octave-cli")
     if octave is None:
         pytest.skip("octave-cli is not installed")
-    data = (ROOT / "linkgen" / "data" / "octave_functions.txt").read_text(encoding="utf-8").splitlines()
+    data = (ROOT / "linkgen" / "backends" / "m" / "functions.txt").read_text(encoding="utf-8").splitlines()
     version = re.search(r"GNU Octave (\S+)", data[0])[1]
     script = "\n".join(line[4:] for line in data if line.startswith("#   "))
     here = subprocess.run([octave, "--norc", "--no-init-file", "--quiet", "--eval", "disp(OCTAVE_VERSION)"],
@@ -184,4 +187,4 @@ def test_the_octave_list_is_what_this_octave_gives(tmp_path: Path):
         pytest.skip(f"the list was made with Octave {version}, this is {here}")
     made = subprocess.run([octave, "--norc", "--no-init-file", "--quiet", "--eval", script], cwd=tmp_path,
                           capture_output=True, text=True).stdout.split()
-    assert made == sorted(names.M_FUNCTIONS)
+    assert made == sorted(m_words.FUNCTIONS)

@@ -9,7 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from linkgen import names
+from linkgen.backends.c import words as c_words
+from linkgen.backends.m import words as m_words
 from linkgen.errors import InputError
 from linkgen.loader import parse
 from linkgen.topology import analyse
@@ -59,7 +60,7 @@ def refused(text: str) -> InputError:
     ("zeros", "is a MATLAB/Octave function, which the script zeros.m would hide"),
     ("size", "is a MATLAB/Octave function, which the script size.m would hide"),
     ("fprintf", "is a MATLAB/Octave function, which the script fprintf.m would hide"),
-    ("math", "is a module of Python's standard library, which math.py would hide"),
+    ("json", "is a module of Python's standard library, which json.py would hide"),
     ("random", "is a module of Python's standard library, which random.py would hide"),
     ("until", "is a MATLAB/Octave keyword, so the script until.m cannot be run"),
     ("row", "is a variable of the sweep script row.m, which after one run would hide the script"),
@@ -86,9 +87,9 @@ def test_c_words_and_near_misses_are_fine_mechanism_names(name: str):
 # -- pair, point and link names ---------------------------------------------------
 
 ENTITY_REFUSED = {
-    "state field": frozenset(names.STATE_FIELDS),
-    "header name": names.header_names("fourbar"),
-    "macro of NAME.c": names.SOURCE_MACROS,
+    "state field": c_words.STATE_FIELDS | m_words.STATE_FIELDS,
+    "header name": c_words.header_names("fourbar"),
+    "macro of NAME.c": c_words.SOURCE_MACROS,
 }
 
 

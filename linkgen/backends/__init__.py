@@ -1,0 +1,116 @@
+"""The target languages: one sub-package a language, each a Backend (README.md: the contract).
+
+``backends()`` finds them: every sub-package of this folder, in name order, is a language whose
+``BACKEND`` says what it provides.  linkgen.render writes each backend's files; linkgen.names
+asks each which user names its files cannot carry.
+"""
+
+from __future__ import annotations
+
+import functools
+import importlib
+import pkgutil
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from importlib import resources
+from typing import TYPE_CHECKING, Any, Generic, Protocol, TypeVar
+
+if TYPE_CHECKING:
+    from ..primitives.dsl import Primitive
+    from ..render.view import View
+    from .spelling import Spelling
+
+
+S = TypeVar("S", bound="Spelling")
+
+
+class Template(Protocol):
+    """Renders one of the backend's templates (its name inside the backend's template folder)
+    with the context every template gets (v, L, banner, name, max_input) and ``context``."""
+
+    def __call__(self, template: str, /, **context: object) -> bytes: ...
+
+
+def _fits(name: str, mechanism: str = "") -> str:
+    return ""
+
+
+@dataclass(frozen=True)
+class Words:
+    """What a backend's files make of the user's names (each rule: why not, '' when fine)."""
+
+    field_word: Callable[[str], str] = _fits  # why a pair, point or link name gets a trailing _ as a field
+    mechanism_problem: Callable[[str], str] = _fits  # why the mechanism name cannot name the files
+    entity_problem: Callable[[str, str], str] = _fits  # (name, mechanism) why a name cannot be an output
+    state: str = ""  # the structure holding the outputs, NAME standing for the mechanism's name
+    state_fields: frozenset[str] = frozenset()  # its fields besides the outputs
+
+    def field(self, name: str) -> str:
+        """A pair, point or link name as a field of the outputs."""
+        return f"{name}_" if self.field_word(name) else name
+
+
+@dataclass(frozen=True)
+class Runtime:
+    """Hand-written runtime sources (status, branch, reach, resolver), pasted into the programs.
+
+    Marker lines select a source's order-2 parts: the lines between ``marks[0]`` and
+    ``marks[1]`` (or ``marks[2]``) only in programs of order 2, those between ``marks[1]``
+    and ``marks[2]`` only below; the markers themselves are dropped."""
+
+    package: str  # the package whose folder holds them
+    folder: str
+    suffix: str  # of each source's file name: .c
+    marks: tuple[str, str, str]  # if order >= 2, else, end
+
+    def source(self, name: str, order: int) -> str:
+        """The source ``name`` (status, branch, reach, resolver) for a program of ``order``."""
+        path = resources.files(self.package).joinpath(self.folder).joinpath(name + self.suffix)
+        start, other, end = self.marks
+        out, keep = [], [True]
+        for line in path.read_text(encoding="utf-8").splitlines(keepends=True):
+            mark = line.strip()
+            if mark == start:
+                keep.append(order >= 2)
+            elif mark == other:
+                keep[-1] = not keep[-1]
+            elif mark == end:
+                keep.pop()
+            elif all(keep):
+                out.append(line)
+        return "".join(out)
+
+
+@dataclass(frozen=True)
+class Backend(Generic[S]):
+    """One target language: what it writes, how it spells the procedure, what it runs on."""
+
+    name: str  # its folder under linkgen/backends/
+    language: str  # how messages name it
+    templates: str  # its folder under the top-level templates/
+    files: tuple[str, ...]  # the files it writes, NAME standing for the mechanism's name
+    comment: tuple[str, str]  # how a comment opens and closes ('' where the line's end closes it)
+    spelling: type[S]  # the templates' L: references, calls and the literal format
+    render: Callable[[View, S, Template], dict[str, bytes]]  # the files, keyed as in ``files``
+    filters: Mapping[str, Callable[..., str]] = field(default_factory=dict)  # its templates' own filters
+    printer: Callable[[Primitive, int], str] | None = None  # a DSL primitive as a function at an order
+    runtime: Runtime | None = None
+    words: Words = Words()
+
+
+def word_list(module: str, name: str) -> frozenset[str]:
+    """The words of the data file ``name`` beside the module ``module``: one a line, # starting a comment line."""
+    text = resources.files(module.rpartition(".")[0]).joinpath(name).read_text(encoding="utf-8")
+    return frozenset(line for line in text.splitlines() if line and not line.startswith("#"))
+
+
+@functools.cache
+def backends() -> tuple[Backend[Any], ...]:
+    """Every backend: the sub-packages of this folder, in name order."""
+    found = []
+    for module in sorted(m.name for m in pkgutil.iter_modules(__path__) if m.ispkg):
+        backend = importlib.import_module(f"{__name__}.{module}").BACKEND
+        if not isinstance(backend, Backend) or backend.name != module:
+            raise TypeError(f"linkgen.backends.{module}.BACKEND is not the Backend named {module}")
+        found.append(backend)
+    return tuple(found)

@@ -1,0 +1,50 @@
+"""The C99 backend: NAME.h, NAME.c (the procedure and NAME_solve) and NAME_main.c (the sweep)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from .. import Backend, Runtime, Template
+from ..program import input_lists, runtime_sources, sketch_states
+from .printer import c_function
+from .spelling import C
+from .words import WORDS
+
+if TYPE_CHECKING:
+    from ...render.view import View
+
+RUNTIME = Runtime(__name__, "runtime", ".c", ("#if LINKGEN_ORDER >= 2", "#else", "#endif"))
+
+
+def render(view: View, spell: C, template: Template) -> dict[str, bytes]:
+    log = view.log
+    upper = log.name.upper()
+    order = view.record_order
+    levels = ("P", "DP", "DDP")[: order + 1]
+    record_fields = {
+        "POINT": f"VEC2 {', '.join(levels)};",
+        "ANGLE": f"double {', '.join(('the', 'dthe', 'ddthe')[: order + 1])};",
+        "VARIABLE": f"double {', '.join(('v', 'dv', 'ddv')[: order + 1])};",
+    }
+    per_kind = {"point": ("x", "y", "vx", "vy", "ax", "ay"), "angle": ("phi", "omega", "alpha"),
+                "slide": ("s", "ds", "dds")}
+    width = {"point": 2, "angle": 1, "slide": 1}
+    fields = {k: per_kind[k][: width[k] * (log.order + 1)] for k in per_kind}
+    columns = [c.name for c in log.columns]
+    lists = input_lists(view, spell)
+    return {
+        "NAME.h": template("NAME.h.j2", upper=upper, n_columns=len(columns), point_fields=fields["point"],
+                           angle_fields=fields["angle"], slide_fields=fields["slide"]),
+        "NAME.c": template("NAME.c.j2", upper=upper, runtime=runtime_sources(view, c_function, RUNTIME),
+                           record_fields=record_fields, sketch_in=lists["sketch"],
+                           sketch_a=", ".join("{" + a + "}" for a in sketch_states(view, spell)),
+                           column_fields=[f"{spell.ident(c.owner)}.{c.field}" for c in view.cells],
+                           limits=lists["limits"], slack=spell.lit(log.policy.path_slack),
+                           periodic=lists["periodic"]),
+        "NAME_main.c": template("NAME_main.c.j2", upper=upper, columns=columns, inputs=lists),
+    }
+
+
+BACKEND = Backend("c", "C", templates="c", files=("NAME.h", "NAME.c", "NAME_main.c"), comment=("/*", " */"),
+                  spelling=C, render=render, filters={"cbody": lambda text: str(text).replace("*/", "* /")},
+                  printer=c_function, runtime=RUNTIME, words=WORDS)

@@ -1,0 +1,77 @@
+"""The C printer of a DSL primitive: a static C99 function shaped like mech.cpp's."""
+
+from __future__ import annotations
+
+from ...primitives.dsl import Cmp, Expr, Logic, Num, Param, Primitive, Select, Sym, record_fields
+from ...primitives.printers import RecordExprs, masks, statements
+
+_POINT_FIELD = {"x": "P.x", "y": "P.y", "dx": "DP.x", "dy": "DP.y", "ddx": "DDP.x", "ddy": "DDP.y"}
+
+
+def field(kind: str, name: str) -> str:
+    """A record field as the C structs name it: a POINT's dx is DP.x."""
+    return _POINT_FIELD[name] if kind == "POINT" else name
+
+
+class CExprs(RecordExprs):
+    calls = {**RecordExprs.calls, "abs": "fabs", "max": "fmax", "min": "fmin"}
+    consts = {"eps": "DBL_EPSILON", "nan": "NAN", "pi": "3.141592653589793"}
+    field = staticmethod(field)
+
+    def select(self, cond: str, a: str, b: str) -> str:
+        return f"{cond} ? {a} : {b}"
+
+
+def _is_int(e: Expr, ints: set[str]) -> bool:
+    """Whether an expression is integer-valued in C (flags, comparisons, status codes)."""
+    if isinstance(e, (Cmp, Logic)):
+        return True
+    if isinstance(e, Num):
+        return isinstance(e.value, int)
+    if isinstance(e, Sym):
+        return e.name in ints
+    if isinstance(e, Select):
+        return _is_int(e.a, ints) and _is_int(e.b, ints)
+    return False
+
+
+def _c_type(kind: str) -> str:
+    return {"REAL": "double", "INT": "int"}.get(kind, kind)
+
+
+def c_function(prim: Primitive, order: int) -> str:
+    """A static C99 function shaped like mech.cpp: records by value, outputs by pointer,
+    the status as return value (void when the function cannot fail)."""
+    exprs = CExprs(prim)
+    params = [f"{_c_type(p.kind)} {p.name}" for p in prim.params]
+    params += [f"{p.kind} *{p.name}" for p in prim.outputs]
+    if prim.sigma is not None:
+        params.append("double *sigma_out")
+    head = "static int" if prim.status is not None else "static void"
+    lines = [f"/* {prim.doc} */", f"{head} {prim.name}({', '.join(params)})", "{"]
+    used = prim.params_used(order)
+    for p in prim.params:
+        touched = used & ({f"{p.name}_{f}" for f in record_fields(p.kind, order)} if p.is_record else {p.name})
+        if not touched:
+            lines.append(f"    (void){p.name};")
+    ints = {p.name for p in prim.params if p.kind == "INT"}
+
+    def define(name: str, e: Expr, ctype: str) -> list[str]:
+        ctype = ctype or ("int" if _is_int(e, ints) else "double")
+        if ctype == "int":
+            ints.add(name)
+        return [f"    const {ctype} {name} = {exprs.expr(e)};"]
+
+    def store(p: Param, f: str, e: Expr) -> list[str]:
+        return [f"    {p.name}->{field(p.kind, f)} = {exprs.expr(e)};"]
+
+    lines += statements(prim, order, exprs, define, store)
+    if prim.sigma is not None:
+        lines.append("    *sigma_out = sigma;")
+    if prim.status is not None:
+        for cond, fields in masks(prim, order, exprs.or_op):
+            sets = " ".join(f"{p.name}->{field(p.kind, f)} = NAN;" for p, f in fields)
+            lines.append(f"    if ({cond}) {{ {sets} }}")
+        lines.append("    return st;")
+    lines.append("}")
+    return "\n".join(lines) + "\n"

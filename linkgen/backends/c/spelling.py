@@ -1,0 +1,60 @@
+"""How the C program spells the procedure: records are structs the work record points to."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from ...primitives import PRIMITIVES
+from ...steplog import Step, Variable, held
+from ..spelling import Spelling, Syntax
+from .printer import field
+from .words import WORDS
+
+if TYPE_CHECKING:
+    from ...render.view import Group
+
+
+class C(Spelling):
+    # branch_at reads the array change_N that call() declares before the step (C++ has no compound literal)
+    syntax = Syntax(work="w->", note="note(w, {st}, {codes});", conditional="{cond} ? {a} : {b}",
+                    change_list="change_{number}, {count}")
+    words = WORDS
+
+    def member(self, kind: str, field_name: str) -> str:
+        return "." + field(kind, field_name)
+
+    def input_record(self, var: Variable, k: int) -> str:
+        """The statement that builds an input record from the k-th input, rate and acceleration."""
+        sources = ("in", "din", "ddin")
+        return " ".join(f"w->{var.name}.{f} = {src}[{k}];" for f, src in zip(self.fields(var.kind), sources))
+
+    def reach_fail(self, low: int, high: int) -> list[str]:
+        return [f"st = {self.reach_call('in[0]')};", f"if (st != 0) return st < 0 ? {low} : {high};"]
+
+    def initializer(self, v: Variable) -> str:
+        """Braced initializer of a constant record (derivatives zero)."""
+        value = held(v, self.log.origin)
+        if v.kind == "POINT":
+            levels = [f"{{{self.lit(value[0])}, {self.lit(value[1])}}}"] + ["{0.0, 0.0}"] * self.order
+            return "{" + ", ".join(levels) + "}"
+        return "{" + ", ".join([self.lit(value[0])] + ["0.0"] * self.order) + "}"
+
+    def call(self, step: Step, scope: Group | None) -> list[str]:
+        """A step's call; a failing chain ends the row (inside a resolver block: the block's pass)."""
+        prim = PRIMITIVES[step.function]
+        args = [self.arg(a, scope, step) for a in step.args]
+        args += [f"&{self.ref(o, scope)}" for o in step.outputs]
+        if prim.sigma is not None:
+            args.append(f"&{self.sigma(step)}")
+        text = f"{step.function}({', '.join(args)});"
+        points = ", ".join(self.lit(p) for p in step.change_points)
+        head = [f"static const double change_{step.number}[] = {{{points}}};"] if step.change_points else []
+        if prim.status is None:
+            return [*head, text]
+        if scope is None:
+            return [*head, f"st = {text}", f"if (st == 1) return {self.status_code(step, 1)};",
+                    self.note("st", step)]
+        lines = [*head, f"st = {text}", "if (st == 1) return 1;", f"if (live) {self.note('st', step)}"]
+        if prim.sigma is not None:
+            lines.append(f"w->chains = fmin(w->chains, {self.sigma(step)});")
+        return lines

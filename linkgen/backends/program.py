@@ -1,0 +1,55 @@
+"""What the program backends (C, Python, MATLAB/Octave) build alike from the view."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+from ..primitives import PRIMITIVES
+from ..primitives.dsl import Primitive
+from . import Runtime
+
+if TYPE_CHECKING:
+    from ..render.view import View
+    from .spelling import Spelling
+
+# The derivative order of each output quantity.
+LEVEL = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
+         "angular_acceleration": 2}
+
+
+def used_primitives(view: View) -> list[str]:
+    """The runtime primitives the procedure calls, in the library's order."""
+    return [name for name in PRIMITIVES if name in view.log.runtime]
+
+
+def runtime_sources(view: View, printer: Callable[[Primitive, int], str], runtime: Runtime) -> list[str]:
+    """The runtime a program carries: the primitives it calls, printed, then the hand-written
+    status helpers and, where the procedure needs them, branch_at, reach_at and the resolver."""
+    order = view.record_order
+    texts = [printer(PRIMITIVES[p], order) for p in used_primitives(view)]
+    texts.append(runtime.source("status", order))
+    texts += [runtime.source(name, order) for name, needed in (
+        ("branch", "branch_at" in view.log.runtime), ("reach", "reach_at" in view.log.runtime),
+        ("resolver", bool(view.groups))) if needed]
+    return texts
+
+
+def sketch_states(view: View, spell: Spelling) -> list[str]:
+    """Every resolver block's state in the sketch: its Add-link lengths, its chains' branches
+    and its orientation (unknown: 0), padded to the largest block."""
+    out = []
+    for b in view.blocks:
+        state = [spell.lit(x) for x in b.group.start()]
+        out.append(", ".join(state + ["0.0"] * (view.nmax - len(state))))
+    return out
+
+
+def input_lists(view: View, spell: Spelling) -> dict[str, str]:
+    """The inputs' sweep (start, stop, speed), sketch values, step limits and periodicity, as lists of literals."""
+    log = view.log
+    lists = {k: ", ".join(spell.lit(getattr(i, k)) for i in log.inputs) for k in ("start", "stop", "speed")}
+    lists["sketch"] = ", ".join(spell.lit(i.sketch) for i in log.inputs)
+    lists["limits"] = ", ".join(spell.lit(x) for x in log.step_limits())
+    lists["periodic"] = ", ".join(spell.flag(i.kind == "revolute") for i in log.inputs)
+    return lists

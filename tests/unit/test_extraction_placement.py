@@ -1,0 +1,80 @@
+"""extraction.placement: link angles, slide lines and points placed at their sketch offsets (values by hand)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from linkgen.extraction import Procedure, extract
+from linkgen.extraction.placement import rot
+from linkgen.topology import analyse
+from linkgen.validate import read_mechanism
+
+ROOT = Path(__file__).resolve().parents[2]
+SLOTTED = Path(__file__).with_name("slotted_coupler.yaml")  # a slide on a moving guide, the coupler
+
+
+def _extract(path: Path) -> Procedure:
+    return extract(analyse(read_mechanism(str(path))))
+
+
+def _arg(step, label: str) -> float:
+    return next(a.value for a in step.args if a.label == label)
+
+
+@pytest.fixture(scope="module")
+def slotted() -> Procedure:
+    return _extract(SLOTTED)
+
+
+@pytest.mark.parametrize("angle, x, y, expected", [
+    (0.0, 3.0, 4.0, (3.0, 4.0)),
+    (math.pi / 2, 1.0, 0.0, (0.0, -1.0)),  # the frame's x axis is the old y axis
+    (math.pi / 6, math.cos(math.pi / 6), math.sin(math.pi / 6), (1.0, 0.0)),
+    (math.pi, 2.0, -5.0, (-2.0, 5.0)),
+])
+def test_rot_gives_the_coordinates_in_a_turned_frame(angle: float, x: float, y: float, expected: tuple[float, float]):
+    assert rot(angle, x, y) == pytest.approx(expected, abs=1e-15)
+
+
+def test_a_point_of_a_placed_link_is_at_its_offset_in_the_links_frame():
+    proc = _extract(ROOT / "samples" / "fourbar" / "fourbar.yaml")
+    (step,) = [s for s in proc.steps if s.function == "coupler_point"]
+    # P (60, 70) from A (20, 0) = (40, 70), in the frame of the coupler A -> B = (60, 50) / sqrt(6100)
+    assert [a.var for a in step.args[:2]] == ["p_A", "phi_coupler"]
+    assert _arg(step, "gsi") == pytest.approx((40 * 60 + 70 * 50) / math.sqrt(6100), rel=1e-15)
+    assert _arg(step, "eta") == pytest.approx((70 * 60 - 40 * 50) / math.sqrt(6100), rel=1e-15)
+
+
+def test_a_moving_guides_line_turns_with_it_and_its_copy_of_the_pair_is_a_point_of_it(slotted: Procedure):
+    line = next(s for s in slotted.steps if s.action == "line")
+    assert (line.function, line.target, [a.var for a in line.args[:1]]) == ("offset_angle", "S", ["phi_coupler"])
+    assert _arg(line, "off") == pytest.approx(math.pi / 2 - math.atan2(50, 60), rel=1e-15)
+    (copy,) = [s for s in slotted.steps if s.outputs == ("g_S",)]
+    # S (50, 25) from A (20, 0) = (30, 25) in the frame of the slide axis (0, 1): along 25, to the left -30
+    assert copy.function == "coupler_point" and [a.var for a in copy.args[:2]] == ["p_A", "psi_S"]
+    assert (_arg(copy, "gsi"), _arg(copy, "eta")) == pytest.approx((25.0, -30.0), abs=1e-13)
+
+
+def test_a_fixed_guides_line_is_two_constants():
+    proc = _extract(ROOT / "tests" / "mechanisms" / "slider_crank.yaml")
+    records = {v.name: v for v in proc.variables}
+    assert (records["g_S"].value, records["psi_S"].value) == ((45.0, -5.0), (0.0,))
+    assert not [s for s in proc.steps if set(s.outputs) & {"g_S", "psi_S"}]
+
+
+def test_a_link_whose_pairs_coincide_keeps_a_constant_angle_to_its_slide():
+    proc = _extract(ROOT / "tests" / "mechanisms" / "slider_crank.yaml")
+    (block,) = [s for s in proc.steps if s.target == "block"]
+    # the frame points O (0, 0) -> S (45, -5); the block (B = S) along the slide's axis 0
+    assert (block.function, block.args[0].var) == ("offset_angle", "phi_frame")
+    assert _arg(block, "off") == pytest.approx(math.atan2(5, 45), rel=1e-15)
+
+
+def test_a_link_angle_is_measured_between_two_known_pairs_of_the_link(slotted: Procedure):
+    angles = {s.target: s for s in slotted.steps if s.function == "link_angle"}
+    assert [a.var for a in angles["coupler"].args[:2]] == ["p_A", "p_B"]
+    assert [a.var for a in angles["rod"].args[:2]] == ["p_E", "p_O3"]
+    assert all(_arg(s, "off") == 0.0 for s in angles.values())  # each measured along its own direction
