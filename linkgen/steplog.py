@@ -12,7 +12,8 @@ import json
 from dataclasses import dataclass, field, fields
 from typing import NewType
 
-from . import status
+from .codes import StatusCode as StatusCode
+from .codes import status_codes
 from .motion import Conditioning as Conditioning
 from .motion import Gap as Gap
 from .motion import Reach as Reach
@@ -219,13 +220,6 @@ class InputInfo:
 
 
 @dataclass(frozen=True)
-class StatusCode:
-    code: int
-    step: int
-    meaning: str
-
-
-@dataclass(frozen=True)
 class Omitted:
     """A step of the whole procedure that the chosen outputs do not need."""
 
@@ -234,7 +228,10 @@ class Omitted:
 
 
 @dataclass(frozen=True)
-class StepLog:
+class Header:
+    """The mechanism as the programs and the manual see it: its names, units, the sketch's
+    scale and origin, its mobility, the sweep, its pairs, links and inputs."""
+
     linkgen_version: str
     name: str
     title: str
@@ -251,25 +248,19 @@ class StepLog:
     pairs: tuple[PairInfo, ...]
     links: tuple[LinkInfo, ...]
     inputs: tuple[InputInfo, ...]
+
+
+@dataclass(frozen=True)
+class Procedure:
+    """The systematic-analysis procedure that extraction finds: the records, the numbered
+    steps, the LJ-matrix, the Add-links, the residuals and the resolver groups."""
+
     variables: tuple[Variable, ...]
     steps: tuple[Step, ...]
     lj: LJMatrix
     add_links: tuple[AddLink, ...]
     residuals: tuple[Residual, ...]
     groups: tuple[ResolverGroup, ...]
-    columns: tuple[Column, ...]
-    status_codes: tuple[StatusCode, ...] = field(init=False)  # status_codes(): what each status means
-    runtime: tuple[str, ...] = field(init=False)  # runtime(): the runtime functions the programs need
-    policy: Policy
-    conditioning: tuple[Conditioning, ...] = ()
-    outputs: tuple[str, ...] = ()  # the outputs asked for (empty: the default set)
-    omitted: tuple[Omitted, ...] = ()  # steps left out: the outputs do not need them
-    reach: Reach | None = None  # one input: the input values reached from the sketch
-    gaps: tuple[Gap, ...] = ()  # one input: where each chain cannot close
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "status_codes", status_codes(self))
-        object.__setattr__(self, "runtime", runtime(self))
 
     def variable(self, name: str) -> Variable:
         return self._variables[name]
@@ -284,6 +275,27 @@ class StepLog:
     @functools.cached_property
     def _steps(self) -> dict[int, Step]:
         return {s.number: s for s in self.steps}
+
+
+@dataclass(frozen=True)
+class StepLog(Procedure, Header):
+    """The step log: the mechanism, its procedure, the columns of the outputs, the policy and
+    the motion facts, its fields in that order (a dataclass takes its bases' fields first, the
+    last base's first).  Status codes and runtime functions are made from the rest."""
+
+    columns: tuple[Column, ...]
+    status_codes: tuple[StatusCode, ...] = field(init=False)  # status_codes(): what each status means
+    runtime: tuple[str, ...] = field(init=False)  # runtime(): the runtime functions the programs need
+    policy: Policy
+    conditioning: tuple[Conditioning, ...] = ()
+    outputs: tuple[str, ...] = ()  # the outputs asked for (empty: the default set)
+    omitted: tuple[Omitted, ...] = ()  # steps left out: the outputs do not need them
+    reach: Reach | None = None  # one input: the input values reached from the sketch
+    gaps: tuple[Gap, ...] = ()  # one input: where each chain cannot close
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "status_codes", status_codes(self))
+        object.__setattr__(self, "runtime", runtime(self))
 
     def step_limits(self) -> tuple[float, ...]:
         """The continuation's largest step of each input: an angle's in radians, a length's
@@ -332,40 +344,6 @@ def runtime(log: StepLog) -> tuple[str, ...]:
     if log.reach is not None:
         names.add("reach_at")
     return tuple(sorted(names))
-
-
-def _reasons(s: Step) -> dict[int, str]:
-    """What each failure of a step means, by reason."""
-    if s.action == "resolve":
-        return {status.NOT_CONVERGED: "the resolver did not converge",
-                status.SINGULAR: "the resolver's Jacobian is singular",
-                status.NEAR_SINGULAR: "the resolver's Jacobian is near singular"}
-    if s.action == "residual":
-        return {status.SINGULAR: f"the pairs of {s.target} coincide, so the resolver has no rate"}
-    if s.function == "link_angle":
-        return {status.CANNOT_CLOSE: f"the two points of {s.target} coincide"}
-    return {status.CANNOT_CLOSE: "the chain cannot close", status.SINGULAR: "singular position (toggle)",
-            status.NEAR_SINGULAR: "near a singular position"}
-
-
-def status_codes(log: StepLog) -> tuple[StatusCode, ...]:
-    """Every status the log's programs can report, with its meaning, by step and reason: a
-    refused input, each failing step's reasons, and a resolver's limit positions of the reach."""
-    out = [StatusCode(status.code(0, status.BAD_INPUT), 0,
-                      f"step 0: an input is not finite (nan or inf) or larger than {log.policy.max_input!r} in size; "
-                      f"C only: `{log.name}_solve` returns `{log.name.upper()}_STATUS_BAD_INPUT`, Python and MATLAB "
-                      "refuse the call with an error")]
-    for s in log.steps:
-        if s.fails:
-            out += [StatusCode(status.code(s.number, r), s.number, f"step {s.number} ({s.target}): {meaning}")
-                    for r, meaning in _reasons(s).items()]
-    limits = {log.reach.low_step, log.reach.high_step} - {0} if log.reach is not None else set()
-    for number in sorted(limits):
-        s = log.step(number)
-        if s.action == "resolve":
-            out.append(StatusCode(status.code(number, status.CANNOT_CLOSE), number,
-                                  f"step {number} ({s.target}): cannot assemble past a limit position"))
-    return tuple(sorted(out, key=lambda c: (c.step, status.reason(c.code))))
 
 
 def _plain(obj: object) -> object:
