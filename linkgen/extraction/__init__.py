@@ -11,8 +11,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+from .. import steplog
 from ..errors import ProcedureError
-from ..steplog import AddLink, LJMatrix, Residual, ResolverGroup, Step, Variable
+from ..steplog import AddLink, LJMatrix
 from ..topology import Topology
 from .addlink import candidates, rank
 from .resolver import resolver_groups
@@ -23,16 +24,10 @@ __all__ = ["Procedure", "SolverState", "candidates", "extract", "stuck"]
 
 
 @dataclass(frozen=True)
-class Procedure:
-    """What extraction hands the step log: the numbered steps with their records, and where
-    the outputs are found."""
+class Procedure(steplog.Procedure):
+    """What extraction hands the step log: the procedure (the numbered steps with their
+    records, the log's own part), and where the outputs are found."""
 
-    variables: tuple[Variable, ...]
-    steps: tuple[Step, ...]
-    lj: LJMatrix
-    add_links: tuple[AddLink, ...]
-    residuals: tuple[Residual, ...]
-    groups: tuple[ResolverGroup, ...]
     positions: dict[str, str]  # pair/point -> POINT variable
     angles: dict[str, str]  # link -> ANGLE variable of its angle
     slides: dict[str, str]  # prismatic pair -> VARIABLE of its displacement
