@@ -1,0 +1,35 @@
+"""codes: what each status of a step log's programs means."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from linkgen.pipeline import build_log
+
+ROOT = Path(__file__).resolve().parents[2]
+FIG14 = ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"
+
+
+def test_each_failing_step_has_its_reasons():
+    """The six-bar of Fig. 14: a chain fails (1), is singular (3) or near it (4); the resolver
+    does not converge (2) or its Jacobian is (near) singular; a residual's pairs coincide (3); a
+    link angle's points coincide (1); and an input out of range is step 0's 5."""
+    log = build_log(str(FIG14), sweep=False)
+    reasons: dict[int, set[int]] = {}
+    for c in log.status_codes:
+        reasons.setdefault(c.step, set()).add(abs(c.code) % 10)
+    want = {"resolve": {2, 3, 4}, "residual": {3}, "link_angle": {1}, "RRR_links": {1, 3, 4}}
+    for s in log.steps:
+        kind = s.action if s.action in ("resolve", "residual") else s.function
+        if s.fails and kind in want:
+            assert reasons.pop(s.number) == want[kind], s
+    assert reasons == {0: {5}}
+    assert [c.step for c in log.status_codes] == sorted(c.step for c in log.status_codes)
+    assert all(c.meaning.startswith(f"step {c.step}") for c in log.status_codes)
+
+
+def test_a_resolver_limit_position_has_a_code_of_its_own():
+    """Rows past sixbar_partial's limit positions fail at the resolve step (9) with reason 1."""
+    log = build_log(str(ROOT / "tests" / "mechanisms" / "sixbar_partial.yaml"), sweep=False)
+    (code,) = [c for c in log.status_codes if c.code == 91]
+    assert log.step(9).action == "resolve" and code.meaning == "step 9 (group1): cannot assemble past a limit position"
