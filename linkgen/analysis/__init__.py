@@ -24,7 +24,8 @@ __all__ = ["Facts", "motion_facts", "with_facts"]
 
 @dataclass(frozen=True)
 class Facts:
-    """What the analysis finds (one input only, but for the conditioning)."""
+    """What the analysis finds: each chain's change points and gaps, and the reach (with one
+    input), and every step's conditioning over the sweep."""
 
     change_points: ChangePoints = ()
     gaps: tuple[Gap, ...] = ()
