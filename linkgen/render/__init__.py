@@ -68,30 +68,9 @@ def _banner(log: StepLog):
     return banner
 
 
-_MARKS = {"c": ("#if LINKGEN_ORDER >= 2", "#else", "#endif"), "py": ("# if order >= 2", "# else", "# endif"),
-          "m": ("% if order >= 2", "% else", "% endif")}
-
-
-def _runtime_source(lang: str, name: str, order: int) -> str:
-    """A runtime helper's source, its order-2 parts kept only for programs of order 2.
-
-    The marker lines (C: ``#if LINKGEN_ORDER >= 2`` / ``#else`` / ``#endif``; Python and
-    MATLAB: the same as comments) select the lines between them and are dropped.
-    """
-    text = resources.files("linkgen.runtime").joinpath(lang, name).read_text(encoding="utf-8")
-    start, other, end = _MARKS[lang]
-    out, keep = [], [True]
-    for line in text.splitlines(keepends=True):
-        mark = line.strip()
-        if mark == start:
-            keep.append(order >= 2)
-        elif mark == other:
-            keep[-1] = not keep[-1]
-        elif mark == end:
-            keep.pop()
-        elif all(keep):
-            out.append(line)
-    return "".join(out)
+def _runtime_source(lang: str, name: str) -> str:
+    """A runtime helper's source, as the evaluator runs it too (linkgen/runtime/<lang>/<name>)."""
+    return resources.files("linkgen.runtime").joinpath(lang, name).read_text(encoding="utf-8")
 
 
 def _used(view: View) -> list[str]:
@@ -108,13 +87,14 @@ def _c_files(view: View, banner) -> dict[str, bytes]:
     spell = C(view.record_order, log, view.measured)
     name, upper = log.name, log.name.upper()
     runtime = [c_function(PRIMITIVES[p], view.record_order) for p in _used(view)]
-    runtime.append(_runtime_source("c", "status.c", view.record_order))
+    runtime.append(_runtime_source("c", "status.c"))
     if "branch_at" in log.runtime:
-        runtime.append(_runtime_source("c", "branch.c", view.record_order))
+        runtime.append(_runtime_source("c", "branch.c"))
     if "reach_at" in log.runtime:
-        runtime.append(_runtime_source("c", "reach.c", view.record_order))
+        runtime.append(_runtime_source("c", "reach.c"))
     if view.groups:
-        runtime.append(_runtime_source("c", "resolver.c", view.record_order))
+        runtime.append(_runtime_source("c", "resolver.c"))
+        runtime.append(_runtime_source("c", "driver.c"))
     levels = ("P", "DP", "DDP")[: view.record_order + 1]
     record_fields = {
         "POINT": f"VEC2 {', '.join(levels)};",
@@ -159,13 +139,14 @@ def _py_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
     spell = Python(view.record_order, log, view.measured)
     runtime = [python_function(PRIMITIVES[p], view.record_order, with_sigma=True).rstrip("\n") for p in _used(view)]
-    runtime.append(_runtime_source("py", "status.py", view.record_order).rstrip("\n"))
+    runtime.append(_runtime_source("py", "status.py").rstrip("\n"))
     if "branch_at" in log.runtime:
-        runtime.append(_runtime_source("py", "branch.py", view.record_order).rstrip("\n"))
+        runtime.append(_runtime_source("py", "branch.py").rstrip("\n"))
     if "reach_at" in log.runtime:
-        runtime.append(_runtime_source("py", "reach.py", view.record_order).rstrip("\n"))
+        runtime.append(_runtime_source("py", "reach.py").rstrip("\n"))
     if view.groups:
-        runtime.append(_runtime_source("py", "resolver.py", view.record_order).rstrip("\n"))
+        runtime.append(_runtime_source("py", "resolver.py").rstrip("\n"))
+        runtime.append(_runtime_source("py", "driver.py").rstrip("\n"))
     order_of = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
                 "angular_acceleration": 2}
     values = [spell.published(cell.column) for cell in view.cells]
@@ -188,13 +169,14 @@ def _m_files(view: View, banner) -> dict[str, bytes]:
     log = view.log
     spell = Octave(view.record_order, log, view.measured)
     runtime = [octave_function(PRIMITIVES[p], view.record_order).rstrip("\n") for p in _used(view)]
-    runtime.append(_runtime_source("m", "status.m", view.record_order).rstrip("\n"))
+    runtime.append(_runtime_source("m", "status.m").rstrip("\n"))
     if "branch_at" in log.runtime:
-        runtime.append(_runtime_source("m", "branch.m", view.record_order).rstrip("\n"))
+        runtime.append(_runtime_source("m", "branch.m").rstrip("\n"))
     if "reach_at" in log.runtime:
-        runtime.append(_runtime_source("m", "reach.m", view.record_order).rstrip("\n"))
+        runtime.append(_runtime_source("m", "reach.m").rstrip("\n"))
     if view.groups:
-        runtime.append(_runtime_source("m", "resolver.m", view.record_order).rstrip("\n"))
+        runtime.append(_runtime_source("m", "resolver.m").rstrip("\n"))
+        runtime.append(_runtime_source("m", "driver.m").rstrip("\n"))
     level = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
              "angular_acceleration": 2}
     outputs = [{"name": spell.ident(o.name),
