@@ -27,7 +27,6 @@ from .steplog import Reach, ResolverGroup, Step, StepLog
 
 FAIL, NOT_CONVERGED, SINGULAR, NEAR = status.CANNOT_CLOSE, status.NOT_CONVERGED, status.SINGULAR, status.NEAR_SINGULAR
 BRANCH = "branch"  # env key (with a step number) of a chain's branch where it is not the sketch's
-RUNTIME = ("status.py", "branch.py", "reach.py", "resolver.py", "driver.py")
 
 Env = dict[Any, Any]  # variable -> record, (BRANCH, step) -> branch
 Report = dict[int, tuple[Any, Any]]  # step -> (status, sigma), in the order the steps ran
@@ -38,7 +37,7 @@ Call = Callable[[str, list[Any]], tuple[Any, Any, tuple[Any, ...]]]
 def runtime() -> dict[str, Any]:
     """The Python runtime's functions, as the generated module has them."""
     ns: dict[str, Any] = {"sqrt": math.sqrt, "floor": math.floor, "NAN": math.nan, "PI": math.pi}
-    for name in RUNTIME:
+    for name in ("status.py", "branch.py", "reach.py", "resolver.py", "driver.py"):
         source = resources.files("linkgen.runtime.py").joinpath(name).read_text(encoding="utf-8")
         exec(compile(source, f"<linkgen runtime {name}>", "exec"), ns)
     return ns
@@ -99,9 +98,9 @@ def branches(log: StepLog, env: Env, theta: Any) -> None:
             env[BRANCH, s.number] = _rows(runtime()["branch_at"], theta, b0, theta0, s.change_points, periodic)
 
 
-def reach_side(reach: Reach, theta: np.ndarray) -> np.ndarray:
-    """The runtime's reach_at for every row: 0 where the input value is reached from the
-    sketch, -1 past the gap below, 1 past the gap above."""
+def reach_side(reach: Reach, theta: Any) -> Any:
+    """The runtime's reach_at at an input value or every row of an array: 0 where it is
+    reached from the sketch, -1 past the gap below, 1 past the gap above."""
     low, high = (math.nan if x is None else x for x in (reach.low, reach.high))
     return np.asarray(_rows(runtime()["reach_at"], theta, low, high, reach.periodic), dtype=int)
 
@@ -151,10 +150,10 @@ class Result:
 
 
 def _input_env(log: StepLog, order: int, values: Any, rates: Any, accs: Any) -> Env:
-    """The constant records and the input records at ``order``."""
+    """The constant records and the input records at ``order`` (no inputs given: constants only)."""
     env: Env = {v.name: constant_record(v, order, log.origin) for v in log.variables if v.constant}
-    for i, inp in enumerate(log.inputs):
-        env[inp.variable] = (values[i], rates[i], accs[i])[: order + 1]
+    for inp, x, r, c in zip(log.inputs, values, rates, accs):
+        env[inp.variable] = (x, r, c)[: order + 1]
     return env
 
 
@@ -189,11 +188,10 @@ def _column(x: Any, rows: int) -> np.ndarray:
     return out
 
 
-def _pad(rec: tuple[float, ...], kind: str, order: int, live: bool) -> tuple[float, ...]:
-    """A record at ``order``: missing derivative fields are zero, and all of them when not live."""
+def _still(rec: tuple[float, ...], kind: str) -> tuple[float, ...]:
+    """A record with its derivatives zero."""
     width = 2 if kind == "POINT" else 1
-    full = list(rec) + [0.0] * (width * (order + 1) - len(rec))
-    return tuple(x if live or i < width else 0.0 for i, x in enumerate(full[: width * (order + 1)]))
+    return tuple(rec[:width]) + (0.0,) * (len(rec) - width)
 
 
 @dataclass
@@ -239,14 +237,24 @@ class RowSolver:
         self.pos = {v.entity: v.name for v in log.variables if v.role == "pair"}
         self.groups = {g.step: g for g in log.groups}
         self.slots = {g.number: k for k, g in enumerate(log.groups)}
-        self.first: dict[int, int] = {}
-        for g in log.groups:
-            self.first[g.number] = sum(1 + len(h.variants) for h in log.groups[: self.slots[g.number]])
+        counts = [1 + len(g.variants) for g in log.groups]
+        self.first = {g.number: sum(counts[:k]) for k, g in enumerate(log.groups)}
+        self.constants, self.inputs = _input_env(log, self.width, (), (), ()), [i.variable for i in log.inputs]
         inside = {n for g in log.groups for b in (g, *g.variants) for n in b.steps}
         self.steps = [s for s in log.steps
                       if s.action == "resolve" or (s.function and s.number not in inside and not s.variant)]
+        self.parts = {(b.number, b.variant): self._parts(b) for g in log.groups for b in (g, *g.variants)}
         self.its: list[int] = []
         self.last: Row | None = None
+
+    def _parts(self, b: ResolverGroup) -> tuple[list[Step], list[tuple[str, str]], list[int]]:
+        """A block's steps, the records they read from before the group (with their kinds)
+        and the steps whose conditioning its chains' is."""
+        steps = [self.log.step(n) for n in b.steps]
+        inner = set(b.writes) | set(b.add_links)
+        reads = sorted({a.var for st in steps for a in st.args if a.kind == "var" and a.var not in inner})
+        sigma = [s.number for s in steps if s.function and PRIMITIVES[s.function].sigma is not None]
+        return steps, [(name, self.kinds[name]) for name in reads], sigma
 
     def solve(self, values: Any, rates: Any, accs: Any, one_way: bool = False) -> Row:
         """Solve one row (see the runtime's drive); ``one_way``: the continuation takes the
@@ -272,29 +280,17 @@ class RowSolver:
         """One pass of the procedure (the generated _run), each block started from its state
         in ``a``; a and used are updated as the resolvers leave them.  Returns (status code,
         the block states' rates)."""
-        env = _input_env(self.log, self.width, inputs, rates, accs)
+        env = dict(self.constants)
+        for name, x, r, c in zip(self.inputs, inputs, rates, accs):
+            env[name] = (x, r, c)[: self.width + 1]
         branches(self.log, env, inputs[0] if inputs else 0.0)
         report: Report = {}
         ad = [[0.0] * len(s) for s in a]
         its = self.its if row else [0] * len(self.log.groups)
-        code = self._steps(env, report, order, a, ad, used, its, inputs)
-        if row:
-            self.last = Row(env, report, {}, code)
-        return code, ad
-
-    def _side(self, inputs: list[float]) -> int:
-        """The runtime's reach_at of the first input (0 without a reach)."""
-        r = self.log.reach
-        return 0 if r is None else int(reach_side(r, np.float64(inputs[0])))
-
-    def _steps(self, env: Env, report: Report, order: int, a: list[list[float]], ad: list[list[float]],
-               used: list[int], its: list[int], inputs: list[float]) -> int:
-        side = self._side(inputs)
-        if self.log.reach is not None and side:  # past a limit position: fails at once
-            code = self.log.reach.codes()[side > 0]
-            report[status.step(code)] = (FAIL, math.nan)
-            return int(code)
-        for step in self.steps:
+        side, reach = self._side(inputs), self.log.reach
+        if reach is not None and side:  # past a limit position: fails at once
+            report[status.step(reach.codes()[side > 0])] = (FAIL, math.nan)
+        for step in self.steps if not side else ():
             if step.action == "resolve":
                 if not self._resolve(self.groups[step.number], env, report, order, a, ad, used, its):
                     break
@@ -302,7 +298,14 @@ class RowSolver:
                 report.update(execute([step], env, self.call))
                 if report[step.number][0] == FAIL:
                     break
-        return int(row_status(report))
+        code = int(row_status(report))
+        if row:
+            self.last = Row(env, report, {}, code)
+        return code, ad
+
+    def _side(self, inputs: list[float]) -> int:
+        """The runtime's reach_at of the first input (0 without a reach)."""
+        return 0 if self.log.reach is None else int(reach_side(self.log.reach, inputs[0]))
 
     def _resolve(self, g: ResolverGroup, env: Env, report: Report, order: int, a: list[list[float]],
                  ad: list[list[float]], used: list[int], its: list[int]) -> bool:
@@ -314,7 +317,8 @@ class RowSolver:
                 env[BRANCH, bs.step] = -1 if a[first + j][len(b.add_links) + i] < 0 else 1
         last: Report = {}
         chains = [0.0]
-        fns = [self._group(b, env, last, chains) for b in blocks]
+        before = dict(env)
+        fns = [self._group(b, env, before, last, chains) for b in blocks]
 
         def lengths(states: list[list[float]], rates: list[list[float]]) -> None:
             for j, b in enumerate(blocks):
@@ -329,21 +333,20 @@ class RowSolver:
                           else NOT_CONVERGED, sigma)
         return bool(ok)
 
-    def _group(self, b: ResolverGroup, env: Env, last: Report, chains: list[float]) -> Callable[..., Any]:
+    def _group(self, b: ResolverGroup, env: Env, before: Env, last: Report, chains: list[float]) -> Callable[..., Any]:
         """The runtime's view of a block (the generated _group_N): (status, residual records)
         of its steps at Add-link lengths, rates and accelerations; live=False zeroes the rates
         of what it reads from before the group.  ``chains[0]``: the worst conditioning of the
         last pass's chains, from the block's lever down."""
-        steps = [self.log.step(n) for n in b.steps]
-        inner = set(b.writes) | set(b.add_links)
-        reads = {a.var for st in steps for a in st.args if a.kind == "var" and a.var not in inner}
-        padded = {live: {name: _pad(env[name], self.kinds[name], self.width, live) for name in reads}
-                  for live in (False, True)}
-        sigma_steps = [s.number for s in steps if s.function and PRIMITIVES[s.function].sigma is not None]
+        steps, reads, sigma_steps = self.parts[b.number, b.variant]
         width, call = self.width + 1, self.call
+        seen: dict[bool, Env] = {}
 
         def group(x: list[float], dx: list[float], ddx: list[float], live: bool) -> tuple[int, Any]:
-            env.update(padded[live])
+            if not seen:  # the records as the group found them (a block's pass leaves its reads still)
+                seen[True] = {name: before[name] for name, _ in reads}
+                seen[False] = {name: _still(before[name], kind) for name, kind in reads}
+            env.update(seen[live])
             for name, v, r, c in zip(b.add_links, x, dx, ddx):
                 env[name] = (v, r, c)[:width]
             last.clear()
@@ -379,16 +382,11 @@ def _evaluate_rows(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np
     solver.warm = warm
     rows: list[Row] = []
     warms: list[Any] = []
-    stopped = False
     for r in range(values.shape[0]):
-        if stopped:
-            failed = {n: rep for n, rep in rows[-1].report.items() if rep[0] in status.FAILED}
-            rows.append(Row({}, failed, {}, rows[-1].code))
-            warms.append(None)
-            continue
-        rows.append(solver.solve(values[r], rates[r], accs[r]))
-        warms.append(solver.warm)
-        stopped = bool(stop) and any(rep[0] in status.FAILED and n <= stop for n, rep in rows[-1].report.items())
+        failed = {n: rep for n, rep in rows[-1].report.items() if rep[0] in status.FAILED} if rows else {}
+        stopped = bool(stop) and any(n <= stop for n in failed)
+        rows.append(Row({}, failed, {}, rows[-1].code) if stopped else solver.solve(values[r], rates[r], accs[r]))
+        warms.append(None if stopped else solver.warm)
     nan = {v.name: (math.nan,) * len(record_fields(v.kind, order)) for v in log.variables}
     env = {name: tuple(np.array([row.env.get(name, nan[name])[i] for row in rows], dtype=float)
                        for i in range(len(nan[name])))
