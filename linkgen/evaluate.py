@@ -1,57 +1,52 @@
 """Stage 6: evaluate a step log in-process.
 
 Mechanisms without Add-links are evaluated for all rows at once with numpy.
-Mechanisms with Add-links are evaluated row by row, exactly as the generated
-programs do: the same scalar primitives, the same Newton resolver, warm-started
-from the previous row and, from a cold start, continued from the sketch with
-halved input steps where a direct step fails.
+Mechanisms with Add-links are evaluated row by row by the Python runtime the generated
+programs carry (linkgen/backends/py/runtime: the row driver, the resolver, branch_at, reach_at),
+run here on the step log: ``RowSolver`` gives the driver one pass of the procedure, whose
+calls the scalar primitives make, and the blocks' state reader.
 """
 
 from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 from importlib import resources
+from types import SimpleNamespace
+from typing import Any
 
 import numpy as np
 
 from . import status
 from .primitives import PRIMITIVES, numpy_backend, python_backend
 from .primitives.dsl import record_fields
-from .steplog import Reach, ResolverGroup, Step, StepLog, Variable, held
+from .primitives.interpret import constant_record
+from .steplog import Reach, ResolverGroup, Step, StepLog
 
 FAIL, NOT_CONVERGED, SINGULAR, NEAR = status.CANNOT_CLOSE, status.NOT_CONVERGED, status.SINGULAR, status.NEAR_SINGULAR
+BRANCH = "branch"  # env key (with a step number) of a chain's branch where it is not the sketch's
 
-
-def _record(kind: str, order: int, value: float, rate: float = 0.0, acc: float = 0.0, y: float = 0.0) -> tuple:
-    if kind == "POINT":
-        return (value, y, 0.0, 0.0, 0.0, 0.0)[: 2 * (order + 1)]
-    return (value, rate, acc)[: order + 1]
-
-
-def constant_record(v: Variable, order: int, origin: tuple[float, float]) -> tuple:
-    """A constant record as the programs hold it (points relative to ``origin``)."""
-    value = held(v, origin)
-    if v.kind == "POINT":
-        return _record("POINT", order, value[0], y=value[1])
-    return _record(v.kind, order, value[0])
+Env = dict[Any, Any]  # variable -> record, (BRANCH, step) -> branch
+Report = dict[int, tuple[Any, Any]]  # step -> (status, sigma), in the order the steps ran
+Call = Callable[[str, list[Any]], tuple[Any, Any, tuple[Any, ...]]]
 
 
 @functools.cache
-def _resolver_namespace() -> dict:
-    """The Python runtime's resolver and branch functions, as the generated module has them."""
-    ns: dict = {"sqrt": math.sqrt, "floor": math.floor, "NAN": math.nan, "PI": math.pi}
-    for name in ("resolver.py", "branch.py"):
+def runtime() -> dict[str, Any]:
+    """The Python runtime's functions, as the generated module has them."""
+    ns: dict[str, Any] = {"sqrt": math.sqrt, "floor": math.floor, "NAN": math.nan, "PI": math.pi}
+    for name in ("status.py", "branch.py", "reach.py", "resolver.py", "driver.py"):
         source = resources.files("linkgen.backends.py").joinpath("runtime").joinpath(name).read_text(encoding="utf-8")
         exec(compile(source, f"<linkgen runtime {name}>", "exec"), ns)
     return ns
 
 
-def _scalar_call(order: int):
+def _scalar_call(order: int) -> Call:
     fns = python_backend(order)
 
-    def call(name: str, args: list) -> tuple[int, float, tuple]:
+    def call(name: str, args: list[Any]) -> tuple[Any, Any, tuple[Any, ...]]:
         prim = PRIMITIVES[name]
         res = fns[name](*args)
         if prim.status is None:
@@ -63,18 +58,18 @@ def _scalar_call(order: int):
     return call
 
 
-def _numpy_call(order: int):
+def _numpy_call(order: int) -> Call:
     fns = numpy_backend(order)
 
-    def call(name: str, args: list) -> tuple:
+    def call(name: str, args: list[Any]) -> tuple[Any, Any, tuple[Any, ...]]:
         st, sigma, *outs = fns[name](*args)
         return st, sigma, tuple(outs)
 
     return call
 
 
-def _args(step: Step, env: dict) -> list:
-    out = []
+def _args(step: Step, env: Env) -> list[Any]:
+    out: list[Any] = []
     for a in step.args:
         if a.kind == "var":
             out.append(env[a.var])
@@ -85,32 +80,34 @@ def _args(step: Step, env: dict) -> list:
     return out
 
 
-BRANCH = "branch"  # env key (with a step number) of a chain's branch where it is not the sketch's
+def _rows(fn: Callable[..., Any], theta: Any, *args: Any) -> Any:
+    """A runtime function of the input value at one value, or at every row of an array."""
+    if np.ndim(theta) == 0:
+        return fn(float(theta), *args)
+    return np.array([fn(float(t), *args) for t in np.asarray(theta, dtype=float)])
 
 
-def branches(log: StepLog, env: dict, theta, scalar: bool) -> None:
-    """The branch of every chain with change points, at the first input's value(s) theta."""
+def branches(log: StepLog, env: Env, theta: Any) -> None:
+    """The branch of every chain with change points at the first input's value(s) theta
+    (the runtime's branch_at)."""
     periodic = log.inputs[0].kind == "revolute" if log.inputs else False
     theta0 = log.inputs[0].sketch if log.inputs else 0.0
     for s in log.steps:
-        if not s.change_points:
-            continue
-        b0 = next(int(a.value) for a in s.args if a.label == "minv")
-        if scalar:
-            env[BRANCH, s.number] = _resolver_namespace()["branch_at"](theta, b0, theta0, s.change_points, periodic)
-            continue
-        n = np.zeros_like(np.asarray(theta, dtype=float))
-        for p in s.change_points:
-            if periodic:
-                n = n + np.floor((theta - p) / (2 * np.pi)) - np.floor((theta0 - p) / (2 * np.pi))
-            else:
-                n = n + (theta >= p).astype(float) - float(theta0 >= p)
-        env[BRANCH, s.number] = np.where(n % 2 == 0, b0, -b0)
+        if s.change_points:
+            b0 = next(int(a.value) for a in s.args if a.label == "minv")
+            env[BRANCH, s.number] = _rows(runtime()["branch_at"], theta, b0, theta0, s.change_points, periodic)
 
 
-def execute(steps, env: dict, call) -> dict[int, tuple]:
+def reach_side(reach: Reach, theta: Any) -> Any:
+    """The runtime's reach_at at an input value or every row of an array: 0 where it is
+    reached from the sketch, -1 past the gap below, 1 past the gap above."""
+    low, high = (math.nan if x is None else x for x in (reach.low, reach.high))
+    return np.asarray(_rows(runtime()["reach_at"], theta, low, high, reach.periodic), dtype=int)
+
+
+def execute(steps: list[Step] | tuple[Step, ...], env: Env, call: Call) -> Report:
     """Run runtime calls in order; returns {step number: (status, sigma)}."""
-    report = {}
+    report: Report = {}
     for step in steps:
         if not step.function:
             continue
@@ -121,23 +118,18 @@ def execute(steps, env: dict, call) -> dict[int, tuple]:
     return report
 
 
-class Codes:
-    """Row status from step reports: first failure, else first singular, else first near-singular."""
-
-    def __init__(self, rows: int):
-        self.fail = np.zeros(rows, dtype=int)
-        self.singular = np.zeros(rows, dtype=int)
-        self.near = np.zeros(rows, dtype=int)
-
-    def add(self, number: int, reported) -> None:
-        st = np.asarray(reported)
-        for target, codes in ((self.fail, (FAIL, NOT_CONVERGED)), (self.singular, (SINGULAR,)), (self.near, (NEAR,))):
-            hit = np.isin(st, codes) & (target == 0)
-            target[hit] = np.abs(status.code(number, st * np.ones_like(target)))[hit]
-
-    def status(self) -> np.ndarray:
-        return np.where(self.fail > 0, self.fail,
-                        np.where(self.singular > 0, self.singular, -np.where(self.near > 0, self.near, 0)))
+def row_status(report: Report) -> Any:
+    """The programs' row status from the steps' reports in the order they ran: the first
+    failure's code, else the first singular step's, else the first near-singular one's
+    (negative).  Works on one row (ints) and on arrays of rows alike."""
+    fail: Any = 0
+    singular: Any = 0
+    near: Any = 0
+    for n, (st, _) in report.items():
+        fail = fail + (fail == 0) * ((st == FAIL) | (st == NOT_CONVERGED)) * status.code(n, st)
+        singular = singular + (singular == 0) * (st == SINGULAR) * status.code(n, st)
+        near = near + (near == 0) * (st == NEAR) * status.code(n, st)
+    return fail + (fail == 0) * (singular + (singular == 0) * near)
 
 
 def input_rows(log: StepLog, samples: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -150,24 +142,23 @@ def input_rows(log: StepLog, samples: int) -> tuple[np.ndarray, np.ndarray, np.n
 @dataclass
 class Result:
     inputs: np.ndarray  # rows x inputs
-    values: dict[str, tuple]  # variable -> tuple of arrays (rows), as computed: points relative to the origin
+    values: dict[str, tuple[np.ndarray, ...]]  # variable -> its fields per row (points relative to the origin)
     status: np.ndarray
     sigma: dict[int, np.ndarray]  # step -> conditioning per row
     iterations: dict[int, np.ndarray] = field(default_factory=dict)  # group -> Newton steps per row
-    warm: list = field(default_factory=list)  # resolver warm start after each row (None where it failed)
+    warm: list[Any] = field(default_factory=list)  # resolver warm start after each row (None where it failed)
 
 
-def _input_record(log: StepLog, i: int, order: int, value, rate, acc) -> tuple:
-    kind = "ANGLE" if log.inputs[i].kind == "revolute" else "VARIABLE"
-    return _record(kind, order, value, rate, acc)
-
-
-def _base_env(log: StepLog, order: int) -> dict:
-    return {v.name: constant_record(v, order, log.origin) for v in log.variables if v.constant}
+def _input_env(log: StepLog, order: int, values: Any, rates: Any, accs: Any) -> Env:
+    """The constant records and the input records at ``order`` (no inputs given: constants only)."""
+    env: Env = {v.name: constant_record(v, order, log.origin) for v in log.variables if v.constant}
+    for inp, x, r, c in zip(log.inputs, values, rates, accs):
+        env[inp.variable] = (x, r, c)[: order + 1]
+    return env
 
 
 def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarray, order: int | None = None,
-             warm=None, stop: int = 0) -> Result:
+             warm: Any = None, stop: int = 0) -> Result:
     """Evaluate the procedure at rows of input values, rates and accelerations.
 
     With resolvers the rows are solved in order, the first from ``warm`` (a previous
@@ -177,340 +168,230 @@ def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarr
     order = log.order if order is None else order
     if log.groups:
         return _evaluate_rows(log, values, rates, accs, order, warm, stop)
-    env = _base_env(log, order)
-    for i, inp in enumerate(log.inputs):
-        env[inp.variable] = _input_record(log, i, order, values[:, i], rates[:, i], accs[:, i])
-    branches(log, env, values[:, 0] if log.inputs else 0.0, scalar=False)
+    env = _input_env(log, order, values.T, rates.T, accs.T)
+    branches(log, env, values[:, 0] if log.inputs else 0.0)
     with np.errstate(all="ignore"):
         report = execute(log.steps, env, _numpy_call(order))
-    result = _finish(log, values, env, report, order)
+    rows = values.shape[0]
+    result = Result(values, {name: tuple(_column(x, rows) for x in rec) for name, rec in env.items()
+                             if isinstance(name, str)},
+                    np.broadcast_to(np.asarray(row_status(report), dtype=int), (rows,)).copy(),
+                    {n: _column(s, rows) for n, (_, s) in report.items()})
     if log.reach is not None:
         side = reach_side(log.reach, values[:, 0])
         result.status[side < 0], result.status[side > 0] = log.reach.codes()
     return result
 
 
-def reach_side(reach: Reach, theta: np.ndarray) -> np.ndarray:
-    """The runtime's reach_at for every row: 0 where the input value is reached from the
-    sketch, -1 past the gap below, 1 past the gap above."""
-    low = np.nan if reach.low is None else reach.low
-    high = np.nan if reach.high is None else reach.high
-    if reach.periodic:
-        t = theta - 2 * np.pi * np.floor((theta - low) / (2 * np.pi))
-        return np.where(t < high, 0, np.where(t - high <= low + 2 * np.pi - t, 1, -1))
-    return np.where(theta <= low, -1, np.where(theta >= high, 1, 0))
+def _column(x: Any, rows: int) -> np.ndarray:
+    out: np.ndarray = np.broadcast_to(np.asarray(x, dtype=float), (rows,)).copy()
+    return out
 
 
-def _finish(log: StepLog, values: np.ndarray, env: dict, report: dict, order: int,
-            iterations: dict | None = None) -> Result:
-    rows = values.shape[0]
-    codes = Codes(rows)
-    for number in sorted(report):
-        codes.add(number, report[number][0])
-    status = codes.status()
-    out = {}
-    for name, rec in env.items():
-        out[name] = tuple(np.broadcast_to(np.asarray(x, dtype=float), (rows,)).copy() for x in rec)
-    sigma = {n: np.broadcast_to(np.asarray(s, dtype=float), (rows,)).copy() for n, (_, s) in report.items()}
-    return Result(values, out, status, sigma, iterations or {})
-
-
-def _pad(rec: tuple, kind: str, order: int, live: bool) -> tuple:
-    """A record at ``order``: missing derivative fields are zero, and all of them when not live."""
+def _still(rec: tuple[float, ...], kind: str) -> tuple[float, ...]:
+    """A record with its derivatives zero."""
     width = 2 if kind == "POINT" else 1
-    full = list(rec) + [0.0] * (width * (order + 1) - len(rec))
-    return tuple(x if live or i < width else 0.0 for i, x in enumerate(full[: width * (order + 1)]))
+    return tuple(rec[:width]) + (0.0,) * (len(rec) - width)
 
 
 @dataclass
-class Pass:
-    report: dict
-    env: dict
-    solutions: list  # per resolver block (a group or one of its variants): Add-link lengths
-    rates: list  # their rates
-    used: dict  # group -> the variant that solved it
-    iterations: dict  # group -> Newton steps
-    failed_group: int  # the group whose resolver failed (0: none)
+class Row:
+    """One row (or pass) as the row driver left it: the records, each step's (status, sigma)
+    in the order the steps ran, the Newton steps per group and the row's status code."""
+
+    env: Env
+    report: Report
+    iterations: dict[int, int]
+    code: int
 
     @property
     def ok(self) -> bool:
-        return not self.failed_group and all(st != FAIL for st, _ in self.report.values())
+        """Whether the row has outputs (a singular position has its positions)."""
+        return not status.failed(self.code)
 
 
-def _block_state(env: dict, pos: dict[str, str], block: ResolverGroup, start: list, turn: int) -> tuple[list, list]:
-    """A block's state read off a solved configuration, with its rates: the Add-link lengths
-    (link_residual against a zero length, as the generated programs measure them), the
-    branches of its chains (rate 0; a sign of zero keeps the branch of ``start``), then its
-    orientation ``turn`` (the sign of its Jacobian's determinant where it solved, else 0)."""
-    call = _scalar_call(1)
-    a, ad = [], []
-    for k, u in block.pairs:
-        _, _, (f,) = call("link_residual", [env[pos[k]][:4], env[pos[u]][:4], (0.0, 0.0)])
-        a.append(f[0])
-        ad.append(f[1])
-    n = len(block.pairs)
-    for j, b in enumerate(block.branches):
-        p = [env[v] for v in b.points]
-        if b.kind == "side":
-            m = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0])
-        else:
-            t = env[b.angle][0]
-            m = (p[1][0] - p[0][0]) * math.cos(t) + (p[1][1] - p[0][1]) * math.sin(t)
-        a.append(1.0 if m > 0 else -1.0 if m < 0 else start[n + j])
-        ad.append(0.0)
-    return a + [float(turn)], ad + [0.0]
+def mechanism(log: StepLog, one_way: bool = False) -> SimpleNamespace:
+    """What the runtime's row driver needs of the mechanism (the generated programs' MECHANISM);
+    ``one_way``: no input is taken as an angle, so the continuation goes the straight way only."""
+    blocks = [b for g in log.groups for b in (g, *g.variants)]
+    return SimpleNamespace(
+        length_scale=log.length_scale, sketch_inputs=tuple(i.sketch for i in log.inputs),
+        sketch_a=tuple(b.start() for b in blocks), sizes=tuple(len(b.add_links) for b in blocks),
+        limits=log.step_limits(), periodic=tuple(i.kind == "revolute" and not one_way for i in log.inputs),
+        low=math.nan if log.reach is None or log.reach.low is None else log.reach.low, groups=len(log.groups),
+        another=status.code(log.groups[0].step, NOT_CONVERGED) if log.groups else 0, not_converged=NOT_CONVERGED)
 
 
 class RowSolver:
-    """The generated programs' solve(): one row at a time, with warm starts.
-
-    Each resolver group has blocks: the chosen Add-link candidate and its fallbacks.
-    The block that solved the previous row is tried first, then the others in rank
-    order; every block's Add-link lengths are then measured on the solved pairs, so
-    any of them can start the next row.
-    """
+    """The generated programs' solve(): the runtime's row driver, one row at a time with warm
+    starts (``warm``: the driver's, None without one), on the step log.  ``halvings`` is the
+    continuation's (the policy's unless set)."""
 
     def __init__(self, log: StepLog, order: int):
-        self.log = log
-        self.order = order
-        self.ns = _resolver_namespace()
+        self.log, self.order, self.width = log, order, max(order, 1)  # records carry rates: the Jacobian's
+        self.call = _scalar_call(self.width)
+        self.warm: Any = None
+        self.halvings = log.policy.max_halvings
+        self.mech, self.straight = mechanism(log), mechanism(log, one_way=True)
         self.kinds = {v.name: v.kind for v in log.variables}
         self.pos = {v.entity: v.name for v in log.variables if v.role == "pair"}
-        self.blocks = [b for g in log.groups for b in (g, *g.variants)]
-        self.warm = None  # (inputs, rates, block states, their rates, used variants)
-        self.sketch_in = tuple(i.sketch for i in log.inputs)
-        self.sketch_a = [b.start() for b in self.blocks]
-        self.halvings = log.policy.max_halvings
-        self.sizes = [len(b.add_links) for b in self.blocks]
-        self.slack = log.policy.path_slack * log.length_scale
-        self.reach = log.policy.max_move * log.length_scale
-        self.periodic = [i.kind == "revolute" for i in log.inputs]
-        self.limits = list(log.step_limits())
-        self.low = math.nan if log.reach is None or log.reach.low is None else log.reach.low
+        self.groups = {g.step: g for g in log.groups}
+        self.slots = {g.number: k for k, g in enumerate(log.groups)}
+        counts = [1 + len(g.variants) for g in log.groups]
+        self.first = {g.number: sum(counts[:k]) for k, g in enumerate(log.groups)}
+        self.constants, self.inputs = _input_env(log, self.width, (), (), ()), [i.variable for i in log.inputs]
+        inside = {n for g in log.groups for b in (g, *g.variants) for n in b.steps}
+        self.steps = [s for s in log.steps
+                      if s.action == "resolve" or (s.function and s.number not in inside and not s.variant)]
+        self.parts = {(b.number, b.variant): self._parts(b) for g in log.groups for b in (g, *g.variants)}
+        self.its: list[int] = []
+        self.last: Row | None = None
 
-    def run(self, values, rates, accs, order: int, start: list, prefer: dict) -> Pass:
-        """One pass of the whole procedure, each resolver block started from ``start``."""
-        call = _scalar_call(order)
-        env = _base_env(self.log, order)
-        for i, inp in enumerate(self.log.inputs):
-            env[inp.variable] = _input_record(self.log, i, order, values[i], rates[i], accs[i])
-        branches(self.log, env, values[0] if len(values) else 0.0, scalar=True)
-        n = len(self.blocks)
-        out = Pass({}, env, [None] * n, [None] * n, {}, {}, 0)
-        if self.log.reach is not None:
-            side = int(reach_side(self.log.reach, np.array([values[0]]))[0])
-            if side:  # past a limit position: fails at once
-                code = self.log.reach.codes()[side > 0]
-                out.report[status.step(code)] = (FAIL, math.nan)
-                return out
-        groups = {g.step: g for g in self.log.groups}
-        inside = {n for b in self.blocks for n in b.steps}
-        for step in self.log.steps:
+    def _parts(self, b: ResolverGroup) -> tuple[list[Step], list[tuple[str, str]], list[int]]:
+        """A block's steps, the records they read from before the group (with their kinds)
+        and the steps whose conditioning its chains' is."""
+        steps = [self.log.step(n) for n in b.steps]
+        inner = set(b.writes) | set(b.add_links)
+        reads = sorted({a.var for st in steps for a in st.args if a.kind == "var" and a.var not in inner})
+        sigma = [s.number for s in steps if s.function and PRIMITIVES[s.function].sigma is not None]
+        return steps, [(name, self.kinds[name]) for name in reads], sigma
+
+    def solve(self, values: Any, rates: Any, accs: Any, one_way: bool = False) -> Row:
+        """Solve one row (see the runtime's drive); ``one_way``: the continuation takes the
+        straight path only, never the other way round (the build's search for limit positions)."""
+        p = self.log.policy
+        if self.halvings != p.max_halvings:
+            p = replace(p, max_halvings=self.halvings)
+        x, d, dd = ([float(v) for v in seq] for seq in (values, rates, accs))
+        self.its = [0] * len(self.log.groups)
+        past = self._side(x) != 0
+        code, self.warm = runtime()["drive"](self.run, self.warm, x, d, dd, self.order, past,
+                                             self.straight if one_way else self.mech, p)
+        row = self.last
+        assert row is not None
+        if code != row.code:  # solvable on another assembly only
+            n = status.step(code)
+            row.report[n], row.code = (status.reason(code), row.report[n][1]), code
+        row.iterations = {g.number: its for g, its in zip(self.log.groups, self.its)}
+        return row
+
+    def run(self, inputs: list[float], rates: list[float], accs: list[float], order: int, a: list[list[float]],
+            used: list[int], row: bool) -> tuple[int, list[list[float]]]:
+        """One pass of the procedure (the generated _run), each block started from its state
+        in ``a``; a and used are updated as the resolvers leave them.  Returns (status code,
+        the block states' rates)."""
+        env = dict(self.constants)
+        for name, x, r, c in zip(self.inputs, inputs, rates, accs):
+            env[name] = (x, r, c)[: self.width + 1]
+        branches(self.log, env, inputs[0] if inputs else 0.0)
+        report: Report = {}
+        ad = [[0.0] * len(s) for s in a]
+        its = self.its if row else [0] * len(self.log.groups)
+        side, reach = self._side(inputs), self.log.reach
+        if reach is not None and side:  # past a limit position: fails at once
+            report[status.step(reach.codes()[side > 0])] = (FAIL, math.nan)
+        for step in self.steps if not side else ():
             if step.action == "resolve":
-                g = groups[step.number]
-                if not self.resolve(g, out, order, start, prefer.get(g.number, 0)):
-                    out.report[step.number] = (NOT_CONVERGED, 0.0)
-                    out.failed_group = g.number
-                    return out
-            elif step.function and step.number not in inside and not step.variant:
-                out.report.update(execute([step], env, call))
-                if out.report[step.number][0] == FAIL:
-                    return out
-        return out
+                if not self._resolve(self.groups[step.number], env, report, order, a, ad, used, its):
+                    break
+            else:
+                report.update(execute([step], env, self.call))
+                if report[step.number][0] == FAIL:
+                    break
+        code = int(row_status(report))
+        if row:
+            self.last = Row(env, report, {}, code)
+        return code, ad
 
-    def resolve(self, g: ResolverGroup, out: Pass, order: int, start: list, prefer: int) -> bool:
-        """The group's blocks, the preferred one first: the first that converges with its chains
-        conditioned at least the policy's ``min_chain_sigma`` is taken, else the best conditioned one that
-        converges (a later one only when more than twice as well conditioned); then every
-        block's state is read off the solved pairs."""
-        first = self.blocks.index(g)
-        count = 1 + len(g.variants)
-        before = dict(out.env)
+    def _side(self, inputs: list[float]) -> int:
+        """The runtime's reach_at of the first input (0 without a reach)."""
+        return 0 if self.log.reach is None else int(reach_side(self.log.reach, inputs[0]))
 
-        def attempt(k: int):
-            out.env.clear()
-            out.env.update(before)
-            return self._newton(self.blocks[first + k], out, order, start[first + k])
+    def _resolve(self, g: ResolverGroup, env: Env, report: Report, order: int, a: list[list[float]],
+                 ad: list[list[float]], used: list[int], its: list[int]) -> bool:
+        """The group's resolver step through the runtime's resolve_group; the report gets the
+        last pass of the block that solved, then the step's own status."""
+        first, blocks = self.first[g.number], (g, *g.variants)
+        for j, b in enumerate(blocks):
+            for i, bs in enumerate(b.branches):
+                env[BRANCH, bs.step] = -1 if a[first + j][len(b.add_links) + i] < 0 else 1
+        last: Report = {}
+        chains = [0.0]
+        before = dict(env)
+        fns = [self._group(b, env, before, last, chains) for b in blocks]
 
-        def take(k: int, finish) -> bool:
-            done = finish()
-            if done is None:
-                return False
-            out.used[g.number] = k
-            out.report[g.step], turn = done
-            for j in range(count):
-                b = self.blocks[first + j]
-                out.solutions[first + j], out.rates[first + j] = _block_state(out.env, self.pos, b, start[first + j],
-                                                                              turn if j == k else 0)
-            return True
+        def lengths(states: list[list[float]], rates: list[list[float]]) -> None:
+            for j, b in enumerate(blocks):
+                states[first + j], rates[first + j] = self._state(env, b, states[first + j])
 
-        best: tuple[float, int] | None = None  # the best of the converged blocks with poorly conditioned chains
-        for k in [prefer] + [k for k in range(count) if k != prefer]:
-            solved = attempt(k)
-            if solved is None:
-                continue
-            if solved[0] < self.log.policy.min_chain_sigma:
-                if best is None or solved[0] > 2 * best[0]:
-                    best = (solved[0], k)
-                continue
-            if take(k, solved[1]):
-                return True
-        if best is None:
-            return False
-        solved = attempt(best[1])
-        return solved is not None and take(best[1], solved[1])
+        p = self.log.policy
+        ok, sigma = runtime()["resolve_group"](fns, lengths, a, ad, first, self.slots[g.number], used, its, order,
+                                               lambda: chains[0], self.mech, p)
+        if ok:
+            report.update(last)
+        report[g.step] = ((SINGULAR if sigma < p.singular else NEAR if sigma < p.near_singular else 0) if ok
+                          else NOT_CONVERGED, sigma)
+        return bool(ok)
 
-    def _newton(self, g: ResolverGroup, out: Pass, order: int, a0: list[float]):
-        """Newton on one block's Add-links from its state a0 (lengths, then branches), with
-        the velocity channel at least, for the Jacobian.  None when it does not converge, else
-        (the worst conditioning of the block's chains there, finish) where finish() computes
-        the exact rates and returns the resolver's (status, sigma), or None when a chain fails."""
-        env = out.env
-        n = len(g.add_links)
-        for j, b in enumerate(g.branches):
-            env[BRANCH, b.step] = int(a0[n + j])
-        inner = max(order, 1)
-        call = _scalar_call(inner)
-        steps = [self.log.step(n) for n in g.steps]
-        inner_vars = set(g.writes) | set(g.add_links)
-        reads = {a.var: env[a.var] for st in steps for a in st.args if a.kind == "var" and a.var not in inner_vars}
-        last: dict[int, tuple] = {}
+    def _group(self, b: ResolverGroup, env: Env, before: Env, last: Report, chains: list[float]) -> Callable[..., Any]:
+        """The runtime's view of a block (the generated _group_N): (status, residual records)
+        of its steps at Add-link lengths, rates and accelerations; live=False zeroes the rates
+        of what it reads from before the group.  ``chains[0]``: the worst conditioning of the
+        last pass's chains, from the block's lever down."""
+        steps, reads, sigma_steps = self.parts[b.number, b.variant]
+        width, call = self.width + 1, self.call
+        seen: dict[bool, Env] = {}
 
-        padded = {live: {name: _pad(rec, self.kinds[name], inner, live) for name, rec in reads.items()}
-                  for live in (False, True)}
-
-        def group(a, live):
-            env.update(padded[live])
-            for name, rec in zip(g.add_links, a):
-                env[name] = tuple(rec[: inner + 1])
+        def group(x: list[float], dx: list[float], ddx: list[float], live: bool) -> tuple[int, Any]:
+            if not seen:  # the records as the group found them (a block's pass leaves its reads still)
+                seen[True] = {name: before[name] for name, _ in reads}
+                seen[False] = {name: _still(before[name], kind) for name, kind in reads}
+            env.update(seen[live])
+            for name, v, r, c in zip(b.add_links, x, dx, ddx):
+                env[name] = (v, r, c)[:width]
             last.clear()
             last.update(execute(steps, env, call))
-            bad = any(st == FAIL for st, _ in last.values())
-            return (1 if bad else 0), [env[f] for f in g.residuals]
+            if any(st == FAIL for st, _ in last.values()):
+                return 1, None
+            chains[0] = min([b.lever, *(last[n][1] for n in sigma_steps)])
+            return 0, [env[f] for f in b.residuals]
 
-        scale = self.log.length_scale
-        p = self.log.policy
-        ok, a, its, jac = self.ns["newton"](group, list(a0[:n]), p.tolerance * scale, p.max_iterations,
-                                            p.max_move * scale)
-        out.iterations[g.number] = its
-        if not ok:
-            return None
-        worst = min([g.lever, *(sigma for _, sigma in last.values())])
+        return group
 
-        def finish():
-            st, sigma, turn = self.ns["addlink_rates"](group, a, jac, order)
-            if st == FAIL:
-                return None
-            width = {"POINT": 2}
-            for name in list(g.writes) + list(g.add_links) + list(reads):
-                env[name] = env[name][: width.get(self.kinds[name], 1) * (order + 1)]
-            out.report.update(last)
-            return (SINGULAR if sigma < p.singular else NEAR if sigma < p.near_singular else 0, sigma), turn
-
-        return worst, finish
-
-    def solve(self, values, rates, accs, one_way: bool = False) -> Pass:
-        """Solve one row on the sketch's assembly: from the previous row when it was solved and
-        no input has moved farther than a continuation step (Taylor-predicted start), else by
-        continuation from the previous row or, without one, from the sketch.  A row past the
-        reach fails at once.  ``one_way``: the continuation takes the straight path only, never
-        the other way round (the build's search for limit positions)."""
-        if self.log.reach is not None and reach_side(self.log.reach, np.array([values[0]]))[0]:
-            self.warm = None
-            return self.run(values, rates, accs, self.order, self.sketch_a, {})
-        if self.warm is not None:
-            w_in, w_rates, a, ad, used = self.warm
-            if self.ns["within"](values, w_in, self.limits):
-                start = self.ns["predict"]((w_in, w_rates, a, ad), values, self.sizes)
-                out = self.run(values, rates, accs, self.order, start, used)
-                if out.ok and self.ns["on_path"](a, start, out.solutions, self.sizes, self.slack):
-                    self._remember(values, rates, out)
-                    return out
-                if not out.ok and out.failed_group == 0:
-                    self.warm = None
-                    return out
-            base, base_a, prefer = w_in, a, used
-        else:
-            base, base_a, prefer = self.sketch_in, self.sketch_a, {}
-        path = lambda x, d, o, s: self._path_run(x, d, o, s, prefer)  # noqa: E731
-        states = [list(b) for b in base_a]
-        if one_way:
-            a = self.ns["walk"](path, list(base), states, list(values), self.limits, self.halvings, self.sizes,
-                                self.slack, self.reach)
-        else:
-            a = self.ns["continuation"](path, list(base), states, list(values), self.limits, self.periodic,
-                                        self.halvings, self.sizes, self.slack, self.reach, self.low)
-        if a is None:
-            self.warm = None
-            out = self.run(values, rates, accs, self.order, base_a, prefer)
-            if out.ok:  # solvable only on another assembly: not the sketch's
-                out.report[self.log.groups[0].step] = (NOT_CONVERGED, 0.0)
-                out.failed_group = self.log.groups[0].number
-            return out
-        out = self.run(values, rates, accs, self.order, a, prefer)
-        if out.ok:
-            self._remember(values, rates, out)
-        else:
-            self.warm = None
-        return out
-
-    def _remember(self, values, rates, out: Pass) -> None:
-        self.warm = (tuple(values), tuple(rates), out.solutions, out.rates, dict(out.used))
-
-    def _path_run(self, inputs, rates, order, a, prefer):
-        """The continuation's view of a pass: (ok, lengths, their rates along the path)."""
-        out = self.run(inputs, rates, [0.0] * len(inputs), order, a, prefer)
-        if not out.ok:
-            return False, None, None
-        return True, out.solutions, out.rates
+    def _state(self, env: Env, b: ResolverGroup, old: list[float]) -> tuple[list[float], list[float]]:
+        """A block's state and its rates read off a solved configuration (the generated
+        _lengths_N): its Add-link lengths (link_residual against a zero length), the branches
+        of its chains (rate 0; a sign of zero keeps the old one), then its orientation (0)."""
+        zero = (0.0,) * (self.width + 1)
+        f = [self.call("link_residual", [env[self.pos[k]], env[self.pos[u]], zero])[2][0] for k, u in b.pairs]
+        n, signs = len(b.pairs), []
+        for j, bs in enumerate(b.branches):
+            q = [env[v] for v in bs.points]
+            if bs.kind == "side":
+                m = (q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0])
+            else:
+                t = env[bs.angle][0]
+                m = (q[1][0] - q[0][0]) * math.cos(t) + (q[1][1] - q[0][1]) * math.sin(t)
+            signs.append(1.0 if m > 0 else -1.0 if m < 0 else old[n + j])
+        return [r[0] for r in f] + signs + [0.0], [r[1] for r in f] + [0.0] * (len(signs) + 1)
 
 
-def _evaluate_rows(log: StepLog, values, rates, accs, order: int, warm, stop: int) -> Result:
+def _evaluate_rows(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarray, order: int, warm: Any,
+                   stop: int) -> Result:
     solver = RowSolver(log, max(order, 1))  # the resolver's rates start the next row at every order
     solver.warm = warm
-    rows = values.shape[0]
-    envs, reports, warms, its = [], [], [], {g.number: np.zeros(rows, dtype=int) for g in log.groups}
-    stopped, failed = False, {}
-    for r in range(rows):
-        if stopped:
-            envs.append({})
-            reports.append(failed)
-            warms.append(None)
-            continue
-        row = solver.solve(values[r], rates[r], accs[r])
-        envs.append(row.env)
-        reports.append(row.report)
-        warms.append(solver.warm)
-        failed = {n: rep for n, rep in row.report.items() if rep[0] in (FAIL, NOT_CONVERGED)}
+    rows: list[Row] = []
+    warms: list[Any] = []
+    for r in range(values.shape[0]):
+        failed = {n: rep for n, rep in rows[-1].report.items() if rep[0] in status.FAILED} if rows else {}
         stopped = bool(stop) and any(n <= stop for n in failed)
-        for g, n in row.iterations.items():
-            its[g][r] = n
+        rows.append(Row({}, failed, {}, rows[-1].code) if stopped else solver.solve(values[r], rates[r], accs[r]))
+        warms.append(None if stopped else solver.warm)
     nan = {v.name: (math.nan,) * len(record_fields(v.kind, order)) for v in log.variables}
-    env = {}
-    for name in sorted(nan):
-        recs = [e.get(name, nan[name]) for e in envs]
-        env[name] = tuple(np.array([rec[i] for rec in recs], dtype=float) for i in range(len(nan[name])))
-    numbers = {n for rep in reports for n in rep}
-    report = {
-        n: (np.array([rep.get(n, (0, math.nan))[0] for rep in reports]),
-            np.array([rep.get(n, (0, math.nan))[1] for rep in reports], dtype=float))
-        for n in sorted(numbers)
-    }
-    result = _finish(log, values, env, report, order, its)
-    result.warm = warms
-    return result
-
-
-def residual_norm(variables: dict[str, Variable], steps: list[Step], inputs: list[str], values: tuple[float, ...],
-                  residuals: list[str], origin: tuple[float, float]) -> float | None:
-    """|f| with every Add-link at its sketch length (the paper's ranking of candidates)."""
-    env = {v.name: constant_record(v, 0, origin) for v in variables.values() if v.constant}
-    for name, value in zip(inputs, values):
-        env[name] = (value,)
-    for v in variables.values():
-        if v.role == "addlink":
-            env[v.name] = (v.sketch[0],)
-    report = execute(steps, env, _scalar_call(0))
-    if any(st == FAIL for st, _ in report.values()):
-        return None
-    return math.sqrt(sum(env[f][0] ** 2 for f in residuals))
+    env = {name: tuple(np.array([row.env.get(name, nan[name])[i] for row in rows], dtype=float)
+                       for i in range(len(nan[name])))
+           for name in sorted(nan)}
+    numbers = sorted({n for row in rows for n in row.report})
+    sigma = {n: np.array([row.report.get(n, (0, math.nan))[1] for row in rows], dtype=float) for n in numbers}
+    its = {g.number: np.array([row.iterations.get(g.number, 0) for row in rows], dtype=int) for g in log.groups}
+    return Result(values, env, np.array([row.code for row in rows], dtype=int), sigma, its, warms)

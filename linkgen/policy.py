@@ -12,6 +12,10 @@ from dataclasses import dataclass
 RESOLVER_TOLERANCE = 1e-10  # relative to the length scale; one Newton step is taken past it
 RESOLVER_MAX_ITERATIONS = 8
 CONTINUATION_HALVINGS = 20
+NEWTON_HALVINGS = 3  # a Newton step that makes a chain fail to close is halved this often, then the block fails
+WALK_PASSES = 1000  # a continuation walk gives up after this many passes of the procedure
+PATH_SHARE = 0.1  # a solution may sit off the predicted path by this share of the largest predicted move
+TURN_SHARE = 0.01  # ... and by this share where a block's orientation turned (a singular position crossed)
 RESOLVER_MAX_MOVE = 0.1  # relative to the length scale: farther from the start lengths is another assembly
 RESOLVER_MIN_CHAIN_SIGMA = 0.05  # below it, a block's Add-links are a poor coordinate of the assembly
 STEP_ANGLE = 0.1  # continuation: the largest step of an angle input (radians)
@@ -47,8 +51,12 @@ class Policy:
     toggle_slack: float  # a chain's closing factor in [-toggle_slack eps x, 0) is a toggle, not a failure
     good_lever: float  # a block whose lever is below this ranks after the others
     max_input: float  # the largest input, rate or acceleration a program accepts, in size
+    newton_halvings: int  # a Newton step that makes a chain fail to close is halved at most this often
+    walk_passes: int  # a continuation walk gives up after this many passes of the procedure
+    path_share: float  # a solution may sit off the predicted path by this share of the largest predicted move
+    turn_share: float  # ... by this share where a block's orientation turned (it crossed a singular position)
 
 
 POLICY = Policy(RESOLVER_TOLERANCE, RESOLVER_MAX_ITERATIONS, CONTINUATION_HALVINGS, RESOLVER_MAX_MOVE,
                 RESOLVER_MIN_CHAIN_SIGMA, STEP_ANGLE, STEP_LENGTH, PATH_SLACK, NEAR_SINGULAR, SINGULAR, TOGGLE_SLACK,
-                GOOD_LEVER, MAX_MAGNITUDE)
+                GOOD_LEVER, MAX_MAGNITUDE, NEWTON_HALVINGS, WALK_PASSES, PATH_SHARE, TURN_SHARE)

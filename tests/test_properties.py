@@ -1147,7 +1147,7 @@ def test_needle_lever_makes_a_block_yield(tmp_path):
     log = build_log(str(tmp_path / "triad_needle.yaml"), outputs=(), sweep=False)
     blocks = [b for g in log.groups for b in (g, *g.variants)]
     assert min(b.lever for b in blocks) < 1e-8 and max(b.lever for b in blocks) == 1.0
-    assert all(blocks[w[4][1]].lever == 1.0 for w in result.warm), "a needle block gave a row"
+    assert all(blocks[w[4][0]].lever == 1.0 for w in result.warm), "a needle block gave a row"
     _assert_on_reference(names, data, ref, values)
 
 

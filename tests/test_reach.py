@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 import subprocess
 import sys
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -20,8 +21,9 @@ import sketches as sk
 from programs import CFLAGS, ROOT, SAMPLES, build, need
 from reference import MP, Reference
 
-from linkgen.evaluate import RowSolver, _resolver_namespace, evaluate, input_rows
+from linkgen.evaluate import RowSolver, evaluate, input_rows, runtime
 from linkgen.pipeline import build_log
+from linkgen.policy import POLICY
 
 MECHANISMS = SAMPLES + sorted((ROOT / "tests" / "mechanisms").glob("*.yaml"))
 PARTIAL = ROOT / "tests" / "mechanisms" / "sixbar_partial.yaml"  # a crank that meets two limit positions
@@ -171,20 +173,19 @@ def test_every_status_of_a_sweep_is_in_the_manual():
 
 
 def test_walk_gives_up_after_its_passes():
-    """The continuation's walk stops after WALK_PASSES passes, and at once where its path needs
-    more steps than that (a sliding input 1e30 away): a build sweeping a huge range ends."""
-    ns = _resolver_namespace()
+    """The continuation's walk stops after the policy's walk_passes passes, and at once where its
+    path needs more steps than that (a sliding input 1e30 away): a build sweeping a huge range ends."""
     calls = []
 
     def run(inputs, rates, order, a):
         calls.append(inputs[0])
         return True, a, [[0.0, 0.0]]
 
-    limit, passes = 0.05, ns["WALK_PASSES"]
-    assert passes == 1000
+    limit, passes = 0.05, POLICY.walk_passes
+    mechanism = SimpleNamespace(length_scale=1.0, limits=[limit], sizes=[1])
     for steps, reached, count in ((512, True, 513), (passes, False, passes), (1e30, False, 0)):
         calls.clear()
-        out = ns["walk"](run, [0.0], [[1.0, 0.0]], [steps * limit], [limit], 20, [1], 1e-7, 0.1)
+        out = runtime()["walk"](run, [0.0], [[1.0, 0.0]], [steps * limit], mechanism, POLICY)
         assert (out is not None, len(calls)) == (reached, count)
 
 

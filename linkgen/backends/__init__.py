@@ -52,33 +52,17 @@ class Words:
 
 @dataclass(frozen=True)
 class Runtime:
-    """Hand-written runtime sources (status, branch, reach, resolver), pasted into the programs.
-
-    Marker lines select a source's order-2 parts: the lines between ``marks[0]`` and
-    ``marks[1]`` (or ``marks[2]``) only in programs of order 2, those between ``marks[1]``
-    and ``marks[2]`` only below; the markers themselves are dropped."""
+    """Hand-written runtime sources (status, branch, reach, resolver, driver), pasted into the
+    programs as they are; the evaluator runs the Python ones."""
 
     package: str  # the package whose folder holds them
     folder: str
     suffix: str  # of each source's file name: .c
-    marks: tuple[str, str, str]  # if order >= 2, else, end
 
-    def source(self, name: str, order: int) -> str:
-        """The source ``name`` (status, branch, reach, resolver) for a program of ``order``."""
+    def source(self, name: str) -> str:
+        """The source ``name`` (status, branch, reach, resolver, driver)."""
         path = resources.files(self.package).joinpath(self.folder).joinpath(name + self.suffix)
-        start, other, end = self.marks
-        out, keep = [], [True]
-        for line in path.read_text(encoding="utf-8").splitlines(keepends=True):
-            mark = line.strip()
-            if mark == start:
-                keep.append(order >= 2)
-            elif mark == other:
-                keep[-1] = not keep[-1]
-            elif mark == end:
-                keep.pop()
-            elif all(keep):
-                out.append(line)
-        return "".join(out)
+        return path.read_text(encoding="utf-8")
 
 
 @dataclass(frozen=True)

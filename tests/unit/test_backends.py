@@ -60,7 +60,7 @@ def test_a_backend_has_its_readme_templates_and_runtime(backend: Backend):
     if backend.runtime is not None:
         assert backend.runtime.package == f"linkgen.backends.{backend.name}"
         sources = {p.name for p in (FOLDER / backend.name / backend.runtime.folder).iterdir() if p.is_file()}
-        assert sources == {f"{s}{backend.runtime.suffix}" for s in ("status", "branch", "reach", "resolver")}
+        assert sources == {f"{s}{backend.runtime.suffix}" for s in ("status", "branch", "reach", "resolver", "driver")}
 
 
 @pytest.fixture(scope="module")
@@ -86,7 +86,7 @@ def test_a_backend_writes_its_files_each_with_the_banner_in_its_comment_syntax(b
 @pytest.mark.parametrize("backend", [b for b in backends() if b.runtime], ids=lambda b: b.name)
 def test_a_program_carries_its_runtime_and_printed_primitives(backend: Backend):
     assert backend.runtime is not None and backend.printer is not None
-    pasted = {"status": 0, "branch": 0, "reach": 0, "resolver": 0}
+    pasted = {"status": 0, "branch": 0, "reach": 0, "resolver": 0, "driver": 0}
     for path in MECHANISMS:
         view = build_view(build_log(str(path), None, None))
         program = b"".join(render_backend(backend, view).values()).decode("utf-8")
@@ -95,7 +95,7 @@ def test_a_program_carries_its_runtime_and_printed_primitives(backend: Backend):
         for p in used:
             assert backend.printer(PRIMITIVES[p], view.record_order).strip() in program, p
         for source in pasted:
-            if backend.runtime.source(source, view.record_order).strip() in program:
+            if backend.runtime.source(source).strip() in program:
                 pasted[source] += 1
     assert all(pasted.values()), pasted
 

@@ -13,7 +13,7 @@ from .words import WORDS
 if TYPE_CHECKING:
     from ...render.view import View
 
-RUNTIME = Runtime(__name__, "runtime", ".c", ("#if LINKGEN_ORDER >= 2", "#else", "#endif"))
+RUNTIME = Runtime(__name__, "runtime", ".c")
 
 
 def render(view: View, spell: C, template: Template) -> dict[str, bytes]:

@@ -13,7 +13,7 @@ from .words import WORDS
 if TYPE_CHECKING:
     from ...render.view import View
 
-RUNTIME = Runtime(__name__, "runtime", ".m", ("% if order >= 2", "% else", "% endif"))
+RUNTIME = Runtime(__name__, "runtime", ".m")
 
 
 def render(view: View, spell: Octave, template: Template) -> dict[str, bytes]:

@@ -14,7 +14,7 @@ from .words import WORDS
 if TYPE_CHECKING:
     from ...render.view import View
 
-RUNTIME = Runtime(__name__, "runtime", ".py", ("# if order >= 2", "# else", "# endif"))
+RUNTIME = Runtime(__name__, "runtime", ".py")
 
 
 def python_text(text: str) -> str:

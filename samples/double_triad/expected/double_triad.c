@@ -165,11 +165,43 @@ static int reason_of(int code)
 }
 
 /* Over-constraint resolver: Newton-Raphson on the Add-link lengths.
- * group(ctx, a, live, f) runs the steps of one resolver group with the Add-link
- * records a and writes the residual records f; live == 0 zeroes the rates of
- * everything the group reads, so a unit Add-link rate gives one exact Jacobian
- * column through the velocity channel.  Returns 1 when a chain cannot close. */
-typedef int (*group_fn)(void *ctx, const VARIABLE a[], int live, VARIABLE f[]);
+ * group(ctx, a, da, dda, live, f, df, ddf) runs the steps of one resolver group with the
+ * Add-link lengths a, their rates da and accelerations dda, and writes the residuals f and
+ * their rates df and accelerations ddf (those of the program's order); live == 0 zeroes
+ * the rates of everything the group reads, so a unit Add-link rate gives one exact
+ * Jacobian column through the velocity channel.  Returns 1 when a chain cannot close. */
+typedef int (*group_fn)(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
+                        double df[], double ddf[]);
+
+/* Every block's state and its rates read off the solved pairs (the blocks of one group). */
+typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
+
+/* The resolver policy (linkgen/policy.py, as the step log has it); lengths relative to the length scale. */
+typedef struct {
+    double tolerance;     /* Newton stops once every residual is at most this, after one step more */
+    int max_iterations;   /* Newton steps at most */
+    int newton_halvings;  /* a Newton step that makes a chain fail to close is halved at most this often */
+    double max_move;      /* a solution farther from its start is another assembly; a continuation step's limit */
+    double min_chain_sigma;  /* a block whose chains are worse conditioned yields to a better one */
+    int max_halvings;     /* a continuation step is halved at most this often in a row */
+    double path_slack;    /* how far a solution may sit off the predicted path beyond its share of the move */
+    double path_share;    /* ... its share of the largest predicted move */
+    double turn_share;    /* ... where a block's orientation turned */
+    int walk_passes;      /* a continuation walk gives up after this many passes */
+} resolver_policy;
+
+/* What the resolver and the row driver need of the mechanism. */
+typedef struct {
+    double length_scale;
+    const double *sketch_in;  /* the sketch's inputs */
+    const double (*sketch_a)[LINKGEN_NMAX];  /* per block: lengths, branches, orientation in the sketch */
+    const int *sizes;  /* Add-links of each block */
+    const double *limits;  /* the continuation's largest step of each input */
+    const int *periodic;  /* angle inputs: the continuation goes the shorter way round */
+    double low;  /* where the reach of an angle input starts (nan: no reach) */
+    int another;  /* the code of a row solvable on another assembly only */
+    int not_converged;  /* a row failed with this reason is followed from the last one */
+} resolver_mechanism;
 
 /* Solve m x = b (n <= LINKGEN_NMAX) by Gaussian elimination with partial pivoting; returns det(m). */
 static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b[], double x[])
@@ -209,16 +241,14 @@ static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b
 /* Residuals and Jacobian at a, one pass per Add-link; returns 1 when a chain cannot close. */
 static int jacobian(group_fn group, void *ctx, int n, const double a[], double f[], double jac[][LINKGEN_NMAX])
 {
-    VARIABLE rec[LINKGEN_NMAX], res[LINKGEN_NMAX];
+    double unit[LINKGEN_NMAX], zero[LINKGEN_NMAX], res[LINKGEN_NMAX], dres[LINKGEN_NMAX], ddres[LINKGEN_NMAX];
     int i, j;
+    for (i = 0; i < LINKGEN_NMAX; i++) unit[i] = zero[i] = 0.0;
     for (j = 0; j < n; j++) {
-        for (i = 0; i < n; i++) {
-            rec[i].v = a[i];
-            rec[i].dv = (i == j) ? 1.0 : 0.0;
-            rec[i].ddv = 0.0;
-        }
-        if (group(ctx, rec, 0, res)) return 1;
-        for (i = 0; i < n; i++) { f[i] = res[i].v; jac[i][j] = res[i].dv; }
+        unit[j] = 1.0;
+        if (group(ctx, a, unit, zero, 0, res, dres, ddres)) return 1;
+        unit[j] = 0.0;
+        for (i = 0; i < n; i++) { f[i] = res[i]; jac[i][j] = dres[i]; }
     }
     return 0;
 }
@@ -237,12 +267,12 @@ static double conditioning(int n, const double jac[][LINKGEN_NMAX], double det)
 }
 
 /* Iterate the Add-link lengths until max|f| <= tol, then one step more.  A step
- * that makes a chain fail to close is halved (up to 3 times; then the block
+ * that makes a chain fail to close is halved (up to halvings times; then the block
  * fails and the next block is tried).  A solution farther than reach from the
  * start is another assembly and refused.  Returns 1 on success with jac the
  * Jacobian at the returned a. */
 static int newton(group_fn group, void *ctx, int n, double a[], double tol, int max_iter, double reach,
-                  double jac[][LINKGEN_NMAX], int *iterations)
+                  int halvings, double jac[][LINKGEN_NMAX], int *iterations)
 {
     double start[LINKGEN_NMAX];
     double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], dx[LINKGEN_NMAX], trial[LINKGEN_NMAX], rhs[LINKGEN_NMAX];
@@ -257,7 +287,7 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
         *iterations = it;
         for (i = 0; i < n; i++) rhs[i] = -f[i];
         if (solve_linear(n, (const double (*)[LINKGEN_NMAX])jac, rhs, dx) == 0.0) return 0;
-        for (halving = 0; halving < 4; halving++) {
+        for (halving = 0; halving <= halvings; halving++) {
             for (i = 0; i < n; i++) trial[i] = a[i] + t * dx[i];
             if (!jacobian(group, ctx, n, trial, f2, jac2)) { closed = 1; break; }
             t /= 2;
@@ -290,52 +320,45 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
 static int addlink_rates(group_fn group, void *ctx, int n, const double a[], const double jac[][LINKGEN_NMAX],
                          int order, double *sigma, double *turn)
 {
-    VARIABLE rec[LINKGEN_NMAX], res[LINKGEN_NMAX];
-    double rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], det;
+    double zero[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
+    double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], det;
     int i;
-    memset(rec, 0, sizeof rec);  /* entries past n are never read; zeroed for the compiler's sake */
-    memset(rhs, 0, sizeof rhs);
-    for (i = 0; i < n; i++) {
-        rec[i].v = a[i];
-        rec[i].dv = 0.0;
-        rec[i].ddv = 0.0;
-    }
-    group(ctx, rec, 1, res);
-    for (i = 0; i < n; i++) rhs[i] = -res[i].dv;
+    for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
+    group(ctx, a, zero, zero, 1, f, df, ddf);
+    for (i = 0; i < n; i++) rhs[i] = -df[i];
     det = solve_linear(n, jac, rhs, rates);
-    for (i = 0; i < n; i++) rec[i].dv = rates[i];
     if (order >= 2) {
-        double accs[LINKGEN_NMAX];
-        group(ctx, rec, 1, res);
-        for (i = 0; i < n; i++) rhs[i] = -res[i].ddv;
+        group(ctx, a, rates, zero, 1, f, df, ddf);
+        for (i = 0; i < n; i++) rhs[i] = -ddf[i];
         solve_linear(n, jac, rhs, accs);
-        for (i = 0; i < n; i++) rec[i].ddv = det != 0.0 ? accs[i] : NAN;
+        for (i = 0; i < n; i++) accs[i] = det != 0.0 ? accs[i] : NAN;
     }
     *sigma = conditioning(n, jac, det);
     *turn = det > 0.0 ? 1.0 : det < 0.0 ? -1.0 : 0.0;
-    return group(ctx, rec, 1, res);
+    return group(ctx, a, rates, accs, 1, f, df, ddf);
 }
 
 /* Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
  * preferred block first, the others in order.  The first that converges with its chains
- * conditioned at least min_sigma (*chains: the worst of the last pass, from the block's
- * lever down) is kept; else the best conditioned of those that converge, a later block
+ * conditioned at least p->min_chain_sigma (*chains: the worst of the last pass, from the
+ * block's lever down) is kept; else the best conditioned of those that converge, a later block
  * only when more than twice as well conditioned (a block whose chains are near a toggle
  * is a poor coordinate of the assembly; blocks that share that chain tie up to rounding,
- * and the order, not the rounding, decides).  a[k] holds block k's start lengths; the caller then
- * measures every block's state on the solved pairs.  Returns the block, or -1 when none
- * converges; *turn is its orientation (see addlink_rates). */
+ * and the order, not the rounding, decides).  a[k] holds block k's start lengths; scale is
+ * the length scale.  Returns the block, or -1 when none converges; *turn is its
+ * orientation (see addlink_rates). */
 static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
-                            double tol, int max_iter, double reach, int order, int prefer, int *its, double *sigma,
-                            double *turn, const double *chains, double min_sigma)
+                            int order, int prefer, int *its, double *sigma, double *turn, const double *chains,
+                            const resolver_policy *p, double scale)
 {
+    const double tol = p->tolerance * scale, reach = p->max_move * scale;
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
     int t, k, i, best = -1;
     for (t = 0; t < count; t++) {
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
-        if (!newton(fns[k], ctx, sizes[k], x, tol, max_iter, reach, jac, its)) continue;
-        if (*chains < min_sigma) {
+        if (!newton(fns[k], ctx, sizes[k], x, tol, p->max_iterations, reach, p->newton_halvings, jac, its)) continue;
+        if (*chains < p->min_chain_sigma) {
             if (*chains > 2.0 * best_sigma) {
                 best_sigma = *chains;
                 best = k;
@@ -347,28 +370,82 @@ static int resolve_variants(const group_fn fns[], const int sizes[], int count, 
     }
     if (best < 0) return -1;
     for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
-    if (newton(fns[best], ctx, sizes[best], x, tol, max_iter, reach, jac, its)
+    if (newton(fns[best], ctx, sizes[best], x, tol, p->max_iterations, reach, p->newton_halvings, jac, its)
         && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
         return best;
     return -1;
 }
 
+/* One resolver step: resolve_variants on the count blocks of a group, a[first] on (the one
+ * that solved the last row, *used, first); then lengths() reads every block's state and its
+ * rates off the solved pairs (so any of them can start the next row) and the solving block
+ * keeps its orientation.  Returns 1 when a block solved, with *used that block. */
+static int resolve_group(const group_fn fns[], int count, lengths_fn lengths, void *ctx, double a[][LINKGEN_NMAX],
+                         double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma,
+                         const double *chains, int order, const resolver_mechanism *m, const resolver_policy *p)
+{
+    double turn = 0.0;
+    const int k = resolve_variants(fns, m->sizes + first, count, ctx, a + first, order, *used, its, sigma, &turn,
+                                   chains, p, m->length_scale);
+    if (k < 0) return 0;
+    *used = k;
+    lengths(ctx, a + first, ad + first);
+    a[first + k][LINKGEN_NMAX - 1] = turn;
+    return 1;
+}
+
+/* The row driver: one row of a sweep solved on the sketch's assembly, from the previous
+ * row where it can (Taylor-predicted start), else by continuation from the previous row or
+ * from the sketch.  run(ctx, row, in, din, ddin, order, a, ad, used) is one pass of the
+ * procedure with the block states a and the preferred blocks used (both updated in place to
+ * the solution) and writes the block states' rates into ad; row says whether the pass is the
+ * row's own (else one along a continuation path).  Returns the status code. */
+typedef int (*pass_fn)(void *ctx, int row, const double in[], const double din[], const double ddin[], int order,
+                       double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int used[]);
+
+/* The warm start a caller keeps between rows: whether it holds a solved row, its inputs and
+ * their rates, its block states and their rates, and the blocks that solved it. */
+typedef struct {
+    int *valid;
+    double *in, *din;
+    double (*a)[LINKGEN_NMAX], (*ad)[LINKGEN_NMAX];
+    int *used;
+} resolver_warm;
+
+/* A continuation's view of the procedure: passes along the path, the blocks tried first. */
+typedef struct {
+    pass_fn run;
+    void *ctx;
+    const int *prefer;
+} resolver_path;
+
+/* One pass along a continuation path (rates per unit of the path, no accelerations):
+ * returns 1 when it closes, with the block states a and their rates. */
+static int path_pass(const resolver_path *path, const double in[], const double din[], int order,
+                     double a[][LINKGEN_NMAX], double rates[][LINKGEN_NMAX])
+{
+    static const double zero[LINKGEN_NINPUTS] = { 0.0 };
+    int used[LINKGEN_NGROUPS], g;
+    for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = path->prefer[g];
+    return path->run(path->ctx, 0, in, din, zero, order, a, rates, used) <= 0;
+}
+
 /* Whether a solved state is where the predictor pointed from prev: no block's Add-link
- * length moved from the guess by more than a tenth of the largest predicted move (plus
+ * length moved from the guess by more than p->path_share of the largest predicted move (plus
  * slack); a larger correction is a jump to another assembly, or a step too long for the
  * curve.  A block that solved both and turned its orientation (the state's last entry,
  * after its sizes[k] lengths and its branches; 0 where the block did not solve) has passed
- * a singular position.  Where two assemblies pass close the nearer one can lie within the
- * tenth, so a turned block must be within a hundredth: the path crosses the singular
+ * a singular position.  Where two assemblies pass close the nearer one can lie within that
+ * share, so a turned block must be within p->turn_share: the path crosses the singular
  * position along its tangent, as a mechanism goes straight through a change point. */
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
-                   const double now[][LINKGEN_NMAX], const int sizes[], double slack)
+                   const double now[][LINKGEN_NMAX], const int sizes[], double slack, const resolver_policy *p)
 {
-    double move = 0.0, share = 0.1;
+    double move = 0.0, share = p->path_share;
     int g, i;
     for (g = 0; g < LINKGEN_NBLOCKS; g++) {
         for (i = 0; i < sizes[g]; i++) move = fmax(move, fabs(guess[g][i] - prev[g][i]));
-        if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = 0.01;
+        if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
     }
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < sizes[g]; i++)
@@ -402,34 +479,30 @@ static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_
 /* Resolver start values for new inputs: the warm states advanced along their rates
  * (first-order Taylor in the warm row's input direction; the rates exist at every
  * order, so the positions do not depend on the order computed). */
-static void predict(const double w_in[], const double w_din[], const double w_a[][LINKGEN_NMAX],
-                    const double w_ad[][LINKGEN_NMAX], const double in[], const int sizes[],
-                    double a[][LINKGEN_NMAX])
+static void predict(const resolver_warm *warm, const double in[], const int sizes[], double a[][LINKGEN_NMAX])
 {
     double num = 0.0, den = 0.0;
     int i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
-        num += (in[i] - w_in[i]) * w_din[i];
-        den += w_din[i] * w_din[i];
+        num += (in[i] - warm->in[i]) * warm->din[i];
+        den += warm->din[i] * warm->din[i];
     }
-    advance(w_a, w_ad, den > 0.0 ? num / den : 0.0, sizes, a);
+    advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad,
+            den > 0.0 ? num / den : 0.0, sizes, a);
 }
 
-/* One pass of the procedure along a continuation path: returns 1 when it closes,
- * with the Add-link lengths a (in: start values) and their rates along the path. */
-typedef int (*path_fn)(void *ctx, const double in[], const double din[], int order, double a[][LINKGEN_NMAX],
-                       double rates[][LINKGEN_NMAX]);
-
-/* A walk gives up after this many passes of the procedure. */
-#define LINKGEN_WALK_PASSES 1000
-
-/* Continuation along the straight path from base to goal (see continuation).  Near a
- * singular position the lengths' rates are large and the steps short (the prediction
- * holds only there); a step that makes no progress in floating point cuts the path, and
- * so do LINKGEN_WALK_PASSES passes (at once where the path needs more steps than that). */
-static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double goal[],
-                const double limits[], int halvings, const int sizes[], double slack, double reach)
+/* Continuation along the straight path from base to goal.  Each step moves no input by
+ * more than its limit (m->limits) and no Add-link length, as predicted, by more than
+ * p->max_move of the length scale; it starts Newton from the tangent predictor and is
+ * halved where Newton fails or lands off the path (see on_path), up to p->max_halvings
+ * times in a row.  Near a singular position the lengths' rates are large and the steps
+ * short (the prediction holds only there); a step that makes no progress in floating point
+ * cuts the path, and so do p->walk_passes passes (at once where the path needs more steps
+ * than that).  Returns 1 with a the block states at goal, 0 where the path is cut. */
+static int walk(const resolver_path *path, const double base[], double a[][LINKGEN_NMAX], const double goal[],
+                const resolver_mechanism *m, const resolver_policy *p)
 {
+    const double slack = p->path_slack * m->length_scale, reach = p->max_move * m->length_scale;
     double d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS], start[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double now[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
@@ -437,29 +510,29 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
     int g, i, cuts = 0, passes = 1;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         d[i] = goal[i] - base[i];
-        if (d[i] != 0.0) h_max = fmin(h_max, limits[i] / fabs(d[i]));
+        if (d[i] != 0.0) h_max = fmin(h_max, m->limits[i] / fabs(d[i]));
     }
-    if (h_max * LINKGEN_WALK_PASSES < 1.0) return 0;
+    if (h_max * p->walk_passes < 1.0) return 0;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) start[g][i] = a[g][i];
-    if (!run(ctx, base, d, 1, start, rate)) return 0;
+    if (!path_pass(path, base, d, 1, start, rate)) return 0;
     h = h_max;
     while (t < 1.0) {
         double tt;
-        if (passes++ == LINKGEN_WALK_PASSES) return 0;
+        if (passes++ == p->walk_passes) return 0;
         fast = 0.0;
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < sizes[g]; i++) fast = fmax(fast, fabs(rate[g][i]));
+            for (i = 0; i < m->sizes[g]; i++) fast = fmax(fast, fabs(rate[g][i]));
         if (fast * h > reach) h = reach / fast;
         tt = fmin(1.0, t + h);
         if (tt == t) return 0;
         for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
-        advance((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])rate, tt - t, sizes, guess);
+        advance((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])rate, tt - t, m->sizes, guess);
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
             for (i = 0; i < LINKGEN_NMAX; i++) now[g][i] = guess[g][i];
-        if (run(ctx, trial, d, 1, now, rate2)
+        if (path_pass(path, trial, d, 1, now, rate2)
             && on_path((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])guess,
-                       (const double (*)[LINKGEN_NMAX])now, sizes, slack)) {
+                       (const double (*)[LINKGEN_NMAX])now, m->sizes, slack, p)) {
             t = tt;
             h = fmin(2.0 * h, h_max);
             cuts = 0;
@@ -467,7 +540,7 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
                 for (i = 0; i < LINKGEN_NMAX; i++) { start[g][i] = now[g][i]; rate[g][i] = rate2[g][i]; }
         } else {
             h /= 2.0;
-            if (++cuts > halvings) return 0;
+            if (++cuts > p->max_halvings) return 0;
         }
     }
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
@@ -477,40 +550,118 @@ static int walk(path_fn run, void *ctx, const double base[], double a[][LINKGEN_
 
 /* Follow the assembly from inputs base (solved with block states a) to target.  Angle
  * inputs go the shorter way round, else the other way; where the one input is an angle
- * with a reach (the values it reaches from the sketch, modulo whole turns, from low up; low
- * is nan without one; base and target are inside it), it goes the one way round that stays
- * inside the reach.  A step moves no input by more than its limit and no Add-link length,
- * as predicted, by more than reach; it starts Newton from the tangent predictor and is
- * halved where Newton fails or lands off the path (see on_path), up to halvings times in a
- * row.  Returns 1 with a the block states at target, 0 when the way (both ways without a
- * reach) is cut. */
-static int continuation(path_fn run, void *ctx, const double base[], double a[][LINKGEN_NMAX], const double target[],
-                        const double limits[], const int periodic[], int halvings, const int sizes[], double slack,
-                        double reach, double low)
+ * with a reach (the values it reaches from the sketch, modulo whole turns, from m->low up;
+ * m->low is nan without one; base and target are inside it), it goes the one way round that
+ * stays inside the reach.  Returns 1 with a the block states at target, 0 when the way
+ * (both ways without a reach) is cut. */
+static int continuation(const resolver_path *path, const double base[], double a[][LINKGEN_NMAX],
+                        const double target[], const resolver_mechanism *m, const resolver_policy *p)
 {
     const double two_pi = 2.0 * 3.141592653589793;
     double goal[LINKGEN_NINPUTS], other[LINKGEN_NINPUTS];
     int i, differs = 0;
-    if (periodic[0] && !isnan(low)) {
+    if (m->periodic[0] && !isnan(m->low)) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) goal[i] = target[i];
-        goal[0] = base[0] + (target[0] - two_pi * floor((target[0] - low) / two_pi))
-                  - (base[0] - two_pi * floor((base[0] - low) / two_pi));
-        return walk(run, ctx, base, a, goal, limits, halvings, sizes, slack, reach);
+        goal[0] = base[0] + (target[0] - two_pi * floor((target[0] - m->low) / two_pi))
+                  - (base[0] - two_pi * floor((base[0] - m->low) / two_pi));
+        return walk(path, base, a, goal, m, p);
     }
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
-        goal[i] = periodic[i] ? target[i] - two_pi * floor((target[i] - base[i]) / two_pi + 0.5) : target[i];
+        goal[i] = m->periodic[i] ? target[i] - two_pi * floor((target[i] - base[i]) / two_pi + 0.5) : target[i];
         other[i] = goal[i];
-        if (periodic[i] && goal[i] != base[i]) {
+        if (m->periodic[i] && goal[i] != base[i]) {
             other[i] = goal[i] > base[i] ? goal[i] - two_pi : goal[i] + two_pi;
             differs = 1;
         }
     }
-    if (walk(run, ctx, base, a, goal, limits, halvings, sizes, slack, reach)) return 1;
-    return differs && walk(run, ctx, base, a, other, limits, halvings, sizes, slack, reach);
+    if (walk(path, base, a, goal, m, p)) return 1;
+    return differs && walk(path, base, a, other, m, p);
 }
 
-/* Length scale of the sketch: the largest distance between two of its pairs or points. */
-static const double LENGTH_SCALE = 331.436268383531;
+/* Solve one row on the sketch's assembly.  From the warm start (the previous row) when no
+ * input has moved farther than a continuation step: the resolvers start where the block
+ * states' rates point, and the row is taken when it solves on that path (see on_path).
+ * Else, or where that fails at a resolver or lands off the path, the assembly is followed by
+ * continuation from the previous row (or, without one, from the sketch) and the row solved
+ * from there; where the way is cut but the row solves all the same it is on another
+ * assembly only, and gets the code m->another.  A row past the reach (past) fails at once.
+ * The warm start becomes this row's where it solved.  Returns the status code. */
+static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const resolver_policy *p, int past,
+                 const double in[], const double din[], const double ddin[], int order, const resolver_warm *warm)
+{
+    double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double ad[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    int used[LINKGEN_NGROUPS];
+    int code = 0, solved = 0, g, i;
+    for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = m->sketch_in[i];
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = m->sketch_a[g][i];
+    for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = *warm->valid ? warm->used[g] : 0;
+    if (past) {
+        /* past a limit position: the pass fails the row at once with the limit's code */
+        code = run(ctx, 1, in, din, ddin, order, a, ad, used);
+    } else if (*warm->valid && within(in, warm->in, m->limits)) {
+        predict(warm, in, m->sizes, guess);
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
+            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = guess[g][i];
+        code = run(ctx, 1, in, din, ddin, order, a, ad, used);
+        solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
+                                      (const double (*)[LINKGEN_NMAX])a, m->sizes,
+                                      p->path_slack * m->length_scale, p);
+    }
+    if (!solved && *warm->valid) {
+        for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = warm->in[i];
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
+            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = warm->a[g][i];
+        for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = warm->used[g];
+    }
+    if (!solved && (code <= 0 || reason_of(code) == m->not_converged)) {
+        int prefer[LINKGEN_NGROUPS];
+        resolver_path path;
+        for (g = 0; g < LINKGEN_NGROUPS; g++) prefer[g] = used[g];
+        path.run = run;
+        path.ctx = ctx;
+        path.prefer = prefer;
+        if (continuation(&path, base, a, in, m, p)) {
+            code = run(ctx, 1, in, din, ddin, order, a, ad, used);
+        } else {
+            code = run(ctx, 1, in, din, ddin, order, a, ad, used);
+            if (code <= 0) code = m->another;  /* another assembly only */
+        }
+        solved = code <= 0;
+    }
+    *warm->valid = solved;
+    if (solved) {
+        for (i = 0; i < LINKGEN_NINPUTS; i++) { warm->in[i] = in[i]; warm->din[i] = din[i]; }
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
+            for (i = 0; i < LINKGEN_NMAX; i++) {
+                warm->a[g][i] = a[g][i];
+                warm->ad[g][i] = ad[g][i];
+            }
+        for (g = 0; g < LINKGEN_NGROUPS; g++) warm->used[g] = used[g];
+    }
+    return code;
+}
+
+
+static const double SKETCH_IN[LINKGEN_NINPUTS] = { 1.5707963267948966 };
+static const double SKETCH_A[LINKGEN_NBLOCKS][LINKGEN_NMAX] = { {168.67127793433, -1.0, 1.0, 0.0}, {67.08203932499369, -1.0, 1.0, 0.0}, {60.8276253029822, -1.0, 1.0, 0.0}, {165.6804152578089, -1.0, 1.0, 0.0}, {123.4908903522847, -1.0, 1.0, 0.0}, {122.06555615733703, 1.0, 1.0, 0.0}, {138.92443989449805, -1.0, 1.0, 0.0}, {168.67127793433, 1.0, -1.0, 0.0}, {180.27756377319946, 1.0, -1.0, 0.0}, {285.3944638566067, 1.0, -1.0, 0.0}, {225.055548698538, 1.0, -1.0, 0.0}, {330.0, 1.0, -1.0, 0.0}, {120.0, 1.0, -1.0, 0.0}, {225.055548698538, 1.0, -1.0, 0.0}, {67.08203932499369, 1.0, -1.0, 0.0}, {240.0, -1.0, -1.0, 0.0} };
+static const int BLOCK_SIZES[LINKGEN_NBLOCKS] = { 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1 };
+static const double LIMITS[LINKGEN_NINPUTS] = { 0.1 };
+static const int PERIODIC[LINKGEN_NINPUTS] = { 1 };
+
+/* What the row driver needs of the mechanism; its length scale is the largest distance
+   between two of the sketch's pairs or points. */
+static const resolver_mechanism MECHANISM = {
+    331.436268383531, SKETCH_IN, SKETCH_A, BLOCK_SIZES, LIMITS, PERIODIC, NAN,
+    92, 2
+};
+
+/* The resolver's policy, lengths relative to the length scale (see double_triad.md). */
+static const resolver_policy POLICY = {
+    1e-10, 8, 3, 0.1, 0.05, 20,
+    1.0000000000000001e-07, 0.1, 0.01, 1000
+};
 
 /* Constants taken from the sketch; points are held relative to
    (-64.0, 48.0), which publish() adds back to the computed ones. */
@@ -583,7 +734,7 @@ typedef struct {
     VARIABLE f2_v8;
     double sigma[DOUBLE_TRIAD_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
-    int used[LINKGEN_NGROUPS];  /* the block that solved each resolver group */
+    int its[LINKGEN_NGROUPS];  /* Newton steps of each resolver in the row's own passes */
     double chains;  /* the worst conditioning of a block's chains in its last pass */
     int br4;  /* the branch of step 4, as the last solution left it */
     int br5;  /* the branch of step 5, as the last solution left it */
@@ -629,10 +780,12 @@ static void note(work *w, int st, int singular, int near)
 static const VARIABLE ZERO_LENGTH = { 0.0, 0.0, 0.0 };
 
 /* Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9:
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_1(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
@@ -640,7 +793,9 @@ static int group_1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     if (!live) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add1 = a[0];
+    w->add1.v = a[0];
+    w->add1.dv = da[0];
+    w->add1.ddv = dda[0];
     w->chains = 1.0;
     /* Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J3, p_J6, l_right_rocker2, w->add1, w->br4, &w->p_J4, &w->sigma[4]);
@@ -660,16 +815,20 @@ static int group_1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
     /* Step 8: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1);
-    f[0] = w->f1;
+    f[0] = w->f1.v;
+    df[0] = w->f1.dv;
+    ddf[0] = w->f1.ddv;
     return 0;
 }
 
 
 /* Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9   (fallback 1: the Add-link J6-J2):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_1_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_1_v1(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
@@ -677,7 +836,9 @@ static int group_1_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     if (!live) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add1_v1 = a[0];
+    w->add1_v1.v = a[0];
+    w->add1_v1.dv = da[0];
+    w->add1_v1.ddv = dda[0];
     w->chains = 1.0;
     /* Step 24: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, p_J6, l_right_rocker1, w->add1_v1, w->br24, &w->p_J2, &w->sigma[24]);
@@ -697,16 +858,20 @@ static int group_1_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 28: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v1);
-    f[0] = w->f1_v1;
+    f[0] = w->f1_v1.v;
+    df[0] = w->f1_v1.dv;
+    ddf[0] = w->f1_v1.ddv;
     return 0;
 }
 
 
 /* Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9   (fallback 2: the Add-link J7-J2):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_1_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_1_v2(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
@@ -714,7 +879,9 @@ static int group_1_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     if (!live) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add1_v2 = a[0];
+    w->add1_v2.v = a[0];
+    w->add1_v2.dv = da[0];
+    w->add1_v2.ddv = dda[0];
     w->chains = 1.0;
     /* Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, p_J7, l_right_rocker1, w->add1_v2, w->br29, &w->p_J2, &w->sigma[29]);
@@ -734,16 +901,20 @@ static int group_1_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 33: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v2);
-    f[0] = w->f1_v2;
+    f[0] = w->f1_v2.v;
+    df[0] = w->f1_v2.dv;
+    ddf[0] = w->f1_v2.ddv;
     return 0;
 }
 
 
 /* Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9   (fallback 3: the Add-link J7-J4):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_1_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_1_v3(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
@@ -751,7 +922,9 @@ static int group_1_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     if (!live) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add1_v3 = a[0];
+    w->add1_v3.v = a[0];
+    w->add1_v3.dv = da[0];
+    w->add1_v3.ddv = dda[0];
     w->chains = 1.0;
     /* Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J3, p_J7, l_right_rocker2, w->add1_v3, w->br34, &w->p_J4, &w->sigma[34]);
@@ -771,16 +944,20 @@ static int group_1_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
     /* Step 38: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v3);
-    f[0] = w->f1_v3;
+    f[0] = w->f1_v3.v;
+    df[0] = w->f1_v3.dv;
+    ddf[0] = w->f1_v3.ddv;
     return 0;
 }
 
 
 /* Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9   (fallback 4: the Add-link J1-J4):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_1_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_1_v4(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
@@ -788,7 +965,9 @@ static int group_1_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     if (!live) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add1_v4 = a[0];
+    w->add1_v4.v = a[0];
+    w->add1_v4.dv = da[0];
+    w->add1_v4.ddv = dda[0];
     w->chains = 1.0;
     /* Step 39: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J3, p_J1, l_right_rocker2, w->add1_v4, w->br39, &w->p_J4, &w->sigma[39]);
@@ -808,16 +987,20 @@ static int group_1_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
     /* Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v4);
-    f[0] = w->f1_v4;
+    f[0] = w->f1_v4.v;
+    df[0] = w->f1_v4.dv;
+    ddf[0] = w->f1_v4.ddv;
     return 0;
 }
 
 
 /* Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9   (fallback 5: the Add-link J3-J2):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_1_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_1_v5(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
@@ -825,7 +1008,9 @@ static int group_1_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     if (!live) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add1_v5 = a[0];
+    w->add1_v5.v = a[0];
+    w->add1_v5.dv = da[0];
+    w->add1_v5.ddv = dda[0];
     w->chains = 1.0;
     /* Step 44: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, p_J3, l_right_rocker1, w->add1_v5, w->br44, &w->p_J2, &w->sigma[44]);
@@ -845,16 +1030,20 @@ static int group_1_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 48: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v5);
-    f[0] = w->f1_v5;
+    f[0] = w->f1_v5.v;
+    df[0] = w->f1_v5.dv;
+    ddf[0] = w->f1_v5.ddv;
     return 0;
 }
 
 
 /* Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9   (fallback 6: the Add-link K1-J2):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_1_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_1_v6(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
@@ -862,7 +1051,9 @@ static int group_1_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     if (!live) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add1_v6 = a[0];
+    w->add1_v6.v = a[0];
+    w->add1_v6.dv = da[0];
+    w->add1_v6.ddv = dda[0];
     w->chains = 1.0;
     /* Step 49: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(p_J1, p_K1, l_right_rocker1, w->add1_v6, w->br49, &w->p_J2, &w->sigma[49]);
@@ -882,16 +1073,20 @@ static int group_1_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
     /* Step 53: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v6);
-    f[0] = w->f1_v6;
+    f[0] = w->f1_v6.v;
+    df[0] = w->f1_v6.dv;
+    ddf[0] = w->f1_v6.ddv;
     return 0;
 }
 
 
 /* Steps 11, 12, 13, 14, 15, iterated by the resolver of step 16:
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_2(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
@@ -899,7 +1094,9 @@ static int group_2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     if (!live) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add2 = a[0];
+    w->add2.v = a[0];
+    w->add2.dv = da[0];
+    w->add2.ddv = dda[0];
     w->chains = 1.0;
     /* Step 11: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K3, p_J6, l_left_rocker2, w->add2, w->br11, &w->p_K4, &w->sigma[11]);
@@ -919,16 +1116,20 @@ static int group_2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
     /* Step 15: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2);
-    f[0] = w->f2;
+    f[0] = w->f2.v;
+    df[0] = w->f2.dv;
+    ddf[0] = w->f2.ddv;
     return 0;
 }
 
 
 /* Steps 54, 55, 56, 57, 58, iterated by the resolver of step 16   (fallback 1: the Add-link J5-K2):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_2_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_2_v1(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J5 = w->p_J5;
@@ -938,7 +1139,9 @@ static int group_2_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J5.DP.x = 0.0; p_J5.DP.y = 0.0; p_J5.DDP.x = 0.0; p_J5.DDP.y = 0.0;
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add2_v1 = a[0];
+    w->add2_v1.v = a[0];
+    w->add2_v1.dv = da[0];
+    w->add2_v1.ddv = dda[0];
     w->chains = 1.0;
     /* Step 54: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K1, p_J5, l_left_rocker1, w->add2_v1, w->br54, &w->p_K2, &w->sigma[54]);
@@ -958,16 +1161,20 @@ static int group_2_v1(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
     /* Step 58: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v1);
-    f[0] = w->f2_v1;
+    f[0] = w->f2_v1.v;
+    df[0] = w->f2_v1.dv;
+    ddf[0] = w->f2_v1.ddv;
     return 0;
 }
 
 
 /* Steps 59, 60, 61, 62, 63, iterated by the resolver of step 16   (fallback 2: the Add-link J5-K4):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_2_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_2_v2(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J5 = w->p_J5;
@@ -977,7 +1184,9 @@ static int group_2_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J5.DP.x = 0.0; p_J5.DP.y = 0.0; p_J5.DDP.x = 0.0; p_J5.DDP.y = 0.0;
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add2_v2 = a[0];
+    w->add2_v2.v = a[0];
+    w->add2_v2.dv = da[0];
+    w->add2_v2.ddv = dda[0];
     w->chains = 1.0;
     /* Step 59: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K3, p_J5, l_left_rocker2, w->add2_v2, w->br59, &w->p_K4, &w->sigma[59]);
@@ -997,16 +1206,20 @@ static int group_2_v2(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
     /* Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v2);
-    f[0] = w->f2_v2;
+    f[0] = w->f2_v2.v;
+    df[0] = w->f2_v2.dv;
+    ddf[0] = w->f2_v2.ddv;
     return 0;
 }
 
 
 /* Steps 64, 65, 66, 67, 68, iterated by the resolver of step 16   (fallback 3: the Add-link J2-K4):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_2_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_2_v3(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J2 = w->p_J2;
@@ -1016,7 +1229,9 @@ static int group_2_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J2.DP.x = 0.0; p_J2.DP.y = 0.0; p_J2.DDP.x = 0.0; p_J2.DDP.y = 0.0;
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add2_v3 = a[0];
+    w->add2_v3.v = a[0];
+    w->add2_v3.dv = da[0];
+    w->add2_v3.ddv = dda[0];
     w->chains = 1.0;
     /* Step 64: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K3, p_J2, l_left_rocker2, w->add2_v3, w->br64, &w->p_K4, &w->sigma[64]);
@@ -1036,16 +1251,20 @@ static int group_2_v3(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
     /* Step 68: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v3);
-    f[0] = w->f2_v3;
+    f[0] = w->f2_v3.v;
+    df[0] = w->f2_v3.dv;
+    ddf[0] = w->f2_v3.ddv;
     return 0;
 }
 
 
 /* Steps 69, 70, 71, 72, 73, iterated by the resolver of step 16   (fallback 4: the Add-link J4-K4):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_2_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_2_v4(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J4 = w->p_J4;
@@ -1055,7 +1274,9 @@ static int group_2_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J4.DP.x = 0.0; p_J4.DP.y = 0.0; p_J4.DDP.x = 0.0; p_J4.DDP.y = 0.0;
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add2_v4 = a[0];
+    w->add2_v4.v = a[0];
+    w->add2_v4.dv = da[0];
+    w->add2_v4.ddv = dda[0];
     w->chains = 1.0;
     /* Step 69: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K3, p_J4, l_left_rocker2, w->add2_v4, w->br69, &w->p_K4, &w->sigma[69]);
@@ -1075,16 +1296,20 @@ static int group_2_v4(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
     /* Step 73: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v4);
-    f[0] = w->f2_v4;
+    f[0] = w->f2_v4.v;
+    df[0] = w->f2_v4.dv;
+    ddf[0] = w->f2_v4.ddv;
     return 0;
 }
 
 
 /* Steps 74, 75, 76, 77, 78, iterated by the resolver of step 16   (fallback 5: the Add-link J2-K2):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_2_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_2_v5(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J2 = w->p_J2;
@@ -1094,7 +1319,9 @@ static int group_2_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J2.DP.x = 0.0; p_J2.DP.y = 0.0; p_J2.DDP.x = 0.0; p_J2.DDP.y = 0.0;
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add2_v5 = a[0];
+    w->add2_v5.v = a[0];
+    w->add2_v5.dv = da[0];
+    w->add2_v5.ddv = dda[0];
     w->chains = 1.0;
     /* Step 74: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K1, p_J2, l_left_rocker1, w->add2_v5, w->br74, &w->p_K2, &w->sigma[74]);
@@ -1114,16 +1341,20 @@ static int group_2_v5(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
     /* Step 78: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v5);
-    f[0] = w->f2_v5;
+    f[0] = w->f2_v5.v;
+    df[0] = w->f2_v5.dv;
+    ddf[0] = w->f2_v5.ddv;
     return 0;
 }
 
 
 /* Steps 79, 80, 81, 82, 83, iterated by the resolver of step 16   (fallback 6: the Add-link J4-K2):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_2_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_2_v6(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J4 = w->p_J4;
@@ -1133,7 +1364,9 @@ static int group_2_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J4.DP.x = 0.0; p_J4.DP.y = 0.0; p_J4.DDP.x = 0.0; p_J4.DDP.y = 0.0;
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add2_v6 = a[0];
+    w->add2_v6.v = a[0];
+    w->add2_v6.dv = da[0];
+    w->add2_v6.ddv = dda[0];
     w->chains = 1.0;
     /* Step 79: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K1, p_J4, l_left_rocker1, w->add2_v6, w->br79, &w->p_K2, &w->sigma[79]);
@@ -1153,16 +1386,20 @@ static int group_2_v6(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
     /* Step 83: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v6);
-    f[0] = w->f2_v6;
+    f[0] = w->f2_v6.v;
+    df[0] = w->f2_v6.dv;
+    ddf[0] = w->f2_v6.ddv;
     return 0;
 }
 
 
 /* Steps 84, 85, 86, 87, 88, iterated by the resolver of step 16   (fallback 7: the Add-link J6-K2):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_2_v7(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_2_v7(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
@@ -1170,7 +1407,9 @@ static int group_2_v7(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     if (!live) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
-    w->add2_v7 = a[0];
+    w->add2_v7.v = a[0];
+    w->add2_v7.dv = da[0];
+    w->add2_v7.ddv = dda[0];
     w->chains = 1.0;
     /* Step 84: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_K1, p_J6, l_left_rocker1, w->add2_v7, w->br84, &w->p_K2, &w->sigma[84]);
@@ -1190,16 +1429,20 @@ static int group_2_v7(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
     /* Step 88: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v7);
-    f[0] = w->f2_v7;
+    f[0] = w->f2_v7.v;
+    df[0] = w->f2_v7.dv;
+    ddf[0] = w->f2_v7.ddv;
     return 0;
 }
 
 
 /* Steps 89, 90, 91, 92, 93, iterated by the resolver of step 16   (fallback 8: the Add-link J5-K5):
-   the Add-link records a[] in, the residuals f[] out; live == 0 zeroes the
-   rates of the records read from outside (a unit Add-link rate then gives one
+   the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
+   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
-static int group_2_v8(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
+static int group_2_v8(void *ctx, const double a[], const double da[], const double dda[], int live,
+                    double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
@@ -1209,7 +1452,9 @@ static int group_2_v8(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
         p_J5.DP.x = 0.0; p_J5.DP.y = 0.0; p_J5.DDP.x = 0.0; p_J5.DDP.y = 0.0;
     }
-    w->add2_v8 = a[0];
+    w->add2_v8.v = a[0];
+    w->add2_v8.dv = da[0];
+    w->add2_v8.ddv = dda[0];
     w->chains = 1.0;
     /* Step 89: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(p_J6, p_J5, l_left_coupler, w->add2_v8, w->br89, &w->p_K5, &w->sigma[89]);
@@ -1229,7 +1474,9 @@ static int group_2_v8(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
     coupler_point(w->p_K5, w->phi_left_ternary, 45.662543438831435, 12.842590342171338, &w->p_K4);
     /* Step 93: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(p_K3, w->p_K4, l_left_rocker2, &w->f2_v8);
-    f[0] = w->f2_v8;
+    f[0] = w->f2_v8.v;
+    df[0] = w->f2_v8.dv;
+    ddf[0] = w->f2_v8.ddv;
     return 0;
 }
 
@@ -1237,8 +1484,9 @@ static int group_2_v8(void *ctx, const VARIABLE a[], int live, VARIABLE f[])
 /* The state of every block of group 1, read off the solved pairs: its Add-link
    lengths, the branches of its chains (a zero keeps the branch it had), then, in the last
    entry, its orientation (0 here: the solving block's is set by the resolver). */
-static void lengths_1(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
+static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
 {
+    const work *w = (const work *)ctx;
     VARIABLE f;
     double m;
     link_residual(w->p_J6, w->p_J4, ZERO_LENGTH, &f);
@@ -1317,8 +1565,9 @@ static void lengths_1(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKG
 /* The state of every block of group 2, read off the solved pairs: its Add-link
    lengths, the branches of its chains (a zero keeps the branch it had), then, in the last
    entry, its orientation (0 here: the solving block's is set by the resolver). */
-static void lengths_2(const work *w, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
+static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
 {
+    const work *w = (const work *)ctx;
     VARIABLE f;
     double m;
     link_residual(w->p_J6, w->p_K4, ZERO_LENGTH, &f);
@@ -1438,6 +1687,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     /* Step 9: resolve, group1. Newton-Raphson on add1 until right_coupler regains its length */
     {
+        static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6 };
         w->br4 = a[0][1] < 0.0 ? -1 : 1;
         w->br5 = a[0][2] < 0.0 ? -1 : 1;
         w->br24 = a[1][1] < 0.0 ? -1 : 1;
@@ -1452,18 +1702,9 @@ static int run(work *w, const double in[], const double din[], const double ddin
         w->br45 = a[5][2] < 0.0 ? -1 : 1;
         w->br49 = a[6][1] < 0.0 ? -1 : 1;
         w->br50 = a[6][2] < 0.0 ? -1 : 1;
-        static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6 };
-        static const int sizes[] = { 1, 1, 1, 1, 1, 1, 1 };
-        double turn;
-        const int k = resolve_variants(blocks, sizes, 7, w, &a[0],
-                                       1e-10 * LENGTH_SCALE, 8,
-                                       0.1 * LENGTH_SCALE, order, used[0],
-                                       &its[0], &w->sigma[9], &turn,
-                                       &w->chains, 0.05);
-        if (k < 0) return 92;
-        used[0] = k;
-        lengths_1(w, &a[0], &ad[0]);
-        a[0 + k][LINKGEN_NMAX - 1] = turn;
+        if (!resolve_group(blocks, 7, lengths_1, w, a, ad, 0, &used[0],
+                           &its[0], &w->sigma[9], &w->chains, order, &MECHANISM, &POLICY))
+            return 92;
         note(w, w->sigma[9] < 1e-07 ? 3 : w->sigma[9] < 0.001 ? 4 : 0, 93, -94);
     }
 
@@ -1474,6 +1715,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     /* Step 16: resolve, group2. Newton-Raphson on add2 until left_coupler regains its length */
     {
+        static const group_fn blocks[] = { group_2, group_2_v1, group_2_v2, group_2_v3, group_2_v4, group_2_v5, group_2_v6, group_2_v7, group_2_v8 };
         w->br11 = a[7][1] < 0.0 ? -1 : 1;
         w->br12 = a[7][2] < 0.0 ? -1 : 1;
         w->br54 = a[8][1] < 0.0 ? -1 : 1;
@@ -1492,18 +1734,9 @@ static int run(work *w, const double in[], const double din[], const double ddin
         w->br85 = a[14][2] < 0.0 ? -1 : 1;
         w->br89 = a[15][1] < 0.0 ? -1 : 1;
         w->br90 = a[15][2] < 0.0 ? -1 : 1;
-        static const group_fn blocks[] = { group_2, group_2_v1, group_2_v2, group_2_v3, group_2_v4, group_2_v5, group_2_v6, group_2_v7, group_2_v8 };
-        static const int sizes[] = { 1, 1, 1, 1, 1, 1, 1, 1, 1 };
-        double turn;
-        const int k = resolve_variants(blocks, sizes, 9, w, &a[7],
-                                       1e-10 * LENGTH_SCALE, 8,
-                                       0.1 * LENGTH_SCALE, order, used[1],
-                                       &its[1], &w->sigma[16], &turn,
-                                       &w->chains, 0.05);
-        if (k < 0) return 162;
-        used[1] = k;
-        lengths_2(w, &a[7], &ad[7]);
-        a[7 + k][LINKGEN_NMAX - 1] = turn;
+        if (!resolve_group(blocks, 9, lengths_2, w, a, ad, 7, &used[1],
+                           &its[1], &w->sigma[16], &w->chains, order, &MECHANISM, &POLICY))
+            return 162;
         note(w, w->sigma[16] < 1e-07 ? 3 : w->sigma[16] < 0.001 ? 4 : 0, 163, -164);
     }
 
@@ -1871,74 +2104,27 @@ static int refuse(double_triad_state *out)
     return out->status;
 }
 
-/* One pass along a continuation path (rates per unit of the path, no accelerations). */
-static int path_run(void *ctx, const double in[], const double din[], int order, double a[][LINKGEN_NMAX],
-                    double rates[][LINKGEN_NMAX])
+/* One pass of the procedure for the row driver: the row's own (its Newton steps into
+   the work), or one along a continuation path. */
+static int one_pass(void *ctx, int row, const double in[], const double din[], const double ddin[], int order,
+                    double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int used[])
 {
-    static const double zero[LINKGEN_NINPUTS] = { 0.0 };
-    int its[LINKGEN_NGROUPS], used[LINKGEN_NGROUPS], g;
-    for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = ((work *)ctx)->used[g];
-    return run((work *)ctx, in, din, zero, order, a, rates, its, used) <= 0;
+    work *w = (work *)ctx;
+    int its[LINKGEN_NGROUPS];
+    return run(w, in, din, ddin, order, a, ad, row ? w->its : its, used);
 }
 
 int double_triad_solve(const double in[], const double din[], const double ddin[], double_triad_state *out)
 {
-    static const double sketch_in[LINKGEN_NINPUTS] = { 1.5707963267948966 };
-    static const double sketch_a[LINKGEN_NBLOCKS][LINKGEN_NMAX] = { {168.67127793433, -1.0, 1.0, 0.0}, {67.08203932499369, -1.0, 1.0, 0.0}, {60.8276253029822, -1.0, 1.0, 0.0}, {165.6804152578089, -1.0, 1.0, 0.0}, {123.4908903522847, -1.0, 1.0, 0.0}, {122.06555615733703, 1.0, 1.0, 0.0}, {138.92443989449805, -1.0, 1.0, 0.0}, {168.67127793433, 1.0, -1.0, 0.0}, {180.27756377319946, 1.0, -1.0, 0.0}, {285.3944638566067, 1.0, -1.0, 0.0}, {225.055548698538, 1.0, -1.0, 0.0}, {330.0, 1.0, -1.0, 0.0}, {120.0, 1.0, -1.0, 0.0}, {225.055548698538, 1.0, -1.0, 0.0}, {67.08203932499369, 1.0, -1.0, 0.0}, {240.0, -1.0, -1.0, 0.0} };
-    static const double limits[LINKGEN_NINPUTS] = { 0.1 };
-    static const int periodic[LINKGEN_NINPUTS] = { 1 };
-    static const int block_sizes[LINKGEN_NBLOCKS] = { 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1 };
-    const double slack = 1.0000000000000001e-07 * LENGTH_SCALE;
+    const resolver_warm warm = { &out->warm_valid, out->warm_in, out->warm_din, out->warm_a, out->warm_ad,
+                                 out->warm_used };
     work w;
-    double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX];
-    double ad[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
-    int used[LINKGEN_NGROUPS];
-    int code = 0, solved = 0, g, i;
+    int code, g;
     if (!finite_inputs(in, din, ddin)) return refuse(out);
     memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
-    for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = sketch_in[i];
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = sketch_a[g][i];
-    for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = out->warm_valid ? out->warm_used[g] : 0;
-    if (out->warm_valid && within(in, out->warm_in, limits)) {
-        /* from the previous row, its block states moved along their rates */
-        predict(out->warm_in, out->warm_din, (const double (*)[LINKGEN_NMAX])out->warm_a,
-                (const double (*)[LINKGEN_NMAX])out->warm_ad, in, block_sizes, guess);
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = guess[g][i];
-        code = run(&w, in, din, ddin, DOUBLE_TRIAD_ORDER, a, ad, out->iterations, used);
-        solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])out->warm_a,
-                                      (const double (*)[LINKGEN_NMAX])guess, (const double (*)[LINKGEN_NMAX])a,
-                                      block_sizes, slack);
-    }
-    if (!solved && out->warm_valid) {
-        for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = out->warm_in[i];
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = out->warm_a[g][i];
-        for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = out->warm_used[g];
-    }
-    if (!solved && (code <= 0 || reason_of(code) == 2)) {
-        /* the sketch's assembly, followed from the sketch (or the last row) */
-        for (g = 0; g < LINKGEN_NGROUPS; g++) w.used[g] = used[g];
-        if (continuation(path_run, &w, base, a, in, limits, periodic, 20,
-                         block_sizes, slack, 0.1 * LENGTH_SCALE, NAN)) {
-            code = run(&w, in, din, ddin, DOUBLE_TRIAD_ORDER, a, ad, out->iterations, used);
-        } else {
-            code = run(&w, in, din, ddin, DOUBLE_TRIAD_ORDER, a, ad, out->iterations, used);
-            if (code <= 0) code = 92;  /* another assembly only */
-        }
-        solved = code <= 0;
-    }
-    out->warm_valid = solved;
-    if (solved) {
-        for (i = 0; i < LINKGEN_NINPUTS; i++) { out->warm_in[i] = in[i]; out->warm_din[i] = din[i]; }
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) {
-                out->warm_a[g][i] = a[g][i];
-                out->warm_ad[g][i] = ad[g][i];
-            }
-        for (g = 0; g < LINKGEN_NGROUPS; g++) out->warm_used[g] = used[g];
-    }
+    code = drive(one_pass, &w, &MECHANISM, &POLICY, 0, in, din, ddin,
+                 DOUBLE_TRIAD_ORDER, &warm);
+    for (g = 0; g < LINKGEN_NGROUPS; g++) out->iterations[g] = w.its[g];
     publish(&w, code, out);
     return code;
 }

@@ -20,6 +20,7 @@
 import math
 import os
 import sys
+from types import SimpleNamespace
 from math import atan2, cos, floor, sin, sqrt
 
 EPS = sys.float_info.epsilon
@@ -137,16 +138,32 @@ COLUMNS = (
     "left_coupler.alpha",
 )
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
-LENGTH_SCALE = 331.436268383531
-SKETCH_INPUTS = (1.5707963267948966, )
-SKETCH_ADD_LINKS = ([168.67127793433, -1.0, 1.0, 0.0], [67.08203932499369, -1.0, 1.0, 0.0], [60.8276253029822, -1.0, 1.0, 0.0], [165.6804152578089, -1.0, 1.0, 0.0], [123.4908903522847, -1.0, 1.0, 0.0], [122.06555615733703, 1.0, 1.0, 0.0], [138.92443989449805, -1.0, 1.0, 0.0], [168.67127793433, 1.0, -1.0, 0.0], [180.27756377319946, 1.0, -1.0, 0.0], [285.3944638566067, 1.0, -1.0, 0.0], [225.055548698538, 1.0, -1.0, 0.0], [330.0, 1.0, -1.0, 0.0], [120.0, 1.0, -1.0, 0.0], [225.055548698538, 1.0, -1.0, 0.0], [67.08203932499369, 1.0, -1.0, 0.0], [240.0, -1.0, -1.0, 0.0], )  # per block: lengths, branches, orientation
-BLOCK_SIZES = (1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, )  # Add-links of each block
-SLACK = 1.0000000000000001e-07  # how far off the predicted path a solution may sit, relative to the length scale
 N_GROUPS = 2
 ZERO_LENGTH = (0.0, 0.0, 0.0,)
-LIMITS = (0.1,)  # the continuation's largest step of each input
-REACH = 0.1  # ... and of a predicted Add-link length, relative to the length scale
-PERIODIC = (True,)  # angle inputs: the continuation goes the shorter way round
+MECHANISM = SimpleNamespace(  # what the row driver needs of the mechanism
+    length_scale=331.436268383531,
+    sketch_inputs=(1.5707963267948966, ),
+    sketch_a=([168.67127793433, -1.0, 1.0, 0.0], [67.08203932499369, -1.0, 1.0, 0.0], [60.8276253029822, -1.0, 1.0, 0.0], [165.6804152578089, -1.0, 1.0, 0.0], [123.4908903522847, -1.0, 1.0, 0.0], [122.06555615733703, 1.0, 1.0, 0.0], [138.92443989449805, -1.0, 1.0, 0.0], [168.67127793433, 1.0, -1.0, 0.0], [180.27756377319946, 1.0, -1.0, 0.0], [285.3944638566067, 1.0, -1.0, 0.0], [225.055548698538, 1.0, -1.0, 0.0], [330.0, 1.0, -1.0, 0.0], [120.0, 1.0, -1.0, 0.0], [225.055548698538, 1.0, -1.0, 0.0], [67.08203932499369, 1.0, -1.0, 0.0], [240.0, -1.0, -1.0, 0.0], ),  # per block: lengths, branches, orientation
+    sizes=(1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, ),  # Add-links of each block
+    limits=(0.1,),  # the continuation's largest step of each input
+    periodic=(True,),  # angle inputs: the continuation goes the shorter way round
+    low=NAN,  # where the reach of an angle input starts (nan: no reach)
+    groups=N_GROUPS,
+    another=92,  # a row solvable on another assembly only
+    not_converged=2,  # a row failed with this reason is followed from the last one
+)
+POLICY = SimpleNamespace(  # the resolver's policy, lengths relative to the length scale (see double_triad.md)
+    tolerance=1e-10,
+    max_iterations=8,
+    newton_halvings=3,
+    max_move=0.1,
+    min_chain_sigma=0.05,
+    max_halvings=20,
+    path_slack=1.0000000000000001e-07,
+    path_share=0.1,
+    turn_share=0.01,
+    walk_passes=1000,
+)
 
 
 # -- the mech.cpp functions this procedure uses -------------------------------
@@ -284,10 +301,11 @@ def reason_of(code):
     return code % 10 if code > 0 else 0
 
 # Over-constraint resolver: Newton-Raphson on the Add-link lengths.
-# group(a, live) runs the steps of one resolver group with the Add-link records
-# a = [(length, rate, acc), ...] and returns (status, f) with f the residual
-# records; live=False zeroes the rates of everything the group reads, so a
-# unit Add-link rate gives one exact Jacobian column through the velocity channel.
+# group(a, da, dda, live) runs the steps of one resolver group with the Add-link lengths
+# a, their rates da and accelerations dda (as records of the program's order) and returns
+# (status, f) with f the residual records; live=False zeroes the rates of everything the
+# group reads, so a unit Add-link rate gives one exact Jacobian column through the
+# velocity channel.  p is the resolver policy (the step log's), scale the length scale.
 
 
 def solve_linear(m, b):
@@ -313,18 +331,14 @@ def solve_linear(m, b):
     return x, det
 
 
-def _record(length, rate, acc):
-    """An Add-link record of the program's order (rates always: the Jacobian needs them)."""
-    return (length, rate, acc)
-
-
 def _jacobian(group, a):
     """Residuals and Jacobian at a (one pass per Add-link); None when a chain cannot close."""
     n = len(a)
     jac = [[0.0] * n for _ in range(n)]
+    zero = [0.0] * n
     f = None
     for j in range(n):
-        st, rec = group([_record(a[i], 1.0 if i == j else 0.0, 0.0) for i in range(n)], False)
+        st, rec = group(a, [1.0 if i == j else 0.0 for i in range(n)], zero, False)
         if st:
             return None, None
         f = [r[0] for r in rec]
@@ -341,14 +355,14 @@ def conditioning(jac, det):
     return abs(det) / max(prod, 1.0)
 
 
-def newton(group, a, tol, max_iter, reach):
+def newton(group, a, tol, max_iter, reach, halvings):
     """Iterate the Add-link lengths until max|f| <= tol, then one step more.
 
     A solution farther than reach from the start lengths is another assembly: refused.
 
     Returns (ok, a, iterations, jac) with jac the Jacobian at the returned a.
-    A step that makes a chain fail to close is halved (up to 3 times; then the block
-    fails and the next block is tried).
+    A step that makes a chain fail to close is halved (up to halvings times; then the
+    block fails and the next block is tried).
     """
     start = a
     f, jac = _jacobian(group, a)
@@ -359,7 +373,7 @@ def newton(group, a, tol, max_iter, reach):
         if det == 0.0:
             return False, a, it, None
         t = 1.0
-        for _ in range(4):
+        for _ in range(halvings + 1):
             trial = [a[i] + t * dx[i] for i in range(len(a))]
             f2, jac2 = _jacobian(group, trial)
             if f2 is not None:
@@ -384,40 +398,41 @@ def addlink_rates(group, a, jac, order):
     (it changes only at a singular position; a solution of the other sign is another assembly).
     """
     n = len(a)
-    _, det = solve_linear(jac, [0.0] * n)
+    zero = [0.0] * n
+    _, det = solve_linear(jac, zero)
     sigma = conditioning(jac, det)
-    rates = accs = [0.0] * n
+    rates = accs = zero
     if det != 0.0:
-        st, rec = group([_record(a[i], 0.0, 0.0) for i in range(n)], True)
+        st, rec = group(a, zero, zero, True)
         rates, _ = solve_linear(jac, [-r[1] for r in rec])
         if order >= 2:
-            st, rec = group([_record(a[i], rates[i], 0.0) for i in range(n)], True)
+            st, rec = group(a, rates, zero, True)
             accs, _ = solve_linear(jac, [-r[2] for r in rec])
     else:
         rates = accs = [NAN] * n
-    st, _ = group([_record(a[i], rates[i], accs[i]) for i in range(n)], True)
+    st, _ = group(a, rates, accs, True)
     return st, sigma, 1 if det > 0.0 else -1 if det < 0.0 else 0
 
 
-def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, sizes, chains, min_sigma):
+def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale):
     """Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
     preferred block first, the others in order.  The first that converges with its chains
-    conditioned at least min_sigma (chains(): the worst of the last pass, from the block's
-    lever down) is kept; else the best conditioned of those that converge, a later block
-    only when more than twice as well conditioned (a block whose chains are near a toggle is
-    a poor coordinate of the assembly; blocks that share that chain tie up to rounding, and
-    the order, not the rounding, decides).  The caller then measures every block's state on
-    the solved pairs.
+    conditioned at least p.min_chain_sigma (chains(): the worst of the last pass, from the
+    block's lever down) is kept; else the best conditioned of those that converge, a later
+    block only when more than twice as well conditioned (a block whose chains are near a
+    toggle is a poor coordinate of the assembly; blocks that share that chain tie up to
+    rounding, and the order, not the rounding, decides).
 
     a[first + k] is block k's state: its sizes[k] start lengths, its branches, its orientation.
     Returns (k, Newton steps, sigma, orientation), k = -1 when no block converges.
     """
+    tol, reach = p.tolerance * scale, p.max_move * scale
     its, best, best_sigma = 0, -1, -1.0
     for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
-        ok, x, its, jac = newton(groups[k], a[first + k][:sizes[k]], tol, max_iter, reach)
+        ok, x, its, jac = newton(groups[k], a[first + k][:sizes[k]], tol, p.max_iterations, reach, p.newton_halvings)
         if not ok:
             continue
-        if chains() < min_sigma:
+        if chains() < p.min_chain_sigma:
             if chains() > 2 * best_sigma:
                 best, best_sigma = k, chains()
             continue
@@ -425,12 +440,37 @@ def resolve_variants(groups, a, first, tol, max_iter, reach, order, prefer, size
         if st != 1:
             return k, its, sigma, turn
     if best >= 0:
-        ok, x, its, jac = newton(groups[best], a[first + best][:sizes[best]], tol, max_iter, reach)
+        ok, x, its, jac = newton(groups[best], a[first + best][:sizes[best]], tol, p.max_iterations, reach,
+                                 p.newton_halvings)
         if ok:
             st, sigma, turn = addlink_rates(groups[best], x, jac, order)
             if st != 1:
                 return best, its, sigma, turn
     return -1, its, 0.0, 0
+
+
+def resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains, m, p):
+    """One resolver step: resolve_variants on the group's blocks, the one that solved the
+    last row (used[slot]) first; then lengths(a, ad) reads every block's state and its rates
+    off the solved pairs (so any of them can start the next row) and the solving block keeps
+    its orientation.  its[slot] gets the Newton steps.  Returns (solved, sigma)."""
+    k, its[slot], sigma, turn = resolve_variants(groups, a, first, order, used[slot],
+                                                 m.sizes[first:first + len(groups)], chains, p, m.length_scale)
+    if k < 0:
+        return False, sigma
+    used[slot] = k
+    lengths(a, ad)
+    a[first + k][-1] = float(turn)
+    return True, sigma
+
+# The row driver: one row of a sweep solved on the sketch's assembly, from the previous
+# row where it can (Taylor-predicted start), else by continuation from the previous row or
+# from the sketch.  run(inputs, rates, accs, order, a, used, row) is one pass of the
+# procedure with the block states a and the preferred blocks used (both updated in place to
+# the solution); it returns (status code, the block states' rates); row says whether the
+# pass is the row's own (else a pass along a continuation path).  m holds the mechanism's
+# resolver data (length_scale, sketch_inputs, sketch_a, sizes, limits, periodic, low,
+# groups, another, not_converged), p the resolver policy (the step log's).
 
 
 def advance(a, rates, step, sizes):
@@ -455,63 +495,62 @@ def within(inputs, last, limits):
     return all(abs(x - y) <= lim for x, y, lim in zip(inputs, last, limits))
 
 
-def on_path(prev, guess, new, sizes, slack):
+def on_path(prev, guess, new, sizes, slack, p):
     """Whether a solved state new is where the predictor guess pointed from prev: no
-    block's Add-link length moved from the guess by more than a tenth of the largest predicted
-    move (plus slack); a larger correction is a jump to another assembly, or a step too long
-    for the curve.  A block that solved both and turned its orientation (the last entry of a
-    block's state, after its sizes[k] lengths and its branches; 0 where it did not solve) has
-    passed a singular position.  Where two assemblies pass close the nearer one can lie within
-    the tenth, so a turned block must be within a hundredth: the path crosses the singular
-    position along its tangent, as a mechanism goes straight through a change point."""
-    move = max((abs(g[i] - p[i]) for p, g, n in zip(prev, guess, sizes) for i in range(n)), default=0.0)
-    share = 0.01 if any(p[-1] * x[-1] < 0.0 for p, x in zip(prev, new)) else 0.1
+    block's Add-link length moved from the guess by more than p.path_share of the largest
+    predicted move (plus slack); a larger correction is a jump to another assembly, or a step
+    too long for the curve.  A block that solved both and turned its orientation (the last
+    entry of a block's state, after its sizes[k] lengths and its branches; 0 where it did not
+    solve) has passed a singular position.  Where two assemblies pass close the nearer one can
+    lie within that share, so a turned block must be within p.turn_share: the path crosses the
+    singular position along its tangent, as a mechanism goes straight through a change point."""
+    move = max((abs(g[i] - p_[i]) for p_, g, n in zip(prev, guess, sizes) for i in range(n)), default=0.0)
+    share = p.turn_share if any(p_[-1] * x[-1] < 0.0 for p_, x in zip(prev, new)) else p.path_share
     return all(abs(x[i] - g[i]) <= share * move + slack for g, x, n in zip(guess, new, sizes) for i in range(n))
 
 
-def continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach, low):
+def continuation(run, base, a, target, m, p):
     """Follow the assembly from inputs base (solved with block states a) to target.
 
     Angle inputs go the shorter way round, else the other way; where the one input is an
-    angle with a reach (the values it reaches from the sketch, modulo whole turns, from low
-    up; low is nan without one; base and target are inside it), it goes the one way round
-    that stays inside the reach.  Each step moves no input by
-    more than its limit and no Add-link length, as predicted, by more than reach; it starts
-    Newton from the tangent predictor and is halved where Newton fails or lands off the path
-    (see on_path), up to halvings times in a row.  run(inputs, rates, order, a) -> (ok, a,
-    rates) solves with input rates per unit of the path.  Returns the block states at
-    target, or None when the way (both ways without a reach) is cut.
+    angle with a reach (the values it reaches from the sketch, modulo whole turns, from m.low
+    up; m.low is nan without one; base and target are inside it), it goes the one way round
+    that stays inside the reach.  run(inputs, rates, order, a) -> (ok, a, rates) solves with
+    input rates per unit of the path (see walk).  Returns the block states at target, or
+    None when the way (both ways without a reach) is cut.
     """
-    if periodic[0] and low == low:
-        turns = [x - 2 * PI * floor((x - low) / (2 * PI)) for x in (base[0], target[0])]
-        return walk(run, base, a, [base[0] + turns[1] - turns[0]], limits, halvings, sizes, slack, reach)
-    goal = [t - 2 * PI * floor((t - b) / (2 * PI) + 0.5) if p else t for t, b, p in zip(target, base, periodic)]
-    reached = walk(run, base, a, goal, limits, halvings, sizes, slack, reach)
-    other = [(g - 2 * PI if g > b else g + 2 * PI if g < b else g) if p else g
-             for g, b, p in zip(goal, base, periodic)]
+    if m.periodic[0] and m.low == m.low:
+        turns = [x - 2 * PI * floor((x - m.low) / (2 * PI)) for x in (base[0], target[0])]
+        return walk(run, base, a, [base[0] + turns[1] - turns[0]], m, p)
+    goal = [t - 2 * PI * floor((t - b) / (2 * PI) + 0.5) if q else t for t, b, q in zip(target, base, m.periodic)]
+    reached = walk(run, base, a, goal, m, p)
+    other = [(g - 2 * PI if g > b else g + 2 * PI if g < b else g) if q else g
+             for g, b, q in zip(goal, base, m.periodic)]
     if reached is None and other != goal:
-        reached = walk(run, base, a, other, limits, halvings, sizes, slack, reach)
+        reached = walk(run, base, a, other, m, p)
     return reached
 
 
-WALK_PASSES = 1000  # a walk gives up after this many passes of the procedure
-
-
-def walk(run, base, a, goal, limits, halvings, sizes, slack, reach):
-    """Continuation along the straight path from base to goal (see continuation).  Near a
-    singular position the lengths' rates are large and the steps short (the prediction
-    holds only there); a step that makes no progress in floating point cuts the path, and
-    so do WALK_PASSES passes (at once where the path needs more steps than that)."""
+def walk(run, base, a, goal, m, p):
+    """Continuation along the straight path from base to goal.  Each step moves no input
+    by more than its limit (m.limits) and no Add-link length, as predicted, by more than
+    p.max_move of the length scale; it starts Newton from the tangent predictor and is
+    halved where Newton fails or lands off the path (see on_path), up to p.max_halvings
+    times in a row.  Near a singular position the lengths' rates are large and the steps
+    short (the prediction holds only there); a step that makes no progress in floating
+    point cuts the path, and so do p.walk_passes passes (at once where the path needs more
+    steps than that).  Returns the block states at goal, or None where the path is cut."""
+    slack, reach, sizes = p.path_slack * m.length_scale, p.max_move * m.length_scale, m.sizes
     d = [g - b for g, b in zip(goal, base)]
-    h_max = min([1.0] + [lim / abs(x) for lim, x in zip(limits, d) if x != 0.0])
-    if h_max * WALK_PASSES < 1.0:
+    h_max = min([1.0] + [lim / abs(x) for lim, x in zip(m.limits, d) if x != 0.0])
+    if h_max * p.walk_passes < 1.0:
         return None
     ok, a, rate = run(base, d, 1, a)
     if not ok:
         return None
     t, h, cuts, passes = 0.0, h_max, 0, 1
     while t < 1.0:
-        if passes == WALK_PASSES:
+        if passes == p.walk_passes:
             return None
         passes += 1
         fast = max((abs(r[i]) for r, n in zip(rate, sizes) for i in range(n) if r[i] == r[i]), default=0.0)
@@ -523,13 +562,54 @@ def walk(run, base, a, goal, limits, halvings, sizes, slack, reach):
         trial = [b + tt * x for b, x in zip(base, d)] if tt < 1.0 else goal
         guess = advance(a, rate, tt - t, sizes)
         ok, a2, rate2 = run(trial, d, 1, guess)
-        if ok and on_path(a, guess, a2, sizes, slack):
+        if ok and on_path(a, guess, a2, sizes, slack, p):
             t, a, rate, h, cuts = tt, a2, rate2, min(2 * h, h_max), 0
         else:
             h, cuts = h / 2, cuts + 1
-            if cuts > halvings:
+            if cuts > p.max_halvings:
                 return None
     return a
+
+
+def drive(run, warm, inputs, rates, accs, order, past, m, p):
+    """Solve one row on the sketch's assembly.  From the previous row's warm start
+    (inputs, rates, block states, their rates, the blocks used) when no input has moved
+    farther than a continuation step: the resolvers start where the block states' rates
+    point, and the row is taken when it solves on that path (see on_path).  Else, or where
+    the warm start fails at a resolver or lands off the path, the assembly is followed by
+    continuation from the previous row (or, without one, from the sketch) and the row
+    solved from there; where the way is cut but the row solves all the same it is on
+    another assembly only, and gets the code m.another.  A row past the reach (past) fails
+    at once.  Returns (status code, the warm start for the next row, None where it failed).
+    """
+    base, a = m.sketch_inputs, [list(g) for g in m.sketch_a]
+    used = list(warm[4]) if warm else [0] * m.groups
+    code, ad, solved = 0, None, False
+    if past:  # past a limit position: the pass fails the row at once with the limit's code
+        code, ad = run(inputs, rates, accs, order, a, used, True)
+    elif warm and within(inputs, warm[0], m.limits):
+        guess = predict(warm[:4], inputs, m.sizes)
+        a = [list(g) for g in guess]
+        code, ad = run(inputs, rates, accs, order, a, used, True)
+        solved = code <= 0 and on_path(warm[2], guess, a, m.sizes, p.path_slack * m.length_scale, p)
+    if warm and not solved:
+        base, a, used = list(warm[0]), [list(g) for g in warm[2]], list(warm[4])
+    if not solved and (code <= 0 or reason_of(code) == m.not_converged):
+        prefer = list(used)
+
+        def path(x, d, o, s):
+            s = [list(g) for g in s]
+            st, sd = run(x, d, [0.0] * len(x), o, s, list(prefer), False)
+            return st <= 0, s, sd
+
+        reached = continuation(path, base, a, list(inputs), m, p)
+        if reached is not None:
+            a = reached
+        code, ad = run(inputs, rates, accs, order, a, used, True)
+        if reached is None and code <= 0:
+            code = m.another  # another assembly only
+        solved = code <= 0
+    return code, ((list(inputs), list(rates), a, ad, used) if solved else None)
 
 # -- constants taken from the sketch -----------------------------------------
 # Points are held relative to (-64.0, 48.0), which _publish adds back
@@ -565,15 +645,15 @@ class _Work:
             self.near = near
 
 
-def _group_1(w, a, live):
+def _group_1(w, a, da, dda, live):
     """Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9.
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add1 = a[0]
+    w.add1 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known
     st, w.sigma[4], w.p_J4 = RRR_links(p_J3, p_J6, l_right_rocker2, w.add1, w.br4)
@@ -603,15 +683,15 @@ def _group_1(w, a, live):
 
 
 
-def _group_1_v1(w, a, live):
+def _group_1_v1(w, a, da, dda, live):
     """Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9 (fallback 1: the Add-link J6-J2).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add1_v1 = a[0]
+    w.add1_v1 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 24: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known
     st, w.sigma[24], w.p_J2 = RRR_links(p_J1, p_J6, l_right_rocker1, w.add1_v1, w.br24)
@@ -641,15 +721,15 @@ def _group_1_v1(w, a, live):
 
 
 
-def _group_1_v2(w, a, live):
+def _group_1_v2(w, a, da, dda, live):
     """Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9 (fallback 2: the Add-link J7-J2).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add1_v2 = a[0]
+    w.add1_v2 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
     st, w.sigma[29], w.p_J2 = RRR_links(p_J1, p_J7, l_right_rocker1, w.add1_v2, w.br29)
@@ -679,15 +759,15 @@ def _group_1_v2(w, a, live):
 
 
 
-def _group_1_v3(w, a, live):
+def _group_1_v3(w, a, da, dda, live):
     """Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9 (fallback 3: the Add-link J7-J4).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add1_v3 = a[0]
+    w.add1_v3 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
     st, w.sigma[34], w.p_J4 = RRR_links(p_J3, p_J7, l_right_rocker2, w.add1_v3, w.br34)
@@ -717,15 +797,15 @@ def _group_1_v3(w, a, live):
 
 
 
-def _group_1_v4(w, a, live):
+def _group_1_v4(w, a, da, dda, live):
     """Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9 (fallback 4: the Add-link J1-J4).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add1_v4 = a[0]
+    w.add1_v4 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 39: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
     st, w.sigma[39], w.p_J4 = RRR_links(p_J3, p_J1, l_right_rocker2, w.add1_v4, w.br39)
@@ -755,15 +835,15 @@ def _group_1_v4(w, a, live):
 
 
 
-def _group_1_v5(w, a, live):
+def _group_1_v5(w, a, da, dda, live):
     """Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9 (fallback 5: the Add-link J3-J2).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add1_v5 = a[0]
+    w.add1_v5 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 44: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
     st, w.sigma[44], w.p_J2 = RRR_links(p_J1, p_J3, l_right_rocker1, w.add1_v5, w.br44)
@@ -793,15 +873,15 @@ def _group_1_v5(w, a, live):
 
 
 
-def _group_1_v6(w, a, live):
+def _group_1_v6(w, a, da, dda, live):
     """Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9 (fallback 6: the Add-link K1-J2).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add1_v6 = a[0]
+    w.add1_v6 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 49: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known
     st, w.sigma[49], w.p_J2 = RRR_links(p_J1, p_K1, l_right_rocker1, w.add1_v6, w.br49)
@@ -831,15 +911,15 @@ def _group_1_v6(w, a, live):
 
 
 
-def _group_2(w, a, live):
+def _group_2(w, a, da, dda, live):
     """Steps 11, 12, 13, 14, 15, iterated by the resolver of step 16.
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add2 = a[0]
+    w.add2 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 11: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known
     st, w.sigma[11], w.p_K4 = RRR_links(p_K3, p_J6, l_left_rocker2, w.add2, w.br11)
@@ -869,16 +949,16 @@ def _group_2(w, a, live):
 
 
 
-def _group_2_v1(w, a, live):
+def _group_2_v1(w, a, da, dda, live):
     """Steps 54, 55, 56, 57, 58, iterated by the resolver of step 16 (fallback 1: the Add-link J5-K2).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J5 = w.p_J5 if live else (w.p_J5[0], w.p_J5[1]) + (0.0,) * (len(w.p_J5) - 2)
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add2_v1 = a[0]
+    w.add2_v1 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 54: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known
     st, w.sigma[54], w.p_K2 = RRR_links(p_K1, p_J5, l_left_rocker1, w.add2_v1, w.br54)
@@ -908,16 +988,16 @@ def _group_2_v1(w, a, live):
 
 
 
-def _group_2_v2(w, a, live):
+def _group_2_v2(w, a, da, dda, live):
     """Steps 59, 60, 61, 62, 63, iterated by the resolver of step 16 (fallback 2: the Add-link J5-K4).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J5 = w.p_J5 if live else (w.p_J5[0], w.p_J5[1]) + (0.0,) * (len(w.p_J5) - 2)
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add2_v2 = a[0]
+    w.add2_v2 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 59: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known
     st, w.sigma[59], w.p_K4 = RRR_links(p_K3, p_J5, l_left_rocker2, w.add2_v2, w.br59)
@@ -947,16 +1027,16 @@ def _group_2_v2(w, a, live):
 
 
 
-def _group_2_v3(w, a, live):
+def _group_2_v3(w, a, da, dda, live):
     """Steps 64, 65, 66, 67, 68, iterated by the resolver of step 16 (fallback 3: the Add-link J2-K4).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J2 = w.p_J2 if live else (w.p_J2[0], w.p_J2[1]) + (0.0,) * (len(w.p_J2) - 2)
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add2_v3 = a[0]
+    w.add2_v3 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 64: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known
     st, w.sigma[64], w.p_K4 = RRR_links(p_K3, p_J2, l_left_rocker2, w.add2_v3, w.br64)
@@ -986,16 +1066,16 @@ def _group_2_v3(w, a, live):
 
 
 
-def _group_2_v4(w, a, live):
+def _group_2_v4(w, a, da, dda, live):
     """Steps 69, 70, 71, 72, 73, iterated by the resolver of step 16 (fallback 4: the Add-link J4-K4).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J4 = w.p_J4 if live else (w.p_J4[0], w.p_J4[1]) + (0.0,) * (len(w.p_J4) - 2)
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add2_v4 = a[0]
+    w.add2_v4 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 69: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known
     st, w.sigma[69], w.p_K4 = RRR_links(p_K3, p_J4, l_left_rocker2, w.add2_v4, w.br69)
@@ -1025,16 +1105,16 @@ def _group_2_v4(w, a, live):
 
 
 
-def _group_2_v5(w, a, live):
+def _group_2_v5(w, a, da, dda, live):
     """Steps 74, 75, 76, 77, 78, iterated by the resolver of step 16 (fallback 5: the Add-link J2-K2).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J2 = w.p_J2 if live else (w.p_J2[0], w.p_J2[1]) + (0.0,) * (len(w.p_J2) - 2)
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add2_v5 = a[0]
+    w.add2_v5 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 74: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known
     st, w.sigma[74], w.p_K2 = RRR_links(p_K1, p_J2, l_left_rocker1, w.add2_v5, w.br74)
@@ -1064,16 +1144,16 @@ def _group_2_v5(w, a, live):
 
 
 
-def _group_2_v6(w, a, live):
+def _group_2_v6(w, a, da, dda, live):
     """Steps 79, 80, 81, 82, 83, iterated by the resolver of step 16 (fallback 6: the Add-link J4-K2).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J4 = w.p_J4 if live else (w.p_J4[0], w.p_J4[1]) + (0.0,) * (len(w.p_J4) - 2)
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add2_v6 = a[0]
+    w.add2_v6 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 79: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known
     st, w.sigma[79], w.p_K2 = RRR_links(p_K1, p_J4, l_left_rocker1, w.add2_v6, w.br79)
@@ -1103,15 +1183,15 @@ def _group_2_v6(w, a, live):
 
 
 
-def _group_2_v7(w, a, live):
+def _group_2_v7(w, a, da, dda, live):
     """Steps 84, 85, 86, 87, 88, iterated by the resolver of step 16 (fallback 7: the Add-link J6-K2).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add2_v7 = a[0]
+    w.add2_v7 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 84: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known
     st, w.sigma[84], w.p_K2 = RRR_links(p_K1, p_J6, l_left_rocker1, w.add2_v7, w.br84)
@@ -1141,16 +1221,16 @@ def _group_2_v7(w, a, live):
 
 
 
-def _group_2_v8(w, a, live):
+def _group_2_v8(w, a, da, dda, live):
     """Steps 89, 90, 91, 92, 93, iterated by the resolver of step 16 (fallback 8: the Add-link J5-K5).
 
-    a: the Add-link records; returns (status, residual records).  live=False
-    zeroes the rates of the records read from outside, so a unit Add-link rate
-    gives one Jacobian column.
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
     """
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     p_J5 = w.p_J5 if live else (w.p_J5[0], w.p_J5[1]) + (0.0,) * (len(w.p_J5) - 2)
-    w.add2_v8 = a[0]
+    w.add2_v8 = (a[0], da[0], dda[0])
     w.chains = 1.0
     # Step 89: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known
     st, w.sigma[89], w.p_K5 = RRR_links(p_J6, p_J5, l_left_coupler, w.add2_v8, w.br89)
@@ -1301,16 +1381,19 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     w.br45 = -1 if a[5][2] < 0 else 1
     w.br49 = -1 if a[6][1] < 0 else 1
     w.br50 = -1 if a[6][2] < 0 else 1
-    blocks = [lambda r, live: _group_1(w, r, live), lambda r, live: _group_1_v1(w, r, live), lambda r, live: _group_1_v2(w, r, live), lambda r, live: _group_1_v3(w, r, live), lambda r, live: _group_1_v4(w, r, live), lambda r, live: _group_1_v5(w, r, live), lambda r, live: _group_1_v6(w, r, live)]
-    k, its[0], w.sigma[9], turn = resolve_variants(
-        blocks, a, 0, 1e-10 * LENGTH_SCALE, 8,
-        0.1 * LENGTH_SCALE, order, used[0],
-        BLOCK_SIZES[0:7], lambda: w.chains, 0.05)
-    if k < 0:
+    blocks = [
+        lambda x, dx, ddx, live: _group_1(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_1_v1(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_1_v2(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_1_v3(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_1_v4(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_1_v5(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_1_v6(w, x, dx, ddx, live),
+    ]
+    ok, w.sigma[9] = resolve_group(blocks, lambda a, ad: _lengths_1(w, a, ad), a, ad, 0, 0,
+        used, its, order, lambda: w.chains, MECHANISM, POLICY)
+    if not ok:
         return 92
-    used[0] = k
-    _lengths_1(w, a, ad)
-    a[0 + k][-1] = float(turn)
     w.note(3 if w.sigma[9] < 1e-07 else 4 if w.sigma[9] < 0.001 else 0, 93, -94)
 
 
@@ -1335,16 +1418,21 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     w.br85 = -1 if a[14][2] < 0 else 1
     w.br89 = -1 if a[15][1] < 0 else 1
     w.br90 = -1 if a[15][2] < 0 else 1
-    blocks = [lambda r, live: _group_2(w, r, live), lambda r, live: _group_2_v1(w, r, live), lambda r, live: _group_2_v2(w, r, live), lambda r, live: _group_2_v3(w, r, live), lambda r, live: _group_2_v4(w, r, live), lambda r, live: _group_2_v5(w, r, live), lambda r, live: _group_2_v6(w, r, live), lambda r, live: _group_2_v7(w, r, live), lambda r, live: _group_2_v8(w, r, live)]
-    k, its[1], w.sigma[16], turn = resolve_variants(
-        blocks, a, 7, 1e-10 * LENGTH_SCALE, 8,
-        0.1 * LENGTH_SCALE, order, used[1],
-        BLOCK_SIZES[7:16], lambda: w.chains, 0.05)
-    if k < 0:
+    blocks = [
+        lambda x, dx, ddx, live: _group_2(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_2_v1(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_2_v2(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_2_v3(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_2_v4(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_2_v5(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_2_v6(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_2_v7(w, x, dx, ddx, live),
+        lambda x, dx, ddx, live: _group_2_v8(w, x, dx, ddx, live),
+    ]
+    ok, w.sigma[16] = resolve_group(blocks, lambda a, ad: _lengths_2(w, a, ad), a, ad, 7, 1,
+        used, its, order, lambda: w.chains, MECHANISM, POLICY)
+    if not ok:
         return 162
-    used[1] = k
-    _lengths_2(w, a, ad)
-    a[7 + k][-1] = float(turn)
     w.note(3 if w.sigma[16] < 1e-07 else 4 if w.sigma[16] < 0.001 else 0, 163, -164)
 
 
@@ -1538,48 +1626,23 @@ def _check(inputs, d_inputs, dd_inputs):
             raise ValueError(f"double_triad.solve: dd_inputs[{k}] is not finite or larger than 1e+30: {x!r}")
 
 
-def _path_run(inputs, rates, order, a, used):
-    """One pass along a continuation path: (closes, Add-link lengths, their rates)."""
-    a = [list(g) for g in a]
-    ad = [[0.0] * len(g) for g in a]
-    code = _run(_Work(), inputs, rates, [0.0] * len(inputs), order, a, ad, [0] * N_GROUPS, list(used))
-    return code <= 0, a, ad
-
-
 def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
     """Solve at the given inputs, rates and accelerations; see the module docstring."""
     _check(inputs, d_inputs, dd_inputs)
     w = _Work()
+    its = [0] * N_GROUPS
+
+    def run(x, d, dd, o, a, used, row):
+        """One pass of the procedure: the row's own (into w and its), or one along a continuation path."""
+        ad = [[0.0] * len(g) for g in a]
+        return _run(w if row else _Work(), x, d, dd, o, a, ad, its if row else [0] * N_GROUPS, used), ad
+
     order = min(order, ORDER)
     warm = state.get("warm") if state is not None else None
-    base = list(SKETCH_INPUTS)
-    a = [list(g) for g in SKETCH_ADD_LINKS]
-    ad = [[0.0] * len(g) for g in a]
-    its = [0] * N_GROUPS
-    used = list(warm[4]) if warm else [0] * N_GROUPS
-    code, solved = 0, False
-    if warm and within(inputs, warm[0], LIMITS):
-        # from the previous row, its block states moved along their rates
-        guess = predict(warm[:4], inputs, BLOCK_SIZES)
-        a = [list(g) for g in guess]
-        code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used)
-        solved = code <= 0 and on_path(warm[2], guess, a, BLOCK_SIZES, SLACK * LENGTH_SCALE)
-    if warm and not solved:
-        base, a, used = list(warm[0]), [list(g) for g in warm[2]], list(warm[4])
-    if not solved and (code <= 0 or reason_of(code) == 2):
-        # the sketch's assembly, followed from the sketch (or the last row)
-        prefer = list(used)
-        path = lambda x, d, o, s: _path_run(x, d, o, s, prefer)  # noqa: E731
-        reached = continuation(path, base, a, list(inputs), LIMITS, PERIODIC, 20,
-                               BLOCK_SIZES, SLACK * LENGTH_SCALE, REACH * LENGTH_SCALE, NAN)
-        if reached is not None:
-            a = reached
-        code = _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used)
-        if reached is None and code <= 0:
-            code = 92  # another assembly only
-        solved = code <= 0
+    past = False  # past a limit position
+    code, warm = drive(run, warm, inputs, d_inputs, dd_inputs, order, past, MECHANISM, POLICY)
     if state is not None:
-        state["warm"] = (list(inputs), list(d_inputs), a, ad, used) if solved else None
+        state["warm"] = warm
     out = _publish(w, code, order)
     out["iterations"] = its
     return out

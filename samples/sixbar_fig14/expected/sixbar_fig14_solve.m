@@ -17,50 +17,8 @@ function [out, status, warm] = sixbar_fig14_solve(in, din, ddin, warm)
     din = din(:)';
     ddin = ddin(:)';
     w = new_work();
-    base = [1.5707963267948966];
-    a = {[168.67127793433, -1.0, 1.0, 0.0]', [67.08203932499369, -1.0, 1.0, 0.0]', [123.4908903522847, -1.0, 1.0, 0.0]', [122.06555615733703, 1.0, 1.0, 0.0]', [60.8276253029822, -1.0, 1.0, 0.0]', [165.6804152578089, -1.0, 1.0, 0.0]', [89.44271909999159, 1.0, 1.0, 0.0]', [100.0, 1.0, 1.0, 0.0]', [120.0, 1.0, 1.0, 0.0]'};
-    ad = a;
-    used = zeros(1, 1);
-    status = 0;
-    solved = false;
-    limits = [0.1];
-    sizes = [1, 1, 1, 1, 1, 1, 1, 1, 1];
-    slack = 1.0000000000000001e-07 * w.length_scale;
-    if warm.valid
-        used = warm.used;
-        if all(abs(in - warm.in) <= limits)
-            % from the previous row, its block states moved along their rates
-            guess = resolver_predict(warm, in, sizes);
-            [status, w, a, ad, used] = run(w, in, din, ddin, 2, guess, ad, used);
-            solved = status <= 0 && resolver_on_path(warm.a, guess, a, sizes, slack);
-        end
-        if ~solved
-            base = warm.in;
-            a = warm.a;
-            used = warm.used;
-        end
-    end
-    if ~solved && (status <= 0 || reason_of(status) == 2)
-        % the sketch's assembly, followed from the sketch (or the last row)
-        prefer = used;
-        [reached, a2] = resolver_continuation(@(x, d, o, s) path_run(x, d, o, s, prefer), base, a, in, limits, ...
-            [1], 20, sizes, slack, 0.1 * w.length_scale, ...
-            NaN);
-        if reached
-            a = a2;
-        end
-        [status, w, a, ad, used] = run(w, in, din, ddin, 2, a, ad, used);
-        if ~reached && status <= 0
-            status = 92;
-        end
-        solved = status <= 0;
-    end
-    if solved
-        warm = struct('valid', true, 'in', in, 'din', din, 'a', {a}, 'ad', {ad}, ...
-            'used', used);
-    else
-        warm = struct('valid', false);
-    end
+    past = false;  % past a limit position
+    [status, w, warm] = resolver_drive(@run, w, in, din, ddin, 2, past, warm, w.mechanism, w.policy);
     out = publish(w, status, in);
 end
 
@@ -104,8 +62,33 @@ function w = new_work()
     w.l_ternary_J2_J4 = struct('v', 105.11898020814318, 'dv', 0.0, 'ddv', 0.0);
     w.l_coupler = struct('v', 121.6552506059644, 'dv', 0.0, 'ddv', 0.0);
     w.l_ternary_J2_J5 = struct('v', 60.8276253029822, 'dv', 0.0, 'ddv', 0.0);
-    w.length_scale = 188.67962264113208;
     w.iterations = zeros(1, 1);
+    % what the row driver needs of the mechanism
+    m = struct();
+    m.length_scale = 188.67962264113208;
+    m.sketch_in = [1.5707963267948966];
+    m.sketch_a = {[168.67127793433, -1.0, 1.0, 0.0]', [67.08203932499369, -1.0, 1.0, 0.0]', [123.4908903522847, -1.0, 1.0, 0.0]', [122.06555615733703, 1.0, 1.0, 0.0]', [60.8276253029822, -1.0, 1.0, 0.0]', [165.6804152578089, -1.0, 1.0, 0.0]', [89.44271909999159, 1.0, 1.0, 0.0]', [100.0, 1.0, 1.0, 0.0]', [120.0, 1.0, 1.0, 0.0]'};  % per block: lengths, branches, orientation
+    m.sizes = [1, 1, 1, 1, 1, 1, 1, 1, 1];  % Add-links of each block
+    m.limits = [0.1];  % the continuation's largest step of each input
+    m.periodic = [1];  % angle inputs: the continuation goes the shorter way round
+    m.low = NaN;  % where the reach of an angle input starts (NaN: no reach)
+    m.groups = 1;
+    m.another = 92;  % a row solvable on another assembly only
+    m.not_converged = 2;  % a row failed with this reason is followed from the last one
+    w.mechanism = m;
+    % the resolver's policy, lengths relative to the length scale (see sixbar_fig14.md)
+    p = struct();
+    p.tolerance = 1e-10;
+    p.max_iterations = 8;
+    p.newton_halvings = 3;
+    p.max_move = 0.1;
+    p.min_chain_sigma = 0.05;
+    p.max_halvings = 20;
+    p.path_slack = 1.0000000000000001e-07;
+    p.path_share = 0.1;
+    p.turn_share = 0.01;
+    p.walk_passes = 1000;
+    w.policy = p;
 end
 
 function w = note(w, st, singular, near)
@@ -118,9 +101,11 @@ function w = note(w, st, singular, near)
     end
 end
 
-function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
-    % The procedure of sixbar_fig14.md, step by step.
+function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
+    % The procedure of sixbar_fig14.md, step by step: the resolvers start from the block states a (their
+    % rates ad out) and try the blocks used first.
     status = 0;
+    ad = a;
     w.sigma = ones(1, 53);
     w.singular = 0;
     w.near = 0;
@@ -152,17 +137,14 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
     w.br49 = 1 - 2 * (a{9}(2) < 0);
     w.br50 = 1 - 2 * (a{9}(3) < 0);
     blocks = { @group_1, @group_1_v1, @group_1_v2, @group_1_v3, @group_1_v4, @group_1_v5, @group_1_v6, @group_1_v7, @group_1_v8 };
-    [k, its, w.sigma(9), turn, w] = resolver_variants(blocks, w, a, 1, ...
-        1e-10 * w.length_scale, 8, 0.1 * w.length_scale, order, used(1), ...
-        [1, 1, 1, 1, 1, 1, 1, 1, 1], 0.05);
+    [ok, its, sigma, w, a, ad, used] = resolver_group(blocks, @lengths_1, w, a, ad, used, 1, ...
+                                                      1, order, w.mechanism, w.policy);
     w.iterations(1) = its;
-    if k < 0
+    w.sigma(9) = sigma;
+    if ~ok
         status = 92;
         return;
     end
-    used(1) = k;
-    [a, ad] = lengths_1(w, a, ad);
-    a{1 + k}(end) = turn;
     if w.sigma(9) < 1e-07
         w = note(w, 3, 93, -94);
     elseif w.sigma(9) < 0.001
@@ -209,10 +191,11 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, ad, used)
     end
 end
 
-function [st, res, w] = group_1(w, a, live)
+function [st, res, w] = group_1(w, a, da, dda, live)
     % Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9: the Add-link
-    % records a in, the residual records res out; live false zeroes the rates of
-    % the records read from outside, so a unit Add-link rate gives one Jacobian column.
+    % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
+    % value and derivatives); live false zeroes the rates of the records read from outside,
+    % so a unit Add-link rate gives one Jacobian column.
     p_J6 = w.p_J6;
     if ~live
         p_J6.dx = 0;
@@ -220,7 +203,7 @@ function [st, res, w] = group_1(w, a, live)
         p_J6.ddx = 0;
         p_J6.ddy = 0;
     end
-    w.add1 = a(1);
+    w.add1 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
     % Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known
     [w.p_J4, st, w.sigma(4)] = RRR_links(w.p_J3, p_J6, w.l_rocker2, w.add1, w.br4);
@@ -259,15 +242,16 @@ function [st, res, w] = group_1(w, a, live)
     % Step 8: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
-    res = [w.f1];
+    res = [w.f1.v, w.f1.dv, w.f1.ddv];
 end
 
 
-function [st, res, w] = group_1_v1(w, a, live)
+function [st, res, w] = group_1_v1(w, a, da, dda, live)
     % Steps 14, 15, 16, 17, 18, iterated by the resolver of step 9 (fallback 1:
     % the Add-link J6-J2): the Add-link
-    % records a in, the residual records res out; live false zeroes the rates of
-    % the records read from outside, so a unit Add-link rate gives one Jacobian column.
+    % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
+    % value and derivatives); live false zeroes the rates of the records read from outside,
+    % so a unit Add-link rate gives one Jacobian column.
     p_J6 = w.p_J6;
     if ~live
         p_J6.dx = 0;
@@ -275,7 +259,7 @@ function [st, res, w] = group_1_v1(w, a, live)
         p_J6.ddx = 0;
         p_J6.ddy = 0;
     end
-    w.add1_v1 = a(1);
+    w.add1_v1 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
     % Step 14: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known
     [w.p_J2, st, w.sigma(14)] = RRR_links(w.p_J1, p_J6, w.l_rocker1, w.add1_v1, w.br14);
@@ -314,15 +298,16 @@ function [st, res, w] = group_1_v1(w, a, live)
     % Step 18: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
-    res = [w.f1_v1];
+    res = [w.f1_v1.v, w.f1_v1.dv, w.f1_v1.ddv];
 end
 
 
-function [st, res, w] = group_1_v2(w, a, live)
+function [st, res, w] = group_1_v2(w, a, da, dda, live)
     % Steps 19, 20, 21, 22, 23, iterated by the resolver of step 9 (fallback 2:
     % the Add-link J1-J4): the Add-link
-    % records a in, the residual records res out; live false zeroes the rates of
-    % the records read from outside, so a unit Add-link rate gives one Jacobian column.
+    % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
+    % value and derivatives); live false zeroes the rates of the records read from outside,
+    % so a unit Add-link rate gives one Jacobian column.
     p_J6 = w.p_J6;
     if ~live
         p_J6.dx = 0;
@@ -330,7 +315,7 @@ function [st, res, w] = group_1_v2(w, a, live)
         p_J6.ddx = 0;
         p_J6.ddy = 0;
     end
-    w.add1_v2 = a(1);
+    w.add1_v2 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
     % Step 19: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
     [w.p_J4, st, w.sigma(19)] = RRR_links(w.p_J3, w.p_J1, w.l_rocker2, w.add1_v2, w.br19);
@@ -369,15 +354,16 @@ function [st, res, w] = group_1_v2(w, a, live)
     % Step 23: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
-    res = [w.f1_v2];
+    res = [w.f1_v2.v, w.f1_v2.dv, w.f1_v2.ddv];
 end
 
 
-function [st, res, w] = group_1_v3(w, a, live)
+function [st, res, w] = group_1_v3(w, a, da, dda, live)
     % Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9 (fallback 3:
     % the Add-link J3-J2): the Add-link
-    % records a in, the residual records res out; live false zeroes the rates of
-    % the records read from outside, so a unit Add-link rate gives one Jacobian column.
+    % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
+    % value and derivatives); live false zeroes the rates of the records read from outside,
+    % so a unit Add-link rate gives one Jacobian column.
     p_J6 = w.p_J6;
     if ~live
         p_J6.dx = 0;
@@ -385,7 +371,7 @@ function [st, res, w] = group_1_v3(w, a, live)
         p_J6.ddx = 0;
         p_J6.ddy = 0;
     end
-    w.add1_v3 = a(1);
+    w.add1_v3 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
     % Step 24: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
     [w.p_J2, st, w.sigma(24)] = RRR_links(w.p_J1, w.p_J3, w.l_rocker1, w.add1_v3, w.br24);
@@ -424,15 +410,16 @@ function [st, res, w] = group_1_v3(w, a, live)
     % Step 28: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
-    res = [w.f1_v3];
+    res = [w.f1_v3.v, w.f1_v3.dv, w.f1_v3.ddv];
 end
 
 
-function [st, res, w] = group_1_v4(w, a, live)
+function [st, res, w] = group_1_v4(w, a, da, dda, live)
     % Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9 (fallback 4:
     % the Add-link J7-J2): the Add-link
-    % records a in, the residual records res out; live false zeroes the rates of
-    % the records read from outside, so a unit Add-link rate gives one Jacobian column.
+    % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
+    % value and derivatives); live false zeroes the rates of the records read from outside,
+    % so a unit Add-link rate gives one Jacobian column.
     p_J6 = w.p_J6;
     if ~live
         p_J6.dx = 0;
@@ -440,7 +427,7 @@ function [st, res, w] = group_1_v4(w, a, live)
         p_J6.ddx = 0;
         p_J6.ddy = 0;
     end
-    w.add1_v4 = a(1);
+    w.add1_v4 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
     % Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
     [w.p_J2, st, w.sigma(29)] = RRR_links(w.p_J1, w.p_J7, w.l_rocker1, w.add1_v4, w.br29);
@@ -479,15 +466,16 @@ function [st, res, w] = group_1_v4(w, a, live)
     % Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
-    res = [w.f1_v4];
+    res = [w.f1_v4.v, w.f1_v4.dv, w.f1_v4.ddv];
 end
 
 
-function [st, res, w] = group_1_v5(w, a, live)
+function [st, res, w] = group_1_v5(w, a, da, dda, live)
     % Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9 (fallback 5:
     % the Add-link J7-J4): the Add-link
-    % records a in, the residual records res out; live false zeroes the rates of
-    % the records read from outside, so a unit Add-link rate gives one Jacobian column.
+    % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
+    % value and derivatives); live false zeroes the rates of the records read from outside,
+    % so a unit Add-link rate gives one Jacobian column.
     p_J6 = w.p_J6;
     if ~live
         p_J6.dx = 0;
@@ -495,7 +483,7 @@ function [st, res, w] = group_1_v5(w, a, live)
         p_J6.ddx = 0;
         p_J6.ddy = 0;
     end
-    w.add1_v5 = a(1);
+    w.add1_v5 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
     % Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
     [w.p_J4, st, w.sigma(34)] = RRR_links(w.p_J3, w.p_J7, w.l_rocker2, w.add1_v5, w.br34);
@@ -534,15 +522,16 @@ function [st, res, w] = group_1_v5(w, a, live)
     % Step 38: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
-    res = [w.f1_v5];
+    res = [w.f1_v5.v, w.f1_v5.dv, w.f1_v5.ddv];
 end
 
 
-function [st, res, w] = group_1_v6(w, a, live)
+function [st, res, w] = group_1_v6(w, a, da, dda, live)
     % Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9 (fallback 6:
     % the Add-link J3-J5): the Add-link
-    % records a in, the residual records res out; live false zeroes the rates of
-    % the records read from outside, so a unit Add-link rate gives one Jacobian column.
+    % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
+    % value and derivatives); live false zeroes the rates of the records read from outside,
+    % so a unit Add-link rate gives one Jacobian column.
     p_J6 = w.p_J6;
     if ~live
         p_J6.dx = 0;
@@ -550,7 +539,7 @@ function [st, res, w] = group_1_v6(w, a, live)
         p_J6.ddx = 0;
         p_J6.ddy = 0;
     end
-    w.add1_v6 = a(1);
+    w.add1_v6 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
     % Step 39: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known
     [w.p_J5, st, w.sigma(39)] = RRR_links(p_J6, w.p_J3, w.l_coupler, w.add1_v6, w.br39);
@@ -589,15 +578,16 @@ function [st, res, w] = group_1_v6(w, a, live)
     % Step 43: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
     st = 0;
-    res = [w.f1_v6];
+    res = [w.f1_v6.v, w.f1_v6.dv, w.f1_v6.ddv];
 end
 
 
-function [st, res, w] = group_1_v7(w, a, live)
+function [st, res, w] = group_1_v7(w, a, da, dda, live)
     % Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9 (fallback 7:
     % the Add-link J1-J5): the Add-link
-    % records a in, the residual records res out; live false zeroes the rates of
-    % the records read from outside, so a unit Add-link rate gives one Jacobian column.
+    % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
+    % value and derivatives); live false zeroes the rates of the records read from outside,
+    % so a unit Add-link rate gives one Jacobian column.
     p_J6 = w.p_J6;
     if ~live
         p_J6.dx = 0;
@@ -605,7 +595,7 @@ function [st, res, w] = group_1_v7(w, a, live)
         p_J6.ddx = 0;
         p_J6.ddy = 0;
     end
-    w.add1_v7 = a(1);
+    w.add1_v7 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
     % Step 44: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known
     [w.p_J5, st, w.sigma(44)] = RRR_links(p_J6, w.p_J1, w.l_coupler, w.add1_v7, w.br44);
@@ -644,15 +634,16 @@ function [st, res, w] = group_1_v7(w, a, live)
     % Step 48: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v7 = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
     st = 0;
-    res = [w.f1_v7];
+    res = [w.f1_v7.v, w.f1_v7.dv, w.f1_v7.ddv];
 end
 
 
-function [st, res, w] = group_1_v8(w, a, live)
+function [st, res, w] = group_1_v8(w, a, da, dda, live)
     % Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9 (fallback 8:
     % the Add-link J7-J5): the Add-link
-    % records a in, the residual records res out; live false zeroes the rates of
-    % the records read from outside, so a unit Add-link rate gives one Jacobian column.
+    % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
+    % value and derivatives); live false zeroes the rates of the records read from outside,
+    % so a unit Add-link rate gives one Jacobian column.
     p_J6 = w.p_J6;
     if ~live
         p_J6.dx = 0;
@@ -660,7 +651,7 @@ function [st, res, w] = group_1_v8(w, a, live)
         p_J6.ddx = 0;
         p_J6.ddy = 0;
     end
-    w.add1_v8 = a(1);
+    w.add1_v8 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
     % Step 49: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known
     [w.p_J5, st, w.sigma(49)] = RRR_links(p_J6, w.p_J7, w.l_coupler, w.add1_v8, w.br49);
@@ -699,7 +690,7 @@ function [st, res, w] = group_1_v8(w, a, live)
     % Step 53: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v8 = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
     st = 0;
-    res = [w.f1_v8];
+    res = [w.f1_v8.v, w.f1_v8.dv, w.f1_v8.ddv];
 end
 
 
@@ -762,14 +753,6 @@ function [a, ad] = lengths_1(w, a, ad)
     m(m == 0) = old(m == 0);
     a{9} = [[f.v]'; sign(m); 0];
     ad{9} = [[f.dv]'; zeros(3, 1)];
-end
-
-
-function [ok, a, ad] = path_run(in, din, order, a, used)
-    % One pass along a continuation path: closes, Add-link lengths, their rates.
-    ad = a;
-    [status, ~, a, ad] = run(new_work(), in, din, zeros(size(in)), order, a, ad, used);
-    ok = status <= 0;
 end
 
 
@@ -1213,27 +1196,31 @@ end
 
 function [ok, f, jac, w] = resolver_jacobian(group, w, a)
     % Residuals and Jacobian at a, one pass per Add-link; ok is false when a chain cannot close.
+    % group(w, a, da, dda, live) -> [st, res, w] runs a group's steps with the Add-link lengths
+    % a, their rates da and accelerations dda (live false zeroes the rates of what it reads
+    % from outside); res has a row per residual: its value and derivatives.
     n = numel(a);
     jac = zeros(n, n);
     f = zeros(n, 1);
+    zero = zeros(n, 1);
     for j = 1:n
-        rec = struct('v', num2cell(a(:)'), 'dv', num2cell(double((1:n) == j)));
-        [rec.ddv] = deal(0);
-        [st, res, w] = group(w, rec, false);
+        unit = zero;
+        unit(j) = 1;
+        [st, res, w] = group(w, a, unit, zero, false);
         if st
             ok = false;
             return;
         end
-        f = [res.v]';
-        jac(:, j) = [res.dv]';
+        f = res(:, 1);
+        jac(:, j) = res(:, 2);
     end
     ok = true;
 end
 
-function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reach)
+function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reach, halvings)
     % Iterate the Add-link lengths until max|f| <= tol, then one step more; a step that
-    % makes a chain fail to close is halved (up to 3 times; then the block fails and
-    % the next block is tried).  A solution farther than reach from the start is
+    % makes a chain fail to close is halved (up to halvings times; then the block fails
+    % and the next block is tried).  A solution farther than reach from the start is
     % another assembly and refused.
     its = 0;
     start = a;
@@ -1249,7 +1236,7 @@ function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reac
             return;
         end
         t = 1;
-        for halving = 1:4
+        for halving = 0:halvings
             trial = a + t * dx;
             [closed, f2, jac2, w] = resolver_jacobian(group, w, trial);
             if closed
@@ -1277,20 +1264,16 @@ function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order)
     % the block's orientation, sign(det J): it stays the same along the assembly while the
     % block's chains keep their branches (a solution of the other sign is another assembly).
     n = numel(a);
-    rec = struct('v', num2cell(a(:)'), 'dv', 0);
-    [rec.ddv] = deal(0);
-    [~, res, w] = group(w, rec, true);
-    [rates, det] = solve_linear(jac, -[res.dv]');
-    rates = num2cell(rates');
-    [rec.dv] = deal(rates{:});
+    zero = zeros(n, 1);
+    [~, res, w] = group(w, a, zero, zero, true);
+    [rates, det] = solve_linear(jac, -res(:, 2));
+    accs = zero;
     if order >= 2
-        [~, res, w] = group(w, rec, true);
-        accs = solve_linear(jac, -[res.ddv]');
+        [~, res, w] = group(w, a, rates, zero, true);
+        accs = solve_linear(jac, -res(:, 3));
         if det == 0
             accs = NaN(n, 1);
         end
-        accs = num2cell(accs');
-        [rec.ddv] = deal(accs{:});
     end
     prod = 1;
     for j = 1:n
@@ -1298,32 +1281,34 @@ function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order)
     end
     sigma = abs(det) / max(prod, 1);
     turn = sign(det);
-    [st, ~, w] = group(w, rec, true);
+    [st, ~, w] = group(w, a, rates, accs, true);
 end
 
-function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer, ...
-                                                sizes, min_sigma)
+function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, prefer, sizes, p, scale)
     % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
     % preferred block first, the others in order.  The first that converges with its
-    % chains conditioned at least min_sigma (w.chains: the worst of the last pass, from
-    % the block's lever down) is kept; else the best conditioned of those that converge,
-    % a later block only when more than twice as well conditioned (blocks that share a
-    % chain near a toggle tie up to rounding: the order decides).  The caller then
-    % measures every block's state on the solved pairs.  a{first + k} is block k's state: its
-    % sizes(k + 1) start lengths, its branches, its orientation; k = -1 when no block
-    % converges; turn is the orientation of block k (see resolver_rates).
+    % chains conditioned at least p.min_chain_sigma (w.chains: the worst of the last pass,
+    % from the block's lever down) is kept; else the best conditioned of those that
+    % converge, a later block only when more than twice as well conditioned (blocks that
+    % share a chain near a toggle tie up to rounding: the order decides).  a{first + k} is
+    % block k's state: its sizes(k + 1) start lengths, its branches, its orientation; scale
+    % is the length scale; k = -1 when no block converges; turn is the orientation of
+    % block k (see resolver_rates).
     its = 0;
     sigma = 0;
     turn = 0;
     best = -1;
     best_sigma = -1;
+    tol = p.tolerance * scale;
+    reach = p.max_move * scale;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
     for k = tries
-        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, max_iter, reach);
+        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, p.max_iterations, ...
+                                               reach, p.newton_halvings);
         if ~ok
             continue;
         end
-        if w.chains < min_sigma
+        if w.chains < p.min_chain_sigma
             if w.chains > 2 * best_sigma
                 best = k;
                 best_sigma = w.chains;
@@ -1337,7 +1322,8 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, tol, 
     end
     k = best;
     if k >= 0
-        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, max_iter, reach);
+        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, p.max_iterations, ...
+                                               reach, p.newton_halvings);
         if ok
             [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
             if st ~= 1
@@ -1348,22 +1334,38 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, tol, 
     k = -1;
 end
 
-function ok = resolver_on_path(prev, guess, now, sizes, slack)
+function [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a, ad, used, first, slot, order, m, p)
+    % One resolver step: resolver_variants on the group's blocks a{first}, ... (the one that
+    % solved the last row, used(slot), first); then lengths(w, a, ad) reads every block's
+    % state and its rates off the solved pairs (so any of them can start the next row) and
+    % the solving block keeps its orientation.  ok: a block solved; its: its Newton steps.
+    [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, used(slot), ...
+                                                 m.sizes(first:first + numel(groups) - 1), p, m.length_scale);
+    ok = k >= 0;
+    if ~ok
+        return;
+    end
+    used(slot) = k;
+    [a, ad] = lengths(w, a, ad);
+    a{first + k}(end) = turn;
+end
+
+function ok = resolver_on_path(prev, guess, now, sizes, slack, p)
     % Whether a solved state is where the predictor pointed from prev: no block's Add-link
-    % length moved from the guess by more than a tenth of the largest predicted move (plus
-    % slack); a larger correction is a jump to another assembly, or a step too long for
-    % the curve.  A block that solved both and turned its orientation (the state's last
+    % length moved from the guess by more than p.path_share of the largest predicted move
+    % (plus slack); a larger correction is a jump to another assembly, or a step too long
+    % for the curve.  A block that solved both and turned its orientation (the state's last
     % entry, after its sizes(k) lengths and its branches; 0 where the block did not solve)
     % has passed a singular position.  Where two assemblies pass close the nearer one can
-    % lie within the tenth, so a turned block must be within a hundredth: the path crosses
-    % the singular position along its tangent, as a mechanism goes straight through a
-    % change point.
+    % lie within that share, so a turned block must be within p.turn_share: the path
+    % crosses the singular position along its tangent, as a mechanism goes straight
+    % through a change point.
     move = 0;
-    share = 0.1;
+    share = p.path_share;
     for g = 1:numel(sizes)
         move = max([move; abs(guess{g}(1:sizes(g)) - prev{g}(1:sizes(g)))]);
         if prev{g}(end) * now{g}(end) < 0
-            share = 0.01;
+            share = p.turn_share;
         end
     end
     ok = true;
@@ -1393,20 +1395,18 @@ function a = resolver_predict(warm, in, sizes)
     a = resolver_advance(warm.a, warm.ad, tau, sizes);
 end
 
-function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach, low)
+function [ok, a] = resolver_continuation(run, base, a, target, m, p)
     % Follow the assembly from inputs base (solved with block states a) to target.
     % Angle inputs go the shorter way round, else the other way; where the one input is an
     % angle with a reach (the values it reaches from the sketch, modulo whole turns, from
-    % low up; low is NaN without one; base and target are inside it), it goes the one way
-    % round that stays inside the reach.  A step moves no input by more than its limit and
-    % no Add-link length, as predicted, by more than reach; it starts Newton from the
-    % tangent predictor and is halved where Newton fails or lands off the path (see
-    % resolver_on_path), up to halvings times in a row.
-    if periodic(1) && ~isnan(low)
+    % m.low up; m.low is NaN without one; base and target are inside it), it goes the one
+    % way round that stays inside the reach.  run(in, din, order, a) -> [ok, a, rates] is a
+    % pass along the path (see resolver_walk).
+    if m.periodic(1) && ~isnan(m.low)
         goal = target;
-        goal(1) = base(1) + (target(1) - 2 * pi * floor((target(1) - low) / (2 * pi))) ...
-                  - (base(1) - 2 * pi * floor((base(1) - low) / (2 * pi)));
-        [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack, reach);
+        goal(1) = base(1) + (target(1) - 2 * pi * floor((target(1) - m.low) / (2 * pi))) ...
+                  - (base(1) - 2 * pi * floor((base(1) - m.low) / (2 * pi)));
+        [ok, a2] = resolver_walk(run, base, a, goal, m, p);
         if ok
             a = a2;
         end
@@ -1416,7 +1416,7 @@ function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic,
     other = target;
     differs = false;
     for i = 1:numel(goal)
-        if periodic(i)
+        if m.periodic(i)
             goal(i) = target(i) - 2 * pi * floor((target(i) - base(i)) / (2 * pi) + 0.5);
             other(i) = goal(i);
             if goal(i) > base(i)
@@ -1428,30 +1428,36 @@ function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic,
             end
         end
     end
-    [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack, reach);
+    [ok, a2] = resolver_walk(run, base, a, goal, m, p);
     if ~ok && differs
-        [ok, a2] = resolver_walk(run, base, a, other, limits, halvings, sizes, slack, reach);
+        [ok, a2] = resolver_walk(run, base, a, other, m, p);
     end
     if ok
         a = a2;
     end
 end
 
-function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack, reach)
-    % Continuation along the straight path from base to goal (see resolver_continuation).
-    % Near a singular position the lengths' rates are large and the steps short (the
-    % prediction holds only there); a step that makes no progress cuts the path, and so
-    % do max_passes passes (at once where the path needs more steps than that).
-    max_passes = 1000;
+function [ok, a] = resolver_walk(run, base, a, goal, m, p)
+    % Continuation along the straight path from base to goal.  Each step moves no input
+    % by more than its limit (m.limits) and no Add-link length, as predicted, by more than
+    % p.max_move of the length scale; it starts Newton from the tangent predictor and is
+    % halved where Newton fails or lands off the path (see resolver_on_path), up to
+    % p.max_halvings times in a row.  Near a singular position the lengths' rates are large
+    % and the steps short (the prediction holds only there); a step that makes no progress
+    % cuts the path, and so do p.walk_passes passes (at once where the path needs more
+    % steps than that).
+    slack = p.path_slack * m.length_scale;
+    reach = p.max_move * m.length_scale;
+    sizes = m.sizes;
     d = goal - base;
     h_max = 1;
     for i = 1:numel(d)
         if d(i) ~= 0
-            h_max = min(h_max, limits(i) / abs(d(i)));
+            h_max = min(h_max, m.limits(i) / abs(d(i)));
         end
     end
     ok = false;
-    if h_max * max_passes < 1
+    if h_max * p.walk_passes < 1
         return;
     end
     [ok, a, rate] = run(base, d, 1, a);
@@ -1463,7 +1469,7 @@ function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, sl
     cuts = 0;
     passes = 1;
     while t < 1
-        if passes == max_passes
+        if passes == p.walk_passes
             ok = false;
             return;
         end
@@ -1487,7 +1493,7 @@ function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, sl
         end
         guess = resolver_advance(a, rate, tt - t, sizes);
         [closed, a2, rate2] = run(trial, d, 1, guess);
-        if closed && resolver_on_path(a, guess, a2, sizes, slack)
+        if closed && resolver_on_path(a, guess, a2, sizes, slack, p)
             t = tt;
             a = a2;
             rate = rate2;
@@ -1496,11 +1502,72 @@ function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, sl
         else
             h = h / 2;
             cuts = cuts + 1;
-            if cuts > halvings
+            if cuts > p.max_halvings
                 ok = false;
                 return;
             end
         end
     end
     ok = true;
+end
+
+function [ok, a, ad] = resolver_path(run, w, in, din, order, a, used)
+    % One pass of the procedure along a continuation path (rates per unit of the path, no
+    % accelerations; its work is dropped): closes, the block states, their rates.
+    [status, ~, a, ad] = run(w, in, din, zeros(size(in)), order, a, used);
+    ok = status <= 0;
+end
+
+function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, warm, m, p)
+    % Solve one row on the sketch's assembly.  run(w, in, din, ddin, order, a, used) ->
+    % [status, w, a, ad, used] is one pass of the procedure with the block states a (and
+    % their rates ad out) and the preferred blocks used.  From the warm start (the previous
+    % row) when no input has moved farther than a continuation step: the resolvers start
+    % where the block states' rates point, and the row is taken when it solves on that path
+    % (see resolver_on_path).  Else, or where that fails at a resolver or lands off the
+    % path, the assembly is followed by continuation from the previous row (or, without
+    % one, from the sketch) and the row solved from there; where the way is cut but the row
+    % solves all the same it is on another assembly only, and gets the code m.another.  A
+    % row past the reach (past) fails at once.  warm becomes this row's where it solved.
+    base = m.sketch_in;
+    a = m.sketch_a;
+    used = zeros(1, m.groups);
+    if warm.valid
+        used = warm.used;
+    end
+    status = 0;
+    solved = false;
+    if past
+        % past a limit position: the pass fails the row at once with the limit's code
+        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
+    elseif warm.valid && all(abs(in - warm.in) <= m.limits)
+        % from the previous row, its block states moved along their rates
+        guess = resolver_predict(warm, in, m.sizes);
+        [status, w, a, ad, used] = run(w, in, din, ddin, order, guess, used);
+        solved = status <= 0 && resolver_on_path(warm.a, guess, a, m.sizes, p.path_slack * m.length_scale, p);
+    end
+    if warm.valid && ~solved
+        base = warm.in;
+        a = warm.a;
+        used = warm.used;
+    end
+    if ~solved && (status <= 0 || reason_of(status) == m.not_converged)
+        % the sketch's assembly, followed from the sketch (or the last row)
+        prefer = used;
+        [reached, a2] = resolver_continuation(@(x, d, o, s) resolver_path(run, w, x, d, o, s, prefer), base, a, in, ...
+                                              m, p);
+        if reached
+            a = a2;
+        end
+        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
+        if ~reached && status <= 0
+            status = m.another;  % another assembly only
+        end
+        solved = status <= 0;
+    end
+    if solved
+        warm = struct('valid', true, 'in', in, 'din', din, 'a', {a}, 'ad', {ad}, 'used', used);
+    else
+        warm = struct('valid', false);
+    end
 end

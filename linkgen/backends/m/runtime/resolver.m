@@ -32,29 +32,31 @@ end
 
 function [ok, f, jac, w] = resolver_jacobian(group, w, a)
     % Residuals and Jacobian at a, one pass per Add-link; ok is false when a chain cannot close.
+    % group(w, a, da, dda, live) -> [st, res, w] runs a group's steps with the Add-link lengths
+    % a, their rates da and accelerations dda (live false zeroes the rates of what it reads
+    % from outside); res has a row per residual: its value and derivatives.
     n = numel(a);
     jac = zeros(n, n);
     f = zeros(n, 1);
+    zero = zeros(n, 1);
     for j = 1:n
-        rec = struct('v', num2cell(a(:)'), 'dv', num2cell(double((1:n) == j)));
-% if order >= 2
-        [rec.ddv] = deal(0);
-% endif
-        [st, res, w] = group(w, rec, false);
+        unit = zero;
+        unit(j) = 1;
+        [st, res, w] = group(w, a, unit, zero, false);
         if st
             ok = false;
             return;
         end
-        f = [res.v]';
-        jac(:, j) = [res.dv]';
+        f = res(:, 1);
+        jac(:, j) = res(:, 2);
     end
     ok = true;
 end
 
-function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reach)
+function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reach, halvings)
     % Iterate the Add-link lengths until max|f| <= tol, then one step more; a step that
-    % makes a chain fail to close is halved (up to 3 times; then the block fails and
-    % the next block is tried).  A solution farther than reach from the start is
+    % makes a chain fail to close is halved (up to halvings times; then the block fails
+    % and the next block is tried).  A solution farther than reach from the start is
     % another assembly and refused.
     its = 0;
     start = a;
@@ -70,7 +72,7 @@ function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reac
             return;
         end
         t = 1;
-        for halving = 1:4
+        for halving = 0:halvings
             trial = a + t * dx;
             [closed, f2, jac2, w] = resolver_jacobian(group, w, trial);
             if closed
@@ -98,57 +100,51 @@ function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order)
     % the block's orientation, sign(det J): it stays the same along the assembly while the
     % block's chains keep their branches (a solution of the other sign is another assembly).
     n = numel(a);
-    rec = struct('v', num2cell(a(:)'), 'dv', 0);
-% if order >= 2
-    [rec.ddv] = deal(0);
-% endif
-    [~, res, w] = group(w, rec, true);
-    [rates, det] = solve_linear(jac, -[res.dv]');
-    rates = num2cell(rates');
-    [rec.dv] = deal(rates{:});
-% if order >= 2
+    zero = zeros(n, 1);
+    [~, res, w] = group(w, a, zero, zero, true);
+    [rates, det] = solve_linear(jac, -res(:, 2));
+    accs = zero;
     if order >= 2
-        [~, res, w] = group(w, rec, true);
-        accs = solve_linear(jac, -[res.ddv]');
+        [~, res, w] = group(w, a, rates, zero, true);
+        accs = solve_linear(jac, -res(:, 3));
         if det == 0
             accs = NaN(n, 1);
         end
-        accs = num2cell(accs');
-        [rec.ddv] = deal(accs{:});
     end
-% endif
     prod = 1;
     for j = 1:n
         prod = prod * sqrt(sum(jac(:, j) .^ 2));
     end
     sigma = abs(det) / max(prod, 1);
     turn = sign(det);
-    [st, ~, w] = group(w, rec, true);
+    [st, ~, w] = group(w, a, rates, accs, true);
 end
 
-function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, tol, max_iter, reach, order, prefer, ...
-                                                sizes, min_sigma)
+function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, prefer, sizes, p, scale)
     % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
     % preferred block first, the others in order.  The first that converges with its
-    % chains conditioned at least min_sigma (w.chains: the worst of the last pass, from
-    % the block's lever down) is kept; else the best conditioned of those that converge,
-    % a later block only when more than twice as well conditioned (blocks that share a
-    % chain near a toggle tie up to rounding: the order decides).  The caller then
-    % measures every block's state on the solved pairs.  a{first + k} is block k's state: its
-    % sizes(k + 1) start lengths, its branches, its orientation; k = -1 when no block
-    % converges; turn is the orientation of block k (see resolver_rates).
+    % chains conditioned at least p.min_chain_sigma (w.chains: the worst of the last pass,
+    % from the block's lever down) is kept; else the best conditioned of those that
+    % converge, a later block only when more than twice as well conditioned (blocks that
+    % share a chain near a toggle tie up to rounding: the order decides).  a{first + k} is
+    % block k's state: its sizes(k + 1) start lengths, its branches, its orientation; scale
+    % is the length scale; k = -1 when no block converges; turn is the orientation of
+    % block k (see resolver_rates).
     its = 0;
     sigma = 0;
     turn = 0;
     best = -1;
     best_sigma = -1;
+    tol = p.tolerance * scale;
+    reach = p.max_move * scale;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
     for k = tries
-        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, max_iter, reach);
+        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, p.max_iterations, ...
+                                               reach, p.newton_halvings);
         if ~ok
             continue;
         end
-        if w.chains < min_sigma
+        if w.chains < p.min_chain_sigma
             if w.chains > 2 * best_sigma
                 best = k;
                 best_sigma = w.chains;
@@ -162,7 +158,8 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, tol, 
     end
     k = best;
     if k >= 0
-        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, max_iter, reach);
+        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, p.max_iterations, ...
+                                               reach, p.newton_halvings);
         if ok
             [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
             if st ~= 1
@@ -173,159 +170,18 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, tol, 
     k = -1;
 end
 
-function ok = resolver_on_path(prev, guess, now, sizes, slack)
-    % Whether a solved state is where the predictor pointed from prev: no block's Add-link
-    % length moved from the guess by more than a tenth of the largest predicted move (plus
-    % slack); a larger correction is a jump to another assembly, or a step too long for
-    % the curve.  A block that solved both and turned its orientation (the state's last
-    % entry, after its sizes(k) lengths and its branches; 0 where the block did not solve)
-    % has passed a singular position.  Where two assemblies pass close the nearer one can
-    % lie within the tenth, so a turned block must be within a hundredth: the path crosses
-    % the singular position along its tangent, as a mechanism goes straight through a
-    % change point.
-    move = 0;
-    share = 0.1;
-    for g = 1:numel(sizes)
-        move = max([move; abs(guess{g}(1:sizes(g)) - prev{g}(1:sizes(g)))]);
-        if prev{g}(end) * now{g}(end) < 0
-            share = 0.01;
-        end
-    end
-    ok = true;
-    for g = 1:numel(sizes)
-        ok = ok && all(abs(now{g}(1:sizes(g)) - guess{g}(1:sizes(g))) <= share * move + slack);
-    end
-end
-
-function a = resolver_advance(a, rate, step, sizes)
-    % Block states moved by step along their rates.  An Add-link length is a distance:
-    % where its prediction passes zero the two pairs pass each other, so it is reflected.
-    for g = 1:numel(a)
-        a{g} = a{g} + step * rate{g};
-        a{g}(1:sizes(g)) = abs(a{g}(1:sizes(g)));
-    end
-end
-
-function a = resolver_predict(warm, in, sizes)
-    % Resolver start values for new inputs: the warm states advanced along their rates
-    % (first-order Taylor in the warm row's input direction; the rates exist at every
-    % order, so the positions do not depend on the order computed).
-    den = sum(warm.din .^ 2);
-    tau = 0;
-    if den > 0
-        tau = sum((in - warm.in) .* warm.din) / den;
-    end
-    a = resolver_advance(warm.a, warm.ad, tau, sizes);
-end
-
-function [ok, a] = resolver_continuation(run, base, a, target, limits, periodic, halvings, sizes, slack, reach, low)
-    % Follow the assembly from inputs base (solved with block states a) to target.
-    % Angle inputs go the shorter way round, else the other way; where the one input is an
-    % angle with a reach (the values it reaches from the sketch, modulo whole turns, from
-    % low up; low is NaN without one; base and target are inside it), it goes the one way
-    % round that stays inside the reach.  A step moves no input by more than its limit and
-    % no Add-link length, as predicted, by more than reach; it starts Newton from the
-    % tangent predictor and is halved where Newton fails or lands off the path (see
-    % resolver_on_path), up to halvings times in a row.
-    if periodic(1) && ~isnan(low)
-        goal = target;
-        goal(1) = base(1) + (target(1) - 2 * pi * floor((target(1) - low) / (2 * pi))) ...
-                  - (base(1) - 2 * pi * floor((base(1) - low) / (2 * pi)));
-        [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack, reach);
-        if ok
-            a = a2;
-        end
-        return;
-    end
-    goal = target;
-    other = target;
-    differs = false;
-    for i = 1:numel(goal)
-        if periodic(i)
-            goal(i) = target(i) - 2 * pi * floor((target(i) - base(i)) / (2 * pi) + 0.5);
-            other(i) = goal(i);
-            if goal(i) > base(i)
-                other(i) = goal(i) - 2 * pi;
-                differs = true;
-            elseif goal(i) < base(i)
-                other(i) = goal(i) + 2 * pi;
-                differs = true;
-            end
-        end
-    end
-    [ok, a2] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack, reach);
-    if ~ok && differs
-        [ok, a2] = resolver_walk(run, base, a, other, limits, halvings, sizes, slack, reach);
-    end
-    if ok
-        a = a2;
-    end
-end
-
-function [ok, a] = resolver_walk(run, base, a, goal, limits, halvings, sizes, slack, reach)
-    % Continuation along the straight path from base to goal (see resolver_continuation).
-    % Near a singular position the lengths' rates are large and the steps short (the
-    % prediction holds only there); a step that makes no progress cuts the path, and so
-    % do max_passes passes (at once where the path needs more steps than that).
-    max_passes = 1000;
-    d = goal - base;
-    h_max = 1;
-    for i = 1:numel(d)
-        if d(i) ~= 0
-            h_max = min(h_max, limits(i) / abs(d(i)));
-        end
-    end
-    ok = false;
-    if h_max * max_passes < 1
-        return;
-    end
-    [ok, a, rate] = run(base, d, 1, a);
+function [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a, ad, used, first, slot, order, m, p)
+    % One resolver step: resolver_variants on the group's blocks a{first}, ... (the one that
+    % solved the last row, used(slot), first); then lengths(w, a, ad) reads every block's
+    % state and its rates off the solved pairs (so any of them can start the next row) and
+    % the solving block keeps its orientation.  ok: a block solved; its: its Newton steps.
+    [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, used(slot), ...
+                                                 m.sizes(first:first + numel(groups) - 1), p, m.length_scale);
+    ok = k >= 0;
     if ~ok
         return;
     end
-    t = 0;
-    h = h_max;
-    cuts = 0;
-    passes = 1;
-    while t < 1
-        if passes == max_passes
-            ok = false;
-            return;
-        end
-        passes = passes + 1;
-        fast = 0;
-        for g = 1:numel(sizes)
-            fast = max([fast; abs(rate{g}(1:sizes(g)))]);
-        end
-        if fast * h > reach
-            h = reach / fast;
-        end
-        tt = min(1, t + h);
-        if tt == t
-            ok = false;
-            return;
-        end
-        if tt < 1
-            trial = base + tt * d;
-        else
-            trial = goal;
-        end
-        guess = resolver_advance(a, rate, tt - t, sizes);
-        [closed, a2, rate2] = run(trial, d, 1, guess);
-        if closed && resolver_on_path(a, guess, a2, sizes, slack)
-            t = tt;
-            a = a2;
-            rate = rate2;
-            h = min(2 * h, h_max);
-            cuts = 0;
-        else
-            h = h / 2;
-            cuts = cuts + 1;
-            if cuts > halvings
-                ok = false;
-                return;
-            end
-        end
-    end
-    ok = true;
+    used(slot) = k;
+    [a, ad] = lengths(w, a, ad);
+    a{first + k}(end) = turn;
 end

@@ -1,0 +1,248 @@
+/* The row driver: one row of a sweep solved on the sketch's assembly, from the previous
+ * row where it can (Taylor-predicted start), else by continuation from the previous row or
+ * from the sketch.  run(ctx, row, in, din, ddin, order, a, ad, used) is one pass of the
+ * procedure with the block states a and the preferred blocks used (both updated in place to
+ * the solution) and writes the block states' rates into ad; row says whether the pass is the
+ * row's own (else one along a continuation path).  Returns the status code. */
+typedef int (*pass_fn)(void *ctx, int row, const double in[], const double din[], const double ddin[], int order,
+                       double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int used[]);
+
+/* The warm start a caller keeps between rows: whether it holds a solved row, its inputs and
+ * their rates, its block states and their rates, and the blocks that solved it. */
+typedef struct {
+    int *valid;
+    double *in, *din;
+    double (*a)[LINKGEN_NMAX], (*ad)[LINKGEN_NMAX];
+    int *used;
+} resolver_warm;
+
+/* A continuation's view of the procedure: passes along the path, the blocks tried first. */
+typedef struct {
+    pass_fn run;
+    void *ctx;
+    const int *prefer;
+} resolver_path;
+
+/* One pass along a continuation path (rates per unit of the path, no accelerations):
+ * returns 1 when it closes, with the block states a and their rates. */
+static int path_pass(const resolver_path *path, const double in[], const double din[], int order,
+                     double a[][LINKGEN_NMAX], double rates[][LINKGEN_NMAX])
+{
+    static const double zero[LINKGEN_NINPUTS] = { 0.0 };
+    int used[LINKGEN_NGROUPS], g;
+    for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = path->prefer[g];
+    return path->run(path->ctx, 0, in, din, zero, order, a, rates, used) <= 0;
+}
+
+/* Whether a solved state is where the predictor pointed from prev: no block's Add-link
+ * length moved from the guess by more than p->path_share of the largest predicted move (plus
+ * slack); a larger correction is a jump to another assembly, or a step too long for the
+ * curve.  A block that solved both and turned its orientation (the state's last entry,
+ * after its sizes[k] lengths and its branches; 0 where the block did not solve) has passed
+ * a singular position.  Where two assemblies pass close the nearer one can lie within that
+ * share, so a turned block must be within p->turn_share: the path crosses the singular
+ * position along its tangent, as a mechanism goes straight through a change point. */
+static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
+                   const double now[][LINKGEN_NMAX], const int sizes[], double slack, const resolver_policy *p)
+{
+    double move = 0.0, share = p->path_share;
+    int g, i;
+    for (g = 0; g < LINKGEN_NBLOCKS; g++) {
+        for (i = 0; i < sizes[g]; i++) move = fmax(move, fabs(guess[g][i] - prev[g][i]));
+        if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
+    }
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < sizes[g]; i++)
+            if (!(fabs(now[g][i] - guess[g][i]) <= share * move + slack)) return 0; /* a nan too */
+    return 1;
+}
+
+/* Whether no input moved farther from the last row than a continuation step. */
+static int within(const double in[], const double last[], const double limits[])
+{
+    int i;
+    for (i = 0; i < LINKGEN_NINPUTS; i++)
+        if (!(fabs(in[i] - last[i]) <= limits[i])) return 0;
+    return 1;
+}
+
+/* Block states a moved by step along their rates into out.  An Add-link length is a
+ * distance: where its prediction passes zero the two pairs pass each other, so it is
+ * reflected. */
+static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_NMAX], double step,
+                    const int sizes[], double out[][LINKGEN_NMAX])
+{
+    int g, i;
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < LINKGEN_NMAX; i++) {
+            out[g][i] = a[g][i] + step * rate[g][i];
+            if (i < sizes[g]) out[g][i] = fabs(out[g][i]);
+        }
+}
+
+/* Resolver start values for new inputs: the warm states advanced along their rates
+ * (first-order Taylor in the warm row's input direction; the rates exist at every
+ * order, so the positions do not depend on the order computed). */
+static void predict(const resolver_warm *warm, const double in[], const int sizes[], double a[][LINKGEN_NMAX])
+{
+    double num = 0.0, den = 0.0;
+    int i;
+    for (i = 0; i < LINKGEN_NINPUTS; i++) {
+        num += (in[i] - warm->in[i]) * warm->din[i];
+        den += warm->din[i] * warm->din[i];
+    }
+    advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad,
+            den > 0.0 ? num / den : 0.0, sizes, a);
+}
+
+/* Continuation along the straight path from base to goal.  Each step moves no input by
+ * more than its limit (m->limits) and no Add-link length, as predicted, by more than
+ * p->max_move of the length scale; it starts Newton from the tangent predictor and is
+ * halved where Newton fails or lands off the path (see on_path), up to p->max_halvings
+ * times in a row.  Near a singular position the lengths' rates are large and the steps
+ * short (the prediction holds only there); a step that makes no progress in floating point
+ * cuts the path, and so do p->walk_passes passes (at once where the path needs more steps
+ * than that).  Returns 1 with a the block states at goal, 0 where the path is cut. */
+static int walk(const resolver_path *path, const double base[], double a[][LINKGEN_NMAX], const double goal[],
+                const resolver_mechanism *m, const resolver_policy *p)
+{
+    const double slack = p->path_slack * m->length_scale, reach = p->max_move * m->length_scale;
+    double d[LINKGEN_NINPUTS], trial[LINKGEN_NINPUTS], start[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double now[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double t = 0.0, h, h_max = 1.0, fast;
+    int g, i, cuts = 0, passes = 1;
+    for (i = 0; i < LINKGEN_NINPUTS; i++) {
+        d[i] = goal[i] - base[i];
+        if (d[i] != 0.0) h_max = fmin(h_max, m->limits[i] / fabs(d[i]));
+    }
+    if (h_max * p->walk_passes < 1.0) return 0;
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < LINKGEN_NMAX; i++) start[g][i] = a[g][i];
+    if (!path_pass(path, base, d, 1, start, rate)) return 0;
+    h = h_max;
+    while (t < 1.0) {
+        double tt;
+        if (passes++ == p->walk_passes) return 0;
+        fast = 0.0;
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
+            for (i = 0; i < m->sizes[g]; i++) fast = fmax(fast, fabs(rate[g][i]));
+        if (fast * h > reach) h = reach / fast;
+        tt = fmin(1.0, t + h);
+        if (tt == t) return 0;
+        for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
+        advance((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])rate, tt - t, m->sizes, guess);
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
+            for (i = 0; i < LINKGEN_NMAX; i++) now[g][i] = guess[g][i];
+        if (path_pass(path, trial, d, 1, now, rate2)
+            && on_path((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])guess,
+                       (const double (*)[LINKGEN_NMAX])now, m->sizes, slack, p)) {
+            t = tt;
+            h = fmin(2.0 * h, h_max);
+            cuts = 0;
+            for (g = 0; g < LINKGEN_NBLOCKS; g++)
+                for (i = 0; i < LINKGEN_NMAX; i++) { start[g][i] = now[g][i]; rate[g][i] = rate2[g][i]; }
+        } else {
+            h /= 2.0;
+            if (++cuts > p->max_halvings) return 0;
+        }
+    }
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = start[g][i];
+    return 1;
+}
+
+/* Follow the assembly from inputs base (solved with block states a) to target.  Angle
+ * inputs go the shorter way round, else the other way; where the one input is an angle
+ * with a reach (the values it reaches from the sketch, modulo whole turns, from m->low up;
+ * m->low is nan without one; base and target are inside it), it goes the one way round that
+ * stays inside the reach.  Returns 1 with a the block states at target, 0 when the way
+ * (both ways without a reach) is cut. */
+static int continuation(const resolver_path *path, const double base[], double a[][LINKGEN_NMAX],
+                        const double target[], const resolver_mechanism *m, const resolver_policy *p)
+{
+    const double two_pi = 2.0 * 3.141592653589793;
+    double goal[LINKGEN_NINPUTS], other[LINKGEN_NINPUTS];
+    int i, differs = 0;
+    if (m->periodic[0] && !isnan(m->low)) {
+        for (i = 0; i < LINKGEN_NINPUTS; i++) goal[i] = target[i];
+        goal[0] = base[0] + (target[0] - two_pi * floor((target[0] - m->low) / two_pi))
+                  - (base[0] - two_pi * floor((base[0] - m->low) / two_pi));
+        return walk(path, base, a, goal, m, p);
+    }
+    for (i = 0; i < LINKGEN_NINPUTS; i++) {
+        goal[i] = m->periodic[i] ? target[i] - two_pi * floor((target[i] - base[i]) / two_pi + 0.5) : target[i];
+        other[i] = goal[i];
+        if (m->periodic[i] && goal[i] != base[i]) {
+            other[i] = goal[i] > base[i] ? goal[i] - two_pi : goal[i] + two_pi;
+            differs = 1;
+        }
+    }
+    if (walk(path, base, a, goal, m, p)) return 1;
+    return differs && walk(path, base, a, other, m, p);
+}
+
+/* Solve one row on the sketch's assembly.  From the warm start (the previous row) when no
+ * input has moved farther than a continuation step: the resolvers start where the block
+ * states' rates point, and the row is taken when it solves on that path (see on_path).
+ * Else, or where that fails at a resolver or lands off the path, the assembly is followed by
+ * continuation from the previous row (or, without one, from the sketch) and the row solved
+ * from there; where the way is cut but the row solves all the same it is on another
+ * assembly only, and gets the code m->another.  A row past the reach (past) fails at once.
+ * The warm start becomes this row's where it solved.  Returns the status code. */
+static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const resolver_policy *p, int past,
+                 const double in[], const double din[], const double ddin[], int order, const resolver_warm *warm)
+{
+    double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double ad[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    int used[LINKGEN_NGROUPS];
+    int code = 0, solved = 0, g, i;
+    for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = m->sketch_in[i];
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = m->sketch_a[g][i];
+    for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = *warm->valid ? warm->used[g] : 0;
+    if (past) {
+        /* past a limit position: the pass fails the row at once with the limit's code */
+        code = run(ctx, 1, in, din, ddin, order, a, ad, used);
+    } else if (*warm->valid && within(in, warm->in, m->limits)) {
+        predict(warm, in, m->sizes, guess);
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
+            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = guess[g][i];
+        code = run(ctx, 1, in, din, ddin, order, a, ad, used);
+        solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
+                                      (const double (*)[LINKGEN_NMAX])a, m->sizes,
+                                      p->path_slack * m->length_scale, p);
+    }
+    if (!solved && *warm->valid) {
+        for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = warm->in[i];
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
+            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = warm->a[g][i];
+        for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = warm->used[g];
+    }
+    if (!solved && (code <= 0 || reason_of(code) == m->not_converged)) {
+        int prefer[LINKGEN_NGROUPS];
+        resolver_path path;
+        for (g = 0; g < LINKGEN_NGROUPS; g++) prefer[g] = used[g];
+        path.run = run;
+        path.ctx = ctx;
+        path.prefer = prefer;
+        if (continuation(&path, base, a, in, m, p)) {
+            code = run(ctx, 1, in, din, ddin, order, a, ad, used);
+        } else {
+            code = run(ctx, 1, in, din, ddin, order, a, ad, used);
+            if (code <= 0) code = m->another;  /* another assembly only */
+        }
+        solved = code <= 0;
+    }
+    *warm->valid = solved;
+    if (solved) {
+        for (i = 0; i < LINKGEN_NINPUTS; i++) { warm->in[i] = in[i]; warm->din[i] = din[i]; }
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
+            for (i = 0; i < LINKGEN_NMAX; i++) {
+                warm->a[g][i] = a[g][i];
+                warm->ad[g][i] = ad[g][i];
+            }
+        for (g = 0; g < LINKGEN_NGROUPS; g++) warm->used[g] = used[g];
+    }
+    return code;
+}
