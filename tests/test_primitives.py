@@ -34,7 +34,7 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
-from primitive_calls import PI, all_outputs, args_of, call_python, field_level, named
+from primitive_calls import PI, all_outputs, args_of, call_python, field_level, named, special_inputs
 from sympy_oracle import (
     NAN,
     RECORD_FIELDS,
@@ -729,49 +729,6 @@ def bits(x: float) -> int:
 def same(a: float, b: float) -> bool:
     """Bit for bit, any nan equal to any nan."""
     return (math.isnan(a) and math.isnan(b)) or bits(a) == bits(b)
-
-
-def special_inputs(name: str) -> list[tuple[str, int | None, dict]]:
-    """(what, expected status, float parameter values) at the status branches: toggles, failures, degeneracies."""
-
-    def pt(pname, x, y, dx=0.5, dy=-0.25, ddx=0.125, ddy=1.0):
-        return {f"{pname}_{k}": v for k, v in zip(("x", "y", "dx", "dy", "ddx", "ddy"), (x, y, dx, dy, ddx, ddy))}
-
-    def var(pname, v, dv=0.5, ddv=-0.5, kind="VARIABLE"):
-        names = RECORD_FIELDS[kind]
-        return {f"{pname}_{names[i][0]}": x for i, x in enumerate((v, dv, ddv))}
-
-    cases: list[tuple[str, int, dict]] = []
-    if name == "RRR_links":
-        for what, st, l1, l2, q in (("toggle", 3, 2.0, 3.0, 5.0), ("toggle", 3, 7.0, 2.0, 5.0),
-                                    ("fail", 1, 3.0, 4.0, 10.0), ("coincident", 1, 3.0, 4.0, 0.0),
-                                    ("fail", 1, 0.0, 5.0, 5.0)):
-            for minv in (1, -1):
-                cases.append((what, st, {**pt("j1", 0.0, 0.0), **pt("j2", q, 0.0, 1.0, 2.0, -1.0, 0.5),
-                                         **var("l1", l1), **var("l2", l2), "minv": minv}))
-    elif name == "PRR_links":
-        for what, st, ln, y in (("toggle", 3, 3.0, 3.0), ("toggle", 3, 3.0, -3.0), ("fail", 1, 2.0, 3.0),
-                                ("fail", 1, 0.0, 0.0)):
-            cases.append((what, st, {**pt("jr", 0.0, y), **var("l", ln), **pt("pg", 0.0, 0.0),
-                                     **var("psig", 0.0, 1.0, 0.5, "ANGLE"), "gsi": 0.0, "eta": 0.0, "minv": 1}))
-    elif name == "RPR_links":
-        for what, st, bg, q in (("toggle", 3, 3.0, 3.0), ("toggle", 3, -3.0, 3.0), ("fail", 1, 4.0, 3.0),
-                                ("coincident", 1, 0.0, 0.0)):
-            cases.append((what, st, {**pt("jg", 0.0, 0.0), **pt("js", q, 0.0, 0.0, 1.0),
-                                     "ag": 0.0, "bg": bg, "as_": 0.0, "bs": 0.0, "minv": 1}))
-    elif name == "PRP_links":
-        cases.append(("parallel", 1, {**pt("pg1", 0.0, 0.0), **var("psig1", 0.0, kind="ANGLE"), "gsi1": 0.0,
-                                      "eta1": 0.0, **pt("pg2", 0.0, 1.0), **var("psig2", 0.0, kind="ANGLE"),
-                                      "gsi2": 0.0, "eta2": 0.0}))
-    elif name == "PPR_links":
-        cases.append(("parallel", 1, {**pt("jr", 1.0, 2.0), **pt("pg", 0.0, 0.0), **var("psig", 0.0, kind="ANGLE"),
-                                      "xa": 0.0, "ya": 0.0, "xb": 0.0, "yb": 0.0, "cx": 0.0, "sgn": 1}))
-    elif name == "link_angle":
-        cases.append(("coincident", 1, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), "off": 0.5}))
-    elif name == "link_residual":
-        cases.append(("coincident", None, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), **var("l", 1.0)}))
-        cases.append(("parting", None, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0, 3.5, 3.75), **var("l", 1.0)}))
-    return cases
 
 
 FLOAT_SAMPLES = 150  # per primitive and branch: the libm functions differ in a few percent of last bits
