@@ -93,15 +93,17 @@ def test_records_are_tuples_of_the_programs_order():
 
 
 def test_the_reach_check_ends_a_row_past_the_reach_with_its_codes():
-    log = build_log(str(ROOT / "tests" / "mechanisms" / "cylinder_triad.yaml"), None, None, sweep=False)
+    """A crank whose reach is an arc (low, high): past high by a little is nearer high's gap, below low by a
+    little nearer low's (its step is another: the codes differ)."""
+    log = build_log(str(ROOT / "tests" / "mechanisms" / "stephenson_circuit.yaml"), None, None, sweep=False)
     spell = Python(build_view(log))
-    assert log.reach is not None and log.reach.high is None  # a cylinder shorter than the low end cannot assemble
-    source = "".join(resources.files("linkgen.backends.py").joinpath("runtime", f).read_text(encoding="utf-8")
-                     for f in ("reach.py",))
+    assert log.reach is not None and log.reach.low is not None and log.reach.high is not None
+    low, high = log.reach.codes()
+    assert low != high
+    source = resources.files("linkgen.backends.py").joinpath("runtime", "reach.py").read_text(encoding="utf-8")
     space = {"floor": math.floor, "PI": math.pi, "NAN": math.nan}
     exec(source + "\ndef check(inputs):\n" + "".join(f"    {line}\n" for line in spell.reach_check())
          + "    return 0\n", space)
-    low, high = log.reach.codes()
-    assert space["check"]([log.reach.low - 1.0]) == low
-    assert space["check"]([log.reach.low + 1.0]) == 0
-    assert space["check"]([1e9]) == 0 and low == status.code(log.reach.low_step, status.CANNOT_CLOSE)
+    probes = (log.reach.low - 0.1, (log.reach.low + log.reach.high) / 2, log.reach.high + 0.1)
+    assert [space["check"]([x]) for x in probes] == [low, 0, high]
+    assert (low, high) == (status.code(log.reach.low_step, 1), status.code(log.reach.high_step, 1))
