@@ -7,10 +7,11 @@ The chain (used for scaling): the crank O-X0 and the frame pivot Y0 carry dyad 1
 is the ternary links upper_k = [X(k-1), Ak, Xk] and lower_k = [Y(k-1), Ak, Yk] (the last
 dyad binary), so dyad k+1 hangs on Xk and Yk, one on each link of dyad k.  Every cell is
 the same, mirror-symmetric: Ak midway between X(k-1) and Y(k-1), 20 off their line, each 3R
-chain at a right angle in the sketch.  The cells stay congruent as the crank turns (the chain
-curls), so over the input range of +-10 degrees every chain's sigma stays at least 0.96 (its
-middle angle within 16 degrees of a right angle) whatever n.  Every link has at most three
-pairs, so the mechanism, its truss and its LJ-matrix's columns grow linearly with n.
+chain at a right angle in the sketch and each ternary link a right-angled V.  As the crank
+turns, the angle at Ak is a in one cell and 180 - a in the next (the arms of each V keep
+their right angle), so every chain has the first one's sigma, sin a: above 0.96 over the
+input range of +-10 degrees, whatever n.  Every link has at most three pairs, so the
+mechanism, its truss and its LJ-matrix's columns grow linearly with n.
 
 The frame ladder hangs dyad k on A(k-1) and a frame pivot Gk: the frame carries n + 1 pairs,
 and rule (i) makes it a truss of n(n+1)/2 members (the LJ-matrix and the step log grow as
