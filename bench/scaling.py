@@ -159,9 +159,10 @@ What grows faster than N is the singular analysis (when this bench was written, 
 zoomed into the closing margin of every chain, evaluating the whole procedure ten times per
 chain: N zooms of N steps).
 
-The ladder issue 19 first measured hangs every rocker on the frame instead, so the frame
-carries N + 1 pairs and rule (i) makes it a truss of N(N+1)/2 members: its LJ-matrix and step
-log grow as N^2 whatever the code does.  Reading and extraction of that ladder (one run):
+The frame ladder (`ladder(n, "frame")`, the ladder bench/run.py timed before) hangs every
+rocker on the frame instead, so the frame carries N + 1 pairs and rule (i) makes it a truss of
+N(N+1)/2 members: its LJ-matrix and step log grow as N^2 whatever the code does.  Reading and
+extraction of that ladder (one run):
 
 """
 
