@@ -30,8 +30,9 @@ sys.path.insert(0, str(ROOT))
 
 from ladders import write_ladder  # noqa: E402
 
+from linkgen.analysis import Facts, with_facts  # noqa: E402
 from linkgen.extraction import extract  # noqa: E402
-from linkgen.pipeline import build_log, steplog  # noqa: E402
+from linkgen.pipeline import build_log, draft  # noqa: E402
 from linkgen.prune import prune  # noqa: E402
 from linkgen.render import render_all  # noqa: E402
 from linkgen.topology import analyse  # noqa: E402
@@ -84,7 +85,7 @@ def measure(n: int, folder: Path, whole: bool) -> Row:
     runs = 5 if n <= 200 else 3
     read, m = timed(lambda: read_mechanism(path), runs)
     extraction, (topo, proc) = timed(lambda: (lambda t: (t, extract(t)))(analyse(m)), runs)
-    render, files = timed(lambda: render_all(prune(steplog(topo, proc))), runs)
+    render, files = timed(lambda: render_all(prune(with_facts(draft(topo, proc), Facts()))), runs)
     built = timed(lambda: render_all(build_log(path)), 1)[0] if whole else None
     return Row(n, read, extraction, render, built, len(files[f"ladder{n}.md"]), sum(map(len, files.values())))
 
