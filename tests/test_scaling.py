@@ -11,8 +11,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from linkgen.analysis import Facts, with_facts
 from linkgen.evaluate import evaluate, input_rows
-from linkgen.pipeline import analyse_file, steplog
+from linkgen.pipeline import analyse_file, draft
 from linkgen.prune import prune
 from linkgen.render import render_all
 
@@ -42,7 +43,7 @@ def test_the_chain_ladder_keeps_the_first_cells_conditioning(tmp_path: Path):
     X0 on the crank (O at (-30, 20), length 30), Y0 at (0, -20): a closed form of the input angle."""
     n = 40
     _, topo, proc = analyse_file(str(write_ladder(n, tmp_path)))
-    log = steplog(topo, proc)
+    log = with_facts(draft(topo, proc), Facts())
     values, rates, accs = input_rows(log, 41)
     result = evaluate(log, values, rates, accs)
     assert not result.status.any()
@@ -64,7 +65,7 @@ def test_the_chain_ladder_keeps_the_first_cells_conditioning(tmp_path: Path):
 
 def _manual_bytes(n: int, folder: Path) -> int:
     _, topo, proc = analyse_file(str(write_ladder(n, folder)))
-    return len(render_all(prune(steplog(topo, proc)))[f"ladder{n}.md"])
+    return len(render_all(prune(with_facts(draft(topo, proc), Facts())))[f"ladder{n}.md"])
 
 
 def test_the_manual_grows_linearly_with_the_dyads(tmp_path: Path):
