@@ -92,6 +92,7 @@ def _least(runs: list[list[tuple[int, float]]]) -> list[tuple[int, float]]:
 
 
 def _evaluator(log, values: list[float]) -> list[tuple[int, float]]:
+    from linkgen import status
     from linkgen.evaluate import RowSolver
 
     solver = RowSolver(log, max(log.order, 1))
@@ -100,8 +101,7 @@ def _evaluator(log, values: list[float]) -> list[tuple[int, float]]:
         t = time.perf_counter()
         row = solver.solve([v], [log.inputs[0].speed], [0.0])
         dt = time.perf_counter() - t
-        failed = [10 * n + st for n, (st, _) in row.report.items() if st in (1, 2)]
-        out.append((min(failed) if failed else 0, dt))
+        out.append((row.code if row.code > 0 and status.reason(row.code) in status.FAILED else 0, dt))
     return out
 
 

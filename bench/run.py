@@ -16,9 +16,10 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 import numpy as np  # noqa: E402
+from ladders import write_ladder  # noqa: E402
 
 from linkgen.evaluate import evaluate, input_rows  # noqa: E402  (linkgen first: it sets BLAS threads)
-from linkgen.pipeline import build_log  # noqa: E402
+from linkgen.pipeline import analyse_file, build_log  # noqa: E402
 
 
 def median_time(fn, repeat: int) -> float:
@@ -31,29 +32,13 @@ def median_time(fn, repeat: int) -> float:
     return statistics.median(times)
 
 
-def ladder(n: int, folder: Path) -> Path:
-    """A chain of n dyads (each new pair joins the previous one and a ground pivot)."""
-    joints = ["  G0: [0, 0]", "  A0: [10, 10]"]
-    links = ["  crank: [G0, A0]"]
-    for k in range(1, n + 1):
-        joints += [f"  G{k}: [{40 * k}, 0]", f"  A{k}: [{40 * k + 5}, {30 + 3 * (k % 2)}]"]
-        links += [f"  coupler{k}: [A{k - 1}, A{k}]", f"  rocker{k}: [G{k}, A{k}]"]
-    frame = ", ".join(f"G{k}" for k in range(n + 1))
-    text = "\n".join(["linkgen: 1", "name: ladder", "joints:", *joints, "links:",
-                      f"  frame: {{joints: [{frame}], fixed: true}}", *links, "inputs:",
-                      "  - {joint: G0, link: crank, relative_to: frame, range: [40, 50]}"]) + "\n"
-    path = folder / f"ladder{n}.yaml"
-    path.write_text(text)
-    return path
-
-
 def bench_extract() -> None:
     print("## Procedure extraction (parse, topology, LJ-matrix, Solver, Add-links), median")
     with tempfile.TemporaryDirectory() as tmp:
         for n in (25, 50, 100):
-            path = ladder(n, Path(tmp))
-            t = median_time(lambda p=path: build_log(str(p)), 5)
-            print(f"- chain of {n} dyads: {t * 1e3:.1f} ms")
+            path = write_ladder(n, Path(tmp))
+            t = median_time(lambda p=path: analyse_file(str(p)), 5)
+            print(f"- chain of {n} dyads (bench/ladders.py): {t * 1e3:.1f} ms")
     fig14 = ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"
     t = median_time(lambda: build_log(str(fig14)), 9)
     print(f"- six-bar of Fig. 14 with its Add-link (9 candidates ranked): {t * 1e3:.1f} ms")
@@ -202,6 +187,15 @@ def bench_builds() -> None:
 
 GROUPS["rows"] = bench_rows
 GROUPS["builds"] = bench_builds
+
+
+def bench_scaling() -> None:
+    from scaling import bench_scaling as run
+
+    run()
+
+
+GROUPS["scaling"] = bench_scaling
 
 
 if __name__ == "__main__":

@@ -1,9 +1,16 @@
 """Stage 3, mobility: Grübler's count and the rank of the constraint Jacobian at the sketch, which sees
 redundant constraints (an exactly drawn parallelogram) and dead centres; the inputs must drive every
-degree of freedom, each one a motion the others leave free."""
+degree of freedom, each one a motion the others leave free.
+
+The Jacobian is sparse (a pair's rows touch its links only).  Sparse elimination first: when every
+constraint and then every input removes a clear freedom, the mobility is Grübler's count and the
+inputs drive it (no redundancy, no dead centre), found in time linear in the size of a chain.
+Anything else (a redundant or nearly redundant row, or as many inputs as the count does not give)
+is decided by the dense singular values, as the format specifies, and explained."""
 
 from __future__ import annotations
 
+import heapq
 import math
 
 import numpy as np
@@ -13,16 +20,20 @@ from .errors import InputError, and_list
 from .model import Input, Mechanism
 
 RANK_TOLERANCE = 1e-9  # relative, as the format specifies
+CLEAR = 1e-6  # a pivot of the sparse elimination at least this large is a freedom removed beyond doubt
 OFF_LINE = 1e-3  # how far (relative to the length scale) a pair in line is moved to see if it causes a rank drop
 Array = npt.NDArray[np.float64]
+Row = dict[int, float]  # a sparse row of the Jacobian: column -> entry
 
 
 def check_mobility(m: Mechanism, scale: float) -> tuple[int, int]:
     """Grübler's count and the mobility at the sketch, once the inputs are found to drive it exactly."""
     jac = _Jacobian(m, scale)
-    c = jac.constraints()
-    mobility = jac.n - _rank(c)
     count = grubler(m)
+    if len(m.inputs) == count and _clearly_driven(jac):
+        return count, count
+    c = jac.dense(jac.constraints())
+    mobility = jac.n - _rank(c)
     if mobility > count:
         _check_dead_centre(m, scale, mobility)
     _check_input_count(m, mobility, count)
@@ -42,52 +53,110 @@ class _Jacobian:
         self.col = {lk.name: 3 * i for i, lk in enumerate(self.moving)}
         self.n = 3 * len(self.moving)
 
-    def point_rows(self, link: str, name: str) -> Array:
-        """d(velocity of a point on link)/d(unknowns): a 2 x n block."""
-        block = np.zeros((2, self.n))
+    def point_rows(self, link: str, name: str) -> tuple[Row, Row]:
+        """d(velocity of a point on link)/d(unknowns): two sparse rows."""
         if link not in self.col:
-            return block
+            return {}, {}
         c = self.col[link]
         ref = self.positions[self.m.link(link).joints[0]]
         x, y = self.positions[name]
-        block[0, c], block[1, c + 1] = 1.0, 1.0
-        block[0, c + 2] = -(y - ref[1]) / self.scale
-        block[1, c + 2] = (x - ref[0]) / self.scale
-        return block
+        return {c: 1.0, c + 2: -(y - ref[1]) / self.scale}, {c + 1: 1.0, c + 2: (x - ref[0]) / self.scale}
 
-    def turn_row(self, link: str) -> Array:
-        row = np.zeros(self.n)
-        if link in self.col:
-            row[self.col[link] + 2] = 1.0
-        return row
+    def turn_row(self, link: str) -> Row:
+        return {self.col[link] + 2: 1.0} if link in self.col else {}
 
-    def constraints(self) -> Array:
-        rows: list[Array] = []
-        for j in self.m.joints:
-            on = [lk.name for lk in self.m.links_of(j.name)]
-            if j.revolute:
+    def relative(self, a: str, b: str, name: str) -> tuple[Row, Row]:
+        """The velocity of the point ``name`` on link a relative to link b."""
+        (ax, ay), (bx, by) = self.point_rows(a, name), self.point_rows(b, name)
+        return _combine((1.0, ax), (-1.0, bx)), _combine((1.0, ay), (-1.0, by))
+
+    def constraints(self, order: list[str] | None = None) -> list[Row]:
+        """The rows of every pair, in declaration order or the ``order`` given."""
+        rows: list[Row] = []
+        for j in order or [j.name for j in self.m.joints]:
+            on = [lk.name for lk in self.m.links_of(j)]
+            joint = self.m.joint(j)
+            if joint.revolute:
                 for other in on[1:]:
-                    rows.extend(self.point_rows(on[0], j.name) - self.point_rows(other, j.name))
+                    rows.extend(self.relative(on[0], other, j))
             else:
-                p = self.m.prismatic_of(j.name)
-                normal = np.array([-math.sin(j.axis), math.cos(j.axis)])
-                rel = self.point_rows(p.slider, j.name) - self.point_rows(p.guide, j.name)
-                rows.append(normal @ rel)
-                rows.append(self.turn_row(p.slider) - self.turn_row(p.guide))
-        return np.array(rows).reshape(-1, self.n)
+                p = self.m.prismatic_of(j)
+                rx, ry = self.relative(p.slider, p.guide, j)
+                rows.append(_combine((-math.sin(joint.axis), rx), (math.cos(joint.axis), ry)))
+                rows.append(_combine((1.0, self.turn_row(p.slider)), (-1.0, self.turn_row(p.guide))))
+        return rows
 
-    def input_row(self, inp: Input) -> Array:
+    def input_row(self, inp: Input) -> Row:
         if inp.kind == "revolute":
-            return self.turn_row(inp.link) - self.turn_row(inp.relative_to)
+            return _combine((1.0, self.turn_row(inp.link)), (-1.0, self.turn_row(inp.relative_to)))
         if inp.kind == "prismatic":
             j = self.m.joint(inp.joint)
-            axis = np.array([math.cos(j.axis), math.sin(j.axis)])
-            return axis @ (self.point_rows(inp.link, j.name) - self.point_rows(inp.relative_to, j.name))
+            rx, ry = self.relative(inp.link, inp.relative_to, j.name)
+            return _combine((math.cos(j.axis), rx), (math.sin(j.axis), ry))
         a, b = inp.between
         (xa, ya), (xb, yb) = self.positions[a], self.positions[b]
-        u = np.array([xb - xa, yb - ya]) / math.hypot(xb - xa, yb - ya)
+        length = math.hypot(xb - xa, yb - ya)
         la, lb = self.m.links_of(a)[0].name, self.m.links_of(b)[0].name
-        return u @ (self.point_rows(lb, b) - self.point_rows(la, a))
+        (ax, ay), (bx, by) = self.point_rows(la, a), self.point_rows(lb, b)
+        return _combine(((xb - xa) / length, _combine((1.0, bx), (-1.0, ax))),
+                        ((yb - ya) / length, _combine((1.0, by), (-1.0, ay))))
+
+    def dense(self, rows: list[Row]) -> Array:
+        out = np.zeros((len(rows), self.n))
+        for i, row in enumerate(rows):
+            for c, value in row.items():
+                out[i, c] = value
+        return out
+
+
+def _combine(*terms: tuple[float, Row]) -> Row:
+    """The sum of the rows, each times its factor."""
+    out: Row = {}
+    for factor, row in terms:
+        for c, value in row.items():
+            out[c] = out.get(c, 0.0) + factor * value
+    return out
+
+
+def _reached(m: Mechanism) -> list[str]:
+    """The pairs in the order the links reach them from the frame (then any not reached),
+    so that the rows of a chain of links come in the order of the chain."""
+    order = list(dict.fromkeys(m.fixed.joints))
+    seen, walked = set(order), {m.fixed.name}
+    for j in order:  # grows while it is walked: breadth first
+        for lk in m.links_of(j):
+            if lk.name not in walked:
+                walked.add(lk.name)
+                order += [p for p in lk.joints if p not in seen]
+                seen.update(lk.joints)
+    return order + [j.name for j in m.joints if j.name not in seen]
+
+
+def _clearly_driven(jac: _Jacobian) -> bool:
+    """Sparse Gaussian elimination of the constraints, then the inputs, each row against the rows
+    before it: True when every row keeps an entry of at least CLEAR (no redundant constraint, and
+    every input drives a motion the constraints and the inputs before it leave free)."""
+    pivots: dict[int, tuple[int, Row]] = {}  # pivot column -> (its rank, its row)
+    for row in jac.constraints(_reached(jac.m)) + [jac.input_row(i) for i in jac.m.inputs]:
+        r = dict(row)
+        queue = [(pivots[c][0], c) for c in r if c in pivots]
+        heapq.heapify(queue)
+        queued = {c for _, c in queue}
+        while queue:  # by rank: a pivot row is zero in the columns of the pivots before it
+            _, c = heapq.heappop(queue)
+            rank, p = pivots[c]
+            f = r.pop(c) / p[c]
+            for k, v in p.items():
+                if k != c:
+                    r[k] = r.get(k, 0.0) - f * v
+                    if k in pivots and k not in queued:
+                        queued.add(k)
+                        heapq.heappush(queue, (pivots[k][0], k))
+        c = max(r, key=lambda k: abs(r[k]), default=-1)
+        if c < 0 or abs(r[c]) < CLEAR:
+            return False
+        pivots[c] = (len(pivots), r)
+    return True
 
 
 def _rank(a: Array) -> int:
@@ -167,7 +236,8 @@ def _check_dead_centre(m: Mechanism, scale: float, mobility: int) -> None:
         dx, dy = (rx - px, ry - py) if (rx, ry) != (px, py) else (qx - px, qy - py)
         step = OFF_LINE * scale / math.hypot(dx, dy)
         moved = {**m.positions, q: (qx - dy * step, qy + dx * step)}
-        if _rank(_Jacobian(m, scale, moved).constraints()) > rank:
+        jac = _Jacobian(m, scale, moved)
+        if _rank(jac.dense(jac.constraints())) > rank:
             found.append((p, q, r, l1, l2))
     moving = [f for f in found if not (m.link(f[3]).fixed or m.link(f[4]).fixed)]
     found = moving or found
@@ -200,7 +270,7 @@ def _cannot_move(inp: Input) -> str:
 
 def _check_inputs_determine(m: Mechanism, jac: _Jacobian, c: Array) -> None:
     """Each input must fix a motion that the constraints and the inputs before it leave free."""
-    rows = [jac.input_row(i) for i in m.inputs]
+    rows = [jac.dense([jac.input_row(i)])[0] for i in m.inputs]
     for k, inp in enumerate(m.inputs):
         before = np.vstack([c, *rows[:k]]) if k else c
         if _rank(np.vstack([before, rows[k]])) > _rank(before):

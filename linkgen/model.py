@@ -111,7 +111,12 @@ class Mechanism:
 
     @cached_property
     def _carriers(self) -> dict[str, tuple[Link, ...]]:
-        return {j.name: tuple(lk for lk in self.links if j.name in lk.joints) for j in self.joints}
+        carriers: dict[str, list[Link]] = {j.name: [] for j in self.joints}
+        for lk in self.links:
+            for name in dict.fromkeys(lk.joints):
+                if name in carriers:
+                    carriers[name].append(lk)
+        return {name: tuple(links) for name, links in carriers.items()}
 
     @cached_property
     def _prismatic(self) -> dict[str, Prismatic]:

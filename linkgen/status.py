@@ -17,21 +17,22 @@ SINGULAR = 3  # a singular position: positions given, derivatives nan
 NEAR_SINGULAR = 4  # near a singular position: everything given, the code negative
 BAD_INPUT = 5  # step 0: an input the program refuses (not finite, or out of the supported range)
 FAILED = (CANNOT_CLOSE, NOT_CONVERGED)  # every output of such a row is nan
+STEP_WEIGHT = 10  # a code is STEP_WEIGHT * step + reason (each runtime's reason_of reads it back)
 
 
 def code(step: Any, reason: Any) -> Any:
     """The status of a row that step ``step`` ends with ``reason``."""
-    return (10 * step + reason) * (1 - 2 * (reason == NEAR_SINGULAR))
+    return (STEP_WEIGHT * step + reason) * (1 - 2 * (reason == NEAR_SINGULAR))
 
 
 def reason(status: Any) -> Any:
     """The reason of a status (0 for status 0)."""
-    return abs(status) % 10
+    return abs(status) % STEP_WEIGHT
 
 
 def step(status: Any) -> Any:
     """The step a status names (0 for status 0 and for a refused input)."""
-    return abs(status) // 10
+    return abs(status) // STEP_WEIGHT
 
 
 def failed(status: Any) -> Any:

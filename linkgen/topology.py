@@ -151,13 +151,24 @@ def sketch_input(m: Mechanism, inp: Input) -> float:
 
 
 def _farthest(m: Mechanism) -> tuple[str, str, float]:
-    """The two pairs or points of the sketch farthest apart, and their distance."""
+    """The two pairs or points of the sketch farthest apart (the first such in declaration
+    order), and their distance.
+
+    Only the spots that can be an end of the farthest pair are compared pairwise: a spot's
+    distance to any other is at most its distance to the farthest corner of the bounding box,
+    and the farthest pair is at least as far apart as the spot with the largest such bound
+    is from its farthest spot."""
     names = list(m.positions)
     spots = np.array([m.positions[n] for n in names])
-    d = spots[:, None, :] - spots[None, :, :]
+    lo, hi = spots.min(axis=0), spots.max(axis=0)
+    bound = np.hypot(*np.maximum(spots - lo, hi - spots).T)
+    first = spots[int(np.argmax(bound))]
+    least = np.hypot(*(spots - first).T).max()
+    ends = np.flatnonzero(bound >= least * (1 - 1e-9))
+    d = spots[ends][:, None, :] - spots[ends][None, :, :]
     dist = np.hypot(d[..., 0], d[..., 1])
-    i, k = np.unravel_index(int(np.argmax(dist)), dist.shape)
-    return names[min(i, k)], names[max(i, k)], float(dist[i, k])
+    i, k = (int(ends[j]) for j in np.unravel_index(int(np.argmax(dist)), dist.shape))
+    return names[min(i, k)], names[max(i, k)], float(np.hypot(*(spots[i] - spots[k])))
 
 
 def _check_scale(m: Mechanism) -> float:

@@ -17,7 +17,7 @@ ROOT = Path(__file__).resolve().parents[1]
 TEMPLATES = sorted((ROOT / "templates").glob("*/*.j2"))
 NUMBER = re.compile(r"(?<![\w.])(\d+\.\d+|\d+(?:\.\d+)?[eE][-+]?\d+|\d+)(?![\w.])")
 STRUCTURAL = {"0", "1", "2", "3", "4", "0.0", "1.0"}  # zeros, ones, indexes; 3 arrays; warm[4]; nargin < 4
-PROSE = {"6", "8", "10", "41", "2020"}  # the manual: Machines 8(3) 41, 2020, its section 6; codes 10 k + r
+PROSE = {"6", "8", "41", "2020"}  # the manual: Machines 8(3) 41, 2020, its section 6
 
 
 def _numbers(path: Path) -> set[str]:
@@ -35,3 +35,12 @@ def test_the_check_sees_a_threshold(tmp_path: Path):
     planted = tmp_path / "x.j2"
     planted.write_text("{# 0.5 in a comment is fine #}if (sigma < 1e-07) return 52;\n")
     assert _numbers(planted) == {"1e-07", "52"}
+
+
+def test_the_c_macros_names_may_not_take_are_the_ones_name_c_defines():
+    """linkgen.backends.c.words.SOURCE_MACROS (names refused for a mechanism's parts) is exactly
+    what NAME.c.j2 #defines."""
+    from linkgen.backends.c.words import SOURCE_MACROS
+
+    defined = set(re.findall(r"^#define (\w+)", (ROOT / "templates" / "c" / "NAME.c.j2").read_text(), flags=re.M))
+    assert defined == SOURCE_MACROS

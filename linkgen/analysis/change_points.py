@@ -19,6 +19,8 @@ import numpy as np
 from ..steplog import Step, StepLog
 from .sweep import SMALL, TOUCH, closes, local_minima, margin, own, rows, run, span, spanning, vertex, zoom_min
 
+SNAP = 1e-10  # a change point this close to 0, relative to the span, is 0
+
 ChangePoints = tuple[tuple[int, tuple[float, ...]], ...]  # (step, input values), by step
 
 
@@ -61,7 +63,7 @@ def change_points(draft: StepLog) -> ChangePoints:
             if abs(low) <= TOUCH * draft.length_scale:
                 lam = vertex(log, lam, grid[1] / 8, partial(margin, step))
                 value = lo + lam * (hi - lo)
-                points.append(0.0 if abs(value) < 1e-10 * (hi - lo) else float(f"{value:.12g}"))
+                points.append(0.0 if abs(value) < SNAP * (hi - lo) else float(f"{value:.12g}"))
         if points:
             found[step.number] = tuple(sorted(set(points)))
     return tuple(found.items())

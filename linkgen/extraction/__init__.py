@@ -58,12 +58,10 @@ def extract(topo: Topology) -> Procedure:
 def _procedure(ws: Workspace) -> Procedure:
     """Number the steps and turn the drafts into step-log records."""
     steps = [replace(s, number=i + 1) for i, s in enumerate(ws.steps)]
-    residuals = tuple(replace(r, step=next(s.number for s in steps if r.name in s.outputs)) for r in ws.residuals)
-    add_links = tuple(
-        AddLink(d.name, d.pairs, d.length,
-                next(s.number for s in steps if s.action == "add_link" and s.target == d.name), d.candidates, d.probe)
-        for d in ws.add_links
-    )
+    made = {o: s.number for s in reversed(steps) for o in s.outputs}  # the first step that outputs each
+    installs = {s.target: s.number for s in reversed(steps) if s.action == "add_link"}
+    residuals = tuple(replace(r, step=made[r.name]) for r in ws.residuals)
+    add_links = tuple(AddLink(d.name, d.pairs, d.length, installs[d.name], d.candidates, d.probe) for d in ws.add_links)
     variables = dict(ws.variables)
     groups = resolver_groups(ws, steps, variables, add_links)
     m = ws.m

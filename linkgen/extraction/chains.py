@@ -16,7 +16,7 @@ from .state import Carrier, Workspace
 
 def carriers_of(ws: Workspace, pair: str) -> list[Carrier]:
     """Links, actuators and unused Add-links that carry the pair."""
-    return [c for c in ws.carriers if pair in c.pairs and (c.kind == "link" or c.name not in ws.used)]
+    return [c for c in ws.carriers_with(pair) if c.kind == "link" or c.name not in ws.used]
 
 
 def ends(ws: Workspace, carrier: Carrier, middle: str) -> list[tuple[str, str]]:

@@ -15,13 +15,14 @@ from ..steplog import Arg, LJColumn
 from ..topology import Topology, input_direction, reference_angle, wrap_angle
 from .chains import try_chain
 from .emit import emit
+from .index import Index
 from .placement import frame, line, link_angle, point_on, reference, rot
 from .state import Carrier, Unsupported, Workspace
 
 
 def start(topo: Topology) -> Workspace:
     """The frame's pairs and points known, the inputs' records made (step 1)."""
-    ws = Workspace(topo)
+    ws = Workspace(topo, Index.of(topo))
     m = ws.m
     ws.tied = {lk.name: [] for lk in m.links}
     ws.carriers = [Carrier(lk.name, "link", lk.joints) for lk in m.links]
@@ -35,7 +36,7 @@ def start(topo: Topology) -> Workspace:
     angle = wrap_angle(topo.direction(fixed.name).angle)
     base = ws.new_var(f"phi_{fixed.name}", "ANGLE", "link", fixed.name, (angle,))
     ws.orient[fixed.name] = ws.angles[fixed.name] = base
-    ws.placed.add(fixed.name)
+    ws.place(fixed.name)
     for inp, value in zip(m.inputs, topo.sketch_inputs):
         kind = "ANGLE" if inp.kind == "revolute" else "VARIABLE"
         ws.inputs.append(ws.new_var(f"in{inp.index + 1}", kind, "input", inp.column, sketch=(value,)))
@@ -75,12 +76,18 @@ def solve(ws: Workspace, stop_at_close: bool = False) -> bool:
 
 
 def _progress(ws: Workspace) -> bool:
-    """One Solver action; False when nothing is computable."""
+    """One Solver action; False when nothing is computable.  The first pair in declaration
+    order that can be computed is: the frontier holds every pair whose chains changed since
+    it was last tried (emit's refresh pushes them), and a pair that failed stays failed until
+    then."""
     for inp in ws.m.inputs:
         if inp.index not in ws.applied and _apply_input(ws, inp):
             ws.applied.add(inp.index)
             return True
-    return any(not ws.is_known(j.name) and (_try_point(ws, j.name) or try_chain(ws, j.name)) for j in ws.m.joints)
+    while (pair := ws.frontier.pop()) is not None:
+        if not ws.is_known(pair) and (_try_point(ws, pair) or try_chain(ws, pair)):
+            return True
+    return False
 
 
 def _apply_input(ws: Workspace, inp: Input) -> bool:

@@ -10,13 +10,16 @@ shared between every copy.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass, field, fields, replace
+from itertools import islice
 from types import MappingProxyType
 from typing import Any
 
 from ..model import Link
 from ..steplog import Arg, Candidate, LJColumn, Residual, Step, Variable
 from ..topology import Topology
+from .index import Frontier, Index, copy
 
 
 class Unsupported(Exception):
@@ -93,6 +96,7 @@ class SolverState:
     """Everything the Solver knows and has emitted (see Workspace for the fields)."""
 
     topo: Topology
+    index: Index
     variables: MappingProxyType[str, Variable]
     steps: tuple[Step, ...]
     pos: MappingProxyType[str, str]
@@ -125,9 +129,14 @@ class Workspace:
     reference point) to its POINT variable; ``orient`` a link to an ANGLE turning with
     it; ``coupled`` a link to the placed link it slides on; ``tied`` a link to the known
     names on it, in the order found; ``group`` is the open resolver group (0: none).
+
+    Besides the state, a working copy keeps what ``emit`` needs to look only at what a step
+    changed: how much of ``pos``, ``orient``, ``carriers`` and ``used`` it has seen, the
+    links placed in order, and the Solver's frontier (every pair, in a fresh copy).
     """
 
     topo: Topology
+    index: Index
     variables: dict[str, Variable] = field(default_factory=dict)
     steps: list[Step] = field(default_factory=list)
     pos: dict[str, str] = field(default_factory=dict)
@@ -153,7 +162,13 @@ class Workspace:
 
     def __post_init__(self) -> None:
         self.m = self.topo.mechanism
-        self.joint_names = frozenset(j.name for j in self.m.joints)
+        self.joint_names = self.index.joint_names
+        self.frontier = Frontier(self.index.order, self.index.order)
+        self.known_set = set(self.known)
+        self.lengths = {v.entity: v.name for v in reversed(self.variables.values()) if v.role == "length"}
+        self.seen = {"pos": len(self.pos), "orient": len(self.orient), "carriers": len(self.carriers),
+                     "used": len(self.used), "placed": 0}
+        self.placed_order: list[str] = []
 
     @classmethod
     def thaw(cls, state: SolverState) -> Workspace:
@@ -188,11 +203,11 @@ class Workspace:
         return "pair" if name in self.joint_names else "point"
 
     def const_length(self, link: str, a: str, b: str, value: float) -> str:
-        name = f"l_{link}" if len(self.link(link).joints) == 2 else f"l_{link}_{a}_{b}"
-        for v in self.variables.values():
-            if v.role == "length" and v.entity == f"{link}:{a}-{b}":
-                return v.name
-        return self.new_var(name, "VARIABLE", "length", f"{link}:{a}-{b}", (value,))
+        entity = f"{link}:{a}-{b}"
+        if entity not in self.lengths:
+            name = f"l_{link}" if len(self.link(link).joints) == 2 else f"l_{link}_{a}_{b}"
+            self.lengths[entity] = self.new_var(name, "VARIABLE", "length", entity, (value,))
+        return self.lengths[entity]
 
     def member_length(self, link: str, a: str, b: str) -> str:
         (xa, ya), (xb, yb) = self.xy(a), self.xy(b)
@@ -207,11 +222,8 @@ class Workspace:
         return self.m.link(name)
 
     def copy(self, pair: str, link: str) -> str:
-        """The name of the link's copy of a pair: a prismatic pair's position is its
-        slider's copy; the guide's copy of the reference point is ``S@guide``."""
-        if self.m.joint(pair).revolute or self.m.prismatic_of(pair).slider == link:
-            return pair
-        return f"{pair}@{link}"
+        """The name of the link's copy of a pair (see ``index.copy``)."""
+        return copy(self.index.slider_of, pair, link)
 
     def named(self, name: str, link: str) -> str:
         """A pair's or point's name as seen on a link (see ``copy``)."""
@@ -226,7 +238,18 @@ class Workspace:
         return len({self.xy(n) for n in names}) >= 2
 
     def carrier(self, name: str) -> Carrier:
-        return next(c for c in self.carriers if c.name == name)
+        if name in self.index.link_order:
+            return self.carriers[self.index.link_order[name]]
+        return next(c for c in self.extra_carriers() if c.name == name)
+
+    def extra_carriers(self) -> list[Carrier]:
+        """The actuators and Add-links (the carriers after the links, which come first in links order)."""
+        return self.carriers[len(self.index.link_order):]
+
+    def carriers_with(self, pair: str) -> list[Carrier]:
+        """Every carrier of the pair, in carriers order."""
+        links = [self.carriers[self.index.link_order[lk.name]] for lk in self.m.links_of(pair)]
+        return links + [c for c in self.extra_carriers() if pair in c.pairs]
 
     def is_known(self, pair: str) -> bool:
         if self.m.joint(pair).revolute:
@@ -245,11 +268,32 @@ class Workspace:
                                pairs, links, branch, reason, branch_reason, (), self.group, fails))
         return len(self.steps) - 1
 
-    def newly_known(self) -> tuple[str, ...]:
-        """The pairs that became known since the last call, in joints order."""
-        now = [j.name for j in self.m.joints if self.is_known(j.name) and j.name not in self.known]
-        self.known += now
-        return tuple(now)
+    def place(self, link: str) -> None:
+        self.placed.add(link)
+        self.placed_order.append(link)
+
+    def unseen(self, what: str) -> list[str]:
+        """The names added to ``pos`` or ``orient`` (``what``) since the last call, in the order added."""
+        table = self.pos if what == "pos" else self.orient
+        new = len(table) - self.seen[what]
+        self.seen[what] = len(table)
+        return list(islice(reversed(table), new))[::-1]
+
+    def newly_placed(self) -> list[str]:
+        """The links placed since the last call, in the order placed."""
+        out = self.placed_order[self.seen["placed"]:]
+        self.seen["placed"] = len(self.placed_order)
+        return out
+
+    def newly_known(self, names: Iterable[str], placed: Iterable[str]) -> tuple[str, ...]:
+        """The pairs that became known with the ``names`` now in pos and the links ``placed``
+        (a prismatic pair is known with its guide), in joints order."""
+        now = {n for n in names if n in self.joint_names and self.is_known(n)}
+        now.update(p for lk in placed for p in self.index.guided.get(lk, ()))
+        out = sorted(now - self.known_set, key=self.index.order.__getitem__)
+        self.known += out
+        self.known_set.update(out)
+        return tuple(out)
 
     def set_determines(self, index: int, pairs: tuple[str, ...]) -> None:
         self.steps[index] = replace(self.steps[index], determines=pairs)

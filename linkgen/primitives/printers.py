@@ -10,10 +10,11 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
+from .. import status
 from .dsl import Bin, Call, Cmp, Const, Expr, Logic, Neg, Num, Param, Primitive, Select, Sym, field_order, record_fields
 
 _PREC = {"select": 1, "or": 2, "and": 3, "cmp": 5, "+": 6, "-": 6, "*": 7, "/": 7, "neg": 8, "atom": 10}
-MASKS = ((1, 0), (3, 1))  # status -> first derivative order that is nan
+MASKS = ((status.CANNOT_CLOSE, 0), (status.SINGULAR, 1))  # a chain's status -> first derivative order that is nan
 
 
 def literal(value: float | int) -> str:

@@ -75,9 +75,10 @@ def render_svg(log: StepLog) -> str:
         out.append(_line((xa, ya), (xb, yb), 'stroke="#2ca02c" stroke-width="2" stroke-dasharray="2 4"'))
         out.append(f'<text x="{_f((xa + xb) / 2)}" y="{_f((ya + yb) / 2 + 14)}" fill="#2ca02c">'
                    f"Add-link {_esc(add.name)}</text>")
+    pivots = {name for lk in log.links if lk.fixed for name in lk.pairs}
     for p in log.pairs:
         x, y = at(p.name)
-        fixed = any(lk.fixed and p.name in lk.pairs for lk in log.links)
+        fixed = p.name in pivots
         if p.kind == "prismatic":
             ux, uy = math.cos(p.axis), -math.sin(p.axis)  # the axis on the page (y points down)
             out.append(_line((x - 40 * ux, y - 40 * uy), (x + 40 * ux, y + 40 * uy),
@@ -89,8 +90,9 @@ def render_svg(log: StepLog) -> str:
             out.append(f'<circle cx="{_f(x)}" cy="{_f(y)}" r="5" fill="{fill}" stroke="black" stroke-width="1.5"/>')
         label = p.name + (f" ({step_of[p.name]})" if p.name in step_of else "")
         out.append(f'<text x="{_f(x + 8)}" y="{_f(y + 16)}">{_esc(label)}</text>')
+    pairs = {p.name for p in log.pairs}
     for name in spots:
-        if name in {p.name for p in log.pairs}:
+        if name in pairs:
             continue
         x, y = at(name)
         out.append(f'<circle cx="{_f(x)}" cy="{_f(y)}" r="3" fill="black"/>')

@@ -117,8 +117,12 @@ def _one_fixed(sheet: Sheet, links: list[Link], section: Mapping) -> None:
 
 def pair_usage(sheet: Sheet, joints: tuple[Joint, ...], links: tuple[Link, ...]) -> None:
     """Every revolute pair joins two links or more, every prismatic pair exactly two."""
+    carriers: dict[str, list[str]] = {j.name: [] for j in joints}
+    for lk in links:
+        for name in dict.fromkeys(lk.joints):
+            carriers.get(name, []).append(lk.name)
     for j in joints:
-        on = [lk.name for lk in links if j.name in lk.joints]
+        on = carriers[j.name]
         if not on:
             raise sheet.error_at(j.where, f"the pair {j.name} is on no link; list it in the two links it joins")
         if len(on) == 1:
@@ -142,14 +146,17 @@ def single_pair_links(sheet: Sheet, links: tuple[Link, ...], inputs: tuple[Input
 def connected(sheet: Sheet, links: tuple[Link, ...]) -> None:
     """Every link is joined to the fixed link through pairs."""
     frame = next(lk for lk in links if lk.fixed)
-    reach = {frame.name}
-    changed = True
-    while changed:
-        changed = False
-        for lk in links:
-            if lk.name not in reach and any(set(lk.joints) & set(o.joints) for o in links if o.name in reach):
-                reach.add(lk.name)
-                changed = True
+    by_pair: dict[str, list[Link]] = {}
+    for lk in links:
+        for name in lk.joints:
+            by_pair.setdefault(name, []).append(lk)
+    reach, walk = {frame.name}, [frame]
+    while walk:  # depth first through the pairs
+        for name in walk.pop().joints:
+            for lk in by_pair.pop(name, []):
+                if lk.name not in reach:
+                    reach.add(lk.name)
+                    walk.append(lk)
     apart = [lk for lk in links if lk.name not in reach]
     if apart:
         raise sheet.error_at(apart[0].where, f"the mechanism falls apart: link{'s' if len(apart) > 1 else ''} "

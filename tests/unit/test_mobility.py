@@ -4,13 +4,21 @@ at the sketch, which sees an exactly drawn parallelogram's redundant constraint 
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
+import numpy as np
 import pytest
 
 from linkgen.errors import InputError
 from linkgen.loader import parse
-from linkgen.mobility import check_mobility, grubler
+from linkgen.mobility import _clearly_driven, _Jacobian, _rank, check_mobility, grubler
 from linkgen.model import Mechanism
-from linkgen.validate import validate
+from linkgen.topology import analyse
+from linkgen.validate import read_mechanism, validate
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
+from ladders import ladder  # noqa: E402
 
 FOURBAR = """linkgen: 1
 name: fourbar
@@ -136,3 +144,41 @@ def test_two_inputs_must_drive_independent_motions():
     with pytest.raises(InputError, match="the input on O2 drives the same motion as the input on O1, so links "
                                          "crank2, coupler2 and rocker2 are left free"):
         check_mobility(mechanism(same), 150.0)
+
+
+ROOT = Path(__file__).resolve().parents[2]
+FILES = sorted([*ROOT.glob("samples/*/*.yaml"), *ROOT.glob("tests/mechanisms/*.yaml")])
+
+
+def _dense_verdict(m: Mechanism, scale: float) -> tuple[int, bool]:
+    """The mobility by the singular values of the whole Jacobian, and whether each input raises its rank."""
+    jac = _Jacobian(m, scale)
+    c = jac.dense(jac.constraints())
+    rows = [jac.dense([jac.input_row(i)])[0] for i in m.inputs]
+    ranks = [_rank(np.vstack([c, *rows[:k]])) for k in range(len(rows) + 1)]
+    return jac.n - ranks[0], all(b == a + 1 for a, b in zip(ranks, ranks[1:]))
+
+
+@pytest.mark.parametrize("path", FILES, ids=lambda p: p.stem)
+def test_the_sparse_elimination_agrees_with_the_singular_values(path: Path):
+    """Every sample and test mechanism is driven without redundancy: the sparse elimination says so, and
+    so do the dense singular values (the mobility is Grübler's count, each input raises the rank)."""
+    m = read_mechanism(str(path))
+    scale = analyse(m).length_scale
+    assert _clearly_driven(_Jacobian(m, scale))
+    assert _dense_verdict(m, scale) == (grubler(m), True)
+
+
+def test_a_redundant_constraint_is_left_to_the_singular_values():
+    m = mechanism(DOUBLE_PARALLELOGRAM)
+    assert not _clearly_driven(_Jacobian(m, 100.0))
+    assert _dense_verdict(m, 100.0) == (1, True)
+
+
+def test_a_long_chain_is_driven_by_its_crank():
+    """60 dyads hung one on the next (bench/ladders.py): 361 columns, decided by the sparse elimination
+    as by the singular values."""
+    m = mechanism(ladder(60))
+    scale = analyse(m).length_scale
+    assert _clearly_driven(_Jacobian(m, scale))
+    assert _dense_verdict(m, scale) == (1, True) and check_mobility(m, scale) == (1, 1)

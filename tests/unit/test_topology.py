@@ -4,12 +4,14 @@ origin, each against the sketch worked by hand."""
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
+import numpy as np
 import pytest
 
 from linkgen.loader import parse
 from linkgen.model import Mechanism
-from linkgen.topology import Direction, analyse, input_direction, sketch_input, truss, wrap_angle
+from linkgen.topology import Direction, _farthest, analyse, input_direction, sketch_input, truss, wrap_angle
 from linkgen.validate import validate
 
 FOURBAR = """linkgen: 1
@@ -120,3 +122,35 @@ def test_a_sketch_scaled_by_a_power_of_two_scales_its_origin_exactly():
                      ("[90, 0]", "[2880, 0]"), ("[60, 70]", "[1920, 2240]")):
         text = text.replace(old, new)
     assert analyse(mechanism(text)).origin == (44.0 * 32, 36.0 * 32)
+
+
+def _farthest_by_every_pair(points: dict[str, tuple[float, float]]) -> tuple[str, str, float]:
+    """The first farthest pair in declaration order, comparing every pair."""
+    names = list(points)
+    best = (names[0], names[0], 0.0)
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            (xa, ya), (xb, yb) = points[a], points[b]
+            d = float(np.hypot(xb - xa, yb - ya))
+            if d > best[2]:
+                best = (a, b, d)
+    return best
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_length_scale_is_the_farthest_pair_found_by_every_pair(seed: int):
+    """_farthest compares only the spots that can end the farthest pair; on random sketches, on a grid
+    (ties: the first pair in declaration order wins) and on a circle (every spot can), it finds what
+    comparing every pair finds."""
+    rng = np.random.default_rng(seed)
+    for shape in ("random", "grid", "circle"):
+        n = int(rng.integers(2, 40))
+        if shape == "random":
+            xy = rng.normal(size=(n, 2)) * 10.0 ** int(rng.integers(-3, 4))
+        elif shape == "grid":
+            xy = rng.integers(-3, 4, size=(n, 2)).astype(float)
+        else:
+            a = rng.uniform(0, 2 * np.pi, n)
+            xy = np.c_[np.cos(a), np.sin(a)] * 7.3
+        points = {f"p{k}": (float(x), float(y)) for k, (x, y) in enumerate(xy)}
+        assert _farthest(SimpleNamespace(positions=points)) == _farthest_by_every_pair(points)

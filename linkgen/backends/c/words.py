@@ -43,8 +43,7 @@ STATE_FIELDS = frozenset("status sigma iterations warm_valid warm_in warm_din wa
 HEADER_SUFFIXES = ("point", "angle", "prismatic", "state", "init", "solve", "columns")
 HEADER_MACRO_SUFFIXES = ("H", "N_INPUTS", "N_STEPS", "N_COLUMNS", "ORDER", "SAMPLES", "N_GROUPS", "N_BLOCKS", "NMAX",
                          "STATUS_BAD_INPUT")
-SOURCE_MACROS = frozenset(("LINKGEN_NMAX", "LINKGEN_NGROUPS", "LINKGEN_NBLOCKS", "LINKGEN_NINPUTS",
-                           "LINKGEN_WALK_PASSES"))
+SOURCE_MACROS = frozenset(("LINKGEN_NMAX", "LINKGEN_NGROUPS", "LINKGEN_NBLOCKS", "LINKGEN_NINPUTS"))
 
 
 def header_names(mechanism: str) -> frozenset[str]:
