@@ -13,6 +13,7 @@ from collections.abc import Callable
 from .dsl import Bin, Call, Cmp, Const, Expr, Logic, Neg, Num, Param, Primitive, Select, Sym, field_order, record_fields
 
 _PREC = {"select": 1, "or": 2, "and": 3, "cmp": 5, "+": 6, "-": 6, "*": 7, "/": 7, "neg": 8, "atom": 10}
+ATOM = _PREC["atom"]  # a name, a number or a call: never parenthesised
 MASKS = ((1, 0), (3, 1))  # status -> first derivative order that is nan
 
 
