@@ -76,6 +76,10 @@ class _Lines:
         self.lines.append(f"    {name} = {self.exprs.expr(e)}")
 
 
+def _record(fields: list[str]) -> str:
+    return "(" + ", ".join(fields) + ("," if len(fields) == 1 else "") + ")"
+
+
 def numpy_function(prim: Primitive, order: int) -> str:
     """A primitive on arrays of rows (records are tuples of arrays or numbers).
 
@@ -103,14 +107,14 @@ def numpy_function(prim: Primitive, order: int) -> str:
             out.lines.append("    _singular = _fails | (_st == 3)")
     for _, _, e in fields:
         out.temporaries(e)
-    records = []
     for p in prim.outputs:
-        values = []
-        for f in record_fields(p.kind, order):
-            value = exprs.expr(prim.results[p.name][f])
-            if prim.status is not None:
-                value = f"np.where({'_fails' if field_order(p.kind, f) == 0 else '_singular'}, np.nan, {value})"
-            values.append(value)
-        records.append("(" + ", ".join(values) + ("," if len(values) == 1 else "") + ")")
-    out.lines.append(f"    return _st, _sigma, {', '.join(records)}")
+        fields_of = [exprs.expr(prim.results[p.name][f]) for f in record_fields(p.kind, order)]
+        out.lines.append(f"    _{p.name} = {_record(fields_of)}")
+    if prim.status is not None:
+        out.lines.append(f"    if np.any({'_singular' if order > 0 else '_fails'}):  # nan where the rows failed")
+        for p in prim.outputs:
+            masked = [f"np.where({'_fails' if field_order(p.kind, f) == 0 else '_singular'}, np.nan, _{p.name}[{k}])"
+                      for k, f in enumerate(record_fields(p.kind, order))]
+            out.lines.append(f"        _{p.name} = {_record(masked)}")
+    out.lines.append(f"    return _st, _sigma, {', '.join(f'_{p.name}' for p in prim.outputs)}")
     return "\n".join(out.lines) + "\n"
