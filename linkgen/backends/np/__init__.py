@@ -39,12 +39,14 @@ def runtime_sources(view: View) -> list[str]:
 
 def render(view: View, spell: Numpy, template: Template) -> dict[str, bytes]:
     log = view.log
+    params = [] if view.groups else spell.params()
+    example = next((name for name, _, _ in params if name.startswith("step")), params[0][0] if params else "")
     return {"NAME_np.py": template(
         "NAME_np.py.j2", runtime=runtime_sources(view), columns=[c.name for c in log.columns],
         levels=[str(LEVEL[cell.column.quantity]) for cell in view.cells],
         values=[spell.published(cell.column) for cell in view.cells],
         inputs=[f"{spell.lit(i.start)}, {spell.lit(i.stop)}, {spell.lit(i.speed)}" for i in log.inputs],
-        params=[] if view.groups else spell.params())}
+        params=params, example=example)}
 
 
 BACKEND = Backend("np", "numpy", templates="np", files=("NAME_np.py",), comment=("#", ""), spelling=Numpy,
