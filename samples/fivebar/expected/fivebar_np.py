@@ -297,24 +297,26 @@ def block(x, s, e):
 def solve_rows(run, publish, inputs, d_inputs, dd_inputs, order, params, m):
     """Every row of a call, a block at a time: run(x, dx, ddx, c) solves a block (its records,
     the rows' status codes and each step's conditioning), publish(w, c) gives its columns.
-    Returns finish's dict."""
+    Returns finish's dict.  A row that fails is nan by design: numpy does not warn of it."""
     shape, columns, c = rows_of(inputs, d_inputs, dd_inputs, design(params, m), m)
     n = int(np.prod(shape))
     out = {name: np.empty(n) for name, level in zip(m.columns, m.levels) if level <= order}
     status = np.empty(n, dtype=int)
     sigma = np.ones((m.n_steps + 1, n))
-    for s in range(0, n, BLOCK):
-        e = min(s + BLOCK, n)
-        x, dx, ddx = ([block(v, s, e) for v in col] for col in columns)
-        cb = {k: block(v, s, e) for k, v in c.items()}
-        w, status[s:e], steps = run(x, dx, ddx, cb)
-        for name, value in zip(m.columns, publish(w, cb)):
-            if name in out:
-                out[name][s:e] = value
-        for k, value in enumerate(steps):
-            if not isinstance(value, float):
-                sigma[k, s:e] = value
-    return finish(out, status, sigma, np.broadcast_to(refused(columns, m), (n,)), shape, m)
+    with np.errstate(all="ignore"):
+        for s in range(0, n, BLOCK):
+            e = min(s + BLOCK, n)
+            x, dx, ddx = ([block(v, s, e) for v in col] for col in columns)
+            cb = {k: block(v, s, e) for k, v in c.items()}
+            w, status[s:e], steps = run(x, dx, ddx, cb)
+            for name, value in zip(m.columns, publish(w, cb)):
+                if name in out:
+                    out[name][s:e] = value
+            for k, value in enumerate(steps):
+                if not isinstance(value, float):
+                    sigma[k, s:e] = value
+        bad = np.broadcast_to(refused(columns, m), (n,))
+    return finish(out, status, sigma, bad, shape, m)
 
 
 def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m):
