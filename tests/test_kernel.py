@@ -179,3 +179,19 @@ def test_a_resolvers_kernel_solves_row_after_row_through_its_python_module(tmp_p
     assert np.array_equal(out["J6.x"][rest], good.values["p_J6"][0][rest] + log.origin[0])
     with pytest.raises(ValueError, match="design parameters need a mechanism without resolver groups"):
         module.solve(values, rates, accs, params={"step2.l": 1.0})
+
+
+def test_a_call_fills_the_arrays_of_an_earlier_one():
+    log = build_log(str(FOURBAR))
+    module = kernel(log, 2)
+    values, rates, accs = input_rows(log, 11)
+    bad = values.copy()
+    bad[4, 0] = math.nan
+    last = module.solve(bad, rates, accs)
+    again = module.solve(values, rates, accs, out=last)
+    fresh = module.solve(values, rates, accs)
+    assert all(np.shares_memory(again[k], last[k]) for k in fresh)
+    for k in fresh:
+        assert np.array_equal(again[k], fresh[k], equal_nan=True), k
+    with pytest.raises(ValueError, match=r"out has no float64 array of shape \(10,\) for 'O1.x'"):
+        module.solve(values[:10], rates[:10], accs[:10], out=last)
