@@ -184,15 +184,32 @@ def block(x, s, e):
     return x if isinstance(x, float) else x[s:e]
 
 
-def solve_rows(run, publish, inputs, d_inputs, dd_inputs, order, params, m):
+def filled(out, shape, order, m):
+    """The flat arrays a call fills (its columns up to order, status, sigma): those of out, a
+    dict an earlier call returned for rows of this shape, else new ones."""
+    n = int(np.prod(shape))
+    names = [name for name, level in zip(m.columns, m.levels) if level <= order]
+    if out is None:
+        return {name: np.empty(n) for name in names}, np.empty(n, dtype=int), np.ones((m.n_steps + 1, n))
+    flat = {}
+    for name, like, dtype in [(name, shape, float) for name in names] + [
+            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), float)]:
+        a = out.get(name)
+        if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
+            raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
+        flat[name] = a.reshape(-1) if name != "sigma" else a.reshape(m.n_steps + 1, n)
+    flat["sigma"].fill(1.0)
+    return {name: flat[name] for name in names}, flat["status"], flat["sigma"]
+
+
+def solve_rows(run, publish, inputs, d_inputs, dd_inputs, order, params, m, out=None):
     """Every row of a call, a block at a time: run(x, dx, ddx, c) solves a block (its records,
-    the rows' status codes and each step's conditioning), publish(w, c) gives its columns.
-    Returns finish's dict.  A row that fails is nan by design: numpy does not warn of it."""
+    the rows' status codes and each step's conditioning), publish(w, c) gives its columns,
+    written into new arrays or those of out (see filled).  Returns finish's dict.  A row that
+    fails is nan by design: numpy does not warn of it."""
     shape, columns, c = rows_of(inputs, d_inputs, dd_inputs, design(params, m), m)
     n = int(np.prod(shape))
-    out = {name: np.empty(n) for name, level in zip(m.columns, m.levels) if level <= order}
-    status = np.empty(n, dtype=int)
-    sigma = np.ones((m.n_steps + 1, n))
+    out, status, sigma = filled(out, shape, order, m)
     with np.errstate(all="ignore"):
         for s in range(0, n, BLOCK):
             e = min(s + BLOCK, n)
