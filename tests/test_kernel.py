@@ -177,6 +177,8 @@ def test_a_resolvers_kernel_solves_row_after_row_through_its_python_module(tmp_p
     rest = np.arange(9) != 3
     assert np.array_equal(out["status"][rest], good.status[rest])
     assert np.array_equal(out["J6.x"][rest], good.values["p_J6"][0][rest] + log.origin[0])
+    fine = module.solve(*input_rows(log, 9), out=out)
+    assert np.shares_memory(fine["J6.x"], out["J6.x"]) and np.array_equal(fine["status"], good.status)
     with pytest.raises(ValueError, match="design parameters need a mechanism without resolver groups"):
         module.solve(values, rates, accs, params={"step2.l": 1.0})
 
