@@ -392,17 +392,16 @@ def solve_rows(run, publish, inputs, d_inputs, dd_inputs, order, params, m, out=
     return finish(out, status, sigma, bad, shape, m)
 
 
-def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m):
+def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
     """Every row of a call in turn through a solve of one row (the standard-library module's,
-    whose resolver starts each row from the last; state: its warm start).  Returns finish's dict."""
+    whose resolver starts each row from the last; state: its warm start), written into new
+    arrays or those of out (see filled).  Returns finish's dict."""
     if params:
         raise ValueError(f"{m.name}.solve: design parameters need a mechanism without resolver groups")
     shape, columns, _ = rows_of(inputs, d_inputs, dd_inputs, {}, m)
     n = int(np.prod(shape))
     bad = np.broadcast_to(refused(columns, m), (n,))
-    out = {name: np.full(n, np.nan) for name, level in zip(m.columns, m.levels) if level <= order}
-    status = np.full(n, m.bad_input)
-    sigma = np.full((m.n_steps + 1, n), np.nan)
+    out, status, sigma = filled(out, shape, order, m)
     state = {}
     for r in np.flatnonzero(~bad):
         x, dx, ddx = ([v if isinstance(v, float) else float(v[r]) for v in col] for col in columns)
