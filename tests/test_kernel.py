@@ -197,3 +197,21 @@ def test_a_call_fills_the_arrays_of_an_earlier_one():
         assert np.array_equal(again[k], fresh[k], equal_nan=True), k
     with pytest.raises(ValueError, match=r"out has no float64 array of shape \(10,\) for 'O1.x'"):
         module.solve(values[:10], rates[:10], accs[:10], out=last)
+
+
+def test_the_kernels_branch_and_reach_are_the_python_runtimes_on_every_row():
+    """branch_at and reach_at on arrays (the kernel's runtime) against the Python runtime's, one value
+    at a time, on values around change points and gaps, turns away included."""
+    from linkgen.evaluate import runtime as python_runtime
+    from linkgen.kernel import runtime as numpy_runtime
+
+    scalar, vector = python_runtime(), numpy_runtime()
+    rng = np.random.default_rng(19)
+    theta = np.concatenate([rng.uniform(-20, 20, 2000), [-np.pi, 0.0, np.pi, 0.5, 1.25, 2 * np.pi + 0.5]])
+    for points, periodic in (((0.5,), True), ((0.5, 1.25), True), ((0.5, 1.25), False), ((), True)):
+        for b0, theta0 in ((1, 0.0), (-1, 3.0)):
+            got = np.broadcast_to(vector["branch_at"](theta, b0, theta0, points, periodic), theta.shape)
+            assert got.tolist() == [scalar["branch_at"](float(t), b0, theta0, points, periodic) for t in theta]
+    for low, high, periodic in ((0.5, 1.25, True), (-1.0, 2.0, False), (math.nan, 2.0, False), (-1.0, math.nan, False)):
+        got = vector["reach_at"](theta, low, high, periodic)
+        assert got.tolist() == [scalar["reach_at"](float(t), low, high, periodic) for t in theta]
