@@ -7,8 +7,8 @@ rows per second of NAME_np.solve (written by `linkgen build`, imported from the 
 rows) into new arrays and into those of its last call (out=), and of the in-process evaluator (the
 same module's procedure on all rows at once), each after two calls that warm the caches and the
 allocator (new arrays still pay the first touch of their memory, costly on a virtual machine);
-then the time of one solve at 1e5 rows per runtime function, in ns per row (cProfile: the
-function's own time).  The machine is shared:
+then the time of one solve into its last arrays at 1e5 rows per runtime function, in ns per row
+(cProfile: the function's own time).  The machine is shared:
 medians and ratios hold better than single times.
 """
 
@@ -59,11 +59,12 @@ def _inputs(module: ModuleType, rows: int) -> tuple[np.ndarray, np.ndarray, np.n
 
 
 def _profile(module: ModuleType, rows: int) -> list[tuple[str, float]]:
-    """ns per row of each function of the module over one solve (own time), largest first."""
+    """ns per row of each function of the module over one solve into its last arrays (own
+    time), largest first."""
     x, dx, ddx = _inputs(module, rows)
-    module.solve(x, dx, ddx)
+    last = module.solve(x, dx, ddx)
     profile = cProfile.Profile()
-    profile.runcall(module.solve, x, dx, ddx)
+    profile.runcall(module.solve, x, dx, ddx, out=last)
     stats = pstats.Stats(profile).stats  # type: ignore[attr-defined]
     own: dict[str, float] = {}
     for (filename, _, name), (_, _, tottime, _, _) in stats.items():
@@ -97,5 +98,5 @@ def bench_kernel() -> None:
                 print(f"| {sample} | {rows:.0e} | {solve:.3g} | {reused:.3g} | {whole:.3g} | {solve / whole:.1f} |")
             profiles[sample] = _profile(module, ROWS[0])
     for sample, rows in profiles.items():
-        print(f"\n{sample}_np.solve at {ROWS[0]:.0e} rows, ns per row by function (own time): "
+        print(f"\n{sample}_np.solve into its last arrays at {ROWS[0]:.0e} rows, ns per row by function (own time): "
               + ", ".join(f"{name} {ns:.0f}" for name, ns in rows if ns >= 0.5))
