@@ -18,16 +18,16 @@ UNMIRRORED = {
     "linkgen.__main__": "`python -m linkgen` calls cli.main: tests/test_cli.py runs it",
     "linkgen.cli": "the command line is tested end to end by tests/test_cli.py and tests/test_errors.py",
 }
-# Runtime sources pasted into the generated programs and run by the evaluator, never imported: the
-# row driver and resolver are tested through them (tests/unit/test_evaluate.py, tests/test_programs.py).
-RUNTIME = PACKAGE / "backends" / "py" / "runtime"
+# Runtime sources (backends/<lang>/runtime/) are pasted into the generated programs and run by the
+# evaluator, never imported: the row driver and resolver are tested through them
+# (tests/unit/test_evaluate.py, tests/test_programs.py, tests/test_np_programs.py).
 
 
 def modules() -> dict[str, Path]:
     """Every module of the package by its dotted name, the runtime sources left out."""
     out = {}
     for path in sorted(PACKAGE.rglob("*.py")):
-        if RUNTIME in path.parents:
+        if "runtime" in path.relative_to(PACKAGE).parts:
             continue
         parts = path.relative_to(ROOT).with_suffix("").parts
         out[".".join(parts[:-1] if parts[-1] == "__init__" else parts)] = path
