@@ -8,8 +8,8 @@ in every procedure that contains it (a pruned one included).
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import replace
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -27,6 +27,7 @@ EDGE_ZOOMS = 5  # refinements of a limit position, each to 1/32 of the last
 GRID = 33  # points per refinement
 TOUCH = 1e-9  # a margin within this of zero, relative to the length scale, touches zero
 SMALL = 1e-3  # minima of the margin or of sigma below this are examined
+ROWS = 2048  # rows evaluated at once by zooms taken together (a result holds every variable per row)
 
 
 def rows(log: StepLog) -> int:
@@ -92,17 +93,75 @@ def zoom_min(log: StepLog, lo: float, hi: float, value: Measure, warm: Any = Non
     return best
 
 
-def vertex(log: StepLog, lam: float, delta: float, value: Measure) -> float:
-    """The vertex of the parabola through value at lam - delta, lam, lam + delta.
+@dataclass(frozen=True)
+class Zoom:
+    """A zoom_min of value over [lo, hi] that reads the step's values.  With a floor, what
+    matters is only whether the minimum falls to the floor: the zoom stops once its grid is
+    flat (all within ``flat``) and above floor + flat, as finer grids around its minimum,
+    which lie inside it, find only rounding there (or the value is not smooth at the scale
+    of the grid)."""
 
-    A double root's margin is smooth and quadratic: its vertex locates the root to
-    rounding / (curvature * delta), where the minimum itself is only good to sqrt(eps).
-    """
-    v = value(run(log, np.array([lam - delta, lam, lam + delta])))
-    assert v is not None
-    lo, mid, hi = (float(x) for x in v)
-    curve = lo - 2 * mid + hi
-    return lam if not curve > 0 else lam + delta * (lo - hi) / (2 * curve)
+    step: Step
+    lo: float
+    hi: float
+    value: Measure
+    floor: float | None = None
+    flat: float = 0.0
+
+    def settled(self, v: Array) -> bool:
+        return (self.floor is not None and bool(np.all(np.isfinite(v))) and float(v.max() - v.min()) <= self.flat
+                and float(v.min()) > self.floor + self.flat)
+
+
+def zoom_mins(log: StepLog, zooms: Sequence[Zoom]) -> list[tuple[float, float]]:
+    """zoom_min of each zoom, in a log without resolvers: each refinement evaluates the grids
+    of all zooms at once, every sweep position once, in the procedure of their steps."""
+    bracket = [(z.lo, z.hi) for z in zooms]
+    best = [(z.lo, np.inf) for z in zooms]
+    live = list(range(len(zooms)))
+    for _ in range(ZOOMS):
+        grids = [np.linspace(*bracket[i], GRID) for i in live]
+        found = at_once(log, [(zooms[i].step, lam, zooms[i].value) for i, lam in zip(live, grids)])
+        going = []
+        for i, lam, v in zip(live, grids, found):
+            if v is None or not np.any(np.isfinite(v)):
+                continue
+            k = int(np.nanargmin(np.where(np.isfinite(v), v, np.nan)))
+            best[i] = (float(lam[k]), float(v[k]))
+            lo, hi = bracket[i]
+            step = (hi - lo) / (GRID - 1)
+            bracket[i] = (max(lo, lam[k] - step), min(hi, lam[k] + step))
+            if not zooms[i].settled(v):
+                going.append(i)
+        live = going
+    return best
+
+
+def at_once(log: StepLog, asked: Sequence[tuple[Step, Array, Measure]]) -> list[Array | None]:
+    """value(result) at the sweep positions asked for each (step, positions, value), from
+    as few evaluations as ROWS allows of the procedure of the steps (a log without resolvers:
+    its rows are independent, so each position is evaluated once, in any order)."""
+    assert not log.groups, "rows evaluated at once in a log with resolvers"
+    parts: list[list[int]] = []
+    rows_in: set[float] = set()
+    for i, (_, positions, _) in enumerate(asked):
+        more = rows_in | set(positions.tolist())
+        if parts and len(more) <= ROWS:
+            parts[-1].append(i)
+            rows_in = more
+        else:
+            parts.append([i])
+            rows_in = set(positions.tolist())
+    out: list[Array | None] = []
+    for part in parts:
+        lam, where = np.unique(np.concatenate([asked[i][1] for i in part]), return_inverse=True)
+        result = run(keep(log, {name for i in part for name in asked[i][0].outputs}), lam)
+        at = 0
+        for i in part:
+            v = asked[i][2](result)
+            out.append(None if v is None else v[where[at:at + len(asked[i][1])]])
+            at += len(asked[i][1])
+    return out
 
 
 def zoom_edge(log: StepLog, good: float, bad: float, number: int, sigma: float,
