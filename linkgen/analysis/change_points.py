@@ -68,7 +68,8 @@ def _search(union: Union, chains: list[Step]) -> dict[int, tuple[float, ...]]:
         if m is None:
             continue
         usable = union.closes(step, step.number - 1) & np.isfinite(m)
-        zooms += [Zoom(step, grid[k] - grid[1], grid[k] + grid[1], partial(margin, step), TOUCH * scale, TOUCH * scale)
+        zooms += [Zoom(step, grid[k] - grid[1], grid[k] + grid[1], partial(margin, step),
+                       (-TOUCH * scale, TOUCH * scale), TOUCH * scale)
                   for k in local_minima(m, usable, periodic) if m[k] <= SMALL * scale]
     touching = [(z, lam) for z, (lam, low) in zip(zooms, zoom_mins(union.log, zooms)) if abs(low) <= TOUCH * scale]
     delta = grid[1] / 8

@@ -40,7 +40,8 @@ def gaps(log: StepLog) -> tuple[Gap, ...]:
     for step in chains:
         m = margin(step, union.result)
         assert m is not None
-        dips += [Zoom(step, grid[k] - grid[1], grid[k] + grid[1], partial(margin, step), -TOUCH * scale, TOUCH * scale)
+        dips += [Zoom(step, grid[k] - grid[1], grid[k] + grid[1], partial(margin, step),
+                      (-np.inf, -TOUCH * scale), TOUCH * scale)
                  for k in local_minima(m, union.closes(step, step.number) & np.isfinite(m), periodic)]
     for z, (deepest, low) in zip(dips, zoom_mins(union.log, dips)):
         if low < -TOUCH * scale:
@@ -54,6 +55,8 @@ def _runs(union: Union, step: Step) -> list[Gap]:
     lo, hi, periodic = span(union.whole)
     grid = union.grid
     fails = union.fails_first(step)
+    if not fails.any():
+        return []
     n = len(grid) - 1 if periodic else len(grid)  # a full turn: the last row is the first
 
     def value(lam: float) -> float:
@@ -62,8 +65,10 @@ def _runs(union: Union, step: Step) -> list[Gap]:
     def lam(j: int) -> float:  # grid position of row j, counted on past the end of a turn
         return float(grid[j % n] + j // n)
 
+    procedure = own(union.whole, step)
+
     def edge(good: int, bad: int) -> float:  # the last value from row good towards row bad that closes
-        return value(zoom_edge(own(union.whole, step), lam(good), lam(bad), step.number, 0.0)[0])
+        return value(zoom_edge(procedure, lam(good), lam(bad), step.number, 0.0)[0])
 
     out = []
     for k in range(n):

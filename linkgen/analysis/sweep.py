@@ -95,22 +95,23 @@ def zoom_min(log: StepLog, lo: float, hi: float, value: Measure, warm: Any = Non
 
 @dataclass(frozen=True)
 class Zoom:
-    """A zoom_min of value over [lo, hi] that reads the step's values.  With a floor, what
-    matters is only whether the minimum falls to the floor: the zoom stops once its grid is
-    flat (all within ``flat``) and above floor + flat, as finer grids around its minimum,
-    which lie inside it, find only rounding there (or the value is not smooth at the scale
-    of the grid)."""
+    """A zoom_min of value over [lo, hi] that reads the step's values.  With a band, what
+    matters is only whether the minimum falls inside it: the zoom stops once its grid is
+    flat (all within ``flat``) and more than that outside the band, as finer grids around its
+    minimum, which lie inside the grid, find only rounding there (or the value is not smooth
+    at the scale of the grid)."""
 
     step: Step
     lo: float
     hi: float
     value: Measure
-    floor: float | None = None
+    band: tuple[float, float] | None = None
     flat: float = 0.0
 
     def settled(self, v: Array) -> bool:
-        return (self.floor is not None and bool(np.all(np.isfinite(v))) and float(v.max() - v.min()) <= self.flat
-                and float(v.min()) > self.floor + self.flat)
+        if self.band is None or not np.all(np.isfinite(v)) or float(v.max() - v.min()) > self.flat:
+            return False
+        return float(v.min()) - self.flat > self.band[1] or float(v.max()) + self.flat < self.band[0]
 
 
 def zoom_mins(log: StepLog, zooms: Sequence[Zoom]) -> list[tuple[float, float]]:
@@ -119,9 +120,12 @@ def zoom_mins(log: StepLog, zooms: Sequence[Zoom]) -> list[tuple[float, float]]:
     bracket = [(z.lo, z.hi) for z in zooms]
     best = [(z.lo, np.inf) for z in zooms]
     live = list(range(len(zooms)))
+    procedures: dict[frozenset[int], StepLog] = {}
     for _ in range(ZOOMS):
+        if not live:
+            break
         grids = [np.linspace(*bracket[i], GRID) for i in live]
-        found = at_once(log, [(zooms[i].step, lam, zooms[i].value) for i, lam in zip(live, grids)])
+        found = at_once(log, [(zooms[i].step, lam, zooms[i].value) for i, lam in zip(live, grids)], procedures)
         going = []
         for i, lam, v in zip(live, grids, found):
             if v is None or not np.any(np.isfinite(v)):
@@ -137,10 +141,13 @@ def zoom_mins(log: StepLog, zooms: Sequence[Zoom]) -> list[tuple[float, float]]:
     return best
 
 
-def at_once(log: StepLog, asked: Sequence[tuple[Step, Array, Measure]]) -> list[Array | None]:
+def at_once(log: StepLog, asked: Sequence[tuple[Step, Array, Measure]],
+            procedures: dict[frozenset[int], StepLog] | None = None) -> list[Array | None]:
     """value(result) at the sweep positions asked for each (step, positions, value), from
     as few evaluations as ROWS allows of the procedure of the steps (a log without resolvers:
-    its rows are independent, so each position is evaluated once, in any order)."""
+    its rows are independent, so each position is evaluated once, in any order).  The
+    procedures made are kept in ``procedures``, by their steps asked for."""
+    procedures = {} if procedures is None else procedures
     assert not log.groups, "rows evaluated at once in a log with resolvers"
     parts: list[list[int]] = []
     rows_in: set[float] = set()
@@ -155,7 +162,10 @@ def at_once(log: StepLog, asked: Sequence[tuple[Step, Array, Measure]]) -> list[
     out: list[Array | None] = []
     for part in parts:
         lam, where = np.unique(np.concatenate([asked[i][1] for i in part]), return_inverse=True)
-        result = run(keep(log, {name for i in part for name in asked[i][0].outputs}), lam)
+        steps = frozenset(asked[i][0].number for i in part)
+        if steps not in procedures:
+            procedures[steps] = keep(log, {name for n in steps for name in log.step(n).outputs})
+        result = run(procedures[steps], lam)
         at = 0
         for i in part:
             v = asked[i][2](result)
@@ -185,14 +195,12 @@ def local_minima(v: Array, usable: Array, periodic: bool = False) -> list[int]:
     """Rows where v has a local minimum; across the seam too when the grid closes on itself
     (its last row is its first)."""
     n = len(v)
-    out = []
-    for k in range(n - 1):
-        if not periodic and k == 0:
-            continue
-        before, after = (k - 1) % (n - 1) if periodic else k - 1, k + 1
-        if usable[before] and usable[k] and usable[after] and v[k] <= v[before] and v[k] <= v[after]:
-            out.append(k)
-    return out
+    if n < 3:
+        return []
+    k = np.arange(0 if periodic else 1, n - 1)
+    before, after = (k - 1) % (n - 1) if periodic else k - 1, k + 1
+    found = usable[before] & usable[k] & usable[after] & (v[k] <= v[before]) & (v[k] <= v[after])
+    return [int(i) for i in k[found]]
 
 
 def margin(step: Step, result: Result) -> Array | None:
