@@ -3,7 +3,9 @@
 A sweep runs all inputs together, lambda from 0 to 1 between each input's start and
 stop; ``spanning`` gives the log whose one input sweeps the span searched for change
 points and gaps instead.  ``own`` is the procedure of one step: what a step finds holds
-in every procedure that contains it (a pruned one included).
+in every procedure that contains it (a pruned one included).  Without resolvers, zooms are
+taken together (``zoom_mins``): the rows of a log without resolvers are independent, so
+one evaluation serves every zoom's grid.
 """
 
 from __future__ import annotations
@@ -86,11 +88,16 @@ def zoom_min(log: StepLog, lo: float, hi: float, value: Measure, warm: Any = Non
         v = value(run(log, lam, warm))
         if v is None or not np.any(np.isfinite(v)):
             break
-        k = int(np.nanargmin(np.where(np.isfinite(v), v, np.nan)))
-        best = (float(lam[k]), float(v[k]))
-        step = (hi - lo) / (GRID - 1)
-        lo, hi = max(lo, lam[k] - step), min(hi, lam[k] + step)
+        best, (lo, hi) = refined(lo, hi, lam, v)
     return best
+
+
+def refined(lo: float, hi: float, lam: Array, v: Array) -> tuple[tuple[float, float], tuple[float, float]]:
+    """(lambda, value) of the least finite value of a grid on [lo, hi], and the bracket of
+    the next refinement: a grid step either side of it."""
+    k = int(np.nanargmin(np.where(np.isfinite(v), v, np.nan)))
+    step = (hi - lo) / (GRID - 1)
+    return (float(lam[k]), float(v[k])), (max(lo, lam[k] - step), min(hi, lam[k] + step))
 
 
 @dataclass(frozen=True)
@@ -130,11 +137,7 @@ def zoom_mins(log: StepLog, zooms: Sequence[Zoom]) -> list[tuple[float, float]]:
         for i, lam, v in zip(live, grids, found):
             if v is None or not np.any(np.isfinite(v)):
                 continue
-            k = int(np.nanargmin(np.where(np.isfinite(v), v, np.nan)))
-            best[i] = (float(lam[k]), float(v[k]))
-            lo, hi = bracket[i]
-            step = (hi - lo) / (GRID - 1)
-            bracket[i] = (max(lo, lam[k] - step), min(hi, lam[k] + step))
+            best[i], bracket[i] = refined(*bracket[i], lam, v)
             if not zooms[i].settled(v):
                 going.append(i)
         live = going
