@@ -185,8 +185,15 @@ def bench_builds() -> None:
     run()
 
 
+def bench_kernel() -> None:
+    from kernel import bench_kernel as run
+
+    run()
+
+
 GROUPS["rows"] = bench_rows
 GROUPS["builds"] = bench_builds
+GROUPS["kernel"] = bench_kernel
 
 
 def bench_scaling() -> None:

@@ -1,6 +1,7 @@
 """Stage 6: evaluate a step log in-process.
 
-Mechanisms without Add-links are evaluated for all rows at once with numpy.
+Mechanisms without Add-links are evaluated for all rows at once by the log's vectorised
+kernel, the numpy backend's NAME_np.py run in-process (linkgen.kernel).
 Mechanisms with Add-links are evaluated row by row by the Python runtime the generated
 programs carry (linkgen/backends/py/runtime: the row driver, the resolver, branch_at, reach_at),
 run here on the step log: ``RowSolver`` gives the driver one pass of the procedure, whose
@@ -20,7 +21,9 @@ from typing import Any
 import numpy as np
 
 from . import status
-from .primitives import PRIMITIVES, numpy_backend, python_backend
+from .kernel import kernel
+from .kernel import runtime as numpy_runtime
+from .primitives import PRIMITIVES, python_backend
 from .primitives.dsl import record_fields
 from .primitives.interpret import constant_record
 from .steplog import Reach, ResolverGroup, Step, StepLog
@@ -58,16 +61,6 @@ def _scalar_call(order: int) -> Call:
     return call
 
 
-def _numpy_call(order: int) -> Call:
-    fns = numpy_backend(order)
-
-    def call(name: str, args: list[Any]) -> tuple[Any, Any, tuple[Any, ...]]:
-        st, sigma, *outs = fns[name](*args)
-        return st, sigma, tuple(outs)
-
-    return call
-
-
 def _args(step: Step, env: Env) -> list[Any]:
     out: list[Any] = []
     for a in step.args:
@@ -80,29 +73,27 @@ def _args(step: Step, env: Env) -> list[Any]:
     return out
 
 
-def _rows(fn: Callable[..., Any], theta: Any, *args: Any) -> Any:
-    """A runtime function of the input value at one value, or at every row of an array."""
-    if np.ndim(theta) == 0:
-        return fn(float(theta), *args)
-    return np.array([fn(float(t), *args) for t in np.asarray(theta, dtype=float)])
-
-
-def branches(log: StepLog, env: Env, theta: Any) -> None:
-    """The branch of every chain with change points at the first input's value(s) theta
-    (the runtime's branch_at)."""
+def branches(log: StepLog, env: Env, theta: float) -> None:
+    """The branch of every chain with change points at the first input's value theta (the
+    Python runtime's branch_at)."""
     periodic = log.inputs[0].kind == "revolute" if log.inputs else False
     theta0 = log.inputs[0].sketch if log.inputs else 0.0
     for s in log.steps:
         if s.change_points:
             b0 = next(int(a.value) for a in s.args if a.label == "minv")
-            env[BRANCH, s.number] = _rows(runtime()["branch_at"], theta, b0, theta0, s.change_points, periodic)
+            env[BRANCH, s.number] = runtime()["branch_at"](theta, b0, theta0, s.change_points, periodic)
+
+
+def _bounds(reach: Reach) -> tuple[float, float]:
+    low, high = (math.nan if x is None else x for x in (reach.low, reach.high))
+    return low, high
 
 
 def reach_side(reach: Reach, theta: Any) -> Any:
-    """The runtime's reach_at at an input value or every row of an array: 0 where it is
-    reached from the sketch, -1 past the gap below, 1 past the gap above."""
-    low, high = (math.nan if x is None else x for x in (reach.low, reach.high))
-    return np.asarray(_rows(runtime()["reach_at"], theta, low, high, reach.periodic), dtype=int)
+    """The numpy runtime's reach_at at every input value of an array: 0 where it is reached
+    from the sketch, -1 past the gap below, 1 past the gap above."""
+    side = numpy_runtime()["reach_at"](np.asarray(theta, dtype=float), *_bounds(reach), reach.periodic)
+    return np.asarray(side, dtype=int)
 
 
 def execute(steps: list[Step] | tuple[Step, ...], env: Env, call: Call) -> Report:
@@ -168,19 +159,13 @@ def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarr
     order = log.order if order is None else order
     if log.groups:
         return _evaluate_rows(log, values, rates, accs, order, warm, stop)
-    env = _input_env(log, order, values.T, rates.T, accs.T)
-    branches(log, env, values[:, 0] if log.inputs else 0.0)
+    module = kernel(log, order)
     with np.errstate(all="ignore"):
-        report = execute(log.steps, env, _numpy_call(order))
+        w, code, sigma = module._run(list(values.T), list(rates.T), list(accs.T), dict(module.PARAMS))
     rows = values.shape[0]
-    result = Result(values, {name: tuple(_column(x, rows) for x in rec) for name, rec in env.items()
-                             if isinstance(name, str)},
-                    np.broadcast_to(np.asarray(row_status(report), dtype=int), (rows,)).copy(),
-                    {n: _column(s, rows) for n, (_, s) in report.items()})
-    if log.reach is not None:
-        side = reach_side(log.reach, values[:, 0])
-        result.status[side < 0], result.status[side > 0] = log.reach.codes()
-    return result
+    return Result(values, {name: tuple(_column(x, rows) for x in rec) for name, rec in vars(w).items()},
+                  np.broadcast_to(np.asarray(code, dtype=int), (rows,)).copy(),
+                  {s.number: _column(sigma[s.number], rows) for s in log.steps if s.function})
 
 
 def _column(x: Any, rows: int) -> np.ndarray:
@@ -283,7 +268,7 @@ class RowSolver:
         env = dict(self.constants)
         for name, x, r, c in zip(self.inputs, inputs, rates, accs):
             env[name] = (x, r, c)[: self.width + 1]
-        branches(self.log, env, inputs[0] if inputs else 0.0)
+        branches(self.log, env, float(inputs[0]) if inputs else 0.0)
         report: Report = {}
         ad = [[0.0] * len(s) for s in a]
         its = self.its if row else [0] * len(self.log.groups)
@@ -304,8 +289,9 @@ class RowSolver:
         return code, ad
 
     def _side(self, inputs: list[float]) -> int:
-        """The runtime's reach_at of the first input (0 without a reach)."""
-        return 0 if self.log.reach is None else int(reach_side(self.log.reach, inputs[0]))
+        """The Python runtime's reach_at of the first input (0 without a reach)."""
+        reach = self.log.reach
+        return 0 if reach is None else int(runtime()["reach_at"](float(inputs[0]), *_bounds(reach), reach.periodic))
 
     def _resolve(self, g: ResolverGroup, env: Env, report: Report, order: int, a: list[list[float]],
                  ad: list[list[float]], used: list[int], its: list[int]) -> bool:

@@ -60,6 +60,11 @@ def run_python(log: StepLog, outdir: Path) -> str:
                           text=True).stdout
 
 
+def run_numpy(log: StepLog, outdir: Path) -> str:
+    return subprocess.run([sys.executable, "-I", f"{log.name}_np.py"], cwd=outdir, check=True, capture_output=True,
+                          text=True).stdout
+
+
 def run_octave(log: StepLog, outdir: Path) -> str:
     octave = need("octave-cli")
     done = subprocess.run([octave, "--no-gui", "--no-init-file", "--quiet", f"{log.name}.m"], cwd=outdir,

@@ -1,7 +1,7 @@
 """The README and docs/generated-programs.md give the generated programs' signatures exactly.
 
-The signatures are read from the generated files of every sample (Python through its syntax
-tree, C from NAME.h, MATLAB/Octave from the function line of NAME_solve.m), written with NAME
+The signatures are read from the generated files of every sample (Python and numpy through their
+syntax trees, C from NAME.h, MATLAB/Octave from the function line of NAME_solve.m), written with NAME
 for the mechanism's name, and looked up among the code spans of both documents.
 """
 
@@ -29,13 +29,15 @@ def _generic(text: str, name: str) -> str:
     return re.sub(rf"\b{name.upper()}_", "NAME_", re.sub(rf"\b{name}(?=[_.(])", "NAME", text))
 
 
-def _python(sample: Path, name: str) -> str:
-    tree = ast.parse((sample / "expected" / f"{name}.py").read_text(encoding="utf-8"))
+def _python(sample: Path, name: str, module: str = "NAME") -> str:
+    """solve() of NAME.py (module NAME) or NAME_np.py (module NAME_np)."""
+    path = sample / "expected" / f"{module.replace('NAME', name)}.py"
+    tree = ast.parse(path.read_text(encoding="utf-8"))
     fn = next(n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == "solve")
     args = fn.args.args
     defaults = [None] * (len(args) - len(fn.args.defaults)) + fn.args.defaults
     parts = [a.arg if d is None else f"{a.arg}={ast.unparse(d)}" for a, d in zip(args, defaults)]
-    return f"NAME.solve({', '.join(parts)}) -> dict"
+    return f"{module}.solve({', '.join(parts)}) -> dict"
 
 
 def _c(sample: Path, name: str) -> list[str]:
@@ -56,7 +58,7 @@ def _matlab(sample: Path, name: str) -> str:
 def test_documents_give_the_generated_signatures(sample: Path, doc: str):
     spans = _spans(DOCS[doc])
     name = sample.name
-    wanted = [_python(sample, name), *_c(sample, name), _matlab(sample, name)]
+    wanted = [_python(sample, name), _python(sample, name, "NAME_np"), *_c(sample, name), _matlab(sample, name)]
     missing = [w for w in wanted if w not in spans]
     assert not missing, f"{doc} does not give {missing}"
 
@@ -65,6 +67,8 @@ def test_the_signatures_are_read_as_generated():
     """The readers above see what the files say (so the comparison cannot pass on empty text)."""
     sample = ROOT / "samples" / "fourbar"
     assert _python(sample, "fourbar") == "NAME.solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None) -> dict"
+    assert _python(sample, "fourbar", "NAME_np") == \
+        "NAME_np.solve(inputs, d_inputs, dd_inputs, order=ORDER, params=None, out=None) -> dict"
     assert _matlab(sample, "fourbar") == "[out, status, warm] = NAME_solve(in, din, ddin, warm)"
     assert "int NAME_solve(const double in[], const double din[], const double ddin[], NAME_state *out);" in \
         _c(sample, "fourbar")

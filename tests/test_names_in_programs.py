@@ -2,7 +2,7 @@
 keywords, macros of the C library, MATLAB/Octave keywords) are written with a trailing _ where
 they become fields, and the programs compile and compute what the same mechanism with plain
 names computes: C under -std=c99 and -std=gnu11 (where linux is a macro), the header from a C++
-host, Python, Octave.  Names the languages do not reserve (an Octave function, a Python
+host, Python, numpy, Octave.  Names the languages do not reserve (an Octave function, a Python
 built-in) stay as they are.  The mechanism's own name is a C keyword: it is never a C
 identifier by itself."""
 
@@ -14,7 +14,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from programs import build, need, parse, run_c, run_octave, run_python
+from programs import build, need, parse, run_c, run_numpy, run_octave, run_python
 
 from linkgen.backends.c import words as c_words
 from linkgen.backends.m import words as m_words
@@ -103,6 +103,7 @@ def test_c_compiles_and_computes_as_with_plain_names(programs, std: str):
 def test_python_computes_as_with_plain_names(programs):
     plain, plain_dir, words, word_dir = programs
     _same_rows(run_python(plain, plain_dir), run_python(words, word_dir))
+    _same_rows(run_numpy(plain, plain_dir), run_numpy(words, word_dir))
 
 
 def test_octave_computes_as_with_plain_names(programs):

@@ -11,11 +11,13 @@ without reading the primitive.
 (a) each rate field equals sympy's time derivative of the field below it and
     of the displacement field (sympy_oracle), at 50 digits;
 (b) the outputs satisfy the chain's constraints and reproduce the sampled motion;
-(c) hand-calculated cases through the generated Python;
-(d) the math and numpy backends agree bit for bit, at every order, and lower
+(c) the math and numpy backends agree bit for bit, at every order, and lower
     orders are the leading fields of order 2; both agree with the 50-digit value
     of the same DSL on the same float inputs;
-(e) status and sigma discipline.
+(e) status and sigma discipline over the library.
+
+The hand-calculated cases of each primitive are in tests/unit/test_primitives_library.py and
+test_primitives_dyads.py (with the two-link chains' toggles and failures).
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
+from primitive_calls import PI, all_outputs, args_of, call_python, field_level, named, special_inputs
 from sympy_oracle import (
     NAN,
     RECORD_FIELDS,
@@ -43,7 +46,7 @@ from sympy_oracle import (
     to_sympy,
 )
 
-from linkgen.primitives import PRIMITIVES, dsl, numpy_backend, python_backend
+from linkgen.primitives import PRIMITIVES, dsl, numpy_backend
 from linkgen.primitives.dsl import Let, Primitive, record_fields
 
 DPS = 50
@@ -712,32 +715,10 @@ def _as_floats(smp: Sample) -> dict[str, object]:
     return {k: (v if isinstance(v, int) else float(v)) for k, v in smp.values().items()}
 
 
-def _args(name: str, order: int, values: dict) -> list:
-    """Records as tuples of their fields up to ``order``, scalars as they are."""
-    args = []
-    for p in PRIMITIVES[name].params:
-        if p.is_record:
-            args.append(tuple(values[f"{p.name}_{f}"] for f in record_fields(p.kind, order)))
-        else:
-            args.append(values[p.name])
-    return args
-
-
-def call_python(name: str, order: int, values: dict):
-    """(status, sigma, outputs) from the generated math function; None where it has none."""
-    prim = PRIMITIVES[name]
-    res = python_backend(order)[name](*_args(name, order, values))
-    if prim.status is None:
-        return None, None, ((res,) if len(prim.outputs) == 1 else tuple(res))
-    st, *rest = res
-    sigma = rest.pop(0) if prim.sigma is not None else None
-    return st, sigma, tuple(rest)
-
-
 def call_numpy(name: str, order: int, rows: list[dict]):
     values = {k: np.array([r[k] for r in rows]) for k in rows[0]}
     with np.errstate(all="ignore"):
-        st, sigma, *outs = numpy_backend(order)[name](*_args(name, order, values))
+        st, sigma, *outs = numpy_backend(order)[name](*args_of(name, order, values))
     return np.broadcast_to(st, (len(rows),)), np.broadcast_to(sigma, (len(rows),)), outs
 
 
@@ -748,49 +729,6 @@ def bits(x: float) -> int:
 def same(a: float, b: float) -> bool:
     """Bit for bit, any nan equal to any nan."""
     return (math.isnan(a) and math.isnan(b)) or bits(a) == bits(b)
-
-
-def special_inputs(name: str) -> list[tuple[str, int | None, dict]]:
-    """(what, expected status, float parameter values) at the status branches: toggles, failures, degeneracies."""
-
-    def pt(pname, x, y, dx=0.5, dy=-0.25, ddx=0.125, ddy=1.0):
-        return {f"{pname}_{k}": v for k, v in zip(("x", "y", "dx", "dy", "ddx", "ddy"), (x, y, dx, dy, ddx, ddy))}
-
-    def var(pname, v, dv=0.5, ddv=-0.5, kind="VARIABLE"):
-        names = RECORD_FIELDS[kind]
-        return {f"{pname}_{names[i][0]}": x for i, x in enumerate((v, dv, ddv))}
-
-    cases: list[tuple[str, int, dict]] = []
-    if name == "RRR_links":
-        for what, st, l1, l2, q in (("toggle", 3, 2.0, 3.0, 5.0), ("toggle", 3, 7.0, 2.0, 5.0),
-                                    ("fail", 1, 3.0, 4.0, 10.0), ("coincident", 1, 3.0, 4.0, 0.0),
-                                    ("fail", 1, 0.0, 5.0, 5.0)):
-            for minv in (1, -1):
-                cases.append((what, st, {**pt("j1", 0.0, 0.0), **pt("j2", q, 0.0, 1.0, 2.0, -1.0, 0.5),
-                                         **var("l1", l1), **var("l2", l2), "minv": minv}))
-    elif name == "PRR_links":
-        for what, st, ln, y in (("toggle", 3, 3.0, 3.0), ("toggle", 3, 3.0, -3.0), ("fail", 1, 2.0, 3.0),
-                                ("fail", 1, 0.0, 0.0)):
-            cases.append((what, st, {**pt("jr", 0.0, y), **var("l", ln), **pt("pg", 0.0, 0.0),
-                                     **var("psig", 0.0, 1.0, 0.5, "ANGLE"), "gsi": 0.0, "eta": 0.0, "minv": 1}))
-    elif name == "RPR_links":
-        for what, st, bg, q in (("toggle", 3, 3.0, 3.0), ("toggle", 3, -3.0, 3.0), ("fail", 1, 4.0, 3.0),
-                                ("coincident", 1, 0.0, 0.0)):
-            cases.append((what, st, {**pt("jg", 0.0, 0.0), **pt("js", q, 0.0, 0.0, 1.0),
-                                     "ag": 0.0, "bg": bg, "as_": 0.0, "bs": 0.0, "minv": 1}))
-    elif name == "PRP_links":
-        cases.append(("parallel", 1, {**pt("pg1", 0.0, 0.0), **var("psig1", 0.0, kind="ANGLE"), "gsi1": 0.0,
-                                      "eta1": 0.0, **pt("pg2", 0.0, 1.0), **var("psig2", 0.0, kind="ANGLE"),
-                                      "gsi2": 0.0, "eta2": 0.0}))
-    elif name == "PPR_links":
-        cases.append(("parallel", 1, {**pt("jr", 1.0, 2.0), **pt("pg", 0.0, 0.0), **var("psig", 0.0, kind="ANGLE"),
-                                      "xa": 0.0, "ya": 0.0, "xb": 0.0, "yb": 0.0, "cx": 0.0, "sgn": 1}))
-    elif name == "link_angle":
-        cases.append(("coincident", 1, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), "off": 0.5}))
-    elif name == "link_residual":
-        cases.append(("coincident", None, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), **var("l", 1.0)}))
-        cases.append(("parting", None, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0, 3.5, 3.75), **var("l", 1.0)}))
-    return cases
 
 
 FLOAT_SAMPLES = 150  # per primitive and branch: the libm functions differ in a few percent of last bits
@@ -883,266 +821,7 @@ def test_generated_python_matches_sympy_on_the_same_floats(name, branch):
     assert worst <= 1e-12
 
 
-# --------------------------------------------------------------------------- (c) hand calculations
-
-
-def py2(name, *args):
-    return call_python(name, 2, dict(_named(name, args)))
-
-
-def _named(name, args):
-    """Positional arguments (records as tuples, possibly short of the higher orders) by field name."""
-    out = {}
-    for p, a in zip(PRIMITIVES[name].params, args):
-        if p.is_record:
-            out.update({f"{p.name}_{f}": x for f, x in zip(record_fields(p.kind, 2), a)})
-        else:
-            out[p.name] = a
-    return out
-
-
-def approx(values):
-    return pytest.approx(values, rel=1e-14, abs=1e-14)
-
-
-PI = math.pi
-STILL = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-
-
-@pytest.mark.parametrize(
-    ("j1", "j2", "l1", "l2", "minv", "jb"),
-    [
-        # 3-4-5: a = (25 + 9 - 16)/10 = 1.8, h = 12/5; l1 grows at 1 with j1, j2 fixed:
-        # 1.8 vx + 2.4 vy = 3, -3.2 vx + 2.4 vy = 0; 1.8 ax + 2.4 ay = 1 - |v|^2 = 0, -3.2 ax + 2.4 ay = -1
-        (STILL, (5.0, 0, 0, 0, 0, 0), (3.0, 1.0, 0.0), (4.0, 0.0, 0.0), 1, (1.8, 2.4, 0.6, 0.8, 0.2, -0.15)),
-        (STILL, (5.0, 0, 0, 0, 0, 0), (3.0, 1.0, 0.0), (4.0, 0.0, 0.0), -1, (1.8, -2.4, 0.6, -0.8, 0.2, 0.15)),
-        # sides swapped: a = (25 + 16 - 9)/10 = 3.2
-        (STILL, (5.0, 0, 0, 0, 0, 0), (4.0, 0.0, 0.0), (3.0, 0.0, 0.0), 1, (3.2, 2.4, 0, 0, 0, 0)),
-        # the first case turned a quarter turn and moved to (1, 1): jb = j1 + 1.8 u + 2.4 n, u = (0, 1)
-        ((1.0, 1.0, 0, 0, 0, 0), (1.0, 6.0, 0, 0, 0, 0), (3.0, 1.0, 0.0), (4.0, 0.0, 0.0), 1,
-         (-1.4, 2.8, -0.8, 0.6, 0.15, 0.2)),
-        # the whole triangle translating at (1, -2) with acceleration (3, 4): jb moves with it
-        ((0.0, 0.0, 1.0, -2.0, 3.0, 4.0), (5.0, 0.0, 1.0, -2.0, 3.0, 4.0), (3.0, 0.0, 0.0), (4.0, 0.0, 0.0), 1,
-         (1.8, 2.4, 1.0, -2.0, 3.0, 4.0)),
-        # ... and turning rigidly about j1 at omega = 1: jb' = (-2.4, 1.8), jb'' = -jb
-        (STILL, (5.0, 0.0, 0.0, 5.0, -5.0, 0.0), (3.0, 0.0, 0.0), (4.0, 0.0, 0.0), 1,
-         (1.8, 2.4, -2.4, 1.8, -1.8, -2.4)),
-    ],
-)
-def test_rrr_hand_cases(j1, j2, l1, l2, minv, jb):
-    st, sigma, (got,) = py2("RRR_links", j1, j2, l1, l2, minv)
-    assert st == 0
-    assert got == approx(jb)
-
-
-def test_rrr_right_angle_sigma_is_one():
-    st, sigma, _ = py2("RRR_links", STILL, (5.0, 0, 0, 0, 0, 0), (3.0, 0, 0), (4.0, 0, 0), 1)
-    assert sigma == approx(1.0)
-
-
-@pytest.mark.parametrize(
-    ("theta", "s"),
-    [
-        # outer dead centre, crank 1, rod 3, omega 2: x'' = -r w^2 (1 + r/l) = -16/3
-        (0.0, (4.0, 0.0, -16.0 / 3.0)),
-        # inner dead centre: x'' = w^2 (r - r^2/l) = 8/3
-        (PI, (2.0, 0.0, 8.0 / 3.0)),
-    ],
-)
-def test_slider_crank_at_dead_centre(theta, s):
-    (pin,) = py2("crank_input", STILL, 1.0, (theta, 2.0, 0.0), (0.0, 0.0, 0.0))[2]
-    # crank pin: (cos, sin), velocity w x r, acceleration -w^2 r
-    assert pin == approx((math.cos(theta), math.sin(theta), -2 * math.sin(theta), 2 * math.cos(theta),
-                          -4 * math.cos(theta), -4 * math.sin(theta)))
-    st, sigma, (s_out, jp, jb) = py2("PRR_links", pin, (3.0, 0.0, 0.0), STILL, (0.0, 0.0, 0.0), 0.0, 0.0, 1)
-    assert st == 0
-    assert sigma == approx(1.0)
-    assert s_out == approx(s)
-    assert jp == approx((s[0], 0.0, s[1], 0.0, s[2], 0.0))
-    assert jb == approx(jp)
-
-
-def test_slider_crank_offset_pair_on_slider():
-    """The pair sits at (gsi, eta) = (1, 0.5) on the slider: jb = jp + (1, 0.5) on a still guide."""
-    pin = (0.0, 2.0, -3.0, 0.0, 0.0, -4.5)  # crank of 2 at 90 deg, omega 1.5
-    # jb = (s + 1, 0.5); |jb - pin| = 2.5 = |(s + 1, -1.5)|: s + 1 = 2 ahead of the pin (minv = +1)
-    st, _, (s, jp, jb) = py2("PRR_links", pin, (2.5, 0.0, 0.0), STILL, (0.0, 0.0, 0.0), 1.0, 0.5, 1)
-    assert st == 0
-    assert s[0] == approx(1.0)
-    assert jp[:2] == approx((1.0, 0.0))
-    assert jb[:2] == approx((2.0, 0.5))
-    # (jb - pin).(jb' - pin') = 0 with jb' = (s', 0): 2 (s' + 3) - 1.5 * 0 = 0
-    assert s[1] == approx(-3.0)
-    # again: |jb' - pin'|^2 + (jb - pin).(jb'' - pin'') = 0: 0 + 2 s'' - 1.5 * 4.5 = 0
-    assert s[2] == approx(3.375)
-    assert jb[2:] == approx((-3.0, 0.0, 3.375, 0.0))
-
-
-@pytest.mark.parametrize(
-    ("j2", "off", "angle"),
-    [
-        # radius 2 at 90 deg turning at 1: v = (-2, 0), a = (0, -2)
-        ((1.0, 3.0, -2.0, 0.0, 0.0, -2.0), 0.0, (PI / 2, 1.0, 0.0)),
-        # plus angular acceleration 1: tangential a = (-2, 0)
-        ((1.0, 3.0, -2.0, 0.0, -2.0, -2.0), 0.0, (PI / 2, 1.0, 1.0)),
-        # offset 3 pi/4: 5 pi/4 wraps to -3 pi/4
-        ((1.0, 3.0, -2.0, 0.0, 0.0, -2.0), 3 * PI / 4, (-3 * PI / 4, 1.0, 0.0)),
-    ],
-)
-def test_link_angle_hand_cases(j2, off, angle):
-    st, _, (got,) = py2("link_angle", (1.0, 1.0, 0, 0, 0, 0), j2, off)
-    assert st == 0
-    assert got == approx(angle)
-
-
-@pytest.mark.parametrize(
-    ("j1", "j2", "off"),
-    [
-        ((0.0, 0.0), (-1.0, 0.0), 0.0),  # atan2 = pi stays pi
-        ((0.0, 0.0), (-1.0, -0.0), 0.0),  # atan2 = -pi wraps to pi
-        ((0.0, 0.0), (1.0, 0.0), -PI),  # 0 - pi wraps to pi
-    ],
-)
-def test_link_angle_wraps_to_half_open_interval(j1, j2, off):
-    st, _, ((th, _, _),) = py2("link_angle", (*j1, 0, 0, 0, 0), (*j2, 0, 0, 0, 0), off)
-    assert th == PI
-
-
-def test_offset_angle_hand():
-    (got,) = py2("offset_angle", (3.0, 1.0, 2.0), 1.0)[2]
-    assert got == approx((4.0 - 2 * PI, 1.0, 2.0))
-    (got,) = py2("offset_angle", (PI, 0.0, 0.0), PI)[2]  # 2 pi wraps to 0
-    assert got == approx((0.0, 0.0, 0.0))
-
-
-def test_crank_input_hand():
-    # direction pi/6 + pi/3 = pi/2, l = 2: r = (0, 2); omega 1.5: r' = (-3, 0), r'' = (0, -4.5)
-    (got,) = py2("crank_input", (1.0, 2.0, 0.5, 0.0, 0.0, 0.0), 2.0, (PI / 6, 1.0, 0.0), (PI / 3, 0.5, 0.0))[2]
-    assert got == approx((1.0, 4.0, -2.5, 0.0, 0.0, -4.5))
-
-
-def test_coupler_point_hand():
-    # R(90 deg)(2, 1) = (-1, 2); omega 2: v = 2 (-2, -1), a = -4 (-1, 2)
-    (got,) = py2("coupler_point", (1.0, 1.0, 0, 0, 0, 0), (PI / 2, 2.0, 0.0), 2.0, 1.0)[2]
-    assert got == approx((0.0, 3.0, -4.0, -2.0, 4.0, -8.0))
-
-
-def test_slider_input_hand():
-    jp, jc = py2("slider_input", STILL, (PI / 2, 0.0, 0.0), (3.0, 1.0, 0.0), 1.0, 0.0)[2]
-    assert jp == approx((0.0, 3.0, 0.0, 1.0, 0.0, 0.0))
-    assert jc == approx((0.0, 4.0, 0.0, 1.0, 0.0, 0.0))
-    # guide turning at 1 about pg, slider still at s = 2: jp' = s w n = (0, 2), jp'' = -s w^2 u = (-2, 0);
-    # jc = jp + n: jc' = jp' + w x n = (-1, 2), jc'' = jp'' - w^2 n = (-2, -1)
-    jp, jc = py2("slider_input", STILL, (0.0, 1.0, 0.0), (2.0, 0.0, 0.0), 0.0, 1.0)[2]
-    assert jp == approx((2.0, 0.0, 0.0, 2.0, -2.0, 0.0))
-    assert jc == approx((2.0, 1.0, -1.0, 2.0, -2.0, -1.0))
-
-
-def test_prp_hand():
-    # x axis and the vertical through (2, -1) moving right at 1: jb = (2, 0), s1 = 2, s2 = 1
-    st, sigma, (s1, jp1, s2, jp2, jb) = py2(
-        "PRP_links", STILL, (0.0, 0.0, 0.0), 0.0, 0.0, (2.0, -1.0, 1.0, 0.0, 0.0, 0.0), (PI / 2, 0.0, 0.0), 0.0, 0.0
-    )
-    assert st == 0
-    assert sigma == approx(1.0)
-    assert s1 == approx((2.0, 1.0, 0.0))
-    assert s2 == approx((1.0, 0.0, 0.0))
-    assert jp1 == approx((2.0, 0.0, 1.0, 0.0, 0.0, 0.0))
-    assert jp2 == approx(jp1)
-    assert jb == approx(jp1)
-
-
-def test_prp_offsets_hand():
-    # slider 1 on the x axis carries jb at (gsi, eta) = (0, 1): jb = jp1 + (0, 1);
-    # slider 2 on the vertical through (3, 0) carries it at (1, 0) in its frame: jb = jp2 + (0, 1)
-    st, _, (s1, jp1, s2, jp2, jb) = py2(
-        "PRP_links", STILL, (0.0, 0.0, 0.0), 0.0, 1.0, (3.0, 0.0, 0, 0, 0, 0), (PI / 2, 0.0, 0.0), 1.0, 0.0
-    )
-    # jb = (s1, 1) = (3, s2 + 1): s1 = 3, s2 = 0
-    assert jb[:2] == approx((3.0, 1.0))
-    assert (s1[0], s2[0]) == approx((3.0, 0.0))
-    assert jp1[:2] == approx((3.0, 0.0))
-    assert jp2[:2] == approx((3.0, 0.0))
-
-
-@pytest.mark.parametrize(
-    ("minv", "psi", "s"),
-    [(1, math.atan2(4.0, 3.0), (5.0, 0.0, 0.0)), (-1, math.atan2(-4.0, -3.0), (-5.0, 0.0, 0.0))],
-)
-def test_rpr_inverted_slider_crank_hand(minv, psi, s):
-    # js turns about jg at omega 1 at radius 5: the line jg-js turns with it, nothing slides
-    st, sigma, (ang, s_out, jp) = py2("RPR_links", STILL, (3.0, 4.0, -4.0, 3.0, -3.0, -4.0), 0.0, 0.0, 0.0, 0.0, minv)
-    assert st == 0
-    assert sigma == approx(1.0)
-    assert ang == approx((psi, 1.0, 0.0))
-    assert s_out == approx(s)
-    assert jp == approx((3.0, 4.0, -4.0, 3.0, -3.0, -4.0))
-
-
-def test_rpr_offset_line_hand():
-    # js = (4, 3) sits 3 to the left of the guide's line through jg: line along x, s = 4, jp = js
-    st, sigma, (ang, s, jp) = py2("RPR_links", STILL, (4.0, 3.0, 0, 0, 0, 0), 0.0, 3.0, 0.0, 0.0, 1)
-    assert st == 0
-    assert sigma == approx(0.8)  # t / q = 4 / 5
-    assert ang == approx((0.0, 0.0, 0.0))
-    assert s == approx((4.0, 0.0, 0.0))
-    assert jp == approx((4.0, 3.0, 0.0, 0.0, 0.0, 0.0))
-    # js sliding along x at 1: the line does not turn, s grows at 1
-    st, _, (ang, s, jp) = py2("RPR_links", STILL, (4.0, 3.0, 1.0, 0, 0, 0), 0.0, 3.0, 0.0, 0.0, 1)
-    assert ang == approx((0.0, 0.0, 0.0))
-    assert s == approx((4.0, 1.0, 0.0))
-
-
-@pytest.mark.parametrize(("sgn", "sx", "jpx"), [(1, 2.0, (1.0, 2.0)), (-1, -2.0, (1.0, 0.0))])
-def test_ppr_cross_slot_hand(sgn, sx, jpx):
-    # b slides on the x axis; a turns about jr = (1, 2) and slides on b along the y direction (cx = 90 deg)
-    jr = (1.0, 2.0, 1.0, 1.0, 0.0, 0.0)
-    st, sigma, (s1, jp1, sx_out, jpx_out) = py2(
-        "PPR_links", jr, STILL, (0.0, 0.0, 0.0), 0.0, 0.0, 0.0, 0.0, PI / 2, sgn
-    )
-    assert st == 0
-    assert sigma == approx(1.0)
-    assert s1 == approx((1.0, 1.0, 0.0))
-    assert jp1 == approx((1.0, 0.0, 1.0, 0.0, 0.0, 0.0))
-    assert sx_out == approx((sx, sgn * 1.0, 0.0))
-    assert jpx_out == approx((*jpx, 1.0, 1.0 if sgn > 0 else 0.0, 0.0, 0.0))
-
-
-def test_link_residual_hand():
-    # r = 5, r' = d.dv/r = 3/5, r'' = (|dv|^2 + d.da - r'^2)/r = (1 - 0.36)/5
-    st, _, (f,) = py2("link_residual", STILL, (3.0, 4.0, 1.0, 0.0, 0.0, 0.0), (4.0, 0.5, 0.25))
-    assert st is None  # it cannot fail
-    assert f == approx((1.0, 0.6 - 0.5, 0.64 / 5 - 0.25))
-
-
-def test_link_residual_coincident_pairs_give_the_rates_as_they_part():
-    # d(t) = dv t + da t^2/2 with dv = (3, 4), da = (1, 0): |d(t)| = 5t + (dv.da/|dv|) t^2/2 + ...,
-    # so r' = 5 and r'' = 3/5 (sympy-free: the series of sqrt(|dv|^2 t^2 + dv.da t^3 + ...))
-    st, _, (f,) = py2("link_residual", (1.0, 2.0, 0.0, 0.0, 0.0, 0.0), (1.0, 2.0, 3.0, 4.0, 1.0, 0.0), (0.0, 0.0, 0.0))
-    assert st is None  # it cannot fail
-    assert f == approx((0.0, 5.0, 0.6))
-    # at rest: |d(t)| = |da| t^2 / 2, r' = 0, r'' = |da| = 5
-    st, _, (f,) = py2("link_residual", (1.0, 2.0, 0.0, 0.0, 0.0, 0.0), (1.0, 2.0, 0.0, 0.0, 3.0, -4.0), (2.0, 0.0, 0.0))
-    assert st is None  # it cannot fail
-    assert f == approx((-2.0, 0.0, 5.0))
-    # finite differences of the distance just after the pairs meet (r(0) = 0) agree
-    t = 1e-4
-    r = lambda t: math.hypot(3.0 * t + 0.5 * t * t, 4.0 * t)  # noqa: E731
-    assert abs(r(t) / t - 5.0) < 1e-3 and abs((r(2 * t) - 2 * r(t)) / t**2 - 0.6) < 1e-3
-
-
 # --------------------------------------------------------------------------- (e) status discipline
-
-
-def _all_outputs(name, row, order):
-    prim = PRIMITIVES[name]
-    st, sigma, outs = call_python(name, order, row)
-    levels = [record_fields(o.kind, order) for o in prim.outputs]
-    return st, sigma, [(o.name, f, x) for o, fs, rec in zip(prim.outputs, levels, outs) for f, x in zip(fs, rec)]
-
-
-def _level(kind, f):
-    return next(i for i, names in enumerate(RECORD_FIELDS[kind]) if f in names)
 
 
 SPECIAL = [(n, *case) for n in PRIMITIVES for case in special_inputs(n)]
@@ -1157,136 +836,17 @@ def test_status_masks_outputs(name, what, status, row):
     st_n, _, outs_n = call_numpy(name, 2, [row])
     assert st_n[0] == (status or 0)
     for order in (0, 1, 2):
-        st, _, fields = _all_outputs(name, row, order)
+        st, _, fields = all_outputs(name, row, order)
         assert st == status, f"{name} {what}: status {st}"
         for out, f, x in fields:
             assert not math.isinf(x), f"{name}.{out}.{f} is inf"
-            if st == 1 or (st == 3 and _level(kinds[out], f) > 0):
+            if st == 1 or (st == 3 and field_level(kinds[out], f) > 0):
                 assert math.isnan(x), f"{name} status {st}: {out}.{f} = {x}"
             else:
                 assert math.isfinite(x), f"{name} status {st}: {out}.{f} = {x}"
     for out in outs_n:
         for column in out:
             assert not np.isinf(column).any()
-
-
-def _rrr_row(l1, l2, q, minv=1):
-    return _named("RRR_links", ((0.0, 0.0, 0.5, 0.25, 1.0, -1.0), (q, 0.0, -0.5, 1.0, 0.0, 2.0),
-                                (l1, 0.5, 0.25), (l2, -0.5, 0.125), minv))
-
-
-def test_rrr_cannot_close():
-    for l1, l2, q in ((3.0, 4.0, 10.0), (1.0, 10.0, 2.0), (10.0, 1.0, 2.0), (3.0, 4.0, 0.0), (0.0, 5.0, 5.0),
-                      (-1.0, 5.0, 5.0)):
-        st, _, fields = _all_outputs("RRR_links", _rrr_row(l1, l2, q), 2)
-        assert st == 1, (l1, l2, q)
-        assert all(math.isnan(x) for _, _, x in fields)
-
-
-@pytest.mark.parametrize(("l1", "l2", "q", "jbx"), [(2.0, 3.0, 5.0, 2.0), (7.0, 2.0, 5.0, 7.0), (2.0, 7.0, 5.0, -2.0)])
-@pytest.mark.parametrize("minv", [1, -1])
-def test_rrr_exact_toggle(l1, l2, q, jbx, minv):
-    st, sigma, fields = _all_outputs("RRR_links", _rrr_row(l1, l2, q, minv), 2)
-    assert st == 3
-    assert sigma == 0
-    values = {f: x for _, f, x in fields}
-    assert (values["x"], values["y"]) == (jbx, 0.0)
-    assert all(math.isnan(values[f]) for f in ("dx", "dy", "ddx", "ddy"))
-
-
-def test_rrr_toggle_within_slack_is_a_toggle():
-    """l1 + l2 a few ulps short of q (rounding on a real toggle) still closes, at the toggle."""
-    q = 5.0
-    l1 = 2.0
-    l2 = math.nextafter(3.0, 0.0)
-    st, sigma, fields = _all_outputs("RRR_links", _rrr_row(l1, l2, q), 2)
-    assert st == 3
-    values = {f: x for _, f, x in fields}
-    assert values["x"] == approx(2.0) and abs(values["y"]) < 1e-7
-
-
-def test_rrr_near_toggle_is_status_4():
-    # jb = (1, 1e-4) above the middle of j1 = (0, 0), j2 = (2, 0): sigma = sin(angle at jb) ~ 2e-4
-    ln = math.hypot(1.0, 1e-4)
-    st, sigma, fields = _all_outputs("RRR_links", _rrr_row(ln, ln, 2.0), 2)
-    assert st == 4
-    assert sigma == pytest.approx(2e-4 / (1 + 1e-8), rel=1e-9)
-    assert all(math.isfinite(x) for _, _, x in fields)
-
-
-@pytest.mark.parametrize("delta", [1e-8, 1e-16])
-def test_near_toggles_of_the_slider_chains(delta):
-    """A link almost square to the guide (PRR) or js almost on the normal (RPR): sigma ~ sqrt(2 delta).
-
-    1e-8 gives sigma ~ 1.4e-4: status 4 with every rate finite; 1e-16 gives ~1.4e-8: status 3.
-    """
-    ln = 3.0
-    near = ln * (1 - delta)  # the distance of jr from the slider's line, of js from the guide's line
-    want = math.sqrt((ln - near) * (ln + near)) / ln  # ln - near is exact (Sterbenz)
-    status = 4 if want > 1e-7 else 3
-    prr = _named("PRR_links", ((0.0, near, 1.0, 0.5, 0.0, 0.0), (ln, 0.5, 0.0), STILL,
-                               (0.0, 1.0, 0.5), 0.0, 0.0, 1))
-    rpr = _named("RPR_links", (STILL, (ln, 0.0, 0.0, 1.0, 0.0, 0.0), 0.0, near, 0.0, 0.0, 1))
-    for name, row in (("PRR_links", prr), ("RPR_links", rpr)):
-        st, sigma, fields = _all_outputs(name, row, 2)
-        assert st == status, name
-        assert sigma == pytest.approx(want, rel=1e-9), name
-        kinds = {o.name: o.kind for o in PRIMITIVES[name].outputs}
-        for out, f, x in fields:
-            if status == 4 or _level(kinds[out], f) == 0:
-                assert math.isfinite(x), f"{name}.{out}.{f}"
-            else:
-                assert math.isnan(x), f"{name}.{out}.{f}"
-
-
-@pytest.mark.parametrize(("gap", "status"), [(1e-4, 4), (1e-9, 3)])
-def test_almost_parallel_guides(gap, status):
-    """PRP with guides gap radians apart: sigma = |sin(gap)|; positions finite, rates nan at status 3."""
-    row = _named("PRP_links", (STILL, (0.0, 0.0, 0.0), 0.0, 0.0, (0.0, 1.0, 0.5, 0.0, 0.0, 0.0),
-                               (gap, 0.25, 0.0), 0.0, 0.0))
-    st, sigma, fields = _all_outputs("PRP_links", row, 2)
-    assert st == status
-    assert sigma == pytest.approx(math.sin(gap), rel=1e-6)
-    kinds = {o.name: o.kind for o in PRIMITIVES["PRP_links"].outputs}
-    for out, f, x in fields:
-        if status == 4 or _level(kinds[out], f) == 0:
-            assert math.isfinite(x), f"{out}.{f}"
-        else:
-            assert math.isnan(x), f"{out}.{f}"
-    values = {(o, f): x for o, f, x in fields}
-    # the second guide passes through (0, 1) at angle gap: it meets the x axis at x = -1/tan(gap)
-    assert values[("jb", "x")] == pytest.approx(-1 / math.tan(gap), rel=1e-6)
-
-
-def test_prr_toggle_and_failure():
-    def row(ln, y):
-        return _named("PRR_links", ((0.0, y, 1.0, 0.5, 0.0, 0.0), (ln, 0.5, 0.0), STILL, (0.0, 1.0, 0.5),
-                                    0.0, 0.0, 1))
-
-    st, sigma, fields = _all_outputs("PRR_links", row(3.0, 3.0), 2)
-    assert (st, sigma) == (3, 0)
-    values = {(o, f): x for o, f, x in fields}
-    assert (values[("s", "v")], values[("jb", "x")], values[("jb", "y")]) == (0.0, 0.0, 0.0)
-    assert all(math.isnan(x) for (o, f), x in values.items() if f.startswith("d"))
-    st, _, fields = _all_outputs("PRR_links", row(2.0, 3.0), 2)
-    assert st == 1
-    assert all(math.isnan(x) for _, _, x in fields)
-
-
-def test_rpr_toggle_and_failure():
-    def row(bg):
-        return _named("RPR_links", (STILL, (3.0, 0.0, 0.0, 1.0, 0.0, 0.0), 0.0, bg, 0.0, 0.0, 1))
-
-    st, sigma, fields = _all_outputs("RPR_links", row(3.0), 2)
-    assert (st, sigma) == (3, 0)
-    values = {(o, f): x for o, f, x in fields}
-    # js is on the normal through jg at distance 3: the line runs along -y through (3, 0)
-    assert values[("psi", "the")] == -PI / 2
-    assert (values[("s", "v")], values[("jp", "x")], values[("jp", "y")]) == (0.0, 3.0, 0.0)
-    assert all(math.isnan(x) for (o, f), x in values.items() if f.startswith("d"))
-    st, _, fields = _all_outputs("RPR_links", row(4.0), 2)
-    assert st == 1
-    assert all(math.isnan(x) for _, _, x in fields)
 
 
 WITH_SIGMA = [n for n in PRIMITIVES if PRIMITIVES[n].sigma is not None]
@@ -1338,7 +898,7 @@ def best_conditioned_rows(name: str, count: int = 400) -> list[dict]:
             args = ((0.0, 0.0), js, 0.0, 1.0, 0.0, 1.0, rng.choice([1, -1]))
         elif name == "PPR_links":
             args = ((1.0, 2.0), (0.0, 0.0), (a,), 0.0, 0.0, 0.0, 0.0, rng.choice([1, -1]) * PI / 2, 1)
-        rows.append(_named(name, args))  # records given up to order 0
+        rows.append(named(name, args))  # records given up to order 0
     return rows
 
 

@@ -45,7 +45,7 @@ def python_backend(order: int = 2) -> dict[str, RuntimeFunction]:
 @functools.cache
 def numpy_backend(order: int = 2) -> dict[str, RuntimeFunction]:
     """Vectorised functions on tuples of arrays, returning (status, sigma, outputs...)."""
-    from ..backends.py.printer import numpy_function
+    from ..backends.np.printer import numpy_function
 
     source = "\n\n".join(numpy_function(p, order) for p in PRIMITIVES.values())
     ns: dict[str, Any] = {"np": np, "EPS": float(np.finfo(float).eps), "NAN": np.nan, "PI": np.pi}

@@ -14,6 +14,7 @@ from .. import status
 from .dsl import Bin, Call, Cmp, Const, Expr, Logic, Neg, Num, Param, Primitive, Select, Sym, field_order, record_fields
 
 _PREC = {"select": 1, "or": 2, "and": 3, "cmp": 5, "+": 6, "-": 6, "*": 7, "/": 7, "neg": 8, "atom": 10}
+ATOM = _PREC["atom"]  # a name, a number or a call: never parenthesised
 MASKS = ((status.CANNOT_CLOSE, 0), (status.SINGULAR, 1))  # a chain's status -> first derivative order that is nan
 
 

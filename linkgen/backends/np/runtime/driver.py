@@ -1,0 +1,134 @@
+# The row driver of the vectorised kernel: the inputs, rates and accelerations of a call (their
+# last axis the inputs) and its design parameters broadcast together and flattened into rows,
+# solved a block of rows at a time so that every array a block makes stays in the cache.
+# m holds the module's data (name, n_inputs, n_steps, reads, max_input, levels, columns,
+# failed, singular, bad_input, params).
+
+BLOCK = 4096  # rows a block
+
+
+def design(params, m):
+    """The design parameters: the sketch's (m.params) with those given in place, each a number
+    or an array."""
+    c = dict(m.params)
+    for name, value in (params or {}).items():
+        if name not in c:
+            raise ValueError(f"{m.name}.solve: {name!r} is not a design parameter (see PARAMS)")
+        value = np.asarray(value, dtype=float)
+        c[name] = float(value) if value.ndim == 0 else value
+    return c
+
+
+def rows_of(inputs, d_inputs, dd_inputs, c, m):
+    """The broadcast shape of the rows and, flattened to it, the columns of the three arrays
+    and the design parameters (one that is the same on every row stays a number)."""
+    columns = []
+    for what, a in (("inputs", inputs), ("d_inputs", d_inputs), ("dd_inputs", dd_inputs)):
+        a = np.asarray(a, dtype=float)
+        if a.ndim == 0 or a.shape[-1] != m.n_inputs:
+            raise ValueError(f"{m.name}.solve: the last axis of {what} must hold the {m.n_inputs} inputs, "
+                             f"not shape {a.shape}")
+        columns.append([a[..., k] for k in range(m.n_inputs)])
+    shape = np.broadcast_shapes(*(x.shape for col in columns for x in col), *(np.shape(v) for v in c.values()))
+
+    def flat(x):
+        x = np.asarray(x)
+        return float(x.reshape(-1)[0]) if x.size == 1 else np.broadcast_to(x, shape).reshape(-1)
+
+    return shape, [[flat(x) for x in col] for col in columns], {k: flat(v) for k, v in c.items()}
+
+
+def refused(columns, m):
+    """Rows with an input the procedure reads (the first m.reads arrays) not finite or larger
+    than m.max_input in size."""
+    bad = False
+    for col in columns[: m.reads]:
+        for x in col:
+            bad = bad | ~(np.abs(x) <= m.max_input)
+    return bad
+
+
+def block(x, s, e):
+    """Rows s to e of a flattened column (a number is the same on every row)."""
+    return x if isinstance(x, float) else x[s:e]
+
+
+def filled(out, shape, order, m):
+    """The flat arrays a call fills (its columns up to order, status, sigma): those of out, a
+    dict an earlier call returned for rows of this shape, else new ones."""
+    n = int(np.prod(shape))
+    names = [name for name, level in zip(m.columns, m.levels) if level <= order]
+    if out is None:
+        return {name: np.empty(n) for name in names}, np.empty(n, dtype=int), np.ones((m.n_steps + 1, n))
+    flat = {}
+    for name, like, dtype in [(name, shape, float) for name in names] + [
+            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), float)]:
+        a = out.get(name)
+        if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
+            raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
+        flat[name] = a.reshape(-1) if name != "sigma" else a.reshape(m.n_steps + 1, n)
+    flat["sigma"].fill(1.0)
+    return {name: flat[name] for name in names}, flat["status"], flat["sigma"]
+
+
+def solve_rows(run, publish, inputs, d_inputs, dd_inputs, order, params, m, out=None):
+    """Every row of a call, a block at a time: run(x, dx, ddx, c) solves a block (its records,
+    the rows' status codes and each step's conditioning), publish(w, c) gives its columns,
+    written into new arrays or those of out (see filled).  Returns finish's dict.  A row that
+    fails is nan by design: numpy does not warn of it."""
+    shape, columns, c = rows_of(inputs, d_inputs, dd_inputs, design(params, m), m)
+    n = int(np.prod(shape))
+    out, status, sigma = filled(out, shape, order, m)
+    with np.errstate(all="ignore"):
+        for s in range(0, n, BLOCK):
+            e = min(s + BLOCK, n)
+            x, dx, ddx = ([block(v, s, e) for v in col] for col in columns)
+            cb = {k: block(v, s, e) for k, v in c.items()}
+            w, status[s:e], steps = run(x, dx, ddx, cb)
+            for name, value in zip(m.columns, publish(w, cb)):
+                if name in out:
+                    out[name][s:e] = value
+            for k, value in enumerate(steps):
+                if not isinstance(value, float):
+                    sigma[k, s:e] = value
+        bad = np.broadcast_to(refused(columns, m), (n,))
+    return finish(out, status, sigma, bad, shape, m)
+
+
+def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
+    """Every row of a call in turn through a solve of one row (the standard-library module's,
+    whose resolver starts each row from the last; state: its warm start), written into new
+    arrays or those of out (see filled).  Returns finish's dict."""
+    if params:
+        raise ValueError(f"{m.name}.solve: design parameters need a mechanism without resolver groups")
+    shape, columns, _ = rows_of(inputs, d_inputs, dd_inputs, {}, m)
+    n = int(np.prod(shape))
+    bad = np.broadcast_to(refused(columns, m), (n,))
+    out, status, sigma = filled(out, shape, order, m)
+    state = {}
+    for r in np.flatnonzero(~bad):
+        x, dx, ddx = ([v if isinstance(v, float) else float(v[r]) for v in col] for col in columns)
+        row = solve(x, dx, ddx, order, state)
+        for name in out:
+            out[name][r] = row[name]
+        status[r], sigma[:, r] = row["status"], row["sigma"]
+    return finish(out, status, sigma, bad, shape, m)
+
+
+def finish(out, status, sigma, bad, shape, m):
+    """The columns, "status" and "sigma" (sigma[n]: step n's conditioning), each of the rows'
+    shape, with the programs' rules: a refused row has status m.bad_input and nan everywhere, a
+    failed one nan outputs, one at a singular position nan derivatives."""
+    status[bad] = m.bad_input
+    sigma[:, bad] = np.nan
+    reason = reason_of(status)
+    failed = np.isin(reason, m.failed) | bad
+    singular = failed | (reason == m.singular)
+    for name, level in zip(m.columns, m.levels):
+        lost = failed if level == 0 else singular
+        if name in out and lost.any():
+            out[name][lost] = np.nan
+    result = {name: x.reshape(shape) for name, x in out.items()}
+    result["status"] = status.reshape(shape)
+    result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
+    return result

@@ -1,0 +1,97 @@
+"""How the numpy kernel spells the procedure: records are tuples of arrays (or numbers) in a
+work object, and every number taken from the sketch is a design parameter ``c[name]``."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from ... import status
+from ...primitives import PRIMITIVES
+from ...primitives.dsl import record_fields
+from ...steplog import Arg, Column, Step, Variable
+from ..py.spelling import Python
+from ..spelling import Syntax
+
+if TYPE_CHECKING:
+    from ...render.view import Group
+
+
+class Numpy(Python):
+    syntax = Syntax(work="w.", file_constants=False, conditional="{a} if {cond} else {b}", change_list="({points},)",
+                    booleans=("False", "True"))
+
+    def param_names(self, v: Variable) -> list[str]:
+        """The design parameters of a constant record's displacement fields: a pair's or a
+        point's x and y by its name (O2.x), any other record by its own (l_coupler)."""
+        name = v.entity if v.role in ("pair", "point") else v.name
+        return [f"{name}.{f}" for f in record_fields(v.kind, 0)] if v.kind == "POINT" else [name]
+
+    @staticmethod
+    def step_param(step: Step, k: int) -> str:
+        """The design parameter of a step's k-th argument, a number: the step and the runtime
+        function's name of the parameter (step5.gsi; step4.gsi2 for PRP_links' second slider)."""
+        return f"step{step.number}.{PRIMITIVES[step.function].params[k].name.rstrip('_')}"
+
+    def params(self) -> list[tuple[str, float, str]]:
+        """(name, sketch value, what it is) of every design parameter, constants first, then the
+        steps' numbers."""
+        out = []
+        for v in (v for v in self.log.variables if v.constant):
+            what = f"{v.role} {v.entity}" + (" (as drawn)" if v.kind == "POINT" else "")
+            out += [(name, x, what) for name, x in zip(self.param_names(v), v.value)]
+        for s in self.log.steps:
+            for k, a in enumerate(s.args):
+                if a.kind == "real":
+                    out.append((self.step_param(s, k), float(a.value), f"step {s.number}: {s.function} of {s.target}"))
+        names = [name for name, _, _ in out]
+        if len(set(names)) != len(names):
+            raise ValueError(f"{self.log.name}: two design parameters share a name")
+        return out
+
+    def arg(self, a: Arg, scope: Group | None, step: Step | None = None) -> str:
+        if a.kind == "real" and step is not None:
+            return f'c["{self.step_param(step, step.args.index(a))}"]'
+        return super().arg(a, scope, step)
+
+    def initializer(self, v: Variable) -> str:
+        """A constant record from the design parameters: a point relative to the origin, rates 0."""
+        shift = self.log.origin if v.kind == "POINT" else (0.0,)
+        value = [f'c["{name}"] - {self.lit(o)}' if v.kind == "POINT" else f'c["{name}"]'
+                 for name, o in zip(self.param_names(v), shift)]
+        rates = ["0.0"] * (len(record_fields(v.kind, self.order)) - len(value))
+        return "(" + ", ".join(value + rates) + ("," if len(value + rates) == 1 else "") + ")"
+
+    def input_record(self, var: Variable, k: int) -> str:
+        """The statement that builds an input record from the k-th input column, rate and acceleration."""
+        fields = ", ".join(f"{src}[{k}]" for src in ("x", "dx", "ddx")[: self.order + 1])
+        return f"w.{var.name} = ({fields}{',' if self.order == 0 else ''})"
+
+    def published(self, c: Column) -> str:
+        """A constant record's field as given (a design parameter; its rates 0), a computed
+        point's x and y with the origin added back, any other field as computed."""
+        v = self.log.variable(c.variable)
+        if not v.constant:
+            return super().published(c)
+        fields = record_fields(v.kind, 0)
+        return f'c["{self.param_names(v)[fields.index(c.field)]}"]' if c.field in fields else "0.0"
+
+    def sigma(self, step: Step) -> str:
+        """A step's conditioning on the block, in the list the block's steps fill."""
+        return f"sigma[{step.number}]"
+
+    @staticmethod
+    def codes(step: Step) -> str:
+        """A step's (status, row code) pairs in the order they prevail: a chain that cannot close,
+        a singular position, a near-singular one."""
+        pairs = [(r, status.code(step.number, r)) for r in (status.CANNOT_CLOSE, status.SINGULAR, status.NEAR_SINGULAR)]
+        return "(" + ", ".join(f"({r}, {c})" for r, c in pairs) + ")"
+
+    def call(self, step: Step, scope: Group | None) -> list[str]:
+        """A step's call on a block of rows; one that can fail reports its status and codes."""
+        prim = PRIMITIVES[step.function]
+        args = ", ".join(self.arg(a, scope, step) for a in step.args)
+        targets = ", ".join(self.ref(o, scope) for o in step.outputs)
+        if prim.status is None:
+            return [f"_, _, {targets} = {step.function}({args})"]
+        sigma = self.sigma(step) if prim.sigma is not None else "_"
+        return [f"st, {sigma}, {targets} = {step.function}({args})", f"report.append((st, {self.codes(step)}))"]

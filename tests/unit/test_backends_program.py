@@ -1,0 +1,87 @@
+"""linkgen.backends.program, what the program backends build alike from the view: the derivative order of
+each output quantity (the field's own, by the DSL), the primitives a procedure calls, the runtime sources a
+program carries (each only where the procedure needs it), each resolver block's sketch state and the inputs'
+lists, read back as numbers and compared with the step log."""
+
+from __future__ import annotations
+
+from functools import cache
+
+import pytest
+from spelled import ROOT
+
+from linkgen.backends.c import RUNTIME as C_RUNTIME
+from linkgen.backends.c.printer import c_function
+from linkgen.backends.c.spelling import C
+from linkgen.backends.program import LEVEL, input_lists, runtime_sources, sketch_states, used_primitives
+from linkgen.backends.py import RUNTIME as PY_RUNTIME
+from linkgen.backends.py.printer import python_function
+from linkgen.backends.py.spelling import Python
+from linkgen.pipeline import build_log
+from linkgen.primitives import PRIMITIVES
+from linkgen.primitives.dsl import field_order
+from linkgen.render.view import View, build_view
+
+PATHS = {"fourbar": "samples/fourbar/fourbar.yaml", "parallelogram": "tests/mechanisms/parallelogram.yaml",
+         "cylinder": "tests/mechanisms/cylinder_triad.yaml", "fallback": "tests/mechanisms/sixbar_fallback.yaml",
+         "fivebar": "samples/fivebar/fivebar.yaml"}
+
+
+@cache
+def view(key: str) -> View:
+    return build_view(build_log(str(ROOT / PATHS[key]), None, None, sweep=False))
+
+
+@pytest.mark.parametrize("key", sorted(PATHS))
+def test_the_level_of_a_quantity_is_its_fields_derivative_order(key: str):
+    log = view(key).log
+    for c in log.columns:
+        assert LEVEL[c.quantity] == field_order(log.variable(c.variable).kind, c.field), c.name
+
+
+@pytest.mark.parametrize("key", sorted(PATHS))
+def test_the_used_primitives_are_the_steps_functions_in_the_librarys_order(key: str):
+    v = view(key)
+    used = used_primitives(v)
+    expected = {s.function for s in v.log.steps if s.function} | ({"link_residual"} if v.log.groups else set())
+    assert set(used) == expected
+    assert used == [p for p in PRIMITIVES if p in expected]
+
+
+@pytest.mark.parametrize("key, extra", [
+    ("fourbar", []), ("parallelogram", ["branch"]), ("cylinder", ["reach", "resolver", "driver"]),
+    ("fallback", ["reach", "resolver", "driver"]),
+])
+def test_a_program_carries_the_runtime_its_procedure_needs(key: str, extra: list[str]):
+    v = view(key)
+    for printer, runtime in ((python_function, PY_RUNTIME), (c_function, C_RUNTIME)):
+        texts = runtime_sources(v, printer, runtime)
+        want = [printer(PRIMITIVES[p], v.record_order) for p in used_primitives(v)]
+        want += [runtime.source(name) for name in ["status", *extra]]
+        assert texts == want
+
+
+@pytest.mark.parametrize("key", ["cylinder", "fallback"])
+def test_each_blocks_sketch_state_padded_to_the_largest(key: str):
+    v = view(key)
+    for spell in (Python(v), C(v)):
+        states = [[float(x) for x in s.split(", ")] for s in sketch_states(v, spell)]
+        assert len(states) == len(v.blocks)
+        for state, b in zip(states, v.blocks):
+            start = b.group.start()
+            assert state == start + [0.0] * (v.nmax - len(start))
+            assert state[: b.size] == list(b.group.lengths)  # the Add-links' sketch lengths come first
+
+
+@pytest.mark.parametrize("key", ["fivebar", "cylinder"])
+def test_the_input_lists_are_the_logs_numbers(key: str):
+    v = view(key)
+    log = v.log
+    lists = input_lists(v, Python(v))
+    for k in ("start", "stop", "speed", "sketch"):
+        assert [float(x) for x in lists[k].split(", ")] == [getattr(i, k) for i in log.inputs], k
+    limits = [float(x) for x in lists["limits"].split(", ")]
+    p = log.policy
+    assert limits == [p.step_angle if i.kind == "revolute" else p.step_length * log.length_scale for i in log.inputs]
+    assert lists["periodic"].split(", ") == [str(i.kind == "revolute") for i in log.inputs]
+    assert input_lists(v, C(v))["periodic"].split(", ") == [str(int(i.kind == "revolute")) for i in log.inputs]

@@ -1,0 +1,64 @@
+"""linkgen.kernel: the evaluator's numpy kernel is the log's NAME_np.py, rendered and executed once per
+log and order; a four-bar row it solves against the closed form (two circles meeting)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from linkgen.kernel import at_order, kernel, runtime
+from linkgen.pipeline import build_log
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="module")
+def fourbar():
+    return build_log(str(ROOT / "samples" / "fourbar" / "fourbar.yaml"), sweep=False)
+
+
+def test_a_log_at_a_lower_order_keeps_the_columns_of_that_order(fourbar):
+    low = at_order(fourbar, 0)
+    assert low.order == 0 and at_order(fourbar, fourbar.order) is fourbar
+    assert {c.quantity for c in low.columns} <= {"position", "angle"}
+    assert len(low.columns) < len(fourbar.columns)
+
+
+def test_the_kernel_is_made_once_per_log_and_order(fourbar):
+    assert kernel(fourbar, 2) is kernel(fourbar, 2)
+    assert kernel(fourbar, 0) is not kernel(fourbar, 2)
+
+
+def test_a_resolver_log_has_no_kernel():
+    log = build_log(str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"), sweep=False)
+    with pytest.raises(ValueError, match="resolver groups"):
+        kernel(log, 0)
+
+
+def test_the_four_bar_closes_as_two_circles_meet(fourbar):
+    """A at 20 mm from O1 at theta; B on circles of the coupler (78.10 = |AB| drawn) about A and of the
+    rocker (50.99 = |O2B|) about O2 = (90, 0), on the sketch's side (B left of the line A->O2)."""
+    theta = np.radians([0.0, 30.0, 95.0, 200.0])
+    out = kernel(fourbar, 0).solve(theta[:, None], np.zeros((4, 1)), np.zeros((4, 1)), order=0)
+    assert list(out["status"]) == [0, 0, 0, 0]
+    for k, t in enumerate(theta):
+        ax, ay = 20 * math.cos(t), 20 * math.sin(t)
+        l1, l2 = math.hypot(60, 50), math.hypot(10, 50)
+        dx, dy = 90 - ax, -ay
+        d = math.hypot(dx, dy)
+        along = (l1 * l1 - l2 * l2 + d * d) / (2 * d)
+        h = math.sqrt(l1 * l1 - along * along)
+        bx, by = ax + (along * dx - h * dy) / d, ay + (along * dy + h * dx) / d  # left of A->O2, as drawn
+        assert math.isclose(out["B.x"][k], bx, rel_tol=0, abs_tol=1e-12 * 90)
+        assert math.isclose(out["B.y"][k], by, rel_tol=0, abs_tol=1e-12 * 90)
+
+
+def test_the_numpy_runtime_reads_a_status_as_linkgen_does():
+    from linkgen import status
+
+    codes = np.array([0, 5, 31, 42, 53, -64])
+    got = runtime()["reason_of"](codes)
+    assert list(np.asarray(got)) == [status.reason(int(c)) if c > 0 else 0 for c in codes]
