@@ -166,10 +166,11 @@ once, as their union, where each chain closes read off the union's row status
 evaluation of every distinct sweep position (`sweep.zoom_mins`); and a zoom that asks only
 whether a margin reaches zero stops once its grid is flat to TOUCH away from zero (the
 chains of the ladder share their brackets for five refinements, then part on rounding).
-The facts are unchanged, byte for byte.  At 1000 dyads the analysis is seven evaluations of
-the whole procedure (change points: the sweep and two refinements; gaps: the same; the
-conditioning's sweep), about half of each spent in the evaluator's bookkeeping per step
-(row status, result columns) rather than in the primitives.
+The facts are unchanged, byte for byte.  At 1000 dyads the analysis evaluates two
+procedures seven times in all (the chains' union over the span: change points and gaps, a
+sweep and two refinements each; the whole log over the sweep: the conditioning); rendering
+and compiling each one's vectorised kernel (`linkgen.kernel`) takes about 1 s of it, and
+copying every variable into the result about as long as the kernel's arithmetic.
 
 The frame ladder (`ladder(n, "frame")`, the ladder bench/run.py timed before) hangs every
 rocker on the frame instead, so the frame carries N + 1 pairs and rule (i) makes it a truss of
