@@ -169,7 +169,7 @@ chains of the ladder share their brackets for five refinements, then part on rou
 The facts are unchanged, byte for byte.  At 1000 dyads the analysis evaluates two
 procedures seven times in all (the chains' union over the span: change points and gaps, a
 sweep and two refinements each; the whole log over the sweep: the conditioning); rendering
-and compiling each one's vectorised kernel (`linkgen.kernel`) takes about 1 s of it, and
+and compiling each one's vectorised kernel (`linkgen.kernel`) takes about 1 s each, and
 copying every variable into the result about as long as the kernel's arithmetic.
 
 The frame ladder (`ladder(n, "frame")`, the ladder bench/run.py timed before) hangs every
