@@ -17,7 +17,8 @@ from functools import partial
 import numpy as np
 
 from ..steplog import Step, StepLog
-from .sweep import SMALL, TOUCH, closes, local_minima, margin, own, rows, run, span, spanning, vertex, zoom_min
+from .sweep import SMALL, TOUCH, Array, Zoom, at_once, local_minima, margin, rows, span, spanning, zoom_mins
+from .union import Readers, Union
 
 SNAP = 1e-10  # a change point this close to 0, relative to the span, is 0
 
@@ -40,30 +41,53 @@ def with_change_points(log: StepLog, found: Mapping[int, tuple[float, ...]]) -> 
 
 def change_points(draft: StepLog) -> ChangePoints:
     """The change points of every chain outside the resolver groups with two assemblies,
-    each found in its own procedure with the change points of the chains before it."""
-    lo, hi, periodic = span(draft)
+    each found in its own procedure with the change points of the chains before it.
+
+    The chains are searched together (see union), with the change points found so far; a
+    chain that reads from one whose change points were found along with it is searched
+    again, with them."""
     grid = np.linspace(0.0, 1.0, rows(draft))
+    readers = Readers(draft)
+    pending = [s for s in draft.steps if s.branch != 0 and not s.group and not readers.grouped(s)]
     found: dict[int, tuple[float, ...]] = {}
-    for step in draft.steps:
-        if step.branch == 0 or step.group:
-            continue
-        log = own(spanning(with_change_points(draft, found)), step)
-        if log.groups:
-            continue
-        result = run(log, grid)
-        m = margin(step, result)
+    while pending:
+        new = _search(Union(spanning(with_change_points(draft, found)), pending, grid, readers), pending)
+        stale = {n for number in new for n in readers.after(number) if n != number}
+        found.update((n, points) for n, points in new.items() if n not in stale)
+        pending = [s for s in pending if s.number in stale]
+    return tuple(sorted(found.items()))
+
+
+def _search(union: Union, chains: list[Step]) -> dict[int, tuple[float, ...]]:
+    """The change points of the chains, each in its own procedure as the union has it."""
+    lo, hi, periodic = span(union.log)
+    grid, scale = union.grid, union.log.length_scale
+    zooms = []
+    for step in chains:
+        m = margin(step, union.result)
         if m is None:
             continue
-        usable = closes(result, step.number - 1) & np.isfinite(m)
-        points = []
-        for k in local_minima(m, usable, periodic):
-            if m[k] > SMALL * draft.length_scale:
-                continue
-            lam, low = zoom_min(log, grid[k] - grid[1], grid[k] + grid[1], partial(margin, step))
-            if abs(low) <= TOUCH * draft.length_scale:
-                lam = vertex(log, lam, grid[1] / 8, partial(margin, step))
-                value = lo + lam * (hi - lo)
-                points.append(0.0 if abs(value) < SNAP * (hi - lo) else float(f"{value:.12g}"))
-        if points:
-            found[step.number] = tuple(sorted(set(points)))
-    return tuple(found.items())
+        usable = union.closes(step, step.number - 1) & np.isfinite(m)
+        zooms += [Zoom(step, grid[k] - grid[1], grid[k] + grid[1], partial(margin, step),
+                       (-TOUCH * scale, TOUCH * scale), TOUCH * scale)
+                  for k in local_minima(m, usable, periodic) if m[k] <= SMALL * scale]
+    touching = [(z, lam) for z, (lam, low) in zip(zooms, zoom_mins(union.log, zooms)) if abs(low) <= TOUCH * scale]
+    delta = grid[1] / 8
+    found: dict[int, list[float]] = {}
+    at = at_once(union.log, [(z.step, np.array([lam - delta, lam, lam + delta]), z.value) for z, lam in touching])
+    for (z, lam), v in zip(touching, at):
+        assert v is not None
+        value = lo + _vertex(lam, delta, v) * (hi - lo)
+        found.setdefault(z.step.number, []).append(0.0 if abs(value) < SNAP * (hi - lo) else float(f"{value:.12g}"))
+    return {n: tuple(sorted(set(points))) for n, points in found.items()}
+
+
+def _vertex(lam: float, delta: float, v: Array) -> float:
+    """The vertex of the parabola through v at lam - delta, lam, lam + delta.
+
+    A double root's margin is smooth and quadratic: its vertex locates the root to
+    rounding / (curvature * delta), where the minimum itself is only good to sqrt(eps).
+    """
+    lo, mid, hi = (float(x) for x in v)
+    curve = lo - 2 * mid + hi
+    return lam if not curve > 0 else lam + delta * (lo - hi) / (2 * curve)

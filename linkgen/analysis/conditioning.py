@@ -17,16 +17,17 @@ from ..evaluate import Result, reach_side
 from ..motion import Conditioning, Singular
 from ..primitives import PRIMITIVES
 from ..steplog import StepLog
-from .sweep import SMALL, Array, closes, local_minima, run, warm_after, zoom_edge, zoom_min
+from .sweep import SMALL, Array, Zoom, closes, local_minima, run, warm_after, zoom_edge, zoom_min, zoom_mins
 
 
 def conditioning(log: StepLog) -> tuple[Conditioning, ...]:
     """The conditioning of every step that has one, over the log's sweep (its change points
-    and reach found)."""
+    and reach found); without resolvers the minima of all steps are zoomed in on together."""
     grid = np.linspace(0.0, 1.0, log.samples)
     result = run(log, grid)
     inner = {n for g in log.groups for b in (g, *g.variants) for n in b.steps}
-    out = []
+    steps: list[tuple[int, Array, list[Singular]]] = []  # (step, its usable sigma, what it passes)
+    zooms, warms, owners = [], [], []
     for number in sorted(result.sigma):
         step = log.step(number)
         if step.action != "resolve" and PRIMITIVES[step.function].sigma is None:
@@ -37,20 +38,23 @@ def conditioning(log: StepLog) -> tuple[Conditioning, ...]:
         if not usable.any():
             continue
         found = [Singular((p,), "change point", 0.0) for p in step.change_points]
-        for k in range(len(grid) - 1):
-            # a resolver block's chain fails only as its group does: the group's step has the limit
-            if usable[k] != usable[k + 1] and fine[k] != fine[k + 1] and number not in inner:
-                found.append(_limit(log, result, grid, k if usable[k] else k + 1, k + 1 if usable[k] else k, number))
+        # a resolver block's chain fails only as its group does: the group's step has the limit
+        edges = np.flatnonzero((usable[:-1] != usable[1:]) & (fine[:-1] != fine[1:])) if number not in inner else ()
+        for k in (int(k) for k in edges):
+            found.append(_limit(log, result, grid, k if usable[k] else k + 1, k + 1 if usable[k] else k, number))
         for k in local_minima(sigma, usable):
-            if sigma[k] >= SMALL or step.change_points:
-                continue
-            lam, low = zoom_min(log, grid[k - 1], grid[k + 1], partial(_sigma, number),
-                                warm_after(result, k - 1))
-            found.append(Singular(_input_values(log, lam), "minimum", float(f"{low:.3g}")))
-        found.sort(key=lambda s: s.inputs)
-        out.append(Conditioning(number, float(f"{sigma[usable].min():.3g}"), float(f"{sigma[usable].max():.3g}"),
-                                tuple(found)))
-    return tuple(out)
+            if sigma[k] < SMALL and not step.change_points:
+                zooms.append(Zoom(step, grid[k - 1], grid[k + 1], partial(_sigma, number)))
+                warms.append(warm_after(result, k - 1))
+                owners.append(len(steps))
+        steps.append((number, sigma[usable], found))
+    lows = (zoom_mins(log, zooms) if not log.groups
+            else [zoom_min(log, z.lo, z.hi, z.value, warm) for z, warm in zip(zooms, warms)])
+    for owner, (lam, low) in zip(owners, lows):
+        steps[owner][2].append(Singular(_input_values(log, lam), "minimum", float(f"{low:.3g}")))
+    return tuple(Conditioning(number, float(f"{sigma.min():.3g}"), float(f"{sigma.max():.3g}"),
+                              tuple(sorted(found, key=lambda s: s.inputs)))
+                 for number, sigma, found in steps)
 
 
 def _limit(log: StepLog, result: Result, grid: Array, good: int, bad: int, number: int) -> Singular:

@@ -15,35 +15,48 @@ from functools import partial
 
 import numpy as np
 
-from .. import status
 from ..motion import Gap
 from ..steplog import Step, StepLog
-from .sweep import TOUCH, Array, closes, local_minima, margin, own, rows, run, span, spanning, zoom_edge, zoom_min
+from .sweep import TOUCH, Zoom, local_minima, margin, own, rows, span, spanning, zoom_edge, zoom_mins
+from .union import Readers, Union
 
 TWO_ASSEMBLIES = ("RRR_links", "PRR_links", "RPR_links")  # the chains margin() measures
 
 
 def gaps(log: StepLog) -> tuple[Gap, ...]:
     """Every gap of every chain outside the resolver groups with two assemblies, by step (a
-    dip found from two rows, once)."""
+    dip found from two rows, once); the chains searched together (see union)."""
     grid = np.linspace(0.0, 1.0, rows(log) | 1)
     spanned = spanning(log)
-    out: list[Gap] = []
-    for step in log.steps:
-        if step.group or step.function not in TWO_ASSEMBLIES:
-            continue
-        procedure = own(spanned, step)
-        if not procedure.groups:
-            out += _gaps(procedure, step, grid)
-    return tuple(dict.fromkeys(out))
-
-
-def _gaps(log: StepLog, step: Step, grid: Array) -> list[Gap]:
-    """The runs of rows where ``step`` fails first, then the dips of its margin."""
+    readers = Readers(spanned)
+    chains = [s for s in log.steps if not s.group and s.function in TWO_ASSEMBLIES and not readers.grouped(s)]
+    if not chains:
+        return ()
+    union = Union(spanned, chains, grid, readers)
     lo, hi, periodic = span(log)
-    result = run(log, grid)
-    st = result.status
-    fails = status.failed(st) & (status.step(st) == step.number)
+    scale = log.length_scale
+    found = {step.number: _runs(union, step) for step in chains}
+    dips = []
+    for step in chains:
+        m = margin(step, union.result)
+        assert m is not None
+        dips += [Zoom(step, grid[k] - grid[1], grid[k] + grid[1], partial(margin, step),
+                      (-np.inf, -TOUCH * scale), TOUCH * scale)
+                 for k in local_minima(m, union.closes(step, step.number) & np.isfinite(m), periodic)]
+    for z, (deepest, low) in zip(dips, zoom_mins(union.log, dips)):
+        if low < -TOUCH * scale:
+            value = float(lo + deepest * (hi - lo))
+            found[z.step.number].append(Gap(z.step.number, value, value))
+    return tuple(dict.fromkeys(g for step in chains for g in found[step.number]))
+
+
+def _runs(union: Union, step: Step) -> list[Gap]:
+    """The runs of rows where ``step`` fails first in its own procedure."""
+    lo, hi, periodic = span(union.whole)
+    grid = union.grid
+    fails = union.fails_first(step)
+    if not fails.any():
+        return []
     n = len(grid) - 1 if periodic else len(grid)  # a full turn: the last row is the first
 
     def value(lam: float) -> float:
@@ -52,8 +65,10 @@ def _gaps(log: StepLog, step: Step, grid: Array) -> list[Gap]:
     def lam(j: int) -> float:  # grid position of row j, counted on past the end of a turn
         return float(grid[j % n] + j // n)
 
+    procedure = own(union.whole, step)
+
     def edge(good: int, bad: int) -> float:  # the last value from row good towards row bad that closes
-        return value(zoom_edge(log, lam(good), lam(bad), step.number, 0.0)[0])
+        return value(zoom_edge(procedure, lam(good), lam(bad), step.number, 0.0)[0])
 
     out = []
     for k in range(n):
@@ -67,10 +82,4 @@ def _gaps(log: StepLog, step: Step, grid: Array) -> list[Gap]:
             out.append(Gap(step.number, edge(k - 1, k), edge(end + 1, end)))
         else:
             out.append(Gap(step.number, value(lam(k)), None) if opens else Gap(step.number, None, value(lam(end))))
-    m = margin(step, result)
-    assert m is not None
-    for k in local_minima(m, closes(result, step.number) & np.isfinite(m), periodic):
-        deepest, low = zoom_min(log, grid[k] - grid[1], grid[k] + grid[1], partial(margin, step))
-        if low < -TOUCH * log.length_scale:
-            out.append(Gap(step.number, value(deepest), value(deepest)))
     return out

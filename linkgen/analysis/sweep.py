@@ -3,13 +3,15 @@
 A sweep runs all inputs together, lambda from 0 to 1 between each input's start and
 stop; ``spanning`` gives the log whose one input sweeps the span searched for change
 points and gaps instead.  ``own`` is the procedure of one step: what a step finds holds
-in every procedure that contains it (a pruned one included).
+in every procedure that contains it (a pruned one included).  Without resolvers, zooms are
+taken together (``zoom_mins``): the rows of a log without resolvers are independent, so
+one evaluation serves every zoom's grid.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import replace
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -27,6 +29,7 @@ EDGE_ZOOMS = 5  # refinements of a limit position, each to 1/32 of the last
 GRID = 33  # points per refinement
 TOUCH = 1e-9  # a margin within this of zero, relative to the length scale, touches zero
 SMALL = 1e-3  # minima of the margin or of sigma below this are examined
+ROWS = 2048  # rows evaluated at once by zooms taken together (a result holds every variable per row)
 
 
 def rows(log: StepLog) -> int:
@@ -85,24 +88,93 @@ def zoom_min(log: StepLog, lo: float, hi: float, value: Measure, warm: Any = Non
         v = value(run(log, lam, warm))
         if v is None or not np.any(np.isfinite(v)):
             break
-        k = int(np.nanargmin(np.where(np.isfinite(v), v, np.nan)))
-        best = (float(lam[k]), float(v[k]))
-        step = (hi - lo) / (GRID - 1)
-        lo, hi = max(lo, lam[k] - step), min(hi, lam[k] + step)
+        best, (lo, hi) = refined(lo, hi, lam, v)
     return best
 
 
-def vertex(log: StepLog, lam: float, delta: float, value: Measure) -> float:
-    """The vertex of the parabola through value at lam - delta, lam, lam + delta.
+def refined(lo: float, hi: float, lam: Array, v: Array) -> tuple[tuple[float, float], tuple[float, float]]:
+    """(lambda, value) of the least finite value of a grid on [lo, hi], and the bracket of
+    the next refinement: a grid step either side of it."""
+    k = int(np.nanargmin(np.where(np.isfinite(v), v, np.nan)))
+    step = (hi - lo) / (GRID - 1)
+    return (float(lam[k]), float(v[k])), (max(lo, lam[k] - step), min(hi, lam[k] + step))
 
-    A double root's margin is smooth and quadratic: its vertex locates the root to
-    rounding / (curvature * delta), where the minimum itself is only good to sqrt(eps).
-    """
-    v = value(run(log, np.array([lam - delta, lam, lam + delta])))
-    assert v is not None
-    lo, mid, hi = (float(x) for x in v)
-    curve = lo - 2 * mid + hi
-    return lam if not curve > 0 else lam + delta * (lo - hi) / (2 * curve)
+
+@dataclass(frozen=True)
+class Zoom:
+    """A zoom_min of value over [lo, hi] that reads the step's values.  With a band, what
+    matters is only whether the minimum falls inside it: the zoom stops once its grid is
+    flat (all within ``flat``) and more than that outside the band, as finer grids around its
+    minimum, which lie inside the grid, find only rounding there (or the value is not smooth
+    at the scale of the grid)."""
+
+    step: Step
+    lo: float
+    hi: float
+    value: Measure
+    band: tuple[float, float] | None = None
+    flat: float = 0.0
+
+    def settled(self, v: Array) -> bool:
+        if self.band is None or not np.all(np.isfinite(v)) or float(v.max() - v.min()) > self.flat:
+            return False
+        return float(v.min()) - self.flat > self.band[1] or float(v.max()) + self.flat < self.band[0]
+
+
+def zoom_mins(log: StepLog, zooms: Sequence[Zoom]) -> list[tuple[float, float]]:
+    """zoom_min of each zoom, in a log without resolvers: each refinement evaluates the grids
+    of all zooms at once, every sweep position once, in the procedure of their steps."""
+    bracket = [(z.lo, z.hi) for z in zooms]
+    best = [(z.lo, np.inf) for z in zooms]
+    live = list(range(len(zooms)))
+    procedures: dict[frozenset[int], StepLog] = {}
+    for _ in range(ZOOMS):
+        if not live:
+            break
+        grids = [np.linspace(*bracket[i], GRID) for i in live]
+        found = at_once(log, [(zooms[i].step, lam, zooms[i].value) for i, lam in zip(live, grids)], procedures)
+        going = []
+        for i, lam, v in zip(live, grids, found):
+            if v is None or not np.any(np.isfinite(v)):
+                continue
+            best[i], bracket[i] = refined(*bracket[i], lam, v)
+            if not zooms[i].settled(v):
+                going.append(i)
+        live = going
+    return best
+
+
+def at_once(log: StepLog, asked: Sequence[tuple[Step, Array, Measure]],
+            procedures: dict[frozenset[int], StepLog] | None = None) -> list[Array | None]:
+    """value(result) at the sweep positions asked for each (step, positions, value), from
+    as few evaluations as ROWS allows of the procedure of the steps (a log without resolvers:
+    its rows are independent, so each position is evaluated once, in any order).  The
+    procedures made are kept in ``procedures``, by their steps asked for."""
+    procedures = {} if procedures is None else procedures
+    assert not log.groups, "rows evaluated at once in a log with resolvers"
+    parts: list[list[int]] = []
+    rows_in: set[float] = set()
+    for i, (_, positions, _) in enumerate(asked):
+        more = rows_in | set(positions.tolist())
+        if parts and len(more) <= ROWS:
+            parts[-1].append(i)
+            rows_in = more
+        else:
+            parts.append([i])
+            rows_in = set(positions.tolist())
+    out: list[Array | None] = []
+    for part in parts:
+        lam, where = np.unique(np.concatenate([asked[i][1] for i in part]), return_inverse=True)
+        steps = frozenset(asked[i][0].number for i in part)
+        if steps not in procedures:
+            procedures[steps] = keep(log, {name for n in steps for name in log.step(n).outputs})
+        result = run(procedures[steps], lam)
+        at = 0
+        for i in part:
+            v = asked[i][2](result)
+            out.append(None if v is None else v[where[at:at + len(asked[i][1])]])
+            at += len(asked[i][1])
+    return out
 
 
 def zoom_edge(log: StepLog, good: float, bad: float, number: int, sigma: float,
@@ -126,14 +198,12 @@ def local_minima(v: Array, usable: Array, periodic: bool = False) -> list[int]:
     """Rows where v has a local minimum; across the seam too when the grid closes on itself
     (its last row is its first)."""
     n = len(v)
-    out = []
-    for k in range(n - 1):
-        if not periodic and k == 0:
-            continue
-        before, after = (k - 1) % (n - 1) if periodic else k - 1, k + 1
-        if usable[before] and usable[k] and usable[after] and v[k] <= v[before] and v[k] <= v[after]:
-            out.append(k)
-    return out
+    if n < 3:
+        return []
+    k = np.arange(0 if periodic else 1, n - 1)
+    before, after = (k - 1) % (n - 1) if periodic else k - 1, k + 1
+    found = usable[before] & usable[k] & usable[after] & (v[k] <= v[before]) & (v[k] <= v[after])
+    return [int(i) for i in k[found]]
 
 
 def margin(step: Step, result: Result) -> Array | None:
