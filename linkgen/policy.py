@@ -30,6 +30,8 @@ PROBE_ANGLE = math.radians(5.0)  # the paper's +5 degrees for ranking Add-link c
 PROBE_LENGTH = 0.05  # times the length scale, for prismatic and distance inputs
 MAX_MAGNITUDE = 1e30  # the largest coordinate, range bound, speed and program input, in size (file units)
 LENGTH_SCALES = (1e-30, 1e30)  # the sketch sizes linkgen supports, in file units
+REAL_TYPES = ("float", "double", "long double")  # the real types a program can compute in (options: real)
+DEFAULT_REAL = "double"
 
 
 @dataclass(frozen=True)

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 
 from ...errors import and_list
 from ...ljmatrix import states
+from ...policy import REAL_TYPES
 from ...steplog import Omitted, Step, StepLog
 from .. import Backend, Template
 from ..program import used_primitives
@@ -86,4 +87,4 @@ def render(view: View, spell: Manual, template: Template) -> dict[str, bytes]:
 
 
 BACKEND = Backend("md", "Markdown", templates="md", files=("NAME.md",), comment=("<!--", " -->"), spelling=Manual,
-                  render=render, filters={"mdtext": markdown_text, "num": number})
+                  render=render, filters={"mdtext": markdown_text, "num": number}, reals=REAL_TYPES)
