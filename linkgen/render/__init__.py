@@ -8,6 +8,7 @@ renders its own files from the view of the log.
 from __future__ import annotations
 
 import functools
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -16,6 +17,7 @@ import jinja2
 from .. import __version__, status
 from ..backends import Backend, backends
 from ..errors import and_list
+from ..policy import for_real
 from ..steplog import StepLog
 from .svg import render_svg
 from .view import View, build_view
@@ -58,8 +60,12 @@ def _banner(log: StepLog, backend: Backend[Any]) -> str:
 
 
 def render_backend(backend: Backend[Any], view: View) -> dict[str, bytes]:
-    """A backend's files, named for the mechanism."""
+    """A backend's files, named for the mechanism; a program in another real type than double
+    gets the policy of that type (policy.for_real)."""
     log = view.log
+    if backend.printer is not None and log.real in backend.reals and log.real != "double":
+        log = replace(log, policy=for_real(log.policy, log.real))
+        view = build_view(log)
     spell = backend.spelling(view)
     common: dict[str, object] = dict(v=view, L=spell, banner=_banner(log, backend), name=log.name,
                                      max_input=log.policy.max_input)
