@@ -69,7 +69,7 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
     const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
-    const double kk = fmax(k, 0);
+    const double kk = fmax(k, 0.0);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
     const double a = (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2;
@@ -79,7 +79,7 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
     const double hn = minv * h;
     const double e1x = at * ux - hn * uy;
     const double e1y = at * uy + hn * ux;
-    const double sigma = fail ? 0 : fmin(area4 / (2 * l1.v * l2.v), 1);
+    const double sigma = fail ? 0 : fmin(area4 / (2 * l1.v * l2.v), 1.0);
     const double e2x = -a2 * ux - hn * uy;
     const double e2y = -a2 * uy + hn * ux;
     const double ihq = hn == 0 ? NAN : 1 / (hn * q);
@@ -122,7 +122,7 @@ static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, doubl
     const double ah = fabs(hh);
     const double k = q - ah;
     const int fail = k < -8 * DBL_EPSILON * fmax(q, ah) || q == 0;
-    const double t = sqrt(fmax(k, 0) * (q + ah));
+    const double t = sqrt(fmax(k, 0.0) * (q + ah));
     const double iq = q == 0 ? NAN : 1 / q;
     const double mt = minv * t;
     const double ux = (mt * dx + hh * dy) * iq * iq;
@@ -132,7 +132,7 @@ static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, doubl
     const double rx = as_ * ux - bs * uy;
     const double ry = as_ * uy + bs * ux;
     const double arm = fmax(fmax(fabs(ag), fabs(as_)), fmax(fabs(bg), fabs(bs)));
-    const double sigma = fail ? 0 : fmin(t / fmax(q, arm), 1);
+    const double sigma = fail ? 0 : fmin(t / fmax(q, arm), 1.0);
     const double imt = mt == 0 ? NAN : 1 / mt;
     const double dvn = ux * dvy - uy * dvx;
     const double dvu = dvx * ux + dvy * uy;

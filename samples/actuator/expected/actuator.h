@@ -2,6 +2,9 @@
 #ifndef ACTUATOR_H
 #define ACTUATOR_H
 
+/* Every real of this library is a actuator_real (options: real in the mechanism file). */
+typedef double actuator_real;
+
 #ifdef __cplusplus
 extern "C" {
 #endif

@@ -5,9 +5,9 @@
 #include "actuator.h"
 
 /* Each input's range and constant rate: row k has start + k * (stop - start) / (samples - 1). */
-static const double start[ACTUATOR_N_INPUTS] = { 1300.0 };
-static const double stop[ACTUATOR_N_INPUTS] = { 2050.0 };
-static const double speed[ACTUATOR_N_INPUTS] = { 250.0 };
+static const actuator_real start[ACTUATOR_N_INPUTS] = { 1300.0 };
+static const actuator_real stop[ACTUATOR_N_INPUTS] = { 2050.0 };
+static const actuator_real speed[ACTUATOR_N_INPUTS] = { 250.0 };
 
 static const char *const names[ACTUATOR_N_COLUMNS] = {
     "d_S0_K",
@@ -76,7 +76,7 @@ static const char *const names[ACTUATOR_N_COLUMNS] = {
     "C.dds",
 };
 
-/* %.17g for finite numbers, nan for the rest (printf's spelling varies). */
+/* %.17g for finite numbers (each real as the double nearest it), nan for the rest (printf's spelling varies). */
 static void print_number(double x)
 {
     if (isfinite(x)) printf("%.17g,", x);
@@ -86,21 +86,21 @@ static void print_number(double x)
 int main(void)
 {
     actuator_state st;
-    double in[ACTUATOR_N_INPUTS], din[ACTUATOR_N_INPUTS], ddin[ACTUATOR_N_INPUTS];
-    double col[ACTUATOR_N_COLUMNS];
+    actuator_real in[ACTUATOR_N_INPUTS], din[ACTUATOR_N_INPUTS], ddin[ACTUATOR_N_INPUTS];
+    actuator_real col[ACTUATOR_N_COLUMNS];
     int k, i;
     actuator_init(&st);
     for (i = 0; i < ACTUATOR_N_COLUMNS; i++) printf("%s,", names[i]);
     printf("status\n");
     for (k = 0; k < ACTUATOR_SAMPLES; k++) {
         for (i = 0; i < ACTUATOR_N_INPUTS; i++) {
-            in[i] = start[i] + (double)k * (stop[i] - start[i]) / (double)(ACTUATOR_SAMPLES - 1);
+            in[i] = start[i] + (actuator_real)k * (stop[i] - start[i]) / (actuator_real)(ACTUATOR_SAMPLES - 1);
             din[i] = speed[i];
-            ddin[i] = 0.0;
+            ddin[i] = 0;
         }
         actuator_solve(in, din, ddin, &st);
         actuator_columns(in, &st, col);
-        for (i = 0; i < ACTUATOR_N_COLUMNS; i++) print_number(col[i]);
+        for (i = 0; i < ACTUATOR_N_COLUMNS; i++) print_number((double)col[i]);
         printf("%d\n", st.status);
         if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }

@@ -88,7 +88,7 @@ static int PRP_links(POINT pg1, ANGLE psig1, double gsi1, double eta1, POINT pg2
     const double jp2x = jbx - r2x;
     const double jp2y = jby - r2y;
     const double sv2 = (jp2x - pg2.P.x) * cg2 + (jp2y - pg2.P.y) * sg2;
-    const double sigma = fmin(fabs(cr), 1);
+    const double sigma = fmin(fabs(cr), 1.0);
     const double r1vx = -psig1.dthe * r1y;
     const double r1vy = psig1.dthe * r1x;
     const double r1ax = -psig1.ddthe * r1y - psig1.dthe * psig1.dthe * r1x;

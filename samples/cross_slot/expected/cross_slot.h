@@ -2,6 +2,9 @@
 #ifndef CROSS_SLOT_H
 #define CROSS_SLOT_H
 
+/* Every real of this library is a cross_slot_real (options: real in the mechanism file). */
+typedef double cross_slot_real;
+
 #ifdef __cplusplus
 extern "C" {
 #endif

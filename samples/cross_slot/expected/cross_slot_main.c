@@ -5,9 +5,9 @@
 #include "cross_slot.h"
 
 /* Each input's range and constant rate: row k has start + k * (stop - start) / (samples - 1). */
-static const double start[CROSS_SLOT_N_INPUTS] = { -0.8726646259971648 };
-static const double stop[CROSS_SLOT_N_INPUTS] = { 0.8726646259971648 };
-static const double speed[CROSS_SLOT_N_INPUTS] = { 1.7453292519943295 };
+static const cross_slot_real start[CROSS_SLOT_N_INPUTS] = { -0.8726646259971648 };
+static const cross_slot_real stop[CROSS_SLOT_N_INPUTS] = { 0.8726646259971648 };
+static const cross_slot_real speed[CROSS_SLOT_N_INPUTS] = { 1.7453292519943295 };
 
 static const char *const names[CROSS_SLOT_N_COLUMNS] = {
     "theta_O",
@@ -55,7 +55,7 @@ static const char *const names[CROSS_SLOT_N_COLUMNS] = {
     "P2.dds",
 };
 
-/* %.17g for finite numbers, nan for the rest (printf's spelling varies). */
+/* %.17g for finite numbers (each real as the double nearest it), nan for the rest (printf's spelling varies). */
 static void print_number(double x)
 {
     if (isfinite(x)) printf("%.17g,", x);
@@ -65,21 +65,21 @@ static void print_number(double x)
 int main(void)
 {
     cross_slot_state st;
-    double in[CROSS_SLOT_N_INPUTS], din[CROSS_SLOT_N_INPUTS], ddin[CROSS_SLOT_N_INPUTS];
-    double col[CROSS_SLOT_N_COLUMNS];
+    cross_slot_real in[CROSS_SLOT_N_INPUTS], din[CROSS_SLOT_N_INPUTS], ddin[CROSS_SLOT_N_INPUTS];
+    cross_slot_real col[CROSS_SLOT_N_COLUMNS];
     int k, i;
     cross_slot_init(&st);
     for (i = 0; i < CROSS_SLOT_N_COLUMNS; i++) printf("%s,", names[i]);
     printf("status\n");
     for (k = 0; k < CROSS_SLOT_SAMPLES; k++) {
         for (i = 0; i < CROSS_SLOT_N_INPUTS; i++) {
-            in[i] = start[i] + (double)k * (stop[i] - start[i]) / (double)(CROSS_SLOT_SAMPLES - 1);
+            in[i] = start[i] + (cross_slot_real)k * (stop[i] - start[i]) / (cross_slot_real)(CROSS_SLOT_SAMPLES - 1);
             din[i] = speed[i];
-            ddin[i] = 0.0;
+            ddin[i] = 0;
         }
         cross_slot_solve(in, din, ddin, &st);
         cross_slot_columns(in, &st, col);
-        for (i = 0; i < CROSS_SLOT_N_COLUMNS; i++) print_number(col[i]);
+        for (i = 0; i < CROSS_SLOT_N_COLUMNS; i++) print_number((double)col[i]);
         printf("%d\n", st.status);
         if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }

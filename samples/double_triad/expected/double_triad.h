@@ -2,6 +2,9 @@
 #ifndef DOUBLE_TRIAD_H
 #define DOUBLE_TRIAD_H
 
+/* Every real of this library is a double_triad_real (options: real in the mechanism file). */
+typedef double double_triad_real;
+
 #ifdef __cplusplus
 extern "C" {
 #endif

@@ -5,9 +5,9 @@
 #include "double_triad.h"
 
 /* Each input's range and constant rate: row k has start + k * (stop - start) / (samples - 1). */
-static const double start[DOUBLE_TRIAD_N_INPUTS] = { 0.0 };
-static const double stop[DOUBLE_TRIAD_N_INPUTS] = { 6.283185307179586 };
-static const double speed[DOUBLE_TRIAD_N_INPUTS] = { 6.283185307179586 };
+static const double_triad_real start[DOUBLE_TRIAD_N_INPUTS] = { 0.0 };
+static const double_triad_real stop[DOUBLE_TRIAD_N_INPUTS] = { 6.283185307179586 };
+static const double_triad_real speed[DOUBLE_TRIAD_N_INPUTS] = { 6.283185307179586 };
 
 static const char *const names[DOUBLE_TRIAD_N_COLUMNS] = {
     "theta_J7",
@@ -115,7 +115,7 @@ static const char *const names[DOUBLE_TRIAD_N_COLUMNS] = {
     "left_coupler.alpha",
 };
 
-/* %.17g for finite numbers, nan for the rest (printf's spelling varies). */
+/* %.17g for finite numbers (each real as the double nearest it), nan for the rest (printf's spelling varies). */
 static void print_number(double x)
 {
     if (isfinite(x)) printf("%.17g,", x);
@@ -125,21 +125,21 @@ static void print_number(double x)
 int main(void)
 {
     double_triad_state st;
-    double in[DOUBLE_TRIAD_N_INPUTS], din[DOUBLE_TRIAD_N_INPUTS], ddin[DOUBLE_TRIAD_N_INPUTS];
-    double col[DOUBLE_TRIAD_N_COLUMNS];
+    double_triad_real in[DOUBLE_TRIAD_N_INPUTS], din[DOUBLE_TRIAD_N_INPUTS], ddin[DOUBLE_TRIAD_N_INPUTS];
+    double_triad_real col[DOUBLE_TRIAD_N_COLUMNS];
     int k, i;
     double_triad_init(&st);
     for (i = 0; i < DOUBLE_TRIAD_N_COLUMNS; i++) printf("%s,", names[i]);
     printf("status\n");
     for (k = 0; k < DOUBLE_TRIAD_SAMPLES; k++) {
         for (i = 0; i < DOUBLE_TRIAD_N_INPUTS; i++) {
-            in[i] = start[i] + (double)k * (stop[i] - start[i]) / (double)(DOUBLE_TRIAD_SAMPLES - 1);
+            in[i] = start[i] + (double_triad_real)k * (stop[i] - start[i]) / (double_triad_real)(DOUBLE_TRIAD_SAMPLES - 1);
             din[i] = speed[i];
-            ddin[i] = 0.0;
+            ddin[i] = 0;
         }
         double_triad_solve(in, din, ddin, &st);
         double_triad_columns(in, &st, col);
-        for (i = 0; i < DOUBLE_TRIAD_N_COLUMNS; i++) print_number(col[i]);
+        for (i = 0; i < DOUBLE_TRIAD_N_COLUMNS; i++) print_number((double)col[i]);
         printf("%d\n", st.status);
         if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }

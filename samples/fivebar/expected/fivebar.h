@@ -2,6 +2,9 @@
 #ifndef FIVEBAR_H
 #define FIVEBAR_H
 
+/* Every real of this library is a fivebar_real (options: real in the mechanism file). */
+typedef double fivebar_real;
+
 #ifdef __cplusplus
 extern "C" {
 #endif

@@ -5,9 +5,9 @@
 #include "fivebar.h"
 
 /* Each input's range and constant rate: row k has start + k * (stop - start) / (samples - 1). */
-static const double start[FIVEBAR_N_INPUTS] = { 0.0, 0.0 };
-static const double stop[FIVEBAR_N_INPUTS] = { 6.283185307179586, 12.566370614359172 };
-static const double speed[FIVEBAR_N_INPUTS] = { 6.283185307179586, 12.566370614359172 };
+static const fivebar_real start[FIVEBAR_N_INPUTS] = { 0.0, 0.0 };
+static const fivebar_real stop[FIVEBAR_N_INPUTS] = { 6.283185307179586, 12.566370614359172 };
+static const fivebar_real speed[FIVEBAR_N_INPUTS] = { 6.283185307179586, 12.566370614359172 };
 
 static const char *const names[FIVEBAR_N_COLUMNS] = {
     "theta_O1",
@@ -59,7 +59,7 @@ static const char *const names[FIVEBAR_N_COLUMNS] = {
     "crank2.alpha",
 };
 
-/* %.17g for finite numbers, nan for the rest (printf's spelling varies). */
+/* %.17g for finite numbers (each real as the double nearest it), nan for the rest (printf's spelling varies). */
 static void print_number(double x)
 {
     if (isfinite(x)) printf("%.17g,", x);
@@ -69,21 +69,21 @@ static void print_number(double x)
 int main(void)
 {
     fivebar_state st;
-    double in[FIVEBAR_N_INPUTS], din[FIVEBAR_N_INPUTS], ddin[FIVEBAR_N_INPUTS];
-    double col[FIVEBAR_N_COLUMNS];
+    fivebar_real in[FIVEBAR_N_INPUTS], din[FIVEBAR_N_INPUTS], ddin[FIVEBAR_N_INPUTS];
+    fivebar_real col[FIVEBAR_N_COLUMNS];
     int k, i;
     fivebar_init(&st);
     for (i = 0; i < FIVEBAR_N_COLUMNS; i++) printf("%s,", names[i]);
     printf("status\n");
     for (k = 0; k < FIVEBAR_SAMPLES; k++) {
         for (i = 0; i < FIVEBAR_N_INPUTS; i++) {
-            in[i] = start[i] + (double)k * (stop[i] - start[i]) / (double)(FIVEBAR_SAMPLES - 1);
+            in[i] = start[i] + (fivebar_real)k * (stop[i] - start[i]) / (fivebar_real)(FIVEBAR_SAMPLES - 1);
             din[i] = speed[i];
-            ddin[i] = 0.0;
+            ddin[i] = 0;
         }
         fivebar_solve(in, din, ddin, &st);
         fivebar_columns(in, &st, col);
-        for (i = 0; i < FIVEBAR_N_COLUMNS; i++) print_number(col[i]);
+        for (i = 0; i < FIVEBAR_N_COLUMNS; i++) print_number((double)col[i]);
         printf("%d\n", st.status);
         if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }

@@ -2,6 +2,9 @@
 #ifndef FOURBAR_H
 #define FOURBAR_H
 
+/* Every real of this library is a fourbar_real (options: real in the mechanism file). */
+typedef double fourbar_real;
+
 #ifdef __cplusplus
 extern "C" {
 #endif

@@ -5,9 +5,9 @@
 #include "fourbar.h"
 
 /* Each input's range and constant rate: row k has start + k * (stop - start) / (samples - 1). */
-static const double start[FOURBAR_N_INPUTS] = { 0.0 };
-static const double stop[FOURBAR_N_INPUTS] = { 6.283185307179586 };
-static const double speed[FOURBAR_N_INPUTS] = { 6.283185307179586 };
+static const fourbar_real start[FOURBAR_N_INPUTS] = { 0.0 };
+static const fourbar_real stop[FOURBAR_N_INPUTS] = { 6.283185307179586 };
+static const fourbar_real speed[FOURBAR_N_INPUTS] = { 6.283185307179586 };
 
 static const char *const names[FOURBAR_N_COLUMNS] = {
     "theta_O1",
@@ -55,7 +55,7 @@ static const char *const names[FOURBAR_N_COLUMNS] = {
     "rocker.alpha",
 };
 
-/* %.17g for finite numbers, nan for the rest (printf's spelling varies). */
+/* %.17g for finite numbers (each real as the double nearest it), nan for the rest (printf's spelling varies). */
 static void print_number(double x)
 {
     if (isfinite(x)) printf("%.17g,", x);
@@ -65,21 +65,21 @@ static void print_number(double x)
 int main(void)
 {
     fourbar_state st;
-    double in[FOURBAR_N_INPUTS], din[FOURBAR_N_INPUTS], ddin[FOURBAR_N_INPUTS];
-    double col[FOURBAR_N_COLUMNS];
+    fourbar_real in[FOURBAR_N_INPUTS], din[FOURBAR_N_INPUTS], ddin[FOURBAR_N_INPUTS];
+    fourbar_real col[FOURBAR_N_COLUMNS];
     int k, i;
     fourbar_init(&st);
     for (i = 0; i < FOURBAR_N_COLUMNS; i++) printf("%s,", names[i]);
     printf("status\n");
     for (k = 0; k < FOURBAR_SAMPLES; k++) {
         for (i = 0; i < FOURBAR_N_INPUTS; i++) {
-            in[i] = start[i] + (double)k * (stop[i] - start[i]) / (double)(FOURBAR_SAMPLES - 1);
+            in[i] = start[i] + (fourbar_real)k * (stop[i] - start[i]) / (fourbar_real)(FOURBAR_SAMPLES - 1);
             din[i] = speed[i];
-            ddin[i] = 0.0;
+            ddin[i] = 0;
         }
         fourbar_solve(in, din, ddin, &st);
         fourbar_columns(in, &st, col);
-        for (i = 0; i < FOURBAR_N_COLUMNS; i++) print_number(col[i]);
+        for (i = 0; i < FOURBAR_N_COLUMNS; i++) print_number((double)col[i]);
         printf("%d\n", st.status);
         if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }

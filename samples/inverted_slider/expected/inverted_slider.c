@@ -89,7 +89,7 @@ static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, doubl
     const double ah = fabs(hh);
     const double k = q - ah;
     const int fail = k < -8 * DBL_EPSILON * fmax(q, ah) || q == 0;
-    const double t = sqrt(fmax(k, 0) * (q + ah));
+    const double t = sqrt(fmax(k, 0.0) * (q + ah));
     const double iq = q == 0 ? NAN : 1 / q;
     const double mt = minv * t;
     const double ux = (mt * dx + hh * dy) * iq * iq;
@@ -99,7 +99,7 @@ static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, doubl
     const double rx = as_ * ux - bs * uy;
     const double ry = as_ * uy + bs * ux;
     const double arm = fmax(fmax(fabs(ag), fabs(as_)), fmax(fabs(bg), fabs(bs)));
-    const double sigma = fail ? 0 : fmin(t / fmax(q, arm), 1);
+    const double sigma = fail ? 0 : fmin(t / fmax(q, arm), 1.0);
     const double imt = mt == 0 ? NAN : 1 / mt;
     const double dvn = ux * dvy - uy * dvx;
     const double dvu = dvx * ux + dvy * uy;

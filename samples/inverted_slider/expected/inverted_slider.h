@@ -2,6 +2,9 @@
 #ifndef INVERTED_SLIDER_H
 #define INVERTED_SLIDER_H
 
+/* Every real of this library is a inverted_slider_real (options: real in the mechanism file). */
+typedef double inverted_slider_real;
+
 #ifdef __cplusplus
 extern "C" {
 #endif

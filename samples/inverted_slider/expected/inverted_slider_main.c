@@ -5,9 +5,9 @@
 #include "inverted_slider.h"
 
 /* Each input's range and constant rate: row k has start + k * (stop - start) / (samples - 1). */
-static const double start[INVERTED_SLIDER_N_INPUTS] = { 0.0 };
-static const double stop[INVERTED_SLIDER_N_INPUTS] = { 6.283185307179586 };
-static const double speed[INVERTED_SLIDER_N_INPUTS] = { 6.283185307179586 };
+static const inverted_slider_real start[INVERTED_SLIDER_N_INPUTS] = { 0.0 };
+static const inverted_slider_real stop[INVERTED_SLIDER_N_INPUTS] = { 6.283185307179586 };
+static const inverted_slider_real speed[INVERTED_SLIDER_N_INPUTS] = { 6.283185307179586 };
 
 static const char *const names[INVERTED_SLIDER_N_COLUMNS] = {
     "theta_O1",
@@ -58,7 +58,7 @@ static const char *const names[INVERTED_SLIDER_N_COLUMNS] = {
     "S.dds",
 };
 
-/* %.17g for finite numbers, nan for the rest (printf's spelling varies). */
+/* %.17g for finite numbers (each real as the double nearest it), nan for the rest (printf's spelling varies). */
 static void print_number(double x)
 {
     if (isfinite(x)) printf("%.17g,", x);
@@ -68,21 +68,21 @@ static void print_number(double x)
 int main(void)
 {
     inverted_slider_state st;
-    double in[INVERTED_SLIDER_N_INPUTS], din[INVERTED_SLIDER_N_INPUTS], ddin[INVERTED_SLIDER_N_INPUTS];
-    double col[INVERTED_SLIDER_N_COLUMNS];
+    inverted_slider_real in[INVERTED_SLIDER_N_INPUTS], din[INVERTED_SLIDER_N_INPUTS], ddin[INVERTED_SLIDER_N_INPUTS];
+    inverted_slider_real col[INVERTED_SLIDER_N_COLUMNS];
     int k, i;
     inverted_slider_init(&st);
     for (i = 0; i < INVERTED_SLIDER_N_COLUMNS; i++) printf("%s,", names[i]);
     printf("status\n");
     for (k = 0; k < INVERTED_SLIDER_SAMPLES; k++) {
         for (i = 0; i < INVERTED_SLIDER_N_INPUTS; i++) {
-            in[i] = start[i] + (double)k * (stop[i] - start[i]) / (double)(INVERTED_SLIDER_SAMPLES - 1);
+            in[i] = start[i] + (inverted_slider_real)k * (stop[i] - start[i]) / (inverted_slider_real)(INVERTED_SLIDER_SAMPLES - 1);
             din[i] = speed[i];
-            ddin[i] = 0.0;
+            ddin[i] = 0;
         }
         inverted_slider_solve(in, din, ddin, &st);
         inverted_slider_columns(in, &st, col);
-        for (i = 0; i < INVERTED_SLIDER_N_COLUMNS; i++) print_number(col[i]);
+        for (i = 0; i < INVERTED_SLIDER_N_COLUMNS; i++) print_number((double)col[i]);
         printf("%d\n", st.status);
         if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }

@@ -2,6 +2,9 @@
 #ifndef JANSEN_H
 #define JANSEN_H
 
+/* Every real of this library is a jansen_real (options: real in the mechanism file). */
+typedef double jansen_real;
+
 #ifdef __cplusplus
 extern "C" {
 #endif

@@ -5,9 +5,9 @@
 #include "jansen.h"
 
 /* Each input's range and constant rate: row k has start + k * (stop - start) / (samples - 1). */
-static const double start[JANSEN_N_INPUTS] = { 0.0 };
-static const double stop[JANSEN_N_INPUTS] = { 6.283185307179586 };
-static const double speed[JANSEN_N_INPUTS] = { 6.283185307179586 };
+static const jansen_real start[JANSEN_N_INPUTS] = { 0.0 };
+static const jansen_real stop[JANSEN_N_INPUTS] = { 6.283185307179586 };
+static const jansen_real speed[JANSEN_N_INPUTS] = { 6.283185307179586 };
 
 static const char *const names[JANSEN_N_COLUMNS] = {
     "theta_O",
@@ -85,7 +85,7 @@ static const char *const names[JANSEN_N_COLUMNS] = {
     "leg_ghi.alpha",
 };
 
-/* %.17g for finite numbers, nan for the rest (printf's spelling varies). */
+/* %.17g for finite numbers (each real as the double nearest it), nan for the rest (printf's spelling varies). */
 static void print_number(double x)
 {
     if (isfinite(x)) printf("%.17g,", x);
@@ -95,21 +95,21 @@ static void print_number(double x)
 int main(void)
 {
     jansen_state st;
-    double in[JANSEN_N_INPUTS], din[JANSEN_N_INPUTS], ddin[JANSEN_N_INPUTS];
-    double col[JANSEN_N_COLUMNS];
+    jansen_real in[JANSEN_N_INPUTS], din[JANSEN_N_INPUTS], ddin[JANSEN_N_INPUTS];
+    jansen_real col[JANSEN_N_COLUMNS];
     int k, i;
     jansen_init(&st);
     for (i = 0; i < JANSEN_N_COLUMNS; i++) printf("%s,", names[i]);
     printf("status\n");
     for (k = 0; k < JANSEN_SAMPLES; k++) {
         for (i = 0; i < JANSEN_N_INPUTS; i++) {
-            in[i] = start[i] + (double)k * (stop[i] - start[i]) / (double)(JANSEN_SAMPLES - 1);
+            in[i] = start[i] + (jansen_real)k * (stop[i] - start[i]) / (jansen_real)(JANSEN_SAMPLES - 1);
             din[i] = speed[i];
-            ddin[i] = 0.0;
+            ddin[i] = 0;
         }
         jansen_solve(in, din, ddin, &st);
         jansen_columns(in, &st, col);
-        for (i = 0; i < JANSEN_N_COLUMNS; i++) print_number(col[i]);
+        for (i = 0; i < JANSEN_N_COLUMNS; i++) print_number((double)col[i]);
         printf("%d\n", st.status);
         if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }

@@ -2,6 +2,9 @@
 #ifndef JANSEN_FOOT_H
 #define JANSEN_FOOT_H
 
+/* Every real of this library is a jansen_foot_real (options: real in the mechanism file). */
+typedef double jansen_foot_real;
+
 #ifdef __cplusplus
 extern "C" {
 #endif

@@ -5,9 +5,9 @@
 #include "jansen_foot.h"
 
 /* Each input's range and constant rate: row k has start + k * (stop - start) / (samples - 1). */
-static const double start[JANSEN_FOOT_N_INPUTS] = { 0.0 };
-static const double stop[JANSEN_FOOT_N_INPUTS] = { 6.283185307179586 };
-static const double speed[JANSEN_FOOT_N_INPUTS] = { 6.283185307179586 };
+static const jansen_foot_real start[JANSEN_FOOT_N_INPUTS] = { 0.0 };
+static const jansen_foot_real stop[JANSEN_FOOT_N_INPUTS] = { 6.283185307179586 };
+static const jansen_foot_real speed[JANSEN_FOOT_N_INPUTS] = { 6.283185307179586 };
 
 static const char *const names[JANSEN_FOOT_N_COLUMNS] = {
     "theta_O",
@@ -19,7 +19,7 @@ static const char *const names[JANSEN_FOOT_N_COLUMNS] = {
     "crank.omega",
 };
 
-/* %.17g for finite numbers, nan for the rest (printf's spelling varies). */
+/* %.17g for finite numbers (each real as the double nearest it), nan for the rest (printf's spelling varies). */
 static void print_number(double x)
 {
     if (isfinite(x)) printf("%.17g,", x);
@@ -29,21 +29,21 @@ static void print_number(double x)
 int main(void)
 {
     jansen_foot_state st;
-    double in[JANSEN_FOOT_N_INPUTS], din[JANSEN_FOOT_N_INPUTS], ddin[JANSEN_FOOT_N_INPUTS];
-    double col[JANSEN_FOOT_N_COLUMNS];
+    jansen_foot_real in[JANSEN_FOOT_N_INPUTS], din[JANSEN_FOOT_N_INPUTS], ddin[JANSEN_FOOT_N_INPUTS];
+    jansen_foot_real col[JANSEN_FOOT_N_COLUMNS];
     int k, i;
     jansen_foot_init(&st);
     for (i = 0; i < JANSEN_FOOT_N_COLUMNS; i++) printf("%s,", names[i]);
     printf("status\n");
     for (k = 0; k < JANSEN_FOOT_SAMPLES; k++) {
         for (i = 0; i < JANSEN_FOOT_N_INPUTS; i++) {
-            in[i] = start[i] + (double)k * (stop[i] - start[i]) / (double)(JANSEN_FOOT_SAMPLES - 1);
+            in[i] = start[i] + (jansen_foot_real)k * (stop[i] - start[i]) / (jansen_foot_real)(JANSEN_FOOT_SAMPLES - 1);
             din[i] = speed[i];
-            ddin[i] = 0.0;
+            ddin[i] = 0;
         }
         jansen_foot_solve(in, din, ddin, &st);
         jansen_foot_columns(in, &st, col);
-        for (i = 0; i < JANSEN_FOOT_N_COLUMNS; i++) print_number(col[i]);
+        for (i = 0; i < JANSEN_FOOT_N_COLUMNS; i++) print_number((double)col[i]);
         printf("%d\n", st.status);
         if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }

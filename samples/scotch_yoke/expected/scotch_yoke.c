@@ -90,7 +90,7 @@ static int PPR_links(POINT jr, POINT pg, ANGLE psig, double xa, double ya, doubl
     const double jp1y = pg.P.y + sv1 * sg;
     const double pbx = jp1x + rbx;
     const double pby = jp1y + rby;
-    const double sigma = fmin(fabs(cr), 1);
+    const double sigma = fmin(fabs(cr), 1.0);
     const double ravx = -psig.dthe * ray;
     const double ravy = psig.dthe * rax;
     const double raax = -psig.ddthe * ray - psig.dthe * psig.dthe * rax;

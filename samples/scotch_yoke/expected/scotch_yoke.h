@@ -2,6 +2,9 @@
 #ifndef SCOTCH_YOKE_H
 #define SCOTCH_YOKE_H
 
+/* Every real of this library is a scotch_yoke_real (options: real in the mechanism file). */
+typedef double scotch_yoke_real;
+
 #ifdef __cplusplus
 extern "C" {
 #endif

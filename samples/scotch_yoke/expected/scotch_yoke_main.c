@@ -5,9 +5,9 @@
 #include "scotch_yoke.h"
 
 /* Each input's range and constant rate: row k has start + k * (stop - start) / (samples - 1). */
-static const double start[SCOTCH_YOKE_N_INPUTS] = { 0.0 };
-static const double stop[SCOTCH_YOKE_N_INPUTS] = { 6.283185307179586 };
-static const double speed[SCOTCH_YOKE_N_INPUTS] = { 6.283185307179586 };
+static const scotch_yoke_real start[SCOTCH_YOKE_N_INPUTS] = { 0.0 };
+static const scotch_yoke_real stop[SCOTCH_YOKE_N_INPUTS] = { 6.283185307179586 };
+static const scotch_yoke_real speed[SCOTCH_YOKE_N_INPUTS] = { 6.283185307179586 };
 
 static const char *const names[SCOTCH_YOKE_N_COLUMNS] = {
     "theta_O",
@@ -55,7 +55,7 @@ static const char *const names[SCOTCH_YOKE_N_COLUMNS] = {
     "Q.dds",
 };
 
-/* %.17g for finite numbers, nan for the rest (printf's spelling varies). */
+/* %.17g for finite numbers (each real as the double nearest it), nan for the rest (printf's spelling varies). */
 static void print_number(double x)
 {
     if (isfinite(x)) printf("%.17g,", x);
@@ -65,21 +65,21 @@ static void print_number(double x)
 int main(void)
 {
     scotch_yoke_state st;
-    double in[SCOTCH_YOKE_N_INPUTS], din[SCOTCH_YOKE_N_INPUTS], ddin[SCOTCH_YOKE_N_INPUTS];
-    double col[SCOTCH_YOKE_N_COLUMNS];
+    scotch_yoke_real in[SCOTCH_YOKE_N_INPUTS], din[SCOTCH_YOKE_N_INPUTS], ddin[SCOTCH_YOKE_N_INPUTS];
+    scotch_yoke_real col[SCOTCH_YOKE_N_COLUMNS];
     int k, i;
     scotch_yoke_init(&st);
     for (i = 0; i < SCOTCH_YOKE_N_COLUMNS; i++) printf("%s,", names[i]);
     printf("status\n");
     for (k = 0; k < SCOTCH_YOKE_SAMPLES; k++) {
         for (i = 0; i < SCOTCH_YOKE_N_INPUTS; i++) {
-            in[i] = start[i] + (double)k * (stop[i] - start[i]) / (double)(SCOTCH_YOKE_SAMPLES - 1);
+            in[i] = start[i] + (scotch_yoke_real)k * (stop[i] - start[i]) / (scotch_yoke_real)(SCOTCH_YOKE_SAMPLES - 1);
             din[i] = speed[i];
-            ddin[i] = 0.0;
+            ddin[i] = 0;
         }
         scotch_yoke_solve(in, din, ddin, &st);
         scotch_yoke_columns(in, &st, col);
-        for (i = 0; i < SCOTCH_YOKE_N_COLUMNS; i++) print_number(col[i]);
+        for (i = 0; i < SCOTCH_YOKE_N_COLUMNS; i++) print_number((double)col[i]);
         printf("%d\n", st.status);
         if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }

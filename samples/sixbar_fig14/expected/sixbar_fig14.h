@@ -2,6 +2,9 @@
 #ifndef SIXBAR_FIG14_H
 #define SIXBAR_FIG14_H
 
+/* Every real of this library is a sixbar_fig14_real (options: real in the mechanism file). */
+typedef double sixbar_fig14_real;
+
 #ifdef __cplusplus
 extern "C" {
 #endif

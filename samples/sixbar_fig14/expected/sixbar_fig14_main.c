@@ -5,9 +5,9 @@
 #include "sixbar_fig14.h"
 
 /* Each input's range and constant rate: row k has start + k * (stop - start) / (samples - 1). */
-static const double start[SIXBAR_FIG14_N_INPUTS] = { 0.0 };
-static const double stop[SIXBAR_FIG14_N_INPUTS] = { 6.283185307179586 };
-static const double speed[SIXBAR_FIG14_N_INPUTS] = { 6.283185307179586 };
+static const sixbar_fig14_real start[SIXBAR_FIG14_N_INPUTS] = { 0.0 };
+static const sixbar_fig14_real stop[SIXBAR_FIG14_N_INPUTS] = { 6.283185307179586 };
+static const sixbar_fig14_real speed[SIXBAR_FIG14_N_INPUTS] = { 6.283185307179586 };
 
 static const char *const names[SIXBAR_FIG14_N_COLUMNS] = {
     "theta_J7",
@@ -73,7 +73,7 @@ static const char *const names[SIXBAR_FIG14_N_COLUMNS] = {
     "frame.alpha",
 };
 
-/* %.17g for finite numbers, nan for the rest (printf's spelling varies). */
+/* %.17g for finite numbers (each real as the double nearest it), nan for the rest (printf's spelling varies). */
 static void print_number(double x)
 {
     if (isfinite(x)) printf("%.17g,", x);
@@ -83,21 +83,21 @@ static void print_number(double x)
 int main(void)
 {
     sixbar_fig14_state st;
-    double in[SIXBAR_FIG14_N_INPUTS], din[SIXBAR_FIG14_N_INPUTS], ddin[SIXBAR_FIG14_N_INPUTS];
-    double col[SIXBAR_FIG14_N_COLUMNS];
+    sixbar_fig14_real in[SIXBAR_FIG14_N_INPUTS], din[SIXBAR_FIG14_N_INPUTS], ddin[SIXBAR_FIG14_N_INPUTS];
+    sixbar_fig14_real col[SIXBAR_FIG14_N_COLUMNS];
     int k, i;
     sixbar_fig14_init(&st);
     for (i = 0; i < SIXBAR_FIG14_N_COLUMNS; i++) printf("%s,", names[i]);
     printf("status\n");
     for (k = 0; k < SIXBAR_FIG14_SAMPLES; k++) {
         for (i = 0; i < SIXBAR_FIG14_N_INPUTS; i++) {
-            in[i] = start[i] + (double)k * (stop[i] - start[i]) / (double)(SIXBAR_FIG14_SAMPLES - 1);
+            in[i] = start[i] + (sixbar_fig14_real)k * (stop[i] - start[i]) / (sixbar_fig14_real)(SIXBAR_FIG14_SAMPLES - 1);
             din[i] = speed[i];
-            ddin[i] = 0.0;
+            ddin[i] = 0;
         }
         sixbar_fig14_solve(in, din, ddin, &st);
         sixbar_fig14_columns(in, &st, col);
-        for (i = 0; i < SIXBAR_FIG14_N_COLUMNS; i++) print_number(col[i]);
+        for (i = 0; i < SIXBAR_FIG14_N_COLUMNS; i++) print_number((double)col[i]);
         printf("%d\n", st.status);
         if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }

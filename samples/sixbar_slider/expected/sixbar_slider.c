@@ -91,7 +91,7 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
     const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
-    const double kk = fmax(k, 0);
+    const double kk = fmax(k, 0.0);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
     const double a = (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2;
@@ -101,7 +101,7 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
     const double hn = minv * h;
     const double e1x = at * ux - hn * uy;
     const double e1y = at * uy + hn * ux;
-    const double sigma = fail ? 0 : fmin(area4 / (2 * l1.v * l2.v), 1);
+    const double sigma = fail ? 0 : fmin(area4 / (2 * l1.v * l2.v), 1.0);
     const double e2x = -a2 * ux - hn * uy;
     const double e2y = -a2 * uy + hn * ux;
     const double ihq = hn == 0 ? NAN : 1 / (hn * q);
@@ -144,7 +144,7 @@ static int PRR_links(POINT jr, VARIABLE l, POINT pg, ANGLE psig, double gsi, dou
     const double ap = fabs(pn);
     const double k = l.v - ap;
     const int fail = k < -8 * DBL_EPSILON * fmax(l.v, ap) || l.v <= 0;
-    const double rd = sqrt(fmax(k, 0) * (l.v + ap));
+    const double rd = sqrt(fmax(k, 0.0) * (l.v + ap));
     const double eu = minv * rd;
     const double ex = eu * cg - -pn * sg;
     const double ey = eu * sg + -pn * cg;
@@ -153,7 +153,7 @@ static int PRR_links(POINT jr, VARIABLE l, POINT pg, ANGLE psig, double gsi, dou
     const double jby = jr.P.y + ey;
     const double jpx = jbx - rx;
     const double jpy = jby - ry;
-    const double sigma = fail ? 0 : fmin(rd / l.v, 1);
+    const double sigma = fail ? 0 : fmin(rd / l.v, 1.0);
     const double ieu = eu == 0 ? NAN : 1 / eu;
     const double sgsi = sv + gsi;
     const double relvx = pg.DP.x - jr.DP.x;

@@ -2,6 +2,9 @@
 #ifndef SIXBAR_SLIDER_H
 #define SIXBAR_SLIDER_H
 
+/* Every real of this library is a sixbar_slider_real (options: real in the mechanism file). */
+typedef double sixbar_slider_real;
+
 #ifdef __cplusplus
 extern "C" {
 #endif

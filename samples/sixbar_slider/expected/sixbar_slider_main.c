@@ -5,9 +5,9 @@
 #include "sixbar_slider.h"
 
 /* Each input's range and constant rate: row k has start + k * (stop - start) / (samples - 1). */
-static const double start[SIXBAR_SLIDER_N_INPUTS] = { 0.0 };
-static const double stop[SIXBAR_SLIDER_N_INPUTS] = { 6.283185307179586 };
-static const double speed[SIXBAR_SLIDER_N_INPUTS] = { 6.283185307179586 };
+static const sixbar_slider_real start[SIXBAR_SLIDER_N_INPUTS] = { 0.0 };
+static const sixbar_slider_real stop[SIXBAR_SLIDER_N_INPUTS] = { 6.283185307179586 };
+static const sixbar_slider_real speed[SIXBAR_SLIDER_N_INPUTS] = { 6.283185307179586 };
 
 static const char *const names[SIXBAR_SLIDER_N_COLUMNS] = {
     "theta_O1",
@@ -31,7 +31,7 @@ static const char *const names[SIXBAR_SLIDER_N_COLUMNS] = {
     "rocker.alpha",
 };
 
-/* %.17g for finite numbers, nan for the rest (printf's spelling varies). */
+/* %.17g for finite numbers (each real as the double nearest it), nan for the rest (printf's spelling varies). */
 static void print_number(double x)
 {
     if (isfinite(x)) printf("%.17g,", x);
@@ -41,21 +41,21 @@ static void print_number(double x)
 int main(void)
 {
     sixbar_slider_state st;
-    double in[SIXBAR_SLIDER_N_INPUTS], din[SIXBAR_SLIDER_N_INPUTS], ddin[SIXBAR_SLIDER_N_INPUTS];
-    double col[SIXBAR_SLIDER_N_COLUMNS];
+    sixbar_slider_real in[SIXBAR_SLIDER_N_INPUTS], din[SIXBAR_SLIDER_N_INPUTS], ddin[SIXBAR_SLIDER_N_INPUTS];
+    sixbar_slider_real col[SIXBAR_SLIDER_N_COLUMNS];
     int k, i;
     sixbar_slider_init(&st);
     for (i = 0; i < SIXBAR_SLIDER_N_COLUMNS; i++) printf("%s,", names[i]);
     printf("status\n");
     for (k = 0; k < SIXBAR_SLIDER_SAMPLES; k++) {
         for (i = 0; i < SIXBAR_SLIDER_N_INPUTS; i++) {
-            in[i] = start[i] + (double)k * (stop[i] - start[i]) / (double)(SIXBAR_SLIDER_SAMPLES - 1);
+            in[i] = start[i] + (sixbar_slider_real)k * (stop[i] - start[i]) / (sixbar_slider_real)(SIXBAR_SLIDER_SAMPLES - 1);
             din[i] = speed[i];
-            ddin[i] = 0.0;
+            ddin[i] = 0;
         }
         sixbar_slider_solve(in, din, ddin, &st);
         sixbar_slider_columns(in, &st, col);
-        for (i = 0; i < SIXBAR_SLIDER_N_COLUMNS; i++) print_number(col[i]);
+        for (i = 0; i < SIXBAR_SLIDER_N_COLUMNS; i++) print_number((double)col[i]);
         printf("%d\n", st.status);
         if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }

@@ -79,7 +79,7 @@ static int PRR_links(POINT jr, VARIABLE l, POINT pg, ANGLE psig, double gsi, dou
     const double ap = fabs(pn);
     const double k = l.v - ap;
     const int fail = k < -8 * DBL_EPSILON * fmax(l.v, ap) || l.v <= 0;
-    const double rd = sqrt(fmax(k, 0) * (l.v + ap));
+    const double rd = sqrt(fmax(k, 0.0) * (l.v + ap));
     const double eu = minv * rd;
     const double ex = eu * cg - -pn * sg;
     const double ey = eu * sg + -pn * cg;
@@ -88,7 +88,7 @@ static int PRR_links(POINT jr, VARIABLE l, POINT pg, ANGLE psig, double gsi, dou
     const double jby = jr.P.y + ey;
     const double jpx = jbx - rx;
     const double jpy = jby - ry;
-    const double sigma = fail ? 0 : fmin(rd / l.v, 1);
+    const double sigma = fail ? 0 : fmin(rd / l.v, 1.0);
     const double ieu = eu == 0 ? NAN : 1 / eu;
     const double sgsi = sv + gsi;
     const double relvx = pg.DP.x - jr.DP.x;

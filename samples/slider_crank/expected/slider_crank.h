@@ -2,6 +2,9 @@
 #ifndef SLIDER_CRANK_H
 #define SLIDER_CRANK_H
 
+/* Every real of this library is a slider_crank_real (options: real in the mechanism file). */
+typedef double slider_crank_real;
+
 #ifdef __cplusplus
 extern "C" {
 #endif

@@ -5,9 +5,9 @@
 #include "slider_crank.h"
 
 /* Each input's range and constant rate: row k has start + k * (stop - start) / (samples - 1). */
-static const double start[SLIDER_CRANK_N_INPUTS] = { 0.0 };
-static const double stop[SLIDER_CRANK_N_INPUTS] = { 6.283185307179586 };
-static const double speed[SLIDER_CRANK_N_INPUTS] = { 6.283185307179586 };
+static const slider_crank_real start[SLIDER_CRANK_N_INPUTS] = { 0.0 };
+static const slider_crank_real stop[SLIDER_CRANK_N_INPUTS] = { 6.283185307179586 };
+static const slider_crank_real speed[SLIDER_CRANK_N_INPUTS] = { 6.283185307179586 };
 
 static const char *const names[SLIDER_CRANK_N_COLUMNS] = {
     "theta_O",
@@ -52,7 +52,7 @@ static const char *const names[SLIDER_CRANK_N_COLUMNS] = {
     "S.dds",
 };
 
-/* %.17g for finite numbers, nan for the rest (printf's spelling varies). */
+/* %.17g for finite numbers (each real as the double nearest it), nan for the rest (printf's spelling varies). */
 static void print_number(double x)
 {
     if (isfinite(x)) printf("%.17g,", x);
@@ -62,21 +62,21 @@ static void print_number(double x)
 int main(void)
 {
     slider_crank_state st;
-    double in[SLIDER_CRANK_N_INPUTS], din[SLIDER_CRANK_N_INPUTS], ddin[SLIDER_CRANK_N_INPUTS];
-    double col[SLIDER_CRANK_N_COLUMNS];
+    slider_crank_real in[SLIDER_CRANK_N_INPUTS], din[SLIDER_CRANK_N_INPUTS], ddin[SLIDER_CRANK_N_INPUTS];
+    slider_crank_real col[SLIDER_CRANK_N_COLUMNS];
     int k, i;
     slider_crank_init(&st);
     for (i = 0; i < SLIDER_CRANK_N_COLUMNS; i++) printf("%s,", names[i]);
     printf("status\n");
     for (k = 0; k < SLIDER_CRANK_SAMPLES; k++) {
         for (i = 0; i < SLIDER_CRANK_N_INPUTS; i++) {
-            in[i] = start[i] + (double)k * (stop[i] - start[i]) / (double)(SLIDER_CRANK_SAMPLES - 1);
+            in[i] = start[i] + (slider_crank_real)k * (stop[i] - start[i]) / (slider_crank_real)(SLIDER_CRANK_SAMPLES - 1);
             din[i] = speed[i];
-            ddin[i] = 0.0;
+            ddin[i] = 0;
         }
         slider_crank_solve(in, din, ddin, &st);
         slider_crank_columns(in, &st, col);
-        for (i = 0; i < SLIDER_CRANK_N_COLUMNS; i++) print_number(col[i]);
+        for (i = 0; i < SLIDER_CRANK_N_COLUMNS; i++) print_number((double)col[i]);
         printf("%d\n", st.status);
         if (ferror(stdout)) return 1;  /* the reader left (where SIGPIPE does not end the program first) */
     }
