@@ -86,7 +86,7 @@ class Backend(Generic[S]):
         """The real type its files compute in when ``asked`` is asked for, in words for their banners."""
         if asked in self.reals:
             return f"Real type: {asked}."
-        return f"Real type: double ({self.language} has one real type here; {asked} was asked for)."
+        return f"Real type: double (linkgen writes {self.language} in double only; {asked} was asked for)."
 
 
 def word_list(module: str, name: str) -> frozenset[str]:
