@@ -17,7 +17,7 @@ import subprocess
 from pathlib import Path
 
 import pytest
-from programs import SAMPLES, STRICT, need, parse, scales
+from programs import CXXFLAGS, SAMPLES, STRICT, compile_step, need, parse, scales
 
 from linkgen.pipeline import build_log
 from linkgen.policy import EPSILON
@@ -73,6 +73,17 @@ def test_float_and_long_double_agree_with_double_to_their_bound(mechanism: Path,
     print(f"{log.name}: float {worst[0]:.3g}, long double {worst[1]:.3g} (eps / sigma)")
     assert max(worst) <= BOUND_EPS
     assert runs["float"][1] != double  # computed in float indeed: not double's bits
+
+
+@pytest.mark.parametrize("real", ["float", "long double"])
+def test_the_library_compiled_as_cpp_writes_the_same_sweep(real: str, tmp_path: Path):
+    """NAME.c as C++ (g++ -std=c++11 -pedantic -Werror: math.h's overloads instead of tgmath.h),
+    linked with the C sweep program: the same CSV as the C library's."""
+    log, csv = _sweep(SAMPLES[0].parent.parent / "sixbar_fig14" / "sixbar_fig14.yaml", real, tmp_path)
+    compile_step([need("g++"), "-x", "c++", *CXXFLAGS, "-O2", "-c", f"{log.name}.c", "-o", "lib.o"], tmp_path)
+    compile_step([need("gcc"), *STRICT, "-O2", "-c", f"{log.name}_main.c", "-o", "main.o"], tmp_path)
+    compile_step([need("g++"), "lib.o", "main.o", "-lm", "-o", "sweep_cxx"], tmp_path)
+    assert subprocess.run([str(tmp_path / "sweep_cxx")], check=True, capture_output=True, text=True).stdout == csv
 
 
 def test_float_program_states_its_type_and_thresholds(tmp_path: Path):

@@ -21,7 +21,7 @@ def test_double_is_left_as_it_is():
 
 def test_float_suffixes_code_literals_only():
     out = retype(CODE, "float", "m")
-    assert "#include <tgmath.h>" in out
+    assert "#ifdef __cplusplus\n#include <math.h>\n#else\n#include <tgmath.h>\n#endif" in out
     assert "/* 0.5 of a double, 1e-3 */" in out and '"%.17g 2.0"' in out
     assert "static m_real half(m_real x)" in out
     assert "0.5f * x + 1e-3f + 2 + .25f + 3.141592653589793f + FLT_EPSILON" in out

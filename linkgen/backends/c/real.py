@@ -12,6 +12,8 @@ EPSILON = {"float": "FLT_EPSILON", "double": "DBL_EPSILON", "long double": "LDBL
 PI_DOUBLE = "3.141592653589793"
 PI_LONG = "3.14159265358979323846264338327950288"  # pi to 36 digits, past any long double's 113 bits
 
+# C's type-generic math; compiled as C++, math.h holds the float and long double overloads
+TGMATH = "#ifdef __cplusplus\n#include <math.h>\n#else\n#include <tgmath.h>\n#endif"
 # comments and string literals are left as they are; everything between them is code
 _NOT_CODE = re.compile(r'/\*.*?\*/|//[^\n]*|"(?:\\.|[^"\\\n])*"', re.DOTALL)
 # a decimal floating literal: digits with a point or an exponent, not part of a name or a longer number
@@ -20,7 +22,7 @@ _FLOATING = re.compile(r"(?<![\w.])(?:\d+\.\d*|\.\d+|\d+(?=[eE]))(?:[eE][+-]?\d+
 
 def _code(text: str, real: str, name: str) -> str:
     text = re.sub(r"\bdouble\b", f"{name}_real", text)
-    text = text.replace("DBL_EPSILON", EPSILON[real]).replace("#include <math.h>", "#include <tgmath.h>")
+    text = text.replace("DBL_EPSILON", EPSILON[real]).replace("#include <math.h>", TGMATH)
     if real == "long double":
         text = re.sub(rf"(?<![\w.]){re.escape(PI_DOUBLE)}(?![\w.])", PI_LONG, text)
     return _FLOATING.sub(lambda m: m.group(0) + SUFFIX[real], text)
