@@ -61,7 +61,11 @@ def _worst_eps(log: StepLog, exact: str, rounded: str, eps: float) -> float:
     return worst
 
 
-@pytest.mark.parametrize("mechanism", SAMPLES, ids=lambda p: p.stem)
+FAST = ("fourbar", "jansen", "sixbar_fig14")  # make test; the other samples in the long tier
+CASES = [pytest.param(p, id=p.stem, marks=() if p.stem in FAST else pytest.mark.long) for p in SAMPLES]
+
+
+@pytest.mark.parametrize("mechanism", CASES)
 def test_float_and_long_double_agree_with_double_to_their_bound(mechanism: Path, tmp_path: Path):
     runs: dict[str, tuple[StepLog, str]] = {}
     for real in ("double", "float", "long double"):
