@@ -205,6 +205,15 @@ def bench_scaling() -> None:
 GROUPS["scaling"] = bench_scaling
 
 
+def bench_reals() -> None:
+    from reals import bench_reals as run
+
+    run()
+
+
+GROUPS["reals"] = bench_reals
+
+
 if __name__ == "__main__":
     for name in sys.argv[1:] or list(GROUPS):
         GROUPS[name]()

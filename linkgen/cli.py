@@ -11,6 +11,7 @@ import click
 
 from . import __version__
 from .errors import FileSystemError, LinkgenError, os_reason
+from .policy import REAL_TYPES
 
 USAGE_ERROR = 2  # exit status of a wrong command line; 1 is every other failure
 ANY_PATH = click.Path(readable=False)  # a path click does not check: its faults are linkgen's, exit 1
@@ -71,17 +72,22 @@ def cli(ctx: click.Context) -> None:
 @click.option("--check", is_flag=True, help="Rebuild in memory; exit 1 with a diff if any file on disk differs.")
 @click.option("--outputs", help="Comma-separated outputs, e.g. P,rocker (default: the file's outputs).")
 @click.option("--order", type=click.IntRange(0, 2), help="Derivatives: 0, 1 or 2 (default: the file's order).")
-def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, order: int | None) -> None:
+@click.option("--real", type=click.Choice(REAL_TYPES),
+              help="The C program's real type (default: the file's options: real, else double).")
+def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, order: int | None,
+          real: str | None) -> None:
     """Write the step log (NAME.json) and the generated files.
 
     With --outputs or --order (or outputs/order in the file) the programs compute only
     the steps and derivatives those outputs need; the manual says what was left out.
+    --real sets the real type of the programs whose language has several (C); the others
+    compute in double and say so in their first lines.
     """
     from .pipeline import build_log
     from .render import render_all
     from .writer import differences, write_all
 
-    log = build_log(mechanism, _outputs(outputs), order)
+    log = build_log(mechanism, _outputs(outputs), order, real=real)
     files = render_all(log)
     target = outdir or os.path.join("build", log.name)
     if check:

@@ -100,6 +100,7 @@ class Mechanism:
     samples: int
     where: Where  # the top of the file
     inputs_where: Where  # the inputs: key
+    real: str = "double"  # options: real, the programs' real type (policy.REAL_TYPES)
 
     @cached_property
     def _joints(self) -> dict[str, Joint]:

@@ -16,9 +16,9 @@ from .validate import read_mechanism
 
 
 def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = None,
-          order: int | None = None) -> Draft:
+          order: int | None = None, real: str | None = None) -> Draft:
     """The step log of the whole procedure without its motion facts, with the columns of the
-    outputs and order asked for (default: the file's)."""
+    outputs, order and real type asked for (default: the file's)."""
     m = topo.mechanism
     order = m.order if order is None else order
     outputs = m.outputs if outputs is None else outputs
@@ -49,6 +49,7 @@ def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = Non
         topo.grubler, topo.mobility, topo.redundant, order, m.samples, pairs, links, inputs, proc.variables, proc.steps,
         proc.lj, proc.add_links, proc.residuals, proc.groups,
         plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars), POLICY, outputs=tuple(outputs),
+        real=m.real if real is None else real,
     ))
 
 
@@ -70,15 +71,15 @@ def _check_outputs(m: Mechanism, outputs: tuple[str, ...]) -> None:
 
 
 def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | None = None,
-              sweep: bool = True) -> StepLog:
-    """The step log of a mechanism file for the outputs and order asked for (default: the
+              sweep: bool = True, real: str | None = None) -> StepLog:
+    """The step log of a mechanism file for the outputs, order and real type asked for (default: the
     file's), cut to the steps they need: made once from the draft of the whole procedure
     and its motion facts (with ``sweep``, the conditioning over the sweep too, for the
     manual: it takes a sweep and root finding), then pruned."""
     m, topo, proc = analyse_file(path)
     if outputs is not None:
         _check_outputs(m, outputs)
-    whole = draft(topo, proc, outputs, order)
+    whole = draft(topo, proc, outputs, order, real)
     return prune(with_facts(whole, motion_facts(whole, sweep)))
 
 

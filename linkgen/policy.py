@@ -7,7 +7,7 @@ the primitives (linkgen/primitives/vectors.py, dyads.py) take their thresholds f
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 RESOLVER_TOLERANCE = 1e-10  # relative to the length scale; one Newton step is taken past it
 RESOLVER_MAX_ITERATIONS = 8
@@ -30,6 +30,11 @@ PROBE_ANGLE = math.radians(5.0)  # the paper's +5 degrees for ranking Add-link c
 PROBE_LENGTH = 0.05  # times the length scale, for prismatic and distance inputs
 MAX_MAGNITUDE = 1e30  # the largest coordinate, range bound, speed and program input, in size (file units)
 LENGTH_SCALES = (1e-30, 1e30)  # the sketch sizes linkgen supports, in file units
+REAL_TYPES = ("float", "double", "long double")  # the real types a program can compute in (options: real)
+DEFAULT_REAL = "double"
+EPSILON = {"float": 2.0**-23, "double": 2.0**-52, "long double": 2.0**-52}  # long double: at least double's
+TOLERANCE_EPS = 64  # a resolver tolerance below this many eps of the real type cannot be met
+SINGULAR_EPS = 8  # a sigma below this many eps of the real type is rounding, not a measure
 
 
 @dataclass(frozen=True)
@@ -60,3 +65,13 @@ class Policy:
 POLICY = Policy(RESOLVER_TOLERANCE, RESOLVER_MAX_ITERATIONS, CONTINUATION_HALVINGS, RESOLVER_MAX_MOVE,
                 RESOLVER_MIN_CHAIN_SIGMA, STEP_ANGLE, STEP_LENGTH, PATH_SLACK, NEAR_SINGULAR, SINGULAR, TOGGLE_SLACK,
                 GOOD_LEVER, MAX_MAGNITUDE, NEWTON_HALVINGS, WALK_PASSES, PATH_SHARE, TURN_SHARE)
+
+
+def for_real(policy: Policy, real: str) -> Policy:
+    """The policy of a program computing in ``real``: the resolver tolerance at least 64 eps of
+    the type (the path slack a thousand times it, as POLICY's), the singular threshold at least
+    8 eps.  The same policy for double and long double (eps taken as double's)."""
+    eps = EPSILON[real]
+    tolerance = max(policy.tolerance, TOLERANCE_EPS * eps)
+    return replace(policy, tolerance=tolerance, path_slack=policy.path_slack * tolerance / policy.tolerance,
+                   singular=max(policy.singular, SINGULAR_EPS * eps))

@@ -292,6 +292,7 @@ class StepLog(Procedure, Header):
     omitted: tuple[Omitted, ...] = ()  # steps left out: the outputs do not need them
     reach: Reach | None = None  # one input: the input values reached from the sketch
     gaps: tuple[Gap, ...] = ()  # one input: where each chain cannot close
+    real: str = "double"  # the real type the programs compute in, where their language has it (policy.REAL_TYPES)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "status_codes", status_codes(self))

@@ -80,6 +80,13 @@ class Backend(Generic[S]):
     printer: Callable[[Primitive, int], str] | None = None  # a DSL primitive as a function at an order
     runtime: Runtime | None = None
     words: Words = Words()
+    reals: tuple[str, ...] = ("double",)  # the real types (policy.REAL_TYPES) its programs compute in
+
+    def real(self, asked: str) -> str:
+        """The real type its files compute in when ``asked`` is asked for, in words for their banners."""
+        if asked in self.reals:
+            return f"Real type: {asked}."
+        return f"Real type: double (linkgen writes {self.language} in double only; {asked} was asked for)."
 
 
 def word_list(module: str, name: str) -> frozenset[str]:

@@ -7,6 +7,7 @@ import os
 
 from ..loader import Scalar
 from ..model import Where
+from ..policy import DEFAULT_REAL, REAL_TYPES
 from .naming import program_name
 from .sheet import Sheet, did_you_mean, where
 
@@ -15,7 +16,7 @@ MAX_SAMPLES = 10_000_000
 DEFAULT_SAMPLES = 361
 DEFAULT_ORDER = 2
 TOP_REQUIRED = ("linkgen", "name", "joints", "links", "inputs")
-TOP_OPTIONAL = ("title", "units", "outputs", "order", "samples")
+TOP_OPTIONAL = ("title", "units", "outputs", "order", "samples", "options")
 
 
 def file_label(path: str) -> str:
@@ -107,6 +108,22 @@ def scalars(sheet: Sheet) -> tuple[int, int]:
             assert isinstance(node, Scalar)  # integer() reads scalars only
             raise sheet.error(node, f"a sweep has at most {MAX_SAMPLES} samples, got {node.text}")
     return order, samples
+
+
+def options(sheet: Sheet) -> str:
+    """The options: the real type the programs compute in (default double)."""
+    node = sheet.root.get("options")
+    if node is None:
+        return DEFAULT_REAL
+    opts = sheet.mapping(node, "the options as {real: float}")
+    sheet.keys(opts, (), ("real",), "options")
+    real_node = opts.get("real")
+    if real_node is None:
+        return DEFAULT_REAL
+    real = sheet.text(real_node, "the real type float, double or long double")
+    if real not in REAL_TYPES:
+        raise sheet.error(real_node, f"the real type is float, double or long double, got {real!r}")
+    return real
 
 
 def key_where(sheet: Sheet, key: str) -> Where:

@@ -168,3 +168,16 @@ def test_a_backend_that_writes_other_files_than_it_declares_is_refused(toy_folde
     toy = backends()[-1]
     with pytest.raises(ValueError, match="backend toy rendered NAME.steps, not NAME.txt"):
         render_backend(toy, build_view(build_log(str(MECHANISMS[1]), None, None)))
+
+
+@pytest.mark.parametrize("asked", ["float", "double", "long double"])
+def test_each_backend_names_the_real_type_its_files_compute_in(asked: str):
+    """C computes in every real type (and the manual records it); the others say they compute in
+    double and what was asked for."""
+    said = {b.name: b.real(asked) for b in backends()}
+    for name in ("c", "md"):
+        assert said[name] == f"Real type: {asked}."
+    for name, language in (("py", "Python"), ("m", "MATLAB/Octave"), ("np", "numpy")):
+        expected = "Real type: double." if asked == "double" else (
+            f"Real type: double (linkgen writes {language} in double only; {asked} was asked for).")
+        assert said[name] == expected

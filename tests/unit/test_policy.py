@@ -162,3 +162,15 @@ def test_a_chain_short_by_less_than_the_toggle_slack_is_a_toggle(ulps: int):
     slack = POLICY.toggle_slack * sys.float_info.epsilon * 5.0
     assert st == (3 if short <= slack else 1), (short, slack)
     assert (short <= slack) == (ulps <= 20)  # ulp(3) = eps * 2: 20 ulps is 8 eps * 5
+
+
+def test_the_policy_of_each_real_type_follows_its_epsilon():
+    """float: the tolerance 1e-10 is below float's rounding (64 eps_float = 7.6e-6 is not), and
+    so is the singular threshold 1e-7 (8 eps_float = 9.5e-7); double and long double keep POLICY."""
+    from linkgen.policy import EPSILON, POLICY, for_real
+    assert for_real(POLICY, "double") == POLICY == for_real(POLICY, "long double")
+    single = for_real(POLICY, "float")
+    assert single.tolerance == 64 * 2.0**-23 == 64 * EPSILON["float"]
+    assert single.path_slack == pytest.approx(1e3 * single.tolerance, rel=1e-15)
+    assert single.singular == 8 * 2.0**-23 and single.near_singular == POLICY.near_singular
+    assert (single.max_iterations, single.max_move) == (POLICY.max_iterations, POLICY.max_move)

@@ -37,6 +37,24 @@ def test_the_defaults_where_the_file_is_silent():
     assert m.inputs[0].stop == 2 * math.pi  # degrees, unless said otherwise
 
 
+@pytest.mark.parametrize("text, real", [("", "double"), ("options: {}\n", "double"),
+                                        ("options: {real: float}\n", "float"),
+                                        ("options: {real: long double}\n", "long double"),
+                                        ("options:\n  real: double\n", "double")])
+def test_the_real_type_from_the_options(text: str, real: str):
+    assert read(FOURBAR + text).real == real
+
+
+@pytest.mark.parametrize("value, key, message", [
+    ("options: {real: quad}", "options.real", "the real type is float, double or long double, got 'quad'"),
+    ("options: {precision: float}", "options.precision", "unknown key 'precision' in options; the keys are: real"),
+    ("options: [float]", "options", "expected the options as {real: float}, got a list"),
+])
+def test_a_wrong_option_is_refused_at_its_line(value: str, key: str, message: str):
+    error = refused(FOURBAR + value + "\n")
+    assert (error.line, error.key, error.message) == (17, key, message)
+
+
 def test_angles_in_radians_are_taken_as_they_are():
     m = read(FOURBAR.replace("angle: deg", "angle: rad").replace("[0, 360], speed: 360", "[0.5, 2], speed: 3"))
     assert m.angle_unit == "rad"

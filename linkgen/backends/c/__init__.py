@@ -4,9 +4,11 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from ...policy import REAL_TYPES
 from .. import Backend, Runtime, Template
 from ..program import input_lists, runtime_sources, sketch_states
 from .printer import c_function
+from .real import retype, typedef
 from .spelling import C
 from .words import WORDS
 
@@ -17,6 +19,16 @@ RUNTIME = Runtime(__name__, "runtime", ".c")
 
 
 def render(view: View, spell: C, template: Template) -> dict[str, bytes]:
+    """The three files, in the log's real type (real.py; render gives the policy of that type)."""
+    files = _render(view, spell, template)
+    real, name = view.log.real, view.log.name
+    files = {k: retype(v.decode("utf-8"), real, name).encode("utf-8") if k != "NAME_main.c" else v
+             for k, v in files.items()}
+    files["NAME.h"] = typedef(files["NAME.h"].decode("utf-8"), real, name).encode("utf-8")
+    return files
+
+
+def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
     log = view.log
     upper = log.name.upper()
     order = view.record_order
@@ -47,4 +59,4 @@ def render(view: View, spell: C, template: Template) -> dict[str, bytes]:
 
 BACKEND = Backend("c", "C", templates="c", files=("NAME.h", "NAME.c", "NAME_main.c"), comment=("/*", " */"),
                   spelling=C, render=render, filters={"cbody": lambda text: str(text).replace("*/", "* /")},
-                  printer=c_function, runtime=RUNTIME, words=WORDS)
+                  printer=c_function, runtime=RUNTIME, words=WORDS, reals=REAL_TYPES)

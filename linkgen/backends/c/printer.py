@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ...primitives.dsl import Cmp, Expr, Logic, Num, Param, Primitive, Select, Sym, record_fields
+from ...primitives.dsl import Call, Cmp, Expr, Logic, Num, Param, Primitive, Select, Sym, record_fields
 from ...primitives.printers import RecordExprs, masks, statements
 
 _POINT_FIELD = {"x": "P.x", "y": "P.y", "dx": "DP.x", "dy": "DP.y", "ddx": "DDP.x", "ddy": "DDP.y"}
@@ -20,6 +20,14 @@ class CExprs(RecordExprs):
 
     def select(self, cond: str, a: str, b: str) -> str:
         return f"{cond} ? {a} : {b}"
+
+    def expr(self, e: Expr) -> str:
+        """As every language, but a whole number given to a math function is a real literal (0.0):
+        under <tgmath.h> an int argument would make fmax(k, 0) a double call for a float k."""
+        if isinstance(e, Call):
+            args = [Num(float(a.value)) if isinstance(a, Num) and isinstance(a.value, int) else a for a in e.args]
+            return f"{self.calls[e.fn]}({', '.join(self.expr(a) for a in args)})"
+        return super().expr(e)
 
 
 def _is_int(e: Expr, ints: set[str]) -> bool:

@@ -1,0 +1,99 @@
+"""The C programs in float and long double (options: real, linkgen build --real): every sample compiles
+without a diagnostic under gcc and clang -O2 with the strict flags (float also with -Wdouble-promotion:
+no real is silently computed in double), and its sweep has the double program's status on every row
+and its values to the type's bound.
+
+The bound of a column is BOUND_EPS eps of the type, divided by the worst conditioning sigma of any
+step over the sweep (the manual's lowest, at least near_singular; 1e-3 on near-singular rows),
+relative to the larger of the value and its quantity's scale S (tests/programs.scales; angles
+compared modulo 2 pi).  Measured (gcc 12 -O2): float within 10.2 eps_float / sigma of double on
+every sample (fivebar; 3.1 to 10.2), long double within 7.3 eps_double / sigma (double's own
+rounding: the long double program is the more accurate one); the bound is 32."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+from pathlib import Path
+
+import pytest
+from programs import CXXFLAGS, SAMPLES, STRICT, compile_step, need, parse, scales
+
+from linkgen.pipeline import build_log
+from linkgen.policy import EPSILON
+from linkgen.render import render_all
+from linkgen.steplog import StepLog
+from linkgen.writer import write_all
+
+BOUND_EPS = 32
+
+
+def _sweep(mechanism: Path, real: str, outdir: Path) -> tuple[StepLog, str]:
+    """Build in ``real``, compile under gcc and clang -O2 with no diagnostic, return gcc's CSV."""
+    log = build_log(str(mechanism), real=real)
+    write_all(render_all(log), str(outdir))
+    flags = [*STRICT, "-O2", *(["-Wdouble-promotion"] if real == "float" else [])]
+    for cc in ("gcc", "clang"):
+        done = subprocess.run([need(cc), *flags, f"{log.name}.c", f"{log.name}_main.c", "-lm", "-o", f"sweep_{cc}"],
+                              cwd=outdir, capture_output=True, text=True)
+        assert done.returncode == 0 and not done.stderr and not done.stdout, f"{cc}: {done.stderr}"
+    return log, subprocess.run([str(outdir / "sweep_gcc")], check=True, capture_output=True, text=True).stdout
+
+
+def _worst_eps(log: StepLog, exact: str, rounded: str, eps: float) -> float:
+    """The worst difference in eps times the bound's conditioning factor; asserts equal statuses."""
+    head, ref, st_ref = parse(exact)
+    head2, got, st_got = parse(rounded)
+    assert head == head2 and st_ref == st_got, [k for k, (a, b) in enumerate(zip(st_ref, st_got)) if a != b][:5]
+    sigma = max(min([c.low for c in log.conditioning] + [1.0]), log.policy.near_singular)
+    scale = [max(x, y) for x, y in zip(scales(log, ref), scales(log, got))]
+    worst = 0.0
+    for row_ref, row_got, status in zip(ref, got, st_ref):
+        if status > 0:
+            continue
+        for j, (c, x, y) in enumerate(zip(log.columns, row_ref, row_got)):
+            if math.isnan(x) or math.isnan(y):
+                assert math.isnan(x) and math.isnan(y), (c.name, x, y)
+                continue
+            diff = abs(math.remainder(x - y, 2 * math.pi)) if c.quantity == "angle" else abs(x - y)
+            factor = 1 / (sigma if status == 0 else log.policy.near_singular)
+            worst = max(worst, diff / max(abs(x), abs(y), scale[j]) / (eps * factor))
+    return worst
+
+
+FAST = ("fourbar", "jansen", "sixbar_fig14")  # make test; the other samples in the long tier
+CASES = [pytest.param(p, id=p.stem, marks=() if p.stem in FAST else pytest.mark.long) for p in SAMPLES]
+
+
+@pytest.mark.parametrize("mechanism", CASES)
+def test_float_and_long_double_agree_with_double_to_their_bound(mechanism: Path, tmp_path: Path):
+    runs: dict[str, tuple[StepLog, str]] = {}
+    for real in ("double", "float", "long double"):
+        (tmp_path / real.replace(" ", "_")).mkdir()
+        runs[real] = _sweep(mechanism, real, tmp_path / real.replace(" ", "_"))
+    log, double = runs["double"]
+    worst = (_worst_eps(log, double, runs["float"][1], EPSILON["float"]),
+             _worst_eps(log, runs["long double"][1], double, EPSILON["double"]))
+    print(f"{log.name}: float {worst[0]:.3g}, long double {worst[1]:.3g} (eps / sigma)")
+    assert max(worst) <= BOUND_EPS
+    assert runs["float"][1] != double  # computed in float indeed: not double's bits
+
+
+@pytest.mark.parametrize("real", ["float", "long double"])
+def test_the_library_compiled_as_cpp_writes_the_same_sweep(real: str, tmp_path: Path):
+    """NAME.c as C++ (g++ -std=c++11 -pedantic -Werror: math.h's overloads instead of tgmath.h),
+    linked with the C sweep program: the same CSV as the C library's."""
+    log, csv = _sweep(SAMPLES[0].parent.parent / "sixbar_fig14" / "sixbar_fig14.yaml", real, tmp_path)
+    compile_step([need("g++"), "-x", "c++", *CXXFLAGS, "-O2", "-c", f"{log.name}.c", "-o", "lib.o"], tmp_path)
+    compile_step([need("gcc"), *STRICT, "-O2", "-c", f"{log.name}_main.c", "-o", "main.o"], tmp_path)
+    compile_step([need("g++"), "lib.o", "main.o", "-lm", "-o", "sweep_cxx"], tmp_path)
+    assert subprocess.run([str(tmp_path / "sweep_cxx")], check=True, capture_output=True, text=True).stdout == csv
+
+
+def test_float_program_states_its_type_and_thresholds(tmp_path: Path):
+    log, _ = _sweep(SAMPLES[0].parent.parent / "sixbar_fig14" / "sixbar_fig14.yaml", "float", tmp_path)
+    header = (tmp_path / f"{log.name}.h").read_text()
+    assert header.splitlines()[0].endswith("Real type: float. */")
+    assert f"typedef float {log.name}_real;" in header
+    assert "double" not in header and "double" not in (tmp_path / f"{log.name}.c").read_text().replace(
+        "double program", "")
