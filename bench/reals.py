@@ -20,6 +20,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
+from performance_doc import write_section  # noqa: E402
 from programs import parse, scales  # noqa: E402
 
 from linkgen.pipeline import build_log  # noqa: E402
@@ -27,7 +28,6 @@ from linkgen.policy import EPSILON  # noqa: E402
 from linkgen.render import render_all  # noqa: E402
 from linkgen.writer import write_all  # noqa: E402
 
-DOC = ROOT / "docs" / "performance.md"
 SAMPLES = ("fourbar", "jansen")
 ROWS = 3600
 RUNS = 15
@@ -118,18 +118,6 @@ def section(rows: list[tuple[str, float, float, float]]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_section(text: str, doc: Path = DOC) -> None:
-    """Replace the section '## Real type' of doc (up to the next '## ') with text, or append it."""
-    old = doc.read_text(encoding="utf-8")
-    start = old.find("## Real type\n")
-    if start < 0:
-        new = old.rstrip("\n") + "\n\n" + text
-    else:
-        end = old.find("\n## ", start + 1)
-        new = old[:start] + text + ("\n" + old[end + 1:] if end >= 0 else "")
-    doc.write_text(new, encoding="utf-8")
-
-
 def bench_reals() -> None:
     rows = []
     for sample in SAMPLES:
@@ -141,4 +129,4 @@ def bench_reals() -> None:
         rows.append((sample, double, single, worst_error(sample, exact, rounded)))
     text = section(rows)
     print(text)
-    write_section(text)
+    write_section("Real type", text)

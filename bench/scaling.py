@@ -29,6 +29,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from ladders import write_ladder  # noqa: E402
+from performance_doc import write_section  # noqa: E402
 
 from linkgen.analysis import Facts, with_facts  # noqa: E402
 from linkgen.extraction import extract  # noqa: E402
@@ -40,7 +41,6 @@ from linkgen.validate import read_mechanism  # noqa: E402
 
 SIZES = (25, 50, 100, 200, 400, 1000)
 BUDGET = 60.0  # seconds: the whole build of the next size is run only while this one took less
-DOC = ROOT / "docs" / "performance.md"
 T = TypeVar("T")
 
 
@@ -190,18 +190,6 @@ def frame_table(sizes: tuple[int, ...], folder: Path) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_section(text: str, doc: Path = DOC) -> None:
-    """Replace the section '## Scaling' of doc (up to the next '## ') with text, or append it."""
-    old = doc.read_text(encoding="utf-8") if doc.exists() else "# Performance\n\n"
-    start = old.find("## Scaling\n")
-    if start < 0:
-        new = old.rstrip("\n") + "\n\n" + text
-    else:
-        end = old.find("\n## ", start + 1)
-        new = old[:start] + text + (old[end + 1:] if end >= 0 else "")
-    doc.write_text(new, encoding="utf-8")
-
-
 def bench_scaling(sizes: tuple[int, ...] = SIZES) -> None:
     print("## Scaling: a chain of N 3R dyads built in-process (bench/ladders.py)")
     rows: list[Row] = []
@@ -215,7 +203,7 @@ def bench_scaling(sizes: tuple[int, ...] = SIZES) -> None:
         frame = frame_table(sizes, Path(tmp))
     text = INTRO.format(budget=BUDGET) + table(rows) + OUTRO + frame
     print(table(rows) + "\n" + frame)
-    write_section(text)
+    write_section("Scaling", text)
 
 
 if __name__ == "__main__":
