@@ -68,7 +68,7 @@ int main(void)
 
 def _build(sample: str, real: str, out: Path) -> tuple[float, str]:
     """Seconds per configuration of NAME_solve in ``real``, and the sweep's CSV."""
-    log = build_log(str(ROOT / "samples" / sample / f"{sample}.yaml"), real=real)
+    log = build_log(str(ROOT / "samples" / sample / f"{sample}.yaml"), options={"real": real})
     write_all(render_all(log), str(out))
     text = DRIVER
     for key, value in {"NAME": log.name, "UP": log.name.upper(), "ROWS": str(ROWS), "RUNS": str(RUNS),

@@ -11,6 +11,7 @@ import click
 
 from . import __version__
 from .errors import FileSystemError, LinkgenError, os_reason
+from .options import ANGLE_FORMS, MAX_ITERATIONS, MAX_TOLERANCE, PREDICTORS, STRATEGIES
 from .policy import REAL_TYPES
 
 USAGE_ERROR = 2  # exit status of a wrong command line; 1 is every other failure
@@ -48,6 +49,35 @@ class _Linkgen(click.Group):
         sys.exit(status if isinstance(status, int) else 0)
 
 
+SETTINGS = (  # the flags that override the file's options (linkgen.options.Options), all of build and run
+    click.option("--real", type=click.Choice(REAL_TYPES), help="The programs' real type (C; numpy float32 for float)."),
+    click.option("--strategy", type=click.Choice(STRATEGIES),
+                 help="The resolver: Newton on the Add-link lengths, fixed-point iteration on the decomposed group, "
+                      "or Newton on the group's closure equations."),
+    click.option("--tolerance", type=click.FloatRange(0.0, MAX_TOLERANCE, min_open=True),
+                 help="The resolver's tolerance, relative to the length scale."),
+    click.option("--iterations", type=click.IntRange(1, MAX_ITERATIONS), help="The resolver's iteration cap."),
+    click.option("--polish/--no-polish", default=None, help="One resolver step more once the tolerance is met."),
+    click.option("--predictor", type=click.IntRange(min(PREDICTORS), max(PREDICTORS)),
+                 help="The warm start's order: 0 the last row, 1 along its rates, 2 with its accelerations."),
+    click.option("--checks/--no-checks", default=None,
+                 help="Conditioning and status per step (off: positions and rates only)."),
+    click.option("--angles", type=click.Choice(ANGLE_FORMS), help="Angle outputs as angles or as unit vectors."),
+)
+
+
+def _settings(fn: Any) -> Any:
+    """The SETTINGS flags on a command; it gets them as one mapping ``settings`` of those given."""
+    for flag in reversed(SETTINGS):
+        fn = flag(fn)
+    return fn
+
+
+def _given(flags: dict[str, Any]) -> dict[str, object]:
+    """The settings given on the command line (the others stay the file's)."""
+    return {k: v for k, v in flags.items() if v is not None}
+
+
 def _outputs(value: str | None) -> tuple[str, ...] | None:
     return tuple(v.strip() for v in value.split(",") if v.strip()) if value else None
 
@@ -72,22 +102,21 @@ def cli(ctx: click.Context) -> None:
 @click.option("--check", is_flag=True, help="Rebuild in memory; exit 1 with a diff if any file on disk differs.")
 @click.option("--outputs", help="Comma-separated outputs, e.g. P,rocker (default: the file's outputs).")
 @click.option("--order", type=click.IntRange(0, 2), help="Derivatives: 0, 1 or 2 (default: the file's order).")
-@click.option("--real", type=click.Choice(REAL_TYPES),
-              help="The C program's real type (default: the file's options: real, else double).")
+@_settings
 def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, order: int | None,
-          real: str | None) -> None:
+          **settings: Any) -> None:
     """Write the step log (NAME.json) and the generated files.
 
     With --outputs or --order (or outputs/order in the file) the programs compute only
     the steps and derivatives those outputs need; the manual says what was left out.
-    --real sets the real type of the programs whose language has several (C); the others
-    compute in double and say so in their first lines.
+    The settings flags (--real, --strategy, ..., --angles) override the file's options; every
+    file states the settings it was built with in its first line.
     """
     from .pipeline import build_log
     from .render import render_all
     from .writer import differences, write_all
 
-    log = build_log(mechanism, _outputs(outputs), order, real=real)
+    log = build_log(mechanism, _outputs(outputs), order, options=_given(settings))
     files = render_all(log)
     target = outdir or os.path.join("build", log.name)
     if check:
@@ -105,14 +134,16 @@ def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, 
 @click.option("--order", type=click.IntRange(0, 2), help="Derivatives: 0, 1 or 2 (default: the file's order).")
 @click.option("--outputs", help="Comma-separated outputs (default: the file's outputs).")
 @click.option("-o", "--output", type=ANY_PATH, help="Write the CSV here instead of stdout.")
-def run(mechanism: str, samples: int | None, order: int | None, outputs: str | None, output: str | None) -> None:
+@_settings
+def run(mechanism: str, samples: int | None, order: int | None, outputs: str | None, output: str | None,
+        **settings: Any) -> None:
     """Evaluate the sweep in-process and print it as CSV."""
     from .evaluate import evaluate, input_rows
     from .pipeline import build_log
     from .table import csv
     from .writer import write_all
 
-    log = build_log(mechanism, _outputs(outputs), order, sweep=False)
+    log = build_log(mechanism, _outputs(outputs), order, sweep=False, options=_given(settings))
     values, rates, accs = input_rows(log, samples or log.samples)
     text = csv(log, evaluate(log, values, rates, accs))
     if output:

@@ -9,6 +9,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import cached_property
 
+from .options import Options
+
 
 @dataclass(frozen=True)
 class Where:
@@ -100,7 +102,7 @@ class Mechanism:
     samples: int
     where: Where  # the top of the file
     inputs_where: Where  # the inputs: key
-    real: str = "double"  # options: real, the programs' real type (policy.REAL_TYPES)
+    options: Options = Options()  # options: what the programs compute in and how
 
     @cached_property
     def _joints(self) -> dict[str, Joint]:

@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 from . import __version__
 from .analysis import motion_facts, with_facts
 from .columns import plan
 from .errors import InputError, and_list
 from .extraction import Procedure, extract
 from .model import Mechanism
-from .policy import POLICY
+from .options import overridden, policy_for
 from .prune import prune
 from .steplog import Draft, InputInfo, LinkInfo, PairInfo, StepLog
 from .topology import Topology, analyse
@@ -16,10 +18,12 @@ from .validate import read_mechanism
 
 
 def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = None,
-          order: int | None = None, real: str | None = None) -> Draft:
+          order: int | None = None, options: Mapping[str, object] | None = None) -> Draft:
     """The step log of the whole procedure without its motion facts, with the columns of the
-    outputs, order and real type asked for (default: the file's)."""
+    outputs and order asked for (default: the file's) and the file's options, those in
+    ``options`` replaced (linkgen.options.Options' fields)."""
     m = topo.mechanism
+    opts = overridden(m.options, options or {})
     order = m.order if order is None else order
     outputs = m.outputs if outputs is None else outputs
     input_vars = [v.name for v in proc.variables if v.role == "input"]
@@ -48,8 +52,8 @@ def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = Non
         __version__, m.name, m.title, m.source, m.length_unit, m.angle_unit, topo.length_scale, topo.origin,
         topo.grubler, topo.mobility, topo.redundant, order, m.samples, pairs, links, inputs, proc.variables, proc.steps,
         proc.lj, proc.add_links, proc.residuals, proc.groups,
-        plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars), POLICY, outputs=tuple(outputs),
-        real=m.real if real is None else real,
+        plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars), policy_for(opts),
+        outputs=tuple(outputs), options=opts,
     ))
 
 
@@ -71,15 +75,15 @@ def _check_outputs(m: Mechanism, outputs: tuple[str, ...]) -> None:
 
 
 def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | None = None,
-              sweep: bool = True, real: str | None = None) -> StepLog:
-    """The step log of a mechanism file for the outputs, order and real type asked for (default: the
-    file's), cut to the steps they need: made once from the draft of the whole procedure
+              sweep: bool = True, options: Mapping[str, object] | None = None) -> StepLog:
+    """The step log of a mechanism file for the outputs, order and options asked for (default: the
+    file's; see draft), cut to the steps they need: made once from the draft of the whole procedure
     and its motion facts (with ``sweep``, the conditioning over the sweep too, for the
     manual: it takes a sweep and root finding), then pruned."""
     m, topo, proc = analyse_file(path)
     if outputs is not None:
         _check_outputs(m, outputs)
-    whole = draft(topo, proc, outputs, order, real)
+    whole = draft(topo, proc, outputs, order, options)
     return prune(with_facts(whole, motion_facts(whole, sweep)))
 
 

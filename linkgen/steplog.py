@@ -18,6 +18,7 @@ from .motion import Conditioning as Conditioning
 from .motion import Gap as Gap
 from .motion import Reach as Reach
 from .motion import Singular as Singular
+from .options import Options
 from .policy import Policy
 from .primitives.dsl import record_fields
 
@@ -292,7 +293,7 @@ class StepLog(Procedure, Header):
     omitted: tuple[Omitted, ...] = ()  # steps left out: the outputs do not need them
     reach: Reach | None = None  # one input: the input values reached from the sketch
     gaps: tuple[Gap, ...] = ()  # one input: where each chain cannot close
-    real: str = "double"  # the real type the programs compute in, where their language has it (policy.REAL_TYPES)
+    options: Options = Options()  # what the programs compute in and how (the file's options and the flags)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "status_codes", status_codes(self))

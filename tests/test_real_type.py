@@ -30,7 +30,7 @@ BOUND_EPS = 32
 
 def _sweep(mechanism: Path, real: str, outdir: Path) -> tuple[StepLog, str]:
     """Build in ``real``, compile under gcc and clang -O2 with no diagnostic, return gcc's CSV."""
-    log = build_log(str(mechanism), real=real)
+    log = build_log(str(mechanism), options={"real": real})
     write_all(render_all(log), str(outdir))
     flags = [*STRICT, "-O2", *(["-Wdouble-promotion"] if real == "float" else [])]
     for cc in ("gcc", "clang"):
@@ -93,7 +93,7 @@ def test_the_library_compiled_as_cpp_writes_the_same_sweep(real: str, tmp_path: 
 def test_float_program_states_its_type_and_thresholds(tmp_path: Path):
     log, _ = _sweep(SAMPLES[0].parent.parent / "sixbar_fig14" / "sixbar_fig14.yaml", "float", tmp_path)
     header = (tmp_path / f"{log.name}.h").read_text()
-    assert header.splitlines()[0].endswith("Real type: float. */")
+    assert "Real type: float. Settings: resolver newton (tolerance 7.62939e-06," in header.splitlines()[0]
     assert f"typedef float {log.name}_real;" in header
     assert "double" not in header and "double" not in (tmp_path / f"{log.name}.c").read_text().replace(
         "double program", "")

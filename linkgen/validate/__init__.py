@@ -34,11 +34,10 @@ def validate(root: Mapping, path: str) -> Mechanism:
     given = inputs.resolve_prismatic(given, prismatic)
     outputs, outputs_where = header.outputs(sheet)
     order, samples = header.scalars(sheet)
-    real = header.options(sheet)
     return Mechanism(
         name, title, file_label(path), path, length_unit, angle_unit, joints, links,
         given, prismatic, outputs, outputs_where, order, samples, Where(1, ""), header.key_where(sheet, "inputs"),
-        real,
+        header.options(sheet),
     )
 
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 import os
 
-from ..loader import Scalar
+from ..loader import Node, Scalar
 from ..model import Where
-from ..policy import DEFAULT_REAL, REAL_TYPES
+from ..options import CHOICES, MAX_ITERATIONS, MAX_TOLERANCE, Options
 from .naming import program_name
 from .sheet import Sheet, did_you_mean, where
 
@@ -110,20 +110,39 @@ def scalars(sheet: Sheet) -> tuple[int, int]:
     return order, samples
 
 
-def options(sheet: Sheet) -> str:
-    """The options: the real type the programs compute in (default double)."""
+def options(sheet: Sheet) -> Options:
+    """The options (linkgen.options.Options; each key optional, the defaults without it)."""
     node = sheet.root.get("options")
     if node is None:
-        return DEFAULT_REAL
-    opts = sheet.mapping(node, "the options as {real: float}")
-    sheet.keys(opts, (), ("real",), "options")
-    real_node = opts.get("real")
-    if real_node is None:
-        return DEFAULT_REAL
-    real = sheet.text(real_node, "the real type float, double or long double")
-    if real not in REAL_TYPES:
-        raise sheet.error(real_node, f"the real type is float, double or long double, got {real!r}")
-    return real
+        return Options()
+    opts = sheet.mapping(node, "the options as {real: float, strategy: newton, ...}")
+    sheet.keys(opts, (), tuple(Options.__dataclass_fields__), "options")
+    given: dict[str, object] = {}
+    for key, value in opts.items:
+        given[key.text] = _option(sheet, key.text, value)
+    return Options(**given)  # type: ignore[arg-type]
+
+
+def _option(sheet: Sheet, key: str, node: Node) -> object:
+    """One option's value, checked against its choices or range."""
+    if key in ("polish", "checks"):
+        return sheet.boolean(node, f"options: {key}")
+    if key == "tolerance":
+        tol = sheet.number(node, "the resolver tolerance, a number relative to the length scale")
+        if not 0.0 < tol <= MAX_TOLERANCE:
+            raise sheet.error(node, f"the resolver tolerance is above 0 and at most {MAX_TOLERANCE:g}, got {tol:g}")
+        return tol
+    if key == "iterations":
+        cap = sheet.integer(node, "the resolver's iteration cap, a whole number")
+        if not 1 <= cap <= MAX_ITERATIONS:
+            raise sheet.error(node, f"the resolver's iteration cap is 1 to {MAX_ITERATIONS}, got {cap}")
+        return cap
+    choices = CHOICES[key]
+    value: object = sheet.integer(node, f"options: {key}") if key == "predictor" else sheet.text(node, key)
+    if value not in choices:
+        words = ", ".join(str(c) for c in choices[:-1]) + f" or {choices[-1]}"
+        raise sheet.error(node, f"options: {key} is {words}, got {value!r}")
+    return value
 
 
 def key_where(sheet: Sheet, key: str) -> Where:

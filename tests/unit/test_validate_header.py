@@ -42,13 +42,31 @@ def test_the_defaults_where_the_file_is_silent():
                                         ("options: {real: long double}\n", "long double"),
                                         ("options:\n  real: double\n", "double")])
 def test_the_real_type_from_the_options(text: str, real: str):
-    assert read(FOURBAR + text).real == real
+    assert read(FOURBAR + text).options.real == real
+
+
+def test_every_option_as_the_file_gives_it():
+    text = ("options: {strategy: fixed-point, tolerance: 1.0e-8, iterations: 20, polish: false, predictor: 2,\n"
+            "  checks: false, angles: unit}\n")
+    o = read(FOURBAR + text).options
+    assert (o.strategy, o.tolerance, o.iterations, o.polish, o.predictor, o.checks, o.angles) == (
+        "fixed-point", 1e-8, 20, False, 2, False, "unit")
 
 
 @pytest.mark.parametrize("value, key, message", [
-    ("options: {real: quad}", "options.real", "the real type is float, double or long double, got 'quad'"),
-    ("options: {precision: float}", "options.precision", "unknown key 'precision' in options; the keys are: real"),
-    ("options: [float]", "options", "expected the options as {real: float}, got a list"),
+    ("options: {real: quad}", "options.real", "options: real is float, double or long double, got 'quad'"),
+    ("options: {precision: float}", "options.precision", "unknown key 'precision' in options; the keys are: real, "
+     "strategy, tolerance, iterations, polish, predictor, checks, angles"),
+    ("options: [float]", "options", "expected the options as {real: float, strategy: newton, ...}, got a list"),
+    ("options: {strategy: bisection}", "options.strategy",
+     "options: strategy is newton, fixed-point or closure, got 'bisection'"),
+    ("options: {tolerance: 0}", "options.tolerance", "the resolver tolerance is above 0 and at most 0.001, got 0"),
+    ("options: {tolerance: 0.1}", "options.tolerance", "the resolver tolerance is above 0 and at most 0.001, got 0.1"),
+    ("options: {iterations: 0}", "options.iterations", "the resolver's iteration cap is 1 to 100, got 0"),
+    ("options: {predictor: 3}", "options.predictor", "options: predictor is 0, 1 or 2, got 3"),
+    ("options: {polish: yes}", "options.polish",
+     "expected options: polish: true or false, got the text 'yes' (YAML 1.2 reads yes, no, on and off as text)"),
+    ("options: {angles: degrees}", "options.angles", "options: angles is angle or unit, got 'degrees'"),
 ])
 def test_a_wrong_option_is_refused_at_its_line(value: str, key: str, message: str):
     error = refused(FOURBAR + value + "\n")

@@ -21,7 +21,7 @@ RUNTIME = Runtime(__name__, "runtime", ".c")
 def render(view: View, spell: C, template: Template) -> dict[str, bytes]:
     """The three files, in the log's real type (real.py; render gives the policy of that type)."""
     files = _render(view, spell, template)
-    real, name = view.log.real, view.log.name
+    real, name = view.log.options.real, view.log.name
     files = {k: retype(v.decode("utf-8"), real, name).encode("utf-8") if k != "NAME_main.c" else v
              for k, v in files.items()}
     files["NAME.h"] = typedef(files["NAME.h"].decode("utf-8"), real, name).encode("utf-8")

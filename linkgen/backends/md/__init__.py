@@ -83,8 +83,8 @@ def render(view: View, spell: Manual, template: Template) -> dict[str, bytes]:
         codes=log.status_codes, constants=_constants(log), functions=used_primitives(view),
         slides={p.name for p in log.pairs if p.kind == "prismatic"},
         limits=and_list([f"{number(x)} for {i.column}" for x, i in zip(log.step_limits(), log.inputs)]),
-        good_lever=log.policy.good_lever, real_policy=for_real(log.policy, log.real),
-        tolerance_eps=TOLERANCE_EPS, singular_eps=SINGULAR_EPS, real_eps=EPSILON[log.real])}
+        good_lever=log.policy.good_lever, real_policy=for_real(log.policy, log.options.real),
+        tolerance_eps=TOLERANCE_EPS, singular_eps=SINGULAR_EPS, real_eps=EPSILON[log.options.real])}
 
 
 BACKEND = Backend("md", "Markdown", templates="md", files=("NAME.md",), comment=("<!--", " -->"), spelling=Manual,
