@@ -24,22 +24,23 @@ def printed(name: str, order: int) -> str:
 
 
 def runtime_sources(view: View) -> list[str]:
-    """The kernel's runtime: without resolver groups the primitives the procedure calls, printed,
-    then the status rule, branch_at and reach_at where the procedure needs them, and the row
-    driver (with resolver groups, which runs the standard-library module row by row)."""
+    """The kernel's runtime: the primitives the procedure calls, printed, then the status rule,
+    branch_at and reach_at where the procedure needs them, and the row driver; with resolver
+    groups the resolver on lanes of rows and the sweep that solves the rows in order."""
     log = view.log
-    texts = [] if view.groups else [printed(p, view.record_order) for p in used_primitives(view)]
+    texts = [printed(p, view.record_order) for p in used_primitives(view)]
     texts.append(RUNTIME.source("status"))
     texts += [RUNTIME.source(name) for name, needed in (
-        ("branch", "branch_at" in log.runtime and not view.groups),
-        ("reach", "reach_at" in log.runtime and not view.groups)) if needed]
+        ("branch", "branch_at" in log.runtime), ("reach", "reach_at" in log.runtime)) if needed]
     texts.append(RUNTIME.source("driver"))
+    if view.groups:
+        texts += [RUNTIME.source(name) for name in ("resolver", "group", "sweep")]
     return [text.rstrip("\n") for text in texts]
 
 
 def render(view: View, spell: Numpy, template: Template) -> dict[str, bytes]:
     log = view.log
-    params = [] if view.groups else spell.params()
+    params = spell.params()
     example = next((name for name, _, _ in params if name.startswith("step")), params[0][0] if params else "")
     return {"NAME_np.py": template(
         "NAME_np.py.j2", runtime=runtime_sources(view), columns=[c.name for c in log.columns],

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 from ... import status
 from ...primitives import PRIMITIVES
 from ...primitives.dsl import record_fields
-from ...steplog import Arg, Column, Step, Variable
+from ...steplog import Arg, BranchSign, Column, Step, Variable
 from ..py.spelling import Python
 from ..spelling import Syntax
 
@@ -85,6 +85,35 @@ class Numpy(Python):
         a singular position, a near-singular one."""
         pairs = [(r, status.code(step.number, r)) for r in (status.CANNOT_CLOSE, status.SINGULAR, status.NEAR_SINGULAR)]
         return "(" + ", ".join(f"({r}, {c})" for r, c in pairs) + ")"
+
+    def sign_measure(self, b: BranchSign) -> str:
+        """The expression whose sign is a chain's branch in a solved configuration (on arrays)."""
+        return super().sign_measure(b).replace("cos(", "np.cos(").replace("sin(", "np.sin(")
+
+    @staticmethod
+    def position_fields(v: Variable) -> int:
+        """The fields of a record that hold its position (the rest are its rates)."""
+        return len(record_fields(v.kind, 0))
+
+    def block_writes(self, b: Group) -> list[tuple[str, int]]:
+        """The records a resolver block computes, its Add-links first, with their fields' count."""
+        return [(name, len(self.fields(self.variables[name].kind))) for name in b.group.add_links + b.group.writes]
+
+    def branch_targets(self, b: Group) -> str:
+        """The work fields of a block's measured branches, as targets of one assignment."""
+        return "".join(f"{self.work(f'br{bs.step}')}, " for bs in b.group.branches).rstrip()
+
+    @staticmethod
+    def reads_parameters(b: Group) -> bool:
+        """Whether a block's steps read a number of the sketch (a design parameter)."""
+        return any(a.kind == "real" for s in b.steps for a in s.args)
+
+    def block_call(self, step: Step, scope: Group) -> list[str]:
+        """A step's call in a resolver block, which keeps its chains' worst conditioning."""
+        lines = self.call(step, scope)
+        if PRIMITIVES[step.function].sigma is not None:
+            lines.append(f"chains = np.minimum(chains, {self.sigma(step)})")
+        return lines
 
     def call(self, step: Step, scope: Group | None) -> list[str]:
         """A step's call on a block of rows; one that can fail reports its status and codes."""

@@ -1,0 +1,64 @@
+def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
+    """One resolver step on lanes: the Python runtime's resolve_group on each lane's row where the
+    block that solved the last row (used[g.slot]) solves this one at once (its Newton converges
+    with its chains conditioned at least p.min_chain_sigma, and its final pass closes).  Those
+    lanes get the block's records in w, its steps' reports and conditioning, and every block's
+    state (a) and its rates (ad) read off the solution.  The other lanes are left unsettled, for
+    the caller to solve one by one; the skipped ones count as settled.  Returns (settled lanes,
+    Newton steps)."""
+    lanes = np.shape(skip)[0]
+    tol, reach = p.tolerance * m.length_scale, p.max_move * m.length_scale
+    settled, its = skip.copy(), np.zeros(lanes, dtype=int)
+    cond, turn, solver = np.ones(lanes, dtype=REAL), np.zeros(lanes, dtype=REAL), np.full(lanes, -1)
+    prefer = used[g.slot]
+    written = {name: tuple(np.full(lanes, NAN, dtype=REAL) for _ in range(fields))
+               for b in g.blocks for name, fields in b.writes}
+    for k, b in enumerate(g.blocks):
+        at = np.flatnonzero((prefer == k) & ~skip)
+        if not at.size:
+            continue
+        state = take(a[g.first + k], at)
+        live = tuple(take(getattr(w, name), at) for name, _ in b.reads)
+        frozen = tuple(still(record, width) for record, (_, width) in zip(live, b.reads))
+        br = tuple(np.where(s < 0, -1, 1) for s in state[b.size:b.size + b.branches])
+        wb = copy.copy(w)
+        ok, x, steps, jac, chains = newton_lanes(b, wb, frozen, br, state[:b.size], tol, p.max_iterations, reach,
+                                                 p.newton_halvings)
+        its[at] = steps
+        good = np.flatnonzero(ok & (chains >= p.min_chain_sigma))
+        if not good.size:
+            continue
+        x, jac, live, br = (take(v, good) for v in (x, jac, live, br))
+        failed, cond_b, turn_b, rep, sig = rates_lanes(b, wb, live, br, x, jac, order)
+        fine = np.flatnonzero(~failed)
+        done = at[good[fine]]
+        settled[done], cond[done], turn[done], solver[done] = True, cond_b[fine], turn_b[fine], k
+        for name, _ in b.writes:
+            put(written[name], done, take(getattr(wb, name), fine))
+        for st, codes in rep:
+            full = np.zeros(lanes, dtype=int)
+            full[done] = np.broadcast_to(st, failed.shape)[fine]
+            report.append((full, codes))
+        for n, s in sig.items():
+            if isinstance(sigma[n], float):
+                sigma[n] = np.full(lanes, sigma[n], dtype=REAL)
+            sigma[n][done] = np.broadcast_to(s, failed.shape)[fine]
+    resolved = settled & ~skip
+    for name, record in written.items():
+        setattr(w, name, record)
+    if resolved.any():
+        new_a, new_ad = g.lengths(w, a)
+        for j in range(g.count):
+            a[g.first + j] = [np.broadcast_to(x, (lanes,)) for x in new_a[j][:-1]] + [np.where(solver == j, turn, 0.0)]
+            ad[g.first + j] = [np.broadcast_to(x, (lanes,)) for x in new_ad[j]]
+    report.append((np.where(resolved & (cond < g.singular), 3, np.where(resolved & (cond < g.near), 4, 0)), g.codes))
+    sigma[g.step] = cond
+    return settled, its
+
+
+def failed_lanes(report, lanes):
+    """Lanes where a step reported so far cannot close."""
+    out = np.zeros(lanes, dtype=bool)
+    for st, _ in report:
+        out = out | (st == 1)
+    return out

@@ -1,0 +1,219 @@
+# The rows of a mechanism with resolvers, in order, each from the last (the Python runtime's row
+# driver, drive(), on lanes).  A state holds, per lane, what a solved row leaves for the next
+# one: its inputs and rates, every block's state (Add-link lengths, branches, orientation) and
+# their rates, the block each group used, and whether the row solved (ok).
+#
+# The rows are cut into chunks solved side by side, one row of every chunk a pass (a lane per
+# chunk): the first row of a chunk starts from a seed, the state of the row before it as the
+# chunks' last rows solved by themselves (the same sweep over every L-th row, one level up)
+# give it.  Where a chunk's seed is not the state the chunk before it ends in, the chunk is
+# solved again from that end, until every seed is.  A row the lanes cannot solve as the Python
+# runtime would (no warm start, continuation, another block) is solved by the standard-library
+# module's solve() from its lane's state.  k holds the kernel: run, publish, rows (the
+# standard-library module), m (its MECHANISM), p (its POLICY), order, c, the columns x, dx, ddx
+# of every row, and out, status, sigma, its (the arrays a call fills) or None.
+
+LANES = 8192  # rows solved side by side at most
+STEPS = 16  # rows of a chunk at least (below that, one row at a time)
+RATES_AGREE = 1e-6  # two states' rates agree to this share
+
+
+def state_of(s, idx):
+    """The lanes idx of a state."""
+    return SimpleNamespace(inputs=take(s.inputs, idx), rates=take(s.rates, idx), a=[take(b, idx) for b in s.a],
+                           ad=[take(b, idx) for b in s.ad], used=take(s.used, idx), ok=s.ok[idx])
+
+
+def state_put(s, idx, t):
+    """Lanes idx of state s (its arrays) set to those of state t."""
+    for x, y in zip(s.inputs + s.rates + s.used + [s.ok], t.inputs + t.rates + t.used + [t.ok]):
+        x[idx] = y
+    for b, c in zip(s.a + s.ad, t.a + t.ad):
+        put(b, idx, c)
+
+
+def empty_state(k, lanes):
+    """A state of lanes with no solved row (the sketch starts them)."""
+    m, n = k.m, len(k.x)
+    return SimpleNamespace(inputs=[np.zeros(lanes, dtype=REAL) for _ in range(n)],
+                           rates=[np.zeros(lanes, dtype=REAL) for _ in range(n)],
+                           a=[[np.full(lanes, v, dtype=REAL) for v in b] for b in m.sketch_a],
+                           ad=[[np.zeros(lanes, dtype=REAL) for _ in b] for b in m.sketch_a],
+                           used=[np.zeros(lanes, dtype=int) for _ in range(m.groups)], ok=np.zeros(lanes, dtype=bool))
+
+
+def agree(s, t, k):
+    """Lanes where two states of the same rows would start the next row alike: both failed, or
+    both solved with the same blocks, branches and orientations, lengths within the resolver's
+    tolerance and rates within a millionth."""
+    tol = k.p.tolerance * k.m.length_scale
+    same = s.ok == t.ok
+    for u, v in zip(s.used, t.used):
+        same = same & (u == v)
+    for b, c, n in zip(s.a, t.a, k.m.sizes):
+        for i, (x, y) in enumerate(zip(b, c)):
+            same = same & (_close(x, y, tol) if i < n else (x == y))
+    for b, c in zip(s.ad, t.ad):
+        for x, y in zip(b, c):
+            same = same & _close(x, y, RATES_AGREE * np.maximum(np.abs(x), np.abs(y)) + tol)
+    return same | ~(s.ok | t.ok)
+
+
+def _close(x, y, bound):
+    """Where x and y are within bound, or both nan."""
+    return (np.abs(x - y) <= bound) | (x == y) | (np.isnan(x) & np.isnan(y))
+
+
+def predict_lanes(prev, x, sizes):
+    """The Python runtime's predict on every lane: the block states along their rates to x."""
+    den, num = 0.0, 0.0
+    for r in prev.rates:
+        den = den + r * r
+    for xi, yi, r in zip(x, prev.inputs, prev.rates):
+        num = num + (xi - yi) * r
+    tau = np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
+    return [[np.abs(v + tau * r) if i < n else v + tau * r for i, (v, r) in enumerate(zip(b, br))]
+            for b, br, n in zip(prev.a, prev.ad, sizes)]
+
+
+def on_path_lanes(prev, guess, new, sizes, slack, p):
+    """The Python runtime's on_path on every lane."""
+    move, turned = 0.0, False
+    for b, g, n in zip(prev, guess, sizes):
+        for i in range(n):
+            move = np.maximum(move, np.abs(g[i] - b[i]))
+    for b, x in zip(prev, new):
+        turned = turned | (b[-1] * x[-1] < 0)
+    bound = np.where(turned, p.turn_share, p.path_share) * move + slack
+    fine = True
+    for g, x, n in zip(guess, new, sizes):
+        for i in range(n):
+            fine = fine & (np.abs(x[i] - g[i]) <= bound)
+    return fine
+
+
+def advance(k, prev, rows, emit):
+    """Solve one row per lane (rows: their indices) from the lanes' last rows; returns the new
+    state.  A lane the pass cannot settle is solved by the standard-library module."""
+    m, p = k.m, k.p
+    x, dx, ddx = ([v if np.ndim(v) == 0 else v[rows] for v in col] for col in (k.x, k.dx, k.ddx))
+    near = prev.ok.copy()
+    for xi, yi, lim in zip(x, prev.inputs, m.limits):
+        near = near & (np.abs(xi - yi) <= lim)
+    guess = predict_lanes(prev, x, m.sizes)
+    a, ad, used = [list(b) for b in guess], [list(b) for b in prev.ad], [u.copy() for u in prev.used]
+    w, code, sigma, its, settled, past = k.run(x, dx, ddx, k.c, a, ad, used, k.order, ~near, m, p)
+    solved = (code <= 0) & on_path_lanes(prev.a, guess, a, m.sizes, p.path_slack * m.length_scale, p)
+    followed = ~solved & ((code <= 0) | (reason_of(code) == m.not_converged))  # the runtime continues there
+    alone = np.flatnonzero(~past & (~near | ~settled | followed))
+    lanes = len(rows)
+    x, dx = ([np.broadcast_to(v, (lanes,)) for v in col] for col in (x, dx))
+    new = SimpleNamespace(inputs=x, rates=dx, a=a, ad=ad, used=used, ok=solved)
+    if emit:
+        for name, value in zip(k.columns, k.publish(w, k.c)):
+            if name in k.out:
+                k.out[name][rows] = value
+        k.status[rows] = code
+        for n, value in enumerate(sigma):
+            k.sigma[n, rows] = value
+        for g, value in enumerate(its):
+            k.its[g, rows] = value
+    if alone.size:
+        new = state_of(new, np.arange(lanes))  # copies to write the lanes solved alone into
+        for lane in alone:
+            one = alone_row(k, state_of(prev, [lane]), rows[lane], emit)
+            state_put(new, [lane], one)
+    return new
+
+
+def alone_row(k, prev, row, emit):
+    """One row solved by the standard-library module from a one-lane state; returns its state."""
+    warm = None
+    if prev.ok[0]:
+        warm = ([float(v[0]) for v in prev.inputs], [float(v[0]) for v in prev.rates],
+                [[float(v[0]) for v in b] for b in prev.a], [[float(v[0]) for v in b] for b in prev.ad],
+                [int(u[0]) for u in prev.used])
+    state = {"warm": warm}
+    x, dx, ddx = ([float(v if np.ndim(v) == 0 else v[row]) for v in col] for col in (k.x, k.dx, k.ddx))
+    out = k.rows.solve(x, dx, ddx, k.order, state)
+    if emit:
+        for name in k.out:
+            k.out[name][row] = out[name]
+        k.status[row], k.sigma[:, row], k.its[:, row] = out["status"], out["sigma"], out["iterations"]
+    new = empty_state(k, 1)
+    warm = state["warm"]
+    if warm is not None:
+        ins, rates, a, ad, used = warm
+        new = SimpleNamespace(inputs=[np.array([v], dtype=REAL) for v in ins],
+                              rates=[np.array([v], dtype=REAL) for v in rates],
+                              a=[[np.array([v], dtype=REAL) for v in b] for b in a],
+                              ad=[[np.array([v], dtype=REAL) for v in b] for b in ad],
+                              used=[np.array([u]) for u in used], ok=np.array([True]))
+    return new
+
+
+def sweep(k, seq, prev, emit, keep):
+    """Solve the rows seq (their indices, in order) from prev (a one-lane state of the row before);
+    returns the state after every row (keep) or None."""
+    n = len(seq)
+    kept = state_of(empty_state(k, n), np.arange(n)) if keep else None
+    if n <= STEPS:
+        for j, row in enumerate(seq):
+            prev = advance(k, prev, np.array([row]), emit)
+            if keep:
+                state_put(kept, [j], prev)
+        return kept
+    steps = max(STEPS, -(-n // LANES))
+    chunks = -(-n // steps)
+    starts = np.arange(chunks) * steps
+    first = state_of(prev, np.zeros(chunks, dtype=int))
+    state_put(first, np.arange(1, chunks), sweep(k, seq[starts[1:] - 1], prev, False, True))
+    ends = run_chunks(k, seq, starts, steps, np.arange(chunks), first, emit, kept)
+    while True:  # a chunk whose seed is not where the chunk before it ends is solved again from there
+        wrong = np.flatnonzero(~agree(state_of(first, np.arange(1, chunks)), state_of(ends, np.arange(chunks - 1)), k))
+        if not wrong.size:
+            return kept
+        again = state_of(ends, wrong)
+        state_put(first, wrong + 1, again)
+        state_put(ends, wrong + 1, run_chunks(k, seq, starts, steps, wrong + 1, again, emit, kept))
+
+
+def run_chunks(k, seq, starts, steps, chunks, prev, emit, kept):
+    """Solve the chunks given (their indices) side by side, each from its lane of prev (the
+    state before its first row); returns the state after each one's last row."""
+    lengths = np.minimum(starts[chunks] + steps, len(seq)) - starts[chunks]
+    ends = state_of(prev, np.arange(len(chunks)))
+    lanes = np.arange(len(chunks))  # the chunks still running, by their place in chunks
+    for j in range(int(lengths.max())):
+        running = lengths[lanes] > j
+        if not running.all():
+            lanes, prev = lanes[running], state_of(prev, np.flatnonzero(running))
+        at = starts[chunks[lanes]] + j
+        prev = advance(k, prev, seq[at], emit)
+        if kept is not None:
+            state_put(kept, at, prev)
+        last = lengths[lanes] == j + 1
+        if last.any():
+            state_put(ends, lanes[last], state_of(prev, np.flatnonzero(last)))
+    return ends
+
+
+def solve_sweep(run, publish, rows, inputs, d_inputs, dd_inputs, order, params, m, out=None):
+    """Every row of a call in the order of the flattened rows, each from the last as the
+    standard-library module (rows) solves them, written into new arrays or those of out (see
+    filled).  Returns finish's dict with "iterations" (Newton steps per group and row)."""
+    if params:
+        raise ValueError(f"{m.name}.solve: design parameters need a mechanism without resolver groups")
+    shape, columns, c = rows_of(inputs, d_inputs, dd_inputs, design(None, m), m)
+    n = int(np.prod(shape))
+    bad = np.broadcast_to(refused(columns, m), (n,))
+    out, status, sigma = filled(out, shape, order, m)
+    its = np.zeros((rows.N_GROUPS, n), dtype=int)
+    k = SimpleNamespace(run=run, publish=publish, rows=rows, m=rows.MECHANISM, p=rows.POLICY, order=order, c=c,
+                        x=columns[0], dx=columns[1], ddx=columns[2], out=out, status=status, sigma=sigma, its=its,
+                        columns=m.columns)
+    with np.errstate(all="ignore"):
+        sweep(k, np.flatnonzero(~bad), empty_state(k, 1), True, False)
+    result = finish(out, status, sigma, bad, shape, m)
+    result["iterations"] = its.reshape((rows.N_GROUPS, *shape))
+    return result
