@@ -17,10 +17,28 @@ if TYPE_CHECKING:
 RUNTIME = Runtime(__name__, "runtime", ".py")
 
 
+FAST = "_1"  # the suffix of the primitives and resolver blocks at order 1 (a resolver's Newton passes)
+
+
 @functools.cache
-def printed(name: str, order: int) -> str:
+def printed(name: str, order: int, suffix: str = "") -> str:
     """A primitive on arrays of rows at an order (printed once: the evaluator renders many logs)."""
-    return numpy_function(PRIMITIVES[name], order)
+    return numpy_function(PRIMITIVES[name], order, suffix)
+
+
+def fast(view: View) -> str:
+    """The suffix of the order-1 primitives and blocks the resolvers' Newton passes run: none where
+    the records are of order 1 anyway."""
+    return FAST if view.groups and view.record_order > 1 else ""
+
+
+def fast_primitives(view: View) -> list[str]:
+    """The primitives the resolver blocks and their states call, at order 1 (none where the
+    records are of order 1 anyway)."""
+    if not fast(view):
+        return []
+    names = {s.function for b in view.blocks for s in b.steps if s.function} | {"link_residual"}
+    return [p for p in PRIMITIVES if p in names]
 
 
 def runtime_sources(view: View) -> list[str]:
@@ -29,6 +47,9 @@ def runtime_sources(view: View) -> list[str]:
     groups the resolver on lanes of rows and the sweep that solves the rows in order."""
     log = view.log
     texts = [printed(p, view.record_order) for p in used_primitives(view)]
+    texts += [printed(p, 1, FAST) for p in fast_primitives(view)]
+    if any("cos_sin(" in text for text in texts):
+        texts.append(RUNTIME.source("trig"))
     texts.append(RUNTIME.source("status"))
     texts += [RUNTIME.source(name) for name, needed in (
         ("branch", "branch_at" in log.runtime), ("reach", "reach_at" in log.runtime)) if needed]
@@ -47,7 +68,7 @@ def render(view: View, spell: Numpy, template: Template) -> dict[str, bytes]:
         levels=[str(LEVEL[cell.column.quantity]) for cell in view.cells],
         values=[spell.published(cell.column) for cell in view.cells],
         inputs=[f"{spell.lit(i.start)}, {spell.lit(i.stop)}, {spell.lit(i.speed)}" for i in log.inputs],
-        params=params, example=example)}
+        params=params, example=example, fast=fast(view))}
 
 
 BACKEND = Backend("np", "numpy", templates="np", files=("NAME_np.py",), comment=("#", ""), spelling=Numpy,

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections import Counter
 
-from ...primitives.dsl import Expr, Logic, Num, Primitive, Sym, children, field_order, record_fields
+from ...primitives.dsl import Call, Expr, Let, Logic, Num, Primitive, Sym, children, field_order, record_fields
 from ...primitives.printers import ATOM, ExprPrinter
 from ..py.printer import PythonExprs, parameter_lines
 
@@ -76,26 +76,47 @@ class _Lines:
         self.lines.append(f"    {name} = {self.exprs.expr(e)}")
 
 
+def _cos_sin_pairs(lets: tuple[Let, ...]) -> dict[str, tuple[str, str]]:
+    """{cos let: (its name, the sin let's)} of a cosine and a sine of the same symbol."""
+    calls: dict[tuple[str, str], str] = {}
+    for let in lets:
+        e = let.expr
+        if isinstance(e, Call) and e.fn in ("cos", "sin") and isinstance(e.args[0], Sym):
+            calls[e.fn, e.args[0].name] = let.name
+    return {c: (c, calls["sin", arg]) for (fn, arg), c in calls.items() if fn == "cos" and ("sin", arg) in calls}
+
+
 def _record(fields: list[str]) -> str:
     return "(" + ", ".join(fields) + ("," if len(fields) == 1 else "") + ")"
 
 
-def numpy_function(prim: Primitive, order: int) -> str:
+def numpy_function(prim: Primitive, order: int, suffix: str = "") -> str:
     """A primitive on arrays of rows (records are tuples of arrays or numbers).
 
     Returns ``(status, sigma, outputs...)`` always: status 0 and sigma 1 where the function
     cannot fail.  A chain that cannot close (status 1) gives nan in every output field, a
-    singular position (3) in the derivatives.
+    singular position (3) in the derivatives.  With a suffix it is named name + suffix and
+    takes records of any higher order too (their first fields).
     """
     exprs = NumpyExprs()
     fields = prim.result_fields(order)
     roots = [let.expr for let in prim.live(order)] + [e for _, _, e in fields]
     roots += [e for e in (prim.status, prim.sigma) if e is not None]
     out = _Lines(exprs, _shared(roots))
-    out.lines = [f"def {prim.name}({', '.join(p.name for p in prim.params)}):", f'    """{prim.doc}"""',
-                 *parameter_lines(prim, order)]
-    for let in prim.live(order):
-        out.assign(let.name, let.expr)
+    unpack = parameter_lines(prim, order)
+    if suffix:
+        unpack = [f"{line}[:{line.split(' = ')[0].count(',') + 1}]" for line in unpack]
+    out.lines = [f"def {prim.name}{suffix}({', '.join(p.name for p in prim.params)}):", f'    """{prim.doc}"""',
+                 *unpack]
+    lets = prim.live(order)
+    pairs = _cos_sin_pairs(lets)
+    sines = {s for _, s in pairs.values()}
+    for let in lets:
+        if let.name in pairs:  # one tangent for both: numpy's sin and cos are scalar library calls
+            assert isinstance(let.expr, Call)
+            out.lines.append(f"    {', '.join(pairs[let.name])} = cos_sin({exprs.expr(let.expr.args[0])})")
+        elif let.name not in sines:
+            out.assign(let.name, let.expr)
     if prim.status is None:
         out.lines += ["    _st = np.asarray(0)", "    _sigma = np.asarray(1.0, dtype=float)"]
     else:

@@ -108,19 +108,21 @@ class Numpy(Python):
         """Whether a block's steps read a number of the sketch (a design parameter)."""
         return any(a.kind == "real" for s in b.steps for a in s.args)
 
-    def block_call(self, step: Step, scope: Group) -> list[str]:
-        """A step's call in a resolver block, which keeps its chains' worst conditioning."""
-        lines = self.call(step, scope)
+    def block_call(self, step: Step, scope: Group, suffix: str = "") -> list[str]:
+        """A step's call in a resolver block (to the primitive named with the suffix), which keeps
+        its chains' worst conditioning."""
+        lines = self.call(step, scope, suffix)
         if PRIMITIVES[step.function].sigma is not None:
             lines.append(f"chains = np.minimum(chains, {self.sigma(step)})")
         return lines
 
-    def call(self, step: Step, scope: Group | None) -> list[str]:
-        """A step's call on a block of rows; one that can fail reports its status and codes."""
+    def call(self, step: Step, scope: Group | None, suffix: str = "") -> list[str]:
+        """A step's call on a block of rows (to the primitive named with the suffix); one that can
+        fail reports its status and codes."""
         prim = PRIMITIVES[step.function]
         args = ", ".join(self.arg(a, scope, step) for a in step.args)
         targets = ", ".join(self.ref(o, scope) for o in step.outputs)
         if prim.status is None:
-            return [f"_, _, {targets} = {step.function}({args})"]
+            return [f"_, _, {targets} = {step.function}{suffix}({args})"]
         sigma = self.sigma(step) if prim.sigma is not None else "_"
-        return [f"st, {sigma}, {targets} = {step.function}({args})", f"report.append((st, {self.codes(step)}))"]
+        return [f"st, {sigma}, {targets} = {step.function}{suffix}({args})", f"report.append((st, {self.codes(step)}))"]

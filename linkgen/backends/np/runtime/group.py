@@ -11,15 +11,16 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
     settled, its = skip.copy(), np.zeros(lanes, dtype=int)
     cond, turn, solver = np.ones(lanes, dtype=REAL), np.zeros(lanes, dtype=REAL), np.full(lanes, -1)
     prefer = used[g.slot]
-    written = {name: tuple(np.full(lanes, NAN, dtype=REAL) for _ in range(fields))
-               for b in g.blocks for name, fields in b.writes}
+    written = {}
     for k, b in enumerate(g.blocks):
-        at = np.flatnonzero((prefer == k) & ~skip)
+        mine = (prefer == k) & ~skip
+        at = np.flatnonzero(mine)
         if not at.size:
             continue
-        state = take(a[g.first + k], at)
-        live = tuple(take(getattr(w, name), at) for name, _ in b.reads)
-        frozen = tuple(still(record, width) for record, (_, width) in zip(live, b.reads))
+        pick = slice(None) if at.size == lanes else at  # every lane: no copies
+        state = take(a[g.first + k], pick)
+        live = tuple(take(getattr(w, name), pick) for name, _ in b.reads)
+        frozen = tuple(still(record[:2 * width], width) for record, (_, width) in zip(live, b.reads))
         br = tuple(np.where(s < 0, -1, 1) for s in state[b.size:b.size + b.branches])
         wb = copy.copy(w)
         ok, x, steps, jac, chains = newton_lanes(b, wb, frozen, br, state[:b.size], tol, p.max_iterations, reach,
@@ -33,27 +34,48 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
         fine = np.flatnonzero(~failed)
         done = at[good[fine]]
         settled[done], cond[done], turn[done], solver[done] = True, cond_b[fine], turn_b[fine], k
-        for name, _ in b.writes:
-            put(written[name], done, take(getattr(wb, name), fine))
+        whole = done.size == lanes
+        for name, fields in b.writes:
+            record = getattr(wb, name)
+            if whole:  # every lane solved by this block: its records as they are
+                written[name] = record
+                continue
+            if name not in written:
+                written[name] = tuple(np.full(lanes, NAN, dtype=REAL) for _ in range(fields))
+            put(written[name], done, take(record, fine))
         for st, codes in rep:
+            if whole:
+                report.append((st, codes))
+                continue
             full = np.zeros(lanes, dtype=int)
             full[done] = np.broadcast_to(st, failed.shape)[fine]
             report.append((full, codes))
         for n, s in sig.items():
+            if whole:
+                sigma[n] = s
+                continue
             if isinstance(sigma[n], float):
                 sigma[n] = np.full(lanes, sigma[n], dtype=REAL)
             sigma[n][done] = np.broadcast_to(s, failed.shape)[fine]
     resolved = settled & ~skip
+    for name, fields in g.blocks[0].writes:  # what the procedure reads after the group: nan where unsolved
+        if name not in written:
+            written[name] = tuple(np.full(lanes, NAN, dtype=REAL) for _ in range(fields))
     for name, record in written.items():
         setattr(w, name, record)
     if resolved.any():
         new_a, new_ad = g.lengths(w, a)
         for j in range(g.count):
-            a[g.first + j] = [np.broadcast_to(x, (lanes,)) for x in new_a[j][:-1]] + [np.where(solver == j, turn, 0.0)]
-            ad[g.first + j] = [np.broadcast_to(x, (lanes,)) for x in new_ad[j]]
+            a[g.first + j] = [lanes_of(x, lanes) for x in new_a[j][:-1]] + [np.where(solver == j, turn, 0.0)]
+            ad[g.first + j] = [lanes_of(x, lanes) for x in new_ad[j]]
     report.append((np.where(resolved & (cond < g.singular), 3, np.where(resolved & (cond < g.near), 4, 0)), g.codes))
     sigma[g.step] = cond
     return settled, its
+
+
+def lanes_of(x, lanes):
+    """x as an array of the lanes (a number or an array of them)."""
+    return x if np.shape(x) == (lanes,) else np.broadcast_to(x, (lanes,))
 
 
 def failed_lanes(report, lanes):

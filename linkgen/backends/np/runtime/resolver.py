@@ -10,6 +10,8 @@ def take(x, idx):
     """Lanes idx of an array, of a record (tuple) or of a list of them (a number stays)."""
     if isinstance(x, (tuple, list)):
         return type(x)(take(v, idx) for v in x)
+    if isinstance(idx, slice):
+        return x
     return x[idx] if isinstance(x, np.ndarray) and x.ndim else x
 
 
@@ -61,9 +63,10 @@ def solve_lanes(m, b):
     return x, det
 
 
-def block_pass(b, w, r, br, a, da, dda):
-    """One pass of block b: (failed lanes, residual records, chains, reports, conditioning)."""
-    report, sigma, f, chains = b.run(w, r, br, a, da, dda)
+def block_pass(b, w, r, br, a, da, dda, fast=False):
+    """One pass of block b (at order 1 where fast): (failed lanes, residual records, chains,
+    reports, conditioning)."""
+    report, sigma, f, chains = (b.run1 if fast else b.run)(w, r, br, a, da, dda)
     failed = False
     for st, _ in report:
         failed = failed | (st == 1)
@@ -71,18 +74,18 @@ def block_pass(b, w, r, br, a, da, dda):
 
 
 def jacobian_lanes(b, w, r, br, a):
-    """Residuals and Jacobian at a (one pass per Add-link, unit rate, the reads still): (failed
-    lanes, f, jac, chains of the last pass), each an array of the lanes."""
+    """Residuals and Jacobian at a (one pass at order 1 per Add-link, unit rate, r the reads
+    still): (failed lanes, f, jac, chains of the last pass), each an array of the lanes."""
     n, lanes = len(a), np.shape(a[0])
     failed, f, jac, chains = False, None, [[None] * n for _ in range(n)], None
     for j in range(n):
         unit = [1.0 if i == j else 0.0 for i in range(n)]
-        bad, rec, chains, _, _ = block_pass(b, w, r, br, a, unit, [0.0] * n)
+        bad, rec, chains, _, _ = block_pass(b, w, r, br, a, unit, unit, True)
         failed = failed | bad
-        f = [np.broadcast_to(x[0], lanes) for x in rec]
+        f = [lanes_of(x[0], lanes[0]) for x in rec]
         for i in range(n):
-            jac[i][j] = np.broadcast_to(rec[i][1], lanes)
-    return np.array(failed), f, jac, np.broadcast_to(chains, lanes)
+            jac[i][j] = lanes_of(rec[i][1], lanes[0])
+    return np.array(failed), f, jac, lanes_of(chains, lanes[0])
 
 
 def newton_lanes(b, w, r, br, a, tol, max_iter, reach, halvings):
@@ -163,12 +166,13 @@ def conditioning(jac, det):
 def rates_lanes(b, w, r, br, a, jac, order):
     """The Python runtime's addlink_rates on every lane: the Add-link rates (and at order 2 the
     accelerations) by the implicit-function theorem, then the final pass, which leaves the
-    block's records in w.  Returns (failed lanes, sigma, orientation, reports, conditioning)."""
+    block's records in w (r: the reads as they are).  Returns (failed lanes, sigma, orientation,
+    reports, conditioning)."""
     n = len(a)
     zero = [0.0] * n
     _, det = solve_lanes(jac, zero)
     sigma = conditioning(jac, det)
-    _, rec, _, _, _ = block_pass(b, w, r, br, a, zero, zero)
+    _, rec, _, _, _ = block_pass(b, w, r, br, a, zero, zero, True)
     rates, _ = solve_lanes(jac, [-x[1] for x in rec])
     accs = zero
     if order >= 2:

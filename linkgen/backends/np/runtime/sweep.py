@@ -14,14 +14,17 @@
 # of every row, and out, status, sigma, its (the arrays a call fills) or None.
 
 LANES = 8192  # rows solved side by side at most
-STEPS = 16  # rows of a chunk at least (below that, one row at a time)
+STEPS = 16  # rows of a chunk (fewer: one row at a time)
 RATES_AGREE = 1e-6  # two states' rates agree to this share
 
 
 def state_of(s, idx):
-    """The lanes idx of a state."""
-    return SimpleNamespace(inputs=take(s.inputs, idx), rates=take(s.rates, idx), a=[take(b, idx) for b in s.a],
-                           ad=[take(b, idx) for b in s.ad], used=take(s.used, idx), ok=s.ok[idx])
+    """The lanes idx of a state (a slice: views of its arrays)."""
+    def pick(x):
+        return [v[idx] for v in x]
+
+    return SimpleNamespace(inputs=pick(s.inputs), rates=pick(s.rates), a=[pick(b) for b in s.a],
+                           ad=[pick(b) for b in s.ad], used=pick(s.used), ok=s.ok[idx])
 
 
 def state_put(s, idx, t):
@@ -30,6 +33,20 @@ def state_put(s, idx, t):
         x[idx] = y
     for b, c in zip(s.a + s.ad, t.a + t.ad):
         put(b, idx, c)
+
+
+def state_cat(states):
+    """One state of the lanes of several, in order."""
+    def cat(arrays):
+        return np.concatenate([np.atleast_1d(x) for x in arrays])
+
+    s = states[0]
+    return SimpleNamespace(inputs=[cat(x) for x in zip(*(t.inputs for t in states))],
+                           rates=[cat(x) for x in zip(*(t.rates for t in states))],
+                           a=[[cat(x) for x in zip(*b)] for b in zip(*(t.a for t in states))],
+                           ad=[[cat(x) for x in zip(*b)] for b in zip(*(t.ad for t in states))],
+                           used=[cat(x) for x in zip(*(t.used for t in states))],
+                           ok=cat([t.ok for t in states])) if len(states) > 1 else s
 
 
 def empty_state(k, lanes):
@@ -92,42 +109,61 @@ def on_path_lanes(prev, guess, new, sizes, slack, p):
     return fine
 
 
-def advance(k, prev, rows, emit):
+def advance(k, prev, rows, sink=None, spot=None):
     """Solve one row per lane (rows: their indices) from the lanes' last rows; returns the new
-    state.  A lane the pass cannot settle is solved by the standard-library module."""
+    state.  With a sink the rows are the call's own, solved as the Python runtime solves them,
+    and their outputs go to the sink at spot (a pass and the lanes' chunks); without one they
+    seed a finer sweep: a lane whose last row solved starts from it whatever the distance, and
+    keeps what its resolvers find, as long as its block is the one that solved the last row.
+    A lane the pass cannot settle is solved by the standard-library module."""
     m, p = k.m, k.p
-    x, dx, ddx = ([v if np.ndim(v) == 0 else v[rows] for v in col] for col in (k.x, k.dx, k.ddx))
+    lanes = len(rows)
+    x, dx, ddx = ([np.full(lanes, v, dtype=REAL) if np.ndim(v) == 0 else v[rows] for v in col]
+                  for col in (k.x, k.dx, k.ddx))
     near = prev.ok.copy()
-    for xi, yi, lim in zip(x, prev.inputs, m.limits):
-        near = near & (np.abs(xi - yi) <= lim)
+    if sink is not None:
+        for xi, yi, lim in zip(x, prev.inputs, m.limits):
+            near = near & (np.abs(xi - yi) <= lim)
     guess = predict_lanes(prev, x, m.sizes)
     a, ad, used = [list(b) for b in guess], [list(b) for b in prev.ad], [u.copy() for u in prev.used]
     w, code, sigma, its, settled, past = k.run(x, dx, ddx, k.c, a, ad, used, k.order, ~near, m, p)
-    solved = (code <= 0) & on_path_lanes(prev.a, guess, a, m.sizes, p.path_slack * m.length_scale, p)
+    code = np.broadcast_to(code, (lanes,))
+    solved = code <= 0
+    if sink is not None:
+        solved = solved & on_path_lanes(prev.a, guess, a, m.sizes, p.path_slack * m.length_scale, p)
     followed = ~solved & ((code <= 0) | (reason_of(code) == m.not_converged))  # the runtime continues there
     alone = np.flatnonzero(~past & (~near | ~settled | followed))
-    lanes = len(rows)
-    x, dx = ([np.broadcast_to(v, (lanes,)) for v in col] for col in (x, dx))
     new = SimpleNamespace(inputs=x, rates=dx, a=a, ad=ad, used=used, ok=solved)
-    if emit:
+    if sink is not None:
+        j, at = spot
         for name, value in zip(k.columns, k.publish(w, k.c)):
-            if name in k.out:
-                k.out[name][rows] = value
-        k.status[rows] = code
+            if name in sink.cols:
+                sink.cols[name][j, at] = value
+        sink.status[j, at] = code
         for n, value in enumerate(sigma):
-            k.sigma[n, rows] = value
+            if not isinstance(value, float):
+                sink_sigma(sink, n)[j, at] = value
         for g, value in enumerate(its):
-            k.its[g, rows] = value
+            sink.its[g, j, at] = value
     if alone.size:
         new = state_of(new, np.arange(lanes))  # copies to write the lanes solved alone into
         for lane in alone:
-            one = alone_row(k, state_of(prev, [lane]), rows[lane], emit)
+            out, one = alone_row(k, state_of(prev, [lane]), rows[lane])
             state_put(new, [lane], one)
+            if sink is not None:
+                c = np.arange(sink.status.shape[1])[spot[1]][lane]  # the lane's place in the sink
+                for name in sink.cols:
+                    sink.cols[name][spot[0], c] = out[name]
+                sink.status[spot[0], c], sink.its[:, spot[0], c] = out["status"], out["iterations"]
+                for n, value in enumerate(out["sigma"]):
+                    if value != 1.0 or n in sink.sigma:
+                        sink_sigma(sink, n)[spot[0], c] = value
     return new
 
 
-def alone_row(k, prev, row, emit):
-    """One row solved by the standard-library module from a one-lane state; returns its state."""
+def alone_row(k, prev, row):
+    """One row solved by the standard-library module from a one-lane state; returns its outputs
+    and its state."""
     warm = None
     if prev.ok[0]:
         warm = ([float(v[0]) for v in prev.inputs], [float(v[0]) for v in prev.rates],
@@ -136,10 +172,6 @@ def alone_row(k, prev, row, emit):
     state = {"warm": warm}
     x, dx, ddx = ([float(v if np.ndim(v) == 0 else v[row]) for v in col] for col in (k.x, k.dx, k.ddx))
     out = k.rows.solve(x, dx, ddx, k.order, state)
-    if emit:
-        for name in k.out:
-            k.out[name][row] = out[name]
-        k.status[row], k.sigma[:, row], k.its[:, row] = out["status"], out["sigma"], out["iterations"]
     new = empty_state(k, 1)
     warm = state["warm"]
     if warm is not None:
@@ -149,53 +181,116 @@ def alone_row(k, prev, row, emit):
                               a=[[np.array([v], dtype=REAL) for v in b] for b in a],
                               ad=[[np.array([v], dtype=REAL) for v in b] for b in ad],
                               used=[np.array([u]) for u in used], ok=np.array([True]))
-    return new
+    return out, new
 
 
-def sweep(k, seq, prev, emit, keep):
-    """Solve the rows seq (their indices, in order) from prev (a one-lane state of the row before);
-    returns the state after every row (keep) or None."""
+def layout(n):
+    """(rows a chunk, chunks) of a sweep of n rows: one chunk where n is small."""
+    return (max(n, 1), 1) if n <= STEPS else (STEPS, -(-n // STEPS))
+
+
+def new_sink(k, steps, lanes):
+    """Arrays for the outputs of lanes' rows over steps passes, each indexed [pass, lane]; the
+    same arrays for every tile of a call (fresh memory is slow to touch)."""
+    key = (steps, lanes)
+    if key not in k.sinks:
+        k.sinks[key] = SimpleNamespace(cols={name: np.empty(key, dtype=REAL) for name in k.out},
+                                       status=np.empty(key, dtype=int), sigma={},
+                                       its=np.empty((k.its.shape[0], *key), dtype=int))
+    sink = k.sinks[key]
+    for value in sink.sigma.values():
+        value.fill(1.0)
+    return sink
+
+
+def sink_sigma(sink, n):
+    """The sink's array of step n's conditioning (made at its first value; 1 where none came)."""
+    if n not in sink.sigma:
+        sink.sigma[n] = np.ones(sink.status.shape, dtype=REAL)
+    return sink.sigma[n]
+
+
+def flush(k, sink, rows, lengths):
+    """The sink's outputs into the call's arrays: pass j of lane i is row rows[i, j] where j is
+    below the lane's length."""
+    lanes, steps = rows.shape
+    count = int(lengths.sum())
+    if count == lanes * steps and rows[-1, -1] - rows[0, 0] == count - 1:  # whole chunks of consecutive rows
+        at = slice(int(rows[0, 0]), int(rows[0, 0]) + count)
+
+        def pick(value):
+            return value.T.reshape(-1)
+    else:
+        mask = np.arange(steps) < lengths[:, None]
+        at = rows[mask]
+
+        def pick(value):
+            return value.T[mask]
+
+    for name, value in sink.cols.items():
+        k.out[name][at] = pick(value)
+    k.status[at] = pick(sink.status)
+    for n, value in sink.sigma.items():
+        k.sigma[n, at] = pick(value)
+    for g in range(k.its.shape[0]):
+        k.its[g, at] = pick(sink.its[g])
+
+
+def sweep(k, seq, prev, emit=False, keep=False):
+    """Solve the rows seq (their indices, in order) from prev (a one-lane state of the row before),
+    their outputs into the call's arrays (emit; see advance); returns the state after every row
+    (keep) or None."""
     n = len(seq)
-    kept = state_of(empty_state(k, n), np.arange(n)) if keep else None
-    if n <= STEPS:
-        for j, row in enumerate(seq):
-            prev = advance(k, prev, np.array([row]), emit)
-            if keep:
-                state_put(kept, [j], prev)
-        return kept
-    steps = max(STEPS, -(-n // LANES))
-    chunks = -(-n // steps)
+    kept = empty_state(k, n) if keep else None
+    steps, chunks = layout(n)
     starts = np.arange(chunks) * steps
-    first = state_of(prev, np.zeros(chunks, dtype=int))
-    state_put(first, np.arange(1, chunks), sweep(k, seq[starts[1:] - 1], prev, False, True))
-    ends = run_chunks(k, seq, starts, steps, np.arange(chunks), first, emit, kept)
+    first = prev if chunks == 1 else state_cat([prev, sweep(k, seq[starts[1:] - 1], prev, False, True)])
+    ends = run_tiles(k, seq, starts, steps, np.arange(chunks), first, emit, kept)
     while True:  # a chunk whose seed is not where the chunk before it ends is solved again from there
-        wrong = np.flatnonzero(~agree(state_of(first, np.arange(1, chunks)), state_of(ends, np.arange(chunks - 1)), k))
+        wrong = np.flatnonzero(~agree(state_of(first, slice(1, None)), state_of(ends, slice(None, -1)), k))
         if not wrong.size:
             return kept
         again = state_of(ends, wrong)
         state_put(first, wrong + 1, again)
-        state_put(ends, wrong + 1, run_chunks(k, seq, starts, steps, wrong + 1, again, emit, kept))
+        state_put(ends, wrong + 1, run_tiles(k, seq, starts, steps, wrong + 1, again, emit, kept))
+
+
+def run_tiles(k, seq, starts, steps, chunks, prev, emit, kept):
+    """Solve the chunks given (their indices), LANES of them side by side at a time, each from
+    its lane of prev (the state before its first row); returns the state after each one's last row."""
+    if len(chunks) <= LANES:
+        return run_chunks(k, seq, starts, steps, chunks, prev, emit, kept)
+    return state_cat([run_chunks(k, seq, starts, steps, chunks[t:t + LANES], state_of(prev, slice(t, t + LANES)), emit,
+                                 kept) for t in range(0, len(chunks), LANES)])
 
 
 def run_chunks(k, seq, starts, steps, chunks, prev, emit, kept):
-    """Solve the chunks given (their indices) side by side, each from its lane of prev (the
-    state before its first row); returns the state after each one's last row."""
+    """Solve the chunks given (their indices) side by side, each from its lane of prev; returns
+    the state after each one's last row."""
     lengths = np.minimum(starts[chunks] + steps, len(seq)) - starts[chunks]
-    ends = state_of(prev, np.arange(len(chunks)))
+    ends, order = [], []  # the states of the chunks' last rows, and their places in chunks
     lanes = np.arange(len(chunks))  # the chunks still running, by their place in chunks
+    sink = new_sink(k, steps, len(chunks)) if emit else None
     for j in range(int(lengths.max())):
         running = lengths[lanes] > j
         if not running.all():
             lanes, prev = lanes[running], state_of(prev, np.flatnonzero(running))
         at = starts[chunks[lanes]] + j
-        prev = advance(k, prev, seq[at], emit)
+        prev = advance(k, prev, seq[at], sink, (j, slice(None) if lanes.size == len(chunks) else lanes))
         if kept is not None:
             state_put(kept, at, prev)
         last = lengths[lanes] == j + 1
-        if last.any():
-            state_put(ends, lanes[last], state_of(prev, np.flatnonzero(last)))
-    return ends
+        if last.all():
+            ends.append(prev)
+            order.append(lanes)
+        elif last.any():
+            ends.append(state_of(prev, np.flatnonzero(last)))
+            order.append(lanes[last])
+    if emit:
+        flush(k, sink, seq[np.minimum(starts[chunks][:, None] + np.arange(steps), len(seq) - 1)], lengths)
+    order = np.concatenate(order)
+    ends = state_cat(ends)
+    return ends if (order == np.arange(len(chunks))).all() else state_of(ends, np.argsort(order))
 
 
 def solve_sweep(run, publish, rows, inputs, d_inputs, dd_inputs, order, params, m, out=None):
@@ -211,9 +306,9 @@ def solve_sweep(run, publish, rows, inputs, d_inputs, dd_inputs, order, params, 
     its = np.zeros((rows.N_GROUPS, n), dtype=int)
     k = SimpleNamespace(run=run, publish=publish, rows=rows, m=rows.MECHANISM, p=rows.POLICY, order=order, c=c,
                         x=columns[0], dx=columns[1], ddx=columns[2], out=out, status=status, sigma=sigma, its=its,
-                        columns=m.columns)
+                        columns=m.columns, sinks={})
     with np.errstate(all="ignore"):
-        sweep(k, np.flatnonzero(~bad), empty_state(k, 1), True, False)
+        sweep(k, np.flatnonzero(~bad), empty_state(k, 1), True)
     result = finish(out, status, sigma, bad, shape, m)
     result["iterations"] = its.reshape((rows.N_GROUPS, *shape))
     return result
