@@ -1,26 +1,34 @@
 """The vectorised kernel in-process: a step log's NAME_np.py (the numpy backend's), rendered
 and run here, so the evaluator computes what the generated module computes, bit for bit.
 
-``kernel(log, order)`` executes the module's source once per log and order (a log at another
-order is rendered as the log built at that order); ``runtime()`` holds the numpy runtime's
-branch_at and reach_at for the rows the evaluator checks itself.
+``kernel(log, order)`` renders the module's source for a log at an order (a log at another
+order is rendered as the log built at that order) and executes each distinct source once: the
+analysis evaluates many logs that differ only where the kernel does not look.  A resolver
+mechanism's kernel gets its standard-library module NAME.py, rendered and executed the same
+way, for the rows it solves one by one.  ``runtime()`` holds the numpy runtime's branch_at and
+reach_at for the rows the evaluator checks itself.
 """
 
 from __future__ import annotations
 
 import functools
 import linecache
+from collections import OrderedDict
 from dataclasses import replace
 from types import ModuleType
 from typing import Any
 
 import numpy as np
 
+from .backends import Backend
 from .backends.np import BACKEND, RUNTIME
 from .backends.program import LEVEL
+from .backends.py import BACKEND as PYTHON
 from .render import render_backend
 from .render.view import build_view
 from .steplog import StepLog
+
+RECENT = 16  # logs whose kernels are found by the log itself, without rendering
 
 
 def _module(name: str, source: str) -> ModuleType:
@@ -32,6 +40,12 @@ def _module(name: str, source: str) -> ModuleType:
     return module
 
 
+@functools.lru_cache(maxsize=64)
+def _compiled(name: str, source: str) -> ModuleType:
+    """The module of a source text, executed once."""
+    return _module(name, source)
+
+
 def at_order(log: StepLog, order: int) -> StepLog:
     """The log as built at another derivative order: its columns up to that order."""
     if order == log.order:
@@ -39,13 +53,30 @@ def at_order(log: StepLog, order: int) -> StepLog:
     return replace(log, order=order, columns=tuple(c for c in log.columns if LEVEL[c.quantity] <= order))
 
 
-@functools.lru_cache(maxsize=64)
+def source(backend: Backend[Any], log: StepLog, order: int) -> str:
+    """The text of the backend's program (the numpy kernel, or NAME.py) for the log at an order."""
+    files = render_backend(backend, build_view(at_order(log, order)))
+    return files[backend.files[0].replace("NAME", log.name)].decode("utf-8")
+
+
+_recent: OrderedDict[tuple[int, int], tuple[StepLog, ModuleType]] = OrderedDict()
+
+
 def kernel(log: StepLog, order: int) -> ModuleType:
-    """The log's NAME_np.py at ``order``, executed (its _run and solve)."""
+    """The log's NAME_np.py at ``order``, executed (its solve; _run and _publish where the log has
+    no resolver groups); with resolver groups its ROWS is NAME.py, executed too."""
+    key = (id(log), order)
+    hit = _recent.get(key)
+    if hit is not None and hit[0] is log:
+        _recent.move_to_end(key)
+        return hit[1]
+    module = _compiled(f"{log.name}_np", source(BACKEND, log, order))
     if log.groups:
-        raise ValueError(f"{log.name} has resolver groups: its rows are solved one by one")
-    source = render_backend(BACKEND, build_view(at_order(log, order)))[f"{log.name}_np.py"].decode("utf-8")
-    return _module(f"{log.name}_np", source)
+        module.ROWS = _compiled(log.name, source(PYTHON, log, order))  # type: ignore[attr-defined]
+    _recent[key] = (log, module)
+    if len(_recent) > RECENT:
+        _recent.popitem(last=False)
+    return module
 
 
 @functools.cache

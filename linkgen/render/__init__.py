@@ -7,6 +7,7 @@ renders its own files from the view of the log.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 from dataclasses import replace
 from pathlib import Path
@@ -30,11 +31,33 @@ def template_dir() -> Path:
     return packaged if packaged.is_dir() else Path(__file__).resolve().parents[2] / "templates"
 
 
+class _Compiled(jinja2.FileSystemBytecodeCache):
+    """The templates compiled once per user (jinja's cache in the temporary directory, keyed on each
+    template's text): compiling them takes longer than a whole build.  Where the directory cannot be
+    written, templates are compiled every time."""
+
+    def __init__(self) -> None:
+        try:
+            super().__init__()
+        except (OSError, RuntimeError):
+            self.directory = ""
+
+    def load_bytecode(self, bucket: jinja2.bccache.Bucket) -> None:
+        if self.directory:
+            super().load_bytecode(bucket)
+
+    def dump_bytecode(self, bucket: jinja2.bccache.Bucket) -> None:
+        if self.directory:
+            with contextlib.suppress(OSError):
+                super().dump_bytecode(bucket)
+
+
 @functools.cache
 def make_env() -> jinja2.Environment:
     """One environment for every backend's templates, with every backend's filters."""
     env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(str(template_dir())),
+        bytecode_cache=_Compiled(),
         undefined=jinja2.StrictUndefined,
         trim_blocks=True,
         lstrip_blocks=True,

@@ -1,9 +1,11 @@
 """linkgen.kernel: the evaluator's numpy kernel is the log's NAME_np.py, rendered and executed once per
-log and order; a four-bar row it solves against the closed form (two circles meeting)."""
+distinct text (found again by the log itself); a resolver mechanism's kernel carries its NAME.py; a
+four-bar row it solves against the closed form (two circles meeting)."""
 
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -27,15 +29,22 @@ def test_a_log_at_a_lower_order_keeps_the_columns_of_that_order(fourbar):
     assert len(low.columns) < len(fourbar.columns)
 
 
-def test_the_kernel_is_made_once_per_log_and_order(fourbar):
+def test_the_kernel_is_made_once_per_text(fourbar):
     assert kernel(fourbar, 2) is kernel(fourbar, 2)
     assert kernel(fourbar, 0) is not kernel(fourbar, 2)
+    again = replace(fourbar, samples=fourbar.samples)  # another log, equal: the same text
+    assert again is not fourbar and kernel(again, 2) is kernel(fourbar, 2)
+    assert kernel(replace(fourbar, samples=fourbar.samples + 1), 2) is not kernel(fourbar, 2)  # SAMPLES differs
 
 
-def test_a_resolver_log_has_no_kernel():
+def test_a_resolver_kernel_carries_its_standard_library_module():
     log = build_log(str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"), sweep=False)
-    with pytest.raises(ValueError, match="resolver groups"):
-        kernel(log, 0)
+    module = kernel(log, 2)
+    assert module.ROWS.__name__ == log.name and module.ROWS.MECHANISM.groups == 1
+    row = module.ROWS.solve([0.5], [1.0], [0.0], 2, {})
+    out = module.solve(np.array([[0.5]]), [1.0], [0.0])
+    assert out["status"][0] == row["status"] == 0
+    assert math.isclose(out["J4.x"][0], row["J4.x"], rel_tol=1e-12)
 
 
 def test_the_four_bar_closes_as_two_circles_meet(fourbar):
