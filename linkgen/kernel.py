@@ -54,7 +54,10 @@ def at_order(log: StepLog, order: int) -> StepLog:
 
 
 def source(backend: Backend[Any], log: StepLog, order: int) -> str:
-    """The text of the backend's program (the numpy kernel, or NAME.py) for the log at an order."""
+    """The text of the backend's program (the numpy kernel, or NAME.py) for the log at an order,
+    in double whatever real type the log asks for (the evaluator's: the analysis runs it)."""
+    if log.options.real != "double":
+        log = replace(log, options=replace(log.options, real="double"))
     files = render_backend(backend, build_view(at_order(log, order)))
     return files[backend.files[0].replace("NAME", log.name)].decode("utf-8")
 

@@ -48,6 +48,6 @@ def numpy_backend(order: int = 2) -> dict[str, RuntimeFunction]:
     from ..backends.np.printer import numpy_function
 
     source = "\n\n".join(numpy_function(p, order) for p in PRIMITIVES.values())
-    ns: dict[str, Any] = {"np": np, "EPS": float(np.finfo(float).eps), "NAN": np.nan, "PI": np.pi}
+    ns: dict[str, Any] = {"np": np, "REAL": np.float64, "EPS": float(np.finfo(float).eps), "NAN": np.nan, "PI": np.pi}
     _compile(source, f"<linkgen runtime numpy order {order}>", ns)
     return {name: ns[name] for name in PRIMITIVES}

@@ -15,6 +15,7 @@ if TYPE_CHECKING:
     from ...render.view import View
 
 RUNTIME = Runtime(__name__, "runtime", ".py")
+REALS = {"float": "float32", "double": "float64"}  # the real types of options.real it computes in, as numpy's
 
 
 FAST = "_1"  # the suffix of the primitives and resolver blocks at order 1 (a resolver's Newton passes)
@@ -68,8 +69,8 @@ def render(view: View, spell: Numpy, template: Template) -> dict[str, bytes]:
         levels=[str(LEVEL[cell.column.quantity]) for cell in view.cells],
         values=[spell.published(cell.column) for cell in view.cells],
         inputs=[f"{spell.lit(i.start)}, {spell.lit(i.stop)}, {spell.lit(i.speed)}" for i in log.inputs],
-        params=params, example=example, fast=fast(view))}
+        params=params, example=example, fast=fast(view), real=REALS[log.options.real])}
 
 
 BACKEND = Backend("np", "numpy", templates="np", files=("NAME_np.py",), comment=("#", ""), spelling=Numpy,
-                  render=render, printer=numpy_function, runtime=RUNTIME)
+                  render=render, printer=numpy_function, runtime=RUNTIME, reals=tuple(REALS))

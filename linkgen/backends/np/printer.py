@@ -118,12 +118,12 @@ def numpy_function(prim: Primitive, order: int, suffix: str = "") -> str:
         elif let.name not in sines:
             out.assign(let.name, let.expr)
     if prim.status is None:
-        out.lines += ["    _st = np.asarray(0)", "    _sigma = np.asarray(1.0, dtype=float)"]
+        out.lines += ["    _st = np.asarray(0)", "    _sigma = np.asarray(1.0, dtype=REAL)"]
     else:
         out.assign("_st", prim.status)
         out.lines[-1] = f"    _st = np.asarray({exprs.expr(prim.status)})"
         sigma = exprs.expr(prim.sigma) if prim.sigma is not None else "1.0"
-        out.lines += [f"    _sigma = np.asarray({sigma}, dtype=float)", "    _fails = _st == 1"]
+        out.lines += [f"    _sigma = np.asarray({sigma}, dtype=REAL)", "    _fails = _st == 1"]
         if order > 0:
             out.lines.append("    _singular = _fails | (_st == 3)")
     for _, _, e in fields:

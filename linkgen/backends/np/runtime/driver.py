@@ -14,8 +14,8 @@ def design(params, m):
     for name, value in (params or {}).items():
         if name not in c:
             raise ValueError(f"{m.name}.solve: {name!r} is not a design parameter (see PARAMS)")
-        value = np.asarray(value, dtype=float)
-        c[name] = float(value) if value.ndim == 0 else value
+        value = np.asarray(value, dtype=REAL)
+        c[name] = REAL(value) if value.ndim == 0 else value
     return c
 
 
@@ -24,7 +24,7 @@ def rows_of(inputs, d_inputs, dd_inputs, c, m):
     and the design parameters (one that is the same on every row stays a number)."""
     columns = []
     for what, a in (("inputs", inputs), ("d_inputs", d_inputs), ("dd_inputs", dd_inputs)):
-        a = np.asarray(a, dtype=float)
+        a = np.asarray(a, dtype=REAL)
         if a.ndim == 0 or a.shape[-1] != m.n_inputs:
             raise ValueError(f"{m.name}.solve: the last axis of {what} must hold the {m.n_inputs} inputs, "
                              f"not shape {a.shape}")
@@ -33,7 +33,7 @@ def rows_of(inputs, d_inputs, dd_inputs, c, m):
 
     def flat(x):
         x = np.asarray(x)
-        return float(x.reshape(-1)[0]) if x.size == 1 else np.broadcast_to(x, shape).reshape(-1)
+        return REAL(x.reshape(-1)[0]) if x.size == 1 else np.broadcast_to(x, shape).reshape(-1)
 
     return shape, [[flat(x) for x in col] for col in columns], {k: flat(v) for k, v in c.items()}
 
@@ -50,7 +50,7 @@ def refused(columns, m):
 
 def block(x, s, e):
     """Rows s to e of a flattened column (a number is the same on every row)."""
-    return x if isinstance(x, float) else x[s:e]
+    return x if np.ndim(x) == 0 else x[s:e]
 
 
 def filled(out, shape, order, m):
@@ -59,10 +59,11 @@ def filled(out, shape, order, m):
     n = int(np.prod(shape))
     names = [name for name, level in zip(m.columns, m.levels) if level <= order]
     if out is None:
-        return {name: np.empty(n) for name in names}, np.empty(n, dtype=int), np.ones((m.n_steps + 1, n))
+        return ({name: np.empty(n, dtype=REAL) for name in names}, np.empty(n, dtype=int),
+                np.ones((m.n_steps + 1, n), dtype=REAL))
     flat = {}
-    for name, like, dtype in [(name, shape, float) for name in names] + [
-            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), float)]:
+    for name, like, dtype in [(name, shape, REAL) for name in names] + [
+            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), REAL)]:
         a = out.get(name)
         if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
             raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
@@ -89,7 +90,7 @@ def solve_rows(run, publish, inputs, d_inputs, dd_inputs, order, params, m, out=
                 if name in out:
                     out[name][s:e] = value
             for k, value in enumerate(steps):
-                if not isinstance(value, float):
+                if np.ndim(value):
                     sigma[k, s:e] = value
         bad = np.broadcast_to(refused(columns, m), (n,))
     return finish(out, status, sigma, bad, shape, m)
@@ -107,7 +108,7 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
     out, status, sigma = filled(out, shape, order, m)
     state = {}
     for r in np.flatnonzero(~bad):
-        x, dx, ddx = ([v if isinstance(v, float) else float(v[r]) for v in col] for col in columns)
+        x, dx, ddx = ([float(v if np.ndim(v) == 0 else v[r]) for v in col] for col in columns)
         row = solve(x, dx, ddx, order, state)
         for name in out:
             out[name][r] = row[name]

@@ -304,7 +304,8 @@ def solve_sweep(run, publish, rows, inputs, d_inputs, dd_inputs, order, params, 
     bad = np.broadcast_to(refused(columns, m), (n,))
     out, status, sigma = filled(out, shape, order, m)
     its = np.zeros((rows.N_GROUPS, n), dtype=int)
-    k = SimpleNamespace(run=run, publish=publish, rows=rows, m=rows.MECHANISM, p=rows.POLICY, order=order, c=c,
+    p = SimpleNamespace(**{**vars(rows.POLICY), "tolerance": m.tolerance, "path_slack": m.path_slack})
+    k = SimpleNamespace(run=run, publish=publish, rows=rows, m=rows.MECHANISM, p=p, order=order, c=c,
                         x=columns[0], dx=columns[1], ddx=columns[2], out=out, status=status, sigma=sigma, its=its,
                         columns=m.columns, sinks={})
     with np.errstate(all="ignore"):
