@@ -1,12 +1,13 @@
 """linkgen.backends.np: NAME_np.py carries the printed primitives the procedure calls, branch_at and
-reach_at only where a chain needs them, and for a resolver mechanism no primitive at all (it runs the
-standard-library module row by row)."""
+reach_at only where a chain needs them, cos_sin where a primitive turns by an angle, and for a resolver
+mechanism also the primitives of its blocks at order 1 (its Newton passes) and the resolver and the
+sweep on lanes; in float it computes in float32."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from linkgen.backends.np import BACKEND, RUNTIME, printed, runtime_sources
+from linkgen.backends.np import BACKEND, FAST, RUNTIME, printed, runtime_sources
 from linkgen.pipeline import build_log
 from linkgen.primitives import PRIMITIVES
 from linkgen.render.view import build_view
@@ -34,11 +35,26 @@ def test_reach_at_comes_with_a_reach():
     assert RUNTIME.source("reach").rstrip("\n") in "\n".join(runtime_sources(view))
 
 
-def test_a_resolver_kernel_prints_no_primitive():
+def test_a_resolver_kernel_carries_its_blocks_primitives_at_order_1_and_the_sweep():
     view = _view("samples/sixbar_fig14/sixbar_fig14.yaml")
     text = "\n".join(runtime_sources(view))
-    assert not any(f"def {name}(" in text for name in PRIMITIVES)
-    assert RUNTIME.source("driver").rstrip("\n") in text
+    inside = {s.function for b in view.blocks for s in b.steps if s.function} | {"link_residual"}
+    for name in PRIMITIVES:
+        assert (f"def {name}(" in text) == (name in view.log.runtime), name
+        assert (f"def {name}{FAST}(" in text) == (name in inside), name
+    assert printed("RRR_links", 1, FAST).rstrip("\n") in text
+    for name in ("driver", "resolver", "group", "sweep", "trig"):
+        assert RUNTIME.source(name).rstrip("\n") in text
+
+
+def test_the_kernel_computes_in_float32_for_float():
+    from linkgen.render import render_backend
+
+    for real, numpy_type in (("float", "float32"), ("double", "float64"), ("long double", "float64")):
+        log = build_log(str(ROOT / "samples/fourbar/fourbar.yaml"), sweep=False, options={"real": real})
+        text = render_backend(BACKEND, build_view(log))["fourbar_np.py"].decode()
+        assert f"REAL = np.{numpy_type}" in text
+        assert ("Real type: float." in text.splitlines()[0]) == (real == "float")
 
 
 def test_the_backend_writes_one_file():

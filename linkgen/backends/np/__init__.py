@@ -69,7 +69,7 @@ def render(view: View, spell: Numpy, template: Template) -> dict[str, bytes]:
         levels=[str(LEVEL[cell.column.quantity]) for cell in view.cells],
         values=[spell.published(cell.column) for cell in view.cells],
         inputs=[f"{spell.lit(i.start)}, {spell.lit(i.stop)}, {spell.lit(i.speed)}" for i in log.inputs],
-        params=params, example=example, fast=fast(view), real=REALS[log.options.real])}
+        params=params, example=example, fast=fast(view), real=REALS.get(log.options.real, REALS["double"]))}
 
 
 BACKEND = Backend("np", "numpy", templates="np", files=("NAME_np.py",), comment=("#", ""), spelling=Numpy,
