@@ -246,10 +246,13 @@ def sweep(k, seq, prev, emit=False, keep=False):
     starts = np.arange(chunks) * steps
     first = prev if chunks == 1 else state_cat([prev, sweep(k, seq[starts[1:] - 1], prev, False, True)])
     ends = run_tiles(k, seq, starts, steps, np.arange(chunks), first, emit, kept)
+    fixing = False
     while True:  # a chunk whose seed is not where the chunk before it ends is solved again from there
         wrong = np.flatnonzero(~agree(state_of(first, slice(1, None)), state_of(ends, slice(None, -1)), k))
         if not wrong.size:
             return kept
+        if not fixing:  # copies to write into (a pass's states hold views)
+            first, ends, fixing = state_of(first, np.arange(chunks)), state_of(ends, np.arange(chunks)), True
         again = state_of(ends, wrong)
         state_put(first, wrong + 1, again)
         state_put(ends, wrong + 1, run_tiles(k, seq, starts, steps, wrong + 1, again, emit, kept))
