@@ -11,7 +11,8 @@ from __future__ import annotations
 
 from collections import Counter
 
-from ...primitives.dsl import Call, Expr, Let, Logic, Num, Primitive, Sym, children, field_order, record_fields
+from ...primitives.dsl import (Binary, Call, Expr, Let, Logic, Neg, Num, Primitive, Select, Sym, children, field_order,
+                               record_fields)
 from ...primitives.printers import ATOM, ExprPrinter
 from ..py.printer import PythonExprs, parameter_lines
 
@@ -61,6 +62,7 @@ class _Lines:
 
     def __init__(self, exprs: NumpyExprs, shared: set[int]):
         self.exprs, self.shared, self.lines = exprs, shared, []  # type: ignore[var-annotated]
+        self.made = 0  # names made for conditions and selections
 
     def temporaries(self, e: Expr) -> None:
         for c in children(e):
@@ -75,6 +77,45 @@ class _Lines:
         self.temporaries(e)
         self.lines.append(f"    {name} = {self.exprs.expr(e)}")
 
+    def branched(self, name: str, e: Expr, indent: str = "    ") -> None:
+        """``name = e`` where e selects (anywhere in it): only the branch every row takes where
+        they all take one (each row gets what np.where gives it), both where the rows part."""
+        if indent == "    ":
+            self.temporaries(e)
+        if not isinstance(e, Select) or id(e) in self.exprs.names:
+            self._hoisted(e, indent)
+            self.lines.append(f"{indent}{name} = {self.exprs.expr(e)}")
+            return
+        self._hoisted(e.cond, indent)
+        self.made += 1
+        cond = f"_c{self.made}"
+        self.lines.append(f"{indent}{cond} = np.asarray({self.exprs.expr(e.cond)})")
+        for test, branch in ((f"if not {cond}.any():", e.b), (f"elif {cond}.all():", e.a)):
+            self.lines.append(f"{indent}{test}")
+            scope = dict(self.exprs.names)  # what a branch names is not there in the others
+            self.branched(name, branch, indent + "    ")
+            self.exprs.names = scope
+        self.lines.append(f"{indent}else:")
+        self.lines.append(f"{indent}    {name} = np.where({cond}, {self.exprs.expr(e.a)}, {self.exprs.expr(e.b)})")
+
+    def _hoisted(self, e: Expr, indent: str) -> None:
+        """The selections inside e (outside any selection's branch) computed first, branched."""
+        for c in children(e):
+            if id(c) in self.exprs.names or isinstance(c, (Sym, Num)):
+                continue
+            if isinstance(c, Select):
+                self.made += 1
+                tmp = f"_s{self.made}"
+                self.branched(tmp, c, indent)
+                self.exprs.names[id(c)] = tmp
+            else:
+                self._hoisted(c, indent)
+
+
+def _selects(e: Expr) -> bool:
+    """Whether e holds a selection."""
+    return isinstance(e, Select) or any(_selects(c) for c in children(e))
+
 
 def _cos_sin_pairs(lets: tuple[Let, ...]) -> dict[str, tuple[str, str]]:
     """{cos let: (its name, the sin let's)} of a cosine and a sine of the same symbol (taken from one
@@ -85,6 +126,47 @@ def _cos_sin_pairs(lets: tuple[Let, ...]) -> dict[str, tuple[str, str]]:
         if isinstance(e, Call) and e.fn in ("cos", "sin") and isinstance(e.args[0], Sym):
             calls[e.fn, e.args[0].name] = let.name
     return {c: (c, calls["sin", arg]) for (fn, arg), c in calls.items() if fn == "cos" and ("sin", arg) in calls}
+
+
+def _substituted(e: Expr, names: dict[str, Expr], memo: dict[int, Expr]) -> Expr:
+    """e with the symbols named in names replaced by their expressions (a node met twice, once)."""
+    if id(e) in memo:
+        return memo[id(e)]
+    kids = children(e)
+    new = [_substituted(c, names, memo) for c in kids]
+    out: Expr = e
+    if isinstance(e, Sym):
+        out = names.get(e.name, e)
+    elif any(n is not c for n, c in zip(new, kids)):
+        if isinstance(e, Binary):
+            out = type(e)(e.op, new[0], new[1])
+        elif isinstance(e, Neg):
+            out = Neg(new[0])
+        elif isinstance(e, Call):
+            out = Call(e.fn, tuple(new))
+        elif isinstance(e, Select):
+            out = Select(new[0], new[1], new[2])
+    memo[id(e)] = out
+    return out
+
+
+def _uses(exprs: list[Expr]) -> tuple[Counter[str], set[str]]:
+    """How often each symbol is read (a shared node counted at each reading), and the symbols read
+    in a branch of a selection."""
+    count: Counter[str] = Counter()
+    branch: set[str] = set()
+
+    def walk(e: Expr, inside: bool) -> None:
+        if isinstance(e, Sym):
+            count[e.name] += 1
+            if inside:
+                branch.add(e.name)
+        for k, c in enumerate(children(e)):
+            walk(c, inside or (isinstance(e, Select) and k > 0))
+
+    for e in exprs:
+        walk(e, False)
+    return count, branch
 
 
 def _record(fields: list[str]) -> str:
@@ -100,16 +182,30 @@ def numpy_function(prim: Primitive, order: int, suffix: str = "") -> str:
     takes records of any higher order too (their first fields).
     """
     exprs = NumpyExprs()
-    fields = prim.result_fields(order)
-    roots = [let.expr for let in prim.live(order)] + [e for _, _, e in fields]
-    roots += [e for e in (prim.status, prim.sigma) if e is not None]
+    # a selection read once, and what a branch alone reads once, is computed where it is read: then
+    # only in the branch the rows take
+    lets, fields = prim.live(order), prim.result_fields(order)
+    tails = [e for _, _, e in fields] + [e for e in (prim.status, prim.sigma) if e is not None]
+    uses, in_branch = _uses([let.expr for let in lets] + tails)
+    inline: dict[str, Expr] = {}
+    memo: dict[int, Expr] = {}
+    body: list[Let] = []
+    for let in lets:
+        e = _substituted(let.expr, inline, memo)
+        if uses[let.name] == 1 and (isinstance(e, Select) or let.name in in_branch):
+            inline[let.name] = e
+        else:
+            body.append(Let(let.name, e, let.order))
+    lets = tuple(body)
+    fields = [(o, f, _substituted(e, inline, memo)) for o, f, e in fields]
+    status, sigma_of = (None if e is None else _substituted(e, inline, memo) for e in (prim.status, prim.sigma))
+    roots = [let.expr for let in lets] + [e for _, _, e in fields] + [e for e in (status, sigma_of) if e is not None]
     out = _Lines(exprs, _shared(roots))
     unpack = parameter_lines(prim, order)
     if suffix:
         unpack = [f"{line}[:{line.split(' = ')[0].count(',') + 1}]" for line in unpack]
     out.lines = [f"def {prim.name}{suffix}({', '.join(p.name for p in prim.params)}):", f'    """{prim.doc}"""',
                  *unpack]
-    lets = prim.live(order)
     pairs = _cos_sin_pairs(lets) if prim.status is None else {}  # no status decided on a rounded cosine
     sines = {s for _, s in pairs.values()}
     for let in lets:
@@ -117,20 +213,24 @@ def numpy_function(prim: Primitive, order: int, suffix: str = "") -> str:
             assert isinstance(let.expr, Call)
             out.lines.append(f"    {', '.join(pairs[let.name])} = cos_sin({exprs.expr(let.expr.args[0])})")
         elif let.name not in sines:
-            out.assign(let.name, let.expr)
-    if prim.status is None:
+            out.branched(let.name, let.expr)
+    if status is None:
         out.lines += ["    _st = np.asarray(0)", "    _sigma = np.asarray(1.0, dtype=REAL)"]
     else:
-        out.assign("_st", prim.status)
-        out.lines[-1] = f"    _st = np.asarray({exprs.expr(prim.status)})"
-        sigma = exprs.expr(prim.sigma) if prim.sigma is not None else "1.0"
-        out.lines += [f"    _sigma = np.asarray({sigma}, dtype=REAL)", "    _fails = _st == 1"]
+        out.branched("_st", status)
+        out.branched("_sigma", sigma_of if sigma_of is not None else Num(1.0))
+        out.lines += ["    _st = np.asarray(_st)", "    _sigma = np.asarray(_sigma, dtype=REAL)", "    _fails = _st == 1"]
         if order > 0:
             out.lines.append("    _singular = _fails | (_st == 3)")
     for _, _, e in fields:
         out.temporaries(e)
+    by_field = {(o.name, f): e for o, f, e in fields}
+    for k, (o, f, e) in enumerate(fields):
+        if _selects(e) and id(e) not in exprs.names:  # a field that selects: its own statement
+            out.branched(f"_f{k + 1}", e)
+            exprs.names[id(e)] = f"_f{k + 1}"
     for p in prim.outputs:
-        fields_of = [exprs.expr(prim.results[p.name][f]) for f in record_fields(p.kind, order)]
+        fields_of = [exprs.expr(by_field[p.name, f]) for f in record_fields(p.kind, order)]
         out.lines.append(f"    _{p.name} = {_record(fields_of)}")
     if prim.status is not None:
         out.lines.append(f"    if np.any({'_singular' if order > 0 else '_fails'}):  # nan where the rows failed")
