@@ -11,8 +11,21 @@ from __future__ import annotations
 
 from collections import Counter
 
-from ...primitives.dsl import (Binary, Call, Expr, Let, Logic, Neg, Num, Primitive, Select, Sym, children, field_order,
-                               record_fields)
+from ...primitives.dsl import (
+    Binary,
+    Call,
+    Expr,
+    Let,
+    Logic,
+    Neg,
+    Num,
+    Primitive,
+    Select,
+    Sym,
+    children,
+    field_order,
+    record_fields,
+)
 from ...primitives.printers import ATOM, ExprPrinter
 from ..py.printer import PythonExprs, parameter_lines
 
@@ -219,13 +232,14 @@ def numpy_function(prim: Primitive, order: int, suffix: str = "") -> str:
     else:
         out.branched("_st", status)
         out.branched("_sigma", sigma_of if sigma_of is not None else Num(1.0))
-        out.lines += ["    _st = np.asarray(_st)", "    _sigma = np.asarray(_sigma, dtype=REAL)", "    _fails = _st == 1"]
+        out.lines += ["    _st = np.asarray(_st)", "    _sigma = np.asarray(_sigma, dtype=REAL)",
+                      "    _fails = _st == 1"]
         if order > 0:
             out.lines.append("    _singular = _fails | (_st == 3)")
     for _, _, e in fields:
         out.temporaries(e)
     by_field = {(o.name, f): e for o, f, e in fields}
-    for k, (o, f, e) in enumerate(fields):
+    for k, (_, _, e) in enumerate(fields):
         if _selects(e) and id(e) not in exprs.names:  # a field that selects: its own statement
             out.branched(f"_f{k + 1}", e)
             exprs.names[id(e)] = f"_f{k + 1}"

@@ -95,9 +95,11 @@ class Numpy(Python):
         """The fields of a record that hold its position (the rest are its rates)."""
         return len(record_fields(v.kind, 0))
 
-    def block_writes(self, b: Group) -> list[tuple[str, int]]:
-        """The records a resolver block computes, its Add-links first, with their fields' count."""
-        return [(name, len(self.fields(self.variables[name].kind))) for name in b.group.add_links + b.group.writes]
+    def block_writes(self, b: Group) -> list[tuple[str, int, int]]:
+        """The records a resolver block computes, its Add-links first, with their fields' count
+        and their position's."""
+        return [(name, len(self.fields(self.variables[name].kind)), self.position_fields(self.variables[name]))
+                for name in b.group.add_links + b.group.writes]
 
     def branch_targets(self, b: Group) -> str:
         """The work fields of a block's measured branches, as targets of one assignment."""

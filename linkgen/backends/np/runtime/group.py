@@ -23,19 +23,19 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
         frozen = tuple(still(record[:2 * width], width) for record, (_, width) in zip(live, b.reads))
         br = tuple(np.where(s < 0, -1, 1) for s in state[b.size:b.size + b.branches])
         wb = copy.copy(w)
-        ok, x, steps, jac, chains = newton_lanes(b, wb, frozen, br, state[:b.size], tol, p.max_iterations, reach,
-                                                 p.newton_halvings)
+        ok, x, steps, jac, chains, sens = newton_lanes(b, wb, frozen, br, state[:b.size], tol, p.max_iterations, reach,
+                                                       p.newton_halvings)
         its[at] = steps
         good = np.flatnonzero(ok & (chains >= p.min_chain_sigma))
         if not good.size:
             continue
-        x, jac, live, br = (take(v, good) for v in (x, jac, live, br))
-        failed, cond_b, turn_b, rep, sig = rates_lanes(b, wb, live, br, x, jac, order)
+        x, jac, live, br, sens = (take(v, good) for v in (x, jac, live, br, sens))
+        failed, cond_b, turn_b, rep, sig = rates_lanes(b, wb, live, br, x, jac, sens, order)
         fine = np.flatnonzero(~failed)
         done = at[good[fine]]
         settled[done], cond[done], turn[done], solver[done] = True, cond_b[fine], turn_b[fine], k
         whole = done.size == lanes
-        for name, fields in b.writes:
+        for name, fields, _ in b.writes:
             record = getattr(wb, name)
             if whole:  # every lane solved by this block: its records as they are
                 written[name] = record
@@ -58,7 +58,7 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
                 sigma[n] = np.full(lanes, sigma[n], dtype=REAL)
             sigma[n][done] = np.broadcast_to(s, failed.shape)[fine]
     resolved = settled & ~skip
-    for name, fields in g.blocks[0].writes:  # what the procedure reads after the group: nan where unsolved
+    for name, fields, _ in g.blocks[0].writes:  # what the procedure reads after the group: nan where unsolved
         if name not in written:
             written[name] = tuple(np.full(lanes, NAN, dtype=REAL) for _ in range(fields))
     for name, record in written.items():

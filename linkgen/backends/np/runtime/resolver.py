@@ -75,9 +75,11 @@ def block_pass(b, w, r, br, a, da, dda, fast=False):
 
 def jacobian_lanes(b, w, r, br, a):
     """Residuals and Jacobian at a (one pass at order 1 per Add-link, unit rate, r the reads
-    still): (failed lanes, f, jac, chains of the last pass), each an array of the lanes."""
+    still): (failed lanes, f, jac, chains of the last pass, sensitivities), each an array of the
+    lanes; the sensitivities are the rates of the block's records at each unit rate, in the
+    order of b.writes, Add-link after Add-link."""
     n, lanes = len(a), np.shape(a[0])
-    failed, f, jac, chains = False, None, [[None] * n for _ in range(n)], None
+    failed, f, jac, chains, sens = False, None, [[None] * n for _ in range(n)], None, []
     for j in range(n):
         unit = [1.0 if i == j else 0.0 for i in range(n)]
         bad, rec, chains, _, _ = block_pass(b, w, r, br, a, unit, unit, True)
@@ -85,20 +87,23 @@ def jacobian_lanes(b, w, r, br, a):
         f = [lanes_of(x[0], lanes[0]) for x in rec]
         for i in range(n):
             jac[i][j] = lanes_of(rec[i][1], lanes[0])
-    return np.array(failed), f, jac, lanes_of(chains, lanes[0])
+        for name, _, width in b.writes:
+            sens += [lanes_of(v, lanes[0]) for v in getattr(w, name)[width:2 * width]]
+    return np.array(failed), f, jac, lanes_of(chains, lanes[0]), sens
 
 
 def newton_lanes(b, w, r, br, a, tol, max_iter, reach, halvings):
     """The Python runtime's newton on every lane: iterate until max|f| <= tol, then one step
     more; a step that makes a chain fail is halved up to halvings times; a solution farther
-    than reach from the start is refused.  Returns (ok, a, its, jac, chains), each of all the
-    lanes (a, jac and chains where ok)."""
+    than reach from the start is refused.  Returns (ok, a, its, jac, chains, sensitivities),
+    each of all the lanes (a, jac, chains and the sensitivities of the last pass where ok)."""
     lanes, n = np.shape(a[0])[0], len(a)
     ok, its = np.zeros(lanes, dtype=bool), np.zeros(lanes, dtype=int)
     out_a = [np.full(lanes, NAN, dtype=REAL) for _ in range(n)]
     out_jac = [[np.full(lanes, NAN, dtype=REAL) for _ in range(n)] for _ in range(n)]
     out_chains = np.full(lanes, NAN, dtype=REAL)
-    failed, f, jac, _ = jacobian_lanes(b, w, r, br, a)
+    out_sens = None
+    failed, f, jac, _, _ = jacobian_lanes(b, w, r, br, a)
     idx, start = np.arange(lanes), a
     for it in range(1, max_iter + 1):
         if failed.any():  # these lanes end here
@@ -110,7 +115,7 @@ def newton_lanes(b, w, r, br, a, tol, max_iter, reach, halvings):
         dx, det = solve_lanes(jac, [-v for v in f])
         t = np.ones(idx.size, dtype=REAL)
         trial = [x + d for x, d in zip(a, dx)]
-        failed, f2, jac2, chains = jacobian_lanes(b, w, r, br, trial)
+        failed, f2, jac2, chains, sens = jacobian_lanes(b, w, r, br, trial)
         failed = failed | (det == 0)
         for _ in range(halvings):  # a step that makes a chain fail: halved
             again = np.flatnonzero(failed & (det != 0))
@@ -118,8 +123,8 @@ def newton_lanes(b, w, r, br, a, tol, max_iter, reach, halvings):
                 break
             t[again] = t[again] / 2
             part = [take(x, again) + t[again] * take(d, again) for x, d in zip(a, dx)]
-            bad, fp, jp, cp = jacobian_lanes(b, w, take(r, again), take(br, again), part)
-            trial, f2 = _replaced(trial, part, again), _replaced(f2, fp, again)
+            bad, fp, jp, cp, sp = jacobian_lanes(b, w, take(r, again), take(br, again), part)
+            trial, f2, sens = _replaced(trial, part, again), _replaced(f2, fp, again), _replaced(sens, sp, again)
             chains = _replaced([chains], [cp], again)[0]
             jac2 = [_replaced(row, part_row, again) for row, part_row in zip(jac2, jp)]
             failed[again] = bad
@@ -138,8 +143,12 @@ def newton_lanes(b, w, r, br, a, tol, max_iter, reach, halvings):
                 for j in range(n):
                     out_jac[k][j][at] = jac[k][j][done]
             out_chains[at] = chains[done]
+            if out_sens is None:
+                out_sens = [np.full(lanes, NAN, dtype=REAL) for _ in sens]
+            for o, v in zip(out_sens, sens):
+                o[at] = v[done]
             failed = failed | done
-    return ok, out_a, its, out_jac, out_chains
+    return ok, out_a, its, out_jac, out_chains, out_sens or []
 
 
 def _replaced(arrays, parts, idx):
@@ -163,22 +172,32 @@ def conditioning(jac, det):
     return np.abs(det) / np.maximum(prod, 1.0)
 
 
-def rates_lanes(b, w, r, br, a, jac, order):
+def rates_lanes(b, w, r, br, a, jac, sens, order):
     """The Python runtime's addlink_rates on every lane: the Add-link rates (and at order 2 the
     accelerations) by the implicit-function theorem, then the final pass, which leaves the
-    block's records in w (r: the reads as they are).  Returns (failed lanes, sigma, orientation,
-    reports, conditioning)."""
+    block's records in w (r: the reads as they are).  The final pass is the pass at the rates:
+    its accelerations are the pass's plus the Add-link accelerations times the records'
+    sensitivities (sens, from Newton's last pass: the same positions), as accelerations are
+    linear in them.  Returns (failed lanes, sigma, orientation, reports, conditioning)."""
     n = len(a)
     zero = [0.0] * n
     _, det = solve_lanes(jac, zero)
     sigma = conditioning(jac, det)
     _, rec, _, _, _ = block_pass(b, w, r, br, a, zero, zero, True)
     rates, _ = solve_lanes(jac, [-x[1] for x in rec])
-    accs = zero
-    if order >= 2:
-        _, rec, _, _, _ = block_pass(b, w, r, br, a, rates, zero)
-        accs, _ = solve_lanes(jac, [-x[2] for x in rec])
     if (det == 0).any():  # no rates at a singular Jacobian
-        rates, accs = ([np.where(det == 0, NAN, x) for x in v] for v in (rates, accs))
-    failed, _, _, report, steps = block_pass(b, w, r, br, a, rates, accs)
+        rates = [np.where(det == 0, NAN, x) for x in rates]
+    failed, rec, _, report, steps = block_pass(b, w, r, br, a, rates, zero)
+    if order >= 2:
+        accs, _ = solve_lanes(jac, [-x[2] for x in rec])
+        if (det == 0).any():
+            accs = [np.where(det == 0, NAN, x) for x in accs]
+        k = 0
+        for j in range(n):
+            for name, _, width in b.writes:
+                record = list(getattr(w, name))
+                for i in range(width):
+                    record[2 * width + i] = record[2 * width + i] + accs[j] * sens[k + i]
+                setattr(w, name, tuple(record))
+                k += width
     return failed, sigma, np.sign(det), report, steps
