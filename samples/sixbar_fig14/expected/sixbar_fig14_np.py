@@ -1120,6 +1120,7 @@ def failed_lanes(report, lanes):
 LANES = 8192  # rows solved side by side at most
 STEPS = 16  # rows of a chunk (fewer: one row at a time)
 RATES_AGREE = 1e-6  # two states' rates agree to this share
+ALONE = 48  # a sweep of no more rows is solved by the standard-library module, row after row
 
 
 def state_of(s, idx):
@@ -1346,6 +1347,16 @@ def sweep(k, seq, prev, emit=False, keep=False):
     (keep) or None."""
     n = len(seq)
     kept = empty_state(k, n) if keep else None
+    if n <= ALONE:  # few rows: one by one, faster than passes of a lane or two
+        for j, row in enumerate(seq):
+            out, prev = alone_row(k, prev, row)
+            if emit:
+                for name in k.out:
+                    k.out[name][row] = out[name]
+                k.status[row], k.sigma[:, row], k.its[:, row] = out["status"], out["sigma"], out["iterations"]
+            if keep:
+                state_put(kept, [j], prev)
+        return kept
     steps, chunks = layout(n)
     starts = np.arange(chunks) * steps
     first = prev if chunks == 1 else state_cat([prev, sweep(k, seq[starts[1:] - 1], prev, False, True)])
