@@ -134,14 +134,23 @@ def spearman(x: list[float], y: list[float]) -> float:
 
 
 def plot(rows: list[dict]) -> None:
-    lines = [(f"{r['pairs'][0]}-{r['pairs'][1]} |f| {r['norm']:.2g}", svg.COLOURS[k % len(svg.COLOURS)],
-              [(c, min(s, CAP + 1)) for c, s in zip(CHANGES, r["steps"])]) for k, r in enumerate(rows)]
+    """Newton steps against the input change, one line per candidate (drawn apart by a twentieth of
+    a step each, so that equal counts stay visible), and the mean steps against the norm of f."""
+    shift = [(k - (len(rows) - 1) / 2) / 20 for k in range(len(rows))]
+    lines = [(f"{r['pairs'][0]}-{r['pairs'][1]}, |f| {r['norm']:.2g}", svg.COLOURS[k % len(svg.COLOURS)],
+              [(c, min(s, CAP + 1) + shift[k]) for c, s in zip(CHANGES, r["steps"])]) for k, r in enumerate(rows)]
     top = max(s for r in rows for s in r["steps"])
-    panel = svg.Panel("Fig. 14 six-bar: Newton steps of each Add-link candidate (the paper's Fig. 16)",
+    steps = svg.Panel("Newton steps of each Add-link candidate (the paper's Fig. 16)",
                       svg.Axis("input change from the sketch (degrees)", min(CHANGES), max(CHANGES)),
                       svg.Axis("Newton steps to 1e-10 L", 0, top + 1), lines=lines)
-    svg.write(PLOT, [panel], f"started from the sketch's Add-link length; {CAP + 1} steps: no convergence in {CAP}",
-              width=760, height=460)
+    marks = [(f"{r['pairs'][0]}-{r['pairs'][1]}", svg.COLOURS[k % len(svg.COLOURS)], "circle", r["norm"],
+              statistics.mean(r["steps"])) for k, r in enumerate(rows) if r["norm"]]
+    means = svg.Panel("Mean Newton steps over the 21 inputs against the norm of f at the probe",
+                      svg.log_axis("norm of f at the sketch's input + 5 degrees", [m[3] for m in marks]),
+                      svg.Axis("mean Newton steps", 0, top + 1), marks=marks)
+    note = (f"Fig. 14 six-bar; Newton from the sketch's Add-link length; lines a twentieth of a step apart; "
+            f"{CAP + 1} steps: no convergence in {CAP}")
+    svg.write(PLOT, [steps, means], note, width=760, height=420)
 
 
 def section(rows: list[dict], log) -> str:

@@ -7,7 +7,8 @@ singular (a change point: no unique motion) is left out.
 
 Errors, the worst over the rows compared and the columns the reference has: positions in units of
 the length scale L, angles in radians (so both are "in L"), rates relative to the larger of the
-value and its quantity's scale (tests/programs.noise_floors).
+value and its quantity's scale (tests/programs.noise_floors); and the positions of pairs and points
+alone, which every peer computes.
 """
 
 from __future__ import annotations
@@ -102,6 +103,7 @@ class Errors:
 
     position: float  # positions / L and angles (rad)
     rate: float  # velocities and accelerations, relative (nan without any)
+    points: float  # the positions of pairs and points alone / L (what every peer computes)
     compared: int  # rows compared
     failed: int  # rows the reference solves and the program fails
     unmatched: tuple[str, ...]  # output columns the reference has no value for
@@ -109,7 +111,7 @@ class Errors:
 
 def worst(exact: Exact, got: list[dict[str, float] | None]) -> Errors:
     """The worst errors of ``got`` (per reference row: column -> value; None: the row failed)."""
-    pos, rate, compared, failed = 0.0, math.nan, 0, 0
+    pos, rate, points, compared, failed = 0.0, math.nan, 0.0, 0, 0
     unmatched: set[str] = set()
     for ref, row in zip(exact.rows, got):
         if ref is None:
@@ -129,19 +131,27 @@ def worst(exact: Exact, got: list[dict[str, float] | None]) -> Errors:
             if q in POSITIONS:
                 err = abs(float(wrap(value - want))) if q == "angle" else abs(value - want) / exact.length
                 pos = max(pos, err) if math.isfinite(err) else math.inf
+                if q == "position":
+                    points = max(points, err) if math.isfinite(err) else math.inf
             else:
                 err = abs(value - want) / max(abs(want), exact.scales[q])
                 rate = err if math.isnan(rate) else max(rate, err) if math.isfinite(err) else math.inf
-    return Errors(pos, rate, compared, failed, tuple(sorted(unmatched)))
+    return Errors(pos, rate, points, compared, failed, tuple(sorted(unmatched)))
 
 
-def csv_errors(exact: Exact, picked: list[int], header: list[str], data: list[list[float]],
-               status: list[int]) -> Errors:
-    """The worst errors of a program's sweep CSV (tests/programs.parse) at the reference's rows; the
-    input columns are not compared (a float program rounds its inputs: that is part of its error)."""
+POINT_FIELDS = ("x", "y", "vx", "vy", "ax", "ay")  # the columns of pairs and points
+
+
+def csv_errors(exact: Exact, picked: list[int], header: list[str], data: list[list[float]], status: list[int],
+               points_only: bool = False) -> Errors:
+    """The worst errors of a program's sweep CSV (tests/programs.parse) at the reference's rows (with
+    ``points_only``, of the pairs' and points' columns alone); the input columns are not compared (a
+    float program rounds its inputs: that is part of its error)."""
     n_inputs = exact.values.shape[1]
+    keep = [k for k, name in enumerate(header) if k >= n_inputs and name != "status"
+            and (not points_only or name.rpartition(".")[2] in POINT_FIELDS)]
     got: list[dict[str, float] | None] = []
     for k in picked:
         ok = k < len(status) and status[k] <= 0
-        got.append(dict(zip(header[n_inputs:], data[k][n_inputs:])) if ok else None)
+        got.append({header[j]: data[k][j] for j in keep} if ok else None)
     return worst(exact, got)

@@ -144,10 +144,13 @@ def _time(seconds: float, scale: float, unit: str) -> str:
 
 
 def _rows(rates: dict[int, float], rows: int) -> str:
+    """Rows per second at ``rows``; where the first size of NP_ROWS above the ones run, the largest
+    run in brackets; '-' past it."""
     if rows in rates:
         return f"{rates[rows]:.3g}"
-    if rates and max(rates) < rows:
-        return f"({rates[max(rates)]:.3g} at {max(rates):.0e})" if rows == max(lang.NP_ROWS) else "-"
+    largest = max(rates, default=0)
+    if largest and min((r for r in lang.NP_ROWS if r > largest), default=0) == rows:
+        return f"({rates[largest]:.3g} at {lang.size(largest)})"
     return "-"
 
 
@@ -223,7 +226,8 @@ build` builds it (`build_log(path, options=...)`), so a knob shows here once it 
   state kept; the median of @C_RUNS@ runs, per configuration.  Python: the generated `NAME.py`'s
   `solve` over the file's sweep in order (median of @PY_RUNS@ runs).  numpy: rows per second of
   `NAME_np.solve` on all rows at once (median of @NP_RUNS@ calls after one; a size the size before
-  predicts to take over @NP_BUDGET@ s a call is not run, the largest run is given in brackets).
+  predicts to take over @NP_BUDGET@ s a call is not run: the largest size run is then given in
+  brackets, and '-' past it).
   Octave: `NAME_solve.m` over @OCTAVE_ROWS@ rows (a smaller run), per configuration.
 - Error: the worst over @ROWS@ rows of the sweep (every 10 degrees of a turn) of the program's own
   sweep (`NAME_main.c`, `NAME.py`, `NAME_np.py`) against the 50-digit reference of

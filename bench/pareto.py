@@ -1,4 +1,5 @@
-"""The Pareto plot: time per configuration against worst position error, log-log, for the mechanisms
+"""The Pareto plot: time per configuration against the worst error of the pairs' and points' positions
+(which every peer computes), log-log, for the mechanisms
 the peers run on: one mark per knob setting (linkgen's C program), per linkgen language at the
 default setting, and per peer, each labelled.
 
@@ -30,16 +31,32 @@ def marks(sample: str, knobs: dict, peers: dict) -> list[tuple[str, str, str, fl
     """(label, colour, shape, seconds, error) of the sample's settings and peers."""
     out = []
     for m in knobs.get(sample, []):
-        e = (m["errors"].get("C") or {}).get("position", math.nan)
-        if _fine(m["c"]) and isinstance(e, float) and math.isfinite(e) and not m["label"].startswith("most acc"):
+        e = (m["errors"].get("C") or {}).get("points", math.nan)
+        if "C" in m["same"] or m["label"].startswith("most accurate"):
+            continue  # the default's program, or a setting measured above: its mark is there
+        if _fine(m["c"]) and isinstance(e, float) and math.isfinite(e):
             out.append((f"C {m['label']}", svg.COLOURS[0], "circle", m["c"], max(e, FLOOR)))
     for k, p in enumerate(peers.get(sample, [])):
+        if p["program"].startswith("linkgen C"):
+            continue  # the knobs' default
         if _fine(p["full"]) and isinstance(p["position_error"], float) and math.isfinite(p["position_error"]):
             linkgen = p["program"].startswith("linkgen")
             colour = svg.COLOURS[0] if linkgen else svg.COLOURS[1 + k % (len(svg.COLOURS) - 1)]
             out.append((p["program"], colour, "triangle" if linkgen else "square", p["full"],
                         max(p["position_error"], FLOOR)))
     return out
+
+
+def merged(points: list[tuple[str, str, str, float, float]]) -> list[tuple[str, str, str, float, float]]:
+    """Marks at the same place (the same program measured under two names) as one, their labels joined."""
+    out: dict[tuple[float, float], tuple[str, str, str, float, float]] = {}
+    for label, colour, shape, x, y in points:
+        if (x, y) in out:
+            old = out[(x, y)]
+            out[(x, y)] = (f"{old[0]} = {label.removeprefix('C ').split(':')[0]}", *old[1:])
+        else:
+            out[(x, y)] = (label, colour, shape, x, y)
+    return list(out.values())
 
 
 def plot() -> None:
@@ -50,11 +67,11 @@ def plot() -> None:
     peers = json.loads(PEERS.read_text(encoding="utf-8"))
     panels = []
     for sample in peers:
-        pts = marks(sample, knobs, peers)
+        pts = merged(marks(sample, knobs, peers))
         if not pts:
             continue
         x = svg.log_axis("seconds per configuration (with velocities and accelerations)", [p[3] for p in pts])
-        y = svg.log_axis("worst position error / L", [p[4] for p in pts])
+        y = svg.log_axis("worst error of the pairs and points / L", [p[4] for p in pts])
         panels.append(svg.Panel(sample, x, y, marks=pts))
     svg.write(PLOT, panels, f"errors of 0 drawn at {FLOOR:g}; linkgen C per knob setting (circles), linkgen's "
                             "other programs at the default (triangles), peers (squares)", width=760, height=460)

@@ -51,7 +51,7 @@ class Peer:
     program: str
     positions: float = NAN  # positions only
     full: float = NAN  # with velocities and accelerations
-    position_error: float = NAN
+    position_error: float = NAN  # pairs and points
     rate_error: float = NAN
     note: str = ""
 
@@ -72,16 +72,16 @@ def linkgen_programs(path: Path, ex: exact.Exact, picked: list[int]) -> list[Pee
         shutil.rmtree(folder, ignore_errors=True)
         write_all(render_all(log), str(folder))
         tc, c_text = lang.time_c(log, folder)
-        tp, _ = lang.time_python(log, folder, f"peers_{path.stem}_{order}")
-        rates, _ = lang.time_numpy(log, folder, f"peers_{path.stem}_{order}_np")
+        tp, py_text = lang.time_python(log, folder, f"peers_{path.stem}_{order}")
+        rates, np_text = lang.time_numpy(log, folder, f"peers_{path.stem}_{order}_np")
         tn = 1.0 / rates.get(10**5, rates[max(rates)])
-        for peer, t in ((c, tc), (py, tp), (np_, tn)):
+        for peer, t, text in ((c, tc, c_text), (py, tp, py_text), (np_, tn, np_text)):
             setattr(peer, "positions" if order == 0 else "full", t)
-        if order == 2:
-            e = exact.csv_errors(ex, picked, *parse(c_text))
-            c.position_error, c.rate_error = e.position, e.rate
+            if order == 2:
+                e = exact.csv_errors(ex, picked, *parse(text), points_only=True)
+                peer.position_error, peer.rate_error = e.points, e.rate
     if max(rates) < 10**5:
-        np_.program = f"linkgen numpy (per row, {max(rates):.0e} rows)"
+        np_.program = f"linkgen numpy (per row, {lang.size(max(rates))} rows)"
     return [c, py, np_]
 
 
@@ -103,7 +103,7 @@ def pylinkage(path: Path, numba: bool) -> Peer:
     ex = exact.solve(str(path), values, np.full_like(values, log.inputs[0].speed))
     e = exact.worst(ex, rows)
     note = "" if out["numba"] == numba else f"numba in use: {out['numba']}"
-    return Peer(name, out["times"]["positions"], out["times"]["full"], e.position, e.rate, note)
+    return Peer(name, out["times"]["positions"], out["times"]["full"], e.points, e.rate, note)
 
 
 def fsolve(path: Path, ex: exact.Exact, picked: list[int]) -> Peer:
@@ -119,7 +119,7 @@ def fsolve(path: Path, ex: exact.Exact, picked: list[int]) -> Peer:
     full, rows, missed = fsolve_peer.sweep(loops, values, log.inputs[0].speed, full=True)
     e = exact.worst(ex, [rows[k] for k in picked])
     note = f"fsolve reports no convergence on {missed} of {len(values)} rows" if missed else ""
-    return Peer(name, positions, full, e.position, e.rate, note)
+    return Peer(name, positions, full, e.points, e.rate, note)
 
 
 def _cell(seconds: float) -> str:
@@ -140,11 +140,16 @@ def section(results: dict[str, list[Peer]]) -> str:
              "(`make bench` installs them); a peer that does not install is named here and the rest runs.",
              "linkgen's times are its default build (order 2, every output; bench/languages.py) and the",
              "build at order 0 for positions only.  Errors as in the knob tables (50-digit reference, the",
-             "worst over the reference's rows; a peer compared at the input value it reached).",
-             "Medians of repeated sweeps on a shared machine: read the ratios.", ""]
+             "worst over the reference's rows; a peer compared at the input value it reached), of the",
+             "pairs and points alone, which every program here computes (linkgen's link angles are left out).",
+             "Medians of repeated sweeps on a shared machine: read the ratios.", "",
+             "The Pareto plot puts them together with every knob setting of linkgen's C program (the knob",
+             "tables above; `bench/pareto.py`): time per configuration with velocities and accelerations",
+             "against the worst error of the pairs' and points' positions, log-log.", "",
+             "![time per configuration against worst error](performance-pareto.svg)", ""]
     for sample, peers in results.items():
         lines += [f"### {sample}", "",
-                  "| program | positions only | with velocities and accelerations | positions: worst error / L "
+                  "| program | positions only | with velocities and accelerations | pairs and points: worst error / L "
                   "| rates: worst error | note |", "| --- | ---: | ---: | ---: | ---: | --- |"]
         for p in peers:
             errors = [f"{e:.1e}" if math.isfinite(e) else "-" for e in (p.position_error, p.rate_error)]

@@ -231,4 +231,6 @@ DOC = ("knobs", "peers", "pareto", "addlinks", "builds", "scaling", "accuracy")
 if __name__ == "__main__":
     asked = sys.argv[1:] or list(DOC)
     for name in list(GROUPS) if asked == ["all"] else asked:
+        started = time.perf_counter()
         GROUPS[name]()
+        print(f"bench {name}: {time.perf_counter() - started:.0f} s", file=sys.stderr, flush=True)

@@ -38,9 +38,9 @@ class Axis:
 
 
 def log_axis(label: str, values: list[float]) -> Axis:
-    """A log axis spanning the positive values, padded to whole decades."""
+    """A log axis spanning the positive values with a quarter decade to spare, in whole decades."""
     logs = [math.log10(v) for v in values if v > 0 and math.isfinite(v)]
-    lo, hi = (math.floor(min(logs)), math.ceil(max(logs))) if logs else (0, 1)
+    lo, hi = (math.floor(min(logs) - 0.25), math.ceil(max(logs) + 0.25)) if logs else (0, 1)
     return Axis(label, lo, hi if hi > lo else lo + 1, log=True)
 
 
@@ -87,17 +87,35 @@ def _panel(p: Panel, left: float, top: float, width: float, height: float) -> li
                f"{escape(p.x.label)}</text>")
     out.append(f'<text transform="translate({left - 48:.1f} {top + height / 2:.1f}) rotate(-90)" '
                f'text-anchor="middle">{escape(p.y.label)}</text>')
-    for label, colour, points in p.lines:
+    for k, (label, colour, points) in enumerate(p.lines):  # a legend in the right margin
         d = " ".join(f"{px(x):.1f},{py(y):.1f}" for x, y in points)
         out.append(f'<polyline points="{d}" fill="none" stroke="{colour}" stroke-width="1.5"/>')
-        if points:
-            x, y = points[-1]
-            out.append(f'<text x="{px(x) + 4:.1f}" y="{py(y) + 4:.1f}" font-size="10" fill="{colour}">'
-                       f"{escape(label)}</text>")
+        y = top + 8 + 16 * k
+        out.append(f'<line x1="{left + width + 10:.1f}" y1="{y:.1f}" x2="{left + width + 30:.1f}" y2="{y:.1f}" '
+                   f'stroke="{colour}" stroke-width="2"/>')
+        out.append(f'<text x="{left + width + 34:.1f}" y="{y + 4:.1f}" font-size="10">{escape(label)}</text>')
+    placed: list[tuple[float, float, float, float]] = []
     for label, colour, shape, x, y in p.marks:
         out.append(_mark(shape, px(x), py(y), colour))
-        out.append(f'<text x="{px(x) + 6:.1f}" y="{py(y) - 5:.1f}" font-size="9">{escape(label)}</text>')
+        out.append(_label(label, px(x), py(y), placed))
     return out
+
+
+def _label(text: str, x: float, y: float, placed: list[tuple[float, float, float, float]]) -> str:
+    """A mark's label beside it: above right, below right, above left or below left, the first place
+    whose box meets no label placed before (else above right)."""
+    width, height = 5.0 * len(text), 10.0
+    tries = [(x + 6, y - 5, "start"), (x + 6, y + 13, "start"), (x - 6, y - 5, "end"), (x - 6, y + 13, "end")]
+    for tx, ty, anchor in tries:
+        box = (tx if anchor == "start" else tx - width, ty - height, width, height)
+        if not any(box[0] < b[0] + b[2] and b[0] < box[0] + box[2] and box[1] < b[1] + b[3] and b[1] < box[1] + box[3]
+                   for b in placed):
+            break
+    else:
+        tx, ty, anchor = tries[0]
+        box = (tx, ty - height, width, height)
+    placed.append(box)
+    return f'<text x="{tx:.1f}" y="{ty:.1f}" font-size="9" text-anchor="{anchor}">{escape(text)}</text>'
 
 
 def write(path, panels: list[Panel], note: str, width: int = 640, height: int = 420) -> None:
