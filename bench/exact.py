@@ -84,17 +84,18 @@ def of_sample(path: str) -> tuple[Exact, list[int]]:
     return solve(path, values[picked], rates[picked]), picked
 
 
-def _unit(name: str, row: dict[str, float]) -> float | None:
-    """The reference value of a unit-vector column (angles: unit): cos or sin of its link's angle."""
+def _unit(name: str, row: dict[str, float]) -> tuple[float, str] | None:
+    """The reference value and quantity of a unit-vector column (angles: unit; link.ux, .uy and their
+    rates .dux, .duy, .ddux, .dduy): cos and sin of the link's angle and their time derivatives."""
     link, _, part = name.rpartition(".")
-    phi = row.get(f"{link}.phi")
-    if phi is None:
+    if f"{link}.phi" not in row or part not in ("ux", "uy", "dux", "duy", "ddux", "dduy"):
         return None
-    if "cos" in part or part in ("ux", "cx", "ex", "c"):
-        return math.cos(phi)
-    if "sin" in part or part in ("uy", "cy", "ey", "s"):
-        return math.sin(phi)
-    return None
+    phi, omega, alpha = (row.get(f"{link}.{k}", math.nan) for k in ("phi", "omega", "alpha"))
+    c, s = math.cos(phi), math.sin(phi)
+    return {"ux": (c, "angle"), "uy": (s, "angle"), "dux": (-s * omega, "angular_velocity"),
+            "duy": (c * omega, "angular_velocity"),
+            "ddux": (-c * omega * omega - s * alpha, "angular_acceleration"),
+            "dduy": (-s * omega * omega + c * alpha, "angular_acceleration")}[part]
 
 
 @dataclass
@@ -121,10 +122,9 @@ def worst(exact: Exact, got: list[dict[str, float] | None]) -> Errors:
             continue
         compared += 1
         for name, value in row.items():
-            want = ref.get(name)
-            q = exact.quantity.get(name)
+            want, q = ref.get(name), exact.quantity.get(name)
             if want is None:
-                want, q = _unit(name, ref), "angle"
+                want, q = _unit(name, ref) or (None, None)
             if want is None or q is None:
                 unmatched.add(name)
                 continue
