@@ -17,6 +17,7 @@ from __future__ import annotations
 import json
 import math
 import shutil
+import statistics
 import sys
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -139,18 +140,22 @@ class Sample:
         return done
 
 
-def _time(seconds: float, scale: float, unit: str) -> str:
-    return f"{seconds * scale:.3g} {unit}" if math.isfinite(seconds) else "-"
+def _time(seconds: float) -> str:
+    """A time per configuration in ns, us or ms."""
+    if not math.isfinite(seconds):
+        return "-"
+    for scale, unit in ((1e9, "ns"), (1e6, "us"), (1e3, "ms")):
+        if seconds * scale < 1000 or unit == "ms":
+            return f"{seconds * scale:.3g} {unit}"
+    return "-"
 
 
 def _rows(rates: dict[int, float], rows: int) -> str:
-    """Rows per second at ``rows``; where the first size of NP_ROWS above the ones run, the largest
-    run in brackets; '-' past it."""
+    """Rows per second at ``rows``; at 1e5 rows not run, the largest size run in brackets."""
     if rows in rates:
         return f"{rates[rows]:.3g}"
-    largest = max(rates, default=0)
-    if largest and min((r for r in lang.NP_ROWS if r > largest), default=0) == rows:
-        return f"({rates[largest]:.3g} at {lang.size(largest)})"
+    if rows == 10**5 and rates:
+        return f"({rates[max(rates)]:.3g} at {lang.size(max(rates))})"
     return "-"
 
 
@@ -173,9 +178,9 @@ def table(done: list[Measured]) -> list[str]:
     notes = []
     for m in done:
         ratio = f"{m.c / default:.2f}" if math.isfinite(m.c) and math.isfinite(default) else "-"
-        cells = [m.label, _same(m, "C", _time(m.c, 1e9, "ns")), ratio, _same(m, "Python", _time(m.python, 1e6, "us")),
+        cells = [m.label, _same(m, "C", _time(m.c)), ratio, _same(m, "Python", _time(m.python)),
                  _same(m, "numpy", _rows(m.numpy, 10**5)), _same(m, "numpy", _rows(m.numpy, 10**6)),
-                 _same(m, "Octave", _time(m.octave, 1e6, "us")), _same(m, "C", _error(m, "C")),
+                 _same(m, "Octave", _time(m.octave)), _same(m, "C", _error(m, "C")),
                  _same(m, "C", _error(m, "C", "rate")), _same(m, "Python", _error(m, "Python")),
                  _same(m, "numpy", _error(m, "numpy"))]
         lines.append("| " + " | ".join(cells) + " |")
@@ -194,22 +199,27 @@ def summary(results: dict[str, list[Measured]]) -> list[str]:
     """Each knob's effect over the samples: the median (and range) of its C time and C error over
     the default's."""
     by: dict[str, list[tuple[float, float]]] = {}
+    acts: dict[str, set[str]] = {}
     for done in results.values():
         base = done[0]
         for m in done[1:]:
-            if m.label.startswith(("fastest", "most accurate")) or "C" not in m.errors or "C" not in base.errors:
+            if m.label.startswith(("fastest", "most accurate")) or not m.errors:
+                continue  # a combination measured above, or a setting that did not build
+            acts.setdefault(m.label, set()).update(x for x in lang.LANGUAGES if x not in m.same)
+            if "C" not in m.errors or "C" not in base.errors:
                 continue
             t = m.c / base.c
             e = m.errors["C"].position / base.errors["C"].position if base.errors["C"].position else NAN
             by.setdefault(m.label, []).append((t, e))
-    lines = ["| setting | samples | C time / default: median (least, most) | C position error / default's: median "
-             "(least, most) |", "| --- | ---: | ---: | ---: |"]
+    lines = ["| setting | samples | programs it changes | C time / default: median (least, most) | C position error "
+             "/ default's: median (least, most) |", "| --- | ---: | --- | ---: | ---: |"]
     for name, pairs in by.items():
         cols = []
         for k in (0, 1):
             vals = sorted(p[k] for p in pairs if math.isfinite(p[k]))
-            cols.append(f"{vals[len(vals) // 2]:.3g} ({vals[0]:.3g}, {vals[-1]:.3g})" if vals else "-")
-        lines.append(f"| {name} | {len(pairs)} | {cols[0]} | {cols[1]} |")
+            cols.append(f"{statistics.median(vals):.3g} ({vals[0]:.3g}, {vals[-1]:.3g})" if vals else "-")
+        changed = ", ".join(x for x in lang.LANGUAGES if x in acts.get(name, set())) or "none"
+        lines.append(f"| {name} | {len(pairs)} | {changed} | {cols[0]} | {cols[1]} |")
     return lines
 
 
@@ -225,9 +235,9 @@ build` builds it (`build_log(path, options=...)`), so a knob shows here once it 
 - C: `NAME_solve` (gcc -O2 -std=c99) over @C_ROWS@ rows of the file's range in order, the warm
   state kept; the median of @C_RUNS@ runs, per configuration.  Python: the generated `NAME.py`'s
   `solve` over the file's sweep in order (median of @PY_RUNS@ runs).  numpy: rows per second of
-  `NAME_np.solve` on all rows at once (median of @NP_RUNS@ calls after one; a size the size before
-  predicts to take over @NP_BUDGET@ s a call is not run: the largest size run is then given in
-  brackets, and '-' past it).
+  `NAME_np.solve` on all rows at once (median of @NP_RUNS@ calls after one; '-': not run, as the
+  size before predicts over @NP_BUDGET@ s a call; where 1e5 rows are not run, the largest size run
+  in brackets).
   Octave: `NAME_solve.m` over @OCTAVE_ROWS@ rows (a smaller run), per configuration.
 - Error: the worst over @ROWS@ rows of the sweep (every 10 degrees of a turn) of the program's own
   sweep (`NAME_main.c`, `NAME.py`, `NAME_np.py`) against the 50-digit reference of
