@@ -2,9 +2,9 @@
 
     python bench/run.py builds
 
-Per sample, medians of RUNS new processes each: the wall time of `linkgen build FILE -o DIR`; and
-of a process that imports what a build imports, builds once (build_log, render_all, write_all)
-and builds again, each timed inside it: the imports, the first build (which fills the caches a
+Per sample, the median of RUNS new processes of `linkgen build FILE -o DIR` (wall time); and of
+PROBES processes that import what a build imports, build once (build_log, render_all, write_all)
+and build again, each timed inside them: the imports, the first build (which fills the caches a
 process keeps: templates, the compiled numpy kernel) and a later build (what a build costs
 in-process).  Once: the wall time of a bare `python -c pass` (the interpreter's start-up).
 Writes the section "Build time" of docs/performance.md.
@@ -22,7 +22,8 @@ from pathlib import Path
 from performance_doc import write_section
 
 ROOT = Path(__file__).resolve().parents[1]
-RUNS = 5
+RUNS = 5  # processes of `linkgen build` per sample
+PROBES = 3  # processes timed inside per sample
 PROBE = """import sys, time
 t0 = time.perf_counter()
 from linkgen import cli
@@ -56,8 +57,9 @@ def bench_builds() -> None:
              "`make bench` (`bench/build_time.py`): the wall time of `linkgen build FILE -o DIR` of each sample, and",
              "where it goes, timed inside a new process that imports what a build imports, builds once and",
              "builds again: the imports, the first build (it fills the caches a process keeps: compiled",
-             "templates, the numpy kernel) and a later build (a build in-process).  Medians of "
-             f"{RUNS} processes each;", f"the interpreter's own start-up (`python -c pass`) takes {start:.2f} s.", "",
+             f"templates, the numpy kernel) and a later build (a build in-process).  Medians of {RUNS} processes",
+             f"of the command and of {PROBES} timed inside; the interpreter's own start-up (`python -c pass`) "
+             f"takes {start:.2f} s.", "",
              "| sample | `linkgen build` | imports | first build | later build (in-process) |",
              "| --- | ---: | ---: | ---: | ---: |"]
     with tempfile.TemporaryDirectory() as tmp:
@@ -65,7 +67,7 @@ def bench_builds() -> None:
             out = str(Path(tmp) / path.stem)
             command = statistics.median(_wall([sys.executable, "-m", "linkgen", "build", str(path), "-o", out])
                                         for _ in range(RUNS))
-            probes = [_probe(path, out) for _ in range(RUNS)]
+            probes = [_probe(path, out) for _ in range(PROBES)]
             imports, first, later = (statistics.median(p[k] for p in probes) for k in range(3))
             lines.append(f"| {path.stem} | {command:.2f} s | {imports:.2f} s | {first:.2f} s | {later:.3f} s |")
     text = "\n".join(lines) + "\n"
