@@ -23,7 +23,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
-from programs import noise_floors  # noqa: E402
+from programs import noise_floors, parse  # noqa: E402
 from reference import Reference, wrap  # noqa: E402
 
 from linkgen.evaluate import evaluate, input_rows  # noqa: E402
@@ -142,11 +142,21 @@ def worst(exact: Exact, got: list[dict[str, float] | None]) -> Errors:
 POINT_FIELDS = ("x", "y", "vx", "vy", "ax", "ay")  # the columns of pairs and points
 
 
-def csv_errors(exact: Exact, picked: list[int], header: list[str], data: list[list[float]], status: list[int],
-               points_only: bool = False) -> Errors:
-    """The worst errors of a program's sweep CSV (tests/programs.parse) at the reference's rows (with
-    ``points_only``, of the pairs' and points' columns alone); the input columns are not compared (a
-    float program rounds its inputs: that is part of its error)."""
+def table(text: str) -> tuple[list[str], list[list[float]], list[int]]:
+    """A program's sweep CSV as header, rows and status codes (tests/programs.parse); a CSV without a
+    status column (a program built without checks may leave it out) reads as every row solved."""
+    header = text.split("\n", 1)[0].split(",")
+    if header[-1] == "status":
+        return parse(text)
+    rows = [[float(x) for x in line.split(",")] for line in text.splitlines()[1:] if line]
+    return header, rows, [0] * len(rows)
+
+
+def csv_errors(exact: Exact, picked: list[int], text: str, points_only: bool = False) -> Errors:
+    """The worst errors of a program's sweep CSV at the reference's rows (with ``points_only``, of the
+    pairs' and points' columns alone); the input columns are not compared (a float program rounds
+    its inputs: that is part of its error)."""
+    header, data, status = table(text)
     n_inputs = exact.values.shape[1]
     keep = [k for k, name in enumerate(header) if k >= n_inputs and name != "status"
             and (not points_only or name.rpartition(".")[2] in POINT_FIELDS)]

@@ -18,18 +18,15 @@ import json
 import math
 import shutil
 import statistics
-import sys
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tests"))
 
 import exact  # noqa: E402
 import languages as lang  # noqa: E402
 import settings  # noqa: E402
 from performance_doc import write_section  # noqa: E402
-from programs import parse  # noqa: E402
 
 from linkgen.pipeline import build_log  # noqa: E402
 from linkgen.render import render_all  # noqa: E402
@@ -75,7 +72,7 @@ class Sample:
             timer = {"C": lambda: lang.time_c(log, folder), "Python": lambda: lang.time_python(log, folder, unique),
                      "numpy": lambda: lang.time_numpy(log, folder, unique)}[language]
             timing, text = timer()
-            self.cache[(language, key)] = (timing, exact.csv_errors(self.exact, self.picked, *parse(text)))
+            self.cache[(language, key)] = (timing, exact.csv_errors(self.exact, self.picked, text))
         return self.cache[(language, key)]
 
     def measure(self, setting: settings.Setting, index: int) -> Measured:

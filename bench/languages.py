@@ -10,7 +10,7 @@
 - Octave (NAME_solve.m, a smaller run): OCTAVE_ROWS rows of the range in order, tic/toc over the
   loop after one row; every build of a sample in one octave-cli process.
 The sweeps whose errors are measured are the programs' own: NAME_main.c, NAME.py and NAME_np.py
-run as the user runs them, their CSV parsed (tests/programs.parse).
+run as the user runs them (their CSV read by bench/exact.py).
 """
 
 from __future__ import annotations

@@ -25,12 +25,10 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "tests"))
 
 import exact  # noqa: E402
 import languages as lang  # noqa: E402
 from performance_doc import write_section  # noqa: E402
-from programs import parse  # noqa: E402
 
 from linkgen.evaluate import input_rows  # noqa: E402
 from linkgen.pipeline import build_log  # noqa: E402
@@ -78,7 +76,7 @@ def linkgen_programs(path: Path, ex: exact.Exact, picked: list[int]) -> list[Pee
         for peer, t, text in ((c, tc, c_text), (py, tp, py_text), (np_, tn, np_text)):
             setattr(peer, "positions" if order == 0 else "full", t)
             if order == 2:
-                e = exact.csv_errors(ex, picked, *parse(text), points_only=True)
+                e = exact.csv_errors(ex, picked, text, points_only=True)
                 peer.position_error, peer.rate_error = e.points, e.rate
     if max(rates) < 10**5:
         np_.program = f"linkgen numpy (per row, {lang.size(max(rates))} rows)"
