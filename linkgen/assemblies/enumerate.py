@@ -10,6 +10,7 @@ the assembly the programs follow from the sketch (the evaluator's) is marked.
 
 from __future__ import annotations
 
+import math
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -28,7 +29,7 @@ from .triad import NotReducible, Triad, grid, snap, triad_of
 
 CHAINS = ("RRR_links", "PRR_links", "RPR_links", "PRP_links", "PPR_links")
 CHECK = 1e-9  # an assembly whose link lengths are off by more (relative to L) breaks a constraint the procedure skips
-MATCH = 1e-6  # the programs' configuration is an assembly when every pair is this close (relative to L)
+MATCH = 1e-6  # the programs' configuration is an assembly this close (see distance)
 
 Env = dict[str, tuple[float, ...]]
 
@@ -243,12 +244,25 @@ def _programs_assembly(log: StepLog, values: tuple[float, ...]) -> dict[str, flo
     return _columns(log, get)
 
 
+def distance(log: StepLog, a: dict[str, float], b: dict[str, float]) -> float:
+    """How far apart two configurations are: the largest difference of a position or slide over the
+    length scale, or of an angle (wrapped, in radians)."""
+    worst = 0.0
+    for c in log.columns[len(log.inputs):]:
+        d = a[c.name] - b[c.name]
+        if c.quantity == "angle":
+            d = math.remainder(d, 2 * math.pi)
+        else:
+            d /= log.length_scale
+        worst = max(worst, abs(d))
+    return worst
+
+
 def _nearest(log: StepLog, marked: dict[str, float], leaves: list[dict[str, float]]) -> int | None:
-    """The leaf the programs' configuration is (every pair within MATCH L), if any."""
-    names = [f"{p.name}.{c}" for p in log.pairs for c in "xy"]
-    best, index = MATCH * log.length_scale, None
+    """The leaf the programs' configuration is (within MATCH), if any."""
+    best, index = MATCH, None
     for k, v in enumerate(leaves):
-        d = max(abs(v[n] - marked[n]) for n in names)
+        d = distance(log, v, marked)
         if d <= best:
             best, index = d, k
     return index

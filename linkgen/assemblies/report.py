@@ -9,8 +9,9 @@ from typing import Any
 from ..steplog import StepLog
 from .enumerate import Assembly, Census
 
-METHOD = ("real roots isolated exactly (sympy's Poly.intervals: continued fractions on rational coefficients) "
-          "and counted again by Sturm's theorem, each polished by Newton's method at 50 digits")
+METHOD = ("characteristic polynomial has its real roots isolated exactly (sympy's Poly.intervals: continued "
+          "fractions on its rational coefficients) and counted again by Sturm's theorem, each root polished by "
+          "Newton's method at 50 digits")
 
 
 def _g(x: float) -> str:
@@ -79,8 +80,8 @@ def table(log: StepLog, census: Census) -> str:
     """The census as text: a heading, the notes, one row per assembly (pair positions as x, y)."""
     n = len(census.assemblies)
     lines = [f"{log.name} at {inputs_text(log, census)}: {n} assembl{'y' if n == 1 else 'ies'}"]
-    if census.solves:
-        lines.append(f"The count is certified: {METHOD}.")
+    lines.append("The count is exact: both branches of every two-link chain are tried"
+                 + (f"; every group's {METHOD}." if census.solves else "."))
     lines += notes(log, census)
     if not n:
         return "\n".join(lines) + "\n"

@@ -17,6 +17,7 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 
+from ..errors import and_list
 from ..steplog import ResolverGroup, StepLog
 
 Exact = tuple[Fraction, Fraction]
@@ -94,14 +95,15 @@ def triad_of(log: StepLog, g: ResolverGroup) -> Triad:
                            "groups of revolute pairs to one polynomial")
     ternaries = [lk for lk in log.links if sum(p in inside for p in lk.pairs) >= 2]
     if len(ternaries) != 1:
-        raise NotReducible(f"resolver group {g.number} is not a ternary link held by three binary links (its "
-                           f"links {', '.join(lk.name for lk in ternaries)} carry two or more of its pairs)")
+        raise NotReducible(f"resolver group {g.number} is not a class-III triad (one ternary link held by three "
+                           f"binary links): {and_list(lk.name for lk in ternaries)} each join two or more of its "
+                           "pairs (a group of class IV or higher); linkgen reduces only triads to one polynomial")
     t = ternaries[0]
     legs = [leg for p in t.pairs if p in inside for leg in _legs(log, p, t.name, known, set(inside), carriers)]
     placed = {leg.pair for leg in legs}
     if len(legs) != 3 or len(placed) != 3 or any(p not in t.pairs for p in inside):
-        raise NotReducible(f"resolver group {g.number} is not a ternary link held by three binary links "
-                           f"({len(legs)} legs hold {t.name})")
+        raise NotReducible(f"resolver group {g.number} is not a class-III triad (one ternary link held by three "
+                           f"binary links): {len(legs)} links hold {t.name} from pairs known before the group")
     held = tuple(leg.pair for leg in legs)
     unit = grid(log.length_scale)
     x0, y0 = snap(pairs[held[0]].x, unit), snap(pairs[held[0]].y, unit)
