@@ -17,9 +17,9 @@ import math
 import random
 
 import mpmath
+from reference import Reference
 
 from linkgen.validate import read_mechanism
-from reference import Reference
 
 MP = mpmath.mp.clone()
 MP.dps = 50
@@ -94,7 +94,8 @@ def _grow(m, sketch, known, done, out):
         ends = [(lk.name, n) for lk in m.links_of(p) for n in lk.joints if n in known and n != p]
         if len({n for _, n in ends}) < 2:
             continue
-        (la, a), (lb, b) = ends[0], next(e for e in ends if e[1] != ends[0][1])
+        a = ends[0][1]
+        b = next(n for _, n in ends if n != a)
         r1 = MP.hypot(sketch[p][0] - sketch[a][0], sketch[p][1] - sketch[a][1])
         r2 = MP.hypot(sketch[p][0] - sketch[b][0], sketch[p][1] - sketch[b][1])
         (ax, ay), (bx, by) = known[a], known[b]

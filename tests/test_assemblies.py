@@ -17,9 +17,9 @@ from pathlib import Path
 
 import pytest
 from assembly_oracle import MP, TRIAD_STARTS, tree_assemblies, triad_search, worst_residual
+from reference import Reference
 
 from linkgen.assemblies import assemblies, whole_log
-from reference import Reference
 
 ROOT = Path(__file__).resolve().parents[1]
 TOLERANCE = 1e-12  # every constraint, relative to the length scale
@@ -36,7 +36,8 @@ def _valid_and_distinct(path, log, census):
     for i, a in enumerate(census.assemblies):  # positions and slides over L, angles in radians
         for b in census.assemblies[i + 1:]:
             far = [abs(a.values[n] - b.values[n]) / log.length_scale for n in a.values if not n.endswith(".phi")]
-            turned = [abs(math.remainder(a.values[n] - b.values[n], 2 * math.pi)) for n in a.values if n.endswith(".phi")]
+            turned = [abs(math.remainder(a.values[n] - b.values[n], 2 * math.pi))
+                      for n in a.values if n.endswith(".phi")]
             assert max(far + turned) > 1e-6
     assert sum(a.sketch for a in census.assemblies) == (1 if census.assemblies and not census.sketch_note else 0)
 

@@ -43,9 +43,11 @@ def assemblies(path: str, log: StepLog, at: Sequence[float] | None = None) -> Ce
     in file units (default: the sketch's)."""
     values = tuple(i.sketch for i in log.inputs) if at is None else internal_units(log, at)
     try:
-        return census(log, values)
+        out = census(log, values)
     except (NotReducible, ArithmeticError) as exc:
         m = read_mechanism(path)
         what = "its assemblies are not counted" if isinstance(exc, NotReducible) else "the count is not certified"
         raise ProcedureError(f"linkgen cannot count the assemblies of this mechanism: {exc} ({what})", m.path,
                              m.where.line, "links") from None
+    out.at = file_units(log, values) if at is None else tuple(float(v) for v in at)
+    return out

@@ -78,6 +78,7 @@ class Census:
     toggles: list[int] = field(default_factory=list)  # chains at a toggle (their branches are one)
     broken: list[tuple[str, float]] = field(default_factory=list)  # leaves dropped: (link, error / L)
     sketch_note: str = ""  # why no assembly is marked as the sketch's
+    at: tuple[float, ...] = ()  # the input values in the file's units, as given (empty: from ``inputs``)
 
 
 def census(log: StepLog, values: Sequence[float]) -> Census:

@@ -34,7 +34,7 @@ from fractions import Fraction
 from typing import Any
 
 import mpmath
-import sympy
+import sympy  # type: ignore[import-untyped]  # sympy ships no type information
 
 from .triad import Exact, NotReducible
 
@@ -42,7 +42,8 @@ MP = mpmath.mp.clone()
 MP.dps = 50
 T = sympy.Symbol("t")
 NEWTON_STEPS = 60  # Newton's method at 50 digits from a root isolated to 1e-12: a handful suffice
-INTERVAL = Fraction(1, 10**12)  # isolating intervals are refined to this width before Newton
+INTERVAL = sympy.Rational(1, 10**12)  # isolating intervals are refined to this relative width before Newton
+MULTIPLE = sympy.Rational(1, 10**45)  # ... and a multiple root's to this (Newton converges slowly there)
 
 
 @dataclass(frozen=True)
@@ -121,12 +122,18 @@ def solve(bases: list[Exact], local: list[Exact], lengths2: list[Fraction], scal
     if f_pi == 0 and d_pi == 0:
         raise NotReducible("the triad is at a special position here (turned half a turn, its legs' equations lose "
                            "rank)")
-    intervals = f.intervals(eps=INTERVAL)
+    intervals = f.intervals()
     count = sturm_count(f)
     if count != len(intervals):
         raise ArithmeticError(f"root isolation found {len(intervals)} real roots, Sturm's theorem {count}")
     data = (bases, local, lengths2)
-    roots = [_polish(data, sympy.Rational(a + b) / 2, (a, b), mult, scale) for (a, b), mult in intervals]
+    square_free = f.sqf_part()
+    roots = []
+    for (a, b), mult in intervals:  # refined to a relative width: Newton's start, or a multiple root itself
+        width = (INTERVAL if mult == 1 else MULTIPLE) * max(1, abs(a), abs(b))
+        if b - a > width:
+            a, b = square_free.refine_root(a, b, eps=width)
+        roots.append(_polish(data, sympy.Rational(a + b) / 2, (a, b), mult, scale))
     if f_pi == 0:
         roots.append(_polish(data, None, None, 1, scale))
     top = max(abs(float(x)) for x in f.all_coeffs())
@@ -149,16 +156,19 @@ def _polish(data: Data, t: Any, interval: tuple[Any, Any] | None, multiplicity: 
     theta = MP.pi if t is None else 2 * MP.atan(MP.mpf(t.p) / t.q)
     x, y = _linear(bases, local, l2, theta)
     size = MP.mpf(scale)
-    for _ in range(NEWTON_STEPS):
+    for _ in range(NEWTON_STEPS if multiplicity == 1 else 0):
         res, jac = _equations(bases, local, l2, x, y, theta)
         step = MP.lu_solve(MP.matrix(jac), MP.matrix(res))
         x, y, theta = x - step[0], y - step[1], theta - step[2]
         if max(abs(step[0]) / size, abs(step[1]) / size, abs(step[2])) < MP.mpf(10) ** (5 - MP.dps):
             break
     else:
-        raise ArithmeticError(f"Newton's method did not converge from the root at t = {t}")
+        if multiplicity == 1:
+            raise ArithmeticError(f"Newton's method did not converge from the root at t = {t}")
     res, _ = _equations(bases, local, l2, x, y, theta)
     error = max(abs(r) for r in res) / size**2
+    if error > MP.mpf(10) ** -30:
+        raise ArithmeticError(f"the root at t = {t} leaves the legs off by {float(error):.3g} L^2")
     theta = MP.atan2(MP.sin(theta), MP.cos(theta))
     if interval is not None:
         tt = MP.tan(theta / 2)
@@ -180,7 +190,7 @@ def _linear(bases: list[Point], local: list[Point], l2: list[Any], theta: Any) -
     """X from the two equations linear in it (the leg equations less the first)."""
     c, s = MP.cos(theta), MP.sin(theta)
     w = [(c * ax - s * ay - bx, s * ax + c * ay - by) for (ax, ay), (bx, by) in zip(local, bases)]
-    k = [wx * wx + wy * wy - l for (wx, wy), l in zip(w, l2)]
+    k = [wx * wx + wy * wy - leg2 for (wx, wy), leg2 in zip(w, l2)]
     m = MP.matrix([[2 * (w[i][0] - w[0][0]), 2 * (w[i][1] - w[0][1])] for i in (1, 2)])
     x = MP.lu_solve(m, MP.matrix([k[0] - k[i] for i in (1, 2)]))
     return x[0], x[1]
@@ -191,8 +201,8 @@ def _equations(bases: list[Point], local: list[Point], l2: list[Any], x: Any, y:
     """The leg equations |X + R a_i - B_i|^2 - l_i^2 and their Jacobian in (x, y, theta)."""
     c, s = MP.cos(theta), MP.sin(theta)
     res, jac = [], []
-    for (ax, ay), (bx, by), l in zip(local, bases, l2):
+    for (ax, ay), (bx, by), leg2 in zip(local, bases, l2):
         vx, vy = x + c * ax - s * ay - bx, y + s * ax + c * ay - by
-        res.append(vx * vx + vy * vy - l)
+        res.append(vx * vx + vy * vy - leg2)
         jac.append([2 * vx, 2 * vy, 2 * (vx * (-s * ax - c * ay) + vy * (c * ax - s * ay))])
     return res, jac

@@ -28,13 +28,15 @@ def _unit(log: StepLog, kind: str) -> str:
     return log.angle_unit if kind == "revolute" else log.length_unit
 
 
+def given(log: StepLog, census: Census) -> tuple[float, ...]:
+    """The input values in the file's units: as given, else from the census's radians."""
+    return census.at or tuple(_angle(log, v) if i.kind == "revolute" else v for i, v in zip(log.inputs, census.inputs))
+
+
 def inputs_text(log: StepLog, census: Census) -> str:
     """theta_J7 = 90 deg, ..."""
-    parts = []
-    for i, v in zip(log.inputs, census.inputs):
-        value = _angle(log, v) if i.kind == "revolute" else v
-        parts.append(f"{i.column} = {_g(value)} {_unit(log, i.kind)}".rstrip())
-    return ", ".join(parts)
+    values = given(log, census)
+    return ", ".join(f"{i.column} = {_g(v)} {_unit(log, i.kind)}".rstrip() for i, v in zip(log.inputs, values))
 
 
 def _choice_columns(census: Census) -> list[tuple[int, str]]:
@@ -122,7 +124,7 @@ def to_json(log: StepLog, census: Census) -> str:
     doc = {
         "mechanism": log.name,
         "units": {"length": log.length_unit, "angle": log.angle_unit},
-        "inputs": {i.column: (_angle(log, v) if i.kind == "revolute" else v) for i, v in zip(log.inputs, census.inputs)},
+        "inputs": {i.column: v for i, v in zip(log.inputs, given(log, census))},
         "count": len(census.assemblies),
         "sketch": marked[0] if marked else None,
         "sketch_note": census.sketch_note,

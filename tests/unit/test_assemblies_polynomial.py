@@ -124,3 +124,21 @@ def test_a_triad_that_moves_with_its_legs_parallel_is_not_counted():
     local = [(bx - bases[0][0], by - bases[0][1]) for bx, by in bases]
     with pytest.raises(NotReducible, match="special position"):
         solve(bases, local, [Fraction(30**2)] * 3, 60.0)
+
+
+def test_a_pose_where_the_legs_meet_in_one_point_is_a_double_root():
+    """The three legs' lines through one point: the pose is singular (two assemblies meet there), a
+    double root of the polynomial, counted once and flagged, its positions those of the pose."""
+    t0 = Fraction(1, 3)
+    c, s = (1 - t0 * t0) / (1 + t0 * t0), 2 * t0 / (1 + t0 * t0)
+    local = [(Fraction(0), Fraction(0)), (Fraction(40), Fraction(-10)), (Fraction(15), Fraction(30))]
+    pose = [(5 + c * ax - s * ay, 7 + s * ax + c * ay) for ax, ay in local]
+    meet = (Fraction(100), Fraction(-50))
+    bases = [(px + k * (meet[0] - px), py + k * (meet[1] - py))
+             for (px, py), k in zip(pose, (Fraction(2), Fraction(3, 2), Fraction(5, 2)))]
+    lengths2 = [(px - bx) ** 2 + (py - by) ** 2 for (px, py), (bx, by) in zip(pose, bases)]
+    sol = solve(bases, local, lengths2, 300.0)
+    double = [r for r in sol.roots if r.multiplicity == 2]
+    assert len(double) == 1 and double[0].theta == pytest.approx(2 * np.arctan(1 / 3), abs=1e-15)
+    assert double[0].positions == tuple((float(x), float(y)) for x, y in pose)
+    assert sol.real_roots == len(sol.roots)
