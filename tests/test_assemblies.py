@@ -42,11 +42,12 @@ def _valid_and_distinct(path, log, census):
     assert sum(a.sketch for a in census.assemblies) == (1 if census.assemblies and not census.sketch_note else 0)
 
 
-TREES = [("fourbar", [0.0]), ("fourbar", [123.0]), ("jansen", [90.0]), ("jansen", [180.0]),
-         ("fivebar", [30.0, 250.0]), ("jansen_foot", [300.0])]
+LONG = pytest.mark.long
+TREES = [("fourbar", [123.0], []), ("jansen", [180.0], []), ("fivebar", [30.0, 250.0], []), ("fourbar", [0.0], LONG),
+         ("jansen", [90.0], LONG), ("jansen_foot", [300.0], LONG)]
 
 
-@pytest.mark.parametrize("name, at", TREES, ids=[f"{n}-{a}" for n, a in TREES])
+@pytest.mark.parametrize("name, at", [pytest.param(n, a, marks=m, id=f"{n}-{a}") for n, a, m in TREES])
 def test_revolute_samples_have_the_closed_forms_assemblies(name, at):
     path = _sample(name)
     log = whole_log(path)
@@ -73,11 +74,12 @@ def test_fourbar_partial_counts_as_its_triangle_inequality_says():
         assert len(assemblies(path, log, [deg]).assemblies) == (2 if closes else 0)
 
 
-CHAINS = [("slider_crank", None), ("sixbar_slider", None), ("sixbar_slider", [200.0]), ("inverted_slider", None),
-          ("actuator", None), ("actuator", [1900.0]), ("scotch_yoke", [45.0]), ("cross_slot", [20.0])]
+CHAINS = [("slider_crank", None, []), ("sixbar_slider", [200.0], []), ("inverted_slider", None, []),
+          ("actuator", [1900.0], []), ("sixbar_slider", None, LONG), ("actuator", None, LONG),
+          ("scotch_yoke", [45.0], LONG), ("cross_slot", [20.0], LONG)]
 
 
-@pytest.mark.parametrize("name, at", CHAINS, ids=[f"{n}-{a}" for n, a in CHAINS])
+@pytest.mark.parametrize("name, at", [pytest.param(n, a, marks=m, id=f"{n}-{a}") for n, a, m in CHAINS])
 def test_two_chain_samples_have_two_to_the_chains_assemblies(name, at):
     path = _sample(name)
     log = whole_log(path)
@@ -124,13 +126,13 @@ def _matches(census, poses, scale):
 
 
 FIG14_INPUTS = [30.0, 90.0, 250.0]
-# the first input in `make test`, the others in the long tier (each search takes about half a second)
-TRIAD_INPUTS = [pytest.param(d, marks=[pytest.mark.long] if k else []) for k, d in enumerate(FIG14_INPUTS)]
+# Fig. 14's first input in `make test`, the rest in the long tier (a search takes about half a second a triad)
+FIG14_TIERS = [pytest.param(d, marks=[LONG] if k else []) for k, d in enumerate(FIG14_INPUTS)]
 RIGHT = (("J2", "J4", "J5"), ("J1", "J3", "J6"))
 LEFT = (("K2", "K4", "K5"), ("K1", "K3", "J6"))
 
 
-@pytest.mark.parametrize("deg", TRIAD_INPUTS)
+@pytest.mark.parametrize("deg", FIG14_TIERS)
 def test_fig14_has_every_assembly_the_multistart_search_finds(deg):
     path = _sample("sixbar_fig14")
     log = whole_log(path)
@@ -142,7 +144,8 @@ def test_fig14_has_every_assembly_the_multistart_search_finds(deg):
     _valid_and_distinct(path, log, census)
 
 
-@pytest.mark.parametrize("deg", TRIAD_INPUTS)
+@LONG
+@pytest.mark.parametrize("deg", FIG14_INPUTS)
 def test_the_double_triad_has_the_product_of_its_triads_assemblies(deg):
     path = _sample("double_triad")
     log = whole_log(path)
@@ -156,7 +159,7 @@ def test_the_double_triad_has_the_product_of_its_triads_assemblies(deg):
     _valid_and_distinct(path, log, census)
 
 
-@pytest.mark.parametrize("name", ["sixbar_fig14", "double_triad", "jansen", "sixbar_slider", "actuator"])
+@pytest.mark.parametrize("name", ["sixbar_fig14", "double_triad", "jansen", "inverted_slider", "actuator"])
 def test_the_sketchs_assembly_is_marked_at_the_sketch(name):
     path = _sample(name)
     log = whole_log(path)

@@ -66,9 +66,14 @@ def test_a_bad_at_is_a_usage_error(at, message):
 
 def test_a_group_it_cannot_count_is_an_error_and_nothing_is_written(tmp_path: Path):
     path = ROOT / "tests" / "assemblies" / "class4.yaml"
-    done = subprocess.run([str(LINKGEN), "assemblies", str(path), "-o", str(tmp_path / "figs")],
-                          capture_output=True, text=True)
-    assert (done.returncode, done.stdout) == (1, "")
-    assert done.stderr.startswith(f"linkgen: error: {path}:1: links: linkgen cannot count the assemblies")
-    assert done.stderr.count("\n") == 1 and "class IV" in done.stderr
+    code, out, err = _run(path, "-o", tmp_path / "figs")
+    assert (code, out) == (1, "")
+    assert err.startswith(f"linkgen: error: {path}:1: links: linkgen cannot count the assemblies")
+    assert err.count("\n") == 1 and "class IV" in err
     assert not (tmp_path / "figs").exists()
+
+
+@pytest.mark.long
+def test_the_command_runs_as_a_process():
+    done = subprocess.run([str(LINKGEN), "assemblies", str(FIG14), "--json"], capture_output=True, text=True)
+    assert (done.returncode, done.stderr, json.loads(done.stdout)["count"]) == (0, "", 4)

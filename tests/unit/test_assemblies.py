@@ -20,8 +20,8 @@ def test_input_values_convert_between_the_files_units_and_radians():
     assert file_units(fivebar, internal_units(fivebar, [90.0, -30.0])) == pytest.approx((90.0, -30.0), abs=1e-13)
     actuator = whole_log(str(ROOT / "samples" / "actuator" / "actuator.yaml"))  # a length input
     assert internal_units(actuator, [1500.0]) == (1500.0,) == file_units(actuator, [1500.0])
-    far = whole_log(str(ROOT / "tests" / "mechanisms" / "triad_far.yaml"))  # radians
-    assert internal_units(far, [1.75]) == (1.75,)
+    watt = whole_log(str(ROOT / "tests" / "mechanisms" / "watt_circuit.yaml"))  # radians
+    assert internal_units(watt, [1.75]) == (1.75,)
 
 
 def test_the_whole_procedure_is_walked_whatever_the_files_outputs():
