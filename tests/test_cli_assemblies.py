@@ -77,3 +77,9 @@ def test_a_group_it_cannot_count_is_an_error_and_nothing_is_written(tmp_path: Pa
 def test_the_command_runs_as_a_process():
     done = subprocess.run([str(LINKGEN), "assemblies", str(FIG14), "--json"], capture_output=True, text=True)
     assert (done.returncode, done.stderr, json.loads(done.stdout)["count"]) == (0, "", 4)
+
+
+def test_help():
+    code, out, err = _run("--help")
+    assert (code, err) == (0, "") and out.startswith("Usage: linkgen assemblies [OPTIONS] MECHANISM")
+    assert "--at" in out and "--json" in out and "-o, --outdir" in out

@@ -56,6 +56,7 @@ class GroupCount:
     at_pi: bool
     thetas: tuple[float, ...]
     coefficients: tuple[float, ...]
+    multiple: tuple[tuple[float, int], ...] = ()  # (theta, multiplicity) of its multiple roots: singular positions
 
 
 @dataclass(frozen=True)
@@ -206,8 +207,9 @@ class _Walk:
         if key not in self.solutions:
             sol = solve([(b[0], b[1]) for b in bases], list(triad.local), lengths2, self.log.length_scale)
             self.solutions[key] = sol
-            self.out.solves.append(GroupCount(triad.group, triad.describe(), sol.degree, sol.real_roots, sol.at_pi,
-                                              tuple(r.theta for r in sol.roots), sol.coefficients))
+            self.out.solves.append(GroupCount(
+                triad.group, triad.describe(), sol.degree, sol.real_roots, sol.at_pi, tuple(r.theta for r in sol.roots),
+                sol.coefficients, tuple((r.theta, r.multiplicity) for r in sol.roots if r.multiplicity > 1)))
         return self.solutions[key]
 
     def _values(self, env: Env) -> dict[str, float]:

@@ -64,6 +64,9 @@ def notes(log: StepLog, census: Census) -> list[str]:
         pi = ", and theta = pi is a root too" if g.at_pi else ""
         out.append(f"group {g.group} ({g.triad}): characteristic polynomial of degree {g.degree} in "
                    f"t = tan(theta/2), theta the ternary's turn from the sketch; {g.real_roots} real roots{pi}")
+        for theta, k in g.multiple:
+            out.append(f"group {g.group}: the root at theta = {_g(_angle(log, theta))} {log.angle_unit} has "
+                       f"multiplicity {k}: {k} assemblies meet there (a singular position), counted once")
     steps = {s.number: s for s in log.steps}
     for step, ends in census.cannot_close.items():
         out.append(f"step {step} ({steps[step].target}) cannot close: {ends} branch{'es' if ends > 1 else ''} "
@@ -131,6 +134,7 @@ def to_json(log: StepLog, census: Census) -> str:
         "method": METHOD if census.solves else "",
         "groups": [{"group": g.group, "triad": g.triad, "degree": g.degree, "real_roots": g.real_roots,
                     "theta_pi_root": g.at_pi, "thetas": [_angle(log, t) for t in g.thetas],
+                    "multiple": [{"theta": _angle(log, t), "multiplicity": k} for t, k in g.multiple],
                     "coefficients": list(g.coefficients)} for g in census.solves],
         "cannot_close": [{"step": s, "pair": steps[s].target, "ends": k} for s, k in census.cannot_close.items()],
         "toggles": list(census.toggles),

@@ -57,3 +57,16 @@ def test_inputs_in_the_files_units():
     log = whole_log(str(ROOT / "samples" / "actuator" / "actuator.yaml"))
     c = assemblies(str(ROOT / "samples" / "actuator" / "actuator.yaml"), log, [1900.0])
     assert inputs_text(log, c) == "d_S0_K = 1900 mm"
+
+
+def test_a_multiple_root_is_said_to_be_a_singular_position():
+    from linkgen.assemblies.enumerate import Census, GroupCount
+
+    log = whole_log(FIG14)
+    census = Census((math.pi / 2,), solves=[GroupCount(1, "the ternary ternary", 6, 3, False, (-1.0, 0.5, 1.0),
+                                                        (1.0,) * 7, ((0.5, 2),))])
+    lines = [line for line in table(log, census).splitlines() if "multiplicity" in line]
+    assert lines == [f"group 1: the root at theta = {math.degrees(0.5):.6g} deg has multiplicity 2: 2 assemblies "
+                     "meet there (a singular position), counted once"]
+    assert json.loads(to_json(log, census))["groups"][0]["multiple"] == [{"theta": math.degrees(0.5),
+                                                                           "multiplicity": 2}]
