@@ -182,3 +182,20 @@ def test_the_multistart_search_does_not_hang_on_its_seed(seed):
             census = assemblies(path, log, [deg])
             for solve, group in zip(census.solves, groups):
                 assert len(_triad_poses(path, log, census, *group, seed=seed)) == solve.real_roots
+
+
+MECHANISMS = sorted(ROOT.glob("samples/*/*.yaml")) + sorted((ROOT / "tests" / "mechanisms").glob("*.yaml"))
+
+
+@LONG
+@pytest.mark.parametrize("path", MECHANISMS, ids=lambda p: p.stem)
+def test_where_the_programs_assemble_their_configuration_is_an_assembly(path):
+    """At 8 inputs over the range: the programs' configuration (followed from the sketch) is one of
+    the assemblies whenever they assemble, and every assembly keeps its links' lengths."""
+    log = whole_log(str(path))
+    for k in range(8):
+        at = [i.start + (i.stop - i.start) * (k + 0.37) / 8 for i in log.inputs]
+        census = assemblies(str(path), log, [v * 180 / math.pi if i.kind == "revolute" and log.angle_unit == "deg"
+                                             else v for v, i in zip(at, log.inputs)])
+        assert "none of the assemblies" not in census.sketch_note
+        assert all(a.error < TOLERANCE for a in census.assemblies)
