@@ -261,7 +261,8 @@ def assemblies(mechanism: str, at: tuple[float, ...] | None, as_json: bool, outd
                                  f"{len(log.inputs)} input{'s' if len(log.inputs) != 1 else ''} ({names})",
                                  param_hint="'--at'")
     census = census_of(mechanism, log, at)
-    written = write_all(render_all(log, census), outdir) if outdir else []
+    figures = render_all(log, census) if outdir else {}
+    written = write_all(figures, outdir) if outdir and figures else []
     if as_json:
         click.echo(to_json(log, census), nl=False)
         return
