@@ -51,7 +51,7 @@ class Triad:
 
     def describe(self) -> str:
         held = ", ".join(f"{leg.carrier} at {leg.base}" for leg in self.legs)
-        return f"the ternary {self.ternary} held by {held}"
+        return f"the ternary link {self.ternary} held by {held}"
 
 
 GRID_BITS = 64  # the grid is 2^-GRID_BITS of the length scale (rounded up to a power of 2)
