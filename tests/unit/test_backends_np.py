@@ -65,3 +65,13 @@ def test_the_backend_writes_one_file():
     files = render_backend(BACKEND, view)
     assert list(files) == ["slider_crank_np.py"]
     compile(files["slider_crank_np.py"], "slider_crank_np.py", "exec")
+
+
+def test_a_resolver_setting_the_lanes_lack_leaves_every_row_to_the_python_module():
+    from linkgen.render import render_backend
+
+    for options, lanes in (({}, True), ({"predictor": 0}, False), ({"polish": False}, False),
+                           ({"strategy": "fixed-point"}, False), ({"tolerance": 1e-8}, True)):
+        log = build_log(str(ROOT / "samples/sixbar_fig14/sixbar_fig14.yaml"), sweep=False, options=options)
+        text = render_backend(BACKEND, build_view(log))["sixbar_fig14_np.py"].decode()
+        assert f"lanes={lanes}," in text, options

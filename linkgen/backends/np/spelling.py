@@ -105,6 +105,13 @@ class Numpy(Python):
         """The work fields of a block's measured branches, as targets of one assignment."""
         return "".join(f"{self.work(f'br{bs.step}')}, " for bs in b.group.branches).rstrip()
 
+    def on_lanes(self) -> bool:
+        """Whether the kernel solves a resolver's rows on lanes: with the resolver settings its
+        lanes have (Newton on the Add-link lengths, the first-order predictor, the polishing step);
+        with others NAME.py solves every row."""
+        o = self.log.options
+        return o.strategy == "newton" and o.predictor == 1 and o.polish
+
     @staticmethod
     def reads_parameters(b: Group) -> bool:
         """Whether a block's steps read a number of the sketch (a design parameter)."""
