@@ -232,6 +232,7 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
     max_input=1e+30, bad_input=5,
     failed=(1, 2), singular=3,
     tolerance=1e-10, path_slack=1.0000000000000001e-07,  # the resolver's, in REAL
+    lanes=True,  # the rows solved on lanes (else each by double_triad.py: a resolver setting the lanes lack)
 )
 
 
@@ -1421,7 +1422,7 @@ def sweep(k, seq, prev, emit=False, keep=False):
     (keep) or None."""
     n = len(seq)
     kept = empty_state(k, n) if keep else None
-    if n <= ALONE:  # few rows: one by one, faster than passes of a lane or two
+    if n <= ALONE or not k.lanes:  # few rows: one by one, faster than passes of a lane or two
         for j, row in enumerate(seq):
             out, prev = alone_row(k, prev, row)
             if emit:
@@ -1499,7 +1500,7 @@ def solve_sweep(run, publish, rows, inputs, d_inputs, dd_inputs, order, params, 
     p = SimpleNamespace(**{**vars(rows.POLICY), "tolerance": m.tolerance, "path_slack": m.path_slack})
     k = SimpleNamespace(run=run, publish=publish, rows=rows, m=rows.MECHANISM, p=p, order=order, c=c,
                         x=columns[0], dx=columns[1], ddx=columns[2], out=out, status=status, sigma=sigma, its=its,
-                        columns=m.columns, sinks={})
+                        columns=m.columns, sinks={}, lanes=m.lanes)
     with np.errstate(all="ignore"):
         sweep(k, np.flatnonzero(~bad), empty_state(k, 1), True)
     result = finish(out, status, sigma, bad, shape, m)
