@@ -722,6 +722,35 @@ def link_angle_case(src: Source) -> Case:
                 "short" if short else "random", r)
 
 
+def link_direction_case(src: Source) -> Case:
+    """The unit vector of a link from two of its points, turned by the sketch offset (c, s):
+    dimensionless, so L of the step is 1."""
+    s = src.scale()
+    j1 = src.point(s)
+    short = src.flag()
+    j2 = src.near(j1, s * src.ratio()) if short else src.point(s)
+    off = src.angle()
+    c, sn = math.cos(off), math.sin(off)
+    w = _angular(src)
+    args = (_pt_arg(j1, _rates(src, s, w)), _pt_arg(j2, _rates(src, s, w)), c, sn)
+    J1, J2 = _pt_jet(args[0]), _pt_jet(args[1])
+    d = vsub(J2, J1)
+    if d[0].v == 0 and d[1].v == 0:
+        raise Degenerate("link_direction: the points coincide")
+    r = vnorm(d)
+    out = {"u": local(vscale(1 / r, d), mp(c), mp(sn))}
+    return Case("link_direction", args, {"j1": J1, "j2": J2, "c": mp(c), "s": mp(sn)}, out, 1.0, 1.0, math.nan,
+                False, "short" if short else "random")
+
+
+def angle_direction_case(src: Source) -> Case:
+    phi = src.angle()
+    w = _angular(src)
+    args = ((phi, w * src.real(-1, 1), w * w * src.real(-1, 1)),)
+    PH = _rec_jet(args[0])
+    return Case("angle_direction", args, {"phi": PH}, {"u": direction(PH)}, 1.0, 1.0, math.nan)
+
+
 def crank_input_case(src: Source) -> Case:
     s = src.scale()
     j1 = src.point(s)
@@ -803,6 +832,8 @@ CHAINS = {
     "PPR_links": ppr_case,
     "coupler_point": coupler_point_case,
     "link_angle": link_angle_case,
+    "link_direction": link_direction_case,
+    "angle_direction": angle_direction_case,
     "crank_input": crank_input_case,
     "slider_input": slider_input_case,
     "offset_angle": offset_angle_case,
@@ -899,6 +930,14 @@ def residuals(case: Case, outs: dict) -> list:
         d = vsub(_p(v, "j2"), _p(v, "j1"))
         th = sc("angle")
         return [wrap(th - MP.atan2(d[1], d[0]) - v["off"]) * vnorm(d)]
+    if n == "link_direction":  # u turned back by the offset is along j2 - j1, of unit length
+        d = vsub(_p(v, "j2"), _p(v, "j1"))
+        u = pt("u")
+        e = (v["c"] * u[0] + v["s"] * u[1], -v["s"] * u[0] + v["c"] * u[1])
+        return [vcross(e, d) / vnorm(d), vdot(e, d) / vnorm(d) - 1]
+    if n == "angle_direction":
+        u, phi = pt("u"), _val(v, "phi")
+        return [u[0] - MP.cos(phi), u[1] - MP.sin(phi)]
     if n == "offset_angle":
         return [wrap(sc("angle") - _val(v, "phi") - v["off"])]
     if n == "link_residual":

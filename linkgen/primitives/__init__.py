@@ -45,9 +45,10 @@ def python_backend(order: int = 2) -> dict[str, RuntimeFunction]:
 @functools.cache
 def numpy_backend(order: int = 2) -> dict[str, RuntimeFunction]:
     """Vectorised functions on tuples of arrays, returning (status, sigma, outputs...)."""
+    from ..backends.np import RUNTIME
     from ..backends.np.printer import numpy_function
 
-    source = "\n\n".join(numpy_function(p, order) for p in PRIMITIVES.values())
+    source = "\n\n".join([RUNTIME.source("trig")] + [numpy_function(p, order) for p in PRIMITIVES.values()])
     ns: dict[str, Any] = {"np": np, "REAL": np.float64, "EPS": float(np.finfo(float).eps), "NAN": np.nan, "PI": np.pi}
     _compile(source, f"<linkgen runtime numpy order {order}>", ns)
     return {name: ns[name] for name in PRIMITIVES}

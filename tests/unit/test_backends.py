@@ -50,7 +50,7 @@ def test_the_backends_are_the_folders_and_what_each_provides():
                "filters": ["pytext"], "printer": "python_function", "runtime": ("runtime", ".py"), "state": ""},
     }
 # the runtime sources of each backend that has some: the kernel runs a resolver's rows through NAME.py's
-SOURCES = {"np": {"status", "branch", "reach", "driver"}}
+SOURCES = {"np": {"status", "branch", "reach", "driver", "resolver", "group", "sweep", "trig"}}
 
 
 @pytest.mark.parametrize("backend", backends(), ids=lambda b: b.name)
@@ -172,12 +172,15 @@ def test_a_backend_that_writes_other_files_than_it_declares_is_refused(toy_folde
 
 @pytest.mark.parametrize("asked", ["float", "double", "long double"])
 def test_each_backend_names_the_real_type_its_files_compute_in(asked: str):
-    """C computes in every real type (and the manual records it); the others say they compute in
-    double and what was asked for."""
+    """C computes in every real type (and the manual records it), numpy in float and double; the
+    others say they compute in double and what was asked for."""
     said = {b.name: b.real(asked) for b in backends()}
     for name in ("c", "md"):
         assert said[name] == f"Real type: {asked}."
-    for name, language in (("py", "Python"), ("m", "MATLAB/Octave"), ("np", "numpy")):
+    languages = (("py", "Python"), ("m", "MATLAB/Octave")) + ((("np", "numpy"),) if asked == "long double" else ())
+    for name, language in languages:
         expected = "Real type: double." if asked == "double" else (
             f"Real type: double (linkgen writes {language} in double only; {asked} was asked for).")
         assert said[name] == expected
+    if asked != "long double":
+        assert said["np"] == f"Real type: {asked}."
