@@ -17,8 +17,8 @@ enum { RESOLVER_NEWTON, RESOLVER_FIXED_POINT };
 /* The resolver policy (linkgen/policy.py, as the step log has it, with the strategy, polish and
  * predictor of the build's options); lengths relative to the length scale. */
 typedef struct {
-    double tolerance;     /* Newton stops once every residual is at most this, after one step more */
-    int max_iterations;   /* Newton steps at most */
+    double tolerance;     /* the iteration stops once every residual is at most this (after one step more: polish) */
+    int max_iterations;   /* iterations at most, a polishing one too */
     int newton_halvings;  /* a Newton step that makes a chain fail to close is halved at most this often */
     double max_move;      /* a solution farther from its start is another assembly; a continuation step's limit */
     double min_chain_sigma;  /* a block whose chains are worse conditioned yields to a better one */
