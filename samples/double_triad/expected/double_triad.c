@@ -1839,7 +1839,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4 */
 
 
-    /* Step 9: resolve, group1. Newton-Raphson on add1 until right_coupler regains its length */
+    /* Step 9: resolve, group1. the resolver iterates on add1 until right_coupler regains its length */
     {
         static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6 };
         w->br4 = a[0][1] < 0.0 ? -1 : 1;
@@ -1867,7 +1867,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 10: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4 */
 
 
-    /* Step 16: resolve, group2. Newton-Raphson on add2 until left_coupler regains its length */
+    /* Step 16: resolve, group2. the resolver iterates on add2 until left_coupler regains its length */
     {
         static const group_fn blocks[] = { group_2, group_2_v1, group_2_v2, group_2_v3, group_2_v4, group_2_v5, group_2_v6, group_2_v7, group_2_v8 };
         w->br11 = a[7][1] < 0.0 ? -1 : 1;

@@ -1487,7 +1487,7 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
 
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
-    # Step 9: resolve, group1. Newton-Raphson on add1 until right_coupler regains its length
+    # Step 9: resolve, group1. the resolver iterates on add1 until right_coupler regains its length
     w.br4 = -1 if a[0][1] < 0 else 1
     w.br5 = -1 if a[0][2] < 0 else 1
     w.br24 = -1 if a[1][1] < 0 else 1
@@ -1520,7 +1520,7 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
 
     # Step 10: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4
 
-    # Step 16: resolve, group2. Newton-Raphson on add2 until left_coupler regains its length
+    # Step 16: resolve, group2. the resolver iterates on add2 until left_coupler regains its length
     w.br11 = -1 if a[7][1] < 0 else 1
     w.br12 = -1 if a[7][2] < 0 else 1
     w.br54 = -1 if a[8][1] < 0 else 1

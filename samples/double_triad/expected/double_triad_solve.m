@@ -126,7 +126,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
 
     % Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
-    % Step 9: resolve, group1. Newton-Raphson on add1 until right_coupler regains its length
+    % Step 9: resolve, group1. the resolver iterates on add1 until right_coupler regains its length
     w.br4 = 1 - 2 * (a{1}(2) < 0);
     w.br5 = 1 - 2 * (a{1}(3) < 0);
     w.br24 = 1 - 2 * (a{2}(2) < 0);
@@ -159,7 +159,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
 
     % Step 10: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4
 
-    % Step 16: resolve, group2. Newton-Raphson on add2 until left_coupler regains its length
+    % Step 16: resolve, group2. the resolver iterates on add2 until left_coupler regains its length
     w.br11 = 1 - 2 * (a{8}(2) < 0);
     w.br12 = 1 - 2 * (a{8}(3) < 0);
     w.br54 = 1 - 2 * (a{9}(2) < 0);

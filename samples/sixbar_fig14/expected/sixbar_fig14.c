@@ -1402,7 +1402,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4 */
 
 
-    /* Step 9: resolve, group1. Newton-Raphson on add1 until coupler regains its length */
+    /* Step 9: resolve, group1. the resolver iterates on add1 until coupler regains its length */
     {
         static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6, group_1_v7, group_1_v8 };
         w->br4 = a[0][1] < 0.0 ? -1 : 1;

@@ -1124,7 +1124,7 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
 
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
-    # Step 9: resolve, group1. Newton-Raphson on add1 until coupler regains its length
+    # Step 9: resolve, group1. the resolver iterates on add1 until coupler regains its length
     w.br4 = -1 if a[0][1] < 0 else 1
     w.br5 = -1 if a[0][2] < 0 else 1
     w.br14 = -1 if a[1][1] < 0 else 1

@@ -120,7 +120,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
 
     % Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
-    % Step 9: resolve, group1. Newton-Raphson on add1 until coupler regains its length
+    % Step 9: resolve, group1. the resolver iterates on add1 until coupler regains its length
     w.br4 = 1 - 2 * (a{1}(2) < 0);
     w.br5 = 1 - 2 * (a{1}(3) < 0);
     w.br14 = 1 - 2 * (a{2}(2) < 0);
