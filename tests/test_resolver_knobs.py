@@ -63,13 +63,14 @@ def _sweep(log: StepLog, module: ModuleType, order: int | None = None) -> list[d
 
 
 def _positions(log: StepLog) -> list[str]:
-    return [c.name for c in log.columns if c.quantity == "position"]
+    """The output columns of pair, point and slider positions (the inputs come first)."""
+    return [c.name for c in log.columns[len(log.inputs):] if c.quantity == "position"]
 
 
 def _check_against_default(log: StepLog, default: list[dict[str, Any]], rows: list[dict[str, Any]],
                            fixed_point: bool) -> int:
     """Statuses as the default's (a fixed-point row may instead not contract) and positions within
-    the bound; returns the rows that did not contract."""
+    the bound of log's tolerance; returns the rows that did not contract."""
     stuck = 0
     for k, (ref, got) in enumerate(zip(default, rows)):
         if got["status"] != ref["status"]:
@@ -121,6 +122,24 @@ def test_fixed_point_reports_that_it_does_not_contract_past_a_limit_position(tmp
     assert any(c.code == rows[5]["status"] for c in log_fp.status_codes)
 
 
+TOLERANCE_AND_CAP = [{"tolerance": 1e-6, "polish": False}, {"iterations": 2, "predictor": 0}]
+
+
+def test_the_tolerance_and_the_cap_act(fig14, tmp_path):
+    """Without polish a row stops at the tolerance: at 1e-6 its positions move off the default's by more
+    than 1e-9 of the length scale, within the bound; capped at 2 steps, the predictor of order 0 (which
+    takes 3 on some rows) never takes more, and the rows it cannot solve so are followed from the last."""
+    log, _, default = fig14[1]
+    loose, capped = (_program(FIG14, o, tmp_path / str(k)) for k, o in enumerate(TOLERANCE_AND_CAP))
+    rows = _sweep(*loose)
+    assert _check_against_default(loose[0], default, rows, False) == 0
+    assert max(abs(a[c] - b[c]) for a, b in zip(default, rows) for c in _positions(log)) > 1e-9 * log.length_scale
+    assert max(max(r["iterations"]) for r in fig14[0][2]) > 2
+    rows = _sweep(*capped)
+    assert max(max(r["iterations"]) for r in rows) == 2
+    assert _check_against_default(log, default, rows, False) == 0
+
+
 def test_a_fixed_point_build_without_polish_in_c_is_its_python_program(tmp_path):
     """C (gcc, the strict flags, -O2) and Python of one non-default build write the same sweep."""
     log, _ = _program(FIG14, {"strategy": "fixed-point", "polish": False, "predictor": 2}, tmp_path)
@@ -163,6 +182,19 @@ def test_every_combination_in_every_language_agrees_with_the_default(mechanism, 
         assert parse(csv["Python"])[2] == [r["status"] for r in rows], options
         for lang in ("Python", "Octave"):
             compare(built, csv["C"], csv[lang])
+
+
+@pytest.mark.long
+@pytest.mark.parametrize("options", TOLERANCE_AND_CAP, ids=lambda o: "_".join(map(str, o)))
+def test_the_tolerance_and_the_cap_act_in_every_language(options, tmp_path):
+    log, module = _program(FIG14, {}, tmp_path / "default")
+    built, program = _program(FIG14, options, tmp_path / "built")
+    rows = _sweep(built, program)
+    _check_against_default(built, _sweep(log, module), rows, False)
+    csv = _languages(built, tmp_path / "built")
+    assert parse(csv["Python"])[2] == [r["status"] for r in rows]
+    for lang in ("Python", "Octave"):
+        compare(built, csv["C"], csv[lang])
 
 
 @pytest.mark.long
