@@ -2128,28 +2128,18 @@ function tau = resolver_tau(warm, in)
     end
 end
 
-function a = resolver_predict(warm, in, sizes)
-    % Resolver start values for new inputs: the warm states advanced along their rates
-    % (first-order Taylor in the warm row's input direction; the rates exist at every
-    % order, so the positions do not depend on the order computed).
-    a = resolver_advance(warm.a, warm.ad, resolver_tau(warm, in), sizes);
-end
-
-function a = resolver_start(warm, in, sizes, order)
-    % The warm start of new inputs by the predictor of order p.predictor: the warm states as
-    % they were (0), advanced along their rates (1: resolver_predict), or along the parabola
-    % that also passes through the row before them (2; warm.back holds its inputs and block
-    % states, empty where there was none: then first order).  The parabola needs positions
-    % and rates only, so the start does not depend on the order a program computes.
-    if order == 0
-        a = warm.a;
-        return;
-    end
-    a = resolver_predict(warm, in, sizes);
-    if order == 1 || isempty(warm.back)
-        return;
-    end
+function a = resolver_predict(warm, in, sizes, order)
+    % The path the assembly is expected on at new inputs: the warm states advanced along
+    % their rates (order 1: first-order Taylor in the warm row's input direction), or along
+    % the parabola with those rates that also passes through the row before them (order 2;
+    % warm.back holds its inputs and block states, empty where there was none: then first
+    % order).  Both need positions and rates only, and the rates exist at every order, so
+    % the positions do not depend on the order computed.
     tau = resolver_tau(warm, in);
+    a = resolver_advance(warm.a, warm.ad, tau, sizes);
+    if order < 2 || isempty(warm.back)
+        return;
+    end
     back = resolver_tau(warm, warm.back.in);
     if back == 0
         return;
@@ -2289,9 +2279,9 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
     % [status, w, a, ad, used] is one pass of the procedure with the block states a (and
     % their rates ad out) and the preferred blocks used.  From the warm start (the previous
     % row) when no input has moved farther than a continuation step: the resolvers start
-    % where the predictor of order p.predictor points (see resolver_start), and the row is
-    % taken when it solves on the path the block states' rates point along (see
-    % resolver_on_path).  Else, or where that fails at a resolver or lands off the
+    % where the predictor of order p.predictor points (see resolver_predict; order 0: from the
+    % warm states as they were), and the row is taken when it solves on that path (see
+    % resolver_on_path; order 0: the first-order one).  Else, or where that fails at a resolver or lands off the
     % path, the assembly is followed by continuation from the previous row (or, without
     % one, from the sketch) and the row solved from there; where the way is cut but the row
     % solves all the same it is on another assembly only, and gets the code m.another.  A
@@ -2308,11 +2298,11 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
         % past a limit position: the pass fails the row at once with the limit's code
         [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
     elseif warm.valid && all(abs(in - warm.in) <= m.limits)
-        % from the previous row, by the predictor; the path its block states' rates point along
-        guess = resolver_predict(warm, in, m.sizes);
+        % from the previous row, where the predictor points (order 0: its block states as they were)
+        guess = resolver_predict(warm, in, m.sizes, p.predictor);
         a = guess;
-        if p.predictor ~= 1
-            a = resolver_start(warm, in, m.sizes, p.predictor);
+        if p.predictor == 0
+            a = warm.a;
         end
         [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
         solved = status <= 0 && resolver_on_path(warm.a, guess, a, m.sizes, p.path_slack * m.length_scale, p);

@@ -596,32 +596,19 @@ static double warm_tau(const resolver_warm *warm, const double in[])
     return den > 0.0 ? num / den : 0.0;
 }
 
-/* Resolver start values for new inputs: the warm states advanced along their rates
- * (first-order Taylor in the warm row's input direction; the rates exist at every
- * order, so the positions do not depend on the order computed). */
-static void predict(const resolver_warm *warm, const double in[], const int sizes[], double a[][LINKGEN_NMAX])
+/* The path the assembly is expected on at new inputs, into a: the warm states advanced along
+ * their rates (order 1: first-order Taylor in the warm row's input direction), or along the
+ * parabola with those rates that also passes through the row before them (order 2; first
+ * order without one).  Both need positions and rates only, and the rates exist at every
+ * order, so the positions do not depend on the order computed. */
+static void predict(const resolver_warm *warm, const double in[], const int sizes[], int order,
+                    double a[][LINKGEN_NMAX])
 {
-    advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad, warm_tau(warm, in),
-            sizes, a);
-}
-
-/* The warm start of new inputs by the predictor of order p->predictor into a: the warm states
- * as they were (0), advanced along their rates (1: predict), or along the parabola that also
- * passes through the row before them (2; first order without one).  The parabola needs
- * positions and rates only, so the start does not depend on the order a program computes. */
-static void start(const resolver_warm *warm, const double in[], const int sizes[], int order,
-                  double a[][LINKGEN_NMAX])
-{
-    double tau, back;
+    const double tau = warm_tau(warm, in);
+    double back;
     int g, i;
-    if (order == 0) {
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = warm->a[g][i];
-        return;
-    }
-    predict(warm, in, sizes, a);
-    if (order == 1 || !*warm->back_valid) return;
-    tau = warm_tau(warm, in);
+    advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad, tau, sizes, a);
+    if (order < 2 || !*warm->back_valid) return;
     back = warm_tau(warm, warm->back_in);
     if (back == 0.0) return;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
@@ -720,8 +707,8 @@ static int continuation(const resolver_path *path, const double base[], double a
 
 /* Solve one row on the sketch's assembly.  From the warm start (the previous row) when no
  * input has moved farther than a continuation step: the resolvers start where the predictor
- * of order p->predictor points (see start), and the row is taken when it solves on the path
- * the block states' rates point along (see on_path).
+ * of order p->predictor points (see predict; order 0: from the warm states as they were), and
+ * the row is taken when it solves on that path (see on_path; order 0: the first-order one).
  * Else, or where that fails at a resolver or lands off the path, the assembly is followed by
  * continuation from the previous row (or, without one, from the sketch) and the row solved
  * from there; where the way is cut but the row solves all the same it is on another
@@ -742,13 +729,9 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         /* past a limit position: the pass fails the row at once with the limit's code */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
     } else if (*warm->valid && within(in, warm->in, m->limits)) {
-        predict(warm, in, m->sizes, guess);
-        if (p->predictor == 1) {
-            for (g = 0; g < LINKGEN_NBLOCKS; g++)
-                for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = guess[g][i];
-        } else {
-            start(warm, in, m->sizes, p->predictor, a);
-        }
+        predict(warm, in, m->sizes, p->predictor, guess);
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* predictor order 0: from the warm states as they were */
+            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = p->predictor ? guess[g][i] : warm->a[g][i];
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
         solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
                                       (const double (*)[LINKGEN_NMAX])a, m->sizes,
