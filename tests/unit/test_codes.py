@@ -41,5 +41,6 @@ def test_a_fixed_point_resolver_reports_when_it_does_not_contract():
     newton = build_log(str(FIG14), sweep=False)
     fixed = build_log(str(FIG14), sweep=False, options={"strategy": "fixed-point"})
     (stuck,) = set(fixed.status_codes) - set(newton.status_codes)
-    assert (stuck.code, stuck.meaning) == (96, "step 9 (group1): the resolver's fixed-point iteration does not contract")
+    assert (stuck.code, stuck.meaning) == (96,
+                                           "step 9 (group1): the resolver's fixed-point iteration does not contract")
     assert set(newton.status_codes) < set(fixed.status_codes)

@@ -60,3 +60,9 @@ def test_a_resolver_group_is_its_chosen_block_then_its_fallbacks():
 @pytest.mark.parametrize("path, order, record_order", [(FOURBAR, 0, 0), (FIG14, 0, 1), (FIG14, 2, 2)])
 def test_a_resolver_needs_velocities_for_its_jacobian(path: str, order: int, record_order: int):
     assert _view(path, order).record_order == record_order
+
+
+def test_only_a_fixed_point_resolver_adds_its_failure():
+    assert _view(FOURBAR).failures == _view(FIG14).failures == (1, 2)
+    assert build_view(build_log(FIG14, sweep=False, options={"strategy": "fixed-point"})).failures == (1, 2, 6)
+    assert build_view(build_log(FOURBAR, sweep=False, options={"strategy": "fixed-point"})).failures == (1, 2)
