@@ -27,6 +27,7 @@ import pytest
 from programs import ROOT, STRICT, compare, need, parse, run_octave, run_python
 
 from linkgen import status
+from linkgen.evaluate import RowSolver, input_rows
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
 from linkgen.steplog import StepLog
@@ -120,6 +121,10 @@ def test_fixed_point_reports_that_it_does_not_contract_past_a_limit_position(tmp
     assert log_fp.step(9).action == "resolve" and all(v != v for v in [rows[5][c] for c in _positions(log)])
     assert _check_against_default(log, ref, rows, True) == 1
     assert any(c.code == rows[5]["status"] for c in log_fp.status_codes)
+    solver = RowSolver(log_fp, log_fp.order)  # linkgen run: the evaluator runs the build's settings too
+    for k, (values, rates, accs) in enumerate(zip(*input_rows(log_fp, log_fp.samples))):
+        row = solver.solve(values, rates, accs)
+        assert (row.code, list(row.iterations.values())) == (rows[k]["status"], rows[k]["iterations"]), k
 
 
 TOLERANCE_AND_CAP = [{"tolerance": 1e-6, "polish": False}, {"iterations": 2, "predictor": 0}]
