@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import replace
 
 from . import __version__
 from .analysis import motion_facts, with_facts
@@ -11,7 +12,7 @@ from .directions import unit_directions
 from .errors import InputError, and_list
 from .extraction import Procedure, extract
 from .model import Mechanism
-from .options import overridden, policy_for
+from .options import overridden, policy_for, reference
 from .prune import prune
 from .steplog import Draft, InputInfo, LinkInfo, PairInfo, StepLog
 from .topology import Topology, analyse
@@ -87,7 +88,8 @@ def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | No
     if outputs is not None:
         _check_outputs(m, outputs)
     whole = draft(topo, proc, outputs, order, options)
-    return prune(with_facts(whole, motion_facts(whole, sweep)))
+    facts = motion_facts(Draft(replace(whole, options=reference(whole.options))), sweep)
+    return prune(with_facts(whole, facts))
 
 
 

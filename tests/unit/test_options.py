@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from linkgen.options import Options, describe, overridden, policy_for
+from linkgen.options import Options, describe, overridden, policy_for, reference, runtime_policy
 from linkgen.policy import POLICY
 
 
@@ -35,3 +35,16 @@ def test_the_settings_as_the_first_lines_state_them():
     assert describe(o, None) == "Settings: checks off, angles as unit vectors."
     assert describe(o, policy_for(o)) == ("Settings: resolver fixed-point (tolerance 1e-08, at most 8 iterations, "
                                           "polish off, predictor order 0), checks off, angles as unit vectors.")
+
+
+def test_the_runtime_reads_the_policys_numbers_and_the_resolvers_settings():
+    o = Options(strategy="fixed-point", tolerance=1e-6, polish=False, predictor=2)
+    p = runtime_policy(policy_for(o), o)
+    assert (p.tolerance, p.max_iterations, p.path_share) == (1e-6, POLICY.max_iterations, POLICY.path_share)
+    assert (p.strategy, p.polish, p.predictor) == ("fixed-point", False, 2)
+
+
+def test_the_reference_is_the_default_iteration_with_the_other_settings_kept():
+    o = Options(real="float", strategy="fixed-point", tolerance=1e-6, iterations=3, polish=False, predictor=0,
+                checks=False)
+    assert reference(o) == Options(real="float", tolerance=1e-6, iterations=3, checks=False)

@@ -12,6 +12,7 @@ from linkgen.pipeline import analyse_file, build_log, draft
 ROOT = Path(__file__).resolve().parents[2]
 PARALLELOGRAM = ROOT / "tests" / "mechanisms" / "parallelogram.yaml"
 JANSEN = ROOT / "samples" / "jansen" / "jansen.yaml"
+PARTIAL = ROOT / "tests" / "mechanisms" / "sixbar_partial.yaml"
 
 
 def test_the_draft_has_no_motion_facts():
@@ -36,3 +37,14 @@ def test_a_build_for_some_outputs_keeps_the_whole_builds_facts_of_its_steps():
 def test_an_unknown_output_is_refused():
     with pytest.raises(InputError, match="nope is not a pair, point or link of parallelogram"):
         build_log(str(PARALLELOGRAM), ("nope",))
+
+
+def test_the_motion_facts_are_the_mechanisms_whatever_the_resolver_runs():
+    """sixbar_partial's limit positions and conditioning, found with the default iteration, are the
+    same in a build whose programs run the fixed-point iteration from the last row's state without
+    polish (found with it, its reach would end where that iteration first fails)."""
+    default = build_log(str(PARTIAL))
+    log = build_log(str(PARTIAL), options={"strategy": "fixed-point", "predictor": 0, "polish": False})
+    assert log.reach == default.reach and log.reach is not None
+    assert log.conditioning == default.conditioning
+    assert (log.options.strategy, log.options.predictor, log.options.polish) == ("fixed-point", 0, False)

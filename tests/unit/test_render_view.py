@@ -68,3 +68,9 @@ def test_a_links_direction_is_an_output_of_its_own_kind():
     kinds = {o.name: (o.kind, [f for f, _, _ in o.fields]) for o in v.outputs}
     assert kinds["rocker"] == ("direction", ["ux", "uy", "dux", "duy", "ddux", "dduy"])
     assert kinds["P"][0] == "point"
+
+
+def test_only_a_fixed_point_resolver_adds_its_failure():
+    assert _view(FOURBAR).failures == _view(FIG14).failures == (1, 2)
+    assert build_view(build_log(FIG14, sweep=False, options={"strategy": "fixed-point"})).failures == (1, 2, 6)
+    assert build_view(build_log(FOURBAR, sweep=False, options={"strategy": "fixed-point"})).failures == (1, 2)

@@ -15,14 +15,30 @@ def advance(a, rates, step, sizes):
             for g, gr, n in zip(a, rates, sizes)]
 
 
-def predict(warm, inputs, sizes):
-    """Resolver start values for new inputs: the warm states advanced along their rates
-    (first-order Taylor in the warm row's input direction; rates exist at every order,
-    so a program gives the same positions whatever order it computes)."""
-    w_in, w_rates, a, ad = warm
+def predict(warm, inputs, sizes, order):
+    """The path the assembly is expected on at new inputs: the warm states advanced along
+    their rates (order 1: first-order Taylor in the warm row's input direction), or along
+    the parabola with those rates that also passes through the row before them (order 2;
+    warm[5] holds its inputs and states, None where there was none: then first order).
+    Both need positions and rates only, and rates exist at every order, so a program gives
+    the same positions whatever order it computes."""
+    w_in, w_rates, a, ad = warm[:4]
+    tau = _tau(w_in, w_rates, inputs)
+    first = advance(a, ad, tau, sizes)
+    back = _tau(w_in, w_rates, warm[5][0]) if order == 2 and warm[5] is not None else 0.0
+    if back == 0.0:
+        return first
+    out = []
+    for g, gr, gb, n in zip(a, ad, warm[5][1], sizes):
+        bend = [(b - v - back * r) / (back * back) for v, r, b in zip(g[:n], gr, gb)]
+        out.append([abs(v + tau * r + tau * tau * c) for v, r, c in zip(g, gr, bend)] + list(g[n:]))
+    return out
+
+
+def _tau(w_in, w_rates, inputs):
+    """How far inputs lie from w_in along the rates w_rates, in time (0 without rates)."""
     den = sum(r * r for r in w_rates)
-    tau = sum((x - y) * r for x, y, r in zip(inputs, w_in, w_rates)) / den if den > 0 else 0.0
-    return advance(a, ad, tau, sizes)
+    return sum((x - y) * r for x, y, r in zip(inputs, w_in, w_rates)) / den if den > 0 else 0.0
 
 
 def within(inputs, last, limits):
@@ -108,14 +124,16 @@ def walk(run, base, a, goal, m, p):
 
 def drive(run, warm, inputs, rates, accs, order, past, m, p):
     """Solve one row on the sketch's assembly.  From the previous row's warm start
-    (inputs, rates, block states, their rates, the blocks used) when no input has moved
-    farther than a continuation step: the resolvers start where the block states' rates
-    point, and the row is taken when it solves on that path (see on_path).  Else, or where
-    the warm start fails at a resolver or lands off the path, the assembly is followed by
-    continuation from the previous row (or, without one, from the sketch) and the row
-    solved from there; where the way is cut but the row solves all the same it is on
-    another assembly only, and gets the code m.another.  A row past the reach (past) fails
-    at once.  Returns (status code, the warm start for the next row, None where it failed).
+    (inputs, rates, block states, their rates, the blocks used, the row before it) when no
+    input has moved farther than a continuation step: the resolvers start where the
+    predictor of order p.predictor points (see predict; order 0: from the warm states as
+    they were), and the row is taken when it solves on that path (see on_path; order 0: the
+    first-order one).  Else, or where the warm start fails at a resolver or lands off the
+    path, the assembly is followed by continuation from the previous row (or, without one,
+    from the sketch) and the row solved from there; where the way is cut but the row solves
+    all the same it is on another assembly only, and gets the code m.another.  A row past
+    the reach (past) fails at once.  Returns (status code, the warm start for the next row,
+    None where it failed).
     """
     base, a = m.sketch_inputs, [list(g) for g in m.sketch_a]
     used = list(warm[4]) if warm else [0] * m.groups
@@ -123,8 +141,8 @@ def drive(run, warm, inputs, rates, accs, order, past, m, p):
     if past:  # past a limit position: the pass fails the row at once with the limit's code
         code, ad = run(inputs, rates, accs, order, a, used, True)
     elif warm and within(inputs, warm[0], m.limits):
-        guess = predict(warm[:4], inputs, m.sizes)
-        a = [list(g) for g in guess]
+        guess = predict(warm, inputs, m.sizes, max(p.predictor, 1))
+        a = [list(g) for g in (guess if p.predictor else warm[2])]  # order 0: the warm states as they were
         code, ad = run(inputs, rates, accs, order, a, used, True)
         solved = code <= 0 and on_path(warm[2], guess, a, m.sizes, p.path_slack * m.length_scale, p)
     if warm and not solved:
@@ -144,4 +162,7 @@ def drive(run, warm, inputs, rates, accs, order, past, m, p):
         if reached is None and code <= 0:
             code = m.another  # another assembly only
         solved = code <= 0
-    return code, ((list(inputs), list(rates), a, ad, used) if solved else None)
+    if not solved:
+        return code, None
+    back = (warm[0], warm[2]) if warm and p.predictor == 2 and code != m.another else None
+    return code, (list(inputs), list(rates), a, ad, used, back)
