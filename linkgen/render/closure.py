@@ -5,12 +5,16 @@ Unknown k is coordinate k % 2 (x, y) of position k // 2 of ``Closure.unknowns``.
 is in length units, so the resolver's tolerance applies to it as it does to an Add-link's
 residual: a distance row is g = (dx^2 + dy^2 - l^2) / (2 l), about |b - a| - l near a
 solution, with dg/db = (dx, dy) / l; a frame row (x or y of point = origin + w (b - a)) is
-g = c - o - (p (bx - ax) + q (by - ay)), linear, its Jacobian constant.
+g = c - o - (p (bx - ax) + q (by - ay)), linear, its Jacobian constant.  ``values`` and
+``in_process`` compute them for the in-process evaluator.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from types import SimpleNamespace
+from typing import Any
 
 from ..steplog import Closure, Distance, Frame
 
@@ -79,3 +83,42 @@ def _frame(i: int, f: Frame, axis: str, index: dict[str, int]) -> Row:
             factors[coord.unknown] = factors.get(coord.unknown, 0.0) + factor
     entries = tuple(Entry(k, x, "") for k, x in sorted(factors.items()) if x != 0.0)
     return Row(i, "frame", f.step, f.link, (c, o, *a, *b), (p, q), entries)
+
+
+def values(rows_: tuple[Row, ...], x: list[float], known: Callable[[Coord], float]) -> tuple[list[float],
+                                                                                           list[list[float]]]:
+    """The residuals and Jacobian of a group's rows at the unknowns x (known positions' coordinates
+    from ``known``), in the generated programs' order of operations."""
+    n = len(x)
+    g, jac = [0.0] * n, [[0.0] * n for _ in range(n)]
+    for r in rows_:
+        k = [x[c.unknown] if c.unknown >= 0 else known(c) for c in r.coords]
+        terms = {"": 1.0, "dx": 0.0, "dy": 0.0}
+        if r.kind == "distance":
+            terms["dx"], terms["dy"] = k[2] - k[0], k[3] - k[1]
+            g[r.index] = (terms["dx"] * terms["dx"] + terms["dy"] * terms["dy"] - r.constants[0]) * r.constants[1]
+        else:
+            g[r.index] = k[0] - k[1] - r.constants[0] * (k[4] - k[2]) - r.constants[1] * (k[5] - k[3])
+        for e in r.entries:
+            jac[r.index][e.column] = terms[e.term] * e.factor
+    return g, jac
+
+
+def in_process(c: Closure, records: dict[Any, Any], adopt: Callable[[list[list[float]]], None]) -> SimpleNamespace:
+    """A group's closure as the Python runtime's resolve_closure takes it, on the evaluator's
+    records (each position a tuple: x, y, then its rates); ``adopt(states)`` reads every block's
+    state off the records once the solution is in them."""
+    rows_ = rows(c)
+
+    def place() -> list[float]:
+        return [records[u][i] for u in c.unknowns for i in (0, 1)]
+
+    def equations(x: list[float]) -> tuple[list[float], list[list[float]]]:
+        return values(rows_, x, lambda k: float(records[k.var][k.axis == "y"]))
+
+    def adopt_solution(x: list[float], states: list[list[float]]) -> None:
+        for i, u in enumerate(c.unknowns):
+            records[u] = (x[2 * i], x[2 * i + 1], *records[u][2:])
+        adopt(states)
+
+    return SimpleNamespace(place=place, equations=equations, adopt=adopt_solution)
