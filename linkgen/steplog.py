@@ -133,9 +133,10 @@ class Distance:
     """A closure equation: |points[1] - points[0]| = length (one row)."""
 
     points: tuple[str, str]  # position variables
-    length: float
+    length: float  # in the sketch
     step: int  # the step whose chain or residual holds it
     link: str
+    variable: str = ""  # the VARIABLE record holding the length where it changes with the inputs (an actuator's)
 
 
 @dataclass(frozen=True)

@@ -5,7 +5,8 @@ positions the group's chosen block places (x and y of each), the equations the r
 constraints its steps hold, read off them: a 3R chain's two distances (an Add-link's is no
 constraint and is left out), a point fixed in its link's frame (two rows) and the length of
 each link the Solver did not use (the residual's).  Each placement gives two rows and each
-Add-link's row is traded for a residual's, so the system is square.  A group with a step
+Add-link's row is traded for a residual's, so the system is square.  A length that changes with
+the inputs (an actuator's) is read from its record as the row is computed.  A group with a step
 these do not cover (a prismatic pair's chain) is refused, with the step that stops it.
 """
 
@@ -44,10 +45,10 @@ def closure(group: ResolverGroup, block: list[Step], variables: dict[str, Variab
         if s.function == "RRR_links":
             for end, length in ((var[0], var[2]), (var[1], var[3])):
                 if length not in adds:
-                    distances.append(Distance((end, s.outputs[0]), _length(length, s, variables), s.number,
-                                              _link(length, variables)))
+                    distances.append(_distance((end, s.outputs[0]), length, s.number, _link(length, variables),
+                                               variables))
         elif s.function == "link_residual":
-            distances.append(Distance((var[0], var[1]), _length(var[2], s, variables), s.number, s.target))
+            distances.append(_distance((var[0], var[1]), var[2], s.number, s.target, variables))
         elif s.function == "coupler_point":
             a, b = _base(var[1], producer, s)
             frames.append(Frame(s.outputs[0], var[0], (a, b), _ratio(variables, s.outputs[0], var[0], a, b),
@@ -62,17 +63,16 @@ def closure(group: ResolverGroup, block: list[Step], variables: dict[str, Variab
     return Closure(tuple(unknowns), tuple(distances), tuple(frames))
 
 
-def _length(name: str, s: Step, variables: dict[str, Variable]) -> float:
-    v = variables[name]
-    if not v.constant:
-        raise ClosureRefused(f"the length {v.entity} of step {s.number} changes with the inputs, and it "
-                             "handles links of constant length only")
-    return v.value[0]
+def _distance(points: tuple[str, str], length: str, step: int, link: str, variables: dict[str, Variable]) -> Distance:
+    """|points[1] - points[0]| = the record ``length`` (its value, or the record where it changes with the inputs)."""
+    v = variables[length]
+    return Distance(points, v.value[0], step, link) if v.constant else Distance(points, v.sketch[0], step, link, length)
 
 
 def _link(length: str, variables: dict[str, Variable]) -> str:
-    """The link a length record belongs to (its entity is link:pair-pair)."""
-    return variables[length].entity.split(":")[0]
+    """The link a length record belongs to (its entity is link:pair-pair; an actuator's is its input's)."""
+    v = variables[length]
+    return v.entity.split(":")[0] if v.role == "length" else v.entity
 
 
 def _base(angle: str, producer: dict[str, Step], s: Step) -> tuple[str, str]:

@@ -4,7 +4,8 @@ time, each with its residual's terms and its Jacobian's nonzero entries (no lang
 Unknown k is coordinate k % 2 (x, y) of position k // 2 of ``Closure.unknowns``.  Every row
 is in length units, so the resolver's tolerance applies to it as it does to an Add-link's
 residual: a distance row is g = (dx^2 + dy^2 - l^2) / (2 l), about |b - a| - l near a
-solution, with dg/db = (dx, dy) / l; a frame row (x or y of point = origin + w (b - a)) is
+solution, with dg/db = (dx, dy) / l (l a literal, or the record of a length that changes with
+the inputs); a frame row (x or y of point = origin + w (b - a)) is
 g = c - o - (p (bx - ax) + q (by - ay)), linear, its Jacobian constant.  ``values`` and
 ``in_process`` compute them for the in-process evaluator.
 """
@@ -30,11 +31,12 @@ class Coord:
 
 @dataclass(frozen=True)
 class Entry:
-    """One nonzero Jacobian entry of a row: factor, times the row's dx or dy where term says so."""
+    """One nonzero Jacobian entry of a row: a frame row's factor; a distance row's dx or dy over
+    l, with the factor's sign (+1 or -1)."""
 
     column: int
     factor: float
-    term: str  # "" | dx | dy
+    term: str  # "" (frame) | dx | dy (distance)
 
 
 @dataclass(frozen=True)
@@ -44,8 +46,9 @@ class Row:
     step: int  # the step whose constraint it is
     link: str
     coords: tuple[Coord, ...]  # distance: a.x, a.y, b.x, b.y; frame: c, o (the row's axis), a.x, a.y, b.x, b.y
-    constants: tuple[float, ...]  # distance: l^2, 1 / (2 l); frame: p, q
+    constants: tuple[float, ...]  # distance: l (in the sketch); frame: p, q
     entries: tuple[Entry, ...]
+    variable: str = ""  # distance: the VARIABLE record l is read from, where it changes with the inputs
 
 
 def rows(c: Closure) -> tuple[Row, ...]:
@@ -65,11 +68,10 @@ def _coords(var: str, index: dict[str, int]) -> tuple[Coord, Coord]:
 
 def _distance(i: int, d: Distance, index: dict[str, int]) -> Row:
     a, b = (_coords(p, index) for p in d.points)
-    inverse = 1.0 / d.length
-    entries = [Entry(c.unknown, sign * inverse, term)
+    entries = [Entry(c.unknown, sign, term)
                for cs, sign in ((b, 1.0), (a, -1.0)) for c, term in zip(cs, ("dx", "dy")) if c.unknown >= 0]
-    return Row(i, "distance", d.step, d.link, (*a, *b), (d.length * d.length, 0.5 * inverse),
-               tuple(sorted(entries, key=lambda e: e.column)))
+    return Row(i, "distance", d.step, d.link, (*a, *b), (d.length,), tuple(sorted(entries, key=lambda e: e.column)),
+               d.variable)
 
 
 def _frame(i: int, f: Frame, axis: str, index: dict[str, int]) -> Row:
@@ -85,22 +87,24 @@ def _frame(i: int, f: Frame, axis: str, index: dict[str, int]) -> Row:
     return Row(i, "frame", f.step, f.link, (c, o, *a, *b), (p, q), entries)
 
 
-def values(rows_: tuple[Row, ...], x: list[float], known: Callable[[Coord], float]) -> tuple[list[float],
-                                                                                           list[list[float]]]:
-    """The residuals and Jacobian of a group's rows at the unknowns x (known positions' coordinates
-    from ``known``), in the generated programs' order of operations."""
+def values(rows_: tuple[Row, ...], x: list[float], known: Callable[[str, int], float]) -> tuple[list[float],
+                                                                                            list[list[float]]]:
+    """The residuals and Jacobian of a group's rows at the unknowns x (``known(record, i)``: field i of
+    a record the group reads: a position's x or y, a length's value), in the programs' order of operations."""
     n = len(x)
     g, jac = [0.0] * n, [[0.0] * n for _ in range(n)]
     for r in rows_:
-        k = [x[c.unknown] if c.unknown >= 0 else known(c) for c in r.coords]
-        terms = {"": 1.0, "dx": 0.0, "dy": 0.0}
+        k = [x[c.unknown] if c.unknown >= 0 else known(c.var, c.axis == "y") for c in r.coords]
         if r.kind == "distance":
-            terms["dx"], terms["dy"] = k[2] - k[0], k[3] - k[1]
-            g[r.index] = (terms["dx"] * terms["dx"] + terms["dy"] * terms["dy"] - r.constants[0]) * r.constants[1]
+            ell = known(r.variable, 0) if r.variable else r.constants[0]
+            d = {"dx": k[2] - k[0], "dy": k[3] - k[1]}
+            g[r.index] = (d["dx"] * d["dx"] + d["dy"] * d["dy"] - ell * ell) / (2 * ell)
+            for e in r.entries:
+                jac[r.index][e.column] = (d[e.term] if e.factor > 0 else -d[e.term]) / ell
         else:
             g[r.index] = k[0] - k[1] - r.constants[0] * (k[4] - k[2]) - r.constants[1] * (k[5] - k[3])
-        for e in r.entries:
-            jac[r.index][e.column] = terms[e.term] * e.factor
+            for e in r.entries:
+                jac[r.index][e.column] = e.factor
     return g, jac
 
 
@@ -114,7 +118,7 @@ def in_process(c: Closure, records: dict[Any, Any], adopt: Callable[[list[list[f
         return [records[u][i] for u in c.unknowns for i in (0, 1)]
 
     def equations(x: list[float]) -> tuple[list[float], list[list[float]]]:
-        return values(rows_, x, lambda k: float(records[k.var][k.axis == "y"]))
+        return values(rows_, x, lambda name, i: float(records[name][i]))
 
     def adopt_solution(x: list[float], states: list[list[float]]) -> None:
         for i, u in enumerate(c.unknowns):

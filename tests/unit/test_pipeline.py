@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from mechanism_text import SLIDER_TRIAD
 
 from linkgen.errors import InputError
 from linkgen.pipeline import analyse_file, build_log, draft
@@ -36,3 +37,21 @@ def test_a_build_for_some_outputs_keeps_the_whole_builds_facts_of_its_steps():
 def test_an_unknown_output_is_refused():
     with pytest.raises(InputError, match="nope is not a pair, point or link of parallelogram"):
         build_log(str(PARALLELOGRAM), ("nope",))
+
+
+def test_the_closure_strategy_is_refused_where_it_was_asked_for(tmp_path: Path):
+    """A resolver group with a prismatic pair (tests/unit/test_extraction_closure.py's slider triad): the
+    error names the file's options.strategy, or the command line's --strategy."""
+    path = tmp_path / "slider_triad.yaml"
+    path.write_text(SLIDER_TRIAD + "options:\n  strategy: closure\n")
+    with pytest.raises(InputError) as info:
+        build_log(str(path), sweep=False)
+    assert (info.value.path, info.value.line, info.value.key) == (str(path), 21, "options.strategy")
+    assert info.value.message.startswith("the closure strategy cannot resolve this mechanism: it handles resolver "
+                                         "groups of revolute pairs only")
+    assert info.value.message.endswith("; use strategy newton")
+    path.write_text(SLIDER_TRIAD)
+    with pytest.raises(InputError) as info:
+        build_log(str(path), sweep=False, options={"strategy": "closure"})
+    assert (info.value.path, info.value.line, info.value.key) == ("command line", 0, "--strategy")
+    assert build_log(str(path), sweep=False).groups  # the default strategy resolves it

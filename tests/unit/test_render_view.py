@@ -60,3 +60,10 @@ def test_a_resolver_group_is_its_chosen_block_then_its_fallbacks():
 @pytest.mark.parametrize("path, order, record_order", [(FOURBAR, 0, 0), (FIG14, 0, 1), (FIG14, 2, 2)])
 def test_a_resolver_needs_velocities_for_its_jacobian(path: str, order: int, record_order: int):
     assert _view(path, order).record_order == record_order
+
+
+def test_the_closure_strategy_gives_each_group_its_rows():
+    v = build_view(build_log(FIG14, sweep=False, options={"strategy": "closure"}))
+    (g,) = v.groups
+    assert v.closure and not _view(FIG14).closure
+    assert len(v.closure_rows(g)) == 6 == v.nmax  # four lengths and a frame's x and y, on three positions

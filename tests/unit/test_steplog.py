@@ -101,3 +101,13 @@ def test_runtime_and_status_codes_are_made_from_the_steps_and_reach():
     assert "reach_at" in partial.runtime and 91 in [c.code for c in partial.status_codes]
     free = replace(partial, reach=None)
     assert "reach_at" not in free.runtime and 91 not in [c.code for c in free.status_codes]
+
+
+def test_a_closure_log_reads_back_and_its_programs_carry_the_closure_runtime():
+    """With strategy closure every group records its equations (steplog.Closure), NAME.json reads back
+    to the same log, and the runtime names the closure strategy's; the default build does neither."""
+    log = build_log(str(FIG14), sweep=False, options={"strategy": "closure"})
+    assert log.groups[0].closure is not None and "closure" in log.runtime
+    assert _decode(StepLog, json.loads(log.to_json())) == log
+    default = build_log(str(FIG14), sweep=False)
+    assert default.groups[0].closure is None and "closure" not in default.runtime
