@@ -19,12 +19,14 @@ class StatusCode:
     meaning: str
 
 
-def _reasons(s: Step) -> dict[int, str]:
-    """What each failure of a step means, by reason."""
+def _reasons(s: Step, strategy: str) -> dict[int, str]:
+    """What each failure of a step means, by reason (a resolver's by its strategy)."""
     if s.action == "resolve":
+        stuck = {status.NOT_CONTRACTING: "the resolver's fixed-point iteration does not contract"}
         return {status.NOT_CONVERGED: "the resolver did not converge",
                 status.SINGULAR: "the resolver's Jacobian is singular",
-                status.NEAR_SINGULAR: "the resolver's Jacobian is near singular"}
+                status.NEAR_SINGULAR: "the resolver's Jacobian is near singular",
+                **(stuck if strategy == "fixed-point" else {})}
     if s.action == "residual":
         return {status.SINGULAR: f"the pairs of {s.target} coincide, so the resolver has no rate"}
     if s.function == "link_angle":
@@ -43,7 +45,7 @@ def status_codes(log: StepLog) -> tuple[StatusCode, ...]:
     for s in log.steps:
         if s.fails:
             out += [StatusCode(status.code(s.number, r), s.number, f"step {s.number} ({s.target}): {meaning}")
-                    for r, meaning in _reasons(s).items()]
+                    for r, meaning in _reasons(s, log.options.strategy).items()]
     limits = {log.reach.low_step, log.reach.high_step} - {0} if log.reach is not None else set()
     for number in sorted(limits):
         s = log.step(number)

@@ -23,6 +23,7 @@ import numpy as np
 from . import status
 from .kernel import kernel
 from .kernel import runtime as numpy_runtime
+from .options import runtime_policy
 from .primitives import PRIMITIVES, python_backend
 from .primitives.dsl import record_fields
 from .primitives.interpret import constant_record
@@ -118,7 +119,8 @@ def row_status(report: Report) -> Any:
     singular: Any = 0
     near: Any = 0
     for n, (st, _) in report.items():
-        fail = fail + (fail == 0) * ((st == FAIL) | (st == NOT_CONVERGED)) * status.code(n, st)
+        failed = (st == FAIL) | (st == NOT_CONVERGED) | (st == status.NOT_CONTRACTING)
+        fail = fail + (fail == 0) * failed * status.code(n, st)
         singular = singular + (singular == 0) * (st == SINGULAR) * status.code(n, st)
         near = near + (near == 0) * (st == NEAR) * status.code(n, st)
     return fail + (fail == 0) * (singular + (singular == 0) * near)
@@ -245,9 +247,7 @@ class RowSolver:
     def solve(self, values: Any, rates: Any, accs: Any, one_way: bool = False) -> Row:
         """Solve one row (see the runtime's drive); ``one_way``: the continuation takes the
         straight path only, never the other way round (the build's search for limit positions)."""
-        p = self.log.policy
-        if self.halvings != p.max_halvings:
-            p = replace(p, max_halvings=self.halvings)
+        p = runtime_policy(replace(self.log.policy, max_halvings=self.halvings), self.log.options)
         x, d, dd = ([float(v) for v in seq] for seq in (values, rates, accs))
         self.its = [0] * len(self.log.groups)
         past = self._side(x) != 0
@@ -324,12 +324,12 @@ class RowSolver:
 
             resolve = functools.partial(runtime()["resolve_closure"], in_process(g.closure, env, adopt))
         ok, sigma = resolve(fns, lengths, a, ad, first, self.slots[g.number], used, its, order, lambda: chains[0],
-                            self.mech, p)
-        if ok:
+                            self.mech, runtime_policy(p, self.log.options))
+        if ok > 0:
             report.update(last)
-        report[g.step] = ((SINGULAR if sigma < p.singular else NEAR if sigma < p.near_singular else 0) if ok
-                          else NOT_CONVERGED, sigma)
-        return bool(ok)
+        report[g.step] = ((SINGULAR if sigma < p.singular else NEAR if sigma < p.near_singular else 0) if ok > 0
+                          else NOT_CONVERGED if ok == 0 else status.NOT_CONTRACTING, sigma)
+        return bool(ok > 0)
 
     def _group(self, b: ResolverGroup, env: Env, before: Env, last: Report, chains: list[float]) -> Callable[..., Any]:
         """The runtime's view of a block (the generated _group_N): (status, residual records)

@@ -5,7 +5,8 @@ header state.  The numbers they set reach the resolver through the log's policy.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import asdict, dataclass, replace
+from types import SimpleNamespace
 
 from .policy import DEFAULT_REAL, POLICY, REAL_TYPES, Policy
 
@@ -49,6 +50,21 @@ def policy_for(options: Options, policy: Policy = POLICY) -> Policy:
     type's floor when it is rendered: policy.for_real)."""
     return replace(policy, tolerance=options.tolerance, max_iterations=options.iterations,
                    path_slack=policy.path_slack * options.tolerance / policy.tolerance)
+
+
+def reference(options: Options) -> Options:
+    """``options`` with the resolver's default iteration (Newton, polish, first-order
+    predictor): the build follows the mechanism with it to find its motion facts (the reach,
+    the conditioning over the sweep), which are the mechanism's, whatever the programs run."""
+    default = Options()
+    return replace(options, strategy=default.strategy, polish=default.polish, predictor=default.predictor)
+
+
+def runtime_policy(policy: Policy, options: Options) -> SimpleNamespace:
+    """The resolver policy as the runtime reads it (the programs' POLICY): the policy's numbers
+    with the options' strategy, polish and predictor."""
+    return SimpleNamespace(**asdict(policy), strategy=options.strategy, polish=options.polish,
+                           predictor=options.predictor)
 
 
 def describe(options: Options, resolver: Policy | None) -> str:

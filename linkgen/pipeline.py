@@ -12,7 +12,7 @@ from .errors import InputError, and_list
 from .extraction import Procedure, extract
 from .extraction.closure import ClosureRefused, with_closures
 from .model import Mechanism
-from .options import overridden, policy_for
+from .options import overridden, policy_for, reference
 from .prune import prune
 from .steplog import Draft, InputInfo, LinkInfo, PairInfo, StepLog
 from .topology import Topology, analyse
@@ -101,7 +101,8 @@ def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | No
     if outputs is not None:
         _check_outputs(m, outputs)
     whole = draft(topo, proc, outputs, order, options)
-    return prune(with_facts(whole, motion_facts(whole, sweep)))
+    facts = motion_facts(Draft(replace(whole, options=reference(whole.options))), sweep)
+    return prune(with_facts(whole, facts))
 
 
 

@@ -46,7 +46,7 @@ def close_group(ws: Workspace) -> None:
     _hoist(ws, g.number, g.add_links, g.residuals)
     links = [r.link for r in ws.residuals if r.name in g.residuals]
     ws.append("resolve", "", [], list(g.add_links), f"group{g.number}", fails=True,
-              reason=f"Newton-Raphson on {', '.join(g.add_links)} until " + " and ".join(links)
+              reason=f"the resolver iterates on {', '.join(g.add_links)} until " + " and ".join(links)
               + (" regains its length" if len(links) == 1 else " regain their lengths"))
     ws.group = 0
 

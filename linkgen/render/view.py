@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from .. import status
 from ..steplog import Column, ResolverGroup, Step, StepLog, Variable
 from .closure import Row, rows
 
@@ -106,6 +107,11 @@ class View:
 
     def blocks_of(self, group: Group) -> tuple[Group, ...]:
         return self.blocks[group.first:group.first + group.count]
+
+    @property
+    def failures(self) -> tuple[int, ...]:
+        """The reasons of a status whose row has no outputs, of those the programs report."""
+        return status.failures(self.log.options.strategy if self.groups else None)
 
     @property
     def last_step(self) -> int:

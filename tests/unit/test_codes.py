@@ -33,3 +33,13 @@ def test_a_resolver_limit_position_has_a_code_of_its_own():
     log = build_log(str(ROOT / "tests" / "mechanisms" / "sixbar_partial.yaml"), sweep=False)
     (code,) = [c for c in log.status_codes if c.code == 91]
     assert log.step(9).action == "resolve" and code.meaning == "step 9 (group1): cannot assemble past a limit position"
+
+
+def test_a_fixed_point_resolver_reports_when_it_does_not_contract():
+    """Built with the fixed-point strategy, the resolve step (9) of the Fig. 14 six-bar has reason
+    6 besides Newton's; the other steps' reasons are the same."""
+    newton = build_log(str(FIG14), sweep=False)
+    fixed = build_log(str(FIG14), sweep=False, options={"strategy": "fixed-point"})
+    (stuck,) = set(fixed.status_codes) - set(newton.status_codes)
+    assert (stuck.code, stuck.meaning) == (96, "step 9 (group1): the resolver's fixed-point iteration does not contract")
+    assert set(newton.status_codes) < set(fixed.status_codes)

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from linkgen.evaluate import RowSolver, input_rows, mechanism, row_status
+from linkgen.options import runtime_policy
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
 from linkgen.writer import write_all
@@ -60,8 +61,9 @@ def test_the_evaluator_hands_the_driver_the_programs_numbers(program):
             theirs = [g[: len(b)] for g, b in zip(theirs, value)]
             assert all(not any(g[len(b):]) for g, b in zip(getattr(module.MECHANISM, name), value))
         assert np.array_equal(np.asarray(value, dtype=float), np.asarray(theirs, dtype=float), equal_nan=True), name
+    policy = runtime_policy(log.policy, log.options)  # the policy's numbers, the strategy, polish and predictor
     for name, value in vars(module.POLICY).items():
-        assert getattr(log.policy, name) == value, name
+        assert getattr(policy, name) == value, name
 
 
 def test_the_evaluator_solves_each_row_as_the_program_does(program):

@@ -14,14 +14,21 @@ from programs import CFLAGS, need
 
 from linkgen import status
 
-REASONS = (status.CANNOT_CLOSE, status.NOT_CONVERGED, status.SINGULAR, status.NEAR_SINGULAR, status.BAD_INPUT)
+REASONS = (status.CANNOT_CLOSE, status.NOT_CONVERGED, status.SINGULAR, status.NEAR_SINGULAR, status.BAD_INPUT,
+           status.NOT_CONTRACTING)
 STEPS = range(0, 131)  # three-digit steps too
 CODES = sorted({0} | {status.code(s, r) for s in STEPS for r in REASONS})
 
 
-def test_the_reasons_are_the_digits_one_to_five():
-    assert REASONS == (1, 2, 3, 4, 5)
-    assert status.FAILED == (status.CANNOT_CLOSE, status.NOT_CONVERGED)
+def test_the_reasons_are_the_digits_one_to_six():
+    assert REASONS == (1, 2, 3, 4, 5, 6)
+    assert status.FAILED == (status.CANNOT_CLOSE, status.NOT_CONVERGED, status.NOT_CONTRACTING)
+
+
+def test_only_a_fixed_point_resolver_fails_to_contract():
+    assert status.failures("fixed-point") == status.FAILED
+    for strategy in ("newton", "closure", None):
+        assert status.failures(strategy) == (status.CANNOT_CLOSE, status.NOT_CONVERGED)
 
 
 @pytest.mark.parametrize("step, reason, code", [
@@ -46,7 +53,7 @@ def test_code_reason_and_step_round_trip_over_every_step_and_reason():
 def test_failed_and_singular_by_reason_and_sign():
     for c in CODES:
         r = abs(c) % 10
-        assert bool(status.failed(c)) == (c > 0 and r in (1, 2)), c
+        assert bool(status.failed(c)) == (c > 0 and r in (1, 2, 6)), c
         assert bool(status.singular(c)) == (c > 0 and r == 3), c
 
 

@@ -163,6 +163,9 @@ POLICY = SimpleNamespace(  # the resolver's policy, lengths relative to the leng
     path_share=0.1,
     turn_share=0.01,
     walk_passes=1000,
+    strategy="newton",  # the resolver's iteration: newton or fixed-point
+    polish=True,  # one step more once the tolerance is met
+    predictor=1,  # the warm start's order: 0, 1 or 2
 )
 
 
@@ -300,12 +303,14 @@ def reason_of(code):
     0 for status 0 and the negative codes of rows computed near a singular position."""
     return code % 10 if code > 0 else 0
 
-# Over-constraint resolver: Newton-Raphson on the Add-link lengths.
+# Over-constraint resolver: the strategy's iteration on the Add-link lengths (Newton-Raphson,
+# the paper's, or fixed-point iteration with the slope of the row's start), then exact rates.
 # group(a, da, dda, live) runs the steps of one resolver group with the Add-link lengths
 # a, their rates da and accelerations dda (as records of the program's order) and returns
 # (status, f) with f the residual records; live=False zeroes the rates of everything the
 # group reads, so a unit Add-link rate gives one exact Jacobian column through the
-# velocity channel.  p is the resolver policy (the step log's), scale the length scale.
+# velocity channel.  p is the resolver policy (the step log's, with the strategy, polish
+# and predictor of the build's options), scale the length scale.
 
 
 def solve_linear(m, b):
@@ -355,23 +360,43 @@ def conditioning(jac, det):
     return abs(det) / max(prod, 1.0)
 
 
-def newton(group, a, tol, max_iter, reach, halvings):
-    """Iterate the Add-link lengths until max|f| <= tol, then one step more.
+def _residuals(group, a):
+    """The residuals at a (one pass); None when a chain cannot close."""
+    zero = [0.0] * len(a)
+    st, rec = group(a, zero, zero, False)
+    return None if st else [r[0] for r in rec]
+
+
+def _met(f, tol):
+    """Whether every residual is at most tol (a nan fails every comparison)."""
+    return all(abs(v) <= tol for v in f)
+
+
+def _kept(a, start, reach):
+    """1 where the lengths a lie within reach of the start lengths, else 0 (another assembly)."""
+    return int(all(abs(x - y) <= reach for x, y in zip(a, start)))
+
+
+def newton(group, a, tol, max_iter, reach, halvings, polish):
+    """Iterate the Add-link lengths until max|f| <= tol, then (polish) one step more.
 
     A solution farther than reach from the start lengths is another assembly: refused.
 
-    Returns (ok, a, iterations, jac) with jac the Jacobian at the returned a.
+    Returns (solved, a, iterations, jac): solved 1 or 0, jac the Jacobian at the returned a.
     A step that makes a chain fail to close is halved (up to halvings times; then the
-    block fails and the next block is tried).
+    block fails and the next block is tried).  The cap counts every step, a polishing one too.
     """
     start = a
     f, jac = _jacobian(group, a)
     if f is None:
-        return False, a, 0, None
+        return 0, a, 0, None
     for it in range(1, max_iter + 1):
+        done = _met(f, tol)
+        if done and not polish:
+            return _kept(a, start, reach), a, it - 1, jac
         dx, det = solve_linear(jac, [-v for v in f])
         if det == 0.0:
-            return False, a, it, None
+            return 0, a, it, None
         t = 1.0
         for _ in range(halvings + 1):
             trial = [a[i] + t * dx[i] for i in range(len(a))]
@@ -380,12 +405,75 @@ def newton(group, a, tol, max_iter, reach, halvings):
                 break
             t /= 2
         else:
-            return False, a, it, None
-        done = all(abs(v) <= tol for v in f)  # a nan fails every comparison
+            return 0, a, it, None
         a, f, jac = trial, f2, jac2
         if done:
-            return all(abs(x - y) <= reach for x, y in zip(a, start)), a, it, jac
-    return False, a, max_iter, None
+            return _kept(a, start, reach), a, it, jac
+    if not polish and _met(f, tol):
+        return _kept(a, start, reach), a, max_iter, jac
+    return 0, a, max_iter, None
+
+
+def fixed_point(group, a, tol, max_iter, reach, halvings, polish):
+    """The literature's iteration on the decomposed group: the group's chains run round the
+    loop from the Add-link lengths a, and a <- a - J0^-1 f(a) with J0 the Jacobian at the
+    start (one pass per iteration instead of one per Add-link), until max|f| <= tol, then
+    (polish) one step more.  It converges where the map contracts: a step whose residual
+    is not smaller than the last one's (the ratio |f_k+1| / |f_k| at least 1) stops the
+    iteration, and so does the cap (every step counts, a polishing one too).  A step that
+    makes a chain fail to close is halved (up to halvings times).  The Jacobian at the
+    solution is then measured for the exact rates.  A solution farther than reach from
+    the start is another assembly: refused.
+
+    Returns (solved, a, iterations, jac): solved 1, 0, or -1 where the iteration does not
+    contract; jac the Jacobian at the returned a.
+    """
+    start = a
+    f, j0 = _jacobian(group, a)
+    if f is None:
+        return 0, a, 0, None
+    its = 0
+    while not _met(f, tol):
+        if its == max_iter - polish:
+            return 0, a, its, None
+        its += 1
+        dx, det = solve_linear(j0, [-v for v in f])
+        if det == 0.0:
+            return 0, a, its, None
+        t = 1.0
+        for _ in range(halvings + 1):
+            trial = [a[i] + t * dx[i] for i in range(len(a))]
+            f2 = _residuals(group, trial)
+            if f2 is not None:
+                break
+            t /= 2
+        else:
+            return 0, a, its, None
+        if any(v != v for v in f2):  # a nan residual: the block fails, as Newton's does
+            return 0, a, its, None
+        if max(abs(v) for v in f2) >= max(abs(v) for v in f):
+            return -1, a, its, None
+        a, f = trial, f2
+    if polish:
+        its += 1
+        dx, det = solve_linear(j0, [-v for v in f])
+        if det == 0.0:
+            return 0, a, its, None
+        a = [a[i] + dx[i] for i in range(len(a))]
+    f, jac = _jacobian(group, a)
+    if f is None:
+        return 0, a, its, None
+    return _kept(a, start, reach), a, its, jac
+
+
+def solve_block(group, a, p, scale):
+    """The resolver strategy's iteration on one block from its start lengths a: the one
+    place a strategy is chosen (p.strategy).  Returns (solved, a, iterations, jac) as
+    newton and fixed_point do."""
+    tol, reach = p.tolerance * scale, p.max_move * scale
+    if p.strategy == "fixed-point":
+        return fixed_point(group, a, tol, p.max_iterations, reach, p.newton_halvings, p.polish)
+    return newton(group, a, tol, p.max_iterations, reach, p.newton_halvings, p.polish)
 
 
 def addlink_rates(group, a, jac, order):
@@ -415,22 +503,24 @@ def addlink_rates(group, a, jac, order):
 
 
 def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale):
-    """Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
-    preferred block first, the others in order.  The first that converges with its chains
-    conditioned at least p.min_chain_sigma (chains(): the worst of the last pass, from the
-    block's lever down) is kept; else the best conditioned of those that converge, a later
-    block only when more than twice as well conditioned (a block whose chains are near a
-    toggle is a poor coordinate of the assembly; blocks that share that chain tie up to
-    rounding, and the order, not the rounding, decides).
+    """The strategy's iteration (solve_block) on a group's blocks (its chosen Add-link
+    candidate, then the fallbacks), the preferred block first, the others in order.  The
+    first that converges with its chains conditioned at least p.min_chain_sigma (chains():
+    the worst of the last pass, from the block's lever down) is kept; else the best
+    conditioned of those that converge, a later block only when more than twice as well
+    conditioned (a block whose chains are near a toggle is a poor coordinate of the
+    assembly; blocks that share that chain tie up to rounding, and the order, not the
+    rounding, decides).
 
     a[first + k] is block k's state: its sizes[k] start lengths, its branches, its orientation.
-    Returns (k, Newton steps, sigma, orientation), k = -1 when no block converges.
+    Returns (k, iterations, sigma, orientation), k = -1 when no block converges, -2 when
+    none does and the iteration of one of them did not contract.
     """
-    tol, reach = p.tolerance * scale, p.max_move * scale
-    its, best, best_sigma = 0, -1, -1.0
+    its, best, best_sigma, stuck = 0, -1, -1.0, False
     for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
-        ok, x, its, jac = newton(groups[k], a[first + k][:sizes[k]], tol, p.max_iterations, reach, p.newton_halvings)
-        if not ok:
+        ok, x, its, jac = solve_block(groups[k], a[first + k][:sizes[k]], p, scale)
+        stuck = stuck or ok < 0
+        if ok <= 0:
             continue
         if chains() < p.min_chain_sigma:
             if chains() > 2 * best_sigma:
@@ -440,28 +530,28 @@ def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale):
         if st != 1:
             return k, its, sigma, turn
     if best >= 0:
-        ok, x, its, jac = newton(groups[best], a[first + best][:sizes[best]], tol, p.max_iterations, reach,
-                                 p.newton_halvings)
-        if ok:
+        ok, x, its, jac = solve_block(groups[best], a[first + best][:sizes[best]], p, scale)
+        if ok > 0:
             st, sigma, turn = addlink_rates(groups[best], x, jac, order)
             if st != 1:
                 return best, its, sigma, turn
-    return -1, its, 0.0, 0
+    return -2 if stuck else -1, its, 0.0, 0
 
 
 def resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains, m, p):
     """One resolver step: resolve_variants on the group's blocks, the one that solved the
     last row (used[slot]) first; then lengths(a, ad) reads every block's state and its rates
     off the solved pairs (so any of them can start the next row) and the solving block keeps
-    its orientation.  its[slot] gets the Newton steps.  Returns (solved, sigma)."""
+    its orientation.  its[slot] gets the iterations.  Returns (solved, sigma): solved 1, 0
+    where no block converged, -1 where a block's iteration did not contract."""
     k, its[slot], sigma, turn = resolve_variants(groups, a, first, order, used[slot],
                                                  m.sizes[first:first + len(groups)], chains, p, m.length_scale)
     if k < 0:
-        return False, sigma
+        return (0 if k == -1 else -1), sigma
     used[slot] = k
     lengths(a, ad)
     a[first + k][-1] = float(turn)
-    return True, sigma
+    return 1, sigma
 
 # The row driver: one row of a sweep solved on the sketch's assembly, from the previous
 # row where it can (Taylor-predicted start), else by continuation from the previous row or
@@ -485,9 +575,35 @@ def predict(warm, inputs, sizes):
     (first-order Taylor in the warm row's input direction; rates exist at every order,
     so a program gives the same positions whatever order it computes)."""
     w_in, w_rates, a, ad = warm
+    return advance(a, ad, _tau(w_in, w_rates, inputs), sizes)
+
+
+def _tau(w_in, w_rates, inputs):
+    """How far inputs lie from w_in along the rates w_rates, in time (0 without rates)."""
     den = sum(r * r for r in w_rates)
-    tau = sum((x - y) * r for x, y, r in zip(inputs, w_in, w_rates)) / den if den > 0 else 0.0
-    return advance(a, ad, tau, sizes)
+    return sum((x - y) * r for x, y, r in zip(inputs, w_in, w_rates)) / den if den > 0 else 0.0
+
+
+def start(warm, inputs, sizes, order):
+    """The warm start of new inputs by the predictor of order (p.predictor): the warm
+    states as they were (0), advanced along their rates (1: predict), or along the parabola
+    that also passes through the row before them (2; warm[5] holds its inputs and states,
+    None where there was none: then first order).  The parabola needs positions and rates
+    only, so the start does not depend on the order a program computes."""
+    if order == 0:
+        return [list(g) for g in warm[2]]
+    first = predict(warm[:4], inputs, sizes)
+    if order == 1 or warm[5] is None:
+        return first
+    w_in, w_rates, a, ad = warm[:4]
+    tau, back = _tau(w_in, w_rates, inputs), _tau(w_in, w_rates, warm[5][0])
+    if back == 0.0:
+        return first
+    out = []
+    for g, gr, gb, n in zip(a, ad, warm[5][1], sizes):
+        bend = [(b - v - back * r) / (back * back) for v, r, b in zip(g[:n], gr, gb)]
+        out.append([abs(v + tau * r + tau * tau * c) for v, r, c in zip(g, gr, bend)] + list(g[n:]))
+    return out
 
 
 def within(inputs, last, limits):
@@ -573,10 +689,11 @@ def walk(run, base, a, goal, m, p):
 
 def drive(run, warm, inputs, rates, accs, order, past, m, p):
     """Solve one row on the sketch's assembly.  From the previous row's warm start
-    (inputs, rates, block states, their rates, the blocks used) when no input has moved
-    farther than a continuation step: the resolvers start where the block states' rates
-    point, and the row is taken when it solves on that path (see on_path).  Else, or where
-    the warm start fails at a resolver or lands off the path, the assembly is followed by
+    (inputs, rates, block states, their rates, the blocks used, the row before it) when no
+    input has moved farther than a continuation step: the resolvers start where the
+    predictor of order p.predictor points (see start), and the row is taken when it solves
+    on the path the block states' rates point along (see on_path).  Else, or where the warm
+    start fails at a resolver or lands off the path, the assembly is followed by
     continuation from the previous row (or, without one, from the sketch) and the row
     solved from there; where the way is cut but the row solves all the same it is on
     another assembly only, and gets the code m.another.  A row past the reach (past) fails
@@ -589,7 +706,8 @@ def drive(run, warm, inputs, rates, accs, order, past, m, p):
         code, ad = run(inputs, rates, accs, order, a, used, True)
     elif warm and within(inputs, warm[0], m.limits):
         guess = predict(warm[:4], inputs, m.sizes)
-        a = [list(g) for g in guess]
+        a = guess if p.predictor == 1 else start(warm, inputs, m.sizes, p.predictor)
+        a = [list(g) for g in a]
         code, ad = run(inputs, rates, accs, order, a, used, True)
         solved = code <= 0 and on_path(warm[2], guess, a, m.sizes, p.path_slack * m.length_scale, p)
     if warm and not solved:
@@ -609,7 +727,10 @@ def drive(run, warm, inputs, rates, accs, order, past, m, p):
         if reached is None and code <= 0:
             code = m.another  # another assembly only
         solved = code <= 0
-    return code, ((list(inputs), list(rates), a, ad, used) if solved else None)
+    if not solved:
+        return code, None
+    back = (warm[0], warm[2]) if warm and p.predictor == 2 and code != m.another else None
+    return code, (list(inputs), list(rates), a, ad, used, back)
 
 # -- constants taken from the sketch -----------------------------------------
 # Points are held relative to (-64.0, 48.0), which _publish adds back
@@ -1366,7 +1487,7 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
 
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
-    # Step 9: resolve, group1. Newton-Raphson on add1 until right_coupler regains its length
+    # Step 9: resolve, group1. the resolver iterates on add1 until right_coupler regains its length
     w.br4 = -1 if a[0][1] < 0 else 1
     w.br5 = -1 if a[0][2] < 0 else 1
     w.br24 = -1 if a[1][1] < 0 else 1
@@ -1399,7 +1520,7 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
 
     # Step 10: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4
 
-    # Step 16: resolve, group2. Newton-Raphson on add2 until left_coupler regains its length
+    # Step 16: resolve, group2. the resolver iterates on add2 until left_coupler regains its length
     w.br11 = -1 if a[7][1] < 0 else 1
     w.br12 = -1 if a[7][2] < 0 else 1
     w.br54 = -1 if a[8][1] < 0 else 1

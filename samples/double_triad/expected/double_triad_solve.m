@@ -94,6 +94,9 @@ function w = new_work()
     p.path_share = 0.1;
     p.turn_share = 0.01;
     p.walk_passes = 1000;
+    p.strategy = 'newton';  % the resolver's iteration: newton or fixed-point
+    p.polish = 1;  % one step more once the tolerance is met
+    p.predictor = 1;  % the warm start's order: 0, 1 or 2
     w.policy = p;
 end
 
@@ -123,7 +126,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
 
     % Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
-    % Step 9: resolve, group1. Newton-Raphson on add1 until right_coupler regains its length
+    % Step 9: resolve, group1. the resolver iterates on add1 until right_coupler regains its length
     w.br4 = 1 - 2 * (a{1}(2) < 0);
     w.br5 = 1 - 2 * (a{1}(3) < 0);
     w.br24 = 1 - 2 * (a{2}(2) < 0);
@@ -156,7 +159,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
 
     % Step 10: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4
 
-    % Step 16: resolve, group2. Newton-Raphson on add2 until left_coupler regains its length
+    % Step 16: resolve, group2. the resolver iterates on add2 until left_coupler regains its length
     w.br11 = 1 - 2 * (a{8}(2) < 0);
     w.br12 = 1 - 2 * (a{8}(3) < 0);
     w.br54 = 1 - 2 * (a{9}(2) < 0);
@@ -1868,21 +1871,27 @@ function [ok, f, jac, w] = resolver_jacobian(group, w, a)
     ok = true;
 end
 
-function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reach, halvings)
-    % Iterate the Add-link lengths until max|f| <= tol, then one step more; a step that
-    % makes a chain fail to close is halved (up to halvings times; then the block fails
-    % and the next block is tried).  A solution farther than reach from the start is
-    % another assembly and refused.
+function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reach, halvings, polish)
+    % Iterate the Add-link lengths until max|f| <= tol, then (polish) one step more; a step
+    % that makes a chain fail to close is halved (up to halvings times; then the block fails
+    % and the next block is tried).  The cap counts every step, a polishing one too.  A
+    % solution farther than reach from the start is another assembly and refused.  ok is 1
+    % or 0; jac the Jacobian at the returned a.
     its = 0;
     start = a;
-    [ok, f, jac, w] = resolver_jacobian(group, w, a);
-    if ~ok
+    ok = 0;
+    [closed, f, jac, w] = resolver_jacobian(group, w, a);
+    if ~closed
         return;
     end
     for it = 1:max_iter
+        done = all(abs(f) <= tol);  % a NaN fails every comparison (max would skip it)
+        if done && ~polish
+            ok = all(abs(a - start) <= reach);
+            return;
+        end
         its = it;
         [dx, det] = solve_linear(jac, -f);
-        ok = false;
         if det == 0
             return;
         end
@@ -1898,7 +1907,6 @@ function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reac
         if ~closed
             return;
         end
-        done = all(abs(f) <= tol);  % a NaN fails every comparison (max would skip it)
         a = trial;
         f = f2;
         jac = jac2;
@@ -1906,6 +1914,82 @@ function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reac
             ok = all(abs(a - start) <= reach);
             return;
         end
+    end
+    ok = ~polish && all(abs(f) <= tol) && all(abs(a - start) <= reach);
+end
+
+function [ok, a, its, jac, w] = resolver_fixed_point(group, w, a, tol, max_iter, reach, halvings, polish)
+    % The literature's iteration on the decomposed group: the group's chains run round the
+    % loop from the Add-link lengths a, and a <- a - J0 \ f(a) with J0 the Jacobian at the
+    % start (one pass per iteration instead of one per Add-link), until max|f| <= tol, then
+    % (polish) one step more.  It converges where the map contracts: a step whose residual
+    % is not smaller than the last one's (the ratio |f_k+1| / |f_k| at least 1) stops the
+    % iteration, and so does the cap (every step counts, a polishing one too).  A step that
+    % makes a chain fail to close is halved (up to halvings times); a NaN residual fails the
+    % block.  The Jacobian at the solution is then measured for the exact rates (jac).  A
+    % solution farther than reach from the start is another assembly and refused.  ok is 1,
+    % 0, or -1 where the iteration does not contract.
+    its = 0;
+    start = a;
+    ok = 0;
+    jac = [];
+    n = numel(a);
+    zero = zeros(n, 1);
+    [closed, f, j0, w] = resolver_jacobian(group, w, a);
+    if ~closed
+        return;
+    end
+    while ~all(abs(f) <= tol)
+        if its == max_iter - polish
+            return;
+        end
+        its = its + 1;
+        [dx, det] = solve_linear(j0, -f);
+        if det == 0
+            return;
+        end
+        t = 1;
+        for halving = 0:halvings
+            trial = a + t * dx;
+            [st, res, w] = group(w, trial, zero, zero, false);
+            if ~st
+                break;
+            end
+            t = t / 2;
+        end
+        if st || any(isnan(res(:, 1)))
+            return;
+        end
+        if max(abs(res(:, 1))) >= max(abs(f))
+            ok = -1;
+            return;
+        end
+        a = trial;
+        f = res(:, 1);
+    end
+    if polish
+        its = its + 1;
+        [dx, det] = solve_linear(j0, -f);
+        if det == 0
+            return;
+        end
+        a = a + dx;
+    end
+    [closed, ~, jac, w] = resolver_jacobian(group, w, a);
+    ok = closed && all(abs(a - start) <= reach);
+end
+
+function [ok, a, its, jac, w] = resolver_solve_block(group, w, a, p, scale)
+    % The resolver strategy's iteration on one block from its start lengths a: the one place
+    % a strategy is chosen (p.strategy).  Returns what resolver_newton and
+    % resolver_fixed_point return.
+    tol = p.tolerance * scale;
+    reach = p.max_move * scale;
+    if strcmp(p.strategy, 'fixed-point')
+        [ok, a, its, jac, w] = resolver_fixed_point(group, w, a, tol, p.max_iterations, reach, p.newton_halvings, ...
+                                                    p.polish);
+    else
+        [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, p.max_iterations, reach, p.newton_halvings, p.polish);
     end
 end
 
@@ -1936,27 +2020,27 @@ function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order)
 end
 
 function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, prefer, sizes, p, scale)
-    % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
-    % preferred block first, the others in order.  The first that converges with its
-    % chains conditioned at least p.min_chain_sigma (w.chains: the worst of the last pass,
-    % from the block's lever down) is kept; else the best conditioned of those that
-    % converge, a later block only when more than twice as well conditioned (blocks that
-    % share a chain near a toggle tie up to rounding: the order decides).  a{first + k} is
-    % block k's state: its sizes(k + 1) start lengths, its branches, its orientation; scale
-    % is the length scale; k = -1 when no block converges; turn is the orientation of
+    % The strategy's iteration (resolver_solve_block) on a group's blocks (its chosen Add-link
+    % candidate, then the fallbacks), the preferred block first, the others in order.  The
+    % first that converges with its chains conditioned at least p.min_chain_sigma (w.chains:
+    % the worst of the last pass, from the block's lever down) is kept; else the best
+    % conditioned of those that converge, a later block only when more than twice as well
+    % conditioned (blocks that share a chain near a toggle tie up to rounding: the order
+    % decides).  a{first + k} is block k's state: its sizes(k + 1) start lengths, its
+    % branches, its orientation; scale is the length scale; k = -1 when no block converges
+    % (-2 when the iteration of one of them did not contract); turn is the orientation of
     % block k (see resolver_rates).
     its = 0;
     sigma = 0;
     turn = 0;
     best = -1;
     best_sigma = -1;
-    tol = p.tolerance * scale;
-    reach = p.max_move * scale;
+    stuck = false;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
     for k = tries
-        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, p.max_iterations, ...
-                                               reach, p.newton_halvings);
-        if ~ok
+        [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale);
+        stuck = stuck || ok < 0;
+        if ok <= 0
             continue;
         end
         if w.chains < p.min_chain_sigma
@@ -1973,27 +2057,28 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
     end
     k = best;
     if k >= 0
-        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, p.max_iterations, ...
-                                               reach, p.newton_halvings);
-        if ok
+        [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale);
+        if ok > 0
             [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
             if st ~= 1
                 return;
             end
         end
     end
-    k = -1;
+    k = -1 - stuck;
 end
 
 function [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a, ad, used, first, slot, order, m, p)
     % One resolver step: resolver_variants on the group's blocks a{first}, ... (the one that
     % solved the last row, used(slot), first); then lengths(w, a, ad) reads every block's
     % state and its rates off the solved pairs (so any of them can start the next row) and
-    % the solving block keeps its orientation.  ok: a block solved; its: its Newton steps.
+    % the solving block keeps its orientation.  ok: 1 when a block solved, 0 when none
+    % converged, -1 when the iteration of one did not contract; its: its iterations.
     [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, used(slot), ...
                                                  m.sizes(first:first + numel(groups) - 1), p, m.length_scale);
-    ok = k >= 0;
-    if ~ok
+    ok = 1;
+    if k < 0
+        ok = -(k == -2);  % 0: none converged, -1: an iteration did not contract
         return;
     end
     used(slot) = k;
@@ -2034,16 +2119,46 @@ function a = resolver_advance(a, rate, step, sizes)
     end
 end
 
-function a = resolver_predict(warm, in, sizes)
-    % Resolver start values for new inputs: the warm states advanced along their rates
-    % (first-order Taylor in the warm row's input direction; the rates exist at every
-    % order, so the positions do not depend on the order computed).
+function tau = resolver_tau(warm, in)
+    % How far inputs in lie from the warm row's along its input rates, in time (0 without rates).
     den = sum(warm.din .^ 2);
     tau = 0;
     if den > 0
         tau = sum((in - warm.in) .* warm.din) / den;
     end
-    a = resolver_advance(warm.a, warm.ad, tau, sizes);
+end
+
+function a = resolver_predict(warm, in, sizes)
+    % Resolver start values for new inputs: the warm states advanced along their rates
+    % (first-order Taylor in the warm row's input direction; the rates exist at every
+    % order, so the positions do not depend on the order computed).
+    a = resolver_advance(warm.a, warm.ad, resolver_tau(warm, in), sizes);
+end
+
+function a = resolver_start(warm, in, sizes, order)
+    % The warm start of new inputs by the predictor of order p.predictor: the warm states as
+    % they were (0), advanced along their rates (1: resolver_predict), or along the parabola
+    % that also passes through the row before them (2; warm.back holds its inputs and block
+    % states, empty where there was none: then first order).  The parabola needs positions
+    % and rates only, so the start does not depend on the order a program computes.
+    if order == 0
+        a = warm.a;
+        return;
+    end
+    a = resolver_predict(warm, in, sizes);
+    if order == 1 || isempty(warm.back)
+        return;
+    end
+    tau = resolver_tau(warm, in);
+    back = resolver_tau(warm, warm.back.in);
+    if back == 0
+        return;
+    end
+    for g = 1:numel(a)
+        n = 1:sizes(g);
+        bend = (warm.back.a{g}(n) - warm.a{g}(n) - back * warm.ad{g}(n)) / (back * back);
+        a{g}(n) = abs(warm.a{g}(n) + tau * warm.ad{g}(n) + tau * tau * bend);
+    end
 end
 
 function [ok, a] = resolver_continuation(run, base, a, target, m, p)
@@ -2174,8 +2289,9 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
     % [status, w, a, ad, used] is one pass of the procedure with the block states a (and
     % their rates ad out) and the preferred blocks used.  From the warm start (the previous
     % row) when no input has moved farther than a continuation step: the resolvers start
-    % where the block states' rates point, and the row is taken when it solves on that path
-    % (see resolver_on_path).  Else, or where that fails at a resolver or lands off the
+    % where the predictor of order p.predictor points (see resolver_start), and the row is
+    % taken when it solves on the path the block states' rates point along (see
+    % resolver_on_path).  Else, or where that fails at a resolver or lands off the
     % path, the assembly is followed by continuation from the previous row (or, without
     % one, from the sketch) and the row solved from there; where the way is cut but the row
     % solves all the same it is on another assembly only, and gets the code m.another.  A
@@ -2192,9 +2308,13 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
         % past a limit position: the pass fails the row at once with the limit's code
         [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
     elseif warm.valid && all(abs(in - warm.in) <= m.limits)
-        % from the previous row, its block states moved along their rates
+        % from the previous row, by the predictor; the path its block states' rates point along
         guess = resolver_predict(warm, in, m.sizes);
-        [status, w, a, ad, used] = run(w, in, din, ddin, order, guess, used);
+        a = guess;
+        if p.predictor ~= 1
+            a = resolver_start(warm, in, m.sizes, p.predictor);
+        end
+        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
         solved = status <= 0 && resolver_on_path(warm.a, guess, a, m.sizes, p.path_slack * m.length_scale, p);
     end
     if warm.valid && ~solved
@@ -2217,7 +2337,11 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
         solved = status <= 0;
     end
     if solved
-        warm = struct('valid', true, 'in', in, 'din', din, 'a', {a}, 'ad', {ad}, 'used', used);
+        back = [];  % the second-order predictor's row before: the warm row, on the sketch's assembly
+        if p.predictor == 2 && warm.valid && status ~= m.another
+            back = struct('in', warm.in, 'a', {warm.a});
+        end
+        warm = struct('valid', true, 'in', in, 'din', din, 'a', {a}, 'ad', {ad}, 'used', used, 'back', back);
     else
         warm = struct('valid', false);
     end

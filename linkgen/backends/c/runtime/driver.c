@@ -8,12 +8,16 @@ typedef int (*pass_fn)(void *ctx, int row, const double in[], const double din[]
                        double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int used[]);
 
 /* The warm start a caller keeps between rows: whether it holds a solved row, its inputs and
- * their rates, its block states and their rates, and the blocks that solved it. */
+ * their rates, its block states and their rates, and the blocks that solved it; for the
+ * second-order predictor (else null) whether it holds the row before, its inputs and block states. */
 typedef struct {
     int *valid;
     double *in, *din;
     double (*a)[LINKGEN_NMAX], (*ad)[LINKGEN_NMAX];
     int *used;
+    int *back_valid;
+    double *back_in;
+    double (*back_a)[LINKGEN_NMAX];
 } resolver_warm;
 
 /* A continuation's view of the procedure: passes along the path, the blocks tried first. */
@@ -80,10 +84,8 @@ static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_
         }
 }
 
-/* Resolver start values for new inputs: the warm states advanced along their rates
- * (first-order Taylor in the warm row's input direction; the rates exist at every
- * order, so the positions do not depend on the order computed). */
-static void predict(const resolver_warm *warm, const double in[], const int sizes[], double a[][LINKGEN_NMAX])
+/* How far inputs in lie from the warm row's along its input rates, in time (0 without rates). */
+static double warm_tau(const resolver_warm *warm, const double in[])
 {
     double num = 0.0, den = 0.0;
     int i;
@@ -91,8 +93,42 @@ static void predict(const resolver_warm *warm, const double in[], const int size
         num += (in[i] - warm->in[i]) * warm->din[i];
         den += warm->din[i] * warm->din[i];
     }
-    advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad,
-            den > 0.0 ? num / den : 0.0, sizes, a);
+    return den > 0.0 ? num / den : 0.0;
+}
+
+/* Resolver start values for new inputs: the warm states advanced along their rates
+ * (first-order Taylor in the warm row's input direction; the rates exist at every
+ * order, so the positions do not depend on the order computed). */
+static void predict(const resolver_warm *warm, const double in[], const int sizes[], double a[][LINKGEN_NMAX])
+{
+    advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad, warm_tau(warm, in),
+            sizes, a);
+}
+
+/* The warm start of new inputs by the predictor of order p->predictor into a: the warm states
+ * as they were (0), advanced along their rates (1: predict), or along the parabola that also
+ * passes through the row before them (2; first order without one).  The parabola needs
+ * positions and rates only, so the start does not depend on the order a program computes. */
+static void start(const resolver_warm *warm, const double in[], const int sizes[], int order,
+                  double a[][LINKGEN_NMAX])
+{
+    double tau, back;
+    int g, i;
+    if (order == 0) {
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)
+            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = warm->a[g][i];
+        return;
+    }
+    predict(warm, in, sizes, a);
+    if (order == 1 || !*warm->back_valid) return;
+    tau = warm_tau(warm, in);
+    back = warm_tau(warm, warm->back_in);
+    if (back == 0.0) return;
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+        for (i = 0; i < sizes[g]; i++) {
+            const double bend = (warm->back_a[g][i] - warm->a[g][i] - back * warm->ad[g][i]) / (back * back);
+            a[g][i] = fabs(warm->a[g][i] + tau * warm->ad[g][i] + tau * tau * bend);
+        }
 }
 
 /* Continuation along the straight path from base to goal.  Each step moves no input by
@@ -183,8 +219,9 @@ static int continuation(const resolver_path *path, const double base[], double a
 }
 
 /* Solve one row on the sketch's assembly.  From the warm start (the previous row) when no
- * input has moved farther than a continuation step: the resolvers start where the block
- * states' rates point, and the row is taken when it solves on that path (see on_path).
+ * input has moved farther than a continuation step: the resolvers start where the predictor
+ * of order p->predictor points (see start), and the row is taken when it solves on the path
+ * the block states' rates point along (see on_path).
  * Else, or where that fails at a resolver or lands off the path, the assembly is followed by
  * continuation from the previous row (or, without one, from the sketch) and the row solved
  * from there; where the way is cut but the row solves all the same it is on another
@@ -206,8 +243,12 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
     } else if (*warm->valid && within(in, warm->in, m->limits)) {
         predict(warm, in, m->sizes, guess);
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = guess[g][i];
+        if (p->predictor == 1) {
+            for (g = 0; g < LINKGEN_NBLOCKS; g++)
+                for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = guess[g][i];
+        } else {
+            start(warm, in, m->sizes, p->predictor, a);
+        }
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
         solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
                                       (const double (*)[LINKGEN_NMAX])a, m->sizes,
@@ -233,6 +274,14 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
             if (code <= 0) code = m->another;  /* another assembly only */
         }
         solved = code <= 0;
+    }
+    if (warm->back_valid) {  /* the second-order predictor's row before: the warm row, on the sketch's assembly */
+        *warm->back_valid = solved && *warm->valid && code != m->another;
+        if (*warm->back_valid) {
+            for (i = 0; i < LINKGEN_NINPUTS; i++) warm->back_in[i] = warm->in[i];
+            for (g = 0; g < LINKGEN_NBLOCKS; g++)
+                for (i = 0; i < LINKGEN_NMAX; i++) warm->back_a[g][i] = warm->a[g][i];
+        }
     }
     *warm->valid = solved;
     if (solved) {

@@ -1,4 +1,5 @@
-/* Over-constraint resolver: Newton-Raphson on the Add-link lengths.
+/* Over-constraint resolver: the strategy's iteration on the Add-link lengths (Newton-Raphson,
+ * the paper's, or fixed-point iteration with the slope of the row's start), then exact rates.
  * group(ctx, a, da, dda, live, f, df, ddf) runs the steps of one resolver group with the
  * Add-link lengths a, their rates da and accelerations dda, and writes the residuals f and
  * their rates df and accelerations ddf (those of the program's order); live == 0 zeroes
@@ -10,10 +11,14 @@ typedef int (*group_fn)(void *ctx, const double a[], const double da[], const do
 /* Every block's state and its rates read off the solved pairs (the blocks of one group). */
 typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
 
-/* The resolver policy (linkgen/policy.py, as the step log has it); lengths relative to the length scale. */
+/* The resolver strategies (options: strategy), as resolver_policy.strategy names them. */
+enum { RESOLVER_NEWTON, RESOLVER_FIXED_POINT, RESOLVER_CLOSURE };
+
+/* The resolver policy (linkgen/policy.py, as the step log has it, with the strategy, polish and
+ * predictor of the build's options); lengths relative to the length scale. */
 typedef struct {
-    double tolerance;     /* Newton stops once every residual is at most this, after one step more */
-    int max_iterations;   /* Newton steps at most */
+    double tolerance;     /* the iteration stops once every residual is at most this (after one step more: polish) */
+    int max_iterations;   /* iterations at most, a polishing one too */
     int newton_halvings;  /* a Newton step that makes a chain fail to close is halved at most this often */
     double max_move;      /* a solution farther from its start is another assembly; a continuation step's limit */
     double min_chain_sigma;  /* a block whose chains are worse conditioned yields to a better one */
@@ -22,6 +27,9 @@ typedef struct {
     double path_share;    /* ... its share of the largest predicted move */
     double turn_share;    /* ... where a block's orientation turned */
     int walk_passes;      /* a continuation walk gives up after this many passes */
+    int strategy;         /* the resolver's iteration: RESOLVER_NEWTON or RESOLVER_FIXED_POINT */
+    int polish;           /* 1: one step more once the tolerance is met */
+    int predictor;        /* the warm start's order: 0, 1 or 2 */
 } resolver_policy;
 
 /* What the resolver and the row driver need of the mechanism. */
@@ -100,13 +108,31 @@ static double conditioning(int n, const double jac[][LINKGEN_NMAX], double det)
     return fabs(det) / fmax(prod, 1.0);
 }
 
-/* Iterate the Add-link lengths until max|f| <= tol, then one step more.  A step
+/* Whether every residual is at most tol (a nan fails every comparison). */
+static int met(int n, const double f[], double tol)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        if (!(fabs(f[i]) <= tol)) return 0;
+    return 1;
+}
+
+/* 1 where the lengths a lie within reach of the start lengths, else 0 (another assembly). */
+static int kept(int n, const double a[], const double start[], double reach)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        if (!(fabs(a[i] - start[i]) <= reach)) return 0;
+    return 1;
+}
+
+/* Iterate the Add-link lengths until max|f| <= tol, then (polish) one step more.  A step
  * that makes a chain fail to close is halved (up to halvings times; then the block
- * fails and the next block is tried).  A solution farther than reach from the
- * start is another assembly and refused.  Returns 1 on success with jac the
- * Jacobian at the returned a. */
+ * fails and the next block is tried).  The cap counts every step, a polishing one too.
+ * A solution farther than reach from the start is another assembly and refused.
+ * Returns 1 on success with jac the Jacobian at the returned a, else 0. */
 static int newton(group_fn group, void *ctx, int n, double a[], double tol, int max_iter, double reach,
-                  int halvings, double jac[][LINKGEN_NMAX], int *iterations)
+                  int halvings, int polish, double jac[][LINKGEN_NMAX], int *iterations)
 {
     double start[LINKGEN_NMAX];
     double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], dx[LINKGEN_NMAX], trial[LINKGEN_NMAX], rhs[LINKGEN_NMAX];
@@ -116,8 +142,10 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
     for (i = 0; i < n; i++) start[i] = a[i];
     if (jacobian(group, ctx, n, a, f, jac)) return 0;
     for (it = 1; it <= max_iter; it++) {
-        double t = 1.0, worst = 0.0;
+        double t = 1.0;
+        const int done = met(n, f, tol);
         int closed = 0;
+        if (done && !polish) return kept(n, a, start, reach);
         *iterations = it;
         for (i = 0; i < n; i++) rhs[i] = -f[i];
         if (solve_linear(n, (const double (*)[LINKGEN_NMAX])jac, rhs, dx) == 0.0) return 0;
@@ -127,21 +155,91 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
             t /= 2;
         }
         if (!closed) return 0;
-        for (i = 0; i < n; i++)
-            if (!(fabs(f[i]) <= worst)) worst = fabs(f[i]); /* a nan stays (fmax would drop it) */
         for (i = 0; i < n; i++) {
             a[i] = trial[i];
             f[i] = f2[i];
             for (j = 0; j < n; j++) jac[i][j] = jac2[i][j];
         }
-        if (worst <= tol) {
-            double moved = 0.0;
-            for (i = 0; i < n; i++)
-                if (!(fabs(a[i] - start[i]) <= moved)) moved = fabs(a[i] - start[i]);
-            return moved <= reach;
-        }
+        if (done) return kept(n, a, start, reach);
     }
-    return 0;
+    return !polish && met(n, f, tol) && kept(n, a, start, reach);
+}
+
+/* The residuals f at a, one pass; returns 1 when a chain cannot close. */
+static int residuals(group_fn group, void *ctx, const double a[], double f[])
+{
+    double zero[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX];
+    int i;
+    for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = 0.0;
+    return group(ctx, a, zero, zero, 0, f, df, ddf);
+}
+
+/* The largest residual in size; nan where one is nan. */
+static double largest(int n, const double f[])
+{
+    double worst = 0.0;
+    int i;
+    for (i = 0; i < n; i++)
+        if (!(fabs(f[i]) <= worst)) worst = fabs(f[i]); /* a nan stays (fmax would drop it) */
+    return worst;
+}
+
+/* The literature's iteration on the decomposed group: the group's chains run round the loop
+ * from the Add-link lengths a, and a <- a - J0^-1 f(a) with J0 the Jacobian at the start (one
+ * pass per iteration instead of one per Add-link), until max|f| <= tol, then (polish) one step
+ * more.  It converges where the map contracts: a step whose residual is not smaller than the
+ * last one's (the ratio |f_k+1| / |f_k| at least 1) stops the iteration, and so does the cap
+ * (every step counts, a polishing one too).  A step that makes a chain fail to close is
+ * halved (up to halvings times); a nan residual fails the block.  The Jacobian at the
+ * solution is then measured for the exact rates (jac).  A solution farther than reach from
+ * the start is another assembly and refused.  Returns 1 on success, 0 on failure, -1 where
+ * the iteration does not contract. */
+static int fixed_point(group_fn group, void *ctx, int n, double a[], double tol, int max_iter, double reach,
+                       int halvings, int polish, double jac[][LINKGEN_NMAX], int *iterations)
+{
+    double start[LINKGEN_NMAX], j0[LINKGEN_NMAX][LINKGEN_NMAX];
+    double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], dx[LINKGEN_NMAX], trial[LINKGEN_NMAX], rhs[LINKGEN_NMAX];
+    int i, halving;
+    *iterations = 0;
+    for (i = 0; i < LINKGEN_NMAX; i++) rhs[i] = 0.0;  /* entries past n are never read */
+    for (i = 0; i < n; i++) start[i] = a[i];
+    if (jacobian(group, ctx, n, a, f, j0)) return 0;
+    while (!met(n, f, tol)) {
+        double t = 1.0;
+        int closed = 0;
+        if (*iterations == max_iter - polish) return 0;
+        ++*iterations;
+        for (i = 0; i < n; i++) rhs[i] = -f[i];
+        if (solve_linear(n, (const double (*)[LINKGEN_NMAX])j0, rhs, dx) == 0.0) return 0;
+        for (halving = 0; halving <= halvings; halving++) {
+            for (i = 0; i < n; i++) trial[i] = a[i] + t * dx[i];
+            if (!residuals(group, ctx, trial, f2)) { closed = 1; break; }
+            t /= 2;
+        }
+        if (!closed || isnan(largest(n, f2))) return 0;
+        if (largest(n, f2) >= largest(n, f)) return -1;
+        for (i = 0; i < n; i++) { a[i] = trial[i]; f[i] = f2[i]; }
+    }
+    if (polish) {
+        ++*iterations;
+        for (i = 0; i < n; i++) rhs[i] = -f[i];
+        if (solve_linear(n, (const double (*)[LINKGEN_NMAX])j0, rhs, dx) == 0.0) return 0;
+        for (i = 0; i < n; i++) a[i] += dx[i];
+    }
+    if (jacobian(group, ctx, n, a, f, jac)) return 0;
+    return kept(n, a, start, reach);
+}
+
+/* The resolver strategy's iteration on one block from its start lengths a: the one place a
+ * strategy is chosen (p->strategy).  Returns what newton and fixed_point return. */
+static int solve_block(group_fn group, void *ctx, int n, double a[], const resolver_policy *p, double scale,
+                       double jac[][LINKGEN_NMAX], int *iterations)
+{
+    const double tol = p->tolerance * scale, reach = p->max_move * scale;
+    if (p->strategy == RESOLVER_FIXED_POINT)
+        return fixed_point(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac,
+                           iterations);
+    return newton(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac, iterations);
 }
 
 /* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
@@ -172,26 +270,29 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
     return group(ctx, a, rates, accs, 1, f, df, ddf);
 }
 
-/* Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
- * preferred block first, the others in order.  The first that converges with its chains
- * conditioned at least p->min_chain_sigma (*chains: the worst of the last pass, from the
- * block's lever down) is kept; else the best conditioned of those that converge, a later block
- * only when more than twice as well conditioned (a block whose chains are near a toggle
- * is a poor coordinate of the assembly; blocks that share that chain tie up to rounding,
- * and the order, not the rounding, decides).  a[k] holds block k's start lengths; scale is
- * the length scale.  Returns the block, or -1 when none converges; *turn is its
- * orientation (see addlink_rates). */
+/* The strategy's iteration (solve_block) on a group's blocks (its chosen Add-link candidate,
+ * then the fallbacks), the preferred block first, the others in order.  The first that
+ * converges with its chains conditioned at least p->min_chain_sigma (*chains: the worst of
+ * the last pass, from the block's lever down) is kept; else the best conditioned of those
+ * that converge, a later block only when more than twice as well conditioned (a block whose
+ * chains are near a toggle is a poor coordinate of the assembly; blocks that share that chain
+ * tie up to rounding, and the order, not the rounding, decides).  a[k] holds block k's start
+ * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
+ * the iteration of one of them did not contract); *turn is its orientation (see
+ * addlink_rates). */
 static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
                             int order, int prefer, int *its, double *sigma, double *turn, const double *chains,
                             const resolver_policy *p, double scale)
 {
-    const double tol = p->tolerance * scale, reach = p->max_move * scale;
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
-    int t, k, i, best = -1;
+    int t, k, i, best = -1, stuck = 0;
     for (t = 0; t < count; t++) {
+        int solved;
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
-        if (!newton(fns[k], ctx, sizes[k], x, tol, p->max_iterations, reach, p->newton_halvings, jac, its)) continue;
+        solved = solve_block(fns[k], ctx, sizes[k], x, p, scale, jac, its);
+        if (solved < 0) stuck = 1;
+        if (solved <= 0) continue;
         if (*chains < p->min_chain_sigma) {
             if (*chains > 2.0 * best_sigma) {
                 best_sigma = *chains;
@@ -202,18 +303,21 @@ static int resolve_variants(const group_fn fns[], const int sizes[], int count, 
         if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
             return k;
     }
-    if (best < 0) return -1;
-    for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
-    if (newton(fns[best], ctx, sizes[best], x, tol, p->max_iterations, reach, p->newton_halvings, jac, its)
-        && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
-        return best;
-    return -1;
+    if (best >= 0) {
+        for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
+        if (solve_block(fns[best], ctx, sizes[best], x, p, scale, jac, its) > 0
+            && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma,
+                             turn) != 1)
+            return best;
+    }
+    return stuck ? -2 : -1;
 }
 
 /* One resolver step: resolve_variants on the count blocks of a group, a[first] on (the one
  * that solved the last row, *used, first); then lengths() reads every block's state and its
  * rates off the solved pairs (so any of them can start the next row) and the solving block
- * keeps its orientation.  Returns 1 when a block solved, with *used that block. */
+ * keeps its orientation.  Returns 1 when a block solved, with *used that block; 0 when none
+ * converged, -1 when the iteration of one did not contract. */
 static int resolve_group(const group_fn fns[], int count, lengths_fn lengths, void *ctx, double a[][LINKGEN_NMAX],
                          double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma,
                          const double *chains, int order, const resolver_mechanism *m, const resolver_policy *p)
@@ -221,7 +325,7 @@ static int resolve_group(const group_fn fns[], int count, lengths_fn lengths, vo
     double turn = 0.0;
     const int k = resolve_variants(fns, m->sizes + first, count, ctx, a + first, order, *used, its, sigma, &turn,
                                    chains, p, m->length_scale);
-    if (k < 0) return 0;
+    if (k < 0) return k == -1 ? 0 : -1;
     *used = k;
     lengths(ctx, a + first, ad + first);
     a[first + k][LINKGEN_NMAX - 1] = turn;

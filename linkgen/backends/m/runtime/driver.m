@@ -31,16 +31,46 @@ function a = resolver_advance(a, rate, step, sizes)
     end
 end
 
-function a = resolver_predict(warm, in, sizes)
-    % Resolver start values for new inputs: the warm states advanced along their rates
-    % (first-order Taylor in the warm row's input direction; the rates exist at every
-    % order, so the positions do not depend on the order computed).
+function tau = resolver_tau(warm, in)
+    % How far inputs in lie from the warm row's along its input rates, in time (0 without rates).
     den = sum(warm.din .^ 2);
     tau = 0;
     if den > 0
         tau = sum((in - warm.in) .* warm.din) / den;
     end
-    a = resolver_advance(warm.a, warm.ad, tau, sizes);
+end
+
+function a = resolver_predict(warm, in, sizes)
+    % Resolver start values for new inputs: the warm states advanced along their rates
+    % (first-order Taylor in the warm row's input direction; the rates exist at every
+    % order, so the positions do not depend on the order computed).
+    a = resolver_advance(warm.a, warm.ad, resolver_tau(warm, in), sizes);
+end
+
+function a = resolver_start(warm, in, sizes, order)
+    % The warm start of new inputs by the predictor of order p.predictor: the warm states as
+    % they were (0), advanced along their rates (1: resolver_predict), or along the parabola
+    % that also passes through the row before them (2; warm.back holds its inputs and block
+    % states, empty where there was none: then first order).  The parabola needs positions
+    % and rates only, so the start does not depend on the order a program computes.
+    if order == 0
+        a = warm.a;
+        return;
+    end
+    a = resolver_predict(warm, in, sizes);
+    if order == 1 || isempty(warm.back)
+        return;
+    end
+    tau = resolver_tau(warm, in);
+    back = resolver_tau(warm, warm.back.in);
+    if back == 0
+        return;
+    end
+    for g = 1:numel(a)
+        n = 1:sizes(g);
+        bend = (warm.back.a{g}(n) - warm.a{g}(n) - back * warm.ad{g}(n)) / (back * back);
+        a{g}(n) = abs(warm.a{g}(n) + tau * warm.ad{g}(n) + tau * tau * bend);
+    end
 end
 
 function [ok, a] = resolver_continuation(run, base, a, target, m, p)
@@ -171,8 +201,9 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
     % [status, w, a, ad, used] is one pass of the procedure with the block states a (and
     % their rates ad out) and the preferred blocks used.  From the warm start (the previous
     % row) when no input has moved farther than a continuation step: the resolvers start
-    % where the block states' rates point, and the row is taken when it solves on that path
-    % (see resolver_on_path).  Else, or where that fails at a resolver or lands off the
+    % where the predictor of order p.predictor points (see resolver_start), and the row is
+    % taken when it solves on the path the block states' rates point along (see
+    % resolver_on_path).  Else, or where that fails at a resolver or lands off the
     % path, the assembly is followed by continuation from the previous row (or, without
     % one, from the sketch) and the row solved from there; where the way is cut but the row
     % solves all the same it is on another assembly only, and gets the code m.another.  A
@@ -189,9 +220,13 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
         % past a limit position: the pass fails the row at once with the limit's code
         [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
     elseif warm.valid && all(abs(in - warm.in) <= m.limits)
-        % from the previous row, its block states moved along their rates
+        % from the previous row, by the predictor; the path its block states' rates point along
         guess = resolver_predict(warm, in, m.sizes);
-        [status, w, a, ad, used] = run(w, in, din, ddin, order, guess, used);
+        a = guess;
+        if p.predictor ~= 1
+            a = resolver_start(warm, in, m.sizes, p.predictor);
+        end
+        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
         solved = status <= 0 && resolver_on_path(warm.a, guess, a, m.sizes, p.path_slack * m.length_scale, p);
     end
     if warm.valid && ~solved
@@ -214,7 +249,11 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
         solved = status <= 0;
     end
     if solved
-        warm = struct('valid', true, 'in', in, 'din', din, 'a', {a}, 'ad', {ad}, 'used', used);
+        back = [];  % the second-order predictor's row before: the warm row, on the sketch's assembly
+        if p.predictor == 2 && warm.valid && status ~= m.another
+            back = struct('in', warm.in, 'a', {warm.a});
+        end
+        warm = struct('valid', true, 'in', in, 'din', din, 'a', {a}, 'ad', {ad}, 'used', used, 'back', back);
     else
         warm = struct('valid', false);
     end

@@ -53,21 +53,27 @@ function [ok, f, jac, w] = resolver_jacobian(group, w, a)
     ok = true;
 end
 
-function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reach, halvings)
-    % Iterate the Add-link lengths until max|f| <= tol, then one step more; a step that
-    % makes a chain fail to close is halved (up to halvings times; then the block fails
-    % and the next block is tried).  A solution farther than reach from the start is
-    % another assembly and refused.
+function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reach, halvings, polish)
+    % Iterate the Add-link lengths until max|f| <= tol, then (polish) one step more; a step
+    % that makes a chain fail to close is halved (up to halvings times; then the block fails
+    % and the next block is tried).  The cap counts every step, a polishing one too.  A
+    % solution farther than reach from the start is another assembly and refused.  ok is 1
+    % or 0; jac the Jacobian at the returned a.
     its = 0;
     start = a;
-    [ok, f, jac, w] = resolver_jacobian(group, w, a);
-    if ~ok
+    ok = 0;
+    [closed, f, jac, w] = resolver_jacobian(group, w, a);
+    if ~closed
         return;
     end
     for it = 1:max_iter
+        done = all(abs(f) <= tol);  % a NaN fails every comparison (max would skip it)
+        if done && ~polish
+            ok = all(abs(a - start) <= reach);
+            return;
+        end
         its = it;
         [dx, det] = solve_linear(jac, -f);
-        ok = false;
         if det == 0
             return;
         end
@@ -83,7 +89,6 @@ function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reac
         if ~closed
             return;
         end
-        done = all(abs(f) <= tol);  % a NaN fails every comparison (max would skip it)
         a = trial;
         f = f2;
         jac = jac2;
@@ -91,6 +96,82 @@ function [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, max_iter, reac
             ok = all(abs(a - start) <= reach);
             return;
         end
+    end
+    ok = ~polish && all(abs(f) <= tol) && all(abs(a - start) <= reach);
+end
+
+function [ok, a, its, jac, w] = resolver_fixed_point(group, w, a, tol, max_iter, reach, halvings, polish)
+    % The literature's iteration on the decomposed group: the group's chains run round the
+    % loop from the Add-link lengths a, and a <- a - J0 \ f(a) with J0 the Jacobian at the
+    % start (one pass per iteration instead of one per Add-link), until max|f| <= tol, then
+    % (polish) one step more.  It converges where the map contracts: a step whose residual
+    % is not smaller than the last one's (the ratio |f_k+1| / |f_k| at least 1) stops the
+    % iteration, and so does the cap (every step counts, a polishing one too).  A step that
+    % makes a chain fail to close is halved (up to halvings times); a NaN residual fails the
+    % block.  The Jacobian at the solution is then measured for the exact rates (jac).  A
+    % solution farther than reach from the start is another assembly and refused.  ok is 1,
+    % 0, or -1 where the iteration does not contract.
+    its = 0;
+    start = a;
+    ok = 0;
+    jac = [];
+    n = numel(a);
+    zero = zeros(n, 1);
+    [closed, f, j0, w] = resolver_jacobian(group, w, a);
+    if ~closed
+        return;
+    end
+    while ~all(abs(f) <= tol)
+        if its == max_iter - polish
+            return;
+        end
+        its = its + 1;
+        [dx, det] = solve_linear(j0, -f);
+        if det == 0
+            return;
+        end
+        t = 1;
+        for halving = 0:halvings
+            trial = a + t * dx;
+            [st, res, w] = group(w, trial, zero, zero, false);
+            if ~st
+                break;
+            end
+            t = t / 2;
+        end
+        if st || any(isnan(res(:, 1)))
+            return;
+        end
+        if max(abs(res(:, 1))) >= max(abs(f))
+            ok = -1;
+            return;
+        end
+        a = trial;
+        f = res(:, 1);
+    end
+    if polish
+        its = its + 1;
+        [dx, det] = solve_linear(j0, -f);
+        if det == 0
+            return;
+        end
+        a = a + dx;
+    end
+    [closed, ~, jac, w] = resolver_jacobian(group, w, a);
+    ok = closed && all(abs(a - start) <= reach);
+end
+
+function [ok, a, its, jac, w] = resolver_solve_block(group, w, a, p, scale)
+    % The resolver strategy's iteration on one block from its start lengths a: the one place
+    % a strategy is chosen (p.strategy).  Returns what resolver_newton and
+    % resolver_fixed_point return.
+    tol = p.tolerance * scale;
+    reach = p.max_move * scale;
+    if strcmp(p.strategy, 'fixed-point')
+        [ok, a, its, jac, w] = resolver_fixed_point(group, w, a, tol, p.max_iterations, reach, p.newton_halvings, ...
+                                                    p.polish);
+    else
+        [ok, a, its, jac, w] = resolver_newton(group, w, a, tol, p.max_iterations, reach, p.newton_halvings, p.polish);
     end
 end
 
@@ -121,27 +202,27 @@ function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order)
 end
 
 function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, prefer, sizes, p, scale)
-    % Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
-    % preferred block first, the others in order.  The first that converges with its
-    % chains conditioned at least p.min_chain_sigma (w.chains: the worst of the last pass,
-    % from the block's lever down) is kept; else the best conditioned of those that
-    % converge, a later block only when more than twice as well conditioned (blocks that
-    % share a chain near a toggle tie up to rounding: the order decides).  a{first + k} is
-    % block k's state: its sizes(k + 1) start lengths, its branches, its orientation; scale
-    % is the length scale; k = -1 when no block converges; turn is the orientation of
+    % The strategy's iteration (resolver_solve_block) on a group's blocks (its chosen Add-link
+    % candidate, then the fallbacks), the preferred block first, the others in order.  The
+    % first that converges with its chains conditioned at least p.min_chain_sigma (w.chains:
+    % the worst of the last pass, from the block's lever down) is kept; else the best
+    % conditioned of those that converge, a later block only when more than twice as well
+    % conditioned (blocks that share a chain near a toggle tie up to rounding: the order
+    % decides).  a{first + k} is block k's state: its sizes(k + 1) start lengths, its
+    % branches, its orientation; scale is the length scale; k = -1 when no block converges
+    % (-2 when the iteration of one of them did not contract); turn is the orientation of
     % block k (see resolver_rates).
     its = 0;
     sigma = 0;
     turn = 0;
     best = -1;
     best_sigma = -1;
-    tol = p.tolerance * scale;
-    reach = p.max_move * scale;
+    stuck = false;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
     for k = tries
-        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, p.max_iterations, ...
-                                               reach, p.newton_halvings);
-        if ~ok
+        [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale);
+        stuck = stuck || ok < 0;
+        if ok <= 0
             continue;
         end
         if w.chains < p.min_chain_sigma
@@ -158,27 +239,28 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
     end
     k = best;
     if k >= 0
-        [ok, x, its, jac, w] = resolver_newton(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), tol, p.max_iterations, ...
-                                               reach, p.newton_halvings);
-        if ok
+        [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale);
+        if ok > 0
             [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
             if st ~= 1
                 return;
             end
         end
     end
-    k = -1;
+    k = -1 - stuck;
 end
 
 function [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a, ad, used, first, slot, order, m, p)
     % One resolver step: resolver_variants on the group's blocks a{first}, ... (the one that
     % solved the last row, used(slot), first); then lengths(w, a, ad) reads every block's
     % state and its rates off the solved pairs (so any of them can start the next row) and
-    % the solving block keeps its orientation.  ok: a block solved; its: its Newton steps.
+    % the solving block keeps its orientation.  ok: 1 when a block solved, 0 when none
+    % converged, -1 when the iteration of one did not contract; its: its iterations.
     [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, used(slot), ...
                                                  m.sizes(first:first + numel(groups) - 1), p, m.length_scale);
-    ok = k >= 0;
-    if ~ok
+    ok = 1;
+    if k < 0
+        ok = -(k == -2);  % 0: none converged, -1: an iteration did not contract
         return;
     end
     used(slot) = k;

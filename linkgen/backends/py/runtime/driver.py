@@ -20,9 +20,35 @@ def predict(warm, inputs, sizes):
     (first-order Taylor in the warm row's input direction; rates exist at every order,
     so a program gives the same positions whatever order it computes)."""
     w_in, w_rates, a, ad = warm
+    return advance(a, ad, _tau(w_in, w_rates, inputs), sizes)
+
+
+def _tau(w_in, w_rates, inputs):
+    """How far inputs lie from w_in along the rates w_rates, in time (0 without rates)."""
     den = sum(r * r for r in w_rates)
-    tau = sum((x - y) * r for x, y, r in zip(inputs, w_in, w_rates)) / den if den > 0 else 0.0
-    return advance(a, ad, tau, sizes)
+    return sum((x - y) * r for x, y, r in zip(inputs, w_in, w_rates)) / den if den > 0 else 0.0
+
+
+def start(warm, inputs, sizes, order):
+    """The warm start of new inputs by the predictor of order (p.predictor): the warm
+    states as they were (0), advanced along their rates (1: predict), or along the parabola
+    that also passes through the row before them (2; warm[5] holds its inputs and states,
+    None where there was none: then first order).  The parabola needs positions and rates
+    only, so the start does not depend on the order a program computes."""
+    if order == 0:
+        return [list(g) for g in warm[2]]
+    first = predict(warm[:4], inputs, sizes)
+    if order == 1 or warm[5] is None:
+        return first
+    w_in, w_rates, a, ad = warm[:4]
+    tau, back = _tau(w_in, w_rates, inputs), _tau(w_in, w_rates, warm[5][0])
+    if back == 0.0:
+        return first
+    out = []
+    for g, gr, gb, n in zip(a, ad, warm[5][1], sizes):
+        bend = [(b - v - back * r) / (back * back) for v, r, b in zip(g[:n], gr, gb)]
+        out.append([abs(v + tau * r + tau * tau * c) for v, r, c in zip(g, gr, bend)] + list(g[n:]))
+    return out
 
 
 def within(inputs, last, limits):
@@ -108,10 +134,11 @@ def walk(run, base, a, goal, m, p):
 
 def drive(run, warm, inputs, rates, accs, order, past, m, p):
     """Solve one row on the sketch's assembly.  From the previous row's warm start
-    (inputs, rates, block states, their rates, the blocks used) when no input has moved
-    farther than a continuation step: the resolvers start where the block states' rates
-    point, and the row is taken when it solves on that path (see on_path).  Else, or where
-    the warm start fails at a resolver or lands off the path, the assembly is followed by
+    (inputs, rates, block states, their rates, the blocks used, the row before it) when no
+    input has moved farther than a continuation step: the resolvers start where the
+    predictor of order p.predictor points (see start), and the row is taken when it solves
+    on the path the block states' rates point along (see on_path).  Else, or where the warm
+    start fails at a resolver or lands off the path, the assembly is followed by
     continuation from the previous row (or, without one, from the sketch) and the row
     solved from there; where the way is cut but the row solves all the same it is on
     another assembly only, and gets the code m.another.  A row past the reach (past) fails
@@ -124,7 +151,8 @@ def drive(run, warm, inputs, rates, accs, order, past, m, p):
         code, ad = run(inputs, rates, accs, order, a, used, True)
     elif warm and within(inputs, warm[0], m.limits):
         guess = predict(warm[:4], inputs, m.sizes)
-        a = [list(g) for g in guess]
+        a = guess if p.predictor == 1 else start(warm, inputs, m.sizes, p.predictor)
+        a = [list(g) for g in a]
         code, ad = run(inputs, rates, accs, order, a, used, True)
         solved = code <= 0 and on_path(warm[2], guess, a, m.sizes, p.path_slack * m.length_scale, p)
     if warm and not solved:
@@ -144,4 +172,7 @@ def drive(run, warm, inputs, rates, accs, order, past, m, p):
         if reached is None and code <= 0:
             code = m.another  # another assembly only
         solved = code <= 0
-    return code, ((list(inputs), list(rates), a, ad, used) if solved else None)
+    if not solved:
+        return code, None
+    back = (warm[0], warm[2]) if warm and p.predictor == 2 and code != m.another else None
+    return code, (list(inputs), list(rates), a, ad, used, back)

@@ -1,9 +1,11 @@
-# Over-constraint resolver: Newton-Raphson on the Add-link lengths.
+# Over-constraint resolver: the strategy's iteration on the Add-link lengths (Newton-Raphson,
+# the paper's, or fixed-point iteration with the slope of the row's start), then exact rates.
 # group(a, da, dda, live) runs the steps of one resolver group with the Add-link lengths
 # a, their rates da and accelerations dda (as records of the program's order) and returns
 # (status, f) with f the residual records; live=False zeroes the rates of everything the
 # group reads, so a unit Add-link rate gives one exact Jacobian column through the
-# velocity channel.  p is the resolver policy (the step log's), scale the length scale.
+# velocity channel.  p is the resolver policy (the step log's, with the strategy, polish
+# and predictor of the build's options), scale the length scale.
 
 
 def solve_linear(m, b):
@@ -53,23 +55,43 @@ def conditioning(jac, det):
     return abs(det) / max(prod, 1.0)
 
 
-def newton(group, a, tol, max_iter, reach, halvings):
-    """Iterate the Add-link lengths until max|f| <= tol, then one step more.
+def _residuals(group, a):
+    """The residuals at a (one pass); None when a chain cannot close."""
+    zero = [0.0] * len(a)
+    st, rec = group(a, zero, zero, False)
+    return None if st else [r[0] for r in rec]
+
+
+def _met(f, tol):
+    """Whether every residual is at most tol (a nan fails every comparison)."""
+    return all(abs(v) <= tol for v in f)
+
+
+def _kept(a, start, reach):
+    """1 where the lengths a lie within reach of the start lengths, else 0 (another assembly)."""
+    return int(all(abs(x - y) <= reach for x, y in zip(a, start)))
+
+
+def newton(group, a, tol, max_iter, reach, halvings, polish):
+    """Iterate the Add-link lengths until max|f| <= tol, then (polish) one step more.
 
     A solution farther than reach from the start lengths is another assembly: refused.
 
-    Returns (ok, a, iterations, jac) with jac the Jacobian at the returned a.
+    Returns (solved, a, iterations, jac): solved 1 or 0, jac the Jacobian at the returned a.
     A step that makes a chain fail to close is halved (up to halvings times; then the
-    block fails and the next block is tried).
+    block fails and the next block is tried).  The cap counts every step, a polishing one too.
     """
     start = a
     f, jac = _jacobian(group, a)
     if f is None:
-        return False, a, 0, None
+        return 0, a, 0, None
     for it in range(1, max_iter + 1):
+        done = _met(f, tol)
+        if done and not polish:
+            return _kept(a, start, reach), a, it - 1, jac
         dx, det = solve_linear(jac, [-v for v in f])
         if det == 0.0:
-            return False, a, it, None
+            return 0, a, it, None
         t = 1.0
         for _ in range(halvings + 1):
             trial = [a[i] + t * dx[i] for i in range(len(a))]
@@ -78,12 +100,75 @@ def newton(group, a, tol, max_iter, reach, halvings):
                 break
             t /= 2
         else:
-            return False, a, it, None
-        done = all(abs(v) <= tol for v in f)  # a nan fails every comparison
+            return 0, a, it, None
         a, f, jac = trial, f2, jac2
         if done:
-            return all(abs(x - y) <= reach for x, y in zip(a, start)), a, it, jac
-    return False, a, max_iter, None
+            return _kept(a, start, reach), a, it, jac
+    if not polish and _met(f, tol):
+        return _kept(a, start, reach), a, max_iter, jac
+    return 0, a, max_iter, None
+
+
+def fixed_point(group, a, tol, max_iter, reach, halvings, polish):
+    """The literature's iteration on the decomposed group: the group's chains run round the
+    loop from the Add-link lengths a, and a <- a - J0^-1 f(a) with J0 the Jacobian at the
+    start (one pass per iteration instead of one per Add-link), until max|f| <= tol, then
+    (polish) one step more.  It converges where the map contracts: a step whose residual
+    is not smaller than the last one's (the ratio |f_k+1| / |f_k| at least 1) stops the
+    iteration, and so does the cap (every step counts, a polishing one too).  A step that
+    makes a chain fail to close is halved (up to halvings times).  The Jacobian at the
+    solution is then measured for the exact rates.  A solution farther than reach from
+    the start is another assembly: refused.
+
+    Returns (solved, a, iterations, jac): solved 1, 0, or -1 where the iteration does not
+    contract; jac the Jacobian at the returned a.
+    """
+    start = a
+    f, j0 = _jacobian(group, a)
+    if f is None:
+        return 0, a, 0, None
+    its = 0
+    while not _met(f, tol):
+        if its == max_iter - polish:
+            return 0, a, its, None
+        its += 1
+        dx, det = solve_linear(j0, [-v for v in f])
+        if det == 0.0:
+            return 0, a, its, None
+        t = 1.0
+        for _ in range(halvings + 1):
+            trial = [a[i] + t * dx[i] for i in range(len(a))]
+            f2 = _residuals(group, trial)
+            if f2 is not None:
+                break
+            t /= 2
+        else:
+            return 0, a, its, None
+        if any(v != v for v in f2):  # a nan residual: the block fails, as Newton's does
+            return 0, a, its, None
+        if max(abs(v) for v in f2) >= max(abs(v) for v in f):
+            return -1, a, its, None
+        a, f = trial, f2
+    if polish:
+        its += 1
+        dx, det = solve_linear(j0, [-v for v in f])
+        if det == 0.0:
+            return 0, a, its, None
+        a = [a[i] + dx[i] for i in range(len(a))]
+    f, jac = _jacobian(group, a)
+    if f is None:
+        return 0, a, its, None
+    return _kept(a, start, reach), a, its, jac
+
+
+def solve_block(group, a, p, scale):
+    """The resolver strategy's iteration on one block from its start lengths a: the one
+    place a strategy is chosen (p.strategy).  Returns (solved, a, iterations, jac) as
+    newton and fixed_point do."""
+    tol, reach = p.tolerance * scale, p.max_move * scale
+    if p.strategy == "fixed-point":
+        return fixed_point(group, a, tol, p.max_iterations, reach, p.newton_halvings, p.polish)
+    return newton(group, a, tol, p.max_iterations, reach, p.newton_halvings, p.polish)
 
 
 def addlink_rates(group, a, jac, order):
@@ -113,22 +198,24 @@ def addlink_rates(group, a, jac, order):
 
 
 def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale):
-    """Newton on a group's blocks (its chosen Add-link candidate, then the fallbacks), the
-    preferred block first, the others in order.  The first that converges with its chains
-    conditioned at least p.min_chain_sigma (chains(): the worst of the last pass, from the
-    block's lever down) is kept; else the best conditioned of those that converge, a later
-    block only when more than twice as well conditioned (a block whose chains are near a
-    toggle is a poor coordinate of the assembly; blocks that share that chain tie up to
-    rounding, and the order, not the rounding, decides).
+    """The strategy's iteration (solve_block) on a group's blocks (its chosen Add-link
+    candidate, then the fallbacks), the preferred block first, the others in order.  The
+    first that converges with its chains conditioned at least p.min_chain_sigma (chains():
+    the worst of the last pass, from the block's lever down) is kept; else the best
+    conditioned of those that converge, a later block only when more than twice as well
+    conditioned (a block whose chains are near a toggle is a poor coordinate of the
+    assembly; blocks that share that chain tie up to rounding, and the order, not the
+    rounding, decides).
 
     a[first + k] is block k's state: its sizes[k] start lengths, its branches, its orientation.
-    Returns (k, Newton steps, sigma, orientation), k = -1 when no block converges.
+    Returns (k, iterations, sigma, orientation), k = -1 when no block converges, -2 when
+    none does and the iteration of one of them did not contract.
     """
-    tol, reach = p.tolerance * scale, p.max_move * scale
-    its, best, best_sigma = 0, -1, -1.0
+    its, best, best_sigma, stuck = 0, -1, -1.0, False
     for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
-        ok, x, its, jac = newton(groups[k], a[first + k][:sizes[k]], tol, p.max_iterations, reach, p.newton_halvings)
-        if not ok:
+        ok, x, its, jac = solve_block(groups[k], a[first + k][:sizes[k]], p, scale)
+        stuck = stuck or ok < 0
+        if ok <= 0:
             continue
         if chains() < p.min_chain_sigma:
             if chains() > 2 * best_sigma:
@@ -138,25 +225,25 @@ def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale):
         if st != 1:
             return k, its, sigma, turn
     if best >= 0:
-        ok, x, its, jac = newton(groups[best], a[first + best][:sizes[best]], tol, p.max_iterations, reach,
-                                 p.newton_halvings)
-        if ok:
+        ok, x, its, jac = solve_block(groups[best], a[first + best][:sizes[best]], p, scale)
+        if ok > 0:
             st, sigma, turn = addlink_rates(groups[best], x, jac, order)
             if st != 1:
                 return best, its, sigma, turn
-    return -1, its, 0.0, 0
+    return -2 if stuck else -1, its, 0.0, 0
 
 
 def resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains, m, p):
     """One resolver step: resolve_variants on the group's blocks, the one that solved the
     last row (used[slot]) first; then lengths(a, ad) reads every block's state and its rates
     off the solved pairs (so any of them can start the next row) and the solving block keeps
-    its orientation.  its[slot] gets the Newton steps.  Returns (solved, sigma)."""
+    its orientation.  its[slot] gets the iterations.  Returns (solved, sigma): solved 1, 0
+    where no block converged, -1 where a block's iteration did not contract."""
     k, its[slot], sigma, turn = resolve_variants(groups, a, first, order, used[slot],
                                                  m.sizes[first:first + len(groups)], chains, p, m.length_scale)
     if k < 0:
-        return False, sigma
+        return (0 if k == -1 else -1), sigma
     used[slot] = k
     lengths(a, ad)
     a[first + k][-1] = float(turn)
-    return True, sigma
+    return 1, sigma
