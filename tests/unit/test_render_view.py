@@ -66,4 +66,5 @@ def test_the_closure_strategy_gives_each_group_its_rows():
     v = build_view(build_log(FIG14, sweep=False, options={"strategy": "closure"}))
     (g,) = v.groups
     assert v.closure and not _view(FIG14).closure
-    assert len(v.closure_rows(g)) == 6 == v.nmax  # four lengths and a frame's x and y, on three positions
+    p = v.closure_plan(g)  # four lengths on J4 and J2, J5 derived from them (fixed to the ternary)
+    assert len(p.rows) == 4 == 2 * len(p.unknowns) == v.nmax
