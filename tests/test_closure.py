@@ -159,3 +159,18 @@ def test_c_is_clean_under_sanitizers_and_clang(path: Path, tmp_path: Path):
                   "sweep_clang"], tmp_path)
     assert not different_bits(subprocess.run([str(tmp_path / "sweep_clang")], check=True, capture_output=True,
                                              text=True).stdout, plain)
+
+
+@pytest.mark.long
+def test_float_compiles_without_a_diagnostic_and_keeps_the_statuses(tmp_path: Path):
+    """sixbar_fig14 in float (options: real): no real computed in double behind the user's back, and the
+    double program's status on every row (its values are test_real_type's to bound)."""
+    path = GROUPS[0]
+    log = build_log(str(path), options={"strategy": "closure", "real": "float"})
+    write_all(render_all(log), str(tmp_path))
+    for cc in ("gcc", "clang"):
+        compile_step([need(cc), *STRICT, "-O2", "-Wdouble-promotion", f"{log.name}.c", f"{log.name}_main.c", "-lm",
+                      "-o", f"sweep_{cc}"], tmp_path)
+    single = subprocess.run([str(tmp_path / "sweep_gcc")], check=True, capture_output=True, text=True).stdout
+    write_all(render_all(_closure(path)), str(tmp_path / "double"))
+    assert parse(single)[2] == parse(_c_sweep(_closure(path), tmp_path / "double"))[2]
