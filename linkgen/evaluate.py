@@ -27,6 +27,7 @@ from .options import runtime_policy
 from .primitives import PRIMITIVES, python_backend
 from .primitives.dsl import record_fields
 from .primitives.interpret import constant_record
+from .render.closure import in_process
 from .steplog import Reach, ResolverGroup, Step, StepLog
 
 FAIL, NOT_CONVERGED, SINGULAR, NEAR = status.CANNOT_CLOSE, status.NOT_CONVERGED, status.SINGULAR, status.NEAR_SINGULAR
@@ -41,7 +42,7 @@ Call = Callable[[str, list[Any]], tuple[Any, Any, tuple[Any, ...]]]
 def runtime() -> dict[str, Any]:
     """The Python runtime's functions, as the generated module has them."""
     ns: dict[str, Any] = {"sqrt": math.sqrt, "floor": math.floor, "NAN": math.nan, "PI": math.pi}
-    for name in ("status.py", "branch.py", "reach.py", "resolver.py", "driver.py"):
+    for name in ("status.py", "branch.py", "reach.py", "resolver.py", "closure.py", "driver.py"):
         source = resources.files("linkgen.backends.py").joinpath("runtime").joinpath(name).read_text(encoding="utf-8")
         exec(compile(source, f"<linkgen runtime {name}>", "exec"), ns)
     return ns
@@ -298,9 +299,13 @@ class RowSolver:
         """The group's resolver step through the runtime's resolve_group; the report gets the
         last pass of the block that solved, then the step's own status."""
         first, blocks = self.first[g.number], (g, *g.variants)
-        for j, b in enumerate(blocks):
-            for i, bs in enumerate(b.branches):
-                env[BRANCH, bs.step] = -1 if a[first + j][len(b.add_links) + i] < 0 else 1
+
+        def branches_of(a: list[list[float]]) -> None:
+            for j, b in enumerate(blocks):
+                for i, bs in enumerate(b.branches):
+                    env[BRANCH, bs.step] = -1 if a[first + j][len(b.add_links) + i] < 0 else 1
+
+        branches_of(a)
         last: Report = {}
         chains = [0.0]
         before = dict(env)
@@ -311,8 +316,15 @@ class RowSolver:
                 states[first + j], rates[first + j] = self._state(env, b, states[first + j])
 
         p = self.log.policy
-        ok, sigma = runtime()["resolve_group"](fns, lengths, a, ad, first, self.slots[g.number], used, its, order,
-                                               lambda: chains[0], self.mech, runtime_policy(p, self.log.options))
+        resolve = runtime()["resolve_group"]
+        if g.closure is not None:  # the closure strategy: its equations first, the states read off the solution
+            def adopt(states: list[list[float]]) -> None:
+                lengths(states, [[]] * len(states))
+                branches_of(states)
+
+            resolve = functools.partial(runtime()["resolve_closure"], in_process(g.closure, env, adopt))
+        ok, sigma = resolve(fns, lengths, a, ad, first, self.slots[g.number], used, its, order, lambda: chains[0],
+                            self.mech, runtime_policy(p, self.log.options))
         if ok > 0:
             report.update(last)
         report[g.step] = ((SINGULAR if sigma < p.singular else NEAR if sigma < p.near_singular else 0) if ok > 0

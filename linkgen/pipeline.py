@@ -11,12 +11,13 @@ from .columns import plan
 from .directions import unit_directions
 from .errors import InputError, and_list
 from .extraction import Procedure, extract
+from .extraction.closure import ClosureRefused, with_closures
 from .model import Mechanism
 from .options import overridden, policy_for, reference
 from .prune import prune
 from .steplog import Draft, InputInfo, LinkInfo, PairInfo, StepLog
 from .topology import Topology, analyse
-from .validate import read_mechanism
+from .validate import option_line, read_mechanism
 
 
 def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = None,
@@ -26,6 +27,8 @@ def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = Non
     ``options`` replaced (linkgen.options.Options' fields)."""
     m = topo.mechanism
     opts = overridden(m.options, options or {})
+    if opts.strategy == "closure" and proc.groups:
+        proc = _closed(proc, m, "strategy" in (options or {}))
     order = m.order if order is None else order
     outputs = m.outputs if outputs is None else outputs
     input_vars = [v.name for v in proc.variables if v.role == "input"]
@@ -59,6 +62,19 @@ def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = Non
         proc.lj, proc.add_links, proc.residuals, proc.groups, columns, policy_for(opts),
         outputs=tuple(outputs), options=opts,
     ))
+
+
+def _closed(proc: Procedure, m: Mechanism, flag: bool) -> Procedure:
+    """The procedure with its groups' loop-closure equations (strategy closure); a group it cannot
+    write them for is an error where the strategy was asked for (the flag, else the file's key)."""
+    try:
+        steps, groups = with_closures(proc.steps, proc.variables, proc.groups)
+    except ClosureRefused as exc:
+        where = ("command line", 0, "--strategy") if flag else (m.path, option_line(m.path, "strategy"),
+                                                                 "options.strategy")
+        raise InputError(f"the closure strategy cannot resolve this mechanism: {exc}; use strategy newton",
+                         *where) from None
+    return replace(proc, steps=steps, groups=groups)
 
 
 def analyse_file(path: str) -> tuple[Mechanism, Topology, Procedure]:

@@ -130,6 +130,40 @@ class BranchSign:
 
 
 @dataclass(frozen=True)
+class Distance:
+    """A closure equation: |points[1] - points[0]| = length (one row)."""
+
+    points: tuple[str, str]  # position variables
+    length: float  # in the sketch
+    step: int  # the step whose chain or residual holds it
+    link: str
+    variable: str = ""  # the VARIABLE record holding the length where it changes with the inputs (an actuator's)
+
+
+@dataclass(frozen=True)
+class Frame:
+    """A closure equation: a point fixed in the frame of its link, point = origin + w (b - a)
+    with w = (gsi + i eta) e^(i off) / |b - a| taken as a complex number (two rows, x and y)."""
+
+    point: str
+    origin: str
+    base: tuple[str, str]  # (a, b): the link's points its angle is measured on
+    w: tuple[float, float]  # real and imaginary part
+    step: int
+    link: str
+
+
+@dataclass(frozen=True)
+class Closure:
+    """The loop-closure equations of a resolver group (options: strategy closure): every rigid-link
+    constraint inside the group, in the positions the group places (x and y of each)."""
+
+    unknowns: tuple[str, ...]  # POINT variables; unknowns 2i and 2i + 1 are the x and y of the i-th
+    distances: tuple[Distance, ...]  # rows 0 .. len - 1
+    frames: tuple[Frame, ...]  # then two rows each
+
+
+@dataclass(frozen=True)
 class ResolverGroup:
     """Newton-Raphson on Add-link lengths until every unused link regains its length."""
 
@@ -146,6 +180,7 @@ class ResolverGroup:
     lengths: tuple[float, ...] = ()  # the Add-links' sketch lengths
     variants: tuple[ResolverGroup, ...] = ()  # fallbacks: other candidates, tried in this order
     branches: tuple[BranchSign, ...] = ()  # chains whose branch follows the last solution
+    closure: Closure | None = None  # strategy closure: the group's loop-closure equations (chosen block only)
 
     def start(self) -> list[float]:
         """The block's state in the sketch: Add-link lengths, its chains' branches, then its
@@ -339,10 +374,11 @@ Draft = NewType("Draft", StepLog)
 
 def runtime(log: StepLog) -> tuple[str, ...]:
     """The runtime functions the log's programs call: its steps', the resolver's with resolver
-    groups, branch_at with change points and reach_at with a reach."""
+    groups (and the closure strategy's where it is chosen), branch_at with change points and
+    reach_at with a reach."""
     names = {s.function for s in log.steps if s.function}
     if log.groups:
-        names |= {"resolver", "link_residual"}
+        names |= {"resolver", "link_residual"} | ({"closure"} if log.groups[0].closure else set())
     if any(s.change_points for s in log.steps):
         names.add("branch_at")
     if log.reach is not None:

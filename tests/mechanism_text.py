@@ -1,5 +1,6 @@
 """A four-bar as mechanism-file text, to be renamed or edited line by line, and how the validator
-(with the topology's checks after it) takes it: the tests of linkgen.validate share it."""
+(with the topology's checks after it) takes it: the tests of linkgen.validate share it.  Also a
+six-bar whose resolver group holds a prismatic pair, which the closure strategy refuses."""
 
 from __future__ import annotations
 
@@ -29,6 +30,28 @@ links:
   rocker: [O2, B]
 inputs:
   - {joint: O1, link: crank, relative_to: frame, range: [0, 360], speed: 360}
+"""
+
+# Fig. 14 with its rocker1 (J1-J2) replaced by a block sliding on the frame: J2 is placed by a PRR chain.
+SLIDER_TRIAD = """linkgen: 1
+name: slider_triad
+joints:
+  J1: {type: prismatic, at: [0, 70], axis: 0}
+  J2: [0, 70]
+  J3: [100, 0]
+  J4: [105, 65]
+  J5: [60, 80]
+  J6: [-60, 100]
+  J7: [-60, 80]
+links:
+  block: [J1, J2]
+  ternary: [J2, J4, J5]
+  rocker2: [J3, J4]
+  coupler: [J6, J5]
+  crank: [J7, J6]
+  frame: {joints: [J1, J3, J7], fixed: true}
+inputs:
+  - {joint: J7, link: crank, relative_to: frame, range: [0, 360]}
 """
 
 

@@ -25,13 +25,15 @@ def used_primitives(view: View) -> list[str]:
 
 def runtime_sources(view: View, printer: Callable[[Primitive, int], str], runtime: Runtime) -> list[str]:
     """The runtime a program carries: the primitives it calls, printed, then the hand-written
-    status helpers and, where the procedure needs them, branch_at, reach_at, the resolver and the row driver."""
+    status helpers and, where the procedure needs them, branch_at, reach_at, the resolver (with the closure
+    strategy's where it is chosen) and the row driver."""
     order = view.record_order
     texts = [printer(PRIMITIVES[p], order) for p in used_primitives(view)]
     texts.append(runtime.source("status"))
     texts += [runtime.source(name) for name, needed in (
         ("branch", "branch_at" in view.log.runtime), ("reach", "reach_at" in view.log.runtime),
-        ("resolver", bool(view.groups)), ("driver", bool(view.groups))) if needed]
+        ("resolver", bool(view.groups)), ("closure", "closure" in view.log.runtime),
+        ("driver", bool(view.groups))) if needed]
     return texts
 
 

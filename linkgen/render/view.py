@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 from .. import status
 from ..steplog import Column, ResolverGroup, Step, StepLog, Variable
+from .closure import Plan, plan
 
 
 @dataclass(frozen=True)
@@ -78,7 +79,8 @@ class View:
     cells: tuple[Cell, ...]  # output columns in CSV order
     inputs: tuple[Variable, ...]
     sigma_steps: tuple[int, ...]  # steps that report a conditioning
-    nmax: int  # the largest block state (Add-link lengths, measured branches, orientation)
+    nmax: int  # the largest block state (Add-link lengths, measured branches, orientation), with the closure
+    # strategy at least its largest group's Newton unknowns (its Jacobian is solved as the Add-links' is)
     record_order: int  # derivative order of the records: a resolver needs velocities for its Jacobian
 
     def resolver_of_group(self, number: int) -> Group:
@@ -92,6 +94,16 @@ class View:
     def measured(self) -> frozenset[int]:
         """Steps whose branch a block reads off the last solution (a work field each)."""
         return frozenset(b.step for g in self.blocks for b in g.group.branches)
+
+    @property
+    def closure(self) -> bool:
+        """Whether the resolvers solve their groups' loop-closure equations (strategy closure)."""
+        return bool(self.groups) and self.groups[0].group.closure is not None
+
+    def closure_plan(self, group: Group) -> Plan:
+        """How the programs compute a group's loop-closure equations (render.closure)."""
+        assert group.group.closure is not None
+        return plan(group.group.closure)
 
     def blocks_of(self, group: Group) -> tuple[Group, ...]:
         return self.blocks[group.first:group.first + group.count]
@@ -155,6 +167,7 @@ def build_view(log: StepLog) -> View:
               for c in log.columns[len(log.inputs):]),
         inputs,
         tuple(s.number for s in log.steps if s.fails),
-        max((len(b.group.add_links) + len(b.group.branches) + 1 for b in blocks), default=1),
+        max([len(b.group.add_links) + len(b.group.branches) + 1 for b in blocks]
+            + [2 * len(plan(g.closure).unknowns) for g in log.groups if g.closure], default=1),
         max(log.order, 1) if log.groups else log.order,
     )

@@ -11,10 +11,10 @@ from __future__ import annotations
 from ..loader import Mapping, load
 from ..model import Mechanism, Where
 from . import header, inputs, naming, parts
-from .header import file_label
+from .header import file_label, option_line
 from .sheet import Sheet
 
-__all__ = ["file_label", "read_mechanism", "validate"]
+__all__ = ["file_label", "option_line", "read_mechanism", "validate"]
 
 
 def validate(root: Mapping, path: str) -> Mechanism:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import os
 
-from ..loader import Node, Scalar
+from ..loader import Mapping, Node, Scalar, load
 from ..model import Where
 from ..options import CHOICES, MAX_ITERATIONS, MAX_TOLERANCE, Options
 from .naming import program_name
@@ -148,3 +148,10 @@ def _option(sheet: Sheet, key: str, node: Node) -> object:
 def key_where(sheet: Sheet, key: str) -> Where:
     node = next(k for k, _ in sheet.root.items if k.text == key)
     return Where(node.line, key)
+
+
+def option_line(path: str, key: str) -> int:
+    """The line of the file's option ``key`` (options: {key: ...}), 0 where the file has none."""
+    node = load(path).get("options")
+    found = node.get(key) if isinstance(node, Mapping) else None
+    return found.line if found is not None else 0

@@ -65,7 +65,7 @@ def test_a_backend_has_its_readme_templates_and_runtime(backend: Backend):
     if backend.runtime is not None:
         assert backend.runtime.package == f"linkgen.backends.{backend.name}"
         sources = {p.name for p in (FOLDER / backend.name / backend.runtime.folder).iterdir() if p.is_file()}
-        names = SOURCES.get(backend.name, {"status", "branch", "reach", "resolver", "driver"})
+        names = SOURCES.get(backend.name, {"status", "branch", "reach", "resolver", "closure", "driver"})
         assert sources == {f"{s}{backend.runtime.suffix}" for s in names}
 
 
@@ -92,9 +92,9 @@ def test_a_backend_writes_its_files_each_with_the_banner_in_its_comment_syntax(b
 @pytest.mark.parametrize("backend", [b for b in backends() if b.runtime], ids=lambda b: b.name)
 def test_a_program_carries_its_runtime_and_printed_primitives(backend: Backend):
     assert backend.runtime is not None and backend.printer is not None
-    pasted = dict.fromkeys(SOURCES.get(backend.name, ("status", "branch", "reach", "resolver", "driver")), 0)
-    for path in MECHANISMS:
-        view = build_view(build_log(str(path), None, None))
+    pasted = dict.fromkeys(SOURCES.get(backend.name, ("status", "branch", "reach", "resolver", "closure", "driver")), 0)
+    closure = build_log(str(MECHANISMS[0]), sweep=False, options={"strategy": "closure"})  # sixbar_fallback
+    for view in [build_view(build_log(str(path), None, None)) for path in MECHANISMS] + [build_view(closure)]:
         program = b"".join(render_backend(backend, view).values()).decode("utf-8")
         used = [p for p in PRIMITIVES if p in view.log.runtime and not (backend.name == "np" and view.groups)]
         assert used or backend.name == "np"

@@ -85,3 +85,16 @@ def test_the_input_lists_are_the_logs_numbers(key: str):
     assert limits == [p.step_angle if i.kind == "revolute" else p.step_length * log.length_scale for i in log.inputs]
     assert lists["periodic"].split(", ") == [str(i.kind == "revolute") for i in log.inputs]
     assert input_lists(v, C(v))["periodic"].split(", ") == [str(int(i.kind == "revolute")) for i in log.inputs]
+
+
+def test_the_closure_strategy_carries_its_runtime_and_a_state_as_large_as_its_unknowns():
+    """cylinder_triad by the closure strategy: the closure runtime after the resolver's, and every
+    block's state at least as large as the group's four unknowns (its Jacobian is solved in the same
+    arrays: here the blocks' own four entries)."""
+    v = build_view(build_log(str(ROOT / PATHS["cylinder"]), sweep=False, options={"strategy": "closure"}))
+    assert v.nmax == 4 == view("cylinder").nmax
+    for printer, runtime in ((python_function, PY_RUNTIME), (c_function, C_RUNTIME)):
+        assert runtime_sources(v, printer, runtime)[-4:] == [runtime.source(n)
+                                                             for n in ("reach", "resolver", "closure", "driver")]
+    states = [s.split(", ") for s in sketch_states(v, C(v))]
+    assert {len(s) for s in states} == {4}

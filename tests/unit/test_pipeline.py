@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from mechanism_text import SLIDER_TRIAD
 
 from linkgen.errors import InputError
 from linkgen.pipeline import analyse_file, build_log, draft
@@ -48,3 +49,21 @@ def test_the_motion_facts_are_the_mechanisms_whatever_the_resolver_runs():
     assert log.reach == default.reach and log.reach is not None
     assert log.conditioning == default.conditioning
     assert (log.options.strategy, log.options.predictor, log.options.polish) == ("fixed-point", 0, False)
+
+
+def test_the_closure_strategy_is_refused_where_it_was_asked_for(tmp_path: Path):
+    """A resolver group with a prismatic pair (tests/unit/test_extraction_closure.py's slider triad): the
+    error names the file's options.strategy, or the command line's --strategy."""
+    path = tmp_path / "slider_triad.yaml"
+    path.write_text(SLIDER_TRIAD + "options:\n  strategy: closure\n")
+    with pytest.raises(InputError) as info:
+        build_log(str(path), sweep=False)
+    assert (info.value.path, info.value.line, info.value.key) == (str(path), 21, "options.strategy")
+    assert info.value.message.startswith("the closure strategy cannot resolve this mechanism: it handles resolver "
+                                         "groups of revolute pairs only")
+    assert info.value.message.endswith("; use strategy newton")
+    path.write_text(SLIDER_TRIAD)
+    with pytest.raises(InputError) as info:
+        build_log(str(path), sweep=False, options={"strategy": "closure"})
+    assert (info.value.path, info.value.line, info.value.key) == ("command line", 0, "--strategy")
+    assert build_log(str(path), sweep=False).groups  # the default strategy resolves it

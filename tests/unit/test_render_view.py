@@ -74,3 +74,11 @@ def test_only_a_fixed_point_resolver_adds_its_failure():
     assert _view(FOURBAR).failures == _view(FIG14).failures == (1, 2)
     assert build_view(build_log(FIG14, sweep=False, options={"strategy": "fixed-point"})).failures == (1, 2, 6)
     assert build_view(build_log(FOURBAR, sweep=False, options={"strategy": "fixed-point"})).failures == (1, 2)
+
+
+def test_the_closure_strategy_gives_each_group_its_rows():
+    v = build_view(build_log(FIG14, sweep=False, options={"strategy": "closure"}))
+    (g,) = v.groups
+    assert v.closure and not _view(FIG14).closure
+    p = v.closure_plan(g)  # four lengths on J4 and J2, J5 derived from them (fixed to the ternary)
+    assert len(p.rows) == 4 == 2 * len(p.unknowns) == v.nmax

@@ -116,3 +116,13 @@ def test_a_direction_is_published_without_the_origin():
     assert log.offset(ux) == 0.0 and log.offset(next(c for c in log.columns if c.name == "B.x")) != 0.0
     frame, angle = log.variable("u_frame"), next(k.angle for k in log.links if k.name == "frame")
     assert held(frame, log.origin) == frame.value == pytest.approx((math.cos(angle), math.sin(angle)), abs=2e-16)
+
+
+def test_a_closure_log_reads_back_and_its_programs_carry_the_closure_runtime():
+    """With strategy closure every group records its equations (steplog.Closure), NAME.json reads back
+    to the same log, and the runtime names the closure strategy's; the default build does neither."""
+    log = build_log(str(FIG14), sweep=False, options={"strategy": "closure"})
+    assert log.groups[0].closure is not None and "closure" in log.runtime
+    assert _decode(StepLog, json.loads(log.to_json())) == log
+    default = build_log(str(FIG14), sweep=False)
+    assert default.groups[0].closure is None and "closure" not in default.runtime

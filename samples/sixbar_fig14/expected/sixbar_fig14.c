@@ -178,7 +178,7 @@ typedef int (*group_fn)(void *ctx, const double a[], const double da[], const do
 typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
 
 /* The resolver strategies (options: strategy), as resolver_policy.strategy names them. */
-enum { RESOLVER_NEWTON, RESOLVER_FIXED_POINT };
+enum { RESOLVER_NEWTON, RESOLVER_FIXED_POINT, RESOLVER_CLOSURE };
 
 /* The resolver policy (linkgen/policy.py, as the step log has it, with the strategy, polish and
  * predictor of the build's options); lengths relative to the length scale. */
