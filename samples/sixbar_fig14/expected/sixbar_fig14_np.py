@@ -2171,7 +2171,7 @@ def _run(x, dx, ddx, c, a, ad, used, order, skip, m, p):
     # Step 2: crank_input, J6. J7 is known and link frame is placed, so the input angle theta_J7 turns link crank to J6
     _, _, w.p_J6 = crank_input(w.p_J7, c["step2.l"], w.in1, w.ref_J7)
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
-    # Step 9: resolve, group1. Newton-Raphson on add1 until coupler regains its length
+    # Step 9: resolve, group1. the resolver iterates on add1 until coupler regains its length
     done, steps = resolve_lanes(w, _GROUP_1, a, ad, used, order, sigma, report,
                                 skip | past | ~settled | failed_lanes(report, np.size(skip)), m, p)
     settled = settled & done
