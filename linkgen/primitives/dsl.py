@@ -152,12 +152,22 @@ def fabs(a: Expr) -> Expr:
     return Call("abs", (a,))
 
 
+def _operands(fn: str, a: object, b: object) -> Expr:
+    """max or min of two names or numbers: b where it is the larger (the smaller), else a, as
+    Python's max and min choose (a nan b gives a).  The operands are names or numbers, so a
+    printer may spell the choice as a comparison without computing either twice."""
+    args = (wrap(a), wrap(b))
+    if not all(isinstance(x, (Sym, Num, Const)) for x in args):
+        raise TypeError(f"{fn}() takes names or numbers (let-bind an expression first)")
+    return Call(fn, args)
+
+
 def fmax(a: object, b: object) -> Expr:
-    return Call("max", (wrap(a), wrap(b)))
+    return _operands("max", a, b)
 
 
 def fmin(a: object, b: object) -> Expr:
-    return Call("min", (wrap(a), wrap(b)))
+    return _operands("min", a, b)
 
 
 def either(a: Expr, b: Expr) -> Expr:

@@ -42,7 +42,7 @@ class C(Spelling):
     def call(self, step: Step, scope: Group | None) -> list[str]:
         """A step's call; a failing chain ends the row (inside a resolver block: the block's pass)."""
         prim = PRIMITIVES[step.function]
-        args = [self.arg(a, scope, step) for a in step.args]
+        args = [("&" if a.kind == "var" else "") + self.arg(a, scope, step) for a in step.args]
         args += [f"&{self.ref(o, scope)}" for o in step.outputs]
         if prim.sigma is not None:
             args.append(f"&{self.sigma(step)}")

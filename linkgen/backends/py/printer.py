@@ -9,6 +9,7 @@ from ...primitives.printers import MASKS, ExprPrinter
 
 class PythonExprs(ExprPrinter):
     consts = {"eps": "EPS", "nan": "NAN", "pi": "PI"}
+    compares = True  # as max() and min() choose, without their call
 
     def select(self, cond: str, a: str, b: str) -> str:
         return f"{a} if {cond} else {b}"
