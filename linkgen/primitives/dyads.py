@@ -67,7 +67,7 @@ def RRR_links(b: PlaneBuilder) -> Primitive:
         l2.v * l2.ddv + l2.dv * l2.dv - w2.dot(w2) + e2.dot(j2.a),
     )
     b.output_point("jb", Motion(j1.p + e1, vel, acc))
-    return b.build(status=chain_status(fail, sigma), sigma=sigma)
+    return b.build(status=chain_status(fail, sigma), sigma=sigma, fail=fail)
 
 
 @primitive
@@ -122,7 +122,7 @@ def PRR_links(b: PlaneBuilder) -> Primitive:
     b.output("s", "VARIABLE", v=s, dv=ds, ddv=dds)
     b.output_point("jp", Motion(jp, jpv, jpa))
     b.output_point("jb", Motion(jb, jbv, jpa + rm.a))
-    return b.build(status=chain_status(fail, sigma), sigma=sigma)
+    return b.build(status=chain_status(fail, sigma), sigma=sigma, fail=fail)
 
 
 @primitive
@@ -181,7 +181,7 @@ def PRP_links(b: PlaneBuilder) -> Primitive:
     b.output("s2", "VARIABLE", v=s2, dv=ds2, ddv=dds2)
     b.output_point("jp2", Motion(jp2, jp2v, jp2a))
     b.output_point("jb", Motion(jb, jp1v + rm1.v, jp1a + rm1.a))
-    return b.build(status=chain_status(cr.eq(0), sigma), sigma=sigma)
+    return b.build(status=chain_status(cr.eq(0), sigma), sigma=sigma, fail=cr.eq(0))
 
 
 @primitive
@@ -225,7 +225,7 @@ def RPR_links(b: PlaneBuilder) -> Primitive:
     b.output("psi", "ANGLE", the=psi, dthe=om, ddthe=al)
     b.output("s", "VARIABLE", v=s, dv=ds, ddv=dds)
     b.output_point("jp", js + b.rotating("r", r, om, al))
-    return b.build(status=chain_status(fail, sigma), sigma=sigma)
+    return b.build(status=chain_status(fail, sigma), sigma=sigma, fail=fail)
 
 
 @primitive
@@ -283,4 +283,4 @@ def PPR_links(b: PlaneBuilder) -> Primitive:
     b.output_point("jp1", Motion(jp1, jp1v, jp1a))
     b.output("sx", "VARIABLE", v=sgn * mu, dv=sgn * mvu, ddv=sgn * (ma.dot(ux) + om * ux.cross(mv)))
     b.output("jpx", "POINT", **jx)
-    return b.build(status=chain_status(cr.eq(0), sigma), sigma=sigma)
+    return b.build(status=chain_status(cr.eq(0), sigma), sigma=sigma, fail=cr.eq(0))

@@ -143,9 +143,10 @@ def masks(prim: Primitive, order: int, or_op: str) -> list[tuple[str, list[tuple
     """Per failing status, the condition on ``st`` and the result fields it makes nan: a chain
     that cannot close (1) every field, a singular position (3) the derivatives."""
     out = []
-    for _, nan_from in MASKS:
+    returned = prim.codes()
+    for code, nan_from in MASKS:
         fields = [(p, f) for p, f, _ in prim.result_fields(order) if nan_from <= field_order(p.kind, f)]
-        if fields:
-            codes = [c for c, n in MASKS if n <= nan_from]
+        if fields and code in returned:
+            codes = [c for c, n in MASKS if n <= nan_from and c in returned]
             out.append((f" {or_op} ".join(f"st == {c}" for c in codes), fields))
     return out

@@ -175,10 +175,10 @@ def test_flags_comparisons_and_their_selections_are_ints():
 
 
 def test_a_function_that_cannot_fail_returns_nothing_and_one_that_can_its_status():
-    assert "static void crank_input(" in c_function(PRIMITIVES["crank_input"], 2)
+    assert "static inline void crank_input(" in c_function(PRIMITIVES["crank_input"], 2)
     text = c_function(PRIMITIVES["RRR_links"], 2)
-    head = ("static int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, "
-            "POINT *jb, double *sigma_out)")
+    head = ("static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, "
+            "int minv, POINT *jb, double *sigma_out)")
     assert head in text and text.rstrip().endswith("return st;\n}")
 
 

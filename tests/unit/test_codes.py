@@ -29,7 +29,7 @@ def test_each_failing_step_has_its_reasons():
 
 
 def test_a_resolver_limit_position_has_a_code_of_its_own():
-    """Rows past sixbar_partial's limit positions fail at the resolve step (9) with reason 1."""
+    """Rows past sixbar_partial's limit positions fail at the resolve step (8) with reason 1."""
     log = build_log(str(ROOT / "tests" / "mechanisms" / "sixbar_partial.yaml"), sweep=False)
-    (code,) = [c for c in log.status_codes if c.code == 91]
-    assert log.step(9).action == "resolve" and code.meaning == "step 9 (group1): cannot assemble past a limit position"
+    (code,) = [c for c in log.status_codes if c.code == 81]
+    assert log.step(8).action == "resolve" and code.meaning == "step 8 (group1): cannot assemble past a limit position"

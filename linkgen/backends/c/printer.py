@@ -57,13 +57,13 @@ def _c_type(kind: str) -> str:
 def c_function(prim: Primitive, order: int) -> str:
     """A static C99 function shaped like mech.cpp: records in by pointer to const (no copy of
     a record per call), outputs by pointer, the status as return value (void when the
-    function cannot fail)."""
+    function cannot fail).  Inline: a call with the sketch's constants folds them."""
     exprs = CExprs(prim)
     params = [f"const {p.kind} *{p.name}" if p.is_record else f"{_c_type(p.kind)} {p.name}" for p in prim.params]
     params += [f"{p.kind} *{p.name}" for p in prim.outputs]
     if prim.sigma is not None:
         params.append("double *sigma_out")
-    head = "static int" if prim.status is not None else "static void"
+    head = "static inline int" if prim.status is not None else "static inline void"
     lines = [f"/* {prim.doc} */", f"{head} {prim.name}({', '.join(params)})", "{"]
     used = prim.params_used(order)
     for p in prim.params:

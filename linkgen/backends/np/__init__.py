@@ -18,9 +18,10 @@ RUNTIME = Runtime(__name__, "runtime", ".py")
 
 
 @functools.cache
-def printed(name: str, order: int) -> str:
-    """A primitive on arrays of rows at an order (printed once: the evaluator renders many logs)."""
-    return numpy_function(PRIMITIVES[name], order)
+def printed(name: str, order: int, checks: bool = True) -> str:
+    """A primitive on arrays of rows at an order, with its checks or without (printed once: the
+    evaluator renders many logs)."""
+    return numpy_function(PRIMITIVES[name] if checks else PRIMITIVES[name].unchecked(), order)
 
 
 def runtime_sources(view: View) -> list[str]:
@@ -28,7 +29,7 @@ def runtime_sources(view: View) -> list[str]:
     then the status rule, branch_at and reach_at where the procedure needs them, and the row
     driver (with resolver groups, which runs the standard-library module row by row)."""
     log = view.log
-    texts = [] if view.groups else [printed(p, view.record_order) for p in used_primitives(view)]
+    texts = [] if view.groups else [printed(p, view.record_order, view.measures) for p in used_primitives(view)]
     texts.append(RUNTIME.source("status"))
     texts += [RUNTIME.source(name) for name, needed in (
         ("branch", "branch_at" in log.runtime and not view.groups),

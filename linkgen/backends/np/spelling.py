@@ -79,16 +79,17 @@ class Numpy(Python):
         """A step's conditioning on the block, in the list the block's steps fill."""
         return f"sigma[{step.number}]"
 
-    @staticmethod
-    def codes(step: Step) -> str:
+    def codes(self, step: Step) -> str:
         """A step's (status, row code) pairs in the order they prevail: a chain that cannot close,
-        a singular position, a near-singular one."""
-        pairs = [(r, status.code(step.number, r)) for r in (status.CANNOT_CLOSE, status.SINGULAR, status.NEAR_SINGULAR)]
-        return "(" + ", ".join(f"({r}, {c})" for r, c in pairs) + ")"
+        a singular position, a near-singular one (those its function returns)."""
+        returned = self.primitives[step.function].codes()
+        pairs = [(r, status.code(step.number, r)) for r in (status.CANNOT_CLOSE, status.SINGULAR, status.NEAR_SINGULAR)
+                 if r in returned]
+        return "(" + ", ".join(f"({r}, {c})" for r, c in pairs) + ("," if len(pairs) == 1 else "") + ")"
 
     def call(self, step: Step, scope: Group | None) -> list[str]:
         """A step's call on a block of rows; one that can fail reports its status and codes."""
-        prim = PRIMITIVES[step.function]
+        prim = self.primitives[step.function]
         args = ", ".join(self.arg(a, scope, step) for a in step.args)
         targets = ", ".join(self.ref(o, scope) for o in step.outputs)
         if prim.status is None:

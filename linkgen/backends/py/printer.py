@@ -61,7 +61,7 @@ def python_function(prim: Primitive, order: int) -> str:
         if prim.sigma is not None and exprs.expr(prim.sigma) != "sigma":
             lines.append(f"    sigma = {exprs.expr(prim.sigma)}")
         for code, nan_from in MASKS:
-            if nan_from <= order:
+            if nan_from <= order and code in prim.codes():
                 values = ", ".join(head + _result_tuples(prim, order, exprs, nan_from))
                 lines.append(f"    if st == {code}:")
                 lines.append(f"        return {values}")
