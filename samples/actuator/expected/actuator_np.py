@@ -121,11 +121,11 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step3.bg": 0.0,  # step 3: RPR_links of C
     "step3.as": -850.0,  # step 3: RPR_links of C
     "step3.bs": 0.0,  # step 3: RPR_links of C
-    "step5.off": 0.0,  # step 5: link_angle of bucket
-    "step6.gsi": -550.5882352941176,  # step 6: coupler_point of tip
-    "step6.eta": -1177.6470588235293,  # step 6: coupler_point of tip
-    "step7.off": 0.0,  # step 7: link_angle of side_link
-    "step8.off": 0.0,  # step 8: link_angle of power_link
+    "step5.along": -1.6193771626297577,  # step 5: link_point of tip
+    "step5.across": -3.463667820069204,  # step 5: link_point of tip
+    "step6.off": 0.0,  # step 6: link_angle of side_link
+    "step7.off": 0.0,  # step 7: link_angle of power_link
+    "step8.off": 0.0,  # step 8: link_angle of bucket
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
     name="actuator_np", n_inputs=N_INPUTS, n_steps=N_STEPS, params=PARAMS,
@@ -133,6 +133,7 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
     reads=3,  # the arrays a row reads: inputs, rates, accelerations
     max_input=1e+30, bad_input=5,
     failed=(1, 2), singular=3,
+    checks=True,  # whether a call gives each step's conditioning ("sigma")
 )
 
 
@@ -149,8 +150,8 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    _t1 = np.arctan2(dy, dx) + off
-    th = np.where(_t1 > PI, _t1 - 2 * PI, np.where(_t1 <= -PI, _t1 + 2 * PI, _t1))
+    th0 = np.arctan2(dy, dx) + off
+    th = np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     ir2 = np.where(r2 == 0, NAN, 1 / r2)
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
@@ -163,22 +164,25 @@ def link_angle(j1, j2, off):
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp = np.cos(phi_the)
-    sp = np.sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    _t1 = phi_dthe * phi_dthe
-    rax = -phi_ddthe * ry - _t1 * rx
-    ray = phi_ddthe * rx - _t1 * ry
+def link_point(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=float)
-    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+    _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -210,7 +214,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    sigma = np.where(fail, 0, np.minimum(area4 / (2 * l1_v * l2_v), 1))
+    ratio = np.where(fail, 0, area4 / (2 * l1_v * l2_v))
+    sigma = np.minimum(ratio, 1)
     _t1 = -a2
     e2x = _t1 * ux - hn * uy
     e2y = _t1 * uy + hn * ux
@@ -254,7 +259,8 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     q = np.sqrt(dx * dx + dy * dy)
     ah = np.abs(hh)
     k = q - ah
-    fail = (k < -8 * EPS * np.maximum(q, ah)) | (q == 0)
+    big = np.maximum(q, ah)
+    fail = (k < -8 * EPS * big) | (q == 0)
     t = np.sqrt(np.maximum(k, 0) * (q + ah))
     iq = np.where(q == 0, NAN, 1 / q)
     mt = minv * t
@@ -264,8 +270,16 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     sv = mt + (as_ - ag)
     rx = as_ * ux - bs * uy
     ry = as_ * uy + bs * ux
-    arm = np.maximum(np.maximum(np.abs(ag), np.abs(as_)), np.maximum(np.abs(bg), np.abs(bs)))
-    sigma = np.where(fail, 0, np.minimum(t / np.maximum(q, arm), 1))
+    a0 = np.abs(ag)
+    a1 = np.abs(as_)
+    a2 = np.abs(bg)
+    a3 = np.abs(bs)
+    arm1 = np.maximum(a0, a1)
+    arm2 = np.maximum(a2, a3)
+    arm = np.maximum(arm1, arm2)
+    reach = np.maximum(q, arm)
+    ratio = np.where(fail, 0, t / reach)
+    sigma = np.minimum(ratio, 1)
     imt = np.where(mt == 0, NAN, 1 / mt)
     dvn = ux * dvy - uy * dvx
     dvu = dvx * ux + dvy * uy
@@ -314,7 +328,7 @@ def reason_of(code):
 # last axis the inputs) and its design parameters broadcast together and flattened into rows,
 # solved a block of rows at a time so that every array a block makes stays in the cache.
 # m holds the module's data (name, n_inputs, n_steps, reads, max_input, levels, columns,
-# failed, singular, bad_input, params).
+# failed, singular, bad_input, params, checks).
 
 BLOCK = 4096  # rows a block
 
@@ -372,9 +386,11 @@ def filled(out, shape, order, m):
     names = [name for name, level in zip(m.columns, m.levels) if level <= order]
     if out is None:
         return {name: np.empty(n) for name in names}, np.empty(n, dtype=int), np.ones((m.n_steps + 1, n))
-    flat = {}
-    for name, like, dtype in [(name, shape, float) for name in names] + [
-            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), float)]:
+    wanted = [(name, shape, float) for name in names] + [("status", shape, int)]
+    if m.checks:
+        wanted.append(("sigma", (m.n_steps + 1, *shape), float))
+    flat = {"sigma": np.ones((m.n_steps + 1, n))}  # the call's own where it gives no conditioning
+    for name, like, dtype in wanted:
         a = out.get(name)
         if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
             raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
@@ -423,7 +439,9 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
         row = solve(x, dx, ddx, order, state)
         for name in out:
             out[name][r] = row[name]
-        status[r], sigma[:, r] = row["status"], row["sigma"]
+        status[r] = row["status"]
+        if m.checks:
+            sigma[:, r] = row["sigma"]
     return finish(out, status, sigma, bad, shape, m)
 
 
@@ -442,7 +460,8 @@ def finish(out, status, sigma, bad, shape, m):
             out[name][lost] = np.nan
     result = {name: x.reshape(shape) for name, x in out.items()}
     result["status"] = status.reshape(shape)
-    result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
+    if m.checks:
+        result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
     return result
 
 class _Work:
@@ -473,17 +492,17 @@ def _run(x, dx, ddx, c):
     # Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known
     st, sigma[4], w.p_M = RRR_links(w.p_K, w.p_Q, w.l_power_link, w.l_bucket, 1)
     report.append((st, ((1, 41), (3, 43), (4, -44))))
-    # Step 5: link_angle, bucket. Q and M of link bucket are known, so its angle is
-    st, _, w.phi_bucket = link_angle(w.p_Q, w.p_M, c["step5.off"])
-    report.append((st, ((1, 51), (3, 53), (4, -54))))
-    # Step 6: coupler_point, tip. point tip of link bucket
-    _, _, w.p_tip = coupler_point(w.p_Q, w.phi_bucket, c["step6.gsi"], c["step6.eta"])
-    # Step 7: link_angle, side_link. R and K of link side_link are known, so its angle is
-    st, _, w.phi_side_link = link_angle(w.p_R, w.p_K, c["step7.off"])
-    report.append((st, ((1, 71), (3, 73), (4, -74))))
-    # Step 8: link_angle, power_link. K and M of link power_link are known, so its angle is
-    st, _, w.phi_power_link = link_angle(w.p_K, w.p_M, c["step8.off"])
-    report.append((st, ((1, 81), (3, 83), (4, -84))))
+    # Step 5: link_point, tip. point tip of link bucket
+    _, _, w.p_tip = link_point(w.p_Q, w.p_M, c["step5.along"], c["step5.across"])
+    # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is
+    st, _, w.phi_side_link = link_angle(w.p_R, w.p_K, c["step6.off"])
+    report.append((st, ((1, 61),)))
+    # Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is
+    st, _, w.phi_power_link = link_angle(w.p_K, w.p_M, c["step7.off"])
+    report.append((st, ((1, 71),)))
+    # Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is
+    st, _, w.phi_bucket = link_angle(w.p_Q, w.p_M, c["step8.off"])
+    report.append((st, ((1, 81),)))
     code = row_status(report)
     return w, code, sigma
 

@@ -107,6 +107,7 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
     reads=3,  # the arrays a row reads: inputs, rates, accelerations
     max_input=1e+30, bad_input=5,
     failed=(1, 2), singular=3,
+    checks=True,  # whether a call gives each step's conditioning ("sigma")
 )
 
 
@@ -145,8 +146,8 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    _t1 = np.arctan2(dy, dx) + off
-    th = np.where(_t1 > PI, _t1 - 2 * PI, np.where(_t1 <= -PI, _t1 + 2 * PI, _t1))
+    th0 = np.arctan2(dy, dx) + off
+    th = np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     ir2 = np.where(r2 == 0, NAN, 1 / r2)
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
@@ -162,8 +163,8 @@ def link_angle(j1, j2, off):
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
-    _t1 = phi_the + off
-    th = np.where(_t1 > PI, _t1 - 2 * PI, np.where(_t1 <= -PI, _t1 + 2 * PI, _t1))
+    th0 = phi_the + off
+    th = np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=float)
     _angle = (th, phi_dthe, phi_ddthe)
@@ -195,7 +196,8 @@ def PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
     jp2x = jbx - r2x
     jp2y = jby - r2y
     sv2 = (jp2x - pg2_x) * cg2 + (jp2y - pg2_y) * sg2
-    sigma = np.minimum(np.abs(cr), 1)
+    acr = np.abs(cr)
+    sigma = np.minimum(acr, 1)
     r1vx = -psig1_dthe * r1y
     r1vy = psig1_dthe * r1x
     _t1 = psig1_dthe * psig1_dthe
@@ -272,7 +274,7 @@ def reason_of(code):
 # last axis the inputs) and its design parameters broadcast together and flattened into rows,
 # solved a block of rows at a time so that every array a block makes stays in the cache.
 # m holds the module's data (name, n_inputs, n_steps, reads, max_input, levels, columns,
-# failed, singular, bad_input, params).
+# failed, singular, bad_input, params, checks).
 
 BLOCK = 4096  # rows a block
 
@@ -330,9 +332,11 @@ def filled(out, shape, order, m):
     names = [name for name, level in zip(m.columns, m.levels) if level <= order]
     if out is None:
         return {name: np.empty(n) for name in names}, np.empty(n, dtype=int), np.ones((m.n_steps + 1, n))
-    flat = {}
-    for name, like, dtype in [(name, shape, float) for name in names] + [
-            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), float)]:
+    wanted = [(name, shape, float) for name in names] + [("status", shape, int)]
+    if m.checks:
+        wanted.append(("sigma", (m.n_steps + 1, *shape), float))
+    flat = {"sigma": np.ones((m.n_steps + 1, n))}  # the call's own where it gives no conditioning
+    for name, like, dtype in wanted:
         a = out.get(name)
         if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
             raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
@@ -381,7 +385,9 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
         row = solve(x, dx, ddx, order, state)
         for name in out:
             out[name][r] = row[name]
-        status[r], sigma[:, r] = row["status"], row["sigma"]
+        status[r] = row["status"]
+        if m.checks:
+            sigma[:, r] = row["sigma"]
     return finish(out, status, sigma, bad, shape, m)
 
 
@@ -400,7 +406,8 @@ def finish(out, status, sigma, bad, shape, m):
             out[name][lost] = np.nan
     result = {name: x.reshape(shape) for name, x in out.items()}
     result["status"] = status.reshape(shape)
-    result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
+    if m.checks:
+        result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
     return result
 
 class _Work:
@@ -425,7 +432,7 @@ def _run(x, dx, ddx, c):
     _, _, w.g_P1 = crank_input(w.p_O, c["step2.l"], w.in1, w.ref_O)
     # Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is
     st, _, w.phi_arm = link_angle(w.p_O, w.g_P1, c["step3.off"])
-    report.append((st, ((1, 31), (3, 33), (4, -34))))
+    report.append((st, ((1, 31),)))
     # Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution)
     st, sigma[4], w.s_P1, w.p_P1, w.s_P2, w.p_P2, w.p_X = PRP_links(w.g_P1, w.phi_arm, c["step4.gsi1"], c["step4.eta1"], w.g_P2, w.psi_P2, c["step4.gsi1"], c["step4.eta1"])
     report.append((st, ((1, 41), (3, 43), (4, -44))))

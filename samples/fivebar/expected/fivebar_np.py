@@ -112,6 +112,7 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
     reads=3,  # the arrays a row reads: inputs, rates, accelerations
     max_input=1e+30, bad_input=5,
     failed=(1, 2), singular=3,
+    checks=True,  # whether a call gives each step's conditioning ("sigma")
 )
 
 
@@ -150,8 +151,8 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    _t1 = np.arctan2(dy, dx) + off
-    th = np.where(_t1 > PI, _t1 - 2 * PI, np.where(_t1 <= -PI, _t1 + 2 * PI, _t1))
+    th0 = np.arctan2(dy, dx) + off
+    th = np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     ir2 = np.where(r2 == 0, NAN, 1 / r2)
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
@@ -193,7 +194,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    sigma = np.where(fail, 0, np.minimum(area4 / (2 * l1_v * l2_v), 1))
+    ratio = np.where(fail, 0, area4 / (2 * l1_v * l2_v))
+    sigma = np.minimum(ratio, 1)
     _t1 = -a2
     e2x = _t1 * ux - hn * uy
     e2y = _t1 * uy + hn * ux
@@ -246,7 +248,7 @@ def reason_of(code):
 # last axis the inputs) and its design parameters broadcast together and flattened into rows,
 # solved a block of rows at a time so that every array a block makes stays in the cache.
 # m holds the module's data (name, n_inputs, n_steps, reads, max_input, levels, columns,
-# failed, singular, bad_input, params).
+# failed, singular, bad_input, params, checks).
 
 BLOCK = 4096  # rows a block
 
@@ -304,9 +306,11 @@ def filled(out, shape, order, m):
     names = [name for name, level in zip(m.columns, m.levels) if level <= order]
     if out is None:
         return {name: np.empty(n) for name in names}, np.empty(n, dtype=int), np.ones((m.n_steps + 1, n))
-    flat = {}
-    for name, like, dtype in [(name, shape, float) for name in names] + [
-            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), float)]:
+    wanted = [(name, shape, float) for name in names] + [("status", shape, int)]
+    if m.checks:
+        wanted.append(("sigma", (m.n_steps + 1, *shape), float))
+    flat = {"sigma": np.ones((m.n_steps + 1, n))}  # the call's own where it gives no conditioning
+    for name, like, dtype in wanted:
         a = out.get(name)
         if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
             raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
@@ -355,7 +359,9 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
         row = solve(x, dx, ddx, order, state)
         for name in out:
             out[name][r] = row[name]
-        status[r], sigma[:, r] = row["status"], row["sigma"]
+        status[r] = row["status"]
+        if m.checks:
+            sigma[:, r] = row["sigma"]
     return finish(out, status, sigma, bad, shape, m)
 
 
@@ -374,7 +380,8 @@ def finish(out, status, sigma, bad, shape, m):
             out[name][lost] = np.nan
     result = {name: x.reshape(shape) for name, x in out.items()}
     result["status"] = status.reshape(shape)
-    result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
+    if m.checks:
+        result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
     return result
 
 class _Work:
@@ -406,16 +413,16 @@ def _run(x, dx, ddx, c):
     report.append((st, ((1, 41), (3, 43), (4, -44))))
     # Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is
     st, _, w.phi_crank1 = link_angle(w.p_O1, w.p_A, c["step5.off"])
-    report.append((st, ((1, 51), (3, 53), (4, -54))))
+    report.append((st, ((1, 51),)))
     # Step 6: link_angle, link1. A and P of link link1 are known, so its angle is
     st, _, w.phi_link1 = link_angle(w.p_A, w.p_P, c["step6.off"])
-    report.append((st, ((1, 61), (3, 63), (4, -64))))
+    report.append((st, ((1, 61),)))
     # Step 7: link_angle, link2. P and B of link link2 are known, so its angle is
     st, _, w.phi_link2 = link_angle(w.p_P, w.p_B, c["step7.off"])
-    report.append((st, ((1, 71), (3, 73), (4, -74))))
+    report.append((st, ((1, 71),)))
     # Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is
     st, _, w.phi_crank2 = link_angle(w.p_O2, w.p_B, c["step8.off"])
-    report.append((st, ((1, 81), (3, 83), (4, -84))))
+    report.append((st, ((1, 81),)))
     code = row_status(report)
     return w, code, sigma
 

@@ -95,10 +95,10 @@ PARAMS = {  # design parameter -> its value in the sketch
     "l_coupler": 78.10249675906654,  # length coupler:A-B
     "l_rocker": 50.99019513592785,  # length rocker:B-O2
     "step2.l": 20.0,  # step 2: crank_input of A
-    "step4.off": 0.0,  # step 4: link_angle of coupler
-    "step5.gsi": 75.54175916040862,  # step 5: coupler_point of P
-    "step5.eta": 28.168113585237116,  # step 5: coupler_point of P
-    "step6.off": 0.0,  # step 6: link_angle of crank
+    "step4.along": 0.9672131147540983,  # step 4: link_point of P
+    "step4.across": 0.36065573770491804,  # step 4: link_point of P
+    "step5.off": 0.0,  # step 5: link_angle of crank
+    "step6.off": 0.0,  # step 6: link_angle of coupler
     "step7.off": 0.0,  # step 7: link_angle of rocker
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
@@ -107,6 +107,7 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
     reads=3,  # the arrays a row reads: inputs, rates, accelerations
     max_input=1e+30, bad_input=5,
     failed=(1, 2), singular=3,
+    checks=True,  # whether a call gives each step's conditioning ("sigma")
 )
 
 
@@ -145,8 +146,8 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    _t1 = np.arctan2(dy, dx) + off
-    th = np.where(_t1 > PI, _t1 - 2 * PI, np.where(_t1 <= -PI, _t1 + 2 * PI, _t1))
+    th0 = np.arctan2(dy, dx) + off
+    th = np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     ir2 = np.where(r2 == 0, NAN, 1 / r2)
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
@@ -159,22 +160,25 @@ def link_angle(j1, j2, off):
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp = np.cos(phi_the)
-    sp = np.sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    _t1 = phi_dthe * phi_dthe
-    rax = -phi_ddthe * ry - _t1 * rx
-    ray = phi_ddthe * rx - _t1 * ry
+def link_point(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=float)
-    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+    _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -206,7 +210,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    sigma = np.where(fail, 0, np.minimum(area4 / (2 * l1_v * l2_v), 1))
+    ratio = np.where(fail, 0, area4 / (2 * l1_v * l2_v))
+    sigma = np.minimum(ratio, 1)
     _t1 = -a2
     e2x = _t1 * ux - hn * uy
     e2y = _t1 * uy + hn * ux
@@ -259,7 +264,7 @@ def reason_of(code):
 # last axis the inputs) and its design parameters broadcast together and flattened into rows,
 # solved a block of rows at a time so that every array a block makes stays in the cache.
 # m holds the module's data (name, n_inputs, n_steps, reads, max_input, levels, columns,
-# failed, singular, bad_input, params).
+# failed, singular, bad_input, params, checks).
 
 BLOCK = 4096  # rows a block
 
@@ -317,9 +322,11 @@ def filled(out, shape, order, m):
     names = [name for name, level in zip(m.columns, m.levels) if level <= order]
     if out is None:
         return {name: np.empty(n) for name in names}, np.empty(n, dtype=int), np.ones((m.n_steps + 1, n))
-    flat = {}
-    for name, like, dtype in [(name, shape, float) for name in names] + [
-            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), float)]:
+    wanted = [(name, shape, float) for name in names] + [("status", shape, int)]
+    if m.checks:
+        wanted.append(("sigma", (m.n_steps + 1, *shape), float))
+    flat = {"sigma": np.ones((m.n_steps + 1, n))}  # the call's own where it gives no conditioning
+    for name, like, dtype in wanted:
         a = out.get(name)
         if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
             raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
@@ -368,7 +375,9 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
         row = solve(x, dx, ddx, order, state)
         for name in out:
             out[name][r] = row[name]
-        status[r], sigma[:, r] = row["status"], row["sigma"]
+        status[r] = row["status"]
+        if m.checks:
+            sigma[:, r] = row["sigma"]
     return finish(out, status, sigma, bad, shape, m)
 
 
@@ -387,7 +396,8 @@ def finish(out, status, sigma, bad, shape, m):
             out[name][lost] = np.nan
     result = {name: x.reshape(shape) for name, x in out.items()}
     result["status"] = status.reshape(shape)
-    result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
+    if m.checks:
+        result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
     return result
 
 class _Work:
@@ -413,17 +423,17 @@ def _run(x, dx, ddx, c):
     # Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known
     st, sigma[3], w.p_B = RRR_links(w.p_A, w.p_O2, w.l_coupler, w.l_rocker, 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
-    # Step 4: link_angle, coupler. A and B of link coupler are known, so its angle is
-    st, _, w.phi_coupler = link_angle(w.p_A, w.p_B, c["step4.off"])
-    report.append((st, ((1, 41), (3, 43), (4, -44))))
-    # Step 5: coupler_point, P. point P of link coupler
-    _, _, w.p_P = coupler_point(w.p_A, w.phi_coupler, c["step5.gsi"], c["step5.eta"])
-    # Step 6: link_angle, crank. O1 and A of link crank are known, so its angle is
-    st, _, w.phi_crank = link_angle(w.p_O1, w.p_A, c["step6.off"])
-    report.append((st, ((1, 61), (3, 63), (4, -64))))
+    # Step 4: link_point, P. point P of link coupler
+    _, _, w.p_P = link_point(w.p_A, w.p_B, c["step4.along"], c["step4.across"])
+    # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is
+    st, _, w.phi_crank = link_angle(w.p_O1, w.p_A, c["step5.off"])
+    report.append((st, ((1, 51),)))
+    # Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is
+    st, _, w.phi_coupler = link_angle(w.p_A, w.p_B, c["step6.off"])
+    report.append((st, ((1, 61),)))
     # Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is
     st, _, w.phi_rocker = link_angle(w.p_O2, w.p_B, c["step7.off"])
-    report.append((st, ((1, 71), (3, 73), (4, -74))))
+    report.append((st, ((1, 71),)))
     code = row_status(report)
     return w, code, sigma
 

@@ -112,15 +112,14 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    th = atan2(dy, dx) + off - 2 * PI if atan2(dy, dx) + off > PI else atan2(dy, dx) + off + 2 * PI if atan2(dy, dx) + off <= -PI else atan2(dy, dx) + off
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     ir2 = NAN if r2 == 0 else 1 / r2
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (th, NAN, NAN)
     return st, (th, om, al)
 
 def coupler_point(j0, phi, gsi, eta):
@@ -151,8 +150,9 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     q = sqrt(dx * dx + dy * dy)
     ah = abs(hh)
     k = q - ah
-    fail = k < -8 * EPS * max(q, ah) or q == 0
-    t = sqrt(max(k, 0) * (q + ah))
+    big = (ah if ah > q else q)
+    fail = k < -8 * EPS * big or q == 0
+    t = sqrt((0 if 0 > k else k) * (q + ah))
     iq = NAN if q == 0 else 1 / q
     mt = minv * t
     ux = (mt * dx + hh * dy) * iq * iq
@@ -161,8 +161,16 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     sv = mt + (as_ - ag)
     rx = as_ * ux - bs * uy
     ry = as_ * uy + bs * ux
-    arm = max(max(abs(ag), abs(as_)), max(abs(bg), abs(bs)))
-    sigma = 0 if fail else min(t / max(q, arm), 1)
+    a0 = abs(ag)
+    a1 = abs(as_)
+    a2 = abs(bg)
+    a3 = abs(bs)
+    arm1 = (a1 if a1 > a0 else a0)
+    arm2 = (a3 if a3 > a2 else a2)
+    arm = (arm2 if arm2 > arm1 else arm1)
+    reach = (arm if arm > q else q)
+    ratio = 0 if fail else t / reach
+    sigma = (1 if 1 < ratio else ratio)
     imt = NAN if mt == 0 else 1 / mt
     dvn = ux * dvy - uy * dvx
     dvu = dvx * ux + dvy * uy

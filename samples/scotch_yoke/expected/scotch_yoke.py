@@ -109,21 +109,21 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    th = atan2(dy, dx) + off - 2 * PI if atan2(dy, dx) + off > PI else atan2(dy, dx) + off + 2 * PI if atan2(dy, dx) + off <= -PI else atan2(dy, dx) + off
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     ir2 = NAN if r2 == 0 else 1 / r2
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (th, NAN, NAN)
     return st, (th, om, al)
 
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
-    th = phi_the + off - 2 * PI if phi_the + off > PI else phi_the + off + 2 * PI if phi_the + off <= -PI else phi_the + off
+    th0 = phi_the + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     return (th, phi_dthe, phi_ddthe)
 
 def PPR_links(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
@@ -153,7 +153,8 @@ def PPR_links(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
     jp1y = pg_y + sv1 * sg
     pbx = jp1x + rbx
     pby = jp1y + rby
-    sigma = min(abs(cr), 1)
+    acr = abs(cr)
+    sigma = (1 if 1 < acr else acr)
     ravx = -psig_dthe * ray
     ravy = psig_dthe * rax
     raax = -psig_ddthe * ray - psig_dthe * psig_dthe * rax

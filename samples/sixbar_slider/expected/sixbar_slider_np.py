@@ -38,7 +38,7 @@ PI = np.pi
 ORDER = 2
 SAMPLES = 361
 N_INPUTS = 1
-N_STEPS = 8
+N_STEPS = 9
 INPUTS = ((0.0, 6.283185307179586, 6.283185307179586), )  # (start, stop, speed) of each input
 COLUMNS = (
     "theta_O1",
@@ -74,14 +74,13 @@ PARAMS = {  # design parameter -> its value in the sketch
     "psi_S": 0.0,  # line S
     "l_rod": 65.27633568147036,  # length rod:C-D
     "step2.l": 27.730849247724095,  # step 2: crank_input of A
-    "step4.off": 0.0,  # step 4: link_angle of rocker
-    "step5.gsi": 25.307692307692314,  # step 5: coupler_point of C
-    "step5.eta": -48.46153846153846,  # step 5: coupler_point of C
-    "step6.gsi": 0.0,  # step 6: PRR_links of D
-    "step6.eta": 0.0,  # step 6: PRR_links of D
-    "step7.off": 0.0,  # step 7: link_angle of coupler
-    "step8.gsi": 43.422841325484725,  # step 8: coupler_point of P
-    "step8.eta": 19.064544348653477,  # step 8: coupler_point of P
+    "step4.along": 0.48668639053254437,  # step 4: link_point of C
+    "step4.across": -0.9319526627218935,  # step 4: link_point of C
+    "step5.gsi": 0.0,  # step 5: PRR_links of D
+    "step5.eta": 0.0,  # step 5: PRR_links of D
+    "step6.along": 0.7636869780389731,  # step 6: link_point of P
+    "step6.across": 0.3352922981750696,  # step 6: link_point of P
+    "step9.off": 0.0,  # step 9: link_angle of rocker
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
     name="sixbar_slider_np", n_inputs=N_INPUTS, n_steps=N_STEPS, params=PARAMS,
@@ -89,6 +88,7 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
     reads=3,  # the arrays a row reads: inputs, rates, accelerations
     max_input=1e+30, bad_input=5,
     failed=(1, 2), singular=3,
+    checks=True,  # whether a call gives each step's conditioning ("sigma")
 )
 
 
@@ -127,8 +127,8 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    _t1 = np.arctan2(dy, dx) + off
-    th = np.where(_t1 > PI, _t1 - 2 * PI, np.where(_t1 <= -PI, _t1 + 2 * PI, _t1))
+    th0 = np.arctan2(dy, dx) + off
+    th = np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     ir2 = np.where(r2 == 0, NAN, 1 / r2)
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
@@ -141,22 +141,25 @@ def link_angle(j1, j2, off):
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp = np.cos(phi_the)
-    sp = np.sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    _t1 = phi_dthe * phi_dthe
-    rax = -phi_ddthe * ry - _t1 * rx
-    ray = phi_ddthe * rx - _t1 * ry
+def link_point(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=float)
-    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+    _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -188,7 +191,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    sigma = np.where(fail, 0, np.minimum(area4 / (2 * l1_v * l2_v), 1))
+    ratio = np.where(fail, 0, area4 / (2 * l1_v * l2_v))
+    sigma = np.minimum(ratio, 1)
     _t1 = -a2
     e2x = _t1 * ux - hn * uy
     e2y = _t1 * uy + hn * ux
@@ -234,7 +238,8 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     pn = wx * sg - wy * cg
     ap = np.abs(pn)
     k = l_v - ap
-    fail = (k < -8 * EPS * np.maximum(l_v, ap)) | (l_v <= 0)
+    big = np.maximum(l_v, ap)
+    fail = (k < -8 * EPS * big) | (l_v <= 0)
     rd = np.sqrt(np.maximum(k, 0) * (l_v + ap))
     eu = minv * rd
     _t1 = -pn
@@ -245,7 +250,8 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     jby = jr_y + ey
     jpx = jbx - rx
     jpy = jby - ry
-    sigma = np.where(fail, 0, np.minimum(rd / l_v, 1))
+    ratio = np.where(fail, 0, rd / l_v)
+    sigma = np.minimum(ratio, 1)
     ieu = np.where(eu == 0, NAN, 1 / eu)
     sgsi = sv + gsi
     relvx = pg_dx - jr_dx
@@ -307,7 +313,7 @@ def reason_of(code):
 # last axis the inputs) and its design parameters broadcast together and flattened into rows,
 # solved a block of rows at a time so that every array a block makes stays in the cache.
 # m holds the module's data (name, n_inputs, n_steps, reads, max_input, levels, columns,
-# failed, singular, bad_input, params).
+# failed, singular, bad_input, params, checks).
 
 BLOCK = 4096  # rows a block
 
@@ -365,9 +371,11 @@ def filled(out, shape, order, m):
     names = [name for name, level in zip(m.columns, m.levels) if level <= order]
     if out is None:
         return {name: np.empty(n) for name in names}, np.empty(n, dtype=int), np.ones((m.n_steps + 1, n))
-    flat = {}
-    for name, like, dtype in [(name, shape, float) for name in names] + [
-            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), float)]:
+    wanted = [(name, shape, float) for name in names] + [("status", shape, int)]
+    if m.checks:
+        wanted.append(("sigma", (m.n_steps + 1, *shape), float))
+    flat = {"sigma": np.ones((m.n_steps + 1, n))}  # the call's own where it gives no conditioning
+    for name, like, dtype in wanted:
         a = out.get(name)
         if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
             raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
@@ -416,7 +424,9 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
         row = solve(x, dx, ddx, order, state)
         for name in out:
             out[name][r] = row[name]
-        status[r], sigma[:, r] = row["status"], row["sigma"]
+        status[r] = row["status"]
+        if m.checks:
+            sigma[:, r] = row["sigma"]
     return finish(out, status, sigma, bad, shape, m)
 
 
@@ -435,7 +445,8 @@ def finish(out, status, sigma, bad, shape, m):
             out[name][lost] = np.nan
     result = {name: x.reshape(shape) for name, x in out.items()}
     result["status"] = status.reshape(shape)
-    result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
+    if m.checks:
+        result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
     return result
 
 class _Work:
@@ -464,19 +475,16 @@ def _run(x, dx, ddx, c):
     # Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known
     st, sigma[3], w.p_B = RRR_links(w.p_A, w.p_O2, w.l_coupler, w.l_rocker_B_O2, 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
-    # Step 4: link_angle, rocker. O2 and B of link rocker are known, so its angle is
-    st, _, w.phi_rocker = link_angle(w.p_O2, w.p_B, c["step4.off"])
-    report.append((st, ((1, 41), (3, 43), (4, -44))))
-    # Step 5: coupler_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
-    _, _, w.p_C = coupler_point(w.p_O2, w.phi_rocker, c["step5.gsi"], c["step5.eta"])
-    # Step 6: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
-    st, sigma[6], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, w.l_rod, w.g_S, w.psi_S, c["step6.gsi"], c["step6.eta"], 1)
-    report.append((st, ((1, 61), (3, 63), (4, -64))))
-    # Step 7: link_angle, coupler. A and B of link coupler are known, so its angle is
-    st, _, w.phi_coupler = link_angle(w.p_A, w.p_B, c["step7.off"])
-    report.append((st, ((1, 71), (3, 73), (4, -74))))
-    # Step 8: coupler_point, P. point P of link coupler
-    _, _, w.p_P = coupler_point(w.p_A, w.phi_coupler, c["step8.gsi"], c["step8.eta"])
+    # Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
+    _, _, w.p_C = link_point(w.p_O2, w.p_B, c["step4.along"], c["step4.across"])
+    # Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
+    st, sigma[5], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, w.l_rod, w.g_S, w.psi_S, c["step5.gsi"], c["step5.eta"], 1)
+    report.append((st, ((1, 51), (3, 53), (4, -54))))
+    # Step 6: link_point, P. point P of link coupler
+    _, _, w.p_P = link_point(w.p_A, w.p_B, c["step6.along"], c["step6.across"])
+    # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is
+    st, _, w.phi_rocker = link_angle(w.p_O2, w.p_B, c["step9.off"])
+    report.append((st, ((1, 91),)))
     code = row_status(report)
     return w, code, sigma
 

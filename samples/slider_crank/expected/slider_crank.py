@@ -106,21 +106,21 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    th = atan2(dy, dx) + off - 2 * PI if atan2(dy, dx) + off > PI else atan2(dy, dx) + off + 2 * PI if atan2(dy, dx) + off <= -PI else atan2(dy, dx) + off
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     ir2 = NAN if r2 == 0 else 1 / r2
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (th, NAN, NAN)
     return st, (th, om, al)
 
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
-    th = phi_the + off - 2 * PI if phi_the + off > PI else phi_the + off + 2 * PI if phi_the + off <= -PI else phi_the + off
+    th0 = phi_the + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     return (th, phi_dthe, phi_ddthe)
 
 def PRR_links(jr, l, pg, psig, gsi, eta, minv):
@@ -139,8 +139,9 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     pn = wx * sg - wy * cg
     ap = abs(pn)
     k = l_v - ap
-    fail = k < -8 * EPS * max(l_v, ap) or l_v <= 0
-    rd = sqrt(max(k, 0) * (l_v + ap))
+    big = (ap if ap > l_v else l_v)
+    fail = k < -8 * EPS * big or l_v <= 0
+    rd = sqrt((0 if 0 > k else k) * (l_v + ap))
     eu = minv * rd
     ex = eu * cg - -pn * sg
     ey = eu * sg + -pn * cg
@@ -149,7 +150,8 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     jby = jr_y + ey
     jpx = jbx - rx
     jpy = jby - ry
-    sigma = 0 if fail else min(rd / l_v, 1)
+    ratio = 0 if fail else rd / l_v
+    sigma = (1 if 1 < ratio else ratio)
     ieu = NAN if eu == 0 else 1 / eu
     sgsi = sv + gsi
     relvx = pg_dx - jr_dx
