@@ -44,7 +44,8 @@ def RRR_links(b: PlaneBuilder) -> Primitive:
     at = b.let("at", select(k > 0, a, flat))
     hn = b.let("hn", minv * h)
     e1 = b.local("e1", u, at, hn)
-    ratio = b.let("ratio", select(fail, 0, area4 / (2 * l1.v * l2.v)))
+    # times a reciprocal of the lengths alone: a C compiler folds it where they are the sketch's constants
+    ratio = b.let("ratio", select(fail, 0, area4 * (0.5 / (l1.v * l2.v))))
     sigma = b.let("sigma", fmin(ratio, 1))
     # derivatives: (jb - ji).(jb' - ji') = li li', solved in the (u, n) frame:
     #   a bu + hn bn = r1,  -a2 bu + hn bn = r2   (determinant hn q)
@@ -98,7 +99,7 @@ def PRR_links(b: PlaneBuilder) -> Primitive:
     s = b.let("sv", eu - wu)
     jb = b.vec("jb", jr.p + e)
     jp = b.vec("jp", jb - r)
-    ratio = b.let("ratio", select(fail, 0, rd / ln.v))
+    ratio = b.let("ratio", select(fail, 0, rd * (1 / ln.v)))  # 1 / l folded where l is the sketch's
     sigma = b.let("sigma", fmin(ratio, 1))
     ieu = b.let("ieu", select(eu.eq(0), NAN, 1 / eu))
     sg = b.let("sgsi", s + gsi)

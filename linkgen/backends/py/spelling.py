@@ -42,7 +42,8 @@ class Python(Spelling):
         head = ["st"] + ([self.sigma(step)] if prim.sigma is not None else [])
         lines = [f"{', '.join(head + targets)} = {step.function}({args})"]
         if scope is None:
-            return lines + ["if st == 1:", f"    return {self.status_code(step, 1)}", *self.notes("st", step)]
+            notes = [line for n in self.notes("st", step) for line in ("if st:", f"    {n}")]  # a call saved a row
+            return lines + ["if st == 1:", f"    return {self.status_code(step, 1)}", *notes]
         lines += ["if st == 1:", "    return 1, None"]
         lines += [line for n in self.notes("st", step) for line in ("if live:", f"    {n}")]
         if prim.sigma is not None:
