@@ -96,6 +96,7 @@ COLUMNS = (
     "C.ds",
     "C.dds",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 
 
@@ -169,7 +170,7 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    ratio = 0 if fail else area4 / (2 * l1_v * l2_v)
+    ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
     sigma = (1 if 1 < ratio else ratio)
     e2x = -a2 * ux - hn * uy
     e2y = -a2 * uy + hn * ux
@@ -288,19 +289,22 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[2], w.p_K = RRR_links(p_R, p_S0, l_side_link, w.in1, -1)
     if st == 1:
         return 21
-    w.note(st, 23, -24)
+    if st:
+        w.note(st, 23, -24)
 
     # Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known
     st, w.sigma[3], w.psi_C, w.s_C, w.p_C = RPR_links(p_S0, w.p_K, 850.0, 0.0, -850.0, 0.0, 1)
     if st == 1:
         return 31
-    w.note(st, 33, -34)
+    if st:
+        w.note(st, 33, -34)
 
     # Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known
     st, w.sigma[4], w.p_M = RRR_links(w.p_K, p_Q, l_power_link, l_bucket, 1)
     if st == 1:
         return 41
-    w.note(st, 43, -44)
+    if st:
+        w.note(st, 43, -44)
 
     # Step 5: link_point, tip. point tip of link bucket
     w.p_tip = link_point(p_Q, w.p_M, -1.6193771626297577, -3.463667820069204)
@@ -309,19 +313,22 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.phi_side_link = link_angle(p_R, w.p_K, 0.0)
     if st == 1:
         return 61
-    w.note(st, 63, -64)
+    if st:
+        w.note(st, 63, -64)
 
     # Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is
     st, w.phi_power_link = link_angle(w.p_K, w.p_M, 0.0)
     if st == 1:
         return 71
-    w.note(st, 73, -74)
+    if st:
+        w.note(st, 73, -74)
 
     # Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is
     st, w.phi_bucket = link_angle(p_Q, w.p_M, 0.0)
     if st == 1:
         return 81
-    w.note(st, 83, -84)
+    if st:
+        w.note(st, 83, -84)
 
     return w.singular or w.near
 
@@ -398,10 +405,13 @@ def _publish(w, code, order):
             w.s_C[1],
             w.s_C[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

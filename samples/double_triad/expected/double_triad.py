@@ -137,6 +137,7 @@ COLUMNS = (
     "left_coupler.omega",
     "left_coupler.alpha",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 N_GROUPS = 2
 ZERO_LENGTH = (0.0, 0.0, 0.0,)
@@ -254,7 +255,7 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    ratio = 0 if fail else area4 / (2 * l1_v * l2_v)
+    ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
     sigma = (1 if 1 < ratio else ratio)
     e2x = -a2 * ux - hn * uy
     e2y = -a2 * uy + hn * ux
@@ -1348,55 +1349,64 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     st, w.phi_crank = link_angle(p_J7, w.p_J6, 0.0)
     if st == 1:
         return 151
-    w.note(st, 153, -154)
+    if st:
+        w.note(st, 153, -154)
 
     # Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is
     st, w.phi_right_rocker1 = link_angle(p_J1, w.p_J2, 0.0)
     if st == 1:
         return 161
-    w.note(st, 163, -164)
+    if st:
+        w.note(st, 163, -164)
 
     # Step 17: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 171
-    w.note(st, 173, -174)
+    if st:
+        w.note(st, 173, -174)
 
     # Step 18: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is
     st, w.phi_right_rocker2 = link_angle(p_J3, w.p_J4, 0.0)
     if st == 1:
         return 181
-    w.note(st, 183, -184)
+    if st:
+        w.note(st, 183, -184)
 
     # Step 19: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is
     st, w.phi_right_coupler = link_angle(w.p_J6, w.p_J5, 0.0)
     if st == 1:
         return 191
-    w.note(st, 193, -194)
+    if st:
+        w.note(st, 193, -194)
 
     # Step 20: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is
     st, w.phi_left_rocker1 = link_angle(p_K1, w.p_K2, 0.0)
     if st == 1:
         return 201
-    w.note(st, 203, -204)
+    if st:
+        w.note(st, 203, -204)
 
     # Step 21: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
         return 211
-    w.note(st, 213, -214)
+    if st:
+        w.note(st, 213, -214)
 
     # Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is
     st, w.phi_left_rocker2 = link_angle(p_K3, w.p_K4, 0.0)
     if st == 1:
         return 221
-    w.note(st, 223, -224)
+    if st:
+        w.note(st, 223, -224)
 
     # Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is
     st, w.phi_left_coupler = link_angle(w.p_J6, w.p_K5, 0.0)
     if st == 1:
         return 231
-    w.note(st, 233, -234)
+    if st:
+        w.note(st, 233, -234)
 
     return w.singular or w.near
 
@@ -1512,10 +1522,13 @@ def _publish(w, code, order):
             w.phi_left_coupler[1],
             w.phi_left_coupler[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

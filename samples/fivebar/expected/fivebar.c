@@ -82,7 +82,7 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double hn = minv * h;
     const double e1x = at * ux - hn * uy;
     const double e1y = at * uy + hn * ux;
-    const double ratio = fail ? 0 : area4 / (2 * l1->v * l2->v);
+    const double ratio = fail ? 0 : area4 * (0.5 / (l1->v * l2->v));
     const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double e2x = -a2 * ux - hn * uy;
     const double e2y = -a2 * uy + hn * ux;

@@ -210,7 +210,7 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    ratio = np.where(fail, 0, area4 / (2 * l1_v * l2_v))
+    ratio = np.where(fail, 0, area4 * (0.5 / (l1_v * l2_v)))
     sigma = np.minimum(ratio, 1)
     _t1 = -a2
     e2x = _t1 * ux - hn * uy

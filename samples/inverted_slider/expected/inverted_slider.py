@@ -78,6 +78,7 @@ COLUMNS = (
     "S.ds",
     "S.dds",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 
 
@@ -231,7 +232,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.psi_S, w.s_S, w.p_S = RPR_links(p_O2, w.p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1)
     if st == 1:
         return 31
-    w.note(st, 33, -34)
+    if st:
+        w.note(st, 33, -34)
 
     # Step 4: coupler_point, P. point P of link lever
     w.p_P = coupler_point(p_O2, w.psi_S, 120.00000000000001, 0.0)
@@ -240,7 +242,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.phi_crank = link_angle(p_O1, w.p_A, 0.0)
     if st == 1:
         return 51
-    w.note(st, 53, -54)
+    if st:
+        w.note(st, 53, -54)
 
     return w.singular or w.near
 
@@ -299,10 +302,13 @@ def _publish(w, code, order):
             w.s_S[1],
             w.s_S[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -105,6 +105,7 @@ COLUMNS = (
     "leg_ghi.omega",
     "leg_ghi.alpha",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 
 
@@ -196,7 +197,7 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    ratio = 0 if fail else area4 / (2 * l1_v * l2_v)
+    ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
     sigma = (1 if 1 < ratio else ratio)
     e2x = -a2 * ux - hn * uy
     e2y = -a2 * uy + hn * ux
@@ -268,7 +269,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.p_C = RRR_links(w.p_A, p_B, l_rod_j, l_triangle_bde_C_B, -1)
     if st == 1:
         return 31
-    w.note(st, 33, -34)
+    if st:
+        w.note(st, 33, -34)
 
     # Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
     w.p_D = link_point(p_B, w.p_C, 0.06288866308556408, 0.9642163567880923)
@@ -277,13 +279,15 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[5], w.p_E = RRR_links(w.p_A, p_B, l_rod_k, l_rocker_c, 1)
     if st == 1:
         return 51
-    w.note(st, 53, -54)
+    if st:
+        w.note(st, 53, -54)
 
     # Step 6: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known
     st, w.sigma[6], w.p_F = RRR_links(w.p_D, w.p_E, l_rod_f, l_leg_ghi, -1)
     if st == 1:
         return 61
-    w.note(st, 63, -64)
+    if st:
+        w.note(st, 63, -64)
 
     # Step 7: link_point, foot. point foot of link leg_ghi
     w.p_foot = link_point(w.p_E, w.p_F, -0.21107885573739069, 1.3183591602277374)
@@ -292,43 +296,50 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
     if st == 1:
         return 81
-    w.note(st, 83, -84)
+    if st:
+        w.note(st, 83, -84)
 
     # Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is
     st, w.phi_rod_j = link_angle(w.p_A, w.p_C, 0.0)
     if st == 1:
         return 91
-    w.note(st, 93, -94)
+    if st:
+        w.note(st, 93, -94)
 
     # Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is
     st, w.phi_rod_k = link_angle(w.p_A, w.p_E, 0.0)
     if st == 1:
         return 101
-    w.note(st, 103, -104)
+    if st:
+        w.note(st, 103, -104)
 
     # Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is
     st, w.phi_triangle_bde = link_angle(p_B, w.p_C, 0.0)
     if st == 1:
         return 111
-    w.note(st, 113, -114)
+    if st:
+        w.note(st, 113, -114)
 
     # Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is
     st, w.phi_rocker_c = link_angle(p_B, w.p_E, 0.0)
     if st == 1:
         return 121
-    w.note(st, 123, -124)
+    if st:
+        w.note(st, 123, -124)
 
     # Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is
     st, w.phi_rod_f = link_angle(w.p_D, w.p_F, 0.0)
     if st == 1:
         return 131
-    w.note(st, 133, -134)
+    if st:
+        w.note(st, 133, -134)
 
     # Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is
     st, w.phi_leg_ghi = link_angle(w.p_E, w.p_F, 0.0)
     if st == 1:
         return 141
-    w.note(st, 143, -144)
+    if st:
+        w.note(st, 143, -144)
 
     return w.singular or w.near
 
@@ -414,10 +425,13 @@ def _publish(w, code, order):
             w.phi_leg_ghi[1],
             w.phi_leg_ghi[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -272,7 +272,7 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     if fail
         ratio = 0;
     else
-        ratio = area4 / (2 * l1.v * l2.v);
+        ratio = area4 * (0.5 / (l1.v * l2.v));
     end
     sigma = min(ratio, 1);
     e2x = -a2 * ux - hn * uy;

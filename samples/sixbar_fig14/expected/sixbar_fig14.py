@@ -95,6 +95,7 @@ COLUMNS = (
     "frame.omega",
     "frame.alpha",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 N_GROUPS = 1
 ZERO_LENGTH = (0.0, 0.0, 0.0,)
@@ -212,7 +213,7 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    ratio = 0 if fail else area4 / (2 * l1_v * l2_v)
+    ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
     sigma = (1 if 1 < ratio else ratio)
     e2x = -a2 * ux - hn * uy
     e2y = -a2 * uy + hn * ux
@@ -994,31 +995,36 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     st, w.phi_rocker1 = link_angle(p_J1, w.p_J2, 0.0)
     if st == 1:
         return 91
-    w.note(st, 93, -94)
+    if st:
+        w.note(st, 93, -94)
 
     # Step 10: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
     st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 101
-    w.note(st, 103, -104)
+    if st:
+        w.note(st, 103, -104)
 
     # Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is
     st, w.phi_rocker2 = link_angle(p_J3, w.p_J4, 0.0)
     if st == 1:
         return 111
-    w.note(st, 113, -114)
+    if st:
+        w.note(st, 113, -114)
 
     # Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is
     st, w.phi_coupler = link_angle(w.p_J6, w.p_J5, 0.0)
     if st == 1:
         return 121
-    w.note(st, 123, -124)
+    if st:
+        w.note(st, 123, -124)
 
     # Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is
     st, w.phi_crank = link_angle(p_J7, w.p_J6, 0.0)
     if st == 1:
         return 131
-    w.note(st, 133, -134)
+    if st:
+        w.note(st, 133, -134)
 
     return w.singular or w.near
 
@@ -1092,10 +1098,13 @@ def _publish(w, code, order):
             0.0,
             0.0,
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -51,6 +51,7 @@ COLUMNS = (
     "rocker.omega",
     "rocker.alpha",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2,)  # derivative level of each output column
 
 
@@ -142,7 +143,7 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    ratio = 0 if fail else area4 / (2 * l1_v * l2_v)
+    ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
     sigma = (1 if 1 < ratio else ratio)
     e2x = -a2 * ux - hn * uy
     e2y = -a2 * uy + hn * ux
@@ -193,7 +194,7 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     jby = jr_y + ey
     jpx = jbx - rx
     jpy = jby - ry
-    ratio = 0 if fail else rd / l_v
+    ratio = 0 if fail else rd * (1 / l_v)
     sigma = (1 if 1 < ratio else ratio)
     ieu = NAN if eu == 0 else 1 / eu
     sgsi = sv + gsi
@@ -269,7 +270,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.p_B = RRR_links(w.p_A, p_O2, l_coupler, l_rocker_B_O2, 1)
     if st == 1:
         return 31
-    w.note(st, 33, -34)
+    if st:
+        w.note(st, 33, -34)
 
     # Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
     w.p_C = link_point(p_O2, w.p_B, 0.48668639053254437, -0.9319526627218935)
@@ -278,7 +280,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[5], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, l_rod, g_S, psi_S, 0.0, 0.0, 1)
     if st == 1:
         return 51
-    w.note(st, 53, -54)
+    if st:
+        w.note(st, 53, -54)
 
     # Step 6: link_point, P. point P of link coupler
     w.p_P = link_point(w.p_A, w.p_B, 0.7636869780389731, 0.3352922981750696)
@@ -287,7 +290,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.phi_rocker = link_angle(p_O2, w.p_B, 0.0)
     if st == 1:
         return 91
-    w.note(st, 93, -94)
+    if st:
+        w.note(st, 93, -94)
 
     return w.singular or w.near
 
@@ -319,10 +323,13 @@ def _publish(w, code, order):
             w.phi_rocker[1],
             w.phi_rocker[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -72,6 +72,7 @@ COLUMNS = (
     "S.ds",
     "S.dds",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 
 
@@ -150,7 +151,7 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     jby = jr_y + ey
     jpx = jbx - rx
     jpy = jby - ry
-    ratio = 0 if fail else rd / l_v
+    ratio = 0 if fail else rd * (1 / l_v)
     sigma = (1 if 1 < ratio else ratio)
     ieu = NAN if eu == 0 else 1 / eu
     sgsi = sv + gsi
@@ -224,19 +225,22 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.s_S, w.p_S, w.p_B = PRR_links(w.p_A, l_rod, g_S, psi_S, 0.0, 0.0, 1)
     if st == 1:
         return 31
-    w.note(st, 33, -34)
+    if st:
+        w.note(st, 33, -34)
 
     # Step 4: link_angle, crank. O and A of link crank are known, so its angle is
     st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
     if st == 1:
         return 41
-    w.note(st, 43, -44)
+    if st:
+        w.note(st, 43, -44)
 
     # Step 5: link_angle, rod. A and B of link rod are known, so its angle is
     st, w.phi_rod = link_angle(w.p_A, w.p_B, 0.0)
     if st == 1:
         return 51
-    w.note(st, 53, -54)
+    if st:
+        w.note(st, 53, -54)
 
     # Step 6: offset_angle, block. link block keeps a constant angle to its slide
     w.phi_block = offset_angle(phi_frame, 0.16941304388961834)
@@ -292,10 +296,13 @@ def _publish(w, code, order):
             w.s_S[1],
             w.s_S[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -195,7 +195,7 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     jby = jr_y + ey
     jpx = jbx - rx
     jpy = jby - ry
-    ratio = np.where(fail, 0, rd / l_v)
+    ratio = np.where(fail, 0, rd * (1 / l_v))
     sigma = np.minimum(ratio, 1)
     ieu = np.where(eu == 0, NAN, 1 / eu)
     sgsi = sv + gsi

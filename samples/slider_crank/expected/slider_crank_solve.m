@@ -334,7 +334,7 @@ function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
     if fail
         ratio = 0;
     else
-        ratio = rd / l.v;
+        ratio = rd * (1 / l.v);
     end
     sigma = min(ratio, 1);
     if eu == 0
