@@ -1,8 +1,7 @@
-"""What a failed row costs next to a good one, in the evaluator and the three languages, and
-what a build costs (issue 17, items 7 and 12).
+"""What a failed row costs next to a good one, in the evaluator and the three languages (issue 17,
+item 7; the build's cost is bench/build_time.py).
 
     python bench/run.py rows      # per-row times of the sweeps of the slow mechanisms
-    python bench/run.py builds    # `linkgen build` of every sample and test mechanism
 
 Each program solves the sweep of its file's range row by row, with warm starts, as its
 sweep program does, and times every call (C: clock_gettime, Python: perf_counter, Octave:
@@ -147,24 +146,3 @@ def bench_rows() -> None:
                 print(f"| {log.name} | {lang} | {len(good)} | {g:.3f} | {len(bad)} | {b:.3f} | {worst:.3f} | "
                       f"{b / g:.1f} |")
 
-
-def bench_builds() -> None:
-    import resource
-
-    print("## `linkgen build` of every sample and test mechanism: seconds, the process included (least of 3;"
-          " CPU: user + system, which the load of a shared machine disturbs less)")
-    print("| mechanism | wall | CPU |")
-    print("| --- | ---: | ---: |")
-    paths = sorted(ROOT.glob("samples/*/*.yaml")) + sorted((ROOT / "tests" / "mechanisms").glob("*.yaml"))
-    with tempfile.TemporaryDirectory() as tmp:
-        for path in paths:
-            wall, cpu = [], []
-            for _ in range(3):
-                before = resource.getrusage(resource.RUSAGE_CHILDREN)
-                t = time.perf_counter()
-                subprocess.run([sys.executable, "-m", "linkgen", "build", str(path), "-o", str(Path(tmp) / path.stem)],
-                               check=True, capture_output=True, cwd=ROOT)
-                wall.append(time.perf_counter() - t)
-                after = resource.getrusage(resource.RUSAGE_CHILDREN)
-                cpu.append(after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime)
-            print(f"| {path.parent.name}/{path.stem} | {min(wall):.2f} | {min(cpu):.2f} |")

@@ -1,7 +1,8 @@
 """Benchmarks: medians and ratios of repeated runs (the machine is shared and noisy).
 
-    python bench/run.py            # all
+    python bench/run.py            # the groups that write docs/performance.md (make bench): DOC
     python bench/run.py extract    # one group
+    python bench/run.py all        # every group, the ones that only print too
 """
 
 from __future__ import annotations
@@ -180,7 +181,7 @@ def bench_rows() -> None:
 
 
 def bench_builds() -> None:
-    from rows import bench_builds as run
+    from build_time import bench_builds as run
 
     run()
 
@@ -191,29 +192,45 @@ def bench_kernel() -> None:
     run()
 
 
-GROUPS["rows"] = bench_rows
-GROUPS["builds"] = bench_builds
-GROUPS["kernel"] = bench_kernel
-
-
 def bench_scaling() -> None:
     from scaling import bench_scaling as run
 
     run()
 
 
-GROUPS["scaling"] = bench_scaling
-
-
-def bench_reals() -> None:
-    from reals import bench_reals as run
+def bench_knobs() -> None:
+    from knobs import bench_knobs as run
 
     run()
 
 
-GROUPS["reals"] = bench_reals
+def bench_peers() -> None:
+    from peers import bench_peers as run
+
+    run()
+
+
+def bench_pareto() -> None:
+    from pareto import plot
+
+    plot()
+
+
+def bench_addlinks() -> None:
+    from addlinks import bench_addlinks as run
+
+    run()
+
+
+GROUPS.update(rows=bench_rows, builds=bench_builds, kernel=bench_kernel, scaling=bench_scaling, knobs=bench_knobs,
+              peers=bench_peers, pareto=bench_pareto, addlinks=bench_addlinks)
+# the groups whose results go into docs/ (docs/performance.md, its plots, docs/accuracy-rrr*.svg), in order
+DOC = ("knobs", "peers", "pareto", "addlinks", "builds", "scaling", "accuracy")
 
 
 if __name__ == "__main__":
-    for name in sys.argv[1:] or list(GROUPS):
+    asked = sys.argv[1:] or list(DOC)
+    for name in list(GROUPS) if asked == ["all"] else asked:
+        started = time.perf_counter()
         GROUPS[name]()
+        print(f"bench {name}: {time.perf_counter() - started:.0f} s", file=sys.stderr, flush=True)

@@ -1,8 +1,9 @@
-"""Command line: linkgen build | run | lj | candidates | procedure."""
+"""Command line: linkgen build | run | lj | candidates | procedure | assemblies."""
 
 from __future__ import annotations
 
 import json
+import math
 import os
 import sys
 from typing import Any
@@ -12,7 +13,7 @@ import click
 from . import __version__
 from .errors import FileSystemError, LinkgenError, os_reason
 from .options import ANGLE_FORMS, MAX_ITERATIONS, MAX_TOLERANCE, PREDICTORS, STRATEGIES
-from .policy import REAL_TYPES
+from .policy import MAX_MAGNITUDE, REAL_TYPES
 
 USAGE_ERROR = 2  # exit status of a wrong command line; 1 is every other failure
 ANY_PATH = click.Path(readable=False)  # a path click does not check: its faults are linkgen's, exit 1
@@ -218,6 +219,56 @@ def procedure(mechanism: str) -> None:
     log = build_log(mechanism, sweep=False)
     for s in log.steps:
         click.echo(f"{s.number:3d}  {s.function or s.action:<14} {s.target:<10} {s.reason}")
+
+
+def _values(ctx: click.Context, param: click.Parameter, value: str | None) -> tuple[float, ...] | None:
+    """--at: comma-separated finite numbers."""
+    if value is None:
+        return None
+    try:
+        out = tuple(float(v) for v in value.split(","))
+    except ValueError:
+        raise click.BadParameter(f"{value!r} is not a list of numbers: give one value per input, "
+                                 "separated by commas (e.g. 90 or 10,20)") from None
+    if not all(math.isfinite(v) and abs(v) <= MAX_MAGNITUDE for v in out):
+        raise click.BadParameter(f"{value!r}: every value must be finite and at most {MAX_MAGNITUDE:g} in size")
+    return out
+
+
+@cli.command()
+@click.argument("mechanism", type=ANY_PATH)
+@click.option("--at", "at", callback=_values,
+              help="The inputs' values, comma-separated, in the file's units (default: the sketch's).")
+@click.option("--json", "as_json", is_flag=True, help="Print the census as JSON instead of a table.")
+@click.option("-o", "--outdir", type=ANY_PATH, help="Write one SVG per assembly here (NAME_assembly_K.svg).")
+def assemblies(mechanism: str, at: tuple[float, ...] | None, as_json: bool, outdir: str | None) -> None:
+    """Every assembly of the mechanism at one input, the count certified.
+
+    Both branches of every two-link chain are tried; every class-III group is reduced to
+    its characteristic polynomial, whose real roots are isolated exactly.  The sketch's
+    assembly (the one the programs follow) is marked.
+    """
+    from .assemblies import assemblies as census_of
+    from .assemblies import whole_log
+    from .assemblies.render import render_all
+    from .assemblies.report import table, to_json
+    from .writer import write_all
+
+    log = whole_log(mechanism)
+    if at is not None and len(at) != len(log.inputs):
+        names = ", ".join(i.column for i in log.inputs)
+        raise click.BadParameter(f"{len(at)} value{'s' if len(at) != 1 else ''} given; {log.name} has "
+                                 f"{len(log.inputs)} input{'s' if len(log.inputs) != 1 else ''} ({names})",
+                                 param_hint="'--at'")
+    census = census_of(mechanism, log, at)
+    figures = render_all(log, census) if outdir else {}
+    written = write_all(figures, outdir) if outdir and figures else []
+    if as_json:
+        click.echo(to_json(log, census), nl=False)
+        return
+    click.echo(table(log, census), nl=False)
+    for path in written:
+        click.echo(path)
 
 
 def main() -> None:

@@ -27,7 +27,7 @@ def _reasons(s: Step) -> dict[int, str]:
                 status.NEAR_SINGULAR: "the resolver's Jacobian is near singular"}
     if s.action == "residual":
         return {status.SINGULAR: f"the pairs of {s.target} coincide, so the resolver has no rate"}
-    if s.function == "link_angle":
+    if s.function in ("link_angle", "link_direction"):
         return {status.CANNOT_CLOSE: f"the two points of {s.target} coincide"}
     return {status.CANNOT_CLOSE: "the chain cannot close", status.SINGULAR: "singular position (toggle)",
             status.NEAR_SINGULAR: "near a singular position"}

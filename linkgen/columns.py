@@ -9,6 +9,10 @@ _POINT = (("x", "x", "position"), ("y", "y", "position"), ("vx", "dx", "velocity
           ("ax", "ddx", "acceleration"), ("ay", "ddy", "acceleration"))
 _ANGLE = (("phi", "the", "angle"), ("omega", "dthe", "angular_velocity"), ("alpha", "ddthe", "angular_acceleration"))
 _SLIDE = (("s", "v", "position"), ("ds", "dv", "velocity"), ("dds", "ddv", "acceleration"))
+# a link's direction (angles: unit): the unit vector (cos, sin) of its angle and its rates, as a
+# POINT record's fields; each takes the place, and the quantity, of the angle column of its order
+_DIRECTION = {"the": (("ux", "x"), ("uy", "y")), "dthe": (("dux", "dx"), ("duy", "dy")),
+              "ddthe": (("ddux", "ddx"), ("dduy", "ddy"))}
 
 
 def _take(spec: tuple[tuple[str, str, str], ...], per: int, order: int) -> tuple[tuple[str, str, str], ...]:
@@ -53,3 +57,17 @@ def plan(m: Mechanism, order: int, outputs: tuple[str, ...], positions: dict[str
                 if name in prismatic:
                     slide(name)
     return tuple(cols)
+
+
+def direction_columns(columns: tuple[Column, ...], directions: dict[str, str], inputs: int) -> tuple[Column, ...]:
+    """The columns with each output angle's (phi, omega, alpha) replaced by its direction's (ux, uy,
+    dux, duy, ddux, dduy): ``directions`` maps the angle records to the direction records.  The
+    first ``inputs`` columns, the inputs, stay as they are."""
+    out = list(columns[:inputs])
+    for c in columns[inputs:]:
+        if c.variable not in directions:
+            out.append(c)
+            continue
+        owner = c.name.split(".", 1)[0]
+        out.extend(Column(f"{owner}.{name}", directions[c.variable], f, c.quantity) for name, f in _DIRECTION[c.field])
+    return tuple(out)

@@ -7,6 +7,7 @@ from collections.abc import Mapping
 from . import __version__
 from .analysis import motion_facts, with_facts
 from .columns import plan
+from .directions import unit_directions
 from .errors import InputError, and_list
 from .extraction import Procedure, extract
 from .model import Mechanism
@@ -48,11 +49,13 @@ def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = Non
                   s, v)
         for i, s, v in zip(m.inputs, topo.sketch_inputs, input_vars)
     )
+    columns = plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars)
+    if opts.angles == "unit":
+        proc, columns = unit_directions(proc, columns, len(inputs))
     return Draft(StepLog(
         __version__, m.name, m.title, m.source, m.length_unit, m.angle_unit, topo.length_scale, topo.origin,
         topo.grubler, topo.mobility, topo.redundant, order, m.samples, pairs, links, inputs, proc.variables, proc.steps,
-        proc.lj, proc.add_links, proc.residuals, proc.groups,
-        plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars), policy_for(opts),
+        proc.lj, proc.add_links, proc.residuals, proc.groups, columns, policy_for(opts),
         outputs=tuple(outputs), options=opts,
     ))
 

@@ -37,6 +37,7 @@ class Variable:
     name: str
     kind: str  # POINT | ANGLE | VARIABLE
     role: str  # pair | point | link | line | guide | slide | input | reference | length | addlink | residual
+    # | direction (a link's unit vector: angles: unit)
     entity: str  # the pair, point, link or input it belongs to
     value: tuple[float, ...]
     sketch: tuple[float, ...]
@@ -48,8 +49,8 @@ class Variable:
 
 def held(v: Variable, origin: tuple[float, float]) -> tuple[float, ...]:
     """A constant record's displacement fields as the programs hold them: points relative
-    to the step log's origin."""
-    if v.kind != "POINT":
+    to the step log's origin (a direction is no point)."""
+    if v.kind != "POINT" or v.role == "direction":
         return v.value
     return v.value[0] - origin[0], v.value[1] - origin[1]
 
@@ -67,7 +68,7 @@ class Arg:
 @dataclass(frozen=True)
 class Step:
     number: int
-    action: str  # fixed | input | chain | point | angle | line | add_link | residual | resolve
+    action: str  # fixed | input | chain | point | angle | line | add_link | residual | resolve | direction
     function: str  # runtime function called ("" for fixed, add_link, resolve)
     args: tuple[Arg, ...]
     outputs: tuple[str, ...]  # variables written, in the function's output order
@@ -316,8 +317,9 @@ class StepLog(Procedure, Header):
 
     def offset(self, c: Column) -> float:
         """What a program adds to a computed record's field to publish it: the origin's
-        coordinate for a point's x and y, else 0."""
-        if self.variable(c.variable).kind != "POINT" or c.field not in record_fields("POINT", 0):
+        coordinate for a point's x and y, else 0 (a direction's x and y too)."""
+        v = self.variable(c.variable)
+        if v.kind != "POINT" or v.role == "direction" or c.field not in record_fields("POINT", 0):
             return 0.0
         return self.origin[c.field == "y"]
 

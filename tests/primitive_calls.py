@@ -106,6 +106,8 @@ def special_inputs(name: str) -> list[tuple[str, int | None, dict]]:
                                       "xa": 0.0, "ya": 0.0, "xb": 0.0, "yb": 0.0, "cx": 0.0, "sgn": 1}))
     elif name == "link_angle":
         cases.append(("coincident", 1, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), "off": 0.5}))
+    elif name == "link_direction":
+        cases.append(("coincident", 1, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), "c": 0.6, "s": 0.8}))
     elif name == "link_residual":
         cases.append(("coincident", None, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), **var("l", 1.0)}))
         cases.append(("parting", None, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0, 3.5, 3.75), **var("l", 1.0)}))

@@ -296,8 +296,10 @@ def test_build_real_overrides_the_file_and_every_file_says_what_it_computes_in(t
         "fourbar.c", "fourbar.h", "fourbar.md", "fourbar_main.c"]  # the others say double, and why
 
 
-def test_build_settings_override_the_file_and_every_file_states_them(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
-    _ok(["build", ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml", "-o", "out", "--tolerance", "1e-8", "--iterations", "12", "--no-polish", "--predictor", "0",
+def test_build_settings_override_the_file_and_every_file_states_them(tmp_path: Path,
+                                                                     monkeypatch: pytest.MonkeyPatch):
+    _ok(["build", ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml", "-o", "out", "--tolerance", "1e-8",
+         "--iterations", "12", "--no-polish", "--predictor", "0",
          "--strategy", "fixed-point"], tmp_path, monkeypatch)
     out = tmp_path / "out"
     options = json.loads(next(out.glob("*.json")).read_text())["options"]

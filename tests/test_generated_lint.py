@@ -1,5 +1,6 @@
 """Generated Python is clean under pyflakes' rules (no unused import, no undefined name),
-for every sample and for pruned builds, where most of the runtime is left out."""
+for every sample, for pruned builds, where most of the runtime is left out, and for builds with
+the links' directions as unit vectors (angles: unit)."""
 
 from __future__ import annotations
 
@@ -37,6 +38,10 @@ def test_generated_python_has_no_pyflakes_findings(tmp_path):
         out = tmp_path / f"{outputs[0]}_{order}"
         write_all(render_all(log), str(out))
         files.append(out / f"{log.name}.py")
+    for name in ("fourbar", "inverted_slider"):  # angles: unit, its direction functions
+        log = build_log(str(ROOT / f"samples/{name}/{name}.yaml"), sweep=False, options={"angles": "unit"})
+        write_all(render_all(log), str(tmp_path / f"{name}_unit"))
+        files += [tmp_path / f"{name}_unit" / f"{log.name}.py", tmp_path / f"{name}_unit" / f"{log.name}_np.py"]
     done = subprocess.run([ruff, "check", "--no-cache", "--isolated", "--select", "F", *map(str, files)],
                           capture_output=True, text=True)
     assert done.returncode == 0, done.stdout + done.stderr

@@ -269,6 +269,19 @@ def sample_offset_angle(r: Draw, branch: int):
     return Sample({"phi": phi, "off": off}, {"angle": Jet(wrap(phi.v + off), phi.d, phi.dd)})
 
 
+def sample_link_direction(r: Draw, branch: int):
+    """A link turning through phi + off (any angle: a direction needs no wrap), seen from two of its points."""
+    j1, rad, phi, off = r.point(), r.variable(0.2, 2), r.angle(), r.num(-3.1, 3.1)
+    j2 = vadd(j1, vscale(rad, direction(phi)))
+    c, s = _lib(off).cos(off), _lib(off).sin(off)
+    return Sample({"j1": j1, "j2": j2, "c": c, "s": s}, {"u": direction(phi + off)})
+
+
+def sample_angle_direction(r: Draw, branch: int):
+    phi = r.angle()
+    return Sample({"phi": phi}, {"u": direction(phi)})
+
+
 def sample_link_residual(r: Draw, branch: int):
     j1, rad, phi, ln = r.point(), r.variable(0.2, 2), r.angle(), r.variable()
     j2 = vadd(j1, vscale(rad, direction(phi)))
@@ -357,6 +370,8 @@ SAMPLERS: dict[str, Callable] = {
     "RPR_links": sample_rpr,
     "PPR_links": sample_ppr,
     "link_residual": sample_link_residual,
+    "link_direction": sample_link_direction,
+    "angle_direction": sample_angle_direction,
 }
 BRANCHED = {"RRR_links", "PRR_links", "RPR_links", "PPR_links"}
 CASES = [(n, b) for n in PRIMITIVES for b in ((1, -1) if n in BRANCHED else (1,))]
@@ -556,6 +571,13 @@ def constraints(name: str, v: dict, f: dict) -> tuple[list, list]:
         return [mpmath.sin(diff), 1 - mpmath.cos(diff)], [-mpmath.pi < th <= mpmath.pi]
     if name == "link_residual":
         return [f[("f", "v")] - (_norm(_sub(p("j2"), p("j1"))) - v["l_v"])], []
+    if name in ("link_direction", "angle_direction"):  # u is the unit vector at the link's angle
+        u = _pt(f, "u")
+        if name == "angle_direction":
+            return list(_sub(u, _dir(v["phi_the"]))), []
+        d, turn = _sub(p("j2"), p("j1")), (v["c"], v["s"])
+        e = (_dot(u, turn), _cross(turn, u))  # u turned back by the offset: along d
+        return [_dot(u, u) - 1, _cross(d, e), _dot(turn, turn) - 1], [_dot(d, e) > 0]
     if name == "RRR_links":
         jb = _pt(f, "jb")
         res = [_norm(_sub(jb, p("j1"))) - v["l1_v"], _norm(_sub(jb, p("j2"))) - v["l2_v"]]
@@ -678,7 +700,7 @@ def _displacements(name: str) -> list[tuple[str, str]]:
 
 @pytest.mark.parametrize(
     "name", ["crank_input", "slider_input", "link_angle", "offset_angle", "coupler_point", "link_point",
-             "link_residual"]
+             "link_residual", "link_direction", "angle_direction"]
 )
 def test_literal_sympy_diff_agrees_with_chain_rule(name):
     _literal_check(name, _displacements(name), second=True)

@@ -87,7 +87,7 @@ def _limit(log: StepLog, solver: RowSolver, stop: float) -> Limit | None:
     rows = int(np.ceil(FOLLOW * abs(stop - theta0) / ((2 * np.pi) if periodic else max(hi - lo, unit))))
     row, sign = abs(stop - theta0) / max(rows, 1), float(np.sign(stop - theta0))
     inner = {n for g in log.groups for b in (g, *g.variants) for n in b.steps}
-    points = {v.name for v in log.variables if v.kind == "POINT" and not v.constant}
+    points = {v.name for v in log.variables if v.kind == "POINT" and v.role != "direction" and not v.constant}
     full = solver.halvings
 
     def attempt(value: float, warm: Any, halvings: int) -> _Point | None:

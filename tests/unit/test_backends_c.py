@@ -15,6 +15,8 @@ from spelled import ROOT
 
 from linkgen.backends.c import BACKEND
 from linkgen.evaluate import evaluate, input_rows
+from linkgen.pipeline import build_log
+from linkgen.render import render_all
 from linkgen.table import csv
 
 MECHANISMS = {"jansen_foot": "samples/jansen_foot/jansen_foot.yaml",  # order 1, many outputs
@@ -55,3 +57,13 @@ def test_comment_text_cannot_close_the_comment(tmp_path: Path):
     assert escaped == "a * / b"
     (tmp_path / "c.c").write_text(f"/* {escaped} */\nint main(void) {{ return 0; }}\n", encoding="utf-8")
     assert subprocess.run([need("gcc"), "-std=c99", "-fsyntax-only", "c.c"], cwd=tmp_path).returncode == 0
+
+
+def test_a_direction_record_is_declared_only_where_an_output_is_a_direction(tmp_path: Path):
+    """angles: unit: the links' public records are NAME_direction {ux, uy, dux, duy, ddux, dduy}; the
+    angle build's header declares no NAME_direction."""
+    log = build_log(str(ROOT / MECHANISMS["jansen_foot"]), sweep=False, options={"angles": "unit"})
+    header = render_all(log)["jansen_foot.h"].decode()
+    assert "typedef struct { double ux, uy, dux, duy; } jansen_foot_direction;" in header  # order 1
+    assert "    jansen_foot_direction crank;" in header
+    assert "_direction" not in (ROOT / "samples" / "jansen_foot" / "expected" / "jansen_foot.h").read_text()

@@ -33,3 +33,10 @@ def test_a_resolver_limit_position_has_a_code_of_its_own():
     log = build_log(str(ROOT / "tests" / "mechanisms" / "sixbar_partial.yaml"), sweep=False)
     (code,) = [c for c in log.status_codes if c.code == 81]
     assert log.step(8).action == "resolve" and code.meaning == "step 8 (group1): cannot assemble past a limit position"
+
+
+def test_a_links_direction_fails_where_its_two_points_coincide():
+    log = build_log(str(FIG14), sweep=False, options={"angles": "unit"})
+    meaning = {c.code: c.meaning for c in log.status_codes}
+    assert log.step(10).function == "link_direction"
+    assert meaning[101] == "step 10 (ternary): the two points of ternary coincide"

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from linkgen.columns import plan
+from linkgen.columns import direction_columns, plan
 from linkgen.loader import parse
 from linkgen.model import Mechanism
 from linkgen.primitives.dsl import record_fields
@@ -87,3 +87,25 @@ def test_an_input_column_is_the_input_record_value():
                                     "{joint: S, range: [0, 5]}"), "m.yaml"), "m.yaml")
     (column,) = plan(m, 2, ("B",), {"B": "p"}, {}, {}, ["VAR_s"])[:1]
     assert (column.name, column.variable, column.quantity) == ("s_S", "VAR_s", "position")
+
+
+@pytest.mark.parametrize("order, names", [
+    (0, ["ux", "uy"]), (1, ["ux", "uy", "dux", "duy"]), (2, ["ux", "uy", "dux", "duy", "ddux", "dduy"])])
+def test_a_direction_takes_the_place_and_quantity_of_its_angle(m: Mechanism, order: int, names: list):
+    """angles: unit: each angle column becomes the direction record's x and y of the same order
+    (the unit vector, its rate, its acceleration); points, slides and the input stay."""
+    angle = columns(m, order, ("B", "rod", "crank"))
+    unit = direction_columns(angle, {"VAR_rod": "U_rod", "VAR_crank": "U_crank"}, 1)
+    point = [c for c in angle if c.name.startswith("B.")]
+    assert [c.name for c in unit] == ["theta_O", *(c.name for c in point), *(f"rod.{n}" for n in names),
+                                      *(f"crank.{n}" for n in names)]
+    assert unit[: 1 + len(point)] == angle[: 1 + len(point)]
+    fields, quantities = record_fields("POINT", order), ("angle", "angular_velocity", "angular_acceleration")
+    for k, c in enumerate(unit[1 + len(point):]):
+        assert (c.variable, c.field, c.quantity) == ("U_rod" if k < len(names) else "U_crank",
+                                                     fields[k % len(names)], quantities[(k % len(names)) // 2])
+
+
+def test_an_input_column_stays_an_angle_even_where_its_record_has_a_direction(m: Mechanism):
+    angle = columns(m, 0, ("rod",))
+    assert direction_columns(angle, {"VAR_theta": "U", "VAR_rod": "U_rod"}, 1)[0] == angle[0]

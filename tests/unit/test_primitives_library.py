@@ -1,6 +1,6 @@
 """linkgen.primitives.library, the functions that place one thing from known ones (an input, a link's
 point, a link's angle, a residual): hand-calculated positions and rates, angles wrapped to (-pi, pi], and
-the library's list of every runtime function."""
+the library's list of every runtime function (the directions of angles: unit are in directions.py)."""
 
 from __future__ import annotations
 
@@ -9,18 +9,19 @@ import math
 import pytest
 from primitive_calls import PI, STILL, approx, py2
 
-from linkgen.primitives import dyads, library
+from linkgen.primitives import directions, dyads, library
 from linkgen.primitives.dsl import Primitive
 
 
-def test_the_library_lists_every_primitive_of_both_modules_once_by_its_name():
-    defined = {p.name for module in (library, dyads) for p in vars(module).values() if isinstance(p, Primitive)}
-    assert set(library.PRIMITIVES) == defined and len(defined) == 12
+def test_the_library_lists_every_primitive_of_the_three_modules_once_by_its_name():
+    defined = {p.name for module in (library, dyads, directions) for p in vars(module).values()
+               if isinstance(p, Primitive)}
+    assert set(library.PRIMITIVES) == defined and len(defined) == 14
     assert all(name == p.name for name, p in library.PRIMITIVES.items())
     # the placing functions first, then the chains, then the residual (the programs paste them in this order)
     order = list(library.PRIMITIVES)
     assert order.index("coupler_point") < order.index("RRR_links") < order.index("PPR_links") < order.index(
-        "link_residual")
+        "link_residual") < order.index("link_direction")
 
 
 @pytest.mark.parametrize(

@@ -60,3 +60,11 @@ def test_a_resolver_group_is_its_chosen_block_then_its_fallbacks():
 @pytest.mark.parametrize("path, order, record_order", [(FOURBAR, 0, 0), (FIG14, 0, 1), (FIG14, 2, 2)])
 def test_a_resolver_needs_velocities_for_its_jacobian(path: str, order: int, record_order: int):
     assert _view(path, order).record_order == record_order
+
+
+def test_a_links_direction_is_an_output_of_its_own_kind():
+    """angles: unit: a link's columns read a direction record (a POINT record of role direction)."""
+    v = build_view(build_log(FOURBAR, sweep=False, options={"angles": "unit"}))
+    kinds = {o.name: (o.kind, [f for f, _, _ in o.fields]) for o in v.outputs}
+    assert kinds["rocker"] == ("direction", ["ux", "uy", "dux", "duy", "ddux", "dduy"])
+    assert kinds["P"][0] == "point"

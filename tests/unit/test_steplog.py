@@ -4,6 +4,7 @@ across processes; its status codes and runtime functions are made from its steps
 from __future__ import annotations
 
 import json
+import math
 import os
 import subprocess
 import sys
@@ -102,3 +103,17 @@ def test_runtime_and_status_codes_are_made_from_the_steps_and_reach():
     assert "reach_at" in partial.runtime and 81 in [c.code for c in partial.status_codes]
     free = replace(partial, reach=None)
     assert "reach_at" not in free.runtime and 81 not in [c.code for c in free.status_codes]
+
+
+def test_a_direction_is_published_without_the_origin():
+    """A direction record is a POINT record, but no position: the programs add no origin to it, and a
+    constant one is held as drawn."""
+    from linkgen.steplog import held
+
+    log = build_log(str(SAMPLES[0].parent.parent / "slider_crank" / "slider_crank.yaml"), sweep=False,
+                    options={"angles": "unit"})
+    assert log.shifted
+    ux = next(c for c in log.columns if c.name == "rod.ux")
+    assert log.offset(ux) == 0.0 and log.offset(next(c for c in log.columns if c.name == "B.x")) != 0.0
+    frame, angle = log.variable("u_frame"), next(k.angle for k in log.links if k.name == "frame")
+    assert held(frame, log.origin) == frame.value == pytest.approx((math.cos(angle), math.sin(angle)), abs=2e-16)

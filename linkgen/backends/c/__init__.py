@@ -45,14 +45,15 @@ def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
         "VARIABLE": f"double {', '.join(('v', 'dv', 'ddv')[: order + 1])};",
     }
     per_kind = {"point": ("x", "y", "vx", "vy", "ax", "ay"), "angle": ("phi", "omega", "alpha"),
-                "slide": ("s", "ds", "dds")}
-    width = {"point": 2, "angle": 1, "slide": 1}
+                "slide": ("s", "ds", "dds"), "direction": ("ux", "uy", "dux", "duy", "ddux", "dduy")}
+    width = {"point": 2, "angle": 1, "slide": 1, "direction": 2}
     fields = {k: per_kind[k][: width[k] * (log.order + 1)] for k in per_kind}
     columns = [c.name for c in log.columns]
     lists = input_lists(view, spell)
     return {
         "NAME.h": template("NAME.h.j2", upper=upper, n_columns=len(columns), point_fields=fields["point"],
-                           angle_fields=fields["angle"], slide_fields=fields["slide"]),
+                           angle_fields=fields["angle"], slide_fields=fields["slide"],
+                           direction_fields=fields["direction"]),
         "NAME.c": template("NAME.c.j2", upper=upper,
                            runtime=runtime_sources(view, c_function, RUNTIME, status=_reads_reasons(view)),
                            record_fields=record_fields, sketch_in=lists["sketch"],

@@ -1,0 +1,75 @@
+"""What `linkgen build` of each sample costs: as a command, and where its time goes.
+
+    python bench/run.py builds
+
+Per sample, the median of RUNS new processes of `linkgen build FILE -o DIR` (wall time); and of
+PROBES processes that import what a build imports, build once (build_log, render_all, write_all)
+and build again, each timed inside them: the imports, the first build (which fills the caches a
+process keeps: templates, the compiled numpy kernel) and a later build (what a build costs
+in-process).  Once: the wall time of a bare `python -c pass` (the interpreter's start-up).
+Writes the section "Build time" of docs/performance.md.
+"""
+
+from __future__ import annotations
+
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from performance_doc import write_section
+
+ROOT = Path(__file__).resolve().parents[1]
+RUNS = 5  # processes of `linkgen build` per sample
+PROBES = 3  # processes timed inside per sample
+PROBE = """import sys, time
+t0 = time.perf_counter()
+from linkgen import cli
+from linkgen.pipeline import build_log
+from linkgen.render import render_all
+from linkgen.writer import write_all
+t1 = time.perf_counter()
+write_all(render_all(build_log(sys.argv[1])), sys.argv[2])
+t2 = time.perf_counter()
+write_all(render_all(build_log(sys.argv[1])), sys.argv[2])
+print(t1 - t0, t2 - t1, time.perf_counter() - t2)
+"""
+
+
+def _wall(command: list[str]) -> float:
+    t = time.perf_counter()
+    subprocess.run(command, check=True, capture_output=True, cwd=ROOT)
+    return time.perf_counter() - t
+
+
+def _probe(path: Path, out: str) -> list[float]:
+    """Seconds of the imports, the first build and a later build, inside one new process."""
+    done = subprocess.run([sys.executable, "-c", PROBE, str(path), out], check=True, capture_output=True, text=True,
+                          cwd=ROOT)
+    return [float(x) for x in done.stdout.split()]
+
+
+def bench_builds() -> None:
+    start = statistics.median(_wall([sys.executable, "-c", "pass"]) for _ in range(RUNS))
+    lines = ["## Build time", "",
+             "`make bench` (`bench/build_time.py`): the wall time of `linkgen build FILE -o DIR` of each sample, and",
+             "where it goes, timed inside a new process that imports what a build imports, builds once and",
+             "builds again: the imports, the first build (it fills the caches a process keeps: compiled",
+             f"templates, the numpy kernel) and a later build (a build in-process).  Medians of {RUNS} processes",
+             f"of the command and of {PROBES} timed inside; the interpreter's own start-up (`python -c pass`) "
+             f"takes {start:.2f} s.", "",
+             "| sample | `linkgen build` | imports | first build | later build (in-process) |",
+             "| --- | ---: | ---: | ---: | ---: |"]
+    with tempfile.TemporaryDirectory() as tmp:
+        for path in sorted(ROOT.glob("samples/*/*.yaml")):
+            out = str(Path(tmp) / path.stem)
+            command = statistics.median(_wall([sys.executable, "-m", "linkgen", "build", str(path), "-o", out])
+                                        for _ in range(RUNS))
+            probes = [_probe(path, out) for _ in range(PROBES)]
+            imports, first, later = (statistics.median(p[k] for p in probes) for k in range(3))
+            lines.append(f"| {path.stem} | {command:.2f} s | {imports:.2f} s | {first:.2f} s | {later:.3f} s |")
+    text = "\n".join(lines) + "\n"
+    print(text)
+    write_section("Build time", text)
