@@ -281,7 +281,7 @@ def chain_cases(draw, name: str) -> sk.Case:
 
 
 CHAIN_EXAMPLES = {"RRR_links": 500, "PRR_links": 400, "RPR_links": 400, "PRP_links": 300, "PPR_links": 300,
-                  "coupler_point": 150, "link_angle": 150, "crank_input": 100, "slider_input": 100,
+                  "coupler_point": 150, "link_point": 150, "link_angle": 150, "crank_input": 100, "slider_input": 100,
                   "offset_angle": 50, "link_residual": 100}
 
 
@@ -316,6 +316,7 @@ test_chain_RPR_links = _chain_test("RPR_links")
 test_chain_PRP_links = _chain_test("PRP_links")
 test_chain_PPR_links = _chain_test("PPR_links")
 test_chain_coupler_point = _chain_test("coupler_point")
+test_chain_link_point = _chain_test("link_point")
 test_chain_link_angle = _chain_test("link_angle")
 test_chain_crank_input = _chain_test("crank_input")
 test_chain_slider_input = _chain_test("slider_input")

@@ -263,7 +263,10 @@ class Primitive:
     def unchecked(self) -> Primitive:
         """The function without its checks (options.checks off): status 1 where it cannot
         give an answer (``fail``: its outputs nan), else 0; no conditioning, no singular codes."""
-        status = None if self.fail is None else Select(self.fail, Num(CANNOT_CLOSE), Num(0))
+        if self.fail is not None:
+            status: Expr | None = Select(self.fail, Num(CANNOT_CLOSE), Num(0))
+        else:  # a status that is a failure alone stays
+            status = self.status if self.codes() <= {CANNOT_CLOSE} else None
         return replace(self, status=status, sigma=None)
 
     def codes(self) -> frozenset[int]:

@@ -158,6 +158,11 @@ def test_unchecked_keeps_only_the_failure_and_drops_the_conditioning():
     assert lean.sigma is None and _same(lean.status, select(fail, 1, 0))
     assert {let.name for let in lean.live(2)} == {"fail"}  # sigma's let is dead without the checks
     assert _sample().unchecked().status is None  # a function with no failure of its own reports nothing
+    b = Builder("segment", "A made-up angle: fails where its length is 0.")
+    k = b.scalar("k")
+    b.output("q", "VARIABLE", v=k, dv=k, ddv=k)
+    alone = b.build(status=select(k.eq(0), 1, 0))  # a failure alone, not named as fail: kept
+    assert alone.unchecked().status is alone.status
 
 
 def test_max_and_min_take_names_or_numbers_only():
