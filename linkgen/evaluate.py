@@ -392,4 +392,7 @@ def _evaluate_rows(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np
     numbers = sorted({n for row in rows for n in row.report})
     sigma = {n: np.array([row.report.get(n, (0, math.nan))[1] for row in rows], dtype=float) for n in numbers}
     its = {g.number: np.array([row.iterations.get(g.number, 0) for row in rows], dtype=int) for g in log.groups}
-    return Result(values, env, np.array([row.code for row in rows], dtype=int), sigma, its, warms)
+    codes = np.array([row.code for row in rows], dtype=int)
+    if not log.options.checks:  # as the programs built without checks: a failure's code or 0
+        codes = np.where(status.failed(codes), codes, 0)
+    return Result(values, env, codes, sigma, its, warms)

@@ -24,3 +24,11 @@ def cos(a: float) -> float:
 
 def sin(a: float) -> float:
     return float(_CTX.sin(_CTX.mpf(a)))
+
+
+def along_across(rx: float, ry: float, dx: float, dy: float) -> tuple[float, float]:
+    """(a, b) with r = a d + b n, n = (-dy, dx) the base d turned a quarter turn left:
+    (r.d, d x r) / |d|^2."""
+    x, y, u, v = (_CTX.mpf(t) for t in (rx, ry, dx, dy))
+    d2 = u * u + v * v
+    return float((x * u + y * v) / d2), float((u * y - v * x) / d2)

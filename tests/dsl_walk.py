@@ -1,9 +1,9 @@
 """The DSL's own evaluation: a primitive's expression trees walked node by node on Python floats, the
 route the printers' outputs are checked against (no printer involved), and rows of arguments to walk.
 
-Semantics as the DSL documents them: a selection evaluates only the branch it takes; max and min are C's
-fmax and fmin (a nan operand gives the other); sqrt of a negative number and a division by zero give what
-IEEE arithmetic gives.  A primitive's status masks its outputs: 1 makes every field nan, 3 every rate.
+Semantics as the DSL documents them: a selection evaluates only the branch it takes; max(a, b) is b where
+b > a, else a, and min with < (Python's choice: a nan b gives a); sqrt of a negative number and a division
+by zero give what IEEE arithmetic gives.  A primitive's status masks its outputs: 1 makes every field nan, 3 every rate.
 """
 
 from __future__ import annotations
@@ -32,11 +32,15 @@ def _divide(a: float, b: float) -> float:
 
 
 def _fmax(a: float, b: float) -> float:
-    return b if a != a else a if b != b else (a if a >= b else b)
+    if b > a:
+        return b
+    return a
 
 
 def _fmin(a: float, b: float) -> float:
-    return b if a != a else a if b != b else (a if a <= b else b)
+    if b < a:
+        return b
+    return a
 
 
 CALLS = {"sqrt": lambda x: math.sqrt(x) if x >= 0 else math.nan, "atan2": math.atan2, "cos": math.cos,

@@ -701,6 +701,29 @@ def coupler_point_case(src: Source) -> Case:
                 1.0, math.nan, False, "short" if short else "random")
 
 
+def link_point_case(src: Source) -> Case:
+    """A point of a link from two of its points (a needle of a base with a far point in the short mode):
+    along and across as the extraction rounds them, the exact point from those doubles."""
+    s = src.scale()
+    j1 = src.point(s)
+    short = src.flag()
+    j2 = src.near(j1, s * src.ratio()) if short else src.point(s)
+    jc = src.point(s)
+    dx, dy, rx, ry = (MP.mpf(j2[0]) - j1[0], MP.mpf(j2[1]) - j1[1], MP.mpf(jc[0]) - j1[0], MP.mpf(jc[1]) - j1[1])
+    d2 = dx * dx + dy * dy
+    if d2 == 0:
+        raise Degenerate("link_point: the base's points coincide")
+    along, across = float((rx * dx + ry * dy) / d2), float((dx * ry - dy * rx) / d2)
+    w = _angular(src)
+    args = (_pt_arg(j1, _rates(src, s, w)), _pt_arg(j2, _rates(src, s, w)), along, across)
+    J1, J2 = _pt_jet(args[0]), _pt_jet(args[1])
+    out = {"jc": vadd(J1, local(vsub(J2, J1), mp(along), mp(across)))}
+    arm = math.hypot(along, across)
+    length = max(_magnitude(*j1, *j2, *jc), arm * float(MP.sqrt(d2)))
+    return Case("link_point", args, {"j1": J1, "j2": J2, "along": mp(along), "across": mp(across)}, out, length,
+                max(1.0, arm), math.nan, False, "short" if short else "random")
+
+
 def link_angle_case(src: Source) -> Case:
     s = src.scale()
     j1 = src.point(s)
@@ -831,6 +854,7 @@ CHAINS = {
     "PRP_links": prp_case,
     "PPR_links": ppr_case,
     "coupler_point": coupler_point_case,
+    "link_point": link_point_case,
     "link_angle": link_angle_case,
     "link_direction": link_direction_case,
     "angle_direction": angle_direction_case,
@@ -916,6 +940,9 @@ def residuals(case: Case, outs: dict) -> list:
         d = vsub(pt("jc"), _p(v, "j0"))
         u = _dir_mp(_val(v, "phi"))
         return [vdot(d, u) - v["gsi"], vcross(u, d) - v["eta"]]
+    if n == "link_point":  # jc - j1 = along d + across n
+        d = vsub(_p(v, "j2"), _p(v, "j1"))
+        return list(vsub(vsub(pt("jc"), _p(v, "j1")), local(d, v["along"], v["across"])))
     if n == "crank_input":
         d = vsub(pt("j2"), _p(v, "j1"))
         u = _dir_mp(_val(v, "theta") + _val(v, "phi"))

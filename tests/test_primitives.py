@@ -231,6 +231,12 @@ def sample_coupler_point(r: Draw, branch: int):
     return Sample({"j0": j0, "phi": phi, "gsi": gsi, "eta": eta}, {"jc": jc})
 
 
+def sample_link_point(r: Draw, branch: int):
+    j1, j2, along, across = r.point(), r.point(), r.length(), r.length()
+    jc = vadd(j1, local(vsub(j2, j1), along, across))
+    return Sample({"j1": j1, "j2": j2, "along": along, "across": across}, {"jc": jc})
+
+
 def sample_slider_input(r: Draw, branch: int):
     pg, psig, s, gsi, eta = r.point(), r.angle(), r.variable(), r.length(), r.length()
     u = direction(psig)
@@ -357,6 +363,7 @@ SAMPLERS: dict[str, Callable] = {
     "link_angle": sample_link_angle,
     "offset_angle": sample_offset_angle,
     "coupler_point": sample_coupler_point,
+    "link_point": sample_link_point,
     "RRR_links": sample_rrr,
     "PRR_links": sample_prr,
     "PRP_links": sample_prp,
@@ -549,6 +556,9 @@ def constraints(name: str, v: dict, f: dict) -> tuple[list, list]:
     if name == "coupler_point":
         d, u = _sub(_pt(f, "jc"), p("j0")), _dir(v["phi_the"])
         return [_dot(d, u) - v["gsi"], _cross(u, d) - v["eta"]], []
+    if name == "link_point":  # jc - j1 = along d + across n, d = j2 - j1 and n = d turned a quarter left
+        d, r = _sub(p("j2"), p("j1")), _sub(_pt(f, "jc"), p("j1"))
+        return [_dot(r, d) - v["along"] * _dot(d, d), _cross(d, r) - v["across"] * _dot(d, d)], []
     if name == "slider_input":
         u = _dir(v["psig_the"])
         jp, jc = _pt(f, "jp"), _pt(f, "jc")
@@ -689,8 +699,8 @@ def _displacements(name: str) -> list[tuple[str, str]]:
 
 
 @pytest.mark.parametrize(
-    "name", ["crank_input", "slider_input", "link_angle", "offset_angle", "coupler_point", "link_residual",
-             "link_direction", "angle_direction"]
+    "name", ["crank_input", "slider_input", "link_angle", "offset_angle", "coupler_point", "link_point",
+             "link_residual", "link_direction", "angle_direction"]
 )
 def test_literal_sympy_diff_agrees_with_chain_rule(name):
     _literal_check(name, _displacements(name), second=True)

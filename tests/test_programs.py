@@ -157,7 +157,7 @@ def test_c_has_no_mutable_static_or_global_state(sources):
         for fname in (f"{log.name}.c", f"{log.name}_main.c"):
             text = files[fname].decode()
             for line in text.splitlines():
-                if re.match(r"^static\s+(?!const\b)(?!int\s+\w+\()(?!void\s+\w+\()(?!double\s+\w+\()", line):
+                if re.match(r"^static\s+(?!const\b)(?!inline\b)(?!(int|void|double)\s+\w+\()", line):
                     pytest.fail(f"{fname}: mutable static: {line}")
                 if re.match(r"^(?!static|typedef|#|/|\s|}|{|int main|void |int |$)\w", line):
                     pytest.fail(f"{fname}: global: {line}")
@@ -166,15 +166,15 @@ def test_c_has_no_mutable_static_or_global_state(sources):
 
 
 def test_only_used_runtime_functions_are_emitted(sources):
-    all_functions = ("crank_input", "slider_input", "link_angle", "offset_angle", "coupler_point", "RRR_links",
-                     "PRR_links", "PRP_links", "RPR_links", "PPR_links", "link_residual")
+    all_functions = ("crank_input", "slider_input", "link_angle", "offset_angle", "coupler_point", "link_point",
+                     "RRR_links", "PRR_links", "PRP_links", "RPR_links", "PPR_links", "link_residual")
     for _, (log, files) in sources.items():
         used = {s.function for s in log.steps if s.function}
         c_text = files[f"{log.name}.c"].decode()
         py_text = files[f"{log.name}.py"].decode()
         m_text = files[f"{log.name}_solve.m"].decode()
         for fn in all_functions:
-            assert (f"static int {fn}(" in c_text or f"static void {fn}(" in c_text) == (fn in used)
+            assert (f"static inline int {fn}(" in c_text or f"static inline void {fn}(" in c_text) == (fn in used)
             assert (f"\ndef {fn}(" in py_text) == (fn in used)
             assert bool(re.search(rf"^function .*= {fn}\(", m_text, re.M)) == (fn in used)
         assert ("newton" in c_text) == bool(log.groups)

@@ -122,6 +122,6 @@ def test_order_zero_emits_no_rates_and_order_one_no_accelerations(outputs):
 def test_manual_says_what_was_left_out(tmp_path):
     log, _ = _programs(("J6", "crank"), 0)
     text = render_all(log)[f"{log.name}.md"].decode()
-    assert "steps 3-12 (add1, J4, J2, ternary, J5, coupler, group1, rocker1, rocker2, coupler)" in text
+    assert "steps 3-12 (add1, J4, J2, J5, coupler, group1, rocker1, ternary, rocker2, coupler)" in text
     assert "not needed for them" in text and "displacements only (order 0)" in text
     assert "### Step 4" not in text and "### Step 13" in text

@@ -30,7 +30,7 @@ def test_a_ladder_is_computed_dyad_by_dyad(tmp_path: Path, kind: str):
     assert [s.target for s in chains] == [f"A{k}" for k in range(1, n + 1)]
     assert all(s.branch == 1 for s in chains)
     if kind == "chain":  # then its two ternary links place the pairs the next dyad hangs on
-        points = [s.target for s in proc.steps if s.function == "coupler_point"]
+        points = [s.target for s in proc.steps if s.function == "link_point"]
         assert points == [p for k in range(1, n) for p in (f"X{k}", f"Y{k}")]
         assert len(topo.members) == 1 + 1 + 6 * (n - 1) + 2
     else:  # the frame carries n + 1 pairs: its truss has n (n + 1) / 2 members (rule i)

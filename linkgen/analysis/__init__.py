@@ -41,7 +41,9 @@ def with_facts(draft: Draft, facts: Facts) -> StepLog:
 
 def motion_facts(draft: Draft, sweep: bool = True) -> Facts:
     """The motion facts of a draft: with ``sweep``, the conditioning over the sweep too (for
-    the manual; it takes a sweep and root finding)."""
+    the manual; it takes a sweep and root finding).  They are found with every check on,
+    whatever the programs will have (options.checks)."""
+    draft = Draft(replace(draft, options=replace(draft.options, checks=True)))
     facts = Facts()
     if len(draft.inputs) == 1:
         facts = Facts(change_points(draft))

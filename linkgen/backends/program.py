@@ -23,13 +23,21 @@ def used_primitives(view: View) -> list[str]:
     return [name for name in PRIMITIVES if name in view.log.runtime]
 
 
-def runtime_sources(view: View, printer: Callable[[Primitive, int], str], runtime: Runtime) -> list[str]:
+def program_primitive(view: View, name: str) -> Primitive:
+    """A runtime primitive as the view's program carries it: without its checks where the
+    program has none and no resolver picks a block by the chains' conditioning."""
+    return PRIMITIVES[name] if view.measures else PRIMITIVES[name].unchecked()
+
+
+def runtime_sources(view: View, printer: Callable[[Primitive, int], str], runtime: Runtime,
+                    status: bool = True) -> list[str]:
     """The runtime a program carries: the primitives it calls, printed, then the hand-written
-    status helpers and, where the procedure needs them, branch_at, reach_at, the resolver (with the closure
-    strategy's where it is chosen) and the row driver."""
+    status helpers (where ``status``) and, where the procedure needs them, branch_at, reach_at, the resolver
+    (with the closure strategy's where it is chosen) and the row driver."""
     order = view.record_order
-    texts = [printer(PRIMITIVES[p], order) for p in used_primitives(view)]
-    texts.append(runtime.source("status"))
+    texts = [printer(program_primitive(view, p), order) for p in used_primitives(view)]
+    if status:
+        texts.append(runtime.source("status"))
     texts += [runtime.source(name) for name, needed in (
         ("branch", "branch_at" in view.log.runtime), ("reach", "reach_at" in view.log.runtime),
         ("resolver", bool(view.groups)), ("closure", "closure" in view.log.runtime),

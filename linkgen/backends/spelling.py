@@ -11,10 +11,12 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from .. import status
+from ..primitives import PRIMITIVES
 from ..primitives.dsl import record_fields
 from ..primitives.printers import literal
 from ..steplog import Arg, BranchSign, Column, Step, StepLog, Variable, held
 from . import Words
+from .program import program_primitive
 
 if TYPE_CHECKING:
     from ..render.view import Group, View
@@ -46,6 +48,8 @@ class Spelling:
         self.order = self.order_of(view)
         self.variables = {v.name: v for v in self.log.variables}
         self.measured = view.measured  # steps whose branch is read off the last solution
+        self.checks = view.checks  # singular and near-singular steps noted, the conditioning reported
+        self.primitives = {name: program_primitive(view, name) for name in self.log.runtime if name in PRIMITIVES}
 
     @staticmethod
     def order_of(view: View) -> int:
@@ -165,6 +169,10 @@ class Spelling:
         """The statement that notes status ``st`` of a step (note() keeps the first singular and the
         first near-singular step's code)."""
         return self.syntax.note.format(st=st, codes=self.note_codes(step))
+
+    def notes(self, st: str, step: Step) -> list[str]:
+        """note()'s statement where the program has its checks, else none."""
+        return [self.note(st, step)] if self.checks else []
 
     def note_sigma(self, step: Step) -> str | list[str]:
         """note() of a resolver's step, whose status its conditioning gives."""

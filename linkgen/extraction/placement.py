@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 from .. import exact
 from ..model import Input
 from ..steplog import Arg
@@ -73,16 +75,31 @@ def line(ws: Workspace, pair: str) -> tuple[str, str]:
             g = ws.new_var(f"g_{pair}", "POINT", "guide", pair, sketch=(j.x, j.y))
             ws.pos[f"{pair}@{guide}"] = g
             ws.tied[guide].append(f"{pair}@{guide}")
-            point_on(ws, guide, pair, g, psi,
+            point_on(ws, guide, pair, g,
                      f"the guide {guide} of {pair} is placed, so its copy of the reference point is known")
     ws.lines[pair] = (g, psi)
     return ws.lines[pair]
 
 
-def point_on(ws: Workspace, link: str, name: str, out: str, angle: str, reason: str) -> None:
-    """coupler_point: ``name`` at its sketch offset from a tied point of a placed link."""
-    base = ws.tied[link][0]
-    gsi, eta = rot(ws.angle0(angle), *(a - b for a, b in zip(ws.xy(name), ws.xy(base))))
+def point_on(ws: Workspace, link: str, name: str, out: str, reason: str) -> None:
+    """``name`` (the record ``out``) at its sketch place on a placed link: linear in two known
+    points of the link where it has them (link_point: the second one the farthest from the
+    first, so the base is long), else at its offset from the known point along the link's
+    angle (coupler_point, with link_angle where the angle is not known yet)."""
+    tied = [n for n in ws.tied[link] if ws.pos[n] != out]
+    base = tied[0]
+    r = tuple(a - b for a, b in zip(ws.xy(name), ws.xy(base)))
+    far = max(tied[1:], key=lambda n: math.dist(ws.xy(n), ws.xy(base)), default=None)
+    if far is not None and ws.xy(far) != ws.xy(base):
+        d = tuple(a - b for a, b in zip(ws.xy(far), ws.xy(base)))
+        along, across = exact.along_across(r[0], r[1], d[0], d[1])
+        emit(ws, "point", "link_point",
+             [Arg("var", ws.pos[base]), Arg("var", ws.pos[far]), Arg("real", value=along, label="along"),
+              Arg("real", value=across, label="across")], [out], name, pairs=(base, far), links=(link,),
+             reason=reason)
+        return
+    angle = frame(ws, link)
+    gsi, eta = rot(ws.angle0(angle), *r)
     emit(ws, "point", "coupler_point",
          [Arg("var", ws.pos[base]), Arg("var", angle), Arg("real", value=gsi, label="gsi"),
           Arg("real", value=eta, label="eta")], [out], name, pairs=(base,), links=(link,), reason=reason)

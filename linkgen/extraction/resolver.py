@@ -128,7 +128,8 @@ def _lever(block: ResolverGroup, steps: dict[int, Step], variables: dict[str, Va
 
 def placement_lever(block: list[Step], steps: list[Step], variables: dict[str, Variable]) -> float:
     """The worst ratio, over the block's point placements, of the base its frame angle is
-    measured on to the arm of the placed point (at most 1).  A placement magnifies the
+    measured on (link_point: the two points it places from) to the arm of the placed point
+    (at most 1).  A placement magnifies the
     angle's error by the inverse: a block that must turn a needle to place a far pair is
     a poor coordinate of the assembly, whatever its chains' conditioning."""
     producer = {o: s for s in steps for o in s.outputs}
@@ -147,10 +148,13 @@ def placement_lever(block: list[Step], steps: list[Step], variables: dict[str, V
 
     worst = 1.0
     for s in block:
-        if s.function != "coupler_point":
+        if s.function == "coupler_point":
+            b = base(s.args[1].var)
+            arm = math.hypot(s.args[2].value, s.args[3].value)
+        elif s.function == "link_point":  # the base j1-j2 itself; the arm in its lengths
+            b, arm = 1.0, math.hypot(s.args[2].value, s.args[3].value)
+        else:
             continue
-        b = base(s.args[1].var)
-        arm = math.hypot(s.args[2].value, s.args[3].value)
         if b is not None and arm > b:
             worst = min(worst, b / arm)
     return worst

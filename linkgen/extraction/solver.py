@@ -1,8 +1,9 @@
 """The Solver (the paper's Algorithm 1): compute each unknown pair as soon as it can.
 
 It scans the unknown pairs in declaration order and computes the first it can: as a
-point of a placed link (``coupler_point``), through an input (``crank_input``,
-``slider_input``), or as the middle pair of a two-link chain whose ends are known.
+point of a placed link (``link_point``, or ``coupler_point`` where one point of it is
+known), through an input (``crank_input``, ``slider_input``), or as the middle pair of a
+two-link chain whose ends are known.
 Every choice breaks ties by declaration order, so a file always gives the same procedure.
 """
 
@@ -16,7 +17,7 @@ from ..topology import Topology, input_direction, reference_angle, wrap_angle
 from .chains import try_chain
 from .emit import emit
 from .index import Index
-from .placement import frame, line, link_angle, point_on, reference, rot
+from .placement import line, link_angle, point_on, reference, rot
 from .state import Carrier, Unsupported, Workspace
 
 
@@ -147,15 +148,14 @@ def _slider(ws: Workspace, inp: Input) -> bool:
 
 
 def _try_point(ws: Workspace, pair: str) -> bool:
-    """An unknown revolute pair on a placed link: coupler_point."""
+    """An unknown revolute pair on a placed link: link_point (placement.point_on)."""
     if not ws.m.joint(pair).revolute:
         return False
     for lk in ws.m.links_of(pair):
         if lk.name in ws.placed:
-            angle = frame(ws, lk.name)
             ws.pos[pair] = ws.point_var(pair)
             ws.tied[lk.name].append(pair)
-            point_on(ws, lk.name, pair, ws.pos[pair], angle,
+            point_on(ws, lk.name, pair, ws.pos[pair],
                      f"link {lk.name} is placed (its pairs {', '.join(ws.tied[lk.name][:2])} are known), "
                      f"so {pair} follows as a point of it")
             return True
@@ -170,8 +170,7 @@ def finish(ws: Workspace) -> None:
     for lk in ws.m.links:
         for pt in lk.points:
             if pt.name not in ws.pos:
-                angle = frame(ws, lk.name)
                 ws.pos[pt.name] = ws.point_var(pt.name, "point")
-                point_on(ws, lk.name, pt.name, ws.pos[pt.name], angle, f"point {pt.name} of link {lk.name}")
+                point_on(ws, lk.name, pt.name, ws.pos[pt.name], f"point {pt.name} of link {lk.name}")
     for lk in ws.m.links:
         link_angle(ws, lk.name)

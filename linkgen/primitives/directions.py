@@ -29,7 +29,7 @@ def link_direction(b: PlaneBuilder) -> Primitive:
     u = b.local("u", e, c, s)
     om, al = b.angle_rates(d, r2)
     b.output_point("u", b.rotating("u", u, om, al))
-    return b.build(status=select(r2.eq(0), status.CANNOT_CLOSE, 0))
+    return b.build(status=select(r2.eq(0), status.CANNOT_CLOSE, 0), fail=r2.eq(0))
 
 
 @primitive

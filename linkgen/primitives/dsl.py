@@ -13,7 +13,9 @@ of the higher-order code.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+
+from ..status import CANNOT_CLOSE
 
 # Record kinds and their scalar fields, by derivative order (mech.cpp's POINT,
 # ANGLE and VARIABLE records).
@@ -152,12 +154,22 @@ def fabs(a: Expr) -> Expr:
     return Call("abs", (a,))
 
 
+def _operands(fn: str, a: object, b: object) -> Expr:
+    """max or min of two names or numbers: b where it is the larger (the smaller), else a, as
+    Python's max and min choose (a nan b gives a).  The operands are names or numbers, so a
+    printer may spell the choice as a comparison without computing either twice."""
+    args = (wrap(a), wrap(b))
+    if not all(isinstance(x, (Sym, Num, Const)) for x in args):
+        raise TypeError(f"{fn}() takes names or numbers (let-bind an expression first)")
+    return Call(fn, args)
+
+
 def fmax(a: object, b: object) -> Expr:
-    return Call("max", (wrap(a), wrap(b)))
+    return _operands("max", a, b)
 
 
 def fmin(a: object, b: object) -> Expr:
-    return Call("min", (wrap(a), wrap(b)))
+    return _operands("min", a, b)
 
 
 def either(a: Expr, b: Expr) -> Expr:
@@ -234,7 +246,8 @@ class Primitive:
     is 0 (done), 1 (the chain cannot close: every output nan), 3 (singular:
     displacements valid, derivatives nan) or 4 (near singular: values valid);
     None when the function cannot fail.  ``sigma`` is the dimensionless
-    conditioning reported with the status (None when there is none).
+    conditioning reported with the status (None when there is none); ``fail``
+    the condition of status 1 alone (``unchecked``).
     """
 
     name: str
@@ -245,6 +258,31 @@ class Primitive:
     results: dict[str, dict[str, Expr]] = field(hash=False)
     status: Expr | None = None
     sigma: Expr | None = None
+    fail: Expr | None = None
+
+    def unchecked(self) -> Primitive:
+        """The function without its checks (options.checks off): status 1 where it cannot
+        give an answer (``fail``: its outputs nan), else 0; no conditioning, no singular codes."""
+        if self.fail is not None:
+            status: Expr | None = Select(self.fail, Num(CANNOT_CLOSE), Num(0))
+        else:  # a status that is a failure alone stays
+            status = self.status if self.codes() <= {CANNOT_CLOSE} else None
+        return replace(self, status=status, sigma=None)
+
+    def codes(self) -> frozenset[int]:
+        """The status codes the function can return besides 0."""
+        found: set[int] = set()
+
+        def walk(e: Expr) -> None:
+            if isinstance(e, Select):
+                for branch in (e.a, e.b):
+                    if isinstance(branch, Num) and branch.value:
+                        found.add(int(branch.value))
+                    walk(branch)
+
+        if self.status is not None:
+            walk(self.status)
+        return frozenset(found)
 
     def result_fields(self, order: int) -> list[tuple[Param, str, Expr]]:
         """(output, field, expression) for every output field up to ``order``."""
@@ -273,7 +311,7 @@ class Primitive:
         used: set[str] = set()
         for let in self.live(order, with_sigma):
             used |= symbols(let.expr)
-        for e in [e for _, _, e in self.result_fields(order)] + [self.status, self.sigma]:
+        for e in [e for _, _, e in self.result_fields(order)] + [self.status, self.sigma if with_sigma else None]:
             if e is not None:
                 used |= symbols(e)
         return used - {let.name for let in self.body}
@@ -325,7 +363,7 @@ class Builder:
         self.outputs.append(Param(name, kind))
         self.results[name] = {k: wrap(v) for k, v in fields.items()}
 
-    def build(self, status: Expr | None = None, sigma: Expr | None = None) -> Primitive:
+    def build(self, status: Expr | None = None, sigma: Expr | None = None, fail: Expr | None = None) -> Primitive:
         names = {p.name for p in self.params} | {p.name for p in self.outputs}
         clash = names & {let.name for let in self.body}
         if clash:
@@ -338,10 +376,10 @@ class Builder:
             for f, e in got.items():
                 if self.order_of(e) > field_order(out.kind, f):
                     raise ValueError(f"{self.name}: {out.name}.{f} reads a higher derivative")
-        for flag in (status, sigma):
+        for flag in (status, sigma, fail):
             if flag is not None and self.order_of(flag) > 0:
                 raise ValueError(f"{self.name}: status and sigma must come from displacements")
         return Primitive(
             self.name, self.doc, tuple(self.params), tuple(self.outputs), tuple(self.body),
-            self.results, status, sigma,
+            self.results, status, sigma, fail,
         )

@@ -44,7 +44,9 @@ def RRR_links(b: PlaneBuilder) -> Primitive:
     at = b.let("at", select(k > 0, a, flat))
     hn = b.let("hn", minv * h)
     e1 = b.local("e1", u, at, hn)
-    sigma = b.let("sigma", select(fail, 0, fmin(area4 / (2 * l1.v * l2.v), 1)))
+    # times a reciprocal of the lengths alone: a C compiler folds it where they are the sketch's constants
+    ratio = b.let("ratio", select(fail, 0, area4 * (0.5 / (l1.v * l2.v))))
+    sigma = b.let("sigma", fmin(ratio, 1))
     # derivatives: (jb - ji).(jb' - ji') = li li', solved in the (u, n) frame:
     #   a bu + hn bn = r1,  -a2 bu + hn bn = r2   (determinant hn q)
     e2 = b.local("e2", u, -a2, hn)
@@ -66,7 +68,7 @@ def RRR_links(b: PlaneBuilder) -> Primitive:
         l2.v * l2.ddv + l2.dv * l2.dv - w2.dot(w2) + e2.dot(j2.a),
     )
     b.output_point("jb", Motion(j1.p + e1, vel, acc))
-    return b.build(status=chain_status(fail, sigma), sigma=sigma)
+    return b.build(status=chain_status(fail, sigma), sigma=sigma, fail=fail)
 
 
 @primitive
@@ -88,7 +90,8 @@ def PRR_links(b: PlaneBuilder) -> Primitive:
     pn = b.let("pn", w.cross(u))  # signed distance of jr from the line of jb
     ap = b.let("ap", fabs(pn))
     k = b.let("k", ln.v - ap)
-    fail = b.let("fail", either(k < -TOGGLE_SLACK * EPS * fmax(ln.v, ap), ln.v <= 0))
+    big = b.let("big", fmax(ln.v, ap))
+    fail = b.let("fail", either(k < -TOGGLE_SLACK * EPS * big, ln.v <= 0))
     rd = b.let("rd", sqrt(fmax(k, 0) * (ln.v + ap)))
     eu = b.let("eu", minv * rd)  # (jb - jr).u
     en = -pn  # (jb - jr).n
@@ -96,7 +99,8 @@ def PRR_links(b: PlaneBuilder) -> Primitive:
     s = b.let("sv", eu - wu)
     jb = b.vec("jb", jr.p + e)
     jp = b.vec("jp", jb - r)
-    sigma = b.let("sigma", select(fail, 0, fmin(rd / ln.v, 1)))
+    ratio = b.let("ratio", select(fail, 0, rd * (1 / ln.v)))  # 1 / l folded where l is the sketch's
+    sigma = b.let("sigma", fmin(ratio, 1))
     ieu = b.let("ieu", select(eu.eq(0), NAN, 1 / eu))
     sg = b.let("sgsi", s + gsi)
     rel = b.vec("relv", pg.v - jr.v)
@@ -119,7 +123,7 @@ def PRR_links(b: PlaneBuilder) -> Primitive:
     b.output("s", "VARIABLE", v=s, dv=ds, ddv=dds)
     b.output_point("jp", Motion(jp, jpv, jpa))
     b.output_point("jb", Motion(jb, jbv, jpa + rm.a))
-    return b.build(status=chain_status(fail, sigma), sigma=sigma)
+    return b.build(status=chain_status(fail, sigma), sigma=sigma, fail=fail)
 
 
 @primitive
@@ -147,7 +151,8 @@ def PRP_links(b: PlaneBuilder) -> Primitive:
     jb = b.vec("jb", jp1 + r1)
     jp2 = b.vec("jp2", jb - r2)
     s2 = b.let("sv2", (jp2 - pg2.p).dot(u2))
-    sigma = b.let("sigma", fmin(fabs(cr), 1))
+    acr = b.let("acr", fabs(cr))
+    sigma = b.let("sigma", fmin(acr, 1))
     om1, al1, om2, al2 = psig1.dthe, psig1.ddthe, psig2.dthe, psig2.ddthe
     rm1 = b.rotating("r1", r1, om1, al1)
     rm2 = b.rotating("r2", r2, om2, al2)
@@ -177,7 +182,7 @@ def PRP_links(b: PlaneBuilder) -> Primitive:
     b.output("s2", "VARIABLE", v=s2, dv=ds2, ddv=dds2)
     b.output_point("jp2", Motion(jp2, jp2v, jp2a))
     b.output_point("jb", Motion(jb, jp1v + rm1.v, jp1a + rm1.a))
-    return b.build(status=chain_status(cr.eq(0), sigma), sigma=sigma)
+    return b.build(status=chain_status(cr.eq(0), sigma), sigma=sigma, fail=cr.eq(0))
 
 
 @primitive
@@ -195,7 +200,8 @@ def RPR_links(b: PlaneBuilder) -> Primitive:
     q = b.let("q", d.norm())
     ah = b.let("ah", fabs(hh))
     k = b.let("k", q - ah)
-    fail = b.let("fail", either(k < -TOGGLE_SLACK * EPS * fmax(q, ah), q.eq(0)))
+    big = b.let("big", fmax(q, ah))
+    fail = b.let("fail", either(k < -TOGGLE_SLACK * EPS * big, q.eq(0)))
     t = b.let("t", sqrt(fmax(k, 0) * (q + ah)))
     iq = b.let("iq", select(q.eq(0), NAN, 1 / q))
     mt = b.let("mt", minv * t)  # d.u
@@ -205,8 +211,11 @@ def RPR_links(b: PlaneBuilder) -> Primitive:
     r = b.local("r", u, as_, bs)
     # t = |d.u| over the chain's largest length: the line's angle is the direction of d, so it is
     # ill-conditioned at the toggle (d square to the line) and where the pivots nearly meet
-    arm = b.let("arm", fmax(fmax(fabs(ag), fabs(as_)), fmax(fabs(bg), fabs(bs))))
-    sigma = b.let("sigma", select(fail, 0, fmin(t / fmax(q, arm), 1)))
+    arms = [b.let(f"a{k}", fabs(x)) for k, x in enumerate((ag, as_, bg, bs))]
+    arm = b.let("arm", fmax(b.let("arm1", fmax(arms[0], arms[1])), b.let("arm2", fmax(arms[2], arms[3]))))
+    reach = b.let("reach", fmax(q, arm))
+    ratio = b.let("ratio", select(fail, 0, t / reach))
+    sigma = b.let("sigma", fmin(ratio, 1))
     imt = b.let("imt", select(mt.eq(0), NAN, 1 / mt))
     dvn = b.let("dvn", u.cross(dv))  # d'.n
     dvu = b.let("dvu", dv.dot(u))
@@ -217,7 +226,7 @@ def RPR_links(b: PlaneBuilder) -> Primitive:
     b.output("psi", "ANGLE", the=psi, dthe=om, ddthe=al)
     b.output("s", "VARIABLE", v=s, dv=ds, ddv=dds)
     b.output_point("jp", js + b.rotating("r", r, om, al))
-    return b.build(status=chain_status(fail, sigma), sigma=sigma)
+    return b.build(status=chain_status(fail, sigma), sigma=sigma, fail=fail)
 
 
 @primitive
@@ -245,7 +254,8 @@ def PPR_links(b: PlaneBuilder) -> Primitive:
     mu = b.let("mu", m.dot(ux))
     jp1 = b.vec("jp1", pg.p + u1.scaled(s1))
     on_b = b.vec("pb", jp1 + rb)
-    sigma = b.let("sigma", fmin(fabs(cr), 1))
+    acr = b.let("acr", fabs(cr))
+    sigma = b.let("sigma", fmin(acr, 1))
     rma = b.rotating("ra", ra, om, al)
     rmb = b.rotating("rb", rb, om, al)
     # m x ux = 0 differentiated: m' x ux + om (m.ux) = 0, m' = k1 - s1' u1
@@ -274,4 +284,4 @@ def PPR_links(b: PlaneBuilder) -> Primitive:
     b.output_point("jp1", Motion(jp1, jp1v, jp1a))
     b.output("sx", "VARIABLE", v=sgn * mu, dv=sgn * mvu, ddv=sgn * (ma.dot(ux) + om * ux.cross(mv)))
     b.output("jpx", "POINT", **jx)
-    return b.build(status=chain_status(cr.eq(0), sigma), sigma=sigma)
+    return b.build(status=chain_status(cr.eq(0), sigma), sigma=sigma, fail=cr.eq(0))

@@ -17,7 +17,7 @@ from .. import status
 from .directions import angle_direction, link_direction
 from .dsl import NAN, Primitive, atan2, select
 from .dyads import PPR_links, PRP_links, PRR_links, RPR_links, RRR_links
-from .vectors import Motion, PlaneBuilder, primitive
+from .vectors import Motion, PlaneBuilder, Vec, primitive
 
 
 @primitive
@@ -42,6 +42,22 @@ def coupler_point(b: PlaneBuilder) -> Primitive:
     gsi, eta = b.scalars("gsi", "eta")
     r = b.local("r", b.direction("p", phi.the), gsi, eta)
     b.output_point("jc", j0 + b.rotating("r", r, phi.dthe, phi.ddthe))
+    return b.build()
+
+
+@primitive
+def link_point(b: PlaneBuilder) -> Primitive:
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a
+    quarter turn left (linear in the two points: no angle, no trigonometry).
+    """
+    j1, j2 = b.points("j1", "j2")
+    along, across = b.scalars("along", "across")
+    d = b.difference(j1, j2)
+
+    def local(name: str, v: Vec) -> Vec:
+        return b.vec(name, Vec(along * v.x - across * v.y, along * v.y + across * v.x))
+
+    b.output_point("jc", j1 + Motion(local("r", d.p), local("rv", d.v), local("ra", d.a)))
     return b.build()
 
 
@@ -74,7 +90,7 @@ def link_angle(b: PlaneBuilder) -> Primitive:
     th = b.wrapped("th", atan2(d.p.y, d.p.x) + off)
     om, al = b.angle_rates(d, r2)
     b.output("angle", "ANGLE", the=th, dthe=om, ddthe=al)
-    return b.build(status=select(r2.eq(0), status.CANNOT_CLOSE, 0))
+    return b.build(status=select(r2.eq(0), status.CANNOT_CLOSE, 0), fail=r2.eq(0))
 
 
 @primitive
@@ -116,6 +132,7 @@ PRIMITIVES: dict[str, Primitive] = {
         link_angle,
         offset_angle,
         coupler_point,
+        link_point,
         RRR_links,
         PRR_links,
         PRP_links,

@@ -36,6 +36,7 @@ class ExprPrinter:
     or_op = "or"
     calls = {f: f for f in ("sqrt", "atan2", "cos", "sin", "abs", "max", "min")}  # the DSL's functions by their names
     consts: dict[str, str] = {}
+    compares = False  # max and min as a comparison and a conditional expression (else as calls)
 
     def sym(self, name: str) -> str:
         return name
@@ -68,6 +69,8 @@ class ExprPrinter:
         if isinstance(e, Const):
             return self.consts[e.name]
         if isinstance(e, Call):
+            if self.compares and e.fn in ("max", "min"):
+                return self.choice(e)
             return f"{self.calls[e.fn]}({', '.join(self.expr(a) for a in e.args)})"
         if isinstance(e, Neg):
             return "-" + self.wrapped(e.a, self.prec(e.a) <= _PREC["neg"])
@@ -86,6 +89,13 @@ class ExprPrinter:
                 self.wrapped(e.b, self.prec(e.b) < p),
             )
         raise TypeError(f"cannot print {e!r}")
+
+    def choice(self, e: Call) -> str:
+        """max(a, b) as ``b > a ? b : a`` (min with <), parenthesised: Python's choice, a compare
+        and a move in C where fmax is a library call (its operands are names or numbers)."""
+        a, b = (self.expr(x) for x in e.args)
+        op = ">" if e.fn == "max" else "<"
+        return f"({self.select(f'{b} {op} {a}', b, a)})"
 
     def logic(self, e: Logic) -> str:
         p = self.prec(e)
@@ -133,9 +143,10 @@ def masks(prim: Primitive, order: int, or_op: str) -> list[tuple[str, list[tuple
     """Per failing status, the condition on ``st`` and the result fields it makes nan: a chain
     that cannot close (1) every field, a singular position (3) the derivatives."""
     out = []
-    for _, nan_from in MASKS:
+    returned = prim.codes()
+    for code, nan_from in MASKS:
         fields = [(p, f) for p, f, _ in prim.result_fields(order) if nan_from <= field_order(p.kind, f)]
-        if fields:
-            codes = [c for c, n in MASKS if n <= nan_from]
+        if fields and code in returned:
+            codes = [c for c, n in MASKS if n <= nan_from and c in returned]
             out.append((f" {or_op} ".join(f"st == {c}" for c in codes), fields))
     return out

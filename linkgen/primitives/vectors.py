@@ -91,8 +91,10 @@ class PlaneBuilder(Builder):
         return self.vec(name, Vec(gsi * u.x - eta * u.y, gsi * u.y + eta * u.x))
 
     def wrapped(self, name: str, angle: Expr) -> Expr:
-        """Angle wrapped to (-pi, pi]."""
-        return self.let(name, select(angle > PI, angle - 2 * PI, select(angle <= -PI, angle + 2 * PI, angle)))
+        """Angle wrapped to (-pi, pi] (the angle computed once, as ``{name}0``: a C compiler may not
+        merge repeated atan2 calls, which can set errno)."""
+        raw = self.let(f"{name}0", angle)
+        return self.let(name, select(raw > PI, raw - 2 * PI, select(raw <= -PI, raw + 2 * PI, raw)))
 
     def difference(self, j1: Motion, j2: Motion) -> Motion:
         """j2 - j1 with its rates, as d, dv and da."""

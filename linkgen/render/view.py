@@ -83,6 +83,18 @@ class View:
     # strategy at least its largest group's Newton unknowns (its Jacobian is solved as the Add-links' is)
     record_order: int  # derivative order of the records: a resolver needs velocities for its Jacobian
 
+    @property
+    def checks(self) -> bool:
+        """Whether the program reports singular and near-singular steps and every step's
+        conditioning (options.checks; off: positions and rates, status 0 or a failure)."""
+        return self.log.options.checks
+
+    @property
+    def measures(self) -> bool:
+        """Whether the chains measure their conditioning: with the checks, or where a resolver
+        picks its block by it."""
+        return self.checks or bool(self.groups)
+
     def resolver_of_group(self, number: int) -> Group:
         return next(g for g in self.groups if g.group.number == number)
 

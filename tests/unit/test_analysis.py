@@ -29,7 +29,7 @@ def test_two_inputs_have_a_conditioning_only():
 
 def test_the_log_carries_the_facts_and_what_follows_from_them():
     """The parallelogram's chain flips at its change points (branch_at at run time); the
-    resolver's limit positions of sixbar_partial bound its reach (reach_at, and status 91)."""
+    resolver's limit positions of sixbar_partial bound its reach (reach_at, and status 81)."""
     flat = _draft(MECHANISMS / "parallelogram.yaml")
     facts = motion_facts(flat, sweep=False)
     log = with_facts(flat, facts)
@@ -39,8 +39,8 @@ def test_the_log_carries_the_facts_and_what_follows_from_them():
     facts = motion_facts(partial, sweep=False)
     log = with_facts(partial, facts)
     assert log.reach == facts.reach is not None and "reach_at" in log.runtime
-    assert [c.code for c in log.status_codes if "limit position" in c.meaning] == [91]
-    assert 91 not in [c.code for c in partial.status_codes]
+    assert [c.code for c in log.status_codes if "limit position" in c.meaning] == [81]
+    assert 81 not in [c.code for c in partial.status_codes]
 
 
 def test_no_facts_leave_the_draft_as_it_is():

@@ -34,8 +34,8 @@ def _speed(log, value: float) -> float | None:
 def test_the_reach_ends_where_the_speed_follows_the_law_of_a_fold(side):
     log = build_log(str(PARTIAL), sweep=False)
     reach = log.reach
-    assert reach is not None and reach.periodic and getattr(reach, f"{side}_step") == 9
-    assert log.step(9).action == "resolve"
+    assert reach is not None and reach.periodic and getattr(reach, f"{side}_step") == 8
+    assert log.step(8).action == "resolve"
     bound, inward = (reach.low, 1.0) if side == "low" else (reach.high, -1.0)
     free = replace(log, reach=None)
     laws = []

@@ -34,8 +34,8 @@ def test_the_table_says_where_chains_cannot_close():
     log = whole_log(JANSEN)
     text = table(log, assemblies(JANSEN, log, [180.0]))
     assert "6 assemblies" in text.splitlines()[0]
-    assert "step 7 (F) cannot close: 2 branches of the walk end there" in text
-    assert "F (step 7)" in text
+    assert "step 6 (F) cannot close: 2 branches of the walk end there" in text
+    assert "F (step 6)" in text
 
 
 def test_the_json_holds_every_assembly_in_file_units():

@@ -45,7 +45,7 @@ def _caller(prim: Primitive, order: int) -> str:
                          f"v[{k}];")
             k += 1
     lines += [f"{o.kind} out_{o.name};" for o in prim.outputs] + ["double sigma = NAN;", "int st = -1;"]
-    args = [p.name for p in prim.params] + [f"&out_{o.name}" for o in prim.outputs]
+    args = [f"&{p.name}" if p.is_record else p.name for p in prim.params] + [f"&out_{o.name}" for o in prim.outputs]
     if prim.sigma is not None:
         args.append("&sigma")
     call = f"{prim.name}({', '.join(args)});"
@@ -175,9 +175,10 @@ def test_flags_comparisons_and_their_selections_are_ints():
 
 
 def test_a_function_that_cannot_fail_returns_nothing_and_one_that_can_its_status():
-    assert "static void crank_input(" in c_function(PRIMITIVES["crank_input"], 2)
+    assert "static inline void crank_input(" in c_function(PRIMITIVES["crank_input"], 2)
     text = c_function(PRIMITIVES["RRR_links"], 2)
-    head = "static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POINT *jb, double *sigma_out)"
+    head = ("static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, "
+            "int minv, POINT *jb, double *sigma_out)")
     assert head in text and text.rstrip().endswith("return st;\n}")
 
 
@@ -192,7 +193,7 @@ def test_a_parameter_an_order_does_not_read_is_voided(tmp_path: Path):
     text = c_function(prim, 0)
     assert "    (void)k;" in text and "(void)x;" not in text
     main = ("#include <math.h>\n#include <stdio.h>\n" + _records(0) + text
-            + "int main(void)\n{\n    VARIABLE x = {2.5}, y;\n    scaled_rates(x, 3.0, &y);\n"
+            + "int main(void)\n{\n    VARIABLE x = {2.5}, y;\n    scaled_rates(&x, 3.0, &y);\n"
               '    printf("%a\\n", y.v);\n    return 0;\n}\n')
     (tmp_path / "t.c").write_text(main, encoding="utf-8")
     done = subprocess.run([need("gcc"), *CFLAGS, "t.c", "-o", "t"], cwd=tmp_path, capture_output=True, text=True)

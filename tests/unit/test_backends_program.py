@@ -13,7 +13,14 @@ from spelled import ROOT
 from linkgen.backends.c import RUNTIME as C_RUNTIME
 from linkgen.backends.c.printer import c_function
 from linkgen.backends.c.spelling import C
-from linkgen.backends.program import LEVEL, input_lists, runtime_sources, sketch_states, used_primitives
+from linkgen.backends.program import (
+    LEVEL,
+    input_lists,
+    program_primitive,
+    runtime_sources,
+    sketch_states,
+    used_primitives,
+)
 from linkgen.backends.py import RUNTIME as PY_RUNTIME
 from linkgen.backends.py.printer import python_function
 from linkgen.backends.py.spelling import Python
@@ -59,6 +66,21 @@ def test_a_program_carries_the_runtime_its_procedure_needs(key: str, extra: list
         want = [printer(PRIMITIVES[p], v.record_order) for p in used_primitives(v)]
         want += [runtime.source(name) for name in ["status", *extra]]
         assert texts == want
+
+
+@pytest.mark.parametrize("key", ["fourbar", "cylinder"])
+def test_without_checks_the_primitives_drop_theirs_unless_a_resolver_needs_them(key: str):
+    """options.checks off: the chains measure no conditioning, except where a resolver picks its block by it."""
+    v = build_view(build_log(str(ROOT / PATHS[key]), None, None, sweep=False, options={"checks": False}))
+    assert not v.checks and v.measures == bool(v.groups)
+    for p in used_primitives(v):
+        got = program_primitive(v, p)
+        assert got is PRIMITIVES[p] if v.groups else got.sigma is None and got.codes() <= {1}
+        assert program_primitive(view(key), p) is PRIMITIVES[p]  # with the checks (the default)
+    texts = runtime_sources(v, c_function, C_RUNTIME, status=False)
+    assert texts[: len(used_primitives(v))] == [c_function(program_primitive(v, p), v.record_order)
+                                                for p in used_primitives(v)]
+    assert C_RUNTIME.source("status") not in texts
 
 
 @pytest.mark.parametrize("key", ["cylinder", "fallback"])

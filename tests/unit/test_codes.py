@@ -29,17 +29,17 @@ def test_each_failing_step_has_its_reasons():
 
 
 def test_a_resolver_limit_position_has_a_code_of_its_own():
-    """Rows past sixbar_partial's limit positions fail at the resolve step (9) with reason 1."""
+    """Rows past sixbar_partial's limit positions fail at the resolve step (8) with reason 1."""
     log = build_log(str(ROOT / "tests" / "mechanisms" / "sixbar_partial.yaml"), sweep=False)
-    (code,) = [c for c in log.status_codes if c.code == 91]
-    assert log.step(9).action == "resolve" and code.meaning == "step 9 (group1): cannot assemble past a limit position"
+    (code,) = [c for c in log.status_codes if c.code == 81]
+    assert log.step(8).action == "resolve" and code.meaning == "step 8 (group1): cannot assemble past a limit position"
 
 
 def test_a_links_direction_fails_where_its_two_points_coincide():
     log = build_log(str(FIG14), sweep=False, options={"angles": "unit"})
     meaning = {c.code: c.meaning for c in log.status_codes}
-    assert log.step(14).function == "link_direction"
-    assert meaning[141] == "step 14 (ternary): the two points of ternary coincide"
+    assert log.step(10).function == "link_direction"
+    assert meaning[101] == "step 10 (ternary): the two points of ternary coincide"
 
 
 def test_a_fixed_point_resolver_reports_when_it_does_not_contract():

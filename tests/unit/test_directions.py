@@ -16,11 +16,13 @@ from linkgen.pipeline import analyse_file, draft
 from linkgen.steplog import Arg, LJMatrix, Procedure, Step, StepLog, Variable
 
 SAMPLES = Path(__file__).resolve().parents[2] / "samples"
+HERE = Path(__file__).resolve().parent  # slotted_coupler.yaml, slotted_triad.yaml
 
 
 def drafts(name: str, outputs: tuple[str, ...] | None = None) -> tuple[StepLog, StepLog]:
-    """The sample's draft (no motion facts) with angles, and with unit vectors."""
-    _, topo, proc = analyse_file(str(SAMPLES / name / f"{name}.yaml"))
+    """The sample's (or this folder's mechanism's) draft (no motion facts) with angles, and with unit vectors."""
+    path = SAMPLES / name / f"{name}.yaml"
+    _, topo, proc = analyse_file(str(path if path.exists() else HERE / f"{name}.yaml"))
     return draft(topo, proc, outputs), draft(topo, proc, outputs, options={"angles": "unit"})
 
 
@@ -30,14 +32,24 @@ def calls(log: StepLog) -> list[tuple[int, str, tuple[str, ...], tuple[str, ...]
 
 
 def test_an_angle_only_the_outputs_read_becomes_its_direction_under_its_number():
-    """The four-bar: the crank's and rocker's angles (steps 6, 7) are read by the outputs only; the
-    coupler's (step 4) also places P, so it stays and the coupler's direction is a step of its own."""
+    """The four-bar: the crank's, coupler's and rocker's angles (steps 5-7) are read by the outputs only
+    (P is placed from A and B, without an angle)."""
     angle, unit = drafts("fourbar")
-    assert calls(unit)[:5] == calls(angle)[:5]
-    assert calls(unit)[5:] == [(6, "link_direction", ("p_O1", "p_A"), ("u_crank",)),
-                               (7, "link_direction", ("p_O2", "p_B"), ("u_rocker",)),
-                               (8, "link_direction", ("p_A", "p_B"), ("u_coupler",))]
-    step = unit.step(8)
+    assert calls(unit)[:4] == calls(angle)[:4]
+    assert calls(unit)[4:] == [(5, "link_direction", ("p_O1", "p_A"), ("u_crank",)),
+                               (6, "link_direction", ("p_A", "p_B"), ("u_coupler",)),
+                               (7, "link_direction", ("p_O2", "p_B"), ("u_rocker",))]
+
+
+def test_an_angle_another_step_reads_stays_and_its_direction_is_a_step_of_its_own():
+    """The slotted coupler: the coupler's angle (step 4) turns the slot S, so it stays and the coupler's
+    direction is step 12, after the procedure's last (the crank's, rocker's, block's and rod's directions
+    take their angles' numbers, 8-11)."""
+    angle, unit = drafts("slotted_coupler")
+    assert calls(unit)[:7] == calls(angle)[:7] and calls(unit)[3][1:] == ("link_angle", ("p_A", "p_B"),
+                                                                          ("phi_coupler",))
+    step = unit.step(12)
+    assert calls(unit)[11] == (12, "link_direction", ("p_A", "p_B"), ("u_coupler",))
     assert (step.action, step.target, step.pairs, step.links, step.fails) == ("direction", "coupler", ("A", "B"),
                                                                               ("coupler",), True)
     assert [a.value for a in step.args[2:]] == [1.0, 0.0]  # no offset: the link's direction is A to B
@@ -79,11 +91,11 @@ def test_a_chains_line_angle_is_turned_into_its_direction_by_cos_and_sin():
 
 
 def test_a_direction_after_a_resolver_moves_the_fallback_blocks_up():
-    """The Fig. 14 six-bar: the ternary's angle is iterated by the resolver, so its direction is
-    step 14, after the procedure; the fallback blocks (14-53) become 15-54, with their groups'
-    records, and nothing else changes."""
-    angle, unit = drafts("sixbar_fig14")
-    assert calls(unit)[13] == (14, "link_direction", ("p_J2", "p_J4"), ("u_ternary",))
+    """The Fig. 14 six-bar with a slot on its ternary (slotted_triad.yaml): the ternary's angle, once the
+    resolver has placed it, turns the slot, so its direction is step 19, after the procedure; the
+    fallback blocks (19-50) become 20-51, with their groups' records, and nothing else changes."""
+    angle, unit = drafts("slotted_triad")
+    assert calls(unit)[18] == (19, "link_direction", ("p_J2", "p_J4"), ("u_ternary",))
     fallbacks = [s for s in angle.steps if s.variant]
     assert [replace(s, number=s.number + 1) for s in fallbacks] == [s for s in unit.steps if s.variant]
     (g,), (h,) = angle.groups, unit.groups

@@ -39,13 +39,23 @@ def test_rot_gives_the_coordinates_in_a_turned_frame(angle: float, x: float, y: 
     assert rot(angle, x, y) == pytest.approx(expected, abs=1e-15)
 
 
-def test_a_point_of_a_placed_link_is_at_its_offset_in_the_links_frame():
+def test_a_point_of_a_link_with_two_known_pairs_is_linear_in_them():
     proc = _extract(ROOT / "samples" / "fourbar" / "fourbar.yaml")
-    (step,) = [s for s in proc.steps if s.function == "coupler_point"]
-    # P (60, 70) from A (20, 0) = (40, 70), in the frame of the coupler A -> B = (60, 50) / sqrt(6100)
-    assert [a.var for a in step.args[:2]] == ["p_A", "phi_coupler"]
-    assert _arg(step, "gsi") == pytest.approx((40 * 60 + 70 * 50) / math.sqrt(6100), rel=1e-15)
-    assert _arg(step, "eta") == pytest.approx((70 * 60 - 40 * 50) / math.sqrt(6100), rel=1e-15)
+    (step,) = [s for s in proc.steps if s.target == "P"]
+    # P (60, 70) from A (20, 0) = (40, 70), along A -> B = (60, 50) and across it (-50, 60), in units of |AB|^2
+    assert step.function == "link_point" and [a.var for a in step.args[:2]] == ["p_A", "p_B"]
+    assert _arg(step, "along") == pytest.approx((40 * 60 + 70 * 50) / 6100, rel=1e-15)
+    assert _arg(step, "across") == pytest.approx((70 * 60 - 40 * 50) / 6100, rel=1e-15)
+    assert "link_angle" not in {s.function for s in proc.steps if s.number < step.number}  # no angle needed
+
+
+def test_a_point_of_a_link_with_one_known_pair_is_at_its_offset_along_the_links_angle():
+    proc = _extract(ROOT / "samples" / "inverted_slider" / "inverted_slider.yaml")
+    (step,) = [s for s in proc.steps if s.target == "P"]
+    # the lever turns about O2 (0, 0) with its slide S, whose axis points at P: P lies |P - O2| = 120 along it
+    assert step.function == "coupler_point" and [a.var for a in step.args[:2]] == ["p_O2", "psi_S"]
+    assert (_arg(step, "gsi"), _arg(step, "eta")) == pytest.approx((math.hypot(25.143490647704816,
+                                                                              117.33628968928915), 0.0), abs=1e-12)
 
 
 def test_a_moving_guides_line_turns_with_it_and_its_copy_of_the_pair_is_a_point_of_it(slotted: Procedure):
@@ -53,9 +63,9 @@ def test_a_moving_guides_line_turns_with_it_and_its_copy_of_the_pair_is_a_point_
     assert (line.function, line.target, [a.var for a in line.args[:1]]) == ("offset_angle", "S", ["phi_coupler"])
     assert _arg(line, "off") == pytest.approx(math.pi / 2 - math.atan2(50, 60), rel=1e-15)
     (copy,) = [s for s in slotted.steps if s.outputs == ("g_S",)]
-    # S (50, 25) from A (20, 0) = (30, 25) in the frame of the slide axis (0, 1): along 25, to the left -30
-    assert copy.function == "coupler_point" and [a.var for a in copy.args[:2]] == ["p_A", "psi_S"]
-    assert (_arg(copy, "gsi"), _arg(copy, "eta")) == pytest.approx((25.0, -30.0), abs=1e-13)
+    # S (50, 25) is the middle of A (20, 0) and B (80, 50), both known on the coupler
+    assert copy.function == "link_point" and [a.var for a in copy.args[:2]] == ["p_A", "p_B"]
+    assert (_arg(copy, "along"), _arg(copy, "across")) == (0.5, 0.0)
 
 
 def test_a_fixed_guides_line_is_two_constants():

@@ -10,12 +10,15 @@ import pytest
 from linkgen.primitives.dsl import (
     Bin,
     Builder,
+    Call,
     Cmp,
     Neg,
     Num,
     Primitive,
     Sym,
     field_order,
+    fmax,
+    fmin,
     record_fields,
     select,
     wrap,
@@ -140,3 +143,30 @@ def test_a_status_from_displacements_is_taken():
     s = b.record("s", "VARIABLE")
     b.output("f", "VARIABLE", v=s.v, dv=s.dv, ddv=s.ddv)
     assert b.build(status=select(s.v.eq(0), 1, 0)).status is not None
+
+
+def test_unchecked_keeps_only_the_failure_and_drops_the_conditioning():
+    """RRR-like: fail when k < 0, singular (3) or near (4) by sigma; unchecked: 1 where it fails, else 0."""
+    b = Builder("chain", "A made-up chain.")
+    k = b.scalar("k")
+    fail = b.let("fail", k < 0)
+    sig = b.let("sig", 2 * k)
+    b.output("q", "VARIABLE", v=k, dv=k, ddv=k)
+    prim = b.build(status=select(fail, 1, select(sig < 1, 3, select(sig < 2, 4, 0))), sigma=sig, fail=fail)
+    lean = prim.unchecked()
+    assert prim.codes() == {1, 3, 4} and lean.codes() == {1}
+    assert lean.sigma is None and _same(lean.status, select(fail, 1, 0))
+    assert {let.name for let in lean.live(2)} == {"fail"}  # sigma's let is dead without the checks
+    assert _sample().unchecked().status is None  # a function with no failure of its own reports nothing
+    b = Builder("segment", "A made-up angle: fails where its length is 0.")
+    k = b.scalar("k")
+    b.output("q", "VARIABLE", v=k, dv=k, ddv=k)
+    alone = b.build(status=select(k.eq(0), 1, 0))  # a failure alone, not named as fail: kept
+    assert alone.unchecked().status is alone.status
+
+
+def test_max_and_min_take_names_or_numbers_only():
+    x, y = Sym("x"), Sym("y")
+    assert _same(fmax(x, 0), Call("max", (x, Num(0)))) and _same(fmin(x, y), Call("min", (x, y)))
+    with pytest.raises(TypeError, match="let-bind"):
+        fmax(x + y, 1)

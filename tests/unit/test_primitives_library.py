@@ -16,7 +16,7 @@ from linkgen.primitives.dsl import Primitive
 def test_the_library_lists_every_primitive_of_the_three_modules_once_by_its_name():
     defined = {p.name for module in (library, dyads, directions) for p in vars(module).values()
                if isinstance(p, Primitive)}
-    assert set(library.PRIMITIVES) == defined and len(defined) == 13
+    assert set(library.PRIMITIVES) == defined and len(defined) == 14
     assert all(name == p.name for name, p in library.PRIMITIVES.items())
     # the placing functions first, then the chains, then the residual (the programs paste them in this order)
     order = list(library.PRIMITIVES)
@@ -71,6 +71,16 @@ def test_coupler_point_hand():
     # R(90 deg)(2, 1) = (-1, 2); omega 2: v = 2 (-2, -1), a = -4 (-1, 2)
     (got,) = py2("coupler_point", (1.0, 1.0, 0, 0, 0, 0), (PI / 2, 2.0, 0.0), 2.0, 1.0)[2]
     assert got == approx((0.0, 3.0, -4.0, -2.0, 4.0, -8.0))
+
+
+def test_link_point_hand():
+    # d = (3, 4), n = (-4, 3): jc = (1, 2) + (1.5, 2) + (-4, 3); d' = (1, 0), n' = (0, 1); d'' = (0, 1), n'' = (-1, 0)
+    (got,) = py2("link_point", (1.0, 2.0, 0, 0, 0, 0), (4.0, 6.0, 1.0, 0.0, 0.0, 1.0), 0.5, 1.0)[2]
+    assert got == approx((-1.5, 7.0, 0.5, 1.0, -1.0, 0.5))
+    # a point on a crank turning at 2 about j1, as coupler_point places it: the same motion
+    (angled,) = py2("coupler_point", (1.0, 1.0, 0, 0, 0, 0), (PI / 2, 2.0, 0.0), 2.0, 1.0)[2]
+    (linear,) = py2("link_point", (1.0, 1.0, 0, 0, 0, 0), (1.0, 2.0, -2.0, 0.0, 0.0, -4.0), 2.0, 1.0)[2]
+    assert linear == approx(angled)
 
 
 def test_slider_input_hand():

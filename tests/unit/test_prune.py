@@ -36,14 +36,14 @@ def test_prune_after_analysis_equals_analysis_after_prune(name, outputs):
 
 
 def test_the_reach_of_a_pruned_log_is_its_own():
-    """stephenson_circuit's six-bar stops below where its second dyad (step 6) cannot close, its
+    """stephenson_circuit's six-bar stops below where its second dyad (step 5) cannot close, its
     first four-bar (steps 1-3) where its own chain cannot: farther."""
     whole = build_log(str(MECHANISMS / "stephenson_circuit.yaml"), sweep=False)
     four_bar = build_log(str(MECHANISMS / "stephenson_circuit.yaml"), ("B",), sweep=False)
     assert whole.reach is not None and four_bar.reach is not None
-    assert (whole.reach.low_step, four_bar.reach.low_step) == (6, 3)
+    assert (whole.reach.low_step, four_bar.reach.low_step) == (5, 3)
     assert four_bar.reach.low > whole.reach.low and four_bar.reach.high == whole.reach.high
-    assert {g.step for g in four_bar.gaps} == {3} and {g.step for g in whole.gaps} == {3, 6}
+    assert {g.step for g in four_bar.gaps} == {3} and {g.step for g in whole.gaps} == {3, 5}
 
 
 def test_one_pair_of_the_six_bar_drops_the_resolver_and_what_it_needs():

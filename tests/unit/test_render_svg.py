@@ -49,7 +49,7 @@ def test_each_pair_and_point_is_labelled_with_the_step_that_finds_it():
     found = {p: s.number for s in log.steps for p in s.determines}
     found["P"] = next(s.number for s in log.steps if s.target == "P")
     assert [f"{p} ({found[p]})" for p in ("O1", "A", "B", "O2", "P")] == [t for t in labels if t and "(" in t][:5]
-    assert found == {"O1": 1, "O2": 1, "A": 2, "B": 3, "P": 5}
+    assert found == {"O1": 1, "O2": 1, "A": 2, "B": 3, "P": 4}
 
 
 def test_add_links_are_dotted_lines_between_their_pairs():

@@ -21,11 +21,11 @@ def _view(path: str, order: int | None = None) -> View:
 
 def test_fourbar_constants_records_and_status_steps():
     v = _view(FOURBAR)
-    # steps: 1 frame, 2 crank_input, 3 RRR_links (B), 4 link_angle coupler, 5 coupler_point P, 6-7 link_angle
-    # crank and rocker.  The frame's angle is a constant no step reads: the program leaves it out.
+    # steps: 1 frame, 2 crank_input, 3 RRR_links (B), 4 link_point P, 5-7 link_angle crank, coupler and
+    # rocker.  The frame's angle is a constant no step reads: the program leaves it out.
     assert [c.name for c in v.constants] == ["p_O1", "p_O2", "ref_O1", "l_coupler", "l_rocker"]
-    assert [r.name for r in v.records] == ["in1", "p_A", "p_B", "phi_coupler", "p_P", "phi_crank", "phi_rocker"]
-    assert v.sigma_steps == (3, 4, 6, 7)  # the chain and the link angles report a status
+    assert [r.name for r in v.records] == ["in1", "p_A", "p_B", "p_P", "phi_crank", "phi_coupler", "phi_rocker"]
+    assert v.sigma_steps == (3, 5, 6, 7)  # the chain and the link angles report a status
     assert [s.number for s in v.run] == [1, 2, 3, 4, 5, 6, 7] and v.last_step == 7
     assert v.groups == v.blocks == () and v.nmax == 1
 
@@ -49,10 +49,10 @@ def test_a_resolver_group_is_its_chosen_block_then_its_fallbacks():
     assert [b.index for b in v.blocks] == list(range(len(v.blocks)))
     assert all((b.slot, b.first, b.count) == (0, 0, len(v.blocks)) for b in v.blocks)
     assert v.blocks_of(v.groups[0]) == v.blocks and v.resolver(group.step) is v.groups[0]
-    # group 1 iterates steps 4-8 (3 installs its Add-link, 9 resolves it, 10-13 are link angles, fallbacks
+    # group 1 iterates steps 4-7 (3 installs its Add-link, 8 resolves it, 9-13 are link angles, fallbacks
     # from 14 on): the run is the steps outside its block, the resolve step standing for the block
-    assert group.steps == (4, 5, 6, 7, 8) and group.step == 9
-    assert [s.number for s in v.run] == [1, 2, 3, 9, 10, 11, 12, 13]
+    assert group.steps == (4, 5, 6, 7) and group.step == 8
+    assert [s.number for s in v.run] == [1, 2, 3, 8, 9, 10, 11, 12, 13]
     # the largest block state: one Add-link length, the branches of its two 3R chains, an orientation
     assert len(group.add_links) == 1 and len(group.branches) == 2 and v.nmax == 4
 

@@ -28,6 +28,12 @@ def render(view: View, spell: C, template: Template) -> dict[str, bytes]:
     return files
 
 
+def _reads_reasons(view: View) -> bool:
+    """Whether NAME.c reads a status code's reason (reason_of): the resolvers' row driver and
+    publish() do, the latter where a singular row's rates are nan."""
+    return bool(view.groups) or (view.checks and view.log.order > 0)
+
+
 def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
     log = view.log
     upper = log.name.upper()
@@ -48,7 +54,8 @@ def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
         "NAME.h": template("NAME.h.j2", upper=upper, n_columns=len(columns), point_fields=fields["point"],
                            angle_fields=fields["angle"], slide_fields=fields["slide"],
                            direction_fields=fields["direction"]),
-        "NAME.c": template("NAME.c.j2", upper=upper, runtime=runtime_sources(view, c_function, RUNTIME),
+        "NAME.c": template("NAME.c.j2", upper=upper,
+                           runtime=runtime_sources(view, c_function, RUNTIME, status=_reads_reasons(view)),
                            record_fields=record_fields, sketch_in=lists["sketch"],
                            sketch_a=", ".join("{" + a + "}" for a in sketch_states(view, spell)),
                            column_fields=[f"{spell.ident(c.owner)}.{c.field}" for c in view.cells],

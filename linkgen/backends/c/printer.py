@@ -14,19 +14,26 @@ def field(kind: str, name: str) -> str:
 
 
 class CExprs(RecordExprs):
+    """Record parameters are pointers to const records (``j1->P.x``)."""
+
     calls = {**RecordExprs.calls, "abs": "fabs", "max": "fmax", "min": "fmin"}
     consts = {"eps": "DBL_EPSILON", "nan": "NAN", "pi": "3.141592653589793"}
     field = staticmethod(field)
+    compares = True
+
+    def __init__(self, prim: Primitive):
+        self.fields = {f"{p.name}_{f}": f"{p.name}->{field(p.kind, f)}"
+                       for p in prim.params if p.is_record for f in record_fields(p.kind, 2)}
 
     def select(self, cond: str, a: str, b: str) -> str:
         return f"{cond} ? {a} : {b}"
 
     def expr(self, e: Expr) -> str:
         """As every language, but a whole number given to a math function is a real literal (0.0):
-        under <tgmath.h> an int argument would make fmax(k, 0) a double call for a float k."""
+        under <tgmath.h> an int argument would make a call a double call for a float operand."""
         if isinstance(e, Call):
-            args = [Num(float(a.value)) if isinstance(a, Num) and isinstance(a.value, int) else a for a in e.args]
-            return f"{self.calls[e.fn]}({', '.join(self.expr(a) for a in args)})"
+            args = tuple(Num(float(a.value)) if isinstance(a, Num) and isinstance(a.value, int) else a for a in e.args)
+            e = Call(e.fn, args)
         return super().expr(e)
 
 
@@ -48,14 +55,15 @@ def _c_type(kind: str) -> str:
 
 
 def c_function(prim: Primitive, order: int) -> str:
-    """A static C99 function shaped like mech.cpp: records by value, outputs by pointer,
-    the status as return value (void when the function cannot fail)."""
+    """A static C99 function shaped like mech.cpp: records in by pointer to const (no copy of
+    a record per call), outputs by pointer, the status as return value (void when the
+    function cannot fail).  Inline: a call with the sketch's constants folds them."""
     exprs = CExprs(prim)
-    params = [f"{_c_type(p.kind)} {p.name}" for p in prim.params]
+    params = [f"const {p.kind} *{p.name}" if p.is_record else f"{_c_type(p.kind)} {p.name}" for p in prim.params]
     params += [f"{p.kind} *{p.name}" for p in prim.outputs]
     if prim.sigma is not None:
         params.append("double *sigma_out")
-    head = "static int" if prim.status is not None else "static void"
+    head = "static inline int" if prim.status is not None else "static inline void"
     lines = [f"/* {prim.doc} */", f"{head} {prim.name}({', '.join(params)})", "{"]
     used = prim.params_used(order)
     for p in prim.params:

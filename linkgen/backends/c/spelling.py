@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from ...primitives import PRIMITIVES
 from ...steplog import Step, Variable, held
 from ..spelling import Spelling, Syntax
 from .printer import field
@@ -28,8 +27,13 @@ class C(Spelling):
         sources = ("in", "din", "ddin")
         return " ".join(f"w->{var.name}.{f} = {src}[{k}];" for f, src in zip(self.fields(var.kind), sources))
 
+    def exit(self, code: str) -> str:
+        """The statement that ends a row with a failure's code: through failed() where run() publishes
+        its rows, else back to the resolvers' row driver."""
+        return f"return {code};" if self.log.groups else f"return failed(w, out, {code});"
+
     def reach_fail(self, low: int, high: int) -> list[str]:
-        return [f"st = {self.reach_call('in[0]')};", f"if (st != 0) return st < 0 ? {low} : {high};"]
+        return [f"st = {self.reach_call('in[0]')};", f"if (st != 0) {self.exit(f'st < 0 ? {low} : {high}')}"]
 
     def initializer(self, v: Variable) -> str:
         """Braced initializer of a constant record (derivatives zero)."""
@@ -41,8 +45,8 @@ class C(Spelling):
 
     def call(self, step: Step, scope: Group | None) -> list[str]:
         """A step's call; a failing chain ends the row (inside a resolver block: the block's pass)."""
-        prim = PRIMITIVES[step.function]
-        args = [self.arg(a, scope, step) for a in step.args]
+        prim = self.primitives[step.function]
+        args = [("&" if a.kind == "var" else "") + self.arg(a, scope, step) for a in step.args]
         args += [f"&{self.ref(o, scope)}" for o in step.outputs]
         if prim.sigma is not None:
             args.append(f"&{self.sigma(step)}")
@@ -52,9 +56,9 @@ class C(Spelling):
         if prim.status is None:
             return [*head, text]
         if scope is None:
-            return [*head, f"st = {text}", f"if (st == 1) return {self.status_code(step, 1)};",
-                    self.note("st", step)]
-        lines = [*head, f"st = {text}", "if (st == 1) return 1;", f"if (live) {self.note('st', step)}"]
+            return [*head, f"st = {text}", f"if (st == 1) {self.exit(str(self.status_code(step, 1)))}",
+                    *self.notes("st", step)]
+        lines = [*head, f"st = {text}", "if (st == 1) return 1;", *(f"if (live) {n}" for n in self.notes("st", step))]
         if prim.sigma is not None:
             lines.append(f"w->chains = fmin(w->chains, {self.sigma(step)});")
         return lines

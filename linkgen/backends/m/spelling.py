@@ -5,7 +5,6 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from ... import status
-from ...primitives import PRIMITIVES
 from ...primitives.dsl import record_fields
 from ...steplog import Step, Variable
 from ..spelling import Spelling, Syntax
@@ -56,7 +55,7 @@ class Octave(Spelling):
 
     def call(self, step: Step, scope: Group | None) -> list[str]:
         """A step's call; a failing chain ends the row (inside a resolver block: the block's pass)."""
-        prim = PRIMITIVES[step.function]
+        prim = self.primitives[step.function]
         args = ", ".join(self.arg(a, scope, step) for a in step.args)
         targets = [self.ref(o, scope) for o in step.outputs]
         if prim.status is not None:
@@ -69,9 +68,9 @@ class Octave(Spelling):
             return lines
         if scope is None:
             return lines + ["if st == 1", f"    status = {self.status_code(step, 1)};", "    return;", "end",
-                            self.note("st", step)]
-        lines += ["if st == 1", "    st = 1;", "    res = [];", "    return;", "end", "if live",
-                  f"    {self.note('st', step)}", "end"]
+                            *self.notes("st", step)]
+        lines += ["if st == 1", "    st = 1;", "    res = [];", "    return;", "end"]
+        lines += [line for n in self.notes("st", step) for line in ("if live", f"    {n}", "end")]
         if prim.sigma is not None:
             lines.append(f"w.chains = min(w.chains, {self.sigma(step)});")
         return lines

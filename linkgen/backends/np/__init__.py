@@ -22,9 +22,10 @@ FAST = "_1"  # the suffix of the primitives and resolver blocks at order 1 (a re
 
 
 @functools.cache
-def printed(name: str, order: int, suffix: str = "") -> str:
-    """A primitive on arrays of rows at an order (printed once: the evaluator renders many logs)."""
-    return numpy_function(PRIMITIVES[name], order, suffix)
+def printed(name: str, order: int, suffix: str = "", checks: bool = True) -> str:
+    """A primitive on arrays of rows at an order (named with the suffix), with its checks or without
+    (printed once: the evaluator renders many logs)."""
+    return numpy_function(PRIMITIVES[name] if checks else PRIMITIVES[name].unchecked(), order, suffix)
 
 
 def fast(view: View) -> str:
@@ -47,8 +48,8 @@ def runtime_sources(view: View) -> list[str]:
     branch_at and reach_at where the procedure needs them, and the row driver; with resolver
     groups the resolver on lanes of rows and the sweep that solves the rows in order."""
     log = view.log
-    texts = [printed(p, view.record_order) for p in used_primitives(view)]
-    texts += [printed(p, 1, FAST) for p in fast_primitives(view)]
+    texts = [printed(p, view.record_order, "", view.measures) for p in used_primitives(view)]
+    texts += [printed(p, 1, FAST, view.measures) for p in fast_primitives(view)]
     if any("cos_sin(" in text for text in texts):
         texts.append(RUNTIME.source("trig"))
     texts.append(RUNTIME.source("status"))

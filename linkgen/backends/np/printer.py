@@ -35,6 +35,7 @@ class NumpyExprs(PythonExprs):
              "min": "np.minimum"}
     and_op = "&"
     or_op = "|"
+    compares = False
 
     def __init__(self) -> None:
         self.names: dict[int, str] = {}  # id of a node computed into a temporary -> its name

@@ -79,12 +79,15 @@ class Numpy(Python):
         """A step's conditioning on the block, in the list the block's steps fill."""
         return f"sigma[{step.number}]"
 
-    @staticmethod
-    def codes(step: Step) -> str:
+    def codes(self, step: Step) -> str:
         """A step's (status, row code) pairs in the order they prevail: a chain that cannot close,
-        a singular position, a near-singular one."""
-        pairs = [(r, status.code(step.number, r)) for r in (status.CANNOT_CLOSE, status.SINGULAR, status.NEAR_SINGULAR)]
-        return "(" + ", ".join(f"({r}, {c})" for r, c in pairs) + ")"
+        a singular position, a near-singular one (those its function returns; a resolve step's, all
+        three with the checks, else the first)."""
+        every = (status.CANNOT_CLOSE, status.SINGULAR, status.NEAR_SINGULAR)
+        returned = self.primitives[step.function].codes() if step.function else every if self.checks else every[:1]
+        pairs = [(r, status.code(step.number, r)) for r in (status.CANNOT_CLOSE, status.SINGULAR, status.NEAR_SINGULAR)
+                 if r in returned]
+        return "(" + ", ".join(f"({r}, {c})" for r, c in pairs) + ("," if len(pairs) == 1 else "") + ")"
 
     def sign_measure(self, b: BranchSign) -> str:
         """The expression whose sign is a chain's branch in a solved configuration (on arrays)."""
@@ -128,7 +131,7 @@ class Numpy(Python):
     def call(self, step: Step, scope: Group | None, suffix: str = "") -> list[str]:
         """A step's call on a block of rows (to the primitive named with the suffix); one that can
         fail reports its status and codes."""
-        prim = PRIMITIVES[step.function]
+        prim = self.primitives[step.function]
         args = ", ".join(self.arg(a, scope, step) for a in step.args)
         targets = ", ".join(self.ref(o, scope) for o in step.outputs)
         if prim.status is None:

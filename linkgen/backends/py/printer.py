@@ -9,6 +9,7 @@ from ...primitives.printers import MASKS, ExprPrinter
 
 class PythonExprs(ExprPrinter):
     consts = {"eps": "EPS", "nan": "NAN", "pi": "PI"}
+    compares = True  # as max() and min() choose, without their call
 
     def select(self, cond: str, a: str, b: str) -> str:
         return f"{a} if {cond} else {b}"
@@ -60,7 +61,7 @@ def python_function(prim: Primitive, order: int) -> str:
         if prim.sigma is not None and exprs.expr(prim.sigma) != "sigma":
             lines.append(f"    sigma = {exprs.expr(prim.sigma)}")
         for code, nan_from in MASKS:
-            if nan_from <= order:
+            if nan_from <= order and code in prim.codes():
                 values = ", ".join(head + _result_tuples(prim, order, exprs, nan_from))
                 lines.append(f"    if st == {code}:")
                 lines.append(f"        return {values}")

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from ...primitives import PRIMITIVES
 from ...steplog import Step, Variable
 from ..spelling import Spelling, Syntax
 
@@ -35,7 +34,7 @@ class Python(Spelling):
 
     def call(self, step: Step, scope: Group | None) -> list[str]:
         """A step's call; a failing chain ends the row (inside a resolver block: the block's pass)."""
-        prim = PRIMITIVES[step.function]
+        prim = self.primitives[step.function]
         args = ", ".join(self.arg(a, scope, step) for a in step.args)
         targets = [self.ref(o, scope) for o in step.outputs]
         if prim.status is None:
@@ -43,9 +42,10 @@ class Python(Spelling):
         head = ["st"] + ([self.sigma(step)] if prim.sigma is not None else [])
         lines = [f"{', '.join(head + targets)} = {step.function}({args})"]
         if scope is None:
-            return lines + ["if st == 1:", f"    return {self.status_code(step, 1)}",
-                            self.note("st", step)]
-        lines += ["if st == 1:", "    return 1, None", "if live:", f"    {self.note('st', step)}"]
+            notes = [line for n in self.notes("st", step) for line in ("if st:", f"    {n}")]  # a call saved a row
+            return lines + ["if st == 1:", f"    return {self.status_code(step, 1)}", *notes]
+        lines += ["if st == 1:", "    return 1, None"]
+        lines += [line for n in self.notes("st", step) for line in ("if live:", f"    {n}")]
         if prim.sigma is not None:
             lines.append(f"w.chains = min(w.chains, {self.sigma(step)})")
         return lines

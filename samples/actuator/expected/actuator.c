@@ -12,16 +12,17 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
-static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
-    const double dvx = j2.DP.x - j1.DP.x;
-    const double dvy = j2.DP.y - j1.DP.y;
-    const double dax = j2.DDP.x - j1.DDP.x;
-    const double day = j2.DDP.y - j1.DDP.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
     const double r2 = dx * dx + dy * dy;
-    const double th = atan2(dy, dx) + off > 3.141592653589793 ? atan2(dy, dx) + off - 2 * 3.141592653589793 : atan2(dy, dx) + off <= -3.141592653589793 ? atan2(dy, dx) + off + 2 * 3.141592653589793 : atan2(dy, dx) + off;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     const double ir2 = r2 == 0 ? NAN : 1 / r2;
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
@@ -30,74 +31,78 @@ static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
     angle->dthe = om;
     angle->ddthe = al;
     if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; }
-    if (st == 1 || st == 3) { angle->dthe = NAN; angle->ddthe = NAN; }
     return st;
 }
 
-/* Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi. */
-static void coupler_point(POINT j0, ANGLE phi, double gsi, double eta, POINT *jc)
+/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
+static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
 {
-    const double cp = cos(phi.the);
-    const double sp = sin(phi.the);
-    const double rx = gsi * cp - eta * sp;
-    const double ry = gsi * sp + eta * cp;
-    const double rvx = -phi.dthe * ry;
-    const double rvy = phi.dthe * rx;
-    const double rax = -phi.ddthe * ry - phi.dthe * phi.dthe * rx;
-    const double ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
-    jc->P.x = j0.P.x + rx;
-    jc->P.y = j0.P.y + ry;
-    jc->DP.x = j0.DP.x + rvx;
-    jc->DP.y = j0.DP.y + rvy;
-    jc->DDP.x = j0.DDP.x + rax;
-    jc->DDP.y = j0.DDP.y + ray;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
+    const double rx = along * dx - across * dy;
+    const double ry = along * dy + across * dx;
+    const double rvx = along * dvx - across * dvy;
+    const double rvy = along * dvy + across * dvx;
+    const double rax = along * dax - across * day;
+    const double ray = along * day + across * dax;
+    jc->P.x = j1->P.x + rx;
+    jc->P.y = j1->P.y + ry;
+    jc->DP.x = j1->DP.x + rvx;
+    jc->DP.y = j1->DP.y + rvy;
+    jc->DDP.x = j1->DDP.x + rax;
+    jc->DDP.y = j1->DDP.y + ray;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
-static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POINT *jb, double *sigma_out)
+static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
     const double q = sqrt(dx * dx + dy * dy);
     const double iq = q == 0 ? NAN : 1 / q;
     const double ux = dx * iq;
     const double uy = dy * iq;
-    const double hi = fmax(l1.v, l2.v);
-    const double lo = fmin(l1.v, l2.v);
-    const double x = fmax(hi, q);
-    const double z = fmin(lo, q);
+    const double hi = (l2->v > l1->v ? l2->v : l1->v);
+    const double lo = (l2->v < l1->v ? l2->v : l1->v);
+    const double x = (q > hi ? q : hi);
+    const double z = (q < lo ? q : lo);
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
     const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
-    const double kk = fmax(k, 0.0);
+    const double kk = (0.0 > k ? 0.0 : k);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
-    const double a = (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2;
-    const double a2 = (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2;
-    const double flat = q >= hi ? (l1.v + (q - l2.v)) / 2 : l1.v >= l2.v ? (l1.v + (q + l2.v)) / 2 : (q - (l1.v + l2.v)) / 2;
+    const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double flat = q >= hi ? (l1->v + (q - l2->v)) / 2 : l1->v >= l2->v ? (l1->v + (q + l2->v)) / 2 : (q - (l1->v + l2->v)) / 2;
     const double at = k > 0 ? a : flat;
     const double hn = minv * h;
     const double e1x = at * ux - hn * uy;
     const double e1y = at * uy + hn * ux;
-    const double sigma = fail ? 0 : fmin(area4 / (2 * l1.v * l2.v), 1.0);
+    const double ratio = fail ? 0 : area4 * (0.5 / (l1->v * l2->v));
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double e2x = -a2 * ux - hn * uy;
     const double e2y = -a2 * uy + hn * ux;
     const double ihq = hn == 0 ? NAN : 1 / (hn * q);
-    const double r1v = l1.v * l1.dv + (e1x * j1.DP.x + e1y * j1.DP.y);
-    const double r2v = l2.v * l2.dv + (e2x * j2.DP.x + e2y * j2.DP.y);
+    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
+    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
     const double buv = (r1v - r2v) * iq;
     const double bnv = (a2 * r1v + a * r2v) * ihq;
     const double bvx = buv * ux - bnv * uy;
     const double bvy = buv * uy + bnv * ux;
-    const double r1a = l1.v * l1.ddv + l1.dv * l1.dv - ((bvx - j1.DP.x) * (bvx - j1.DP.x) + (bvy - j1.DP.y) * (bvy - j1.DP.y)) + (e1x * j1.DDP.x + e1y * j1.DDP.y);
-    const double r2a = l2.v * l2.ddv + l2.dv * l2.dv - ((bvx - j2.DP.x) * (bvx - j2.DP.x) + (bvy - j2.DP.y) * (bvy - j2.DP.y)) + (e2x * j2.DDP.x + e2y * j2.DDP.y);
+    const double r1a = l1->v * l1->ddv + l1->dv * l1->dv - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y)) + (e1x * j1->DDP.x + e1y * j1->DDP.y);
+    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y)) + (e2x * j2->DDP.x + e2y * j2->DDP.y);
     const double bua = (r1a - r2a) * iq;
     const double bna = (a2 * r1a + a * r2a) * ihq;
     const double bax = bua * ux - bna * uy;
     const double bay = bua * uy + bna * ux;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
-    jb->P.x = j1.P.x + e1x;
-    jb->P.y = j1.P.y + e1y;
+    jb->P.x = j1->P.x + e1x;
+    jb->P.y = j1->P.y + e1y;
     jb->DP.x = bvx;
     jb->DP.y = bvy;
     jb->DDP.x = bax;
@@ -109,20 +114,21 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
 }
 
 /* RPR chain: a guide link turning about jg and a slider link turning about js slide along one line; (ag, bg) and (as, bs) are the pair's reference point seen from jg and js in the line's frame.  Gives the line angle psi, the displacement s and the pair's slider point jp. */
-static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out)
+static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out)
 {
-    const double dx = js.P.x - jg.P.x;
-    const double dy = js.P.y - jg.P.y;
-    const double dvx = js.DP.x - jg.DP.x;
-    const double dvy = js.DP.y - jg.DP.y;
-    const double dax = js.DDP.x - jg.DDP.x;
-    const double day = js.DDP.y - jg.DDP.y;
+    const double dx = js->P.x - jg->P.x;
+    const double dy = js->P.y - jg->P.y;
+    const double dvx = js->DP.x - jg->DP.x;
+    const double dvy = js->DP.y - jg->DP.y;
+    const double dax = js->DDP.x - jg->DDP.x;
+    const double day = js->DDP.y - jg->DDP.y;
     const double hh = bg - bs;
     const double q = sqrt(dx * dx + dy * dy);
     const double ah = fabs(hh);
     const double k = q - ah;
-    const int fail = k < -8 * DBL_EPSILON * fmax(q, ah) || q == 0;
-    const double t = sqrt(fmax(k, 0.0) * (q + ah));
+    const double big = (ah > q ? ah : q);
+    const int fail = k < -8 * DBL_EPSILON * big || q == 0;
+    const double t = sqrt((0.0 > k ? 0.0 : k) * (q + ah));
     const double iq = q == 0 ? NAN : 1 / q;
     const double mt = minv * t;
     const double ux = (mt * dx + hh * dy) * iq * iq;
@@ -131,8 +137,16 @@ static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, doubl
     const double sv = mt + (as_ - ag);
     const double rx = as_ * ux - bs * uy;
     const double ry = as_ * uy + bs * ux;
-    const double arm = fmax(fmax(fabs(ag), fabs(as_)), fmax(fabs(bg), fabs(bs)));
-    const double sigma = fail ? 0 : fmin(t / fmax(q, arm), 1.0);
+    const double a0 = fabs(ag);
+    const double a1 = fabs(as_);
+    const double a2 = fabs(bg);
+    const double a3 = fabs(bs);
+    const double arm1 = (a1 > a0 ? a1 : a0);
+    const double arm2 = (a3 > a2 ? a3 : a2);
+    const double arm = (arm2 > arm1 ? arm2 : arm1);
+    const double reach = (arm > q ? arm : q);
+    const double ratio = fail ? 0 : t / reach;
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double imt = mt == 0 ? NAN : 1 / mt;
     const double dvn = ux * dvy - uy * dvx;
     const double dvu = dvx * ux + dvy * uy;
@@ -151,12 +165,12 @@ static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, doubl
     s->v = sv;
     s->dv = ds;
     s->ddv = dds;
-    jp->P.x = js.P.x + rx;
-    jp->P.y = js.P.y + ry;
-    jp->DP.x = js.DP.x + rvx;
-    jp->DP.y = js.DP.y + rvy;
-    jp->DDP.x = js.DDP.x + rax;
-    jp->DDP.y = js.DDP.y + ray;
+    jp->P.x = js->P.x + rx;
+    jp->P.y = js->P.y + ry;
+    jp->DP.x = js->DP.x + rvx;
+    jp->DP.y = js->DP.y + rvy;
+    jp->DDP.x = js->DDP.x + rax;
+    jp->DDP.y = js->DDP.y + ray;
     *sigma_out = sigma;
     if (st == 1) { psi->the = NAN; psi->dthe = NAN; psi->ddthe = NAN; s->v = NAN; s->dv = NAN; s->ddv = NAN; jp->P.x = NAN; jp->P.y = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; }
     if (st == 1 || st == 3) { psi->dthe = NAN; psi->ddthe = NAN; s->dv = NAN; s->ddv = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; }
@@ -189,10 +203,10 @@ typedef struct {
     VARIABLE s_C;
     POINT p_C;
     POINT p_M;
-    ANGLE phi_bucket;
     POINT p_tip;
     ANGLE phi_side_link;
     ANGLE phi_power_link;
+    ANGLE phi_bucket;
     double sigma[ACTUATOR_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
@@ -202,61 +216,6 @@ static void note(work *w, int st, int singular, int near)
 {
     if (st == 3 && !w->singular) w->singular = singular;
     if (st == 4 && !w->near) w->near = near;
-}
-
-/* The procedure of actuator.md, step by step. */
-static int run(work *w, const double in[], const double din[], const double ddin[])
-{
-    int st;
-
-    w->singular = 0;
-    w->near = 0;
-    for (st = 0; st <= ACTUATOR_N_STEPS; st++) w->sigma[st] = 1.0;
-    w->in1.v = in[0]; w->in1.dv = din[0]; w->in1.ddv = ddin[0];
-
-    /* Step 1: fixed, stick. link stick is the frame: its pairs are fixed */
-
-
-    /* Step 2: RRR_links, K (branch -1). K is joined to the known R by side_link and to the known S0 by d_S0_K: a 3R two-link chain with both ends known */
-    st = RRR_links(p_R, p_S0, l_side_link, w->in1, -1, &w->p_K, &w->sigma[2]);
-    if (st == 1) return 21;
-    note(w, st, 23, -24);
-
-
-    /* Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known */
-    st = RPR_links(p_S0, w->p_K, 850.0, 0.0, -850.0, 0.0, 1, &w->psi_C, &w->s_C, &w->p_C, &w->sigma[3]);
-    if (st == 1) return 31;
-    note(w, st, 33, -34);
-
-
-    /* Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_K, p_Q, l_power_link, l_bucket, 1, &w->p_M, &w->sigma[4]);
-    if (st == 1) return 41;
-    note(w, st, 43, -44);
-
-
-    /* Step 5: link_angle, bucket. Q and M of link bucket are known, so its angle is */
-    st = link_angle(p_Q, w->p_M, 0.0, &w->phi_bucket);
-    if (st == 1) return 51;
-    note(w, st, 53, -54);
-
-
-    /* Step 6: coupler_point, tip. point tip of link bucket */
-    coupler_point(p_Q, w->phi_bucket, -550.5882352941176, -1177.6470588235293, &w->p_tip);
-
-
-    /* Step 7: link_angle, side_link. R and K of link side_link are known, so its angle is */
-    st = link_angle(p_R, w->p_K, 0.0, &w->phi_side_link);
-    if (st == 1) return 71;
-    note(w, st, 73, -74);
-
-
-    /* Step 8: link_angle, power_link. K and M of link power_link are known, so its angle is */
-    st = link_angle(w->p_K, w->p_M, 0.0, &w->phi_power_link);
-    if (st == 1) return 81;
-    note(w, st, 83, -84);
-
-    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -327,16 +286,22 @@ static void no_outputs(actuator_state *out)
     out->bucket.alpha = NAN;
 }
 
-/* Copy the records into the public state, with the status rules of the CSV. */
+/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
+static int failed(const work *w, actuator_state *out, int code)
+{
+    int k;
+    out->status = code;
+    for (k = 0; k <= ACTUATOR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    no_outputs(out);
+    return code;
+}
+
+/* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, actuator_state *out)
 {
     int k;
     out->status = code;
     for (k = 0; k <= ACTUATOR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (reason_of(code) == 1 || reason_of(code) == 2) {
-        no_outputs(out);
-        return;
-    }
     out->S0.x = -2000.0;
     out->S0.y = 300.0;
     out->S0.vx = 0.0;
@@ -446,6 +411,64 @@ static void publish(const work *w, int code, actuator_state *out)
     }
 }
 
+/* The procedure of actuator.md, step by step: a row that fails ends in failed(), a computed
+   one in publish(). */
+static int run(work *w, const double in[], const double din[], const double ddin[], actuator_state *out)
+{
+    int st;
+
+    w->singular = 0;
+    w->near = 0;
+    for (st = 0; st <= ACTUATOR_N_STEPS; st++) w->sigma[st] = 1.0;
+    w->in1.v = in[0]; w->in1.dv = din[0]; w->in1.ddv = ddin[0];
+
+    /* Step 1: fixed, stick. link stick is the frame: its pairs are fixed */
+
+
+    /* Step 2: RRR_links, K (branch -1). K is joined to the known R by side_link and to the known S0 by d_S0_K: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_R, &p_S0, &l_side_link, &w->in1, -1, &w->p_K, &w->sigma[2]);
+    if (st == 1) return failed(w, out, 21);
+    note(w, st, 23, -24);
+
+
+    /* Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known */
+    st = RPR_links(&p_S0, &w->p_K, 850.0, 0.0, -850.0, 0.0, 1, &w->psi_C, &w->s_C, &w->p_C, &w->sigma[3]);
+    if (st == 1) return failed(w, out, 31);
+    note(w, st, 33, -34);
+
+
+    /* Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_K, &p_Q, &l_power_link, &l_bucket, 1, &w->p_M, &w->sigma[4]);
+    if (st == 1) return failed(w, out, 41);
+    note(w, st, 43, -44);
+
+
+    /* Step 5: link_point, tip. point tip of link bucket */
+    link_point(&p_Q, &w->p_M, -1.6193771626297577, -3.463667820069204, &w->p_tip);
+
+
+    /* Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is */
+    st = link_angle(&p_R, &w->p_K, 0.0, &w->phi_side_link);
+    if (st == 1) return failed(w, out, 61);
+    note(w, st, 63, -64);
+
+
+    /* Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is */
+    st = link_angle(&w->p_K, &w->p_M, 0.0, &w->phi_power_link);
+    if (st == 1) return failed(w, out, 71);
+    note(w, st, 73, -74);
+
+
+    /* Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is */
+    st = link_angle(&p_Q, &w->p_M, 0.0, &w->phi_bucket);
+    if (st == 1) return failed(w, out, 81);
+    note(w, st, 83, -84);
+
+    st = w->singular ? w->singular : w->near;
+    publish(w, st, out);
+    return st;
+}
+
 void actuator_init(actuator_state *out)
 {
     memset(out, 0, sizeof *out);
@@ -474,12 +497,8 @@ static int refuse(actuator_state *out)
 int actuator_solve(const double in[], const double din[], const double ddin[], actuator_state *out)
 {
     work w;
-    int code;
     if (!finite_inputs(in, din, ddin)) return refuse(out);
-    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
-    code = run(&w, in, din, ddin);
-    publish(&w, code, out);
-    return code;
+    return run(&w, in, din, ddin, out);
 }
 
 void actuator_columns(const double in[], const actuator_state *st, double col[ACTUATOR_N_COLUMNS])

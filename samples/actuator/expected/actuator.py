@@ -19,7 +19,7 @@
 import math
 import os
 import sys
-from math import atan2, cos, sin, sqrt
+from math import atan2, sqrt
 
 EPS = sys.float_info.epsilon
 NAN = math.nan
@@ -96,6 +96,7 @@ COLUMNS = (
     "C.ds",
     "C.dds",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 
 
@@ -112,30 +113,33 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    th = atan2(dy, dx) + off - 2 * PI if atan2(dy, dx) + off > PI else atan2(dy, dx) + off + 2 * PI if atan2(dy, dx) + off <= -PI else atan2(dy, dx) + off
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     ir2 = NAN if r2 == 0 else 1 / r2
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (th, NAN, NAN)
     return st, (th, om, al)
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp = cos(phi_the)
-    sp = sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    rax = -phi_ddthe * ry - phi_dthe * phi_dthe * rx
-    ray = phi_ddthe * rx - phi_dthe * phi_dthe * ry
-    return (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+def link_point(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
+    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -149,14 +153,14 @@ def RRR_links(j1, j2, l1, l2, minv):
     iq = NAN if q == 0 else 1 / q
     ux = dx * iq
     uy = dy * iq
-    hi = max(l1_v, l2_v)
-    lo = min(l1_v, l2_v)
-    x = max(hi, q)
-    z = min(lo, q)
+    hi = (l2_v if l2_v > l1_v else l1_v)
+    lo = (l2_v if l2_v < l1_v else l1_v)
+    x = (q if q > hi else hi)
+    z = (q if q < lo else lo)
     y = hi if q >= hi else lo if q <= lo else q
     k = z - (x - y)
     fail = k < -8 * EPS * x or q == 0 or lo <= 0
-    kk = max(k, 0)
+    kk = (0 if 0 > k else k)
     area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     h = area4 * iq / 2
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
@@ -166,7 +170,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    sigma = 0 if fail else min(area4 / (2 * l1_v * l2_v), 1)
+    ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
+    sigma = (1 if 1 < ratio else ratio)
     e2x = -a2 * ux - hn * uy
     e2y = -a2 * uy + hn * ux
     ihq = NAN if hn == 0 else 1 / (hn * q)
@@ -203,8 +208,9 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     q = sqrt(dx * dx + dy * dy)
     ah = abs(hh)
     k = q - ah
-    fail = k < -8 * EPS * max(q, ah) or q == 0
-    t = sqrt(max(k, 0) * (q + ah))
+    big = (ah if ah > q else q)
+    fail = k < -8 * EPS * big or q == 0
+    t = sqrt((0 if 0 > k else k) * (q + ah))
     iq = NAN if q == 0 else 1 / q
     mt = minv * t
     ux = (mt * dx + hh * dy) * iq * iq
@@ -213,8 +219,16 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     sv = mt + (as_ - ag)
     rx = as_ * ux - bs * uy
     ry = as_ * uy + bs * ux
-    arm = max(max(abs(ag), abs(as_)), max(abs(bg), abs(bs)))
-    sigma = 0 if fail else min(t / max(q, arm), 1)
+    a0 = abs(ag)
+    a1 = abs(as_)
+    a2 = abs(bg)
+    a3 = abs(bs)
+    arm1 = (a1 if a1 > a0 else a0)
+    arm2 = (a3 if a3 > a2 else a2)
+    arm = (arm2 if arm2 > arm1 else arm1)
+    reach = (arm if arm > q else q)
+    ratio = 0 if fail else t / reach
+    sigma = (1 if 1 < ratio else ratio)
     imt = NAN if mt == 0 else 1 / mt
     dvn = ux * dvy - uy * dvx
     dvu = dvx * ux + dvy * uy
@@ -254,7 +268,7 @@ l_bucket = (340.0, 0.0, 0.0)
 class _Work:
     """The records of one solution."""
 
-    __slots__ = ("in1", "p_K", "psi_C", "s_C", "p_C", "p_M", "phi_bucket", "p_tip", "phi_side_link", "phi_power_link", "sigma", "singular", "near")
+    __slots__ = ("in1", "p_K", "psi_C", "s_C", "p_C", "p_M", "p_tip", "phi_side_link", "phi_power_link", "phi_bucket", "sigma", "singular", "near")
 
     def note(self, st, singular, near):
         """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
@@ -275,40 +289,46 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[2], w.p_K = RRR_links(p_R, p_S0, l_side_link, w.in1, -1)
     if st == 1:
         return 21
-    w.note(st, 23, -24)
+    if st:
+        w.note(st, 23, -24)
 
     # Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known
     st, w.sigma[3], w.psi_C, w.s_C, w.p_C = RPR_links(p_S0, w.p_K, 850.0, 0.0, -850.0, 0.0, 1)
     if st == 1:
         return 31
-    w.note(st, 33, -34)
+    if st:
+        w.note(st, 33, -34)
 
     # Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known
     st, w.sigma[4], w.p_M = RRR_links(w.p_K, p_Q, l_power_link, l_bucket, 1)
     if st == 1:
         return 41
-    w.note(st, 43, -44)
+    if st:
+        w.note(st, 43, -44)
 
-    # Step 5: link_angle, bucket. Q and M of link bucket are known, so its angle is
-    st, w.phi_bucket = link_angle(p_Q, w.p_M, 0.0)
-    if st == 1:
-        return 51
-    w.note(st, 53, -54)
+    # Step 5: link_point, tip. point tip of link bucket
+    w.p_tip = link_point(p_Q, w.p_M, -1.6193771626297577, -3.463667820069204)
 
-    # Step 6: coupler_point, tip. point tip of link bucket
-    w.p_tip = coupler_point(p_Q, w.phi_bucket, -550.5882352941176, -1177.6470588235293)
-
-    # Step 7: link_angle, side_link. R and K of link side_link are known, so its angle is
+    # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is
     st, w.phi_side_link = link_angle(p_R, w.p_K, 0.0)
     if st == 1:
-        return 71
-    w.note(st, 73, -74)
+        return 61
+    if st:
+        w.note(st, 63, -64)
 
-    # Step 8: link_angle, power_link. K and M of link power_link are known, so its angle is
+    # Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is
     st, w.phi_power_link = link_angle(w.p_K, w.p_M, 0.0)
     if st == 1:
+        return 71
+    if st:
+        w.note(st, 73, -74)
+
+    # Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is
+    st, w.phi_bucket = link_angle(p_Q, w.p_M, 0.0)
+    if st == 1:
         return 81
-    w.note(st, 83, -84)
+    if st:
+        w.note(st, 83, -84)
 
     return w.singular or w.near
 
@@ -385,10 +405,13 @@ def _publish(w, code, order):
             w.s_C[1],
             w.s_C[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -122,18 +122,19 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step3.bg": 0.0,  # step 3: RPR_links of C
     "step3.as": -850.0,  # step 3: RPR_links of C
     "step3.bs": 0.0,  # step 3: RPR_links of C
-    "step5.off": 0.0,  # step 5: link_angle of bucket
-    "step6.gsi": -550.5882352941176,  # step 6: coupler_point of tip
-    "step6.eta": -1177.6470588235293,  # step 6: coupler_point of tip
-    "step7.off": 0.0,  # step 7: link_angle of side_link
-    "step8.off": 0.0,  # step 8: link_angle of power_link
+    "step5.along": -1.6193771626297577,  # step 5: link_point of tip
+    "step5.across": -3.463667820069204,  # step 5: link_point of tip
+    "step6.off": 0.0,  # step 6: link_angle of side_link
+    "step7.off": 0.0,  # step 7: link_angle of power_link
+    "step8.off": 0.0,  # step 8: link_angle of bucket
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
     name="actuator_np", n_inputs=N_INPUTS, n_steps=N_STEPS, params=PARAMS,
     columns=COLUMNS[N_INPUTS:], levels=(0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,),  # derivative level of each output column
     reads=3,  # the arrays a row reads: inputs, rates, accelerations
     max_input=1e+30, bad_input=5,
-    failed=(1, 2), singular=3,
+    failed=(1, 2,), singular=3,
+    checks=True,  # whether a call gives each step's conditioning ("sigma")
 )
 
 
@@ -150,6 +151,7 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
+    th0 = np.arctan2(dy, dx) + off
     _c1 = np.asarray(r2 == 0)
     if not _c1.any():
         ir2 = 1 / r2
@@ -171,40 +173,43 @@ def link_angle(j1, j2, off):
     _sigma = np.asarray(_sigma, dtype=REAL)
     _fails = _st == 1
     _singular = _fails | (_st == 3)
-    _t1 = np.arctan2(dy, dx) + off
-    _c3 = np.asarray(_t1 > PI)
+    _c3 = np.asarray(th0 > PI)
     if not _c3.any():
-        _c4 = np.asarray(_t1 <= -PI)
+        _c4 = np.asarray(th0 <= -PI)
         if not _c4.any():
-            _f1 = _t1
+            _f1 = th0
         elif _c4.all():
-            _f1 = _t1 + 2 * PI
+            _f1 = th0 + 2 * PI
         else:
-            _f1 = np.where(_c4, _t1 + 2 * PI, _t1)
+            _f1 = np.where(_c4, th0 + 2 * PI, th0)
     elif _c3.all():
-        _f1 = _t1 - 2 * PI
+        _f1 = th0 - 2 * PI
     else:
-        _f1 = np.where(_c3, _t1 - 2 * PI, np.where(_t1 <= -PI, _t1 + 2 * PI, _t1))
+        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     _angle = (_f1, om, al)
     if np.any(_singular):  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp, sp = cos_sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    _t1 = phi_dthe * phi_dthe
-    rax = -phi_ddthe * ry - _t1 * rx
-    ray = phi_ddthe * rx - _t1 * ry
+def link_point(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
-    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+    _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -271,58 +276,59 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    _c7 = np.asarray(fail)
-    if not _c7.any():
-        sigma = np.minimum(area4 / (2 * l1_v * l2_v), 1)
-    elif _c7.all():
-        sigma = 0
-    else:
-        sigma = np.where(_c7, 0, np.minimum(area4 / (2 * l1_v * l2_v), 1))
-    _t1 = -a2
-    e2x = _t1 * ux - hn * uy
-    e2y = _t1 * uy + hn * ux
-    _c8 = np.asarray(hn == 0)
+    _c8 = np.asarray(fail)
     if not _c8.any():
-        ihq = 1 / (hn * q)
+        _s7 = area4 * (0.5 / (l1_v * l2_v))
     elif _c8.all():
+        _s7 = 0
+    else:
+        _s7 = np.where(_c8, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s7, 1)
+    _t2 = -a2
+    e2x = _t2 * ux - hn * uy
+    e2y = _t2 * uy + hn * ux
+    _c9 = np.asarray(hn == 0)
+    if not _c9.any():
+        ihq = 1 / (hn * q)
+    elif _c9.all():
         ihq = NAN
     else:
-        ihq = np.where(_c8, NAN, 1 / (hn * q))
+        ihq = np.where(_c9, NAN, 1 / (hn * q))
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
     buv = (r1v - r2v) * iq
     bnv = (a2 * r1v + a * r2v) * ihq
     bvx = buv * ux - bnv * uy
     bvy = buv * uy + bnv * ux
-    _t2 = bvx - j1_dx
-    _t3 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t2 * _t2 + _t3 * _t3) + (e1x * j1_ddx + e1y * j1_ddy)
-    _t4 = bvx - j2_dx
-    _t5 = bvy - j2_dy
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t4 * _t4 + _t5 * _t5) + (e2x * j2_ddx + e2y * j2_ddy)
+    _t3 = bvx - j1_dx
+    _t4 = bvy - j1_dy
+    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t3 * _t3 + _t4 * _t4) + (e1x * j1_ddx + e1y * j1_ddy)
+    _t5 = bvx - j2_dx
+    _t6 = bvy - j2_dy
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t5 * _t5 + _t6 * _t6) + (e2x * j2_ddx + e2y * j2_ddy)
     bua = (r1a - r2a) * iq
     bna = (a2 * r1a + a * r2a) * ihq
     bax = bua * ux - bna * uy
     bay = bua * uy + bna * ux
-    _c9 = np.asarray(fail)
-    if not _c9.any():
-        _c10 = np.asarray(sigma < 1e-07)
-        if not _c10.any():
-            _c11 = np.asarray(sigma < 0.001)
-            if not _c11.any():
+    _c10 = np.asarray(fail)
+    if not _c10.any():
+        _c11 = np.asarray(sigma < 1e-07)
+        if not _c11.any():
+            _c12 = np.asarray(sigma < 0.001)
+            if not _c12.any():
                 _st = 0
-            elif _c11.all():
+            elif _c12.all():
                 _st = 4
             else:
-                _st = np.where(_c11, 4, 0)
-        elif _c10.all():
+                _st = np.where(_c12, 4, 0)
+        elif _c11.all():
             _st = 3
         else:
-            _st = np.where(_c10, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c9.all():
+            _st = np.where(_c11, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c10.all():
         _st = 1
     else:
-        _st = np.where(_c9, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c10, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -347,7 +353,8 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     q = np.sqrt(dx * dx + dy * dy)
     ah = np.abs(hh)
     k = q - ah
-    fail = (k < -8 * EPS * np.maximum(q, ah)) | (q == 0)
+    big = np.maximum(q, ah)
+    fail = (k < -8 * EPS * big) | (q == 0)
     t = np.sqrt(np.maximum(k, 0) * (q + ah))
     _c1 = np.asarray(q == 0)
     if not _c1.any():
@@ -363,20 +370,28 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     sv = mt + (as_ - ag)
     rx = as_ * ux - bs * uy
     ry = as_ * uy + bs * ux
-    _c2 = np.asarray(fail)
-    if not _c2.any():
-        sigma = np.minimum(t / np.maximum(q, np.maximum(np.maximum(np.abs(ag), np.abs(as_)), np.maximum(np.abs(bg), np.abs(bs)))), 1)
-    elif _c2.all():
-        sigma = 0
-    else:
-        sigma = np.where(_c2, 0, np.minimum(t / np.maximum(q, np.maximum(np.maximum(np.abs(ag), np.abs(as_)), np.maximum(np.abs(bg), np.abs(bs)))), 1))
-    _c3 = np.asarray(mt == 0)
+    a0 = np.abs(ag)
+    a1 = np.abs(as_)
+    a2 = np.abs(bg)
+    a3 = np.abs(bs)
+    arm1 = np.maximum(a0, a1)
+    arm2 = np.maximum(a2, a3)
+    arm = np.maximum(arm1, arm2)
+    _c3 = np.asarray(fail)
     if not _c3.any():
-        imt = 1 / mt
+        _s2 = t / np.maximum(q, arm)
     elif _c3.all():
+        _s2 = 0
+    else:
+        _s2 = np.where(_c3, 0, t / np.maximum(q, arm))
+    sigma = np.minimum(_s2, 1)
+    _c4 = np.asarray(mt == 0)
+    if not _c4.any():
+        imt = 1 / mt
+    elif _c4.all():
         imt = NAN
     else:
-        imt = np.where(_c3, NAN, 1 / mt)
+        imt = np.where(_c4, NAN, 1 / mt)
     dvn = ux * dvy - uy * dvx
     dvu = dvx * ux + dvy * uy
     om = dvn * imt
@@ -385,28 +400,28 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     dds = dax * ux + day * uy + om * dvn + al * hh
     rvx = -om * ry
     rvy = om * rx
-    _t1 = om * om
-    rax = -al * ry - _t1 * rx
-    ray = al * rx - _t1 * ry
-    _c4 = np.asarray(fail)
-    if not _c4.any():
-        _c5 = np.asarray(sigma < 1e-07)
-        if not _c5.any():
-            _c6 = np.asarray(sigma < 0.001)
-            if not _c6.any():
+    _t2 = om * om
+    rax = -al * ry - _t2 * rx
+    ray = al * rx - _t2 * ry
+    _c5 = np.asarray(fail)
+    if not _c5.any():
+        _c6 = np.asarray(sigma < 1e-07)
+        if not _c6.any():
+            _c7 = np.asarray(sigma < 0.001)
+            if not _c7.any():
                 _st = 0
-            elif _c6.all():
+            elif _c7.all():
                 _st = 4
             else:
-                _st = np.where(_c6, 4, 0)
-        elif _c5.all():
+                _st = np.where(_c7, 4, 0)
+        elif _c6.all():
             _st = 3
         else:
-            _st = np.where(_c5, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c4.all():
+            _st = np.where(_c6, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c5.all():
         _st = 1
     else:
-        _st = np.where(_c4, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c5, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -420,14 +435,6 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
         _s = (np.where(_fails, np.nan, _s[0]), np.where(_singular, np.nan, _s[1]), np.where(_singular, np.nan, _s[2]))
         _jp = (np.where(_fails, np.nan, _jp[0]), np.where(_fails, np.nan, _jp[1]), np.where(_singular, np.nan, _jp[2]), np.where(_singular, np.nan, _jp[3]), np.where(_singular, np.nan, _jp[4]), np.where(_singular, np.nan, _jp[5]))
     return _st, _sigma, _psi, _s, _jp
-
-def cos_sin(t):
-    """cos t and sin t from one tangent of the half angle, within an eps of the library's:
-    numpy's float64 sin and cos are a library call per element, its tangent is vectorised."""
-    h = np.tan(0.5 * t)
-    h2 = h * h
-    d = 1.0 / (1.0 + h2)
-    return (1.0 - h2) * d, (h + h) * d
 
 def row_status(report):
     """The status code of every row from the steps' reports, in the order the steps ran: each
@@ -452,7 +459,7 @@ def reason_of(code):
 # last axis the inputs) and its design parameters broadcast together and flattened into rows,
 # solved a block of rows at a time so that every array a block makes stays in the cache.
 # m holds the module's data (name, n_inputs, n_steps, reads, max_input, levels, columns,
-# failed, singular, bad_input, params).
+# failed, singular, bad_input, params, checks).
 
 BLOCK = 16384  # rows a block (measured: 20% faster than 4096, as fast as 32768)
 
@@ -511,9 +518,11 @@ def filled(out, shape, order, m):
     if out is None:
         return ({name: np.empty(n, dtype=REAL) for name in names}, np.empty(n, dtype=int),
                 np.ones((m.n_steps + 1, n), dtype=REAL))
-    flat = {}
-    for name, like, dtype in [(name, shape, REAL) for name in names] + [
-            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), REAL)]:
+    wanted = [(name, shape, REAL) for name in names] + [("status", shape, int)]
+    if m.checks:
+        wanted.append(("sigma", (m.n_steps + 1, *shape), REAL))
+    flat = {"sigma": np.ones((m.n_steps + 1, n), dtype=REAL)}  # the call's own where it gives no conditioning
+    for name, like, dtype in wanted:
         a = out.get(name)
         if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
             raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
@@ -569,7 +578,9 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
         row = solve(x, dx, ddx, order, state)
         for name in out:
             out[name][r] = row[name]
-        status[r], sigma[:, r] = row["status"], row["sigma"]
+        status[r] = row["status"]
+        if m.checks:
+            sigma[:, r] = row["sigma"]
     return finish(out, status, sigma, bad, shape, m)
 
 
@@ -590,7 +601,8 @@ def finish(out, status, sigma, bad, shape, m):
             out[name][lost] = np.nan
     result = {name: x.reshape(shape) for name, x in out.items()}
     result["status"] = status.reshape(shape)
-    result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
+    if m.checks:
+        result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
     return result
 
 class _Work:
@@ -621,17 +633,17 @@ def _run(x, dx, ddx, c):
     # Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known
     st, sigma[4], w.p_M = RRR_links(w.p_K, w.p_Q, w.l_power_link, w.l_bucket, 1)
     report.append((st, ((1, 41), (3, 43), (4, -44))))
-    # Step 5: link_angle, bucket. Q and M of link bucket are known, so its angle is
-    st, _, w.phi_bucket = link_angle(w.p_Q, w.p_M, c["step5.off"])
-    report.append((st, ((1, 51), (3, 53), (4, -54))))
-    # Step 6: coupler_point, tip. point tip of link bucket
-    _, _, w.p_tip = coupler_point(w.p_Q, w.phi_bucket, c["step6.gsi"], c["step6.eta"])
-    # Step 7: link_angle, side_link. R and K of link side_link are known, so its angle is
-    st, _, w.phi_side_link = link_angle(w.p_R, w.p_K, c["step7.off"])
-    report.append((st, ((1, 71), (3, 73), (4, -74))))
-    # Step 8: link_angle, power_link. K and M of link power_link are known, so its angle is
-    st, _, w.phi_power_link = link_angle(w.p_K, w.p_M, c["step8.off"])
-    report.append((st, ((1, 81), (3, 83), (4, -84))))
+    # Step 5: link_point, tip. point tip of link bucket
+    _, _, w.p_tip = link_point(w.p_Q, w.p_M, c["step5.along"], c["step5.across"])
+    # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is
+    st, _, w.phi_side_link = link_angle(w.p_R, w.p_K, c["step6.off"])
+    report.append((st, ((1, 61),)))
+    # Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is
+    st, _, w.phi_power_link = link_angle(w.p_K, w.p_M, c["step7.off"])
+    report.append((st, ((1, 71),)))
+    # Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is
+    st, _, w.phi_bucket = link_angle(w.p_Q, w.p_M, c["step8.off"])
+    report.append((st, ((1, 81),)))
     code = row_status(report)
     return w, code, sigma
 

@@ -102,27 +102,27 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 43, -44);
 
-    % Step 5: link_angle, bucket. Q and M of link bucket are known, so its angle is
-    [w.phi_bucket, st] = link_angle(w.p_Q, w.p_M, 0.0);
+    % Step 5: link_point, tip. point tip of link bucket
+    w.p_tip = link_point(w.p_Q, w.p_M, -1.6193771626297577, -3.463667820069204);
+
+    % Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is
+    [w.phi_side_link, st] = link_angle(w.p_R, w.p_K, 0.0);
     if st == 1
-        status = 51;
+        status = 61;
         return;
     end
-    w = note(w, st, 53, -54);
+    w = note(w, st, 63, -64);
 
-    % Step 6: coupler_point, tip. point tip of link bucket
-    w.p_tip = coupler_point(w.p_Q, w.phi_bucket, -550.5882352941176, -1177.6470588235293);
-
-    % Step 7: link_angle, side_link. R and K of link side_link are known, so its angle is
-    [w.phi_side_link, st] = link_angle(w.p_R, w.p_K, 0.0);
+    % Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is
+    [w.phi_power_link, st] = link_angle(w.p_K, w.p_M, 0.0);
     if st == 1
         status = 71;
         return;
     end
     w = note(w, st, 73, -74);
 
-    % Step 8: link_angle, power_link. K and M of link power_link are known, so its angle is
-    [w.phi_power_link, st] = link_angle(w.p_K, w.p_M, 0.0);
+    % Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is
+    [w.phi_bucket, st] = link_angle(w.p_Q, w.p_M, 0.0);
     if st == 1
         status = 81;
         return;
@@ -327,12 +327,13 @@ function [angle, st] = link_angle(j1, j2, off)
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
     r2 = dx * dx + dy * dy;
-    if atan2(dy, dx) + off > pi
-        th = atan2(dy, dx) + off - 2 * pi;
-    elseif atan2(dy, dx) + off <= -pi
-        th = atan2(dy, dx) + off + 2 * pi;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = atan2(dy, dx) + off;
+        th = th0;
     end
     if r2 == 0
         ir2 = NaN;
@@ -354,28 +355,28 @@ function [angle, st] = link_angle(j1, j2, off)
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
-    if st == 1 || st == 3
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
 end
 
-function jc = coupler_point(j0, phi, gsi, eta)
-    % Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi.
-    cp = cos(phi.the);
-    sp = sin(phi.the);
-    rx = gsi * cp - eta * sp;
-    ry = gsi * sp + eta * cp;
-    rvx = -phi.dthe * ry;
-    rvy = phi.dthe * rx;
-    rax = -phi.ddthe * ry - phi.dthe * phi.dthe * rx;
-    ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
-    jc.x = j0.x + rx;
-    jc.y = j0.y + ry;
-    jc.dx = j0.dx + rvx;
-    jc.dy = j0.dy + rvy;
-    jc.ddx = j0.ddx + rax;
-    jc.ddy = j0.ddy + ray;
+function jc = link_point(j1, j2, along, across)
+    % Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry).
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx - j1.dx;
+    dvy = j2.dy - j1.dy;
+    dax = j2.ddx - j1.ddx;
+    day = j2.ddy - j1.ddy;
+    rx = along * dx - across * dy;
+    ry = along * dy + across * dx;
+    rvx = along * dvx - across * dvy;
+    rvy = along * dvy + across * dvx;
+    rax = along * dax - across * day;
+    ray = along * day + across * dax;
+    jc.x = j1.x + rx;
+    jc.y = j1.y + ry;
+    jc.dx = j1.dx + rvx;
+    jc.dy = j1.dy + rvy;
+    jc.ddx = j1.ddx + rax;
+    jc.ddy = j1.ddy + ray;
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
@@ -424,10 +425,11 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     e1x = at * ux - hn * uy;
     e1y = at * uy + hn * ux;
     if fail
-        sigma = 0;
+        ratio = 0;
     else
-        sigma = min(area4 / (2 * l1.v * l2.v), 1);
+        ratio = area4 * (0.5 / (l1.v * l2.v));
     end
+    sigma = min(ratio, 1);
     e2x = -a2 * ux - hn * uy;
     e2y = -a2 * uy + hn * ux;
     if hn == 0
@@ -490,7 +492,8 @@ function [psi, s, jp, st, sigma] = RPR_links(jg, js, ag, bg, as_, bs, minv)
     q = sqrt(dx * dx + dy * dy);
     ah = abs(hh);
     k = q - ah;
-    fail = k < -8 * eps * max(q, ah) || q == 0;
+    big = max(q, ah);
+    fail = k < -8 * eps * big || q == 0;
     t = sqrt(max(k, 0) * (q + ah));
     if q == 0
         iq = NaN;
@@ -504,12 +507,20 @@ function [psi, s, jp, st, sigma] = RPR_links(jg, js, ag, bg, as_, bs, minv)
     sv = mt + (as_ - ag);
     rx = as_ * ux - bs * uy;
     ry = as_ * uy + bs * ux;
-    arm = max(max(abs(ag), abs(as_)), max(abs(bg), abs(bs)));
+    a0 = abs(ag);
+    a1 = abs(as_);
+    a2 = abs(bg);
+    a3 = abs(bs);
+    arm1 = max(a0, a1);
+    arm2 = max(a2, a3);
+    arm = max(arm1, arm2);
+    reach = max(q, arm);
     if fail
-        sigma = 0;
+        ratio = 0;
     else
-        sigma = min(t / max(q, arm), 1);
+        ratio = t / reach;
     end
+    sigma = min(ratio, 1);
     if mt == 0
         imt = NaN;
     else

@@ -12,38 +12,39 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-static void crank_input(POINT j1, double l, ANGLE theta, ANGLE phi, POINT *j2)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
-    const double t = theta.the + phi.the;
+    const double t = theta->the + phi->the;
     const double ct = cos(t);
     const double st = sin(t);
     const double rx = l * ct;
     const double ry = l * st;
-    const double om = theta.dthe + phi.dthe;
-    const double al = theta.ddthe + phi.ddthe;
+    const double om = theta->dthe + phi->dthe;
+    const double al = theta->ddthe + phi->ddthe;
     const double rvx = -om * ry;
     const double rvy = om * rx;
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
-    j2->P.x = j1.P.x + rx;
-    j2->P.y = j1.P.y + ry;
-    j2->DP.x = j1.DP.x + rvx;
-    j2->DP.y = j1.DP.y + rvy;
-    j2->DDP.x = j1.DDP.x + rax;
-    j2->DDP.y = j1.DDP.y + ray;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = j1->DP.x + rvx;
+    j2->DP.y = j1->DP.y + rvy;
+    j2->DDP.x = j1->DDP.x + rax;
+    j2->DDP.y = j1->DDP.y + ray;
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
-static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
-    const double dvx = j2.DP.x - j1.DP.x;
-    const double dvy = j2.DP.y - j1.DP.y;
-    const double dax = j2.DDP.x - j1.DDP.x;
-    const double day = j2.DDP.y - j1.DDP.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
     const double r2 = dx * dx + dy * dy;
-    const double th = atan2(dy, dx) + off > 3.141592653589793 ? atan2(dy, dx) + off - 2 * 3.141592653589793 : atan2(dy, dx) + off <= -3.141592653589793 ? atan2(dy, dx) + off + 2 * 3.141592653589793 : atan2(dy, dx) + off;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     const double ir2 = r2 == 0 ? NAN : 1 / r2;
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
@@ -52,67 +53,68 @@ static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
     angle->dthe = om;
     angle->ddthe = al;
     if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; }
-    if (st == 1 || st == 3) { angle->dthe = NAN; angle->ddthe = NAN; }
     return st;
 }
 
 /* Angle of a link that keeps a constant angle off to a known angle phi. */
-static void offset_angle(ANGLE phi, double off, ANGLE *angle)
+static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle)
 {
-    const double th = phi.the + off > 3.141592653589793 ? phi.the + off - 2 * 3.141592653589793 : phi.the + off <= -3.141592653589793 ? phi.the + off + 2 * 3.141592653589793 : phi.the + off;
+    const double th0 = phi->the + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     angle->the = th;
-    angle->dthe = phi.dthe;
-    angle->ddthe = phi.ddthe;
+    angle->dthe = phi->dthe;
+    angle->ddthe = phi->ddthe;
 }
 
 /* 1R2P chain: pair jb joins two sliders on the guide lines (pg1, psig1) and (pg2, psig2), at (gsi1, eta1) and (gsi2, eta2) from their slider points jp1, jp2 (displacements s1, s2). */
-static int PRP_links(POINT pg1, ANGLE psig1, double gsi1, double eta1, POINT pg2, ANGLE psig2, double gsi2, double eta2, VARIABLE *s1, POINT *jp1, VARIABLE *s2, POINT *jp2, POINT *jb, double *sigma_out)
+static inline int PRP_links(const POINT *pg1, const ANGLE *psig1, double gsi1, double eta1, const POINT *pg2, const ANGLE *psig2, double gsi2, double eta2, VARIABLE *s1, POINT *jp1, VARIABLE *s2, POINT *jp2, POINT *jb, double *sigma_out)
 {
-    const double cg1 = cos(psig1.the);
-    const double sg1 = sin(psig1.the);
+    const double cg1 = cos(psig1->the);
+    const double sg1 = sin(psig1->the);
     const double r1x = gsi1 * cg1 - eta1 * sg1;
     const double r1y = gsi1 * sg1 + eta1 * cg1;
-    const double cg2 = cos(psig2.the);
-    const double sg2 = sin(psig2.the);
+    const double cg2 = cos(psig2->the);
+    const double sg2 = sin(psig2->the);
     const double r2x = gsi2 * cg2 - eta2 * sg2;
     const double r2y = gsi2 * sg2 + eta2 * cg2;
     const double cr = cg1 * sg2 - sg1 * cg2;
     const double icr = cr == 0 ? NAN : 1 / cr;
-    const double gx = pg2.P.x + r2x - pg1.P.x - r1x;
-    const double gy = pg2.P.y + r2y - pg1.P.y - r1y;
+    const double gx = pg2->P.x + r2x - pg1->P.x - r1x;
+    const double gy = pg2->P.y + r2y - pg1->P.y - r1y;
     const double sv1 = (gx * sg2 - gy * cg2) * icr;
-    const double jp1x = pg1.P.x + sv1 * cg1;
-    const double jp1y = pg1.P.y + sv1 * sg1;
+    const double jp1x = pg1->P.x + sv1 * cg1;
+    const double jp1y = pg1->P.y + sv1 * sg1;
     const double jbx = jp1x + r1x;
     const double jby = jp1y + r1y;
     const double jp2x = jbx - r2x;
     const double jp2y = jby - r2y;
-    const double sv2 = (jp2x - pg2.P.x) * cg2 + (jp2y - pg2.P.y) * sg2;
-    const double sigma = fmin(fabs(cr), 1.0);
-    const double r1vx = -psig1.dthe * r1y;
-    const double r1vy = psig1.dthe * r1x;
-    const double r1ax = -psig1.ddthe * r1y - psig1.dthe * psig1.dthe * r1x;
-    const double r1ay = psig1.ddthe * r1x - psig1.dthe * psig1.dthe * r1y;
-    const double r2vx = -psig2.dthe * r2y;
-    const double r2vy = psig2.dthe * r2x;
-    const double r2ax = -psig2.ddthe * r2y - psig2.dthe * psig2.dthe * r2x;
-    const double r2ay = psig2.ddthe * r2x - psig2.dthe * psig2.dthe * r2y;
-    const double gvx = pg2.DP.x + r2vx - sv2 * psig2.dthe * sg2 - pg1.DP.x - r1vx + sv1 * psig1.dthe * sg1;
-    const double gvy = pg2.DP.y + r2vy + sv2 * psig2.dthe * cg2 - pg1.DP.y - r1vy - sv1 * psig1.dthe * cg1;
+    const double sv2 = (jp2x - pg2->P.x) * cg2 + (jp2y - pg2->P.y) * sg2;
+    const double acr = fabs(cr);
+    const double sigma = (1.0 < acr ? 1.0 : acr);
+    const double r1vx = -psig1->dthe * r1y;
+    const double r1vy = psig1->dthe * r1x;
+    const double r1ax = -psig1->ddthe * r1y - psig1->dthe * psig1->dthe * r1x;
+    const double r1ay = psig1->ddthe * r1x - psig1->dthe * psig1->dthe * r1y;
+    const double r2vx = -psig2->dthe * r2y;
+    const double r2vy = psig2->dthe * r2x;
+    const double r2ax = -psig2->ddthe * r2y - psig2->dthe * psig2->dthe * r2x;
+    const double r2ay = psig2->ddthe * r2x - psig2->dthe * psig2->dthe * r2y;
+    const double gvx = pg2->DP.x + r2vx - sv2 * psig2->dthe * sg2 - pg1->DP.x - r1vx + sv1 * psig1->dthe * sg1;
+    const double gvy = pg2->DP.y + r2vy + sv2 * psig2->dthe * cg2 - pg1->DP.y - r1vy - sv1 * psig1->dthe * cg1;
     const double ds1 = (gvx * sg2 - gvy * cg2) * icr;
     const double ds2 = (gvx * sg1 - gvy * cg1) * icr;
-    const double jp1vx = pg1.DP.x + ds1 * cg1 - sv1 * psig1.dthe * sg1;
-    const double jp1vy = pg1.DP.y + ds1 * sg1 + sv1 * psig1.dthe * cg1;
-    const double jp2vx = pg2.DP.x + ds2 * cg2 - sv2 * psig2.dthe * sg2;
-    const double jp2vy = pg2.DP.y + ds2 * sg2 + sv2 * psig2.dthe * cg2;
-    const double t1n = 2 * ds1 * psig1.dthe + sv1 * psig1.ddthe;
-    const double t2n = 2 * ds2 * psig2.dthe + sv2 * psig2.ddthe;
-    const double t1u = sv1 * psig1.dthe * psig1.dthe;
-    const double t2u = sv2 * psig2.dthe * psig2.dthe;
-    const double k1x = pg1.DDP.x - t1n * sg1 - t1u * cg1;
-    const double k1y = pg1.DDP.y + t1n * cg1 - t1u * sg1;
-    const double k2x = pg2.DDP.x - t2n * sg2 - t2u * cg2;
-    const double k2y = pg2.DDP.y + t2n * cg2 - t2u * sg2;
+    const double jp1vx = pg1->DP.x + ds1 * cg1 - sv1 * psig1->dthe * sg1;
+    const double jp1vy = pg1->DP.y + ds1 * sg1 + sv1 * psig1->dthe * cg1;
+    const double jp2vx = pg2->DP.x + ds2 * cg2 - sv2 * psig2->dthe * sg2;
+    const double jp2vy = pg2->DP.y + ds2 * sg2 + sv2 * psig2->dthe * cg2;
+    const double t1n = 2 * ds1 * psig1->dthe + sv1 * psig1->ddthe;
+    const double t2n = 2 * ds2 * psig2->dthe + sv2 * psig2->ddthe;
+    const double t1u = sv1 * psig1->dthe * psig1->dthe;
+    const double t2u = sv2 * psig2->dthe * psig2->dthe;
+    const double k1x = pg1->DDP.x - t1n * sg1 - t1u * cg1;
+    const double k1y = pg1->DDP.y + t1n * cg1 - t1u * sg1;
+    const double k2x = pg2->DDP.x - t2n * sg2 - t2u * cg2;
+    const double k2y = pg2->DDP.y + t2n * cg2 - t2u * sg2;
     const double gax = k2x + r2ax - k1x - r1ax;
     const double gay = k2y + r2ay - k1y - r1ay;
     const double dds1 = (gax * sg2 - gay * cg2) * icr;
@@ -191,41 +193,6 @@ static void note(work *w, int st, int singular, int near)
     if (st == 4 && !w->near) w->near = near;
 }
 
-/* The procedure of cross_slot.md, step by step. */
-static int run(work *w, const double in[], const double din[], const double ddin[])
-{
-    int st;
-
-    w->singular = 0;
-    w->near = 0;
-    for (st = 0; st <= CROSS_SLOT_N_STEPS; st++) w->sigma[st] = 1.0;
-    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
-
-    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
-
-
-    /* Step 2: crank_input, P1. O is known and link frame is placed, so the input angle theta_O turns link arm to P1 */
-    crank_input(p_O, 50.0, w->in1, ref_O, &w->g_P1);
-
-
-    /* Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is */
-    st = link_angle(p_O, w->g_P1, 0.0, &w->phi_arm);
-    if (st == 1) return 31;
-    note(w, st, 33, -34);
-
-
-    /* Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution) */
-    st = PRP_links(w->g_P1, w->phi_arm, 0.0, 0.0, g_P2, psi_P2, 0.0, 0.0, &w->s_P1, &w->p_P1, &w->s_P2, &w->p_P2, &w->p_X, &w->sigma[4]);
-    if (st == 1) return 41;
-    note(w, st, 43, -44);
-
-
-    /* Step 5: offset_angle, block2. link block2 keeps a constant angle to its slide */
-    offset_angle(phi_frame, 1.5707963267948966, &w->phi_block2);
-
-    return w->singular ? w->singular : w->near;
-}
-
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
 static void no_outputs(cross_slot_state *out)
 {
@@ -273,16 +240,22 @@ static void no_outputs(cross_slot_state *out)
     out->block2.alpha = NAN;
 }
 
-/* Copy the records into the public state, with the status rules of the CSV. */
+/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
+static int failed(const work *w, cross_slot_state *out, int code)
+{
+    int k;
+    out->status = code;
+    for (k = 0; k <= CROSS_SLOT_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    no_outputs(out);
+    return code;
+}
+
+/* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, cross_slot_state *out)
 {
     int k;
     out->status = code;
     for (k = 0; k <= CROSS_SLOT_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (reason_of(code) == 1 || reason_of(code) == 2) {
-        no_outputs(out);
-        return;
-    }
     out->O.x = 0.0;
     out->O.y = 0.0;
     out->O.vx = 0.0;
@@ -357,6 +330,44 @@ static void publish(const work *w, int code, cross_slot_state *out)
     }
 }
 
+/* The procedure of cross_slot.md, step by step: a row that fails ends in failed(), a computed
+   one in publish(). */
+static int run(work *w, const double in[], const double din[], const double ddin[], cross_slot_state *out)
+{
+    int st;
+
+    w->singular = 0;
+    w->near = 0;
+    for (st = 0; st <= CROSS_SLOT_N_STEPS; st++) w->sigma[st] = 1.0;
+    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
+
+    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
+
+
+    /* Step 2: crank_input, P1. O is known and link frame is placed, so the input angle theta_O turns link arm to P1 */
+    crank_input(&p_O, 50.0, &w->in1, &ref_O, &w->g_P1);
+
+
+    /* Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is */
+    st = link_angle(&p_O, &w->g_P1, 0.0, &w->phi_arm);
+    if (st == 1) return failed(w, out, 31);
+    note(w, st, 33, -34);
+
+
+    /* Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution) */
+    st = PRP_links(&w->g_P1, &w->phi_arm, 0.0, 0.0, &g_P2, &psi_P2, 0.0, 0.0, &w->s_P1, &w->p_P1, &w->s_P2, &w->p_P2, &w->p_X, &w->sigma[4]);
+    if (st == 1) return failed(w, out, 41);
+    note(w, st, 43, -44);
+
+
+    /* Step 5: offset_angle, block2. link block2 keeps a constant angle to its slide */
+    offset_angle(&phi_frame, 1.5707963267948966, &w->phi_block2);
+
+    st = w->singular ? w->singular : w->near;
+    publish(w, st, out);
+    return st;
+}
+
 void cross_slot_init(cross_slot_state *out)
 {
     memset(out, 0, sizeof *out);
@@ -385,12 +396,8 @@ static int refuse(cross_slot_state *out)
 int cross_slot_solve(const double in[], const double din[], const double ddin[], cross_slot_state *out)
 {
     work w;
-    int code;
     if (!finite_inputs(in, din, ddin)) return refuse(out);
-    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
-    code = run(&w, in, din, ddin);
-    publish(&w, code, out);
-    return code;
+    return run(&w, in, din, ddin, out);
 }
 
 void cross_slot_columns(const double in[], const cross_slot_state *st, double col[CROSS_SLOT_N_COLUMNS])

@@ -75,6 +75,7 @@ COLUMNS = (
     "P2.ds",
     "P2.dds",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 
 
@@ -109,21 +110,21 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    th = atan2(dy, dx) + off - 2 * PI if atan2(dy, dx) + off > PI else atan2(dy, dx) + off + 2 * PI if atan2(dy, dx) + off <= -PI else atan2(dy, dx) + off
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     ir2 = NAN if r2 == 0 else 1 / r2
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (th, NAN, NAN)
     return st, (th, om, al)
 
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
-    th = phi_the + off - 2 * PI if phi_the + off > PI else phi_the + off + 2 * PI if phi_the + off <= -PI else phi_the + off
+    th0 = phi_the + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     return (th, phi_dthe, phi_ddthe)
 
 def PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
@@ -152,7 +153,8 @@ def PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
     jp2x = jbx - r2x
     jp2y = jby - r2y
     sv2 = (jp2x - pg2_x) * cg2 + (jp2y - pg2_y) * sg2
-    sigma = min(abs(cr), 1)
+    acr = abs(cr)
+    sigma = (1 if 1 < acr else acr)
     r1vx = -psig1_dthe * r1y
     r1vy = psig1_dthe * r1x
     r1ax = -psig1_ddthe * r1y - psig1_dthe * psig1_dthe * r1x
@@ -236,13 +238,15 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.phi_arm = link_angle(p_O, w.g_P1, 0.0)
     if st == 1:
         return 31
-    w.note(st, 33, -34)
+    if st:
+        w.note(st, 33, -34)
 
     # Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution)
     st, w.sigma[4], w.s_P1, w.p_P1, w.s_P2, w.p_P2, w.p_X = PRP_links(w.g_P1, w.phi_arm, 0.0, 0.0, g_P2, psi_P2, 0.0, 0.0)
     if st == 1:
         return 41
-    w.note(st, 43, -44)
+    if st:
+        w.note(st, 43, -44)
 
     # Step 5: offset_angle, block2. link block2 keeps a constant angle to its slide
     w.phi_block2 = offset_angle(phi_frame, 1.5707963267948966)
@@ -301,10 +305,13 @@ def _publish(w, code, order):
             w.s_P2[1],
             w.s_P2[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

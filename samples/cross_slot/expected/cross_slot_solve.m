@@ -262,12 +262,13 @@ function [angle, st] = link_angle(j1, j2, off)
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
     r2 = dx * dx + dy * dy;
-    if atan2(dy, dx) + off > pi
-        th = atan2(dy, dx) + off - 2 * pi;
-    elseif atan2(dy, dx) + off <= -pi
-        th = atan2(dy, dx) + off + 2 * pi;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = atan2(dy, dx) + off;
+        th = th0;
     end
     if r2 == 0
         ir2 = NaN;
@@ -289,20 +290,17 @@ function [angle, st] = link_angle(j1, j2, off)
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
-    if st == 1 || st == 3
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
 end
 
 function angle = offset_angle(phi, off)
     % Angle of a link that keeps a constant angle off to a known angle phi.
-    if phi.the + off > pi
-        th = phi.the + off - 2 * pi;
-    elseif phi.the + off <= -pi
-        th = phi.the + off + 2 * pi;
+    th0 = phi.the + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = phi.the + off;
+        th = th0;
     end
     angle.the = th;
     angle.dthe = phi.dthe;
@@ -335,7 +333,8 @@ function [s1, jp1, s2, jp2, jb, st, sigma] = PRP_links(pg1, psig1, gsi1, eta1, p
     jp2x = jbx - r2x;
     jp2y = jby - r2y;
     sv2 = (jp2x - pg2.x) * cg2 + (jp2y - pg2.y) * sg2;
-    sigma = min(abs(cr), 1);
+    acr = abs(cr);
+    sigma = min(acr, 1);
     r1vx = -psig1.dthe * r1y;
     r1vy = psig1.dthe * r1x;
     r1ax = -psig1.ddthe * r1y - psig1.dthe * psig1.dthe * r1x;

@@ -17,38 +17,39 @@ typedef struct { double v, dv, ddv; } VARIABLE;
 #define LINKGEN_NINPUTS 1
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-static void crank_input(POINT j1, double l, ANGLE theta, ANGLE phi, POINT *j2)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
-    const double t = theta.the + phi.the;
+    const double t = theta->the + phi->the;
     const double ct = cos(t);
     const double st = sin(t);
     const double rx = l * ct;
     const double ry = l * st;
-    const double om = theta.dthe + phi.dthe;
-    const double al = theta.ddthe + phi.ddthe;
+    const double om = theta->dthe + phi->dthe;
+    const double al = theta->ddthe + phi->ddthe;
     const double rvx = -om * ry;
     const double rvy = om * rx;
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
-    j2->P.x = j1.P.x + rx;
-    j2->P.y = j1.P.y + ry;
-    j2->DP.x = j1.DP.x + rvx;
-    j2->DP.y = j1.DP.y + rvy;
-    j2->DDP.x = j1.DDP.x + rax;
-    j2->DDP.y = j1.DDP.y + ray;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = j1->DP.x + rvx;
+    j2->DP.y = j1->DP.y + rvy;
+    j2->DDP.x = j1->DDP.x + rax;
+    j2->DDP.y = j1->DDP.y + ray;
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
-static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
-    const double dvx = j2.DP.x - j1.DP.x;
-    const double dvy = j2.DP.y - j1.DP.y;
-    const double dax = j2.DDP.x - j1.DDP.x;
-    const double day = j2.DDP.y - j1.DDP.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
     const double r2 = dx * dx + dy * dy;
-    const double th = atan2(dy, dx) + off > 3.141592653589793 ? atan2(dy, dx) + off - 2 * 3.141592653589793 : atan2(dy, dx) + off <= -3.141592653589793 ? atan2(dy, dx) + off + 2 * 3.141592653589793 : atan2(dy, dx) + off;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     const double ir2 = r2 == 0 ? NAN : 1 / r2;
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
@@ -57,74 +58,78 @@ static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
     angle->dthe = om;
     angle->ddthe = al;
     if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; }
-    if (st == 1 || st == 3) { angle->dthe = NAN; angle->ddthe = NAN; }
     return st;
 }
 
-/* Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi. */
-static void coupler_point(POINT j0, ANGLE phi, double gsi, double eta, POINT *jc)
+/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
+static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
 {
-    const double cp = cos(phi.the);
-    const double sp = sin(phi.the);
-    const double rx = gsi * cp - eta * sp;
-    const double ry = gsi * sp + eta * cp;
-    const double rvx = -phi.dthe * ry;
-    const double rvy = phi.dthe * rx;
-    const double rax = -phi.ddthe * ry - phi.dthe * phi.dthe * rx;
-    const double ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
-    jc->P.x = j0.P.x + rx;
-    jc->P.y = j0.P.y + ry;
-    jc->DP.x = j0.DP.x + rvx;
-    jc->DP.y = j0.DP.y + rvy;
-    jc->DDP.x = j0.DDP.x + rax;
-    jc->DDP.y = j0.DDP.y + ray;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
+    const double rx = along * dx - across * dy;
+    const double ry = along * dy + across * dx;
+    const double rvx = along * dvx - across * dvy;
+    const double rvy = along * dvy + across * dvx;
+    const double rax = along * dax - across * day;
+    const double ray = along * day + across * dax;
+    jc->P.x = j1->P.x + rx;
+    jc->P.y = j1->P.y + ry;
+    jc->DP.x = j1->DP.x + rvx;
+    jc->DP.y = j1->DP.y + rvy;
+    jc->DDP.x = j1->DDP.x + rax;
+    jc->DDP.y = j1->DDP.y + ray;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
-static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POINT *jb, double *sigma_out)
+static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
     const double q = sqrt(dx * dx + dy * dy);
     const double iq = q == 0 ? NAN : 1 / q;
     const double ux = dx * iq;
     const double uy = dy * iq;
-    const double hi = fmax(l1.v, l2.v);
-    const double lo = fmin(l1.v, l2.v);
-    const double x = fmax(hi, q);
-    const double z = fmin(lo, q);
+    const double hi = (l2->v > l1->v ? l2->v : l1->v);
+    const double lo = (l2->v < l1->v ? l2->v : l1->v);
+    const double x = (q > hi ? q : hi);
+    const double z = (q < lo ? q : lo);
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
     const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
-    const double kk = fmax(k, 0.0);
+    const double kk = (0.0 > k ? 0.0 : k);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
-    const double a = (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2;
-    const double a2 = (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2;
-    const double flat = q >= hi ? (l1.v + (q - l2.v)) / 2 : l1.v >= l2.v ? (l1.v + (q + l2.v)) / 2 : (q - (l1.v + l2.v)) / 2;
+    const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double flat = q >= hi ? (l1->v + (q - l2->v)) / 2 : l1->v >= l2->v ? (l1->v + (q + l2->v)) / 2 : (q - (l1->v + l2->v)) / 2;
     const double at = k > 0 ? a : flat;
     const double hn = minv * h;
     const double e1x = at * ux - hn * uy;
     const double e1y = at * uy + hn * ux;
-    const double sigma = fail ? 0 : fmin(area4 / (2 * l1.v * l2.v), 1.0);
+    const double ratio = fail ? 0 : area4 * (0.5 / (l1->v * l2->v));
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double e2x = -a2 * ux - hn * uy;
     const double e2y = -a2 * uy + hn * ux;
     const double ihq = hn == 0 ? NAN : 1 / (hn * q);
-    const double r1v = l1.v * l1.dv + (e1x * j1.DP.x + e1y * j1.DP.y);
-    const double r2v = l2.v * l2.dv + (e2x * j2.DP.x + e2y * j2.DP.y);
+    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
+    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
     const double buv = (r1v - r2v) * iq;
     const double bnv = (a2 * r1v + a * r2v) * ihq;
     const double bvx = buv * ux - bnv * uy;
     const double bvy = buv * uy + bnv * ux;
-    const double r1a = l1.v * l1.ddv + l1.dv * l1.dv - ((bvx - j1.DP.x) * (bvx - j1.DP.x) + (bvy - j1.DP.y) * (bvy - j1.DP.y)) + (e1x * j1.DDP.x + e1y * j1.DDP.y);
-    const double r2a = l2.v * l2.ddv + l2.dv * l2.dv - ((bvx - j2.DP.x) * (bvx - j2.DP.x) + (bvy - j2.DP.y) * (bvy - j2.DP.y)) + (e2x * j2.DDP.x + e2y * j2.DDP.y);
+    const double r1a = l1->v * l1->ddv + l1->dv * l1->dv - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y)) + (e1x * j1->DDP.x + e1y * j1->DDP.y);
+    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y)) + (e2x * j2->DDP.x + e2y * j2->DDP.y);
     const double bua = (r1a - r2a) * iq;
     const double bna = (a2 * r1a + a * r2a) * ihq;
     const double bax = bua * ux - bna * uy;
     const double bay = bua * uy + bna * ux;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
-    jb->P.x = j1.P.x + e1x;
-    jb->P.y = j1.P.y + e1y;
+    jb->P.x = j1->P.x + e1x;
+    jb->P.y = j1->P.y + e1y;
     jb->DP.x = bvx;
     jb->DP.y = bvy;
     jb->DDP.x = bax;
@@ -136,14 +141,14 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
 }
 
 /* Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part). */
-static void link_residual(POINT j1, POINT j2, VARIABLE l, VARIABLE *f)
+static inline void link_residual(const POINT *j1, const POINT *j2, const VARIABLE *l, VARIABLE *f)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
-    const double dvx = j2.DP.x - j1.DP.x;
-    const double dvy = j2.DP.y - j1.DP.y;
-    const double dax = j2.DDP.x - j1.DDP.x;
-    const double day = j2.DDP.y - j1.DDP.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
     const double r = sqrt(dx * dx + dy * dy);
     const double ir = r == 0 ? NAN : 1 / r;
     const double s = sqrt(dvx * dvx + dvy * dvy);
@@ -151,9 +156,9 @@ static void link_residual(POINT j1, POINT j2, VARIABLE l, VARIABLE *f)
     const double rd = r == 0 ? s : (dx * dvx + dy * dvy) * ir;
     const double rp = s == 0 ? sqrt(dax * dax + day * day) : (dvx * dax + dvy * day) * iv;
     const double rdd = r == 0 ? rp : (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir;
-    f->v = r - l.v;
-    f->dv = rd - l.dv;
-    f->ddv = rdd - l.ddv;
+    f->v = r - l->v;
+    f->dv = rd - l->dv;
+    f->ddv = rdd - l->ddv;
 }
 
 /* The reason of a status code (linkgen/status.py): the last digit of a positive code
@@ -790,7 +795,7 @@ static const int PERIODIC[LINKGEN_NINPUTS] = { 1 };
    between two of the sketch's pairs or points. */
 static const resolver_mechanism MECHANISM = {
     331.436268383531, SKETCH_IN, SKETCH_A, BLOCK_SIZES, LIMITS, PERIODIC, NAN,
-    92, 2
+    82, 2
 };
 
 /* The resolver's policy, lengths relative to the length scale (see double_triad.md). */
@@ -825,20 +830,20 @@ typedef struct {
     VARIABLE add1;
     POINT p_J4;
     POINT p_J2;
-    ANGLE phi_right_ternary;
     POINT p_J5;
     VARIABLE f1;
     VARIABLE add2;
     POINT p_K4;
     POINT p_K2;
-    ANGLE phi_left_ternary;
     POINT p_K5;
     VARIABLE f2;
     ANGLE phi_crank;
     ANGLE phi_right_rocker1;
+    ANGLE phi_right_ternary;
     ANGLE phi_right_rocker2;
     ANGLE phi_right_coupler;
     ANGLE phi_left_rocker1;
+    ANGLE phi_left_ternary;
     ANGLE phi_left_rocker2;
     ANGLE phi_left_coupler;
     VARIABLE add1_v1;
@@ -875,36 +880,36 @@ typedef struct {
     double chains;  /* the worst conditioning of a block's chains in its last pass */
     int br4;  /* the branch of step 4, as the last solution left it */
     int br5;  /* the branch of step 5, as the last solution left it */
+    int br10;  /* the branch of step 10, as the last solution left it */
     int br11;  /* the branch of step 11, as the last solution left it */
-    int br12;  /* the branch of step 12, as the last solution left it */
     int br24;  /* the branch of step 24, as the last solution left it */
     int br25;  /* the branch of step 25, as the last solution left it */
+    int br28;  /* the branch of step 28, as the last solution left it */
     int br29;  /* the branch of step 29, as the last solution left it */
-    int br30;  /* the branch of step 30, as the last solution left it */
-    int br34;  /* the branch of step 34, as the last solution left it */
-    int br35;  /* the branch of step 35, as the last solution left it */
-    int br39;  /* the branch of step 39, as the last solution left it */
+    int br32;  /* the branch of step 32, as the last solution left it */
+    int br33;  /* the branch of step 33, as the last solution left it */
+    int br36;  /* the branch of step 36, as the last solution left it */
+    int br37;  /* the branch of step 37, as the last solution left it */
     int br40;  /* the branch of step 40, as the last solution left it */
+    int br41;  /* the branch of step 41, as the last solution left it */
     int br44;  /* the branch of step 44, as the last solution left it */
     int br45;  /* the branch of step 45, as the last solution left it */
+    int br48;  /* the branch of step 48, as the last solution left it */
     int br49;  /* the branch of step 49, as the last solution left it */
-    int br50;  /* the branch of step 50, as the last solution left it */
-    int br54;  /* the branch of step 54, as the last solution left it */
-    int br55;  /* the branch of step 55, as the last solution left it */
-    int br59;  /* the branch of step 59, as the last solution left it */
+    int br52;  /* the branch of step 52, as the last solution left it */
+    int br53;  /* the branch of step 53, as the last solution left it */
+    int br56;  /* the branch of step 56, as the last solution left it */
+    int br57;  /* the branch of step 57, as the last solution left it */
     int br60;  /* the branch of step 60, as the last solution left it */
+    int br61;  /* the branch of step 61, as the last solution left it */
     int br64;  /* the branch of step 64, as the last solution left it */
     int br65;  /* the branch of step 65, as the last solution left it */
+    int br68;  /* the branch of step 68, as the last solution left it */
     int br69;  /* the branch of step 69, as the last solution left it */
-    int br70;  /* the branch of step 70, as the last solution left it */
-    int br74;  /* the branch of step 74, as the last solution left it */
-    int br75;  /* the branch of step 75, as the last solution left it */
-    int br79;  /* the branch of step 79, as the last solution left it */
-    int br80;  /* the branch of step 80, as the last solution left it */
-    int br84;  /* the branch of step 84, as the last solution left it */
-    int br85;  /* the branch of step 85, as the last solution left it */
-    int br89;  /* the branch of step 89, as the last solution left it */
-    int br90;  /* the branch of step 90, as the last solution left it */
+    int br72;  /* the branch of step 72, as the last solution left it */
+    int br73;  /* the branch of step 73, as the last solution left it */
+    int br76;  /* the branch of step 76, as the last solution left it */
+    int br77;  /* the branch of step 77, as the last solution left it */
 } work;
 
 /* Remember the code of the first step at a singular or a near-singular position (st: the step's). */
@@ -916,7 +921,7 @@ static void note(work *w, int st, int singular, int near)
 
 static const VARIABLE ZERO_LENGTH = { 0.0, 0.0, 0.0 };
 
-/* Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9:
+/* Steps 4, 5, 6, 7, iterated by the resolver of step 8:
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -935,23 +940,19 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
     w->add1.ddv = dda[0];
     w->chains = 1.0;
     /* Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J3, p_J6, l_right_rocker2, w->add1, w->br4, &w->p_J4, &w->sigma[4]);
+    st = RRR_links(&p_J3, &p_J6, &l_right_rocker2, &w->add1, w->br4, &w->p_J4, &w->sigma[4]);
     if (st == 1) return 1;
     if (live) note(w, st, 43, -44);
     w->chains = fmin(w->chains, w->sigma[4]);
     /* Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J4, l_right_rocker1, l_right_ternary_J2_J4, w->br5, &w->p_J2, &w->sigma[5]);
+    st = RRR_links(&p_J1, &w->p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, w->br5, &w->p_J2, &w->sigma[5]);
     if (st == 1) return 1;
     if (live) note(w, st, 53, -54);
     w->chains = fmin(w->chains, w->sigma[5]);
-    /* Step 6: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
-    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 63, -64);
-    /* Step 7: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
-    /* Step 8: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1);
+    /* Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
+    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    /* Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1);
     f[0] = w->f1.v;
     df[0] = w->f1.dv;
     ddf[0] = w->f1.ddv;
@@ -959,7 +960,7 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
 }
 
 
-/* Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9   (fallback 1: the Add-link J6-J2):
+/* Steps 24, 25, 26, 27, iterated by the resolver of step 8   (fallback 1: the Add-link J6-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -978,23 +979,19 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
     w->add1_v1.ddv = dda[0];
     w->chains = 1.0;
     /* Step 24: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, p_J6, l_right_rocker1, w->add1_v1, w->br24, &w->p_J2, &w->sigma[24]);
+    st = RRR_links(&p_J1, &p_J6, &l_right_rocker1, &w->add1_v1, w->br24, &w->p_J2, &w->sigma[24]);
     if (st == 1) return 1;
     if (live) note(w, st, 243, -244);
     w->chains = fmin(w->chains, w->sigma[24]);
     /* Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w->br25, &w->p_J4, &w->sigma[25]);
+    st = RRR_links(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br25, &w->p_J4, &w->sigma[25]);
     if (st == 1) return 1;
     if (live) note(w, st, 253, -254);
     w->chains = fmin(w->chains, w->sigma[25]);
-    /* Step 26: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
-    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 263, -264);
-    /* Step 27: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
-    /* Step 28: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v1);
+    /* Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    /* Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v1);
     f[0] = w->f1_v1.v;
     df[0] = w->f1_v1.dv;
     ddf[0] = w->f1_v1.ddv;
@@ -1002,7 +999,7 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9   (fallback 2: the Add-link J7-J2):
+/* Steps 28, 29, 30, 31, iterated by the resolver of step 8   (fallback 2: the Add-link J7-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1020,24 +1017,20 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
     w->add1_v2.dv = da[0];
     w->add1_v2.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, p_J7, l_right_rocker1, w->add1_v2, w->br29, &w->p_J2, &w->sigma[29]);
+    /* Step 28: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J1, &p_J7, &l_right_rocker1, &w->add1_v2, w->br28, &w->p_J2, &w->sigma[28]);
+    if (st == 1) return 1;
+    if (live) note(w, st, 283, -284);
+    w->chains = fmin(w->chains, w->sigma[28]);
+    /* Step 29: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br29, &w->p_J4, &w->sigma[29]);
     if (st == 1) return 1;
     if (live) note(w, st, 293, -294);
     w->chains = fmin(w->chains, w->sigma[29]);
-    /* Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w->br30, &w->p_J4, &w->sigma[30]);
-    if (st == 1) return 1;
-    if (live) note(w, st, 303, -304);
-    w->chains = fmin(w->chains, w->sigma[30]);
-    /* Step 31: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
-    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 313, -314);
-    /* Step 32: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
-    /* Step 33: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v2);
+    /* Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    /* Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v2);
     f[0] = w->f1_v2.v;
     df[0] = w->f1_v2.dv;
     ddf[0] = w->f1_v2.ddv;
@@ -1045,7 +1038,7 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9   (fallback 3: the Add-link J7-J4):
+/* Steps 32, 33, 34, 35, iterated by the resolver of step 8   (fallback 3: the Add-link J7-J4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1063,24 +1056,20 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
     w->add1_v3.dv = da[0];
     w->add1_v3.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J3, p_J7, l_right_rocker2, w->add1_v3, w->br34, &w->p_J4, &w->sigma[34]);
+    /* Step 32: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J3, &p_J7, &l_right_rocker2, &w->add1_v3, w->br32, &w->p_J4, &w->sigma[32]);
     if (st == 1) return 1;
-    if (live) note(w, st, 343, -344);
-    w->chains = fmin(w->chains, w->sigma[34]);
-    /* Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J4, l_right_rocker1, l_right_ternary_J2_J4, w->br35, &w->p_J2, &w->sigma[35]);
+    if (live) note(w, st, 323, -324);
+    w->chains = fmin(w->chains, w->sigma[32]);
+    /* Step 33: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J1, &w->p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, w->br33, &w->p_J2, &w->sigma[33]);
     if (st == 1) return 1;
-    if (live) note(w, st, 353, -354);
-    w->chains = fmin(w->chains, w->sigma[35]);
-    /* Step 36: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
-    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 363, -364);
-    /* Step 37: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
-    /* Step 38: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v3);
+    if (live) note(w, st, 333, -334);
+    w->chains = fmin(w->chains, w->sigma[33]);
+    /* Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
+    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    /* Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v3);
     f[0] = w->f1_v3.v;
     df[0] = w->f1_v3.dv;
     ddf[0] = w->f1_v3.ddv;
@@ -1088,7 +1077,7 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9   (fallback 4: the Add-link J1-J4):
+/* Steps 36, 37, 38, 39, iterated by the resolver of step 8   (fallback 4: the Add-link J1-J4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1106,24 +1095,20 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
     w->add1_v4.dv = da[0];
     w->add1_v4.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 39: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J3, p_J1, l_right_rocker2, w->add1_v4, w->br39, &w->p_J4, &w->sigma[39]);
+    /* Step 36: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J3, &p_J1, &l_right_rocker2, &w->add1_v4, w->br36, &w->p_J4, &w->sigma[36]);
     if (st == 1) return 1;
-    if (live) note(w, st, 393, -394);
-    w->chains = fmin(w->chains, w->sigma[39]);
-    /* Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J4, l_right_rocker1, l_right_ternary_J2_J4, w->br40, &w->p_J2, &w->sigma[40]);
+    if (live) note(w, st, 363, -364);
+    w->chains = fmin(w->chains, w->sigma[36]);
+    /* Step 37: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J1, &w->p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, w->br37, &w->p_J2, &w->sigma[37]);
     if (st == 1) return 1;
-    if (live) note(w, st, 403, -404);
-    w->chains = fmin(w->chains, w->sigma[40]);
-    /* Step 41: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
-    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 413, -414);
-    /* Step 42: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    coupler_point(w->p_J4, w->phi_right_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
-    /* Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v4);
+    if (live) note(w, st, 373, -374);
+    w->chains = fmin(w->chains, w->sigma[37]);
+    /* Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
+    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    /* Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v4);
     f[0] = w->f1_v4.v;
     df[0] = w->f1_v4.dv;
     ddf[0] = w->f1_v4.ddv;
@@ -1131,7 +1116,7 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9   (fallback 5: the Add-link J3-J2):
+/* Steps 40, 41, 42, 43, iterated by the resolver of step 8   (fallback 5: the Add-link J3-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1149,24 +1134,20 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
     w->add1_v5.dv = da[0];
     w->add1_v5.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 44: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, p_J3, l_right_rocker1, w->add1_v5, w->br44, &w->p_J2, &w->sigma[44]);
+    /* Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J1, &p_J3, &l_right_rocker1, &w->add1_v5, w->br40, &w->p_J2, &w->sigma[40]);
     if (st == 1) return 1;
-    if (live) note(w, st, 443, -444);
-    w->chains = fmin(w->chains, w->sigma[44]);
-    /* Step 45: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w->br45, &w->p_J4, &w->sigma[45]);
+    if (live) note(w, st, 403, -404);
+    w->chains = fmin(w->chains, w->sigma[40]);
+    /* Step 41: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br41, &w->p_J4, &w->sigma[41]);
     if (st == 1) return 1;
-    if (live) note(w, st, 453, -454);
-    w->chains = fmin(w->chains, w->sigma[45]);
-    /* Step 46: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
-    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 463, -464);
-    /* Step 47: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
-    /* Step 48: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v5);
+    if (live) note(w, st, 413, -414);
+    w->chains = fmin(w->chains, w->sigma[41]);
+    /* Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    /* Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v5);
     f[0] = w->f1_v5.v;
     df[0] = w->f1_v5.dv;
     ddf[0] = w->f1_v5.ddv;
@@ -1174,7 +1155,7 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9   (fallback 6: the Add-link K1-J2):
+/* Steps 44, 45, 46, 47, iterated by the resolver of step 8   (fallback 6: the Add-link K1-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1192,24 +1173,20 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
     w->add1_v6.dv = da[0];
     w->add1_v6.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 49: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, p_K1, l_right_rocker1, w->add1_v6, w->br49, &w->p_J2, &w->sigma[49]);
+    /* Step 44: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J1, &p_K1, &l_right_rocker1, &w->add1_v6, w->br44, &w->p_J2, &w->sigma[44]);
     if (st == 1) return 1;
-    if (live) note(w, st, 493, -494);
-    w->chains = fmin(w->chains, w->sigma[49]);
-    /* Step 50: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w->br50, &w->p_J4, &w->sigma[50]);
+    if (live) note(w, st, 443, -444);
+    w->chains = fmin(w->chains, w->sigma[44]);
+    /* Step 45: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br45, &w->p_J4, &w->sigma[45]);
     if (st == 1) return 1;
-    if (live) note(w, st, 503, -504);
-    w->chains = fmin(w->chains, w->sigma[50]);
-    /* Step 51: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
-    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_right_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 513, -514);
-    /* Step 52: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    coupler_point(w->p_J2, w->phi_right_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
-    /* Step 53: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_J5, l_right_coupler, &w->f1_v6);
+    if (live) note(w, st, 453, -454);
+    w->chains = fmin(w->chains, w->sigma[45]);
+    /* Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    /* Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v6);
     f[0] = w->f1_v6.v;
     df[0] = w->f1_v6.dv;
     ddf[0] = w->f1_v6.ddv;
@@ -1217,7 +1194,7 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 11, 12, 13, 14, 15, iterated by the resolver of step 16:
+/* Steps 10, 11, 12, 13, iterated by the resolver of step 14:
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1235,24 +1212,20 @@ static int group_2(void *ctx, const double a[], const double da[], const double 
     w->add2.dv = da[0];
     w->add2.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 11: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known */
-    st = RRR_links(p_K3, p_J6, l_left_rocker2, w->add2, w->br11, &w->p_K4, &w->sigma[11]);
+    /* Step 10: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_K3, &p_J6, &l_left_rocker2, &w->add2, w->br10, &w->p_K4, &w->sigma[10]);
+    if (st == 1) return 1;
+    if (live) note(w, st, 103, -104);
+    w->chains = fmin(w->chains, w->sigma[10]);
+    /* Step 11: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br11, &w->p_K2, &w->sigma[11]);
     if (st == 1) return 1;
     if (live) note(w, st, 113, -114);
     w->chains = fmin(w->chains, w->sigma[11]);
-    /* Step 12: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_K1, w->p_K4, l_left_rocker1, l_left_ternary_K2_K4, w->br12, &w->p_K2, &w->sigma[12]);
-    if (st == 1) return 1;
-    if (live) note(w, st, 123, -124);
-    w->chains = fmin(w->chains, w->sigma[12]);
-    /* Step 13: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
-    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 133, -134);
-    /* Step 14: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
-    /* Step 15: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2);
+    /* Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
+    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    /* Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2);
     f[0] = w->f2.v;
     df[0] = w->f2.dv;
     ddf[0] = w->f2.ddv;
@@ -1260,7 +1233,7 @@ static int group_2(void *ctx, const double a[], const double da[], const double 
 }
 
 
-/* Steps 54, 55, 56, 57, 58, iterated by the resolver of step 16   (fallback 1: the Add-link J5-K2):
+/* Steps 48, 49, 50, 51, iterated by the resolver of step 14   (fallback 1: the Add-link J5-K2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1280,24 +1253,20 @@ static int group_2_v1(void *ctx, const double a[], const double da[], const doub
     w->add2_v1.dv = da[0];
     w->add2_v1.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 54: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known */
-    st = RRR_links(p_K1, p_J5, l_left_rocker1, w->add2_v1, w->br54, &w->p_K2, &w->sigma[54]);
+    /* Step 48: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_K1, &p_J5, &l_left_rocker1, &w->add2_v1, w->br48, &w->p_K2, &w->sigma[48]);
     if (st == 1) return 1;
-    if (live) note(w, st, 543, -544);
-    w->chains = fmin(w->chains, w->sigma[54]);
-    /* Step 55: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w->br55, &w->p_K4, &w->sigma[55]);
+    if (live) note(w, st, 483, -484);
+    w->chains = fmin(w->chains, w->sigma[48]);
+    /* Step 49: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br49, &w->p_K4, &w->sigma[49]);
     if (st == 1) return 1;
-    if (live) note(w, st, 553, -554);
-    w->chains = fmin(w->chains, w->sigma[55]);
-    /* Step 56: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
-    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 563, -564);
-    /* Step 57: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
-    /* Step 58: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v1);
+    if (live) note(w, st, 493, -494);
+    w->chains = fmin(w->chains, w->sigma[49]);
+    /* Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
+    link_point(&w->p_K2, &w->p_K4, 0.5656108597285068, -0.12217194570135746, &w->p_K5);
+    /* Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v1);
     f[0] = w->f2_v1.v;
     df[0] = w->f2_v1.dv;
     ddf[0] = w->f2_v1.ddv;
@@ -1305,7 +1274,7 @@ static int group_2_v1(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 59, 60, 61, 62, 63, iterated by the resolver of step 16   (fallback 2: the Add-link J5-K4):
+/* Steps 52, 53, 54, 55, iterated by the resolver of step 14   (fallback 2: the Add-link J5-K4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1325,24 +1294,20 @@ static int group_2_v2(void *ctx, const double a[], const double da[], const doub
     w->add2_v2.dv = da[0];
     w->add2_v2.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 59: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known */
-    st = RRR_links(p_K3, p_J5, l_left_rocker2, w->add2_v2, w->br59, &w->p_K4, &w->sigma[59]);
+    /* Step 52: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_K3, &p_J5, &l_left_rocker2, &w->add2_v2, w->br52, &w->p_K4, &w->sigma[52]);
     if (st == 1) return 1;
-    if (live) note(w, st, 593, -594);
-    w->chains = fmin(w->chains, w->sigma[59]);
-    /* Step 60: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_K1, w->p_K4, l_left_rocker1, l_left_ternary_K2_K4, w->br60, &w->p_K2, &w->sigma[60]);
+    if (live) note(w, st, 523, -524);
+    w->chains = fmin(w->chains, w->sigma[52]);
+    /* Step 53: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br53, &w->p_K2, &w->sigma[53]);
     if (st == 1) return 1;
-    if (live) note(w, st, 603, -604);
-    w->chains = fmin(w->chains, w->sigma[60]);
-    /* Step 61: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
-    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 613, -614);
-    /* Step 62: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
-    /* Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v2);
+    if (live) note(w, st, 533, -534);
+    w->chains = fmin(w->chains, w->sigma[53]);
+    /* Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
+    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    /* Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v2);
     f[0] = w->f2_v2.v;
     df[0] = w->f2_v2.dv;
     ddf[0] = w->f2_v2.ddv;
@@ -1350,7 +1315,7 @@ static int group_2_v2(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 64, 65, 66, 67, 68, iterated by the resolver of step 16   (fallback 3: the Add-link J2-K4):
+/* Steps 56, 57, 58, 59, iterated by the resolver of step 14   (fallback 3: the Add-link J2-K4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1370,24 +1335,20 @@ static int group_2_v3(void *ctx, const double a[], const double da[], const doub
     w->add2_v3.dv = da[0];
     w->add2_v3.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 64: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known */
-    st = RRR_links(p_K3, p_J2, l_left_rocker2, w->add2_v3, w->br64, &w->p_K4, &w->sigma[64]);
+    /* Step 56: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_K3, &p_J2, &l_left_rocker2, &w->add2_v3, w->br56, &w->p_K4, &w->sigma[56]);
     if (st == 1) return 1;
-    if (live) note(w, st, 643, -644);
-    w->chains = fmin(w->chains, w->sigma[64]);
-    /* Step 65: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_K1, w->p_K4, l_left_rocker1, l_left_ternary_K2_K4, w->br65, &w->p_K2, &w->sigma[65]);
+    if (live) note(w, st, 563, -564);
+    w->chains = fmin(w->chains, w->sigma[56]);
+    /* Step 57: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br57, &w->p_K2, &w->sigma[57]);
     if (st == 1) return 1;
-    if (live) note(w, st, 653, -654);
-    w->chains = fmin(w->chains, w->sigma[65]);
-    /* Step 66: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
-    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 663, -664);
-    /* Step 67: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
-    /* Step 68: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v3);
+    if (live) note(w, st, 573, -574);
+    w->chains = fmin(w->chains, w->sigma[57]);
+    /* Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
+    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    /* Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v3);
     f[0] = w->f2_v3.v;
     df[0] = w->f2_v3.dv;
     ddf[0] = w->f2_v3.ddv;
@@ -1395,7 +1356,7 @@ static int group_2_v3(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 69, 70, 71, 72, 73, iterated by the resolver of step 16   (fallback 4: the Add-link J4-K4):
+/* Steps 60, 61, 62, 63, iterated by the resolver of step 14   (fallback 4: the Add-link J4-K4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1415,24 +1376,20 @@ static int group_2_v4(void *ctx, const double a[], const double da[], const doub
     w->add2_v4.dv = da[0];
     w->add2_v4.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 69: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known */
-    st = RRR_links(p_K3, p_J4, l_left_rocker2, w->add2_v4, w->br69, &w->p_K4, &w->sigma[69]);
+    /* Step 60: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_K3, &p_J4, &l_left_rocker2, &w->add2_v4, w->br60, &w->p_K4, &w->sigma[60]);
     if (st == 1) return 1;
-    if (live) note(w, st, 693, -694);
-    w->chains = fmin(w->chains, w->sigma[69]);
-    /* Step 70: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_K1, w->p_K4, l_left_rocker1, l_left_ternary_K2_K4, w->br70, &w->p_K2, &w->sigma[70]);
+    if (live) note(w, st, 603, -604);
+    w->chains = fmin(w->chains, w->sigma[60]);
+    /* Step 61: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br61, &w->p_K2, &w->sigma[61]);
     if (st == 1) return 1;
-    if (live) note(w, st, 703, -704);
-    w->chains = fmin(w->chains, w->sigma[70]);
-    /* Step 71: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
-    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 713, -714);
-    /* Step 72: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    coupler_point(w->p_K4, w->phi_left_ternary, -45.662543438831435, -12.842590342171338, &w->p_K5);
-    /* Step 73: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v4);
+    if (live) note(w, st, 613, -614);
+    w->chains = fmin(w->chains, w->sigma[61]);
+    /* Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
+    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    /* Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v4);
     f[0] = w->f2_v4.v;
     df[0] = w->f2_v4.dv;
     ddf[0] = w->f2_v4.ddv;
@@ -1440,7 +1397,7 @@ static int group_2_v4(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 74, 75, 76, 77, 78, iterated by the resolver of step 16   (fallback 5: the Add-link J2-K2):
+/* Steps 64, 65, 66, 67, iterated by the resolver of step 14   (fallback 5: the Add-link J2-K2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1460,24 +1417,20 @@ static int group_2_v5(void *ctx, const double a[], const double da[], const doub
     w->add2_v5.dv = da[0];
     w->add2_v5.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 74: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known */
-    st = RRR_links(p_K1, p_J2, l_left_rocker1, w->add2_v5, w->br74, &w->p_K2, &w->sigma[74]);
+    /* Step 64: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_K1, &p_J2, &l_left_rocker1, &w->add2_v5, w->br64, &w->p_K2, &w->sigma[64]);
     if (st == 1) return 1;
-    if (live) note(w, st, 743, -744);
-    w->chains = fmin(w->chains, w->sigma[74]);
-    /* Step 75: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w->br75, &w->p_K4, &w->sigma[75]);
+    if (live) note(w, st, 643, -644);
+    w->chains = fmin(w->chains, w->sigma[64]);
+    /* Step 65: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br65, &w->p_K4, &w->sigma[65]);
     if (st == 1) return 1;
-    if (live) note(w, st, 753, -754);
-    w->chains = fmin(w->chains, w->sigma[75]);
-    /* Step 76: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
-    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 763, -764);
-    /* Step 77: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
-    /* Step 78: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v5);
+    if (live) note(w, st, 653, -654);
+    w->chains = fmin(w->chains, w->sigma[65]);
+    /* Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
+    link_point(&w->p_K2, &w->p_K4, 0.5656108597285068, -0.12217194570135746, &w->p_K5);
+    /* Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v5);
     f[0] = w->f2_v5.v;
     df[0] = w->f2_v5.dv;
     ddf[0] = w->f2_v5.ddv;
@@ -1485,7 +1438,7 @@ static int group_2_v5(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 79, 80, 81, 82, 83, iterated by the resolver of step 16   (fallback 6: the Add-link J4-K2):
+/* Steps 68, 69, 70, 71, iterated by the resolver of step 14   (fallback 6: the Add-link J4-K2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1505,24 +1458,20 @@ static int group_2_v6(void *ctx, const double a[], const double da[], const doub
     w->add2_v6.dv = da[0];
     w->add2_v6.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 79: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known */
-    st = RRR_links(p_K1, p_J4, l_left_rocker1, w->add2_v6, w->br79, &w->p_K2, &w->sigma[79]);
+    /* Step 68: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_K1, &p_J4, &l_left_rocker1, &w->add2_v6, w->br68, &w->p_K2, &w->sigma[68]);
     if (st == 1) return 1;
-    if (live) note(w, st, 793, -794);
-    w->chains = fmin(w->chains, w->sigma[79]);
-    /* Step 80: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w->br80, &w->p_K4, &w->sigma[80]);
+    if (live) note(w, st, 683, -684);
+    w->chains = fmin(w->chains, w->sigma[68]);
+    /* Step 69: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br69, &w->p_K4, &w->sigma[69]);
     if (st == 1) return 1;
-    if (live) note(w, st, 803, -804);
-    w->chains = fmin(w->chains, w->sigma[80]);
-    /* Step 81: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
-    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 813, -814);
-    /* Step 82: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
-    /* Step 83: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v6);
+    if (live) note(w, st, 693, -694);
+    w->chains = fmin(w->chains, w->sigma[69]);
+    /* Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
+    link_point(&w->p_K2, &w->p_K4, 0.5656108597285068, -0.12217194570135746, &w->p_K5);
+    /* Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v6);
     f[0] = w->f2_v6.v;
     df[0] = w->f2_v6.dv;
     ddf[0] = w->f2_v6.ddv;
@@ -1530,7 +1479,7 @@ static int group_2_v6(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 84, 85, 86, 87, 88, iterated by the resolver of step 16   (fallback 7: the Add-link J6-K2):
+/* Steps 72, 73, 74, 75, iterated by the resolver of step 14   (fallback 7: the Add-link J6-K2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1548,24 +1497,20 @@ static int group_2_v7(void *ctx, const double a[], const double da[], const doub
     w->add2_v7.dv = da[0];
     w->add2_v7.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 84: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known */
-    st = RRR_links(p_K1, p_J6, l_left_rocker1, w->add2_v7, w->br84, &w->p_K2, &w->sigma[84]);
+    /* Step 72: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_K1, &p_J6, &l_left_rocker1, &w->add2_v7, w->br72, &w->p_K2, &w->sigma[72]);
     if (st == 1) return 1;
-    if (live) note(w, st, 843, -844);
-    w->chains = fmin(w->chains, w->sigma[84]);
-    /* Step 85: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w->br85, &w->p_K4, &w->sigma[85]);
+    if (live) note(w, st, 723, -724);
+    w->chains = fmin(w->chains, w->sigma[72]);
+    /* Step 73: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br73, &w->p_K4, &w->sigma[73]);
     if (st == 1) return 1;
-    if (live) note(w, st, 853, -854);
-    w->chains = fmin(w->chains, w->sigma[85]);
-    /* Step 86: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
-    st = link_angle(w->p_K2, w->p_K4, 0.0, &w->phi_left_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 863, -864);
-    /* Step 87: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    coupler_point(w->p_K2, w->phi_left_ternary, 59.45643676931176, -12.842590342171345, &w->p_K5);
-    /* Step 88: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_K5, l_left_coupler, &w->f2_v7);
+    if (live) note(w, st, 733, -734);
+    w->chains = fmin(w->chains, w->sigma[73]);
+    /* Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
+    link_point(&w->p_K2, &w->p_K4, 0.5656108597285068, -0.12217194570135746, &w->p_K5);
+    /* Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v7);
     f[0] = w->f2_v7.v;
     df[0] = w->f2_v7.dv;
     ddf[0] = w->f2_v7.ddv;
@@ -1573,7 +1518,7 @@ static int group_2_v7(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 89, 90, 91, 92, 93, iterated by the resolver of step 16   (fallback 8: the Add-link J5-K5):
+/* Steps 76, 77, 78, 79, iterated by the resolver of step 14   (fallback 8: the Add-link J5-K5):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1593,24 +1538,20 @@ static int group_2_v8(void *ctx, const double a[], const double da[], const doub
     w->add2_v8.dv = da[0];
     w->add2_v8.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 89: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J6, p_J5, l_left_coupler, w->add2_v8, w->br89, &w->p_K5, &w->sigma[89]);
+    /* Step 76: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J6, &p_J5, &l_left_coupler, &w->add2_v8, w->br76, &w->p_K5, &w->sigma[76]);
     if (st == 1) return 1;
-    if (live) note(w, st, 893, -894);
-    w->chains = fmin(w->chains, w->sigma[89]);
-    /* Step 90: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_K1, w->p_K5, l_left_rocker1, l_left_ternary_K2_K5, w->br90, &w->p_K2, &w->sigma[90]);
+    if (live) note(w, st, 763, -764);
+    w->chains = fmin(w->chains, w->sigma[76]);
+    /* Step 77: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_K1, &w->p_K5, &l_left_rocker1, &l_left_ternary_K2_K5, w->br77, &w->p_K2, &w->sigma[77]);
     if (st == 1) return 1;
-    if (live) note(w, st, 903, -904);
-    w->chains = fmin(w->chains, w->sigma[90]);
-    /* Step 91: link_angle, left_ternary. K5 and K2 of link left_ternary are known, so its angle is */
-    st = link_angle(w->p_K5, w->p_K2, -2.928860872898183, &w->phi_left_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 913, -914);
-    /* Step 92: coupler_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it */
-    coupler_point(w->p_K5, w->phi_left_ternary, 45.662543438831435, 12.842590342171338, &w->p_K4);
-    /* Step 93: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_K3, w->p_K4, l_left_rocker2, &w->f2_v8);
+    if (live) note(w, st, 773, -774);
+    w->chains = fmin(w->chains, w->sigma[77]);
+    /* Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it */
+    link_point(&w->p_K5, &w->p_K2, -0.6891891891891891, -0.36486486486486486, &w->p_K4);
+    /* Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_K3, &w->p_K4, &l_left_rocker2, &w->f2_v8);
     f[0] = w->f2_v8.v;
     df[0] = w->f2_v8.dv;
     ddf[0] = w->f2_v8.ddv;
@@ -1626,7 +1567,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     const work *w = (const work *)ctx;
     VARIABLE f;
     double m;
-    link_residual(w->p_J6, w->p_J4, ZERO_LENGTH, &f);
+    link_residual(&w->p_J6, &w->p_J4, &ZERO_LENGTH, &f);
     a[0][0] = f.v;
     ad[0][0] = f.dv;
     m = (w->p_J6.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (w->p_J6.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
@@ -1636,7 +1577,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[0][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][2];
     ad[0][2] = 0.0;
     a[0][LINKGEN_NMAX - 1] = ad[0][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(w->p_J6, w->p_J2, ZERO_LENGTH, &f);
+    link_residual(&w->p_J6, &w->p_J2, &ZERO_LENGTH, &f);
     a[1][0] = f.v;
     ad[1][0] = f.dv;
     m = (w->p_J6.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J6.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1646,7 +1587,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[1][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][2];
     ad[1][2] = 0.0;
     a[1][LINKGEN_NMAX - 1] = ad[1][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(p_J7, w->p_J2, ZERO_LENGTH, &f);
+    link_residual(&p_J7, &w->p_J2, &ZERO_LENGTH, &f);
     a[2][0] = f.v;
     ad[2][0] = f.dv;
     m = (p_J7.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J7.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1656,7 +1597,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[2][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][2];
     ad[2][2] = 0.0;
     a[2][LINKGEN_NMAX - 1] = ad[2][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(p_J7, w->p_J4, ZERO_LENGTH, &f);
+    link_residual(&p_J7, &w->p_J4, &ZERO_LENGTH, &f);
     a[3][0] = f.v;
     ad[3][0] = f.dv;
     m = (p_J7.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J7.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
@@ -1666,7 +1607,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[3][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][2];
     ad[3][2] = 0.0;
     a[3][LINKGEN_NMAX - 1] = ad[3][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(p_J1, w->p_J4, ZERO_LENGTH, &f);
+    link_residual(&p_J1, &w->p_J4, &ZERO_LENGTH, &f);
     a[4][0] = f.v;
     ad[4][0] = f.dv;
     m = (p_J1.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J1.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
@@ -1676,7 +1617,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[4][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][2];
     ad[4][2] = 0.0;
     a[4][LINKGEN_NMAX - 1] = ad[4][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(p_J3, w->p_J2, ZERO_LENGTH, &f);
+    link_residual(&p_J3, &w->p_J2, &ZERO_LENGTH, &f);
     a[5][0] = f.v;
     ad[5][0] = f.dv;
     m = (p_J3.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J3.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1686,7 +1627,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[5][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][2];
     ad[5][2] = 0.0;
     a[5][LINKGEN_NMAX - 1] = ad[5][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(p_K1, w->p_J2, ZERO_LENGTH, &f);
+    link_residual(&p_K1, &w->p_J2, &ZERO_LENGTH, &f);
     a[6][0] = f.v;
     ad[6][0] = f.dv;
     m = (p_K1.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_K1.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1707,7 +1648,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     const work *w = (const work *)ctx;
     VARIABLE f;
     double m;
-    link_residual(w->p_J6, w->p_K4, ZERO_LENGTH, &f);
+    link_residual(&w->p_J6, &w->p_K4, &ZERO_LENGTH, &f);
     a[0][0] = f.v;
     ad[0][0] = f.dv;
     m = (w->p_J6.P.x - p_K3.P.x) * (w->p_K4.P.y - p_K3.P.y) - (w->p_J6.P.y - p_K3.P.y) * (w->p_K4.P.x - p_K3.P.x);
@@ -1717,7 +1658,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[0][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][2];
     ad[0][2] = 0.0;
     a[0][LINKGEN_NMAX - 1] = ad[0][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(w->p_J5, w->p_K2, ZERO_LENGTH, &f);
+    link_residual(&w->p_J5, &w->p_K2, &ZERO_LENGTH, &f);
     a[1][0] = f.v;
     ad[1][0] = f.dv;
     m = (w->p_J5.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_J5.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
@@ -1727,7 +1668,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[1][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][2];
     ad[1][2] = 0.0;
     a[1][LINKGEN_NMAX - 1] = ad[1][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(w->p_J5, w->p_K4, ZERO_LENGTH, &f);
+    link_residual(&w->p_J5, &w->p_K4, &ZERO_LENGTH, &f);
     a[2][0] = f.v;
     ad[2][0] = f.dv;
     m = (w->p_J5.P.x - p_K3.P.x) * (w->p_K4.P.y - p_K3.P.y) - (w->p_J5.P.y - p_K3.P.y) * (w->p_K4.P.x - p_K3.P.x);
@@ -1737,7 +1678,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[2][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][2];
     ad[2][2] = 0.0;
     a[2][LINKGEN_NMAX - 1] = ad[2][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(w->p_J2, w->p_K4, ZERO_LENGTH, &f);
+    link_residual(&w->p_J2, &w->p_K4, &ZERO_LENGTH, &f);
     a[3][0] = f.v;
     ad[3][0] = f.dv;
     m = (w->p_J2.P.x - p_K3.P.x) * (w->p_K4.P.y - p_K3.P.y) - (w->p_J2.P.y - p_K3.P.y) * (w->p_K4.P.x - p_K3.P.x);
@@ -1747,7 +1688,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[3][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][2];
     ad[3][2] = 0.0;
     a[3][LINKGEN_NMAX - 1] = ad[3][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(w->p_J4, w->p_K4, ZERO_LENGTH, &f);
+    link_residual(&w->p_J4, &w->p_K4, &ZERO_LENGTH, &f);
     a[4][0] = f.v;
     ad[4][0] = f.dv;
     m = (w->p_J4.P.x - p_K3.P.x) * (w->p_K4.P.y - p_K3.P.y) - (w->p_J4.P.y - p_K3.P.y) * (w->p_K4.P.x - p_K3.P.x);
@@ -1757,7 +1698,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[4][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][2];
     ad[4][2] = 0.0;
     a[4][LINKGEN_NMAX - 1] = ad[4][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(w->p_J2, w->p_K2, ZERO_LENGTH, &f);
+    link_residual(&w->p_J2, &w->p_K2, &ZERO_LENGTH, &f);
     a[5][0] = f.v;
     ad[5][0] = f.dv;
     m = (w->p_J2.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_J2.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
@@ -1767,7 +1708,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[5][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][2];
     ad[5][2] = 0.0;
     a[5][LINKGEN_NMAX - 1] = ad[5][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(w->p_J4, w->p_K2, ZERO_LENGTH, &f);
+    link_residual(&w->p_J4, &w->p_K2, &ZERO_LENGTH, &f);
     a[6][0] = f.v;
     ad[6][0] = f.dv;
     m = (w->p_J4.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_J4.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
@@ -1777,7 +1718,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[6][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[6][2];
     ad[6][2] = 0.0;
     a[6][LINKGEN_NMAX - 1] = ad[6][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(w->p_J6, w->p_K2, ZERO_LENGTH, &f);
+    link_residual(&w->p_J6, &w->p_K2, &ZERO_LENGTH, &f);
     a[7][0] = f.v;
     ad[7][0] = f.dv;
     m = (w->p_J6.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_J6.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
@@ -1787,7 +1728,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[7][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[7][2];
     ad[7][2] = 0.0;
     a[7][LINKGEN_NMAX - 1] = ad[7][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(w->p_J5, w->p_K5, ZERO_LENGTH, &f);
+    link_residual(&w->p_J5, &w->p_K5, &ZERO_LENGTH, &f);
     a[8][0] = f.v;
     ad[8][0] = f.dv;
     m = (w->p_J5.P.x - w->p_J6.P.x) * (w->p_K5.P.y - w->p_J6.P.y) - (w->p_J5.P.y - w->p_J6.P.y) * (w->p_K5.P.x - w->p_J6.P.x);
@@ -1799,129 +1740,6 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[8][LINKGEN_NMAX - 1] = ad[8][LINKGEN_NMAX - 1] = 0.0;
 }
 
-
-/* The procedure of double_triad.md, step by step. */
-static int run(work *w, const double in[], const double din[], const double ddin[], int order,
-               double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int its[],
-               int used[])
-{
-    int st;
-
-    w->singular = 0;
-    w->near = 0;
-    for (st = 0; st <= DOUBLE_TRIAD_N_STEPS; st++) w->sigma[st] = 1.0;
-    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
-
-    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
-
-
-    /* Step 2: crank_input, J6. J7 is known and link frame is placed, so the input angle theta_J7 turns link crank to J6 */
-    crank_input(p_J7, 20.0, w->in1, ref_J7, &w->p_J6);
-
-
-    /* Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4 */
-
-
-    /* Step 9: resolve, group1. the resolver iterates on add1 until right_coupler regains its length */
-    {
-        static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6 };
-        w->br4 = a[0][1] < 0.0 ? -1 : 1;
-        w->br5 = a[0][2] < 0.0 ? -1 : 1;
-        w->br24 = a[1][1] < 0.0 ? -1 : 1;
-        w->br25 = a[1][2] < 0.0 ? -1 : 1;
-        w->br29 = a[2][1] < 0.0 ? -1 : 1;
-        w->br30 = a[2][2] < 0.0 ? -1 : 1;
-        w->br34 = a[3][1] < 0.0 ? -1 : 1;
-        w->br35 = a[3][2] < 0.0 ? -1 : 1;
-        w->br39 = a[4][1] < 0.0 ? -1 : 1;
-        w->br40 = a[4][2] < 0.0 ? -1 : 1;
-        w->br44 = a[5][1] < 0.0 ? -1 : 1;
-        w->br45 = a[5][2] < 0.0 ? -1 : 1;
-        w->br49 = a[6][1] < 0.0 ? -1 : 1;
-        w->br50 = a[6][2] < 0.0 ? -1 : 1;
-        if (!resolve_group(blocks, 7, lengths_1, w, a, ad, 0, &used[0],
-                           &its[0], &w->sigma[9], &w->chains, order, &MECHANISM, &POLICY))
-            return 92;
-        note(w, w->sigma[9] < 1e-07 ? 3 : w->sigma[9] < 0.001 ? 4 : 0, 93, -94);
-    }
-
-
-
-    /* Step 10: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4 */
-
-
-    /* Step 16: resolve, group2. the resolver iterates on add2 until left_coupler regains its length */
-    {
-        static const group_fn blocks[] = { group_2, group_2_v1, group_2_v2, group_2_v3, group_2_v4, group_2_v5, group_2_v6, group_2_v7, group_2_v8 };
-        w->br11 = a[7][1] < 0.0 ? -1 : 1;
-        w->br12 = a[7][2] < 0.0 ? -1 : 1;
-        w->br54 = a[8][1] < 0.0 ? -1 : 1;
-        w->br55 = a[8][2] < 0.0 ? -1 : 1;
-        w->br59 = a[9][1] < 0.0 ? -1 : 1;
-        w->br60 = a[9][2] < 0.0 ? -1 : 1;
-        w->br64 = a[10][1] < 0.0 ? -1 : 1;
-        w->br65 = a[10][2] < 0.0 ? -1 : 1;
-        w->br69 = a[11][1] < 0.0 ? -1 : 1;
-        w->br70 = a[11][2] < 0.0 ? -1 : 1;
-        w->br74 = a[12][1] < 0.0 ? -1 : 1;
-        w->br75 = a[12][2] < 0.0 ? -1 : 1;
-        w->br79 = a[13][1] < 0.0 ? -1 : 1;
-        w->br80 = a[13][2] < 0.0 ? -1 : 1;
-        w->br84 = a[14][1] < 0.0 ? -1 : 1;
-        w->br85 = a[14][2] < 0.0 ? -1 : 1;
-        w->br89 = a[15][1] < 0.0 ? -1 : 1;
-        w->br90 = a[15][2] < 0.0 ? -1 : 1;
-        if (!resolve_group(blocks, 9, lengths_2, w, a, ad, 7, &used[1],
-                           &its[1], &w->sigma[16], &w->chains, order, &MECHANISM, &POLICY))
-            return 162;
-        note(w, w->sigma[16] < 1e-07 ? 3 : w->sigma[16] < 0.001 ? 4 : 0, 163, -164);
-    }
-
-
-
-    /* Step 17: link_angle, crank. J7 and J6 of link crank are known, so its angle is */
-    st = link_angle(p_J7, w->p_J6, 0.0, &w->phi_crank);
-    if (st == 1) return 171;
-    note(w, st, 173, -174);
-
-
-    /* Step 18: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is */
-    st = link_angle(p_J1, w->p_J2, 0.0, &w->phi_right_rocker1);
-    if (st == 1) return 181;
-    note(w, st, 183, -184);
-
-
-    /* Step 19: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is */
-    st = link_angle(p_J3, w->p_J4, 0.0, &w->phi_right_rocker2);
-    if (st == 1) return 191;
-    note(w, st, 193, -194);
-
-
-    /* Step 20: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is */
-    st = link_angle(w->p_J6, w->p_J5, 0.0, &w->phi_right_coupler);
-    if (st == 1) return 201;
-    note(w, st, 203, -204);
-
-
-    /* Step 21: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is */
-    st = link_angle(p_K1, w->p_K2, 0.0, &w->phi_left_rocker1);
-    if (st == 1) return 211;
-    note(w, st, 213, -214);
-
-
-    /* Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is */
-    st = link_angle(p_K3, w->p_K4, 0.0, &w->phi_left_rocker2);
-    if (st == 1) return 221;
-    note(w, st, 223, -224);
-
-
-    /* Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is */
-    st = link_angle(w->p_J6, w->p_K5, 0.0, &w->phi_left_coupler);
-    if (st == 1) return 231;
-    note(w, st, 233, -234);
-
-    return w->singular ? w->singular : w->near;
-}
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
 static void no_outputs(double_triad_state *out)
@@ -2030,16 +1848,26 @@ static void no_outputs(double_triad_state *out)
     out->left_coupler.alpha = NAN;
 }
 
-/* Copy the records into the public state, with the status rules of the CSV. */
-static void publish(const work *w, int code, double_triad_state *out)
+/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
+static int failed(const work *w, double_triad_state *out, int code)
 {
     int k;
     out->status = code;
     for (k = 0; k <= DOUBLE_TRIAD_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    no_outputs(out);
+    return code;
+}
+
+/* Copy the records of a computed row into the public state, with the status rules of the CSV. */
+static void publish(const work *w, int code, double_triad_state *out)
+{
+    int k;
     if (reason_of(code) == 1 || reason_of(code) == 2) {
-        no_outputs(out);
+        failed(w, out, code);
         return;
     }
+    out->status = code;
+    for (k = 0; k <= DOUBLE_TRIAD_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     out->J7.x = -60.0;
     out->J7.y = 80.0;
     out->J7.vx = 0.0;
@@ -2212,6 +2040,141 @@ static void publish(const work *w, int code, double_triad_state *out)
         out->left_coupler.omega = NAN;
         out->left_coupler.alpha = NAN;
     }
+}
+
+/* The procedure of double_triad.md, step by step. */
+static int run(work *w, const double in[], const double din[], const double ddin[], int order,
+               double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int its[],
+               int used[])
+{
+    int st;
+
+    w->singular = 0;
+    w->near = 0;
+    for (st = 0; st <= DOUBLE_TRIAD_N_STEPS; st++) w->sigma[st] = 1.0;
+    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
+
+    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
+
+
+    /* Step 2: crank_input, J6. J7 is known and link frame is placed, so the input angle theta_J7 turns link crank to J6 */
+    crank_input(&p_J7, 20.0, &w->in1, &ref_J7, &w->p_J6);
+
+
+    /* Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4 */
+
+
+    /* Step 8: resolve, group1. the resolver iterates on add1 until right_coupler regains its length */
+    {
+        static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6 };
+        w->br4 = a[0][1] < 0.0 ? -1 : 1;
+        w->br5 = a[0][2] < 0.0 ? -1 : 1;
+        w->br24 = a[1][1] < 0.0 ? -1 : 1;
+        w->br25 = a[1][2] < 0.0 ? -1 : 1;
+        w->br28 = a[2][1] < 0.0 ? -1 : 1;
+        w->br29 = a[2][2] < 0.0 ? -1 : 1;
+        w->br32 = a[3][1] < 0.0 ? -1 : 1;
+        w->br33 = a[3][2] < 0.0 ? -1 : 1;
+        w->br36 = a[4][1] < 0.0 ? -1 : 1;
+        w->br37 = a[4][2] < 0.0 ? -1 : 1;
+        w->br40 = a[5][1] < 0.0 ? -1 : 1;
+        w->br41 = a[5][2] < 0.0 ? -1 : 1;
+        w->br44 = a[6][1] < 0.0 ? -1 : 1;
+        w->br45 = a[6][2] < 0.0 ? -1 : 1;
+        if (!resolve_group(blocks, 7, lengths_1, w, a, ad, 0, &used[0],
+                           &its[0], &w->sigma[8], &w->chains, order, &MECHANISM, &POLICY))
+            return 82;
+        note(w, w->sigma[8] < 1e-07 ? 3 : w->sigma[8] < 0.001 ? 4 : 0, 83, -84);
+    }
+
+
+
+    /* Step 9: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4 */
+
+
+    /* Step 14: resolve, group2. the resolver iterates on add2 until left_coupler regains its length */
+    {
+        static const group_fn blocks[] = { group_2, group_2_v1, group_2_v2, group_2_v3, group_2_v4, group_2_v5, group_2_v6, group_2_v7, group_2_v8 };
+        w->br10 = a[7][1] < 0.0 ? -1 : 1;
+        w->br11 = a[7][2] < 0.0 ? -1 : 1;
+        w->br48 = a[8][1] < 0.0 ? -1 : 1;
+        w->br49 = a[8][2] < 0.0 ? -1 : 1;
+        w->br52 = a[9][1] < 0.0 ? -1 : 1;
+        w->br53 = a[9][2] < 0.0 ? -1 : 1;
+        w->br56 = a[10][1] < 0.0 ? -1 : 1;
+        w->br57 = a[10][2] < 0.0 ? -1 : 1;
+        w->br60 = a[11][1] < 0.0 ? -1 : 1;
+        w->br61 = a[11][2] < 0.0 ? -1 : 1;
+        w->br64 = a[12][1] < 0.0 ? -1 : 1;
+        w->br65 = a[12][2] < 0.0 ? -1 : 1;
+        w->br68 = a[13][1] < 0.0 ? -1 : 1;
+        w->br69 = a[13][2] < 0.0 ? -1 : 1;
+        w->br72 = a[14][1] < 0.0 ? -1 : 1;
+        w->br73 = a[14][2] < 0.0 ? -1 : 1;
+        w->br76 = a[15][1] < 0.0 ? -1 : 1;
+        w->br77 = a[15][2] < 0.0 ? -1 : 1;
+        if (!resolve_group(blocks, 9, lengths_2, w, a, ad, 7, &used[1],
+                           &its[1], &w->sigma[14], &w->chains, order, &MECHANISM, &POLICY))
+            return 142;
+        note(w, w->sigma[14] < 1e-07 ? 3 : w->sigma[14] < 0.001 ? 4 : 0, 143, -144);
+    }
+
+
+
+    /* Step 15: link_angle, crank. J7 and J6 of link crank are known, so its angle is */
+    st = link_angle(&p_J7, &w->p_J6, 0.0, &w->phi_crank);
+    if (st == 1) return 151;
+    note(w, st, 153, -154);
+
+
+    /* Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is */
+    st = link_angle(&p_J1, &w->p_J2, 0.0, &w->phi_right_rocker1);
+    if (st == 1) return 161;
+    note(w, st, 163, -164);
+
+
+    /* Step 17: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is */
+    st = link_angle(&w->p_J2, &w->p_J4, 0.0, &w->phi_right_ternary);
+    if (st == 1) return 171;
+    note(w, st, 173, -174);
+
+
+    /* Step 18: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is */
+    st = link_angle(&p_J3, &w->p_J4, 0.0, &w->phi_right_rocker2);
+    if (st == 1) return 181;
+    note(w, st, 183, -184);
+
+
+    /* Step 19: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is */
+    st = link_angle(&w->p_J6, &w->p_J5, 0.0, &w->phi_right_coupler);
+    if (st == 1) return 191;
+    note(w, st, 193, -194);
+
+
+    /* Step 20: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is */
+    st = link_angle(&p_K1, &w->p_K2, 0.0, &w->phi_left_rocker1);
+    if (st == 1) return 201;
+    note(w, st, 203, -204);
+
+
+    /* Step 21: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is */
+    st = link_angle(&w->p_K2, &w->p_K4, 0.0, &w->phi_left_ternary);
+    if (st == 1) return 211;
+    note(w, st, 213, -214);
+
+
+    /* Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is */
+    st = link_angle(&p_K3, &w->p_K4, 0.0, &w->phi_left_rocker2);
+    if (st == 1) return 221;
+    note(w, st, 223, -224);
+
+
+    /* Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is */
+    st = link_angle(&w->p_J6, &w->p_K5, 0.0, &w->phi_left_coupler);
+    if (st == 1) return 231;
+    note(w, st, 233, -234);
+
+    return w->singular ? w->singular : w->near;
 }
 
 void double_triad_init(double_triad_state *out)

@@ -12,7 +12,7 @@ extern "C" {
 /* Array lengths: in[], din[] and ddin[] of double_triad_solve hold DOUBLE_TRIAD_N_INPUTS numbers,
    col[] of double_triad_columns DOUBLE_TRIAD_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define DOUBLE_TRIAD_N_INPUTS 1
-#define DOUBLE_TRIAD_N_STEPS 93
+#define DOUBLE_TRIAD_N_STEPS 79
 #define DOUBLE_TRIAD_N_COLUMNS 103
 #define DOUBLE_TRIAD_ORDER 2
 #define DOUBLE_TRIAD_SAMPLES 361

@@ -30,7 +30,7 @@ PI = math.pi
 ORDER = 2
 SAMPLES = 361
 N_INPUTS = 1
-N_STEPS = 93
+N_STEPS = 79
 INPUTS = ((0.0, 6.283185307179586, 6.283185307179586), )  # (start, stop, speed) of each input
 COLUMNS = (
     "theta_J7",
@@ -137,6 +137,7 @@ COLUMNS = (
     "left_coupler.omega",
     "left_coupler.alpha",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 N_GROUPS = 2
 ZERO_LENGTH = (0.0, 0.0, 0.0,)
@@ -149,7 +150,7 @@ MECHANISM = SimpleNamespace(  # what the row driver needs of the mechanism
     periodic=(True,),  # angle inputs: the continuation goes the shorter way round
     low=NAN,  # where the reach of an angle input starts (nan: no reach)
     groups=N_GROUPS,
-    another=92,  # a row solvable on another assembly only
+    another=82,  # a row solvable on another assembly only
     not_converged=2,  # a row failed with this reason is followed from the last one
 )
 POLICY = SimpleNamespace(  # the resolver's policy, lengths relative to the length scale (see double_triad.md)
@@ -200,30 +201,33 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    th = atan2(dy, dx) + off - 2 * PI if atan2(dy, dx) + off > PI else atan2(dy, dx) + off + 2 * PI if atan2(dy, dx) + off <= -PI else atan2(dy, dx) + off
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     ir2 = NAN if r2 == 0 else 1 / r2
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (th, NAN, NAN)
     return st, (th, om, al)
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp = cos(phi_the)
-    sp = sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    rax = -phi_ddthe * ry - phi_dthe * phi_dthe * rx
-    ray = phi_ddthe * rx - phi_dthe * phi_dthe * ry
-    return (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+def link_point(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
+    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -237,14 +241,14 @@ def RRR_links(j1, j2, l1, l2, minv):
     iq = NAN if q == 0 else 1 / q
     ux = dx * iq
     uy = dy * iq
-    hi = max(l1_v, l2_v)
-    lo = min(l1_v, l2_v)
-    x = max(hi, q)
-    z = min(lo, q)
+    hi = (l2_v if l2_v > l1_v else l1_v)
+    lo = (l2_v if l2_v < l1_v else l1_v)
+    x = (q if q > hi else hi)
+    z = (q if q < lo else lo)
     y = hi if q >= hi else lo if q <= lo else q
     k = z - (x - y)
     fail = k < -8 * EPS * x or q == 0 or lo <= 0
-    kk = max(k, 0)
+    kk = (0 if 0 > k else k)
     area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     h = area4 * iq / 2
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
@@ -254,7 +258,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    sigma = 0 if fail else min(area4 / (2 * l1_v * l2_v), 1)
+    ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
+    sigma = (1 if 1 < ratio else ratio)
     e2x = -a2 * ux - hn * uy
     e2y = -a2 * uy + hn * ux
     ihq = NAN if hn == 0 else 1 / (hn * q)
@@ -746,7 +751,7 @@ l_left_ternary_K2_K5 = (60.8276253029822, 0.0, 0.0)
 class _Work:
     """The records of one solution."""
 
-    __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "phi_right_ternary", "p_J5", "f1", "add2", "p_K4", "p_K2", "phi_left_ternary", "p_K5", "f2", "phi_crank", "phi_right_rocker1", "phi_right_rocker2", "phi_right_coupler", "phi_left_rocker1", "phi_left_rocker2", "phi_left_coupler", "add1_v1", "f1_v1", "add1_v2", "f1_v2", "add1_v3", "f1_v3", "add1_v4", "f1_v4", "add1_v5", "f1_v5", "add1_v6", "f1_v6", "add2_v1", "f2_v1", "add2_v2", "f2_v2", "add2_v3", "f2_v3", "add2_v4", "f2_v4", "add2_v5", "f2_v5", "add2_v6", "f2_v6", "add2_v7", "f2_v7", "add2_v8", "f2_v8", "sigma", "singular", "near", "chains", "br4", "br5", "br11", "br12", "br24", "br25", "br29", "br30", "br34", "br35", "br39", "br40", "br44", "br45", "br49", "br50", "br54", "br55", "br59", "br60", "br64", "br65", "br69", "br70", "br74", "br75", "br79", "br80", "br84", "br85", "br89", "br90")
+    __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "p_J5", "f1", "add2", "p_K4", "p_K2", "p_K5", "f2", "phi_crank", "phi_right_rocker1", "phi_right_ternary", "phi_right_rocker2", "phi_right_coupler", "phi_left_rocker1", "phi_left_ternary", "phi_left_rocker2", "phi_left_coupler", "add1_v1", "f1_v1", "add1_v2", "f1_v2", "add1_v3", "f1_v3", "add1_v4", "f1_v4", "add1_v5", "f1_v5", "add1_v6", "f1_v6", "add2_v1", "f2_v1", "add2_v2", "f2_v2", "add2_v3", "f2_v3", "add2_v4", "f2_v4", "add2_v5", "f2_v5", "add2_v6", "f2_v6", "add2_v7", "f2_v7", "add2_v8", "f2_v8", "sigma", "singular", "near", "chains", "br4", "br5", "br10", "br11", "br24", "br25", "br28", "br29", "br32", "br33", "br36", "br37", "br40", "br41", "br44", "br45", "br48", "br49", "br52", "br53", "br56", "br57", "br60", "br61", "br64", "br65", "br68", "br69", "br72", "br73", "br76", "br77")
 
     def note(self, st, singular, near):
         """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
@@ -757,7 +762,7 @@ class _Work:
 
 
 def _group_1(w, a, da, dda, live):
-    """Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9.
+    """Steps 4, 5, 6, 7, iterated by the resolver of step 8.
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -780,22 +785,16 @@ def _group_1(w, a, da, dda, live):
     if live:
         w.note(st, 53, -54)
     w.chains = min(w.chains, w.sigma[5])
-    # Step 6: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 63, -64)
-    # Step 7: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341)
-    # Step 8: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    # Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1, ]
 
 
 
 def _group_1_v1(w, a, da, dda, live):
-    """Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9 (fallback 1: the Add-link J6-J2).
+    """Steps 24, 25, 26, 27, iterated by the resolver of step 8 (fallback 1: the Add-link J6-J2).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -818,22 +817,16 @@ def _group_1_v1(w, a, da, dda, live):
     if live:
         w.note(st, 253, -254)
     w.chains = min(w.chains, w.sigma[25])
-    # Step 26: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 263, -264)
-    # Step 27: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134)
-    # Step 28: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    # Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v1, ]
 
 
 
 def _group_1_v2(w, a, da, dda, live):
-    """Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9 (fallback 2: the Add-link J7-J2).
+    """Steps 28, 29, 30, 31, iterated by the resolver of step 8 (fallback 2: the Add-link J7-J2).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -842,36 +835,30 @@ def _group_1_v2(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v2 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[29], w.p_J2 = RRR_links(p_J1, p_J7, l_right_rocker1, w.add1_v2, w.br29)
+    # Step 28: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[28], w.p_J2 = RRR_links(p_J1, p_J7, l_right_rocker1, w.add1_v2, w.br28)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 283, -284)
+    w.chains = min(w.chains, w.sigma[28])
+    # Step 29: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[29], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w.br29)
     if st == 1:
         return 1, None
     if live:
         w.note(st, 293, -294)
     w.chains = min(w.chains, w.sigma[29])
-    # Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[30], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w.br30)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 303, -304)
-    w.chains = min(w.chains, w.sigma[30])
-    # Step 31: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 313, -314)
-    # Step 32: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134)
-    # Step 33: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    # Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v2, ]
 
 
 
 def _group_1_v3(w, a, da, dda, live):
-    """Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9 (fallback 3: the Add-link J7-J4).
+    """Steps 32, 33, 34, 35, iterated by the resolver of step 8 (fallback 3: the Add-link J7-J4).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -880,36 +867,30 @@ def _group_1_v3(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v3 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[34], w.p_J4 = RRR_links(p_J3, p_J7, l_right_rocker2, w.add1_v3, w.br34)
+    # Step 32: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[32], w.p_J4 = RRR_links(p_J3, p_J7, l_right_rocker2, w.add1_v3, w.br32)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 343, -344)
-    w.chains = min(w.chains, w.sigma[34])
-    # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[35], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, w.br35)
+        w.note(st, 323, -324)
+    w.chains = min(w.chains, w.sigma[32])
+    # Step 33: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
+    st, w.sigma[33], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, w.br33)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 353, -354)
-    w.chains = min(w.chains, w.sigma[35])
-    # Step 36: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 363, -364)
-    # Step 37: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341)
-    # Step 38: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 333, -334)
+    w.chains = min(w.chains, w.sigma[33])
+    # Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    # Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v3, ]
 
 
 
 def _group_1_v4(w, a, da, dda, live):
-    """Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9 (fallback 4: the Add-link J1-J4).
+    """Steps 36, 37, 38, 39, iterated by the resolver of step 8 (fallback 4: the Add-link J1-J4).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -918,36 +899,30 @@ def _group_1_v4(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v4 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 39: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[39], w.p_J4 = RRR_links(p_J3, p_J1, l_right_rocker2, w.add1_v4, w.br39)
+    # Step 36: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[36], w.p_J4 = RRR_links(p_J3, p_J1, l_right_rocker2, w.add1_v4, w.br36)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 393, -394)
-    w.chains = min(w.chains, w.sigma[39])
-    # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[40], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, w.br40)
+        w.note(st, 363, -364)
+    w.chains = min(w.chains, w.sigma[36])
+    # Step 37: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
+    st, w.sigma[37], w.p_J2 = RRR_links(p_J1, w.p_J4, l_right_rocker1, l_right_ternary_J2_J4, w.br37)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 403, -404)
-    w.chains = min(w.chains, w.sigma[40])
-    # Step 41: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 413, -414)
-    # Step 42: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341)
-    # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 373, -374)
+    w.chains = min(w.chains, w.sigma[37])
+    # Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    # Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v4, ]
 
 
 
 def _group_1_v5(w, a, da, dda, live):
-    """Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9 (fallback 5: the Add-link J3-J2).
+    """Steps 40, 41, 42, 43, iterated by the resolver of step 8 (fallback 5: the Add-link J3-J2).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -956,8 +931,40 @@ def _group_1_v5(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v5 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 44: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[44], w.p_J2 = RRR_links(p_J1, p_J3, l_right_rocker1, w.add1_v5, w.br44)
+    # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[40], w.p_J2 = RRR_links(p_J1, p_J3, l_right_rocker1, w.add1_v5, w.br40)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 403, -404)
+    w.chains = min(w.chains, w.sigma[40])
+    # Step 41: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[41], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w.br41)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 413, -414)
+    w.chains = min(w.chains, w.sigma[41])
+    # Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.f1_v5 = link_residual(p_J6, w.p_J5, l_right_coupler)
+    return 0, [w.f1_v5, ]
+
+
+
+def _group_1_v6(w, a, da, dda, live):
+    """Steps 44, 45, 46, 47, iterated by the resolver of step 8 (fallback 6: the Add-link K1-J2).
+
+    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
+    records).  live=False zeroes the rates of the records read from outside, so a unit
+    Add-link rate gives one Jacobian column.
+    """
+    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
+    w.add1_v6 = (a[0], da[0], dda[0])
+    w.chains = 1.0
+    # Step 44: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[44], w.p_J2 = RRR_links(p_J1, p_K1, l_right_rocker1, w.add1_v6, w.br44)
     if st == 1:
         return 1, None
     if live:
@@ -970,60 +977,16 @@ def _group_1_v5(w, a, da, dda, live):
     if live:
         w.note(st, 453, -454)
     w.chains = min(w.chains, w.sigma[45])
-    # Step 46: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 463, -464)
-    # Step 47: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134)
-    # Step 48: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
-    w.f1_v5 = link_residual(p_J6, w.p_J5, l_right_coupler)
-    return 0, [w.f1_v5, ]
-
-
-
-def _group_1_v6(w, a, da, dda, live):
-    """Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9 (fallback 6: the Add-link K1-J2).
-
-    a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
-    records).  live=False zeroes the rates of the records read from outside, so a unit
-    Add-link rate gives one Jacobian column.
-    """
-    p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
-    w.add1_v6 = (a[0], da[0], dda[0])
-    w.chains = 1.0
-    # Step 49: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[49], w.p_J2 = RRR_links(p_J1, p_K1, l_right_rocker1, w.add1_v6, w.br49)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 493, -494)
-    w.chains = min(w.chains, w.sigma[49])
-    # Step 50: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[50], w.p_J4 = RRR_links(w.p_J2, p_J3, l_right_ternary_J2_J4, l_right_rocker2, w.br50)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 503, -504)
-    w.chains = min(w.chains, w.sigma[50])
-    # Step 51: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 513, -514)
-    # Step 52: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134)
-    # Step 53: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    # Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v6, ]
 
 
 
 def _group_2(w, a, da, dda, live):
-    """Steps 11, 12, 13, 14, 15, iterated by the resolver of step 16.
+    """Steps 10, 11, 12, 13, iterated by the resolver of step 14.
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -1032,36 +995,30 @@ def _group_2(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 11: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[11], w.p_K4 = RRR_links(p_K3, p_J6, l_left_rocker2, w.add2, w.br11)
+    # Step 10: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[10], w.p_K4 = RRR_links(p_K3, p_J6, l_left_rocker2, w.add2, w.br10)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 103, -104)
+    w.chains = min(w.chains, w.sigma[10])
+    # Step 11: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, w.sigma[11], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br11)
     if st == 1:
         return 1, None
     if live:
         w.note(st, 113, -114)
     w.chains = min(w.chains, w.sigma[11])
-    # Step 12: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[12], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br12)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 123, -124)
-    w.chains = min(w.chains, w.sigma[12])
-    # Step 13: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 133, -134)
-    # Step 14: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338)
-    # Step 15: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746)
+    # Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2, ]
 
 
 
 def _group_2_v1(w, a, da, dda, live):
-    """Steps 54, 55, 56, 57, 58, iterated by the resolver of step 16 (fallback 1: the Add-link J5-K2).
+    """Steps 48, 49, 50, 51, iterated by the resolver of step 14 (fallback 1: the Add-link J5-K2).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -1071,36 +1028,30 @@ def _group_2_v1(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v1 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 54: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[54], w.p_K2 = RRR_links(p_K1, p_J5, l_left_rocker1, w.add2_v1, w.br54)
+    # Step 48: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[48], w.p_K2 = RRR_links(p_K1, p_J5, l_left_rocker1, w.add2_v1, w.br48)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 543, -544)
-    w.chains = min(w.chains, w.sigma[54])
-    # Step 55: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[55], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br55)
+        w.note(st, 483, -484)
+    w.chains = min(w.chains, w.sigma[48])
+    # Step 49: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[49], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br49)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 553, -554)
-    w.chains = min(w.chains, w.sigma[55])
-    # Step 56: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 563, -564)
-    # Step 57: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345)
-    # Step 58: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 493, -494)
+    w.chains = min(w.chains, w.sigma[49])
+    # Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746)
+    # Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v1 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v1, ]
 
 
 
 def _group_2_v2(w, a, da, dda, live):
-    """Steps 59, 60, 61, 62, 63, iterated by the resolver of step 16 (fallback 2: the Add-link J5-K4).
+    """Steps 52, 53, 54, 55, iterated by the resolver of step 14 (fallback 2: the Add-link J5-K4).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -1110,36 +1061,30 @@ def _group_2_v2(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v2 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 59: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[59], w.p_K4 = RRR_links(p_K3, p_J5, l_left_rocker2, w.add2_v2, w.br59)
+    # Step 52: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[52], w.p_K4 = RRR_links(p_K3, p_J5, l_left_rocker2, w.add2_v2, w.br52)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 593, -594)
-    w.chains = min(w.chains, w.sigma[59])
-    # Step 60: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[60], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br60)
+        w.note(st, 523, -524)
+    w.chains = min(w.chains, w.sigma[52])
+    # Step 53: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, w.sigma[53], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br53)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 603, -604)
-    w.chains = min(w.chains, w.sigma[60])
-    # Step 61: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 613, -614)
-    # Step 62: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338)
-    # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 533, -534)
+    w.chains = min(w.chains, w.sigma[53])
+    # Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746)
+    # Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v2 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v2, ]
 
 
 
 def _group_2_v3(w, a, da, dda, live):
-    """Steps 64, 65, 66, 67, 68, iterated by the resolver of step 16 (fallback 3: the Add-link J2-K4).
+    """Steps 56, 57, 58, 59, iterated by the resolver of step 14 (fallback 3: the Add-link J2-K4).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -1149,36 +1094,30 @@ def _group_2_v3(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v3 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 64: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[64], w.p_K4 = RRR_links(p_K3, p_J2, l_left_rocker2, w.add2_v3, w.br64)
+    # Step 56: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[56], w.p_K4 = RRR_links(p_K3, p_J2, l_left_rocker2, w.add2_v3, w.br56)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 643, -644)
-    w.chains = min(w.chains, w.sigma[64])
-    # Step 65: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[65], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br65)
+        w.note(st, 563, -564)
+    w.chains = min(w.chains, w.sigma[56])
+    # Step 57: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, w.sigma[57], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br57)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 653, -654)
-    w.chains = min(w.chains, w.sigma[65])
-    # Step 66: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 663, -664)
-    # Step 67: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338)
-    # Step 68: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 573, -574)
+    w.chains = min(w.chains, w.sigma[57])
+    # Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746)
+    # Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v3 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v3, ]
 
 
 
 def _group_2_v4(w, a, da, dda, live):
-    """Steps 69, 70, 71, 72, 73, iterated by the resolver of step 16 (fallback 4: the Add-link J4-K4).
+    """Steps 60, 61, 62, 63, iterated by the resolver of step 14 (fallback 4: the Add-link J4-K4).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -1188,36 +1127,30 @@ def _group_2_v4(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v4 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 69: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[69], w.p_K4 = RRR_links(p_K3, p_J4, l_left_rocker2, w.add2_v4, w.br69)
+    # Step 60: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[60], w.p_K4 = RRR_links(p_K3, p_J4, l_left_rocker2, w.add2_v4, w.br60)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 693, -694)
-    w.chains = min(w.chains, w.sigma[69])
-    # Step 70: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[70], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br70)
+        w.note(st, 603, -604)
+    w.chains = min(w.chains, w.sigma[60])
+    # Step 61: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, w.sigma[61], w.p_K2 = RRR_links(p_K1, w.p_K4, l_left_rocker1, l_left_ternary_K2_K4, w.br61)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 703, -704)
-    w.chains = min(w.chains, w.sigma[70])
-    # Step 71: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 713, -714)
-    # Step 72: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338)
-    # Step 73: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 613, -614)
+    w.chains = min(w.chains, w.sigma[61])
+    # Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746)
+    # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v4 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v4, ]
 
 
 
 def _group_2_v5(w, a, da, dda, live):
-    """Steps 74, 75, 76, 77, 78, iterated by the resolver of step 16 (fallback 5: the Add-link J2-K2).
+    """Steps 64, 65, 66, 67, iterated by the resolver of step 14 (fallback 5: the Add-link J2-K2).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -1227,36 +1160,30 @@ def _group_2_v5(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v5 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 74: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[74], w.p_K2 = RRR_links(p_K1, p_J2, l_left_rocker1, w.add2_v5, w.br74)
+    # Step 64: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[64], w.p_K2 = RRR_links(p_K1, p_J2, l_left_rocker1, w.add2_v5, w.br64)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 743, -744)
-    w.chains = min(w.chains, w.sigma[74])
-    # Step 75: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[75], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br75)
+        w.note(st, 643, -644)
+    w.chains = min(w.chains, w.sigma[64])
+    # Step 65: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[65], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br65)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 753, -754)
-    w.chains = min(w.chains, w.sigma[75])
-    # Step 76: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 763, -764)
-    # Step 77: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345)
-    # Step 78: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 653, -654)
+    w.chains = min(w.chains, w.sigma[65])
+    # Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746)
+    # Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v5 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v5, ]
 
 
 
 def _group_2_v6(w, a, da, dda, live):
-    """Steps 79, 80, 81, 82, 83, iterated by the resolver of step 16 (fallback 6: the Add-link J4-K2).
+    """Steps 68, 69, 70, 71, iterated by the resolver of step 14 (fallback 6: the Add-link J4-K2).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -1266,36 +1193,30 @@ def _group_2_v6(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v6 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 79: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[79], w.p_K2 = RRR_links(p_K1, p_J4, l_left_rocker1, w.add2_v6, w.br79)
+    # Step 68: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[68], w.p_K2 = RRR_links(p_K1, p_J4, l_left_rocker1, w.add2_v6, w.br68)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 793, -794)
-    w.chains = min(w.chains, w.sigma[79])
-    # Step 80: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[80], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br80)
+        w.note(st, 683, -684)
+    w.chains = min(w.chains, w.sigma[68])
+    # Step 69: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[69], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br69)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 803, -804)
-    w.chains = min(w.chains, w.sigma[80])
-    # Step 81: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 813, -814)
-    # Step 82: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345)
-    # Step 83: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 693, -694)
+    w.chains = min(w.chains, w.sigma[69])
+    # Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746)
+    # Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v6 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v6, ]
 
 
 
 def _group_2_v7(w, a, da, dda, live):
-    """Steps 84, 85, 86, 87, 88, iterated by the resolver of step 16 (fallback 7: the Add-link J6-K2).
+    """Steps 72, 73, 74, 75, iterated by the resolver of step 14 (fallback 7: the Add-link J6-K2).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -1304,36 +1225,30 @@ def _group_2_v7(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add2_v7 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 84: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[84], w.p_K2 = RRR_links(p_K1, p_J6, l_left_rocker1, w.add2_v7, w.br84)
+    # Step 72: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[72], w.p_K2 = RRR_links(p_K1, p_J6, l_left_rocker1, w.add2_v7, w.br72)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 843, -844)
-    w.chains = min(w.chains, w.sigma[84])
-    # Step 85: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[85], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br85)
+        w.note(st, 723, -724)
+    w.chains = min(w.chains, w.sigma[72])
+    # Step 73: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[73], w.p_K4 = RRR_links(w.p_K2, p_K3, l_left_ternary_K2_K4, l_left_rocker2, w.br73)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 853, -854)
-    w.chains = min(w.chains, w.sigma[85])
-    # Step 86: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 863, -864)
-    # Step 87: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345)
-    # Step 88: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 733, -734)
+    w.chains = min(w.chains, w.sigma[73])
+    # Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746)
+    # Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v7 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v7, ]
 
 
 
 def _group_2_v8(w, a, da, dda, live):
-    """Steps 89, 90, 91, 92, 93, iterated by the resolver of step 16 (fallback 8: the Add-link J5-K5).
+    """Steps 76, 77, 78, 79, iterated by the resolver of step 14 (fallback 8: the Add-link J5-K5).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -1343,29 +1258,23 @@ def _group_2_v8(w, a, da, dda, live):
     p_J5 = w.p_J5 if live else (w.p_J5[0], w.p_J5[1]) + (0.0,) * (len(w.p_J5) - 2)
     w.add2_v8 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 89: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known
-    st, w.sigma[89], w.p_K5 = RRR_links(p_J6, p_J5, l_left_coupler, w.add2_v8, w.br89)
+    # Step 76: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known
+    st, w.sigma[76], w.p_K5 = RRR_links(p_J6, p_J5, l_left_coupler, w.add2_v8, w.br76)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 893, -894)
-    w.chains = min(w.chains, w.sigma[89])
-    # Step 90: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known
-    st, w.sigma[90], w.p_K2 = RRR_links(p_K1, w.p_K5, l_left_rocker1, l_left_ternary_K2_K5, w.br90)
+        w.note(st, 763, -764)
+    w.chains = min(w.chains, w.sigma[76])
+    # Step 77: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known
+    st, w.sigma[77], w.p_K2 = RRR_links(p_K1, w.p_K5, l_left_rocker1, l_left_ternary_K2_K5, w.br77)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 903, -904)
-    w.chains = min(w.chains, w.sigma[90])
-    # Step 91: link_angle, left_ternary. K5 and K2 of link left_ternary are known, so its angle is
-    st, w.phi_left_ternary = link_angle(w.p_K5, w.p_K2, -2.928860872898183)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 913, -914)
-    # Step 92: coupler_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
-    w.p_K4 = coupler_point(w.p_K5, w.phi_left_ternary, 45.662543438831435, 12.842590342171338)
-    # Step 93: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 773, -774)
+    w.chains = min(w.chains, w.sigma[77])
+    # Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
+    w.p_K4 = link_point(w.p_K5, w.p_K2, -0.6891891891891891, -0.36486486486486486)
+    # Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v8 = link_residual(p_K3, w.p_K4, l_left_rocker2)
     return 0, [w.f2_v8, ]
 
@@ -1477,21 +1386,21 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
 
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
-    # Step 9: resolve, group1. the resolver iterates on add1 until right_coupler regains its length
+    # Step 8: resolve, group1. the resolver iterates on add1 until right_coupler regains its length
     w.br4 = -1 if a[0][1] < 0 else 1
     w.br5 = -1 if a[0][2] < 0 else 1
     w.br24 = -1 if a[1][1] < 0 else 1
     w.br25 = -1 if a[1][2] < 0 else 1
-    w.br29 = -1 if a[2][1] < 0 else 1
-    w.br30 = -1 if a[2][2] < 0 else 1
-    w.br34 = -1 if a[3][1] < 0 else 1
-    w.br35 = -1 if a[3][2] < 0 else 1
-    w.br39 = -1 if a[4][1] < 0 else 1
-    w.br40 = -1 if a[4][2] < 0 else 1
-    w.br44 = -1 if a[5][1] < 0 else 1
-    w.br45 = -1 if a[5][2] < 0 else 1
-    w.br49 = -1 if a[6][1] < 0 else 1
-    w.br50 = -1 if a[6][2] < 0 else 1
+    w.br28 = -1 if a[2][1] < 0 else 1
+    w.br29 = -1 if a[2][2] < 0 else 1
+    w.br32 = -1 if a[3][1] < 0 else 1
+    w.br33 = -1 if a[3][2] < 0 else 1
+    w.br36 = -1 if a[4][1] < 0 else 1
+    w.br37 = -1 if a[4][2] < 0 else 1
+    w.br40 = -1 if a[5][1] < 0 else 1
+    w.br41 = -1 if a[5][2] < 0 else 1
+    w.br44 = -1 if a[6][1] < 0 else 1
+    w.br45 = -1 if a[6][2] < 0 else 1
     blocks = [
         lambda x, dx, ddx, live: _group_1(w, x, dx, ddx, live),
         lambda x, dx, ddx, live: _group_1_v1(w, x, dx, ddx, live),
@@ -1501,34 +1410,34 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
         lambda x, dx, ddx, live: _group_1_v5(w, x, dx, ddx, live),
         lambda x, dx, ddx, live: _group_1_v6(w, x, dx, ddx, live),
     ]
-    ok, w.sigma[9] = resolve_group(blocks, lambda a, ad: _lengths_1(w, a, ad), a, ad, 0, 0,
+    ok, w.sigma[8] = resolve_group(blocks, lambda a, ad: _lengths_1(w, a, ad), a, ad, 0, 0,
         used, its, order, lambda: w.chains, MECHANISM, POLICY)
     if not ok:
-        return 92
-    w.note(3 if w.sigma[9] < 1e-07 else 4 if w.sigma[9] < 0.001 else 0, 93, -94)
+        return 82
+    w.note(3 if w.sigma[8] < 1e-07 else 4 if w.sigma[8] < 0.001 else 0, 83, -84)
 
 
-    # Step 10: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4
+    # Step 9: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4
 
-    # Step 16: resolve, group2. the resolver iterates on add2 until left_coupler regains its length
-    w.br11 = -1 if a[7][1] < 0 else 1
-    w.br12 = -1 if a[7][2] < 0 else 1
-    w.br54 = -1 if a[8][1] < 0 else 1
-    w.br55 = -1 if a[8][2] < 0 else 1
-    w.br59 = -1 if a[9][1] < 0 else 1
-    w.br60 = -1 if a[9][2] < 0 else 1
-    w.br64 = -1 if a[10][1] < 0 else 1
-    w.br65 = -1 if a[10][2] < 0 else 1
-    w.br69 = -1 if a[11][1] < 0 else 1
-    w.br70 = -1 if a[11][2] < 0 else 1
-    w.br74 = -1 if a[12][1] < 0 else 1
-    w.br75 = -1 if a[12][2] < 0 else 1
-    w.br79 = -1 if a[13][1] < 0 else 1
-    w.br80 = -1 if a[13][2] < 0 else 1
-    w.br84 = -1 if a[14][1] < 0 else 1
-    w.br85 = -1 if a[14][2] < 0 else 1
-    w.br89 = -1 if a[15][1] < 0 else 1
-    w.br90 = -1 if a[15][2] < 0 else 1
+    # Step 14: resolve, group2. the resolver iterates on add2 until left_coupler regains its length
+    w.br10 = -1 if a[7][1] < 0 else 1
+    w.br11 = -1 if a[7][2] < 0 else 1
+    w.br48 = -1 if a[8][1] < 0 else 1
+    w.br49 = -1 if a[8][2] < 0 else 1
+    w.br52 = -1 if a[9][1] < 0 else 1
+    w.br53 = -1 if a[9][2] < 0 else 1
+    w.br56 = -1 if a[10][1] < 0 else 1
+    w.br57 = -1 if a[10][2] < 0 else 1
+    w.br60 = -1 if a[11][1] < 0 else 1
+    w.br61 = -1 if a[11][2] < 0 else 1
+    w.br64 = -1 if a[12][1] < 0 else 1
+    w.br65 = -1 if a[12][2] < 0 else 1
+    w.br68 = -1 if a[13][1] < 0 else 1
+    w.br69 = -1 if a[13][2] < 0 else 1
+    w.br72 = -1 if a[14][1] < 0 else 1
+    w.br73 = -1 if a[14][2] < 0 else 1
+    w.br76 = -1 if a[15][1] < 0 else 1
+    w.br77 = -1 if a[15][2] < 0 else 1
     blocks = [
         lambda x, dx, ddx, live: _group_2(w, x, dx, ddx, live),
         lambda x, dx, ddx, live: _group_2_v1(w, x, dx, ddx, live),
@@ -1540,54 +1449,75 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
         lambda x, dx, ddx, live: _group_2_v7(w, x, dx, ddx, live),
         lambda x, dx, ddx, live: _group_2_v8(w, x, dx, ddx, live),
     ]
-    ok, w.sigma[16] = resolve_group(blocks, lambda a, ad: _lengths_2(w, a, ad), a, ad, 7, 1,
+    ok, w.sigma[14] = resolve_group(blocks, lambda a, ad: _lengths_2(w, a, ad), a, ad, 7, 1,
         used, its, order, lambda: w.chains, MECHANISM, POLICY)
     if not ok:
-        return 162
-    w.note(3 if w.sigma[16] < 1e-07 else 4 if w.sigma[16] < 0.001 else 0, 163, -164)
+        return 142
+    w.note(3 if w.sigma[14] < 1e-07 else 4 if w.sigma[14] < 0.001 else 0, 143, -144)
 
 
-    # Step 17: link_angle, crank. J7 and J6 of link crank are known, so its angle is
+    # Step 15: link_angle, crank. J7 and J6 of link crank are known, so its angle is
     st, w.phi_crank = link_angle(p_J7, w.p_J6, 0.0)
     if st == 1:
-        return 171
-    w.note(st, 173, -174)
+        return 151
+    if st:
+        w.note(st, 153, -154)
 
-    # Step 18: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is
+    # Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is
     st, w.phi_right_rocker1 = link_angle(p_J1, w.p_J2, 0.0)
     if st == 1:
-        return 181
-    w.note(st, 183, -184)
+        return 161
+    if st:
+        w.note(st, 163, -164)
 
-    # Step 19: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is
+    # Step 17: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
+    st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
+    if st == 1:
+        return 171
+    if st:
+        w.note(st, 173, -174)
+
+    # Step 18: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is
     st, w.phi_right_rocker2 = link_angle(p_J3, w.p_J4, 0.0)
     if st == 1:
-        return 191
-    w.note(st, 193, -194)
+        return 181
+    if st:
+        w.note(st, 183, -184)
 
-    # Step 20: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is
+    # Step 19: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is
     st, w.phi_right_coupler = link_angle(w.p_J6, w.p_J5, 0.0)
     if st == 1:
-        return 201
-    w.note(st, 203, -204)
+        return 191
+    if st:
+        w.note(st, 193, -194)
 
-    # Step 21: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is
+    # Step 20: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is
     st, w.phi_left_rocker1 = link_angle(p_K1, w.p_K2, 0.0)
     if st == 1:
+        return 201
+    if st:
+        w.note(st, 203, -204)
+
+    # Step 21: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
+    st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
+    if st == 1:
         return 211
-    w.note(st, 213, -214)
+    if st:
+        w.note(st, 213, -214)
 
     # Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is
     st, w.phi_left_rocker2 = link_angle(p_K3, w.p_K4, 0.0)
     if st == 1:
         return 221
-    w.note(st, 223, -224)
+    if st:
+        w.note(st, 223, -224)
 
     # Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is
     st, w.phi_left_coupler = link_angle(w.p_J6, w.p_K5, 0.0)
     if st == 1:
         return 231
-    w.note(st, 233, -234)
+    if st:
+        w.note(st, 233, -234)
 
     return w.singular or w.near
 
@@ -1703,10 +1633,13 @@ def _publish(w, code, order):
             w.phi_left_coupler[1],
             w.phi_left_coupler[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -39,7 +39,7 @@ PI = np.pi
 ORDER = 2
 SAMPLES = 361
 N_INPUTS = 1
-N_STEPS = 93
+N_STEPS = 79
 INPUTS = ((0.0, 6.283185307179586, 6.283185307179586), )  # (start, stop, speed) of each input
 COLUMNS = (
     "theta_J7",
@@ -169,70 +169,57 @@ PARAMS = {  # design parameter -> its value in the sketch
     "l_left_coupler": 121.6552506059644,  # length left_coupler:J6-K5
     "l_left_ternary_K2_K5": 60.8276253029822,  # length left_ternary:K2-K5
     "step2.l": 20.0,  # step 2: crank_input of J6
-    "step6.off": 0.0,  # step 6: link_angle of right_ternary
-    "step7.gsi": -45.662543438831435,  # step 7: coupler_point of J5
-    "step7.eta": 12.842590342171341,  # step 7: coupler_point of J5
-    "step13.off": 0.0,  # step 13: link_angle of left_ternary
-    "step14.gsi": -45.662543438831435,  # step 14: coupler_point of K5
-    "step14.eta": -12.842590342171338,  # step 14: coupler_point of K5
-    "step17.off": 0.0,  # step 17: link_angle of crank
-    "step18.off": 0.0,  # step 18: link_angle of right_rocker1
-    "step19.off": 0.0,  # step 19: link_angle of right_rocker2
-    "step20.off": 0.0,  # step 20: link_angle of right_coupler
-    "step21.off": 0.0,  # step 21: link_angle of left_rocker1
+    "step6.along": 0.4343891402714932,  # step 6: link_point of J5
+    "step6.across": -0.12217194570135746,  # step 6: link_point of J5
+    "step12.along": 0.4343891402714932,  # step 12: link_point of K5
+    "step12.across": 0.12217194570135746,  # step 12: link_point of K5
+    "step15.off": 0.0,  # step 15: link_angle of crank
+    "step16.off": 0.0,  # step 16: link_angle of right_rocker1
+    "step17.off": 0.0,  # step 17: link_angle of right_ternary
+    "step18.off": 0.0,  # step 18: link_angle of right_rocker2
+    "step19.off": 0.0,  # step 19: link_angle of right_coupler
+    "step20.off": 0.0,  # step 20: link_angle of left_rocker1
+    "step21.off": 0.0,  # step 21: link_angle of left_ternary
     "step22.off": 0.0,  # step 22: link_angle of left_rocker2
     "step23.off": 0.0,  # step 23: link_angle of left_coupler
-    "step26.off": 0.0,  # step 26: link_angle of right_ternary
-    "step27.gsi": 59.456436769311765,  # step 27: coupler_point of J5
-    "step27.eta": 12.84259034217134,  # step 27: coupler_point of J5
-    "step31.off": 0.0,  # step 31: link_angle of right_ternary
-    "step32.gsi": 59.456436769311765,  # step 32: coupler_point of J5
-    "step32.eta": 12.84259034217134,  # step 32: coupler_point of J5
-    "step36.off": 0.0,  # step 36: link_angle of right_ternary
-    "step37.gsi": -45.662543438831435,  # step 37: coupler_point of J5
-    "step37.eta": 12.842590342171341,  # step 37: coupler_point of J5
-    "step41.off": 0.0,  # step 41: link_angle of right_ternary
-    "step42.gsi": -45.662543438831435,  # step 42: coupler_point of J5
-    "step42.eta": 12.842590342171341,  # step 42: coupler_point of J5
-    "step46.off": 0.0,  # step 46: link_angle of right_ternary
-    "step47.gsi": 59.456436769311765,  # step 47: coupler_point of J5
-    "step47.eta": 12.84259034217134,  # step 47: coupler_point of J5
-    "step51.off": 0.0,  # step 51: link_angle of right_ternary
-    "step52.gsi": 59.456436769311765,  # step 52: coupler_point of J5
-    "step52.eta": 12.84259034217134,  # step 52: coupler_point of J5
-    "step56.off": 0.0,  # step 56: link_angle of left_ternary
-    "step57.gsi": 59.45643676931176,  # step 57: coupler_point of K5
-    "step57.eta": -12.842590342171345,  # step 57: coupler_point of K5
-    "step61.off": 0.0,  # step 61: link_angle of left_ternary
-    "step62.gsi": -45.662543438831435,  # step 62: coupler_point of K5
-    "step62.eta": -12.842590342171338,  # step 62: coupler_point of K5
-    "step66.off": 0.0,  # step 66: link_angle of left_ternary
-    "step67.gsi": -45.662543438831435,  # step 67: coupler_point of K5
-    "step67.eta": -12.842590342171338,  # step 67: coupler_point of K5
-    "step71.off": 0.0,  # step 71: link_angle of left_ternary
-    "step72.gsi": -45.662543438831435,  # step 72: coupler_point of K5
-    "step72.eta": -12.842590342171338,  # step 72: coupler_point of K5
-    "step76.off": 0.0,  # step 76: link_angle of left_ternary
-    "step77.gsi": 59.45643676931176,  # step 77: coupler_point of K5
-    "step77.eta": -12.842590342171345,  # step 77: coupler_point of K5
-    "step81.off": 0.0,  # step 81: link_angle of left_ternary
-    "step82.gsi": 59.45643676931176,  # step 82: coupler_point of K5
-    "step82.eta": -12.842590342171345,  # step 82: coupler_point of K5
-    "step86.off": 0.0,  # step 86: link_angle of left_ternary
-    "step87.gsi": 59.45643676931176,  # step 87: coupler_point of K5
-    "step87.eta": -12.842590342171345,  # step 87: coupler_point of K5
-    "step91.off": -2.928860872898183,  # step 91: link_angle of left_ternary
-    "step92.gsi": 45.662543438831435,  # step 92: coupler_point of K4
-    "step92.eta": 12.842590342171338,  # step 92: coupler_point of K4
+    "step26.along": 0.5656108597285068,  # step 26: link_point of J5
+    "step26.across": 0.12217194570135746,  # step 26: link_point of J5
+    "step30.along": 0.5656108597285068,  # step 30: link_point of J5
+    "step30.across": 0.12217194570135746,  # step 30: link_point of J5
+    "step34.along": 0.4343891402714932,  # step 34: link_point of J5
+    "step34.across": -0.12217194570135746,  # step 34: link_point of J5
+    "step38.along": 0.4343891402714932,  # step 38: link_point of J5
+    "step38.across": -0.12217194570135746,  # step 38: link_point of J5
+    "step42.along": 0.5656108597285068,  # step 42: link_point of J5
+    "step42.across": 0.12217194570135746,  # step 42: link_point of J5
+    "step46.along": 0.5656108597285068,  # step 46: link_point of J5
+    "step46.across": 0.12217194570135746,  # step 46: link_point of J5
+    "step50.along": 0.5656108597285068,  # step 50: link_point of K5
+    "step50.across": -0.12217194570135746,  # step 50: link_point of K5
+    "step54.along": 0.4343891402714932,  # step 54: link_point of K5
+    "step54.across": 0.12217194570135746,  # step 54: link_point of K5
+    "step58.along": 0.4343891402714932,  # step 58: link_point of K5
+    "step58.across": 0.12217194570135746,  # step 58: link_point of K5
+    "step62.along": 0.4343891402714932,  # step 62: link_point of K5
+    "step62.across": 0.12217194570135746,  # step 62: link_point of K5
+    "step66.along": 0.5656108597285068,  # step 66: link_point of K5
+    "step66.across": -0.12217194570135746,  # step 66: link_point of K5
+    "step70.along": 0.5656108597285068,  # step 70: link_point of K5
+    "step70.across": -0.12217194570135746,  # step 70: link_point of K5
+    "step74.along": 0.5656108597285068,  # step 74: link_point of K5
+    "step74.across": -0.12217194570135746,  # step 74: link_point of K5
+    "step78.along": -0.6891891891891891,  # step 78: link_point of K4
+    "step78.across": -0.36486486486486486,  # step 78: link_point of K4
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
     name="double_triad_np", n_inputs=N_INPUTS, n_steps=N_STEPS, params=PARAMS,
     columns=COLUMNS[N_INPUTS:], levels=(0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,),  # derivative level of each output column
     reads=3,  # the arrays a row reads: inputs, rates, accelerations
     max_input=1e+30, bad_input=5,
-    failed=(1, 2), singular=3,
+    failed=(1, 2,), singular=3,
     tolerance=1e-10, path_slack=1.0000000000000001e-07,  # the resolver's, in REAL
     lanes=True,  # the rows solved on lanes (else each by double_triad.py: a resolver setting the lanes lack)
+    checks=True,  # whether a call gives each step's conditioning ("sigma")
 )
 
 
@@ -270,6 +257,7 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
+    th0 = np.arctan2(dy, dx) + off
     _c1 = np.asarray(r2 == 0)
     if not _c1.any():
         ir2 = 1 / r2
@@ -291,40 +279,43 @@ def link_angle(j1, j2, off):
     _sigma = np.asarray(_sigma, dtype=REAL)
     _fails = _st == 1
     _singular = _fails | (_st == 3)
-    _t1 = np.arctan2(dy, dx) + off
-    _c3 = np.asarray(_t1 > PI)
+    _c3 = np.asarray(th0 > PI)
     if not _c3.any():
-        _c4 = np.asarray(_t1 <= -PI)
+        _c4 = np.asarray(th0 <= -PI)
         if not _c4.any():
-            _f1 = _t1
+            _f1 = th0
         elif _c4.all():
-            _f1 = _t1 + 2 * PI
+            _f1 = th0 + 2 * PI
         else:
-            _f1 = np.where(_c4, _t1 + 2 * PI, _t1)
+            _f1 = np.where(_c4, th0 + 2 * PI, th0)
     elif _c3.all():
-        _f1 = _t1 - 2 * PI
+        _f1 = th0 - 2 * PI
     else:
-        _f1 = np.where(_c3, _t1 - 2 * PI, np.where(_t1 <= -PI, _t1 + 2 * PI, _t1))
+        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     _angle = (_f1, om, al)
     if np.any(_singular):  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp, sp = cos_sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    _t1 = phi_dthe * phi_dthe
-    rax = -phi_ddthe * ry - _t1 * rx
-    ray = phi_ddthe * rx - _t1 * ry
+def link_point(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
-    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+    _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -391,58 +382,59 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    _c7 = np.asarray(fail)
-    if not _c7.any():
-        sigma = np.minimum(area4 / (2 * l1_v * l2_v), 1)
-    elif _c7.all():
-        sigma = 0
-    else:
-        sigma = np.where(_c7, 0, np.minimum(area4 / (2 * l1_v * l2_v), 1))
-    _t1 = -a2
-    e2x = _t1 * ux - hn * uy
-    e2y = _t1 * uy + hn * ux
-    _c8 = np.asarray(hn == 0)
+    _c8 = np.asarray(fail)
     if not _c8.any():
-        ihq = 1 / (hn * q)
+        _s7 = area4 * (0.5 / (l1_v * l2_v))
     elif _c8.all():
+        _s7 = 0
+    else:
+        _s7 = np.where(_c8, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s7, 1)
+    _t2 = -a2
+    e2x = _t2 * ux - hn * uy
+    e2y = _t2 * uy + hn * ux
+    _c9 = np.asarray(hn == 0)
+    if not _c9.any():
+        ihq = 1 / (hn * q)
+    elif _c9.all():
         ihq = NAN
     else:
-        ihq = np.where(_c8, NAN, 1 / (hn * q))
+        ihq = np.where(_c9, NAN, 1 / (hn * q))
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
     buv = (r1v - r2v) * iq
     bnv = (a2 * r1v + a * r2v) * ihq
     bvx = buv * ux - bnv * uy
     bvy = buv * uy + bnv * ux
-    _t2 = bvx - j1_dx
-    _t3 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t2 * _t2 + _t3 * _t3) + (e1x * j1_ddx + e1y * j1_ddy)
-    _t4 = bvx - j2_dx
-    _t5 = bvy - j2_dy
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t4 * _t4 + _t5 * _t5) + (e2x * j2_ddx + e2y * j2_ddy)
+    _t3 = bvx - j1_dx
+    _t4 = bvy - j1_dy
+    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t3 * _t3 + _t4 * _t4) + (e1x * j1_ddx + e1y * j1_ddy)
+    _t5 = bvx - j2_dx
+    _t6 = bvy - j2_dy
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t5 * _t5 + _t6 * _t6) + (e2x * j2_ddx + e2y * j2_ddy)
     bua = (r1a - r2a) * iq
     bna = (a2 * r1a + a * r2a) * ihq
     bax = bua * ux - bna * uy
     bay = bua * uy + bna * ux
-    _c9 = np.asarray(fail)
-    if not _c9.any():
-        _c10 = np.asarray(sigma < 1e-07)
-        if not _c10.any():
-            _c11 = np.asarray(sigma < 0.001)
-            if not _c11.any():
+    _c10 = np.asarray(fail)
+    if not _c10.any():
+        _c11 = np.asarray(sigma < 1e-07)
+        if not _c11.any():
+            _c12 = np.asarray(sigma < 0.001)
+            if not _c12.any():
                 _st = 0
-            elif _c11.all():
+            elif _c12.all():
                 _st = 4
             else:
-                _st = np.where(_c11, 4, 0)
-        elif _c10.all():
+                _st = np.where(_c12, 4, 0)
+        elif _c11.all():
             _st = 3
         else:
-            _st = np.where(_c10, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c9.all():
+            _st = np.where(_c11, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c10.all():
         _st = 1
     else:
-        _st = np.where(_c9, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c10, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -506,66 +498,21 @@ def link_residual(j1, j2, l):
     _f = (r - l_v, rd - l_dv, _f3)
     return _st, _sigma, _f
 
-def link_angle_1(j1, j2, off):
-    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
+def link_point_1(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
     j1_x, j1_y, j1_dx, j1_dy = j1[:4]
     j2_x, j2_y, j2_dx, j2_dy = j2[:4]
     dx = j2_x - j1_x
     dy = j2_y - j1_y
     dvx = j2_dx - j1_dx
     dvy = j2_dy - j1_dy
-    r2 = dx * dx + dy * dy
-    _c2 = np.asarray(r2 == 0)
-    if not _c2.any():
-        _s1 = 1 / r2
-    elif _c2.all():
-        _s1 = NAN
-    else:
-        _s1 = np.where(_c2, NAN, 1 / r2)
-    om = (dx * dvy - dy * dvx) * _s1
-    _c3 = np.asarray(r2 == 0)
-    if not _c3.any():
-        _st = 0
-    elif _c3.all():
-        _st = 1
-    else:
-        _st = np.where(_c3, 1, 0)
-    _sigma = 1.0
-    _st = np.asarray(_st)
-    _sigma = np.asarray(_sigma, dtype=REAL)
-    _fails = _st == 1
-    _singular = _fails | (_st == 3)
-    _t2 = np.arctan2(dy, dx) + off
-    _c4 = np.asarray(_t2 > PI)
-    if not _c4.any():
-        _c5 = np.asarray(_t2 <= -PI)
-        if not _c5.any():
-            _f1 = _t2
-        elif _c5.all():
-            _f1 = _t2 + 2 * PI
-        else:
-            _f1 = np.where(_c5, _t2 + 2 * PI, _t2)
-    elif _c4.all():
-        _f1 = _t2 - 2 * PI
-    else:
-        _f1 = np.where(_c4, _t2 - 2 * PI, np.where(_t2 <= -PI, _t2 + 2 * PI, _t2))
-    _angle = (_f1, om)
-    if np.any(_singular):  # nan where the rows failed
-        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]))
-    return _st, _sigma, _angle
-
-def coupler_point_1(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy = j0[:4]
-    phi_the, phi_dthe = phi[:2]
-    cp, sp = cos_sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
-    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy)
+    _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy)
     return _st, _sigma, _jc
 
 def RRR_links_1(j1, j2, l1, l2, minv):
@@ -632,48 +579,49 @@ def RRR_links_1(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    _c7 = np.asarray(fail)
-    if not _c7.any():
-        sigma = np.minimum(area4 / (2 * l1_v * l2_v), 1)
-    elif _c7.all():
-        sigma = 0
+    _c8 = np.asarray(fail)
+    if not _c8.any():
+        _s7 = area4 * (0.5 / (l1_v * l2_v))
+    elif _c8.all():
+        _s7 = 0
     else:
-        sigma = np.where(_c7, 0, np.minimum(area4 / (2 * l1_v * l2_v), 1))
-    _t1 = -a2
-    e2x = _t1 * ux - hn * uy
-    e2y = _t1 * uy + hn * ux
+        _s7 = np.where(_c8, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s7, 1)
+    _t2 = -a2
+    e2x = _t2 * ux - hn * uy
+    e2y = _t2 * uy + hn * ux
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
     buv = (r1v - r2v) * iq
-    _c9 = np.asarray(hn == 0)
-    if not _c9.any():
-        _s8 = 1 / (hn * q)
-    elif _c9.all():
-        _s8 = NAN
+    _c10 = np.asarray(hn == 0)
+    if not _c10.any():
+        _s9 = 1 / (hn * q)
+    elif _c10.all():
+        _s9 = NAN
     else:
-        _s8 = np.where(_c9, NAN, 1 / (hn * q))
-    bnv = (a2 * r1v + a * r2v) * _s8
+        _s9 = np.where(_c10, NAN, 1 / (hn * q))
+    bnv = (a2 * r1v + a * r2v) * _s9
     bvx = buv * ux - bnv * uy
     bvy = buv * uy + bnv * ux
-    _c10 = np.asarray(fail)
-    if not _c10.any():
-        _c11 = np.asarray(sigma < 1e-07)
-        if not _c11.any():
-            _c12 = np.asarray(sigma < 0.001)
-            if not _c12.any():
+    _c11 = np.asarray(fail)
+    if not _c11.any():
+        _c12 = np.asarray(sigma < 1e-07)
+        if not _c12.any():
+            _c13 = np.asarray(sigma < 0.001)
+            if not _c13.any():
                 _st = 0
-            elif _c12.all():
+            elif _c13.all():
                 _st = 4
             else:
-                _st = np.where(_c12, 4, 0)
-        elif _c11.all():
+                _st = np.where(_c13, 4, 0)
+        elif _c12.all():
             _st = 3
         else:
-            _st = np.where(_c11, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c10.all():
+            _st = np.where(_c12, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c11.all():
         _st = 1
     else:
-        _st = np.where(_c10, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c11, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -745,7 +693,7 @@ def reason_of(code):
 # last axis the inputs) and its design parameters broadcast together and flattened into rows,
 # solved a block of rows at a time so that every array a block makes stays in the cache.
 # m holds the module's data (name, n_inputs, n_steps, reads, max_input, levels, columns,
-# failed, singular, bad_input, params).
+# failed, singular, bad_input, params, checks).
 
 BLOCK = 16384  # rows a block (measured: 20% faster than 4096, as fast as 32768)
 
@@ -804,9 +752,11 @@ def filled(out, shape, order, m):
     if out is None:
         return ({name: np.empty(n, dtype=REAL) for name in names}, np.empty(n, dtype=int),
                 np.ones((m.n_steps + 1, n), dtype=REAL))
-    flat = {}
-    for name, like, dtype in [(name, shape, REAL) for name in names] + [
-            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), REAL)]:
+    wanted = [(name, shape, REAL) for name in names] + [("status", shape, int)]
+    if m.checks:
+        wanted.append(("sigma", (m.n_steps + 1, *shape), REAL))
+    flat = {"sigma": np.ones((m.n_steps + 1, n), dtype=REAL)}  # the call's own where it gives no conditioning
+    for name, like, dtype in wanted:
         a = out.get(name)
         if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
             raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
@@ -862,7 +812,9 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
         row = solve(x, dx, ddx, order, state)
         for name in out:
             out[name][r] = row[name]
-        status[r], sigma[:, r] = row["status"], row["sigma"]
+        status[r] = row["status"]
+        if m.checks:
+            sigma[:, r] = row["sigma"]
     return finish(out, status, sigma, bad, shape, m)
 
 
@@ -883,7 +835,8 @@ def finish(out, status, sigma, bad, shape, m):
             out[name][lost] = np.nan
     result = {name: x.reshape(shape) for name, x in out.items()}
     result["status"] = status.reshape(shape)
-    result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
+    if m.checks:
+        result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
     return result
 
 # The over-constraint resolver on lanes of rows: the Python runtime's Newton-Raphson on the
@@ -1529,7 +1482,7 @@ class _Work:
 
 
 def _group_1(w, r, br, a, da, dda):
-    """Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9, on lanes of rows.
+    """Steps 4, 5, 6, 7, iterated by the resolver of step 8, on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1551,18 +1504,15 @@ def _group_1(w, r, br, a, da, dda):
     st, sigma[5], w.p_J2 = RRR_links(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br5)
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     chains = np.minimum(chains, sigma[5])
-    # Step 6: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, c["step6.off"])
-    report.append((st, ((1, 61), (3, 63), (4, -64))))
-    # Step 7: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, c["step7.gsi"], c["step7.eta"])
-    # Step 8: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step6.along"], c["step6.across"])
+    # Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1, ), chains
 
 
 def _group_1_1(w, r, br, a, da, dda):
-    """Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9, on lanes of rows (positions and rates only).
+    """Steps 4, 5, 6, 7, iterated by the resolver of step 8, on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1584,18 +1534,15 @@ def _group_1_1(w, r, br, a, da, dda):
     st, sigma[5], w.p_J2 = RRR_links_1(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br5)
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     chains = np.minimum(chains, sigma[5])
-    # Step 6: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle_1(w.p_J2, w.p_J4, c["step6.off"])
-    report.append((st, ((1, 61), (3, 63), (4, -64))))
-    # Step 7: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point_1(w.p_J4, w.phi_right_ternary, c["step7.gsi"], c["step7.eta"])
-    # Step 8: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step6.along"], c["step6.across"])
+    # Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1, ), chains
 
 
 def _group_1_v1(w, r, br, a, da, dda):
-    """Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9 (fallback 1: the Add-link J6-J2), on lanes of rows.
+    """Steps 24, 25, 26, 27, iterated by the resolver of step 8 (fallback 1: the Add-link J6-J2), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1617,18 +1564,15 @@ def _group_1_v1(w, r, br, a, da, dda):
     st, sigma[25], w.p_J4 = RRR_links(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br25)
     report.append((st, ((1, 251), (3, 253), (4, -254))))
     chains = np.minimum(chains, sigma[25])
-    # Step 26: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, c["step26.off"])
-    report.append((st, ((1, 261), (3, 263), (4, -264))))
-    # Step 27: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, c["step27.gsi"], c["step27.eta"])
-    # Step 28: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step26.along"], c["step26.across"])
+    # Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v1, ), chains
 
 
 def _group_1_v1_1(w, r, br, a, da, dda):
-    """Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9 (fallback 1: the Add-link J6-J2), on lanes of rows (positions and rates only).
+    """Steps 24, 25, 26, 27, iterated by the resolver of step 8 (fallback 1: the Add-link J6-J2), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1650,18 +1594,15 @@ def _group_1_v1_1(w, r, br, a, da, dda):
     st, sigma[25], w.p_J4 = RRR_links_1(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br25)
     report.append((st, ((1, 251), (3, 253), (4, -254))))
     chains = np.minimum(chains, sigma[25])
-    # Step 26: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle_1(w.p_J2, w.p_J4, c["step26.off"])
-    report.append((st, ((1, 261), (3, 263), (4, -264))))
-    # Step 27: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point_1(w.p_J2, w.phi_right_ternary, c["step27.gsi"], c["step27.eta"])
-    # Step 28: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step26.along"], c["step26.across"])
+    # Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v1, ), chains
 
 
 def _group_1_v2(w, r, br, a, da, dda):
-    """Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9 (fallback 2: the Add-link J7-J2), on lanes of rows.
+    """Steps 28, 29, 30, 31, iterated by the resolver of step 8 (fallback 2: the Add-link J7-J2), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1670,31 +1611,28 @@ def _group_1_v2(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br29, w.br30, = br
+    w.br28, w.br29, = br
     sigma = {}
     report = []
     w.add1_v2 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, sigma[29], w.p_J2 = RRR_links(w.p_J1, w.p_J7, w.l_right_rocker1, w.add1_v2, w.br29)
+    # Step 28: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, sigma[28], w.p_J2 = RRR_links(w.p_J1, w.p_J7, w.l_right_rocker1, w.add1_v2, w.br28)
+    report.append((st, ((1, 281), (3, 283), (4, -284))))
+    chains = np.minimum(chains, sigma[28])
+    # Step 29: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
+    st, sigma[29], w.p_J4 = RRR_links(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br29)
     report.append((st, ((1, 291), (3, 293), (4, -294))))
     chains = np.minimum(chains, sigma[29])
-    # Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
-    st, sigma[30], w.p_J4 = RRR_links(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br30)
-    report.append((st, ((1, 301), (3, 303), (4, -304))))
-    chains = np.minimum(chains, sigma[30])
-    # Step 31: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, c["step31.off"])
-    report.append((st, ((1, 311), (3, 313), (4, -314))))
-    # Step 32: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, c["step32.gsi"], c["step32.eta"])
-    # Step 33: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step30.along"], c["step30.across"])
+    # Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v2, ), chains
 
 
 def _group_1_v2_1(w, r, br, a, da, dda):
-    """Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9 (fallback 2: the Add-link J7-J2), on lanes of rows (positions and rates only).
+    """Steps 28, 29, 30, 31, iterated by the resolver of step 8 (fallback 2: the Add-link J7-J2), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1703,31 +1641,28 @@ def _group_1_v2_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br29, w.br30, = br
+    w.br28, w.br29, = br
     sigma = {}
     report = []
     w.add1_v2 = (a[0], da[0])
     chains = 1.0
-    # Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, sigma[29], w.p_J2 = RRR_links_1(w.p_J1, w.p_J7, w.l_right_rocker1, w.add1_v2, w.br29)
+    # Step 28: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, sigma[28], w.p_J2 = RRR_links_1(w.p_J1, w.p_J7, w.l_right_rocker1, w.add1_v2, w.br28)
+    report.append((st, ((1, 281), (3, 283), (4, -284))))
+    chains = np.minimum(chains, sigma[28])
+    # Step 29: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
+    st, sigma[29], w.p_J4 = RRR_links_1(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br29)
     report.append((st, ((1, 291), (3, 293), (4, -294))))
     chains = np.minimum(chains, sigma[29])
-    # Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
-    st, sigma[30], w.p_J4 = RRR_links_1(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br30)
-    report.append((st, ((1, 301), (3, 303), (4, -304))))
-    chains = np.minimum(chains, sigma[30])
-    # Step 31: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle_1(w.p_J2, w.p_J4, c["step31.off"])
-    report.append((st, ((1, 311), (3, 313), (4, -314))))
-    # Step 32: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point_1(w.p_J2, w.phi_right_ternary, c["step32.gsi"], c["step32.eta"])
-    # Step 33: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step30.along"], c["step30.across"])
+    # Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v2 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v2, ), chains
 
 
 def _group_1_v3(w, r, br, a, da, dda):
-    """Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9 (fallback 3: the Add-link J7-J4), on lanes of rows.
+    """Steps 32, 33, 34, 35, iterated by the resolver of step 8 (fallback 3: the Add-link J7-J4), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1736,31 +1671,28 @@ def _group_1_v3(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br34, w.br35, = br
+    w.br32, w.br33, = br
     sigma = {}
     report = []
     w.add1_v3 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, sigma[34], w.p_J4 = RRR_links(w.p_J3, w.p_J7, w.l_right_rocker2, w.add1_v3, w.br34)
-    report.append((st, ((1, 341), (3, 343), (4, -344))))
-    chains = np.minimum(chains, sigma[34])
-    # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
-    st, sigma[35], w.p_J2 = RRR_links(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br35)
-    report.append((st, ((1, 351), (3, 353), (4, -354))))
-    chains = np.minimum(chains, sigma[35])
-    # Step 36: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, c["step36.off"])
-    report.append((st, ((1, 361), (3, 363), (4, -364))))
-    # Step 37: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, c["step37.gsi"], c["step37.eta"])
-    # Step 38: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 32: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, sigma[32], w.p_J4 = RRR_links(w.p_J3, w.p_J7, w.l_right_rocker2, w.add1_v3, w.br32)
+    report.append((st, ((1, 321), (3, 323), (4, -324))))
+    chains = np.minimum(chains, sigma[32])
+    # Step 33: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
+    st, sigma[33], w.p_J2 = RRR_links(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br33)
+    report.append((st, ((1, 331), (3, 333), (4, -334))))
+    chains = np.minimum(chains, sigma[33])
+    # Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step34.along"], c["step34.across"])
+    # Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v3 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v3, ), chains
 
 
 def _group_1_v3_1(w, r, br, a, da, dda):
-    """Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9 (fallback 3: the Add-link J7-J4), on lanes of rows (positions and rates only).
+    """Steps 32, 33, 34, 35, iterated by the resolver of step 8 (fallback 3: the Add-link J7-J4), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1769,31 +1701,28 @@ def _group_1_v3_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br34, w.br35, = br
+    w.br32, w.br33, = br
     sigma = {}
     report = []
     w.add1_v3 = (a[0], da[0])
     chains = 1.0
-    # Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, sigma[34], w.p_J4 = RRR_links_1(w.p_J3, w.p_J7, w.l_right_rocker2, w.add1_v3, w.br34)
-    report.append((st, ((1, 341), (3, 343), (4, -344))))
-    chains = np.minimum(chains, sigma[34])
-    # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
-    st, sigma[35], w.p_J2 = RRR_links_1(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br35)
-    report.append((st, ((1, 351), (3, 353), (4, -354))))
-    chains = np.minimum(chains, sigma[35])
-    # Step 36: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle_1(w.p_J2, w.p_J4, c["step36.off"])
-    report.append((st, ((1, 361), (3, 363), (4, -364))))
-    # Step 37: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point_1(w.p_J4, w.phi_right_ternary, c["step37.gsi"], c["step37.eta"])
-    # Step 38: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 32: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, sigma[32], w.p_J4 = RRR_links_1(w.p_J3, w.p_J7, w.l_right_rocker2, w.add1_v3, w.br32)
+    report.append((st, ((1, 321), (3, 323), (4, -324))))
+    chains = np.minimum(chains, sigma[32])
+    # Step 33: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
+    st, sigma[33], w.p_J2 = RRR_links_1(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br33)
+    report.append((st, ((1, 331), (3, 333), (4, -334))))
+    chains = np.minimum(chains, sigma[33])
+    # Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step34.along"], c["step34.across"])
+    # Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v3 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v3, ), chains
 
 
 def _group_1_v4(w, r, br, a, da, dda):
-    """Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9 (fallback 4: the Add-link J1-J4), on lanes of rows.
+    """Steps 36, 37, 38, 39, iterated by the resolver of step 8 (fallback 4: the Add-link J1-J4), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1802,31 +1731,28 @@ def _group_1_v4(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br39, w.br40, = br
+    w.br36, w.br37, = br
     sigma = {}
     report = []
     w.add1_v4 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 39: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
-    st, sigma[39], w.p_J4 = RRR_links(w.p_J3, w.p_J1, w.l_right_rocker2, w.add1_v4, w.br39)
-    report.append((st, ((1, 391), (3, 393), (4, -394))))
-    chains = np.minimum(chains, sigma[39])
-    # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
-    st, sigma[40], w.p_J2 = RRR_links(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br40)
-    report.append((st, ((1, 401), (3, 403), (4, -404))))
-    chains = np.minimum(chains, sigma[40])
-    # Step 41: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, c["step41.off"])
-    report.append((st, ((1, 411), (3, 413), (4, -414))))
-    # Step 42: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, c["step42.gsi"], c["step42.eta"])
-    # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 36: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
+    st, sigma[36], w.p_J4 = RRR_links(w.p_J3, w.p_J1, w.l_right_rocker2, w.add1_v4, w.br36)
+    report.append((st, ((1, 361), (3, 363), (4, -364))))
+    chains = np.minimum(chains, sigma[36])
+    # Step 37: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
+    st, sigma[37], w.p_J2 = RRR_links(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br37)
+    report.append((st, ((1, 371), (3, 373), (4, -374))))
+    chains = np.minimum(chains, sigma[37])
+    # Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step38.along"], c["step38.across"])
+    # Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v4 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v4, ), chains
 
 
 def _group_1_v4_1(w, r, br, a, da, dda):
-    """Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9 (fallback 4: the Add-link J1-J4), on lanes of rows (positions and rates only).
+    """Steps 36, 37, 38, 39, iterated by the resolver of step 8 (fallback 4: the Add-link J1-J4), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1835,31 +1761,88 @@ def _group_1_v4_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br39, w.br40, = br
+    w.br36, w.br37, = br
     sigma = {}
     report = []
     w.add1_v4 = (a[0], da[0])
     chains = 1.0
-    # Step 39: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
-    st, sigma[39], w.p_J4 = RRR_links_1(w.p_J3, w.p_J1, w.l_right_rocker2, w.add1_v4, w.br39)
-    report.append((st, ((1, 391), (3, 393), (4, -394))))
-    chains = np.minimum(chains, sigma[39])
-    # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
-    st, sigma[40], w.p_J2 = RRR_links_1(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br40)
-    report.append((st, ((1, 401), (3, 403), (4, -404))))
-    chains = np.minimum(chains, sigma[40])
-    # Step 41: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle_1(w.p_J2, w.p_J4, c["step41.off"])
-    report.append((st, ((1, 411), (3, 413), (4, -414))))
-    # Step 42: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point_1(w.p_J4, w.phi_right_ternary, c["step42.gsi"], c["step42.eta"])
-    # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 36: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
+    st, sigma[36], w.p_J4 = RRR_links_1(w.p_J3, w.p_J1, w.l_right_rocker2, w.add1_v4, w.br36)
+    report.append((st, ((1, 361), (3, 363), (4, -364))))
+    chains = np.minimum(chains, sigma[36])
+    # Step 37: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
+    st, sigma[37], w.p_J2 = RRR_links_1(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br37)
+    report.append((st, ((1, 371), (3, 373), (4, -374))))
+    chains = np.minimum(chains, sigma[37])
+    # Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step38.along"], c["step38.across"])
+    # Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v4 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v4, ), chains
 
 
 def _group_1_v5(w, r, br, a, da, dda):
-    """Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9 (fallback 5: the Add-link J3-J2), on lanes of rows.
+    """Steps 40, 41, 42, 43, iterated by the resolver of step 8 (fallback 5: the Add-link J3-J2), on lanes of rows.
+
+    r: the records the block reads from before the group (their rates zeroed on a Jacobian
+    pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
+    accelerations.  Returns the steps' reports and conditioning, the residual records and the
+    worst conditioning of its chains from the block's lever down; its records are left in w.
+    """
+    c = w.c
+    p_J6, = r
+    w.br40, w.br41, = br
+    sigma = {}
+    report = []
+    w.add1_v5 = (a[0], da[0], dda[0])
+    chains = 1.0
+    # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
+    st, sigma[40], w.p_J2 = RRR_links(w.p_J1, w.p_J3, w.l_right_rocker1, w.add1_v5, w.br40)
+    report.append((st, ((1, 401), (3, 403), (4, -404))))
+    chains = np.minimum(chains, sigma[40])
+    # Step 41: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
+    st, sigma[41], w.p_J4 = RRR_links(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br41)
+    report.append((st, ((1, 411), (3, 413), (4, -414))))
+    chains = np.minimum(chains, sigma[41])
+    # Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step42.along"], c["step42.across"])
+    # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    _, _, w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
+    return report, sigma, (w.f1_v5, ), chains
+
+
+def _group_1_v5_1(w, r, br, a, da, dda):
+    """Steps 40, 41, 42, 43, iterated by the resolver of step 8 (fallback 5: the Add-link J3-J2), on lanes of rows (positions and rates only).
+
+    r: the records the block reads from before the group (their rates zeroed on a Jacobian
+    pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
+    accelerations.  Returns the steps' reports and conditioning, the residual records and the
+    worst conditioning of its chains from the block's lever down; its records are left in w.
+    """
+    c = w.c
+    p_J6, = r
+    w.br40, w.br41, = br
+    sigma = {}
+    report = []
+    w.add1_v5 = (a[0], da[0])
+    chains = 1.0
+    # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
+    st, sigma[40], w.p_J2 = RRR_links_1(w.p_J1, w.p_J3, w.l_right_rocker1, w.add1_v5, w.br40)
+    report.append((st, ((1, 401), (3, 403), (4, -404))))
+    chains = np.minimum(chains, sigma[40])
+    # Step 41: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
+    st, sigma[41], w.p_J4 = RRR_links_1(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br41)
+    report.append((st, ((1, 411), (3, 413), (4, -414))))
+    chains = np.minimum(chains, sigma[41])
+    # Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step42.along"], c["step42.across"])
+    # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    _, _, w.f1_v5 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
+    return report, sigma, (w.f1_v5, ), chains
+
+
+def _group_1_v6(w, r, br, a, da, dda):
+    """Steps 44, 45, 46, 47, iterated by the resolver of step 8 (fallback 6: the Add-link K1-J2), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1871,28 +1854,25 @@ def _group_1_v5(w, r, br, a, da, dda):
     w.br44, w.br45, = br
     sigma = {}
     report = []
-    w.add1_v5 = (a[0], da[0], dda[0])
+    w.add1_v6 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 44: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
-    st, sigma[44], w.p_J2 = RRR_links(w.p_J1, w.p_J3, w.l_right_rocker1, w.add1_v5, w.br44)
+    # Step 44: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known
+    st, sigma[44], w.p_J2 = RRR_links(w.p_J1, w.p_K1, w.l_right_rocker1, w.add1_v6, w.br44)
     report.append((st, ((1, 441), (3, 443), (4, -444))))
     chains = np.minimum(chains, sigma[44])
     # Step 45: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
     st, sigma[45], w.p_J4 = RRR_links(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br45)
     report.append((st, ((1, 451), (3, 453), (4, -454))))
     chains = np.minimum(chains, sigma[45])
-    # Step 46: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, c["step46.off"])
-    report.append((st, ((1, 461), (3, 463), (4, -464))))
-    # Step 47: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, c["step47.gsi"], c["step47.eta"])
-    # Step 48: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
-    _, _, w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
-    return report, sigma, (w.f1_v5, ), chains
+    # Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step46.along"], c["step46.across"])
+    # Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    _, _, w.f1_v6 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
+    return report, sigma, (w.f1_v6, ), chains
 
 
-def _group_1_v5_1(w, r, br, a, da, dda):
-    """Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9 (fallback 5: the Add-link J3-J2), on lanes of rows (positions and rates only).
+def _group_1_v6_1(w, r, br, a, da, dda):
+    """Steps 44, 45, 46, 47, iterated by the resolver of step 8 (fallback 6: the Add-link K1-J2), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1904,94 +1884,25 @@ def _group_1_v5_1(w, r, br, a, da, dda):
     w.br44, w.br45, = br
     sigma = {}
     report = []
-    w.add1_v5 = (a[0], da[0])
+    w.add1_v6 = (a[0], da[0])
     chains = 1.0
-    # Step 44: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
-    st, sigma[44], w.p_J2 = RRR_links_1(w.p_J1, w.p_J3, w.l_right_rocker1, w.add1_v5, w.br44)
+    # Step 44: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known
+    st, sigma[44], w.p_J2 = RRR_links_1(w.p_J1, w.p_K1, w.l_right_rocker1, w.add1_v6, w.br44)
     report.append((st, ((1, 441), (3, 443), (4, -444))))
     chains = np.minimum(chains, sigma[44])
     # Step 45: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
     st, sigma[45], w.p_J4 = RRR_links_1(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br45)
     report.append((st, ((1, 451), (3, 453), (4, -454))))
     chains = np.minimum(chains, sigma[45])
-    # Step 46: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle_1(w.p_J2, w.p_J4, c["step46.off"])
-    report.append((st, ((1, 461), (3, 463), (4, -464))))
-    # Step 47: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point_1(w.p_J2, w.phi_right_ternary, c["step47.gsi"], c["step47.eta"])
-    # Step 48: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
-    _, _, w.f1_v5 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
-    return report, sigma, (w.f1_v5, ), chains
-
-
-def _group_1_v6(w, r, br, a, da, dda):
-    """Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9 (fallback 6: the Add-link K1-J2), on lanes of rows.
-
-    r: the records the block reads from before the group (their rates zeroed on a Jacobian
-    pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
-    accelerations.  Returns the steps' reports and conditioning, the residual records and the
-    worst conditioning of its chains from the block's lever down; its records are left in w.
-    """
-    c = w.c
-    p_J6, = r
-    w.br49, w.br50, = br
-    sigma = {}
-    report = []
-    w.add1_v6 = (a[0], da[0], dda[0])
-    chains = 1.0
-    # Step 49: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known
-    st, sigma[49], w.p_J2 = RRR_links(w.p_J1, w.p_K1, w.l_right_rocker1, w.add1_v6, w.br49)
-    report.append((st, ((1, 491), (3, 493), (4, -494))))
-    chains = np.minimum(chains, sigma[49])
-    # Step 50: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
-    st, sigma[50], w.p_J4 = RRR_links(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br50)
-    report.append((st, ((1, 501), (3, 503), (4, -504))))
-    chains = np.minimum(chains, sigma[50])
-    # Step 51: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, c["step51.off"])
-    report.append((st, ((1, 511), (3, 513), (4, -514))))
-    # Step 52: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, c["step52.gsi"], c["step52.eta"])
-    # Step 53: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
-    _, _, w.f1_v6 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
-    return report, sigma, (w.f1_v6, ), chains
-
-
-def _group_1_v6_1(w, r, br, a, da, dda):
-    """Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9 (fallback 6: the Add-link K1-J2), on lanes of rows (positions and rates only).
-
-    r: the records the block reads from before the group (their rates zeroed on a Jacobian
-    pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
-    accelerations.  Returns the steps' reports and conditioning, the residual records and the
-    worst conditioning of its chains from the block's lever down; its records are left in w.
-    """
-    c = w.c
-    p_J6, = r
-    w.br49, w.br50, = br
-    sigma = {}
-    report = []
-    w.add1_v6 = (a[0], da[0])
-    chains = 1.0
-    # Step 49: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known
-    st, sigma[49], w.p_J2 = RRR_links_1(w.p_J1, w.p_K1, w.l_right_rocker1, w.add1_v6, w.br49)
-    report.append((st, ((1, 491), (3, 493), (4, -494))))
-    chains = np.minimum(chains, sigma[49])
-    # Step 50: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
-    st, sigma[50], w.p_J4 = RRR_links_1(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br50)
-    report.append((st, ((1, 501), (3, 503), (4, -504))))
-    chains = np.minimum(chains, sigma[50])
-    # Step 51: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    st, _, w.phi_right_ternary = link_angle_1(w.p_J2, w.p_J4, c["step51.off"])
-    report.append((st, ((1, 511), (3, 513), (4, -514))))
-    # Step 52: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point_1(w.p_J2, w.phi_right_ternary, c["step52.gsi"], c["step52.eta"])
-    # Step 53: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step46.along"], c["step46.across"])
+    # Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v6 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v6, ), chains
 
 
 def _group_2(w, r, br, a, da, dda):
-    """Steps 11, 12, 13, 14, 15, iterated by the resolver of step 16, on lanes of rows.
+    """Steps 10, 11, 12, 13, iterated by the resolver of step 14, on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2000,31 +1911,28 @@ def _group_2(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br11, w.br12, = br
+    w.br10, w.br11, = br
     sigma = {}
     report = []
     w.add2 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 11: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known
-    st, sigma[11], w.p_K4 = RRR_links(w.p_K3, p_J6, w.l_left_rocker2, w.add2, w.br11)
+    # Step 10: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known
+    st, sigma[10], w.p_K4 = RRR_links(w.p_K3, p_J6, w.l_left_rocker2, w.add2, w.br10)
+    report.append((st, ((1, 101), (3, 103), (4, -104))))
+    chains = np.minimum(chains, sigma[10])
+    # Step 11: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, sigma[11], w.p_K2 = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br11)
     report.append((st, ((1, 111), (3, 113), (4, -114))))
     chains = np.minimum(chains, sigma[11])
-    # Step 12: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, sigma[12], w.p_K2 = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br12)
-    report.append((st, ((1, 121), (3, 123), (4, -124))))
-    chains = np.minimum(chains, sigma[12])
-    # Step 13: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, c["step13.off"])
-    report.append((st, ((1, 131), (3, 133), (4, -134))))
-    # Step 14: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, c["step14.gsi"], c["step14.eta"])
-    # Step 15: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step12.along"], c["step12.across"])
+    # Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2, ), chains
 
 
 def _group_2_1(w, r, br, a, da, dda):
-    """Steps 11, 12, 13, 14, 15, iterated by the resolver of step 16, on lanes of rows (positions and rates only).
+    """Steps 10, 11, 12, 13, iterated by the resolver of step 14, on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2033,31 +1941,28 @@ def _group_2_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br11, w.br12, = br
+    w.br10, w.br11, = br
     sigma = {}
     report = []
     w.add2 = (a[0], da[0])
     chains = 1.0
-    # Step 11: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known
-    st, sigma[11], w.p_K4 = RRR_links_1(w.p_K3, p_J6, w.l_left_rocker2, w.add2, w.br11)
+    # Step 10: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known
+    st, sigma[10], w.p_K4 = RRR_links_1(w.p_K3, p_J6, w.l_left_rocker2, w.add2, w.br10)
+    report.append((st, ((1, 101), (3, 103), (4, -104))))
+    chains = np.minimum(chains, sigma[10])
+    # Step 11: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, sigma[11], w.p_K2 = RRR_links_1(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br11)
     report.append((st, ((1, 111), (3, 113), (4, -114))))
     chains = np.minimum(chains, sigma[11])
-    # Step 12: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, sigma[12], w.p_K2 = RRR_links_1(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br12)
-    report.append((st, ((1, 121), (3, 123), (4, -124))))
-    chains = np.minimum(chains, sigma[12])
-    # Step 13: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle_1(w.p_K2, w.p_K4, c["step13.off"])
-    report.append((st, ((1, 131), (3, 133), (4, -134))))
-    # Step 14: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point_1(w.p_K4, w.phi_left_ternary, c["step14.gsi"], c["step14.eta"])
-    # Step 15: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step12.along"], c["step12.across"])
+    # Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2, ), chains
 
 
 def _group_2_v1(w, r, br, a, da, dda):
-    """Steps 54, 55, 56, 57, 58, iterated by the resolver of step 16 (fallback 1: the Add-link J5-K2), on lanes of rows.
+    """Steps 48, 49, 50, 51, iterated by the resolver of step 14 (fallback 1: the Add-link J5-K2), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2066,31 +1971,28 @@ def _group_2_v1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J5, p_J6, = r
-    w.br54, w.br55, = br
+    w.br48, w.br49, = br
     sigma = {}
     report = []
     w.add2_v1 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 54: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known
-    st, sigma[54], w.p_K2 = RRR_links(w.p_K1, p_J5, w.l_left_rocker1, w.add2_v1, w.br54)
-    report.append((st, ((1, 541), (3, 543), (4, -544))))
-    chains = np.minimum(chains, sigma[54])
-    # Step 55: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, sigma[55], w.p_K4 = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br55)
-    report.append((st, ((1, 551), (3, 553), (4, -554))))
-    chains = np.minimum(chains, sigma[55])
-    # Step 56: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, c["step56.off"])
-    report.append((st, ((1, 561), (3, 563), (4, -564))))
-    # Step 57: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, c["step57.gsi"], c["step57.eta"])
-    # Step 58: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 48: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known
+    st, sigma[48], w.p_K2 = RRR_links(w.p_K1, p_J5, w.l_left_rocker1, w.add2_v1, w.br48)
+    report.append((st, ((1, 481), (3, 483), (4, -484))))
+    chains = np.minimum(chains, sigma[48])
+    # Step 49: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, sigma[49], w.p_K4 = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br49)
+    report.append((st, ((1, 491), (3, 493), (4, -494))))
+    chains = np.minimum(chains, sigma[49])
+    # Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point(w.p_K2, w.p_K4, c["step50.along"], c["step50.across"])
+    # Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v1 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v1, ), chains
 
 
 def _group_2_v1_1(w, r, br, a, da, dda):
-    """Steps 54, 55, 56, 57, 58, iterated by the resolver of step 16 (fallback 1: the Add-link J5-K2), on lanes of rows (positions and rates only).
+    """Steps 48, 49, 50, 51, iterated by the resolver of step 14 (fallback 1: the Add-link J5-K2), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2099,31 +2001,28 @@ def _group_2_v1_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J5, p_J6, = r
-    w.br54, w.br55, = br
+    w.br48, w.br49, = br
     sigma = {}
     report = []
     w.add2_v1 = (a[0], da[0])
     chains = 1.0
-    # Step 54: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known
-    st, sigma[54], w.p_K2 = RRR_links_1(w.p_K1, p_J5, w.l_left_rocker1, w.add2_v1, w.br54)
-    report.append((st, ((1, 541), (3, 543), (4, -544))))
-    chains = np.minimum(chains, sigma[54])
-    # Step 55: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, sigma[55], w.p_K4 = RRR_links_1(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br55)
-    report.append((st, ((1, 551), (3, 553), (4, -554))))
-    chains = np.minimum(chains, sigma[55])
-    # Step 56: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle_1(w.p_K2, w.p_K4, c["step56.off"])
-    report.append((st, ((1, 561), (3, 563), (4, -564))))
-    # Step 57: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point_1(w.p_K2, w.phi_left_ternary, c["step57.gsi"], c["step57.eta"])
-    # Step 58: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 48: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known
+    st, sigma[48], w.p_K2 = RRR_links_1(w.p_K1, p_J5, w.l_left_rocker1, w.add2_v1, w.br48)
+    report.append((st, ((1, 481), (3, 483), (4, -484))))
+    chains = np.minimum(chains, sigma[48])
+    # Step 49: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, sigma[49], w.p_K4 = RRR_links_1(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br49)
+    report.append((st, ((1, 491), (3, 493), (4, -494))))
+    chains = np.minimum(chains, sigma[49])
+    # Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point_1(w.p_K2, w.p_K4, c["step50.along"], c["step50.across"])
+    # Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v1 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v1, ), chains
 
 
 def _group_2_v2(w, r, br, a, da, dda):
-    """Steps 59, 60, 61, 62, 63, iterated by the resolver of step 16 (fallback 2: the Add-link J5-K4), on lanes of rows.
+    """Steps 52, 53, 54, 55, iterated by the resolver of step 14 (fallback 2: the Add-link J5-K4), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2132,31 +2031,28 @@ def _group_2_v2(w, r, br, a, da, dda):
     """
     c = w.c
     p_J5, p_J6, = r
-    w.br59, w.br60, = br
+    w.br52, w.br53, = br
     sigma = {}
     report = []
     w.add2_v2 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 59: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known
-    st, sigma[59], w.p_K4 = RRR_links(w.p_K3, p_J5, w.l_left_rocker2, w.add2_v2, w.br59)
-    report.append((st, ((1, 591), (3, 593), (4, -594))))
-    chains = np.minimum(chains, sigma[59])
-    # Step 60: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, sigma[60], w.p_K2 = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br60)
-    report.append((st, ((1, 601), (3, 603), (4, -604))))
-    chains = np.minimum(chains, sigma[60])
-    # Step 61: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, c["step61.off"])
-    report.append((st, ((1, 611), (3, 613), (4, -614))))
-    # Step 62: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, c["step62.gsi"], c["step62.eta"])
-    # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 52: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known
+    st, sigma[52], w.p_K4 = RRR_links(w.p_K3, p_J5, w.l_left_rocker2, w.add2_v2, w.br52)
+    report.append((st, ((1, 521), (3, 523), (4, -524))))
+    chains = np.minimum(chains, sigma[52])
+    # Step 53: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, sigma[53], w.p_K2 = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br53)
+    report.append((st, ((1, 531), (3, 533), (4, -534))))
+    chains = np.minimum(chains, sigma[53])
+    # Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step54.along"], c["step54.across"])
+    # Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v2 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v2, ), chains
 
 
 def _group_2_v2_1(w, r, br, a, da, dda):
-    """Steps 59, 60, 61, 62, 63, iterated by the resolver of step 16 (fallback 2: the Add-link J5-K4), on lanes of rows (positions and rates only).
+    """Steps 52, 53, 54, 55, iterated by the resolver of step 14 (fallback 2: the Add-link J5-K4), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2165,31 +2061,28 @@ def _group_2_v2_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J5, p_J6, = r
-    w.br59, w.br60, = br
+    w.br52, w.br53, = br
     sigma = {}
     report = []
     w.add2_v2 = (a[0], da[0])
     chains = 1.0
-    # Step 59: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known
-    st, sigma[59], w.p_K4 = RRR_links_1(w.p_K3, p_J5, w.l_left_rocker2, w.add2_v2, w.br59)
-    report.append((st, ((1, 591), (3, 593), (4, -594))))
-    chains = np.minimum(chains, sigma[59])
-    # Step 60: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, sigma[60], w.p_K2 = RRR_links_1(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br60)
-    report.append((st, ((1, 601), (3, 603), (4, -604))))
-    chains = np.minimum(chains, sigma[60])
-    # Step 61: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle_1(w.p_K2, w.p_K4, c["step61.off"])
-    report.append((st, ((1, 611), (3, 613), (4, -614))))
-    # Step 62: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point_1(w.p_K4, w.phi_left_ternary, c["step62.gsi"], c["step62.eta"])
-    # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 52: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known
+    st, sigma[52], w.p_K4 = RRR_links_1(w.p_K3, p_J5, w.l_left_rocker2, w.add2_v2, w.br52)
+    report.append((st, ((1, 521), (3, 523), (4, -524))))
+    chains = np.minimum(chains, sigma[52])
+    # Step 53: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, sigma[53], w.p_K2 = RRR_links_1(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br53)
+    report.append((st, ((1, 531), (3, 533), (4, -534))))
+    chains = np.minimum(chains, sigma[53])
+    # Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step54.along"], c["step54.across"])
+    # Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v2 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v2, ), chains
 
 
 def _group_2_v3(w, r, br, a, da, dda):
-    """Steps 64, 65, 66, 67, 68, iterated by the resolver of step 16 (fallback 3: the Add-link J2-K4), on lanes of rows.
+    """Steps 56, 57, 58, 59, iterated by the resolver of step 14 (fallback 3: the Add-link J2-K4), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2198,31 +2091,118 @@ def _group_2_v3(w, r, br, a, da, dda):
     """
     c = w.c
     p_J2, p_J6, = r
-    w.br64, w.br65, = br
+    w.br56, w.br57, = br
     sigma = {}
     report = []
     w.add2_v3 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 64: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known
-    st, sigma[64], w.p_K4 = RRR_links(w.p_K3, p_J2, w.l_left_rocker2, w.add2_v3, w.br64)
-    report.append((st, ((1, 641), (3, 643), (4, -644))))
-    chains = np.minimum(chains, sigma[64])
-    # Step 65: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, sigma[65], w.p_K2 = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br65)
-    report.append((st, ((1, 651), (3, 653), (4, -654))))
-    chains = np.minimum(chains, sigma[65])
-    # Step 66: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, c["step66.off"])
-    report.append((st, ((1, 661), (3, 663), (4, -664))))
-    # Step 67: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, c["step67.gsi"], c["step67.eta"])
-    # Step 68: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 56: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known
+    st, sigma[56], w.p_K4 = RRR_links(w.p_K3, p_J2, w.l_left_rocker2, w.add2_v3, w.br56)
+    report.append((st, ((1, 561), (3, 563), (4, -564))))
+    chains = np.minimum(chains, sigma[56])
+    # Step 57: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, sigma[57], w.p_K2 = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br57)
+    report.append((st, ((1, 571), (3, 573), (4, -574))))
+    chains = np.minimum(chains, sigma[57])
+    # Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step58.along"], c["step58.across"])
+    # Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v3 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v3, ), chains
 
 
 def _group_2_v3_1(w, r, br, a, da, dda):
-    """Steps 64, 65, 66, 67, 68, iterated by the resolver of step 16 (fallback 3: the Add-link J2-K4), on lanes of rows (positions and rates only).
+    """Steps 56, 57, 58, 59, iterated by the resolver of step 14 (fallback 3: the Add-link J2-K4), on lanes of rows (positions and rates only).
+
+    r: the records the block reads from before the group (their rates zeroed on a Jacobian
+    pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
+    accelerations.  Returns the steps' reports and conditioning, the residual records and the
+    worst conditioning of its chains from the block's lever down; its records are left in w.
+    """
+    c = w.c
+    p_J2, p_J6, = r
+    w.br56, w.br57, = br
+    sigma = {}
+    report = []
+    w.add2_v3 = (a[0], da[0])
+    chains = 1.0
+    # Step 56: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known
+    st, sigma[56], w.p_K4 = RRR_links_1(w.p_K3, p_J2, w.l_left_rocker2, w.add2_v3, w.br56)
+    report.append((st, ((1, 561), (3, 563), (4, -564))))
+    chains = np.minimum(chains, sigma[56])
+    # Step 57: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, sigma[57], w.p_K2 = RRR_links_1(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br57)
+    report.append((st, ((1, 571), (3, 573), (4, -574))))
+    chains = np.minimum(chains, sigma[57])
+    # Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step58.along"], c["step58.across"])
+    # Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    _, _, w.f2_v3 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
+    return report, sigma, (w.f2_v3, ), chains
+
+
+def _group_2_v4(w, r, br, a, da, dda):
+    """Steps 60, 61, 62, 63, iterated by the resolver of step 14 (fallback 4: the Add-link J4-K4), on lanes of rows.
+
+    r: the records the block reads from before the group (their rates zeroed on a Jacobian
+    pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
+    accelerations.  Returns the steps' reports and conditioning, the residual records and the
+    worst conditioning of its chains from the block's lever down; its records are left in w.
+    """
+    c = w.c
+    p_J4, p_J6, = r
+    w.br60, w.br61, = br
+    sigma = {}
+    report = []
+    w.add2_v4 = (a[0], da[0], dda[0])
+    chains = 1.0
+    # Step 60: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known
+    st, sigma[60], w.p_K4 = RRR_links(w.p_K3, p_J4, w.l_left_rocker2, w.add2_v4, w.br60)
+    report.append((st, ((1, 601), (3, 603), (4, -604))))
+    chains = np.minimum(chains, sigma[60])
+    # Step 61: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, sigma[61], w.p_K2 = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br61)
+    report.append((st, ((1, 611), (3, 613), (4, -614))))
+    chains = np.minimum(chains, sigma[61])
+    # Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step62.along"], c["step62.across"])
+    # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    _, _, w.f2_v4 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
+    return report, sigma, (w.f2_v4, ), chains
+
+
+def _group_2_v4_1(w, r, br, a, da, dda):
+    """Steps 60, 61, 62, 63, iterated by the resolver of step 14 (fallback 4: the Add-link J4-K4), on lanes of rows (positions and rates only).
+
+    r: the records the block reads from before the group (their rates zeroed on a Jacobian
+    pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
+    accelerations.  Returns the steps' reports and conditioning, the residual records and the
+    worst conditioning of its chains from the block's lever down; its records are left in w.
+    """
+    c = w.c
+    p_J4, p_J6, = r
+    w.br60, w.br61, = br
+    sigma = {}
+    report = []
+    w.add2_v4 = (a[0], da[0])
+    chains = 1.0
+    # Step 60: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known
+    st, sigma[60], w.p_K4 = RRR_links_1(w.p_K3, p_J4, w.l_left_rocker2, w.add2_v4, w.br60)
+    report.append((st, ((1, 601), (3, 603), (4, -604))))
+    chains = np.minimum(chains, sigma[60])
+    # Step 61: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    st, sigma[61], w.p_K2 = RRR_links_1(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br61)
+    report.append((st, ((1, 611), (3, 613), (4, -614))))
+    chains = np.minimum(chains, sigma[61])
+    # Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step62.along"], c["step62.across"])
+    # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    _, _, w.f2_v4 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
+    return report, sigma, (w.f2_v4, ), chains
+
+
+def _group_2_v5(w, r, br, a, da, dda):
+    """Steps 64, 65, 66, 67, iterated by the resolver of step 14 (fallback 5: the Add-link J2-K2), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2234,127 +2214,25 @@ def _group_2_v3_1(w, r, br, a, da, dda):
     w.br64, w.br65, = br
     sigma = {}
     report = []
-    w.add2_v3 = (a[0], da[0])
-    chains = 1.0
-    # Step 64: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known
-    st, sigma[64], w.p_K4 = RRR_links_1(w.p_K3, p_J2, w.l_left_rocker2, w.add2_v3, w.br64)
-    report.append((st, ((1, 641), (3, 643), (4, -644))))
-    chains = np.minimum(chains, sigma[64])
-    # Step 65: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, sigma[65], w.p_K2 = RRR_links_1(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br65)
-    report.append((st, ((1, 651), (3, 653), (4, -654))))
-    chains = np.minimum(chains, sigma[65])
-    # Step 66: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle_1(w.p_K2, w.p_K4, c["step66.off"])
-    report.append((st, ((1, 661), (3, 663), (4, -664))))
-    # Step 67: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point_1(w.p_K4, w.phi_left_ternary, c["step67.gsi"], c["step67.eta"])
-    # Step 68: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
-    _, _, w.f2_v3 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
-    return report, sigma, (w.f2_v3, ), chains
-
-
-def _group_2_v4(w, r, br, a, da, dda):
-    """Steps 69, 70, 71, 72, 73, iterated by the resolver of step 16 (fallback 4: the Add-link J4-K4), on lanes of rows.
-
-    r: the records the block reads from before the group (their rates zeroed on a Jacobian
-    pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
-    accelerations.  Returns the steps' reports and conditioning, the residual records and the
-    worst conditioning of its chains from the block's lever down; its records are left in w.
-    """
-    c = w.c
-    p_J4, p_J6, = r
-    w.br69, w.br70, = br
-    sigma = {}
-    report = []
-    w.add2_v4 = (a[0], da[0], dda[0])
-    chains = 1.0
-    # Step 69: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known
-    st, sigma[69], w.p_K4 = RRR_links(w.p_K3, p_J4, w.l_left_rocker2, w.add2_v4, w.br69)
-    report.append((st, ((1, 691), (3, 693), (4, -694))))
-    chains = np.minimum(chains, sigma[69])
-    # Step 70: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, sigma[70], w.p_K2 = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br70)
-    report.append((st, ((1, 701), (3, 703), (4, -704))))
-    chains = np.minimum(chains, sigma[70])
-    # Step 71: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, c["step71.off"])
-    report.append((st, ((1, 711), (3, 713), (4, -714))))
-    # Step 72: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, c["step72.gsi"], c["step72.eta"])
-    # Step 73: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
-    _, _, w.f2_v4 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
-    return report, sigma, (w.f2_v4, ), chains
-
-
-def _group_2_v4_1(w, r, br, a, da, dda):
-    """Steps 69, 70, 71, 72, 73, iterated by the resolver of step 16 (fallback 4: the Add-link J4-K4), on lanes of rows (positions and rates only).
-
-    r: the records the block reads from before the group (their rates zeroed on a Jacobian
-    pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
-    accelerations.  Returns the steps' reports and conditioning, the residual records and the
-    worst conditioning of its chains from the block's lever down; its records are left in w.
-    """
-    c = w.c
-    p_J4, p_J6, = r
-    w.br69, w.br70, = br
-    sigma = {}
-    report = []
-    w.add2_v4 = (a[0], da[0])
-    chains = 1.0
-    # Step 69: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known
-    st, sigma[69], w.p_K4 = RRR_links_1(w.p_K3, p_J4, w.l_left_rocker2, w.add2_v4, w.br69)
-    report.append((st, ((1, 691), (3, 693), (4, -694))))
-    chains = np.minimum(chains, sigma[69])
-    # Step 70: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    st, sigma[70], w.p_K2 = RRR_links_1(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br70)
-    report.append((st, ((1, 701), (3, 703), (4, -704))))
-    chains = np.minimum(chains, sigma[70])
-    # Step 71: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle_1(w.p_K2, w.p_K4, c["step71.off"])
-    report.append((st, ((1, 711), (3, 713), (4, -714))))
-    # Step 72: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point_1(w.p_K4, w.phi_left_ternary, c["step72.gsi"], c["step72.eta"])
-    # Step 73: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
-    _, _, w.f2_v4 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
-    return report, sigma, (w.f2_v4, ), chains
-
-
-def _group_2_v5(w, r, br, a, da, dda):
-    """Steps 74, 75, 76, 77, 78, iterated by the resolver of step 16 (fallback 5: the Add-link J2-K2), on lanes of rows.
-
-    r: the records the block reads from before the group (their rates zeroed on a Jacobian
-    pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
-    accelerations.  Returns the steps' reports and conditioning, the residual records and the
-    worst conditioning of its chains from the block's lever down; its records are left in w.
-    """
-    c = w.c
-    p_J2, p_J6, = r
-    w.br74, w.br75, = br
-    sigma = {}
-    report = []
     w.add2_v5 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 74: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known
-    st, sigma[74], w.p_K2 = RRR_links(w.p_K1, p_J2, w.l_left_rocker1, w.add2_v5, w.br74)
-    report.append((st, ((1, 741), (3, 743), (4, -744))))
-    chains = np.minimum(chains, sigma[74])
-    # Step 75: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, sigma[75], w.p_K4 = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br75)
-    report.append((st, ((1, 751), (3, 753), (4, -754))))
-    chains = np.minimum(chains, sigma[75])
-    # Step 76: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, c["step76.off"])
-    report.append((st, ((1, 761), (3, 763), (4, -764))))
-    # Step 77: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, c["step77.gsi"], c["step77.eta"])
-    # Step 78: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 64: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known
+    st, sigma[64], w.p_K2 = RRR_links(w.p_K1, p_J2, w.l_left_rocker1, w.add2_v5, w.br64)
+    report.append((st, ((1, 641), (3, 643), (4, -644))))
+    chains = np.minimum(chains, sigma[64])
+    # Step 65: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, sigma[65], w.p_K4 = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br65)
+    report.append((st, ((1, 651), (3, 653), (4, -654))))
+    chains = np.minimum(chains, sigma[65])
+    # Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point(w.p_K2, w.p_K4, c["step66.along"], c["step66.across"])
+    # Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v5 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v5, ), chains
 
 
 def _group_2_v5_1(w, r, br, a, da, dda):
-    """Steps 74, 75, 76, 77, 78, iterated by the resolver of step 16 (fallback 5: the Add-link J2-K2), on lanes of rows (positions and rates only).
+    """Steps 64, 65, 66, 67, iterated by the resolver of step 14 (fallback 5: the Add-link J2-K2), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2363,31 +2241,28 @@ def _group_2_v5_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J2, p_J6, = r
-    w.br74, w.br75, = br
+    w.br64, w.br65, = br
     sigma = {}
     report = []
     w.add2_v5 = (a[0], da[0])
     chains = 1.0
-    # Step 74: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known
-    st, sigma[74], w.p_K2 = RRR_links_1(w.p_K1, p_J2, w.l_left_rocker1, w.add2_v5, w.br74)
-    report.append((st, ((1, 741), (3, 743), (4, -744))))
-    chains = np.minimum(chains, sigma[74])
-    # Step 75: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, sigma[75], w.p_K4 = RRR_links_1(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br75)
-    report.append((st, ((1, 751), (3, 753), (4, -754))))
-    chains = np.minimum(chains, sigma[75])
-    # Step 76: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle_1(w.p_K2, w.p_K4, c["step76.off"])
-    report.append((st, ((1, 761), (3, 763), (4, -764))))
-    # Step 77: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point_1(w.p_K2, w.phi_left_ternary, c["step77.gsi"], c["step77.eta"])
-    # Step 78: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 64: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known
+    st, sigma[64], w.p_K2 = RRR_links_1(w.p_K1, p_J2, w.l_left_rocker1, w.add2_v5, w.br64)
+    report.append((st, ((1, 641), (3, 643), (4, -644))))
+    chains = np.minimum(chains, sigma[64])
+    # Step 65: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, sigma[65], w.p_K4 = RRR_links_1(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br65)
+    report.append((st, ((1, 651), (3, 653), (4, -654))))
+    chains = np.minimum(chains, sigma[65])
+    # Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point_1(w.p_K2, w.p_K4, c["step66.along"], c["step66.across"])
+    # Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v5 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v5, ), chains
 
 
 def _group_2_v6(w, r, br, a, da, dda):
-    """Steps 79, 80, 81, 82, 83, iterated by the resolver of step 16 (fallback 6: the Add-link J4-K2), on lanes of rows.
+    """Steps 68, 69, 70, 71, iterated by the resolver of step 14 (fallback 6: the Add-link J4-K2), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2396,31 +2271,28 @@ def _group_2_v6(w, r, br, a, da, dda):
     """
     c = w.c
     p_J4, p_J6, = r
-    w.br79, w.br80, = br
+    w.br68, w.br69, = br
     sigma = {}
     report = []
     w.add2_v6 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 79: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known
-    st, sigma[79], w.p_K2 = RRR_links(w.p_K1, p_J4, w.l_left_rocker1, w.add2_v6, w.br79)
-    report.append((st, ((1, 791), (3, 793), (4, -794))))
-    chains = np.minimum(chains, sigma[79])
-    # Step 80: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, sigma[80], w.p_K4 = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br80)
-    report.append((st, ((1, 801), (3, 803), (4, -804))))
-    chains = np.minimum(chains, sigma[80])
-    # Step 81: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, c["step81.off"])
-    report.append((st, ((1, 811), (3, 813), (4, -814))))
-    # Step 82: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, c["step82.gsi"], c["step82.eta"])
-    # Step 83: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 68: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known
+    st, sigma[68], w.p_K2 = RRR_links(w.p_K1, p_J4, w.l_left_rocker1, w.add2_v6, w.br68)
+    report.append((st, ((1, 681), (3, 683), (4, -684))))
+    chains = np.minimum(chains, sigma[68])
+    # Step 69: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, sigma[69], w.p_K4 = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br69)
+    report.append((st, ((1, 691), (3, 693), (4, -694))))
+    chains = np.minimum(chains, sigma[69])
+    # Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point(w.p_K2, w.p_K4, c["step70.along"], c["step70.across"])
+    # Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v6 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v6, ), chains
 
 
 def _group_2_v6_1(w, r, br, a, da, dda):
-    """Steps 79, 80, 81, 82, 83, iterated by the resolver of step 16 (fallback 6: the Add-link J4-K2), on lanes of rows (positions and rates only).
+    """Steps 68, 69, 70, 71, iterated by the resolver of step 14 (fallback 6: the Add-link J4-K2), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2429,31 +2301,28 @@ def _group_2_v6_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J4, p_J6, = r
-    w.br79, w.br80, = br
+    w.br68, w.br69, = br
     sigma = {}
     report = []
     w.add2_v6 = (a[0], da[0])
     chains = 1.0
-    # Step 79: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known
-    st, sigma[79], w.p_K2 = RRR_links_1(w.p_K1, p_J4, w.l_left_rocker1, w.add2_v6, w.br79)
-    report.append((st, ((1, 791), (3, 793), (4, -794))))
-    chains = np.minimum(chains, sigma[79])
-    # Step 80: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, sigma[80], w.p_K4 = RRR_links_1(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br80)
-    report.append((st, ((1, 801), (3, 803), (4, -804))))
-    chains = np.minimum(chains, sigma[80])
-    # Step 81: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle_1(w.p_K2, w.p_K4, c["step81.off"])
-    report.append((st, ((1, 811), (3, 813), (4, -814))))
-    # Step 82: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point_1(w.p_K2, w.phi_left_ternary, c["step82.gsi"], c["step82.eta"])
-    # Step 83: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 68: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known
+    st, sigma[68], w.p_K2 = RRR_links_1(w.p_K1, p_J4, w.l_left_rocker1, w.add2_v6, w.br68)
+    report.append((st, ((1, 681), (3, 683), (4, -684))))
+    chains = np.minimum(chains, sigma[68])
+    # Step 69: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, sigma[69], w.p_K4 = RRR_links_1(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br69)
+    report.append((st, ((1, 691), (3, 693), (4, -694))))
+    chains = np.minimum(chains, sigma[69])
+    # Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point_1(w.p_K2, w.p_K4, c["step70.along"], c["step70.across"])
+    # Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v6 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v6, ), chains
 
 
 def _group_2_v7(w, r, br, a, da, dda):
-    """Steps 84, 85, 86, 87, 88, iterated by the resolver of step 16 (fallback 7: the Add-link J6-K2), on lanes of rows.
+    """Steps 72, 73, 74, 75, iterated by the resolver of step 14 (fallback 7: the Add-link J6-K2), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2462,31 +2331,28 @@ def _group_2_v7(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br84, w.br85, = br
+    w.br72, w.br73, = br
     sigma = {}
     report = []
     w.add2_v7 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 84: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known
-    st, sigma[84], w.p_K2 = RRR_links(w.p_K1, p_J6, w.l_left_rocker1, w.add2_v7, w.br84)
-    report.append((st, ((1, 841), (3, 843), (4, -844))))
-    chains = np.minimum(chains, sigma[84])
-    # Step 85: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, sigma[85], w.p_K4 = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br85)
-    report.append((st, ((1, 851), (3, 853), (4, -854))))
-    chains = np.minimum(chains, sigma[85])
-    # Step 86: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, c["step86.off"])
-    report.append((st, ((1, 861), (3, 863), (4, -864))))
-    # Step 87: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, c["step87.gsi"], c["step87.eta"])
-    # Step 88: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 72: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known
+    st, sigma[72], w.p_K2 = RRR_links(w.p_K1, p_J6, w.l_left_rocker1, w.add2_v7, w.br72)
+    report.append((st, ((1, 721), (3, 723), (4, -724))))
+    chains = np.minimum(chains, sigma[72])
+    # Step 73: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, sigma[73], w.p_K4 = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br73)
+    report.append((st, ((1, 731), (3, 733), (4, -734))))
+    chains = np.minimum(chains, sigma[73])
+    # Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point(w.p_K2, w.p_K4, c["step74.along"], c["step74.across"])
+    # Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v7 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v7, ), chains
 
 
 def _group_2_v7_1(w, r, br, a, da, dda):
-    """Steps 84, 85, 86, 87, 88, iterated by the resolver of step 16 (fallback 7: the Add-link J6-K2), on lanes of rows (positions and rates only).
+    """Steps 72, 73, 74, 75, iterated by the resolver of step 14 (fallback 7: the Add-link J6-K2), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2495,31 +2361,28 @@ def _group_2_v7_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br84, w.br85, = br
+    w.br72, w.br73, = br
     sigma = {}
     report = []
     w.add2_v7 = (a[0], da[0])
     chains = 1.0
-    # Step 84: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known
-    st, sigma[84], w.p_K2 = RRR_links_1(w.p_K1, p_J6, w.l_left_rocker1, w.add2_v7, w.br84)
-    report.append((st, ((1, 841), (3, 843), (4, -844))))
-    chains = np.minimum(chains, sigma[84])
-    # Step 85: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    st, sigma[85], w.p_K4 = RRR_links_1(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br85)
-    report.append((st, ((1, 851), (3, 853), (4, -854))))
-    chains = np.minimum(chains, sigma[85])
-    # Step 86: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle_1(w.p_K2, w.p_K4, c["step86.off"])
-    report.append((st, ((1, 861), (3, 863), (4, -864))))
-    # Step 87: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = coupler_point_1(w.p_K2, w.phi_left_ternary, c["step87.gsi"], c["step87.eta"])
-    # Step 88: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 72: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known
+    st, sigma[72], w.p_K2 = RRR_links_1(w.p_K1, p_J6, w.l_left_rocker1, w.add2_v7, w.br72)
+    report.append((st, ((1, 721), (3, 723), (4, -724))))
+    chains = np.minimum(chains, sigma[72])
+    # Step 73: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    st, sigma[73], w.p_K4 = RRR_links_1(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br73)
+    report.append((st, ((1, 731), (3, 733), (4, -734))))
+    chains = np.minimum(chains, sigma[73])
+    # Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    _, _, w.p_K5 = link_point_1(w.p_K2, w.p_K4, c["step74.along"], c["step74.across"])
+    # Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v7 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v7, ), chains
 
 
 def _group_2_v8(w, r, br, a, da, dda):
-    """Steps 89, 90, 91, 92, 93, iterated by the resolver of step 16 (fallback 8: the Add-link J5-K5), on lanes of rows.
+    """Steps 76, 77, 78, 79, iterated by the resolver of step 14 (fallback 8: the Add-link J5-K5), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2528,31 +2391,28 @@ def _group_2_v8(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, p_J5, = r
-    w.br89, w.br90, = br
+    w.br76, w.br77, = br
     sigma = {}
     report = []
     w.add2_v8 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 89: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known
-    st, sigma[89], w.p_K5 = RRR_links(p_J6, p_J5, w.l_left_coupler, w.add2_v8, w.br89)
-    report.append((st, ((1, 891), (3, 893), (4, -894))))
-    chains = np.minimum(chains, sigma[89])
-    # Step 90: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known
-    st, sigma[90], w.p_K2 = RRR_links(w.p_K1, w.p_K5, w.l_left_rocker1, w.l_left_ternary_K2_K5, w.br90)
-    report.append((st, ((1, 901), (3, 903), (4, -904))))
-    chains = np.minimum(chains, sigma[90])
-    # Step 91: link_angle, left_ternary. K5 and K2 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle(w.p_K5, w.p_K2, c["step91.off"])
-    report.append((st, ((1, 911), (3, 913), (4, -914))))
-    # Step 92: coupler_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
-    _, _, w.p_K4 = coupler_point(w.p_K5, w.phi_left_ternary, c["step92.gsi"], c["step92.eta"])
-    # Step 93: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    # Step 76: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known
+    st, sigma[76], w.p_K5 = RRR_links(p_J6, p_J5, w.l_left_coupler, w.add2_v8, w.br76)
+    report.append((st, ((1, 761), (3, 763), (4, -764))))
+    chains = np.minimum(chains, sigma[76])
+    # Step 77: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known
+    st, sigma[77], w.p_K2 = RRR_links(w.p_K1, w.p_K5, w.l_left_rocker1, w.l_left_ternary_K2_K5, w.br77)
+    report.append((st, ((1, 771), (3, 773), (4, -774))))
+    chains = np.minimum(chains, sigma[77])
+    # Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
+    _, _, w.p_K4 = link_point(w.p_K5, w.p_K2, c["step78.along"], c["step78.across"])
+    # Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v8 = link_residual(w.p_K3, w.p_K4, w.l_left_rocker2)
     return report, sigma, (w.f2_v8, ), chains
 
 
 def _group_2_v8_1(w, r, br, a, da, dda):
-    """Steps 89, 90, 91, 92, 93, iterated by the resolver of step 16 (fallback 8: the Add-link J5-K5), on lanes of rows (positions and rates only).
+    """Steps 76, 77, 78, 79, iterated by the resolver of step 14 (fallback 8: the Add-link J5-K5), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2561,25 +2421,22 @@ def _group_2_v8_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, p_J5, = r
-    w.br89, w.br90, = br
+    w.br76, w.br77, = br
     sigma = {}
     report = []
     w.add2_v8 = (a[0], da[0])
     chains = 1.0
-    # Step 89: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known
-    st, sigma[89], w.p_K5 = RRR_links_1(p_J6, p_J5, w.l_left_coupler, w.add2_v8, w.br89)
-    report.append((st, ((1, 891), (3, 893), (4, -894))))
-    chains = np.minimum(chains, sigma[89])
-    # Step 90: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known
-    st, sigma[90], w.p_K2 = RRR_links_1(w.p_K1, w.p_K5, w.l_left_rocker1, w.l_left_ternary_K2_K5, w.br90)
-    report.append((st, ((1, 901), (3, 903), (4, -904))))
-    chains = np.minimum(chains, sigma[90])
-    # Step 91: link_angle, left_ternary. K5 and K2 of link left_ternary are known, so its angle is
-    st, _, w.phi_left_ternary = link_angle_1(w.p_K5, w.p_K2, c["step91.off"])
-    report.append((st, ((1, 911), (3, 913), (4, -914))))
-    # Step 92: coupler_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
-    _, _, w.p_K4 = coupler_point_1(w.p_K5, w.phi_left_ternary, c["step92.gsi"], c["step92.eta"])
-    # Step 93: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    # Step 76: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known
+    st, sigma[76], w.p_K5 = RRR_links_1(p_J6, p_J5, w.l_left_coupler, w.add2_v8, w.br76)
+    report.append((st, ((1, 761), (3, 763), (4, -764))))
+    chains = np.minimum(chains, sigma[76])
+    # Step 77: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known
+    st, sigma[77], w.p_K2 = RRR_links_1(w.p_K1, w.p_K5, w.l_left_rocker1, w.l_left_ternary_K2_K5, w.br77)
+    report.append((st, ((1, 771), (3, 773), (4, -774))))
+    chains = np.minimum(chains, sigma[77])
+    # Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
+    _, _, w.p_K4 = link_point_1(w.p_K5, w.p_K2, c["step78.along"], c["step78.across"])
+    # Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v8 = link_residual_1(w.p_K3, w.p_K4, w.l_left_rocker2)
     return report, sigma, (w.f2_v8, ), chains
 
@@ -2625,39 +2482,39 @@ def _lengths_1(w, a):
                                        for x, old in zip(m, a[6][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     return states, rates
-_GROUP_1 = SimpleNamespace(  # group 1: its blocks (the chosen one, then the fallbacks), resolved at step 9
+_GROUP_1 = SimpleNamespace(  # group 1: its blocks (the chosen one, then the fallbacks), resolved at step 8
     blocks=(
         SimpleNamespace(run=_group_1, run1=_group_1_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1", 3, 1), ("p_J4", 6, 2), ("p_J2", 6, 2), ("phi_right_ternary", 3, 1), ("p_J5", 6, 2), ("f1", 3, 1), )),
+                        writes=(("add1", 3, 1), ("p_J4", 6, 2), ("p_J2", 6, 2), ("p_J5", 6, 2), ("f1", 3, 1), )),
         SimpleNamespace(run=_group_1_v1, run1=_group_1_v1_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v1", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("phi_right_ternary", 3, 1), ("p_J5", 6, 2), ("f1_v1", 3, 1), )),
+                        writes=(("add1_v1", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("p_J5", 6, 2), ("f1_v1", 3, 1), )),
         SimpleNamespace(run=_group_1_v2, run1=_group_1_v2_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v2", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("phi_right_ternary", 3, 1), ("p_J5", 6, 2), ("f1_v2", 3, 1), )),
+                        writes=(("add1_v2", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("p_J5", 6, 2), ("f1_v2", 3, 1), )),
         SimpleNamespace(run=_group_1_v3, run1=_group_1_v3_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v3", 3, 1), ("p_J4", 6, 2), ("p_J2", 6, 2), ("phi_right_ternary", 3, 1), ("p_J5", 6, 2), ("f1_v3", 3, 1), )),
+                        writes=(("add1_v3", 3, 1), ("p_J4", 6, 2), ("p_J2", 6, 2), ("p_J5", 6, 2), ("f1_v3", 3, 1), )),
         SimpleNamespace(run=_group_1_v4, run1=_group_1_v4_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v4", 3, 1), ("p_J4", 6, 2), ("p_J2", 6, 2), ("phi_right_ternary", 3, 1), ("p_J5", 6, 2), ("f1_v4", 3, 1), )),
+                        writes=(("add1_v4", 3, 1), ("p_J4", 6, 2), ("p_J2", 6, 2), ("p_J5", 6, 2), ("f1_v4", 3, 1), )),
         SimpleNamespace(run=_group_1_v5, run1=_group_1_v5_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v5", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("phi_right_ternary", 3, 1), ("p_J5", 6, 2), ("f1_v5", 3, 1), )),
+                        writes=(("add1_v5", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("p_J5", 6, 2), ("f1_v5", 3, 1), )),
         SimpleNamespace(run=_group_1_v6, run1=_group_1_v6_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v6", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("phi_right_ternary", 3, 1), ("p_J5", 6, 2), ("f1_v6", 3, 1), )),
+                        writes=(("add1_v6", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("p_J5", 6, 2), ("f1_v6", 3, 1), )),
     ),
-    first=0, count=7, slot=0, step=9, lengths=_lengths_1,
-    codes=((1, 91), (3, 93), (4, -94)), singular=1e-07, near=0.001,
+    first=0, count=7, slot=0, step=8, lengths=_lengths_1,
+    codes=((1, 81), (3, 83), (4, -84)), singular=1e-07, near=0.001,
 )
 
 
@@ -2712,47 +2569,47 @@ def _lengths_2(w, a):
                                        for x, old in zip(m, a[15][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     return states, rates
-_GROUP_2 = SimpleNamespace(  # group 2: its blocks (the chosen one, then the fallbacks), resolved at step 16
+_GROUP_2 = SimpleNamespace(  # group 2: its blocks (the chosen one, then the fallbacks), resolved at step 14
     blocks=(
         SimpleNamespace(run=_group_2, run1=_group_2_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add2", 3, 1), ("p_K4", 6, 2), ("p_K2", 6, 2), ("phi_left_ternary", 3, 1), ("p_K5", 6, 2), ("f2", 3, 1), )),
+                        writes=(("add2", 3, 1), ("p_K4", 6, 2), ("p_K2", 6, 2), ("p_K5", 6, 2), ("f2", 3, 1), )),
         SimpleNamespace(run=_group_2_v1, run1=_group_2_v1_1, size=1,
                         branches=2,
                         reads=(("p_J5", 2), ("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add2_v1", 3, 1), ("p_K2", 6, 2), ("p_K4", 6, 2), ("phi_left_ternary", 3, 1), ("p_K5", 6, 2), ("f2_v1", 3, 1), )),
+                        writes=(("add2_v1", 3, 1), ("p_K2", 6, 2), ("p_K4", 6, 2), ("p_K5", 6, 2), ("f2_v1", 3, 1), )),
         SimpleNamespace(run=_group_2_v2, run1=_group_2_v2_1, size=1,
                         branches=2,
                         reads=(("p_J5", 2), ("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add2_v2", 3, 1), ("p_K4", 6, 2), ("p_K2", 6, 2), ("phi_left_ternary", 3, 1), ("p_K5", 6, 2), ("f2_v2", 3, 1), )),
+                        writes=(("add2_v2", 3, 1), ("p_K4", 6, 2), ("p_K2", 6, 2), ("p_K5", 6, 2), ("f2_v2", 3, 1), )),
         SimpleNamespace(run=_group_2_v3, run1=_group_2_v3_1, size=1,
                         branches=2,
                         reads=(("p_J2", 2), ("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add2_v3", 3, 1), ("p_K4", 6, 2), ("p_K2", 6, 2), ("phi_left_ternary", 3, 1), ("p_K5", 6, 2), ("f2_v3", 3, 1), )),
+                        writes=(("add2_v3", 3, 1), ("p_K4", 6, 2), ("p_K2", 6, 2), ("p_K5", 6, 2), ("f2_v3", 3, 1), )),
         SimpleNamespace(run=_group_2_v4, run1=_group_2_v4_1, size=1,
                         branches=2,
                         reads=(("p_J4", 2), ("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add2_v4", 3, 1), ("p_K4", 6, 2), ("p_K2", 6, 2), ("phi_left_ternary", 3, 1), ("p_K5", 6, 2), ("f2_v4", 3, 1), )),
+                        writes=(("add2_v4", 3, 1), ("p_K4", 6, 2), ("p_K2", 6, 2), ("p_K5", 6, 2), ("f2_v4", 3, 1), )),
         SimpleNamespace(run=_group_2_v5, run1=_group_2_v5_1, size=1,
                         branches=2,
                         reads=(("p_J2", 2), ("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add2_v5", 3, 1), ("p_K2", 6, 2), ("p_K4", 6, 2), ("phi_left_ternary", 3, 1), ("p_K5", 6, 2), ("f2_v5", 3, 1), )),
+                        writes=(("add2_v5", 3, 1), ("p_K2", 6, 2), ("p_K4", 6, 2), ("p_K5", 6, 2), ("f2_v5", 3, 1), )),
         SimpleNamespace(run=_group_2_v6, run1=_group_2_v6_1, size=1,
                         branches=2,
                         reads=(("p_J4", 2), ("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add2_v6", 3, 1), ("p_K2", 6, 2), ("p_K4", 6, 2), ("phi_left_ternary", 3, 1), ("p_K5", 6, 2), ("f2_v6", 3, 1), )),
+                        writes=(("add2_v6", 3, 1), ("p_K2", 6, 2), ("p_K4", 6, 2), ("p_K5", 6, 2), ("f2_v6", 3, 1), )),
         SimpleNamespace(run=_group_2_v7, run1=_group_2_v7_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add2_v7", 3, 1), ("p_K2", 6, 2), ("p_K4", 6, 2), ("phi_left_ternary", 3, 1), ("p_K5", 6, 2), ("f2_v7", 3, 1), )),
+                        writes=(("add2_v7", 3, 1), ("p_K2", 6, 2), ("p_K4", 6, 2), ("p_K5", 6, 2), ("f2_v7", 3, 1), )),
         SimpleNamespace(run=_group_2_v8, run1=_group_2_v8_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ("p_J5", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add2_v8", 3, 1), ("p_K5", 6, 2), ("p_K2", 6, 2), ("phi_left_ternary", 3, 1), ("p_K4", 6, 2), ("f2_v8", 3, 1), )),
+                        writes=(("add2_v8", 3, 1), ("p_K5", 6, 2), ("p_K2", 6, 2), ("p_K4", 6, 2), ("f2_v8", 3, 1), )),
     ),
-    first=7, count=9, slot=1, step=16, lengths=_lengths_2,
-    codes=((1, 161), (3, 163), (4, -164)), singular=1e-07, near=0.001,
+    first=7, count=9, slot=1, step=14, lengths=_lengths_2,
+    codes=((1, 141), (3, 143), (4, -144)), singular=1e-07, near=0.001,
 )
 
 
@@ -2790,38 +2647,44 @@ def _run(x, dx, ddx, c, a, ad, used, order, skip, m, p):
     # Step 2: crank_input, J6. J7 is known and link frame is placed, so the input angle theta_J7 turns link crank to J6
     _, _, w.p_J6 = crank_input(w.p_J7, c["step2.l"], w.in1, w.ref_J7)
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
-    # Step 9: resolve, group1. the resolver iterates on add1 until right_coupler regains its length
+    # Step 8: resolve, group1. the resolver iterates on add1 until right_coupler regains its length
     done, steps = resolve_lanes(w, _GROUP_1, a, ad, used, order, sigma, report,
                                 skip | past | ~settled | failed_lanes(report, np.size(skip)), m, p)
     settled = settled & done
     its.append(steps)
-    # Step 10: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4
-    # Step 16: resolve, group2. the resolver iterates on add2 until left_coupler regains its length
+    # Step 9: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4
+    # Step 14: resolve, group2. the resolver iterates on add2 until left_coupler regains its length
     done, steps = resolve_lanes(w, _GROUP_2, a, ad, used, order, sigma, report,
                                 skip | past | ~settled | failed_lanes(report, np.size(skip)), m, p)
     settled = settled & done
     its.append(steps)
-    # Step 17: link_angle, crank. J7 and J6 of link crank are known, so its angle is
-    st, _, w.phi_crank = link_angle(w.p_J7, w.p_J6, c["step17.off"])
-    report.append((st, ((1, 171), (3, 173), (4, -174))))
-    # Step 18: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is
-    st, _, w.phi_right_rocker1 = link_angle(w.p_J1, w.p_J2, c["step18.off"])
-    report.append((st, ((1, 181), (3, 183), (4, -184))))
-    # Step 19: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is
-    st, _, w.phi_right_rocker2 = link_angle(w.p_J3, w.p_J4, c["step19.off"])
-    report.append((st, ((1, 191), (3, 193), (4, -194))))
-    # Step 20: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is
-    st, _, w.phi_right_coupler = link_angle(w.p_J6, w.p_J5, c["step20.off"])
-    report.append((st, ((1, 201), (3, 203), (4, -204))))
-    # Step 21: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is
-    st, _, w.phi_left_rocker1 = link_angle(w.p_K1, w.p_K2, c["step21.off"])
-    report.append((st, ((1, 211), (3, 213), (4, -214))))
+    # Step 15: link_angle, crank. J7 and J6 of link crank are known, so its angle is
+    st, _, w.phi_crank = link_angle(w.p_J7, w.p_J6, c["step15.off"])
+    report.append((st, ((1, 151),)))
+    # Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is
+    st, _, w.phi_right_rocker1 = link_angle(w.p_J1, w.p_J2, c["step16.off"])
+    report.append((st, ((1, 161),)))
+    # Step 17: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
+    st, _, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, c["step17.off"])
+    report.append((st, ((1, 171),)))
+    # Step 18: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is
+    st, _, w.phi_right_rocker2 = link_angle(w.p_J3, w.p_J4, c["step18.off"])
+    report.append((st, ((1, 181),)))
+    # Step 19: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is
+    st, _, w.phi_right_coupler = link_angle(w.p_J6, w.p_J5, c["step19.off"])
+    report.append((st, ((1, 191),)))
+    # Step 20: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is
+    st, _, w.phi_left_rocker1 = link_angle(w.p_K1, w.p_K2, c["step20.off"])
+    report.append((st, ((1, 201),)))
+    # Step 21: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
+    st, _, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, c["step21.off"])
+    report.append((st, ((1, 211),)))
     # Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is
     st, _, w.phi_left_rocker2 = link_angle(w.p_K3, w.p_K4, c["step22.off"])
-    report.append((st, ((1, 221), (3, 223), (4, -224))))
+    report.append((st, ((1, 221),)))
     # Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is
     st, _, w.phi_left_coupler = link_angle(w.p_J6, w.p_K5, c["step23.off"])
-    report.append((st, ((1, 231), (3, 233), (4, -234))))
+    report.append((st, ((1, 231),)))
     code = row_status(report)
     return w, code, sigma, its, settled, past
 def _publish(w, c):

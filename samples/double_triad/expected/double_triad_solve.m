@@ -79,7 +79,7 @@ function w = new_work()
     m.periodic = [1];  % angle inputs: the continuation goes the shorter way round
     m.low = NaN;  % where the reach of an angle input starts (NaN: no reach)
     m.groups = 2;
-    m.another = 92;  % a row solvable on another assembly only
+    m.another = 82;  % a row solvable on another assembly only
     m.not_converged = 2;  % a row failed with this reason is followed from the last one
     w.mechanism = m;
     % the resolver's policy, lengths relative to the length scale (see double_triad.md)
@@ -115,7 +115,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
     % rates ad out) and try the blocks used first.
     status = 0;
     ad = a;
-    w.sigma = ones(1, 93);
+    w.sigma = ones(1, 79);
     w.singular = 0;
     w.near = 0;
     w.in1 = struct('the', in(1), 'dthe', din(1), 'ddthe', ddin(1));
@@ -126,108 +126,124 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
 
     % Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
-    % Step 9: resolve, group1. the resolver iterates on add1 until right_coupler regains its length
+    % Step 8: resolve, group1. the resolver iterates on add1 until right_coupler regains its length
     w.br4 = 1 - 2 * (a{1}(2) < 0);
     w.br5 = 1 - 2 * (a{1}(3) < 0);
     w.br24 = 1 - 2 * (a{2}(2) < 0);
     w.br25 = 1 - 2 * (a{2}(3) < 0);
-    w.br29 = 1 - 2 * (a{3}(2) < 0);
-    w.br30 = 1 - 2 * (a{3}(3) < 0);
-    w.br34 = 1 - 2 * (a{4}(2) < 0);
-    w.br35 = 1 - 2 * (a{4}(3) < 0);
-    w.br39 = 1 - 2 * (a{5}(2) < 0);
-    w.br40 = 1 - 2 * (a{5}(3) < 0);
-    w.br44 = 1 - 2 * (a{6}(2) < 0);
-    w.br45 = 1 - 2 * (a{6}(3) < 0);
-    w.br49 = 1 - 2 * (a{7}(2) < 0);
-    w.br50 = 1 - 2 * (a{7}(3) < 0);
+    w.br28 = 1 - 2 * (a{3}(2) < 0);
+    w.br29 = 1 - 2 * (a{3}(3) < 0);
+    w.br32 = 1 - 2 * (a{4}(2) < 0);
+    w.br33 = 1 - 2 * (a{4}(3) < 0);
+    w.br36 = 1 - 2 * (a{5}(2) < 0);
+    w.br37 = 1 - 2 * (a{5}(3) < 0);
+    w.br40 = 1 - 2 * (a{6}(2) < 0);
+    w.br41 = 1 - 2 * (a{6}(3) < 0);
+    w.br44 = 1 - 2 * (a{7}(2) < 0);
+    w.br45 = 1 - 2 * (a{7}(3) < 0);
     blocks = { @group_1, @group_1_v1, @group_1_v2, @group_1_v3, @group_1_v4, @group_1_v5, @group_1_v6 };
     [ok, its, sigma, w, a, ad, used] = resolver_group(blocks, @lengths_1, w, a, ad, used, 1, ...
                                                       1, order, w.mechanism, w.policy);
     w.iterations(1) = its;
-    w.sigma(9) = sigma;
+    w.sigma(8) = sigma;
     if ~ok
-        status = 92;
+        status = 82;
         return;
     end
-    if w.sigma(9) < 1e-07
-        w = note(w, 3, 93, -94);
-    elseif w.sigma(9) < 0.001
-        w = note(w, 4, 93, -94);
+    if w.sigma(8) < 1e-07
+        w = note(w, 3, 83, -84);
+    elseif w.sigma(8) < 0.001
+        w = note(w, 4, 83, -84);
     end
 
 
-    % Step 10: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4
+    % Step 9: add_link, add2. no two-link chain is computable, so the Add-link add2 joins the known J6 to the unknown K4
 
-    % Step 16: resolve, group2. the resolver iterates on add2 until left_coupler regains its length
-    w.br11 = 1 - 2 * (a{8}(2) < 0);
-    w.br12 = 1 - 2 * (a{8}(3) < 0);
-    w.br54 = 1 - 2 * (a{9}(2) < 0);
-    w.br55 = 1 - 2 * (a{9}(3) < 0);
-    w.br59 = 1 - 2 * (a{10}(2) < 0);
-    w.br60 = 1 - 2 * (a{10}(3) < 0);
-    w.br64 = 1 - 2 * (a{11}(2) < 0);
-    w.br65 = 1 - 2 * (a{11}(3) < 0);
-    w.br69 = 1 - 2 * (a{12}(2) < 0);
-    w.br70 = 1 - 2 * (a{12}(3) < 0);
-    w.br74 = 1 - 2 * (a{13}(2) < 0);
-    w.br75 = 1 - 2 * (a{13}(3) < 0);
-    w.br79 = 1 - 2 * (a{14}(2) < 0);
-    w.br80 = 1 - 2 * (a{14}(3) < 0);
-    w.br84 = 1 - 2 * (a{15}(2) < 0);
-    w.br85 = 1 - 2 * (a{15}(3) < 0);
-    w.br89 = 1 - 2 * (a{16}(2) < 0);
-    w.br90 = 1 - 2 * (a{16}(3) < 0);
+    % Step 14: resolve, group2. the resolver iterates on add2 until left_coupler regains its length
+    w.br10 = 1 - 2 * (a{8}(2) < 0);
+    w.br11 = 1 - 2 * (a{8}(3) < 0);
+    w.br48 = 1 - 2 * (a{9}(2) < 0);
+    w.br49 = 1 - 2 * (a{9}(3) < 0);
+    w.br52 = 1 - 2 * (a{10}(2) < 0);
+    w.br53 = 1 - 2 * (a{10}(3) < 0);
+    w.br56 = 1 - 2 * (a{11}(2) < 0);
+    w.br57 = 1 - 2 * (a{11}(3) < 0);
+    w.br60 = 1 - 2 * (a{12}(2) < 0);
+    w.br61 = 1 - 2 * (a{12}(3) < 0);
+    w.br64 = 1 - 2 * (a{13}(2) < 0);
+    w.br65 = 1 - 2 * (a{13}(3) < 0);
+    w.br68 = 1 - 2 * (a{14}(2) < 0);
+    w.br69 = 1 - 2 * (a{14}(3) < 0);
+    w.br72 = 1 - 2 * (a{15}(2) < 0);
+    w.br73 = 1 - 2 * (a{15}(3) < 0);
+    w.br76 = 1 - 2 * (a{16}(2) < 0);
+    w.br77 = 1 - 2 * (a{16}(3) < 0);
     blocks = { @group_2, @group_2_v1, @group_2_v2, @group_2_v3, @group_2_v4, @group_2_v5, @group_2_v6, @group_2_v7, @group_2_v8 };
     [ok, its, sigma, w, a, ad, used] = resolver_group(blocks, @lengths_2, w, a, ad, used, 8, ...
                                                       2, order, w.mechanism, w.policy);
     w.iterations(2) = its;
-    w.sigma(16) = sigma;
+    w.sigma(14) = sigma;
     if ~ok
-        status = 162;
+        status = 142;
         return;
     end
-    if w.sigma(16) < 1e-07
-        w = note(w, 3, 163, -164);
-    elseif w.sigma(16) < 0.001
-        w = note(w, 4, 163, -164);
+    if w.sigma(14) < 1e-07
+        w = note(w, 3, 143, -144);
+    elseif w.sigma(14) < 0.001
+        w = note(w, 4, 143, -144);
     end
 
 
-    % Step 17: link_angle, crank. J7 and J6 of link crank are known, so its angle is
+    % Step 15: link_angle, crank. J7 and J6 of link crank are known, so its angle is
     [w.phi_crank, st] = link_angle(w.p_J7, w.p_J6, 0.0);
+    if st == 1
+        status = 151;
+        return;
+    end
+    w = note(w, st, 153, -154);
+
+    % Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is
+    [w.phi_right_rocker1, st] = link_angle(w.p_J1, w.p_J2, 0.0);
+    if st == 1
+        status = 161;
+        return;
+    end
+    w = note(w, st, 163, -164);
+
+    % Step 17: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
+    [w.phi_right_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
     if st == 1
         status = 171;
         return;
     end
     w = note(w, st, 173, -174);
 
-    % Step 18: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is
-    [w.phi_right_rocker1, st] = link_angle(w.p_J1, w.p_J2, 0.0);
+    % Step 18: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is
+    [w.phi_right_rocker2, st] = link_angle(w.p_J3, w.p_J4, 0.0);
     if st == 1
         status = 181;
         return;
     end
     w = note(w, st, 183, -184);
 
-    % Step 19: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is
-    [w.phi_right_rocker2, st] = link_angle(w.p_J3, w.p_J4, 0.0);
+    % Step 19: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is
+    [w.phi_right_coupler, st] = link_angle(w.p_J6, w.p_J5, 0.0);
     if st == 1
         status = 191;
         return;
     end
     w = note(w, st, 193, -194);
 
-    % Step 20: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is
-    [w.phi_right_coupler, st] = link_angle(w.p_J6, w.p_J5, 0.0);
+    % Step 20: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is
+    [w.phi_left_rocker1, st] = link_angle(w.p_K1, w.p_K2, 0.0);
     if st == 1
         status = 201;
         return;
     end
     w = note(w, st, 203, -204);
 
-    % Step 21: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is
-    [w.phi_left_rocker1, st] = link_angle(w.p_K1, w.p_K2, 0.0);
+    % Step 21: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
+    [w.phi_left_ternary, st] = link_angle(w.p_K2, w.p_K4, 0.0);
     if st == 1
         status = 211;
         return;
@@ -258,7 +274,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
 end
 
 function [st, res, w] = group_1(w, a, da, dda, live)
-    % Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9: the Add-link
+    % Steps 4, 5, 6, 7, iterated by the resolver of step 8: the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
     % so a unit Add-link rate gives one Jacobian column.
@@ -293,19 +309,9 @@ function [st, res, w] = group_1(w, a, da, dda, live)
         w = note(w, st, 53, -54);
     end
     w.chains = min(w.chains, w.sigma(5));
-    % Step 6: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    [w.phi_right_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 63, -64);
-    end
-    % Step 7: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341);
-    % Step 8: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    % Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    % Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
     res = [w.f1.v, w.f1.dv, w.f1.ddv];
@@ -313,7 +319,7 @@ end
 
 
 function [st, res, w] = group_1_v1(w, a, da, dda, live)
-    % Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9 (fallback 1:
+    % Steps 24, 25, 26, 27, iterated by the resolver of step 8 (fallback 1:
     % the Add-link J6-J2): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -349,19 +355,9 @@ function [st, res, w] = group_1_v1(w, a, da, dda, live)
         w = note(w, st, 253, -254);
     end
     w.chains = min(w.chains, w.sigma(25));
-    % Step 26: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    [w.phi_right_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 263, -264);
-    end
-    % Step 27: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134);
-    % Step 28: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    % Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    % Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
     res = [w.f1_v1.v, w.f1_v1.dv, w.f1_v1.ddv];
@@ -369,7 +365,7 @@ end
 
 
 function [st, res, w] = group_1_v2(w, a, da, dda, live)
-    % Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9 (fallback 2:
+    % Steps 28, 29, 30, 31, iterated by the resolver of step 8 (fallback 2:
     % the Add-link J7-J2): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -383,8 +379,19 @@ function [st, res, w] = group_1_v2(w, a, da, dda, live)
     end
     w.add1_v2 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(29)] = RRR_links(w.p_J1, w.p_J7, w.l_right_rocker1, w.add1_v2, w.br29);
+    % Step 28: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
+    [w.p_J2, st, w.sigma(28)] = RRR_links(w.p_J1, w.p_J7, w.l_right_rocker1, w.add1_v2, w.br28);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 283, -284);
+    end
+    w.chains = min(w.chains, w.sigma(28));
+    % Step 29: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
+    [w.p_J4, st, w.sigma(29)] = RRR_links(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br29);
     if st == 1
         st = 1;
         res = [];
@@ -394,30 +401,9 @@ function [st, res, w] = group_1_v2(w, a, da, dda, live)
         w = note(w, st, 293, -294);
     end
     w.chains = min(w.chains, w.sigma(29));
-    % Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(30)] = RRR_links(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br30);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 303, -304);
-    end
-    w.chains = min(w.chains, w.sigma(30));
-    % Step 31: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    [w.phi_right_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 313, -314);
-    end
-    % Step 32: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134);
-    % Step 33: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    % Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    % Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
     res = [w.f1_v2.v, w.f1_v2.dv, w.f1_v2.ddv];
@@ -425,7 +411,7 @@ end
 
 
 function [st, res, w] = group_1_v3(w, a, da, dda, live)
-    % Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9 (fallback 3:
+    % Steps 32, 33, 34, 35, iterated by the resolver of step 8 (fallback 3:
     % the Add-link J7-J4): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -439,41 +425,31 @@ function [st, res, w] = group_1_v3(w, a, da, dda, live)
     end
     w.add1_v3 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(34)] = RRR_links(w.p_J3, w.p_J7, w.l_right_rocker2, w.add1_v3, w.br34);
+    % Step 32: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
+    [w.p_J4, st, w.sigma(32)] = RRR_links(w.p_J3, w.p_J7, w.l_right_rocker2, w.add1_v3, w.br32);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 343, -344);
+        w = note(w, st, 323, -324);
     end
-    w.chains = min(w.chains, w.sigma(34));
-    % Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(35)] = RRR_links(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br35);
+    w.chains = min(w.chains, w.sigma(32));
+    % Step 33: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
+    [w.p_J2, st, w.sigma(33)] = RRR_links(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br33);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 353, -354);
+        w = note(w, st, 333, -334);
     end
-    w.chains = min(w.chains, w.sigma(35));
-    % Step 36: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    [w.phi_right_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 363, -364);
-    end
-    % Step 37: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341);
-    % Step 38: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(33));
+    % Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    % Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
     res = [w.f1_v3.v, w.f1_v3.dv, w.f1_v3.ddv];
@@ -481,7 +457,7 @@ end
 
 
 function [st, res, w] = group_1_v4(w, a, da, dda, live)
-    % Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9 (fallback 4:
+    % Steps 36, 37, 38, 39, iterated by the resolver of step 8 (fallback 4:
     % the Add-link J1-J4): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -495,41 +471,31 @@ function [st, res, w] = group_1_v4(w, a, da, dda, live)
     end
     w.add1_v4 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 39: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(39)] = RRR_links(w.p_J3, w.p_J1, w.l_right_rocker2, w.add1_v4, w.br39);
+    % Step 36: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
+    [w.p_J4, st, w.sigma(36)] = RRR_links(w.p_J3, w.p_J1, w.l_right_rocker2, w.add1_v4, w.br36);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 393, -394);
+        w = note(w, st, 363, -364);
     end
-    w.chains = min(w.chains, w.sigma(39));
-    % Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(40)] = RRR_links(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br40);
+    w.chains = min(w.chains, w.sigma(36));
+    % Step 37: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known
+    [w.p_J2, st, w.sigma(37)] = RRR_links(w.p_J1, w.p_J4, w.l_right_rocker1, w.l_right_ternary_J2_J4, w.br37);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 403, -404);
+        w = note(w, st, 373, -374);
     end
-    w.chains = min(w.chains, w.sigma(40));
-    % Step 41: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    [w.phi_right_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 413, -414);
-    end
-    % Step 42: coupler_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J4, w.phi_right_ternary, -45.662543438831435, 12.842590342171341);
-    % Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(37));
+    % Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    % Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
     res = [w.f1_v4.v, w.f1_v4.dv, w.f1_v4.ddv];
@@ -537,7 +503,7 @@ end
 
 
 function [st, res, w] = group_1_v5(w, a, da, dda, live)
-    % Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9 (fallback 5:
+    % Steps 40, 41, 42, 43, iterated by the resolver of step 8 (fallback 5:
     % the Add-link J3-J2): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -551,8 +517,54 @@ function [st, res, w] = group_1_v5(w, a, da, dda, live)
     end
     w.add1_v5 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 44: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(44)] = RRR_links(w.p_J1, w.p_J3, w.l_right_rocker1, w.add1_v5, w.br44);
+    % Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
+    [w.p_J2, st, w.sigma(40)] = RRR_links(w.p_J1, w.p_J3, w.l_right_rocker1, w.add1_v5, w.br40);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 403, -404);
+    end
+    w.chains = min(w.chains, w.sigma(40));
+    % Step 41: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
+    [w.p_J4, st, w.sigma(41)] = RRR_links(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br41);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 413, -414);
+    end
+    w.chains = min(w.chains, w.sigma(41));
+    % Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    % Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
+    st = 0;
+    res = [w.f1_v5.v, w.f1_v5.dv, w.f1_v5.ddv];
+end
+
+
+function [st, res, w] = group_1_v6(w, a, da, dda, live)
+    % Steps 44, 45, 46, 47, iterated by the resolver of step 8 (fallback 6:
+    % the Add-link K1-J2): the Add-link
+    % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
+    % value and derivatives); live false zeroes the rates of the records read from outside,
+    % so a unit Add-link rate gives one Jacobian column.
+    p_J6 = w.p_J6;
+    if ~live
+        p_J6.dx = 0;
+        p_J6.dy = 0;
+        p_J6.ddx = 0;
+        p_J6.ddy = 0;
+    end
+    w.add1_v6 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
+    w.chains = 1.0;
+    % Step 44: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known
+    [w.p_J2, st, w.sigma(44)] = RRR_links(w.p_J1, w.p_K1, w.l_right_rocker1, w.add1_v6, w.br44);
     if st == 1
         st = 1;
         res = [];
@@ -573,75 +585,9 @@ function [st, res, w] = group_1_v5(w, a, da, dda, live)
         w = note(w, st, 453, -454);
     end
     w.chains = min(w.chains, w.sigma(45));
-    % Step 46: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    [w.phi_right_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 463, -464);
-    end
-    % Step 47: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134);
-    % Step 48: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
-    w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
-    st = 0;
-    res = [w.f1_v5.v, w.f1_v5.dv, w.f1_v5.ddv];
-end
-
-
-function [st, res, w] = group_1_v6(w, a, da, dda, live)
-    % Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9 (fallback 6:
-    % the Add-link K1-J2): the Add-link
-    % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
-    % value and derivatives); live false zeroes the rates of the records read from outside,
-    % so a unit Add-link rate gives one Jacobian column.
-    p_J6 = w.p_J6;
-    if ~live
-        p_J6.dx = 0;
-        p_J6.dy = 0;
-        p_J6.ddx = 0;
-        p_J6.ddy = 0;
-    end
-    w.add1_v6 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
-    w.chains = 1.0;
-    % Step 49: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(49)] = RRR_links(w.p_J1, w.p_K1, w.l_right_rocker1, w.add1_v6, w.br49);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 493, -494);
-    end
-    w.chains = min(w.chains, w.sigma(49));
-    % Step 50: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(50)] = RRR_links(w.p_J2, w.p_J3, w.l_right_ternary_J2_J4, w.l_right_rocker2, w.br50);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 503, -504);
-    end
-    w.chains = min(w.chains, w.sigma(50));
-    % Step 51: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
-    [w.phi_right_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 513, -514);
-    end
-    % Step 52: coupler_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_right_ternary, 59.456436769311765, 12.84259034217134);
-    % Step 53: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
+    % Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    % Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
     res = [w.f1_v6.v, w.f1_v6.dv, w.f1_v6.ddv];
@@ -649,7 +595,7 @@ end
 
 
 function [st, res, w] = group_2(w, a, da, dda, live)
-    % Steps 11, 12, 13, 14, 15, iterated by the resolver of step 16: the Add-link
+    % Steps 10, 11, 12, 13, iterated by the resolver of step 14: the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
     % so a unit Add-link rate gives one Jacobian column.
@@ -662,8 +608,19 @@ function [st, res, w] = group_2(w, a, da, dda, live)
     end
     w.add2 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 11: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known
-    [w.p_K4, st, w.sigma(11)] = RRR_links(w.p_K3, p_J6, w.l_left_rocker2, w.add2, w.br11);
+    % Step 10: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known
+    [w.p_K4, st, w.sigma(10)] = RRR_links(w.p_K3, p_J6, w.l_left_rocker2, w.add2, w.br10);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 103, -104);
+    end
+    w.chains = min(w.chains, w.sigma(10));
+    % Step 11: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    [w.p_K2, st, w.sigma(11)] = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br11);
     if st == 1
         st = 1;
         res = [];
@@ -673,30 +630,9 @@ function [st, res, w] = group_2(w, a, da, dda, live)
         w = note(w, st, 113, -114);
     end
     w.chains = min(w.chains, w.sigma(11));
-    % Step 12: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    [w.p_K2, st, w.sigma(12)] = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br12);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 123, -124);
-    end
-    w.chains = min(w.chains, w.sigma(12));
-    % Step 13: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    [w.phi_left_ternary, st] = link_angle(w.p_K2, w.p_K4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 133, -134);
-    end
-    % Step 14: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338);
-    % Step 15: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    % Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    % Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
     res = [w.f2.v, w.f2.dv, w.f2.ddv];
@@ -704,7 +640,7 @@ end
 
 
 function [st, res, w] = group_2_v1(w, a, da, dda, live)
-    % Steps 54, 55, 56, 57, 58, iterated by the resolver of step 16 (fallback 1:
+    % Steps 48, 49, 50, 51, iterated by the resolver of step 14 (fallback 1:
     % the Add-link J5-K2): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -723,41 +659,31 @@ function [st, res, w] = group_2_v1(w, a, da, dda, live)
     end
     w.add2_v1 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 54: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known
-    [w.p_K2, st, w.sigma(54)] = RRR_links(w.p_K1, p_J5, w.l_left_rocker1, w.add2_v1, w.br54);
+    % Step 48: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known
+    [w.p_K2, st, w.sigma(48)] = RRR_links(w.p_K1, p_J5, w.l_left_rocker1, w.add2_v1, w.br48);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 543, -544);
+        w = note(w, st, 483, -484);
     end
-    w.chains = min(w.chains, w.sigma(54));
-    % Step 55: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    [w.p_K4, st, w.sigma(55)] = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br55);
+    w.chains = min(w.chains, w.sigma(48));
+    % Step 49: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    [w.p_K4, st, w.sigma(49)] = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br49);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 553, -554);
+        w = note(w, st, 493, -494);
     end
-    w.chains = min(w.chains, w.sigma(55));
-    % Step 56: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    [w.phi_left_ternary, st] = link_angle(w.p_K2, w.p_K4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 563, -564);
-    end
-    % Step 57: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345);
-    % Step 58: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(49));
+    % Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746);
+    % Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v1 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
     res = [w.f2_v1.v, w.f2_v1.dv, w.f2_v1.ddv];
@@ -765,7 +691,7 @@ end
 
 
 function [st, res, w] = group_2_v2(w, a, da, dda, live)
-    % Steps 59, 60, 61, 62, 63, iterated by the resolver of step 16 (fallback 2:
+    % Steps 52, 53, 54, 55, iterated by the resolver of step 14 (fallback 2:
     % the Add-link J5-K4): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -784,41 +710,31 @@ function [st, res, w] = group_2_v2(w, a, da, dda, live)
     end
     w.add2_v2 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 59: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known
-    [w.p_K4, st, w.sigma(59)] = RRR_links(w.p_K3, p_J5, w.l_left_rocker2, w.add2_v2, w.br59);
+    % Step 52: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known
+    [w.p_K4, st, w.sigma(52)] = RRR_links(w.p_K3, p_J5, w.l_left_rocker2, w.add2_v2, w.br52);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 593, -594);
+        w = note(w, st, 523, -524);
     end
-    w.chains = min(w.chains, w.sigma(59));
-    % Step 60: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    [w.p_K2, st, w.sigma(60)] = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br60);
+    w.chains = min(w.chains, w.sigma(52));
+    % Step 53: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    [w.p_K2, st, w.sigma(53)] = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br53);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 603, -604);
+        w = note(w, st, 533, -534);
     end
-    w.chains = min(w.chains, w.sigma(60));
-    % Step 61: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    [w.phi_left_ternary, st] = link_angle(w.p_K2, w.p_K4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 613, -614);
-    end
-    % Step 62: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338);
-    % Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(53));
+    % Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    % Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v2 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
     res = [w.f2_v2.v, w.f2_v2.dv, w.f2_v2.ddv];
@@ -826,7 +742,7 @@ end
 
 
 function [st, res, w] = group_2_v3(w, a, da, dda, live)
-    % Steps 64, 65, 66, 67, 68, iterated by the resolver of step 16 (fallback 3:
+    % Steps 56, 57, 58, 59, iterated by the resolver of step 14 (fallback 3:
     % the Add-link J2-K4): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -845,41 +761,31 @@ function [st, res, w] = group_2_v3(w, a, da, dda, live)
     end
     w.add2_v3 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 64: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known
-    [w.p_K4, st, w.sigma(64)] = RRR_links(w.p_K3, p_J2, w.l_left_rocker2, w.add2_v3, w.br64);
+    % Step 56: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known
+    [w.p_K4, st, w.sigma(56)] = RRR_links(w.p_K3, p_J2, w.l_left_rocker2, w.add2_v3, w.br56);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 643, -644);
+        w = note(w, st, 563, -564);
     end
-    w.chains = min(w.chains, w.sigma(64));
-    % Step 65: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    [w.p_K2, st, w.sigma(65)] = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br65);
+    w.chains = min(w.chains, w.sigma(56));
+    % Step 57: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    [w.p_K2, st, w.sigma(57)] = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br57);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 653, -654);
+        w = note(w, st, 573, -574);
     end
-    w.chains = min(w.chains, w.sigma(65));
-    % Step 66: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    [w.phi_left_ternary, st] = link_angle(w.p_K2, w.p_K4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 663, -664);
-    end
-    % Step 67: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338);
-    % Step 68: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(57));
+    % Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    % Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v3 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
     res = [w.f2_v3.v, w.f2_v3.dv, w.f2_v3.ddv];
@@ -887,7 +793,7 @@ end
 
 
 function [st, res, w] = group_2_v4(w, a, da, dda, live)
-    % Steps 69, 70, 71, 72, 73, iterated by the resolver of step 16 (fallback 4:
+    % Steps 60, 61, 62, 63, iterated by the resolver of step 14 (fallback 4:
     % the Add-link J4-K4): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -906,41 +812,31 @@ function [st, res, w] = group_2_v4(w, a, da, dda, live)
     end
     w.add2_v4 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 69: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known
-    [w.p_K4, st, w.sigma(69)] = RRR_links(w.p_K3, p_J4, w.l_left_rocker2, w.add2_v4, w.br69);
+    % Step 60: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known
+    [w.p_K4, st, w.sigma(60)] = RRR_links(w.p_K3, p_J4, w.l_left_rocker2, w.add2_v4, w.br60);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 693, -694);
+        w = note(w, st, 603, -604);
     end
-    w.chains = min(w.chains, w.sigma(69));
-    % Step 70: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
-    [w.p_K2, st, w.sigma(70)] = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br70);
+    w.chains = min(w.chains, w.sigma(60));
+    % Step 61: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known
+    [w.p_K2, st, w.sigma(61)] = RRR_links(w.p_K1, w.p_K4, w.l_left_rocker1, w.l_left_ternary_K2_K4, w.br61);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 703, -704);
+        w = note(w, st, 613, -614);
     end
-    w.chains = min(w.chains, w.sigma(70));
-    % Step 71: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    [w.phi_left_ternary, st] = link_angle(w.p_K2, w.p_K4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 713, -714);
-    end
-    % Step 72: coupler_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K4, w.phi_left_ternary, -45.662543438831435, -12.842590342171338);
-    % Step 73: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(61));
+    % Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    % Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v4 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
     res = [w.f2_v4.v, w.f2_v4.dv, w.f2_v4.ddv];
@@ -948,7 +844,7 @@ end
 
 
 function [st, res, w] = group_2_v5(w, a, da, dda, live)
-    % Steps 74, 75, 76, 77, 78, iterated by the resolver of step 16 (fallback 5:
+    % Steps 64, 65, 66, 67, iterated by the resolver of step 14 (fallback 5:
     % the Add-link J2-K2): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -967,41 +863,31 @@ function [st, res, w] = group_2_v5(w, a, da, dda, live)
     end
     w.add2_v5 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 74: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known
-    [w.p_K2, st, w.sigma(74)] = RRR_links(w.p_K1, p_J2, w.l_left_rocker1, w.add2_v5, w.br74);
+    % Step 64: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known
+    [w.p_K2, st, w.sigma(64)] = RRR_links(w.p_K1, p_J2, w.l_left_rocker1, w.add2_v5, w.br64);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 743, -744);
+        w = note(w, st, 643, -644);
     end
-    w.chains = min(w.chains, w.sigma(74));
-    % Step 75: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    [w.p_K4, st, w.sigma(75)] = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br75);
+    w.chains = min(w.chains, w.sigma(64));
+    % Step 65: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    [w.p_K4, st, w.sigma(65)] = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br65);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 753, -754);
+        w = note(w, st, 653, -654);
     end
-    w.chains = min(w.chains, w.sigma(75));
-    % Step 76: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    [w.phi_left_ternary, st] = link_angle(w.p_K2, w.p_K4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 763, -764);
-    end
-    % Step 77: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345);
-    % Step 78: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(65));
+    % Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746);
+    % Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v5 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
     res = [w.f2_v5.v, w.f2_v5.dv, w.f2_v5.ddv];
@@ -1009,7 +895,7 @@ end
 
 
 function [st, res, w] = group_2_v6(w, a, da, dda, live)
-    % Steps 79, 80, 81, 82, 83, iterated by the resolver of step 16 (fallback 6:
+    % Steps 68, 69, 70, 71, iterated by the resolver of step 14 (fallback 6:
     % the Add-link J4-K2): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -1028,41 +914,31 @@ function [st, res, w] = group_2_v6(w, a, da, dda, live)
     end
     w.add2_v6 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 79: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known
-    [w.p_K2, st, w.sigma(79)] = RRR_links(w.p_K1, p_J4, w.l_left_rocker1, w.add2_v6, w.br79);
+    % Step 68: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known
+    [w.p_K2, st, w.sigma(68)] = RRR_links(w.p_K1, p_J4, w.l_left_rocker1, w.add2_v6, w.br68);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 793, -794);
+        w = note(w, st, 683, -684);
     end
-    w.chains = min(w.chains, w.sigma(79));
-    % Step 80: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    [w.p_K4, st, w.sigma(80)] = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br80);
+    w.chains = min(w.chains, w.sigma(68));
+    % Step 69: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    [w.p_K4, st, w.sigma(69)] = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br69);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 803, -804);
+        w = note(w, st, 693, -694);
     end
-    w.chains = min(w.chains, w.sigma(80));
-    % Step 81: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    [w.phi_left_ternary, st] = link_angle(w.p_K2, w.p_K4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 813, -814);
-    end
-    % Step 82: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345);
-    % Step 83: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(69));
+    % Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746);
+    % Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v6 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
     res = [w.f2_v6.v, w.f2_v6.dv, w.f2_v6.ddv];
@@ -1070,7 +946,7 @@ end
 
 
 function [st, res, w] = group_2_v7(w, a, da, dda, live)
-    % Steps 84, 85, 86, 87, 88, iterated by the resolver of step 16 (fallback 7:
+    % Steps 72, 73, 74, 75, iterated by the resolver of step 14 (fallback 7:
     % the Add-link J6-K2): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -1084,41 +960,31 @@ function [st, res, w] = group_2_v7(w, a, da, dda, live)
     end
     w.add2_v7 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 84: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known
-    [w.p_K2, st, w.sigma(84)] = RRR_links(w.p_K1, p_J6, w.l_left_rocker1, w.add2_v7, w.br84);
+    % Step 72: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known
+    [w.p_K2, st, w.sigma(72)] = RRR_links(w.p_K1, p_J6, w.l_left_rocker1, w.add2_v7, w.br72);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 843, -844);
+        w = note(w, st, 723, -724);
     end
-    w.chains = min(w.chains, w.sigma(84));
-    % Step 85: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
-    [w.p_K4, st, w.sigma(85)] = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br85);
+    w.chains = min(w.chains, w.sigma(72));
+    % Step 73: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known
+    [w.p_K4, st, w.sigma(73)] = RRR_links(w.p_K2, w.p_K3, w.l_left_ternary_K2_K4, w.l_left_rocker2, w.br73);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 853, -854);
+        w = note(w, st, 733, -734);
     end
-    w.chains = min(w.chains, w.sigma(85));
-    % Step 86: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
-    [w.phi_left_ternary, st] = link_angle(w.p_K2, w.p_K4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 863, -864);
-    end
-    % Step 87: coupler_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = coupler_point(w.p_K2, w.phi_left_ternary, 59.45643676931176, -12.842590342171345);
-    % Step 88: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(73));
+    % Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
+    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746);
+    % Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v7 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
     res = [w.f2_v7.v, w.f2_v7.dv, w.f2_v7.ddv];
@@ -1126,7 +992,7 @@ end
 
 
 function [st, res, w] = group_2_v8(w, a, da, dda, live)
-    % Steps 89, 90, 91, 92, 93, iterated by the resolver of step 16 (fallback 8:
+    % Steps 76, 77, 78, 79, iterated by the resolver of step 14 (fallback 8:
     % the Add-link J5-K5): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -1145,41 +1011,31 @@ function [st, res, w] = group_2_v8(w, a, da, dda, live)
     end
     w.add2_v8 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 89: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known
-    [w.p_K5, st, w.sigma(89)] = RRR_links(p_J6, p_J5, w.l_left_coupler, w.add2_v8, w.br89);
+    % Step 76: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known
+    [w.p_K5, st, w.sigma(76)] = RRR_links(p_J6, p_J5, w.l_left_coupler, w.add2_v8, w.br76);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 893, -894);
+        w = note(w, st, 763, -764);
     end
-    w.chains = min(w.chains, w.sigma(89));
-    % Step 90: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known
-    [w.p_K2, st, w.sigma(90)] = RRR_links(w.p_K1, w.p_K5, w.l_left_rocker1, w.l_left_ternary_K2_K5, w.br90);
+    w.chains = min(w.chains, w.sigma(76));
+    % Step 77: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known
+    [w.p_K2, st, w.sigma(77)] = RRR_links(w.p_K1, w.p_K5, w.l_left_rocker1, w.l_left_ternary_K2_K5, w.br77);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 903, -904);
+        w = note(w, st, 773, -774);
     end
-    w.chains = min(w.chains, w.sigma(90));
-    % Step 91: link_angle, left_ternary. K5 and K2 of link left_ternary are known, so its angle is
-    [w.phi_left_ternary, st] = link_angle(w.p_K5, w.p_K2, -2.928860872898183);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 913, -914);
-    end
-    % Step 92: coupler_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
-    w.p_K4 = coupler_point(w.p_K5, w.phi_left_ternary, 45.662543438831435, 12.842590342171338);
-    % Step 93: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(77));
+    % Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
+    w.p_K4 = link_point(w.p_K5, w.p_K2, -0.6891891891891891, -0.36486486486486486);
+    % Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v8 = link_residual(w.p_K3, w.p_K4, w.l_left_rocker2);
     st = 0;
     res = [w.f2_v8.v, w.f2_v8.dv, w.f2_v8.ddv];
@@ -1615,12 +1471,13 @@ function [angle, st] = link_angle(j1, j2, off)
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
     r2 = dx * dx + dy * dy;
-    if atan2(dy, dx) + off > pi
-        th = atan2(dy, dx) + off - 2 * pi;
-    elseif atan2(dy, dx) + off <= -pi
-        th = atan2(dy, dx) + off + 2 * pi;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = atan2(dy, dx) + off;
+        th = th0;
     end
     if r2 == 0
         ir2 = NaN;
@@ -1642,28 +1499,28 @@ function [angle, st] = link_angle(j1, j2, off)
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
-    if st == 1 || st == 3
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
 end
 
-function jc = coupler_point(j0, phi, gsi, eta)
-    % Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi.
-    cp = cos(phi.the);
-    sp = sin(phi.the);
-    rx = gsi * cp - eta * sp;
-    ry = gsi * sp + eta * cp;
-    rvx = -phi.dthe * ry;
-    rvy = phi.dthe * rx;
-    rax = -phi.ddthe * ry - phi.dthe * phi.dthe * rx;
-    ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
-    jc.x = j0.x + rx;
-    jc.y = j0.y + ry;
-    jc.dx = j0.dx + rvx;
-    jc.dy = j0.dy + rvy;
-    jc.ddx = j0.ddx + rax;
-    jc.ddy = j0.ddy + ray;
+function jc = link_point(j1, j2, along, across)
+    % Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry).
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx - j1.dx;
+    dvy = j2.dy - j1.dy;
+    dax = j2.ddx - j1.ddx;
+    day = j2.ddy - j1.ddy;
+    rx = along * dx - across * dy;
+    ry = along * dy + across * dx;
+    rvx = along * dvx - across * dvy;
+    rvy = along * dvy + across * dvx;
+    rax = along * dax - across * day;
+    ray = along * day + across * dax;
+    jc.x = j1.x + rx;
+    jc.y = j1.y + ry;
+    jc.dx = j1.dx + rvx;
+    jc.dy = j1.dy + rvy;
+    jc.ddx = j1.ddx + rax;
+    jc.ddy = j1.ddy + ray;
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
@@ -1712,10 +1569,11 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     e1x = at * ux - hn * uy;
     e1y = at * uy + hn * ux;
     if fail
-        sigma = 0;
+        ratio = 0;
     else
-        sigma = min(area4 / (2 * l1.v * l2.v), 1);
+        ratio = area4 * (0.5 / (l1.v * l2.v));
     end
+    sigma = min(ratio, 1);
     e2x = -a2 * ux - hn * uy;
     e2y = -a2 * uy + hn * ux;
     if hn == 0

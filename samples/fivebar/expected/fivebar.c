@@ -12,38 +12,39 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-static void crank_input(POINT j1, double l, ANGLE theta, ANGLE phi, POINT *j2)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
-    const double t = theta.the + phi.the;
+    const double t = theta->the + phi->the;
     const double ct = cos(t);
     const double st = sin(t);
     const double rx = l * ct;
     const double ry = l * st;
-    const double om = theta.dthe + phi.dthe;
-    const double al = theta.ddthe + phi.ddthe;
+    const double om = theta->dthe + phi->dthe;
+    const double al = theta->ddthe + phi->ddthe;
     const double rvx = -om * ry;
     const double rvy = om * rx;
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
-    j2->P.x = j1.P.x + rx;
-    j2->P.y = j1.P.y + ry;
-    j2->DP.x = j1.DP.x + rvx;
-    j2->DP.y = j1.DP.y + rvy;
-    j2->DDP.x = j1.DDP.x + rax;
-    j2->DDP.y = j1.DDP.y + ray;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = j1->DP.x + rvx;
+    j2->DP.y = j1->DP.y + rvy;
+    j2->DDP.x = j1->DDP.x + rax;
+    j2->DDP.y = j1->DDP.y + ray;
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
-static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
-    const double dvx = j2.DP.x - j1.DP.x;
-    const double dvy = j2.DP.y - j1.DP.y;
-    const double dax = j2.DDP.x - j1.DDP.x;
-    const double day = j2.DDP.y - j1.DDP.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
     const double r2 = dx * dx + dy * dy;
-    const double th = atan2(dy, dx) + off > 3.141592653589793 ? atan2(dy, dx) + off - 2 * 3.141592653589793 : atan2(dy, dx) + off <= -3.141592653589793 ? atan2(dy, dx) + off + 2 * 3.141592653589793 : atan2(dy, dx) + off;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     const double ir2 = r2 == 0 ? NAN : 1 / r2;
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
@@ -52,55 +53,55 @@ static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
     angle->dthe = om;
     angle->ddthe = al;
     if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; }
-    if (st == 1 || st == 3) { angle->dthe = NAN; angle->ddthe = NAN; }
     return st;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
-static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POINT *jb, double *sigma_out)
+static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
     const double q = sqrt(dx * dx + dy * dy);
     const double iq = q == 0 ? NAN : 1 / q;
     const double ux = dx * iq;
     const double uy = dy * iq;
-    const double hi = fmax(l1.v, l2.v);
-    const double lo = fmin(l1.v, l2.v);
-    const double x = fmax(hi, q);
-    const double z = fmin(lo, q);
+    const double hi = (l2->v > l1->v ? l2->v : l1->v);
+    const double lo = (l2->v < l1->v ? l2->v : l1->v);
+    const double x = (q > hi ? q : hi);
+    const double z = (q < lo ? q : lo);
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
     const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
-    const double kk = fmax(k, 0.0);
+    const double kk = (0.0 > k ? 0.0 : k);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
-    const double a = (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2;
-    const double a2 = (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2;
-    const double flat = q >= hi ? (l1.v + (q - l2.v)) / 2 : l1.v >= l2.v ? (l1.v + (q + l2.v)) / 2 : (q - (l1.v + l2.v)) / 2;
+    const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double flat = q >= hi ? (l1->v + (q - l2->v)) / 2 : l1->v >= l2->v ? (l1->v + (q + l2->v)) / 2 : (q - (l1->v + l2->v)) / 2;
     const double at = k > 0 ? a : flat;
     const double hn = minv * h;
     const double e1x = at * ux - hn * uy;
     const double e1y = at * uy + hn * ux;
-    const double sigma = fail ? 0 : fmin(area4 / (2 * l1.v * l2.v), 1.0);
+    const double ratio = fail ? 0 : area4 * (0.5 / (l1->v * l2->v));
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double e2x = -a2 * ux - hn * uy;
     const double e2y = -a2 * uy + hn * ux;
     const double ihq = hn == 0 ? NAN : 1 / (hn * q);
-    const double r1v = l1.v * l1.dv + (e1x * j1.DP.x + e1y * j1.DP.y);
-    const double r2v = l2.v * l2.dv + (e2x * j2.DP.x + e2y * j2.DP.y);
+    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
+    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
     const double buv = (r1v - r2v) * iq;
     const double bnv = (a2 * r1v + a * r2v) * ihq;
     const double bvx = buv * ux - bnv * uy;
     const double bvy = buv * uy + bnv * ux;
-    const double r1a = l1.v * l1.ddv + l1.dv * l1.dv - ((bvx - j1.DP.x) * (bvx - j1.DP.x) + (bvy - j1.DP.y) * (bvy - j1.DP.y)) + (e1x * j1.DDP.x + e1y * j1.DDP.y);
-    const double r2a = l2.v * l2.ddv + l2.dv * l2.dv - ((bvx - j2.DP.x) * (bvx - j2.DP.x) + (bvy - j2.DP.y) * (bvy - j2.DP.y)) + (e2x * j2.DDP.x + e2y * j2.DDP.y);
+    const double r1a = l1->v * l1->ddv + l1->dv * l1->dv - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y)) + (e1x * j1->DDP.x + e1y * j1->DDP.y);
+    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y)) + (e2x * j2->DDP.x + e2y * j2->DDP.y);
     const double bua = (r1a - r2a) * iq;
     const double bna = (a2 * r1a + a * r2a) * ihq;
     const double bax = bua * ux - bna * uy;
     const double bay = bua * uy + bna * ux;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
-    jb->P.x = j1.P.x + e1x;
-    jb->P.y = j1.P.y + e1y;
+    jb->P.x = j1->P.x + e1x;
+    jb->P.y = j1->P.y + e1y;
     jb->DP.x = bvx;
     jb->DP.y = bvy;
     jb->DDP.x = bax;
@@ -149,60 +150,6 @@ static void note(work *w, int st, int singular, int near)
 {
     if (st == 3 && !w->singular) w->singular = singular;
     if (st == 4 && !w->near) w->near = near;
-}
-
-/* The procedure of fivebar.md, step by step. */
-static int run(work *w, const double in[], const double din[], const double ddin[])
-{
-    int st;
-
-    w->singular = 0;
-    w->near = 0;
-    for (st = 0; st <= FIVEBAR_N_STEPS; st++) w->sigma[st] = 1.0;
-    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
-    w->in2.the = in[1]; w->in2.dthe = din[1]; w->in2.ddthe = ddin[1];
-
-    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
-
-
-    /* Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank1 to A */
-    crank_input(p_O1, 15.0, w->in1, ref_O1, &w->p_A);
-
-
-    /* Step 3: crank_input, B. O2 is known and link frame is placed, so the input angle theta_O2 turns link crank2 to B */
-    crank_input(p_O2, 15.0, w->in2, ref_O2, &w->p_B);
-
-
-    /* Step 4: RRR_links, P (branch +1). P is joined to the known A by link1 and to the known B by link2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_A, w->p_B, l_link1, l_link2, 1, &w->p_P, &w->sigma[4]);
-    if (st == 1) return 41;
-    note(w, st, 43, -44);
-
-
-    /* Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is */
-    st = link_angle(p_O1, w->p_A, 0.0, &w->phi_crank1);
-    if (st == 1) return 51;
-    note(w, st, 53, -54);
-
-
-    /* Step 6: link_angle, link1. A and P of link link1 are known, so its angle is */
-    st = link_angle(w->p_A, w->p_P, 0.0, &w->phi_link1);
-    if (st == 1) return 61;
-    note(w, st, 63, -64);
-
-
-    /* Step 7: link_angle, link2. P and B of link link2 are known, so its angle is */
-    st = link_angle(w->p_P, w->p_B, 0.0, &w->phi_link2);
-    if (st == 1) return 71;
-    note(w, st, 73, -74);
-
-
-    /* Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is */
-    st = link_angle(p_O2, w->p_B, 0.0, &w->phi_crank2);
-    if (st == 1) return 81;
-    note(w, st, 83, -84);
-
-    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -255,16 +202,22 @@ static void no_outputs(fivebar_state *out)
     out->crank2.alpha = NAN;
 }
 
-/* Copy the records into the public state, with the status rules of the CSV. */
+/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
+static int failed(const work *w, fivebar_state *out, int code)
+{
+    int k;
+    out->status = code;
+    for (k = 0; k <= FIVEBAR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    no_outputs(out);
+    return code;
+}
+
+/* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, fivebar_state *out)
 {
     int k;
     out->status = code;
     for (k = 0; k <= FIVEBAR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (reason_of(code) == 1 || reason_of(code) == 2) {
-        no_outputs(out);
-        return;
-    }
     out->O1.x = 0.0;
     out->O1.y = 0.0;
     out->O1.vx = 0.0;
@@ -344,6 +297,63 @@ static void publish(const work *w, int code, fivebar_state *out)
     }
 }
 
+/* The procedure of fivebar.md, step by step: a row that fails ends in failed(), a computed
+   one in publish(). */
+static int run(work *w, const double in[], const double din[], const double ddin[], fivebar_state *out)
+{
+    int st;
+
+    w->singular = 0;
+    w->near = 0;
+    for (st = 0; st <= FIVEBAR_N_STEPS; st++) w->sigma[st] = 1.0;
+    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
+    w->in2.the = in[1]; w->in2.dthe = din[1]; w->in2.ddthe = ddin[1];
+
+    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
+
+
+    /* Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank1 to A */
+    crank_input(&p_O1, 15.0, &w->in1, &ref_O1, &w->p_A);
+
+
+    /* Step 3: crank_input, B. O2 is known and link frame is placed, so the input angle theta_O2 turns link crank2 to B */
+    crank_input(&p_O2, 15.0, &w->in2, &ref_O2, &w->p_B);
+
+
+    /* Step 4: RRR_links, P (branch +1). P is joined to the known A by link1 and to the known B by link2: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_A, &w->p_B, &l_link1, &l_link2, 1, &w->p_P, &w->sigma[4]);
+    if (st == 1) return failed(w, out, 41);
+    note(w, st, 43, -44);
+
+
+    /* Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is */
+    st = link_angle(&p_O1, &w->p_A, 0.0, &w->phi_crank1);
+    if (st == 1) return failed(w, out, 51);
+    note(w, st, 53, -54);
+
+
+    /* Step 6: link_angle, link1. A and P of link link1 are known, so its angle is */
+    st = link_angle(&w->p_A, &w->p_P, 0.0, &w->phi_link1);
+    if (st == 1) return failed(w, out, 61);
+    note(w, st, 63, -64);
+
+
+    /* Step 7: link_angle, link2. P and B of link link2 are known, so its angle is */
+    st = link_angle(&w->p_P, &w->p_B, 0.0, &w->phi_link2);
+    if (st == 1) return failed(w, out, 71);
+    note(w, st, 73, -74);
+
+
+    /* Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is */
+    st = link_angle(&p_O2, &w->p_B, 0.0, &w->phi_crank2);
+    if (st == 1) return failed(w, out, 81);
+    note(w, st, 83, -84);
+
+    st = w->singular ? w->singular : w->near;
+    publish(w, st, out);
+    return st;
+}
+
 void fivebar_init(fivebar_state *out)
 {
     memset(out, 0, sizeof *out);
@@ -372,12 +382,8 @@ static int refuse(fivebar_state *out)
 int fivebar_solve(const double in[], const double din[], const double ddin[], fivebar_state *out)
 {
     work w;
-    int code;
     if (!finite_inputs(in, din, ddin)) return refuse(out);
-    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
-    code = run(&w, in, din, ddin);
-    publish(&w, code, out);
-    return code;
+    return run(&w, in, din, ddin, out);
 }
 
 void fivebar_columns(const double in[], const fivebar_state *st, double col[FIVEBAR_N_COLUMNS])

@@ -79,6 +79,7 @@ COLUMNS = (
     "crank2.omega",
     "crank2.alpha",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 
 
@@ -113,15 +114,14 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    th = atan2(dy, dx) + off - 2 * PI if atan2(dy, dx) + off > PI else atan2(dy, dx) + off + 2 * PI if atan2(dy, dx) + off <= -PI else atan2(dy, dx) + off
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     ir2 = NAN if r2 == 0 else 1 / r2
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (th, NAN, NAN)
     return st, (th, om, al)
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -136,14 +136,14 @@ def RRR_links(j1, j2, l1, l2, minv):
     iq = NAN if q == 0 else 1 / q
     ux = dx * iq
     uy = dy * iq
-    hi = max(l1_v, l2_v)
-    lo = min(l1_v, l2_v)
-    x = max(hi, q)
-    z = min(lo, q)
+    hi = (l2_v if l2_v > l1_v else l1_v)
+    lo = (l2_v if l2_v < l1_v else l1_v)
+    x = (q if q > hi else hi)
+    z = (q if q < lo else lo)
     y = hi if q >= hi else lo if q <= lo else q
     k = z - (x - y)
     fail = k < -8 * EPS * x or q == 0 or lo <= 0
-    kk = max(k, 0)
+    kk = (0 if 0 > k else k)
     area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     h = area4 * iq / 2
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
@@ -153,7 +153,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    sigma = 0 if fail else min(area4 / (2 * l1_v * l2_v), 1)
+    ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
+    sigma = (1 if 1 < ratio else ratio)
     e2x = -a2 * ux - hn * uy
     e2y = -a2 * uy + hn * ux
     ihq = NAN if hn == 0 else 1 / (hn * q)
@@ -225,31 +226,36 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[4], w.p_P = RRR_links(w.p_A, w.p_B, l_link1, l_link2, 1)
     if st == 1:
         return 41
-    w.note(st, 43, -44)
+    if st:
+        w.note(st, 43, -44)
 
     # Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is
     st, w.phi_crank1 = link_angle(p_O1, w.p_A, 0.0)
     if st == 1:
         return 51
-    w.note(st, 53, -54)
+    if st:
+        w.note(st, 53, -54)
 
     # Step 6: link_angle, link1. A and P of link link1 are known, so its angle is
     st, w.phi_link1 = link_angle(w.p_A, w.p_P, 0.0)
     if st == 1:
         return 61
-    w.note(st, 63, -64)
+    if st:
+        w.note(st, 63, -64)
 
     # Step 7: link_angle, link2. P and B of link link2 are known, so its angle is
     st, w.phi_link2 = link_angle(w.p_P, w.p_B, 0.0)
     if st == 1:
         return 71
-    w.note(st, 73, -74)
+    if st:
+        w.note(st, 73, -74)
 
     # Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is
     st, w.phi_crank2 = link_angle(p_O2, w.p_B, 0.0)
     if st == 1:
         return 81
-    w.note(st, 83, -84)
+    if st:
+        w.note(st, 83, -84)
 
     return w.singular or w.near
 
@@ -308,10 +314,13 @@ def _publish(w, code, order):
             w.phi_crank2[1],
             w.phi_crank2[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -296,12 +296,13 @@ function [angle, st] = link_angle(j1, j2, off)
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
     r2 = dx * dx + dy * dy;
-    if atan2(dy, dx) + off > pi
-        th = atan2(dy, dx) + off - 2 * pi;
-    elseif atan2(dy, dx) + off <= -pi
-        th = atan2(dy, dx) + off + 2 * pi;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = atan2(dy, dx) + off;
+        th = th0;
     end
     if r2 == 0
         ir2 = NaN;
@@ -320,10 +321,6 @@ function [angle, st] = link_angle(j1, j2, off)
     angle.ddthe = al;
     if st == 1
         angle.the = NaN;
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
-    if st == 1 || st == 3
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
@@ -375,10 +372,11 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     e1x = at * ux - hn * uy;
     e1y = at * uy + hn * ux;
     if fail
-        sigma = 0;
+        ratio = 0;
     else
-        sigma = min(area4 / (2 * l1.v * l2.v), 1);
+        ratio = area4 * (0.5 / (l1.v * l2.v));
     end
+    sigma = min(ratio, 1);
     e2x = -a2 * ux - hn * uy;
     e2y = -a2 * uy + hn * ux;
     if hn == 0

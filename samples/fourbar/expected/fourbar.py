@@ -75,6 +75,7 @@ COLUMNS = (
     "rocker.omega",
     "rocker.alpha",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 
 
@@ -109,30 +110,33 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    th = atan2(dy, dx) + off - 2 * PI if atan2(dy, dx) + off > PI else atan2(dy, dx) + off + 2 * PI if atan2(dy, dx) + off <= -PI else atan2(dy, dx) + off
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     ir2 = NAN if r2 == 0 else 1 / r2
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (th, NAN, NAN)
     return st, (th, om, al)
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp = cos(phi_the)
-    sp = sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    rax = -phi_ddthe * ry - phi_dthe * phi_dthe * rx
-    ray = phi_ddthe * rx - phi_dthe * phi_dthe * ry
-    return (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+def link_point(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
+    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -146,14 +150,14 @@ def RRR_links(j1, j2, l1, l2, minv):
     iq = NAN if q == 0 else 1 / q
     ux = dx * iq
     uy = dy * iq
-    hi = max(l1_v, l2_v)
-    lo = min(l1_v, l2_v)
-    x = max(hi, q)
-    z = min(lo, q)
+    hi = (l2_v if l2_v > l1_v else l1_v)
+    lo = (l2_v if l2_v < l1_v else l1_v)
+    x = (q if q > hi else hi)
+    z = (q if q < lo else lo)
     y = hi if q >= hi else lo if q <= lo else q
     k = z - (x - y)
     fail = k < -8 * EPS * x or q == 0 or lo <= 0
-    kk = max(k, 0)
+    kk = (0 if 0 > k else k)
     area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     h = area4 * iq / 2
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
@@ -163,7 +167,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    sigma = 0 if fail else min(area4 / (2 * l1_v * l2_v), 1)
+    ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
+    sigma = (1 if 1 < ratio else ratio)
     e2x = -a2 * ux - hn * uy
     e2y = -a2 * uy + hn * ux
     ihq = NAN if hn == 0 else 1 / (hn * q)
@@ -206,7 +211,7 @@ l_rocker = (50.99019513592785, 0.0, 0.0)
 class _Work:
     """The records of one solution."""
 
-    __slots__ = ("in1", "p_A", "p_B", "phi_coupler", "p_P", "phi_crank", "phi_rocker", "sigma", "singular", "near")
+    __slots__ = ("in1", "p_A", "p_B", "p_P", "phi_crank", "phi_coupler", "phi_rocker", "sigma", "singular", "near")
 
     def note(self, st, singular, near):
         """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
@@ -230,28 +235,32 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.p_B = RRR_links(w.p_A, p_O2, l_coupler, l_rocker, 1)
     if st == 1:
         return 31
-    w.note(st, 33, -34)
+    if st:
+        w.note(st, 33, -34)
 
-    # Step 4: link_angle, coupler. A and B of link coupler are known, so its angle is
-    st, w.phi_coupler = link_angle(w.p_A, w.p_B, 0.0)
-    if st == 1:
-        return 41
-    w.note(st, 43, -44)
+    # Step 4: link_point, P. point P of link coupler
+    w.p_P = link_point(w.p_A, w.p_B, 0.9672131147540983, 0.36065573770491804)
 
-    # Step 5: coupler_point, P. point P of link coupler
-    w.p_P = coupler_point(w.p_A, w.phi_coupler, 75.54175916040862, 28.168113585237116)
-
-    # Step 6: link_angle, crank. O1 and A of link crank are known, so its angle is
+    # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is
     st, w.phi_crank = link_angle(p_O1, w.p_A, 0.0)
     if st == 1:
+        return 51
+    if st:
+        w.note(st, 53, -54)
+
+    # Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is
+    st, w.phi_coupler = link_angle(w.p_A, w.p_B, 0.0)
+    if st == 1:
         return 61
-    w.note(st, 63, -64)
+    if st:
+        w.note(st, 63, -64)
 
     # Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is
     st, w.phi_rocker = link_angle(p_O2, w.p_B, 0.0)
     if st == 1:
         return 71
-    w.note(st, 73, -74)
+    if st:
+        w.note(st, 73, -74)
 
     return w.singular or w.near
 
@@ -307,10 +316,13 @@ def _publish(w, code, order):
             w.phi_rocker[1],
             w.phi_rocker[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

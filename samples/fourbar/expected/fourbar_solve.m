@@ -88,19 +88,19 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 33, -34);
 
-    % Step 4: link_angle, coupler. A and B of link coupler are known, so its angle is
-    [w.phi_coupler, st] = link_angle(w.p_A, w.p_B, 0.0);
+    % Step 4: link_point, P. point P of link coupler
+    w.p_P = link_point(w.p_A, w.p_B, 0.9672131147540983, 0.36065573770491804);
+
+    % Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is
+    [w.phi_crank, st] = link_angle(w.p_O1, w.p_A, 0.0);
     if st == 1
-        status = 41;
+        status = 51;
         return;
     end
-    w = note(w, st, 43, -44);
+    w = note(w, st, 53, -54);
 
-    % Step 5: coupler_point, P. point P of link coupler
-    w.p_P = coupler_point(w.p_A, w.phi_coupler, 75.54175916040862, 28.168113585237116);
-
-    % Step 6: link_angle, crank. O1 and A of link crank are known, so its angle is
-    [w.phi_crank, st] = link_angle(w.p_O1, w.p_A, 0.0);
+    % Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is
+    [w.phi_coupler, st] = link_angle(w.p_A, w.p_B, 0.0);
     if st == 1
         status = 61;
         return;
@@ -278,12 +278,13 @@ function [angle, st] = link_angle(j1, j2, off)
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
     r2 = dx * dx + dy * dy;
-    if atan2(dy, dx) + off > pi
-        th = atan2(dy, dx) + off - 2 * pi;
-    elseif atan2(dy, dx) + off <= -pi
-        th = atan2(dy, dx) + off + 2 * pi;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = atan2(dy, dx) + off;
+        th = th0;
     end
     if r2 == 0
         ir2 = NaN;
@@ -305,28 +306,28 @@ function [angle, st] = link_angle(j1, j2, off)
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
-    if st == 1 || st == 3
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
 end
 
-function jc = coupler_point(j0, phi, gsi, eta)
-    % Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi.
-    cp = cos(phi.the);
-    sp = sin(phi.the);
-    rx = gsi * cp - eta * sp;
-    ry = gsi * sp + eta * cp;
-    rvx = -phi.dthe * ry;
-    rvy = phi.dthe * rx;
-    rax = -phi.ddthe * ry - phi.dthe * phi.dthe * rx;
-    ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
-    jc.x = j0.x + rx;
-    jc.y = j0.y + ry;
-    jc.dx = j0.dx + rvx;
-    jc.dy = j0.dy + rvy;
-    jc.ddx = j0.ddx + rax;
-    jc.ddy = j0.ddy + ray;
+function jc = link_point(j1, j2, along, across)
+    % Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry).
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx - j1.dx;
+    dvy = j2.dy - j1.dy;
+    dax = j2.ddx - j1.ddx;
+    day = j2.ddy - j1.ddy;
+    rx = along * dx - across * dy;
+    ry = along * dy + across * dx;
+    rvx = along * dvx - across * dvy;
+    rvy = along * dvy + across * dvx;
+    rax = along * dax - across * day;
+    ray = along * day + across * dax;
+    jc.x = j1.x + rx;
+    jc.y = j1.y + ry;
+    jc.dx = j1.dx + rvx;
+    jc.dy = j1.dy + rvy;
+    jc.ddx = j1.ddx + rax;
+    jc.ddy = j1.ddy + ray;
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
@@ -375,10 +376,11 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     e1x = at * ux - hn * uy;
     e1y = at * uy + hn * ux;
     if fail
-        sigma = 0;
+        ratio = 0;
     else
-        sigma = min(area4 / (2 * l1.v * l2.v), 1);
+        ratio = area4 * (0.5 / (l1.v * l2.v));
     end
+    sigma = min(ratio, 1);
     e2x = -a2 * ux - hn * uy;
     e2y = -a2 * uy + hn * ux;
     if hn == 0

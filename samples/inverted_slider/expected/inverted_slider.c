@@ -12,38 +12,39 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-static void crank_input(POINT j1, double l, ANGLE theta, ANGLE phi, POINT *j2)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
-    const double t = theta.the + phi.the;
+    const double t = theta->the + phi->the;
     const double ct = cos(t);
     const double st = sin(t);
     const double rx = l * ct;
     const double ry = l * st;
-    const double om = theta.dthe + phi.dthe;
-    const double al = theta.ddthe + phi.ddthe;
+    const double om = theta->dthe + phi->dthe;
+    const double al = theta->ddthe + phi->ddthe;
     const double rvx = -om * ry;
     const double rvy = om * rx;
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
-    j2->P.x = j1.P.x + rx;
-    j2->P.y = j1.P.y + ry;
-    j2->DP.x = j1.DP.x + rvx;
-    j2->DP.y = j1.DP.y + rvy;
-    j2->DDP.x = j1.DDP.x + rax;
-    j2->DDP.y = j1.DDP.y + ray;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = j1->DP.x + rvx;
+    j2->DP.y = j1->DP.y + rvy;
+    j2->DDP.x = j1->DDP.x + rax;
+    j2->DDP.y = j1->DDP.y + ray;
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
-static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
-    const double dvx = j2.DP.x - j1.DP.x;
-    const double dvy = j2.DP.y - j1.DP.y;
-    const double dax = j2.DDP.x - j1.DDP.x;
-    const double day = j2.DDP.y - j1.DDP.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
     const double r2 = dx * dx + dy * dy;
-    const double th = atan2(dy, dx) + off > 3.141592653589793 ? atan2(dy, dx) + off - 2 * 3.141592653589793 : atan2(dy, dx) + off <= -3.141592653589793 ? atan2(dy, dx) + off + 2 * 3.141592653589793 : atan2(dy, dx) + off;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     const double ir2 = r2 == 0 ? NAN : 1 / r2;
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
@@ -52,44 +53,44 @@ static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
     angle->dthe = om;
     angle->ddthe = al;
     if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; }
-    if (st == 1 || st == 3) { angle->dthe = NAN; angle->ddthe = NAN; }
     return st;
 }
 
 /* Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi. */
-static void coupler_point(POINT j0, ANGLE phi, double gsi, double eta, POINT *jc)
+static inline void coupler_point(const POINT *j0, const ANGLE *phi, double gsi, double eta, POINT *jc)
 {
-    const double cp = cos(phi.the);
-    const double sp = sin(phi.the);
+    const double cp = cos(phi->the);
+    const double sp = sin(phi->the);
     const double rx = gsi * cp - eta * sp;
     const double ry = gsi * sp + eta * cp;
-    const double rvx = -phi.dthe * ry;
-    const double rvy = phi.dthe * rx;
-    const double rax = -phi.ddthe * ry - phi.dthe * phi.dthe * rx;
-    const double ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
-    jc->P.x = j0.P.x + rx;
-    jc->P.y = j0.P.y + ry;
-    jc->DP.x = j0.DP.x + rvx;
-    jc->DP.y = j0.DP.y + rvy;
-    jc->DDP.x = j0.DDP.x + rax;
-    jc->DDP.y = j0.DDP.y + ray;
+    const double rvx = -phi->dthe * ry;
+    const double rvy = phi->dthe * rx;
+    const double rax = -phi->ddthe * ry - phi->dthe * phi->dthe * rx;
+    const double ray = phi->ddthe * rx - phi->dthe * phi->dthe * ry;
+    jc->P.x = j0->P.x + rx;
+    jc->P.y = j0->P.y + ry;
+    jc->DP.x = j0->DP.x + rvx;
+    jc->DP.y = j0->DP.y + rvy;
+    jc->DDP.x = j0->DDP.x + rax;
+    jc->DDP.y = j0->DDP.y + ray;
 }
 
 /* RPR chain: a guide link turning about jg and a slider link turning about js slide along one line; (ag, bg) and (as, bs) are the pair's reference point seen from jg and js in the line's frame.  Gives the line angle psi, the displacement s and the pair's slider point jp. */
-static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out)
+static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out)
 {
-    const double dx = js.P.x - jg.P.x;
-    const double dy = js.P.y - jg.P.y;
-    const double dvx = js.DP.x - jg.DP.x;
-    const double dvy = js.DP.y - jg.DP.y;
-    const double dax = js.DDP.x - jg.DDP.x;
-    const double day = js.DDP.y - jg.DDP.y;
+    const double dx = js->P.x - jg->P.x;
+    const double dy = js->P.y - jg->P.y;
+    const double dvx = js->DP.x - jg->DP.x;
+    const double dvy = js->DP.y - jg->DP.y;
+    const double dax = js->DDP.x - jg->DDP.x;
+    const double day = js->DDP.y - jg->DDP.y;
     const double hh = bg - bs;
     const double q = sqrt(dx * dx + dy * dy);
     const double ah = fabs(hh);
     const double k = q - ah;
-    const int fail = k < -8 * DBL_EPSILON * fmax(q, ah) || q == 0;
-    const double t = sqrt(fmax(k, 0.0) * (q + ah));
+    const double big = (ah > q ? ah : q);
+    const int fail = k < -8 * DBL_EPSILON * big || q == 0;
+    const double t = sqrt((0.0 > k ? 0.0 : k) * (q + ah));
     const double iq = q == 0 ? NAN : 1 / q;
     const double mt = minv * t;
     const double ux = (mt * dx + hh * dy) * iq * iq;
@@ -98,8 +99,16 @@ static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, doubl
     const double sv = mt + (as_ - ag);
     const double rx = as_ * ux - bs * uy;
     const double ry = as_ * uy + bs * ux;
-    const double arm = fmax(fmax(fabs(ag), fabs(as_)), fmax(fabs(bg), fabs(bs)));
-    const double sigma = fail ? 0 : fmin(t / fmax(q, arm), 1.0);
+    const double a0 = fabs(ag);
+    const double a1 = fabs(as_);
+    const double a2 = fabs(bg);
+    const double a3 = fabs(bs);
+    const double arm1 = (a1 > a0 ? a1 : a0);
+    const double arm2 = (a3 > a2 ? a3 : a2);
+    const double arm = (arm2 > arm1 ? arm2 : arm1);
+    const double reach = (arm > q ? arm : q);
+    const double ratio = fail ? 0 : t / reach;
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double imt = mt == 0 ? NAN : 1 / mt;
     const double dvn = ux * dvy - uy * dvx;
     const double dvu = dvx * ux + dvy * uy;
@@ -118,12 +127,12 @@ static int RPR_links(POINT jg, POINT js, double ag, double bg, double as_, doubl
     s->v = sv;
     s->dv = ds;
     s->ddv = dds;
-    jp->P.x = js.P.x + rx;
-    jp->P.y = js.P.y + ry;
-    jp->DP.x = js.DP.x + rvx;
-    jp->DP.y = js.DP.y + rvy;
-    jp->DDP.x = js.DDP.x + rax;
-    jp->DDP.y = js.DDP.y + ray;
+    jp->P.x = js->P.x + rx;
+    jp->P.y = js->P.y + ry;
+    jp->DP.x = js->DP.x + rvx;
+    jp->DP.y = js->DP.y + rvy;
+    jp->DDP.x = js->DDP.x + rax;
+    jp->DDP.y = js->DDP.y + ray;
     *sigma_out = sigma;
     if (st == 1) { psi->the = NAN; psi->dthe = NAN; psi->ddthe = NAN; s->v = NAN; s->dv = NAN; s->ddv = NAN; jp->P.x = NAN; jp->P.y = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; }
     if (st == 1 || st == 3) { psi->dthe = NAN; psi->ddthe = NAN; s->dv = NAN; s->ddv = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; }
@@ -163,41 +172,6 @@ static void note(work *w, int st, int singular, int near)
 {
     if (st == 3 && !w->singular) w->singular = singular;
     if (st == 4 && !w->near) w->near = near;
-}
-
-/* The procedure of inverted_slider.md, step by step. */
-static int run(work *w, const double in[], const double din[], const double ddin[])
-{
-    int st;
-
-    w->singular = 0;
-    w->near = 0;
-    for (st = 0; st <= INVERTED_SLIDER_N_STEPS; st++) w->sigma[st] = 1.0;
-    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
-
-    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
-
-
-    /* Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A */
-    crank_input(p_O1, 25.0, w->in1, ref_O1, &w->p_A);
-
-
-    /* Step 3: RPR_links, S (branch +1). the guide lever turns about the known O2 and the slider block about the known A, sliding along one line at S: an RPR two-link chain with both ends known */
-    st = RPR_links(p_O2, w->p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1, &w->psi_S, &w->s_S, &w->p_S, &w->sigma[3]);
-    if (st == 1) return 31;
-    note(w, st, 33, -34);
-
-
-    /* Step 4: coupler_point, P. point P of link lever */
-    coupler_point(p_O2, w->psi_S, 120.00000000000001, 0.0, &w->p_P);
-
-
-    /* Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is */
-    st = link_angle(p_O1, w->p_A, 0.0, &w->phi_crank);
-    if (st == 1) return 51;
-    note(w, st, 53, -54);
-
-    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -250,16 +224,22 @@ static void no_outputs(inverted_slider_state *out)
     out->block.alpha = NAN;
 }
 
-/* Copy the records into the public state, with the status rules of the CSV. */
+/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
+static int failed(const work *w, inverted_slider_state *out, int code)
+{
+    int k;
+    out->status = code;
+    for (k = 0; k <= INVERTED_SLIDER_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    no_outputs(out);
+    return code;
+}
+
+/* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, inverted_slider_state *out)
 {
     int k;
     out->status = code;
     for (k = 0; k <= INVERTED_SLIDER_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (reason_of(code) == 1 || reason_of(code) == 2) {
-        no_outputs(out);
-        return;
-    }
     out->O1.x = 0.0;
     out->O1.y = 50.0;
     out->O1.vx = 0.0;
@@ -339,6 +319,44 @@ static void publish(const work *w, int code, inverted_slider_state *out)
     }
 }
 
+/* The procedure of inverted_slider.md, step by step: a row that fails ends in failed(), a computed
+   one in publish(). */
+static int run(work *w, const double in[], const double din[], const double ddin[], inverted_slider_state *out)
+{
+    int st;
+
+    w->singular = 0;
+    w->near = 0;
+    for (st = 0; st <= INVERTED_SLIDER_N_STEPS; st++) w->sigma[st] = 1.0;
+    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
+
+    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
+
+
+    /* Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A */
+    crank_input(&p_O1, 25.0, &w->in1, &ref_O1, &w->p_A);
+
+
+    /* Step 3: RPR_links, S (branch +1). the guide lever turns about the known O2 and the slider block about the known A, sliding along one line at S: an RPR two-link chain with both ends known */
+    st = RPR_links(&p_O2, &w->p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1, &w->psi_S, &w->s_S, &w->p_S, &w->sigma[3]);
+    if (st == 1) return failed(w, out, 31);
+    note(w, st, 33, -34);
+
+
+    /* Step 4: coupler_point, P. point P of link lever */
+    coupler_point(&p_O2, &w->psi_S, 120.00000000000001, 0.0, &w->p_P);
+
+
+    /* Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is */
+    st = link_angle(&p_O1, &w->p_A, 0.0, &w->phi_crank);
+    if (st == 1) return failed(w, out, 51);
+    note(w, st, 53, -54);
+
+    st = w->singular ? w->singular : w->near;
+    publish(w, st, out);
+    return st;
+}
+
 void inverted_slider_init(inverted_slider_state *out)
 {
     memset(out, 0, sizeof *out);
@@ -367,12 +385,8 @@ static int refuse(inverted_slider_state *out)
 int inverted_slider_solve(const double in[], const double din[], const double ddin[], inverted_slider_state *out)
 {
     work w;
-    int code;
     if (!finite_inputs(in, din, ddin)) return refuse(out);
-    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
-    code = run(&w, in, din, ddin);
-    publish(&w, code, out);
-    return code;
+    return run(&w, in, din, ddin, out);
 }
 
 void inverted_slider_columns(const double in[], const inverted_slider_state *st, double col[INVERTED_SLIDER_N_COLUMNS])

@@ -78,6 +78,7 @@ COLUMNS = (
     "S.ds",
     "S.dds",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 
 
@@ -112,15 +113,14 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    th = atan2(dy, dx) + off - 2 * PI if atan2(dy, dx) + off > PI else atan2(dy, dx) + off + 2 * PI if atan2(dy, dx) + off <= -PI else atan2(dy, dx) + off
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     ir2 = NAN if r2 == 0 else 1 / r2
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (th, NAN, NAN)
     return st, (th, om, al)
 
 def coupler_point(j0, phi, gsi, eta):
@@ -151,8 +151,9 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     q = sqrt(dx * dx + dy * dy)
     ah = abs(hh)
     k = q - ah
-    fail = k < -8 * EPS * max(q, ah) or q == 0
-    t = sqrt(max(k, 0) * (q + ah))
+    big = (ah if ah > q else q)
+    fail = k < -8 * EPS * big or q == 0
+    t = sqrt((0 if 0 > k else k) * (q + ah))
     iq = NAN if q == 0 else 1 / q
     mt = minv * t
     ux = (mt * dx + hh * dy) * iq * iq
@@ -161,8 +162,16 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     sv = mt + (as_ - ag)
     rx = as_ * ux - bs * uy
     ry = as_ * uy + bs * ux
-    arm = max(max(abs(ag), abs(as_)), max(abs(bg), abs(bs)))
-    sigma = 0 if fail else min(t / max(q, arm), 1)
+    a0 = abs(ag)
+    a1 = abs(as_)
+    a2 = abs(bg)
+    a3 = abs(bs)
+    arm1 = (a1 if a1 > a0 else a0)
+    arm2 = (a3 if a3 > a2 else a2)
+    arm = (arm2 if arm2 > arm1 else arm1)
+    reach = (arm if arm > q else q)
+    ratio = 0 if fail else t / reach
+    sigma = (1 if 1 < ratio else ratio)
     imt = NAN if mt == 0 else 1 / mt
     dvn = ux * dvy - uy * dvx
     dvu = dvx * ux + dvy * uy
@@ -223,7 +232,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.psi_S, w.s_S, w.p_S = RPR_links(p_O2, w.p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1)
     if st == 1:
         return 31
-    w.note(st, 33, -34)
+    if st:
+        w.note(st, 33, -34)
 
     # Step 4: coupler_point, P. point P of link lever
     w.p_P = coupler_point(p_O2, w.psi_S, 120.00000000000001, 0.0)
@@ -232,7 +242,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.phi_crank = link_angle(p_O1, w.p_A, 0.0)
     if st == 1:
         return 51
-    w.note(st, 53, -54)
+    if st:
+        w.note(st, 53, -54)
 
     return w.singular or w.near
 
@@ -291,10 +302,13 @@ def _publish(w, code, order):
             w.s_S[1],
             w.s_S[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

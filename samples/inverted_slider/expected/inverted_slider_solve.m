@@ -268,12 +268,13 @@ function [angle, st] = link_angle(j1, j2, off)
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
     r2 = dx * dx + dy * dy;
-    if atan2(dy, dx) + off > pi
-        th = atan2(dy, dx) + off - 2 * pi;
-    elseif atan2(dy, dx) + off <= -pi
-        th = atan2(dy, dx) + off + 2 * pi;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = atan2(dy, dx) + off;
+        th = th0;
     end
     if r2 == 0
         ir2 = NaN;
@@ -292,10 +293,6 @@ function [angle, st] = link_angle(j1, j2, off)
     angle.ddthe = al;
     if st == 1
         angle.the = NaN;
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
-    if st == 1 || st == 3
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
@@ -331,7 +328,8 @@ function [psi, s, jp, st, sigma] = RPR_links(jg, js, ag, bg, as_, bs, minv)
     q = sqrt(dx * dx + dy * dy);
     ah = abs(hh);
     k = q - ah;
-    fail = k < -8 * eps * max(q, ah) || q == 0;
+    big = max(q, ah);
+    fail = k < -8 * eps * big || q == 0;
     t = sqrt(max(k, 0) * (q + ah));
     if q == 0
         iq = NaN;
@@ -345,12 +343,20 @@ function [psi, s, jp, st, sigma] = RPR_links(jg, js, ag, bg, as_, bs, minv)
     sv = mt + (as_ - ag);
     rx = as_ * ux - bs * uy;
     ry = as_ * uy + bs * ux;
-    arm = max(max(abs(ag), abs(as_)), max(abs(bg), abs(bs)));
+    a0 = abs(ag);
+    a1 = abs(as_);
+    a2 = abs(bg);
+    a3 = abs(bs);
+    arm1 = max(a0, a1);
+    arm2 = max(a2, a3);
+    arm = max(arm1, arm2);
+    reach = max(q, arm);
     if fail
-        sigma = 0;
+        ratio = 0;
     else
-        sigma = min(t / max(q, arm), 1);
+        ratio = t / reach;
     end
+    sigma = min(ratio, 1);
     if mt == 0
         imt = NaN;
     else

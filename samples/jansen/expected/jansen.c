@@ -12,38 +12,39 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-static void crank_input(POINT j1, double l, ANGLE theta, ANGLE phi, POINT *j2)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
-    const double t = theta.the + phi.the;
+    const double t = theta->the + phi->the;
     const double ct = cos(t);
     const double st = sin(t);
     const double rx = l * ct;
     const double ry = l * st;
-    const double om = theta.dthe + phi.dthe;
-    const double al = theta.ddthe + phi.ddthe;
+    const double om = theta->dthe + phi->dthe;
+    const double al = theta->ddthe + phi->ddthe;
     const double rvx = -om * ry;
     const double rvy = om * rx;
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
-    j2->P.x = j1.P.x + rx;
-    j2->P.y = j1.P.y + ry;
-    j2->DP.x = j1.DP.x + rvx;
-    j2->DP.y = j1.DP.y + rvy;
-    j2->DDP.x = j1.DDP.x + rax;
-    j2->DDP.y = j1.DDP.y + ray;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = j1->DP.x + rvx;
+    j2->DP.y = j1->DP.y + rvy;
+    j2->DDP.x = j1->DDP.x + rax;
+    j2->DDP.y = j1->DDP.y + ray;
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
-static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
-    const double dvx = j2.DP.x - j1.DP.x;
-    const double dvy = j2.DP.y - j1.DP.y;
-    const double dax = j2.DDP.x - j1.DDP.x;
-    const double day = j2.DDP.y - j1.DDP.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
     const double r2 = dx * dx + dy * dy;
-    const double th = atan2(dy, dx) + off > 3.141592653589793 ? atan2(dy, dx) + off - 2 * 3.141592653589793 : atan2(dy, dx) + off <= -3.141592653589793 ? atan2(dy, dx) + off + 2 * 3.141592653589793 : atan2(dy, dx) + off;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     const double ir2 = r2 == 0 ? NAN : 1 / r2;
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
@@ -52,74 +53,78 @@ static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
     angle->dthe = om;
     angle->ddthe = al;
     if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; }
-    if (st == 1 || st == 3) { angle->dthe = NAN; angle->ddthe = NAN; }
     return st;
 }
 
-/* Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi. */
-static void coupler_point(POINT j0, ANGLE phi, double gsi, double eta, POINT *jc)
+/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
+static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
 {
-    const double cp = cos(phi.the);
-    const double sp = sin(phi.the);
-    const double rx = gsi * cp - eta * sp;
-    const double ry = gsi * sp + eta * cp;
-    const double rvx = -phi.dthe * ry;
-    const double rvy = phi.dthe * rx;
-    const double rax = -phi.ddthe * ry - phi.dthe * phi.dthe * rx;
-    const double ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
-    jc->P.x = j0.P.x + rx;
-    jc->P.y = j0.P.y + ry;
-    jc->DP.x = j0.DP.x + rvx;
-    jc->DP.y = j0.DP.y + rvy;
-    jc->DDP.x = j0.DDP.x + rax;
-    jc->DDP.y = j0.DDP.y + ray;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
+    const double rx = along * dx - across * dy;
+    const double ry = along * dy + across * dx;
+    const double rvx = along * dvx - across * dvy;
+    const double rvy = along * dvy + across * dvx;
+    const double rax = along * dax - across * day;
+    const double ray = along * day + across * dax;
+    jc->P.x = j1->P.x + rx;
+    jc->P.y = j1->P.y + ry;
+    jc->DP.x = j1->DP.x + rvx;
+    jc->DP.y = j1->DP.y + rvy;
+    jc->DDP.x = j1->DDP.x + rax;
+    jc->DDP.y = j1->DDP.y + ray;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
-static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POINT *jb, double *sigma_out)
+static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
     const double q = sqrt(dx * dx + dy * dy);
     const double iq = q == 0 ? NAN : 1 / q;
     const double ux = dx * iq;
     const double uy = dy * iq;
-    const double hi = fmax(l1.v, l2.v);
-    const double lo = fmin(l1.v, l2.v);
-    const double x = fmax(hi, q);
-    const double z = fmin(lo, q);
+    const double hi = (l2->v > l1->v ? l2->v : l1->v);
+    const double lo = (l2->v < l1->v ? l2->v : l1->v);
+    const double x = (q > hi ? q : hi);
+    const double z = (q < lo ? q : lo);
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
     const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
-    const double kk = fmax(k, 0.0);
+    const double kk = (0.0 > k ? 0.0 : k);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
-    const double a = (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2;
-    const double a2 = (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2;
-    const double flat = q >= hi ? (l1.v + (q - l2.v)) / 2 : l1.v >= l2.v ? (l1.v + (q + l2.v)) / 2 : (q - (l1.v + l2.v)) / 2;
+    const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double flat = q >= hi ? (l1->v + (q - l2->v)) / 2 : l1->v >= l2->v ? (l1->v + (q + l2->v)) / 2 : (q - (l1->v + l2->v)) / 2;
     const double at = k > 0 ? a : flat;
     const double hn = minv * h;
     const double e1x = at * ux - hn * uy;
     const double e1y = at * uy + hn * ux;
-    const double sigma = fail ? 0 : fmin(area4 / (2 * l1.v * l2.v), 1.0);
+    const double ratio = fail ? 0 : area4 * (0.5 / (l1->v * l2->v));
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double e2x = -a2 * ux - hn * uy;
     const double e2y = -a2 * uy + hn * ux;
     const double ihq = hn == 0 ? NAN : 1 / (hn * q);
-    const double r1v = l1.v * l1.dv + (e1x * j1.DP.x + e1y * j1.DP.y);
-    const double r2v = l2.v * l2.dv + (e2x * j2.DP.x + e2y * j2.DP.y);
+    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
+    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
     const double buv = (r1v - r2v) * iq;
     const double bnv = (a2 * r1v + a * r2v) * ihq;
     const double bvx = buv * ux - bnv * uy;
     const double bvy = buv * uy + bnv * ux;
-    const double r1a = l1.v * l1.ddv + l1.dv * l1.dv - ((bvx - j1.DP.x) * (bvx - j1.DP.x) + (bvy - j1.DP.y) * (bvy - j1.DP.y)) + (e1x * j1.DDP.x + e1y * j1.DDP.y);
-    const double r2a = l2.v * l2.ddv + l2.dv * l2.dv - ((bvx - j2.DP.x) * (bvx - j2.DP.x) + (bvy - j2.DP.y) * (bvy - j2.DP.y)) + (e2x * j2.DDP.x + e2y * j2.DDP.y);
+    const double r1a = l1->v * l1->ddv + l1->dv * l1->dv - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y)) + (e1x * j1->DDP.x + e1y * j1->DDP.y);
+    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y)) + (e2x * j2->DDP.x + e2y * j2->DDP.y);
     const double bua = (r1a - r2a) * iq;
     const double bna = (a2 * r1a + a * r2a) * ihq;
     const double bax = bua * ux - bna * uy;
     const double bay = bua * uy + bna * ux;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
-    jb->P.x = j1.P.x + e1x;
-    jb->P.y = j1.P.y + e1y;
+    jb->P.x = j1->P.x + e1x;
+    jb->P.y = j1->P.y + e1y;
     jb->DP.x = bvx;
     jb->DP.y = bvy;
     jb->DDP.x = bax;
@@ -156,17 +161,17 @@ typedef struct {
     ANGLE in1;
     POINT p_A;
     POINT p_C;
-    ANGLE phi_triangle_bde;
     POINT p_D;
     POINT p_E;
     POINT p_F;
-    ANGLE phi_leg_ghi;
     POINT p_foot;
     ANGLE phi_crank;
     ANGLE phi_rod_j;
     ANGLE phi_rod_k;
+    ANGLE phi_triangle_bde;
     ANGLE phi_rocker_c;
     ANGLE phi_rod_f;
+    ANGLE phi_leg_ghi;
     double sigma[JANSEN_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
@@ -176,93 +181,6 @@ static void note(work *w, int st, int singular, int near)
 {
     if (st == 3 && !w->singular) w->singular = singular;
     if (st == 4 && !w->near) w->near = near;
-}
-
-/* The procedure of jansen.md, step by step. */
-static int run(work *w, const double in[], const double din[], const double ddin[])
-{
-    int st;
-
-    w->singular = 0;
-    w->near = 0;
-    for (st = 0; st <= JANSEN_N_STEPS; st++) w->sigma[st] = 1.0;
-    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
-
-    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
-
-
-    /* Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A */
-    crank_input(p_O, 15.0, w->in1, ref_O, &w->p_A);
-
-
-    /* Step 3: RRR_links, C (branch -1). C is joined to the known A by rod_j and to the known B by triangle_bde: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_A, p_B, l_rod_j, l_triangle_bde_C_B, -1, &w->p_C, &w->sigma[3]);
-    if (st == 1) return 31;
-    note(w, st, 33, -34);
-
-
-    /* Step 4: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is */
-    st = link_angle(p_B, w->p_C, 0.0, &w->phi_triangle_bde);
-    if (st == 1) return 41;
-    note(w, st, 43, -44);
-
-
-    /* Step 5: coupler_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it */
-    coupler_point(p_B, w->phi_triangle_bde, 2.6098795180489684, 40.01497880667612, &w->p_D);
-
-
-    /* Step 6: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_A, p_B, l_rod_k, l_rocker_c, 1, &w->p_E, &w->sigma[6]);
-    if (st == 1) return 61;
-    note(w, st, 63, -64);
-
-
-    /* Step 7: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_D, w->p_E, l_rod_f, l_leg_ghi, -1, &w->p_F, &w->sigma[7]);
-    if (st == 1) return 71;
-    note(w, st, 73, -74);
-
-
-    /* Step 8: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is */
-    st = link_angle(w->p_E, w->p_F, 0.0, &w->phi_leg_ghi);
-    if (st == 1) return 81;
-    note(w, st, 83, -84);
-
-
-    /* Step 9: coupler_point, foot. point foot of link leg_ghi */
-    coupler_point(w->p_E, w->phi_leg_ghi, -7.746594005561125, 48.38378118035099, &w->p_foot);
-
-
-    /* Step 10: link_angle, crank. O and A of link crank are known, so its angle is */
-    st = link_angle(p_O, w->p_A, 0.0, &w->phi_crank);
-    if (st == 1) return 101;
-    note(w, st, 103, -104);
-
-
-    /* Step 11: link_angle, rod_j. A and C of link rod_j are known, so its angle is */
-    st = link_angle(w->p_A, w->p_C, 0.0, &w->phi_rod_j);
-    if (st == 1) return 111;
-    note(w, st, 113, -114);
-
-
-    /* Step 12: link_angle, rod_k. A and E of link rod_k are known, so its angle is */
-    st = link_angle(w->p_A, w->p_E, 0.0, &w->phi_rod_k);
-    if (st == 1) return 121;
-    note(w, st, 123, -124);
-
-
-    /* Step 13: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is */
-    st = link_angle(p_B, w->p_E, 0.0, &w->phi_rocker_c);
-    if (st == 1) return 131;
-    note(w, st, 133, -134);
-
-
-    /* Step 14: link_angle, rod_f. D and F of link rod_f are known, so its angle is */
-    st = link_angle(w->p_D, w->p_F, 0.0, &w->phi_rod_f);
-    if (st == 1) return 141;
-    note(w, st, 143, -144);
-
-    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -342,16 +260,22 @@ static void no_outputs(jansen_state *out)
     out->leg_ghi.alpha = NAN;
 }
 
-/* Copy the records into the public state, with the status rules of the CSV. */
+/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
+static int failed(const work *w, jansen_state *out, int code)
+{
+    int k;
+    out->status = code;
+    for (k = 0; k <= JANSEN_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    no_outputs(out);
+    return code;
+}
+
+/* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, jansen_state *out)
 {
     int k;
     out->status = code;
     for (k = 0; k <= JANSEN_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (reason_of(code) == 1 || reason_of(code) == 2) {
-        no_outputs(out);
-        return;
-    }
     out->O.x = 0.0;
     out->O.y = 0.0;
     out->O.vx = 0.0;
@@ -476,6 +400,96 @@ static void publish(const work *w, int code, jansen_state *out)
     }
 }
 
+/* The procedure of jansen.md, step by step: a row that fails ends in failed(), a computed
+   one in publish(). */
+static int run(work *w, const double in[], const double din[], const double ddin[], jansen_state *out)
+{
+    int st;
+
+    w->singular = 0;
+    w->near = 0;
+    for (st = 0; st <= JANSEN_N_STEPS; st++) w->sigma[st] = 1.0;
+    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
+
+    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
+
+
+    /* Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A */
+    crank_input(&p_O, 15.0, &w->in1, &ref_O, &w->p_A);
+
+
+    /* Step 3: RRR_links, C (branch -1). C is joined to the known A by rod_j and to the known B by triangle_bde: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_A, &p_B, &l_rod_j, &l_triangle_bde_C_B, -1, &w->p_C, &w->sigma[3]);
+    if (st == 1) return failed(w, out, 31);
+    note(w, st, 33, -34);
+
+
+    /* Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it */
+    link_point(&p_B, &w->p_C, 0.06288866308556408, 0.9642163567880923, &w->p_D);
+
+
+    /* Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_A, &p_B, &l_rod_k, &l_rocker_c, 1, &w->p_E, &w->sigma[5]);
+    if (st == 1) return failed(w, out, 51);
+    note(w, st, 53, -54);
+
+
+    /* Step 6: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_D, &w->p_E, &l_rod_f, &l_leg_ghi, -1, &w->p_F, &w->sigma[6]);
+    if (st == 1) return failed(w, out, 61);
+    note(w, st, 63, -64);
+
+
+    /* Step 7: link_point, foot. point foot of link leg_ghi */
+    link_point(&w->p_E, &w->p_F, -0.21107885573739069, 1.3183591602277374, &w->p_foot);
+
+
+    /* Step 8: link_angle, crank. O and A of link crank are known, so its angle is */
+    st = link_angle(&p_O, &w->p_A, 0.0, &w->phi_crank);
+    if (st == 1) return failed(w, out, 81);
+    note(w, st, 83, -84);
+
+
+    /* Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is */
+    st = link_angle(&w->p_A, &w->p_C, 0.0, &w->phi_rod_j);
+    if (st == 1) return failed(w, out, 91);
+    note(w, st, 93, -94);
+
+
+    /* Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is */
+    st = link_angle(&w->p_A, &w->p_E, 0.0, &w->phi_rod_k);
+    if (st == 1) return failed(w, out, 101);
+    note(w, st, 103, -104);
+
+
+    /* Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is */
+    st = link_angle(&p_B, &w->p_C, 0.0, &w->phi_triangle_bde);
+    if (st == 1) return failed(w, out, 111);
+    note(w, st, 113, -114);
+
+
+    /* Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is */
+    st = link_angle(&p_B, &w->p_E, 0.0, &w->phi_rocker_c);
+    if (st == 1) return failed(w, out, 121);
+    note(w, st, 123, -124);
+
+
+    /* Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is */
+    st = link_angle(&w->p_D, &w->p_F, 0.0, &w->phi_rod_f);
+    if (st == 1) return failed(w, out, 131);
+    note(w, st, 133, -134);
+
+
+    /* Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is */
+    st = link_angle(&w->p_E, &w->p_F, 0.0, &w->phi_leg_ghi);
+    if (st == 1) return failed(w, out, 141);
+    note(w, st, 143, -144);
+
+    st = w->singular ? w->singular : w->near;
+    publish(w, st, out);
+    return st;
+}
+
 void jansen_init(jansen_state *out)
 {
     memset(out, 0, sizeof *out);
@@ -504,12 +518,8 @@ static int refuse(jansen_state *out)
 int jansen_solve(const double in[], const double din[], const double ddin[], jansen_state *out)
 {
     work w;
-    int code;
     if (!finite_inputs(in, din, ddin)) return refuse(out);
-    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
-    code = run(&w, in, din, ddin);
-    publish(&w, code, out);
-    return code;
+    return run(&w, in, din, ddin, out);
 }
 
 void jansen_columns(const double in[], const jansen_state *st, double col[JANSEN_N_COLUMNS])

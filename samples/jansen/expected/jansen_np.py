@@ -130,24 +130,25 @@ PARAMS = {  # design parameter -> its value in the sketch
     "l_rod_f": 39.39999999995135,  # length rod_f:D-F
     "l_leg_ghi": 36.69999999999471,  # length leg_ghi:F-E
     "step2.l": 15.0,  # step 2: crank_input of A
-    "step4.off": 0.0,  # step 4: link_angle of triangle_bde
-    "step5.gsi": 2.6098795180489684,  # step 5: coupler_point of D
-    "step5.eta": 40.01497880667612,  # step 5: coupler_point of D
-    "step8.off": 0.0,  # step 8: link_angle of leg_ghi
-    "step9.gsi": -7.746594005561125,  # step 9: coupler_point of foot
-    "step9.eta": 48.38378118035099,  # step 9: coupler_point of foot
-    "step10.off": 0.0,  # step 10: link_angle of crank
-    "step11.off": 0.0,  # step 11: link_angle of rod_j
-    "step12.off": 0.0,  # step 12: link_angle of rod_k
-    "step13.off": 0.0,  # step 13: link_angle of rocker_c
-    "step14.off": 0.0,  # step 14: link_angle of rod_f
+    "step4.along": 0.06288866308556408,  # step 4: link_point of D
+    "step4.across": 0.9642163567880923,  # step 4: link_point of D
+    "step7.along": -0.21107885573739069,  # step 7: link_point of foot
+    "step7.across": 1.3183591602277374,  # step 7: link_point of foot
+    "step8.off": 0.0,  # step 8: link_angle of crank
+    "step9.off": 0.0,  # step 9: link_angle of rod_j
+    "step10.off": 0.0,  # step 10: link_angle of rod_k
+    "step11.off": 0.0,  # step 11: link_angle of triangle_bde
+    "step12.off": 0.0,  # step 12: link_angle of rocker_c
+    "step13.off": 0.0,  # step 13: link_angle of rod_f
+    "step14.off": 0.0,  # step 14: link_angle of leg_ghi
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
     name="jansen_np", n_inputs=N_INPUTS, n_steps=N_STEPS, params=PARAMS,
     columns=COLUMNS[N_INPUTS:], levels=(0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,),  # derivative level of each output column
     reads=3,  # the arrays a row reads: inputs, rates, accelerations
     max_input=1e+30, bad_input=5,
-    failed=(1, 2), singular=3,
+    failed=(1, 2,), singular=3,
+    checks=True,  # whether a call gives each step's conditioning ("sigma")
 )
 
 
@@ -185,6 +186,7 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
+    th0 = np.arctan2(dy, dx) + off
     _c1 = np.asarray(r2 == 0)
     if not _c1.any():
         ir2 = 1 / r2
@@ -206,40 +208,43 @@ def link_angle(j1, j2, off):
     _sigma = np.asarray(_sigma, dtype=REAL)
     _fails = _st == 1
     _singular = _fails | (_st == 3)
-    _t1 = np.arctan2(dy, dx) + off
-    _c3 = np.asarray(_t1 > PI)
+    _c3 = np.asarray(th0 > PI)
     if not _c3.any():
-        _c4 = np.asarray(_t1 <= -PI)
+        _c4 = np.asarray(th0 <= -PI)
         if not _c4.any():
-            _f1 = _t1
+            _f1 = th0
         elif _c4.all():
-            _f1 = _t1 + 2 * PI
+            _f1 = th0 + 2 * PI
         else:
-            _f1 = np.where(_c4, _t1 + 2 * PI, _t1)
+            _f1 = np.where(_c4, th0 + 2 * PI, th0)
     elif _c3.all():
-        _f1 = _t1 - 2 * PI
+        _f1 = th0 - 2 * PI
     else:
-        _f1 = np.where(_c3, _t1 - 2 * PI, np.where(_t1 <= -PI, _t1 + 2 * PI, _t1))
+        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     _angle = (_f1, om, al)
     if np.any(_singular):  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp, sp = cos_sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    _t1 = phi_dthe * phi_dthe
-    rax = -phi_ddthe * ry - _t1 * rx
-    ray = phi_ddthe * rx - _t1 * ry
+def link_point(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
-    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+    _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -306,58 +311,59 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    _c7 = np.asarray(fail)
-    if not _c7.any():
-        sigma = np.minimum(area4 / (2 * l1_v * l2_v), 1)
-    elif _c7.all():
-        sigma = 0
-    else:
-        sigma = np.where(_c7, 0, np.minimum(area4 / (2 * l1_v * l2_v), 1))
-    _t1 = -a2
-    e2x = _t1 * ux - hn * uy
-    e2y = _t1 * uy + hn * ux
-    _c8 = np.asarray(hn == 0)
+    _c8 = np.asarray(fail)
     if not _c8.any():
-        ihq = 1 / (hn * q)
+        _s7 = area4 * (0.5 / (l1_v * l2_v))
     elif _c8.all():
+        _s7 = 0
+    else:
+        _s7 = np.where(_c8, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s7, 1)
+    _t2 = -a2
+    e2x = _t2 * ux - hn * uy
+    e2y = _t2 * uy + hn * ux
+    _c9 = np.asarray(hn == 0)
+    if not _c9.any():
+        ihq = 1 / (hn * q)
+    elif _c9.all():
         ihq = NAN
     else:
-        ihq = np.where(_c8, NAN, 1 / (hn * q))
+        ihq = np.where(_c9, NAN, 1 / (hn * q))
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
     buv = (r1v - r2v) * iq
     bnv = (a2 * r1v + a * r2v) * ihq
     bvx = buv * ux - bnv * uy
     bvy = buv * uy + bnv * ux
-    _t2 = bvx - j1_dx
-    _t3 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t2 * _t2 + _t3 * _t3) + (e1x * j1_ddx + e1y * j1_ddy)
-    _t4 = bvx - j2_dx
-    _t5 = bvy - j2_dy
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t4 * _t4 + _t5 * _t5) + (e2x * j2_ddx + e2y * j2_ddy)
+    _t3 = bvx - j1_dx
+    _t4 = bvy - j1_dy
+    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t3 * _t3 + _t4 * _t4) + (e1x * j1_ddx + e1y * j1_ddy)
+    _t5 = bvx - j2_dx
+    _t6 = bvy - j2_dy
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t5 * _t5 + _t6 * _t6) + (e2x * j2_ddx + e2y * j2_ddy)
     bua = (r1a - r2a) * iq
     bna = (a2 * r1a + a * r2a) * ihq
     bax = bua * ux - bna * uy
     bay = bua * uy + bna * ux
-    _c9 = np.asarray(fail)
-    if not _c9.any():
-        _c10 = np.asarray(sigma < 1e-07)
-        if not _c10.any():
-            _c11 = np.asarray(sigma < 0.001)
-            if not _c11.any():
+    _c10 = np.asarray(fail)
+    if not _c10.any():
+        _c11 = np.asarray(sigma < 1e-07)
+        if not _c11.any():
+            _c12 = np.asarray(sigma < 0.001)
+            if not _c12.any():
                 _st = 0
-            elif _c11.all():
+            elif _c12.all():
                 _st = 4
             else:
-                _st = np.where(_c11, 4, 0)
-        elif _c10.all():
+                _st = np.where(_c12, 4, 0)
+        elif _c11.all():
             _st = 3
         else:
-            _st = np.where(_c10, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c9.all():
+            _st = np.where(_c11, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c10.all():
         _st = 1
     else:
-        _st = np.where(_c9, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c10, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -399,7 +405,7 @@ def reason_of(code):
 # last axis the inputs) and its design parameters broadcast together and flattened into rows,
 # solved a block of rows at a time so that every array a block makes stays in the cache.
 # m holds the module's data (name, n_inputs, n_steps, reads, max_input, levels, columns,
-# failed, singular, bad_input, params).
+# failed, singular, bad_input, params, checks).
 
 BLOCK = 16384  # rows a block (measured: 20% faster than 4096, as fast as 32768)
 
@@ -458,9 +464,11 @@ def filled(out, shape, order, m):
     if out is None:
         return ({name: np.empty(n, dtype=REAL) for name in names}, np.empty(n, dtype=int),
                 np.ones((m.n_steps + 1, n), dtype=REAL))
-    flat = {}
-    for name, like, dtype in [(name, shape, REAL) for name in names] + [
-            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), REAL)]:
+    wanted = [(name, shape, REAL) for name in names] + [("status", shape, int)]
+    if m.checks:
+        wanted.append(("sigma", (m.n_steps + 1, *shape), REAL))
+    flat = {"sigma": np.ones((m.n_steps + 1, n), dtype=REAL)}  # the call's own where it gives no conditioning
+    for name, like, dtype in wanted:
         a = out.get(name)
         if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
             raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
@@ -516,7 +524,9 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
         row = solve(x, dx, ddx, order, state)
         for name in out:
             out[name][r] = row[name]
-        status[r], sigma[:, r] = row["status"], row["sigma"]
+        status[r] = row["status"]
+        if m.checks:
+            sigma[:, r] = row["sigma"]
     return finish(out, status, sigma, bad, shape, m)
 
 
@@ -537,7 +547,8 @@ def finish(out, status, sigma, bad, shape, m):
             out[name][lost] = np.nan
     result = {name: x.reshape(shape) for name, x in out.items()}
     result["status"] = status.reshape(shape)
-    result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
+    if m.checks:
+        result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
     return result
 
 class _Work:
@@ -567,37 +578,37 @@ def _run(x, dx, ddx, c):
     # Step 3: RRR_links, C (branch -1). C is joined to the known A by rod_j and to the known B by triangle_bde: a 3R two-link chain with both ends known
     st, sigma[3], w.p_C = RRR_links(w.p_A, w.p_B, w.l_rod_j, w.l_triangle_bde_C_B, -1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
-    # Step 4: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is
-    st, _, w.phi_triangle_bde = link_angle(w.p_B, w.p_C, c["step4.off"])
-    report.append((st, ((1, 41), (3, 43), (4, -44))))
-    # Step 5: coupler_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
-    _, _, w.p_D = coupler_point(w.p_B, w.phi_triangle_bde, c["step5.gsi"], c["step5.eta"])
-    # Step 6: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
-    st, sigma[6], w.p_E = RRR_links(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1)
+    # Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
+    _, _, w.p_D = link_point(w.p_B, w.p_C, c["step4.along"], c["step4.across"])
+    # Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
+    st, sigma[5], w.p_E = RRR_links(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1)
+    report.append((st, ((1, 51), (3, 53), (4, -54))))
+    # Step 6: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known
+    st, sigma[6], w.p_F = RRR_links(w.p_D, w.p_E, w.l_rod_f, w.l_leg_ghi, -1)
     report.append((st, ((1, 61), (3, 63), (4, -64))))
-    # Step 7: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known
-    st, sigma[7], w.p_F = RRR_links(w.p_D, w.p_E, w.l_rod_f, w.l_leg_ghi, -1)
-    report.append((st, ((1, 71), (3, 73), (4, -74))))
-    # Step 8: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is
-    st, _, w.phi_leg_ghi = link_angle(w.p_E, w.p_F, c["step8.off"])
-    report.append((st, ((1, 81), (3, 83), (4, -84))))
-    # Step 9: coupler_point, foot. point foot of link leg_ghi
-    _, _, w.p_foot = coupler_point(w.p_E, w.phi_leg_ghi, c["step9.gsi"], c["step9.eta"])
-    # Step 10: link_angle, crank. O and A of link crank are known, so its angle is
-    st, _, w.phi_crank = link_angle(w.p_O, w.p_A, c["step10.off"])
-    report.append((st, ((1, 101), (3, 103), (4, -104))))
-    # Step 11: link_angle, rod_j. A and C of link rod_j are known, so its angle is
-    st, _, w.phi_rod_j = link_angle(w.p_A, w.p_C, c["step11.off"])
-    report.append((st, ((1, 111), (3, 113), (4, -114))))
-    # Step 12: link_angle, rod_k. A and E of link rod_k are known, so its angle is
-    st, _, w.phi_rod_k = link_angle(w.p_A, w.p_E, c["step12.off"])
-    report.append((st, ((1, 121), (3, 123), (4, -124))))
-    # Step 13: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is
-    st, _, w.phi_rocker_c = link_angle(w.p_B, w.p_E, c["step13.off"])
-    report.append((st, ((1, 131), (3, 133), (4, -134))))
-    # Step 14: link_angle, rod_f. D and F of link rod_f are known, so its angle is
-    st, _, w.phi_rod_f = link_angle(w.p_D, w.p_F, c["step14.off"])
-    report.append((st, ((1, 141), (3, 143), (4, -144))))
+    # Step 7: link_point, foot. point foot of link leg_ghi
+    _, _, w.p_foot = link_point(w.p_E, w.p_F, c["step7.along"], c["step7.across"])
+    # Step 8: link_angle, crank. O and A of link crank are known, so its angle is
+    st, _, w.phi_crank = link_angle(w.p_O, w.p_A, c["step8.off"])
+    report.append((st, ((1, 81),)))
+    # Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is
+    st, _, w.phi_rod_j = link_angle(w.p_A, w.p_C, c["step9.off"])
+    report.append((st, ((1, 91),)))
+    # Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is
+    st, _, w.phi_rod_k = link_angle(w.p_A, w.p_E, c["step10.off"])
+    report.append((st, ((1, 101),)))
+    # Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is
+    st, _, w.phi_triangle_bde = link_angle(w.p_B, w.p_C, c["step11.off"])
+    report.append((st, ((1, 111),)))
+    # Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is
+    st, _, w.phi_rocker_c = link_angle(w.p_B, w.p_E, c["step12.off"])
+    report.append((st, ((1, 121),)))
+    # Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is
+    st, _, w.phi_rod_f = link_angle(w.p_D, w.p_F, c["step13.off"])
+    report.append((st, ((1, 131),)))
+    # Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is
+    st, _, w.phi_leg_ghi = link_angle(w.p_E, w.p_F, c["step14.off"])
+    report.append((st, ((1, 141),)))
     code = row_status(report)
     return w, code, sigma
 

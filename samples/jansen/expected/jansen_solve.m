@@ -92,78 +92,78 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 33, -34);
 
-    % Step 4: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is
-    [w.phi_triangle_bde, st] = link_angle(w.p_B, w.p_C, 0.0);
+    % Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
+    w.p_D = link_point(w.p_B, w.p_C, 0.06288866308556408, 0.9642163567880923);
+
+    % Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
+    [w.p_E, st, w.sigma(5)] = RRR_links(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1);
     if st == 1
-        status = 41;
+        status = 51;
         return;
     end
-    w = note(w, st, 43, -44);
+    w = note(w, st, 53, -54);
 
-    % Step 5: coupler_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
-    w.p_D = coupler_point(w.p_B, w.phi_triangle_bde, 2.6098795180489684, 40.01497880667612);
-
-    % Step 6: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
-    [w.p_E, st, w.sigma(6)] = RRR_links(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1);
+    % Step 6: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known
+    [w.p_F, st, w.sigma(6)] = RRR_links(w.p_D, w.p_E, w.l_rod_f, w.l_leg_ghi, -1);
     if st == 1
         status = 61;
         return;
     end
     w = note(w, st, 63, -64);
 
-    % Step 7: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known
-    [w.p_F, st, w.sigma(7)] = RRR_links(w.p_D, w.p_E, w.l_rod_f, w.l_leg_ghi, -1);
-    if st == 1
-        status = 71;
-        return;
-    end
-    w = note(w, st, 73, -74);
+    % Step 7: link_point, foot. point foot of link leg_ghi
+    w.p_foot = link_point(w.p_E, w.p_F, -0.21107885573739069, 1.3183591602277374);
 
-    % Step 8: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is
-    [w.phi_leg_ghi, st] = link_angle(w.p_E, w.p_F, 0.0);
+    % Step 8: link_angle, crank. O and A of link crank are known, so its angle is
+    [w.phi_crank, st] = link_angle(w.p_O, w.p_A, 0.0);
     if st == 1
         status = 81;
         return;
     end
     w = note(w, st, 83, -84);
 
-    % Step 9: coupler_point, foot. point foot of link leg_ghi
-    w.p_foot = coupler_point(w.p_E, w.phi_leg_ghi, -7.746594005561125, 48.38378118035099);
+    % Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is
+    [w.phi_rod_j, st] = link_angle(w.p_A, w.p_C, 0.0);
+    if st == 1
+        status = 91;
+        return;
+    end
+    w = note(w, st, 93, -94);
 
-    % Step 10: link_angle, crank. O and A of link crank are known, so its angle is
-    [w.phi_crank, st] = link_angle(w.p_O, w.p_A, 0.0);
+    % Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is
+    [w.phi_rod_k, st] = link_angle(w.p_A, w.p_E, 0.0);
     if st == 1
         status = 101;
         return;
     end
     w = note(w, st, 103, -104);
 
-    % Step 11: link_angle, rod_j. A and C of link rod_j are known, so its angle is
-    [w.phi_rod_j, st] = link_angle(w.p_A, w.p_C, 0.0);
+    % Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is
+    [w.phi_triangle_bde, st] = link_angle(w.p_B, w.p_C, 0.0);
     if st == 1
         status = 111;
         return;
     end
     w = note(w, st, 113, -114);
 
-    % Step 12: link_angle, rod_k. A and E of link rod_k are known, so its angle is
-    [w.phi_rod_k, st] = link_angle(w.p_A, w.p_E, 0.0);
+    % Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is
+    [w.phi_rocker_c, st] = link_angle(w.p_B, w.p_E, 0.0);
     if st == 1
         status = 121;
         return;
     end
     w = note(w, st, 123, -124);
 
-    % Step 13: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is
-    [w.phi_rocker_c, st] = link_angle(w.p_B, w.p_E, 0.0);
+    % Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is
+    [w.phi_rod_f, st] = link_angle(w.p_D, w.p_F, 0.0);
     if st == 1
         status = 131;
         return;
     end
     w = note(w, st, 133, -134);
 
-    % Step 14: link_angle, rod_f. D and F of link rod_f are known, so its angle is
-    [w.phi_rod_f, st] = link_angle(w.p_D, w.p_F, 0.0);
+    % Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is
+    [w.phi_leg_ghi, st] = link_angle(w.p_E, w.p_F, 0.0);
     if st == 1
         status = 141;
         return;
@@ -413,12 +413,13 @@ function [angle, st] = link_angle(j1, j2, off)
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
     r2 = dx * dx + dy * dy;
-    if atan2(dy, dx) + off > pi
-        th = atan2(dy, dx) + off - 2 * pi;
-    elseif atan2(dy, dx) + off <= -pi
-        th = atan2(dy, dx) + off + 2 * pi;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = atan2(dy, dx) + off;
+        th = th0;
     end
     if r2 == 0
         ir2 = NaN;
@@ -440,28 +441,28 @@ function [angle, st] = link_angle(j1, j2, off)
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
-    if st == 1 || st == 3
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
 end
 
-function jc = coupler_point(j0, phi, gsi, eta)
-    % Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi.
-    cp = cos(phi.the);
-    sp = sin(phi.the);
-    rx = gsi * cp - eta * sp;
-    ry = gsi * sp + eta * cp;
-    rvx = -phi.dthe * ry;
-    rvy = phi.dthe * rx;
-    rax = -phi.ddthe * ry - phi.dthe * phi.dthe * rx;
-    ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
-    jc.x = j0.x + rx;
-    jc.y = j0.y + ry;
-    jc.dx = j0.dx + rvx;
-    jc.dy = j0.dy + rvy;
-    jc.ddx = j0.ddx + rax;
-    jc.ddy = j0.ddy + ray;
+function jc = link_point(j1, j2, along, across)
+    % Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry).
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx - j1.dx;
+    dvy = j2.dy - j1.dy;
+    dax = j2.ddx - j1.ddx;
+    day = j2.ddy - j1.ddy;
+    rx = along * dx - across * dy;
+    ry = along * dy + across * dx;
+    rvx = along * dvx - across * dvy;
+    rvy = along * dvy + across * dvx;
+    rax = along * dax - across * day;
+    ray = along * day + across * dax;
+    jc.x = j1.x + rx;
+    jc.y = j1.y + ry;
+    jc.dx = j1.dx + rvx;
+    jc.dy = j1.dy + rvy;
+    jc.ddx = j1.ddx + rax;
+    jc.ddy = j1.ddy + ray;
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
@@ -510,10 +511,11 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     e1x = at * ux - hn * uy;
     e1y = at * uy + hn * ux;
     if fail
-        sigma = 0;
+        ratio = 0;
     else
-        sigma = min(area4 / (2 * l1.v * l2.v), 1);
+        ratio = area4 * (0.5 / (l1.v * l2.v));
     end
+    sigma = min(ratio, 1);
     e2x = -a2 * ux - hn * uy;
     e2y = -a2 * uy + hn * ux;
     if hn == 0

@@ -12,7 +12,7 @@ extern "C" {
 /* Array lengths: in[], din[] and ddin[] of jansen_foot_solve hold JANSEN_FOOT_N_INPUTS numbers,
    col[] of jansen_foot_columns JANSEN_FOOT_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define JANSEN_FOOT_N_INPUTS 1
-#define JANSEN_FOOT_N_STEPS 10
+#define JANSEN_FOOT_N_STEPS 8
 #define JANSEN_FOOT_N_COLUMNS 7
 #define JANSEN_FOOT_ORDER 1
 #define JANSEN_FOOT_SAMPLES 361

@@ -12,38 +12,39 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-static void crank_input(POINT j1, double l, ANGLE theta, ANGLE phi, POINT *j2)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
-    const double t = theta.the + phi.the;
+    const double t = theta->the + phi->the;
     const double ct = cos(t);
     const double st = sin(t);
     const double rx = l * ct;
     const double ry = l * st;
-    const double om = theta.dthe + phi.dthe;
-    const double al = theta.ddthe + phi.ddthe;
+    const double om = theta->dthe + phi->dthe;
+    const double al = theta->ddthe + phi->ddthe;
     const double rvx = -om * ry;
     const double rvy = om * rx;
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
-    j2->P.x = j1.P.x + rx;
-    j2->P.y = j1.P.y + ry;
-    j2->DP.x = j1.DP.x + rvx;
-    j2->DP.y = j1.DP.y + rvy;
-    j2->DDP.x = j1.DDP.x + rax;
-    j2->DDP.y = j1.DDP.y + ray;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = j1->DP.x + rvx;
+    j2->DP.y = j1->DP.y + rvy;
+    j2->DDP.x = j1->DDP.x + rax;
+    j2->DDP.y = j1->DDP.y + ray;
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
-static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
-    const double dvx = j2.DP.x - j1.DP.x;
-    const double dvy = j2.DP.y - j1.DP.y;
-    const double dax = j2.DDP.x - j1.DDP.x;
-    const double day = j2.DDP.y - j1.DDP.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
     const double r2 = dx * dx + dy * dy;
-    const double th = atan2(dy, dx) + off > 3.141592653589793 ? atan2(dy, dx) + off - 2 * 3.141592653589793 : atan2(dy, dx) + off <= -3.141592653589793 ? atan2(dy, dx) + off + 2 * 3.141592653589793 : atan2(dy, dx) + off;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     const double ir2 = r2 == 0 ? NAN : 1 / r2;
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
@@ -52,74 +53,75 @@ static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
     angle->dthe = om;
     angle->ddthe = al;
     if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; }
-    if (st == 1 || st == 3) { angle->dthe = NAN; angle->ddthe = NAN; }
     return st;
 }
 
 /* Angle of a link that keeps a constant angle off to a known angle phi. */
-static void offset_angle(ANGLE phi, double off, ANGLE *angle)
+static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle)
 {
-    const double th = phi.the + off > 3.141592653589793 ? phi.the + off - 2 * 3.141592653589793 : phi.the + off <= -3.141592653589793 ? phi.the + off + 2 * 3.141592653589793 : phi.the + off;
+    const double th0 = phi->the + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     angle->the = th;
-    angle->dthe = phi.dthe;
-    angle->ddthe = phi.ddthe;
+    angle->dthe = phi->dthe;
+    angle->ddthe = phi->ddthe;
 }
 
 /* PPR chain: link b slides on the guide line (pg, psig) and shares a second prismatic pair, of axis psig + cx, with link a turning about jr.  (xa, ya): the pair's reference point on a from jr; (xb, yb): on b from b's slider point; both in the guide's frame.  sgn is +1 when a is the slider of the second pair.  Gives s1, jp1 on the guide and sx, jpx of the second pair. */
-static int PPR_links(POINT jr, POINT pg, ANGLE psig, double xa, double ya, double xb, double yb, double cx, int sgn, VARIABLE *s1, POINT *jp1, VARIABLE *sx, POINT *jpx, double *sigma_out)
+static inline int PPR_links(const POINT *jr, const POINT *pg, const ANGLE *psig, double xa, double ya, double xb, double yb, double cx, int sgn, VARIABLE *s1, POINT *jp1, VARIABLE *sx, POINT *jpx, double *sigma_out)
 {
-    const double cg = cos(psig.the);
-    const double sg = sin(psig.the);
-    const double cax = cos(psig.the + cx);
-    const double sax = sin(psig.the + cx);
+    const double cg = cos(psig->the);
+    const double sg = sin(psig->the);
+    const double cax = cos(psig->the + cx);
+    const double sax = sin(psig->the + cx);
     const double rax = xa * cg - ya * sg;
     const double ray = xa * sg + ya * cg;
     const double rbx = xb * cg - yb * sg;
     const double rby = xb * sg + yb * cg;
-    const double pax = jr.P.x + rax;
-    const double pay = jr.P.y + ray;
-    const double wx = pax - pg.P.x - rbx;
-    const double wy = pay - pg.P.y - rby;
+    const double pax = jr->P.x + rax;
+    const double pay = jr->P.y + ray;
+    const double wx = pax - pg->P.x - rbx;
+    const double wy = pay - pg->P.y - rby;
     const double cr = cg * sax - sg * cax;
     const double icr = cr == 0 ? NAN : 1 / cr;
     const double sv1 = (wx * sax - wy * cax) * icr;
     const double mx = wx - sv1 * cg;
     const double my = wy - sv1 * sg;
     const double mu = mx * cax + my * sax;
-    const double jp1x = pg.P.x + sv1 * cg;
-    const double jp1y = pg.P.y + sv1 * sg;
+    const double jp1x = pg->P.x + sv1 * cg;
+    const double jp1y = pg->P.y + sv1 * sg;
     const double pbx = jp1x + rbx;
     const double pby = jp1y + rby;
-    const double sigma = fmin(fabs(cr), 1.0);
-    const double ravx = -psig.dthe * ray;
-    const double ravy = psig.dthe * rax;
-    const double raax = -psig.ddthe * ray - psig.dthe * psig.dthe * rax;
-    const double raay = psig.ddthe * rax - psig.dthe * psig.dthe * ray;
-    const double rbvx = -psig.dthe * rby;
-    const double rbvy = psig.dthe * rbx;
-    const double rbax = -psig.ddthe * rby - psig.dthe * psig.dthe * rbx;
-    const double rbay = psig.ddthe * rbx - psig.dthe * psig.dthe * rby;
-    const double k1x = jr.DP.x + ravx - pg.DP.x - rbvx + sv1 * psig.dthe * sg;
-    const double k1y = jr.DP.y + ravy - pg.DP.y - rbvy - sv1 * psig.dthe * cg;
-    const double ds1 = (k1x * sax - k1y * cax + psig.dthe * mu) * icr;
+    const double acr = fabs(cr);
+    const double sigma = (1.0 < acr ? 1.0 : acr);
+    const double ravx = -psig->dthe * ray;
+    const double ravy = psig->dthe * rax;
+    const double raax = -psig->ddthe * ray - psig->dthe * psig->dthe * rax;
+    const double raay = psig->ddthe * rax - psig->dthe * psig->dthe * ray;
+    const double rbvx = -psig->dthe * rby;
+    const double rbvy = psig->dthe * rbx;
+    const double rbax = -psig->ddthe * rby - psig->dthe * psig->dthe * rbx;
+    const double rbay = psig->ddthe * rbx - psig->dthe * psig->dthe * rby;
+    const double k1x = jr->DP.x + ravx - pg->DP.x - rbvx + sv1 * psig->dthe * sg;
+    const double k1y = jr->DP.y + ravy - pg->DP.y - rbvy - sv1 * psig->dthe * cg;
+    const double ds1 = (k1x * sax - k1y * cax + psig->dthe * mu) * icr;
     const double mvx = k1x - ds1 * cg;
     const double mvy = k1y - ds1 * sg;
     const double mvu = mvx * cax + mvy * sax;
-    const double jp1vx = pg.DP.x + ds1 * cg - sv1 * psig.dthe * sg;
-    const double jp1vy = pg.DP.y + ds1 * sg + sv1 * psig.dthe * cg;
-    const double tn = 2 * ds1 * psig.dthe + sv1 * psig.ddthe;
-    const double tu = sv1 * psig.dthe * psig.dthe;
-    const double k2x = jr.DDP.x + raax - pg.DDP.x - rbax + tn * sg + tu * cg;
-    const double k2y = jr.DDP.y + raay - pg.DDP.y - rbay - tn * cg + tu * sg;
-    const double dds1 = (k2x * sax - k2y * cax + 2 * psig.dthe * mvu + psig.ddthe * mu) * icr;
-    const double jp1ax = pg.DDP.x + dds1 * cg - tn * sg - tu * cg;
-    const double jp1ay = pg.DDP.y + dds1 * sg + tn * cg - tu * sg;
+    const double jp1vx = pg->DP.x + ds1 * cg - sv1 * psig->dthe * sg;
+    const double jp1vy = pg->DP.y + ds1 * sg + sv1 * psig->dthe * cg;
+    const double tn = 2 * ds1 * psig->dthe + sv1 * psig->ddthe;
+    const double tu = sv1 * psig->dthe * psig->dthe;
+    const double k2x = jr->DDP.x + raax - pg->DDP.x - rbax + tn * sg + tu * cg;
+    const double k2y = jr->DDP.y + raay - pg->DDP.y - rbay - tn * cg + tu * sg;
+    const double dds1 = (k2x * sax - k2y * cax + 2 * psig->dthe * mvu + psig->ddthe * mu) * icr;
+    const double jp1ax = pg->DDP.x + dds1 * cg - tn * sg - tu * cg;
+    const double jp1ay = pg->DDP.y + dds1 * sg + tn * cg - tu * sg;
     const double jxx = sgn > 0 ? pax : pbx;
     const double jxy = sgn > 0 ? pay : pby;
-    const double jxdx = sgn > 0 ? jr.DP.x + ravx : jp1vx + rbvx;
-    const double jxdy = sgn > 0 ? jr.DP.y + ravy : jp1vy + rbvy;
-    const double jxddx = sgn > 0 ? jr.DDP.x + raax : jp1ax + rbax;
-    const double jxddy = sgn > 0 ? jr.DDP.y + raay : jp1ay + rbay;
+    const double jxdx = sgn > 0 ? jr->DP.x + ravx : jp1vx + rbvx;
+    const double jxdy = sgn > 0 ? jr->DP.y + ravy : jp1vy + rbvy;
+    const double jxddx = sgn > 0 ? jr->DDP.x + raax : jp1ax + rbax;
+    const double jxddy = sgn > 0 ? jr->DDP.y + raay : jp1ay + rbay;
     const int st = cr == 0 ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
     s1->v = sv1;
     s1->dv = ds1;
@@ -132,7 +134,7 @@ static int PPR_links(POINT jr, POINT pg, ANGLE psig, double xa, double ya, doubl
     jp1->DDP.y = jp1ay;
     sx->v = sgn * mu;
     sx->dv = sgn * mvu;
-    sx->ddv = sgn * ((k2x - dds1 * cg) * cax + (k2y - dds1 * sg) * sax + psig.dthe * (cax * mvy - sax * mvx));
+    sx->ddv = sgn * ((k2x - dds1 * cg) * cax + (k2y - dds1 * sg) * sax + psig->dthe * (cax * mvy - sax * mvx));
     jpx->P.x = jxx;
     jpx->P.y = jxy;
     jpx->DP.x = jxdx;
@@ -184,45 +186,6 @@ static void note(work *w, int st, int singular, int near)
     if (st == 4 && !w->near) w->near = near;
 }
 
-/* The procedure of scotch_yoke.md, step by step. */
-static int run(work *w, const double in[], const double din[], const double ddin[])
-{
-    int st;
-
-    w->singular = 0;
-    w->near = 0;
-    for (st = 0; st <= SCOTCH_YOKE_N_STEPS; st++) w->sigma[st] = 1.0;
-    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
-
-    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
-
-
-    /* Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A */
-    crank_input(p_O, 25.0, w->in1, ref_O, &w->p_A);
-
-
-    /* Step 3: PPR_links, P. the slider yoke rides on the known line Q and carries the slide P of block, which turns about the known A: a PPR two-link chain (one solution) */
-    st = PPR_links(w->p_A, g_Q, psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1, &w->s_Q, &w->p_Q, &w->s_P, &w->p_P, &w->sigma[3]);
-    if (st == 1) return 31;
-    note(w, st, 33, -34);
-
-
-    /* Step 4: link_angle, crank. O and A of link crank are known, so its angle is */
-    st = link_angle(p_O, w->p_A, 0.0, &w->phi_crank);
-    if (st == 1) return 41;
-    note(w, st, 43, -44);
-
-
-    /* Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide */
-    offset_angle(phi_frame, -0.2984989315861793, &w->phi_yoke);
-
-
-    /* Step 6: offset_angle, block. link block keeps a constant angle to its slide */
-    offset_angle(psi_Q, 1.5707963267948966, &w->phi_block);
-
-    return w->singular ? w->singular : w->near;
-}
-
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
 static void no_outputs(scotch_yoke_state *out)
 {
@@ -270,16 +233,22 @@ static void no_outputs(scotch_yoke_state *out)
     out->block.alpha = NAN;
 }
 
-/* Copy the records into the public state, with the status rules of the CSV. */
+/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
+static int failed(const work *w, scotch_yoke_state *out, int code)
+{
+    int k;
+    out->status = code;
+    for (k = 0; k <= SCOTCH_YOKE_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    no_outputs(out);
+    return code;
+}
+
+/* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, scotch_yoke_state *out)
 {
     int k;
     out->status = code;
     for (k = 0; k <= SCOTCH_YOKE_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (reason_of(code) == 1 || reason_of(code) == 2) {
-        no_outputs(out);
-        return;
-    }
     out->O.x = 0.0;
     out->O.y = 0.0;
     out->O.vx = 0.0;
@@ -354,6 +323,48 @@ static void publish(const work *w, int code, scotch_yoke_state *out)
     }
 }
 
+/* The procedure of scotch_yoke.md, step by step: a row that fails ends in failed(), a computed
+   one in publish(). */
+static int run(work *w, const double in[], const double din[], const double ddin[], scotch_yoke_state *out)
+{
+    int st;
+
+    w->singular = 0;
+    w->near = 0;
+    for (st = 0; st <= SCOTCH_YOKE_N_STEPS; st++) w->sigma[st] = 1.0;
+    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
+
+    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
+
+
+    /* Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A */
+    crank_input(&p_O, 25.0, &w->in1, &ref_O, &w->p_A);
+
+
+    /* Step 3: PPR_links, P. the slider yoke rides on the known line Q and carries the slide P of block, which turns about the known A: a PPR two-link chain (one solution) */
+    st = PPR_links(&w->p_A, &g_Q, &psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1, &w->s_Q, &w->p_Q, &w->s_P, &w->p_P, &w->sigma[3]);
+    if (st == 1) return failed(w, out, 31);
+    note(w, st, 33, -34);
+
+
+    /* Step 4: link_angle, crank. O and A of link crank are known, so its angle is */
+    st = link_angle(&p_O, &w->p_A, 0.0, &w->phi_crank);
+    if (st == 1) return failed(w, out, 41);
+    note(w, st, 43, -44);
+
+
+    /* Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide */
+    offset_angle(&phi_frame, -0.2984989315861793, &w->phi_yoke);
+
+
+    /* Step 6: offset_angle, block. link block keeps a constant angle to its slide */
+    offset_angle(&psi_Q, 1.5707963267948966, &w->phi_block);
+
+    st = w->singular ? w->singular : w->near;
+    publish(w, st, out);
+    return st;
+}
+
 void scotch_yoke_init(scotch_yoke_state *out)
 {
     memset(out, 0, sizeof *out);
@@ -382,12 +393,8 @@ static int refuse(scotch_yoke_state *out)
 int scotch_yoke_solve(const double in[], const double din[], const double ddin[], scotch_yoke_state *out)
 {
     work w;
-    int code;
     if (!finite_inputs(in, din, ddin)) return refuse(out);
-    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
-    code = run(&w, in, din, ddin);
-    publish(&w, code, out);
-    return code;
+    return run(&w, in, din, ddin, out);
 }
 
 void scotch_yoke_columns(const double in[], const scotch_yoke_state *st, double col[SCOTCH_YOKE_N_COLUMNS])

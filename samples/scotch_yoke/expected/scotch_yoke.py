@@ -75,6 +75,7 @@ COLUMNS = (
     "Q.ds",
     "Q.dds",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 
 
@@ -109,21 +110,21 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    th = atan2(dy, dx) + off - 2 * PI if atan2(dy, dx) + off > PI else atan2(dy, dx) + off + 2 * PI if atan2(dy, dx) + off <= -PI else atan2(dy, dx) + off
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     ir2 = NAN if r2 == 0 else 1 / r2
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (th, NAN, NAN)
     return st, (th, om, al)
 
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
-    th = phi_the + off - 2 * PI if phi_the + off > PI else phi_the + off + 2 * PI if phi_the + off <= -PI else phi_the + off
+    th0 = phi_the + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     return (th, phi_dthe, phi_ddthe)
 
 def PPR_links(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
@@ -153,7 +154,8 @@ def PPR_links(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
     jp1y = pg_y + sv1 * sg
     pbx = jp1x + rbx
     pby = jp1y + rby
-    sigma = min(abs(cr), 1)
+    acr = abs(cr)
+    sigma = (1 if 1 < acr else acr)
     ravx = -psig_dthe * ray
     ravy = psig_dthe * rax
     raax = -psig_ddthe * ray - psig_dthe * psig_dthe * rax
@@ -234,13 +236,15 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.s_Q, w.p_Q, w.s_P, w.p_P = PPR_links(w.p_A, g_Q, psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1)
     if st == 1:
         return 31
-    w.note(st, 33, -34)
+    if st:
+        w.note(st, 33, -34)
 
     # Step 4: link_angle, crank. O and A of link crank are known, so its angle is
     st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
     if st == 1:
         return 41
-    w.note(st, 43, -44)
+    if st:
+        w.note(st, 43, -44)
 
     # Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide
     w.phi_yoke = offset_angle(phi_frame, -0.2984989315861793)
@@ -302,10 +306,13 @@ def _publish(w, code, order):
             w.s_Q[1],
             w.s_Q[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -265,12 +265,13 @@ function [angle, st] = link_angle(j1, j2, off)
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
     r2 = dx * dx + dy * dy;
-    if atan2(dy, dx) + off > pi
-        th = atan2(dy, dx) + off - 2 * pi;
-    elseif atan2(dy, dx) + off <= -pi
-        th = atan2(dy, dx) + off + 2 * pi;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = atan2(dy, dx) + off;
+        th = th0;
     end
     if r2 == 0
         ir2 = NaN;
@@ -292,20 +293,17 @@ function [angle, st] = link_angle(j1, j2, off)
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
-    if st == 1 || st == 3
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
 end
 
 function angle = offset_angle(phi, off)
     % Angle of a link that keeps a constant angle off to a known angle phi.
-    if phi.the + off > pi
-        th = phi.the + off - 2 * pi;
-    elseif phi.the + off <= -pi
-        th = phi.the + off + 2 * pi;
+    th0 = phi.the + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = phi.the + off;
+        th = th0;
     end
     angle.the = th;
     angle.dthe = phi.dthe;
@@ -340,7 +338,8 @@ function [s1, jp1, sx, jpx, st, sigma] = PPR_links(jr, pg, psig, xa, ya, xb, yb,
     jp1y = pg.y + sv1 * sg;
     pbx = jp1x + rbx;
     pby = jp1y + rby;
-    sigma = min(abs(cr), 1);
+    acr = abs(cr);
+    sigma = min(acr, 1);
     ravx = -psig.dthe * ray;
     ravy = psig.dthe * rax;
     raax = -psig.ddthe * ray - psig.dthe * psig.dthe * rax;

@@ -17,38 +17,39 @@ typedef struct { double v, dv, ddv; } VARIABLE;
 #define LINKGEN_NINPUTS 1
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-static void crank_input(POINT j1, double l, ANGLE theta, ANGLE phi, POINT *j2)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
-    const double t = theta.the + phi.the;
+    const double t = theta->the + phi->the;
     const double ct = cos(t);
     const double st = sin(t);
     const double rx = l * ct;
     const double ry = l * st;
-    const double om = theta.dthe + phi.dthe;
-    const double al = theta.ddthe + phi.ddthe;
+    const double om = theta->dthe + phi->dthe;
+    const double al = theta->ddthe + phi->ddthe;
     const double rvx = -om * ry;
     const double rvy = om * rx;
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
-    j2->P.x = j1.P.x + rx;
-    j2->P.y = j1.P.y + ry;
-    j2->DP.x = j1.DP.x + rvx;
-    j2->DP.y = j1.DP.y + rvy;
-    j2->DDP.x = j1.DDP.x + rax;
-    j2->DDP.y = j1.DDP.y + ray;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = j1->DP.x + rvx;
+    j2->DP.y = j1->DP.y + rvy;
+    j2->DDP.x = j1->DDP.x + rax;
+    j2->DDP.y = j1->DDP.y + ray;
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
-static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
-    const double dvx = j2.DP.x - j1.DP.x;
-    const double dvy = j2.DP.y - j1.DP.y;
-    const double dax = j2.DDP.x - j1.DDP.x;
-    const double day = j2.DDP.y - j1.DDP.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
     const double r2 = dx * dx + dy * dy;
-    const double th = atan2(dy, dx) + off > 3.141592653589793 ? atan2(dy, dx) + off - 2 * 3.141592653589793 : atan2(dy, dx) + off <= -3.141592653589793 ? atan2(dy, dx) + off + 2 * 3.141592653589793 : atan2(dy, dx) + off;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     const double ir2 = r2 == 0 ? NAN : 1 / r2;
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
@@ -57,74 +58,78 @@ static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
     angle->dthe = om;
     angle->ddthe = al;
     if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; }
-    if (st == 1 || st == 3) { angle->dthe = NAN; angle->ddthe = NAN; }
     return st;
 }
 
-/* Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi. */
-static void coupler_point(POINT j0, ANGLE phi, double gsi, double eta, POINT *jc)
+/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
+static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
 {
-    const double cp = cos(phi.the);
-    const double sp = sin(phi.the);
-    const double rx = gsi * cp - eta * sp;
-    const double ry = gsi * sp + eta * cp;
-    const double rvx = -phi.dthe * ry;
-    const double rvy = phi.dthe * rx;
-    const double rax = -phi.ddthe * ry - phi.dthe * phi.dthe * rx;
-    const double ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
-    jc->P.x = j0.P.x + rx;
-    jc->P.y = j0.P.y + ry;
-    jc->DP.x = j0.DP.x + rvx;
-    jc->DP.y = j0.DP.y + rvy;
-    jc->DDP.x = j0.DDP.x + rax;
-    jc->DDP.y = j0.DDP.y + ray;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
+    const double rx = along * dx - across * dy;
+    const double ry = along * dy + across * dx;
+    const double rvx = along * dvx - across * dvy;
+    const double rvy = along * dvy + across * dvx;
+    const double rax = along * dax - across * day;
+    const double ray = along * day + across * dax;
+    jc->P.x = j1->P.x + rx;
+    jc->P.y = j1->P.y + ry;
+    jc->DP.x = j1->DP.x + rvx;
+    jc->DP.y = j1->DP.y + rvy;
+    jc->DDP.x = j1->DDP.x + rax;
+    jc->DDP.y = j1->DDP.y + ray;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
-static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POINT *jb, double *sigma_out)
+static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
     const double q = sqrt(dx * dx + dy * dy);
     const double iq = q == 0 ? NAN : 1 / q;
     const double ux = dx * iq;
     const double uy = dy * iq;
-    const double hi = fmax(l1.v, l2.v);
-    const double lo = fmin(l1.v, l2.v);
-    const double x = fmax(hi, q);
-    const double z = fmin(lo, q);
+    const double hi = (l2->v > l1->v ? l2->v : l1->v);
+    const double lo = (l2->v < l1->v ? l2->v : l1->v);
+    const double x = (q > hi ? q : hi);
+    const double z = (q < lo ? q : lo);
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
     const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
-    const double kk = fmax(k, 0.0);
+    const double kk = (0.0 > k ? 0.0 : k);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
-    const double a = (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2;
-    const double a2 = (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2;
-    const double flat = q >= hi ? (l1.v + (q - l2.v)) / 2 : l1.v >= l2.v ? (l1.v + (q + l2.v)) / 2 : (q - (l1.v + l2.v)) / 2;
+    const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double flat = q >= hi ? (l1->v + (q - l2->v)) / 2 : l1->v >= l2->v ? (l1->v + (q + l2->v)) / 2 : (q - (l1->v + l2->v)) / 2;
     const double at = k > 0 ? a : flat;
     const double hn = minv * h;
     const double e1x = at * ux - hn * uy;
     const double e1y = at * uy + hn * ux;
-    const double sigma = fail ? 0 : fmin(area4 / (2 * l1.v * l2.v), 1.0);
+    const double ratio = fail ? 0 : area4 * (0.5 / (l1->v * l2->v));
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double e2x = -a2 * ux - hn * uy;
     const double e2y = -a2 * uy + hn * ux;
     const double ihq = hn == 0 ? NAN : 1 / (hn * q);
-    const double r1v = l1.v * l1.dv + (e1x * j1.DP.x + e1y * j1.DP.y);
-    const double r2v = l2.v * l2.dv + (e2x * j2.DP.x + e2y * j2.DP.y);
+    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
+    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
     const double buv = (r1v - r2v) * iq;
     const double bnv = (a2 * r1v + a * r2v) * ihq;
     const double bvx = buv * ux - bnv * uy;
     const double bvy = buv * uy + bnv * ux;
-    const double r1a = l1.v * l1.ddv + l1.dv * l1.dv - ((bvx - j1.DP.x) * (bvx - j1.DP.x) + (bvy - j1.DP.y) * (bvy - j1.DP.y)) + (e1x * j1.DDP.x + e1y * j1.DDP.y);
-    const double r2a = l2.v * l2.ddv + l2.dv * l2.dv - ((bvx - j2.DP.x) * (bvx - j2.DP.x) + (bvy - j2.DP.y) * (bvy - j2.DP.y)) + (e2x * j2.DDP.x + e2y * j2.DDP.y);
+    const double r1a = l1->v * l1->ddv + l1->dv * l1->dv - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y)) + (e1x * j1->DDP.x + e1y * j1->DDP.y);
+    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y)) + (e2x * j2->DDP.x + e2y * j2->DDP.y);
     const double bua = (r1a - r2a) * iq;
     const double bna = (a2 * r1a + a * r2a) * ihq;
     const double bax = bua * ux - bna * uy;
     const double bay = bua * uy + bna * ux;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
-    jb->P.x = j1.P.x + e1x;
-    jb->P.y = j1.P.y + e1y;
+    jb->P.x = j1->P.x + e1x;
+    jb->P.y = j1->P.y + e1y;
     jb->DP.x = bvx;
     jb->DP.y = bvy;
     jb->DDP.x = bax;
@@ -136,14 +141,14 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
 }
 
 /* Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part). */
-static void link_residual(POINT j1, POINT j2, VARIABLE l, VARIABLE *f)
+static inline void link_residual(const POINT *j1, const POINT *j2, const VARIABLE *l, VARIABLE *f)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
-    const double dvx = j2.DP.x - j1.DP.x;
-    const double dvy = j2.DP.y - j1.DP.y;
-    const double dax = j2.DDP.x - j1.DDP.x;
-    const double day = j2.DDP.y - j1.DDP.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
     const double r = sqrt(dx * dx + dy * dy);
     const double ir = r == 0 ? NAN : 1 / r;
     const double s = sqrt(dvx * dvx + dvy * dvy);
@@ -151,9 +156,9 @@ static void link_residual(POINT j1, POINT j2, VARIABLE l, VARIABLE *f)
     const double rd = r == 0 ? s : (dx * dvx + dy * dvy) * ir;
     const double rp = s == 0 ? sqrt(dax * dax + day * day) : (dvx * dax + dvy * day) * iv;
     const double rdd = r == 0 ? rp : (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir;
-    f->v = r - l.v;
-    f->dv = rd - l.dv;
-    f->ddv = rdd - l.ddv;
+    f->v = r - l->v;
+    f->dv = rd - l->dv;
+    f->ddv = rdd - l->ddv;
 }
 
 /* The reason of a status code (linkgen/status.py): the last digit of a positive code
@@ -790,7 +795,7 @@ static const int PERIODIC[LINKGEN_NINPUTS] = { 1 };
    between two of the sketch's pairs or points. */
 static const resolver_mechanism MECHANISM = {
     188.67962264113208, SKETCH_IN, SKETCH_A, BLOCK_SIZES, LIMITS, PERIODIC, NAN,
-    92, 2
+    82, 2
 };
 
 /* The resolver's policy, lengths relative to the length scale (see sixbar_fig14.md). */
@@ -819,10 +824,10 @@ typedef struct {
     VARIABLE add1;
     POINT p_J4;
     POINT p_J2;
-    ANGLE phi_ternary;
     POINT p_J5;
     VARIABLE f1;
     ANGLE phi_rocker1;
+    ANGLE phi_ternary;
     ANGLE phi_rocker2;
     ANGLE phi_coupler;
     ANGLE phi_crank;
@@ -850,20 +855,20 @@ typedef struct {
     int br5;  /* the branch of step 5, as the last solution left it */
     int br14;  /* the branch of step 14, as the last solution left it */
     int br15;  /* the branch of step 15, as the last solution left it */
+    int br18;  /* the branch of step 18, as the last solution left it */
     int br19;  /* the branch of step 19, as the last solution left it */
-    int br20;  /* the branch of step 20, as the last solution left it */
-    int br24;  /* the branch of step 24, as the last solution left it */
-    int br25;  /* the branch of step 25, as the last solution left it */
-    int br29;  /* the branch of step 29, as the last solution left it */
+    int br22;  /* the branch of step 22, as the last solution left it */
+    int br23;  /* the branch of step 23, as the last solution left it */
+    int br26;  /* the branch of step 26, as the last solution left it */
+    int br27;  /* the branch of step 27, as the last solution left it */
     int br30;  /* the branch of step 30, as the last solution left it */
+    int br31;  /* the branch of step 31, as the last solution left it */
     int br34;  /* the branch of step 34, as the last solution left it */
     int br35;  /* the branch of step 35, as the last solution left it */
+    int br38;  /* the branch of step 38, as the last solution left it */
     int br39;  /* the branch of step 39, as the last solution left it */
-    int br40;  /* the branch of step 40, as the last solution left it */
-    int br44;  /* the branch of step 44, as the last solution left it */
-    int br45;  /* the branch of step 45, as the last solution left it */
-    int br49;  /* the branch of step 49, as the last solution left it */
-    int br50;  /* the branch of step 50, as the last solution left it */
+    int br42;  /* the branch of step 42, as the last solution left it */
+    int br43;  /* the branch of step 43, as the last solution left it */
 } work;
 
 /* Remember the code of the first step at a singular or a near-singular position (st: the step's). */
@@ -875,7 +880,7 @@ static void note(work *w, int st, int singular, int near)
 
 static const VARIABLE ZERO_LENGTH = { 0.0, 0.0, 0.0 };
 
-/* Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9:
+/* Steps 4, 5, 6, 7, iterated by the resolver of step 8:
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -894,23 +899,19 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
     w->add1.ddv = dda[0];
     w->chains = 1.0;
     /* Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J3, p_J6, l_rocker2, w->add1, w->br4, &w->p_J4, &w->sigma[4]);
+    st = RRR_links(&p_J3, &p_J6, &l_rocker2, &w->add1, w->br4, &w->p_J4, &w->sigma[4]);
     if (st == 1) return 1;
     if (live) note(w, st, 43, -44);
     w->chains = fmin(w->chains, w->sigma[4]);
     /* Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, w->br5, &w->p_J2, &w->sigma[5]);
+    st = RRR_links(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br5, &w->p_J2, &w->sigma[5]);
     if (st == 1) return 1;
     if (live) note(w, st, 53, -54);
     w->chains = fmin(w->chains, w->sigma[5]);
-    /* Step 6: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
-    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 63, -64);
-    /* Step 7: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    coupler_point(w->p_J4, w->phi_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
-    /* Step 8: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_J5, l_coupler, &w->f1);
+    /* Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
+    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    /* Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1);
     f[0] = w->f1.v;
     df[0] = w->f1.dv;
     ddf[0] = w->f1.ddv;
@@ -918,7 +919,7 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
 }
 
 
-/* Steps 14, 15, 16, 17, 18, iterated by the resolver of step 9   (fallback 1: the Add-link J6-J2):
+/* Steps 14, 15, 16, 17, iterated by the resolver of step 8   (fallback 1: the Add-link J6-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -937,23 +938,19 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
     w->add1_v1.ddv = dda[0];
     w->chains = 1.0;
     /* Step 14: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, p_J6, l_rocker1, w->add1_v1, w->br14, &w->p_J2, &w->sigma[14]);
+    st = RRR_links(&p_J1, &p_J6, &l_rocker1, &w->add1_v1, w->br14, &w->p_J2, &w->sigma[14]);
     if (st == 1) return 1;
     if (live) note(w, st, 143, -144);
     w->chains = fmin(w->chains, w->sigma[14]);
     /* Step 15: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w->br15, &w->p_J4, &w->sigma[15]);
+    st = RRR_links(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br15, &w->p_J4, &w->sigma[15]);
     if (st == 1) return 1;
     if (live) note(w, st, 153, -154);
     w->chains = fmin(w->chains, w->sigma[15]);
-    /* Step 16: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
-    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 163, -164);
-    /* Step 17: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    coupler_point(w->p_J2, w->phi_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
-    /* Step 18: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_J5, l_coupler, &w->f1_v1);
+    /* Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    /* Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v1);
     f[0] = w->f1_v1.v;
     df[0] = w->f1_v1.dv;
     ddf[0] = w->f1_v1.ddv;
@@ -961,7 +958,7 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 19, 20, 21, 22, 23, iterated by the resolver of step 9   (fallback 2: the Add-link J1-J4):
+/* Steps 18, 19, 20, 21, iterated by the resolver of step 8   (fallback 2: the Add-link J1-J4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -979,24 +976,20 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
     w->add1_v2.dv = da[0];
     w->add1_v2.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 19: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J3, p_J1, l_rocker2, w->add1_v2, w->br19, &w->p_J4, &w->sigma[19]);
+    /* Step 18: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J3, &p_J1, &l_rocker2, &w->add1_v2, w->br18, &w->p_J4, &w->sigma[18]);
+    if (st == 1) return 1;
+    if (live) note(w, st, 183, -184);
+    w->chains = fmin(w->chains, w->sigma[18]);
+    /* Step 19: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br19, &w->p_J2, &w->sigma[19]);
     if (st == 1) return 1;
     if (live) note(w, st, 193, -194);
     w->chains = fmin(w->chains, w->sigma[19]);
-    /* Step 20: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, w->br20, &w->p_J2, &w->sigma[20]);
-    if (st == 1) return 1;
-    if (live) note(w, st, 203, -204);
-    w->chains = fmin(w->chains, w->sigma[20]);
-    /* Step 21: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
-    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 213, -214);
-    /* Step 22: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    coupler_point(w->p_J4, w->phi_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
-    /* Step 23: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_J5, l_coupler, &w->f1_v2);
+    /* Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
+    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    /* Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v2);
     f[0] = w->f1_v2.v;
     df[0] = w->f1_v2.dv;
     ddf[0] = w->f1_v2.ddv;
@@ -1004,7 +997,7 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9   (fallback 3: the Add-link J3-J2):
+/* Steps 22, 23, 24, 25, iterated by the resolver of step 8   (fallback 3: the Add-link J3-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1022,24 +1015,20 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
     w->add1_v3.dv = da[0];
     w->add1_v3.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 24: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, p_J3, l_rocker1, w->add1_v3, w->br24, &w->p_J2, &w->sigma[24]);
+    /* Step 22: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J1, &p_J3, &l_rocker1, &w->add1_v3, w->br22, &w->p_J2, &w->sigma[22]);
     if (st == 1) return 1;
-    if (live) note(w, st, 243, -244);
-    w->chains = fmin(w->chains, w->sigma[24]);
-    /* Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w->br25, &w->p_J4, &w->sigma[25]);
+    if (live) note(w, st, 223, -224);
+    w->chains = fmin(w->chains, w->sigma[22]);
+    /* Step 23: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br23, &w->p_J4, &w->sigma[23]);
     if (st == 1) return 1;
-    if (live) note(w, st, 253, -254);
-    w->chains = fmin(w->chains, w->sigma[25]);
-    /* Step 26: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
-    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 263, -264);
-    /* Step 27: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    coupler_point(w->p_J2, w->phi_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
-    /* Step 28: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_J5, l_coupler, &w->f1_v3);
+    if (live) note(w, st, 233, -234);
+    w->chains = fmin(w->chains, w->sigma[23]);
+    /* Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    /* Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v3);
     f[0] = w->f1_v3.v;
     df[0] = w->f1_v3.dv;
     ddf[0] = w->f1_v3.ddv;
@@ -1047,7 +1036,7 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9   (fallback 4: the Add-link J7-J2):
+/* Steps 26, 27, 28, 29, iterated by the resolver of step 8   (fallback 4: the Add-link J7-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1065,24 +1054,20 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
     w->add1_v4.dv = da[0];
     w->add1_v4.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, p_J7, l_rocker1, w->add1_v4, w->br29, &w->p_J2, &w->sigma[29]);
+    /* Step 26: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J1, &p_J7, &l_rocker1, &w->add1_v4, w->br26, &w->p_J2, &w->sigma[26]);
     if (st == 1) return 1;
-    if (live) note(w, st, 293, -294);
-    w->chains = fmin(w->chains, w->sigma[29]);
-    /* Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w->br30, &w->p_J4, &w->sigma[30]);
+    if (live) note(w, st, 263, -264);
+    w->chains = fmin(w->chains, w->sigma[26]);
+    /* Step 27: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br27, &w->p_J4, &w->sigma[27]);
     if (st == 1) return 1;
-    if (live) note(w, st, 303, -304);
-    w->chains = fmin(w->chains, w->sigma[30]);
-    /* Step 31: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
-    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 313, -314);
-    /* Step 32: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    coupler_point(w->p_J2, w->phi_ternary, 59.456436769311765, 12.84259034217134, &w->p_J5);
-    /* Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_J5, l_coupler, &w->f1_v4);
+    if (live) note(w, st, 273, -274);
+    w->chains = fmin(w->chains, w->sigma[27]);
+    /* Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
+    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    /* Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v4);
     f[0] = w->f1_v4.v;
     df[0] = w->f1_v4.dv;
     ddf[0] = w->f1_v4.ddv;
@@ -1090,7 +1075,7 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9   (fallback 5: the Add-link J7-J4):
+/* Steps 30, 31, 32, 33, iterated by the resolver of step 8   (fallback 5: the Add-link J7-J4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1108,24 +1093,20 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
     w->add1_v5.dv = da[0];
     w->add1_v5.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J3, p_J7, l_rocker2, w->add1_v5, w->br34, &w->p_J4, &w->sigma[34]);
+    /* Step 30: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J3, &p_J7, &l_rocker2, &w->add1_v5, w->br30, &w->p_J4, &w->sigma[30]);
     if (st == 1) return 1;
-    if (live) note(w, st, 343, -344);
-    w->chains = fmin(w->chains, w->sigma[34]);
-    /* Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J4, l_rocker1, l_ternary_J2_J4, w->br35, &w->p_J2, &w->sigma[35]);
+    if (live) note(w, st, 303, -304);
+    w->chains = fmin(w->chains, w->sigma[30]);
+    /* Step 31: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br31, &w->p_J2, &w->sigma[31]);
     if (st == 1) return 1;
-    if (live) note(w, st, 353, -354);
-    w->chains = fmin(w->chains, w->sigma[35]);
-    /* Step 36: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
-    st = link_angle(w->p_J2, w->p_J4, 0.0, &w->phi_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 363, -364);
-    /* Step 37: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    coupler_point(w->p_J4, w->phi_ternary, -45.662543438831435, 12.842590342171341, &w->p_J5);
-    /* Step 38: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J6, w->p_J5, l_coupler, &w->f1_v5);
+    if (live) note(w, st, 313, -314);
+    w->chains = fmin(w->chains, w->sigma[31]);
+    /* Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
+    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    /* Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v5);
     f[0] = w->f1_v5.v;
     df[0] = w->f1_v5.dv;
     ddf[0] = w->f1_v5.ddv;
@@ -1133,7 +1114,7 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9   (fallback 6: the Add-link J3-J5):
+/* Steps 34, 35, 36, 37, iterated by the resolver of step 8   (fallback 6: the Add-link J3-J5):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1151,24 +1132,20 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
     w->add1_v6.dv = da[0];
     w->add1_v6.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 39: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J6, p_J3, l_coupler, w->add1_v6, w->br39, &w->p_J5, &w->sigma[39]);
+    /* Step 34: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J6, &p_J3, &l_coupler, &w->add1_v6, w->br34, &w->p_J5, &w->sigma[34]);
     if (st == 1) return 1;
-    if (live) note(w, st, 393, -394);
-    w->chains = fmin(w->chains, w->sigma[39]);
-    /* Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, w->br40, &w->p_J2, &w->sigma[40]);
+    if (live) note(w, st, 343, -344);
+    w->chains = fmin(w->chains, w->sigma[34]);
+    /* Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br35, &w->p_J2, &w->sigma[35]);
     if (st == 1) return 1;
-    if (live) note(w, st, 403, -404);
-    w->chains = fmin(w->chains, w->sigma[40]);
-    /* Step 41: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is */
-    st = link_angle(w->p_J5, w->p_J2, 2.928860872898183, &w->phi_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 413, -414);
-    /* Step 42: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
-    coupler_point(w->p_J5, w->phi_ternary, 45.662543438831435, -12.842590342171341, &w->p_J4);
-    /* Step 43: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J3, w->p_J4, l_rocker2, &w->f1_v6);
+    if (live) note(w, st, 353, -354);
+    w->chains = fmin(w->chains, w->sigma[35]);
+    /* Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
+    link_point(&w->p_J5, &w->p_J2, -0.6891891891891891, 0.36486486486486486, &w->p_J4);
+    /* Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v6);
     f[0] = w->f1_v6.v;
     df[0] = w->f1_v6.dv;
     ddf[0] = w->f1_v6.ddv;
@@ -1176,7 +1153,7 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9   (fallback 7: the Add-link J1-J5):
+/* Steps 38, 39, 40, 41, iterated by the resolver of step 8   (fallback 7: the Add-link J1-J5):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1194,24 +1171,20 @@ static int group_1_v7(void *ctx, const double a[], const double da[], const doub
     w->add1_v7.dv = da[0];
     w->add1_v7.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 44: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J6, p_J1, l_coupler, w->add1_v7, w->br44, &w->p_J5, &w->sigma[44]);
+    /* Step 38: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J6, &p_J1, &l_coupler, &w->add1_v7, w->br38, &w->p_J5, &w->sigma[38]);
     if (st == 1) return 1;
-    if (live) note(w, st, 443, -444);
-    w->chains = fmin(w->chains, w->sigma[44]);
-    /* Step 45: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, w->br45, &w->p_J2, &w->sigma[45]);
+    if (live) note(w, st, 383, -384);
+    w->chains = fmin(w->chains, w->sigma[38]);
+    /* Step 39: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br39, &w->p_J2, &w->sigma[39]);
     if (st == 1) return 1;
-    if (live) note(w, st, 453, -454);
-    w->chains = fmin(w->chains, w->sigma[45]);
-    /* Step 46: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is */
-    st = link_angle(w->p_J5, w->p_J2, 2.928860872898183, &w->phi_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 463, -464);
-    /* Step 47: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
-    coupler_point(w->p_J5, w->phi_ternary, 45.662543438831435, -12.842590342171341, &w->p_J4);
-    /* Step 48: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J3, w->p_J4, l_rocker2, &w->f1_v7);
+    if (live) note(w, st, 393, -394);
+    w->chains = fmin(w->chains, w->sigma[39]);
+    /* Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
+    link_point(&w->p_J5, &w->p_J2, -0.6891891891891891, 0.36486486486486486, &w->p_J4);
+    /* Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v7);
     f[0] = w->f1_v7.v;
     df[0] = w->f1_v7.dv;
     ddf[0] = w->f1_v7.ddv;
@@ -1219,7 +1192,7 @@ static int group_1_v7(void *ctx, const double a[], const double da[], const doub
 }
 
 
-/* Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9   (fallback 8: the Add-link J7-J5):
+/* Steps 42, 43, 44, 45, iterated by the resolver of step 8   (fallback 8: the Add-link J7-J5):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
@@ -1237,24 +1210,20 @@ static int group_1_v8(void *ctx, const double a[], const double da[], const doub
     w->add1_v8.dv = da[0];
     w->add1_v8.ddv = dda[0];
     w->chains = 1.0;
-    /* Step 49: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J6, p_J7, l_coupler, w->add1_v8, w->br49, &w->p_J5, &w->sigma[49]);
+    /* Step 42: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J6, &p_J7, &l_coupler, &w->add1_v8, w->br42, &w->p_J5, &w->sigma[42]);
     if (st == 1) return 1;
-    if (live) note(w, st, 493, -494);
-    w->chains = fmin(w->chains, w->sigma[49]);
-    /* Step 50: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
-    st = RRR_links(p_J1, w->p_J5, l_rocker1, l_ternary_J2_J5, w->br50, &w->p_J2, &w->sigma[50]);
+    if (live) note(w, st, 423, -424);
+    w->chains = fmin(w->chains, w->sigma[42]);
+    /* Step 43: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
+    st = RRR_links(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br43, &w->p_J2, &w->sigma[43]);
     if (st == 1) return 1;
-    if (live) note(w, st, 503, -504);
-    w->chains = fmin(w->chains, w->sigma[50]);
-    /* Step 51: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is */
-    st = link_angle(w->p_J5, w->p_J2, 2.928860872898183, &w->phi_ternary);
-    if (st == 1) return 1;
-    if (live) note(w, st, 513, -514);
-    /* Step 52: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
-    coupler_point(w->p_J5, w->phi_ternary, 45.662543438831435, -12.842590342171341, &w->p_J4);
-    /* Step 53: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
-    link_residual(p_J3, w->p_J4, l_rocker2, &w->f1_v8);
+    if (live) note(w, st, 433, -434);
+    w->chains = fmin(w->chains, w->sigma[43]);
+    /* Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
+    link_point(&w->p_J5, &w->p_J2, -0.6891891891891891, 0.36486486486486486, &w->p_J4);
+    /* Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
+    link_residual(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v8);
     f[0] = w->f1_v8.v;
     df[0] = w->f1_v8.dv;
     ddf[0] = w->f1_v8.ddv;
@@ -1270,7 +1239,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     const work *w = (const work *)ctx;
     VARIABLE f;
     double m;
-    link_residual(w->p_J6, w->p_J4, ZERO_LENGTH, &f);
+    link_residual(&w->p_J6, &w->p_J4, &ZERO_LENGTH, &f);
     a[0][0] = f.v;
     ad[0][0] = f.dv;
     m = (w->p_J6.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (w->p_J6.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
@@ -1280,7 +1249,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[0][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][2];
     ad[0][2] = 0.0;
     a[0][LINKGEN_NMAX - 1] = ad[0][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(w->p_J6, w->p_J2, ZERO_LENGTH, &f);
+    link_residual(&w->p_J6, &w->p_J2, &ZERO_LENGTH, &f);
     a[1][0] = f.v;
     ad[1][0] = f.dv;
     m = (w->p_J6.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J6.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1290,7 +1259,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[1][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][2];
     ad[1][2] = 0.0;
     a[1][LINKGEN_NMAX - 1] = ad[1][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(p_J1, w->p_J4, ZERO_LENGTH, &f);
+    link_residual(&p_J1, &w->p_J4, &ZERO_LENGTH, &f);
     a[2][0] = f.v;
     ad[2][0] = f.dv;
     m = (p_J1.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J1.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
@@ -1300,7 +1269,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[2][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][2];
     ad[2][2] = 0.0;
     a[2][LINKGEN_NMAX - 1] = ad[2][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(p_J3, w->p_J2, ZERO_LENGTH, &f);
+    link_residual(&p_J3, &w->p_J2, &ZERO_LENGTH, &f);
     a[3][0] = f.v;
     ad[3][0] = f.dv;
     m = (p_J3.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J3.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1310,7 +1279,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[3][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][2];
     ad[3][2] = 0.0;
     a[3][LINKGEN_NMAX - 1] = ad[3][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(p_J7, w->p_J2, ZERO_LENGTH, &f);
+    link_residual(&p_J7, &w->p_J2, &ZERO_LENGTH, &f);
     a[4][0] = f.v;
     ad[4][0] = f.dv;
     m = (p_J7.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J7.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1320,7 +1289,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[4][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][2];
     ad[4][2] = 0.0;
     a[4][LINKGEN_NMAX - 1] = ad[4][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(p_J7, w->p_J4, ZERO_LENGTH, &f);
+    link_residual(&p_J7, &w->p_J4, &ZERO_LENGTH, &f);
     a[5][0] = f.v;
     ad[5][0] = f.dv;
     m = (p_J7.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J7.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
@@ -1330,7 +1299,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[5][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][2];
     ad[5][2] = 0.0;
     a[5][LINKGEN_NMAX - 1] = ad[5][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(p_J3, w->p_J5, ZERO_LENGTH, &f);
+    link_residual(&p_J3, &w->p_J5, &ZERO_LENGTH, &f);
     a[6][0] = f.v;
     ad[6][0] = f.dv;
     m = (p_J3.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J3.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
@@ -1340,7 +1309,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[6][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[6][2];
     ad[6][2] = 0.0;
     a[6][LINKGEN_NMAX - 1] = ad[6][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(p_J1, w->p_J5, ZERO_LENGTH, &f);
+    link_residual(&p_J1, &w->p_J5, &ZERO_LENGTH, &f);
     a[7][0] = f.v;
     ad[7][0] = f.dv;
     m = (p_J1.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J1.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
@@ -1350,7 +1319,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[7][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[7][2];
     ad[7][2] = 0.0;
     a[7][LINKGEN_NMAX - 1] = ad[7][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(p_J7, w->p_J5, ZERO_LENGTH, &f);
+    link_residual(&p_J7, &w->p_J5, &ZERO_LENGTH, &f);
     a[8][0] = f.v;
     ad[8][0] = f.dv;
     m = (p_J7.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J7.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
@@ -1362,83 +1331,6 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[8][LINKGEN_NMAX - 1] = ad[8][LINKGEN_NMAX - 1] = 0.0;
 }
 
-
-/* The procedure of sixbar_fig14.md, step by step. */
-static int run(work *w, const double in[], const double din[], const double ddin[], int order,
-               double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int its[],
-               int used[])
-{
-    int st;
-
-    w->singular = 0;
-    w->near = 0;
-    for (st = 0; st <= SIXBAR_FIG14_N_STEPS; st++) w->sigma[st] = 1.0;
-    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
-
-    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
-
-
-    /* Step 2: crank_input, J6. J7 is known and link frame is placed, so the input angle theta_J7 turns link crank to J6 */
-    crank_input(p_J7, 20.0, w->in1, ref_J7, &w->p_J6);
-
-
-    /* Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4 */
-
-
-    /* Step 9: resolve, group1. the resolver iterates on add1 until coupler regains its length */
-    {
-        static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6, group_1_v7, group_1_v8 };
-        w->br4 = a[0][1] < 0.0 ? -1 : 1;
-        w->br5 = a[0][2] < 0.0 ? -1 : 1;
-        w->br14 = a[1][1] < 0.0 ? -1 : 1;
-        w->br15 = a[1][2] < 0.0 ? -1 : 1;
-        w->br19 = a[2][1] < 0.0 ? -1 : 1;
-        w->br20 = a[2][2] < 0.0 ? -1 : 1;
-        w->br24 = a[3][1] < 0.0 ? -1 : 1;
-        w->br25 = a[3][2] < 0.0 ? -1 : 1;
-        w->br29 = a[4][1] < 0.0 ? -1 : 1;
-        w->br30 = a[4][2] < 0.0 ? -1 : 1;
-        w->br34 = a[5][1] < 0.0 ? -1 : 1;
-        w->br35 = a[5][2] < 0.0 ? -1 : 1;
-        w->br39 = a[6][1] < 0.0 ? -1 : 1;
-        w->br40 = a[6][2] < 0.0 ? -1 : 1;
-        w->br44 = a[7][1] < 0.0 ? -1 : 1;
-        w->br45 = a[7][2] < 0.0 ? -1 : 1;
-        w->br49 = a[8][1] < 0.0 ? -1 : 1;
-        w->br50 = a[8][2] < 0.0 ? -1 : 1;
-        if (!resolve_group(blocks, 9, lengths_1, w, a, ad, 0, &used[0],
-                           &its[0], &w->sigma[9], &w->chains, order, &MECHANISM, &POLICY))
-            return 92;
-        note(w, w->sigma[9] < 1e-07 ? 3 : w->sigma[9] < 0.001 ? 4 : 0, 93, -94);
-    }
-
-
-
-    /* Step 10: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is */
-    st = link_angle(p_J1, w->p_J2, 0.0, &w->phi_rocker1);
-    if (st == 1) return 101;
-    note(w, st, 103, -104);
-
-
-    /* Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is */
-    st = link_angle(p_J3, w->p_J4, 0.0, &w->phi_rocker2);
-    if (st == 1) return 111;
-    note(w, st, 113, -114);
-
-
-    /* Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is */
-    st = link_angle(w->p_J6, w->p_J5, 0.0, &w->phi_coupler);
-    if (st == 1) return 121;
-    note(w, st, 123, -124);
-
-
-    /* Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is */
-    st = link_angle(p_J7, w->p_J6, 0.0, &w->phi_crank);
-    if (st == 1) return 131;
-    note(w, st, 133, -134);
-
-    return w->singular ? w->singular : w->near;
-}
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
 static void no_outputs(sixbar_fig14_state *out)
@@ -1505,16 +1397,26 @@ static void no_outputs(sixbar_fig14_state *out)
     out->frame.alpha = NAN;
 }
 
-/* Copy the records into the public state, with the status rules of the CSV. */
-static void publish(const work *w, int code, sixbar_fig14_state *out)
+/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
+static int failed(const work *w, sixbar_fig14_state *out, int code)
 {
     int k;
     out->status = code;
     for (k = 0; k <= SIXBAR_FIG14_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    no_outputs(out);
+    return code;
+}
+
+/* Copy the records of a computed row into the public state, with the status rules of the CSV. */
+static void publish(const work *w, int code, sixbar_fig14_state *out)
+{
+    int k;
     if (reason_of(code) == 1 || reason_of(code) == 2) {
-        no_outputs(out);
+        failed(w, out, code);
         return;
     }
+    out->status = code;
+    for (k = 0; k <= SIXBAR_FIG14_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     out->J1.x = 0.0;
     out->J1.y = 0.0;
     out->J1.vx = 0.0;
@@ -1617,6 +1519,89 @@ static void publish(const work *w, int code, sixbar_fig14_state *out)
         out->frame.omega = NAN;
         out->frame.alpha = NAN;
     }
+}
+
+/* The procedure of sixbar_fig14.md, step by step. */
+static int run(work *w, const double in[], const double din[], const double ddin[], int order,
+               double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int its[],
+               int used[])
+{
+    int st;
+
+    w->singular = 0;
+    w->near = 0;
+    for (st = 0; st <= SIXBAR_FIG14_N_STEPS; st++) w->sigma[st] = 1.0;
+    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
+
+    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
+
+
+    /* Step 2: crank_input, J6. J7 is known and link frame is placed, so the input angle theta_J7 turns link crank to J6 */
+    crank_input(&p_J7, 20.0, &w->in1, &ref_J7, &w->p_J6);
+
+
+    /* Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4 */
+
+
+    /* Step 8: resolve, group1. the resolver iterates on add1 until coupler regains its length */
+    {
+        static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6, group_1_v7, group_1_v8 };
+        w->br4 = a[0][1] < 0.0 ? -1 : 1;
+        w->br5 = a[0][2] < 0.0 ? -1 : 1;
+        w->br14 = a[1][1] < 0.0 ? -1 : 1;
+        w->br15 = a[1][2] < 0.0 ? -1 : 1;
+        w->br18 = a[2][1] < 0.0 ? -1 : 1;
+        w->br19 = a[2][2] < 0.0 ? -1 : 1;
+        w->br22 = a[3][1] < 0.0 ? -1 : 1;
+        w->br23 = a[3][2] < 0.0 ? -1 : 1;
+        w->br26 = a[4][1] < 0.0 ? -1 : 1;
+        w->br27 = a[4][2] < 0.0 ? -1 : 1;
+        w->br30 = a[5][1] < 0.0 ? -1 : 1;
+        w->br31 = a[5][2] < 0.0 ? -1 : 1;
+        w->br34 = a[6][1] < 0.0 ? -1 : 1;
+        w->br35 = a[6][2] < 0.0 ? -1 : 1;
+        w->br38 = a[7][1] < 0.0 ? -1 : 1;
+        w->br39 = a[7][2] < 0.0 ? -1 : 1;
+        w->br42 = a[8][1] < 0.0 ? -1 : 1;
+        w->br43 = a[8][2] < 0.0 ? -1 : 1;
+        if (!resolve_group(blocks, 9, lengths_1, w, a, ad, 0, &used[0],
+                           &its[0], &w->sigma[8], &w->chains, order, &MECHANISM, &POLICY))
+            return 82;
+        note(w, w->sigma[8] < 1e-07 ? 3 : w->sigma[8] < 0.001 ? 4 : 0, 83, -84);
+    }
+
+
+
+    /* Step 9: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is */
+    st = link_angle(&p_J1, &w->p_J2, 0.0, &w->phi_rocker1);
+    if (st == 1) return 91;
+    note(w, st, 93, -94);
+
+
+    /* Step 10: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
+    st = link_angle(&w->p_J2, &w->p_J4, 0.0, &w->phi_ternary);
+    if (st == 1) return 101;
+    note(w, st, 103, -104);
+
+
+    /* Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is */
+    st = link_angle(&p_J3, &w->p_J4, 0.0, &w->phi_rocker2);
+    if (st == 1) return 111;
+    note(w, st, 113, -114);
+
+
+    /* Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is */
+    st = link_angle(&w->p_J6, &w->p_J5, 0.0, &w->phi_coupler);
+    if (st == 1) return 121;
+    note(w, st, 123, -124);
+
+
+    /* Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is */
+    st = link_angle(&p_J7, &w->p_J6, 0.0, &w->phi_crank);
+    if (st == 1) return 131;
+    note(w, st, 133, -134);
+
+    return w->singular ? w->singular : w->near;
 }
 
 void sixbar_fig14_init(sixbar_fig14_state *out)

@@ -12,7 +12,7 @@ extern "C" {
 /* Array lengths: in[], din[] and ddin[] of sixbar_fig14_solve hold SIXBAR_FIG14_N_INPUTS numbers,
    col[] of sixbar_fig14_columns SIXBAR_FIG14_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define SIXBAR_FIG14_N_INPUTS 1
-#define SIXBAR_FIG14_N_STEPS 53
+#define SIXBAR_FIG14_N_STEPS 45
 #define SIXBAR_FIG14_N_COLUMNS 61
 #define SIXBAR_FIG14_ORDER 2
 #define SIXBAR_FIG14_SAMPLES 361

@@ -30,7 +30,7 @@ PI = math.pi
 ORDER = 2
 SAMPLES = 361
 N_INPUTS = 1
-N_STEPS = 53
+N_STEPS = 45
 INPUTS = ((0.0, 6.283185307179586, 6.283185307179586), )  # (start, stop, speed) of each input
 COLUMNS = (
     "theta_J7",
@@ -95,6 +95,7 @@ COLUMNS = (
     "frame.omega",
     "frame.alpha",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 N_GROUPS = 1
 ZERO_LENGTH = (0.0, 0.0, 0.0,)
@@ -107,7 +108,7 @@ MECHANISM = SimpleNamespace(  # what the row driver needs of the mechanism
     periodic=(True,),  # angle inputs: the continuation goes the shorter way round
     low=NAN,  # where the reach of an angle input starts (nan: no reach)
     groups=N_GROUPS,
-    another=92,  # a row solvable on another assembly only
+    another=82,  # a row solvable on another assembly only
     not_converged=2,  # a row failed with this reason is followed from the last one
 )
 POLICY = SimpleNamespace(  # the resolver's policy, lengths relative to the length scale (see sixbar_fig14.md)
@@ -158,30 +159,33 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    th = atan2(dy, dx) + off - 2 * PI if atan2(dy, dx) + off > PI else atan2(dy, dx) + off + 2 * PI if atan2(dy, dx) + off <= -PI else atan2(dy, dx) + off
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     ir2 = NAN if r2 == 0 else 1 / r2
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (th, NAN, NAN)
     return st, (th, om, al)
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp = cos(phi_the)
-    sp = sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    rax = -phi_ddthe * ry - phi_dthe * phi_dthe * rx
-    ray = phi_ddthe * rx - phi_dthe * phi_dthe * ry
-    return (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+def link_point(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
+    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -195,14 +199,14 @@ def RRR_links(j1, j2, l1, l2, minv):
     iq = NAN if q == 0 else 1 / q
     ux = dx * iq
     uy = dy * iq
-    hi = max(l1_v, l2_v)
-    lo = min(l1_v, l2_v)
-    x = max(hi, q)
-    z = min(lo, q)
+    hi = (l2_v if l2_v > l1_v else l1_v)
+    lo = (l2_v if l2_v < l1_v else l1_v)
+    x = (q if q > hi else hi)
+    z = (q if q < lo else lo)
     y = hi if q >= hi else lo if q <= lo else q
     k = z - (x - y)
     fail = k < -8 * EPS * x or q == 0 or lo <= 0
-    kk = max(k, 0)
+    kk = (0 if 0 > k else k)
     area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     h = area4 * iq / 2
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
@@ -212,7 +216,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    sigma = 0 if fail else min(area4 / (2 * l1_v * l2_v), 1)
+    ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
+    sigma = (1 if 1 < ratio else ratio)
     e2x = -a2 * ux - hn * uy
     e2y = -a2 * uy + hn * ux
     ihq = NAN if hn == 0 else 1 / (hn * q)
@@ -698,7 +703,7 @@ l_ternary_J2_J5 = (60.8276253029822, 0.0, 0.0)
 class _Work:
     """The records of one solution."""
 
-    __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "phi_ternary", "p_J5", "f1", "phi_rocker1", "phi_rocker2", "phi_coupler", "phi_crank", "add1_v1", "f1_v1", "add1_v2", "f1_v2", "add1_v3", "f1_v3", "add1_v4", "f1_v4", "add1_v5", "f1_v5", "add1_v6", "f1_v6", "add1_v7", "f1_v7", "add1_v8", "f1_v8", "sigma", "singular", "near", "chains", "br4", "br5", "br14", "br15", "br19", "br20", "br24", "br25", "br29", "br30", "br34", "br35", "br39", "br40", "br44", "br45", "br49", "br50")
+    __slots__ = ("in1", "p_J6", "add1", "p_J4", "p_J2", "p_J5", "f1", "phi_rocker1", "phi_ternary", "phi_rocker2", "phi_coupler", "phi_crank", "add1_v1", "f1_v1", "add1_v2", "f1_v2", "add1_v3", "f1_v3", "add1_v4", "f1_v4", "add1_v5", "f1_v5", "add1_v6", "f1_v6", "add1_v7", "f1_v7", "add1_v8", "f1_v8", "sigma", "singular", "near", "chains", "br4", "br5", "br14", "br15", "br18", "br19", "br22", "br23", "br26", "br27", "br30", "br31", "br34", "br35", "br38", "br39", "br42", "br43")
 
     def note(self, st, singular, near):
         """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
@@ -709,7 +714,7 @@ class _Work:
 
 
 def _group_1(w, a, da, dda, live):
-    """Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9.
+    """Steps 4, 5, 6, 7, iterated by the resolver of step 8.
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -732,22 +737,16 @@ def _group_1(w, a, da, dda, live):
     if live:
         w.note(st, 53, -54)
     w.chains = min(w.chains, w.sigma[5])
-    # Step 6: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 63, -64)
-    # Step 7: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341)
-    # Step 8: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    # Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1, ]
 
 
 
 def _group_1_v1(w, a, da, dda, live):
-    """Steps 14, 15, 16, 17, 18, iterated by the resolver of step 9 (fallback 1: the Add-link J6-J2).
+    """Steps 14, 15, 16, 17, iterated by the resolver of step 8 (fallback 1: the Add-link J6-J2).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -770,22 +769,16 @@ def _group_1_v1(w, a, da, dda, live):
     if live:
         w.note(st, 153, -154)
     w.chains = min(w.chains, w.sigma[15])
-    # Step 16: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 163, -164)
-    # Step 17: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134)
-    # Step 18: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    # Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v1, ]
 
 
 
 def _group_1_v2(w, a, da, dda, live):
-    """Steps 19, 20, 21, 22, 23, iterated by the resolver of step 9 (fallback 2: the Add-link J1-J4).
+    """Steps 18, 19, 20, 21, iterated by the resolver of step 8 (fallback 2: the Add-link J1-J4).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -794,36 +787,30 @@ def _group_1_v2(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v2 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 19: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[19], w.p_J4 = RRR_links(p_J3, p_J1, l_rocker2, w.add1_v2, w.br19)
+    # Step 18: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[18], w.p_J4 = RRR_links(p_J3, p_J1, l_rocker2, w.add1_v2, w.br18)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 183, -184)
+    w.chains = min(w.chains, w.sigma[18])
+    # Step 19: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
+    st, w.sigma[19], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, w.br19)
     if st == 1:
         return 1, None
     if live:
         w.note(st, 193, -194)
     w.chains = min(w.chains, w.sigma[19])
-    # Step 20: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    st, w.sigma[20], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, w.br20)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 203, -204)
-    w.chains = min(w.chains, w.sigma[20])
-    # Step 21: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 213, -214)
-    # Step 22: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341)
-    # Step 23: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    # Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v2, ]
 
 
 
 def _group_1_v3(w, a, da, dda, live):
-    """Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9 (fallback 3: the Add-link J3-J2).
+    """Steps 22, 23, 24, 25, iterated by the resolver of step 8 (fallback 3: the Add-link J3-J2).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -832,36 +819,30 @@ def _group_1_v3(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v3 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 24: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[24], w.p_J2 = RRR_links(p_J1, p_J3, l_rocker1, w.add1_v3, w.br24)
+    # Step 22: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[22], w.p_J2 = RRR_links(p_J1, p_J3, l_rocker1, w.add1_v3, w.br22)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 243, -244)
-    w.chains = min(w.chains, w.sigma[24])
-    # Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[25], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w.br25)
+        w.note(st, 223, -224)
+    w.chains = min(w.chains, w.sigma[22])
+    # Step 23: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[23], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w.br23)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 253, -254)
-    w.chains = min(w.chains, w.sigma[25])
-    # Step 26: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 263, -264)
-    # Step 27: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134)
-    # Step 28: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 233, -234)
+    w.chains = min(w.chains, w.sigma[23])
+    # Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    # Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v3, ]
 
 
 
 def _group_1_v4(w, a, da, dda, live):
-    """Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9 (fallback 4: the Add-link J7-J2).
+    """Steps 26, 27, 28, 29, iterated by the resolver of step 8 (fallback 4: the Add-link J7-J2).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -870,36 +851,30 @@ def _group_1_v4(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v4 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[29], w.p_J2 = RRR_links(p_J1, p_J7, l_rocker1, w.add1_v4, w.br29)
+    # Step 26: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[26], w.p_J2 = RRR_links(p_J1, p_J7, l_rocker1, w.add1_v4, w.br26)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 293, -294)
-    w.chains = min(w.chains, w.sigma[29])
-    # Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    st, w.sigma[30], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w.br30)
+        w.note(st, 263, -264)
+    w.chains = min(w.chains, w.sigma[26])
+    # Step 27: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
+    st, w.sigma[27], w.p_J4 = RRR_links(w.p_J2, p_J3, l_ternary_J2_J4, l_rocker2, w.br27)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 303, -304)
-    w.chains = min(w.chains, w.sigma[30])
-    # Step 31: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 313, -314)
-    # Step 32: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134)
-    # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 273, -274)
+    w.chains = min(w.chains, w.sigma[27])
+    # Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    # Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v4, ]
 
 
 
 def _group_1_v5(w, a, da, dda, live):
-    """Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9 (fallback 5: the Add-link J7-J4).
+    """Steps 30, 31, 32, 33, iterated by the resolver of step 8 (fallback 5: the Add-link J7-J4).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -908,36 +883,30 @@ def _group_1_v5(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v5 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[34], w.p_J4 = RRR_links(p_J3, p_J7, l_rocker2, w.add1_v5, w.br34)
+    # Step 30: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[30], w.p_J4 = RRR_links(p_J3, p_J7, l_rocker2, w.add1_v5, w.br30)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 343, -344)
-    w.chains = min(w.chains, w.sigma[34])
-    # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    st, w.sigma[35], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, w.br35)
+        w.note(st, 303, -304)
+    w.chains = min(w.chains, w.sigma[30])
+    # Step 31: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
+    st, w.sigma[31], w.p_J2 = RRR_links(p_J1, w.p_J4, l_rocker1, l_ternary_J2_J4, w.br31)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 353, -354)
-    w.chains = min(w.chains, w.sigma[35])
-    # Step 36: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 363, -364)
-    # Step 37: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341)
-    # Step 38: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 313, -314)
+    w.chains = min(w.chains, w.sigma[31])
+    # Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v5 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v5, ]
 
 
 
 def _group_1_v6(w, a, da, dda, live):
-    """Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9 (fallback 6: the Add-link J3-J5).
+    """Steps 34, 35, 36, 37, iterated by the resolver of step 8 (fallback 6: the Add-link J3-J5).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -946,36 +915,30 @@ def _group_1_v6(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v6 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 39: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[39], w.p_J5 = RRR_links(p_J6, p_J3, l_coupler, w.add1_v6, w.br39)
+    # Step 34: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[34], w.p_J5 = RRR_links(p_J6, p_J3, l_coupler, w.add1_v6, w.br34)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 393, -394)
-    w.chains = min(w.chains, w.sigma[39])
-    # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    st, w.sigma[40], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, w.br40)
+        w.note(st, 343, -344)
+    w.chains = min(w.chains, w.sigma[34])
+    # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    st, w.sigma[35], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, w.br35)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 403, -404)
-    w.chains = min(w.chains, w.sigma[40])
-    # Step 41: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
-    st, w.phi_ternary = link_angle(w.p_J5, w.p_J2, 2.928860872898183)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 413, -414)
-    # Step 42: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341)
-    # Step 43: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 353, -354)
+    w.chains = min(w.chains, w.sigma[35])
+    # Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486)
+    # Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v6, ]
 
 
 
 def _group_1_v7(w, a, da, dda, live):
-    """Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9 (fallback 7: the Add-link J1-J5).
+    """Steps 38, 39, 40, 41, iterated by the resolver of step 8 (fallback 7: the Add-link J1-J5).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -984,36 +947,30 @@ def _group_1_v7(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v7 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 44: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[44], w.p_J5 = RRR_links(p_J6, p_J1, l_coupler, w.add1_v7, w.br44)
+    # Step 38: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[38], w.p_J5 = RRR_links(p_J6, p_J1, l_coupler, w.add1_v7, w.br38)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 443, -444)
-    w.chains = min(w.chains, w.sigma[44])
-    # Step 45: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    st, w.sigma[45], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, w.br45)
+        w.note(st, 383, -384)
+    w.chains = min(w.chains, w.sigma[38])
+    # Step 39: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    st, w.sigma[39], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, w.br39)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 453, -454)
-    w.chains = min(w.chains, w.sigma[45])
-    # Step 46: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
-    st, w.phi_ternary = link_angle(w.p_J5, w.p_J2, 2.928860872898183)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 463, -464)
-    # Step 47: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341)
-    # Step 48: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 393, -394)
+    w.chains = min(w.chains, w.sigma[39])
+    # Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486)
+    # Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v7 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v7, ]
 
 
 
 def _group_1_v8(w, a, da, dda, live):
-    """Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9 (fallback 8: the Add-link J7-J5).
+    """Steps 42, 43, 44, 45, iterated by the resolver of step 8 (fallback 8: the Add-link J7-J5).
 
     a, da, dda: the Add-link lengths, rates and accelerations; returns (status, residual
     records).  live=False zeroes the rates of the records read from outside, so a unit
@@ -1022,29 +979,23 @@ def _group_1_v8(w, a, da, dda, live):
     p_J6 = w.p_J6 if live else (w.p_J6[0], w.p_J6[1]) + (0.0,) * (len(w.p_J6) - 2)
     w.add1_v8 = (a[0], da[0], dda[0])
     w.chains = 1.0
-    # Step 49: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, w.sigma[49], w.p_J5 = RRR_links(p_J6, p_J7, l_coupler, w.add1_v8, w.br49)
+    # Step 42: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, w.sigma[42], w.p_J5 = RRR_links(p_J6, p_J7, l_coupler, w.add1_v8, w.br42)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 493, -494)
-    w.chains = min(w.chains, w.sigma[49])
-    # Step 50: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    st, w.sigma[50], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, w.br50)
+        w.note(st, 423, -424)
+    w.chains = min(w.chains, w.sigma[42])
+    # Step 43: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    st, w.sigma[43], w.p_J2 = RRR_links(p_J1, w.p_J5, l_rocker1, l_ternary_J2_J5, w.br43)
     if st == 1:
         return 1, None
     if live:
-        w.note(st, 503, -504)
-    w.chains = min(w.chains, w.sigma[50])
-    # Step 51: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
-    st, w.phi_ternary = link_angle(w.p_J5, w.p_J2, 2.928860872898183)
-    if st == 1:
-        return 1, None
-    if live:
-        w.note(st, 513, -514)
-    # Step 52: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341)
-    # Step 53: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+        w.note(st, 433, -434)
+    w.chains = min(w.chains, w.sigma[43])
+    # Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486)
+    # Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v8 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v8, ]
 
@@ -1114,25 +1065,25 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
 
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
-    # Step 9: resolve, group1. the resolver iterates on add1 until coupler regains its length
+    # Step 8: resolve, group1. the resolver iterates on add1 until coupler regains its length
     w.br4 = -1 if a[0][1] < 0 else 1
     w.br5 = -1 if a[0][2] < 0 else 1
     w.br14 = -1 if a[1][1] < 0 else 1
     w.br15 = -1 if a[1][2] < 0 else 1
-    w.br19 = -1 if a[2][1] < 0 else 1
-    w.br20 = -1 if a[2][2] < 0 else 1
-    w.br24 = -1 if a[3][1] < 0 else 1
-    w.br25 = -1 if a[3][2] < 0 else 1
-    w.br29 = -1 if a[4][1] < 0 else 1
-    w.br30 = -1 if a[4][2] < 0 else 1
-    w.br34 = -1 if a[5][1] < 0 else 1
-    w.br35 = -1 if a[5][2] < 0 else 1
-    w.br39 = -1 if a[6][1] < 0 else 1
-    w.br40 = -1 if a[6][2] < 0 else 1
-    w.br44 = -1 if a[7][1] < 0 else 1
-    w.br45 = -1 if a[7][2] < 0 else 1
-    w.br49 = -1 if a[8][1] < 0 else 1
-    w.br50 = -1 if a[8][2] < 0 else 1
+    w.br18 = -1 if a[2][1] < 0 else 1
+    w.br19 = -1 if a[2][2] < 0 else 1
+    w.br22 = -1 if a[3][1] < 0 else 1
+    w.br23 = -1 if a[3][2] < 0 else 1
+    w.br26 = -1 if a[4][1] < 0 else 1
+    w.br27 = -1 if a[4][2] < 0 else 1
+    w.br30 = -1 if a[5][1] < 0 else 1
+    w.br31 = -1 if a[5][2] < 0 else 1
+    w.br34 = -1 if a[6][1] < 0 else 1
+    w.br35 = -1 if a[6][2] < 0 else 1
+    w.br38 = -1 if a[7][1] < 0 else 1
+    w.br39 = -1 if a[7][2] < 0 else 1
+    w.br42 = -1 if a[8][1] < 0 else 1
+    w.br43 = -1 if a[8][2] < 0 else 1
     blocks = [
         lambda x, dx, ddx, live: _group_1(w, x, dx, ddx, live),
         lambda x, dx, ddx, live: _group_1_v1(w, x, dx, ddx, live),
@@ -1144,36 +1095,47 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
         lambda x, dx, ddx, live: _group_1_v7(w, x, dx, ddx, live),
         lambda x, dx, ddx, live: _group_1_v8(w, x, dx, ddx, live),
     ]
-    ok, w.sigma[9] = resolve_group(blocks, lambda a, ad: _lengths_1(w, a, ad), a, ad, 0, 0,
+    ok, w.sigma[8] = resolve_group(blocks, lambda a, ad: _lengths_1(w, a, ad), a, ad, 0, 0,
         used, its, order, lambda: w.chains, MECHANISM, POLICY)
     if not ok:
-        return 92
-    w.note(3 if w.sigma[9] < 1e-07 else 4 if w.sigma[9] < 0.001 else 0, 93, -94)
+        return 82
+    w.note(3 if w.sigma[8] < 1e-07 else 4 if w.sigma[8] < 0.001 else 0, 83, -84)
 
 
-    # Step 10: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is
+    # Step 9: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is
     st, w.phi_rocker1 = link_angle(p_J1, w.p_J2, 0.0)
     if st == 1:
+        return 91
+    if st:
+        w.note(st, 93, -94)
+
+    # Step 10: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
+    st, w.phi_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
+    if st == 1:
         return 101
-    w.note(st, 103, -104)
+    if st:
+        w.note(st, 103, -104)
 
     # Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is
     st, w.phi_rocker2 = link_angle(p_J3, w.p_J4, 0.0)
     if st == 1:
         return 111
-    w.note(st, 113, -114)
+    if st:
+        w.note(st, 113, -114)
 
     # Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is
     st, w.phi_coupler = link_angle(w.p_J6, w.p_J5, 0.0)
     if st == 1:
         return 121
-    w.note(st, 123, -124)
+    if st:
+        w.note(st, 123, -124)
 
     # Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is
     st, w.phi_crank = link_angle(p_J7, w.p_J6, 0.0)
     if st == 1:
         return 131
-    w.note(st, 133, -134)
+    if st:
+        w.note(st, 133, -134)
 
     return w.singular or w.near
 
@@ -1247,10 +1209,13 @@ def _publish(w, code, order):
             0.0,
             0.0,
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

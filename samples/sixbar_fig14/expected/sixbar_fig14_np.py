@@ -39,7 +39,7 @@ PI = np.pi
 ORDER = 2
 SAMPLES = 361
 N_INPUTS = 1
-N_STEPS = 53
+N_STEPS = 45
 INPUTS = ((0.0, 6.283185307179586, 6.283185307179586), )  # (start, stop, speed) of each input
 COLUMNS = (
     "theta_J7",
@@ -119,46 +119,39 @@ PARAMS = {  # design parameter -> its value in the sketch
     "l_coupler": 121.6552506059644,  # length coupler:J6-J5
     "l_ternary_J2_J5": 60.8276253029822,  # length ternary:J2-J5
     "step2.l": 20.0,  # step 2: crank_input of J6
-    "step6.off": 0.0,  # step 6: link_angle of ternary
-    "step7.gsi": -45.662543438831435,  # step 7: coupler_point of J5
-    "step7.eta": 12.842590342171341,  # step 7: coupler_point of J5
-    "step10.off": 0.0,  # step 10: link_angle of rocker1
+    "step6.along": 0.4343891402714932,  # step 6: link_point of J5
+    "step6.across": -0.12217194570135746,  # step 6: link_point of J5
+    "step9.off": 0.0,  # step 9: link_angle of rocker1
+    "step10.off": 0.0,  # step 10: link_angle of ternary
     "step11.off": 0.0,  # step 11: link_angle of rocker2
     "step12.off": 0.0,  # step 12: link_angle of coupler
     "step13.off": 0.0,  # step 13: link_angle of crank
-    "step16.off": 0.0,  # step 16: link_angle of ternary
-    "step17.gsi": 59.456436769311765,  # step 17: coupler_point of J5
-    "step17.eta": 12.84259034217134,  # step 17: coupler_point of J5
-    "step21.off": 0.0,  # step 21: link_angle of ternary
-    "step22.gsi": -45.662543438831435,  # step 22: coupler_point of J5
-    "step22.eta": 12.842590342171341,  # step 22: coupler_point of J5
-    "step26.off": 0.0,  # step 26: link_angle of ternary
-    "step27.gsi": 59.456436769311765,  # step 27: coupler_point of J5
-    "step27.eta": 12.84259034217134,  # step 27: coupler_point of J5
-    "step31.off": 0.0,  # step 31: link_angle of ternary
-    "step32.gsi": 59.456436769311765,  # step 32: coupler_point of J5
-    "step32.eta": 12.84259034217134,  # step 32: coupler_point of J5
-    "step36.off": 0.0,  # step 36: link_angle of ternary
-    "step37.gsi": -45.662543438831435,  # step 37: coupler_point of J5
-    "step37.eta": 12.842590342171341,  # step 37: coupler_point of J5
-    "step41.off": 2.928860872898183,  # step 41: link_angle of ternary
-    "step42.gsi": 45.662543438831435,  # step 42: coupler_point of J4
-    "step42.eta": -12.842590342171341,  # step 42: coupler_point of J4
-    "step46.off": 2.928860872898183,  # step 46: link_angle of ternary
-    "step47.gsi": 45.662543438831435,  # step 47: coupler_point of J4
-    "step47.eta": -12.842590342171341,  # step 47: coupler_point of J4
-    "step51.off": 2.928860872898183,  # step 51: link_angle of ternary
-    "step52.gsi": 45.662543438831435,  # step 52: coupler_point of J4
-    "step52.eta": -12.842590342171341,  # step 52: coupler_point of J4
+    "step16.along": 0.5656108597285068,  # step 16: link_point of J5
+    "step16.across": 0.12217194570135746,  # step 16: link_point of J5
+    "step20.along": 0.4343891402714932,  # step 20: link_point of J5
+    "step20.across": -0.12217194570135746,  # step 20: link_point of J5
+    "step24.along": 0.5656108597285068,  # step 24: link_point of J5
+    "step24.across": 0.12217194570135746,  # step 24: link_point of J5
+    "step28.along": 0.5656108597285068,  # step 28: link_point of J5
+    "step28.across": 0.12217194570135746,  # step 28: link_point of J5
+    "step32.along": 0.4343891402714932,  # step 32: link_point of J5
+    "step32.across": -0.12217194570135746,  # step 32: link_point of J5
+    "step36.along": -0.6891891891891891,  # step 36: link_point of J4
+    "step36.across": 0.36486486486486486,  # step 36: link_point of J4
+    "step40.along": -0.6891891891891891,  # step 40: link_point of J4
+    "step40.across": 0.36486486486486486,  # step 40: link_point of J4
+    "step44.along": -0.6891891891891891,  # step 44: link_point of J4
+    "step44.across": 0.36486486486486486,  # step 44: link_point of J4
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
     name="sixbar_fig14_np", n_inputs=N_INPUTS, n_steps=N_STEPS, params=PARAMS,
     columns=COLUMNS[N_INPUTS:], levels=(0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,),  # derivative level of each output column
     reads=3,  # the arrays a row reads: inputs, rates, accelerations
     max_input=1e+30, bad_input=5,
-    failed=(1, 2), singular=3,
+    failed=(1, 2,), singular=3,
     tolerance=1e-10, path_slack=1.0000000000000001e-07,  # the resolver's, in REAL
     lanes=True,  # the rows solved on lanes (else each by sixbar_fig14.py: a resolver setting the lanes lack)
+    checks=True,  # whether a call gives each step's conditioning ("sigma")
 )
 
 
@@ -196,6 +189,7 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
+    th0 = np.arctan2(dy, dx) + off
     _c1 = np.asarray(r2 == 0)
     if not _c1.any():
         ir2 = 1 / r2
@@ -217,40 +211,43 @@ def link_angle(j1, j2, off):
     _sigma = np.asarray(_sigma, dtype=REAL)
     _fails = _st == 1
     _singular = _fails | (_st == 3)
-    _t1 = np.arctan2(dy, dx) + off
-    _c3 = np.asarray(_t1 > PI)
+    _c3 = np.asarray(th0 > PI)
     if not _c3.any():
-        _c4 = np.asarray(_t1 <= -PI)
+        _c4 = np.asarray(th0 <= -PI)
         if not _c4.any():
-            _f1 = _t1
+            _f1 = th0
         elif _c4.all():
-            _f1 = _t1 + 2 * PI
+            _f1 = th0 + 2 * PI
         else:
-            _f1 = np.where(_c4, _t1 + 2 * PI, _t1)
+            _f1 = np.where(_c4, th0 + 2 * PI, th0)
     elif _c3.all():
-        _f1 = _t1 - 2 * PI
+        _f1 = th0 - 2 * PI
     else:
-        _f1 = np.where(_c3, _t1 - 2 * PI, np.where(_t1 <= -PI, _t1 + 2 * PI, _t1))
+        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     _angle = (_f1, om, al)
     if np.any(_singular):  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp, sp = cos_sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    _t1 = phi_dthe * phi_dthe
-    rax = -phi_ddthe * ry - _t1 * rx
-    ray = phi_ddthe * rx - _t1 * ry
+def link_point(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
-    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+    _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -317,58 +314,59 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    _c7 = np.asarray(fail)
-    if not _c7.any():
-        sigma = np.minimum(area4 / (2 * l1_v * l2_v), 1)
-    elif _c7.all():
-        sigma = 0
-    else:
-        sigma = np.where(_c7, 0, np.minimum(area4 / (2 * l1_v * l2_v), 1))
-    _t1 = -a2
-    e2x = _t1 * ux - hn * uy
-    e2y = _t1 * uy + hn * ux
-    _c8 = np.asarray(hn == 0)
+    _c8 = np.asarray(fail)
     if not _c8.any():
-        ihq = 1 / (hn * q)
+        _s7 = area4 * (0.5 / (l1_v * l2_v))
     elif _c8.all():
+        _s7 = 0
+    else:
+        _s7 = np.where(_c8, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s7, 1)
+    _t2 = -a2
+    e2x = _t2 * ux - hn * uy
+    e2y = _t2 * uy + hn * ux
+    _c9 = np.asarray(hn == 0)
+    if not _c9.any():
+        ihq = 1 / (hn * q)
+    elif _c9.all():
         ihq = NAN
     else:
-        ihq = np.where(_c8, NAN, 1 / (hn * q))
+        ihq = np.where(_c9, NAN, 1 / (hn * q))
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
     buv = (r1v - r2v) * iq
     bnv = (a2 * r1v + a * r2v) * ihq
     bvx = buv * ux - bnv * uy
     bvy = buv * uy + bnv * ux
-    _t2 = bvx - j1_dx
-    _t3 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t2 * _t2 + _t3 * _t3) + (e1x * j1_ddx + e1y * j1_ddy)
-    _t4 = bvx - j2_dx
-    _t5 = bvy - j2_dy
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t4 * _t4 + _t5 * _t5) + (e2x * j2_ddx + e2y * j2_ddy)
+    _t3 = bvx - j1_dx
+    _t4 = bvy - j1_dy
+    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t3 * _t3 + _t4 * _t4) + (e1x * j1_ddx + e1y * j1_ddy)
+    _t5 = bvx - j2_dx
+    _t6 = bvy - j2_dy
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t5 * _t5 + _t6 * _t6) + (e2x * j2_ddx + e2y * j2_ddy)
     bua = (r1a - r2a) * iq
     bna = (a2 * r1a + a * r2a) * ihq
     bax = bua * ux - bna * uy
     bay = bua * uy + bna * ux
-    _c9 = np.asarray(fail)
-    if not _c9.any():
-        _c10 = np.asarray(sigma < 1e-07)
-        if not _c10.any():
-            _c11 = np.asarray(sigma < 0.001)
-            if not _c11.any():
+    _c10 = np.asarray(fail)
+    if not _c10.any():
+        _c11 = np.asarray(sigma < 1e-07)
+        if not _c11.any():
+            _c12 = np.asarray(sigma < 0.001)
+            if not _c12.any():
                 _st = 0
-            elif _c11.all():
+            elif _c12.all():
                 _st = 4
             else:
-                _st = np.where(_c11, 4, 0)
-        elif _c10.all():
+                _st = np.where(_c12, 4, 0)
+        elif _c11.all():
             _st = 3
         else:
-            _st = np.where(_c10, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c9.all():
+            _st = np.where(_c11, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c10.all():
         _st = 1
     else:
-        _st = np.where(_c9, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c10, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -432,66 +430,21 @@ def link_residual(j1, j2, l):
     _f = (r - l_v, rd - l_dv, _f3)
     return _st, _sigma, _f
 
-def link_angle_1(j1, j2, off):
-    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
+def link_point_1(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
     j1_x, j1_y, j1_dx, j1_dy = j1[:4]
     j2_x, j2_y, j2_dx, j2_dy = j2[:4]
     dx = j2_x - j1_x
     dy = j2_y - j1_y
     dvx = j2_dx - j1_dx
     dvy = j2_dy - j1_dy
-    r2 = dx * dx + dy * dy
-    _c2 = np.asarray(r2 == 0)
-    if not _c2.any():
-        _s1 = 1 / r2
-    elif _c2.all():
-        _s1 = NAN
-    else:
-        _s1 = np.where(_c2, NAN, 1 / r2)
-    om = (dx * dvy - dy * dvx) * _s1
-    _c3 = np.asarray(r2 == 0)
-    if not _c3.any():
-        _st = 0
-    elif _c3.all():
-        _st = 1
-    else:
-        _st = np.where(_c3, 1, 0)
-    _sigma = 1.0
-    _st = np.asarray(_st)
-    _sigma = np.asarray(_sigma, dtype=REAL)
-    _fails = _st == 1
-    _singular = _fails | (_st == 3)
-    _t2 = np.arctan2(dy, dx) + off
-    _c4 = np.asarray(_t2 > PI)
-    if not _c4.any():
-        _c5 = np.asarray(_t2 <= -PI)
-        if not _c5.any():
-            _f1 = _t2
-        elif _c5.all():
-            _f1 = _t2 + 2 * PI
-        else:
-            _f1 = np.where(_c5, _t2 + 2 * PI, _t2)
-    elif _c4.all():
-        _f1 = _t2 - 2 * PI
-    else:
-        _f1 = np.where(_c4, _t2 - 2 * PI, np.where(_t2 <= -PI, _t2 + 2 * PI, _t2))
-    _angle = (_f1, om)
-    if np.any(_singular):  # nan where the rows failed
-        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]))
-    return _st, _sigma, _angle
-
-def coupler_point_1(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy = j0[:4]
-    phi_the, phi_dthe = phi[:2]
-    cp, sp = cos_sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
-    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy)
+    _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy)
     return _st, _sigma, _jc
 
 def RRR_links_1(j1, j2, l1, l2, minv):
@@ -558,48 +511,49 @@ def RRR_links_1(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    _c7 = np.asarray(fail)
-    if not _c7.any():
-        sigma = np.minimum(area4 / (2 * l1_v * l2_v), 1)
-    elif _c7.all():
-        sigma = 0
+    _c8 = np.asarray(fail)
+    if not _c8.any():
+        _s7 = area4 * (0.5 / (l1_v * l2_v))
+    elif _c8.all():
+        _s7 = 0
     else:
-        sigma = np.where(_c7, 0, np.minimum(area4 / (2 * l1_v * l2_v), 1))
-    _t1 = -a2
-    e2x = _t1 * ux - hn * uy
-    e2y = _t1 * uy + hn * ux
+        _s7 = np.where(_c8, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s7, 1)
+    _t2 = -a2
+    e2x = _t2 * ux - hn * uy
+    e2y = _t2 * uy + hn * ux
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
     buv = (r1v - r2v) * iq
-    _c9 = np.asarray(hn == 0)
-    if not _c9.any():
-        _s8 = 1 / (hn * q)
-    elif _c9.all():
-        _s8 = NAN
+    _c10 = np.asarray(hn == 0)
+    if not _c10.any():
+        _s9 = 1 / (hn * q)
+    elif _c10.all():
+        _s9 = NAN
     else:
-        _s8 = np.where(_c9, NAN, 1 / (hn * q))
-    bnv = (a2 * r1v + a * r2v) * _s8
+        _s9 = np.where(_c10, NAN, 1 / (hn * q))
+    bnv = (a2 * r1v + a * r2v) * _s9
     bvx = buv * ux - bnv * uy
     bvy = buv * uy + bnv * ux
-    _c10 = np.asarray(fail)
-    if not _c10.any():
-        _c11 = np.asarray(sigma < 1e-07)
-        if not _c11.any():
-            _c12 = np.asarray(sigma < 0.001)
-            if not _c12.any():
+    _c11 = np.asarray(fail)
+    if not _c11.any():
+        _c12 = np.asarray(sigma < 1e-07)
+        if not _c12.any():
+            _c13 = np.asarray(sigma < 0.001)
+            if not _c13.any():
                 _st = 0
-            elif _c12.all():
+            elif _c13.all():
                 _st = 4
             else:
-                _st = np.where(_c12, 4, 0)
-        elif _c11.all():
+                _st = np.where(_c13, 4, 0)
+        elif _c12.all():
             _st = 3
         else:
-            _st = np.where(_c11, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c10.all():
+            _st = np.where(_c12, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c11.all():
         _st = 1
     else:
-        _st = np.where(_c10, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c11, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -671,7 +625,7 @@ def reason_of(code):
 # last axis the inputs) and its design parameters broadcast together and flattened into rows,
 # solved a block of rows at a time so that every array a block makes stays in the cache.
 # m holds the module's data (name, n_inputs, n_steps, reads, max_input, levels, columns,
-# failed, singular, bad_input, params).
+# failed, singular, bad_input, params, checks).
 
 BLOCK = 16384  # rows a block (measured: 20% faster than 4096, as fast as 32768)
 
@@ -730,9 +684,11 @@ def filled(out, shape, order, m):
     if out is None:
         return ({name: np.empty(n, dtype=REAL) for name in names}, np.empty(n, dtype=int),
                 np.ones((m.n_steps + 1, n), dtype=REAL))
-    flat = {}
-    for name, like, dtype in [(name, shape, REAL) for name in names] + [
-            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), REAL)]:
+    wanted = [(name, shape, REAL) for name in names] + [("status", shape, int)]
+    if m.checks:
+        wanted.append(("sigma", (m.n_steps + 1, *shape), REAL))
+    flat = {"sigma": np.ones((m.n_steps + 1, n), dtype=REAL)}  # the call's own where it gives no conditioning
+    for name, like, dtype in wanted:
         a = out.get(name)
         if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
             raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
@@ -788,7 +744,9 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
         row = solve(x, dx, ddx, order, state)
         for name in out:
             out[name][r] = row[name]
-        status[r], sigma[:, r] = row["status"], row["sigma"]
+        status[r] = row["status"]
+        if m.checks:
+            sigma[:, r] = row["sigma"]
     return finish(out, status, sigma, bad, shape, m)
 
 
@@ -809,7 +767,8 @@ def finish(out, status, sigma, bad, shape, m):
             out[name][lost] = np.nan
     result = {name: x.reshape(shape) for name, x in out.items()}
     result["status"] = status.reshape(shape)
-    result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
+    if m.checks:
+        result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
     return result
 
 # The over-constraint resolver on lanes of rows: the Python runtime's Newton-Raphson on the
@@ -1455,7 +1414,7 @@ class _Work:
 
 
 def _group_1(w, r, br, a, da, dda):
-    """Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9, on lanes of rows.
+    """Steps 4, 5, 6, 7, iterated by the resolver of step 8, on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1477,18 +1436,15 @@ def _group_1(w, r, br, a, da, dda):
     st, sigma[5], w.p_J2 = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br5)
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     chains = np.minimum(chains, sigma[5])
-    # Step 6: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle(w.p_J2, w.p_J4, c["step6.off"])
-    report.append((st, ((1, 61), (3, 63), (4, -64))))
-    # Step 7: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, c["step7.gsi"], c["step7.eta"])
-    # Step 8: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step6.along"], c["step6.across"])
+    # Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1, ), chains
 
 
 def _group_1_1(w, r, br, a, da, dda):
-    """Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9, on lanes of rows (positions and rates only).
+    """Steps 4, 5, 6, 7, iterated by the resolver of step 8, on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1510,18 +1466,15 @@ def _group_1_1(w, r, br, a, da, dda):
     st, sigma[5], w.p_J2 = RRR_links_1(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br5)
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     chains = np.minimum(chains, sigma[5])
-    # Step 6: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle_1(w.p_J2, w.p_J4, c["step6.off"])
-    report.append((st, ((1, 61), (3, 63), (4, -64))))
-    # Step 7: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point_1(w.p_J4, w.phi_ternary, c["step7.gsi"], c["step7.eta"])
-    # Step 8: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step6.along"], c["step6.across"])
+    # Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1, ), chains
 
 
 def _group_1_v1(w, r, br, a, da, dda):
-    """Steps 14, 15, 16, 17, 18, iterated by the resolver of step 9 (fallback 1: the Add-link J6-J2), on lanes of rows.
+    """Steps 14, 15, 16, 17, iterated by the resolver of step 8 (fallback 1: the Add-link J6-J2), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1543,18 +1496,15 @@ def _group_1_v1(w, r, br, a, da, dda):
     st, sigma[15], w.p_J4 = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br15)
     report.append((st, ((1, 151), (3, 153), (4, -154))))
     chains = np.minimum(chains, sigma[15])
-    # Step 16: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle(w.p_J2, w.p_J4, c["step16.off"])
-    report.append((st, ((1, 161), (3, 163), (4, -164))))
-    # Step 17: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, c["step17.gsi"], c["step17.eta"])
-    # Step 18: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step16.along"], c["step16.across"])
+    # Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v1, ), chains
 
 
 def _group_1_v1_1(w, r, br, a, da, dda):
-    """Steps 14, 15, 16, 17, 18, iterated by the resolver of step 9 (fallback 1: the Add-link J6-J2), on lanes of rows (positions and rates only).
+    """Steps 14, 15, 16, 17, iterated by the resolver of step 8 (fallback 1: the Add-link J6-J2), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1576,18 +1526,15 @@ def _group_1_v1_1(w, r, br, a, da, dda):
     st, sigma[15], w.p_J4 = RRR_links_1(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br15)
     report.append((st, ((1, 151), (3, 153), (4, -154))))
     chains = np.minimum(chains, sigma[15])
-    # Step 16: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle_1(w.p_J2, w.p_J4, c["step16.off"])
-    report.append((st, ((1, 161), (3, 163), (4, -164))))
-    # Step 17: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point_1(w.p_J2, w.phi_ternary, c["step17.gsi"], c["step17.eta"])
-    # Step 18: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step16.along"], c["step16.across"])
+    # Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v1, ), chains
 
 
 def _group_1_v2(w, r, br, a, da, dda):
-    """Steps 19, 20, 21, 22, 23, iterated by the resolver of step 9 (fallback 2: the Add-link J1-J4), on lanes of rows.
+    """Steps 18, 19, 20, 21, iterated by the resolver of step 8 (fallback 2: the Add-link J1-J4), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1596,31 +1543,28 @@ def _group_1_v2(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br19, w.br20, = br
+    w.br18, w.br19, = br
     sigma = {}
     report = []
     w.add1_v2 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 19: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
-    st, sigma[19], w.p_J4 = RRR_links(w.p_J3, w.p_J1, w.l_rocker2, w.add1_v2, w.br19)
+    # Step 18: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
+    st, sigma[18], w.p_J4 = RRR_links(w.p_J3, w.p_J1, w.l_rocker2, w.add1_v2, w.br18)
+    report.append((st, ((1, 181), (3, 183), (4, -184))))
+    chains = np.minimum(chains, sigma[18])
+    # Step 19: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
+    st, sigma[19], w.p_J2 = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br19)
     report.append((st, ((1, 191), (3, 193), (4, -194))))
     chains = np.minimum(chains, sigma[19])
-    # Step 20: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    st, sigma[20], w.p_J2 = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br20)
-    report.append((st, ((1, 201), (3, 203), (4, -204))))
-    chains = np.minimum(chains, sigma[20])
-    # Step 21: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle(w.p_J2, w.p_J4, c["step21.off"])
-    report.append((st, ((1, 211), (3, 213), (4, -214))))
-    # Step 22: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, c["step22.gsi"], c["step22.eta"])
-    # Step 23: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step20.along"], c["step20.across"])
+    # Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v2, ), chains
 
 
 def _group_1_v2_1(w, r, br, a, da, dda):
-    """Steps 19, 20, 21, 22, 23, iterated by the resolver of step 9 (fallback 2: the Add-link J1-J4), on lanes of rows (positions and rates only).
+    """Steps 18, 19, 20, 21, iterated by the resolver of step 8 (fallback 2: the Add-link J1-J4), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1629,31 +1573,28 @@ def _group_1_v2_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br19, w.br20, = br
+    w.br18, w.br19, = br
     sigma = {}
     report = []
     w.add1_v2 = (a[0], da[0])
     chains = 1.0
-    # Step 19: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
-    st, sigma[19], w.p_J4 = RRR_links_1(w.p_J3, w.p_J1, w.l_rocker2, w.add1_v2, w.br19)
+    # Step 18: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
+    st, sigma[18], w.p_J4 = RRR_links_1(w.p_J3, w.p_J1, w.l_rocker2, w.add1_v2, w.br18)
+    report.append((st, ((1, 181), (3, 183), (4, -184))))
+    chains = np.minimum(chains, sigma[18])
+    # Step 19: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
+    st, sigma[19], w.p_J2 = RRR_links_1(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br19)
     report.append((st, ((1, 191), (3, 193), (4, -194))))
     chains = np.minimum(chains, sigma[19])
-    # Step 20: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    st, sigma[20], w.p_J2 = RRR_links_1(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br20)
-    report.append((st, ((1, 201), (3, 203), (4, -204))))
-    chains = np.minimum(chains, sigma[20])
-    # Step 21: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle_1(w.p_J2, w.p_J4, c["step21.off"])
-    report.append((st, ((1, 211), (3, 213), (4, -214))))
-    # Step 22: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point_1(w.p_J4, w.phi_ternary, c["step22.gsi"], c["step22.eta"])
-    # Step 23: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step20.along"], c["step20.across"])
+    # Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v2 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v2, ), chains
 
 
 def _group_1_v3(w, r, br, a, da, dda):
-    """Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9 (fallback 3: the Add-link J3-J2), on lanes of rows.
+    """Steps 22, 23, 24, 25, iterated by the resolver of step 8 (fallback 3: the Add-link J3-J2), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1662,31 +1603,28 @@ def _group_1_v3(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br24, w.br25, = br
+    w.br22, w.br23, = br
     sigma = {}
     report = []
     w.add1_v3 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 24: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
-    st, sigma[24], w.p_J2 = RRR_links(w.p_J1, w.p_J3, w.l_rocker1, w.add1_v3, w.br24)
-    report.append((st, ((1, 241), (3, 243), (4, -244))))
-    chains = np.minimum(chains, sigma[24])
-    # Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    st, sigma[25], w.p_J4 = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br25)
-    report.append((st, ((1, 251), (3, 253), (4, -254))))
-    chains = np.minimum(chains, sigma[25])
-    # Step 26: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle(w.p_J2, w.p_J4, c["step26.off"])
-    report.append((st, ((1, 261), (3, 263), (4, -264))))
-    # Step 27: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, c["step27.gsi"], c["step27.eta"])
-    # Step 28: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 22: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
+    st, sigma[22], w.p_J2 = RRR_links(w.p_J1, w.p_J3, w.l_rocker1, w.add1_v3, w.br22)
+    report.append((st, ((1, 221), (3, 223), (4, -224))))
+    chains = np.minimum(chains, sigma[22])
+    # Step 23: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
+    st, sigma[23], w.p_J4 = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br23)
+    report.append((st, ((1, 231), (3, 233), (4, -234))))
+    chains = np.minimum(chains, sigma[23])
+    # Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step24.along"], c["step24.across"])
+    # Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v3 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v3, ), chains
 
 
 def _group_1_v3_1(w, r, br, a, da, dda):
-    """Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9 (fallback 3: the Add-link J3-J2), on lanes of rows (positions and rates only).
+    """Steps 22, 23, 24, 25, iterated by the resolver of step 8 (fallback 3: the Add-link J3-J2), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1695,31 +1633,28 @@ def _group_1_v3_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br24, w.br25, = br
+    w.br22, w.br23, = br
     sigma = {}
     report = []
     w.add1_v3 = (a[0], da[0])
     chains = 1.0
-    # Step 24: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
-    st, sigma[24], w.p_J2 = RRR_links_1(w.p_J1, w.p_J3, w.l_rocker1, w.add1_v3, w.br24)
-    report.append((st, ((1, 241), (3, 243), (4, -244))))
-    chains = np.minimum(chains, sigma[24])
-    # Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    st, sigma[25], w.p_J4 = RRR_links_1(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br25)
-    report.append((st, ((1, 251), (3, 253), (4, -254))))
-    chains = np.minimum(chains, sigma[25])
-    # Step 26: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle_1(w.p_J2, w.p_J4, c["step26.off"])
-    report.append((st, ((1, 261), (3, 263), (4, -264))))
-    # Step 27: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point_1(w.p_J2, w.phi_ternary, c["step27.gsi"], c["step27.eta"])
-    # Step 28: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 22: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
+    st, sigma[22], w.p_J2 = RRR_links_1(w.p_J1, w.p_J3, w.l_rocker1, w.add1_v3, w.br22)
+    report.append((st, ((1, 221), (3, 223), (4, -224))))
+    chains = np.minimum(chains, sigma[22])
+    # Step 23: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
+    st, sigma[23], w.p_J4 = RRR_links_1(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br23)
+    report.append((st, ((1, 231), (3, 233), (4, -234))))
+    chains = np.minimum(chains, sigma[23])
+    # Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step24.along"], c["step24.across"])
+    # Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v3 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v3, ), chains
 
 
 def _group_1_v4(w, r, br, a, da, dda):
-    """Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9 (fallback 4: the Add-link J7-J2), on lanes of rows.
+    """Steps 26, 27, 28, 29, iterated by the resolver of step 8 (fallback 4: the Add-link J7-J2), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1728,31 +1663,28 @@ def _group_1_v4(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br29, w.br30, = br
+    w.br26, w.br27, = br
     sigma = {}
     report = []
     w.add1_v4 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, sigma[29], w.p_J2 = RRR_links(w.p_J1, w.p_J7, w.l_rocker1, w.add1_v4, w.br29)
-    report.append((st, ((1, 291), (3, 293), (4, -294))))
-    chains = np.minimum(chains, sigma[29])
-    # Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    st, sigma[30], w.p_J4 = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br30)
-    report.append((st, ((1, 301), (3, 303), (4, -304))))
-    chains = np.minimum(chains, sigma[30])
-    # Step 31: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle(w.p_J2, w.p_J4, c["step31.off"])
-    report.append((st, ((1, 311), (3, 313), (4, -314))))
-    # Step 32: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, c["step32.gsi"], c["step32.eta"])
-    # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 26: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, sigma[26], w.p_J2 = RRR_links(w.p_J1, w.p_J7, w.l_rocker1, w.add1_v4, w.br26)
+    report.append((st, ((1, 261), (3, 263), (4, -264))))
+    chains = np.minimum(chains, sigma[26])
+    # Step 27: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
+    st, sigma[27], w.p_J4 = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br27)
+    report.append((st, ((1, 271), (3, 273), (4, -274))))
+    chains = np.minimum(chains, sigma[27])
+    # Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step28.along"], c["step28.across"])
+    # Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v4 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v4, ), chains
 
 
 def _group_1_v4_1(w, r, br, a, da, dda):
-    """Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9 (fallback 4: the Add-link J7-J2), on lanes of rows (positions and rates only).
+    """Steps 26, 27, 28, 29, iterated by the resolver of step 8 (fallback 4: the Add-link J7-J2), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1761,31 +1693,28 @@ def _group_1_v4_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br29, w.br30, = br
+    w.br26, w.br27, = br
     sigma = {}
     report = []
     w.add1_v4 = (a[0], da[0])
     chains = 1.0
-    # Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, sigma[29], w.p_J2 = RRR_links_1(w.p_J1, w.p_J7, w.l_rocker1, w.add1_v4, w.br29)
-    report.append((st, ((1, 291), (3, 293), (4, -294))))
-    chains = np.minimum(chains, sigma[29])
-    # Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    st, sigma[30], w.p_J4 = RRR_links_1(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br30)
-    report.append((st, ((1, 301), (3, 303), (4, -304))))
-    chains = np.minimum(chains, sigma[30])
-    # Step 31: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle_1(w.p_J2, w.p_J4, c["step31.off"])
-    report.append((st, ((1, 311), (3, 313), (4, -314))))
-    # Step 32: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point_1(w.p_J2, w.phi_ternary, c["step32.gsi"], c["step32.eta"])
-    # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 26: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, sigma[26], w.p_J2 = RRR_links_1(w.p_J1, w.p_J7, w.l_rocker1, w.add1_v4, w.br26)
+    report.append((st, ((1, 261), (3, 263), (4, -264))))
+    chains = np.minimum(chains, sigma[26])
+    # Step 27: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
+    st, sigma[27], w.p_J4 = RRR_links_1(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br27)
+    report.append((st, ((1, 271), (3, 273), (4, -274))))
+    chains = np.minimum(chains, sigma[27])
+    # Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step28.along"], c["step28.across"])
+    # Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v4 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v4, ), chains
 
 
 def _group_1_v5(w, r, br, a, da, dda):
-    """Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9 (fallback 5: the Add-link J7-J4), on lanes of rows.
+    """Steps 30, 31, 32, 33, iterated by the resolver of step 8 (fallback 5: the Add-link J7-J4), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1794,31 +1723,58 @@ def _group_1_v5(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br34, w.br35, = br
+    w.br30, w.br31, = br
     sigma = {}
     report = []
     w.add1_v5 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, sigma[34], w.p_J4 = RRR_links(w.p_J3, w.p_J7, w.l_rocker2, w.add1_v5, w.br34)
-    report.append((st, ((1, 341), (3, 343), (4, -344))))
-    chains = np.minimum(chains, sigma[34])
-    # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    st, sigma[35], w.p_J2 = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br35)
-    report.append((st, ((1, 351), (3, 353), (4, -354))))
-    chains = np.minimum(chains, sigma[35])
-    # Step 36: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle(w.p_J2, w.p_J4, c["step36.off"])
-    report.append((st, ((1, 361), (3, 363), (4, -364))))
-    # Step 37: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, c["step37.gsi"], c["step37.eta"])
-    # Step 38: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    # Step 30: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, sigma[30], w.p_J4 = RRR_links(w.p_J3, w.p_J7, w.l_rocker2, w.add1_v5, w.br30)
+    report.append((st, ((1, 301), (3, 303), (4, -304))))
+    chains = np.minimum(chains, sigma[30])
+    # Step 31: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
+    st, sigma[31], w.p_J2 = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br31)
+    report.append((st, ((1, 311), (3, 313), (4, -314))))
+    chains = np.minimum(chains, sigma[31])
+    # Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step32.along"], c["step32.across"])
+    # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v5, ), chains
 
 
 def _group_1_v5_1(w, r, br, a, da, dda):
-    """Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9 (fallback 5: the Add-link J7-J4), on lanes of rows (positions and rates only).
+    """Steps 30, 31, 32, 33, iterated by the resolver of step 8 (fallback 5: the Add-link J7-J4), on lanes of rows (positions and rates only).
+
+    r: the records the block reads from before the group (their rates zeroed on a Jacobian
+    pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
+    accelerations.  Returns the steps' reports and conditioning, the residual records and the
+    worst conditioning of its chains from the block's lever down; its records are left in w.
+    """
+    c = w.c
+    p_J6, = r
+    w.br30, w.br31, = br
+    sigma = {}
+    report = []
+    w.add1_v5 = (a[0], da[0])
+    chains = 1.0
+    # Step 30: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, sigma[30], w.p_J4 = RRR_links_1(w.p_J3, w.p_J7, w.l_rocker2, w.add1_v5, w.br30)
+    report.append((st, ((1, 301), (3, 303), (4, -304))))
+    chains = np.minimum(chains, sigma[30])
+    # Step 31: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
+    st, sigma[31], w.p_J2 = RRR_links_1(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br31)
+    report.append((st, ((1, 311), (3, 313), (4, -314))))
+    chains = np.minimum(chains, sigma[31])
+    # Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step32.along"], c["step32.across"])
+    # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    _, _, w.f1_v5 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
+    return report, sigma, (w.f1_v5, ), chains
+
+
+def _group_1_v6(w, r, br, a, da, dda):
+    """Steps 34, 35, 36, 37, iterated by the resolver of step 8 (fallback 6: the Add-link J3-J5), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1830,61 +1786,25 @@ def _group_1_v5_1(w, r, br, a, da, dda):
     w.br34, w.br35, = br
     sigma = {}
     report = []
-    w.add1_v5 = (a[0], da[0])
-    chains = 1.0
-    # Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, sigma[34], w.p_J4 = RRR_links_1(w.p_J3, w.p_J7, w.l_rocker2, w.add1_v5, w.br34)
-    report.append((st, ((1, 341), (3, 343), (4, -344))))
-    chains = np.minimum(chains, sigma[34])
-    # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    st, sigma[35], w.p_J2 = RRR_links_1(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br35)
-    report.append((st, ((1, 351), (3, 353), (4, -354))))
-    chains = np.minimum(chains, sigma[35])
-    # Step 36: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle_1(w.p_J2, w.p_J4, c["step36.off"])
-    report.append((st, ((1, 361), (3, 363), (4, -364))))
-    # Step 37: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = coupler_point_1(w.p_J4, w.phi_ternary, c["step37.gsi"], c["step37.eta"])
-    # Step 38: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
-    _, _, w.f1_v5 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
-    return report, sigma, (w.f1_v5, ), chains
-
-
-def _group_1_v6(w, r, br, a, da, dda):
-    """Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9 (fallback 6: the Add-link J3-J5), on lanes of rows.
-
-    r: the records the block reads from before the group (their rates zeroed on a Jacobian
-    pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
-    accelerations.  Returns the steps' reports and conditioning, the residual records and the
-    worst conditioning of its chains from the block's lever down; its records are left in w.
-    """
-    c = w.c
-    p_J6, = r
-    w.br39, w.br40, = br
-    sigma = {}
-    report = []
     w.add1_v6 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 39: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known
-    st, sigma[39], w.p_J5 = RRR_links(p_J6, w.p_J3, w.l_coupler, w.add1_v6, w.br39)
-    report.append((st, ((1, 391), (3, 393), (4, -394))))
-    chains = np.minimum(chains, sigma[39])
-    # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    st, sigma[40], w.p_J2 = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br40)
-    report.append((st, ((1, 401), (3, 403), (4, -404))))
-    chains = np.minimum(chains, sigma[40])
-    # Step 41: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle(w.p_J5, w.p_J2, c["step41.off"])
-    report.append((st, ((1, 411), (3, 413), (4, -414))))
-    # Step 42: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    _, _, w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, c["step42.gsi"], c["step42.eta"])
-    # Step 43: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    # Step 34: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known
+    st, sigma[34], w.p_J5 = RRR_links(p_J6, w.p_J3, w.l_coupler, w.add1_v6, w.br34)
+    report.append((st, ((1, 341), (3, 343), (4, -344))))
+    chains = np.minimum(chains, sigma[34])
+    # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    st, sigma[35], w.p_J2 = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br35)
+    report.append((st, ((1, 351), (3, 353), (4, -354))))
+    chains = np.minimum(chains, sigma[35])
+    # Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    _, _, w.p_J4 = link_point(w.p_J5, w.p_J2, c["step36.along"], c["step36.across"])
+    # Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v6 = link_residual(w.p_J3, w.p_J4, w.l_rocker2)
     return report, sigma, (w.f1_v6, ), chains
 
 
 def _group_1_v6_1(w, r, br, a, da, dda):
-    """Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9 (fallback 6: the Add-link J3-J5), on lanes of rows (positions and rates only).
+    """Steps 34, 35, 36, 37, iterated by the resolver of step 8 (fallback 6: the Add-link J3-J5), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1893,31 +1813,28 @@ def _group_1_v6_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br39, w.br40, = br
+    w.br34, w.br35, = br
     sigma = {}
     report = []
     w.add1_v6 = (a[0], da[0])
     chains = 1.0
-    # Step 39: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known
-    st, sigma[39], w.p_J5 = RRR_links_1(p_J6, w.p_J3, w.l_coupler, w.add1_v6, w.br39)
-    report.append((st, ((1, 391), (3, 393), (4, -394))))
-    chains = np.minimum(chains, sigma[39])
-    # Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    st, sigma[40], w.p_J2 = RRR_links_1(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br40)
-    report.append((st, ((1, 401), (3, 403), (4, -404))))
-    chains = np.minimum(chains, sigma[40])
-    # Step 41: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle_1(w.p_J5, w.p_J2, c["step41.off"])
-    report.append((st, ((1, 411), (3, 413), (4, -414))))
-    # Step 42: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    _, _, w.p_J4 = coupler_point_1(w.p_J5, w.phi_ternary, c["step42.gsi"], c["step42.eta"])
-    # Step 43: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    # Step 34: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known
+    st, sigma[34], w.p_J5 = RRR_links_1(p_J6, w.p_J3, w.l_coupler, w.add1_v6, w.br34)
+    report.append((st, ((1, 341), (3, 343), (4, -344))))
+    chains = np.minimum(chains, sigma[34])
+    # Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    st, sigma[35], w.p_J2 = RRR_links_1(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br35)
+    report.append((st, ((1, 351), (3, 353), (4, -354))))
+    chains = np.minimum(chains, sigma[35])
+    # Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    _, _, w.p_J4 = link_point_1(w.p_J5, w.p_J2, c["step36.along"], c["step36.across"])
+    # Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v6 = link_residual_1(w.p_J3, w.p_J4, w.l_rocker2)
     return report, sigma, (w.f1_v6, ), chains
 
 
 def _group_1_v7(w, r, br, a, da, dda):
-    """Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9 (fallback 7: the Add-link J1-J5), on lanes of rows.
+    """Steps 38, 39, 40, 41, iterated by the resolver of step 8 (fallback 7: the Add-link J1-J5), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1926,31 +1843,28 @@ def _group_1_v7(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br44, w.br45, = br
+    w.br38, w.br39, = br
     sigma = {}
     report = []
     w.add1_v7 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 44: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known
-    st, sigma[44], w.p_J5 = RRR_links(p_J6, w.p_J1, w.l_coupler, w.add1_v7, w.br44)
-    report.append((st, ((1, 441), (3, 443), (4, -444))))
-    chains = np.minimum(chains, sigma[44])
-    # Step 45: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    st, sigma[45], w.p_J2 = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br45)
-    report.append((st, ((1, 451), (3, 453), (4, -454))))
-    chains = np.minimum(chains, sigma[45])
-    # Step 46: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle(w.p_J5, w.p_J2, c["step46.off"])
-    report.append((st, ((1, 461), (3, 463), (4, -464))))
-    # Step 47: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    _, _, w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, c["step47.gsi"], c["step47.eta"])
-    # Step 48: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    # Step 38: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known
+    st, sigma[38], w.p_J5 = RRR_links(p_J6, w.p_J1, w.l_coupler, w.add1_v7, w.br38)
+    report.append((st, ((1, 381), (3, 383), (4, -384))))
+    chains = np.minimum(chains, sigma[38])
+    # Step 39: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    st, sigma[39], w.p_J2 = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br39)
+    report.append((st, ((1, 391), (3, 393), (4, -394))))
+    chains = np.minimum(chains, sigma[39])
+    # Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    _, _, w.p_J4 = link_point(w.p_J5, w.p_J2, c["step40.along"], c["step40.across"])
+    # Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v7 = link_residual(w.p_J3, w.p_J4, w.l_rocker2)
     return report, sigma, (w.f1_v7, ), chains
 
 
 def _group_1_v7_1(w, r, br, a, da, dda):
-    """Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9 (fallback 7: the Add-link J1-J5), on lanes of rows (positions and rates only).
+    """Steps 38, 39, 40, 41, iterated by the resolver of step 8 (fallback 7: the Add-link J1-J5), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1959,31 +1873,28 @@ def _group_1_v7_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br44, w.br45, = br
+    w.br38, w.br39, = br
     sigma = {}
     report = []
     w.add1_v7 = (a[0], da[0])
     chains = 1.0
-    # Step 44: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known
-    st, sigma[44], w.p_J5 = RRR_links_1(p_J6, w.p_J1, w.l_coupler, w.add1_v7, w.br44)
-    report.append((st, ((1, 441), (3, 443), (4, -444))))
-    chains = np.minimum(chains, sigma[44])
-    # Step 45: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    st, sigma[45], w.p_J2 = RRR_links_1(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br45)
-    report.append((st, ((1, 451), (3, 453), (4, -454))))
-    chains = np.minimum(chains, sigma[45])
-    # Step 46: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle_1(w.p_J5, w.p_J2, c["step46.off"])
-    report.append((st, ((1, 461), (3, 463), (4, -464))))
-    # Step 47: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    _, _, w.p_J4 = coupler_point_1(w.p_J5, w.phi_ternary, c["step47.gsi"], c["step47.eta"])
-    # Step 48: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    # Step 38: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known
+    st, sigma[38], w.p_J5 = RRR_links_1(p_J6, w.p_J1, w.l_coupler, w.add1_v7, w.br38)
+    report.append((st, ((1, 381), (3, 383), (4, -384))))
+    chains = np.minimum(chains, sigma[38])
+    # Step 39: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    st, sigma[39], w.p_J2 = RRR_links_1(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br39)
+    report.append((st, ((1, 391), (3, 393), (4, -394))))
+    chains = np.minimum(chains, sigma[39])
+    # Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    _, _, w.p_J4 = link_point_1(w.p_J5, w.p_J2, c["step40.along"], c["step40.across"])
+    # Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v7 = link_residual_1(w.p_J3, w.p_J4, w.l_rocker2)
     return report, sigma, (w.f1_v7, ), chains
 
 
 def _group_1_v8(w, r, br, a, da, dda):
-    """Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9 (fallback 8: the Add-link J7-J5), on lanes of rows.
+    """Steps 42, 43, 44, 45, iterated by the resolver of step 8 (fallback 8: the Add-link J7-J5), on lanes of rows.
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -1992,31 +1903,28 @@ def _group_1_v8(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br49, w.br50, = br
+    w.br42, w.br43, = br
     sigma = {}
     report = []
     w.add1_v8 = (a[0], da[0], dda[0])
     chains = 1.0
-    # Step 49: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, sigma[49], w.p_J5 = RRR_links(p_J6, w.p_J7, w.l_coupler, w.add1_v8, w.br49)
-    report.append((st, ((1, 491), (3, 493), (4, -494))))
-    chains = np.minimum(chains, sigma[49])
-    # Step 50: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    st, sigma[50], w.p_J2 = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br50)
-    report.append((st, ((1, 501), (3, 503), (4, -504))))
-    chains = np.minimum(chains, sigma[50])
-    # Step 51: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle(w.p_J5, w.p_J2, c["step51.off"])
-    report.append((st, ((1, 511), (3, 513), (4, -514))))
-    # Step 52: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    _, _, w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, c["step52.gsi"], c["step52.eta"])
-    # Step 53: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    # Step 42: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, sigma[42], w.p_J5 = RRR_links(p_J6, w.p_J7, w.l_coupler, w.add1_v8, w.br42)
+    report.append((st, ((1, 421), (3, 423), (4, -424))))
+    chains = np.minimum(chains, sigma[42])
+    # Step 43: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    st, sigma[43], w.p_J2 = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br43)
+    report.append((st, ((1, 431), (3, 433), (4, -434))))
+    chains = np.minimum(chains, sigma[43])
+    # Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    _, _, w.p_J4 = link_point(w.p_J5, w.p_J2, c["step44.along"], c["step44.across"])
+    # Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v8 = link_residual(w.p_J3, w.p_J4, w.l_rocker2)
     return report, sigma, (w.f1_v8, ), chains
 
 
 def _group_1_v8_1(w, r, br, a, da, dda):
-    """Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9 (fallback 8: the Add-link J7-J5), on lanes of rows (positions and rates only).
+    """Steps 42, 43, 44, 45, iterated by the resolver of step 8 (fallback 8: the Add-link J7-J5), on lanes of rows (positions and rates only).
 
     r: the records the block reads from before the group (their rates zeroed on a Jacobian
     pass), br: its chains' branches, a, da, dda: the Add-link lengths, rates and
@@ -2025,25 +1933,22 @@ def _group_1_v8_1(w, r, br, a, da, dda):
     """
     c = w.c
     p_J6, = r
-    w.br49, w.br50, = br
+    w.br42, w.br43, = br
     sigma = {}
     report = []
     w.add1_v8 = (a[0], da[0])
     chains = 1.0
-    # Step 49: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known
-    st, sigma[49], w.p_J5 = RRR_links_1(p_J6, w.p_J7, w.l_coupler, w.add1_v8, w.br49)
-    report.append((st, ((1, 491), (3, 493), (4, -494))))
-    chains = np.minimum(chains, sigma[49])
-    # Step 50: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    st, sigma[50], w.p_J2 = RRR_links_1(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br50)
-    report.append((st, ((1, 501), (3, 503), (4, -504))))
-    chains = np.minimum(chains, sigma[50])
-    # Step 51: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
-    st, _, w.phi_ternary = link_angle_1(w.p_J5, w.p_J2, c["step51.off"])
-    report.append((st, ((1, 511), (3, 513), (4, -514))))
-    # Step 52: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    _, _, w.p_J4 = coupler_point_1(w.p_J5, w.phi_ternary, c["step52.gsi"], c["step52.eta"])
-    # Step 53: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    # Step 42: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known
+    st, sigma[42], w.p_J5 = RRR_links_1(p_J6, w.p_J7, w.l_coupler, w.add1_v8, w.br42)
+    report.append((st, ((1, 421), (3, 423), (4, -424))))
+    chains = np.minimum(chains, sigma[42])
+    # Step 43: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    st, sigma[43], w.p_J2 = RRR_links_1(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br43)
+    report.append((st, ((1, 431), (3, 433), (4, -434))))
+    chains = np.minimum(chains, sigma[43])
+    # Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    _, _, w.p_J4 = link_point_1(w.p_J5, w.p_J2, c["step44.along"], c["step44.across"])
+    # Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v8 = link_residual_1(w.p_J3, w.p_J4, w.l_rocker2)
     return report, sigma, (w.f1_v8, ), chains
 
@@ -2099,47 +2004,47 @@ def _lengths_1(w, a):
                                        for x, old in zip(m, a[8][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     return states, rates
-_GROUP_1 = SimpleNamespace(  # group 1: its blocks (the chosen one, then the fallbacks), resolved at step 9
+_GROUP_1 = SimpleNamespace(  # group 1: its blocks (the chosen one, then the fallbacks), resolved at step 8
     blocks=(
         SimpleNamespace(run=_group_1, run1=_group_1_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1", 3, 1), ("p_J4", 6, 2), ("p_J2", 6, 2), ("phi_ternary", 3, 1), ("p_J5", 6, 2), ("f1", 3, 1), )),
+                        writes=(("add1", 3, 1), ("p_J4", 6, 2), ("p_J2", 6, 2), ("p_J5", 6, 2), ("f1", 3, 1), )),
         SimpleNamespace(run=_group_1_v1, run1=_group_1_v1_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v1", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("phi_ternary", 3, 1), ("p_J5", 6, 2), ("f1_v1", 3, 1), )),
+                        writes=(("add1_v1", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("p_J5", 6, 2), ("f1_v1", 3, 1), )),
         SimpleNamespace(run=_group_1_v2, run1=_group_1_v2_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v2", 3, 1), ("p_J4", 6, 2), ("p_J2", 6, 2), ("phi_ternary", 3, 1), ("p_J5", 6, 2), ("f1_v2", 3, 1), )),
+                        writes=(("add1_v2", 3, 1), ("p_J4", 6, 2), ("p_J2", 6, 2), ("p_J5", 6, 2), ("f1_v2", 3, 1), )),
         SimpleNamespace(run=_group_1_v3, run1=_group_1_v3_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v3", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("phi_ternary", 3, 1), ("p_J5", 6, 2), ("f1_v3", 3, 1), )),
+                        writes=(("add1_v3", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("p_J5", 6, 2), ("f1_v3", 3, 1), )),
         SimpleNamespace(run=_group_1_v4, run1=_group_1_v4_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v4", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("phi_ternary", 3, 1), ("p_J5", 6, 2), ("f1_v4", 3, 1), )),
+                        writes=(("add1_v4", 3, 1), ("p_J2", 6, 2), ("p_J4", 6, 2), ("p_J5", 6, 2), ("f1_v4", 3, 1), )),
         SimpleNamespace(run=_group_1_v5, run1=_group_1_v5_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v5", 3, 1), ("p_J4", 6, 2), ("p_J2", 6, 2), ("phi_ternary", 3, 1), ("p_J5", 6, 2), ("f1_v5", 3, 1), )),
+                        writes=(("add1_v5", 3, 1), ("p_J4", 6, 2), ("p_J2", 6, 2), ("p_J5", 6, 2), ("f1_v5", 3, 1), )),
         SimpleNamespace(run=_group_1_v6, run1=_group_1_v6_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v6", 3, 1), ("p_J5", 6, 2), ("p_J2", 6, 2), ("phi_ternary", 3, 1), ("p_J4", 6, 2), ("f1_v6", 3, 1), )),
+                        writes=(("add1_v6", 3, 1), ("p_J5", 6, 2), ("p_J2", 6, 2), ("p_J4", 6, 2), ("f1_v6", 3, 1), )),
         SimpleNamespace(run=_group_1_v7, run1=_group_1_v7_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v7", 3, 1), ("p_J5", 6, 2), ("p_J2", 6, 2), ("phi_ternary", 3, 1), ("p_J4", 6, 2), ("f1_v7", 3, 1), )),
+                        writes=(("add1_v7", 3, 1), ("p_J5", 6, 2), ("p_J2", 6, 2), ("p_J4", 6, 2), ("f1_v7", 3, 1), )),
         SimpleNamespace(run=_group_1_v8, run1=_group_1_v8_1, size=1,
                         branches=2,
                         reads=(("p_J6", 2), ),  # (record, its position fields); then what it computes (record, fields, position fields)
-                        writes=(("add1_v8", 3, 1), ("p_J5", 6, 2), ("p_J2", 6, 2), ("phi_ternary", 3, 1), ("p_J4", 6, 2), ("f1_v8", 3, 1), )),
+                        writes=(("add1_v8", 3, 1), ("p_J5", 6, 2), ("p_J2", 6, 2), ("p_J4", 6, 2), ("f1_v8", 3, 1), )),
     ),
-    first=0, count=9, slot=0, step=9, lengths=_lengths_1,
-    codes=((1, 91), (3, 93), (4, -94)), singular=1e-07, near=0.001,
+    first=0, count=9, slot=0, step=8, lengths=_lengths_1,
+    codes=((1, 81), (3, 83), (4, -84)), singular=1e-07, near=0.001,
 )
 
 
@@ -2171,23 +2076,26 @@ def _run(x, dx, ddx, c, a, ad, used, order, skip, m, p):
     # Step 2: crank_input, J6. J7 is known and link frame is placed, so the input angle theta_J7 turns link crank to J6
     _, _, w.p_J6 = crank_input(w.p_J7, c["step2.l"], w.in1, w.ref_J7)
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
-    # Step 9: resolve, group1. the resolver iterates on add1 until coupler regains its length
+    # Step 8: resolve, group1. the resolver iterates on add1 until coupler regains its length
     done, steps = resolve_lanes(w, _GROUP_1, a, ad, used, order, sigma, report,
                                 skip | past | ~settled | failed_lanes(report, np.size(skip)), m, p)
     settled = settled & done
     its.append(steps)
-    # Step 10: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is
-    st, _, w.phi_rocker1 = link_angle(w.p_J1, w.p_J2, c["step10.off"])
-    report.append((st, ((1, 101), (3, 103), (4, -104))))
+    # Step 9: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is
+    st, _, w.phi_rocker1 = link_angle(w.p_J1, w.p_J2, c["step9.off"])
+    report.append((st, ((1, 91),)))
+    # Step 10: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
+    st, _, w.phi_ternary = link_angle(w.p_J2, w.p_J4, c["step10.off"])
+    report.append((st, ((1, 101),)))
     # Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is
     st, _, w.phi_rocker2 = link_angle(w.p_J3, w.p_J4, c["step11.off"])
-    report.append((st, ((1, 111), (3, 113), (4, -114))))
+    report.append((st, ((1, 111),)))
     # Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is
     st, _, w.phi_coupler = link_angle(w.p_J6, w.p_J5, c["step12.off"])
-    report.append((st, ((1, 121), (3, 123), (4, -124))))
+    report.append((st, ((1, 121),)))
     # Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is
     st, _, w.phi_crank = link_angle(w.p_J7, w.p_J6, c["step13.off"])
-    report.append((st, ((1, 131), (3, 133), (4, -134))))
+    report.append((st, ((1, 131),)))
     code = row_status(report)
     return w, code, sigma, its, settled, past
 def _publish(w, c):

@@ -73,7 +73,7 @@ function w = new_work()
     m.periodic = [1];  % angle inputs: the continuation goes the shorter way round
     m.low = NaN;  % where the reach of an angle input starts (NaN: no reach)
     m.groups = 1;
-    m.another = 92;  % a row solvable on another assembly only
+    m.another = 82;  % a row solvable on another assembly only
     m.not_converged = 2;  % a row failed with this reason is followed from the last one
     w.mechanism = m;
     % the resolver's policy, lengths relative to the length scale (see sixbar_fig14.md)
@@ -109,7 +109,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
     % rates ad out) and try the blocks used first.
     status = 0;
     ad = a;
-    w.sigma = ones(1, 53);
+    w.sigma = ones(1, 45);
     w.singular = 0;
     w.near = 0;
     w.in1 = struct('the', in(1), 'dthe', din(1), 'ddthe', ddin(1));
@@ -120,43 +120,51 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
 
     % Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
-    % Step 9: resolve, group1. the resolver iterates on add1 until coupler regains its length
+    % Step 8: resolve, group1. the resolver iterates on add1 until coupler regains its length
     w.br4 = 1 - 2 * (a{1}(2) < 0);
     w.br5 = 1 - 2 * (a{1}(3) < 0);
     w.br14 = 1 - 2 * (a{2}(2) < 0);
     w.br15 = 1 - 2 * (a{2}(3) < 0);
-    w.br19 = 1 - 2 * (a{3}(2) < 0);
-    w.br20 = 1 - 2 * (a{3}(3) < 0);
-    w.br24 = 1 - 2 * (a{4}(2) < 0);
-    w.br25 = 1 - 2 * (a{4}(3) < 0);
-    w.br29 = 1 - 2 * (a{5}(2) < 0);
-    w.br30 = 1 - 2 * (a{5}(3) < 0);
-    w.br34 = 1 - 2 * (a{6}(2) < 0);
-    w.br35 = 1 - 2 * (a{6}(3) < 0);
-    w.br39 = 1 - 2 * (a{7}(2) < 0);
-    w.br40 = 1 - 2 * (a{7}(3) < 0);
-    w.br44 = 1 - 2 * (a{8}(2) < 0);
-    w.br45 = 1 - 2 * (a{8}(3) < 0);
-    w.br49 = 1 - 2 * (a{9}(2) < 0);
-    w.br50 = 1 - 2 * (a{9}(3) < 0);
+    w.br18 = 1 - 2 * (a{3}(2) < 0);
+    w.br19 = 1 - 2 * (a{3}(3) < 0);
+    w.br22 = 1 - 2 * (a{4}(2) < 0);
+    w.br23 = 1 - 2 * (a{4}(3) < 0);
+    w.br26 = 1 - 2 * (a{5}(2) < 0);
+    w.br27 = 1 - 2 * (a{5}(3) < 0);
+    w.br30 = 1 - 2 * (a{6}(2) < 0);
+    w.br31 = 1 - 2 * (a{6}(3) < 0);
+    w.br34 = 1 - 2 * (a{7}(2) < 0);
+    w.br35 = 1 - 2 * (a{7}(3) < 0);
+    w.br38 = 1 - 2 * (a{8}(2) < 0);
+    w.br39 = 1 - 2 * (a{8}(3) < 0);
+    w.br42 = 1 - 2 * (a{9}(2) < 0);
+    w.br43 = 1 - 2 * (a{9}(3) < 0);
     blocks = { @group_1, @group_1_v1, @group_1_v2, @group_1_v3, @group_1_v4, @group_1_v5, @group_1_v6, @group_1_v7, @group_1_v8 };
     [ok, its, sigma, w, a, ad, used] = resolver_group(blocks, @lengths_1, w, a, ad, used, 1, ...
                                                       1, order, w.mechanism, w.policy);
     w.iterations(1) = its;
-    w.sigma(9) = sigma;
+    w.sigma(8) = sigma;
     if ~ok
-        status = 92;
+        status = 82;
         return;
     end
-    if w.sigma(9) < 1e-07
-        w = note(w, 3, 93, -94);
-    elseif w.sigma(9) < 0.001
-        w = note(w, 4, 93, -94);
+    if w.sigma(8) < 1e-07
+        w = note(w, 3, 83, -84);
+    elseif w.sigma(8) < 0.001
+        w = note(w, 4, 83, -84);
     end
 
 
-    % Step 10: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is
+    % Step 9: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is
     [w.phi_rocker1, st] = link_angle(w.p_J1, w.p_J2, 0.0);
+    if st == 1
+        status = 91;
+        return;
+    end
+    w = note(w, st, 93, -94);
+
+    % Step 10: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
+    [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
     if st == 1
         status = 101;
         return;
@@ -195,7 +203,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
 end
 
 function [st, res, w] = group_1(w, a, da, dda, live)
-    % Steps 4, 5, 6, 7, 8, iterated by the resolver of step 9: the Add-link
+    % Steps 4, 5, 6, 7, iterated by the resolver of step 8: the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
     % so a unit Add-link rate gives one Jacobian column.
@@ -230,19 +238,9 @@ function [st, res, w] = group_1(w, a, da, dda, live)
         w = note(w, st, 53, -54);
     end
     w.chains = min(w.chains, w.sigma(5));
-    % Step 6: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 63, -64);
-    end
-    % Step 7: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341);
-    % Step 8: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    % Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    % Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
     res = [w.f1.v, w.f1.dv, w.f1.ddv];
@@ -250,7 +248,7 @@ end
 
 
 function [st, res, w] = group_1_v1(w, a, da, dda, live)
-    % Steps 14, 15, 16, 17, 18, iterated by the resolver of step 9 (fallback 1:
+    % Steps 14, 15, 16, 17, iterated by the resolver of step 8 (fallback 1:
     % the Add-link J6-J2): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -286,19 +284,9 @@ function [st, res, w] = group_1_v1(w, a, da, dda, live)
         w = note(w, st, 153, -154);
     end
     w.chains = min(w.chains, w.sigma(15));
-    % Step 16: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 163, -164);
-    end
-    % Step 17: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134);
-    % Step 18: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    % Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    % Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
     res = [w.f1_v1.v, w.f1_v1.dv, w.f1_v1.ddv];
@@ -306,7 +294,7 @@ end
 
 
 function [st, res, w] = group_1_v2(w, a, da, dda, live)
-    % Steps 19, 20, 21, 22, 23, iterated by the resolver of step 9 (fallback 2:
+    % Steps 18, 19, 20, 21, iterated by the resolver of step 8 (fallback 2:
     % the Add-link J1-J4): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -320,8 +308,19 @@ function [st, res, w] = group_1_v2(w, a, da, dda, live)
     end
     w.add1_v2 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 19: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(19)] = RRR_links(w.p_J3, w.p_J1, w.l_rocker2, w.add1_v2, w.br19);
+    % Step 18: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known
+    [w.p_J4, st, w.sigma(18)] = RRR_links(w.p_J3, w.p_J1, w.l_rocker2, w.add1_v2, w.br18);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 183, -184);
+    end
+    w.chains = min(w.chains, w.sigma(18));
+    % Step 19: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
+    [w.p_J2, st, w.sigma(19)] = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br19);
     if st == 1
         st = 1;
         res = [];
@@ -331,30 +330,9 @@ function [st, res, w] = group_1_v2(w, a, da, dda, live)
         w = note(w, st, 193, -194);
     end
     w.chains = min(w.chains, w.sigma(19));
-    % Step 20: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(20)] = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br20);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 203, -204);
-    end
-    w.chains = min(w.chains, w.sigma(20));
-    % Step 21: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 213, -214);
-    end
-    % Step 22: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341);
-    % Step 23: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    % Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    % Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
     res = [w.f1_v2.v, w.f1_v2.dv, w.f1_v2.ddv];
@@ -362,7 +340,7 @@ end
 
 
 function [st, res, w] = group_1_v3(w, a, da, dda, live)
-    % Steps 24, 25, 26, 27, 28, iterated by the resolver of step 9 (fallback 3:
+    % Steps 22, 23, 24, 25, iterated by the resolver of step 8 (fallback 3:
     % the Add-link J3-J2): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -376,41 +354,31 @@ function [st, res, w] = group_1_v3(w, a, da, dda, live)
     end
     w.add1_v3 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 24: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(24)] = RRR_links(w.p_J1, w.p_J3, w.l_rocker1, w.add1_v3, w.br24);
+    % Step 22: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known
+    [w.p_J2, st, w.sigma(22)] = RRR_links(w.p_J1, w.p_J3, w.l_rocker1, w.add1_v3, w.br22);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 243, -244);
+        w = note(w, st, 223, -224);
     end
-    w.chains = min(w.chains, w.sigma(24));
-    % Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(25)] = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br25);
+    w.chains = min(w.chains, w.sigma(22));
+    % Step 23: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
+    [w.p_J4, st, w.sigma(23)] = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br23);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 253, -254);
+        w = note(w, st, 233, -234);
     end
-    w.chains = min(w.chains, w.sigma(25));
-    % Step 26: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 263, -264);
-    end
-    % Step 27: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134);
-    % Step 28: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(23));
+    % Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    % Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
     res = [w.f1_v3.v, w.f1_v3.dv, w.f1_v3.ddv];
@@ -418,7 +386,7 @@ end
 
 
 function [st, res, w] = group_1_v4(w, a, da, dda, live)
-    % Steps 29, 30, 31, 32, 33, iterated by the resolver of step 9 (fallback 4:
+    % Steps 26, 27, 28, 29, iterated by the resolver of step 8 (fallback 4:
     % the Add-link J7-J2): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -432,41 +400,31 @@ function [st, res, w] = group_1_v4(w, a, da, dda, live)
     end
     w.add1_v4 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 29: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(29)] = RRR_links(w.p_J1, w.p_J7, w.l_rocker1, w.add1_v4, w.br29);
+    % Step 26: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known
+    [w.p_J2, st, w.sigma(26)] = RRR_links(w.p_J1, w.p_J7, w.l_rocker1, w.add1_v4, w.br26);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 293, -294);
+        w = note(w, st, 263, -264);
     end
-    w.chains = min(w.chains, w.sigma(29));
-    % Step 30: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(30)] = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br30);
+    w.chains = min(w.chains, w.sigma(26));
+    % Step 27: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known
+    [w.p_J4, st, w.sigma(27)] = RRR_links(w.p_J2, w.p_J3, w.l_ternary_J2_J4, w.l_rocker2, w.br27);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 303, -304);
+        w = note(w, st, 273, -274);
     end
-    w.chains = min(w.chains, w.sigma(30));
-    % Step 31: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 313, -314);
-    end
-    % Step 32: coupler_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J2, w.phi_ternary, 59.456436769311765, 12.84259034217134);
-    % Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(27));
+    % Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    % Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
     res = [w.f1_v4.v, w.f1_v4.dv, w.f1_v4.ddv];
@@ -474,7 +432,7 @@ end
 
 
 function [st, res, w] = group_1_v5(w, a, da, dda, live)
-    % Steps 34, 35, 36, 37, 38, iterated by the resolver of step 9 (fallback 5:
+    % Steps 30, 31, 32, 33, iterated by the resolver of step 8 (fallback 5:
     % the Add-link J7-J4): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -488,41 +446,31 @@ function [st, res, w] = group_1_v5(w, a, da, dda, live)
     end
     w.add1_v5 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 34: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
-    [w.p_J4, st, w.sigma(34)] = RRR_links(w.p_J3, w.p_J7, w.l_rocker2, w.add1_v5, w.br34);
+    % Step 30: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known
+    [w.p_J4, st, w.sigma(30)] = RRR_links(w.p_J3, w.p_J7, w.l_rocker2, w.add1_v5, w.br30);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 343, -344);
+        w = note(w, st, 303, -304);
     end
-    w.chains = min(w.chains, w.sigma(34));
-    % Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(35)] = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br35);
+    w.chains = min(w.chains, w.sigma(30));
+    % Step 31: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known
+    [w.p_J2, st, w.sigma(31)] = RRR_links(w.p_J1, w.p_J4, w.l_rocker1, w.l_ternary_J2_J4, w.br31);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 353, -354);
+        w = note(w, st, 313, -314);
     end
-    w.chains = min(w.chains, w.sigma(35));
-    % Step 36: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
-    [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 363, -364);
-    end
-    % Step 37: coupler_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = coupler_point(w.p_J4, w.phi_ternary, -45.662543438831435, 12.842590342171341);
-    % Step 38: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(31));
+    % Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    % Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
     res = [w.f1_v5.v, w.f1_v5.dv, w.f1_v5.ddv];
@@ -530,7 +478,7 @@ end
 
 
 function [st, res, w] = group_1_v6(w, a, da, dda, live)
-    % Steps 39, 40, 41, 42, 43, iterated by the resolver of step 9 (fallback 6:
+    % Steps 34, 35, 36, 37, iterated by the resolver of step 8 (fallback 6:
     % the Add-link J3-J5): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -544,41 +492,31 @@ function [st, res, w] = group_1_v6(w, a, da, dda, live)
     end
     w.add1_v6 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 39: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known
-    [w.p_J5, st, w.sigma(39)] = RRR_links(p_J6, w.p_J3, w.l_coupler, w.add1_v6, w.br39);
+    % Step 34: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known
+    [w.p_J5, st, w.sigma(34)] = RRR_links(p_J6, w.p_J3, w.l_coupler, w.add1_v6, w.br34);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 393, -394);
+        w = note(w, st, 343, -344);
     end
-    w.chains = min(w.chains, w.sigma(39));
-    % Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(40)] = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br40);
+    w.chains = min(w.chains, w.sigma(34));
+    % Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    [w.p_J2, st, w.sigma(35)] = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br35);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 403, -404);
+        w = note(w, st, 353, -354);
     end
-    w.chains = min(w.chains, w.sigma(40));
-    % Step 41: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
-    [w.phi_ternary, st] = link_angle(w.p_J5, w.p_J2, 2.928860872898183);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 413, -414);
-    end
-    % Step 42: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341);
-    % Step 43: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(35));
+    % Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486);
+    % Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
     st = 0;
     res = [w.f1_v6.v, w.f1_v6.dv, w.f1_v6.ddv];
@@ -586,7 +524,7 @@ end
 
 
 function [st, res, w] = group_1_v7(w, a, da, dda, live)
-    % Steps 44, 45, 46, 47, 48, iterated by the resolver of step 9 (fallback 7:
+    % Steps 38, 39, 40, 41, iterated by the resolver of step 8 (fallback 7:
     % the Add-link J1-J5): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -600,41 +538,31 @@ function [st, res, w] = group_1_v7(w, a, da, dda, live)
     end
     w.add1_v7 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 44: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known
-    [w.p_J5, st, w.sigma(44)] = RRR_links(p_J6, w.p_J1, w.l_coupler, w.add1_v7, w.br44);
+    % Step 38: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known
+    [w.p_J5, st, w.sigma(38)] = RRR_links(p_J6, w.p_J1, w.l_coupler, w.add1_v7, w.br38);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 443, -444);
+        w = note(w, st, 383, -384);
     end
-    w.chains = min(w.chains, w.sigma(44));
-    % Step 45: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(45)] = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br45);
+    w.chains = min(w.chains, w.sigma(38));
+    % Step 39: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    [w.p_J2, st, w.sigma(39)] = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br39);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 453, -454);
+        w = note(w, st, 393, -394);
     end
-    w.chains = min(w.chains, w.sigma(45));
-    % Step 46: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
-    [w.phi_ternary, st] = link_angle(w.p_J5, w.p_J2, 2.928860872898183);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 463, -464);
-    end
-    % Step 47: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341);
-    % Step 48: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(39));
+    % Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486);
+    % Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v7 = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
     st = 0;
     res = [w.f1_v7.v, w.f1_v7.dv, w.f1_v7.ddv];
@@ -642,7 +570,7 @@ end
 
 
 function [st, res, w] = group_1_v8(w, a, da, dda, live)
-    % Steps 49, 50, 51, 52, 53, iterated by the resolver of step 9 (fallback 8:
+    % Steps 42, 43, 44, 45, iterated by the resolver of step 8 (fallback 8:
     % the Add-link J7-J5): the Add-link
     % lengths a, rates da and accelerations dda in, the residuals res out (a row each: its
     % value and derivatives); live false zeroes the rates of the records read from outside,
@@ -656,41 +584,31 @@ function [st, res, w] = group_1_v8(w, a, da, dda, live)
     end
     w.add1_v8 = struct('v', a(1), 'dv', da(1), 'ddv', dda(1));
     w.chains = 1.0;
-    % Step 49: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known
-    [w.p_J5, st, w.sigma(49)] = RRR_links(p_J6, w.p_J7, w.l_coupler, w.add1_v8, w.br49);
+    % Step 42: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known
+    [w.p_J5, st, w.sigma(42)] = RRR_links(p_J6, w.p_J7, w.l_coupler, w.add1_v8, w.br42);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 493, -494);
+        w = note(w, st, 423, -424);
     end
-    w.chains = min(w.chains, w.sigma(49));
-    % Step 50: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
-    [w.p_J2, st, w.sigma(50)] = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br50);
+    w.chains = min(w.chains, w.sigma(42));
+    % Step 43: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known
+    [w.p_J2, st, w.sigma(43)] = RRR_links(w.p_J1, w.p_J5, w.l_rocker1, w.l_ternary_J2_J5, w.br43);
     if st == 1
         st = 1;
         res = [];
         return;
     end
     if live
-        w = note(w, st, 503, -504);
+        w = note(w, st, 433, -434);
     end
-    w.chains = min(w.chains, w.sigma(50));
-    % Step 51: link_angle, ternary. J5 and J2 of link ternary are known, so its angle is
-    [w.phi_ternary, st] = link_angle(w.p_J5, w.p_J2, 2.928860872898183);
-    if st == 1
-        st = 1;
-        res = [];
-        return;
-    end
-    if live
-        w = note(w, st, 513, -514);
-    end
-    % Step 52: coupler_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = coupler_point(w.p_J5, w.phi_ternary, 45.662543438831435, -12.842590342171341);
-    % Step 53: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
+    w.chains = min(w.chains, w.sigma(43));
+    % Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
+    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486);
+    % Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v8 = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
     st = 0;
     res = [w.f1_v8.v, w.f1_v8.dv, w.f1_v8.ddv];
@@ -964,12 +882,13 @@ function [angle, st] = link_angle(j1, j2, off)
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
     r2 = dx * dx + dy * dy;
-    if atan2(dy, dx) + off > pi
-        th = atan2(dy, dx) + off - 2 * pi;
-    elseif atan2(dy, dx) + off <= -pi
-        th = atan2(dy, dx) + off + 2 * pi;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = atan2(dy, dx) + off;
+        th = th0;
     end
     if r2 == 0
         ir2 = NaN;
@@ -991,28 +910,28 @@ function [angle, st] = link_angle(j1, j2, off)
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
-    if st == 1 || st == 3
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
 end
 
-function jc = coupler_point(j0, phi, gsi, eta)
-    % Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi.
-    cp = cos(phi.the);
-    sp = sin(phi.the);
-    rx = gsi * cp - eta * sp;
-    ry = gsi * sp + eta * cp;
-    rvx = -phi.dthe * ry;
-    rvy = phi.dthe * rx;
-    rax = -phi.ddthe * ry - phi.dthe * phi.dthe * rx;
-    ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
-    jc.x = j0.x + rx;
-    jc.y = j0.y + ry;
-    jc.dx = j0.dx + rvx;
-    jc.dy = j0.dy + rvy;
-    jc.ddx = j0.ddx + rax;
-    jc.ddy = j0.ddy + ray;
+function jc = link_point(j1, j2, along, across)
+    % Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry).
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx - j1.dx;
+    dvy = j2.dy - j1.dy;
+    dax = j2.ddx - j1.ddx;
+    day = j2.ddy - j1.ddy;
+    rx = along * dx - across * dy;
+    ry = along * dy + across * dx;
+    rvx = along * dvx - across * dvy;
+    rvy = along * dvy + across * dvx;
+    rax = along * dax - across * day;
+    ray = along * day + across * dax;
+    jc.x = j1.x + rx;
+    jc.y = j1.y + ry;
+    jc.dx = j1.dx + rvx;
+    jc.dy = j1.dy + rvy;
+    jc.ddx = j1.ddx + rax;
+    jc.ddy = j1.ddy + ray;
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
@@ -1061,10 +980,11 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     e1x = at * ux - hn * uy;
     e1y = at * uy + hn * ux;
     if fail
-        sigma = 0;
+        ratio = 0;
     else
-        sigma = min(area4 / (2 * l1.v * l2.v), 1);
+        ratio = area4 * (0.5 / (l1.v * l2.v));
     end
+    sigma = min(ratio, 1);
     e2x = -a2 * ux - hn * uy;
     e2y = -a2 * uy + hn * ux;
     if hn == 0

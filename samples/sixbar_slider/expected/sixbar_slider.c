@@ -12,38 +12,39 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-static void crank_input(POINT j1, double l, ANGLE theta, ANGLE phi, POINT *j2)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
-    const double t = theta.the + phi.the;
+    const double t = theta->the + phi->the;
     const double ct = cos(t);
     const double st = sin(t);
     const double rx = l * ct;
     const double ry = l * st;
-    const double om = theta.dthe + phi.dthe;
-    const double al = theta.ddthe + phi.ddthe;
+    const double om = theta->dthe + phi->dthe;
+    const double al = theta->ddthe + phi->ddthe;
     const double rvx = -om * ry;
     const double rvy = om * rx;
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
-    j2->P.x = j1.P.x + rx;
-    j2->P.y = j1.P.y + ry;
-    j2->DP.x = j1.DP.x + rvx;
-    j2->DP.y = j1.DP.y + rvy;
-    j2->DDP.x = j1.DDP.x + rax;
-    j2->DDP.y = j1.DDP.y + ray;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = j1->DP.x + rvx;
+    j2->DP.y = j1->DP.y + rvy;
+    j2->DDP.x = j1->DDP.x + rax;
+    j2->DDP.y = j1->DDP.y + ray;
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
-static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
-    const double dvx = j2.DP.x - j1.DP.x;
-    const double dvy = j2.DP.y - j1.DP.y;
-    const double dax = j2.DDP.x - j1.DDP.x;
-    const double day = j2.DDP.y - j1.DDP.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
     const double r2 = dx * dx + dy * dy;
-    const double th = atan2(dy, dx) + off > 3.141592653589793 ? atan2(dy, dx) + off - 2 * 3.141592653589793 : atan2(dy, dx) + off <= -3.141592653589793 ? atan2(dy, dx) + off + 2 * 3.141592653589793 : atan2(dy, dx) + off;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     const double ir2 = r2 == 0 ? NAN : 1 / r2;
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
@@ -52,74 +53,78 @@ static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
     angle->dthe = om;
     angle->ddthe = al;
     if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; }
-    if (st == 1 || st == 3) { angle->dthe = NAN; angle->ddthe = NAN; }
     return st;
 }
 
-/* Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi. */
-static void coupler_point(POINT j0, ANGLE phi, double gsi, double eta, POINT *jc)
+/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
+static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
 {
-    const double cp = cos(phi.the);
-    const double sp = sin(phi.the);
-    const double rx = gsi * cp - eta * sp;
-    const double ry = gsi * sp + eta * cp;
-    const double rvx = -phi.dthe * ry;
-    const double rvy = phi.dthe * rx;
-    const double rax = -phi.ddthe * ry - phi.dthe * phi.dthe * rx;
-    const double ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
-    jc->P.x = j0.P.x + rx;
-    jc->P.y = j0.P.y + ry;
-    jc->DP.x = j0.DP.x + rvx;
-    jc->DP.y = j0.DP.y + rvy;
-    jc->DDP.x = j0.DDP.x + rax;
-    jc->DDP.y = j0.DDP.y + ray;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
+    const double rx = along * dx - across * dy;
+    const double ry = along * dy + across * dx;
+    const double rvx = along * dvx - across * dvy;
+    const double rvy = along * dvy + across * dvx;
+    const double rax = along * dax - across * day;
+    const double ray = along * day + across * dax;
+    jc->P.x = j1->P.x + rx;
+    jc->P.y = j1->P.y + ry;
+    jc->DP.x = j1->DP.x + rvx;
+    jc->DP.y = j1->DP.y + rvy;
+    jc->DDP.x = j1->DDP.x + rax;
+    jc->DDP.y = j1->DDP.y + ray;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
-static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POINT *jb, double *sigma_out)
+static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
     const double q = sqrt(dx * dx + dy * dy);
     const double iq = q == 0 ? NAN : 1 / q;
     const double ux = dx * iq;
     const double uy = dy * iq;
-    const double hi = fmax(l1.v, l2.v);
-    const double lo = fmin(l1.v, l2.v);
-    const double x = fmax(hi, q);
-    const double z = fmin(lo, q);
+    const double hi = (l2->v > l1->v ? l2->v : l1->v);
+    const double lo = (l2->v < l1->v ? l2->v : l1->v);
+    const double x = (q > hi ? q : hi);
+    const double z = (q < lo ? q : lo);
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
     const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
-    const double kk = fmax(k, 0.0);
+    const double kk = (0.0 > k ? 0.0 : k);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
-    const double a = (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2;
-    const double a2 = (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2;
-    const double flat = q >= hi ? (l1.v + (q - l2.v)) / 2 : l1.v >= l2.v ? (l1.v + (q + l2.v)) / 2 : (q - (l1.v + l2.v)) / 2;
+    const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double flat = q >= hi ? (l1->v + (q - l2->v)) / 2 : l1->v >= l2->v ? (l1->v + (q + l2->v)) / 2 : (q - (l1->v + l2->v)) / 2;
     const double at = k > 0 ? a : flat;
     const double hn = minv * h;
     const double e1x = at * ux - hn * uy;
     const double e1y = at * uy + hn * ux;
-    const double sigma = fail ? 0 : fmin(area4 / (2 * l1.v * l2.v), 1.0);
+    const double ratio = fail ? 0 : area4 * (0.5 / (l1->v * l2->v));
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double e2x = -a2 * ux - hn * uy;
     const double e2y = -a2 * uy + hn * ux;
     const double ihq = hn == 0 ? NAN : 1 / (hn * q);
-    const double r1v = l1.v * l1.dv + (e1x * j1.DP.x + e1y * j1.DP.y);
-    const double r2v = l2.v * l2.dv + (e2x * j2.DP.x + e2y * j2.DP.y);
+    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
+    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
     const double buv = (r1v - r2v) * iq;
     const double bnv = (a2 * r1v + a * r2v) * ihq;
     const double bvx = buv * ux - bnv * uy;
     const double bvy = buv * uy + bnv * ux;
-    const double r1a = l1.v * l1.ddv + l1.dv * l1.dv - ((bvx - j1.DP.x) * (bvx - j1.DP.x) + (bvy - j1.DP.y) * (bvy - j1.DP.y)) + (e1x * j1.DDP.x + e1y * j1.DDP.y);
-    const double r2a = l2.v * l2.ddv + l2.dv * l2.dv - ((bvx - j2.DP.x) * (bvx - j2.DP.x) + (bvy - j2.DP.y) * (bvy - j2.DP.y)) + (e2x * j2.DDP.x + e2y * j2.DDP.y);
+    const double r1a = l1->v * l1->ddv + l1->dv * l1->dv - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y)) + (e1x * j1->DDP.x + e1y * j1->DDP.y);
+    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y)) + (e2x * j2->DDP.x + e2y * j2->DDP.y);
     const double bua = (r1a - r2a) * iq;
     const double bna = (a2 * r1a + a * r2a) * ihq;
     const double bax = bua * ux - bna * uy;
     const double bay = bua * uy + bna * ux;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
-    jb->P.x = j1.P.x + e1x;
-    jb->P.y = j1.P.y + e1y;
+    jb->P.x = j1->P.x + e1x;
+    jb->P.y = j1->P.y + e1y;
     jb->DP.x = bvx;
     jb->DP.y = bvy;
     jb->DDP.x = bax;
@@ -131,49 +136,51 @@ static int RRR_links(POINT j1, POINT j2, VARIABLE l1, VARIABLE l2, int minv, POI
 }
 
 /* 2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side. */
-static int PRR_links(POINT jr, VARIABLE l, POINT pg, ANGLE psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out)
+static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out)
 {
-    const double cg = cos(psig.the);
-    const double sg = sin(psig.the);
+    const double cg = cos(psig->the);
+    const double sg = sin(psig->the);
     const double rx = gsi * cg - eta * sg;
     const double ry = gsi * sg + eta * cg;
-    const double wx = pg.P.x + rx - jr.P.x;
-    const double wy = pg.P.y + ry - jr.P.y;
+    const double wx = pg->P.x + rx - jr->P.x;
+    const double wy = pg->P.y + ry - jr->P.y;
     const double wu = wx * cg + wy * sg;
     const double pn = wx * sg - wy * cg;
     const double ap = fabs(pn);
-    const double k = l.v - ap;
-    const int fail = k < -8 * DBL_EPSILON * fmax(l.v, ap) || l.v <= 0;
-    const double rd = sqrt(fmax(k, 0.0) * (l.v + ap));
+    const double k = l->v - ap;
+    const double big = (ap > l->v ? ap : l->v);
+    const int fail = k < -8 * DBL_EPSILON * big || l->v <= 0;
+    const double rd = sqrt((0.0 > k ? 0.0 : k) * (l->v + ap));
     const double eu = minv * rd;
     const double ex = eu * cg - -pn * sg;
     const double ey = eu * sg + -pn * cg;
     const double sv = eu - wu;
-    const double jbx = jr.P.x + ex;
-    const double jby = jr.P.y + ey;
+    const double jbx = jr->P.x + ex;
+    const double jby = jr->P.y + ey;
     const double jpx = jbx - rx;
     const double jpy = jby - ry;
-    const double sigma = fail ? 0 : fmin(rd / l.v, 1.0);
+    const double ratio = fail ? 0 : rd * (1 / l->v);
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double ieu = eu == 0 ? NAN : 1 / eu;
     const double sgsi = sv + gsi;
-    const double relvx = pg.DP.x - jr.DP.x;
-    const double relvy = pg.DP.y - jr.DP.y;
-    const double ds = (l.v * l.dv - (ex * relvx + ey * relvy) - psig.dthe * (sgsi * -pn - eta * eu)) * ieu;
-    const double jpvx = pg.DP.x + ds * cg - sv * psig.dthe * sg;
-    const double jpvy = pg.DP.y + ds * sg + sv * psig.dthe * cg;
-    const double rvx = -psig.dthe * ry;
-    const double rvy = psig.dthe * rx;
-    const double rax = -psig.ddthe * ry - psig.dthe * psig.dthe * rx;
-    const double ray = psig.ddthe * rx - psig.dthe * psig.dthe * ry;
+    const double relvx = pg->DP.x - jr->DP.x;
+    const double relvy = pg->DP.y - jr->DP.y;
+    const double ds = (l->v * l->dv - (ex * relvx + ey * relvy) - psig->dthe * (sgsi * -pn - eta * eu)) * ieu;
+    const double jpvx = pg->DP.x + ds * cg - sv * psig->dthe * sg;
+    const double jpvy = pg->DP.y + ds * sg + sv * psig->dthe * cg;
+    const double rvx = -psig->dthe * ry;
+    const double rvy = psig->dthe * rx;
+    const double rax = -psig->ddthe * ry - psig->dthe * psig->dthe * rx;
+    const double ray = psig->ddthe * rx - psig->dthe * psig->dthe * ry;
     const double jbvx = jpvx + rvx;
     const double jbvy = jpvy + rvy;
-    const double relax = pg.DDP.x - jr.DDP.x;
-    const double relay = pg.DDP.y - jr.DDP.y;
-    const double om2 = psig.dthe * psig.dthe;
-    const double dds = (l.v * l.ddv + l.dv * l.dv - ((jbvx - jr.DP.x) * (jbvx - jr.DP.x) + (jbvy - jr.DP.y) * (jbvy - jr.DP.y)) - (ex * relax + ey * relay) - 2 * ds * psig.dthe * -pn - sgsi * (psig.ddthe * -pn - om2 * eu) + eta * (psig.ddthe * eu + om2 * -pn)) * ieu;
-    const double tn = 2 * ds * psig.dthe + sv * psig.ddthe;
-    const double jpax = pg.DDP.x + dds * cg - tn * sg - sv * om2 * cg;
-    const double jpay = pg.DDP.y + dds * sg + tn * cg - sv * om2 * sg;
+    const double relax = pg->DDP.x - jr->DDP.x;
+    const double relay = pg->DDP.y - jr->DDP.y;
+    const double om2 = psig->dthe * psig->dthe;
+    const double dds = (l->v * l->ddv + l->dv * l->dv - ((jbvx - jr->DP.x) * (jbvx - jr->DP.x) + (jbvy - jr->DP.y) * (jbvy - jr->DP.y)) - (ex * relax + ey * relay) - 2 * ds * psig->dthe * -pn - sgsi * (psig->ddthe * -pn - om2 * eu) + eta * (psig->ddthe * eu + om2 * -pn)) * ieu;
+    const double tn = 2 * ds * psig->dthe + sv * psig->ddthe;
+    const double jpax = pg->DDP.x + dds * cg - tn * sg - sv * om2 * cg;
+    const double jpay = pg->DDP.y + dds * sg + tn * cg - sv * om2 * sg;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
     s->v = sv;
     s->dv = ds;
@@ -221,13 +228,12 @@ typedef struct {
     ANGLE in1;
     POINT p_A;
     POINT p_B;
-    ANGLE phi_rocker;
     POINT p_C;
     POINT p_D;
     POINT p_S;
     VARIABLE s_S;
-    ANGLE phi_coupler;
     POINT p_P;
+    ANGLE phi_rocker;
     double sigma[SIXBAR_SLIDER_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
@@ -237,57 +243,6 @@ static void note(work *w, int st, int singular, int near)
 {
     if (st == 3 && !w->singular) w->singular = singular;
     if (st == 4 && !w->near) w->near = near;
-}
-
-/* The procedure of sixbar_slider.md, step by step. */
-static int run(work *w, const double in[], const double din[], const double ddin[])
-{
-    int st;
-
-    w->singular = 0;
-    w->near = 0;
-    for (st = 0; st <= SIXBAR_SLIDER_N_STEPS; st++) w->sigma[st] = 1.0;
-    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
-
-    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
-
-
-    /* Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A */
-    crank_input(p_O1, 27.730849247724095, w->in1, ref_O1, &w->p_A);
-
-
-    /* Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known */
-    st = RRR_links(w->p_A, p_O2, l_coupler, l_rocker_B_O2, 1, &w->p_B, &w->sigma[3]);
-    if (st == 1) return 31;
-    note(w, st, 33, -34);
-
-
-    /* Step 4: link_angle, rocker. O2 and B of link rocker are known, so its angle is */
-    st = link_angle(p_O2, w->p_B, 0.0, &w->phi_rocker);
-    if (st == 1) return 41;
-    note(w, st, 43, -44);
-
-
-    /* Step 5: coupler_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it */
-    coupler_point(p_O2, w->phi_rocker, 25.307692307692314, -48.46153846153846, &w->p_C);
-
-
-    /* Step 6: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known */
-    st = PRR_links(w->p_C, l_rod, g_S, psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_D, &w->sigma[6]);
-    if (st == 1) return 61;
-    note(w, st, 63, -64);
-
-
-    /* Step 7: link_angle, coupler. A and B of link coupler are known, so its angle is */
-    st = link_angle(w->p_A, w->p_B, 0.0, &w->phi_coupler);
-    if (st == 1) return 71;
-    note(w, st, 73, -74);
-
-
-    /* Step 8: coupler_point, P. point P of link coupler */
-    coupler_point(w->p_A, w->phi_coupler, 43.422841325484725, 19.064544348653477, &w->p_P);
-
-    return w->singular ? w->singular : w->near;
 }
 
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
@@ -313,16 +268,22 @@ static void no_outputs(sixbar_slider_state *out)
     out->rocker.alpha = NAN;
 }
 
-/* Copy the records into the public state, with the status rules of the CSV. */
+/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
+static int failed(const work *w, sixbar_slider_state *out, int code)
+{
+    int k;
+    out->status = code;
+    for (k = 0; k <= SIXBAR_SLIDER_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    no_outputs(out);
+    return code;
+}
+
+/* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, sixbar_slider_state *out)
 {
     int k;
     out->status = code;
     for (k = 0; k <= SIXBAR_SLIDER_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (reason_of(code) == 1 || reason_of(code) == 2) {
-        no_outputs(out);
-        return;
-    }
     out->S.x = w->p_S.P.x + 72.0;
     out->S.y = w->p_S.P.y + 32.0;
     out->S.vx = w->p_S.DP.x;
@@ -357,6 +318,54 @@ static void publish(const work *w, int code, sixbar_slider_state *out)
     }
 }
 
+/* The procedure of sixbar_slider.md, step by step: a row that fails ends in failed(), a computed
+   one in publish(). */
+static int run(work *w, const double in[], const double din[], const double ddin[], sixbar_slider_state *out)
+{
+    int st;
+
+    w->singular = 0;
+    w->near = 0;
+    for (st = 0; st <= SIXBAR_SLIDER_N_STEPS; st++) w->sigma[st] = 1.0;
+    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
+
+    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
+
+
+    /* Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A */
+    crank_input(&p_O1, 27.730849247724095, &w->in1, &ref_O1, &w->p_A);
+
+
+    /* Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known */
+    st = RRR_links(&w->p_A, &p_O2, &l_coupler, &l_rocker_B_O2, 1, &w->p_B, &w->sigma[3]);
+    if (st == 1) return failed(w, out, 31);
+    note(w, st, 33, -34);
+
+
+    /* Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it */
+    link_point(&p_O2, &w->p_B, 0.48668639053254437, -0.9319526627218935, &w->p_C);
+
+
+    /* Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known */
+    st = PRR_links(&w->p_C, &l_rod, &g_S, &psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_D, &w->sigma[5]);
+    if (st == 1) return failed(w, out, 51);
+    note(w, st, 53, -54);
+
+
+    /* Step 6: link_point, P. point P of link coupler */
+    link_point(&w->p_A, &w->p_B, 0.7636869780389731, 0.3352922981750696, &w->p_P);
+
+
+    /* Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is */
+    st = link_angle(&p_O2, &w->p_B, 0.0, &w->phi_rocker);
+    if (st == 1) return failed(w, out, 91);
+    note(w, st, 93, -94);
+
+    st = w->singular ? w->singular : w->near;
+    publish(w, st, out);
+    return st;
+}
+
 void sixbar_slider_init(sixbar_slider_state *out)
 {
     memset(out, 0, sizeof *out);
@@ -385,12 +394,8 @@ static int refuse(sixbar_slider_state *out)
 int sixbar_slider_solve(const double in[], const double din[], const double ddin[], sixbar_slider_state *out)
 {
     work w;
-    int code;
     if (!finite_inputs(in, din, ddin)) return refuse(out);
-    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
-    code = run(&w, in, din, ddin);
-    publish(&w, code, out);
-    return code;
+    return run(&w, in, din, ddin, out);
 }
 
 void sixbar_slider_columns(const double in[], const sixbar_slider_state *st, double col[SIXBAR_SLIDER_N_COLUMNS])

@@ -12,7 +12,7 @@ extern "C" {
 /* Array lengths: in[], din[] and ddin[] of sixbar_slider_solve hold SIXBAR_SLIDER_N_INPUTS numbers,
    col[] of sixbar_slider_columns SIXBAR_SLIDER_N_COLUMNS; sigma[] has one entry per step and one more. */
 #define SIXBAR_SLIDER_N_INPUTS 1
-#define SIXBAR_SLIDER_N_STEPS 8
+#define SIXBAR_SLIDER_N_STEPS 9
 #define SIXBAR_SLIDER_N_COLUMNS 19
 #define SIXBAR_SLIDER_ORDER 2
 #define SIXBAR_SLIDER_SAMPLES 361

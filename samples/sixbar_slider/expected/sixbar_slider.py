@@ -28,7 +28,7 @@ PI = math.pi
 ORDER = 2
 SAMPLES = 361
 N_INPUTS = 1
-N_STEPS = 8
+N_STEPS = 9
 INPUTS = ((0.0, 6.283185307179586, 6.283185307179586), )  # (start, stop, speed) of each input
 COLUMNS = (
     "theta_O1",
@@ -51,6 +51,7 @@ COLUMNS = (
     "rocker.omega",
     "rocker.alpha",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2,)  # derivative level of each output column
 
 
@@ -85,30 +86,33 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    th = atan2(dy, dx) + off - 2 * PI if atan2(dy, dx) + off > PI else atan2(dy, dx) + off + 2 * PI if atan2(dy, dx) + off <= -PI else atan2(dy, dx) + off
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     ir2 = NAN if r2 == 0 else 1 / r2
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (th, NAN, NAN)
     return st, (th, om, al)
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp = cos(phi_the)
-    sp = sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    rax = -phi_ddthe * ry - phi_dthe * phi_dthe * rx
-    ray = phi_ddthe * rx - phi_dthe * phi_dthe * ry
-    return (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+def link_point(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
+    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -122,14 +126,14 @@ def RRR_links(j1, j2, l1, l2, minv):
     iq = NAN if q == 0 else 1 / q
     ux = dx * iq
     uy = dy * iq
-    hi = max(l1_v, l2_v)
-    lo = min(l1_v, l2_v)
-    x = max(hi, q)
-    z = min(lo, q)
+    hi = (l2_v if l2_v > l1_v else l1_v)
+    lo = (l2_v if l2_v < l1_v else l1_v)
+    x = (q if q > hi else hi)
+    z = (q if q < lo else lo)
     y = hi if q >= hi else lo if q <= lo else q
     k = z - (x - y)
     fail = k < -8 * EPS * x or q == 0 or lo <= 0
-    kk = max(k, 0)
+    kk = (0 if 0 > k else k)
     area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     h = area4 * iq / 2
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
@@ -139,7 +143,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    sigma = 0 if fail else min(area4 / (2 * l1_v * l2_v), 1)
+    ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
+    sigma = (1 if 1 < ratio else ratio)
     e2x = -a2 * ux - hn * uy
     e2y = -a2 * uy + hn * ux
     ihq = NAN if hn == 0 else 1 / (hn * q)
@@ -178,8 +183,9 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     pn = wx * sg - wy * cg
     ap = abs(pn)
     k = l_v - ap
-    fail = k < -8 * EPS * max(l_v, ap) or l_v <= 0
-    rd = sqrt(max(k, 0) * (l_v + ap))
+    big = (ap if ap > l_v else l_v)
+    fail = k < -8 * EPS * big or l_v <= 0
+    rd = sqrt((0 if 0 > k else k) * (l_v + ap))
     eu = minv * rd
     ex = eu * cg - -pn * sg
     ey = eu * sg + -pn * cg
@@ -188,7 +194,8 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     jby = jr_y + ey
     jpx = jbx - rx
     jpy = jby - ry
-    sigma = 0 if fail else min(rd / l_v, 1)
+    ratio = 0 if fail else rd * (1 / l_v)
+    sigma = (1 if 1 < ratio else ratio)
     ieu = NAN if eu == 0 else 1 / eu
     sgsi = sv + gsi
     relvx = pg_dx - jr_dx
@@ -239,7 +246,7 @@ l_rod = (65.27633568147036, 0.0, 0.0)
 class _Work:
     """The records of one solution."""
 
-    __slots__ = ("in1", "p_A", "p_B", "phi_rocker", "p_C", "p_D", "p_S", "s_S", "phi_coupler", "p_P", "sigma", "singular", "near")
+    __slots__ = ("in1", "p_A", "p_B", "p_C", "p_D", "p_S", "s_S", "p_P", "phi_rocker", "sigma", "singular", "near")
 
     def note(self, st, singular, near):
         """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
@@ -263,31 +270,28 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.p_B = RRR_links(w.p_A, p_O2, l_coupler, l_rocker_B_O2, 1)
     if st == 1:
         return 31
-    w.note(st, 33, -34)
+    if st:
+        w.note(st, 33, -34)
 
-    # Step 4: link_angle, rocker. O2 and B of link rocker are known, so its angle is
+    # Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
+    w.p_C = link_point(p_O2, w.p_B, 0.48668639053254437, -0.9319526627218935)
+
+    # Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
+    st, w.sigma[5], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, l_rod, g_S, psi_S, 0.0, 0.0, 1)
+    if st == 1:
+        return 51
+    if st:
+        w.note(st, 53, -54)
+
+    # Step 6: link_point, P. point P of link coupler
+    w.p_P = link_point(w.p_A, w.p_B, 0.7636869780389731, 0.3352922981750696)
+
+    # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is
     st, w.phi_rocker = link_angle(p_O2, w.p_B, 0.0)
     if st == 1:
-        return 41
-    w.note(st, 43, -44)
-
-    # Step 5: coupler_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
-    w.p_C = coupler_point(p_O2, w.phi_rocker, 25.307692307692314, -48.46153846153846)
-
-    # Step 6: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
-    st, w.sigma[6], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, l_rod, g_S, psi_S, 0.0, 0.0, 1)
-    if st == 1:
-        return 61
-    w.note(st, 63, -64)
-
-    # Step 7: link_angle, coupler. A and B of link coupler are known, so its angle is
-    st, w.phi_coupler = link_angle(w.p_A, w.p_B, 0.0)
-    if st == 1:
-        return 71
-    w.note(st, 73, -74)
-
-    # Step 8: coupler_point, P. point P of link coupler
-    w.p_P = coupler_point(w.p_A, w.phi_coupler, 43.422841325484725, 19.064544348653477)
+        return 91
+    if st:
+        w.note(st, 93, -94)
 
     return w.singular or w.near
 
@@ -319,10 +323,13 @@ def _publish(w, code, order):
             w.phi_rocker[1],
             w.phi_rocker[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

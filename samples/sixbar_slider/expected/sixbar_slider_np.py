@@ -39,7 +39,7 @@ PI = np.pi
 ORDER = 2
 SAMPLES = 361
 N_INPUTS = 1
-N_STEPS = 8
+N_STEPS = 9
 INPUTS = ((0.0, 6.283185307179586, 6.283185307179586), )  # (start, stop, speed) of each input
 COLUMNS = (
     "theta_O1",
@@ -75,21 +75,21 @@ PARAMS = {  # design parameter -> its value in the sketch
     "psi_S": 0.0,  # line S
     "l_rod": 65.27633568147036,  # length rod:C-D
     "step2.l": 27.730849247724095,  # step 2: crank_input of A
-    "step4.off": 0.0,  # step 4: link_angle of rocker
-    "step5.gsi": 25.307692307692314,  # step 5: coupler_point of C
-    "step5.eta": -48.46153846153846,  # step 5: coupler_point of C
-    "step6.gsi": 0.0,  # step 6: PRR_links of D
-    "step6.eta": 0.0,  # step 6: PRR_links of D
-    "step7.off": 0.0,  # step 7: link_angle of coupler
-    "step8.gsi": 43.422841325484725,  # step 8: coupler_point of P
-    "step8.eta": 19.064544348653477,  # step 8: coupler_point of P
+    "step4.along": 0.48668639053254437,  # step 4: link_point of C
+    "step4.across": -0.9319526627218935,  # step 4: link_point of C
+    "step5.gsi": 0.0,  # step 5: PRR_links of D
+    "step5.eta": 0.0,  # step 5: PRR_links of D
+    "step6.along": 0.7636869780389731,  # step 6: link_point of P
+    "step6.across": 0.3352922981750696,  # step 6: link_point of P
+    "step9.off": 0.0,  # step 9: link_angle of rocker
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
     name="sixbar_slider_np", n_inputs=N_INPUTS, n_steps=N_STEPS, params=PARAMS,
     columns=COLUMNS[N_INPUTS:], levels=(0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2,),  # derivative level of each output column
     reads=3,  # the arrays a row reads: inputs, rates, accelerations
     max_input=1e+30, bad_input=5,
-    failed=(1, 2), singular=3,
+    failed=(1, 2,), singular=3,
+    checks=True,  # whether a call gives each step's conditioning ("sigma")
 )
 
 
@@ -127,6 +127,7 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
+    th0 = np.arctan2(dy, dx) + off
     _c1 = np.asarray(r2 == 0)
     if not _c1.any():
         ir2 = 1 / r2
@@ -148,40 +149,43 @@ def link_angle(j1, j2, off):
     _sigma = np.asarray(_sigma, dtype=REAL)
     _fails = _st == 1
     _singular = _fails | (_st == 3)
-    _t1 = np.arctan2(dy, dx) + off
-    _c3 = np.asarray(_t1 > PI)
+    _c3 = np.asarray(th0 > PI)
     if not _c3.any():
-        _c4 = np.asarray(_t1 <= -PI)
+        _c4 = np.asarray(th0 <= -PI)
         if not _c4.any():
-            _f1 = _t1
+            _f1 = th0
         elif _c4.all():
-            _f1 = _t1 + 2 * PI
+            _f1 = th0 + 2 * PI
         else:
-            _f1 = np.where(_c4, _t1 + 2 * PI, _t1)
+            _f1 = np.where(_c4, th0 + 2 * PI, th0)
     elif _c3.all():
-        _f1 = _t1 - 2 * PI
+        _f1 = th0 - 2 * PI
     else:
-        _f1 = np.where(_c3, _t1 - 2 * PI, np.where(_t1 <= -PI, _t1 + 2 * PI, _t1))
+        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     _angle = (_f1, om, al)
     if np.any(_singular):  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp, sp = cos_sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    _t1 = phi_dthe * phi_dthe
-    rax = -phi_ddthe * ry - _t1 * rx
-    ray = phi_ddthe * rx - _t1 * ry
+def link_point(j1, j2, along, across):
+    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
-    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+    _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -248,58 +252,59 @@ def RRR_links(j1, j2, l1, l2, minv):
     hn = minv * h
     e1x = at * ux - hn * uy
     e1y = at * uy + hn * ux
-    _c7 = np.asarray(fail)
-    if not _c7.any():
-        sigma = np.minimum(area4 / (2 * l1_v * l2_v), 1)
-    elif _c7.all():
-        sigma = 0
-    else:
-        sigma = np.where(_c7, 0, np.minimum(area4 / (2 * l1_v * l2_v), 1))
-    _t1 = -a2
-    e2x = _t1 * ux - hn * uy
-    e2y = _t1 * uy + hn * ux
-    _c8 = np.asarray(hn == 0)
+    _c8 = np.asarray(fail)
     if not _c8.any():
-        ihq = 1 / (hn * q)
+        _s7 = area4 * (0.5 / (l1_v * l2_v))
     elif _c8.all():
+        _s7 = 0
+    else:
+        _s7 = np.where(_c8, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s7, 1)
+    _t2 = -a2
+    e2x = _t2 * ux - hn * uy
+    e2y = _t2 * uy + hn * ux
+    _c9 = np.asarray(hn == 0)
+    if not _c9.any():
+        ihq = 1 / (hn * q)
+    elif _c9.all():
         ihq = NAN
     else:
-        ihq = np.where(_c8, NAN, 1 / (hn * q))
+        ihq = np.where(_c9, NAN, 1 / (hn * q))
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
     buv = (r1v - r2v) * iq
     bnv = (a2 * r1v + a * r2v) * ihq
     bvx = buv * ux - bnv * uy
     bvy = buv * uy + bnv * ux
-    _t2 = bvx - j1_dx
-    _t3 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t2 * _t2 + _t3 * _t3) + (e1x * j1_ddx + e1y * j1_ddy)
-    _t4 = bvx - j2_dx
-    _t5 = bvy - j2_dy
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t4 * _t4 + _t5 * _t5) + (e2x * j2_ddx + e2y * j2_ddy)
+    _t3 = bvx - j1_dx
+    _t4 = bvy - j1_dy
+    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t3 * _t3 + _t4 * _t4) + (e1x * j1_ddx + e1y * j1_ddy)
+    _t5 = bvx - j2_dx
+    _t6 = bvy - j2_dy
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t5 * _t5 + _t6 * _t6) + (e2x * j2_ddx + e2y * j2_ddy)
     bua = (r1a - r2a) * iq
     bna = (a2 * r1a + a * r2a) * ihq
     bax = bua * ux - bna * uy
     bay = bua * uy + bna * ux
-    _c9 = np.asarray(fail)
-    if not _c9.any():
-        _c10 = np.asarray(sigma < 1e-07)
-        if not _c10.any():
-            _c11 = np.asarray(sigma < 0.001)
-            if not _c11.any():
+    _c10 = np.asarray(fail)
+    if not _c10.any():
+        _c11 = np.asarray(sigma < 1e-07)
+        if not _c11.any():
+            _c12 = np.asarray(sigma < 0.001)
+            if not _c12.any():
                 _st = 0
-            elif _c11.all():
+            elif _c12.all():
                 _st = 4
             else:
-                _st = np.where(_c11, 4, 0)
-        elif _c10.all():
+                _st = np.where(_c12, 4, 0)
+        elif _c11.all():
             _st = 3
         else:
-            _st = np.where(_c10, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c9.all():
+            _st = np.where(_c11, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c10.all():
         _st = 1
     else:
-        _st = np.where(_c9, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c10, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -326,7 +331,8 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     pn = wx * sg - wy * cg
     ap = np.abs(pn)
     k = l_v - ap
-    fail = (k < -8 * EPS * np.maximum(l_v, ap)) | (l_v <= 0)
+    big = np.maximum(l_v, ap)
+    fail = (k < -8 * EPS * big) | (l_v <= 0)
     rd = np.sqrt(np.maximum(k, 0) * (l_v + ap))
     eu = minv * rd
     _t1 = -pn
@@ -337,63 +343,64 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     jby = jr_y + ey
     jpx = jbx - rx
     jpy = jby - ry
-    _c1 = np.asarray(fail)
-    if not _c1.any():
-        sigma = np.minimum(rd / l_v, 1)
-    elif _c1.all():
-        sigma = 0
-    else:
-        sigma = np.where(_c1, 0, np.minimum(rd / l_v, 1))
-    _c2 = np.asarray(eu == 0)
+    _c2 = np.asarray(fail)
     if not _c2.any():
-        ieu = 1 / eu
+        _s1 = rd * (1 / l_v)
     elif _c2.all():
+        _s1 = 0
+    else:
+        _s1 = np.where(_c2, 0, rd * (1 / l_v))
+    sigma = np.minimum(_s1, 1)
+    _c3 = np.asarray(eu == 0)
+    if not _c3.any():
+        ieu = 1 / eu
+    elif _c3.all():
         ieu = NAN
     else:
-        ieu = np.where(_c2, NAN, 1 / eu)
+        ieu = np.where(_c3, NAN, 1 / eu)
     sgsi = sv + gsi
     relvx = pg_dx - jr_dx
     relvy = pg_dy - jr_dy
     ds = (l_v * l_dv - (ex * relvx + ey * relvy) - psig_dthe * (sgsi * _t1 - eta * eu)) * ieu
-    _t2 = sv * psig_dthe
-    jpvx = pg_dx + ds * cg - _t2 * sg
-    jpvy = pg_dy + ds * sg + _t2 * cg
+    _t3 = sv * psig_dthe
+    jpvx = pg_dx + ds * cg - _t3 * sg
+    jpvy = pg_dy + ds * sg + _t3 * cg
     rvx = -psig_dthe * ry
     rvy = psig_dthe * rx
-    _t3 = psig_dthe * psig_dthe
-    rax = -psig_ddthe * ry - _t3 * rx
-    ray = psig_ddthe * rx - _t3 * ry
+    _t4 = psig_dthe * psig_dthe
+    rax = -psig_ddthe * ry - _t4 * rx
+    ray = psig_ddthe * rx - _t4 * ry
     jbvx = jpvx + rvx
     jbvy = jpvy + rvy
     relax = pg_ddx - jr_ddx
     relay = pg_ddy - jr_ddy
     om2 = psig_dthe * psig_dthe
-    _t4 = jbvx - jr_dx
-    _t5 = jbvy - jr_dy
-    dds = (l_v * l_ddv + l_dv * l_dv - (_t4 * _t4 + _t5 * _t5) - (ex * relax + ey * relay) - 2 * ds * psig_dthe * _t1 - sgsi * (psig_ddthe * _t1 - om2 * eu) + eta * (psig_ddthe * eu + om2 * _t1)) * ieu
+    _t5 = jbvx - jr_dx
+    _t6 = jbvy - jr_dy
+    dds = (l_v * l_ddv + l_dv * l_dv - (_t5 * _t5 + _t6 * _t6) - (ex * relax + ey * relay) - 2 * ds * psig_dthe * _t1 - sgsi * (psig_ddthe * _t1 - om2 * eu) + eta * (psig_ddthe * eu + om2 * _t1)) * ieu
     tn = 2 * ds * psig_dthe + sv * psig_ddthe
-    _t6 = sv * om2
-    jpax = pg_ddx + dds * cg - tn * sg - _t6 * cg
-    jpay = pg_ddy + dds * sg + tn * cg - _t6 * sg
-    _c3 = np.asarray(fail)
-    if not _c3.any():
-        _c4 = np.asarray(sigma < 1e-07)
-        if not _c4.any():
-            _c5 = np.asarray(sigma < 0.001)
-            if not _c5.any():
+    _t7 = sv * om2
+    jpax = pg_ddx + dds * cg - tn * sg - _t7 * cg
+    jpay = pg_ddy + dds * sg + tn * cg - _t7 * sg
+    _c4 = np.asarray(fail)
+    if not _c4.any():
+        _c5 = np.asarray(sigma < 1e-07)
+        if not _c5.any():
+            _c6 = np.asarray(sigma < 0.001)
+            if not _c6.any():
                 _st = 0
-            elif _c5.all():
+            elif _c6.all():
                 _st = 4
             else:
-                _st = np.where(_c5, 4, 0)
-        elif _c4.all():
+                _st = np.where(_c6, 4, 0)
+        elif _c5.all():
             _st = 3
         else:
-            _st = np.where(_c4, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c3.all():
+            _st = np.where(_c5, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c4.all():
         _st = 1
     else:
-        _st = np.where(_c3, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c4, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -439,7 +446,7 @@ def reason_of(code):
 # last axis the inputs) and its design parameters broadcast together and flattened into rows,
 # solved a block of rows at a time so that every array a block makes stays in the cache.
 # m holds the module's data (name, n_inputs, n_steps, reads, max_input, levels, columns,
-# failed, singular, bad_input, params).
+# failed, singular, bad_input, params, checks).
 
 BLOCK = 16384  # rows a block (measured: 20% faster than 4096, as fast as 32768)
 
@@ -498,9 +505,11 @@ def filled(out, shape, order, m):
     if out is None:
         return ({name: np.empty(n, dtype=REAL) for name in names}, np.empty(n, dtype=int),
                 np.ones((m.n_steps + 1, n), dtype=REAL))
-    flat = {}
-    for name, like, dtype in [(name, shape, REAL) for name in names] + [
-            ("status", shape, int), ("sigma", (m.n_steps + 1, *shape), REAL)]:
+    wanted = [(name, shape, REAL) for name in names] + [("status", shape, int)]
+    if m.checks:
+        wanted.append(("sigma", (m.n_steps + 1, *shape), REAL))
+    flat = {"sigma": np.ones((m.n_steps + 1, n), dtype=REAL)}  # the call's own where it gives no conditioning
+    for name, like, dtype in wanted:
         a = out.get(name)
         if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
             raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
@@ -556,7 +565,9 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
         row = solve(x, dx, ddx, order, state)
         for name in out:
             out[name][r] = row[name]
-        status[r], sigma[:, r] = row["status"], row["sigma"]
+        status[r] = row["status"]
+        if m.checks:
+            sigma[:, r] = row["sigma"]
     return finish(out, status, sigma, bad, shape, m)
 
 
@@ -577,7 +588,8 @@ def finish(out, status, sigma, bad, shape, m):
             out[name][lost] = np.nan
     result = {name: x.reshape(shape) for name, x in out.items()}
     result["status"] = status.reshape(shape)
-    result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
+    if m.checks:
+        result["sigma"] = sigma.reshape((m.n_steps + 1, *shape))
     return result
 
 class _Work:
@@ -606,19 +618,16 @@ def _run(x, dx, ddx, c):
     # Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known
     st, sigma[3], w.p_B = RRR_links(w.p_A, w.p_O2, w.l_coupler, w.l_rocker_B_O2, 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
-    # Step 4: link_angle, rocker. O2 and B of link rocker are known, so its angle is
-    st, _, w.phi_rocker = link_angle(w.p_O2, w.p_B, c["step4.off"])
-    report.append((st, ((1, 41), (3, 43), (4, -44))))
-    # Step 5: coupler_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
-    _, _, w.p_C = coupler_point(w.p_O2, w.phi_rocker, c["step5.gsi"], c["step5.eta"])
-    # Step 6: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
-    st, sigma[6], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, w.l_rod, w.g_S, w.psi_S, c["step6.gsi"], c["step6.eta"], 1)
-    report.append((st, ((1, 61), (3, 63), (4, -64))))
-    # Step 7: link_angle, coupler. A and B of link coupler are known, so its angle is
-    st, _, w.phi_coupler = link_angle(w.p_A, w.p_B, c["step7.off"])
-    report.append((st, ((1, 71), (3, 73), (4, -74))))
-    # Step 8: coupler_point, P. point P of link coupler
-    _, _, w.p_P = coupler_point(w.p_A, w.phi_coupler, c["step8.gsi"], c["step8.eta"])
+    # Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
+    _, _, w.p_C = link_point(w.p_O2, w.p_B, c["step4.along"], c["step4.across"])
+    # Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
+    st, sigma[5], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, w.l_rod, w.g_S, w.psi_S, c["step5.gsi"], c["step5.eta"], 1)
+    report.append((st, ((1, 51), (3, 53), (4, -54))))
+    # Step 6: link_point, P. point P of link coupler
+    _, _, w.p_P = link_point(w.p_A, w.p_B, c["step6.along"], c["step6.across"])
+    # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is
+    st, _, w.phi_rocker = link_angle(w.p_O2, w.p_B, c["step9.off"])
+    report.append((st, ((1, 91),)))
     code = row_status(report)
     return w, code, sigma
 

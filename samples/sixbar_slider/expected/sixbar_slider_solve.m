@@ -74,7 +74,7 @@ end
 function [status, w] = run(w, in, din, ddin)
     % The procedure of sixbar_slider.md, step by step.
     status = 0;
-    w.sigma = ones(1, 8);
+    w.sigma = ones(1, 9);
     w.singular = 0;
     w.near = 0;
     w.in1 = struct('the', in(1), 'dthe', din(1), 'ddthe', ddin(1));
@@ -91,35 +91,27 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 33, -34);
 
-    % Step 4: link_angle, rocker. O2 and B of link rocker are known, so its angle is
+    % Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
+    w.p_C = link_point(w.p_O2, w.p_B, 0.48668639053254437, -0.9319526627218935);
+
+    % Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
+    [w.s_S, w.p_S, w.p_D, st, w.sigma(5)] = PRR_links(w.p_C, w.l_rod, w.g_S, w.psi_S, 0.0, 0.0, 1);
+    if st == 1
+        status = 51;
+        return;
+    end
+    w = note(w, st, 53, -54);
+
+    % Step 6: link_point, P. point P of link coupler
+    w.p_P = link_point(w.p_A, w.p_B, 0.7636869780389731, 0.3352922981750696);
+
+    % Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is
     [w.phi_rocker, st] = link_angle(w.p_O2, w.p_B, 0.0);
     if st == 1
-        status = 41;
+        status = 91;
         return;
     end
-    w = note(w, st, 43, -44);
-
-    % Step 5: coupler_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
-    w.p_C = coupler_point(w.p_O2, w.phi_rocker, 25.307692307692314, -48.46153846153846);
-
-    % Step 6: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
-    [w.s_S, w.p_S, w.p_D, st, w.sigma(6)] = PRR_links(w.p_C, w.l_rod, w.g_S, w.psi_S, 0.0, 0.0, 1);
-    if st == 1
-        status = 61;
-        return;
-    end
-    w = note(w, st, 63, -64);
-
-    % Step 7: link_angle, coupler. A and B of link coupler are known, so its angle is
-    [w.phi_coupler, st] = link_angle(w.p_A, w.p_B, 0.0);
-    if st == 1
-        status = 71;
-        return;
-    end
-    w = note(w, st, 73, -74);
-
-    % Step 8: coupler_point, P. point P of link coupler
-    w.p_P = coupler_point(w.p_A, w.phi_coupler, 43.422841325484725, 19.064544348653477);
+    w = note(w, st, 93, -94);
 
     if w.singular > 0
         status = w.singular;
@@ -220,12 +212,13 @@ function [angle, st] = link_angle(j1, j2, off)
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
     r2 = dx * dx + dy * dy;
-    if atan2(dy, dx) + off > pi
-        th = atan2(dy, dx) + off - 2 * pi;
-    elseif atan2(dy, dx) + off <= -pi
-        th = atan2(dy, dx) + off + 2 * pi;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = atan2(dy, dx) + off;
+        th = th0;
     end
     if r2 == 0
         ir2 = NaN;
@@ -247,28 +240,28 @@ function [angle, st] = link_angle(j1, j2, off)
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
-    if st == 1 || st == 3
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
 end
 
-function jc = coupler_point(j0, phi, gsi, eta)
-    % Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi.
-    cp = cos(phi.the);
-    sp = sin(phi.the);
-    rx = gsi * cp - eta * sp;
-    ry = gsi * sp + eta * cp;
-    rvx = -phi.dthe * ry;
-    rvy = phi.dthe * rx;
-    rax = -phi.ddthe * ry - phi.dthe * phi.dthe * rx;
-    ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
-    jc.x = j0.x + rx;
-    jc.y = j0.y + ry;
-    jc.dx = j0.dx + rvx;
-    jc.dy = j0.dy + rvy;
-    jc.ddx = j0.ddx + rax;
-    jc.ddy = j0.ddy + ray;
+function jc = link_point(j1, j2, along, across)
+    % Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry).
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx - j1.dx;
+    dvy = j2.dy - j1.dy;
+    dax = j2.ddx - j1.ddx;
+    day = j2.ddy - j1.ddy;
+    rx = along * dx - across * dy;
+    ry = along * dy + across * dx;
+    rvx = along * dvx - across * dvy;
+    rvy = along * dvy + across * dvx;
+    rax = along * dax - across * day;
+    ray = along * day + across * dax;
+    jc.x = j1.x + rx;
+    jc.y = j1.y + ry;
+    jc.dx = j1.dx + rvx;
+    jc.dy = j1.dy + rvy;
+    jc.ddx = j1.ddx + rax;
+    jc.ddy = j1.ddy + ray;
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
@@ -317,10 +310,11 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     e1x = at * ux - hn * uy;
     e1y = at * uy + hn * ux;
     if fail
-        sigma = 0;
+        ratio = 0;
     else
-        sigma = min(area4 / (2 * l1.v * l2.v), 1);
+        ratio = area4 * (0.5 / (l1.v * l2.v));
     end
+    sigma = min(ratio, 1);
     e2x = -a2 * ux - hn * uy;
     e2y = -a2 * uy + hn * ux;
     if hn == 0
@@ -383,7 +377,8 @@ function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
     pn = wx * sg - wy * cg;
     ap = abs(pn);
     k = l.v - ap;
-    fail = k < -8 * eps * max(l.v, ap) || l.v <= 0;
+    big = max(l.v, ap);
+    fail = k < -8 * eps * big || l.v <= 0;
     rd = sqrt(max(k, 0) * (l.v + ap));
     eu = minv * rd;
     ex = eu * cg - -pn * sg;
@@ -394,10 +389,11 @@ function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
     jpx = jbx - rx;
     jpy = jby - ry;
     if fail
-        sigma = 0;
+        ratio = 0;
     else
-        sigma = min(rd / l.v, 1);
+        ratio = rd * (1 / l.v);
     end
+    sigma = min(ratio, 1);
     if eu == 0
         ieu = NaN;
     else

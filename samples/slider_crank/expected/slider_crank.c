@@ -12,38 +12,39 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-static void crank_input(POINT j1, double l, ANGLE theta, ANGLE phi, POINT *j2)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
-    const double t = theta.the + phi.the;
+    const double t = theta->the + phi->the;
     const double ct = cos(t);
     const double st = sin(t);
     const double rx = l * ct;
     const double ry = l * st;
-    const double om = theta.dthe + phi.dthe;
-    const double al = theta.ddthe + phi.ddthe;
+    const double om = theta->dthe + phi->dthe;
+    const double al = theta->ddthe + phi->ddthe;
     const double rvx = -om * ry;
     const double rvy = om * rx;
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
-    j2->P.x = j1.P.x + rx;
-    j2->P.y = j1.P.y + ry;
-    j2->DP.x = j1.DP.x + rvx;
-    j2->DP.y = j1.DP.y + rvy;
-    j2->DDP.x = j1.DDP.x + rax;
-    j2->DDP.y = j1.DDP.y + ray;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = j1->DP.x + rvx;
+    j2->DP.y = j1->DP.y + rvy;
+    j2->DDP.x = j1->DDP.x + rax;
+    j2->DDP.y = j1->DDP.y + ray;
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
-static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
-    const double dx = j2.P.x - j1.P.x;
-    const double dy = j2.P.y - j1.P.y;
-    const double dvx = j2.DP.x - j1.DP.x;
-    const double dvy = j2.DP.y - j1.DP.y;
-    const double dax = j2.DDP.x - j1.DDP.x;
-    const double day = j2.DDP.y - j1.DDP.y;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
     const double r2 = dx * dx + dy * dy;
-    const double th = atan2(dy, dx) + off > 3.141592653589793 ? atan2(dy, dx) + off - 2 * 3.141592653589793 : atan2(dy, dx) + off <= -3.141592653589793 ? atan2(dy, dx) + off + 2 * 3.141592653589793 : atan2(dy, dx) + off;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     const double ir2 = r2 == 0 ? NAN : 1 / r2;
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
@@ -52,63 +53,65 @@ static int link_angle(POINT j1, POINT j2, double off, ANGLE *angle)
     angle->dthe = om;
     angle->ddthe = al;
     if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; }
-    if (st == 1 || st == 3) { angle->dthe = NAN; angle->ddthe = NAN; }
     return st;
 }
 
 /* Angle of a link that keeps a constant angle off to a known angle phi. */
-static void offset_angle(ANGLE phi, double off, ANGLE *angle)
+static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle)
 {
-    const double th = phi.the + off > 3.141592653589793 ? phi.the + off - 2 * 3.141592653589793 : phi.the + off <= -3.141592653589793 ? phi.the + off + 2 * 3.141592653589793 : phi.the + off;
+    const double th0 = phi->the + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     angle->the = th;
-    angle->dthe = phi.dthe;
-    angle->ddthe = phi.ddthe;
+    angle->dthe = phi->dthe;
+    angle->ddthe = phi->ddthe;
 }
 
 /* 2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side. */
-static int PRR_links(POINT jr, VARIABLE l, POINT pg, ANGLE psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out)
+static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out)
 {
-    const double cg = cos(psig.the);
-    const double sg = sin(psig.the);
+    const double cg = cos(psig->the);
+    const double sg = sin(psig->the);
     const double rx = gsi * cg - eta * sg;
     const double ry = gsi * sg + eta * cg;
-    const double wx = pg.P.x + rx - jr.P.x;
-    const double wy = pg.P.y + ry - jr.P.y;
+    const double wx = pg->P.x + rx - jr->P.x;
+    const double wy = pg->P.y + ry - jr->P.y;
     const double wu = wx * cg + wy * sg;
     const double pn = wx * sg - wy * cg;
     const double ap = fabs(pn);
-    const double k = l.v - ap;
-    const int fail = k < -8 * DBL_EPSILON * fmax(l.v, ap) || l.v <= 0;
-    const double rd = sqrt(fmax(k, 0.0) * (l.v + ap));
+    const double k = l->v - ap;
+    const double big = (ap > l->v ? ap : l->v);
+    const int fail = k < -8 * DBL_EPSILON * big || l->v <= 0;
+    const double rd = sqrt((0.0 > k ? 0.0 : k) * (l->v + ap));
     const double eu = minv * rd;
     const double ex = eu * cg - -pn * sg;
     const double ey = eu * sg + -pn * cg;
     const double sv = eu - wu;
-    const double jbx = jr.P.x + ex;
-    const double jby = jr.P.y + ey;
+    const double jbx = jr->P.x + ex;
+    const double jby = jr->P.y + ey;
     const double jpx = jbx - rx;
     const double jpy = jby - ry;
-    const double sigma = fail ? 0 : fmin(rd / l.v, 1.0);
+    const double ratio = fail ? 0 : rd * (1 / l->v);
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double ieu = eu == 0 ? NAN : 1 / eu;
     const double sgsi = sv + gsi;
-    const double relvx = pg.DP.x - jr.DP.x;
-    const double relvy = pg.DP.y - jr.DP.y;
-    const double ds = (l.v * l.dv - (ex * relvx + ey * relvy) - psig.dthe * (sgsi * -pn - eta * eu)) * ieu;
-    const double jpvx = pg.DP.x + ds * cg - sv * psig.dthe * sg;
-    const double jpvy = pg.DP.y + ds * sg + sv * psig.dthe * cg;
-    const double rvx = -psig.dthe * ry;
-    const double rvy = psig.dthe * rx;
-    const double rax = -psig.ddthe * ry - psig.dthe * psig.dthe * rx;
-    const double ray = psig.ddthe * rx - psig.dthe * psig.dthe * ry;
+    const double relvx = pg->DP.x - jr->DP.x;
+    const double relvy = pg->DP.y - jr->DP.y;
+    const double ds = (l->v * l->dv - (ex * relvx + ey * relvy) - psig->dthe * (sgsi * -pn - eta * eu)) * ieu;
+    const double jpvx = pg->DP.x + ds * cg - sv * psig->dthe * sg;
+    const double jpvy = pg->DP.y + ds * sg + sv * psig->dthe * cg;
+    const double rvx = -psig->dthe * ry;
+    const double rvy = psig->dthe * rx;
+    const double rax = -psig->ddthe * ry - psig->dthe * psig->dthe * rx;
+    const double ray = psig->ddthe * rx - psig->dthe * psig->dthe * ry;
     const double jbvx = jpvx + rvx;
     const double jbvy = jpvy + rvy;
-    const double relax = pg.DDP.x - jr.DDP.x;
-    const double relay = pg.DDP.y - jr.DDP.y;
-    const double om2 = psig.dthe * psig.dthe;
-    const double dds = (l.v * l.ddv + l.dv * l.dv - ((jbvx - jr.DP.x) * (jbvx - jr.DP.x) + (jbvy - jr.DP.y) * (jbvy - jr.DP.y)) - (ex * relax + ey * relay) - 2 * ds * psig.dthe * -pn - sgsi * (psig.ddthe * -pn - om2 * eu) + eta * (psig.ddthe * eu + om2 * -pn)) * ieu;
-    const double tn = 2 * ds * psig.dthe + sv * psig.ddthe;
-    const double jpax = pg.DDP.x + dds * cg - tn * sg - sv * om2 * cg;
-    const double jpay = pg.DDP.y + dds * sg + tn * cg - sv * om2 * sg;
+    const double relax = pg->DDP.x - jr->DDP.x;
+    const double relay = pg->DDP.y - jr->DDP.y;
+    const double om2 = psig->dthe * psig->dthe;
+    const double dds = (l->v * l->ddv + l->dv * l->dv - ((jbvx - jr->DP.x) * (jbvx - jr->DP.x) + (jbvy - jr->DP.y) * (jbvy - jr->DP.y)) - (ex * relax + ey * relay) - 2 * ds * psig->dthe * -pn - sgsi * (psig->ddthe * -pn - om2 * eu) + eta * (psig->ddthe * eu + om2 * -pn)) * ieu;
+    const double tn = 2 * ds * psig->dthe + sv * psig->ddthe;
+    const double jpax = pg->DDP.x + dds * cg - tn * sg - sv * om2 * cg;
+    const double jpay = pg->DDP.y + dds * sg + tn * cg - sv * om2 * sg;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
     s->v = sv;
     s->dv = ds;
@@ -170,47 +173,6 @@ static void note(work *w, int st, int singular, int near)
     if (st == 4 && !w->near) w->near = near;
 }
 
-/* The procedure of slider_crank.md, step by step. */
-static int run(work *w, const double in[], const double din[], const double ddin[])
-{
-    int st;
-
-    w->singular = 0;
-    w->near = 0;
-    for (st = 0; st <= SLIDER_CRANK_N_STEPS; st++) w->sigma[st] = 1.0;
-    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
-
-    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
-
-
-    /* Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A */
-    crank_input(p_O, 20.0, w->in1, ref_O, &w->p_A);
-
-
-    /* Step 3: PRR_links, B (branch +1). B is joined to the known A by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known */
-    st = PRR_links(w->p_A, l_rod, g_S, psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_B, &w->sigma[3]);
-    if (st == 1) return 31;
-    note(w, st, 33, -34);
-
-
-    /* Step 4: link_angle, crank. O and A of link crank are known, so its angle is */
-    st = link_angle(p_O, w->p_A, 0.0, &w->phi_crank);
-    if (st == 1) return 41;
-    note(w, st, 43, -44);
-
-
-    /* Step 5: link_angle, rod. A and B of link rod are known, so its angle is */
-    st = link_angle(w->p_A, w->p_B, 0.0, &w->phi_rod);
-    if (st == 1) return 51;
-    note(w, st, 53, -54);
-
-
-    /* Step 6: offset_angle, block. link block keeps a constant angle to its slide */
-    offset_angle(phi_frame, 0.16941304388961834, &w->phi_block);
-
-    return w->singular ? w->singular : w->near;
-}
-
 /* Every output nan: a row that failed (reason 1 or 2), or a call that was refused. */
 static void no_outputs(slider_crank_state *out)
 {
@@ -255,16 +217,22 @@ static void no_outputs(slider_crank_state *out)
     out->block.alpha = NAN;
 }
 
-/* Copy the records into the public state, with the status rules of the CSV. */
+/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
+static int failed(const work *w, slider_crank_state *out, int code)
+{
+    int k;
+    out->status = code;
+    for (k = 0; k <= SLIDER_CRANK_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    no_outputs(out);
+    return code;
+}
+
+/* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, slider_crank_state *out)
 {
     int k;
     out->status = code;
     for (k = 0; k <= SLIDER_CRANK_N_STEPS; k++) out->sigma[k] = w->sigma[k];
-    if (reason_of(code) == 1 || reason_of(code) == 2) {
-        no_outputs(out);
-        return;
-    }
     out->O.x = 0.0;
     out->O.y = 0.0;
     out->O.vx = 0.0;
@@ -334,6 +302,50 @@ static void publish(const work *w, int code, slider_crank_state *out)
     }
 }
 
+/* The procedure of slider_crank.md, step by step: a row that fails ends in failed(), a computed
+   one in publish(). */
+static int run(work *w, const double in[], const double din[], const double ddin[], slider_crank_state *out)
+{
+    int st;
+
+    w->singular = 0;
+    w->near = 0;
+    for (st = 0; st <= SLIDER_CRANK_N_STEPS; st++) w->sigma[st] = 1.0;
+    w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
+
+    /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
+
+
+    /* Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A */
+    crank_input(&p_O, 20.0, &w->in1, &ref_O, &w->p_A);
+
+
+    /* Step 3: PRR_links, B (branch +1). B is joined to the known A by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known */
+    st = PRR_links(&w->p_A, &l_rod, &g_S, &psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_B, &w->sigma[3]);
+    if (st == 1) return failed(w, out, 31);
+    note(w, st, 33, -34);
+
+
+    /* Step 4: link_angle, crank. O and A of link crank are known, so its angle is */
+    st = link_angle(&p_O, &w->p_A, 0.0, &w->phi_crank);
+    if (st == 1) return failed(w, out, 41);
+    note(w, st, 43, -44);
+
+
+    /* Step 5: link_angle, rod. A and B of link rod are known, so its angle is */
+    st = link_angle(&w->p_A, &w->p_B, 0.0, &w->phi_rod);
+    if (st == 1) return failed(w, out, 51);
+    note(w, st, 53, -54);
+
+
+    /* Step 6: offset_angle, block. link block keeps a constant angle to its slide */
+    offset_angle(&phi_frame, 0.16941304388961834, &w->phi_block);
+
+    st = w->singular ? w->singular : w->near;
+    publish(w, st, out);
+    return st;
+}
+
 void slider_crank_init(slider_crank_state *out)
 {
     memset(out, 0, sizeof *out);
@@ -362,12 +374,8 @@ static int refuse(slider_crank_state *out)
 int slider_crank_solve(const double in[], const double din[], const double ddin[], slider_crank_state *out)
 {
     work w;
-    int code;
     if (!finite_inputs(in, din, ddin)) return refuse(out);
-    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
-    code = run(&w, in, din, ddin);
-    publish(&w, code, out);
-    return code;
+    return run(&w, in, din, ddin, out);
 }
 
 void slider_crank_columns(const double in[], const slider_crank_state *st, double col[SLIDER_CRANK_N_COLUMNS])

@@ -72,6 +72,7 @@ COLUMNS = (
     "S.ds",
     "S.dds",
 )
+_OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
 
 
@@ -106,21 +107,21 @@ def link_angle(j1, j2, off):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    th = atan2(dy, dx) + off - 2 * PI if atan2(dy, dx) + off > PI else atan2(dy, dx) + off + 2 * PI if atan2(dy, dx) + off <= -PI else atan2(dy, dx) + off
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     ir2 = NAN if r2 == 0 else 1 / r2
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN)
-    if st == 3:
-        return st, (th, NAN, NAN)
     return st, (th, om, al)
 
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
-    th = phi_the + off - 2 * PI if phi_the + off > PI else phi_the + off + 2 * PI if phi_the + off <= -PI else phi_the + off
+    th0 = phi_the + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     return (th, phi_dthe, phi_ddthe)
 
 def PRR_links(jr, l, pg, psig, gsi, eta, minv):
@@ -139,8 +140,9 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     pn = wx * sg - wy * cg
     ap = abs(pn)
     k = l_v - ap
-    fail = k < -8 * EPS * max(l_v, ap) or l_v <= 0
-    rd = sqrt(max(k, 0) * (l_v + ap))
+    big = (ap if ap > l_v else l_v)
+    fail = k < -8 * EPS * big or l_v <= 0
+    rd = sqrt((0 if 0 > k else k) * (l_v + ap))
     eu = minv * rd
     ex = eu * cg - -pn * sg
     ey = eu * sg + -pn * cg
@@ -149,7 +151,8 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     jby = jr_y + ey
     jpx = jbx - rx
     jpy = jby - ry
-    sigma = 0 if fail else min(rd / l_v, 1)
+    ratio = 0 if fail else rd * (1 / l_v)
+    sigma = (1 if 1 < ratio else ratio)
     ieu = NAN if eu == 0 else 1 / eu
     sgsi = sv + gsi
     relvx = pg_dx - jr_dx
@@ -222,19 +225,22 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st, w.sigma[3], w.s_S, w.p_S, w.p_B = PRR_links(w.p_A, l_rod, g_S, psi_S, 0.0, 0.0, 1)
     if st == 1:
         return 31
-    w.note(st, 33, -34)
+    if st:
+        w.note(st, 33, -34)
 
     # Step 4: link_angle, crank. O and A of link crank are known, so its angle is
     st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
     if st == 1:
         return 41
-    w.note(st, 43, -44)
+    if st:
+        w.note(st, 43, -44)
 
     # Step 5: link_angle, rod. A and B of link rod are known, so its angle is
     st, w.phi_rod = link_angle(w.p_A, w.p_B, 0.0)
     if st == 1:
         return 51
-    w.note(st, 53, -54)
+    if st:
+        w.note(st, 53, -54)
 
     # Step 6: offset_angle, block. link block keeps a constant angle to its slide
     w.phi_block = offset_angle(phi_frame, 0.16941304388961834)
@@ -290,10 +296,13 @@ def _publish(w, code, order):
             w.s_S[1],
             w.s_S[2],
         )
-    out = {}
-    for name, level, value in zip(COLUMNS[len(INPUTS):], _LEVELS, values):
-        if level <= order:
-            out[name] = NAN if singular and level > 0 else value
+    if order >= ORDER and not singular:  # every column as computed
+        out = dict(zip(_OUTPUTS, values))
+    else:
+        out = {}
+        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
+            if level <= order:
+                out[name] = NAN if singular and level > 0 else value
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

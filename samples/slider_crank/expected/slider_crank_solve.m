@@ -263,12 +263,13 @@ function [angle, st] = link_angle(j1, j2, off)
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
     r2 = dx * dx + dy * dy;
-    if atan2(dy, dx) + off > pi
-        th = atan2(dy, dx) + off - 2 * pi;
-    elseif atan2(dy, dx) + off <= -pi
-        th = atan2(dy, dx) + off + 2 * pi;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = atan2(dy, dx) + off;
+        th = th0;
     end
     if r2 == 0
         ir2 = NaN;
@@ -290,20 +291,17 @@ function [angle, st] = link_angle(j1, j2, off)
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
-    if st == 1 || st == 3
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
 end
 
 function angle = offset_angle(phi, off)
     % Angle of a link that keeps a constant angle off to a known angle phi.
-    if phi.the + off > pi
-        th = phi.the + off - 2 * pi;
-    elseif phi.the + off <= -pi
-        th = phi.the + off + 2 * pi;
+    th0 = phi.the + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
     else
-        th = phi.the + off;
+        th = th0;
     end
     angle.the = th;
     angle.dthe = phi.dthe;
@@ -322,7 +320,8 @@ function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
     pn = wx * sg - wy * cg;
     ap = abs(pn);
     k = l.v - ap;
-    fail = k < -8 * eps * max(l.v, ap) || l.v <= 0;
+    big = max(l.v, ap);
+    fail = k < -8 * eps * big || l.v <= 0;
     rd = sqrt(max(k, 0) * (l.v + ap));
     eu = minv * rd;
     ex = eu * cg - -pn * sg;
@@ -333,10 +332,11 @@ function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
     jpx = jbx - rx;
     jpy = jby - ry;
     if fail
-        sigma = 0;
+        ratio = 0;
     else
-        sigma = min(rd / l.v, 1);
+        ratio = rd * (1 / l.v);
     end
+    sigma = min(ratio, 1);
     if eu == 0
         ieu = NaN;
     else
