@@ -86,7 +86,8 @@ def _c_policy(text: str) -> dict[str, float]:
     struct = re.search(r"typedef struct \{(.*?)\} resolver_policy;", text, re.S)
     assert block is not None and struct is not None
     names = re.findall(r"^\s*(?:double|int) (\w+);", struct[1], re.M)
-    return dict(zip(names, (float(v) for v in block[1].split(","))))
+    values = [v.strip() for v in block[1].split(",")]
+    return {name: float(v) for name, v in zip(names, values) if name in RESOLVER_FIELDS}
 
 
 @pytest.mark.parametrize("p", [POLICY, OTHER], ids=["POLICY", "other"])
