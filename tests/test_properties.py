@@ -731,7 +731,8 @@ def test_moving_by_whole_steps_of_the_origin_grid_computes_the_same_bits(kind, w
             assert all(_same(x, y) for x, y in zip(ta[:, c], tb[:, c])), name
 
 
-@pytest.mark.parametrize("kind", KINDS)
+# the Stephenson six-bar takes a third of make test's property time here: it runs in the long tier only
+@pytest.mark.parametrize("kind", [pytest.param(k, marks=pytest.mark.long) if k == "stephenson" else k for k in KINDS])
 @examples(15, heavy=True)
 @given(data=st.data())
 def test_scaled_turned_and_moved_sketch_keeps_its_accuracy(kind, work, data):
