@@ -1081,6 +1081,7 @@ LANES = 8192  # rows solved side by side at most
 STEPS = 16  # rows of a chunk (fewer: one row at a time)
 RATES_AGREE = 1e-6  # two states' rates agree to this share
 ALONE = 48  # a sweep of no more rows is solved by the standard-library module, row after row
+WARM_KEPT = 5  # entries of the standard-library module's warm start a lane keeps (see alone_row)
 
 
 def state_of(s, idx):
@@ -1228,19 +1229,22 @@ def advance(k, prev, rows, sink=None, spot=None):
 
 def alone_row(k, prev, row):
     """One row solved by the standard-library module from a one-lane state; returns its outputs
-    and its state."""
+    and its state.  The module's warm start (its drive()'s) holds the inputs, rates, block states,
+    their rates and the blocks used, then the row before them, which only the second-order
+    predictor reads; the lanes run with the first-order one, so they hand over none and keep the
+    first WARM_KEPT entries of what comes back."""
     warm = None
     if prev.ok[0]:
         warm = ([float(v[0]) for v in prev.inputs], [float(v[0]) for v in prev.rates],
                 [[float(v[0]) for v in b] for b in prev.a], [[float(v[0]) for v in b] for b in prev.ad],
-                [int(u[0]) for u in prev.used])
+                [int(u[0]) for u in prev.used], None)
     state = {"warm": warm}
     x, dx, ddx = ([float(v if np.ndim(v) == 0 else v[row]) for v in col] for col in (k.x, k.dx, k.ddx))
     out = k.rows.solve(x, dx, ddx, k.order, state)
     new = empty_state(k, 1)
     warm = state["warm"]
     if warm is not None:
-        ins, rates, a, ad, used = warm
+        ins, rates, a, ad, used = warm[:WARM_KEPT]
         new = SimpleNamespace(inputs=[np.array([v], dtype=REAL) for v in ins],
                               rates=[np.array([v], dtype=REAL) for v in rates],
                               a=[[np.array([v], dtype=REAL) for v in b] for b in a],
