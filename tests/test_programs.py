@@ -157,6 +157,8 @@ def test_c_has_no_mutable_static_or_global_state(sources):
         for fname in (f"{log.name}.c", f"{log.name}_main.c"):
             text = files[fname].decode()
             for line in text.splitlines():
+                if re.fullmatch(r"enum\s*\{[\w\s,]*\};", line):
+                    continue  # named constants only: no declarator, so no storage
                 if re.match(r"^static\s+(?!const\b)(?!inline\b)(?!(int|void|double)\s+\w+\()", line):
                     pytest.fail(f"{fname}: mutable static: {line}")
                 if re.match(r"^(?!static|typedef|#|/|\s|}|{|int main|void |int |$)\w", line):

@@ -117,8 +117,8 @@ def test_fixed_point_reports_that_it_does_not_contract_past_a_limit_position(tmp
     log, default = _program(FALLBACK, {}, tmp_path / "default")
     log_fp, fixed = _program(FALLBACK, {"strategy": "fixed-point", "predictor": 0}, tmp_path / "fixed")
     ref, rows = _sweep(log, default), _sweep(log_fp, fixed)
-    assert (ref[5]["status"], rows[5]["status"]) == (0, status.code(9, status.NOT_CONTRACTING))
-    assert log_fp.step(9).action == "resolve" and all(v != v for v in [rows[5][c] for c in _positions(log)])
+    assert (ref[5]["status"], rows[5]["status"]) == (0, status.code(8, status.NOT_CONTRACTING))
+    assert log_fp.step(8).action == "resolve" and all(v != v for v in [rows[5][c] for c in _positions(log)])
     assert _check_against_default(log, ref, rows, True) == 1
     assert any(c.code == rows[5]["status"] for c in log_fp.status_codes)
     solver = RowSolver(log_fp, log_fp.order)  # linkgen run: the evaluator runs the build's settings too

@@ -99,7 +99,9 @@ def PRR_links(b: PlaneBuilder) -> Primitive:
     s = b.let("sv", eu - wu)
     jb = b.vec("jb", jr.p + e)
     jp = b.vec("jp", jb - r)
-    ratio = b.let("ratio", select(fail, 0, rd * (1 / ln.v)))  # 1 / l folded where l is the sketch's
+    # 1 / l folded where l is the sketch's; rd is 0 where the chain fails (k < 0 or l <= 0) and where l * l
+    # underflows, as for a subnormal l whose 1 / l is inf: sigma 0 there, not 0 * inf
+    ratio = b.let("ratio", select(rd.eq(0), 0, rd * (1 / ln.v)))
     sigma = b.let("sigma", fmin(ratio, 1))
     ieu = b.let("ieu", select(eu.eq(0), NAN, 1 / eu))
     sg = b.let("sgsi", s + gsi)

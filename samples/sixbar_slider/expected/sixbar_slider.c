@@ -159,7 +159,7 @@ static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg,
     const double jby = jr->P.y + ey;
     const double jpx = jbx - rx;
     const double jpy = jby - ry;
-    const double ratio = fail ? 0 : rd * (1 / l->v);
+    const double ratio = rd == 0 ? 0 : rd * (1 / l->v);
     const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double ieu = eu == 0 ? NAN : 1 / eu;
     const double sgsi = sv + gsi;

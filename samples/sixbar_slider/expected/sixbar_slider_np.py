@@ -343,7 +343,7 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     jby = jr_y + ey
     jpx = jbx - rx
     jpy = jby - ry
-    _c2 = np.asarray(fail)
+    _c2 = np.asarray(rd == 0)
     if not _c2.any():
         _s1 = rd * (1 / l_v)
     elif _c2.all():

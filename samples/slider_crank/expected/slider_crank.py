@@ -151,7 +151,7 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     jby = jr_y + ey
     jpx = jbx - rx
     jpy = jby - ry
-    ratio = 0 if fail else rd * (1 / l_v)
+    ratio = 0 if rd == 0 else rd * (1 / l_v)
     sigma = (1 if 1 < ratio else ratio)
     ieu = NAN if eu == 0 else 1 / eu
     sgsi = sv + gsi

@@ -331,7 +331,7 @@ function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
     jby = jr.y + ey;
     jpx = jbx - rx;
     jpy = jby - ry;
-    if fail
+    if rd == 0
         ratio = 0;
     else
         ratio = rd * (1 / l.v);
