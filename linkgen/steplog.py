@@ -143,7 +143,8 @@ class Distance:
 @dataclass(frozen=True)
 class Frame:
     """A closure equation: a point fixed in the frame of its link, point = origin + w (b - a)
-    with w = (gsi + i eta) e^(i off) / |b - a| taken as a complex number (two rows, x and y)."""
+    with w a complex number (two rows, x and y): (gsi + i eta) e^(i off) / |b - a| for
+    coupler_point, along + i across for link_point (whose origin is a)."""
 
     point: str
     origin: str

@@ -30,13 +30,15 @@ def test_fig14_group_has_four_lengths_and_one_frame_on_three_positions():
     # ternary's J2-J4 hold J2, the unused coupler is the residual's
     assert [(d.points, d.link, d.step) for d in c.distances] == [
         (("p_J3", "p_J4"), "rocker2", 4), (("p_J1", "p_J2"), "rocker1", 5), (("p_J4", "p_J2"), "ternary", 5),
-        (("p_J6", "p_J5"), "coupler", 8)]
+        (("p_J6", "p_J5"), "coupler", 7)]
     assert [d.length ** 2 for d in c.distances] == pytest.approx([5 ** 2 + 65 ** 2, 70 ** 2, 105 ** 2 + 5 ** 2,
                                                                   120 ** 2 + 20 ** 2], rel=1e-15)
     (frame,) = c.frames
-    assert (frame.point, frame.origin, frame.base, frame.link) == ("p_J5", "p_J4", ("p_J2", "p_J4"), "ternary")
-    # J5 - J4 = (-45, 15) = w (J4 - J2) = w (105, -5): w = (-45 + 15i)(105 + 5i) / 11050
-    assert frame.w == pytest.approx((-4800 / 11050, 1350 / 11050), rel=1e-15)
+    # step 6 places J5 by link_point on the ternary's J4 and J2
+    assert (frame.point, frame.origin, frame.base, frame.link, frame.step) == (
+        "p_J5", "p_J4", ("p_J4", "p_J2"), "ternary", 6)
+    # J5 - J4 = (-45, 15) = w (J2 - J4) = w (-105, 5): w = (-45 + 15i)(-105 - 5i) / 11050 = along + i across
+    assert frame.w == pytest.approx((4800 / 11050, -1350 / 11050), rel=1e-15)
     reason = next(s for s in steps if s.number == group.step).reason
     assert reason == ("Newton on the loop-closure equations of J4, J2 and J5 until rocker2, rocker1, ternary and "
                       "coupler keep their shapes; then add1 read off the solution")

@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from linkgen.pipeline import build_log
-from linkgen.render.closure import End, in_process, plan, values
+from linkgen.render.closure import End, derived, in_process, plan, values
 from linkgen.steplog import Closure, Distance, Frame
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -95,3 +95,6 @@ def test_fig14_rows_vanish_at_the_sketch():
     g, jac = values(p, x, lambda name, i: sketch[name][i])
     assert max(abs(v) for v in g) <= 8 * math.ulp(log.length_scale)
     assert len(jac) == 4 and all(len(r) == 4 for r in jac)
+    # J5, placed by link_point on J4 and J2, is derived from them at its sketch place
+    ((x5, y5),) = derived(p, x, lambda name, i: sketch[name][i])
+    assert (x5, y5) == pytest.approx(sketch["p_J5"][:2], abs=8 * math.ulp(log.length_scale))
