@@ -296,7 +296,14 @@ def _steps(sw: Sweep, name: str) -> tuple[np.ndarray, np.ndarray]:
     return np.flatnonzero(ok), np.abs(d[ok])
 
 
-@pytest.mark.parametrize("path", MECHANISMS, ids=IDS)
+SLOW = {"nongrashof_near_change", "triad_far"}  # 10 s each: their cases run in the long tier only
+
+
+def _tiered(paths):
+    return [pytest.param(p, marks=pytest.mark.long) if p.stem in SLOW else p for p in paths]
+
+
+@pytest.mark.parametrize("path", _tiered(MECHANISMS), ids=IDS)
 def test_no_jumps(path):
     """(d) No position, angle or slide column jumps between consecutive rows (a branch switch)."""
     sw = sweep(path)
@@ -405,7 +412,7 @@ def _from_sketch(ref: Reference, target: list) -> list | None:
     return None
 
 
-@pytest.mark.parametrize("path", MECHANISMS, ids=IDS)
+@pytest.mark.parametrize("path", _tiered(MECHANISMS), ids=IDS)
 def test_branch_followed_from_sketch(path):
     """The sweep is on the sketch's branch: an independent float continuation from the sketch agrees.
 

@@ -644,7 +644,7 @@ test_mechanism_fourbar = mechanism_property("fourbar")
 test_mechanism_slider_crank = mechanism_property("slider_crank")
 test_mechanism_inverted_slider = mechanism_property("inverted_slider")
 test_mechanism_watt = mechanism_property("watt")
-test_mechanism_stephenson = mechanism_property("stephenson")
+test_mechanism_stephenson = pytest.mark.long(mechanism_property("stephenson"))  # 14 s: the long tier only
 test_mechanism_fig14 = mechanism_property("fig14")
 test_mechanism_triad = mechanism_property("triad")
 
@@ -1219,6 +1219,7 @@ def test_reference_walk_keeps_its_branch_next_to_another(tmp_path):
     _assert_on_reference(names, data, ref, values)
 
 
+@pytest.mark.long  # 13 s of make test: the long tier only
 def test_far_from_the_origin_keeps_the_accuracy_near_it(tmp_path):
     """Found by test_scaled_turned_and_moved_sketch_keeps_its_accuracy[triad] (triad_932): a triad of link
     ratio 39, every sigma >= 0.33, drawn 2.4 sizes from (0, 0).  Every computed point carried rounding of
