@@ -486,22 +486,23 @@ int main(int argc, char **argv)
                     VARIABLE s;
                     if (!prr) {
                         VARIABLE l1 = {0, 0, 0}, l2 = {0, 0, 0};
+                        const POINT p1 = point(d), p2 = point(d + 6);
                         double sigma = 0;
                         l1.v = d[12]; l2.v = d[13];
-                        if (k == 0) o[0] = RRR_links(point(d), point(d + 6), l1, l2, (int)d[14], &jb, &sigma);
+                        if (k == 0) o[0] = RRR_links(&p1, &p2, &l1, &l2, (int)d[14], &jb, &sigma);
                         else if (k == 1) o[0] = acos_RRR(point(d), point(d + 6), d[12], d[13], (int)d[14], &jb);
-                        else if (k == 2) o[0] = RRR_links0(point(d), point(d + 6), l1, l2, (int)d[14], &jb, &sigma);
+                        else if (k == 2) o[0] = RRR_links0(&p1, &p2, &l1, &l2, (int)d[14], &jb, &sigma);
                         else o[0] = acos_RRR0(point(d), point(d + 6), d[12], d[13], (int)d[14], &jb);
                         o[1] = sigma;
                     } else {
                         VARIABLE l = {0, 0, 0};
                         ANGLE psig;
+                        const POINT pr = point(d), pgd = point(d + 7);
                         double sigma = 0;
                         l.v = d[6];
                         psig.the = d[13]; psig.dthe = d[14]; psig.ddthe = d[15];
                         if (k == 0)
-                            o[0] = PRR_links(point(d), l, point(d + 7), psig, d[16], d[17], (int)d[18], &s, &jp, &jb,
-                                             &sigma);
+                            o[0] = PRR_links(&pr, &l, &pgd, &psig, d[16], d[17], (int)d[18], &s, &jp, &jb, &sigma);
                         else o[0] = naive_PRR(point(d), d[6], point(d + 7), psig, d[16], d[17], (int)d[18], &s, &jb);
                         o[1] = s.v; o[2] = s.dv; o[3] = s.ddv;
                     }
@@ -695,13 +696,13 @@ def languages(rrr: list[dict], prr: list[dict]) -> dict:
         col = np.array([rrr_row(c) for c in rrr]).T
         st, sig, jb = numpy_backend(2)["RRR_links"](tuple(col[0:6]), tuple(col[6:12]), (col[12], 0 * col[12], 0),
                                                    (col[13], 0 * col[13], 0), col[14].astype(int))
-        got = np.column_stack([st, sig, *jb])
+        got = np.column_stack(np.broadcast_arrays(st, sig, *jb))
         out["numpy RRR_links"] = sum(not _same(g, _expected("RRR_links", c)) for g, c in zip(got, rrr))
         col = np.array([prr_row(c) for c in prr]).T
         st, sig, s, jp, jb = numpy_backend(2)["PRR_links"](
             tuple(col[0:6]), (col[6], 0 * col[6], 0), tuple(col[7:13]), tuple(col[13:16]), col[16], col[17],
             col[18].astype(int))
-        got = np.column_stack([st, sig, *s, *jb])
+        got = np.column_stack(np.broadcast_arrays(st, sig, *s, *jb))
         out["numpy PRR_links"] = sum(not _same(g, _expected("PRR_links", c)) for g, c in zip(got, prr))
     if not shutil.which("octave-cli"):
         return out
