@@ -1221,7 +1221,7 @@ def advance(k, prev, rows, sink=None, spot=None):
                 for name in sink.cols:
                     sink.cols[name][spot[0], c] = out[name]
                 sink.status[spot[0], c], sink.its[:, spot[0], c] = out["status"], out["iterations"]
-                for n, value in enumerate(out["sigma"]):
+                for n, value in enumerate(out.get("sigma", ())):  # none without the checks
                     if value != 1.0 or n in sink.sigma:
                         sink_sigma(sink, n)[spot[0], c] = value
     return new
@@ -1317,7 +1317,7 @@ def sweep(k, seq, prev, emit=False, keep=False):
             if emit:
                 for name in k.out:
                     k.out[name][row] = out[name]
-                k.status[row], k.sigma[:, row], k.its[:, row] = out["status"], out["sigma"], out["iterations"]
+                k.status[row], k.sigma[:, row], k.its[:, row] = out["status"], out.get("sigma", 1.0), out["iterations"]
             if keep:
                 state_put(kept, [j], prev)
         return kept
