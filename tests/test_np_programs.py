@@ -56,7 +56,9 @@ def test_the_kernel_alone_writes_the_evaluators_bits_and_agrees_with_c(mechanism
         assert parse(done.stdout)[2] == parse(evaluator)[2] == parse(run_c(log, tmp_path))[2]
         return
     assert done.stdout == evaluator
-    compare(log, done.stdout, run_c(log, tmp_path), tol=1e-12)
+    # the spec's 1e-9: the kernel's cos_sin rounds otherwise than libm by up to 2 eps, magnified near a
+    # change point (4.7e-11 measured on the parallelogram, 1.1e-12 on grashof_near_change)
+    compare(log, done.stdout, run_c(log, tmp_path))
 
 
 # -- a design sweep: the four-bar's crank length ------------------------------

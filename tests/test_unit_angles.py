@@ -131,15 +131,21 @@ def test_directions_are_cos_and_sin_of_the_angle_builds_angles(mechanism: Path, 
 
 @pytest.mark.parametrize("mechanism", cases(("fourbar", "inverted_slider")))
 def test_python_numpy_and_the_evaluator_agree_with_the_c_program(mechanism: Path, tmp_path: Path):
-    """Python the same bits as C; the numpy kernel, which the evaluator runs, within 1e-12 (numpy's own cos
-    and sin, where a step places a point from an angle, differ from the C library's in the last bit; the
-    direction functions alone compute the same bits in both: tests/test_primitives.py)."""
+    """Python the same bits as C; the numpy kernel within the spec's 1e-9 (its cosines and sines, where a
+    step places a point from an angle, round otherwise than the C library's, by up to 2 eps, and near a
+    change point the chains magnify that: 4.7e-11 measured on the parallelogram); the evaluator's CSV is
+    the kernel's where there is no resolver (with one the kernel solves rows on lanes and the evaluator
+    one by one: the same statuses, tests/test_np_resolver.py bounds the values)."""
     log = _log(mechanism, "unit")
     c = _c_sweep(log, tmp_path)
     assert different_bits(c, run_python(log, tmp_path)) == []
     numpy = run_numpy(log, tmp_path)
-    assert csv(log, evaluate(log, *input_rows(log, log.samples))) == numpy
-    compare(log, numpy, c, tol=1e-12)
+    evaluator = csv(log, evaluate(log, *input_rows(log, log.samples)))
+    if log.groups:
+        assert parse(evaluator)[2] == parse(numpy)[2]
+    else:
+        assert evaluator == numpy
+    compare(log, numpy, c)
 
 
 @pytest.mark.parametrize("mechanism", cases(("fourbar",), SAMPLE_NAMES))
