@@ -6,7 +6,8 @@ key) so later stages order by the file and report errors where the user wrote.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from functools import cached_property
 
 from .options import Options
@@ -103,6 +104,7 @@ class Mechanism:
     where: Where  # the top of the file
     inputs_where: Where  # the inputs: key
     options: Options = Options()  # options: what the programs compute in and how
+    options_where: Mapping[str, Where] = field(default_factory=dict)  # where the file gives each option
 
     @cached_property
     def _joints(self) -> dict[str, Joint]:

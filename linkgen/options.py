@@ -54,10 +54,12 @@ def policy_for(options: Options, policy: Policy = POLICY) -> Policy:
 
 def reference(options: Options) -> Options:
     """``options`` with the resolver's default iteration (Newton, polish, first-order
-    predictor): the build follows the mechanism with it to find its motion facts (the reach,
-    the conditioning over the sweep), which are the mechanism's, whatever the programs run."""
+    predictor) and every check on: the build follows the mechanism with them to find its motion
+    facts (the reach, the conditioning over the sweep), which are the mechanism's, whatever the
+    programs run."""
     default = Options()
-    return replace(options, strategy=default.strategy, polish=default.polish, predictor=default.predictor)
+    return replace(options, strategy=default.strategy, polish=default.polish, predictor=default.predictor,
+                   checks=default.checks)
 
 
 def runtime_policy(policy: Policy, options: Options) -> SimpleNamespace:

@@ -13,11 +13,11 @@ from .errors import InputError, and_list
 from .extraction import Procedure, extract
 from .extraction.closure import ClosureRefused, with_closures
 from .model import Mechanism
-from .options import overridden, policy_for, reference
+from .options import overridden, policy_for
 from .prune import prune
 from .steplog import Draft, InputInfo, LinkInfo, PairInfo, StepLog
 from .topology import Topology, analyse
-from .validate import option_line, read_mechanism
+from .validate import read_mechanism
 
 
 def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = None,
@@ -70,8 +70,8 @@ def _closed(proc: Procedure, m: Mechanism, flag: bool) -> Procedure:
     try:
         steps, groups = with_closures(proc.steps, proc.variables, proc.groups)
     except ClosureRefused as exc:
-        where = ("command line", 0, "--strategy") if flag else (m.path, option_line(m.path, "strategy"),
-                                                                 "options.strategy")
+        given = m.options_where.get("strategy")
+        where = ("command line", 0, "--strategy") if flag else (m.path, given.line if given else 0, "options.strategy")
         raise InputError(f"the closure strategy cannot resolve this mechanism: {exc}; use strategy newton",
                          *where) from None
     return replace(proc, steps=steps, groups=groups)
@@ -104,8 +104,7 @@ def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | No
     if outputs is not None:
         _check_outputs(m, outputs)
     whole = draft(topo, proc, outputs, order, options)
-    facts = motion_facts(Draft(replace(whole, options=reference(whole.options))), sweep)
-    return prune(with_facts(whole, facts))
+    return prune(with_facts(whole, motion_facts(whole, sweep)))
 
 
 

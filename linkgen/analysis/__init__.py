@@ -13,6 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from ..motion import Conditioning, Gap, Reach, reach_between
+from ..options import reference
 from ..steplog import Draft, StepLog
 from .change_points import ChangePoints, change_points, with_change_points
 from .conditioning import conditioning
@@ -41,9 +42,9 @@ def with_facts(draft: Draft, facts: Facts) -> StepLog:
 
 def motion_facts(draft: Draft, sweep: bool = True) -> Facts:
     """The motion facts of a draft: with ``sweep``, the conditioning over the sweep too (for
-    the manual; it takes a sweep and root finding).  They are found with every check on,
-    whatever the programs will have (options.checks)."""
-    draft = Draft(replace(draft, options=replace(draft.options, checks=True)))
+    the manual; it takes a sweep and root finding).  They are the mechanism's: found with the
+    reference settings (options.reference), whatever the programs will run."""
+    draft = Draft(replace(draft, options=reference(draft.options)))
     facts = Facts()
     if len(draft.inputs) == 1:
         facts = Facts(change_points(draft))

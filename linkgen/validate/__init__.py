@@ -11,10 +11,10 @@ from __future__ import annotations
 from ..loader import Mapping, load
 from ..model import Mechanism, Where
 from . import header, inputs, naming, parts
-from .header import file_label, option_line
+from .header import file_label
 from .sheet import Sheet
 
-__all__ = ["file_label", "option_line", "read_mechanism", "validate"]
+__all__ = ["file_label", "read_mechanism", "validate"]
 
 
 def validate(root: Mapping, path: str) -> Mechanism:
@@ -34,10 +34,11 @@ def validate(root: Mapping, path: str) -> Mechanism:
     given = inputs.resolve_prismatic(given, prismatic)
     outputs, outputs_where = header.outputs(sheet)
     order, samples = header.scalars(sheet)
+    options, options_where = header.options(sheet)
     return Mechanism(
         name, title, file_label(path), path, length_unit, angle_unit, joints, links,
         given, prismatic, outputs, outputs_where, order, samples, Where(1, ""), header.key_where(sheet, "inputs"),
-        header.options(sheet),
+        options, options_where,
     )
 
 

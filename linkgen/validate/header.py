@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import os
 
-from ..loader import Mapping, Node, Scalar, load
+from ..loader import Node, Scalar
 from ..model import Where
 from ..options import CHOICES, MAX_ITERATIONS, MAX_TOLERANCE, Options
 from .naming import program_name
@@ -110,17 +110,18 @@ def scalars(sheet: Sheet) -> tuple[int, int]:
     return order, samples
 
 
-def options(sheet: Sheet) -> Options:
-    """The options (linkgen.options.Options; each key optional, the defaults without it)."""
+def options(sheet: Sheet) -> tuple[Options, dict[str, Where]]:
+    """The options (linkgen.options.Options; each key optional, the defaults without it) and where
+    the file gives each."""
     node = sheet.root.get("options")
     if node is None:
-        return Options()
+        return Options(), {}
     opts = sheet.mapping(node, "the options as {real: float, strategy: newton, ...}")
     sheet.keys(opts, (), tuple(Options.__dataclass_fields__), "options")
     given: dict[str, object] = {}
     for key, value in opts.items:
         given[key.text] = _option(sheet, key.text, value)
-    return Options(**given)  # type: ignore[arg-type]
+    return Options(**given), {key.text: where(value) for key, value in opts.items}  # type: ignore[arg-type]
 
 
 def _option(sheet: Sheet, key: str, node: Node) -> object:
@@ -148,10 +149,3 @@ def _option(sheet: Sheet, key: str, node: Node) -> object:
 def key_where(sheet: Sheet, key: str) -> Where:
     node = next(k for k, _ in sheet.root.items if k.text == key)
     return Where(node.line, key)
-
-
-def option_line(path: str, key: str) -> int:
-    """The line of the file's option ``key`` (options: {key: ...}), 0 where the file has none."""
-    node = load(path).get("options")
-    found = node.get(key) if isinstance(node, Mapping) else None
-    return found.line if found is not None else 0

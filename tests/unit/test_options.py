@@ -44,7 +44,7 @@ def test_the_runtime_reads_the_policys_numbers_and_the_resolvers_settings():
     assert (p.strategy, p.polish, p.predictor) == ("fixed-point", False, 2)
 
 
-def test_the_reference_is_the_default_iteration_with_the_other_settings_kept():
+def test_the_reference_is_the_default_iteration_with_every_check_and_the_other_settings_kept():
     o = Options(real="float", strategy="fixed-point", tolerance=1e-6, iterations=3, polish=False, predictor=0,
-                checks=False)
-    assert reference(o) == Options(real="float", tolerance=1e-6, iterations=3, checks=False)
+                checks=False, angles="unit")
+    assert reference(o) == Options(real="float", tolerance=1e-6, iterations=3, angles="unit")

@@ -11,7 +11,7 @@ import pytest
 from mechanism_text import FOURBAR, PATH, check, fourbar, refused
 
 from linkgen.loader import parse
-from linkgen.validate import file_label, option_line, validate
+from linkgen.validate import file_label, validate
 from linkgen.validate.header import DEFAULT_ORDER, DEFAULT_SAMPLES, MAX_SAMPLES
 
 
@@ -150,10 +150,8 @@ def test_the_file_name_is_printable_ascii_in_the_banners(path: str, label: str):
 
 
 
-def test_the_line_of_an_option_is_found_in_the_file(tmp_path: Path):
-    path = tmp_path / "m.yaml"
-    path.write_text(FOURBAR + "options:\n  real: float\n  strategy: closure\n")
-    assert (option_line(str(path), "strategy"), option_line(str(path), "real"), option_line(str(path), "angles")) == (
-        19, 18, 0)
-    path.write_text(FOURBAR)
-    assert option_line(str(path), "strategy") == 0
+def test_the_mechanism_keeps_where_the_file_gives_each_option():
+    m = read(FOURBAR + "options:\n  real: float\n  strategy: closure\n")
+    assert {k: (w.line, w.key) for k, w in m.options_where.items()} == {
+        "real": (18, "options.real"), "strategy": (19, "options.strategy")}
+    assert read(FOURBAR).options_where == {}
