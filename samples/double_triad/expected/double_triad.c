@@ -198,7 +198,7 @@ typedef struct {
     double path_share;    /* ... its share of the largest predicted move */
     double turn_share;    /* ... where a block's orientation turned */
     int walk_passes;      /* a continuation walk gives up after this many passes */
-    int strategy;         /* the resolver's iteration: RESOLVER_NEWTON or RESOLVER_FIXED_POINT */
+    int strategy;         /* the resolver's iteration: RESOLVER_NEWTON, RESOLVER_FIXED_POINT or RESOLVER_CLOSURE */
     int polish;           /* 1: one step more once the tolerance is met */
     int predictor;        /* the warm start's order: 0, 1 or 2 */
 } resolver_policy;
@@ -876,7 +876,7 @@ typedef struct {
     VARIABLE f2_v8;
     double sigma[DOUBLE_TRIAD_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
-    int its[LINKGEN_NGROUPS];  /* Newton steps of each resolver in the row's own passes */
+    int its[LINKGEN_NGROUPS];  /* iterations of each resolver in the row's own passes */
     double chains;  /* the worst conditioning of a block's chains in its last pass */
     int br4;  /* the branch of step 4, as the last solution left it */
     int br5;  /* the branch of step 5, as the last solution left it */

@@ -27,7 +27,7 @@ typedef struct {
     double path_share;    /* ... its share of the largest predicted move */
     double turn_share;    /* ... where a block's orientation turned */
     int walk_passes;      /* a continuation walk gives up after this many passes */
-    int strategy;         /* the resolver's iteration: RESOLVER_NEWTON or RESOLVER_FIXED_POINT */
+    int strategy;         /* the resolver's iteration: RESOLVER_NEWTON, RESOLVER_FIXED_POINT or RESOLVER_CLOSURE */
     int polish;           /* 1: one step more once the tolerance is met */
     int predictor;        /* the warm start's order: 0, 1 or 2 */
 } resolver_policy;
