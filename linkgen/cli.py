@@ -64,6 +64,8 @@ SETTINGS = (  # the flags that override the file's options (linkgen.options.Opti
     click.option("--checks/--no-checks", default=None,
                  help="Conditioning and status per step (off: positions and rates only)."),
     click.option("--angles", type=click.Choice(ANGLE_FORMS), help="Angle outputs as angles or as unit vectors."),
+    click.option("--assembly", type=click.IntRange(min=1),
+                 help="Follow assembly K at the sketch's inputs (linkgen assemblies numbers them), not the sketch's."),
 )
 
 

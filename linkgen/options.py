@@ -30,6 +30,8 @@ class Options:
     predictor: int = 1  # the warm start's order (PREDICTORS)
     checks: bool = True  # conditioning and status per step; off: positions and rates only
     angles: str = "angle"  # angle outputs as angles or as unit vectors (ANGLE_FORMS)
+    assembly: int = 0  # the assembly the programs follow (linkgen assemblies' number at the sketch's
+    # inputs); 0: the sketch's
 
 
 CHOICES: dict[str, tuple[object, ...]] = {"real": REAL_TYPES, "strategy": STRATEGIES, "predictor": PREDICTORS,
@@ -74,6 +76,8 @@ def describe(options: Options, resolver: Policy | None) -> str:
     only where the mechanism has one (its tolerance and cap as its program's ``resolver`` policy has them)."""
     words = [f"checks {'on' if options.checks else 'off'}",
              f"angles as {'angles' if options.angles == 'angle' else 'unit vectors'}"]
+    if options.assembly:
+        words.append(f"assembly {options.assembly}")
     if resolver:
         words.insert(0, f"resolver {options.strategy} (tolerance {resolver.tolerance:g}, at most "
                         f"{resolver.max_iterations} iterations, polish {'on' if options.polish else 'off'}, "

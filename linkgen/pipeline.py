@@ -15,7 +15,7 @@ from .extraction.closure import ClosureRefused, with_closures
 from .model import Mechanism
 from .options import overridden, policy_for
 from .prune import prune
-from .steplog import Draft, InputInfo, LinkInfo, PairInfo, StepLog
+from .steplog import Assemblies, Draft, InputInfo, LinkInfo, PairInfo, StepLog
 from .topology import Topology, analyse
 from .validate import read_mechanism
 
@@ -103,8 +103,26 @@ def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | No
     m, topo, proc = analyse_file(path)
     if outputs is not None:
         _check_outputs(m, outputs)
+    m, found = _assembly(m, topo, proc, options or {})
+    if m is not topo.mechanism:
+        topo = analyse(m)
+        proc = extract(topo)
     whole = draft(topo, proc, outputs, order, options)
-    return prune(with_facts(whole, motion_facts(whole, sweep)))
+    return replace(prune(with_facts(whole, motion_facts(whole, sweep))), assemblies=found)
+
+
+def _assembly(m: Mechanism, topo: Topology, proc: Procedure, options: Mapping[str, object]) -> tuple[Mechanism,
+                                                                                                      Assemblies]:
+    """Every assembly at the sketch's inputs, and the mechanism drawn in the one the programs
+    follow (options.assembly; unchanged for the sketch's)."""
+    from .assemblies.follow import chosen, listing, moved
+
+    census_log = draft(topo, proc, (), 0, {**options, "strategy": "newton", "angles": "angle"})
+    k = overridden(m.options, options).assembly
+    found = listing(census_log, k)
+    if not k:
+        return m, found
+    return moved(m, census_log, chosen(m, k, found, "assembly" in options)), found
 
 
 

@@ -14,7 +14,7 @@ import math
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -24,12 +24,14 @@ from ..primitives import PRIMITIVES, python_backend
 from ..primitives.dsl import record_fields
 from ..primitives.interpret import constant_record
 from ..steplog import ResolverGroup, Step, StepLog, held
-from .polynomial import Solution, solve
 from .triad import NotReducible, Triad, grid, snap, triad_of
 
 CHAINS = ("RRR_links", "PRR_links", "RPR_links", "PRP_links", "PPR_links")
 CHECK = 1e-9  # an assembly whose link lengths are off by more (relative to L) breaks a constraint the procedure skips
 MATCH = 1e-6  # the programs' configuration is an assembly this close (see distance)
+
+if TYPE_CHECKING:
+    from .polynomial import Solution
 
 Env = dict[str, tuple[float, ...]]
 
@@ -199,6 +201,8 @@ class _Walk:
 
     def _solve(self, triad: Triad, env: Env) -> Solution:
         """The triad's solution at the bases' positions in ``env`` (solved once per position)."""
+        from .polynomial import solve  # sympy takes 0.7 s to import: only mechanisms with a group need it
+
         unit = grid(self.log.length_scale)
         bases = [tuple(snap(x, unit) for x in env[self.pos[leg.base]][:2]) for leg in triad.legs]
         lengths2 = [leg.length2 if leg.length2 is not None else snap(env[self.log.inputs[leg.input].variable][0], unit)

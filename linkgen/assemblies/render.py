@@ -109,3 +109,12 @@ def render_all(log: StepLog, census: Census) -> dict[str, bytes]:
     where = page(log, census)
     return {f"{log.name}_assembly_{a.number}.svg": render_assembly(log, census, a, where).encode()
             for a in census.assemblies}
+
+
+def figures(log: StepLog) -> dict[str, bytes]:
+    """The figures of the step log's assemblies (the manual's), NAME_assembly_K.svg."""
+    if log.assemblies is None:
+        return {}
+    from .follow import census_of
+
+    return render_all(log, census_of(log))

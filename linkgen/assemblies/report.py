@@ -142,3 +142,28 @@ def to_json(log: StepLog, census: Census) -> str:
         "assemblies": [_assembly(log, a) for a in census.assemblies],
     }
     return json.dumps(doc, indent=2, allow_nan=False, ensure_ascii=False) + "\n"
+
+
+def manual(log: StepLog) -> dict[str, Any] | None:
+    """The manual's listing of the step log's assemblies: the inputs, the notes, the table's
+    header and rows (pair positions as x, y), the figures' names; None where none was looked for."""
+    rec = log.assemblies
+    if rec is None:
+        return None
+    from .follow import census_of
+
+    census = census_of(log)
+    n = len(census.assemblies)
+    choices = _choice_columns(census)
+    header = ["#", "sketch", "programs"] + [h for _, h in choices] + [p.name for p in log.pairs]
+    rows = [[str(a.number), "*" if a.sketch else "", "follow" if a.number == rec.follows else ""]
+            + [_choice_text(log, a, s) for s, _ in choices]
+            + [f"{_g(a.values[p.name + '.x'])}, {_g(a.values[p.name + '.y'])}" for p in log.pairs]
+            for a in census.assemblies]
+    sketch = next((a.number for a in census.assemblies if a.sketch), 0)
+    return {"inputs": inputs_text(log, census), "counted": rec.counted, "notes": list(rec.notes),
+            "count": n, "follows": rec.follows, "sketch": sketch, "chosen": log.options.assembly,
+            "header": header, "rows": rows, "method": METHOD if any(n.startswith("group") for n in rec.notes) else "",
+            "prismatic": any(p.kind == "prismatic" for p in log.pairs),
+            "figures": " ".join(f"![assembly {a.number} of {n}]({log.name}_assembly_{a.number}.svg)"
+                                for a in census.assemblies)}

@@ -107,9 +107,12 @@ def render_backend(backend: Backend[Any], view: View) -> dict[str, bytes]:
 
 
 def render_all(log: StepLog) -> dict[str, bytes]:
-    """The step log, its figure and every backend's files."""
+    """The step log, its figure, every backend's files and the figures of its assemblies."""
+    from ..assemblies.render import figures as assembly_figures  # linkgen.assemblies imports the pipeline
+
     view = build_view(log)
     files = {f"{log.name}.json": log.to_json().encode("utf-8"), f"{log.name}.svg": render_svg(log).encode("utf-8")}
     for backend in backends():
         files.update(render_backend(backend, view))
+    files.update(assembly_figures(log))
     return files

@@ -133,6 +133,11 @@ def _option(sheet: Sheet, key: str, node: Node) -> object:
         if not 0.0 < tol <= MAX_TOLERANCE:
             raise sheet.error(node, f"the resolver tolerance is above 0 and at most {MAX_TOLERANCE:g}, got {tol:g}")
         return tol
+    if key == "assembly":
+        k = sheet.integer(node, "the assembly to follow, a whole number (linkgen assemblies numbers them)")
+        if k < 1:
+            raise sheet.error(node, f"options: assembly is a number from 1 (see linkgen assemblies), got {k}")
+        return k
     if key == "iterations":
         cap = sheet.integer(node, "the resolver's iteration cap, a whole number")
         if not 1 <= cap <= MAX_ITERATIONS:

@@ -73,6 +73,8 @@ def _omitted(log: StepLog) -> str:
 
 
 def render(view: View, spell: Manual, template: Template) -> dict[str, bytes]:
+    from ...assemblies.report import manual  # linkgen.assemblies builds logs: the pipeline imports the backends
+
     log = view.log
     seq = states(log)
     return {"NAME.md": template(
@@ -84,7 +86,8 @@ def render(view: View, spell: Manual, template: Template) -> dict[str, bytes]:
         slides={p.name for p in log.pairs if p.kind == "prismatic"},
         limits=and_list([f"{number(x)} for {i.column}" for x, i in zip(log.step_limits(), log.inputs)]),
         good_lever=log.policy.good_lever, real_policy=for_real(log.policy, log.options.real),
-        tolerance_eps=TOLERANCE_EPS, singular_eps=SINGULAR_EPS, real_eps=EPSILON[log.options.real])}
+        tolerance_eps=TOLERANCE_EPS, singular_eps=SINGULAR_EPS, real_eps=EPSILON[log.options.real],
+        assemblies=manual(log))}
 
 
 BACKEND = Backend("md", "Markdown", templates="md", files=("NAME.md",), comment=("<!--", " -->"), spelling=Manual,
