@@ -7,6 +7,7 @@ from dataclasses import replace
 
 from . import __version__
 from .analysis import motion_facts, with_facts
+from .census import Assemblies
 from .columns import plan
 from .directions import unit_directions
 from .errors import InputError, and_list
@@ -15,7 +16,7 @@ from .extraction.closure import ClosureRefused, with_closures
 from .model import Mechanism
 from .options import overridden, policy_for
 from .prune import prune
-from .steplog import Assemblies, Draft, InputInfo, LinkInfo, PairInfo, StepLog
+from .steplog import Draft, InputInfo, LinkInfo, PairInfo, StepLog
 from .topology import Topology, analyse
 from .validate import read_mechanism
 

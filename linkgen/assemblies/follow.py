@@ -9,14 +9,18 @@ change points, the Add-links and the resolver's warm start all come from assembl
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
+from ..census import Assemblies, AssemblyChoice, AssemblyInfo
 from ..errors import InputError
 from ..model import Joint, Link, Mechanism
-from ..steplog import Assemblies, AssemblyChoice, AssemblyInfo, StepLog
+from ..steplog import StepLog
 from .enumerate import Assembly, Census, Choice, census
 from .report import notes
 from .triad import NotReducible
+
+SAME = 1e-12  # a pair the assembly moves by less (over the length scale) keeps the file's coordinates
 
 
 def listing(log: StepLog, assembly: int = 0) -> Assemblies:
@@ -53,23 +57,27 @@ def chosen(m: Mechanism, k: int, found: Assemblies, from_flag: bool) -> Assembly
 
 
 def moved(m: Mechanism, log: StepLog, a: AssemblyInfo) -> Mechanism:
-    """The mechanism drawn in assembly ``a`` (of ``log``, its census log): the fixed link as drawn,
-    every other pair and point where the assembly has it, a prismatic pair's line turned with its
-    guide.  Link lengths are the assembly's (the sketch's to its ``error``, about 1e-15 L)."""
+    """The mechanism drawn in assembly ``a`` (of ``log``, its census log): every pair and point where
+    the assembly has it, a prismatic pair's line turned with its guide; what the assembly leaves
+    where the sketch has it (to SAME of the length scale: the fixed link, the input links) keeps
+    the file's numbers.  Link lengths are the assembly's (the sketch's to its ``error``)."""
     v = dict(a.values)
-    fixed = m.fixed
-    turn = {lk.name: v[f"{lk.name}.phi"] - lk.angle for lk in log.links}
+    near = SAME * log.length_scale
+    turn = {lk.name: math.remainder(v[f"{lk.name}.phi"] - lk.angle, 2 * math.pi) for lk in log.links}
+
+    def spot(name: str, x: float, y: float) -> tuple[float, float]:
+        nx, ny = v[f"{name}.x"], v[f"{name}.y"]
+        return (x, y) if abs(nx - x) <= near and abs(ny - y) <= near else (nx, ny)
 
     def joint(j: Joint) -> Joint:
-        if j.name in fixed.joints:
-            return j
-        axis = j.axis if j.revolute else j.axis + turn[m.prismatic_of(j.name).guide]
-        return replace(j, x=v[f"{j.name}.x"], y=v[f"{j.name}.y"], axis=axis)
+        x, y = spot(j.name, j.x, j.y)
+        axis = j.axis
+        if not j.revolute and abs(turn[m.prismatic_of(j.name).guide]) > SAME:
+            axis += turn[m.prismatic_of(j.name).guide]
+        return replace(j, x=x, y=y, axis=axis)
 
     def link(lk: Link) -> Link:
-        if lk.fixed:
-            return lk
-        points = tuple(replace(p, x=v[f"{p.name}.x"], y=v[f"{p.name}.y"]) for p in lk.points)
+        points = tuple(replace(p, x=spot(p.name, p.x, p.y)[0], y=spot(p.name, p.x, p.y)[1]) for p in lk.points)
         return replace(lk, points=points)
 
     return replace(m, joints=tuple(joint(j) for j in m.joints), links=tuple(link(lk) for lk in m.links))

@@ -13,8 +13,8 @@ METHOD = ("characteristic polynomial has its real roots isolated exactly (sympy'
           "fractions on its rational coefficients) and counted again by Sturm's theorem, each root polished by "
           "Newton's method at 50 digits")
 
-MANUAL_METHOD = ("every resolver group's characteristic polynomial\nhas its real roots isolated in exact arithmetic and "
-                 "counted by Sturm's theorem, each\npolished at 50 digits")
+MANUAL_METHOD = ("every resolver group's characteristic polynomial\nhas its real roots isolated in exact "
+                 "arithmetic and counted by Sturm's theorem, each\npolished at 50 digits")
 
 
 def _g(x: float) -> str:
@@ -166,7 +166,8 @@ def manual(log: StepLog) -> dict[str, Any] | None:
     sketch = next((a.number for a in census.assemblies if a.sketch), 0)
     return {"inputs": inputs_text(log, census), "counted": rec.counted, "notes": list(rec.notes),
             "count": n, "follows": rec.follows, "sketch": sketch, "chosen": log.options.assembly,
-            "header": header, "rows": rows, "method": MANUAL_METHOD if any(n.startswith("group") for n in rec.notes) else "",
+            "header": header, "rows": rows,
+            "method": MANUAL_METHOD if any(n.startswith("group") for n in rec.notes) else "",
             "prismatic": any(p.kind == "prismatic" for p in log.pairs),
             "figures": " ".join(f"![assembly {a.number} of {n}]({log.name}_assembly_{a.number}.svg)"
                                 for a in census.assemblies)}

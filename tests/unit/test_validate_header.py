@@ -56,7 +56,11 @@ def test_every_option_as_the_file_gives_it():
 @pytest.mark.parametrize("value, key, message", [
     ("options: {real: quad}", "options.real", "options: real is float, double or long double, got 'quad'"),
     ("options: {precision: float}", "options.precision", "unknown key 'precision' in options; the keys are: real, "
-     "strategy, tolerance, iterations, polish, predictor, checks, angles"),
+     "strategy, tolerance, iterations, polish, predictor, checks, angles, assembly"),
+    ("options: {assembly: 0}", "options.assembly",
+     "options: assembly is a number from 1 (see linkgen assemblies), got 0"),
+    ("options: {assembly: two}", "options.assembly",
+     "expected the assembly to follow, a whole number (linkgen assemblies numbers them), got the text 'two'"),
     ("options: [float]", "options", "expected the options as {real: float, strategy: newton, ...}, got a list"),
     ("options: {strategy: bisection}", "options.strategy",
      "options: strategy is newton, fixed-point or closure, got 'bisection'"),
