@@ -177,3 +177,20 @@ def test_the_step_log_and_the_banners_record_the_assembly(tmp_path):
     assert "The programs follow assembly 2 (`options: assembly`" in manual
     assert "![assembly 1 of 2](fourbar_assembly_1.svg)" in manual and (tmp_path / "fourbar_assembly_2.svg").is_file()
     assert log.options.assembly == 2
+
+
+def test_the_flag_of_build_and_run(tmp_path):
+    linkgen = Path(sys.executable).with_name("linkgen")
+    rows = {}
+    for flags in ([], ["--assembly", "2"]):
+        done = subprocess.run([str(linkgen), "run", str(FOURBAR), "--samples", "2", *flags], capture_output=True,
+                              text=True, check=True)
+        names, data, _ = parse(done.stdout)
+        rows[len(flags)] = dict(zip(names, data[0]))
+    assert rows[0]["B.y"] == 50.0 and rows[2]["B.y"] == -50.0  # B mirrored in the frame line A-O2 at 0 deg
+    done = subprocess.run([str(linkgen), "build", str(FOURBAR), "--assembly", "3", "-o", str(tmp_path)],
+                          capture_output=True, text=True)
+    assert done.returncode == 1 and done.stderr == ("linkgen: error: command line: --assembly: there is no assembly "
+                                                    "3: the mechanism has 2 assemblies at the sketch's inputs (linkgen "
+                                                    "assemblies lists them)\n")
+    assert not any(tmp_path.iterdir())

@@ -34,8 +34,9 @@ def file_units(log: StepLog, values: Sequence[float]) -> tuple[float, ...]:
 
 
 def whole_log(path: str) -> StepLog:
-    """The step log of the whole procedure, every output at order 0 (what ``assemblies`` walks)."""
-    return build_log(path, outputs=(), order=0, sweep=False)
+    """The step log of the whole procedure, every output at order 0 (what ``assemblies`` walks), from
+    the sketch as drawn (``options: assembly`` redraws it for the programs only)."""
+    return build_log(path, outputs=(), order=0, sweep=False, options={"assembly": 0})
 
 
 def assemblies(path: str, log: StepLog, at: Sequence[float] | None = None) -> Census:
