@@ -198,7 +198,7 @@ def candidates(mechanism: str, as_json: bool) -> None:
         return
     for k, add in enumerate(log.add_links):
         rows = [{"pairs": list(c.pairs), "norm": c.norm, "usable": c.usable, "lever": c.lever}
-                for c in add.candidates]
+                | ({"with": [list(p) for p in c.also]} if c.also else {}) for c in add.candidates]
         if as_json:
             if k == 0:
                 click.echo(json.dumps(rows, indent=2))
@@ -208,8 +208,9 @@ def candidates(mechanism: str, as_json: bool) -> None:
         for rank, c in enumerate(add.candidates, 1):
             norm = "cannot close" if c.norm is None else f"{c.norm:.6g}"
             lever = "" if c.lever is None else f"  lever {c.lever:.3g}"
-            mark = "  <- chosen" if c.pairs == add.pairs else ""
-            click.echo(f"  {rank}. {c.pairs[0]}-{c.pairs[1]}  |f| = {norm}{lever}{mark}")
+            combo = (c.pairs, *c.also)
+            mark = "  <- chosen" if c.pairs == add.pairs and (rank == 1 or not c.also) else ""  # the best is installed
+            click.echo(f"  {rank}. {', '.join(f'{a}-{b}' for a, b in combo)}  |f| = {norm}{lever}{mark}")
 
 
 @cli.command()

@@ -1,8 +1,7 @@
 """Stage 5 types: the step log, a plain serialisable record of every decision.
 
-Templates and the evaluator read nothing else.  Only builtins cross this
-boundary (str, int, float, bool, tuples of them); ``to_json`` writes it
-deterministically.
+Templates and the evaluator read nothing else.  Only builtins cross this boundary
+(str, int, float, bool, tuples of them); ``to_json`` writes it deterministically.
 """
 
 from __future__ import annotations
@@ -93,6 +92,7 @@ class Candidate:
     norm: float | None  # |f| at the probe input, None when a chain cannot close there
     usable: bool  # the Solver completes its group with it
     lever: float | None = None  # the block's lever (None where the candidate does not complete its group)
+    also: tuple[tuple[str, str], ...] = ()  # the Add-links installed with it (a group needing several at once)
 
 
 @dataclass(frozen=True)

@@ -90,45 +90,60 @@ def residual_norm(ws: Workspace, values: tuple[float, ...]) -> float | None:
     return math.sqrt(sum(env[f][0] ** 2 for f in ws.groups[-1].residuals))
 
 
+MAX_AT_ONCE = 3  # the most Add-links one group is searched for at once (a class-IV group needs two)
+
+
 class _Trial(NamedTuple):
-    """One Add-link candidate tried: its rank key first (usable, a norm, a good lever, the norm, order)."""
+    """One Add-link candidate tried (with the candidates installed after it where its group needs
+    several at once): its rank key first (usable, a norm, a good lever, the norm, order)."""
 
     unusable: bool
     no_norm: bool
     poor_lever: bool
     norm_key: float
-    order: int
+    order: tuple[int, ...]
     pairs: tuple[str, str]
     norm: float | None
     usable: bool
     lever: float | None
     workspace: Workspace | None
+    also: tuple[tuple[str, str], ...] = ()  # the Add-links installed with it, in order
 
 
-def _try(state: SolverState, order: int, k: str, u: str, at: tuple[float, ...]) -> _Trial:
-    """Install candidate k-u from the state and run the Solver until its group closes."""
+def _try(state: SolverState, order: tuple[int, ...], k: str, u: str, at: tuple[float, ...],
+         start: int) -> list[_Trial]:
+    """Install candidate k-u from the state and run the Solver until its group closes; where the
+    group stays open, every candidate for the next Add-link of the group in turn (up to
+    MAX_AT_ONCE Add-links at once): one trial per combination."""
     trial = Workspace.thaw(state)
-    usable, norm, lever = False, None, None
     try:
         install(trial, k, u)
         solve(trial, stop_at_close=True)
-        usable = not trial.group
-        if usable:
-            norm = _rounded(residual_norm(trial, at))
-            lever = placement_lever(trial.steps[len(state.steps):], trial.steps, trial.variables)
     except Unsupported:
-        return _Trial(True, True, True, 0.0, order, (k, u), None, False, None, None)
-    return _Trial(not usable, norm is None, lever is None or lever < GOOD_LEVER, norm if norm is not None else 0.0,
-                  order, (k, u), norm, usable, lever, trial)
+        return [_Trial(True, True, True, 0.0, order, (k, u), None, False, None, None)]
+    if trial.group and len(order) < MAX_AT_ONCE:
+        inner = trial.frozen()
+        out = [t._replace(pairs=(k, u), also=(t.pairs, *t.also))
+               for n, (k2, u2) in enumerate(candidates(inner)) for t in _try(inner, (*order, n), k2, u2, at, start)]
+        return out or [_Trial(True, True, True, 0.0, order, (k, u), None, False, None, trial)]
+    norm, lever = None, None
+    if not trial.group:
+        norm = _rounded(residual_norm(trial, at))
+        lever = placement_lever(trial.steps[start:], trial.steps, trial.variables)
+    usable = not trial.group
+    return [_Trial(not usable, norm is None, lever is None or lever < GOOD_LEVER, norm if norm is not None else 0.0,
+                   order, (k, u), norm, usable, lever, trial)]
 
 
 def rank(state: SolverState) -> SolverState:
-    """Try every candidate; continue with the one with the smallest norm of f at the probe
-    among those whose lever is at least GOOD_LEVER (else among all), keeping the other
-    usable ones as fallback blocks of its group."""
+    """Try every candidate (every combination of candidates where the group needs several
+    Add-links at once); continue with the one with the smallest norm of f at the probe among
+    those whose lever is at least GOOD_LEVER (else among all), keeping the other usable ones
+    with as many Add-links as fallback blocks of its group."""
     at = probe(state.topo)
-    tried = sorted((_try(state, order, k, u, at) for order, (k, u) in enumerate(candidates(state))),
-                   key=lambda t: t[:5])
+    start = len(state.steps)
+    tried = _distinct(sorted((t for order, (k, u) in enumerate(candidates(state))
+                              for t in _try(state, (order,), k, u, at, start)), key=lambda t: t[:5]))
     if not tried:
         raise Unsupported("no Add-link candidate exists")
     best = tried[0]
@@ -138,14 +153,28 @@ def rank(state: SolverState) -> SolverState:
     k = next(i for i, d in enumerate(chosen.add_links) if d.pairs == best.pairs and not d.candidates)
     d = chosen.add_links[k]
     chosen.add_links[k] = AddLinkDraft(d.name, d.var, d.pairs, d.length, d.group,
-                                       tuple(Candidate(t.pairs, t.norm, t.usable, t.lever) for t in tried), at)
-    start = len(state.steps)
+                                       tuple(Candidate(t.pairs, t.norm, t.usable, t.lever, t.also) for t in tried),
+                                       at)
     others = [t for t in tried[1:] if t.usable and t.workspace is not None
               and len(t.workspace.add_links) == len(chosen.add_links)]
+    group = chosen.add_links[k].group
     for t in others[:MAX_VARIANTS]:
         trial = t.workspace
         assert trial is not None
         new = tuple(v for name, v in trial.variables.items() if name not in state.variables)
-        chosen.variants.append(VariantDraft(chosen.groups[-1].number, t.pairs, trial.add_links[-1].length,
+        adds = [a for a in trial.add_links if a.group == group]
+        chosen.variants.append(VariantDraft(group, tuple(a.pairs for a in adds), tuple(a.length for a in adds),
                                             tuple(trial.steps[start:]), new))
     return chosen.frozen()
+
+
+def _distinct(tried: list[_Trial]) -> list[_Trial]:
+    """The trials with each combination of Add-links once (the first, best ranked, of its orders)."""
+    seen: set[frozenset[tuple[str, str]]] = set()
+    out = []
+    for t in tried:
+        key = frozenset((t.pairs, *t.also))
+        if key not in seen:
+            seen.add(key)
+            out.append(t)
+    return out

@@ -212,6 +212,6 @@ def _variant(draft: VariantDraft, k: int, first: int, variables: dict[str, Varia
                            variant=k))
     adds = tuple(rename[v.name] for v in draft.variables if v.role == "addlink")
     residuals = tuple(rename[v.name] for v in draft.variables if v.role == "residual")
-    group = replace(_block_group(draft.group, k, out, adds, residuals, variables), pairs=(draft.pairs,),
-                    lengths=(draft.length,))
+    group = replace(_block_group(draft.group, k, out, adds, residuals, variables), pairs=draft.pairs,
+                    lengths=draft.lengths)
     return out, group

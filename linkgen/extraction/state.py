@@ -56,8 +56,8 @@ class VariantDraft:
     switches to where the chosen candidate's own chain degenerates."""
 
     group: int
-    pairs: tuple[str, str]
-    length: float
+    pairs: tuple[tuple[str, str], ...]  # its Add-links' pairs (several where the group needs them at once)
+    lengths: tuple[float, ...]
     steps: tuple[Step, ...]
     variables: tuple[Variable, ...]
 
