@@ -1,15 +1,13 @@
-"""Groups that need two Add-links at once (tests/mechanisms/quaternary_couplers.yaml: two quaternary
-links, each on a four-bar of the frame, tied by two couplers, the second four-bar's pivot on a crank).
+"""Groups that need two Add-links at once (tests/mechanisms/quaternary_fold.yaml: two quaternary links,
+each on a four-bar of the frame, tied by two couplers, the second four-bar's pivot on a crank; the
+design found by a random search for a full turn where the first pair of Add-links degenerates).
 
 No single Add-link completes the group, so extraction ranks combinations of two, installs the best
 and keeps the other usable combinations as fallback blocks (before: every single candidate was
-"cannot close" and the group had no fallback block).  Its sweep in every language against the
-50-digit reference is tests/test_accuracy.py's and tests/test_programs.py's (every test mechanism).
-
-tests/mechanisms/quaternary_fold.yaml (the same design, found by a random search for it) turns a full
-turn; the first pair of Add-links chosen degenerates between 225 and 270 degrees (the resolver's
-conditioning falls to 0.007), where with that block alone every row failed with status 152: a
-fallback combination now takes over there.
+"cannot close" and the group had no fallback block).  Between 225 and 270 degrees the chosen pair
+degenerates (the resolver's conditioning falls to 0.007): with that block alone every row there
+failed with status 152; a fallback combination now takes over.  The sweep in every language against
+the 50-digit reference is tests/test_accuracy.py's and tests/test_programs.py's (every test mechanism).
 """
 
 from __future__ import annotations
@@ -29,7 +27,7 @@ from linkgen.pipeline import build_log
 from linkgen.table import csv
 
 ROOT = Path(__file__).resolve().parents[1]
-QUAD = ROOT / "tests" / "mechanisms" / "quaternary_couplers.yaml"
+QUAD = ROOT / "tests" / "mechanisms" / "quaternary_fold.yaml"
 
 
 def test_the_group_installs_two_add_links_and_keeps_combinations_as_fallbacks():
@@ -49,7 +47,9 @@ def test_candidates_ranks_combinations():
     done = subprocess.run([str(Path(sys.executable).with_name("linkgen")), "candidates", str(QUAD)],
                           capture_output=True, text=True, check=True)
     lines = done.stdout.splitlines()
-    assert lines[1].startswith("  1. G4-B1, ") and lines[1].endswith("<- chosen")
+    (group,) = build_log(str(QUAD), sweep=False).groups
+    installed = ", ".join(f"{a}-{b}" for a, b in group.pairs)
+    assert lines[1].startswith(f"  1. {installed}  |f| = ") and lines[1].endswith("<- chosen")
     assert sum("cannot close" in line for line in lines) < len(lines) // 2
 
 
@@ -58,8 +58,6 @@ def test_every_row_of_its_sweep_solves():
     values, rates, accs = input_rows(log, log.samples)
     assert evaluate(log, values, rates, accs).status.tolist() == [0] * log.samples
 
-
-FOLD = ROOT / "tests" / "mechanisms" / "quaternary_fold.yaml"
 FAILED = range(45, 55)  # rows 225 to 270 deg: status 152 with the chosen pair alone (measured before the change)
 
 
@@ -67,12 +65,12 @@ FAILED = range(45, 55)  # rows 225 to 270 deg: status 152 with the chosen pair a
 def test_rows_where_the_first_pair_degenerates_solve_and_are_the_reference():
     """Where the chosen pair of Add-links degenerates, a fallback combination takes over: every row solves,
     and the rows that failed are the 50-digit reference continued from the sketch in steps of 1 degree."""
-    log = build_log(str(FOLD), sweep=False)
+    log = build_log(str(QUAD), sweep=False)
     values, rates, accs = input_rows(log, log.samples)
     result = evaluate(log, values, rates, accs)
     assert result.status.tolist() == [0] * log.samples
     rows = list(csvlib.DictReader(io.StringIO(csv(log, result))))
-    ref = Reference(str(FOLD))
+    ref = Reference(str(QUAD))
     u = ref.sketch_inputs()[0]
     q = ref.sketch_pose()
     for k in FAILED:
