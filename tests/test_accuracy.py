@@ -296,7 +296,7 @@ def _steps(sw: Sweep, name: str) -> tuple[np.ndarray, np.ndarray]:
     return np.flatnonzero(ok), np.abs(d[ok])
 
 
-SLOW = {"nongrashof_near_change", "triad_far", "quaternary_fold"}  # 10 to 22 s each: their cases run in the long tier only
+SLOW = {"nongrashof_near_change", "triad_far", "quaternary_fold"}  # 10-22 s each: cases in the long tier only
 
 
 def _tiered(paths):
