@@ -34,7 +34,7 @@ FOURBAR = ROOT / "samples" / "fourbar" / "fourbar.yaml"
 FIG14 = ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"
 LONG = pytest.mark.long
 CASES = [(FOURBAR, 1), (FOURBAR, 2), (FIG14, 1), (FIG14, 2), (FIG14, 3), (FIG14, 4)]
-QUICK = ((FOURBAR, 2), (FIG14, 3))  # in `make test`, every 12th row; the long tier every case, every row
+QUICK = ((FOURBAR, 2),)  # in `make test`, every 12th row; the long tier every case, every row
 IDS = [f"{p.stem}-{k}" for p, k in CASES]
 STEP = math.radians(1)  # the reference's continuation step
 
