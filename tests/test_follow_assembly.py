@@ -19,14 +19,17 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 from assembly_oracle import MP, tree_assemblies, triad_search
 from programs import compare, parse, run_c, run_numpy, run_octave, run_python
 from reference import Reference
 
 from linkgen.errors import InputError
+from linkgen.evaluate import evaluate
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
+from linkgen.table import csv
 from linkgen.writer import write_all
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -194,3 +197,21 @@ def test_the_flag_of_build_and_run(tmp_path):
                                                     "3: the mechanism has 2 assemblies at the sketch's inputs (linkgen "
                                                     "assemblies lists them)\n")
     assert not any(tmp_path.iterdir())
+
+
+@LONG
+@pytest.mark.parametrize("path", sorted(ROOT.glob("samples/*/*.yaml")), ids=lambda p: p.stem)
+def test_every_assembly_of_every_sample_is_the_first_solve(path):
+    """For each K, the evaluator's solve at the sketch's inputs is assembly K as listed (whose
+    poses tests/test_assemblies.py checks against the independent routes) to 1e-14 L."""
+    listing = build_log(str(path), sweep=False).assemblies
+    assert listing is not None and listing.counted
+    for k, a in enumerate(listing.listing, 1):
+        log = build_log(str(path), sweep=False, options={"assembly": k})
+        rows = np.array([[i.sketch for i in log.inputs]])
+        result = evaluate(log, rows, np.array([[i.speed for i in log.inputs]]), np.zeros_like(rows))
+        assert int(result.status[0]) == 0, (k, int(result.status[0]))
+        got = dict(zip(csv(log, result).splitlines()[0].split(","), csv(log, result).splitlines()[1].split(",")))
+        want = dict(a.values)
+        worst = max(abs(float(got[n]) - want[n]) for n in want if n.endswith((".x", ".y")) and n in got)
+        assert worst <= 1e-14 * log.length_scale, (k, worst)
