@@ -24,6 +24,7 @@ if TYPE_CHECKING:
     from ..sweepdata import Sweep
 
 DIGITS = 9  # significant digits of a position in the page's data (the drawing needs far fewer)
+SPEEDS = (0.25, 0.5, 1, 2)  # the play speeds offered, in sweeps per SWEEP_SECONDS (page.js)
 
 
 def _num(x: float) -> str:
@@ -104,9 +105,10 @@ def facts(log: StepLog, sweep: Sweep) -> list[tuple[str, str]]:
     axis = input_axis(log)
     for c in log.conditioning:
         text = f"{c.low:.3g} to {c.high:.3g}"
-        marks = [f"{s.kind} at {s.inputs[axis.index] * axis.factor:.6g}" for s in c.singular if axis.index >= 0]
+        marks = [f"{s.kind} at {axis.column} = {s.inputs[axis.index] * axis.factor:.6g} {axis.unit}"
+                 for s in c.singular if axis.index >= 0]
         if marks:
-            text += f"; {', '.join(marks)} ({axis.name})"
+            text += f"; {', '.join(marks)}"
         target = log.step(c.step).target
         out.append((f"Sigma of step {c.step}" + (f" ({target})" if target else ""), text))
     return out
@@ -122,4 +124,4 @@ def render_page(log: StepLog, sweep: Sweep, plots: dict[str, str]) -> str:
         figures=[(fig, plots[fig.file]) for fig in figures(log)],
         style=(folder / "page.css").read_text(encoding="utf-8"), script=(folder / "page.js").read_text(encoding="utf-8"),
         points=[v.entity for v in log.variables if v.role == "point" and v.entity in sweep.places],
-        places=list(sweep.places), rows=sweep.rows, axis=input_axis(log).name)
+        places=list(sweep.places), rows=sweep.rows, axis=input_axis(log).name, speeds=SPEEDS, encoding="utf-8")

@@ -72,6 +72,8 @@ class Axis:
     name: str  # as a label: "theta_O1 (deg)"
     factor: float  # display value per value of the column
     turn: bool  # an angle: its ticks at 15, 30, 45, 90 degrees
+    column: str = "row"
+    unit: str = ""
 
 
 def input_axis(log: StepLog) -> Axis:
@@ -81,8 +83,10 @@ def input_axis(log: StepLog) -> Axis:
         if i.start != i.stop:
             if i.kind == "revolute":
                 deg = log.angle_unit == "deg"
-                return Axis(k, f"{i.column} ({'deg' if deg else 'rad'})", 180 / math.pi if deg else 1.0, deg)
-            return Axis(k, f"{i.column} ({log.length_unit or 'length'})", 1.0, False)
+                unit = "deg" if deg else "rad"
+                return Axis(k, f"{i.column} ({unit})", 180 / math.pi if deg else 1.0, deg, i.column, unit)
+            unit = log.length_unit or "length"
+            return Axis(k, f"{i.column} ({unit})", 1.0, False, i.column, unit)
     return Axis(-1, "row", 1.0, False)
 
 
