@@ -18,9 +18,9 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from programs import build, need, parse, run_python
 
 from linkgen.steplog import StepLog
-from programs import build, need, parse, run_python
 
 ROOT = Path(__file__).resolve().parents[1]
 BROWSER, DRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"

@@ -122,6 +122,7 @@ def render_page(log: StepLog, sweep: Sweep, plots: dict[str, str]) -> str:
     return make_env().get_template("html/NAME.html.j2").render(
         title=log.title, name=log.name, source=log.source, data=sweep_json(log, sweep), facts=facts(log, sweep),
         figures=[(fig, plots[fig.file]) for fig in figures(log)],
-        style=(folder / "page.css").read_text(encoding="utf-8"), script=(folder / "page.js").read_text(encoding="utf-8"),
+        style=(folder / "page.css").read_text(encoding="utf-8"),
+        script=(folder / "page.js").read_text(encoding="utf-8"),
         points=[v.entity for v in log.variables if v.role == "point" and v.entity in sweep.places],
         places=list(sweep.places), rows=sweep.rows, axis=input_axis(log).name, speeds=SPEEDS, encoding="utf-8")

@@ -179,9 +179,9 @@ class _Panel:
             if named:
                 self.svg.text(px + 3, self.top + 10, f"{kind} (step {step})", fill=MARK, font_size="9")
 
-    def curve(self, xs: np.ndarray, ys: np.ndarray, colour: str, clip: str) -> None:
+    def curve(self, xs: np.ndarray, ys: np.ndarray, colour: str, clip: str, column: str) -> None:
         self.svg.curve(((self.x(float(u)), self.y(float(v))) for u, v in zip(xs, ys)), stroke=colour,
-                       stroke_width="1.4", stroke_linejoin="round", clip_path=f"url(#{clip})")
+                       stroke_width="1.4", stroke_linejoin="round", clip_path=f"url(#{clip})", data_column=column)
 
 
 def _range(values: list[np.ndarray], ref: float) -> tuple[tuple[float, float], bool]:
@@ -225,7 +225,7 @@ def _wraps(ys: np.ndarray, quantity: str, factor: float) -> np.ndarray:
     """An angle's values with nan put where it wraps by a turn between two rows (a gap, not a line across)."""
     if quantity != "angle" or ys.size < 2:
         return ys
-    out = ys.copy()
+    out: np.ndarray = ys.copy()
     jump = np.abs(np.diff(ys)) > math.pi * factor
     out[1:][jump] = np.nan
     return out
@@ -257,13 +257,13 @@ def _grid(log: StepLog, sweep: Sweep, kind: str, quantities: Sequence[str], head
             panel = _Panel(svg, left, top, xlim, ylim, axis.turn)
             clip = f"{kind}-{r}-{q}"
             title = f"{owner} {quantity.replace('_', ' ')}" + (" (clipped)" if clipped else "")
-            svg.open("g", class_="panel", data_x0=xlim[0], data_x1=xlim[1], data_left=left, data_top=top,
-                     data_width=PANEL_W, data_height=PANEL_H)
+            svg.open("g", class_="panel", data_x0=xlim[0], data_x1=xlim[1], data_y0=ylim[0], data_y1=ylim[1],
+                     data_left=left, data_top=top, data_width=PANEL_W, data_height=PANEL_H)
             panel.frame(clip, title, axis.name, unit)
             panel.marks(marks, False)
             for k, (c, ys) in enumerate(zip(cols, series)):
                 colour = SERIES[k % len(SERIES)]
-                panel.curve(xs, ys, colour, clip)
+                panel.curve(xs, ys, colour, clip, c.name)
                 field = c.name.split(".", 1)[1]
                 lx = left + PANEL_W - 44 * (len(cols) - k)
                 svg.line(lx, top - 12, lx + 12, top - 12, stroke=colour, stroke_width="2")
@@ -295,15 +295,15 @@ def _conditioning(log: StepLog, sweep: Sweep) -> str:
         panel = _Panel(svg, left, top, xlim, (0.0, 1.05), axis.turn)
         target = log.step(step).target
         sigma = sweep.sigma.get(step)
-        svg.open("g", class_="panel", data_x0=xlim[0], data_x1=xlim[1], data_left=left, data_top=top,
-                 data_width=PANEL_W, data_height=PANEL_H)
+        svg.open("g", class_="panel", data_x0=xlim[0], data_x1=xlim[1], data_y0=0.0, data_y1=1.05, data_left=left,
+                 data_top=top, data_width=PANEL_W, data_height=PANEL_H)
         panel.frame(f"sigma-{k}", f"step {step}" + (f": {target}" if target else ""), axis.name, "sigma")
         panel.marks([m for m in marks if m[0] == step], True)
         if sigma is None or not np.isfinite(sigma).any():
             svg.text(left + PANEL_W / 2, top + PANEL_H / 2, "not measured (built without checks)",
                      text_anchor="middle", fill="#777777")
         else:
-            panel.curve(xs, sigma, SERIES[0], f"sigma-{k}")
+            panel.curve(xs, sigma, SERIES[0], f"sigma-{k}", f"sigma {step}")
         svg.close("g")
     return svg.text_out()
 
@@ -346,7 +346,7 @@ def _paths(log: StepLog, sweep: Sweep) -> str:
         colour = PATHS[k % len(PATHS)]
         px, py = sweep.places[name]
         svg.curve((at(float(u), float(v)) for u, v in zip(px, py)), stroke=colour, stroke_width="1.5",
-                  stroke_linejoin="round")
+                  stroke_linejoin="round", data_name=name)
         first = next(((float(u), float(v)) for u, v in zip(px, py) if math.isfinite(u) and math.isfinite(v)), None)
         if first is not None:
             fx, fy = at(*first)

@@ -23,12 +23,16 @@ def esc(text: str) -> str:
 
 
 def attrs(items: dict[str, object]) -> str:
-    """' a="1" b="x"': numbers by num(), text escaped, in the order given; None is left out."""
+    """' a="1" b="x"': numbers by num() (a data- attribute's, which a script computes with, to 10
+    significant digits), text escaped, in the order given; None is left out."""
     out = []
     for key, value in items.items():
         if value is None:
             continue
-        text = num(value) if isinstance(value, float) else esc(str(value))
+        if isinstance(value, float):
+            text = f"{value:.10g}" if key.startswith("data_") else num(value)
+        else:
+            text = esc(str(value))
         out.append(f' {key.rstrip("_").replace("_", "-")}="{text}"')
     return "".join(out)
 
@@ -66,12 +70,12 @@ class Svg:
             '<rect width="100%" height="100%" fill="white"/>',
         ]
 
-    def add(self, tag: str, text: str | None = None, **items: object) -> None:
+    def add(self, tag: str, *text: str, **items: object) -> None:
         """<tag .../> or <tag ...>text</tag>; attribute names with _ become - (a trailing _ is dropped)."""
-        if text is None:
+        if not text:
             self.parts.append(f"<{tag}{attrs(items)}/>")
         else:
-            self.parts.append(f"<{tag}{attrs(items)}>{esc(text)}</{tag}>")
+            self.parts.append(f"<{tag}{attrs(items)}>{esc(''.join(text))}</{tag}>")
 
     def open(self, tag: str, **items: object) -> None:
         self.parts.append(f"<{tag}{attrs(items)}>")
@@ -79,11 +83,11 @@ class Svg:
     def close(self, tag: str) -> None:
         self.parts.append(f"</{tag}>")
 
-    def line(self, x1: float, y1: float, x2: float, y2: float, **items: object) -> None:
-        self.add("line", x1=float(x1), y1=float(y1), x2=float(x2), y2=float(y2), **items)
+    def line(self, x1: float, y1: float, x2: float, y2: float, /, **items: object) -> None:
+        self.add("line", **{"x1": float(x1), "y1": float(y1), "x2": float(x2), "y2": float(y2), **items})
 
-    def text(self, x: float, y: float, text: str, **items: object) -> None:
-        self.add("text", text, x=float(x), y=float(y), **items)
+    def text(self, x: float, y: float, text: str, /, **items: object) -> None:
+        self.add("text", text, **{"x": float(x), "y": float(y), **items})
 
     def curve(self, points: Iterable[tuple[float, float]], **items: object) -> None:
         """A polyline with gaps where a point is not finite (nothing when no point is)."""
