@@ -26,6 +26,12 @@
   const pad = 0.08 * span;
   svg.setAttribute("viewBox", [x0 - pad, -(y1 + pad), x1 - x0 + 2 * pad, y1 - y0 + 2 * pad].join(" "));
   svg.setAttribute("preserveAspectRatio", "xMidYMid meet");
+  function fit() {  // the drawing's height follows the mechanism's shape, within reason
+    const ratio = (y1 - y0 + 2 * pad) / (x1 - x0 + 2 * pad);
+    svg.style.height = Math.max(220, Math.min(520, svg.clientWidth * ratio)).toFixed(0) + "px";
+  }
+  fit();
+  window.addEventListener("resize", fit);
   const unit = span / 60;  // the size of a pair's mark, in model units
   const world = make("g", {transform: "scale(1,-1)"}, svg);
   const traces = make("g", {id: "trace-layer"}, world);
