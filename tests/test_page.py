@@ -92,7 +92,7 @@ def _check_row(driver, log: StepLog, csv: tuple[list[str], list[list[float]], li
 
 
 def _page(driver, mechanism: Path, tmp_path: Path) -> None:
-    log = build(mechanism, tmp_path)
+    log = build(mechanism, tmp_path, motion=True)
     csv = parse(run_python(log, tmp_path))
     codes = csv[2]
     driver.get((tmp_path / f"{log.name}.html").as_uri())
@@ -163,7 +163,7 @@ def test_every_sample_page_plays_and_draws_the_rows_of_the_csv(browser, mechanis
 def test_page_is_self_contained(tmp_path: Path):
     """No address the page would fetch: no src or href but its own files and fragments, no
     external script or style, and its data is JSON."""
-    log = build(QUICK[0], tmp_path)
+    log = build(QUICK[0], tmp_path, motion=True)
     text = (tmp_path / f"{log.name}.html").read_text(encoding="utf-8")
     assert re.findall(r"\bsrc=", text) == []
     links = re.findall(r'\bhref="([^"]*)"', text)

@@ -59,14 +59,14 @@ def _finite_runs(values: list[float]) -> list[int]:
 @pytest.fixture(scope="module")
 def partial(tmp_path_factory: pytest.TempPathFactory):
     folder = tmp_path_factory.mktemp("partial")
-    log = build(PARTIAL, folder)
+    log = build(PARTIAL, folder, motion=True)
     return log, folder, parse(run_python(log, folder))
 
 
 @pytest.fixture(scope="module")
 def fourbar(tmp_path_factory: pytest.TempPathFactory):
     folder = tmp_path_factory.mktemp("fourbar")
-    log = build(FOURBAR, folder)
+    log = build(FOURBAR, folder, motion=True)
     return log, folder, parse(run_python(log, folder))
 
 
@@ -142,7 +142,7 @@ def test_the_crank_pin_path_is_its_circle(fourbar):
 @pytest.mark.parametrize("sample", sorted(ROOT.glob("samples/*/*.yaml")), ids=lambda p: p.stem)
 def test_the_manual_shows_every_figure(sample: Path):
     log = build_log(str(sample))
-    files = render_all(log)
+    files = render_all(log, motion=True)
     manual = files[f"{log.name}.md"].decode("utf-8")
     shown = re.findall(r"!\[[^\]]*\]\(([^)]+_(?:points|angles|conditioning|paths)\.svg)\)", manual)
     plots = sorted(n for n in files if re.fullmatch(rf"{log.name}_(points|angles|conditioning|paths)\.svg", n))

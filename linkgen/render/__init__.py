@@ -108,14 +108,16 @@ def render_backend(backend: Backend[Any], view: View) -> dict[str, bytes]:
     return {name.replace("NAME", log.name): data for name, data in files.items()}
 
 
-def render_all(log: StepLog) -> dict[str, bytes]:
-    """The step log, its figure, every backend's files, and the motion: the plots of the file's
-    sweep (evaluated in-process) and the page that animates it."""
+def render_all(log: StepLog, motion: bool = False) -> dict[str, bytes]:
+    """The step log, its figure and every backend's files; with ``motion`` (what `linkgen build`
+    writes) the plots of the file's sweep and the page that animates it too (render_motion: it
+    evaluates the sweep, which costs more than the rest of a render for a resolver mechanism)."""
     view = build_view(log)
     files = {f"{log.name}.json": log.to_json().encode("utf-8"), f"{log.name}.svg": render_svg(log).encode("utf-8")}
     for backend in backends():
         files.update(render_backend(backend, view))
-    files.update(render_motion(log))
+    if motion:
+        files.update(render_motion(log))
     return files
 
 

@@ -17,7 +17,6 @@ from linkgen.backends.spelling import Spelling
 from linkgen.pipeline import build_log
 from linkgen.primitives import PRIMITIVES
 from linkgen.render import make_env, render_all, render_backend, template_dir
-from linkgen.render.plots import figures
 from linkgen.render.view import build_view
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -157,8 +156,7 @@ def test_a_new_language_is_a_folder(toy_folder: Path):
     assert [b.name for b in backends()] == ["c", "m", "md", "np", "py", "toy"]
     files = render_all(log)
     declared = {p.replace("NAME", log.name) for b in backends() for p in b.files}
-    motion = {f"{log.name}.html"} | {f.file for f in figures(log)}  # render's own, not a backend's
-    assert set(files) == declared | {f"{log.name}.json", f"{log.name}.svg"} | motion
+    assert set(files) == declared | {f"{log.name}.json", f"{log.name}.svg"}
     steps = files[f"{log.name}.steps"].decode("utf-8").splitlines()
     assert steps == [f"{s.number} {s.function or s.action} {s.target}" for s in log.steps]
 
