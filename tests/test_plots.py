@@ -4,6 +4,7 @@ values worked by hand for the writer's pieces."""
 
 from __future__ import annotations
 
+import json
 import math
 import re
 import xml.etree.ElementTree as ET
@@ -16,6 +17,7 @@ from linkgen.pipeline import build_log
 from linkgen.render import render_all
 from linkgen.render.plots import figures
 from linkgen.render.svgwriter import num, runs, ticks
+from linkgen.sweepdata import MAX_ROWS
 
 ROOT = Path(__file__).resolve().parents[1]
 SVG = "{http://www.w3.org/2000/svg}"
@@ -157,3 +159,24 @@ def test_the_writer_by_hand():
     assert ticks(0.0, 360.0, 6, (1.5, 3.0, 4.5, 9.0)) == [0.0, 90.0, 180.0, 270.0, 360.0]
     assert ticks(-25.0, 25.0, 4) == [-20.0, 0.0, 20.0]
     assert ticks(0.0, 1.05, 4) == [0.0, 0.5, 1.0]  # a step of at least 1.05 / 4 = 0.2625: 0.5
+
+
+def test_a_long_sweep_is_thinned_and_keeps_every_gap(tmp_path: Path):
+    """20001 rows of the partial four-bar: the page and the figures hold at most MAX_ROWS rows, and the
+    curve of B.x still breaks exactly where the generated program's CSV has runs of failed rows."""
+    text = PARTIAL.read_text(encoding="utf-8").replace("samples: 73", "samples: 20001")
+    mechanism = tmp_path / "long_partial.yaml"
+    mechanism.write_text(text.replace("name: fourbar_partial", "name: long_partial"), encoding="utf-8")
+    log = build(mechanism, tmp_path, motion=True)
+    header, data, codes = parse(run_python(log, tmp_path))
+    page = (tmp_path / f"{log.name}.html").read_text(encoding="utf-8")
+    sweep = json.loads(re.search(r'id="sweep">\n(.*?)\n</script>', page, flags=re.S).group(1))
+    assert sweep["rows"] <= MAX_ROWS < len(codes) and sweep["index"][-1] == len(codes) - 1
+    column = [row[header.index("B.x")] for row in data]
+    kept = sweep["index"]
+    for a, b in zip(kept, kept[1:]):  # no curve across a row the page left out that has no value
+        inside = column[a + 1:b]
+        assert all(math.isfinite(v) for v in inside) or not (math.isfinite(column[a]) and math.isfinite(column[b]))
+    panel = _panel(_svg(tmp_path, f"{log.name}_points.svg"), "B position")
+    path = next(p for p in panel.iter(f"{SVG}path") if p.get("data-column") == "B.x")
+    assert len(_subpaths(path.get("d", ""))) == len(_finite_runs(column))

@@ -43,9 +43,10 @@ def _shown(log: StepLog, kind: str) -> tuple[str, float]:
 
 
 def sweep_json(log: StepLog, sweep: Sweep) -> str:
-    """The page's data, one key a line: rows, inputs (shown in the file's units), status, the places
-    per row, the links to draw between them, the fixed pivots and sliding pairs, the plots' x values."""
-    places = {name: xy for name, xy in sweep.places.items()}
+    """The page's data, one key a line: rows, each row's number in the file's sweep (index), inputs
+    (shown in the file's units), status, the places per row, the links to draw between them, the
+    fixed pivots and sliding pairs, the plots' x values."""
+    places = sweep.places
     inputs = []
     for k, i in enumerate(log.inputs):
         unit, factor = _shown(log, i.kind)
@@ -57,7 +58,7 @@ def sweep_json(log: StepLog, sweep: Sweep) -> str:
         links.append('{"name":%s,"fixed":%s,"members":%s}' % (json.dumps(link.name), json.dumps(link.fixed),
                                                             json.dumps(members)))
     axis = input_axis(log)
-    xs = sweep.data[:, axis.index] * axis.factor if axis.index >= 0 else np.arange(sweep.rows, dtype=float)
+    xs = sweep.data[:, axis.index] * axis.factor if axis.index >= 0 else sweep.index.astype(float)
     finite = [v for x, y in places.values() for v in (x, y)]
     box = [float(np.nanmin(np.concatenate(finite[0::2]))), float(np.nanmin(np.concatenate(finite[1::2]))),
            float(np.nanmax(np.concatenate(finite[0::2]))), float(np.nanmax(np.concatenate(finite[1::2])))] \
@@ -67,6 +68,7 @@ def sweep_json(log: StepLog, sweep: Sweep) -> str:
     points = [v.entity for v in log.variables if v.role == "point" and v.entity in places]
     lines = [
         f'"rows":{sweep.rows}',
+        f'"index":[{",".join(str(int(k)) for k in sweep.index)}]',
         f'"unit":{json.dumps(log.length_unit or "")}',
         f'"axis":{json.dumps(axis.name)}',
         f'"x":{_array(xs)}',
@@ -114,15 +116,17 @@ def facts(log: StepLog, sweep: Sweep) -> list[tuple[str, str]]:
     return out
 
 
-def render_page(log: StepLog, sweep: Sweep, plots: dict[str, str]) -> str:
-    """The page: templates/html/NAME.html.j2 with the style, the script, the data and the figures."""
+def render_page(log: StepLog, sweep: Sweep, plots: dict[str, str], summary: list[tuple[str, str]]) -> str:
+    """The page: templates/html/NAME.html.j2 with the style, the script, the data, the figures and
+    the summary (``facts`` of the whole sweep, where ``sweep`` is thinned)."""
     from . import make_env, template_dir
 
     folder = template_dir() / "html"
     return make_env().get_template("html/NAME.html.j2").render(
-        title=log.title, name=log.name, source=log.source, data=sweep_json(log, sweep), facts=facts(log, sweep),
+        title=log.title, name=log.name, source=log.source, data=sweep_json(log, sweep), facts=summary,
         figures=[(fig, plots[fig.file]) for fig in figures(log)],
         style=(folder / "page.css").read_text(encoding="utf-8"),
         script=(folder / "page.js").read_text(encoding="utf-8"),
         points=[v.entity for v in log.variables if v.role == "point" and v.entity in sweep.places],
-        places=list(sweep.places), rows=sweep.rows, axis=input_axis(log).name, speeds=SPEEDS, encoding="utf-8")
+        places=list(sweep.places), rows=sweep.rows, samples=log.samples, axis=input_axis(log).name, speeds=SPEEDS,
+        encoding="utf-8")

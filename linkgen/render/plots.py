@@ -104,7 +104,7 @@ def _unit(log: StepLog, quantity: str) -> tuple[str, float]:
 
 def _xs(log: StepLog, sweep: Sweep, axis: Axis) -> np.ndarray:
     if axis.index < 0:
-        return np.arange(sweep.rows, dtype=float)
+        return sweep.index.astype(float)
     out: np.ndarray = sweep.data[:, axis.index] * axis.factor
     return out
 
@@ -235,7 +235,7 @@ def _grid(log: StepLog, sweep: Sweep, kind: str, quantities: Sequence[str], head
     """Panels of the moving outputs (rows) by quantity (columns: the value, its rate, its acceleration)."""
     axis = input_axis(log)
     xs = _xs(log, sweep, axis)
-    xlim = (float(np.nanmin(xs)), float(np.nanmax(xs))) if axis.index >= 0 else (0.0, max(sweep.rows - 1, 1.0))
+    xlim = (float(np.nanmin(xs)), float(np.nanmax(xs))) if axis.index >= 0 else (0.0, max(log.samples - 1, 1.0))
     if xlim[1] <= xlim[0]:
         xlim = (xlim[0] - 1, xlim[1] + 1)
     marks = singular_inputs(log, axis)
@@ -277,7 +277,7 @@ def _conditioning(log: StepLog, sweep: Sweep) -> str:
     positions and change points marked and named."""
     axis = input_axis(log)
     xs = _xs(log, sweep, axis)
-    xlim = (float(np.nanmin(xs)), float(np.nanmax(xs))) if axis.index >= 0 else (0.0, max(sweep.rows - 1, 1.0))
+    xlim = (float(np.nanmin(xs)), float(np.nanmax(xs))) if axis.index >= 0 else (0.0, max(log.samples - 1, 1.0))
     if xlim[1] <= xlim[0]:
         xlim = (xlim[0] - 1, xlim[1] + 1)
     marks = singular_inputs(log, axis)
@@ -329,7 +329,7 @@ def _paths(log: StepLog, sweep: Sweep) -> str:
     def at(x: float, y: float) -> tuple[float, float]:
         return PATH_MARGIN + (x - x0) * scale, PATH_MARGIN + HEAD + (y1 - y) * scale
 
-    heading = f"paths of the points over the sweep ({sweep.rows} rows), on the sketch"
+    heading = f"paths of the points over the sweep ({log.samples} rows), on the sketch"
     svg = Svg(PATH_W, height, f"{log.title}: {heading}")
     _heading(svg, PATH_MARGIN / 2, log.title, heading)
     for link in log.links:

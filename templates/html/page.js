@@ -103,7 +103,7 @@
 
   function show(row) {
     row = Math.max(0, Math.min(D.rows - 1, row | 0));
-    document.body.dataset.row = String(row);
+    document.body.dataset.row = String(row);  // the page's row; D.index[row] is the file's
     if (+slider.value !== row) slider.value = String(row);
     const at = {};
     for (const name in D.places) {
@@ -140,7 +140,7 @@
       line.setAttribute("x2", px.toFixed(2));
     }
     const inputs = D.inputs.map(function (i) { return "<b>" + i.column + "</b> = " + fmt(i.values[row]) + " " + i.unit; });
-    readout.innerHTML = "row " + row + " of " + (D.rows - 1) + " · " + inputs.join(" · ") + "<br>" + statusText(D.status[row]);
+    readout.innerHTML = "row " + D.index[row] + " of " + D.index[D.rows - 1] + " · " + inputs.join(" · ") + "<br>" + statusText(D.status[row]);
   }
 
   function traced() {
