@@ -10,13 +10,14 @@ import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+import numpy as np
 import pytest
 from programs import build, parse, run_python
 
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
 from linkgen.render.plots import figures
-from linkgen.render.svgwriter import num, runs, ticks
+from linkgen.render.svgwriter import num, path_data, ticks
 from linkgen.sweepdata import MAX_ROWS
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -155,7 +156,8 @@ def test_the_manual_shows_every_figure(sample: Path):
 def test_the_writer_by_hand():
     assert [num(x) for x in (2.0, -0.04, 12.34, -3.06, 0.0)] == ["2", "0", "12.3", "-3.1", "0"]
     nan = math.nan
-    assert runs([(0, 0), (nan, 1), (1, 1), (2, 2), (3, nan)]) == [[(0, 0)], [(1, 1), (2, 2)]]
+    xs, ys = np.array([0.04, nan, 1.25, 2.0, 3.0, -0.06]), np.array([0.0, 1.0, -1.0, 2.0, nan, 5.0])
+    assert path_data(xs, ys) == "M0 0L0 0M1.2 -1L2 2M-0.1 5L-0.1 5"
     assert ticks(0.0, 360.0, 6, (1.5, 3.0, 4.5, 9.0)) == [0.0, 90.0, 180.0, 270.0, 360.0]
     assert ticks(-25.0, 25.0, 4) == [-20.0, 0.0, 20.0]
     assert ticks(0.0, 1.05, 4) == [0.0, 0.5, 1.0]  # a step of at least 1.05 / 4 = 0.2625: 0.5

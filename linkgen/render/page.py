@@ -32,7 +32,7 @@ def _num(x: float) -> str:
 
 
 def _array(values: Sequence[float] | np.ndarray) -> str:
-    return "[" + ",".join(_num(float(x)) for x in values) + "]"
+    return "[" + ",".join(_num(x) for x in np.asarray(values, dtype=float).tolist()) + "]"
 
 
 def _shown(log: StepLog, kind: str) -> tuple[str, float]:

@@ -180,7 +180,10 @@ class _Panel:
                 self.svg.text(px + 3, self.top + 10, f"{kind} (step {step})", fill=MARK, font_size="9")
 
     def curve(self, xs: np.ndarray, ys: np.ndarray, colour: str, clip: str, column: str) -> None:
-        self.svg.curve(((self.x(float(u)), self.y(float(v))) for u, v in zip(xs, ys)), stroke=colour,
+        (a, b), (c, d) = self.xlim, self.ylim
+        px = self.left + (xs - a) / (b - a) * PANEL_W
+        py = self.top + PANEL_H - (ys - c) / (d - c) * PANEL_H
+        self.svg.curve(px, py, stroke=colour,
                        stroke_width="1.4", stroke_linejoin="round", clip_path=f"url(#{clip})", data_column=column)
 
 
@@ -319,12 +322,12 @@ def _paths(log: StepLog, sweep: Sweep) -> str:
             sketch[v.entity] = (v.sketch[0], v.sketch[1])
     moving = [n for n, (x, y) in sweep.places.items() if np.nanmax(x) - np.nanmin(x) > 0 or
               np.nanmax(y) - np.nanmin(y) > 0] if sweep.places else []
-    xs = [x for x, _ in sketch.values()] + [float(v) for n in moving for v in sweep.places[n][0] if math.isfinite(v)]
-    ys = [y for _, y in sketch.values()] + [float(v) for n in moving for v in sweep.places[n][1] if math.isfinite(v)]
-    span = max(max(xs) - min(xs), max(ys) - min(ys), log.length_scale * 1e-3)
+    xs = np.concatenate([[x for x, _ in sketch.values()], *(sweep.places[n][0] for n in moving)])
+    ys = np.concatenate([[y for _, y in sketch.values()], *(sweep.places[n][1] for n in moving)])
+    x0, x1, y0, y1 = (float(f(v)) for f, v in ((np.nanmin, xs), (np.nanmax, xs), (np.nanmin, ys), (np.nanmax, ys)))
+    span = max(x1 - x0, y1 - y0, log.length_scale * 1e-3)
     scale = (PATH_W - 2 * PATH_MARGIN) / span
-    height = (max(ys) - min(ys)) * scale + 2 * PATH_MARGIN + HEAD
-    x0, y1 = min(xs), max(ys)
+    height = (y1 - y0) * scale + 2 * PATH_MARGIN + HEAD
 
     def at(x: float, y: float) -> tuple[float, float]:
         return PATH_MARGIN + (x - x0) * scale, PATH_MARGIN + HEAD + (y1 - y) * scale
@@ -345,7 +348,8 @@ def _paths(log: StepLog, sweep: Sweep) -> str:
     for k, name in enumerate(moving):
         colour = PATHS[k % len(PATHS)]
         px, py = sweep.places[name]
-        svg.curve((at(float(u), float(v)) for u, v in zip(px, py)), stroke=colour, stroke_width="1.5",
+        svg.curve(PATH_MARGIN + (px - x0) * scale, PATH_MARGIN + HEAD + (y1 - py) * scale, stroke=colour,
+                  stroke_width="1.5",
                   stroke_linejoin="round", data_name=name)
         first = next(((float(u), float(v)) for u, v in zip(px, py) if math.isfinite(u) and math.isfinite(v)), None)
         if first is not None:

@@ -7,7 +7,9 @@ attribute in the order given, every coordinate rounded to ``DIGITS`` decimals.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Sequence
+
+import numpy as np
 
 DIGITS = 1  # decimals of a page coordinate (0.1 px)
 
@@ -37,24 +39,26 @@ def attrs(items: dict[str, object]) -> str:
     return "".join(out)
 
 
-def runs(points: Iterable[tuple[float, float]]) -> list[list[tuple[float, float]]]:
-    """The stretches of points between non-finite ones (a failed row is a gap, never a line across)."""
-    out: list[list[tuple[float, float]]] = [[]]
-    for x, y in points:
-        if math.isfinite(x) and math.isfinite(y):
-            out[-1].append((x, y))
-        elif out[-1]:
-            out.append([])
-    return [r for r in out if r]
+def _tenths(k: int) -> str:
+    """An integer count of tenths as num() writes it: 12 -> "1.2", -30 -> "-3", 0 -> "0"."""
+    whole, tenth = divmod(abs(k), 10)
+    return ("-" if k < 0 else "") + (f"{whole}.{tenth}" if tenth else str(whole))
 
 
-def path_data(stretches: Sequence[Sequence[tuple[float, float]]]) -> str:
-    """One path's d: M at the start of each stretch, L after (a single point is a dot: a zero-length line)."""
+def path_data(xs: np.ndarray, ys: np.ndarray) -> str:
+    """One path's d through the points (xs, ys) to 0.1: M at the start of each stretch of finite
+    points, L after (a point alone is a dot: a zero-length line); a point that is not finite is a gap
+    (a failed row is never a line across)."""
+    ok = np.isfinite(xs) & np.isfinite(ys)
+    where = np.flatnonzero(ok)
+    if not where.size:
+        return ""
+    tx = [_tenths(k) for k in np.rint(np.where(ok, xs, 0.0) * 10).astype(np.int64).tolist()]
+    ty = [_tenths(k) for k in np.rint(np.where(ok, ys, 0.0) * 10).astype(np.int64).tolist()]
     parts = []
-    for run in stretches:
-        head = f"M{num(run[0][0])} {num(run[0][1])}"
-        tail = "".join(f"L{num(x)} {num(y)}" for x, y in run[1:]) or f"L{num(run[0][0])} {num(run[0][1])}"
-        parts.append(head + tail)
+    for run in np.split(where, np.flatnonzero(np.diff(where) > 1) + 1):
+        rows = run.tolist()
+        parts.append(f"M{tx[rows[0]]} {ty[rows[0]]}" + "".join(f"L{tx[k]} {ty[k]}" for k in rows[1:] or rows))
     return "".join(parts)
 
 
@@ -89,11 +93,11 @@ class Svg:
     def text(self, x: float, y: float, text: str, /, **items: object) -> None:
         self.add("text", text, **{"x": float(x), "y": float(y), **items})
 
-    def curve(self, points: Iterable[tuple[float, float]], **items: object) -> None:
-        """A polyline with gaps where a point is not finite (nothing when no point is)."""
-        stretches = runs(points)
-        if stretches:
-            self.add("path", d=path_data(stretches), fill="none", **items)
+    def curve(self, xs: np.ndarray, ys: np.ndarray, **items: object) -> None:
+        """A polyline through (xs, ys) with gaps where a point is not finite (nothing when no point is)."""
+        d = path_data(xs, ys)
+        if d:
+            self.add("path", d=d, fill="none", **items)
 
     def text_out(self) -> str:
         return "\n".join([*self.parts, "</svg>"]) + "\n"
