@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..steplog import Column, StepLog
-from .svgwriter import Svg, label, ticks
+from .svgwriter import Svg, fit, label, ticks
 
 if TYPE_CHECKING:  # the sweep is evaluated outside render (linkgen.sweepdata)
     from ..sweepdata import Sweep
@@ -220,8 +220,8 @@ def _largest(log: StepLog, sweep: Sweep, quantity: str) -> float:
 
 
 def _heading(svg: Svg, left: float, title: str, what: str) -> None:
-    svg.text(left, 18, title, font_size="13", font_weight="bold")
-    svg.text(left, 34, what, font_size="11", fill="#444444")
+    svg.text(left, 18, fit(title, svg.width - left - 10, 13), font_size="13", font_weight="bold")
+    svg.text(left, 34, fit(what, svg.width - left - 10, 11), font_size="11", fill="#444444")
 
 
 def _wraps(ys: np.ndarray, quantity: str, factor: float) -> np.ndarray:

@@ -45,6 +45,13 @@ def _tenths(k: int) -> str:
     return ("-" if k < 0 else "") + (f"{whole}.{tenth}" if tenth else str(whole))
 
 
+def fit(text: str, width: float, size: float) -> str:
+    """Text cut with an ellipsis to about ``width`` px at a font of ``size`` px (an average glyph
+    is taken as 0.6 of the size: the figure's bytes cannot ask a font)."""
+    room = int(width / (0.6 * size))
+    return text if len(text) <= room else text[:max(room - 1, 1)].rstrip() + "…"
+
+
 def path_data(xs: np.ndarray, ys: np.ndarray) -> str:
     """One path's d through the points (xs, ys) to 0.1: M at the start of each stretch of finite
     points, L after (a point alone is a dot: a zero-length line); a point that is not finite is a gap
@@ -122,9 +129,13 @@ def ticks(low: float, high: float, count: int = 5, steps: Sequence[float] = (1.0
 
 
 def label(value: float, step: float) -> str:
-    """A tick label with as many decimals as the tick step needs."""
+    """A tick label with as many decimals as the tick step needs; in powers of ten ("-5e6", "2.5e-5")
+    where the step is 1e5 or more or below 1e-3."""
     if step <= 0 or not math.isfinite(step):
         return f"{value:g}"
+    if value and (step >= 1e5 or step < 1e-3):
+        text = f"{value:.3g}"
+        return text.replace("e+0", "e").replace("e+", "e").replace("e-0", "e-")
     decimals = max(0, -math.floor(math.log10(step) + 1e-9))
     if step * 10 ** decimals % 1 > 1e-6:  # 2.5, 0.25: one decimal more
         decimals += 1

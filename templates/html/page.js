@@ -1,7 +1,9 @@
 "use strict";
 // NAME.html's script: draws the mechanism at a row of the sweep (the JSON in #sweep), plays the sweep,
 // traces the chosen points and moves a cursor over every plot panel.  Model coordinates are kept as
-// they are: the drawing flips y in one transform, so a pair's cx and cy are its x and y at the row.
+// they are: one transform scales them to the view (VIEW units across) and flips y, so a pair's cx and
+// cy are its x and y at the row; the labels are placed in the view's units (a browser caps font sizes,
+// which a mechanism a million millimetres across would reach in model units).
 (function () {
   const D = JSON.parse(document.getElementById("sweep").textContent);
   const NS = "http://www.w3.org/2000/svg";
@@ -24,20 +26,26 @@
   const [x0, y0, x1, y1] = D.box;
   const span = Math.max(x1 - x0, y1 - y0, 1e-9);
   const pad = 0.08 * span;
-  svg.setAttribute("viewBox", [x0 - pad, -(y1 + pad), x1 - x0 + 2 * pad, y1 - y0 + 2 * pad].join(" "));
+  const VIEW = 1000, k = VIEW / (span + 2 * pad);
+  const left = x0 - pad, top = y1 + pad;  // the view's corner in model coordinates
+  svg.setAttribute("viewBox", [0, 0, (x1 - x0 + 2 * pad) * k, (y1 - y0 + 2 * pad) * k].join(" "));
   svg.setAttribute("preserveAspectRatio", "xMidYMid meet");
-  function fit() {  // the drawing's height follows the mechanism's shape, within reason
-    const ratio = (y1 - y0 + 2 * pad) / (x1 - x0 + 2 * pad);
-    svg.style.height = Math.max(220, Math.min(520, svg.clientWidth * ratio)).toFixed(0) + "px";
-  }
-  fit();
-  window.addEventListener("resize", fit);
+  const LABEL_PX = 12;  // the pairs' names, in screen pixels
   const unit = span / 60;  // the size of a pair's mark, in model units
-  const world = make("g", {transform: "scale(1,-1)"}, svg);
+  const world = make("g", {transform: "matrix(" + [k, 0, 0, -k, -left * k, top * k].join(",") + ")"}, svg);
   const traces = make("g", {id: "trace-layer"}, world);
   const links = make("g", {id: "link-layer"}, world);
   const marks = make("g", {id: "pair-layer"}, world);
-  const labels = make("g", {id: "label-layer", "font-size": (1.5 * unit).toFixed(6), "font-family": "Helvetica, Arial, sans-serif"}, svg);
+  const labels = make("g", {id: "label-layer", "font-family": "Helvetica, Arial, sans-serif"}, svg);
+  function fit() {  // the drawing's height follows the mechanism's shape, within reason; labels stay 12 px
+    const w = (x1 - x0 + 2 * pad) * k, h = (y1 - y0 + 2 * pad) * k;
+    const height = Math.max(220, Math.min(520, svg.clientWidth * h / w));
+    svg.style.height = height.toFixed(0) + "px";
+    const pixels = Math.min(svg.clientWidth / w, height / h);  // per view unit (meet)
+    labels.setAttribute("font-size", String(LABEL_PX / pixels));
+  }
+  fit();
+  window.addEventListener("resize", fit);
 
   const traceOf = {};
   let colour = 0;
@@ -120,8 +128,8 @@
       el.setAttribute("cx", String(x));
       el.setAttribute("cy", String(y));
       labelOf[name].setAttribute("visibility", "visible");
-      labelOf[name].setAttribute("x", String(x + 0.9 * unit));
-      labelOf[name].setAttribute("y", String(-y - 0.9 * unit));
+      labelOf[name].setAttribute("x", ((x - left + 0.9 * unit) * k).toFixed(2));
+      labelOf[name].setAttribute("y", ((top - y - 0.9 * unit) * k).toFixed(2));
     }
     for (const rect of sliderEls) {
       const p = at[rect.dataset.for];
