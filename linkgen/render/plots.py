@@ -190,8 +190,8 @@ class _Panel:
 def _range(values: list[np.ndarray], ref: float) -> tuple[tuple[float, float], bool]:
     """The y range of the finite values, padded; where a few rows (near a singular position) run far
     beyond the rest, the range of the central 98 % and True (those rows are clipped).  ``ref`` is the
-    largest magnitude of the quantity in the figure: a spread below 1e-9 of it is rounding, and the
-    values are shown as one constant (a crank's angular acceleration is 0 to a few 1e-15)."""
+    quantity's scale (``_scale``): a spread below 1e-9 of it is rounding, and the values are shown as
+    one constant (a crank's angular acceleration is 0 to a few 1e-15)."""
     finite = np.concatenate([v[np.isfinite(v)] for v in values]) if values else np.array([])
     if finite.size == 0:
         return (-1.0, 1.0), False
@@ -208,19 +208,19 @@ def _range(values: list[np.ndarray], ref: float) -> tuple[tuple[float, float], b
     return (lo - 0.06 * span, hi + 0.06 * span), clipped
 
 
-def _largest(log: StepLog, sweep: Sweep, quantity: str) -> float:
-    """The largest finite magnitude of a quantity's computed columns (0 where there is none)."""
-    out = 0.0
-    for c in log.columns[len(log.inputs):]:
-        if c.quantity == quantity and log.drawn(c) is None:
-            v = np.abs(sweep.column(c.name))
-            if np.isfinite(v).any():
-                out = max(out, float(np.nanmax(v)))
-    return out
+def _scale(log: StepLog, quantity: str) -> float:
+    """The magnitude a quantity's rounding errors are relative to (SI radians): the length scale L
+    and the fastest input's rate w (an angle's speed, or a length's over L) make L, L w, L w^2, 1 rad,
+    w and w^2."""
+    rate = max([abs(i.speed) if i.kind == "revolute" else abs(i.speed) / log.length_scale for i in log.inputs]
+               or [0.0]) or 1.0
+    length = log.length_scale
+    return {"position": length, "velocity": length * rate, "acceleration": length * rate * rate, "angle": 1.0,
+            "angular_velocity": rate, "angular_acceleration": rate * rate}[quantity]
 
 
 def _heading(svg: Svg, left: float, title: str, what: str) -> None:
-    svg.text(left, 18, fit(title, svg.width - left - 10, 13), font_size="13", font_weight="bold")
+    svg.text(left, 18, fit(title, svg.width - left - 10, 13, bold=True), font_size="13", font_weight="bold")
     svg.text(left, 34, fit(what, svg.width - left - 10, 11), font_size="11", fill="#444444")
 
 
@@ -254,7 +254,7 @@ def _grid(log: StepLog, sweep: Sweep, kind: str, quantities: Sequence[str], head
                                   if c.name.split(".")[0] == owner and c.quantity == quantity]
             unit, factor = _unit(log, quantity)
             series = [_wraps(sweep.column(c.name) * factor, quantity, factor) for c in cols]
-            ylim, clipped = _range(series, _largest(log, sweep, quantity) * factor)
+            ylim, clipped = _range(series, _scale(log, quantity) * factor)
             left = q * (LEFT + PANEL_W + RIGHT) + LEFT
             top = HEAD + r * (TOP + PANEL_H + BOTTOM) + TOP
             panel = _Panel(svg, left, top, xlim, ylim, axis.turn)
@@ -289,9 +289,9 @@ def _conditioning(log: StepLog, sweep: Sweep) -> str:
     rows = (len(steps) + per_row - 1) // per_row
     width = per_row * (LEFT + PANEL_W + RIGHT)
     height = HEAD + rows * (TOP + PANEL_H + BOTTOM)
-    heading = f"conditioning sigma of each step against {axis.name}"
+    heading = f"sigma of each step against {axis.name}"
     svg = Svg(width, height, f"{log.title}: {heading}")
-    _heading(svg, LEFT, log.title, f"{heading}; dashed: limit positions and change points")
+    _heading(svg, LEFT, log.title, f"{heading}; dashed: limits and change points")
     for k, step in enumerate(steps):
         left = (k % per_row) * (LEFT + PANEL_W + RIGHT) + LEFT
         top = HEAD + (k // per_row) * (TOP + PANEL_H + BOTTOM) + TOP
