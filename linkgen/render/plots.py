@@ -29,6 +29,7 @@ HEAD = 44.0  # the figure's heading: the title, then what it shows
 SERIES = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd")
 MARK = "#8c564b"  # singular positions
 PATHS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#ff7f0e")
+SIGMA = (0.0, 1.05)  # the conditioning panels' vertical range (sigma is 0 to 1)
 MOTION = ("position", "velocity", "acceleration")
 TURNING = ("angle", "angular_velocity", "angular_acceleration")
 
@@ -107,6 +108,12 @@ def _xs(log: StepLog, sweep: Sweep, axis: Axis) -> np.ndarray:
         return sweep.index.astype(float)
     out: np.ndarray = sweep.data[:, axis.index] * axis.factor
     return out
+
+
+def _xlim(xs: np.ndarray) -> tuple[float, float]:
+    """The horizontal range: the input's values (one value: a unit either side)."""
+    low, high = float(np.nanmin(xs)), float(np.nanmax(xs))
+    return (low, high) if high > low else (low - 1, high + 1)
 
 
 def singular_inputs(log: StepLog, axis: Axis) -> list[tuple[int, float, str]]:
@@ -238,9 +245,7 @@ def _grid(log: StepLog, sweep: Sweep, kind: str, quantities: Sequence[str], head
     """Panels of the moving outputs (rows) by quantity (columns: the value, its rate, its acceleration)."""
     axis = input_axis(log)
     xs = _xs(log, sweep, axis)
-    xlim = (float(np.nanmin(xs)), float(np.nanmax(xs))) if axis.index >= 0 else (0.0, max(log.samples - 1, 1.0))
-    if xlim[1] <= xlim[0]:
-        xlim = (xlim[0] - 1, xlim[1] + 1)
+    xlim = _xlim(xs)
     marks = singular_inputs(log, axis)
     owners = _moving(log, quantities)
     used = [q for q in quantities if any(c.quantity == q for c in log.columns)]
@@ -280,9 +285,7 @@ def _conditioning(log: StepLog, sweep: Sweep) -> str:
     positions and change points marked and named."""
     axis = input_axis(log)
     xs = _xs(log, sweep, axis)
-    xlim = (float(np.nanmin(xs)), float(np.nanmax(xs))) if axis.index >= 0 else (0.0, max(log.samples - 1, 1.0))
-    if xlim[1] <= xlim[0]:
-        xlim = (xlim[0] - 1, xlim[1] + 1)
+    xlim = _xlim(xs)
     marks = singular_inputs(log, axis)
     steps = [c.step for c in log.conditioning]
     per_row = 2
@@ -295,11 +298,11 @@ def _conditioning(log: StepLog, sweep: Sweep) -> str:
     for k, step in enumerate(steps):
         left = (k % per_row) * (LEFT + PANEL_W + RIGHT) + LEFT
         top = HEAD + (k // per_row) * (TOP + PANEL_H + BOTTOM) + TOP
-        panel = _Panel(svg, left, top, xlim, (0.0, 1.05), axis.turn)
+        panel = _Panel(svg, left, top, xlim, SIGMA, axis.turn)
         target = log.step(step).target
         sigma = sweep.sigma.get(step)
-        svg.open("g", class_="panel", data_x0=xlim[0], data_x1=xlim[1], data_y0=0.0, data_y1=1.05, data_left=left,
-                 data_top=top, data_width=PANEL_W, data_height=PANEL_H)
+        svg.open("g", class_="panel", data_x0=xlim[0], data_x1=xlim[1], data_y0=SIGMA[0], data_y1=SIGMA[1],
+                 data_left=left, data_top=top, data_width=PANEL_W, data_height=PANEL_H)
         panel.frame(f"sigma-{k}", f"step {step}" + (f": {target}" if target else ""), axis.name, "sigma")
         panel.marks([m for m in marks if m[0] == step], True)
         if sigma is None or not np.isfinite(sigma).any():
