@@ -103,8 +103,12 @@ def facts(log: StepLog, sweep: Sweep) -> list[tuple[str, str]]:
         count = int((codes == code).sum())
         why = {status.CANNOT_CLOSE: "the chain cannot close", status.NOT_CONVERGED: "the resolver did not converge",
                status.NOT_CONTRACTING: "the iteration does not contract"}[int(status.reason(code))]
-        out.append((f"Status {code}", f"{count} rows: step {int(status.step(code))}, {why}"))
+        out.append((f"Status {code}", f"{count} row{'s' if count > 1 else ''}: step {int(status.step(code))}, {why}"))
     axis = input_axis(log)
+    if log.reach is not None and axis.index >= 0:
+        ends = ["none" if x is None else f"{x * axis.factor:.6g} {axis.unit}" for x in (log.reach.low, log.reach.high)]
+        out.append(("Reached from the sketch", f"{axis.column} from {ends[0]} to {ends[1]}"
+                                               + (" (modulo a turn)" if log.reach.periodic else "")))
     for c in log.conditioning:
         text = f"{c.low:.3g} to {c.high:.3g}"
         marks = [f"{s.kind} at {axis.column} = {s.inputs[axis.index] * axis.factor:.6g} {axis.unit}"
