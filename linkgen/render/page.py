@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .. import status
-from ..steplog import StepLog
+from ..steplog import PairInfo, StepLog
 from .plots import figures, input_axis
 
 if TYPE_CHECKING:
@@ -42,19 +42,35 @@ def _shown(log: StepLog, kind: str) -> tuple[str, float]:
     return log.length_unit or "length", 1.0
 
 
+def _slider(log: StepLog, pair: PairInfo, places: dict[str, tuple[np.ndarray, np.ndarray]]) -> str:
+    """A sliding pair for the page: its slide axis in the sketch, whether its guide is fixed, and
+    two places fixed in a moving guide (the axis turns with them) with their direction in the sketch."""
+    guide = next(lk for lk in log.links if lk.name == pair.guide)
+    sketch = {p.name: (p.x, p.y) for p in log.pairs if p.kind != "prismatic"}
+    sketch.update({v.entity: (v.sketch[0], v.sketch[1]) for v in log.variables if v.role == "point" and v.sketch})
+    ends = [n for n in (*guide.pairs, *guide.points) if n in sketch and n in places][:2]
+    turn = 0.0
+    if len(ends) == 2:
+        (ax, ay), (bx, by) = sketch[ends[0]], sketch[ends[1]]
+        turn = math.atan2(by - ay, bx - ax)
+    return '{"name":%s,"axis":%s,"fixed":%s,"guide":%s,"turn":%s}' % (
+        json.dumps(pair.name), _num(pair.axis), json.dumps(guide.fixed), json.dumps(ends), _num(turn))
+
+
 def sweep_json(log: StepLog, sweep: Sweep) -> str:
     """The page's data, one key a line: rows, each row's number in the file's sweep (index), inputs
     (shown in the file's units), status, the places per row, the links to draw between them, the
-    fixed pivots and sliding pairs, the plots' x values."""
+    fixed pivots, the sliding pairs (_slider), the plots' x values."""
     places = sweep.places
     inputs = []
     for k, i in enumerate(log.inputs):
         unit, factor = _shown(log, i.kind)
         inputs.append('{"column":%s,"unit":%s,"values":%s}' % (json.dumps(i.column), json.dumps(unit),
                                                                _array(sweep.data[:, k] * factor)))
+    revolute = {p.name for p in log.pairs if p.kind != "prismatic"}
     links = []
-    for link in log.links:
-        members = [n for n in (*link.pairs, *link.points) if n in places]
+    for link in log.links:  # a fixed link is drawn between its pivots (its sliding pairs move along its guides)
+        members = [n for n in (*link.pairs, *link.points) if n in places and (n in revolute or not link.fixed)]
         links.append('{"name":%s,"fixed":%s,"members":%s}' % (json.dumps(link.name), json.dumps(link.fixed),
                                                             json.dumps(members)))
     axis = input_axis(log)
@@ -63,8 +79,8 @@ def sweep_json(log: StepLog, sweep: Sweep) -> str:
     box = [float(np.nanmin(np.concatenate(finite[0::2]))), float(np.nanmin(np.concatenate(finite[1::2]))),
            float(np.nanmax(np.concatenate(finite[0::2]))), float(np.nanmax(np.concatenate(finite[1::2])))] \
         if finite else [-1.0, -1.0, 1.0, 1.0]
-    pivots = sorted({n for lk in log.links if lk.fixed for n in lk.pairs if n in places})
-    sliders = [p.name for p in log.pairs if p.kind == "prismatic" and p.name in places]
+    pivots = sorted({n for lk in log.links if lk.fixed for n in lk.pairs if n in places and n in revolute})
+    sliders = [_slider(log, p, places) for p in log.pairs if p.kind == "prismatic" and p.name in places]
     points = [v.entity for v in log.variables if v.role == "point" and v.entity in places]
     lines = [
         f'"rows":{sweep.rows}',
@@ -77,7 +93,7 @@ def sweep_json(log: StepLog, sweep: Sweep) -> str:
         f'"box":{_array(box)}',
         f'"links":[{",".join(links)}]',
         f'"pivots":{json.dumps(pivots)}',
-        f'"sliders":{json.dumps(sliders)}',
+        f'"sliders":[{",".join(sliders)}]',
         f'"points":{json.dumps(points)}',
         '"places":{' + ",\n".join(f'{json.dumps(n)}:[{_array(x)},{_array(y)}]' for n, (x, y) in places.items())
         + "}",

@@ -359,6 +359,7 @@ def _paths(log: StepLog, sweep: Sweep) -> str:
             fx, fy = at(*first)
             svg.add("circle", cx=fx, cy=fy, r="3", fill=colour)
     pivots = {n for lk in log.links if lk.fixed for n in lk.pairs}
+    pivots -= {p.name for p in log.pairs if p.kind == "prismatic"}
     for name, (x, y) in sketch.items():
         sx, sy = at(x, y)
         colour = PATHS[moving.index(name) % len(PATHS)] if name in moving else "#333333"

@@ -69,7 +69,25 @@
       "stroke-dasharray": fixed ? "7 4" : "none", class: "link", "data-name": link.name}, links);
     return [link, el];
   });
-  const pivots = new Set(D.pivots), sliders = new Set(D.sliders), points = new Set(D.points);
+  const pivots = new Set(D.pivots), points = new Set(D.points);
+  const sliders = new Map(D.sliders.map(function (s) { return [s.name, s]; }));
+  for (const s of D.sliders) {  // a guide fixed to the frame: its line over the slider's travel, drawn once
+    if (!s.fixed) continue;
+    const [xs, ys] = D.places[s.name];
+    const ux = Math.cos(s.axis), uy = Math.sin(s.axis);
+    let low = Infinity, high = -Infinity, across = 0;
+    for (let k = 0; k < D.rows; k++) {
+      if (xs[k] === null || ys[k] === null) continue;
+      const t = xs[k] * ux + ys[k] * uy;
+      low = Math.min(low, t); high = Math.max(high, t);
+      across = -xs[k] * uy + ys[k] * ux;
+    }
+    if (low > high) continue;
+    low -= 2 * unit; high += 2 * unit;
+    make("path", {d: "M" + (low * ux - across * uy) + " " + (low * uy + across * ux) + "L" + (high * ux - across * uy) + " " +
+      (high * uy + across * ux), stroke: "#374151", "stroke-width": "1.5", "vector-effect": "non-scaling-stroke",
+      class: "guide"}, links);
+  }
   for (const name of D.pivots) {  // ground hatch under each fixed pivot, drawn once
     const [xs, ys] = D.places[name];
     const x = xs[0], y = ys[0];
@@ -81,7 +99,7 @@
   const markOf = {}, labelOf = {};
   for (const name in D.places) {
     if (sliders.has(name)) {
-      make("rect", {width: 2.4 * unit, height: 1.6 * unit, fill: "#fff", stroke: "#111827", "stroke-width": "1.5",
+      make("rect", {width: 3 * unit, height: 2 * unit, fill: "#fff", stroke: "#111827", "stroke-width": "1.5",
         "vector-effect": "non-scaling-stroke", class: "slider", "data-for": name}, marks);
     }
     const r = points.has(name) ? 0.45 * unit : 0.7 * unit;
@@ -134,7 +152,16 @@
     for (const rect of sliderEls) {
       const p = at[rect.dataset.for];
       rect.setAttribute("visibility", p ? "visible" : "hidden");
-      if (p) { rect.setAttribute("x", String(p[0] - 1.2 * unit)); rect.setAttribute("y", String(p[1] - 0.8 * unit)); }
+      if (!p) continue;
+      const s = sliders.get(rect.dataset.for);
+      rect.setAttribute("x", String(p[0] - 1.5 * unit));
+      rect.setAttribute("y", String(p[1] - unit));
+      let axis = s.axis;  // a moving guide turns the axis with it (two places fixed in the guide)
+      if (!s.fixed && s.guide.length === 2 && at[s.guide[0]] && at[s.guide[1]]) {
+        const [a, b] = [at[s.guide[0]], at[s.guide[1]]];
+        axis += Math.atan2(b[1] - a[1], b[0] - a[0]) - s.turn;
+      }
+      if (s.fixed || s.guide.length === 2) rect.setAttribute("transform", "rotate(" + (axis * 180 / Math.PI) + " " + p[0] + " " + p[1] + ")");
     }
     for (const [link, el] of linkEls) {
       const pts = link.members.filter(function (n) { return at[n]; }).map(function (n) { return at[n].join(","); });
