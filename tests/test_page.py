@@ -113,6 +113,10 @@ def _page(driver, mechanism: Path, tmp_path: Path) -> None:
     assert _row(driver) == stopped and play.text == "Play"
 
     # the slider puts the mechanism at a row's positions; the arrow key steps one row
+    traced = [n for n in driver.execute_script(
+        "return Array.from(document.querySelectorAll('#traces input:checked')).map(b => b.value)")
+              if f"{n}.x" in csv[0]]
+    assert traced
     failing = [k for k, c in enumerate(codes) if c > 0]
     rows = sorted({0, len(codes) // 3, 2 * len(codes) // 3, len(codes) - 1, *failing[:1], *failing[-1:]})
     compared = 0
@@ -123,6 +127,10 @@ def _page(driver, mechanism: Path, tmp_path: Path) -> None:
         text = driver.find_element("id", "readout").text
         assert f"row {row} of {len(codes) - 1}" in text
         assert (f"status {codes[row]}" in text) if codes[row] > 0 else ("status" not in text)
+        for name in traced:  # the traced points' coordinates under the readout, to 3 decimals
+            x, y = (csv[1][row][csv[0].index(f"{name}.{f}")] for f in "xy")
+            if all(math.isfinite(v) and 1e-3 <= abs(v) < 1e5 for v in (x, y)):
+                assert f"{name} {x:.3f} {y:.3f}" in text, (row, name, text)
     assert compared >= len(rows)
     slider = driver.find_element("id", "row")
     _move(driver, 10)

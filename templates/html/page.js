@@ -175,13 +175,13 @@
       line.setAttribute("x2", px.toFixed(2));
     }
     const inputs = D.inputs.map(function (i) { return "<b>" + i.column + "</b> = " + fmt(i.values[row]) + " " + i.unit; });
-    const traced = Array.from(document.querySelectorAll("#traces input:checked")).map(function (box) {
+    const values = Array.from(document.querySelectorAll("#traces input:checked")).map(function (box) {
       const p = at[box.value];
       return "<tr><th>" + box.value + "</th><td>" + (p ? fmt(p[0]) : "–") + "</td><td>" + (p ? fmt(p[1]) : "–") + "</td></tr>";
     });
     readout.innerHTML = "row " + D.index[row] + " of " + D.index[D.rows - 1] + " · " + inputs.join(" · ") + "<br>" +
-      statusText(D.status[row]) + (traced.length ? "<table class=values><tr><th></th><th>x (" + D.unit + ")</th><th>y (" +
-      D.unit + ")</th></tr>" + traced.join("") + "</table>" : "");
+      statusText(D.status[row]) + (values.length ? "<table class=values><tr><th></th><th>x (" + D.unit + ")</th><th>y (" +
+      D.unit + ")</th></tr>" + values.join("") + "</table>" : "");
   }
 
   function traced() {
