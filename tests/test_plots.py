@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from programs import build, parse, run_python
 
-from linkgen.render.svgwriter import num, path_data, ticks
+from linkgen.render.svgwriter import fit, label, num, path_data, ticks
 from linkgen.sweepdata import MAX_ROWS
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -160,6 +160,9 @@ def test_the_writer_by_hand():
     assert ticks(0.0, 360.0, 6, (1.5, 3.0, 4.5, 9.0)) == [0.0, 90.0, 180.0, 270.0, 360.0]
     assert ticks(-25.0, 25.0, 4) == [-20.0, 0.0, 20.0]
     assert ticks(0.0, 1.05, 4) == [0.0, 0.5, 1.0]  # a step of at least 1.05 / 4 = 0.2625: 0.5
+    assert [label(v, s) for v, s in ((90.0, 90.0), (0.25, 0.25), (-5e6, 2.5e6), (2.5e-5, 1e-5), (0.0, 1e6))] == [
+        "90", "0.25", "-5e6", "2.5e-5", "0"]
+    assert fit("abcdefghij", 55.0, 10.0) == "abcdefghij" and fit("abcdefghij", 44.0, 10.0) == "abcdefg…"
 
 
 def test_a_long_sweep_is_thinned_and_keeps_every_gap(tmp_path: Path):
