@@ -59,8 +59,8 @@ def figures(log: StepLog) -> list[Figure]:
     if _moving(log, TURNING):
         out.append(Figure(f"{log.name}_angles.svg", f"Link angles and their rates against {axis.name}"))
     if log.conditioning:
-        out.append(Figure(f"{log.name}_conditioning.svg",
-                          f"Conditioning sigma of each step against {axis.name}, limit positions and change points marked"))
+        out.append(Figure(f"{log.name}_conditioning.svg", f"Conditioning sigma of each step against {axis.name}, "
+                                                          "limit positions and change points marked"))
     out.append(Figure(f"{log.name}_paths.svg", "Paths of all points over the sweep on the sketch"))
     return out
 
