@@ -118,7 +118,7 @@ def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, 
     from .writer import differences, write_all
 
     log = build_log(mechanism, _outputs(outputs), order, options=_given(settings))
-    files = render_all(log)
+    files = render_all(log, motion=True)
     target = outdir or os.path.join("build", log.name)
     if check:
         diffs = differences(files, target)
