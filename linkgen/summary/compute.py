@@ -1,0 +1,266 @@
+"""The engineering summary of a step log: its motion facts (linkgen.analysis) read in the
+file's units, and what one sweep of the procedure shows (transmission angles, strokes and
+swings, time ratios, the rows that fail), each extreme located by grid refinement."""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from .. import status
+from ..analysis.sweep import margin, own, run, warm_after, zoom_min
+from ..options import reference
+from ..evaluate import Result, evaluate, input_rows
+from ..steplog import Gap, StepLog
+from .grashof import four_bars
+from .records import Failure, InputRange, Position, Summary, Transmission, Travel
+
+Array = np.ndarray[Any, np.dtype[Any]]
+TURN = 2 * math.pi
+EDGE_ROUNDS = 12  # refinements of a limit position, each to 1/32 of the last
+EDGE_GRID = 33
+STILL = 1e-12  # an output whose travel is below this (radians, or of the length scale) does not move
+
+
+@functools.lru_cache(maxsize=4)
+def summarize(log: StepLog) -> Summary:
+    """The summary of the log over its sweep (log.samples rows, all inputs together), found with
+    the reference settings (options.reference: every check on), whatever the programs run; kept
+    for the last few logs (build prints it and the manual shows it)."""
+    log = replace(log, options=reference(log.options))
+    values, rates, accs = input_rows(log, log.samples)
+    with np.errstate(all="ignore"):
+        result = evaluate(log, values, rates, accs)
+    lam = np.linspace(0.0, 1.0, log.samples)
+    units = _Units(log)
+    edges = _limits(log)
+    st = result.status
+    return Summary(
+        log.name, log.title, log.length_unit, "deg" if units.deg else "rad", log.grubler, log.mobility, log.redundant,
+        _inputs(log, units, edges), four_bars(log), _positions(log, units, edges),
+        _transmission(log, result, lam, units, edges), _travels(log, result, lam, units),
+        int(len(st)), int(np.count_nonzero(st < 0)), int(np.count_nonzero(status.singular(st))),
+        int(np.count_nonzero(status.failed(st))), _failures(log, result, units))
+
+
+class _Units:
+    """Converts the programs' values (radians, length units) to the file's."""
+
+    def __init__(self, log: StepLog) -> None:
+        self.log = log
+        self.deg = log.angle_unit == "deg"
+
+    def angle(self, x: float) -> float:
+        return math.degrees(x) if self.deg else x
+
+    def input(self, k: int, x: float) -> float:
+        return self.angle(x) if self.log.inputs[k].kind == "revolute" else x
+
+    def unit(self, k: int) -> str:
+        return ("deg" if self.deg else "rad") if self.log.inputs[k].kind == "revolute" else self.log.length_unit
+
+    def at(self, lam: float) -> tuple[float, ...]:
+        """The inputs at sweep position lam, in the file's units."""
+        return tuple(self.input(k, i.start + lam * (i.stop - i.start)) for k, i in enumerate(self.log.inputs))
+
+
+def _periodic(log: StepLog) -> bool:
+    """One input turning a whole turn: the sweep's last row is its first."""
+    return (len(log.inputs) == 1 and log.inputs[0].kind == "revolute"
+            and abs(abs(log.inputs[0].stop - log.inputs[0].start) - TURN) <= 1e-12 * TURN)
+
+
+# limit positions: (step, value) in the programs' units, from the gaps (refined) or the resolvers' reach
+Edges = list[tuple[int, float]]
+
+
+def _limits(log: StepLog) -> Edges:
+    out: Edges = []
+    for g in log.gaps:
+        if g.point:
+            continue
+        for side, beyond in ((g.low, 1.0), (g.high, -1.0)):
+            if side is not None:
+                out.append((g.step, _refined_edge(log, g, side, beyond)))
+    if log.reach is not None and log.groups:
+        out += [(s, x) for s, x in ((log.reach.low_step, log.reach.low), (log.reach.high_step, log.reach.high))
+                if x is not None]
+    return sorted(out, key=lambda e: (e[1], e[0]))
+
+
+def _refined_edge(log: StepLog, gap: Gap, value: float, beyond: float) -> float:
+    """A gap's side located to rounding: where the chain's closing margin crosses zero, by grid
+    refinement of a bracket around the analysis' value (unchanged where it holds no crossing)."""
+    step = log.step(gap.step)
+    procedure = own(log, step)
+    inp = log.inputs[0]
+    width = 1e-6 * max(1.0, abs(value)) * (log.length_scale if inp.kind != "revolute" else 1.0)
+    good, bad = value - beyond * width, value + beyond * width
+    for _ in range(EDGE_ROUNDS):
+        xs = np.linspace(good, bad, EDGE_GRID)
+        with np.errstate(all="ignore"):
+            m = margin(step, evaluate(procedure, xs[:, None], np.zeros((EDGE_GRID, 1)), np.zeros((EDGE_GRID, 1)),
+                                      order=0))
+        if m is None or not m[0] >= 0 or m[-1] >= 0:
+            return value if _ == 0 else float(good)
+        k = int(np.argmax(m < 0))
+        good, bad = float(xs[k - 1]), float(xs[k])
+    return good
+
+
+def _inputs(log: StepLog, units: _Units, edges: Edges) -> tuple[InputRange, ...]:
+    out = []
+    for k, i in enumerate(log.inputs):
+        low = high = None
+        known = len(log.inputs) == 1
+        if known and edges:
+            shift = (-TURN, 0.0, TURN) if i.kind == "revolute" else (0.0,)
+            below = [x + s for _, x in edges for s in shift if x + s < i.sketch]
+            above = [x + s for _, x in edges for s in shift if x + s > i.sketch]
+            low = units.input(k, max(below)) if below else None
+            high = units.input(k, min(above)) if above else None
+        out.append(InputRange(i.column, i.kind, units.unit(k), units.input(k, i.start), units.input(k, i.stop),
+                              units.input(k, i.sketch), low, high, known))
+    return tuple(out)
+
+
+def _positions(log: StepLog, units: _Units, edges: Edges) -> tuple[Position, ...]:
+    found = [Position(s, log.step(s).target, "limit", (units.input(0, x),)) for s, x in edges]
+    found += [Position(g.step, log.step(g.step).target, "cannot close", (units.input(0, g.low),))
+              for g in log.gaps if g.point and g.low is not None]
+    found += [Position(s.number, s.target, "change point", (units.input(0, x),))
+              for s in log.steps if not s.variant for x in s.change_points]
+    return tuple(sorted(found, key=lambda p: (p.inputs, p.step)))
+
+
+def _usable(result: Result) -> Array:
+    out: Array = ~status.failed(result.status)
+    return out
+
+
+def _transmission(log: StepLog, result: Result, lam: Array, units: _Units, edges: Edges) -> tuple[Transmission, ...]:
+    limited = {s for s, _ in edges}
+    added = {a.name for a in log.add_links}  # a chain on an Add-link transmits nothing: the resolver sets it
+    out = []
+    for s in log.steps:
+        if s.action != "chain" or s.variant or s.number not in result.sigma or set(s.links) & added:
+            continue
+        sigma = result.sigma[s.number]
+        ok = _usable(result) & np.isfinite(sigma)
+        if not ok.any():
+            continue
+        high = units.angle(math.asin(min(1.0, float(np.max(sigma[ok])))))
+        if s.number in limited:
+            edge = min((x for n, x in edges if n == s.number), key=lambda x: abs(x - log.inputs[0].sketch))
+            out.append(Transmission(s.number, s.target, s.chain, s.links, 0.0, (units.input(0, edge),), high, True))
+            continue
+        k = int(np.argmin(np.where(ok, sigma, np.inf)))
+        where, least = _zoomed(log, result, lam, k, lambda r, n=s.number: r.sigma.get(n))
+        least = min(least, float(sigma[k]))
+        out.append(Transmission(s.number, s.target, s.chain, s.links, units.angle(math.asin(min(1.0, least))),
+                                units.at(_folded(log, where)), high, False))
+    return tuple(out)
+
+
+def _zoomed(log: StepLog, result: Result, lam: Array, k: int, measure: Any) -> tuple[float, float]:
+    """(sweep position, value) of the least ``measure`` around sweep row k, by grid refinement
+    (across the seam of a whole turn)."""
+    h = float(lam[1] - lam[0]) if len(lam) > 1 else 0.0
+    lo, hi = float(lam[k]) - h, float(lam[k]) + h
+    if not _periodic(log):
+        lo, hi = max(lo, 0.0), min(hi, 1.0)
+    warm = warm_after(result, k - 1) if k > 0 else None
+    where, value = zoom_min(log, lo, hi, measure, warm)
+    return where, value
+
+
+def _folded(log: StepLog, lam: float) -> float:
+    """A sweep position of a whole turn in [0, 1)."""
+    return lam % 1.0 if _periodic(log) else lam
+
+
+def _wrapped(x: Array | float) -> Any:
+    return (np.asarray(x) + math.pi) % TURN - math.pi
+
+
+def _travels(log: StepLog, result: Result, lam: Array, units: _Units) -> tuple[Travel, ...]:
+    ok = _usable(result)
+    out = []
+    for c in log.columns[len(log.inputs):]:
+        v = log.variable(c.variable)
+        if v.constant or not ((v.role == "link" and c.field == "the") or (v.role == "slide" and c.field == "v")):
+            continue
+        x = np.asarray(result.values[c.variable][0], dtype=float)
+        if not (ok & np.isfinite(x)).any():
+            continue
+        angle = v.role == "link"
+        u = _unwrapped(x, ok) if angle else np.where(ok, x, np.nan)
+        kh, kl = int(np.nanargmax(u)), int(np.nanargmin(u))
+        if u[kh] - u[kl] <= STILL * (1.0 if angle else log.length_scale):
+            continue  # computed, but it does not move
+        if angle and u[kh] - u[kl] >= TURN * (1 - 1e-9):
+            out.append(Travel(c.name, "angle", "deg" if units.deg else "rad", units.angle(u[kl]),
+                              units.angle(u[kh]), units.at(float(lam[kl])), units.at(float(lam[kh])),
+                              units.angle(float(u[kh] - u[kl])), True, None))
+            continue
+        high_at, high = _extreme(log, result, lam, kh, c.variable, float(x[kh]), float(u[kh]), angle, -1.0)
+        low_at, low = _extreme(log, result, lam, kl, c.variable, float(x[kl]), float(u[kl]), angle, 1.0)
+        scale = units.angle if angle else (lambda t: t)
+        out.append(Travel(c.name, "angle" if angle else "slide", ("deg" if units.deg else "rad") if angle
+                          else log.length_unit, scale(low), scale(high), units.at(_folded(log, low_at)),
+                          units.at(_folded(log, high_at)), scale(high) - scale(low), False,
+                          _time_ratio(log, result, u, low_at, high_at)))
+    return tuple(out)
+
+
+def _unwrapped(x: Array, ok: Array) -> Array:
+    """An angle along the sweep without its jumps of a turn, nan where rows fail."""
+    out = np.full_like(x, np.nan)
+    good = ok & np.isfinite(x)
+    out[good] = np.unwrap(x[good])
+    return out
+
+
+def _extreme(log: StepLog, result: Result, lam: Array, k: int, variable: str, wrapped: float, unwrapped: float,
+             angle: bool, sign: float) -> tuple[float, float]:
+    """(sweep position, value) of the output's extreme near row k: its least (sign 1) or
+    greatest (sign -1) value, an angle measured from its value at row k."""
+
+    def measure(r: Result) -> Array:
+        y = np.asarray(r.values[variable][0], dtype=float)
+        out: Array = sign * (_wrapped(y - wrapped) if angle else y - wrapped)
+        return out
+
+    where, value = _zoomed(log, result, lam, k, measure)
+    return where, unwrapped + sign * min(value, 0.0)
+
+
+def _time_ratio(log: StepLog, result: Result, u: Array, low_at: float, high_at: float) -> float | None:
+    """The slower stroke's input angle over the faster's, where one input turns a whole turn,
+    every row assembles and the output has one maximum and one minimum a turn."""
+    if not _periodic(log) or status.failed(result.status).any():
+        return None
+    d = np.diff(u[:-1])
+    turns = np.count_nonzero(np.sign(d) != np.sign(np.roll(d, 1)))
+    if turns != 2:
+        return None
+    forward = ((high_at - low_at) % 1.0) * TURN
+    return max(forward, TURN - forward) / min(forward, TURN - forward)
+
+
+def _failures(log: StepLog, result: Result, units: _Units) -> tuple[Failure, ...]:
+    st = result.status
+    failed = status.failed(st)
+    meaning = {c.code: c.meaning for c in log.status_codes}
+    out = []
+    for code in sorted({int(c) for c in st[failed]}):
+        rows = np.flatnonzero(st == code)
+        runs = np.split(rows, np.flatnonzero(np.diff(rows) > 1) + 1)
+        first = result.inputs[:, 0]
+        ranges = tuple((units.input(0, float(first[r[0]])), units.input(0, float(first[r[-1]]))) for r in runs)
+        out.append(Failure(code, int(status.step(code)), meaning.get(code, ""), len(rows), ranges))
+    return tuple(out)
