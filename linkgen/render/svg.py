@@ -35,7 +35,8 @@ CHAR = 7.0  # the width of a character of the 12-pixel font, generously
 TEXT_HEIGHT = 12.0
 # where a label may go around its anchor, tried in this order: (dx, dy) of the text's start on its baseline
 PLACES = ((8, 16), (8, -8), (-8, 16), (-8, -8), (10, 5), (-10, 5), (0, 22), (0, -14), (14, 26), (14, -18),
-          (-14, 26), (-14, -18), (24, 5), (-24, 5), (0, 34), (0, -26))
+          (-14, 26), (-14, -18), (24, 5), (-24, 5), (0, 34), (0, -26), (30, 30), (30, -22), (-30, 30), (-30, -22),
+          (0, 46), (0, -38), (40, 5), (-40, 5), (0, 58), (0, -50), (40, 40), (40, -32), (-40, 40), (-40, -32))
 
 
 def first_steps(log: StepLog) -> dict[str, int]:
@@ -75,7 +76,8 @@ class _Labels:
     where every place is taken, the one covering least (first of the equals): deterministic."""
 
     def __init__(self, width: float, height: float) -> None:
-        self.boxes: list[Box] = []
+        self.boxes: list[Box] = []  # markers
+        self.labels: list[Box] = []
         self.segments: list[Segment] = []
         self.width, self.height = width, height
         self.out: list[str] = []
@@ -91,15 +93,16 @@ class _Labels:
         for dx, dy in places:
             end = dx < 0
             box = _box(x + dx, y + dy, text, end)
-            cost = (sum(_overlaps(box, b) for b in self.boxes) * 4 + sum(_crosses(box, s) for s in self.segments)
-                    + 8 * (box[0] < 0 or box[2] > self.width or box[1] < 0 or box[3] > self.height))
+            cost = (100 * sum(_overlaps(box, b) for b in self.labels) + 20 * sum(_overlaps(box, b) for b in self.boxes)
+                    + 5 * sum(_crosses(box, s) for s in self.segments)
+                    + 50 * (box[0] < 0 or box[2] > self.width or box[1] < 0 or box[3] > self.height))
             if best is None or cost < best[0]:
                 best = (cost, x + dx, y + dy, end)
             if cost == 0:
                 break
         assert best is not None
         _, tx, ty, end = best
-        self.boxes.append(_box(tx, ty, text, end))
+        self.labels.append(_box(tx, ty, text, end))
         anchor = ' text-anchor="end"' if end else ""
         self.out.append(f'<text x="{_f(tx)}" y="{_f(ty)}"{anchor}{attrs}>{_esc(text)}</text>')
 
