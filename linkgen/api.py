@@ -9,8 +9,8 @@ structured array, its engineering summary and its generated files.  The command 
 >>> rows = m.sweep(samples=5, order=0)
 >>> rows.dtype.names[:3], len(rows)
 (('theta_O', 'O.x', 'O.y'), 5)
->>> round(float(rows["S.s"][0]), 9)  # the slider at the crank's 0: sqrt(85^2 - 13^2) - 76 + 8
-5.999876562
+>>> round(float(rows["S.s"][0]), 9)  # the crank at 0: B at x = 20 + sqrt(65^2 - 13^2), drawn at 76
+7.686733312
 >>> summary = m.check()
 >>> summary.failed, [t.name for t in summary.travels if t.quantity == "slide"]
 (0, ['S.s'])
@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import functools
 import os
-import sys
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 
@@ -103,8 +102,9 @@ class Mechanism:
             raise ValueError(f"{len(values)} values given; {self.name} has {n} inputs")
         speeds = [i.speed for i in self.log.inputs] if rates is None else list(rates)
         accs = [0.0] * n if accelerations is None else list(accelerations)
-        return self._rows(np.array([values], dtype=float), np.array([speeds], dtype=float),
-                          np.array([accs], dtype=float), None)[0]
+        row: np.void = self._rows(np.array([values], dtype=float), np.array([speeds], dtype=float),
+                                  np.array([accs], dtype=float), None)[0]
+        return row
 
     def check(self) -> Summary:
         """The engineering summary (linkgen.summary.records)."""

@@ -181,9 +181,9 @@ def run(mechanism: str, samples: int | None, order: int | None, outputs: str | N
         click.echo(text, nl=False)
 
 
-LJ_LEGEND = ("# Rows are pairs, columns links (then Add-links).  0: the pair is not on the link; 1 (2): an unknown\n"
-             "# revolute (prismatic) pair on it; -1 (-2): a known one.  A step turns the entries of the pairs it finds\n"
-             "# negative.\n")
+LJ_LEGEND = ("# Rows are pairs, columns links (then Add-links).  0: the pair is not on the link;\n"
+             "# 1 (2): an unknown revolute (prismatic) pair on it; -1 (-2): a known one.\n"
+             "# A step turns the entries of the pairs it finds negative.\n")
 
 
 @cli.command()

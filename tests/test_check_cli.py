@@ -39,7 +39,7 @@ def test_check_reports_the_non_grashof_range_and_limits_in_degrees_and_writes_no
     assert (code, err) == (0, "") and sorted(tmp_path.iterdir()) == before
     limit = math.degrees(toggle(a, b, c, d, far=True))
     found = re.search(r"assembles from (\S+) to (\S+) deg", out)
-    assert found and float(found[1]) == pytest.approx(-limit, abs=1e-9) and float(found[2]) == pytest.approx(limit, abs=1e-9)
+    assert found and (float(found[1]), float(found[2])) == pytest.approx((-limit, limit), abs=1e-9)
     limits = [float(x) for x in re.findall(r"^limit of step 3 \(B\) at theta_O1 = (\S+) deg$", out, re.M)]
     assert limits == pytest.approx([limit, 360 - limit], abs=1e-9)
     assert "non-Grashof (s + l > p + q), triple-rocker" in out and "transmission angle (sigma is its sine)" in out

@@ -40,7 +40,8 @@ def test_non_grashof_assembling_range_and_limit_positions_in_degrees(tmp_path):
     s = _summary(four_bar(tmp_path, "ng", a, b, c, d, 30.0, samples=361))
     limit = math.degrees(toggle(a, b, c, d, far=True))  # |A O2| = b + c; the folded toggle is out of reach
     (rng,) = s.inputs
-    assert rng.unit == "deg" and rng.low == pytest.approx(-limit, abs=1e-9) and rng.high == pytest.approx(limit, abs=1e-9)
+    assert rng.unit == "deg"
+    assert (rng.low, rng.high) == pytest.approx((-limit, limit), abs=1e-9)
     assert [p.kind for p in s.positions] == ["limit", "limit"]
     assert [p.inputs[0] for p in s.positions] == pytest.approx([limit, 360 - limit], abs=1e-9)
     (loop,) = s.four_bars
@@ -110,8 +111,9 @@ samples: 361
 """
 
 
-@pytest.mark.parametrize(("r", "l", "e"), [(20.0, 65.0, 13.0), (25.0, 80.0, 0.0), (10.0, 40.0, -15.0)])
-def test_slider_crank_stroke_and_time_ratio_in_closed_form(tmp_path, r, l, e):
+@pytest.mark.parametrize(("r", "rod", "e"), [(20.0, 65.0, 13.0), (25.0, 80.0, 0.0), (10.0, 40.0, -15.0)])
+def test_slider_crank_stroke_and_time_ratio_in_closed_form(tmp_path, r, rod, e):
+    l = rod  # noqa: E741 - the rod's length, l as the textbooks write it
     path = tmp_path / "sc.yaml"
     path.write_text(SLIDER.format(name="sc", r=r, l=l, e=e, bx=r + math.sqrt(l * l - e * e), y=-e))
     s = _summary(path)

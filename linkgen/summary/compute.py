@@ -13,8 +13,8 @@ import numpy as np
 
 from .. import status
 from ..analysis.sweep import margin, own, run, warm_after, zoom_min
-from ..options import reference
 from ..evaluate import Result, evaluate, input_rows
+from ..options import reference
 from ..steplog import Gap, StepLog
 from .grashof import four_bars
 from .records import Failure, InputRange, Position, Summary, Transmission, Travel
@@ -174,8 +174,35 @@ def _zoomed(log: StepLog, result: Result, lam: Array, k: int, measure: Any) -> t
     if not _periodic(log):
         lo, hi = max(lo, 0.0), min(hi, 1.0)
     warm = warm_after(result, k - 1) if k > 0 else None
-    where, value = zoom_min(log, lo, hi, measure, warm)
-    return where, value
+    if not log.groups:
+        return zoom_min(log, lo, hi, measure, warm)
+    return _golden(log, lo, hi, measure, warm)
+
+
+def _golden(log: StepLog, lo: float, hi: float, measure: Any, warm: Any) -> tuple[float, float]:
+    """(sweep position, value) of the least ``measure`` on [lo, hi] by golden-section search, one
+    row at a time (a resolver's rows are solved one by one: a grid refinement would take ten
+    times the rows), each from the same warm start, until the bracket is 1e-9 of the sweep:
+    the value is then found to rounding (it is flat to second order there)."""
+
+    def value(lam: float) -> float:
+        v = measure(run(log, np.array([lam]), warm))
+        return math.inf if v is None or not np.isfinite(v[0]) else float(v[0])
+
+    ratio = (math.sqrt(5) - 1) / 2
+    a, b = lo, hi
+    c, d = b - ratio * (b - a), a + ratio * (b - a)
+    fc, fd = value(c), value(d)
+    while b - a > 1e-9:
+        if fc <= fd:
+            b, d, fd = d, c, fc
+            c = b - ratio * (b - a)
+            fc = value(c)
+        else:
+            a, c, fc = c, d, fd
+            d = a + ratio * (b - a)
+            fd = value(d)
+    return (c, fc) if fc <= fd else (d, fd)
 
 
 def _folded(log: StepLog, lam: float) -> float:

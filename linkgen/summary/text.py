@@ -11,6 +11,7 @@ from ..errors import and_list
 from .records import FourBar, Summary, Transmission, Travel
 
 PLACE = 7  # significant digits of an extreme's place
+LAW = {"Grashof": "<", "non-Grashof": ">", "change point": "="}  # s + l against p + q
 GRASHOF = {
     "crank-rocker": "the link at {o1} turns fully, the link at {o2} rocks",
     "rocker-crank": "the link at {o2} turns fully, the link at {o1} rocks",
@@ -40,9 +41,9 @@ def _at(s: Summary, values: tuple[float, ...], digits: int = 12) -> str:
 def _four_bar(f: FourBar) -> str:
     o1, a, b, o2 = f.pairs
     d, la, lb, lc = (num(x) for x in f.lengths)
-    driven = f" driven by {f.driven}" if f.driven else ""
+    driven = f" driven by {f.driven}" if f.driven else " (a loop of the mechanism that no input drives directly)"
     return (f"four-bar {o1}-{a}-{b}-{o2}{driven}: frame {d}, {f.links[1]} {la}, {f.links[2]} {lb}, "
-            f"{f.links[3]} {lc}: {f.grashof} ({'s + l = p + q' if f.grashof == 'change point' else 's + l < p + q' if f.grashof == 'Grashof' else 's + l > p + q'}), "
+            f"{f.links[3]} {lc}: {f.grashof} (s + l {LAW[f.grashof]} p + q), "
             f"{f.kind}: {GRASHOF[f.kind].format(o1=o1, o2=o2)}")
 
 
@@ -57,7 +58,7 @@ def _travel(s: Summary, t: Travel) -> str:
     if t.turns:
         return f"{t.name} turns fully ({num(t.travel)}{_unit(t.unit)} over the sweep)"
     word = "stroke" if t.quantity == "slide" else "swing"
-    ratio = f"; time ratio {num(t.time_ratio)}" if t.time_ratio is not None else ""
+    ratio = f"; time ratio {'%.*g' % (PLACE, t.time_ratio)}" if t.time_ratio is not None else ""  # from the places
     return (f"{t.name} {word} {num(t.travel)}{_unit(t.unit)}: from {num(t.low)} at {_at(s, t.at_low, PLACE)} "
             f"to {num(t.high)} at {_at(s, t.at_high, PLACE)}{ratio}")
 
