@@ -206,8 +206,12 @@ def _golden(log: StepLog, lo: float, hi: float, measure: Any, warm: Any) -> tupl
 
 
 def _folded(log: StepLog, lam: float) -> float:
-    """A sweep position of a whole turn in [0, 1)."""
-    return lam % 1.0 if _periodic(log) else lam
+    """A sweep position of a whole turn in [0, 1) (within the 1e-7 a place is found to of 1:
+    the turn's start)."""
+    if not _periodic(log):
+        return lam
+    lam %= 1.0
+    return 0.0 if lam > 1.0 - 1e-7 else lam
 
 
 def _wrapped(x: Array | float) -> Any:

@@ -47,7 +47,15 @@ def _four_bar(f: FourBar) -> str:
             f"{f.kind}: {GRASHOF[f.kind].format(o1=o1, o2=o2)}")
 
 
+def _constant(t: Transmission) -> bool:
+    """Whether a chain's transmission angle is the same at every row (a slider on a slider at a fixed angle)."""
+    return not t.at_limit and t.maximum - t.minimum <= 1e-9 * t.maximum
+
+
 def _transmission(s: Summary, t: Transmission) -> str:
+    if _constant(t):
+        return (f"step {t.step} ({t.target}, {t.chain} chain of {' and '.join(t.links)}): "
+                f"{num(t.minimum)}{_unit(s.angle_unit)} at every row")
     where = (f"0 at the limit position {_at(s, t.at)}" if t.at_limit
              else f"{num(t.minimum)}{_unit(s.angle_unit)} at {_at(s, t.at, PLACE)}")
     return (f"step {t.step} ({t.target}, {t.chain} chain of {' and '.join(t.links)}): least {where}; "
@@ -113,7 +121,8 @@ def one_line(s: Summary) -> str:
     out = _rows(s)
     worst = min(s.transmission, key=lambda t: (t.minimum, t.step), default=None)
     if worst is not None:
-        where = f"at the limit position {_at(s, worst.at)}" if worst.at_limit else f"at {_at(s, worst.at, PLACE)}"
+        where = (f"at the limit position {_at(s, worst.at)}" if worst.at_limit else "at every row"
+                 if _constant(worst) else f"at {_at(s, worst.at, PLACE)}")
         out += (f"; least transmission angle {num(worst.minimum)}{_unit(s.angle_unit)} "
                 f"(step {worst.step}, {worst.target}) {where}")
     return out
