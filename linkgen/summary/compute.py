@@ -23,6 +23,7 @@ Array = np.ndarray[Any, np.dtype[Any]]
 TURN = 2 * math.pi
 EDGE_ROUNDS = 12  # refinements of a limit position, each to 1/32 of the last
 EDGE_GRID = 33
+STRIDE = math.pi / 8  # rows of an angle farther apart than this are not refined between
 STILL = 1e-12  # an output whose travel is below this (radians, or of the length scale) does not move
 
 
@@ -168,8 +169,12 @@ def _transmission(log: StepLog, result: Result, lam: Array, units: _Units, edges
 
 def _zoomed(log: StepLog, result: Result, lam: Array, k: int, measure: Any) -> tuple[float, float]:
     """(sweep position, value) of the least ``measure`` around sweep row k, by grid refinement
-    (across the seam of a whole turn)."""
+    (across the seam of a whole turn); the row itself where the rows are more than STRIDE apart
+    in an angle (a sweep over many turns: the places between rows are not one motion)."""
     h = float(lam[1] - lam[0]) if len(lam) > 1 else 0.0
+    if any(i.kind == "revolute" and abs(i.stop - i.start) * h > STRIDE for i in log.inputs):
+        v = measure(result)
+        return float(lam[k]), math.inf if v is None else float(v[k])
     lo, hi = float(lam[k]) - h, float(lam[k]) + h
     if not _periodic(log):
         lo, hi = max(lo, 0.0), min(hi, 1.0)

@@ -10,6 +10,7 @@ from dataclasses import asdict
 from ..errors import and_list
 from .records import FourBar, Summary, Transmission, Travel
 
+RUNS = 6  # runs of failing rows listed; the others counted
 PLACE = 7  # significant digits of an extreme's place
 LAW = {"Grashof": "<", "non-Grashof": ">", "change point": "="}  # s + l against p + q
 GRASHOF = {
@@ -97,7 +98,10 @@ def lines(s: Summary) -> list[str]:
     out += [_travel(s, t) for t in s.travels]
     out.append(_rows(s))
     for f in s.failures:
-        runs = and_list([f"{num(a)} to {num(b)}" if a != b else num(a) for a, b in f.ranges])
+        shown = [f"{num(a)} to {num(b)}" if a != b else num(a) for a, b in f.ranges[:RUNS]]
+        if len(f.ranges) > RUNS:
+            shown.append(f"{len(f.ranges) - RUNS} more runs")
+        runs = and_list(shown)
         out.append(f"  {f.rows} rows fail with status {f.code}, {f.meaning}: {s.inputs[0].column} {runs}"
                    f"{_unit(s.inputs[0].unit)}")
     return out
