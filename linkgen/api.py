@@ -143,12 +143,15 @@ def load(path: str | os.PathLike[str], outputs: Iterable[str] | None = None, ord
 
 def csv_text(m: Mechanism, rows: np.ndarray) -> str:
     """Rows of a sweep as the CSV the programs write."""
+    from numpy.lib.recfunctions import structured_to_unstructured
+
     from .table import number
 
     names = list(m.columns)
+    data = structured_to_unstructured(rows[names[:-1]], dtype=float)
     lines = [",".join(names)]
-    for row in rows:
-        lines.append(",".join([number(float(row[n])) for n in names[:-1]] + [str(int(row["status"]))]))
+    for row, st in zip(data.tolist(), rows["status"].tolist()):
+        lines.append(",".join([number(x) for x in row] + [str(st)]))
     return "\n".join(lines) + "\n"
 
 

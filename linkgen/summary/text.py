@@ -8,7 +8,7 @@ from collections.abc import Callable
 from dataclasses import asdict
 
 from ..errors import and_list
-from .records import FourBar, Summary, Transmission, Travel
+from .records import Failure, FourBar, Summary, Transmission, Travel
 
 RUNS = 6  # runs of failing rows listed; the others counted
 PLACE = 7  # significant digits of an extreme's place
@@ -97,14 +97,16 @@ def lines(s: Summary) -> list[str]:
     out += [f"transmission angle (sigma is its sine) at {_transmission(s, t)}" for t in s.transmission]
     out += [_travel(s, t) for t in s.travels]
     out.append(_rows(s))
-    for f in s.failures:
-        shown = [f"{num(a)} to {num(b)}" if a != b else num(a) for a, b in f.ranges[:RUNS]]
-        if len(f.ranges) > RUNS:
-            shown.append(f"{len(f.ranges) - RUNS} more runs")
-        runs = and_list(shown)
-        out.append(f"  {f.rows} rows fail with status {f.code}, {f.meaning}: {s.inputs[0].column} {runs}"
-                   f"{_unit(s.inputs[0].unit)}")
+    out += [f"  {f.rows} rows fail with status {f.code}, {f.meaning}: {_runs(s, f)}" for f in s.failures]
     return out
+
+
+def _runs(s: Summary, f: Failure) -> str:
+    """The runs of the first input's values where rows fail with f's status."""
+    shown = [f"{num(a)} to {num(b)}" if a != b else num(a) for a, b in f.ranges[:RUNS]]
+    if len(f.ranges) > RUNS:
+        shown.append(f"{len(f.ranges) - RUNS} more runs")
+    return f"{s.inputs[0].column} {and_list(shown)}{_unit(s.inputs[0].unit)}"
 
 
 def text(s: Summary) -> str:
@@ -123,6 +125,8 @@ def to_json(s: Summary) -> str:
 def one_line(s: Summary) -> str:
     """``build``'s one line: the rows and the worst transmission angle."""
     out = _rows(s)
+    if s.failures:
+        out += f" (at {'; '.join(_runs(s, f) for f in s.failures)})"
     worst = min(s.transmission, key=lambda t: (t.minimum, t.step), default=None)
     if worst is not None:
         where = (f"at the limit position {_at(s, worst.at)}" if worst.at_limit else "at every row"
