@@ -24,7 +24,8 @@ ROOT = Path(__file__).resolve().parents[1]
     ((60, 50, 20, 70), "Grashof", "double-rocker"),  # 20 + 70 < 60 + 50; the coupler shortest
     ((60, 50, 70, 20), "Grashof", "rocker-crank"),  # the link at O2 shortest
     ((60, 40, 50, 41), "non-Grashof", "triple-rocker"),  # 40 + 60 > 50 + 41
-    ((60, 20, 60, 20), "change point", "crank-rocker"),  # a parallelogram: 20 + 60 = 20 + 60
+    ((60, 20, 60, 20), "change point", "double-crank"),  # a parallelogram: 20 + 60 = 20 + 60, both cranks shortest
+    ((60, 20, 50, 30), "change point", "crank-rocker"),  # 20 + 60 = 50 + 30
 ])
 def test_grashof_class_and_type_by_hand(lengths, grashof, kind):
     assert grashof_class(lengths, 60.0) == grashof
@@ -143,3 +144,16 @@ def test_sample_summaries_name_the_fixed_facts():
     (rng,) = s.inputs
     assert rng.kind != "revolute" and rng.unit == "mm"
     assert next(t for t in s.travels if t.quantity == "slide").travel == pytest.approx(2050 - 1300, abs=1e-9)
+
+
+def test_parallelogram_change_points_where_the_crank_lies_along_the_frame():
+    """tests/mechanisms/parallelogram.yaml: the coupler and the frame are 60, the cranks 20 sqrt 2; the
+    two branches of B cross where the crank lies along the frame line: 0 and 180 degrees (the rows
+    at 0, 180 and 360 are singular)."""
+    s = _summary(ROOT / "tests" / "mechanisms" / "parallelogram.yaml")
+    (loop,) = s.four_bars
+    assert (loop.grashof, loop.kind) == ("change point", "double-crank")
+    assert [p.kind for p in s.positions] == ["change point", "change point"]
+    assert [p.inputs[0] for p in s.positions] == pytest.approx([0.0, 180.0], abs=1e-9)
+    assert (s.singular, s.failed) == (3, 0)
+    assert all(t.turns for t in s.travels if t.name in ("crank.phi", "rocker.phi"))

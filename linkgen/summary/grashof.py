@@ -60,11 +60,15 @@ def grashof_class(lengths: tuple[float, float, float, float], scale: float) -> s
 
 def grashof_kind(lengths: tuple[float, float, float, float], scale: float) -> str:
     """The loop's type from which link is shortest (lengths: frame, the link at O1, coupler, the
-    link at O2): the shortest link turns fully relative to its neighbours in a Grashof loop."""
+    link at O2): the shortest link turns fully relative to its neighbours in a Grashof loop
+    (both links at the frame where they tie for it, as in a parallelogram)."""
     if grashof_class(lengths, scale) == "non-Grashof":
         return "triple-rocker"
-    shortest = min(range(4), key=lambda k: (lengths[k], k))
-    return ("double-crank", "crank-rocker", "double-rocker", "rocker-crank")[shortest]
+    least = min(lengths)
+    shortest = {k for k, x in enumerate(lengths) if x - least <= SAME * scale}  # ties: a parallelogram's two cranks
+    if 0 in shortest or {1, 3} <= shortest:
+        return "double-crank"
+    return "crank-rocker" if 1 in shortest else "rocker-crank" if 3 in shortest else "double-rocker"
 
 
 def _classified(log: StepLog, pairs: tuple[str, str, str, str], links: tuple[str, str, str, str],
