@@ -27,7 +27,8 @@ import numpy as np
 
 from .pipeline import build_log
 from .steplog import Step, StepLog
-from .summary import Summary, summarize
+from .summary.compute import summarize
+from .summary.records import Summary
 
 CHUNK = 65536  # rows evaluated at once by a sweep with progress
 
@@ -107,7 +108,10 @@ class Mechanism:
         return row
 
     def check(self) -> Summary:
-        """The engineering summary (linkgen.summary.records)."""
+        """The engineering summary (linkgen.summary.records): the full log's where it is built,
+        else found now (no conditioning over the sweep: faster)."""
+        if "full_log" in self.__dict__ and self.full_log.summary is not None:
+            return self.full_log.summary
         return summarize(self.log)
 
     def _rows(self, values: np.ndarray, rates: np.ndarray, accs: np.ndarray,

@@ -4,7 +4,6 @@ swings, time ratios, the rows that fail), each extreme located by grid refinemen
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import replace
 from typing import Any
@@ -27,11 +26,9 @@ STRIDE = math.pi / 8  # rows of an angle farther apart than this are not refined
 STILL = 1e-12  # an output whose travel is below this (radians, or of the length scale) does not move
 
 
-@functools.lru_cache(maxsize=4)
 def summarize(log: StepLog) -> Summary:
     """The summary of the log over its sweep (log.samples rows, all inputs together), found with
-    the reference settings (options.reference: every check on), whatever the programs run; kept
-    for the last few logs (build prints it and the manual shows it)."""
+    the reference settings (options.reference: every check on), whatever the programs run."""
     log = replace(log, options=reference(log.options))
     values, rates, accs = input_rows(log, log.samples)
     with np.errstate(all="ignore"):

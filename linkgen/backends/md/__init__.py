@@ -11,7 +11,6 @@ from ...errors import and_list
 from ...ljmatrix import states
 from ...policy import EPSILON, REAL_TYPES, SINGULAR_EPS, TOLERANCE_EPS, for_real
 from ...steplog import Omitted, Step, StepLog
-from ...summary import summarize
 from ...summary.text import markdown as markdown_summary
 from .. import Backend, Template
 from ..program import used_primitives
@@ -87,7 +86,7 @@ def render(view: View, spell: Manual, template: Template) -> dict[str, bytes]:
         limits=and_list([f"{number(x)} for {i.column}" for x, i in zip(log.step_limits(), log.inputs)]),
         good_lever=log.policy.good_lever, real_policy=for_real(log.policy, log.options.real),
         tolerance_eps=TOLERANCE_EPS, singular_eps=SINGULAR_EPS, real_eps=EPSILON[log.options.real],
-        summary=markdown_summary(summarize(log), markdown_text))}
+        summary=markdown_summary(log.summary, markdown_text) if log.summary else "")}
 
 
 BACKEND = Backend("md", "Markdown", templates="md", files=("NAME.md",), comment=("<!--", " -->"), spelling=Manual,

@@ -1,5 +1,5 @@
-"""The engineering summary (linkgen.summary) against closed forms: Grashof's law by hand, a
-four-bar's limit positions, transmission angle and rocker swing by the law of cosines, a
+"""The engineering summary (linkgen.summary.compute) against closed forms: a four-bar's limit
+positions, transmission angle and rocker swing by the law of cosines, a
 slider-crank's stroke and time ratio from its stretched and folded positions."""
 
 from __future__ import annotations
@@ -10,26 +10,10 @@ from pathlib import Path
 import pytest
 
 from linkgen.pipeline import build_log
-from linkgen.summary import summarize
-from linkgen.summary.grashof import grashof_class, grashof_kind
+from linkgen.summary.compute import summarize
 from tests.linkages import four_bar, toggle
 
-ROOT = Path(__file__).resolve().parents[1]
-
-
-@pytest.mark.parametrize(("lengths", "grashof", "kind"), [
-    # (frame d, crank a, coupler b, rocker c): s + l against p + q by hand
-    ((90, 20, 78, 51), "Grashof", "crank-rocker"),  # 20 + 90 < 78 + 51; the crank shortest
-    ((20, 60, 70, 50), "Grashof", "double-crank"),  # 20 + 70 < 60 + 50; the frame shortest
-    ((60, 50, 20, 70), "Grashof", "double-rocker"),  # 20 + 70 < 60 + 50; the coupler shortest
-    ((60, 50, 70, 20), "Grashof", "rocker-crank"),  # the link at O2 shortest
-    ((60, 40, 50, 41), "non-Grashof", "triple-rocker"),  # 40 + 60 > 50 + 41
-    ((60, 20, 60, 20), "change point", "double-crank"),  # a parallelogram: 20 + 60 = 20 + 60, both cranks shortest
-    ((60, 20, 50, 30), "change point", "crank-rocker"),  # 20 + 60 = 50 + 30
-])
-def test_grashof_class_and_type_by_hand(lengths, grashof, kind):
-    assert grashof_class(lengths, 60.0) == grashof
-    assert grashof_kind(lengths, 60.0) == kind
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _summary(path: Path):
@@ -132,6 +116,14 @@ def test_slider_crank_stroke_and_time_ratio_in_closed_form(tmp_path, r, rod, e):
     # the transmission angle at the slider: cos of the rod's angle to the slide, least with the crank normal to it
     (t,) = s.transmission
     assert t.minimum == pytest.approx(math.degrees(math.acos((r + abs(e)) / l)), abs=1e-9)
+
+
+def test_the_summary_is_built_with_the_sweep_and_is_the_one_found_alone():
+    """build_log with the sweep carries the summary of its pruned log (the manual's), and it is
+    the summary of the log without the conditioning (linkgen check's)."""
+    path = str(ROOT / "samples" / "slider_crank" / "slider_crank.yaml")
+    assert build_log(path).summary == summarize(build_log(path, sweep=False))
+    assert build_log(path, sweep=False).summary is None
 
 
 def test_sample_summaries_name_the_fixed_facts():

@@ -19,7 +19,7 @@ from linkgen.evaluate import evaluate, input_rows
 from linkgen.table import csv
 from tests.programs import CFLAGS, build, need, parse
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SLIDER = ROOT / "samples" / "slider_crank" / "slider_crank.yaml"
 SIXBAR = ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"
 
@@ -56,7 +56,7 @@ def test_at_gives_the_row_of_the_sweep():
 def test_check_is_the_summary_and_load_reports_a_bad_file(tmp_path):
     from linkgen.errors import InputError
     from linkgen.pipeline import build_log
-    from linkgen.summary import summarize
+    from linkgen.summary.compute import summarize
 
     assert linkgen.load(SLIDER).check() == summarize(build_log(str(SLIDER), sweep=False))
     bad = tmp_path / "bad.yaml"
