@@ -92,6 +92,13 @@ def cli(ctx: click.Context) -> None:
 
     Reads a mechanism file (pairs at their sketch positions, links, the fixed
     link, the inputs) and extracts the analysis procedure of two-link chains.
+
+    \b
+    Examples:
+      linkgen check samples/fourbar/fourbar.yaml
+      linkgen build samples/fourbar/fourbar.yaml -o out
+      linkgen run samples/fourbar/fourbar.yaml --samples 13
+      linkgen COMMAND --help
     """
     if ctx.invoked_subcommand is None:
         raise click.UsageError(f"missing command: one of {', '.join(sorted(cli.commands))}.", ctx)

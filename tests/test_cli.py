@@ -31,7 +31,7 @@ ROOT = Path(__file__).resolve().parents[1]
 LINKGEN = Path(sys.executable).with_name("linkgen")
 FOURBAR = ROOT / "samples" / "fourbar" / "fourbar.yaml"
 OUTPUTS = sorted(p.name for p in (FOURBAR.parent / "expected").iterdir())
-COMMANDS = ["build", "run", "lj", "candidates", "procedure"]
+COMMANDS = ["build", "run", "lj", "candidates", "procedure", "check"]
 
 
 @dataclass
