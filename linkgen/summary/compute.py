@@ -169,7 +169,8 @@ def _zoomed(log: StepLog, result: Result, lam: Array, k: int, measure: Any) -> t
     (across the seam of a whole turn); the row itself where the rows are more than STRIDE apart
     in an angle (a sweep over many turns: the places between rows are not one motion)."""
     h = float(lam[1] - lam[0]) if len(lam) > 1 else 0.0
-    if any(i.kind == "revolute" and abs(i.stop - i.start) * h > STRIDE for i in log.inputs):
+    apart = any(i.kind == "revolute" and abs(i.stop - i.start) * h > STRIDE for i in log.inputs)
+    if apart or (not _periodic(log) and k in (0, len(lam) - 1)):  # an end of the sweep: its row
         v = measure(result)
         return float(lam[k]), math.inf if v is None else float(v[k])
     lo, hi = float(lam[k]) - h, float(lam[k]) + h
@@ -184,11 +185,16 @@ def _zoomed(log: StepLog, result: Result, lam: Array, k: int, measure: Any) -> t
 def _golden(log: StepLog, lo: float, hi: float, measure: Any, warm: Any) -> tuple[float, float]:
     """(sweep position, value) of the least ``measure`` on [lo, hi] by golden-section search, one
     row at a time (a resolver's rows are solved one by one: a grid refinement would take ten
-    times the rows), each from the same warm start, until the bracket is 1e-9 of the sweep:
+    times the rows), each from the warm start the row before it left (the points close in, so
+    the resolver's continuation walks ever shorter), until the bracket is 1e-9 of the sweep:
     the value is then found to rounding (it is flat to second order there)."""
+    state = [warm]
 
     def value(lam: float) -> float:
-        v = measure(run(log, np.array([lam]), warm))
+        result = run(log, np.array([lam]), state[0])
+        if result.warm and result.warm[-1] is not None:
+            state[0] = result.warm[-1]
+        v = measure(result)
         return math.inf if v is None or not np.isfinite(v[0]) else float(v[0])
 
     ratio = (math.sqrt(5) - 1) / 2
