@@ -23,6 +23,8 @@ TURN = 2 * math.pi
 EDGE_ROUNDS = 12  # refinements of a limit position, each to 1/32 of the last
 EDGE_GRID = 33
 STRIDE = math.pi / 8  # rows of an angle farther apart than this are not refined between
+NEWTON = 12  # Newton steps on an output's rate before its bracket is searched instead
+EPS = float(np.finfo(float).eps)
 STILL = 1e-12  # an output whose travel is below this (radians, or of the length scale) does not move
 
 
@@ -167,10 +169,15 @@ def _transmission(log: StepLog, result: Result, lam: Array, units: _Units, edges
 def _zoomed(log: StepLog, result: Result, lam: Array, k: int, measure: Any) -> tuple[float, float]:
     """(sweep position, value) of the least ``measure`` around sweep row k, by grid refinement
     (across the seam of a whole turn); the row itself where the rows are more than STRIDE apart
-    in an angle (a sweep over many turns: the places between rows are not one motion)."""
+    in an angle (a sweep over many turns: the places between rows are not one motion), at an end
+    of the sweep, and with resolvers next to a failing row."""
     h = float(lam[1] - lam[0]) if len(lam) > 1 else 0.0
     apart = any(i.kind == "revolute" and abs(i.stop - i.start) * h > STRIDE for i in log.inputs)
-    if apart or (not _periodic(log) and k in (0, len(lam) - 1)):  # an end of the sweep: its row
+    failed = status.failed(result.status)
+    edge = log.groups and any(0 <= j < len(lam) and failed[j] for j in (k - 1, k + 1))
+    # an end of the sweep, or with resolvers the last row before a limit position (rows past it
+    # fail only after the resolver's whole search): that row
+    if apart or edge or (not _periodic(log) and k in (0, len(lam) - 1)):
         v = measure(result)
         return float(lam[k]), math.inf if v is None else float(v[k])
     lo, hi = float(lam[k]) - h, float(lam[k]) + h
@@ -269,13 +276,52 @@ def _extreme(log: StepLog, result: Result, lam: Array, k: int, variable: str, wr
     """(sweep position, value) of the output's extreme near row k: its least (sign 1) or
     greatest (sign -1) value, an angle measured from its value at row k."""
 
-    def measure(r: Result) -> Array:
-        y = np.asarray(r.values[variable][0], dtype=float)
-        out: Array = sign * (_wrapped(y - wrapped) if angle else y - wrapped)
+    def measure_at(y: Array | float) -> Array:
+        out: Array = sign * (_wrapped(np.asarray(y) - wrapped) if angle else np.asarray(y) - wrapped)
         return out
 
-    where, value = _zoomed(log, result, lam, k, measure)
+    def measure(r: Result) -> Array:
+        return measure_at(np.asarray(r.values[variable][0], dtype=float))
+
+    found = _stationary(log, result, lam, k, variable) if log.groups else None
+    if found is not None:
+        where, y = found
+        value = float(measure_at(y))
+    else:
+        where, value = _zoomed(log, result, lam, k, measure)
     return where, unwrapped + sign * min(value, 0.0)
+
+
+def _stationary(log: StepLog, result: Result, lam: Array, k: int, variable: str) -> tuple[float, float] | None:
+    """(sweep position, value) where the output's rate is zero near sweep row k, by Newton's
+    method on the rate with its acceleration (a row at order 2 per step, from the warm start the
+    step before left: a resolver solves rows one by one), or None where it does not converge
+    inside the rows either side of k (the caller then searches the bracket)."""
+    per = {round(i.speed / (i.stop - i.start), 12) for i in log.inputs if i.stop != i.start}
+    if len(per) != 1 or len(lam) < 3 or not 0 < k < len(lam) - 1:
+        return None
+    rate = next(iter(per))  # d lam / dt: every input's speed over its span, the same for all
+    lo, hi = float(lam[k - 1]), float(lam[k + 1])
+    at, warm = float(lam[k]), warm_after(result, k - 1)
+    start = np.array([i.start for i in log.inputs])
+    span = np.array([i.stop - i.start for i in log.inputs])
+    speeds = np.array([[i.speed for i in log.inputs]], dtype=float)
+    for _ in range(NEWTON):
+        with np.errstate(all="ignore"):
+            row = evaluate(log, (start + at * span)[None, :], speeds, np.zeros_like(speeds), order=2, warm=warm)
+        if status.failed(row.status[0]):
+            return None
+        warm = row.warm[-1] if row.warm else None
+        y, dy, ddy = (float(f[0]) for f in row.values[variable][:3])
+        if not (math.isfinite(dy) and math.isfinite(ddy)) or ddy == 0:
+            return None
+        step = -dy / ddy * rate
+        if abs(step) <= 4 * EPS * max(1.0, abs(at)):
+            return at, y
+        at += step
+        if not lo <= at <= hi:
+            return None
+    return None
 
 
 def _time_ratio(log: StepLog, result: Result, u: Array, low_at: float, high_at: float) -> float | None:

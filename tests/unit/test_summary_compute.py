@@ -149,3 +149,22 @@ def test_parallelogram_change_points_where_the_crank_lies_along_the_frame():
     assert [p.inputs[0] for p in s.positions] == pytest.approx([0.0, 180.0], abs=1e-9)
     assert (s.singular, s.failed) == (3, 0)
     assert all(t.turns for t in s.travels if t.name in ("crank.phi", "rocker.phi"))
+
+
+def test_a_resolvers_extreme_is_the_greatest_of_a_fine_sweep_around_it(tmp_path):
+    """Fig. 14 (a resolver: Newton on the rate): rocker1's greatest angle against a sweep of 1001
+    rows a thousandth of a degree apart around the place found (the sweep's own rows, from the
+    sketch): no row above it, the nearest within the second-order error of the step."""
+    import linkgen
+
+    sample = ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"
+    rocker = next(t for t in _summary(sample).travels if t.name == "rocker1.phi")
+    place = rocker.at_high[0]
+    fine = tmp_path / "fine.yaml"
+    fine.write_text(sample.read_text().replace("range: [0, 360]", f"range: [{place - 0.5!r}, {place + 0.5!r}]")
+                    .replace("samples: 361", "samples: 1001"))
+    rows = linkgen.load(fine).sweep()
+    angles = [math.degrees(x) for x in rows["rocker1.phi"]]
+    assert max(angles) <= rocker.high + 1e-12
+    assert rocker.high - max(angles) < 1e-9
+    assert abs(math.degrees(rows["theta_J7"][angles.index(max(angles))]) - place) < 2e-3
