@@ -334,7 +334,8 @@ def _time_ratio(log: StepLog, result: Result, u: Array, low_at: float, high_at: 
     if turns != 2:
         return None
     forward = ((high_at - low_at) % 1.0) * TURN
-    return max(forward, TURN - forward) / min(forward, TURN - forward)
+    faster = min(forward, TURN - forward)
+    return max(forward, TURN - forward) / faster if faster > 0 else None
 
 
 def _failures(log: StepLog, result: Result, units: _Units) -> tuple[Failure, ...]:
