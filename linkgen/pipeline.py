@@ -16,6 +16,7 @@ from .model import Mechanism
 from .options import overridden, policy_for
 from .prune import prune
 from .steplog import Draft, InputInfo, LinkInfo, PairInfo, StepLog
+from .summary.compute import summarize
 from .topology import Topology, analyse
 from .validate import read_mechanism
 
@@ -99,12 +100,14 @@ def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | No
     """The step log of a mechanism file for the outputs, order and options asked for (default: the
     file's; see draft), cut to the steps they need: made once from the draft of the whole procedure
     and its motion facts (with ``sweep``, the conditioning over the sweep too, for the
-    manual: it takes a sweep and root finding), then pruned."""
+    manual: it takes a sweep and root finding), then pruned; with ``sweep`` the engineering summary
+    of the pruned log too (linkgen.summary)."""
     m, topo, proc = analyse_file(path)
     if outputs is not None:
         _check_outputs(m, outputs)
     whole = draft(topo, proc, outputs, order, options)
-    return prune(with_facts(whole, motion_facts(whole, sweep)))
+    log = prune(with_facts(whole, motion_facts(whole, sweep)))
+    return replace(log, summary=summarize(log)) if sweep else log
 
 
 

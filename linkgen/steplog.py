@@ -21,6 +21,7 @@ from .motion import Singular as Singular
 from .options import Options
 from .policy import Policy
 from .primitives.dsl import record_fields
+from .summary.records import Summary
 
 
 @dataclass(frozen=True)
@@ -331,6 +332,7 @@ class StepLog(Procedure, Header):
     reach: Reach | None = None  # one input: the input values reached from the sketch
     gaps: tuple[Gap, ...] = ()  # one input: where each chain cannot close
     options: Options = Options()  # what the programs compute in and how (the file's options and the flags)
+    summary: Summary | None = None  # the engineering summary over the sweep (linkgen.summary; built with the sweep)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "status_codes", status_codes(self))

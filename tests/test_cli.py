@@ -31,7 +31,7 @@ ROOT = Path(__file__).resolve().parents[1]
 LINKGEN = Path(sys.executable).with_name("linkgen")
 FOURBAR = ROOT / "samples" / "fourbar" / "fourbar.yaml"
 OUTPUTS = sorted(p.name for p in (FOURBAR.parent / "expected").iterdir())
-COMMANDS = ["build", "run", "lj", "candidates", "procedure"]
+COMMANDS = ["build", "run", "lj", "candidates", "procedure", "check"]
 
 
 @dataclass
@@ -269,8 +269,14 @@ def test_version(linkgen, tmp_path: Path):
 # -- what the commands print (in-process) ---------------------------------------------
 
 def _ok(args: list, cwd: Path, monkeypatch: pytest.MonkeyPatch) -> str:
+    """stdout of a command that succeeds; build writes its one-line summary to stderr, nothing else."""
     outcome = _in_process(args, cwd, monkeypatch)
-    assert (outcome.code, outcome.err) == (0, ""), outcome.err
+    err = outcome.err
+    if args[0] == "build" and "--check" not in args:
+        lines = err.splitlines()
+        assert len(lines) == 1 and lines[0].startswith("linkgen: ") and " rows: " in lines[0], err
+        err = ""
+    assert (outcome.code, err) == (0, ""), outcome.err
     return outcome.out
 
 
@@ -335,7 +341,8 @@ def test_run_prints_the_sweep_solved_by_hand(tmp_path: Path, monkeypatch: pytest
 
 def test_lj_prints_the_pairs_on_each_link_before_step_1(tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
     """Before step 1 every pair is unknown: 1 where the file lists a pair on a link."""
-    text = _ok(["lj", FOURBAR, "--step", "0"], tmp_path, monkeypatch)
+    legend, text = _ok(["lj", FOURBAR, "--step", "0"], tmp_path, monkeypatch).split("\n\n", 1)
+    assert legend.startswith("# Rows are pairs, columns links") and "-1 (-2): a known one" in legend
     title, head, *rows = text.splitlines()
     assert title == "# LJ-matrix before step 1"
     links = head.split()

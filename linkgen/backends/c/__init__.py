@@ -53,7 +53,7 @@ def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
     return {
         "NAME.h": template("NAME.h.j2", upper=upper, n_columns=len(columns), point_fields=fields["point"],
                            angle_fields=fields["angle"], slide_fields=fields["slide"],
-                           direction_fields=fields["direction"]),
+                           direction_fields=fields["direction"], columns=columns, inputs=lists),
         "NAME.c": template("NAME.c.j2", upper=upper,
                            runtime=runtime_sources(view, c_function, RUNTIME, status=_reads_reasons(view)),
                            record_fields=record_fields, sketch_in=lists["sketch"],
