@@ -12,6 +12,8 @@ from .directions import unit_directions
 from .errors import InputError, and_list
 from .extraction import Procedure, extract
 from .extraction.closure import ClosureRefused, with_closures
+from .instant.names import centre_problem, is_centre
+from .instant.steps import centre_records, with_centres
 from .model import Mechanism
 from .options import overridden, policy_for
 from .prune import prune
@@ -53,15 +55,27 @@ def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = Non
                   s, v)
         for i, s, v in zip(m.inputs, topo.sketch_inputs, input_vars)
     )
-    columns = plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars)
+    centres = centre_records(proc, tuple(o for o in outputs if is_centre(o)))
+    if centres and order == 0:
+        _no_velocities(m, next(iter(centres)), outputs is m.outputs)
+    columns = plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars, centres)
     if opts.angles == "unit":
         proc, columns = unit_directions(proc, columns, len(inputs))
+    proc = with_centres(proc, m, centres)
     return Draft(StepLog(
         __version__, m.name, m.title, m.source, m.length_unit, m.angle_unit, topo.length_scale, topo.origin,
         topo.grubler, topo.mobility, topo.redundant, order, m.samples, pairs, links, inputs, proc.variables, proc.steps,
         proc.lj, proc.add_links, proc.residuals, proc.groups, columns, policy_for(opts),
         outputs=tuple(outputs), options=opts,
     ))
+
+
+def _no_velocities(m: Mechanism, centre: str, in_file: bool) -> None:
+    """An instant centre is known from velocities: at order 0 it is an error where the outputs were given."""
+    given = m.outputs_where if in_file else None
+    where = (m.path, given.line, "outputs") if given else ("command line", 0, "--outputs")
+    raise InputError(f"the instant centre {centre} is found from the links' velocities, and the order is 0 "
+                     f"(displacements only): build with order 1 or 2 (--order 1)", *where)
 
 
 def _closed(proc: Procedure, m: Mechanism, flag: bool) -> Procedure:
@@ -86,8 +100,11 @@ def analyse_file(path: str) -> tuple[Mechanism, Topology, Procedure]:
 def _check_outputs(m: Mechanism, outputs: tuple[str, ...]) -> None:
     """Outputs given on the command line name pairs, points or links of the mechanism."""
     names = [j.name for j in m.joints] + [p.name for p in m.points] + [lk.name for lk in m.links]
+    links = [lk.name for lk in m.links]
     for name in outputs:
-        if name not in names:
+        if is_centre(name) and (problem := centre_problem(name, links)):
+            raise InputError(problem, "command line", 0, "--outputs")
+        if name not in names and not is_centre(name):
             raise InputError(f"{name} is not a pair, point or link of {m.name} (they are {and_list(names)})",
                              "command line", 0, "--outputs")
         if outputs.count(name) > 1:

@@ -355,6 +355,8 @@ class StepLog(Procedure, Header):
         """What a program adds to a computed record's field to publish it: the origin's
         coordinate for a point's x and y, else 0 (a direction's x and y too)."""
         v = self.variable(c.variable)
+        if v.kind == "CENTRE" and c.field in ("x", "y"):  # an instant centre's position
+            return self.origin[c.field == "y"]
         if v.kind != "POINT" or v.role == "direction" or c.field not in record_fields("POINT", 0):
             return 0.0
         return self.origin[c.field == "y"]

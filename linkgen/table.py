@@ -7,11 +7,12 @@ import math
 import numpy as np
 
 from . import status
+from .columns import CENTRE_QUANTITIES
 from .evaluate import Result
 from .primitives.dsl import record_fields
 from .steplog import StepLog
 
-_DERIVATIVES = {"velocity", "acceleration", "angular_velocity", "angular_acceleration"}
+_DERIVATIVES = {"velocity", "acceleration", "angular_velocity", "angular_acceleration", *CENTRE_QUANTITIES}
 
 
 def number(x: float) -> str:

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 from ..primitives import PRIMITIVES
 from ..primitives.dsl import Primitive
+from ..columns import CENTRE_QUANTITIES
 from . import Runtime
 
 if TYPE_CHECKING:
@@ -15,7 +16,7 @@ if TYPE_CHECKING:
 
 # The derivative order of each output quantity.
 LEVEL = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
-         "angular_acceleration": 2}
+         "angular_acceleration": 2, **{q: 1 for q in CENTRE_QUANTITIES}}
 
 
 def used_primitives(view: View) -> list[str]:
