@@ -4,7 +4,8 @@ Each centre is one ``instant_centre`` call after the procedure's last step (the 
 numbers move up by as many, as for directions), reading one point and the angle record of each
 link.  Where a revolute pair joins the two links, that pair is the point of both, so the centre
 is the pair to the last bit; otherwise each link gives its first revolute pair, else a
-prismatic pair it slides on (the pair's record moves with the slider), else one of its points.
+prismatic pair it slides on (the pair's record moves with the slider), else one of its points,
+else the guide's copy of a pair it guides.
 """
 
 from __future__ import annotations
@@ -39,24 +40,27 @@ def centre_records(proc: Procedure, outputs: tuple[str, ...]) -> dict[str, str]:
     return made
 
 
-def _point(m: Mechanism, link: str, other: str) -> str:
-    """The pair or point whose record stands for ``link`` (a pair it shares with ``other`` first)."""
+def _point(proc: Procedure, m: Mechanism, link: str, other: str) -> tuple[str, str]:
+    """The pair or point whose record stands for ``link`` (a pair it shares with ``other`` first), and
+    that record: a revolute pair, a prismatic pair it slides on (the record is the slider's copy), a
+    point of it, else the guide's copy of a pair it guides."""
     own = m.link(link)
     revolute = [j for j in own.joints if m.joint(j).revolute]
     shared = [j for j in revolute if any(lk.name == other for lk in m.links_of(j))]
     slides = [j for j in own.joints if not m.joint(j).revolute and m.prismatic_of(j).slider == link]
-    found = shared + revolute + slides + [p.name for p in own.points]
+    found = [(n, proc.positions[n]) for n in shared + revolute + slides + [p.name for p in own.points]]
+    guides = {v.entity: v.name for v in proc.variables if v.role == "guide"}
+    found += [(j, guides[j]) for j in own.joints if j in guides and m.prismatic_of(j).guide == link]
     if not found:
-        raise InputError(f"link {link} has no revolute pair, slides on no pair and has no point: "
+        raise InputError(f"link {link} has no revolute pair or point and no record of a pair on it: "
                          f"its instant centres cannot be computed", m.path, own.where.line, "outputs")
     return found[0]
 
 
 def _step(proc: Procedure, m: Mechanism, number: int, name: str, record: str) -> Step:
     a, b = links_of(name)
-    pa, pb = _point(m, a, b), _point(m, b, a)
-    args = (Arg("var", proc.positions[pa]), Arg("var", proc.angles[a]),
-            Arg("var", proc.positions[pb]), Arg("var", proc.angles[b]))
+    (pa, ra), (pb, rb) = _point(proc, m, a, b), _point(proc, m, b, a)
+    args = (Arg("var", ra), Arg("var", proc.angles[a]), Arg("var", rb), Arg("var", proc.angles[b]))
     return Step(number, "centre", "instant_centre", args, (record,), name, "", (pa, pb), (a, b), 0,
                 f"the velocities of links {a} and {b} are known, so their instant centre is", "", (), 0, False)
 
