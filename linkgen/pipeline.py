@@ -14,10 +14,11 @@ from .extraction import Procedure, extract
 from .extraction.closure import ClosureRefused, with_closures
 from .instant.names import centre_problem, is_centre
 from .instant.steps import centre_records, with_centres
+from .instant.table import at_sketch, centre_outputs
 from .model import Mechanism
 from .options import overridden, policy_for
 from .prune import prune
-from .steplog import Draft, InputInfo, LinkInfo, PairInfo, StepLog
+from .steplog import CentreAt, Draft, InputInfo, LinkInfo, PairInfo, StepLog
 from .topology import Topology, analyse
 from .validate import read_mechanism
 
@@ -115,13 +116,27 @@ def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | No
               sweep: bool = True, options: Mapping[str, object] | None = None) -> StepLog:
     """The step log of a mechanism file for the outputs, order and options asked for (default: the
     file's; see draft), cut to the steps they need: made once from the draft of the whole procedure
-    and its motion facts (with ``sweep``, the conditioning over the sweep too, for the
-    manual: it takes a sweep and root finding), then pruned."""
+    and its motion facts (with ``sweep``, the conditioning over the sweep and every instant centre
+    at the sketch too, for the manual: it takes a sweep and root finding), then pruned."""
     m, topo, proc = analyse_file(path)
     if outputs is not None:
         _check_outputs(m, outputs)
     whole = draft(topo, proc, outputs, order, options)
-    return prune(with_facts(whole, motion_facts(whole, sweep)))
+    log = with_facts(whole, motion_facts(whole, sweep))
+    if sweep:  # the manual's instant centres
+        log = replace(log, centres=_sketch_centres(topo, proc, options))
+    return prune(log)
+
+
+def _sketch_centres(topo: Topology, proc: Procedure, options: Mapping[str, object] | None) -> tuple[CentreAt, ...]:
+    """Every instant centre at the sketch (the manual's); none where a link has no record to compute
+    its centres from."""
+    m = topo.mechanism
+    try:
+        log = draft(topo, proc, centre_outputs(m), 1, options)
+    except InputError:
+        return ()
+    return at_sketch(log, m)
 
 
 

@@ -266,6 +266,25 @@ class Omitted:
 
 
 @dataclass(frozen=True)
+class CentreAt:
+    """An instant centre at the sketch, moving at the inputs' speeds (the manual's table and figure;
+    linkgen.instant): its class from the topology and its place (x, y None at infinity)."""
+
+    name: str  # ic:LINK1:LINK2
+    links: tuple[str, str]
+    kind: str  # first | secondary | third A | third B
+    pair: str  # the pair that joins the links ("" for none)
+    lines: tuple[str, ...]  # the third links of the Kennedy lines it lies on (those that place it)
+    placed: bool  # the theorem places it (first, secondary, and the third centres it reaches)
+    x: float | None
+    y: float | None
+    ux: float | None
+    uy: float | None
+    status: int  # 0 finite, 1 at infinity, 2 the links move alike (x, y their pair)
+    sigma: float
+
+
+@dataclass(frozen=True)
 class Header:
     """The mechanism as the programs and the manual see it: its names, units, the sketch's
     scale and origin, its mobility, the sweep, its pairs, links and inputs."""
@@ -331,6 +350,7 @@ class StepLog(Procedure, Header):
     reach: Reach | None = None  # one input: the input values reached from the sketch
     gaps: tuple[Gap, ...] = ()  # one input: where each chain cannot close
     options: Options = Options()  # what the programs compute in and how (the file's options and the flags)
+    centres: tuple[CentreAt, ...] = ()  # every instant centre at the sketch (with the sweep: for the manual)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "status_codes", status_codes(self))

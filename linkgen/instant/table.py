@@ -12,7 +12,7 @@ import numpy as np
 
 from ..evaluate import evaluate
 from ..model import Mechanism
-from ..steplog import StepLog
+from ..steplog import CentreAt, StepLog
 from ..table import columns
 from .classify import Centre, classify
 
@@ -102,3 +102,16 @@ def to_json(log: StepLog, table: Table) -> str:
     doc = {"mechanism": log.name, "inputs": list(table.inputs), "rates": list(table.rates),
            "row_status": table.row_status, "centres": rows}
     return json.dumps(doc, indent=2) + "\n"
+
+
+def at_sketch(log: StepLog, m: Mechanism) -> tuple[CentreAt, ...]:
+    """Every centre at the sketch, the inputs at their speeds, as the step log keeps them (``log``
+    built with every centre as an output)."""
+    table = locate(log, m)
+
+    def num(x: float) -> float | None:
+        return x if math.isfinite(x) else None
+
+    return tuple(CentreAt(c.centre.name, c.centre.links, c.centre.kind, c.centre.pair, c.centre.lines,
+                          c.centre.placed, num(c.x), num(c.y), num(c.ux), num(c.uy), c.status, c.sigma)
+                 for c in table.centres)

@@ -21,6 +21,7 @@ from ..errors import and_list
 from ..options import describe
 from ..policy import for_real
 from ..steplog import StepLog
+from ..instant.figure import render_centres_svg
 from .svg import render_svg
 from .view import View, build_view
 
@@ -110,6 +111,8 @@ def render_all(log: StepLog) -> dict[str, bytes]:
     """The step log, its figure and every backend's files."""
     view = build_view(log)
     files = {f"{log.name}.json": log.to_json().encode("utf-8"), f"{log.name}.svg": render_svg(log).encode("utf-8")}
+    if log.centres:  # the manual's figure of the instant centres
+        files[f"{log.name}_centres.svg"] = render_centres_svg(log).encode("utf-8")
     for backend in backends():
         files.update(render_backend(backend, view))
     return files
