@@ -76,8 +76,7 @@ def outputs(sheet: Sheet, links: list[str]) -> tuple[tuple[str, ...], Where | No
     node = sheet.root.get("outputs")
     if node is None:
         return (), None
-    seq = sheet.sequence(node, "the outputs as a list of pair, point and link names, such as [B, P, rocker] "
-                         "(and instant centres ic:LINK1:LINK2)")
+    seq = sheet.sequence(node, "the outputs as a list of pair, point and link names, such as [B, P, rocker]")
     names: list[str] = []
     for item in seq.items:
         centre = isinstance(item, Scalar) and is_centre(item.text)
