@@ -320,13 +320,15 @@ def kennedy_worst(path: Path, rows: int) -> float:
     log = centre_log(path)
     links = [lk.name for lk in read_mechanism(str(path)).links]
     worst = 0.0
-    for k in np.flatnonzero(st == 0):
-        def centre(a, b):
-            name = f"ic:{a}:{b}" if links.index(a) < links.index(b) else f"ic:{b}:{a}"
-            return tuple(float(c[f"{name}.{f}"][k]) for f in ("status", "x", "y", "ux", "uy", "sigma"))
 
+    def centre(a: str, b: str, k: int) -> tuple:
+        name = f"ic:{a}:{b}" if links.index(a) < links.index(b) else f"ic:{b}:{a}"
+        return tuple(float(c[f"{name}.{f}"][k]) for f in ("status", "x", "y", "ux", "uy", "sigma"))
+
+    for k in np.flatnonzero(st == 0):
         for a, b, d in itertools.combinations(links, 3):
-            worst = max(worst, kennedy_residual([centre(a, b), centre(b, d), centre(a, d)], log.length_scale))
+            triple = [centre(a, b, k), centre(b, d, k), centre(a, d, k)]
+            worst = max(worst, kennedy_residual(triple, log.length_scale))
     return worst
 
 
@@ -458,3 +460,27 @@ def test_pruned_build_computes_only_what_the_centre_needs():
     """ic:frame:crank needs O1, A and the crank's angle only: the coupler and rocker steps are left out."""
     log = build_log(str(mech("fourbar")), outputs=("ic:frame:crank",), order=1, sweep=False)
     assert [s.function for s in log.steps] == ["", "crank_input", "link_angle", "instant_centre"]
+
+
+def test_linkgen_ic_prints_the_table_and_json():
+    import json
+
+    from click.testing import CliRunner
+
+    from linkgen.cli import cli
+
+    runner = CliRunner()
+    path = str(mech("slider_crank"))
+    done = runner.invoke(cli, ["ic", path, "--json", "--at", "90", "--rates", "-360"])
+    assert done.exit_code == 0, done.output
+    doc = json.loads(done.output)
+    assert doc["inputs"] == [90.0] and doc["rates"] == [-360.0]
+    by = {c["centre"]: c for c in doc["centres"]}
+    assert len(by) == 6 and by["ic:frame:block"]["status"] == 1 and by["ic:frame:block"]["x"] is None
+    assert by["ic:frame:crank"]["class"] == "first" and (by["ic:frame:crank"]["x"], by["ic:frame:crank"]["y"]) == (0, 0)
+    # the crank at right angles to the slide: the rod translates for an instant, its centre with the frame at infinity
+    assert by["ic:frame:rod"]["status"] == 1
+    table = runner.invoke(cli, ["ic", path])
+    assert table.exit_code == 0 and "ic:frame:block  third A    at infinity, direction (0, 1)" in table.output
+    wrong = runner.invoke(cli, ["ic", path, "--at", "1,2"])
+    assert wrong.exit_code == 2 and "1 input" in wrong.output

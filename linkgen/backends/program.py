@@ -5,9 +5,9 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from ..columns import CENTRE_QUANTITIES
 from ..primitives import PRIMITIVES
 from ..primitives.dsl import Primitive
-from ..columns import CENTRE_QUANTITIES
 from . import Runtime
 
 if TYPE_CHECKING:

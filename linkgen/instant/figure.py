@@ -49,7 +49,7 @@ def kennedy_line(by: dict[frozenset[str], CentreAt], a: str, k: str, b: str) -> 
         (x0, y0), (x1, y1) = finite
         return (x0, y0), (x1 - x0, y1 - y0)
     if len(finite) == 1 and len(far) == 1:
-        return finite[0], far[0]  # type: ignore[return-value]
+        return finite[0], far[0]
     return None
 
 
@@ -85,8 +85,8 @@ def render_centres_svg(log: StepLog) -> str:
         pts = [at(spots[n]) for n in (*lk.pairs, *lk.points)]
         for p, q in zip(pts, pts[1:] + pts[:1] if len(pts) > 2 else pts[1:]):
             out.append(_line(p, q, 'stroke="#555555" stroke-width="2" stroke-opacity="0.6"'))
-    for p in log.pairs:
-        x, y = at((p.x, p.y))
+    for pair in log.pairs:
+        x, y = at((pair.x, pair.y))
         out.append(f'<circle cx="{_f(x)}" cy="{_f(y)}" r="3" fill="white" stroke="#555555"/>')
     off: list[str] = []
     for c in log.centres:
@@ -102,8 +102,8 @@ def render_centres_svg(log: StepLog) -> str:
     foot = [f"links: {legend}",
             "blue first, green secondary, red third A, orange third B; faint: the Aronhold-Kennedy lines",
             ("not drawn: " + ", ".join(off)) if off else "every centre is drawn"]
-    for k, text in enumerate(foot):
-        out.append(f'<text x="{_f(MARGIN / 2)}" y="{_f(height - 10 - 16 * (2 - k))}" fill="#555555">'
+    for row, text in enumerate(foot):
+        out.append(f'<text x="{_f(MARGIN / 2)}" y="{_f(height - 10 - 16 * (2 - row))}" fill="#555555">'
                    f"{_esc(text)}</text>")
     out.append("</svg>")
     return "\n".join(out) + "\n"

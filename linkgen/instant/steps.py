@@ -15,8 +15,9 @@ from typing import TypeVar
 
 from ..directions import renumbered
 from ..errors import InputError
+from ..extraction import Procedure
 from ..model import Mechanism
-from ..steplog import Arg, Procedure, Step, Variable
+from ..steplog import Arg, Step, Variable
 from .names import field_name, links_of
 
 P = TypeVar("P", bound=Procedure)

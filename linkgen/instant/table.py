@@ -49,17 +49,23 @@ def locate(log: StepLog, m: Mechanism, values: Sequence[float] | None = None,
            rates: Sequence[float] | None = None) -> Table:
     """Every centre of a log built with every centre as an output (``centre_outputs``), at the input
     values and rates (radians, length units; default: the sketch and the inputs' speeds)."""
-    x = tuple(i.sketch for i in log.inputs) if values is None else tuple(values)
-    dx = tuple(i.speed for i in log.inputs) if rates is None else tuple(rates)
-    result = evaluate(log, np.array([x], dtype=float), np.array([dx], dtype=float), np.zeros((1, len(x))), order=1)
+    here = tuple(i.sketch for i in log.inputs) if values is None else tuple(values)
+    speeds = tuple(i.speed for i in log.inputs) if rates is None else tuple(rates)
+    result = evaluate(log, np.array([here], dtype=float), np.array([speeds], dtype=float), np.zeros((1, len(here))),
+                      order=1)
     names, data = columns(log, result)
     row = dict(zip(names, data[0]))
     out = []
     for c in classify(m):
-        st = row[f"{c.name}.status"]
-        out.append(Located(c, *(float(row[f"{c.name}.{f}"]) for f in ("x", "y", "ux", "uy")),
-                           int(st) if math.isfinite(st) else -1, float(row[f"{c.name}.sigma"])))
-    return Table(x, dx, int(result.status[0]), tuple(out))
+        st, x, y, ux, uy, sigma = (float(row[f"{c.name}.{f}"]) for f in ("status", "x", "y", "ux", "uy", "sigma"))
+        out.append(Located(c, x, y, ux, uy, int(st) if math.isfinite(st) else -1, sigma))
+    return Table(here, speeds, int(result.status[0]), tuple(out))
+
+
+def file_units(log: StepLog, values: Sequence[float]) -> tuple[float, ...]:
+    """Input values or rates (radians) in the file's units, as --at and --rates take them."""
+    scale = 180 / math.pi if log.angle_unit == "deg" else 1.0
+    return tuple(v * scale if i.kind == "revolute" else float(v) for i, v in zip(log.inputs, values))
 
 
 def _g(x: float) -> str:
@@ -79,10 +85,10 @@ def where(c: Located) -> str:
 
 def text(log: StepLog, table: Table) -> str:
     """The table of centres as ``linkgen ic`` prints it."""
-    lines = [f"Instant centres of {log.name} ({len(table.centres)}): class from the topology, place at "
-             + ", ".join(f"{i.column} = {_g(v)}" for i, v in zip(log.inputs, table.inputs))
-             + " with rates " + ", ".join(_g(r) for r in table.rates) + f" (radians, {log.length_unit or 'lengths'}, "
-             f"per second; row status {table.row_status})"]
+    units = ", ".join(f"{i.column} = {_g(v)}" for i, v in zip(log.inputs, file_units(log, table.inputs)))
+    rates = ", ".join(_g(r) for r in file_units(log, table.rates))
+    lines = [f"Instant centres of {log.name} ({len(table.centres)}): class from the topology, place at {units} "
+             f"moving at {rates} per second (the file's units; row status {table.row_status})"]
     width = max(len(c.centre.name) for c in table.centres)
     for c in table.centres:
         how = f"pair {c.centre.pair}" if c.centre.pair else (
@@ -99,7 +105,8 @@ def to_json(log: StepLog, table: Table) -> str:
     rows = [{"centre": c.centre.name, "links": list(c.centre.links), "class": c.centre.kind, "pair": c.centre.pair,
              "placed_by_theorem": c.centre.placed, "lines": list(c.centre.lines), "x": _num(c.x), "y": _num(c.y),
              "ux": _num(c.ux), "uy": _num(c.uy), "status": c.status, "sigma": _num(c.sigma)} for c in table.centres]
-    doc = {"mechanism": log.name, "inputs": list(table.inputs), "rates": list(table.rates),
+    doc = {"mechanism": log.name, "inputs": list(file_units(log, table.inputs)),
+           "rates": list(file_units(log, table.rates)),
            "row_status": table.row_status, "centres": rows}
     return json.dumps(doc, indent=2) + "\n"
 

@@ -9,8 +9,9 @@ sum is 0): the rounding of w1 - w2 is of the order of eps times the angular rate
 links' and the relative velocity over the points' distance, so the centre's relative error is
 of the order of eps / sigma; and sigma <= |a - b| / |c - a|.  Below the singular threshold the centre is
 at infinity (status 1) and x, y are nan; where g is zero there too, the links move alike and
-every point is a centre (status 2): x, y are a's (the pair of a first centre).  u = k x g / |g| (its sign chosen so that ux > 0, or uy > 0 where ux = 0) is the
-direction in which it lies from a: the line at infinity's direction for a centre at infinity.
+every point is a centre (status 2): x, y are a's (the pair of a first centre).  u = k x g / |g|
+(its sign chosen so that ux > 0, or uy > 0 where ux = 0) is the direction in which the centre
+lies from a: for a centre at infinity, the direction of that point at infinity.
 """
 
 from __future__ import annotations

@@ -18,10 +18,10 @@ import jinja2
 from .. import __version__, status
 from ..backends import Backend, backends
 from ..errors import and_list
+from ..instant.figure import render_centres_svg
 from ..options import describe
 from ..policy import for_real
 from ..steplog import StepLog
-from ..instant.figure import render_centres_svg
 from .svg import render_svg
 from .view import View, build_view
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import math
 import os
 
-from ..loader import Node, Scalar
 from ..instant.names import centre_problem, is_centre
+from ..loader import Node, Scalar
 from ..model import Where
 from ..options import CHOICES, MAX_ITERATIONS, MAX_TOLERANCE, Options
 from .naming import program_name
@@ -79,8 +79,9 @@ def outputs(sheet: Sheet, links: list[str]) -> tuple[tuple[str, ...], Where | No
     seq = sheet.sequence(node, "the outputs as a list of pair, point and link names, such as [B, P, rocker]")
     names: list[str] = []
     for item in seq.items:
-        centre = isinstance(item, Scalar) and is_centre(item.text)
-        name = item.text if centre else sheet.name(item, "an output, a pair, point or link name")
+        text = item.text if isinstance(item, Scalar) else ""
+        centre = is_centre(text)
+        name = text if centre else sheet.name(item, "an output, a pair, point or link name")
         if centre:
             if problem := centre_problem(name, links):
                 raise sheet.error(item, problem)

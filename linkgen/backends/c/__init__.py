@@ -5,9 +5,9 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from ...policy import REAL_TYPES
+from ...primitives.dsl import record_fields as record_fields_of
 from .. import Backend, Runtime, Template
 from ..program import input_lists, runtime_sources, sketch_states
-from ...primitives.dsl import record_fields as record_fields_of
 from .printer import c_function
 from .real import retype, typedef
 from .spelling import C
