@@ -11,7 +11,6 @@ _ANGLE = (("phi", "the", "angle"), ("omega", "dthe", "angular_velocity"), ("alph
 # an instant centre (ic:LINK1:LINK2, linkgen.instant): known from velocities, so every column is of order 1
 _CENTRE = (("x", "x", "centre"), ("y", "y", "centre"), ("ux", "ux", "centre_direction"),
            ("uy", "uy", "centre_direction"), ("status", "status", "centre_status"), ("sigma", "sigma", "centre_sigma"))
-CENTRE_QUANTITIES = ("centre", "centre_direction", "centre_status", "centre_sigma")
 _SLIDE = (("s", "v", "position"), ("ds", "dv", "velocity"), ("dds", "ddv", "acceleration"))
 # a link's direction (angles: unit): the unit vector (cos, sin) of its angle and its rates, as a
 # POINT record's fields; each takes the place, and the quantity, of the angle column of its order

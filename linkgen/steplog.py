@@ -14,6 +14,7 @@ from typing import NewType
 
 from .codes import StatusCode as StatusCode
 from .codes import status_codes
+from .instant.record import CentreAt as CentreAt
 from .motion import Conditioning as Conditioning
 from .motion import Gap as Gap
 from .motion import Reach as Reach
@@ -266,25 +267,6 @@ class Omitted:
 
 
 @dataclass(frozen=True)
-class CentreAt:
-    """An instant centre at the sketch, moving at the inputs' speeds (the manual's table and figure;
-    linkgen.instant): its class from the topology and its place (x, y None at infinity)."""
-
-    name: str  # ic:LINK1:LINK2
-    links: tuple[str, str]
-    kind: str  # first | secondary | third A | third B
-    pair: str  # the pair that joins the links ("" for none)
-    lines: tuple[str, ...]  # the third links of the Kennedy lines it lies on (those that place it)
-    placed: bool  # the theorem places it (first, secondary, and the third centres it reaches)
-    x: float | None
-    y: float | None
-    ux: float | None
-    uy: float | None
-    status: int  # 0 finite, 1 at infinity, 2 the links move alike (x, y their pair)
-    sigma: float
-
-
-@dataclass(frozen=True)
 class Header:
     """The mechanism as the programs and the manual see it: its names, units, the sketch's
     scale and origin, its mobility, the sweep, its pairs, links and inputs."""
@@ -372,12 +354,10 @@ class StepLog(Procedure, Header):
         return v.value[fields.index(c.field)] if c.field in fields else 0.0
 
     def offset(self, c: Column) -> float:
-        """What a program adds to a computed record's field to publish it: the origin's
-        coordinate for a point's x and y, else 0 (a direction's x and y too)."""
+        """What a program adds to publish a field: the origin's x or y to a point's or a centre's, else 0."""
         v = self.variable(c.variable)
-        if v.kind == "CENTRE" and c.field in ("x", "y"):  # an instant centre's position
-            return self.origin[c.field == "y"]
-        if v.kind != "POINT" or v.role == "direction" or c.field not in record_fields("POINT", 0):
+        point = v.kind == "POINT" and v.role != "direction" or v.kind == "CENTRE"
+        if not point or c.field not in ("x", "y"):
             return 0.0
         return self.origin[c.field == "y"]
 

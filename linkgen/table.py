@@ -7,8 +7,8 @@ import math
 import numpy as np
 
 from . import status
-from .columns import CENTRE_QUANTITIES
 from .evaluate import Result
+from .instant.names import CENTRE_QUANTITIES
 from .primitives.dsl import record_fields
 from .steplog import StepLog
 

@@ -423,20 +423,6 @@ def test_primitive_gives_the_same_bits_in_every_language(tmp_path):
     assert m_out == want
 
 
-def test_primitive_cases_by_hand():
-    """A crank turning at 1 about (1, 0)... as a point a = (0, 0) moving at (1, 0): the centre of it and
-    the frame is (0, 1); two links turning alike and translating apart are at infinity across the motion;
-    a pair both links share is their centre even where they move alike."""
-    f = python_backend(1)["instant_centre"]
-    assert f((0.0, 0.0, 1.0, 0.0), (0.0, 1.0), (1.0, 0.0, 0.0, 0.0), (0.0, 0.0))[:2] == (0.0, 1.0)
-    x, y, ux, uy, st, sigma = f((0.0, 0.0, 2.0, 0.0), (0.0, 0.5), (3.0, 0.0, 2.0, 1.0), (0.0, 0.5))
-    # relative velocity at a: (0, -1) - 0.5 k x (-3, 0) = (0, -1) + (0, 1.5) = (0, 0.5): the centre lies along x
-    assert st == 1 and math.isnan(x) and (ux, uy) == (1.0, 0.0) and sigma == 0.0
-    a = (4.0, 5.0, 1.0, 2.0)
-    same = f(a, (0.0, 1.0), a, (0.0, 1.0))
-    assert same[:2] == (4.0, 5.0) and same[4] == 2.0
-
-
 def test_order_0_is_an_error_naming_the_outputs(tmp_path):
     path = tmp_path / "m.yaml"
     text = mech("fourbar").read_text().replace("samples: 361", "samples: 5\norder: 0\noutputs: [B, ic:crank:rocker]")

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from ..columns import CENTRE_QUANTITIES
+from ..instant.names import CENTRE_QUANTITIES
 from ..primitives import PRIMITIVES
 from ..primitives.dsl import Primitive
 from . import Runtime

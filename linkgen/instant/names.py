@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 PREFIX = "ic:"
+# the quantity classes of a centre's columns (x, y; ux, uy; status; sigma), every one of order 1
+CENTRE_QUANTITIES = ("centre", "centre_direction", "centre_status", "centre_sigma")
 
 
 def is_centre(name: str) -> bool:

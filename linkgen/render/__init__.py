@@ -18,7 +18,6 @@ import jinja2
 from .. import __version__, status
 from ..backends import Backend, backends
 from ..errors import and_list
-from ..instant.figure import render_centres_svg
 from ..options import describe
 from ..policy import for_real
 from ..steplog import StepLog
@@ -111,7 +110,9 @@ def render_all(log: StepLog) -> dict[str, bytes]:
     """The step log, its figure and every backend's files."""
     view = build_view(log)
     files = {f"{log.name}.json": log.to_json().encode("utf-8"), f"{log.name}.svg": render_svg(log).encode("utf-8")}
-    if log.centres:  # the manual's figure of the instant centres
+    if log.centres:  # the manual's figure of the instant centres (drawn with render.svg's helpers: imported here)
+        from ..instant.figure import render_centres_svg
+
         files[f"{log.name}_centres.svg"] = render_centres_svg(log).encode("utf-8")
     for backend in backends():
         files.update(render_backend(backend, view))
