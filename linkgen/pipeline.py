@@ -60,9 +60,9 @@ def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = Non
     if centres and order == 0:
         _no_velocities(m, next(iter(centres)), outputs is m.outputs)
     columns = plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars, centres)
+    proc = with_centres(proc, m, centres)  # before the directions: a centre reads its links' angles
     if opts.angles == "unit":
         proc, columns = unit_directions(proc, columns, len(inputs))
-    proc = with_centres(proc, m, centres)
     return Draft(StepLog(
         __version__, m.name, m.title, m.source, m.length_unit, m.angle_unit, topo.length_scale, topo.origin,
         topo.grubler, topo.mobility, topo.redundant, order, m.samples, pairs, links, inputs, proc.variables, proc.steps,
@@ -103,7 +103,7 @@ def _check_outputs(m: Mechanism, outputs: tuple[str, ...]) -> None:
     names = [j.name for j in m.joints] + [p.name for p in m.points] + [lk.name for lk in m.links]
     links = [lk.name for lk in m.links]
     for name in outputs:
-        if is_centre(name) and (problem := centre_problem(name, links)):
+        if is_centre(name) and (problem := centre_problem(name, links, names)):
             raise InputError(problem, "command line", 0, "--outputs")
         if name not in names and not is_centre(name):
             raise InputError(f"{name} is not a pair, point or link of {m.name} (they are {and_list(names)})",

@@ -343,7 +343,7 @@ def test_every_three_centres_lie_on_one_line(path):
 # --------------------------------------------------------------------------- the programs
 
 
-@pytest.mark.parametrize("name", ["ic_fivebar_p1", "slider_crank"])
+@pytest.mark.parametrize("name", ["ic_fivebar_p1", pytest.param("slider_crank", marks=pytest.mark.long)])
 def test_c_python_octave_same_bits_and_the_kernel(name, tmp_path):
     log = centre_log(mech(name), every=False)
     write_all(render_all(log), str(tmp_path))
@@ -470,3 +470,19 @@ def test_linkgen_ic_prints_the_table_and_json():
     assert table.exit_code == 0 and "ic:frame:block  third A    at infinity, direction (0, 1)" in table.output
     wrong = runner.invoke(cli, ["ic", path, "--at", "1,2"])
     assert wrong.exit_code == 2 and "1 input" in wrong.output
+
+
+def test_centres_with_angles_as_unit_vectors_are_the_angle_builds():
+    """angles: unit replaces the angle steps only the outputs read; a centre reads its links' angles,
+    so they stay, and the centres are the same bits."""
+    path = str(mech("fourbar"))
+    wanted = ("rocker", "ic:frame:rocker", "ic:crank:rocker")
+    logs = [build_log(path, outputs=wanted, order=1, sweep=False, options=o) for o in ({}, {"angles": "unit"})]
+    rows = []
+    for log in logs:
+        x, r, a = input_rows(log, 19)
+        names, data = columns(log, evaluate(log, x, r, a))
+        rows.append({n: data[:, k] for k, n in enumerate(names) if n.startswith("ic:")})
+    assert rows[0].keys() == rows[1].keys() and len(rows[0]) == 12
+    for n in rows[0]:
+        assert np.array_equal(rows[0][n], rows[1][n], equal_nan=True), n

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Collection
+
 PREFIX = "ic:"
 # the quantity classes of a centre's columns (x, y; ux, uy; status; sigma), every one of order 1
 CENTRE_QUANTITIES = ("centre", "centre_direction", "centre_status", "centre_sigma")
@@ -28,8 +30,9 @@ def field_name(name: str) -> str:
     return name.replace(":", "_")
 
 
-def centre_problem(name: str, links: list[str]) -> str:
-    """Why an output name that starts with ic: names no centre ('' when it does)."""
+def centre_problem(name: str, links: list[str], taken: Collection[str] = ()) -> str:
+    """Why an output name that starts with ic: names no centre ('' when it does); ``taken``: the names
+    of the pairs, points and links, which its field in the programs must not be."""
     a, b = links_of(name)
     if name.count(":") != 2 or not a or not b:
         return f"an instant centre is written ic:LINK1:LINK2, two link names, not {name}"
@@ -38,4 +41,6 @@ def centre_problem(name: str, links: list[str]) -> str:
             return f"{x} in {name} is not a link of this mechanism (the links are {', '.join(links)})"
     if a == b:
         return f"{name} names one link twice: a centre belongs to two links"
+    if field_name(name) in taken:
+        return f"{name} is the field {field_name(name)} of the programs' outputs, the name of a pair, point or link"
     return ""

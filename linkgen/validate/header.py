@@ -83,7 +83,7 @@ def outputs(sheet: Sheet, links: list[str]) -> tuple[tuple[str, ...], Where | No
         centre = is_centre(text)
         name = text if centre else sheet.name(item, "an output, a pair, point or link name")
         if centre:
-            if problem := centre_problem(name, links):
+            if problem := centre_problem(name, links, sheet.names):
                 raise sheet.error(item, problem)
         elif name not in sheet.names:
             raise sheet.error(item, f"the output {name} is not a pair, point or link of this mechanism"

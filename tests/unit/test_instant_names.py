@@ -23,3 +23,7 @@ def test_names_round_trip():
 def test_problems(name, problem):
     got = centre_problem(name, LINKS)
     assert (problem in got) if problem else got == ""
+
+
+def test_the_field_is_no_other_name():
+    assert "the field ic_crank_rocker" in centre_problem("ic:crank:rocker", LINKS, {"ic_crank_rocker", "B"})
