@@ -371,5 +371,42 @@ def check(mechanism: str, as_json: bool) -> None:
     click.echo(to_json(summary) if as_json else text(summary), nl=False)
 
 
+@cli.command(name="ic")
+@click.argument("mechanism", type=ANY_PATH)
+@click.option("--at", "at", callback=_values,
+              help="The inputs' values, comma-separated, in the file's units (default: the sketch's).")
+@click.option("--rates", "rates", callback=_values,
+              help="The inputs' rates, comma-separated, in the file's units per second (default: their speeds).")
+@click.option("--json", "as_json", is_flag=True, help="Print the centres as JSON instead of a table.")
+def instant_centres(mechanism: str, at: tuple[float, ...] | None, rates: tuple[float, ...] | None,
+                    as_json: bool) -> None:
+    """Every instant centre of the mechanism at one row: its class and its place.
+
+    The class (first, secondary, third A, third B) comes from the topology, the place from the
+    links' exact velocities at the inputs and rates given (with several inputs, their ratio).
+
+    \b
+    Examples:
+      linkgen ic samples/fourbar/fourbar.yaml
+      linkgen ic samples/fourbar/fourbar.yaml --at 90 --json
+      linkgen ic samples/fivebar/fivebar.yaml --rates 1,2
+    """
+    from .assemblies import internal_units
+    from .instant.table import centre_outputs, locate, text, to_json
+    from .pipeline import analyse_file, build_log
+
+    m = analyse_file(mechanism)[0]
+    log = build_log(mechanism, outputs=centre_outputs(m), order=1, sweep=False)
+    for flag, given in (("--at", at), ("--rates", rates)):
+        if given is not None and len(given) != len(log.inputs):
+            names = ", ".join(i.column for i in log.inputs)
+            raise click.BadParameter(f"{len(given)} value{'s' if len(given) != 1 else ''} given; {log.name} has "
+                                     f"{len(log.inputs)} input{'s' if len(log.inputs) != 1 else ''} ({names})",
+                                     param_hint=f"'{flag}'")
+    table = locate(log, m, None if at is None else internal_units(log, at),
+                   None if rates is None else internal_units(log, rates))
+    click.echo(to_json(log, table) if as_json else text(log, table), nl=False)
+
+
 def main() -> None:
     cli(prog_name="linkgen")

@@ -114,6 +114,10 @@ def render_all(log: StepLog, motion: bool = False) -> dict[str, bytes]:
     evaluates the sweep, which costs more than the rest of a render for a resolver mechanism)."""
     view = build_view(log)
     files = {f"{log.name}.json": log.to_json().encode("utf-8"), f"{log.name}.svg": render_svg(log).encode("utf-8")}
+    if log.centres:  # the manual's figure of the instant centres (drawn with render.svg's helpers: imported here)
+        from ..instant.figure import render_centres_svg
+
+        files[f"{log.name}_centres.svg"] = render_centres_svg(log).encode("utf-8")
     for backend in backends():
         files.update(render_backend(backend, view))
     if motion:
