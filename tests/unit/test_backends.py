@@ -157,7 +157,7 @@ def test_a_new_language_is_a_folder(toy_folder: Path):
     files = render_all(log)
     declared = {p.replace("NAME", log.name) for b in backends() for p in b.files}
     figures = {f"{log.name}_assembly_{a.number}.svg" for a in log.assemblies.listing} if log.assemblies else set()
-    assert set(files) == declared | {f"{log.name}.json", f"{log.name}.svg"} | figures
+    assert set(files) == declared | {f"{log.name}.json", f"{log.name}.svg", f"{log.name}_centres.svg"} | figures
     steps = files[f"{log.name}.steps"].decode("utf-8").splitlines()
     assert steps == [f"{s.number} {s.function or s.action} {s.target}" for s in log.steps]
 

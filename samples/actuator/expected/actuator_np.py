@@ -635,13 +635,13 @@ def _run(x, dx, ddx, c):
     report.append((st, ((1, 41), (3, 43), (4, -44))))
     # Step 5: link_point, tip. point tip of link bucket
     _, _, w.p_tip = link_point(w.p_Q, w.p_M, c["step5.along"], c["step5.across"])
-    # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is
+    # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is known
     st, _, w.phi_side_link = link_angle(w.p_R, w.p_K, c["step6.off"])
     report.append((st, ((1, 61),)))
-    # Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is
+    # Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is known
     st, _, w.phi_power_link = link_angle(w.p_K, w.p_M, c["step7.off"])
     report.append((st, ((1, 71),)))
-    # Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is
+    # Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is known
     st, _, w.phi_bucket = link_angle(w.p_Q, w.p_M, c["step8.off"])
     report.append((st, ((1, 81),)))
     code = row_status(report)

@@ -536,13 +536,13 @@ def _run(x, dx, ddx, c):
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: link_point, P. point P of link coupler
     _, _, w.p_P = link_point(w.p_A, w.p_B, c["step4.along"], c["step4.across"])
-    # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is
+    # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
     st, _, w.phi_crank = link_angle(w.p_O1, w.p_A, c["step5.off"])
     report.append((st, ((1, 51),)))
-    # Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is
+    # Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is known
     st, _, w.phi_coupler = link_angle(w.p_A, w.p_B, c["step6.off"])
     report.append((st, ((1, 61),)))
-    # Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is
+    # Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
     st, _, w.phi_rocker = link_angle(w.p_O2, w.p_B, c["step7.off"])
     report.append((st, ((1, 71),)))
     code = row_status(report)

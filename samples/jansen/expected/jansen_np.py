@@ -588,25 +588,25 @@ def _run(x, dx, ddx, c):
     report.append((st, ((1, 61), (3, 63), (4, -64))))
     # Step 7: link_point, foot. point foot of link leg_ghi
     _, _, w.p_foot = link_point(w.p_E, w.p_F, c["step7.along"], c["step7.across"])
-    # Step 8: link_angle, crank. O and A of link crank are known, so its angle is
+    # Step 8: link_angle, crank. O and A of link crank are known, so its angle is known
     st, _, w.phi_crank = link_angle(w.p_O, w.p_A, c["step8.off"])
     report.append((st, ((1, 81),)))
-    # Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is
+    # Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is known
     st, _, w.phi_rod_j = link_angle(w.p_A, w.p_C, c["step9.off"])
     report.append((st, ((1, 91),)))
-    # Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is
+    # Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is known
     st, _, w.phi_rod_k = link_angle(w.p_A, w.p_E, c["step10.off"])
     report.append((st, ((1, 101),)))
-    # Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is
+    # Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is known
     st, _, w.phi_triangle_bde = link_angle(w.p_B, w.p_C, c["step11.off"])
     report.append((st, ((1, 111),)))
-    # Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is
+    # Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is known
     st, _, w.phi_rocker_c = link_angle(w.p_B, w.p_E, c["step12.off"])
     report.append((st, ((1, 121),)))
-    # Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is
+    # Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is known
     st, _, w.phi_rod_f = link_angle(w.p_D, w.p_F, c["step13.off"])
     report.append((st, ((1, 131),)))
-    # Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is
+    # Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is known
     st, _, w.phi_leg_ghi = link_angle(w.p_E, w.p_F, c["step14.off"])
     report.append((st, ((1, 141),)))
     code = row_status(report)

@@ -114,7 +114,7 @@ function [status, w] = run(w, in, din, ddin)
     % Step 7: link_point, foot. point foot of link leg_ghi
     w.p_foot = link_point(w.p_E, w.p_F, -0.21107885573739069, 1.3183591602277374);
 
-    % Step 8: link_angle, crank. O and A of link crank are known, so its angle is
+    % Step 8: link_angle, crank. O and A of link crank are known, so its angle is known
     [w.phi_crank, st] = link_angle(w.p_O, w.p_A, 0.0);
     if st == 1
         status = 81;
@@ -122,7 +122,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 83, -84);
 
-    % Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is
+    % Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is known
     [w.phi_rod_j, st] = link_angle(w.p_A, w.p_C, 0.0);
     if st == 1
         status = 91;
@@ -130,7 +130,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 93, -94);
 
-    % Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is
+    % Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is known
     [w.phi_rod_k, st] = link_angle(w.p_A, w.p_E, 0.0);
     if st == 1
         status = 101;
@@ -138,7 +138,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 103, -104);
 
-    % Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is
+    % Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is known
     [w.phi_triangle_bde, st] = link_angle(w.p_B, w.p_C, 0.0);
     if st == 1
         status = 111;
@@ -146,7 +146,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 113, -114);
 
-    % Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is
+    % Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is known
     [w.phi_rocker_c, st] = link_angle(w.p_B, w.p_E, 0.0);
     if st == 1
         status = 121;
@@ -154,7 +154,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 123, -124);
 
-    % Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is
+    % Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is known
     [w.phi_rod_f, st] = link_angle(w.p_D, w.p_F, 0.0);
     if st == 1
         status = 131;
@@ -162,7 +162,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 133, -134);
 
-    % Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is
+    % Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is known
     [w.phi_leg_ghi, st] = link_angle(w.p_E, w.p_F, 0.0);
     if st == 1
         status = 141;

@@ -494,7 +494,7 @@ def _run(x, dx, ddx, c):
     report.append((st, ((1, 61), (3, 63), (4, -64))))
     # Step 7: link_point, foot. point foot of link leg_ghi
     _, _, w.p_foot = link_point(w.p_E, w.p_F, c["step7.along"], c["step7.across"])
-    # Step 8: link_angle, crank. O and A of link crank are known, so its angle is
+    # Step 8: link_angle, crank. O and A of link crank are known, so its angle is known
     st, _, w.phi_crank = link_angle(w.p_O, w.p_A, c["step8.off"])
     report.append((st, ((1, 81),)))
     code = row_status(report)

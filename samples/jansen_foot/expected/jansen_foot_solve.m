@@ -114,7 +114,7 @@ function [status, w] = run(w, in, din, ddin)
     % Step 7: link_point, foot. point foot of link leg_ghi
     w.p_foot = link_point(w.p_E, w.p_F, -0.21107885573739069, 1.3183591602277374);
 
-    % Step 8: link_angle, crank. O and A of link crank are known, so its angle is
+    % Step 8: link_angle, crank. O and A of link crank are known, so its angle is known
     [w.phi_crank, st] = link_angle(w.p_O, w.p_A, 0.0);
     if st == 1
         status = 81;

@@ -625,7 +625,7 @@ def _run(x, dx, ddx, c):
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     # Step 6: link_point, P. point P of link coupler
     _, _, w.p_P = link_point(w.p_A, w.p_B, c["step6.along"], c["step6.across"])
-    # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is
+    # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
     st, _, w.phi_rocker = link_angle(w.p_O2, w.p_B, c["step9.off"])
     report.append((st, ((1, 91),)))
     code = row_status(report)

@@ -105,7 +105,7 @@ function [status, w] = run(w, in, din, ddin)
     % Step 6: link_point, P. point P of link coupler
     w.p_P = link_point(w.p_A, w.p_B, 0.7636869780389731, 0.3352922981750696);
 
-    % Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is
+    % Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
     [w.phi_rocker, st] = link_angle(w.p_O2, w.p_B, 0.0);
     if st == 1
         status = 91;
