@@ -139,7 +139,8 @@ class Mechanism:
 
     @property
     def name(self) -> str:
-        return self.log.name
+        """The mechanism's name: from the step log already made (``build``'s, else made now)."""
+        return (self.full_log if "full_log" in self.__dict__ else self.log).name
 
     @property
     def procedure(self) -> tuple[Step, ...]:
