@@ -3,10 +3,10 @@
 The output columns are the CSV's (linkgen.table: failed rows nan, rates nan at singular
 rows); the positions of every pair and point the procedure computes (fixed ones as
 drawn) are there for drawing the mechanism, with nan where a row failed.  ``file_rows``
-evaluates the file's sweep once for a build: the conditioning (linkgen.analysis) and the
-engineering summary (linkgen.summary), both with the reference settings, and the plots (with the
-log's: the same unless the file or the command line changes the resolver's iteration or the
-checks) read the same result where no step was pruned.  ``thin`` keeps
+evaluates the file's sweep once for a build: the engineering summary (linkgen.summary, with the
+reference settings) and the plots (with the log's: the same unless the file or the command line
+changes the resolver's iteration or the checks) read one result, and the conditioning over the
+sweep (linkgen.analysis, of the whole procedure) reads it too where no step was pruned.  ``thin`` keeps
 a long sweep's figures and page to a size a reader opens: every k-th row, and the first and
 last row of every run of rows with a nan, so that every gap stays a gap.
 """
