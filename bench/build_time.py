@@ -3,10 +3,12 @@
     python bench/run.py builds
 
 Per sample, the median of RUNS new processes of `linkgen build FILE -o DIR` (wall time); and of
-PROBES processes that import what a build imports, build once (build_log, render_all, write_all)
-and build again, each timed inside them: the imports, the first build (which fills the caches a
-process keeps: templates, the compiled numpy kernel) and a later build (what a build costs
-in-process).  Once: the wall time of a bare `python -c pass` (the interpreter's start-up).
+PROBES processes that import what a build imports, build once (build_log, render_all with the
+motion's plots and page, write_all) and build again (the file's sweep evaluated again: the
+process keeps the last one, linkgen.sweepdata.file_rows), each timed inside them: the imports,
+the first build (which fills the caches a process keeps: templates, the compiled numpy kernel)
+and a later build (what a build costs in-process).  Once: the wall time of a bare
+`python -c pass` (the interpreter's start-up).
 Writes the section "Build time" of docs/performance.md.
 """
 
@@ -29,11 +31,13 @@ t0 = time.perf_counter()
 from linkgen import cli
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
+from linkgen.sweepdata import _rows
 from linkgen.writer import write_all
 t1 = time.perf_counter()
-write_all(render_all(build_log(sys.argv[1])), sys.argv[2])
+write_all(render_all(build_log(sys.argv[1]), motion=True), sys.argv[2])
 t2 = time.perf_counter()
-write_all(render_all(build_log(sys.argv[1])), sys.argv[2])
+_rows.cache_clear()  # the sweep evaluated again, as in a build of another file
+write_all(render_all(build_log(sys.argv[1]), motion=True), sys.argv[2])
 print(t1 - t0, t2 - t1, time.perf_counter() - t2)
 """
 

@@ -1,6 +1,6 @@
 """The Python API: a mechanism file as an object, its procedure, its sweep as a numpy
-structured array, its engineering summary and its generated files.  The command line
-(linkgen.cli) is a thin layer over it.
+structured array, its engineering summary, its assemblies and instant centres at one input,
+and its generated files.  The command line (linkgen.cli) is a thin layer over it.
 
 >>> import linkgen
 >>> m = linkgen.load("samples/slider_crank/slider_crank.yaml")
@@ -14,6 +14,12 @@ structured array, its engineering summary and its generated files.  The command 
 >>> summary = m.check()
 >>> summary.failed, [t.name for t in summary.travels if t.quantity == "slide"]
 (0, ['S.s'])
+>>> found = m.assemblies(at=[90])  # the crank at 90 deg: B at x = +-sqrt(65^2 - 33^2) = +-56, s = x - 76
+>>> [(a.number, a.sketch, round(a.values["S.s"], 9)) for a in found.census.assemblies]
+[(1, True, -20.0), (2, False, -132.0)]
+>>> frame_rod = m.centres(at=[90]).by_name("ic:frame:rod")  # the rod translates for an instant
+>>> frame_rod.centre.kind, frame_rod.status
+('third A', 1)
 """
 
 from __future__ import annotations
@@ -22,6 +28,7 @@ import functools
 import os
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -30,7 +37,83 @@ from .steplog import Step, StepLog
 from .summary.compute import summarize
 from .summary.records import Summary
 
+if TYPE_CHECKING:  # the census needs sympy: imported when asked for
+    from .assemblies import Census
+    from .instant.table import Located, Table
+    from .model import Mechanism as Model
+
 CHUNK = 65536  # rows evaluated at once by a sweep with progress
+
+
+class InputCountError(ValueError):
+    """Values given for a mechanism's inputs that are not one per input; ``argument`` names the
+    argument they were given as (``at``, ``rates``)."""
+
+    def __init__(self, log: StepLog, given: Sequence[float], argument: str) -> None:
+        n, names = len(log.inputs), ", ".join(i.column for i in log.inputs)
+        super().__init__(f"{len(given)} value{'s' if len(given) != 1 else ''} given; {log.name} has "
+                         f"{n} input{'s' if n != 1 else ''} ({names})")
+        self.argument = argument
+
+
+def _one_per_input(log: StepLog, **given: Sequence[float] | None) -> None:
+    for argument, values in given.items():
+        if values is not None and len(values) != len(log.inputs):
+            raise InputCountError(log, values, argument)
+
+
+@dataclass(frozen=True)
+class Assemblies:
+    """Every assembly at one input (``Mechanism.assemblies``): the census (linkgen.assemblies:
+    ``census.assemblies``, each with its ``number``, ``sketch`` mark, branch ``choices`` and
+    column ``values`` at order 0) and the step log it walked (the whole procedure at order 0)."""
+
+    log: StepLog
+    census: Census
+
+    def text(self) -> str:
+        """The table ``linkgen assemblies`` prints."""
+        from .assemblies.report import table
+
+        return table(self.log, self.census)
+
+    def json(self) -> str:
+        """The JSON ``linkgen assemblies --json`` prints."""
+        from .assemblies.report import to_json
+
+        return to_json(self.log, self.census)
+
+    def figures(self) -> dict[str, bytes]:
+        """One SVG per assembly, by file name (NAME_assembly_K.svg), nothing written."""
+        from .assemblies.render import render_all
+
+        return render_all(self.log, self.census)
+
+
+@dataclass(frozen=True)
+class Centres:
+    """Every instant centre at one row (``Mechanism.centres``): the table (linkgen.instant.table:
+    ``table.centres``, each with its class and place) and the step log that located them (every
+    centre an output, order 1)."""
+
+    log: StepLog
+    table: Table
+
+    def by_name(self, name: str) -> Located:
+        """The centre named ``ic:A:B``."""
+        return next(c for c in self.table.centres if c.centre.name == name)
+
+    def text(self) -> str:
+        """The table ``linkgen ic`` prints."""
+        from .instant.table import text
+
+        return text(self.log, self.table)
+
+    def json(self) -> str:
+        """The JSON ``linkgen ic --json`` prints."""
+        from .instant.table import to_json
+
+        return to_json(self.log, self.table)
 
 
 @dataclass(frozen=True)
@@ -56,7 +139,8 @@ class Mechanism:
 
     @property
     def name(self) -> str:
-        return self.log.name
+        """The mechanism's name: from the step log already made (``build``'s, else made now)."""
+        return (self.full_log if "full_log" in self.__dict__ else self.log).name
 
     @property
     def procedure(self) -> tuple[Step, ...]:
@@ -115,6 +199,40 @@ class Mechanism:
             return self.full_log.summary
         return summarize(self.log)
 
+    @functools.cached_property
+    def model(self) -> Model:
+        """The mechanism as the file describes it (linkgen.model), checked."""
+        from .validate import read_mechanism
+
+        return read_mechanism(self.path)
+
+    def assemblies(self, at: Sequence[float] | None = None) -> Assemblies:
+        """Every assembly at the inputs' values ``at``, one per input in the file's units (degrees
+        where the file gives degrees; default: the sketch's), the count certified: both branches
+        of every two-link chain, every real root of every class-III group's polynomial.  The
+        outputs, order and settings do not matter: the whole procedure is walked, at order 0.
+        Raises InputCountError for a wrong count of values, linkgen.errors.ProcedureError where
+        the assemblies cannot be counted."""
+        from .assemblies import assemblies, whole_log
+
+        log = whole_log(self.path)
+        _one_per_input(log, at=at)
+        return Assemblies(log, assemblies(self.path, log, at))
+
+    def centres(self, at: Sequence[float] | None = None, rates: Sequence[float] | None = None) -> Centres:
+        """Every instant centre at the inputs' values ``at`` and rates ``rates``, one per input in
+        the file's units (degrees and degrees per second where the file gives degrees; default:
+        the sketch and the inputs' speeds): its class from the topology, its place from the
+        links' velocities (with several inputs, their ratio matters).  Raises InputCountError for
+        a wrong count of values."""
+        from .assemblies import internal_units
+        from .instant.table import centre_outputs, locate
+
+        log = replace(self, outputs=centre_outputs(self.model), order=1).log
+        _one_per_input(log, at=at, rates=rates)
+        return Centres(log, locate(log, self.model, None if at is None else internal_units(log, at),
+                                   None if rates is None else internal_units(log, rates)))
+
     def _rows(self, values: np.ndarray, rates: np.ndarray, accs: np.ndarray,
               progress: Callable[[int], None] | None) -> np.ndarray:
         from .evaluate import evaluate
@@ -160,4 +278,4 @@ def csv_text(m: Mechanism, rows: np.ndarray) -> str:
     return "\n".join(lines) + "\n"
 
 
-__all__ = ["Mechanism", "csv_text", "load"]
+__all__ = ["Assemblies", "Centres", "InputCountError", "Mechanism", "csv_text", "load"]

@@ -6,7 +6,8 @@ import json
 import math
 import os
 import sys
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 import click
 
@@ -328,25 +329,16 @@ def assemblies(mechanism: str, at: tuple[float, ...] | None, as_json: bool, outd
       linkgen assemblies samples/fourbar/fourbar.yaml --at 90
       linkgen assemblies samples/double_triad/double_triad.yaml --json -o figures
     """
-    from .assemblies import assemblies as census_of
-    from .assemblies import whole_log
-    from .assemblies.render import render_all
-    from .assemblies.report import table, to_json
+    from .api import Mechanism
     from .writer import write_all
 
-    log = whole_log(mechanism)
-    if at is not None and len(at) != len(log.inputs):
-        names = ", ".join(i.column for i in log.inputs)
-        raise click.BadParameter(f"{len(at)} value{'s' if len(at) != 1 else ''} given; {log.name} has "
-                                 f"{len(log.inputs)} input{'s' if len(log.inputs) != 1 else ''} ({names})",
-                                 param_hint="'--at'")
-    census = census_of(mechanism, log, at)
-    figures = render_all(log, census) if outdir else {}
+    found = _counted(lambda: Mechanism(mechanism).assemblies(at))
+    figures = found.figures() if outdir else {}
     written = write_all(figures, outdir) if outdir and figures else []
     if as_json:
-        click.echo(to_json(log, census), nl=False)
+        click.echo(found.json(), nl=False)
         return
-    click.echo(table(log, census), nl=False)
+    click.echo(found.text(), nl=False)
     for path in written:
         click.echo(path)
 
@@ -394,21 +386,24 @@ def instant_centres(mechanism: str, at: tuple[float, ...] | None, rates: tuple[f
       linkgen ic samples/fourbar/fourbar.yaml --at 90 --json
       linkgen ic samples/fivebar/fivebar.yaml --rates 1,2
     """
-    from .assemblies import internal_units
-    from .instant.table import centre_outputs, locate, text, to_json
-    from .pipeline import analyse_file, build_log
+    from .api import Mechanism
 
-    m = analyse_file(mechanism)[0]
-    log = build_log(mechanism, outputs=centre_outputs(m), order=1, sweep=False)
-    for flag, given in (("--at", at), ("--rates", rates)):
-        if given is not None and len(given) != len(log.inputs):
-            names = ", ".join(i.column for i in log.inputs)
-            raise click.BadParameter(f"{len(given)} value{'s' if len(given) != 1 else ''} given; {log.name} has "
-                                     f"{len(log.inputs)} input{'s' if len(log.inputs) != 1 else ''} ({names})",
-                                     param_hint=f"'{flag}'")
-    table = locate(log, m, None if at is None else internal_units(log, at),
-                   None if rates is None else internal_units(log, rates))
-    click.echo(to_json(log, table) if as_json else text(log, table), nl=False)
+    found = _counted(lambda: Mechanism(mechanism).centres(at, rates))
+    click.echo(found.json() if as_json else found.text(), nl=False)
+
+
+_T = TypeVar("_T")
+
+
+def _counted(call: Callable[[], _T]) -> _T:
+    """The API's result; values given for the inputs that are not one per input are a usage
+    error of the option they were given with (--at, --rates)."""
+    from .api import InputCountError
+
+    try:
+        return call()
+    except InputCountError as exc:
+        raise click.BadParameter(str(exc), param_hint=f"'--{exc.argument}'") from None
 
 
 def main() -> None:

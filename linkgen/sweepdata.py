@@ -2,19 +2,24 @@
 
 The output columns are the CSV's (linkgen.table: failed rows nan, rates nan at singular
 rows); the positions of every pair and point the procedure computes (fixed ones as
-drawn) are there for drawing the mechanism, with nan where a row failed.  ``thin`` keeps
+drawn) are there for drawing the mechanism, with nan where a row failed.  ``file_rows``
+evaluates the file's sweep once for a build: the engineering summary (linkgen.summary, with the
+reference settings) and the plots (with the log's: the same unless the file or the command line
+changes the resolver's iteration or the checks) read one result, and the conditioning over the
+sweep (linkgen.analysis, of the whole procedure) reads it too where no step was pruned.  ``thin`` keeps
 a long sweep's figures and page to a size a reader opens: every k-th row, and the first and
 last row of every run of rows with a nan, so that every gap stays a gap.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import functools
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from . import status
-from .evaluate import evaluate, input_rows
+from .evaluate import Result, evaluate, input_rows
 from .steplog import StepLog
 from .table import columns
 
@@ -37,10 +42,26 @@ class Sweep:
         return out
 
 
+def file_rows(log: StepLog) -> Result:
+    """The file's sweep (its samples, all inputs together, the CSV's rows) evaluated at the log's
+    order with its settings: once for the steps and settings asked for last.  The conditioning
+    over the sweep (linkgen.analysis), the summary and the plots of a build read the one result
+    where their logs compute the same steps with the same settings (the facts found from it and
+    the manual's centres do not change it).  A result is read, never changed."""
+    return _rows(replace(log, conditioning=(), centres=(), summary=None))
+
+
+@functools.lru_cache(maxsize=1)
+def _rows(log: StepLog) -> Result:
+    values, rates, accs = input_rows(log, log.samples)
+    with np.errstate(all="ignore"):
+        return evaluate(log, values, rates, accs)
+
+
 def sweep_of(log: StepLog) -> Sweep:
     """The file's sweep (its samples), evaluated at the log's order."""
-    values, rates, accs = input_rows(log, log.samples)
-    result = evaluate(log, values, rates, accs)
+    result = file_rows(log)
+    values = result.inputs
     names, data = columns(log, result)
     failed = status.failed(result.status)
     places: dict[str, tuple[np.ndarray, np.ndarray]] = {}

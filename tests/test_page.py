@@ -1,7 +1,8 @@
 """NAME.html in a real headless browser: Debian's chromium driven by Selenium through Debian's
 chromedriver (never a browser a library downloads).
 
-Each page must load with no message in the browser's console, play (the row advances, and
+Each page must load with no message in the browser's console, show the log's engineering
+summary (its records, in the words of ``linkgen check``), play (the row advances, and
 stops when paused), and put every drawn pair and point, at the row the slider is moved to, where
 the generated Python program's CSV has it.  A screenshot of each page is written to the test's
 folder and to build/screenshots/ for review.
@@ -21,6 +22,8 @@ import pytest
 from programs import build, need, parse, run_python
 
 from linkgen.steplog import StepLog
+from linkgen.summary.records import Summary
+from linkgen.summary.text import lines, num
 
 ROOT = Path(__file__).resolve().parents[1]
 BROWSER, DRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
@@ -91,6 +94,59 @@ def _check_row(driver, log: StepLog, csv: tuple[list[str], list[list[float]], li
     return compared
 
 
+def _shown_summary(driver) -> list[tuple[str, str]]:
+    """(label, text) of every row of the page's summary table, as the browser shows them."""
+    return [tuple(r) for r in driver.execute_script(
+        "return Array.from(document.querySelectorAll('#summary tr'))"
+        ".map(r => [r.querySelector('th').innerText, r.querySelector('td').innerText]);")]
+
+
+def _check_summary(shown: list[tuple[str, str]], s: Summary) -> None:
+    """The page's summary is the log's: the lines ``linkgen check`` prints, in order, and each
+    record's facts (Grashof class, transmission angles and their minima, limit positions, strokes,
+    swings and time ratios, failing rows) in the row labelled for it."""
+    assert [text for _, text in shown] == [line.strip() for line in lines(s)[1:]]
+
+    def rows(label: str) -> list[str]:
+        return [text for what, text in shown if what == label]
+
+    assert rows("Mobility") == [f"mobility {s.mobility} (Gruebler {s.grubler}"
+                                + (f", {s.redundant} redundant)" if s.redundant else ")")]
+    for f in s.four_bars:
+        (text,) = rows(f"Four-bar {'-'.join(f.pairs)}")
+        assert f"{f.grashof} (s + l" in text and f", {f.kind}:" in text
+        assert all(num(x) in text for x in f.lengths)
+    kinds = {p.kind for p in s.positions}
+    for kind in kinds:
+        assert len(rows(kind.capitalize())) == sum(p.kind == kind for p in s.positions)
+    for p, text in zip(s.positions, [t for w, t in shown if w.lower() in kinds]):
+        assert text.startswith(f"{p.kind} of step {p.step} ({p.target}) at ")
+        assert all(num(x) in text for x in p.inputs)
+    angles = rows("Transmission angle")
+    assert len(angles) == len(s.transmission)
+    for t, text in zip(s.transmission, angles):
+        assert f"at step {t.step} ({t.target}, {t.chain} chain" in text
+        least = "least 0 at the limit position" if t.at_limit else f"least {num(t.minimum)}"
+        assert (least in text and f"greatest {num(t.maximum)}" in text) or text.endswith("at every row"), text
+    travels = [(w, text) for w, text in shown if w in ("Stroke", "Swing", "Turns")]
+    assert len(travels) == len(s.travels)
+    for t, (what, text) in zip(s.travels, travels):
+        assert what == ("Turns" if t.turns else "Stroke" if t.quantity == "slide" else "Swing")
+        assert text.startswith(t.name) and num(t.travel) in text
+        if not t.turns:
+            assert f"from {num(t.low)} at " in text and f"to {num(t.high)} at " in text
+        if t.time_ratio is None:
+            assert "time ratio" not in text
+        else:
+            assert text.endswith(f"; time ratio {t.time_ratio:.7g}")
+    (text,) = rows("Rows")
+    assert text.startswith(f"{s.rows} rows: ") and text.endswith(f", {s.failed} fail")
+    assert sum(f.rows for f in s.failures) == s.failed
+    for f in s.failures:
+        (text,) = rows(f"Status {f.code}")
+        assert text.startswith(f"{f.rows} rows fail with status {f.code}, {f.meaning}: ")
+
+
 def _page(driver, mechanism: Path, tmp_path: Path) -> None:
     log = build(mechanism, tmp_path, motion=True)
     csv = parse(run_python(log, tmp_path))
@@ -98,6 +154,8 @@ def _page(driver, mechanism: Path, tmp_path: Path) -> None:
     driver.get((tmp_path / f"{log.name}.html").as_uri())
     assert driver.execute_script("return document.readyState") == "complete"
     assert driver.get_log("browser") == []  # no error, warning or message of the page
+    assert log.summary is not None
+    _check_summary(_shown_summary(driver), log.summary)
 
     # it plays, and stops when paused
     assert _row(driver) == 0

@@ -1,7 +1,8 @@
 """Every step's conditioning over the sweep, and the input values where it reaches zero.
 
-Along the sweep (all inputs moving together, lambda from 0 to 1) every step's
-conditioning is recorded; where a chain reaches a singular position the input value is
+Along the sweep (all inputs moving together, lambda from 0 to 1: the file's rows, as the CSV
+has them, evaluated once for the summary and the plots too, linkgen.sweepdata.file_rows) every
+step's conditioning is recorded; where a chain reaches a singular position the input value is
 located by zooming in on it: a limit position (the chain cannot close beyond it), a
 change point (its two assemblies cross and the motion goes on), or a near-singular
 minimum.
@@ -17,14 +18,15 @@ from ..evaluate import Result, reach_side
 from ..motion import Conditioning, Singular
 from ..primitives import PRIMITIVES
 from ..steplog import StepLog
-from .sweep import SMALL, Array, Zoom, closes, local_minima, run, warm_after, zoom_edge, zoom_min, zoom_mins
+from ..sweepdata import file_rows
+from .sweep import SMALL, Array, Zoom, closes, local_minima, warm_after, zoom_edge, zoom_min, zoom_mins
 
 
 def conditioning(log: StepLog) -> tuple[Conditioning, ...]:
     """The conditioning of every step that has one, over the log's sweep (its change points
     and reach found); without resolvers the minima of all steps are zoomed in on together."""
     grid = np.linspace(0.0, 1.0, log.samples)
-    result = run(log, grid)
+    result = file_rows(log)
     inner = {n for g in log.groups for b in (g, *g.variants) for n in b.steps}
     steps: list[tuple[int, Array, list[Singular]]] = []  # (step, its usable sigma, what it passes)
     zooms, warms, owners = [], [], []

@@ -131,12 +131,11 @@ def render_all(log: StepLog, motion: bool = False) -> dict[str, bytes]:
 def render_motion(log: StepLog) -> dict[str, bytes]:
     """The plot figures (render.plots) and NAME.html (render.page) of the file's sweep."""
     from ..sweepdata import sweep_of, thin  # evaluation renders the kernel through this package: imported late
-    from .page import facts, render_page
+    from .page import render_page
     from .plots import render_plots
 
-    whole = sweep_of(log)
-    sweep = thin(whole)
+    sweep = thin(sweep_of(log))
     plots = render_plots(log, sweep)
     files = {name: text.encode("utf-8") for name, text in plots.items()}
-    files[f"{log.name}.html"] = render_page(log, sweep, plots, facts(log, whole)).encode("utf-8")
+    files[f"{log.name}.html"] = render_page(log, sweep, plots).encode("utf-8")
     return files

@@ -3,7 +3,7 @@
 The page holds everything inline: its style and script (templates/html/page.css and page.js,
 pasted in), the sweep as JSON (every pair's and point's position per row, each number to
 ``DIGITS`` significant digits, null where a row failed), the plot figures (linkgen.render.plots)
-and the facts of the step log an engineer reads first.  No network, no external script, and the
+and the engineering summary (linkgen.summary).  No network, no external script, and the
 same bytes on every run.
 """
 
@@ -16,8 +16,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .. import status
 from ..steplog import PairInfo, StepLog
+from ..summary.text import facts as summary_facts
 from .plots import figures, input_axis
 
 if TYPE_CHECKING:
@@ -101,49 +101,16 @@ def sweep_json(log: StepLog, sweep: Sweep) -> str:
     return ("{" + ",\n".join(lines) + "}").replace("</", "<\\/")
 
 
-def facts(log: StepLog, sweep: Sweep) -> list[tuple[str, str]]:
-    """(what, value) of the step log and the sweep an engineer reads first."""
-    out = [("Mobility", f"{log.mobility} (Grübler's count {log.grubler})"
-            + (f", {log.redundant} redundant constraint(s)" if log.redundant else ""))]
-    for i in log.inputs:
-        unit, factor = _shown(log, i.kind)
-        out.append((f"Input {i.column}", f"{i.start * factor:.6g} to {i.stop * factor:.6g} {unit}, "
-                                        f"{i.speed * factor:.6g} {unit}/s"))
-    codes = sweep.status
-    failed = status.failed(codes)
-    near = codes < 0
-    singular = status.singular(codes)
-    out.append(("Rows", f"{sweep.rows}: {int((~failed & ~near & ~singular).sum())} regular, {int(near.sum())} near "
-                        f"singular, {int(singular.sum())} singular, {int(failed.sum())} failed"))
-    for code in sorted({int(c) for c in codes[failed]}):
-        count = int((codes == code).sum())
-        why = {status.CANNOT_CLOSE: "the chain cannot close", status.NOT_CONVERGED: "the resolver did not converge",
-               status.NOT_CONTRACTING: "the iteration does not contract"}[int(status.reason(code))]
-        out.append((f"Status {code}", f"{count} row{'s' if count > 1 else ''}: step {int(status.step(code))}, {why}"))
-    axis = input_axis(log)
-    if log.reach is not None and axis.index >= 0:
-        ends = ["none" if x is None else f"{x * axis.factor:.6g} {axis.unit}" for x in (log.reach.low, log.reach.high)]
-        out.append(("Reached from the sketch", f"{axis.column} from {ends[0]} to {ends[1]}"
-                                               + (" (modulo a turn)" if log.reach.periodic else "")))
-    for c in log.conditioning:
-        text = f"{c.low:.3g} to {c.high:.3g}"
-        marks = [f"{s.kind} at {axis.column} = {s.inputs[axis.index] * axis.factor:.6g} {axis.unit}"
-                 for s in c.singular if axis.index >= 0]
-        if marks:
-            text += f"; {', '.join(marks)}"
-        target = log.step(c.step).target
-        out.append((f"Sigma of step {c.step}" + (f" ({target})" if target else ""), text))
-    return out
-
-
-def render_page(log: StepLog, sweep: Sweep, plots: dict[str, str], summary: list[tuple[str, str]]) -> str:
+def render_page(log: StepLog, sweep: Sweep, plots: dict[str, str]) -> str:
     """The page: templates/html/NAME.html.j2 with the style, the script, the data, the figures and
-    the summary (``facts`` of the whole sweep, where ``sweep`` is thinned)."""
+    the engineering summary (the log's: linkgen.summary, the same lines as the manual's and
+    ``linkgen check``'s; none for a log built without the sweep, as in the manual)."""
     from . import make_env, template_dir
 
     folder = template_dir() / "html"
     return make_env().get_template("html/NAME.html.j2").render(
-        title=log.title, name=log.name, source=log.source, data=sweep_json(log, sweep), facts=summary,
+        title=log.title, name=log.name, source=log.source, data=sweep_json(log, sweep),
+        facts=[(what, line.strip()) for what, line in summary_facts(log.summary)] if log.summary else [],
         figures=[(fig, plots[fig.file]) for fig in figures(log)],
         style=(folder / "page.css").read_text(encoding="utf-8"),
         script=(folder / "page.js").read_text(encoding="utf-8"),

@@ -12,9 +12,10 @@ import numpy as np
 
 from .. import status
 from ..analysis.sweep import margin, own, run, warm_after, zoom_min
-from ..evaluate import Result, evaluate, input_rows
+from ..evaluate import Result, evaluate
 from ..options import reference
 from ..steplog import Gap, StepLog
+from ..sweepdata import file_rows
 from .grashof import four_bars
 from .records import Failure, InputRange, Position, Summary, Transmission, Travel
 
@@ -32,9 +33,7 @@ def summarize(log: StepLog) -> Summary:
     """The summary of the log over its sweep (log.samples rows, all inputs together), found with
     the reference settings (options.reference: every check on), whatever the programs run."""
     log = replace(log, options=reference(log.options))
-    values, rates, accs = input_rows(log, log.samples)
-    with np.errstate(all="ignore"):
-        result = evaluate(log, values, rates, accs)
+    result = file_rows(log)  # the plots' sweep too (linkgen.sweepdata): evaluated once
     lam = np.linspace(0.0, 1.0, log.samples)
     units = _Units(log)
     edges = _limits(log)

@@ -80,24 +80,35 @@ def _rows(s: Summary) -> str:
 
 def lines(s: Summary) -> list[str]:
     """The summary as lines of text, one fact each."""
-    out = [f"{s.name}: {s.title}",
-           f"mobility {s.mobility} (Gruebler {s.grubler}{f', {s.redundant} redundant' if s.redundant else ''})"]
+    return [f"{s.name}: {s.title}", *(line for _, line in facts(s))]
+
+
+def facts(s: Summary) -> list[tuple[str, str]]:
+    """The summary's facts after its title, each as (what it is about, its line of text): the
+    lines of ``lines`` with a label for a table (NAME.html's summary)."""
+    out = [("Mobility", f"mobility {s.mobility} (Gruebler {s.grubler}"
+                        f"{f', {s.redundant} redundant' if s.redundant else ''})")]
     for i in s.inputs:
         span = f"input {i.column}: sweep {num(i.start)} to {num(i.stop)}{_unit(i.unit)}, sketch {num(i.sketch)}"
         if not i.known:
-            out.append(span + "; the assembling range is searched with one input only")
+            span += "; the assembling range is searched with one input only"
         elif i.low is None and i.high is None:
-            out.append(span + "; assembles over every value")
+            span += "; assembles over every value"
         else:
             low = "no limit" if i.low is None else num(i.low)
             high = "no limit" if i.high is None else num(i.high)
-            out.append(span + f"; assembles from {low} to {high}{_unit(i.unit)}")
-    out += [_four_bar(f) for f in s.four_bars]
-    out += [f"{p.kind} of step {p.step} ({p.target}) at {_at(s, p.inputs)}" for p in s.positions]
-    out += [f"transmission angle (sigma is its sine) at {_transmission(s, t)}" for t in s.transmission]
-    out += [_travel(s, t) for t in s.travels]
-    out.append(_rows(s))
-    out += [f"  {f.rows} rows fail with status {f.code}, {f.meaning}: {_runs(s, f)}" for f in s.failures]
+            span += f"; assembles from {low} to {high}{_unit(i.unit)}"
+        out.append((f"Input {i.column}", span))
+    out += [(f"Four-bar {'-'.join(f.pairs)}", _four_bar(f)) for f in s.four_bars]
+    out += [(p.kind.capitalize(), f"{p.kind} of step {p.step} ({p.target}) at {_at(s, p.inputs)}")
+            for p in s.positions]
+    out += [("Transmission angle", f"transmission angle (sigma is its sine) at {_transmission(s, t)}")
+            for t in s.transmission]
+    out += [("Turns" if t.turns else "Stroke" if t.quantity == "slide" else "Swing", _travel(s, t))
+            for t in s.travels]
+    out.append(("Rows", _rows(s)))
+    out += [(f"Status {f.code}", f"  {f.rows} rows fail with status {f.code}, {f.meaning}: {_runs(s, f)}")
+            for f in s.failures]
     return out
 
 
