@@ -1,9 +1,9 @@
-"""Command line: linkgen build | run | lj | candidates | procedure | assemblies."""
+"""Command line: linkgen build | run | check | lj | candidates | procedure | assemblies | ic (flags.py: the
+flags several commands share)."""
 
 from __future__ import annotations
 
 import json
-import math
 import os
 import sys
 from collections.abc import Callable
@@ -11,10 +11,9 @@ from typing import Any, TypeVar
 
 import click
 
-from . import __version__
+from . import __version__, flags
 from .errors import FileSystemError, LinkgenError, os_reason
-from .options import ANGLE_FORMS, MAX_ITERATIONS, MAX_TOLERANCE, PREDICTORS, STRATEGIES
-from .policy import GOOD_LEVER, MAX_MAGNITUDE, REAL_TYPES
+from .policy import GOOD_LEVER
 
 USAGE_ERROR = 2  # exit status of a wrong command line; 1 is every other failure
 ANY_PATH = click.Path(readable=False)  # a path click does not check: its faults are linkgen's, exit 1
@@ -51,41 +50,6 @@ class _Linkgen(click.Group):
         sys.exit(status if isinstance(status, int) else 0)
 
 
-SETTINGS = (  # the flags that override the file's options (linkgen.options.Options), all of build and run
-    click.option("--real", type=click.Choice(REAL_TYPES), help="The programs' real type (C; numpy float32 for float)."),
-    click.option("--strategy", type=click.Choice(STRATEGIES),
-                 help="The resolver: Newton on the Add-link lengths, fixed-point iteration on the decomposed group, "
-                      "or Newton on the group's closure equations."),
-    click.option("--tolerance", type=click.FloatRange(0.0, MAX_TOLERANCE, min_open=True),
-                 help="The resolver's tolerance, relative to the length scale."),
-    click.option("--iterations", type=click.IntRange(1, MAX_ITERATIONS), help="The resolver's iteration cap."),
-    click.option("--polish/--no-polish", default=None, help="One resolver step more once the tolerance is met."),
-    click.option("--predictor", type=click.IntRange(min(PREDICTORS), max(PREDICTORS)),
-                 help="The warm start's order: 0 the last row, 1 along its rates, 2 with its accelerations."),
-    click.option("--checks/--no-checks", default=None,
-                 help="Conditioning and status per step (off: positions and rates only)."),
-    click.option("--angles", type=click.Choice(ANGLE_FORMS), help="Angle outputs as angles or as unit vectors."),
-    click.option("--assembly", type=click.IntRange(min=1),
-                 help="Follow assembly K at the sketch's inputs (linkgen assemblies numbers them), not the sketch's."),
-)
-
-
-def _settings(fn: Any) -> Any:
-    """The SETTINGS flags on a command; it gets them as one mapping ``settings`` of those given."""
-    for flag in reversed(SETTINGS):
-        fn = flag(fn)
-    return fn
-
-
-def _given(flags: dict[str, Any]) -> dict[str, object]:
-    """The settings given on the command line (the others stay the file's)."""
-    return {k: v for k, v in flags.items() if v is not None}
-
-
-def _outputs(value: str | None) -> tuple[str, ...] | None:
-    return tuple(v.strip() for v in value.split(",") if v.strip()) if value else None
-
-
 @click.group("linkgen", cls=_Linkgen, invoke_without_command=True, subcommand_metavar="COMMAND [ARGS]...",
              context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="linkgen")
@@ -113,7 +77,7 @@ def cli(ctx: click.Context) -> None:
 @click.option("--check", is_flag=True, help="Rebuild in memory; exit 1 with a diff if any file on disk differs.")
 @click.option("--outputs", help="Comma-separated outputs, e.g. P,rocker (default: the file's outputs).")
 @click.option("--order", type=click.IntRange(0, 2), help="Derivatives: 0, 1 or 2 (default: the file's order).")
-@_settings
+@flags.settings
 def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, order: int | None,
           **settings: Any) -> None:
     """Write the step log (NAME.json) and the generated files.
@@ -135,7 +99,7 @@ def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, 
     from .summary.text import one_line
     from .writer import differences, write_all
 
-    m = Mechanism(mechanism, _outputs(outputs), order, _given(settings))
+    m = Mechanism(mechanism, flags.outputs(outputs), order, flags.given(settings))
     files = m.files()
     target = outdir or os.path.join("build", m.name)
     if check:
@@ -158,7 +122,7 @@ def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, 
 @click.option("--order", type=click.IntRange(0, 2), help="Derivatives: 0, 1 or 2 (default: the file's order).")
 @click.option("--outputs", help="Comma-separated outputs (default: the file's outputs).")
 @click.option("-o", "--output", type=ANY_PATH, help="Write the CSV here instead of stdout.")
-@_settings
+@flags.settings
 def run(mechanism: str, samples: int | None, order: int | None, outputs: str | None, output: str | None,
         **settings: Any) -> None:
     """Evaluate the sweep in-process and print it as CSV.
@@ -174,7 +138,7 @@ def run(mechanism: str, samples: int | None, order: int | None, outputs: str | N
     from .api import CHUNK, Mechanism, csv_text
     from .writer import write_all
 
-    m = Mechanism(mechanism, _outputs(outputs), order, _given(settings))
+    m = Mechanism(mechanism, flags.outputs(outputs), order, flags.given(settings))
     rows = samples or m.log.samples
     if rows > CHUNK and sys.stderr.isatty():
         with click.progressbar(length=rows, label="rows", file=sys.stderr) as bar:
@@ -279,7 +243,7 @@ def procedure(mechanism: str, outputs: str | None) -> None:
     """
     from .api import Mechanism
 
-    log = Mechanism(mechanism, _outputs(outputs)).log
+    log = Mechanism(mechanism, flags.outputs(outputs)).log
     variant = 0
     for s in log.steps:
         if s.variant != variant:
@@ -297,23 +261,9 @@ def procedure(mechanism: str, outputs: str | None) -> None:
                    "programs and their status codes).")
 
 
-def _values(ctx: click.Context, param: click.Parameter, value: str | None) -> tuple[float, ...] | None:
-    """--at: comma-separated finite numbers."""
-    if value is None:
-        return None
-    try:
-        out = tuple(float(v) for v in value.split(","))
-    except ValueError:
-        raise click.BadParameter(f"{value!r} is not a list of numbers: give one value per input, "
-                                 "separated by commas (e.g. 90 or 10,20)") from None
-    if not all(math.isfinite(v) and abs(v) <= MAX_MAGNITUDE for v in out):
-        raise click.BadParameter(f"{value!r}: every value must be finite and at most {MAX_MAGNITUDE:g} in size")
-    return out
-
-
 @cli.command()
 @click.argument("mechanism", type=ANY_PATH)
-@click.option("--at", "at", callback=_values,
+@click.option("--at", "at", callback=flags.values,
               help="The inputs' values, comma-separated, in the file's units (default: the sketch's).")
 @click.option("--json", "as_json", is_flag=True, help="Print the census as JSON instead of a table.")
 @click.option("-o", "--outdir", type=ANY_PATH, help="Write one SVG per assembly here (NAME_assembly_K.svg).")
@@ -368,9 +318,9 @@ def check(mechanism: str, as_json: bool) -> None:
 
 @cli.command(name="ic")
 @click.argument("mechanism", type=ANY_PATH)
-@click.option("--at", "at", callback=_values,
+@click.option("--at", "at", callback=flags.values,
               help="The inputs' values, comma-separated, in the file's units (default: the sketch's).")
-@click.option("--rates", "rates", callback=_values,
+@click.option("--rates", "rates", callback=flags.values,
               help="The inputs' rates, comma-separated, in the file's units per second (default: their speeds).")
 @click.option("--json", "as_json", is_flag=True, help="Print the centres as JSON instead of a table.")
 def instant_centres(mechanism: str, at: tuple[float, ...] | None, rates: tuple[float, ...] | None,

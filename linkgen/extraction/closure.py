@@ -15,8 +15,9 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from ..closurelog import Closure, Distance, Frame
 from ..errors import and_list
-from ..steplog import Closure, Distance, Frame, ResolverGroup, Step, Variable
+from ..steplog import ResolverGroup, Step, Variable
 
 
 class ClosureRefused(Exception):

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from types import SimpleNamespace
 from typing import Any
 
-from ..steplog import Closure, Frame
+from ..closurelog import Closure, Frame
 
 
 @dataclass(frozen=True)

@@ -17,6 +17,8 @@ UNMIRRORED = {
     "linkgen": "the version and an environment default only",
     "linkgen.__main__": "`python -m linkgen` calls cli.main: tests/test_cli.py runs it",
     "linkgen.cli": "the command line is tested end to end by tests/test_cli.py and tests/test_errors.py",
+    "linkgen.closurelog": "records only: tests/unit/test_extraction_closure.py makes them, "
+                          "test_render_closure.py reads them",
 }
 # Runtime sources (backends/<lang>/runtime/) are pasted into the generated programs and run by the
 # evaluator, never imported: the row driver and resolver are tested through them

@@ -9,9 +9,9 @@ from pathlib import Path
 
 import pytest
 
+from linkgen.closurelog import Closure, Distance, Frame
 from linkgen.pipeline import build_log
 from linkgen.render.closure import End, derived, in_process, plan, values
-from linkgen.steplog import Closure, Distance, Frame
 
 ROOT = Path(__file__).resolve().parents[2]
 FIG14 = str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml")
