@@ -110,16 +110,17 @@ ACCELERATION = 1e-11
 # larger: every step's sigma and the link ratio can be fine while the mechanism as a whole is not
 # (triad_583: sigmas >= 0.15, ratio 57, conditioning 1.2e-4; one ulp moved in the sketch moves the
 # exact velocity of P by 5.9e-13 relative, linkgen is 1.7e-12 off)
-# 4 eps per conditioning before this stop's merges; the long profile then found triad_584 (scaled, turned
-# and moved: J4.vy 8.8 eps over its conditioning 0.0015): cause not analysed yet (noted on issue 19)
-VELOCITY_PER_COND, ACCELERATION_PER_COND = 10, 40
+# (raised to 10 while link_point placed a ternary's third pair from a base shorter than its arm: triad_584,
+# J4.vy 8.8 eps over its conditioning 0.0015; the placement's lever is now bounded, LINK_POINT_LEVER)
+VELOCITY_PER_COND, ACCELERATION_PER_COND = 4, 40
 REGULAR_SIGMA = 0.1
 MAX_RATIO = 100
 POSITION = 2  # a mechanism's position error, in eps L over the reference's conditioning
-# eps L, the resolver's positions on regular rows (Fig. 14 family); 4 before link_point placed the
-# ternary's third pair from the two others (5.49 measured by the long tier on a Fig. 14 sweep: the
-# point's lever over its base magnifies the base's rounding; see issue 19's note)
-RESOLVER_POSITION = 6
+# eps L, the resolver's positions on regular rows (Fig. 14 family).  link_point magnifies its base's length
+# error by the point's lever (distance from the base's first point over the base): 5.49 on fig14_9 where a
+# fallback placed J4 at 1.8 times its base; where the lever is over LINK_POINT_LEVER the angle route places
+# the point (1.85 there; 1.17 the worst of the long tier's rows with every sigma >= 0.5)
+RESOLVER_POSITION = 4
 NEAR, SINGULAR = 1e-3, 1e-7  # the status thresholds of sigma
 RATE_COND = 1e-6  # the reference's rates are compared where its conditioning is at least this
 FIELDS = {"POINT": ("x", "y", "dx", "dy", "ddx", "ddy"), "ANGLE": ("the", "dthe", "ddthe"),
