@@ -818,7 +818,7 @@ def _group_1_v1(w, a, da, dda, live):
         w.note(st, 253, -254)
     w.chains = min(w.chains, w.sigma[25])
     # Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
     # Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v1, ]
@@ -850,7 +850,7 @@ def _group_1_v2(w, a, da, dda, live):
         w.note(st, 293, -294)
     w.chains = min(w.chains, w.sigma[29])
     # Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
     # Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v2, ]
@@ -946,7 +946,7 @@ def _group_1_v5(w, a, da, dda, live):
         w.note(st, 413, -414)
     w.chains = min(w.chains, w.sigma[41])
     # Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
     # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v5 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v5, ]
@@ -978,7 +978,7 @@ def _group_1_v6(w, a, da, dda, live):
         w.note(st, 453, -454)
     w.chains = min(w.chains, w.sigma[45])
     # Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
     # Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v6, ]
@@ -1043,7 +1043,7 @@ def _group_2_v1(w, a, da, dda, live):
         w.note(st, 493, -494)
     w.chains = min(w.chains, w.sigma[49])
     # Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746)
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746)
     # Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v1 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v1, ]
@@ -1175,7 +1175,7 @@ def _group_2_v5(w, a, da, dda, live):
         w.note(st, 653, -654)
     w.chains = min(w.chains, w.sigma[65])
     # Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746)
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746)
     # Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v5 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v5, ]
@@ -1208,7 +1208,7 @@ def _group_2_v6(w, a, da, dda, live):
         w.note(st, 693, -694)
     w.chains = min(w.chains, w.sigma[69])
     # Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746)
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746)
     # Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v6 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v6, ]
@@ -1240,7 +1240,7 @@ def _group_2_v7(w, a, da, dda, live):
         w.note(st, 733, -734)
     w.chains = min(w.chains, w.sigma[73])
     # Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746)
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746)
     # Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v7 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v7, ]

@@ -182,32 +182,32 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step21.off": 0.0,  # step 21: link_angle of left_ternary
     "step22.off": 0.0,  # step 22: link_angle of left_rocker2
     "step23.off": 0.0,  # step 23: link_angle of left_coupler
-    "step26.along": 0.5656108597285068,  # step 26: link_point of J5
-    "step26.across": 0.12217194570135746,  # step 26: link_point of J5
-    "step30.along": 0.5656108597285068,  # step 30: link_point of J5
-    "step30.across": 0.12217194570135746,  # step 30: link_point of J5
+    "step26.along": 0.4343891402714932,  # step 26: link_point of J5
+    "step26.across": -0.12217194570135746,  # step 26: link_point of J5
+    "step30.along": 0.4343891402714932,  # step 30: link_point of J5
+    "step30.across": -0.12217194570135746,  # step 30: link_point of J5
     "step34.along": 0.4343891402714932,  # step 34: link_point of J5
     "step34.across": -0.12217194570135746,  # step 34: link_point of J5
     "step38.along": 0.4343891402714932,  # step 38: link_point of J5
     "step38.across": -0.12217194570135746,  # step 38: link_point of J5
-    "step42.along": 0.5656108597285068,  # step 42: link_point of J5
-    "step42.across": 0.12217194570135746,  # step 42: link_point of J5
-    "step46.along": 0.5656108597285068,  # step 46: link_point of J5
-    "step46.across": 0.12217194570135746,  # step 46: link_point of J5
-    "step50.along": 0.5656108597285068,  # step 50: link_point of K5
-    "step50.across": -0.12217194570135746,  # step 50: link_point of K5
+    "step42.along": 0.4343891402714932,  # step 42: link_point of J5
+    "step42.across": -0.12217194570135746,  # step 42: link_point of J5
+    "step46.along": 0.4343891402714932,  # step 46: link_point of J5
+    "step46.across": -0.12217194570135746,  # step 46: link_point of J5
+    "step50.along": 0.4343891402714932,  # step 50: link_point of K5
+    "step50.across": 0.12217194570135746,  # step 50: link_point of K5
     "step54.along": 0.4343891402714932,  # step 54: link_point of K5
     "step54.across": 0.12217194570135746,  # step 54: link_point of K5
     "step58.along": 0.4343891402714932,  # step 58: link_point of K5
     "step58.across": 0.12217194570135746,  # step 58: link_point of K5
     "step62.along": 0.4343891402714932,  # step 62: link_point of K5
     "step62.across": 0.12217194570135746,  # step 62: link_point of K5
-    "step66.along": 0.5656108597285068,  # step 66: link_point of K5
-    "step66.across": -0.12217194570135746,  # step 66: link_point of K5
-    "step70.along": 0.5656108597285068,  # step 70: link_point of K5
-    "step70.across": -0.12217194570135746,  # step 70: link_point of K5
-    "step74.along": 0.5656108597285068,  # step 74: link_point of K5
-    "step74.across": -0.12217194570135746,  # step 74: link_point of K5
+    "step66.along": 0.4343891402714932,  # step 66: link_point of K5
+    "step66.across": 0.12217194570135746,  # step 66: link_point of K5
+    "step70.along": 0.4343891402714932,  # step 70: link_point of K5
+    "step70.across": 0.12217194570135746,  # step 70: link_point of K5
+    "step74.along": 0.4343891402714932,  # step 74: link_point of K5
+    "step74.across": 0.12217194570135746,  # step 74: link_point of K5
     "step78.along": -0.6891891891891891,  # step 78: link_point of K4
     "step78.across": -0.36486486486486486,  # step 78: link_point of K4
 }
@@ -1569,7 +1569,7 @@ def _group_1_v1(w, r, br, a, da, dda):
     report.append((st, ((1, 251), (3, 253), (4, -254))))
     chains = np.minimum(chains, sigma[25])
     # Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step26.along"], c["step26.across"])
+    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step26.along"], c["step26.across"])
     # Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v1, ), chains
@@ -1599,7 +1599,7 @@ def _group_1_v1_1(w, r, br, a, da, dda):
     report.append((st, ((1, 251), (3, 253), (4, -254))))
     chains = np.minimum(chains, sigma[25])
     # Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step26.along"], c["step26.across"])
+    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step26.along"], c["step26.across"])
     # Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v1, ), chains
@@ -1629,7 +1629,7 @@ def _group_1_v2(w, r, br, a, da, dda):
     report.append((st, ((1, 291), (3, 293), (4, -294))))
     chains = np.minimum(chains, sigma[29])
     # Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step30.along"], c["step30.across"])
+    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step30.along"], c["step30.across"])
     # Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v2, ), chains
@@ -1659,7 +1659,7 @@ def _group_1_v2_1(w, r, br, a, da, dda):
     report.append((st, ((1, 291), (3, 293), (4, -294))))
     chains = np.minimum(chains, sigma[29])
     # Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step30.along"], c["step30.across"])
+    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step30.along"], c["step30.across"])
     # Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v2 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v2, ), chains
@@ -1809,7 +1809,7 @@ def _group_1_v5(w, r, br, a, da, dda):
     report.append((st, ((1, 411), (3, 413), (4, -414))))
     chains = np.minimum(chains, sigma[41])
     # Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step42.along"], c["step42.across"])
+    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step42.along"], c["step42.across"])
     # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v5, ), chains
@@ -1839,7 +1839,7 @@ def _group_1_v5_1(w, r, br, a, da, dda):
     report.append((st, ((1, 411), (3, 413), (4, -414))))
     chains = np.minimum(chains, sigma[41])
     # Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step42.along"], c["step42.across"])
+    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step42.along"], c["step42.across"])
     # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v5 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v5, ), chains
@@ -1869,7 +1869,7 @@ def _group_1_v6(w, r, br, a, da, dda):
     report.append((st, ((1, 451), (3, 453), (4, -454))))
     chains = np.minimum(chains, sigma[45])
     # Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step46.along"], c["step46.across"])
+    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step46.along"], c["step46.across"])
     # Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v6 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v6, ), chains
@@ -1899,7 +1899,7 @@ def _group_1_v6_1(w, r, br, a, da, dda):
     report.append((st, ((1, 451), (3, 453), (4, -454))))
     chains = np.minimum(chains, sigma[45])
     # Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step46.along"], c["step46.across"])
+    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step46.along"], c["step46.across"])
     # Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v6 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v6, ), chains
@@ -1989,7 +1989,7 @@ def _group_2_v1(w, r, br, a, da, dda):
     report.append((st, ((1, 491), (3, 493), (4, -494))))
     chains = np.minimum(chains, sigma[49])
     # Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K2, w.p_K4, c["step50.along"], c["step50.across"])
+    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step50.along"], c["step50.across"])
     # Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v1 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v1, ), chains
@@ -2019,7 +2019,7 @@ def _group_2_v1_1(w, r, br, a, da, dda):
     report.append((st, ((1, 491), (3, 493), (4, -494))))
     chains = np.minimum(chains, sigma[49])
     # Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K2, w.p_K4, c["step50.along"], c["step50.across"])
+    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step50.along"], c["step50.across"])
     # Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v1 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v1, ), chains
@@ -2229,7 +2229,7 @@ def _group_2_v5(w, r, br, a, da, dda):
     report.append((st, ((1, 651), (3, 653), (4, -654))))
     chains = np.minimum(chains, sigma[65])
     # Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K2, w.p_K4, c["step66.along"], c["step66.across"])
+    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step66.along"], c["step66.across"])
     # Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v5 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v5, ), chains
@@ -2259,7 +2259,7 @@ def _group_2_v5_1(w, r, br, a, da, dda):
     report.append((st, ((1, 651), (3, 653), (4, -654))))
     chains = np.minimum(chains, sigma[65])
     # Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K2, w.p_K4, c["step66.along"], c["step66.across"])
+    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step66.along"], c["step66.across"])
     # Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v5 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v5, ), chains
@@ -2289,7 +2289,7 @@ def _group_2_v6(w, r, br, a, da, dda):
     report.append((st, ((1, 691), (3, 693), (4, -694))))
     chains = np.minimum(chains, sigma[69])
     # Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K2, w.p_K4, c["step70.along"], c["step70.across"])
+    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step70.along"], c["step70.across"])
     # Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v6 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v6, ), chains
@@ -2319,7 +2319,7 @@ def _group_2_v6_1(w, r, br, a, da, dda):
     report.append((st, ((1, 691), (3, 693), (4, -694))))
     chains = np.minimum(chains, sigma[69])
     # Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K2, w.p_K4, c["step70.along"], c["step70.across"])
+    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step70.along"], c["step70.across"])
     # Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v6 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v6, ), chains
@@ -2349,7 +2349,7 @@ def _group_2_v7(w, r, br, a, da, dda):
     report.append((st, ((1, 731), (3, 733), (4, -734))))
     chains = np.minimum(chains, sigma[73])
     # Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K2, w.p_K4, c["step74.along"], c["step74.across"])
+    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step74.along"], c["step74.across"])
     # Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v7 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v7, ), chains
@@ -2379,7 +2379,7 @@ def _group_2_v7_1(w, r, br, a, da, dda):
     report.append((st, ((1, 731), (3, 733), (4, -734))))
     chains = np.minimum(chains, sigma[73])
     # Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K2, w.p_K4, c["step74.along"], c["step74.across"])
+    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step74.along"], c["step74.across"])
     # Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v7 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v7, ), chains

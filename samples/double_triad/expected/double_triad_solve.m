@@ -356,7 +356,7 @@ function [st, res, w] = group_1_v1(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(25));
     % Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
     % Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -402,7 +402,7 @@ function [st, res, w] = group_1_v2(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(29));
     % Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
     % Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -540,7 +540,7 @@ function [st, res, w] = group_1_v5(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(41));
     % Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
     % Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -586,7 +586,7 @@ function [st, res, w] = group_1_v6(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(45));
     % Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
     % Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -682,7 +682,7 @@ function [st, res, w] = group_2_v1(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(49));
     % Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746);
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
     % Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v1 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -886,7 +886,7 @@ function [st, res, w] = group_2_v5(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(65));
     % Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746);
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
     % Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v5 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -937,7 +937,7 @@ function [st, res, w] = group_2_v6(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(69));
     % Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746);
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
     % Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v6 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -983,7 +983,7 @@ function [st, res, w] = group_2_v7(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(73));
     % Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746);
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
     % Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v7 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;

@@ -96,8 +96,8 @@ PARAMS = {  # design parameter -> its value in the sketch
     "l_coupler": 78.10249675906654,  # length coupler:A-B
     "l_rocker": 50.99019513592785,  # length rocker:B-O2
     "step2.l": 20.0,  # step 2: crank_input of A
-    "step4.along": 0.9672131147540983,  # step 4: link_point of P
-    "step4.across": 0.36065573770491804,  # step 4: link_point of P
+    "step4.along": 0.03278688524590164,  # step 4: link_point of P
+    "step4.across": -0.36065573770491804,  # step 4: link_point of P
     "step5.off": 0.0,  # step 5: link_angle of crank
     "step6.off": 0.0,  # step 6: link_angle of coupler
     "step7.off": 0.0,  # step 7: link_angle of rocker
@@ -535,7 +535,7 @@ def _run(x, dx, ddx, c):
     st, sigma[3], w.p_B = RRR_links(w.p_A, w.p_O2, w.l_coupler, w.l_rocker, 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: link_point, P. point P of link coupler
-    _, _, w.p_P = link_point(w.p_A, w.p_B, c["step4.along"], c["step4.across"])
+    _, _, w.p_P = link_point(w.p_B, w.p_A, c["step4.along"], c["step4.across"])
     # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is
     st, _, w.phi_crank = link_angle(w.p_O1, w.p_A, c["step5.off"])
     report.append((st, ((1, 51),)))

@@ -89,7 +89,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 33, -34);
 
     % Step 4: link_point, P. point P of link coupler
-    w.p_P = link_point(w.p_A, w.p_B, 0.9672131147540983, 0.36065573770491804);
+    w.p_P = link_point(w.p_B, w.p_A, 0.03278688524590164, -0.36065573770491804);
 
     % Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is
     [w.phi_crank, st] = link_angle(w.p_O1, w.p_A, 0.0);

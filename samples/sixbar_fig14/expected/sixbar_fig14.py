@@ -770,7 +770,7 @@ def _group_1_v1(w, a, da, dda, live):
         w.note(st, 153, -154)
     w.chains = min(w.chains, w.sigma[15])
     # Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
     # Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v1, ]
@@ -834,7 +834,7 @@ def _group_1_v3(w, a, da, dda, live):
         w.note(st, 233, -234)
     w.chains = min(w.chains, w.sigma[23])
     # Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
     # Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v3, ]
@@ -866,7 +866,7 @@ def _group_1_v4(w, a, da, dda, live):
         w.note(st, 273, -274)
     w.chains = min(w.chains, w.sigma[27])
     # Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
     # Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v4, ]

@@ -126,14 +126,14 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step11.off": 0.0,  # step 11: link_angle of rocker2
     "step12.off": 0.0,  # step 12: link_angle of coupler
     "step13.off": 0.0,  # step 13: link_angle of crank
-    "step16.along": 0.5656108597285068,  # step 16: link_point of J5
-    "step16.across": 0.12217194570135746,  # step 16: link_point of J5
+    "step16.along": 0.4343891402714932,  # step 16: link_point of J5
+    "step16.across": -0.12217194570135746,  # step 16: link_point of J5
     "step20.along": 0.4343891402714932,  # step 20: link_point of J5
     "step20.across": -0.12217194570135746,  # step 20: link_point of J5
-    "step24.along": 0.5656108597285068,  # step 24: link_point of J5
-    "step24.across": 0.12217194570135746,  # step 24: link_point of J5
-    "step28.along": 0.5656108597285068,  # step 28: link_point of J5
-    "step28.across": 0.12217194570135746,  # step 28: link_point of J5
+    "step24.along": 0.4343891402714932,  # step 24: link_point of J5
+    "step24.across": -0.12217194570135746,  # step 24: link_point of J5
+    "step28.along": 0.4343891402714932,  # step 28: link_point of J5
+    "step28.across": -0.12217194570135746,  # step 28: link_point of J5
     "step32.along": 0.4343891402714932,  # step 32: link_point of J5
     "step32.across": -0.12217194570135746,  # step 32: link_point of J5
     "step36.along": -0.6891891891891891,  # step 36: link_point of J4
@@ -1501,7 +1501,7 @@ def _group_1_v1(w, r, br, a, da, dda):
     report.append((st, ((1, 151), (3, 153), (4, -154))))
     chains = np.minimum(chains, sigma[15])
     # Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step16.along"], c["step16.across"])
+    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step16.along"], c["step16.across"])
     # Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v1, ), chains
@@ -1531,7 +1531,7 @@ def _group_1_v1_1(w, r, br, a, da, dda):
     report.append((st, ((1, 151), (3, 153), (4, -154))))
     chains = np.minimum(chains, sigma[15])
     # Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step16.along"], c["step16.across"])
+    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step16.along"], c["step16.across"])
     # Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v1, ), chains
@@ -1621,7 +1621,7 @@ def _group_1_v3(w, r, br, a, da, dda):
     report.append((st, ((1, 231), (3, 233), (4, -234))))
     chains = np.minimum(chains, sigma[23])
     # Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step24.along"], c["step24.across"])
+    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step24.along"], c["step24.across"])
     # Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v3 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v3, ), chains
@@ -1651,7 +1651,7 @@ def _group_1_v3_1(w, r, br, a, da, dda):
     report.append((st, ((1, 231), (3, 233), (4, -234))))
     chains = np.minimum(chains, sigma[23])
     # Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step24.along"], c["step24.across"])
+    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step24.along"], c["step24.across"])
     # Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v3 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v3, ), chains
@@ -1681,7 +1681,7 @@ def _group_1_v4(w, r, br, a, da, dda):
     report.append((st, ((1, 271), (3, 273), (4, -274))))
     chains = np.minimum(chains, sigma[27])
     # Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step28.along"], c["step28.across"])
+    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step28.along"], c["step28.across"])
     # Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v4 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v4, ), chains
@@ -1711,7 +1711,7 @@ def _group_1_v4_1(w, r, br, a, da, dda):
     report.append((st, ((1, 271), (3, 273), (4, -274))))
     chains = np.minimum(chains, sigma[27])
     # Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step28.along"], c["step28.across"])
+    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step28.along"], c["step28.across"])
     # Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v4 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v4, ), chains

@@ -12,6 +12,9 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
 static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
     const double t = theta->the + phi->the;
@@ -34,6 +37,9 @@ static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, co
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
+#if defined(__GNUC__)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
 static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -57,6 +63,9 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
 }
 
 /* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
+#if defined(__GNUC__)
+static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc) __attribute__((always_inline));
+#endif
 static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -80,6 +89,9 @@ static inline void link_point(const POINT *j1, const POINT *j2, double along, do
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
+#if defined(__GNUC__)
+static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+#endif
 static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -136,6 +148,9 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
 }
 
 /* 2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side. */
+#if defined(__GNUC__)
+static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out) __attribute__((always_inline));
+#endif
 static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out)
 {
     const double cg = cos(psig->the);
@@ -353,7 +368,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 6: link_point, P. point P of link coupler */
-    link_point(&w->p_A, &w->p_B, 0.7636869780389731, 0.3352922981750696, &w->p_P);
+    link_point(&w->p_B, &w->p_A, 0.2363130219610269, -0.3352922981750696, &w->p_P);
 
 
     /* Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is */

@@ -284,7 +284,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 53, -54)
 
     # Step 6: link_point, P. point P of link coupler
-    w.p_P = link_point(w.p_A, w.p_B, 0.7636869780389731, 0.3352922981750696)
+    w.p_P = link_point(w.p_B, w.p_A, 0.2363130219610269, -0.3352922981750696)
 
     # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is
     st, w.phi_rocker = link_angle(p_O2, w.p_B, 0.0)

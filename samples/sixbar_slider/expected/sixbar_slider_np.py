@@ -79,8 +79,8 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step4.across": -0.9319526627218935,  # step 4: link_point of C
     "step5.gsi": 0.0,  # step 5: PRR_links of D
     "step5.eta": 0.0,  # step 5: PRR_links of D
-    "step6.along": 0.7636869780389731,  # step 6: link_point of P
-    "step6.across": 0.3352922981750696,  # step 6: link_point of P
+    "step6.along": 0.2363130219610269,  # step 6: link_point of P
+    "step6.across": -0.3352922981750696,  # step 6: link_point of P
     "step9.off": 0.0,  # step 9: link_angle of rocker
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
@@ -624,7 +624,7 @@ def _run(x, dx, ddx, c):
     st, sigma[5], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, w.l_rod, w.g_S, w.psi_S, c["step5.gsi"], c["step5.eta"], 1)
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     # Step 6: link_point, P. point P of link coupler
-    _, _, w.p_P = link_point(w.p_A, w.p_B, c["step6.along"], c["step6.across"])
+    _, _, w.p_P = link_point(w.p_B, w.p_A, c["step6.along"], c["step6.across"])
     # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is
     st, _, w.phi_rocker = link_angle(w.p_O2, w.p_B, c["step9.off"])
     report.append((st, ((1, 91),)))

@@ -103,7 +103,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 53, -54);
 
     % Step 6: link_point, P. point P of link coupler
-    w.p_P = link_point(w.p_A, w.p_B, 0.7636869780389731, 0.3352922981750696);
+    w.p_P = link_point(w.p_B, w.p_A, 0.2363130219610269, -0.3352922981750696);
 
     % Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is
     [w.phi_rocker, st] = link_angle(w.p_O2, w.p_B, 0.0);
