@@ -75,16 +75,15 @@ static int within(const double in[], const double last[], const double limits[])
 
 /* Block states a moved by step along their rates into out.  An Add-link length is a
  * distance: where its prediction passes zero the two pairs pass each other, so it is
- * reflected. */
+ * reflected.  The entries past a block's lengths (branches, orientation) have no rates:
+ * they are copied. */
 static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_NMAX], double step,
                     const int sizes[], double out[][LINKGEN_NMAX])
 {
     int g, i;
+    memcpy(out, a, sizeof(double[LINKGEN_NBLOCKS][LINKGEN_NMAX]));
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < LINKGEN_NMAX; i++) {
-            out[g][i] = a[g][i] + step * rate[g][i];
-            if (i < sizes[g]) out[g][i] = fabs(out[g][i]);
-        }
+        for (i = 0; i < sizes[g]; i++) out[g][i] = fabs(a[g][i] + step * rate[g][i]);
 }
 
 /* How far inputs in lie from the warm row's along its input rates, in time (0 without rates). */
