@@ -117,7 +117,7 @@ def link_residual(b: PlaneBuilder) -> Primitive:
     # coincident pairs: |d(t)| = t |dv| + t^2 dv.da / (2 |dv|) + ... (t^2 |da| / 2 where dv = 0)
     s = b.let("s", dv.norm())
     iv = b.let("iv", select(s.eq(0), NAN, 1 / s))
-    rd = b.let("rd", select(r.eq(0), s, d.dot(dv) * ir))
+    rd = b.let("rd", select(r.eq(0), dv.norm(), d.dot(dv) * ir))  # s where read: a rate alone needs no sqrt of it
     parting = b.let("rp", select(s.eq(0), da.norm(), dv.dot(da) * iv))
     rdd = b.let("rdd", select(r.eq(0), parting, (dv.dot(dv) + d.dot(da) - rd * rd) * ir))
     b.output("f", "VARIABLE", v=r - ln.v, dv=rd - ln.dv, ddv=rdd - ln.ddv)

@@ -52,6 +52,10 @@ static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b
     double a[LINKGEN_NMAX][LINKGEN_NMAX + 1];
     double det = 1.0;
     int r, c, j;
+    if (n == 1) {  /* one Add-link: the same operations as below, without the copies */
+        x[0] = m[0][0] == 0.0 ? NAN : b[0] / m[0][0];
+        return m[0][0];
+    }
     for (r = 0; r < n; r++) {
         for (c = 0; c < n; c++) a[r][c] = m[r][c];
         a[r][n] = b[r];
