@@ -168,7 +168,7 @@ static inline void link_residual(const POINT *j1, const POINT *j2, const VARIABL
     const double ir = r == 0 ? NAN : 1 / r;
     const double s = sqrt(dvx * dvx + dvy * dvy);
     const double iv = s == 0 ? NAN : 1 / s;
-    const double rd = r == 0 ? s : (dx * dvx + dy * dvy) * ir;
+    const double rd = r == 0 ? sqrt(dvx * dvx + dvy * dvy) : (dx * dvx + dy * dvy) * ir;
     const double rp = s == 0 ? sqrt(dax * dax + day * day) : (dvx * dax + dvy * day) * iv;
     const double rdd = r == 0 ? rp : (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir;
     f->v = r - l->v;
@@ -238,6 +238,10 @@ static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b
     double a[LINKGEN_NMAX][LINKGEN_NMAX + 1];
     double det = 1.0;
     int r, c, j;
+    if (n == 1) {  /* one Add-link: the same operations as below, without the copies */
+        x[0] = m[0][0] == 0.0 ? NAN : b[0] / m[0][0];
+        return m[0][0];
+    }
     for (r = 0; r < n; r++) {
         for (c = 0; c < n; c++) a[r][c] = m[r][c];
         a[r][n] = b[r];
@@ -596,16 +600,15 @@ static int within(const double in[], const double last[], const double limits[])
 
 /* Block states a moved by step along their rates into out.  An Add-link length is a
  * distance: where its prediction passes zero the two pairs pass each other, so it is
- * reflected. */
+ * reflected.  The entries past a block's lengths (branches, orientation) have no rates:
+ * they are copied. */
 static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_NMAX], double step,
                     const int sizes[], double out[][LINKGEN_NMAX])
 {
     int g, i;
+    memcpy(out, a, sizeof(double[LINKGEN_NBLOCKS][LINKGEN_NMAX]));
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < LINKGEN_NMAX; i++) {
-            out[g][i] = a[g][i] + step * rate[g][i];
-            if (i < sizes[g]) out[g][i] = fabs(out[g][i]);
-        }
+        for (i = 0; i < sizes[g]; i++) out[g][i] = fabs(a[g][i] + step * rate[g][i]);
 }
 
 /* How far inputs in lie from the warm row's along its input rates, in time (0 without rates). */
@@ -887,8 +890,7 @@ static inline void link_residual_1(const POINT *j1, const POINT *j2, const VARIA
     const double dvy = j2->DP.y - j1->DP.y;
     const double r = sqrt(dx * dx + dy * dy);
     const double ir = r == 0 ? NAN : 1 / r;
-    const double s = sqrt(dvx * dvx + dvy * dvy);
-    const double rd = r == 0 ? s : (dx * dvx + dy * dvy) * ir;
+    const double rd = r == 0 ? sqrt(dvx * dvx + dvy * dvy) : (dx * dvx + dy * dvy) * ir;
     f->v = r - l->v;
     f->dv = rd - l->dv;
 }

@@ -1645,7 +1645,7 @@ function f = link_residual(j1, j2, l)
         iv = 1 / s;
     end
     if r == 0
-        rd = s;
+        rd = sqrt(dvx * dvx + dvy * dvy);
     else
         rd = (dx * dvx + dy * dvy) * ir;
     end

@@ -255,7 +255,7 @@ def link_residual(j1, j2, l):
     ir = NAN if r == 0 else 1 / r
     s = sqrt(dvx * dvx + dvy * dvy)
     iv = NAN if s == 0 else 1 / s
-    rd = s if r == 0 else (dx * dvx + dy * dvy) * ir
+    rd = sqrt(dvx * dvx + dvy * dvy) if r == 0 else (dx * dvx + dy * dvy) * ir
     rp = sqrt(dax * dax + day * day) if s == 0 else (dvx * dax + dvy * day) * iv
     rdd = rp if r == 0 else (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir
     return (r - l_v, rd - l_dv, rdd - l_ddv)

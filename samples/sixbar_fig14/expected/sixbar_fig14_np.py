@@ -401,9 +401,9 @@ def link_residual(j1, j2, l):
     if not _c2.any():
         rd = (dx * dvx + dy * dvy) * ir
     elif _c2.all():
-        rd = s
+        rd = np.sqrt(dvx * dvx + dvy * dvy)
     else:
-        rd = np.where(_c2, s, (dx * dvx + dy * dvy) * ir)
+        rd = np.where(_c2, np.sqrt(dvx * dvx + dvy * dvy), (dx * dvx + dy * dvy) * ir)
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
     _c4 = np.asarray(r == 0)
