@@ -225,23 +225,19 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            w.p_foot[0] - 28.0,
-            w.p_foot[1] - 32.0,
-            w.p_foot[2],
-            w.p_foot[3],
-            w.phi_crank[0],
-            w.phi_crank[1],
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "foot.x": w.p_foot[0] - 28.0,
+            "foot.y": w.p_foot[1] - 32.0,
+            "foot.vx": w.p_foot[2],
+            "foot.vy": w.p_foot[3],
+            "crank.phi": w.phi_crank[0],
+            "crank.omega": w.phi_crank[1],
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -301,35 +301,31 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            w.p_S[0] + 72.0,
-            w.p_S[1] + 32.0,
-            w.p_S[2],
-            w.p_S[3],
-            w.p_S[4],
-            w.p_S[5],
-            w.s_S[0],
-            w.s_S[1],
-            w.s_S[2],
-            w.p_P[0] + 72.0,
-            w.p_P[1] + 32.0,
-            w.p_P[2],
-            w.p_P[3],
-            w.p_P[4],
-            w.p_P[5],
-            w.phi_rocker[0],
-            w.phi_rocker[1],
-            w.phi_rocker[2],
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "S.x": w.p_S[0] + 72.0,
+            "S.y": w.p_S[1] + 32.0,
+            "S.vx": w.p_S[2],
+            "S.vy": w.p_S[3],
+            "S.ax": w.p_S[4],
+            "S.ay": w.p_S[5],
+            "S.s": w.s_S[0],
+            "S.ds": w.s_S[1],
+            "S.dds": w.s_S[2],
+            "P.x": w.p_P[0] + 72.0,
+            "P.y": w.p_P[1] + 32.0,
+            "P.vx": w.p_P[2],
+            "P.vy": w.p_P[3],
+            "P.ax": w.p_P[4],
+            "P.ay": w.p_P[5],
+            "rocker.phi": w.phi_rocker[0],
+            "rocker.omega": w.phi_rocker[1],
+            "rocker.alpha": w.phi_rocker[2],
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out
