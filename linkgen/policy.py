@@ -25,9 +25,6 @@ NEAR_SINGULAR = 1e-3  # sigma below this: derivatives grow without bound (status
 SINGULAR = 1e-7  # sigma below this: derivatives are not given (status 3)
 TOGGLE_SLACK = 8  # a chain's closing factor in [-8 eps x, 0) is a toggle, not a failure
 MAX_VARIANTS = 8  # fallback Add-link candidates per resolver group
-# link_point places a point from two known points of its link where its distance from the first is at most this
-# times theirs (it magnifies the base's length error by that ratio; the angle route does not: issue 19)
-LINK_POINT_LEVER = 1.5
 GOOD_LEVER = 0.25  # a block that magnifies its frame angle's error more than fourfold ranks after the others
 PROBE_ANGLE = math.radians(5.0)  # the paper's +5 degrees for ranking Add-link candidates
 PROBE_LENGTH = 0.05  # times the length scale, for prismatic and distance inputs

@@ -15,9 +15,9 @@ from __future__ import annotations
 
 from .. import status
 from .directions import angle_direction, link_direction
-from .dsl import NAN, Primitive, atan2, select
+from .dsl import NAN, Primitive, atan2, select, sqrt
 from .dyads import PPR_links, PRP_links, PRR_links, RPR_links, RRR_links
-from .vectors import Motion, PlaneBuilder, Vec, primitive
+from .vectors import Motion, PlaneBuilder, primitive
 
 
 @primitive
@@ -47,17 +47,17 @@ def coupler_point(b: PlaneBuilder) -> Primitive:
 
 @primitive
 def link_point(b: PlaneBuilder) -> Primitive:
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a
-    quarter turn left (linear in the two points: no angle, no trigonometry).
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the
+    unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).
     """
     j1, j2 = b.points("j1", "j2")
-    along, across = b.scalars("along", "across")
+    gsi, eta = b.scalars("gsi", "eta")
     d = b.difference(j1, j2)
-
-    def local(name: str, v: Vec) -> Vec:
-        return b.vec(name, Vec(along * v.x - across * v.y, along * v.y + across * v.x))
-
-    b.output_point("jc", j1 + Motion(local("r", d.p), local("rv", d.v), local("ra", d.a)))
+    r2 = b.let("r2", d.p.dot(d.p))
+    ir = b.let("ir", select(r2.eq(0), NAN, 1 / sqrt(r2)))
+    r = b.local("r", b.vec("e", d.p.scaled(ir)), gsi, eta)
+    om, al = b.angle_rates(d, r2)
+    b.output_point("jc", j1 + b.rotating("r", r, om, al))
     return b.build()
 
 

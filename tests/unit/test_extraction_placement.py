@@ -9,7 +9,6 @@ import pytest
 
 from linkgen.extraction import Procedure, extract
 from linkgen.extraction.placement import rot
-from linkgen.policy import LINK_POINT_LEVER
 from linkgen.topology import analyse
 from linkgen.validate import read_mechanism
 
@@ -40,28 +39,15 @@ def test_rot_gives_the_coordinates_in_a_turned_frame(angle: float, x: float, y: 
     assert rot(angle, x, y) == pytest.approx(expected, abs=1e-15)
 
 
-def test_a_point_of_a_link_with_two_known_pairs_is_linear_in_them():
+def test_a_point_of_a_link_with_two_known_pairs_is_placed_in_their_frame():
     proc = _extract(ROOT / "samples" / "fourbar" / "fourbar.yaml")
     (step,) = [s for s in proc.steps if s.target == "P"]
-    # P (60, 70) from B (80, 50) = (-20, 20), along B -> A = (-60, -50) and across it (50, -60), in units of
-    # |AB|^2: B is the nearer base (lever |BP| / |AB| = 0.36; from A it would be 1.03)
+    # P (60, 70) from B (80, 50) = (-20, 20), along B -> A = (-60, -50) and across it (50, -60), over |AB|:
+    # B is the nearer base (|BP| / |AB| = 0.36; from A it would be 1.03)
     assert step.function == "link_point" and [a.var for a in step.args[:2]] == ["p_B", "p_A"]
-    assert _arg(step, "along") == pytest.approx((20 * 60 - 20 * 50) / 6100, rel=1e-15)
-    assert _arg(step, "across") == pytest.approx((-20 * 50 - 20 * 60) / 6100, rel=1e-15)
+    assert _arg(step, "gsi") == pytest.approx((20 * 60 - 20 * 50) / math.sqrt(6100), rel=1e-15)
+    assert _arg(step, "eta") == pytest.approx((-20 * 50 - 20 * 60) / math.sqrt(6100), rel=1e-15)
     assert "link_angle" not in {s.function for s in proc.steps if s.number < step.number}  # no angle needed
-
-
-def test_a_point_far_out_over_its_links_known_pairs_is_placed_along_the_links_angle(tmp_path: Path):
-    """link_point would magnify the base's length error by the lever (2 here, over LINK_POINT_LEVER): the
-    angle of the link carries only its direction (fig14_9 of the long tier: 5.49 eps L that way, 1.85 this way)."""
-    text = (ROOT / "samples" / "fourbar" / "fourbar.yaml").read_text().replace("P: [60, 70]", "P: [-60, -100]")
-    path = tmp_path / "far.yaml"
-    path.write_text(text)
-    proc = _extract(path)
-    (step,) = [s for s in proc.steps if s.target == "P"]
-    # P (-60, -100): from A (20, 0) 128.1 away, from B (80, 50) 206.2; |AB| = 78.1: the best lever is 1.64
-    assert math.hypot(-80, -100) / math.hypot(60, 50) > LINK_POINT_LEVER
-    assert step.function == "coupler_point" and [a.var for a in step.args[:2]] == ["p_A", "phi_coupler"]
 
 
 def test_a_point_of_a_link_with_one_known_pair_is_at_its_offset_along_the_links_angle():
@@ -80,7 +66,7 @@ def test_a_moving_guides_line_turns_with_it_and_its_copy_of_the_pair_is_a_point_
     (copy,) = [s for s in slotted.steps if s.outputs == ("g_S",)]
     # S (50, 25) is the middle of A (20, 0) and B (80, 50), both known on the coupler
     assert copy.function == "link_point" and [a.var for a in copy.args[:2]] == ["p_A", "p_B"]
-    assert (_arg(copy, "along"), _arg(copy, "across")) == (0.5, 0.0)
+    assert (_arg(copy, "gsi"), _arg(copy, "eta")) == pytest.approx((math.hypot(60, 50) / 2, 0.0), abs=1e-14)
 
 
 def test_a_fixed_guides_line_is_two_constants():
