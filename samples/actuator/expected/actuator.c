@@ -37,26 +37,37 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi. */
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle). */
 #if defined(__GNUC__)
-static inline void coupler_point(const POINT *j0, const ANGLE *phi, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
 #endif
-static inline void coupler_point(const POINT *j0, const ANGLE *phi, double gsi, double eta, POINT *jc)
+static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
-    const double cp = cos(phi->the);
-    const double sp = sin(phi->the);
-    const double rx = gsi * cp - eta * sp;
-    const double ry = gsi * sp + eta * cp;
-    const double rvx = -phi->dthe * ry;
-    const double rvy = phi->dthe * rx;
-    const double rax = -phi->ddthe * ry - phi->dthe * phi->dthe * rx;
-    const double ray = phi->ddthe * rx - phi->dthe * phi->dthe * ry;
-    jc->P.x = j0->P.x + rx;
-    jc->P.y = j0->P.y + ry;
-    jc->DP.x = j0->DP.x + rvx;
-    jc->DP.y = j0->DP.y + rvy;
-    jc->DDP.x = j0->DDP.x + rax;
-    jc->DDP.y = j0->DDP.y + ray;
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = r2 == 0 ? NAN : 1 / r2;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    jc->P.x = j1->P.x + rx;
+    jc->P.y = j1->P.y + ry;
+    jc->DP.x = j1->DP.x + rvx;
+    jc->DP.y = j1->DP.y + rvy;
+    jc->DDP.x = j1->DDP.x + rax;
+    jc->DDP.y = j1->DDP.y + ray;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
@@ -212,9 +223,9 @@ typedef struct {
     POINT p_C;
     POINT p_M;
     POINT p_tip;
-    ANGLE phi_bucket;
     ANGLE phi_side_link;
     ANGLE phi_power_link;
+    ANGLE phi_bucket;
     double sigma[ACTUATOR_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
@@ -451,24 +462,24 @@ static int run(work *w, const double in[], const double din[], const double ddin
     note(w, st, 43, -44);
 
 
-    /* Step 5: link_angle, bucket. Q and M of link bucket are known, so its angle is */
-    st = link_angle(&p_Q, &w->p_M, 0.0, &w->phi_bucket);
-    if (st == 1) return failed(w, out, 51);
-    note(w, st, 53, -54);
+    /* Step 5: link_point, tip. point tip of link bucket */
+    link_point(&p_Q, &w->p_M, -550.5882352941177, -1177.6470588235295, &w->p_tip);
 
 
-    /* Step 6: coupler_point, tip. point tip of link bucket */
-    coupler_point(&p_Q, &w->phi_bucket, -550.5882352941176, -1177.6470588235293, &w->p_tip);
-
-
-    /* Step 7: link_angle, side_link. R and K of link side_link are known, so its angle is */
+    /* Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is */
     st = link_angle(&p_R, &w->p_K, 0.0, &w->phi_side_link);
+    if (st == 1) return failed(w, out, 61);
+    note(w, st, 63, -64);
+
+
+    /* Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is */
+    st = link_angle(&w->p_K, &w->p_M, 0.0, &w->phi_power_link);
     if (st == 1) return failed(w, out, 71);
     note(w, st, 73, -74);
 
 
-    /* Step 8: link_angle, power_link. K and M of link power_link are known, so its angle is */
-    st = link_angle(&w->p_K, &w->p_M, 0.0, &w->phi_power_link);
+    /* Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is */
+    st = link_angle(&p_Q, &w->p_M, 0.0, &w->phi_bucket);
     if (st == 1) return failed(w, out, 81);
     note(w, st, 83, -84);
 

@@ -19,7 +19,7 @@
 import math
 import os
 import sys
-from math import atan2, cos, sin, sqrt
+from math import atan2, sqrt
 
 EPS = sys.float_info.epsilon
 NAN = math.nan
@@ -123,19 +123,30 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp = cos(phi_the)
-    sp = sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    rax = -phi_ddthe * ry - phi_dthe * phi_dthe * rx
-    ray = phi_ddthe * rx - phi_dthe * phi_dthe * ry
-    return (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    r2 = dx * dx + dy * dy
+    ir = NAN if r2 == 0 else 1 / sqrt(r2)
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = NAN if r2 == 0 else 1 / r2
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -264,7 +275,7 @@ l_bucket = (340.0, 0.0, 0.0)
 class _Work:
     """The records of one solution."""
 
-    __slots__ = ("in1", "p_K", "psi_C", "s_C", "p_C", "p_M", "p_tip", "phi_bucket", "phi_side_link", "phi_power_link", "sigma", "singular", "near")
+    __slots__ = ("in1", "p_K", "psi_C", "s_C", "p_C", "p_M", "p_tip", "phi_side_link", "phi_power_link", "phi_bucket", "sigma", "singular", "near")
 
     def note(self, st, singular, near):
         """Remember the code of the first step at a singular or a near-singular position (st: the step's)."""
@@ -302,25 +313,25 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 43, -44)
 
-    # Step 5: link_angle, bucket. Q and M of link bucket are known, so its angle is
-    st, w.phi_bucket = link_angle(p_Q, w.p_M, 0.0)
-    if st == 1:
-        return 51
-    if st:
-        w.note(st, 53, -54)
+    # Step 5: link_point, tip. point tip of link bucket
+    w.p_tip = link_point(p_Q, w.p_M, -550.5882352941177, -1177.6470588235295)
 
-    # Step 6: coupler_point, tip. point tip of link bucket
-    w.p_tip = coupler_point(p_Q, w.phi_bucket, -550.5882352941176, -1177.6470588235293)
-
-    # Step 7: link_angle, side_link. R and K of link side_link are known, so its angle is
+    # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is
     st, w.phi_side_link = link_angle(p_R, w.p_K, 0.0)
+    if st == 1:
+        return 61
+    if st:
+        w.note(st, 63, -64)
+
+    # Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is
+    st, w.phi_power_link = link_angle(w.p_K, w.p_M, 0.0)
     if st == 1:
         return 71
     if st:
         w.note(st, 73, -74)
 
-    # Step 8: link_angle, power_link. K and M of link power_link are known, so its angle is
-    st, w.phi_power_link = link_angle(w.p_K, w.p_M, 0.0)
+    # Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is
+    st, w.phi_bucket = link_angle(p_Q, w.p_M, 0.0)
     if st == 1:
         return 81
     if st:

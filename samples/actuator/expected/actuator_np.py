@@ -122,11 +122,11 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step3.bg": 0.0,  # step 3: RPR_links of C
     "step3.as": -850.0,  # step 3: RPR_links of C
     "step3.bs": 0.0,  # step 3: RPR_links of C
-    "step5.off": 0.0,  # step 5: link_angle of bucket
-    "step6.gsi": -550.5882352941176,  # step 6: coupler_point of tip
-    "step6.eta": -1177.6470588235293,  # step 6: coupler_point of tip
-    "step7.off": 0.0,  # step 7: link_angle of side_link
-    "step8.off": 0.0,  # step 8: link_angle of power_link
+    "step5.gsi": -550.5882352941177,  # step 5: link_point of tip
+    "step5.eta": -1177.6470588235295,  # step 5: link_point of tip
+    "step6.off": 0.0,  # step 6: link_angle of side_link
+    "step7.off": 0.0,  # step 7: link_angle of power_link
+    "step8.off": 0.0,  # step 8: link_angle of bucket
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
     name="actuator_np", n_inputs=N_INPUTS, n_steps=N_STEPS, params=PARAMS,
@@ -191,21 +191,45 @@ def link_angle(j1, j2, off):
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp, sp = cos_sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    _t1 = phi_dthe * phi_dthe
-    rax = -phi_ddthe * ry - _t1 * rx
-    ray = phi_ddthe * rx - _t1 * ry
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    r2 = dx * dx + dy * dy
+    _c1 = np.asarray(r2 == 0)
+    if not _c1.any():
+        ir = 1 / np.sqrt(r2)
+    elif _c1.all():
+        ir = NAN
+    else:
+        ir = np.where(_c1, NAN, 1 / np.sqrt(r2))
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    _c2 = np.asarray(r2 == 0)
+    if not _c2.any():
+        ir2 = 1 / r2
+    elif _c2.all():
+        ir2 = NAN
+    else:
+        ir2 = np.where(_c2, NAN, 1 / r2)
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    _t1 = om * om
+    rax = -al * ry - _t1 * rx
+    ray = al * rx - _t1 * ry
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
-    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+    _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -432,14 +456,6 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
         _jp = (np.where(_fails, np.nan, _jp[0]), np.where(_fails, np.nan, _jp[1]), np.where(_singular, np.nan, _jp[2]), np.where(_singular, np.nan, _jp[3]), np.where(_singular, np.nan, _jp[4]), np.where(_singular, np.nan, _jp[5]))
     return _st, _sigma, _psi, _s, _jp
 
-def cos_sin(t):
-    """cos t and sin t from one tangent of the half angle, within an eps of the library's:
-    numpy's float64 sin and cos are a library call per element, its tangent is vectorised."""
-    h = np.tan(0.5 * t)
-    h2 = h * h
-    d = 1.0 / (1.0 + h2)
-    return (1.0 - h2) * d, (h + h) * d
-
 def row_status(report):
     """The status code of every row from the steps' reports, in the order the steps ran: each
     is (status, codes), codes the step's (status, code) pairs in the order they prevail (a
@@ -637,16 +653,16 @@ def _run(x, dx, ddx, c):
     # Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known
     st, sigma[4], w.p_M = RRR_links(w.p_K, w.p_Q, w.l_power_link, w.l_bucket, 1)
     report.append((st, ((1, 41), (3, 43), (4, -44))))
-    # Step 5: link_angle, bucket. Q and M of link bucket are known, so its angle is
-    st, _, w.phi_bucket = link_angle(w.p_Q, w.p_M, c["step5.off"])
-    report.append((st, ((1, 51),)))
-    # Step 6: coupler_point, tip. point tip of link bucket
-    _, _, w.p_tip = coupler_point(w.p_Q, w.phi_bucket, c["step6.gsi"], c["step6.eta"])
-    # Step 7: link_angle, side_link. R and K of link side_link are known, so its angle is
-    st, _, w.phi_side_link = link_angle(w.p_R, w.p_K, c["step7.off"])
+    # Step 5: link_point, tip. point tip of link bucket
+    _, _, w.p_tip = link_point(w.p_Q, w.p_M, c["step5.gsi"], c["step5.eta"])
+    # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is
+    st, _, w.phi_side_link = link_angle(w.p_R, w.p_K, c["step6.off"])
+    report.append((st, ((1, 61),)))
+    # Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is
+    st, _, w.phi_power_link = link_angle(w.p_K, w.p_M, c["step7.off"])
     report.append((st, ((1, 71),)))
-    # Step 8: link_angle, power_link. K and M of link power_link are known, so its angle is
-    st, _, w.phi_power_link = link_angle(w.p_K, w.p_M, c["step8.off"])
+    # Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is
+    st, _, w.phi_bucket = link_angle(w.p_Q, w.p_M, c["step8.off"])
     report.append((st, ((1, 81),)))
     code = row_status(report)
     return w, code, sigma

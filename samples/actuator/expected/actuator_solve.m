@@ -102,27 +102,27 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 43, -44);
 
-    % Step 5: link_angle, bucket. Q and M of link bucket are known, so its angle is
-    [w.phi_bucket, st] = link_angle(w.p_Q, w.p_M, 0.0);
+    % Step 5: link_point, tip. point tip of link bucket
+    w.p_tip = link_point(w.p_Q, w.p_M, -550.5882352941177, -1177.6470588235295);
+
+    % Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is
+    [w.phi_side_link, st] = link_angle(w.p_R, w.p_K, 0.0);
     if st == 1
-        status = 51;
+        status = 61;
         return;
     end
-    w = note(w, st, 53, -54);
+    w = note(w, st, 63, -64);
 
-    % Step 6: coupler_point, tip. point tip of link bucket
-    w.p_tip = coupler_point(w.p_Q, w.phi_bucket, -550.5882352941176, -1177.6470588235293);
-
-    % Step 7: link_angle, side_link. R and K of link side_link are known, so its angle is
-    [w.phi_side_link, st] = link_angle(w.p_R, w.p_K, 0.0);
+    % Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is
+    [w.phi_power_link, st] = link_angle(w.p_K, w.p_M, 0.0);
     if st == 1
         status = 71;
         return;
     end
     w = note(w, st, 73, -74);
 
-    % Step 8: link_angle, power_link. K and M of link power_link are known, so its angle is
-    [w.phi_power_link, st] = link_angle(w.p_K, w.p_M, 0.0);
+    % Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is
+    [w.phi_bucket, st] = link_angle(w.p_Q, w.p_M, 0.0);
     if st == 1
         status = 81;
         return;
@@ -357,22 +357,41 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function jc = coupler_point(j0, phi, gsi, eta)
-    % Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi.
-    cp = cos(phi.the);
-    sp = sin(phi.the);
-    rx = gsi * cp - eta * sp;
-    ry = gsi * sp + eta * cp;
-    rvx = -phi.dthe * ry;
-    rvy = phi.dthe * rx;
-    rax = -phi.ddthe * ry - phi.dthe * phi.dthe * rx;
-    ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
-    jc.x = j0.x + rx;
-    jc.y = j0.y + ry;
-    jc.dx = j0.dx + rvx;
-    jc.dy = j0.dy + rvy;
-    jc.ddx = j0.ddx + rax;
-    jc.ddy = j0.ddy + ray;
+function jc = link_point(j1, j2, gsi, eta)
+    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx - j1.dx;
+    dvy = j2.dy - j1.dy;
+    dax = j2.ddx - j1.ddx;
+    day = j2.ddy - j1.ddy;
+    r2 = dx * dx + dy * dy;
+    if r2 == 0
+        ir = NaN;
+    else
+        ir = 1 / sqrt(r2);
+    end
+    ex = ir * dx;
+    ey = ir * dy;
+    rx = gsi * ex - eta * ey;
+    ry = gsi * ey + eta * ex;
+    if r2 == 0
+        ir2 = NaN;
+    else
+        ir2 = 1 / r2;
+    end
+    om = (dx * dvy - dy * dvx) * ir2;
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    jc.x = j1.x + rx;
+    jc.y = j1.y + ry;
+    jc.dx = j1.dx + rvx;
+    jc.dy = j1.dy + rvy;
+    jc.ddx = j1.ddx + rax;
+    jc.ddy = j1.ddy + ray;
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)

@@ -67,11 +67,11 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle). */
 #if defined(__GNUC__)
-static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc) __attribute__((always_inline));
+static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
 #endif
-static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
+static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -79,12 +79,19 @@ static inline void link_point(const POINT *j1, const POINT *j2, double along, do
     const double dvy = j2->DP.y - j1->DP.y;
     const double dax = j2->DDP.x - j1->DDP.x;
     const double day = j2->DDP.y - j1->DDP.y;
-    const double rx = along * dx - across * dy;
-    const double ry = along * dy + across * dx;
-    const double rvx = along * dvx - across * dvy;
-    const double rvy = along * dvy + across * dvx;
-    const double rax = along * dax - across * day;
-    const double ray = along * day + across * dax;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = r2 == 0 ? NAN : 1 / r2;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
@@ -858,20 +865,26 @@ static inline int RRR_links_1(const POINT *j1, const POINT *j2, const VARIABLE *
     return st;
 }
 
-/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle). */
 #if defined(__GNUC__)
-static inline void link_point_1(const POINT *j1, const POINT *j2, double along, double across, POINT *jc) __attribute__((always_inline));
+static inline void link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
 #endif
-static inline void link_point_1(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
+static inline void link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
     const double dvx = j2->DP.x - j1->DP.x;
     const double dvy = j2->DP.y - j1->DP.y;
-    const double rx = along * dx - across * dy;
-    const double ry = along * dy + across * dx;
-    const double rvx = along * dvx - across * dvy;
-    const double rvy = along * dvy + across * dvx;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = r2 == 0 ? NAN : 1 / r2;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
@@ -1060,7 +1073,7 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
         if (st == 1) return 1;
         if (live) note(w, st, 53, -54);
         if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
-        link_point_1(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1);
         f[0] = w->f1.v;
         df[0] = w->f1.dv;
@@ -1077,7 +1090,7 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
     if (live) note(w, st, 53, -54);
     if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
     /* Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
     /* Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1);
     f[0] = w->f1.v;
@@ -1115,7 +1128,7 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 253, -254);
         if (w->sigma[25] < w->chains) w->chains = w->sigma[25];
-        link_point_1(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v1);
         f[0] = w->f1_v1.v;
         df[0] = w->f1_v1.dv;
@@ -1132,7 +1145,7 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 253, -254);
     if (w->sigma[25] < w->chains) w->chains = w->sigma[25];
     /* Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
     /* Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v1);
     f[0] = w->f1_v1.v;
@@ -1170,7 +1183,7 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 293, -294);
         if (w->sigma[29] < w->chains) w->chains = w->sigma[29];
-        link_point_1(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v2);
         f[0] = w->f1_v2.v;
         df[0] = w->f1_v2.dv;
@@ -1187,7 +1200,7 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 293, -294);
     if (w->sigma[29] < w->chains) w->chains = w->sigma[29];
     /* Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
     /* Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v2);
     f[0] = w->f1_v2.v;
@@ -1225,7 +1238,7 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 333, -334);
         if (w->sigma[33] < w->chains) w->chains = w->sigma[33];
-        link_point_1(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v3);
         f[0] = w->f1_v3.v;
         df[0] = w->f1_v3.dv;
@@ -1242,7 +1255,7 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 333, -334);
     if (w->sigma[33] < w->chains) w->chains = w->sigma[33];
     /* Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
     /* Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v3);
     f[0] = w->f1_v3.v;
@@ -1280,7 +1293,7 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 373, -374);
         if (w->sigma[37] < w->chains) w->chains = w->sigma[37];
-        link_point_1(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v4);
         f[0] = w->f1_v4.v;
         df[0] = w->f1_v4.dv;
@@ -1297,7 +1310,7 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 373, -374);
     if (w->sigma[37] < w->chains) w->chains = w->sigma[37];
     /* Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
     /* Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v4);
     f[0] = w->f1_v4.v;
@@ -1335,7 +1348,7 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 413, -414);
         if (w->sigma[41] < w->chains) w->chains = w->sigma[41];
-        link_point_1(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v5);
         f[0] = w->f1_v5.v;
         df[0] = w->f1_v5.dv;
@@ -1352,7 +1365,7 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 413, -414);
     if (w->sigma[41] < w->chains) w->chains = w->sigma[41];
     /* Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
     /* Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v5);
     f[0] = w->f1_v5.v;
@@ -1390,7 +1403,7 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 453, -454);
         if (w->sigma[45] < w->chains) w->chains = w->sigma[45];
-        link_point_1(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v6);
         f[0] = w->f1_v6.v;
         df[0] = w->f1_v6.dv;
@@ -1407,7 +1420,7 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 453, -454);
     if (w->sigma[45] < w->chains) w->chains = w->sigma[45];
     /* Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
     /* Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v6);
     f[0] = w->f1_v6.v;
@@ -1445,7 +1458,7 @@ static int group_2(void *ctx, const double a[], const double da[], const double 
         if (st == 1) return 1;
         if (live) note(w, st, 113, -114);
         if (w->sigma[11] < w->chains) w->chains = w->sigma[11];
-        link_point_1(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2);
         f[0] = w->f2.v;
         df[0] = w->f2.dv;
@@ -1462,7 +1475,7 @@ static int group_2(void *ctx, const double a[], const double da[], const double 
     if (live) note(w, st, 113, -114);
     if (w->sigma[11] < w->chains) w->chains = w->sigma[11];
     /* Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
     /* Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2);
     f[0] = w->f2.v;
@@ -1502,7 +1515,7 @@ static int group_2_v1(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 493, -494);
         if (w->sigma[49] < w->chains) w->chains = w->sigma[49];
-        link_point_1(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v1);
         f[0] = w->f2_v1.v;
         df[0] = w->f2_v1.dv;
@@ -1519,7 +1532,7 @@ static int group_2_v1(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 493, -494);
     if (w->sigma[49] < w->chains) w->chains = w->sigma[49];
     /* Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
     /* Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v1);
     f[0] = w->f2_v1.v;
@@ -1559,7 +1572,7 @@ static int group_2_v2(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 533, -534);
         if (w->sigma[53] < w->chains) w->chains = w->sigma[53];
-        link_point_1(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v2);
         f[0] = w->f2_v2.v;
         df[0] = w->f2_v2.dv;
@@ -1576,7 +1589,7 @@ static int group_2_v2(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 533, -534);
     if (w->sigma[53] < w->chains) w->chains = w->sigma[53];
     /* Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
     /* Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v2);
     f[0] = w->f2_v2.v;
@@ -1616,7 +1629,7 @@ static int group_2_v3(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 573, -574);
         if (w->sigma[57] < w->chains) w->chains = w->sigma[57];
-        link_point_1(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v3);
         f[0] = w->f2_v3.v;
         df[0] = w->f2_v3.dv;
@@ -1633,7 +1646,7 @@ static int group_2_v3(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 573, -574);
     if (w->sigma[57] < w->chains) w->chains = w->sigma[57];
     /* Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
     /* Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v3);
     f[0] = w->f2_v3.v;
@@ -1673,7 +1686,7 @@ static int group_2_v4(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 613, -614);
         if (w->sigma[61] < w->chains) w->chains = w->sigma[61];
-        link_point_1(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v4);
         f[0] = w->f2_v4.v;
         df[0] = w->f2_v4.dv;
@@ -1690,7 +1703,7 @@ static int group_2_v4(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 613, -614);
     if (w->sigma[61] < w->chains) w->chains = w->sigma[61];
     /* Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
     /* Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v4);
     f[0] = w->f2_v4.v;
@@ -1730,7 +1743,7 @@ static int group_2_v5(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 653, -654);
         if (w->sigma[65] < w->chains) w->chains = w->sigma[65];
-        link_point_1(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v5);
         f[0] = w->f2_v5.v;
         df[0] = w->f2_v5.dv;
@@ -1747,7 +1760,7 @@ static int group_2_v5(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 653, -654);
     if (w->sigma[65] < w->chains) w->chains = w->sigma[65];
     /* Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
     /* Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v5);
     f[0] = w->f2_v5.v;
@@ -1787,7 +1800,7 @@ static int group_2_v6(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 693, -694);
         if (w->sigma[69] < w->chains) w->chains = w->sigma[69];
-        link_point_1(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v6);
         f[0] = w->f2_v6.v;
         df[0] = w->f2_v6.dv;
@@ -1804,7 +1817,7 @@ static int group_2_v6(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 693, -694);
     if (w->sigma[69] < w->chains) w->chains = w->sigma[69];
     /* Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
     /* Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v6);
     f[0] = w->f2_v6.v;
@@ -1842,7 +1855,7 @@ static int group_2_v7(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 733, -734);
         if (w->sigma[73] < w->chains) w->chains = w->sigma[73];
-        link_point_1(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v7);
         f[0] = w->f2_v7.v;
         df[0] = w->f2_v7.dv;
@@ -1859,7 +1872,7 @@ static int group_2_v7(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 733, -734);
     if (w->sigma[73] < w->chains) w->chains = w->sigma[73];
     /* Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
     /* Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v7);
     f[0] = w->f2_v7.v;
@@ -1899,7 +1912,7 @@ static int group_2_v8(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 773, -774);
         if (w->sigma[77] < w->chains) w->chains = w->sigma[77];
-        link_point_1(&w->p_K5, &w->p_K2, -0.6891891891891891, -0.36486486486486486, &w->p_K4);
+        link_point_1(&w->p_K5, &w->p_K2, -41.921741762866105, -22.193863286223234, &w->p_K4);
         link_residual_1(&p_K3, &w->p_K4, &l_left_rocker2, &w->f2_v8);
         f[0] = w->f2_v8.v;
         df[0] = w->f2_v8.dv;
@@ -1916,7 +1929,7 @@ static int group_2_v8(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 773, -774);
     if (w->sigma[77] < w->chains) w->chains = w->sigma[77];
     /* Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it */
-    link_point(&w->p_K5, &w->p_K2, -0.6891891891891891, -0.36486486486486486, &w->p_K4);
+    link_point(&w->p_K5, &w->p_K2, -41.921741762866105, -22.193863286223234, &w->p_K4);
     /* Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_K3, &w->p_K4, &l_left_rocker2, &w->f2_v8);
     f[0] = w->f2_v8.v;

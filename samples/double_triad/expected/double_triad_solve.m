@@ -310,7 +310,7 @@ function [st, res, w] = group_1(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(5));
     % Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
     % Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -356,7 +356,7 @@ function [st, res, w] = group_1_v1(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(25));
     % Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
     % Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -402,7 +402,7 @@ function [st, res, w] = group_1_v2(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(29));
     % Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
     % Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -448,7 +448,7 @@ function [st, res, w] = group_1_v3(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(33));
     % Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
     % Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -494,7 +494,7 @@ function [st, res, w] = group_1_v4(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(37));
     % Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
     % Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -540,7 +540,7 @@ function [st, res, w] = group_1_v5(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(41));
     % Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
     % Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -586,7 +586,7 @@ function [st, res, w] = group_1_v6(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(45));
     % Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
     % Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -631,7 +631,7 @@ function [st, res, w] = group_2(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(11));
     % Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
     % Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -682,7 +682,7 @@ function [st, res, w] = group_2_v1(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(49));
     % Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
     % Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v1 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -733,7 +733,7 @@ function [st, res, w] = group_2_v2(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(53));
     % Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
     % Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v2 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -784,7 +784,7 @@ function [st, res, w] = group_2_v3(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(57));
     % Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
     % Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v3 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -835,7 +835,7 @@ function [st, res, w] = group_2_v4(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(61));
     % Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
     % Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v4 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -886,7 +886,7 @@ function [st, res, w] = group_2_v5(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(65));
     % Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
     % Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v5 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -937,7 +937,7 @@ function [st, res, w] = group_2_v6(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(69));
     % Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
     % Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v6 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -983,7 +983,7 @@ function [st, res, w] = group_2_v7(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(73));
     % Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
     % Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v7 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -1034,7 +1034,7 @@ function [st, res, w] = group_2_v8(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(77));
     % Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
-    w.p_K4 = link_point(w.p_K5, w.p_K2, -0.6891891891891891, -0.36486486486486486);
+    w.p_K4 = link_point(w.p_K5, w.p_K2, -41.921741762866105, -22.193863286223234);
     % Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v8 = link_residual(w.p_K3, w.p_K4, w.l_left_rocker2);
     st = 0;
@@ -1501,20 +1501,35 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function jc = link_point(j1, j2, along, across)
-    % Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry).
+function jc = link_point(j1, j2, gsi, eta)
+    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
     dvx = j2.dx - j1.dx;
     dvy = j2.dy - j1.dy;
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
-    rx = along * dx - across * dy;
-    ry = along * dy + across * dx;
-    rvx = along * dvx - across * dvy;
-    rvy = along * dvy + across * dvx;
-    rax = along * dax - across * day;
-    ray = along * day + across * dax;
+    r2 = dx * dx + dy * dy;
+    if r2 == 0
+        ir = NaN;
+    else
+        ir = 1 / sqrt(r2);
+    end
+    ex = ir * dx;
+    ey = ir * dy;
+    rx = gsi * ex - eta * ey;
+    ry = gsi * ey + eta * ex;
+    if r2 == 0
+        ir2 = NaN;
+    else
+        ir2 = 1 / r2;
+    end
+    om = (dx * dvy - dy * dvx) * ir2;
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
     jc.x = j1.x + rx;
     jc.y = j1.y + ry;
     jc.dx = j1.dx + rvx;

@@ -53,20 +53,26 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle). */
 #if defined(__GNUC__)
-static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc) __attribute__((always_inline));
+static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
 #endif
-static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
+static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
     const double dvx = j2->DP.x - j1->DP.x;
     const double dvy = j2->DP.y - j1->DP.y;
-    const double rx = along * dx - across * dy;
-    const double ry = along * dy + across * dx;
-    const double rvx = along * dvx - across * dvy;
-    const double rvy = along * dvy + across * dvx;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = r2 == 0 ? NAN : 1 / r2;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
@@ -232,7 +238,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it */
-    link_point(&p_B, &w->p_C, 0.06288866308556408, 0.9642163567880923, &w->p_D);
+    link_point(&p_B, &w->p_C, 2.6098795180489716, 40.01497880667611, &w->p_D);
 
 
     /* Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known */
@@ -248,7 +254,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 7: link_point, foot. point foot of link leg_ghi */
-    link_point(&w->p_E, &w->p_F, -0.21107885573739069, 1.3183591602277374, &w->p_foot);
+    link_point(&w->p_E, &w->p_F, -7.746594005561121, 48.38378118035099, &w->p_foot);
 
 
     /* Step 8: link_angle, crank. O and A of link crank are known, so its angle is */

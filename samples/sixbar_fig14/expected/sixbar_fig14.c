@@ -67,11 +67,11 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle). */
 #if defined(__GNUC__)
-static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc) __attribute__((always_inline));
+static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
 #endif
-static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
+static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -79,12 +79,19 @@ static inline void link_point(const POINT *j1, const POINT *j2, double along, do
     const double dvy = j2->DP.y - j1->DP.y;
     const double dax = j2->DDP.x - j1->DDP.x;
     const double day = j2->DDP.y - j1->DDP.y;
-    const double rx = along * dx - across * dy;
-    const double ry = along * dy + across * dx;
-    const double rvx = along * dvx - across * dvy;
-    const double rvy = along * dvy + across * dvx;
-    const double rax = along * dax - across * day;
-    const double ray = along * day + across * dax;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = r2 == 0 ? NAN : 1 / r2;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
@@ -858,20 +865,26 @@ static inline int RRR_links_1(const POINT *j1, const POINT *j2, const VARIABLE *
     return st;
 }
 
-/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle). */
 #if defined(__GNUC__)
-static inline void link_point_1(const POINT *j1, const POINT *j2, double along, double across, POINT *jc) __attribute__((always_inline));
+static inline void link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
 #endif
-static inline void link_point_1(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
+static inline void link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
     const double dvx = j2->DP.x - j1->DP.x;
     const double dvy = j2->DP.y - j1->DP.y;
-    const double rx = along * dx - across * dy;
-    const double ry = along * dy + across * dx;
-    const double rvx = along * dvx - across * dvy;
-    const double rvy = along * dvy + across * dvx;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = r2 == 0 ? NAN : 1 / r2;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
@@ -1019,7 +1032,7 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
         if (st == 1) return 1;
         if (live) note(w, st, 53, -54);
         if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
-        link_point_1(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
         link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1);
         f[0] = w->f1.v;
         df[0] = w->f1.dv;
@@ -1036,7 +1049,7 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
     if (live) note(w, st, 53, -54);
     if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
     /* Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
     /* Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1);
     f[0] = w->f1.v;
@@ -1074,7 +1087,7 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 153, -154);
         if (w->sigma[15] < w->chains) w->chains = w->sigma[15];
-        link_point_1(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
         link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v1);
         f[0] = w->f1_v1.v;
         df[0] = w->f1_v1.dv;
@@ -1091,7 +1104,7 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 153, -154);
     if (w->sigma[15] < w->chains) w->chains = w->sigma[15];
     /* Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
     /* Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v1);
     f[0] = w->f1_v1.v;
@@ -1129,7 +1142,7 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 193, -194);
         if (w->sigma[19] < w->chains) w->chains = w->sigma[19];
-        link_point_1(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
         link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v2);
         f[0] = w->f1_v2.v;
         df[0] = w->f1_v2.dv;
@@ -1146,7 +1159,7 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 193, -194);
     if (w->sigma[19] < w->chains) w->chains = w->sigma[19];
     /* Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
     /* Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v2);
     f[0] = w->f1_v2.v;
@@ -1184,7 +1197,7 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 233, -234);
         if (w->sigma[23] < w->chains) w->chains = w->sigma[23];
-        link_point_1(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
         link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v3);
         f[0] = w->f1_v3.v;
         df[0] = w->f1_v3.dv;
@@ -1201,7 +1214,7 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 233, -234);
     if (w->sigma[23] < w->chains) w->chains = w->sigma[23];
     /* Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
     /* Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v3);
     f[0] = w->f1_v3.v;
@@ -1239,7 +1252,7 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 273, -274);
         if (w->sigma[27] < w->chains) w->chains = w->sigma[27];
-        link_point_1(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
         link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v4);
         f[0] = w->f1_v4.v;
         df[0] = w->f1_v4.dv;
@@ -1256,7 +1269,7 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 273, -274);
     if (w->sigma[27] < w->chains) w->chains = w->sigma[27];
     /* Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
     /* Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v4);
     f[0] = w->f1_v4.v;
@@ -1294,7 +1307,7 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 313, -314);
         if (w->sigma[31] < w->chains) w->chains = w->sigma[31];
-        link_point_1(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
         link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v5);
         f[0] = w->f1_v5.v;
         df[0] = w->f1_v5.dv;
@@ -1311,7 +1324,7 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 313, -314);
     if (w->sigma[31] < w->chains) w->chains = w->sigma[31];
     /* Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
     /* Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v5);
     f[0] = w->f1_v5.v;
@@ -1349,7 +1362,7 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 353, -354);
         if (w->sigma[35] < w->chains) w->chains = w->sigma[35];
-        link_point_1(&w->p_J5, &w->p_J2, -0.6891891891891891, 0.36486486486486486, &w->p_J4);
+        link_point_1(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
         link_residual_1(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v6);
         f[0] = w->f1_v6.v;
         df[0] = w->f1_v6.dv;
@@ -1366,7 +1379,7 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 353, -354);
     if (w->sigma[35] < w->chains) w->chains = w->sigma[35];
     /* Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
-    link_point(&w->p_J5, &w->p_J2, -0.6891891891891891, 0.36486486486486486, &w->p_J4);
+    link_point(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
     /* Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v6);
     f[0] = w->f1_v6.v;
@@ -1404,7 +1417,7 @@ static int group_1_v7(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 393, -394);
         if (w->sigma[39] < w->chains) w->chains = w->sigma[39];
-        link_point_1(&w->p_J5, &w->p_J2, -0.6891891891891891, 0.36486486486486486, &w->p_J4);
+        link_point_1(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
         link_residual_1(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v7);
         f[0] = w->f1_v7.v;
         df[0] = w->f1_v7.dv;
@@ -1421,7 +1434,7 @@ static int group_1_v7(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 393, -394);
     if (w->sigma[39] < w->chains) w->chains = w->sigma[39];
     /* Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
-    link_point(&w->p_J5, &w->p_J2, -0.6891891891891891, 0.36486486486486486, &w->p_J4);
+    link_point(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
     /* Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v7);
     f[0] = w->f1_v7.v;
@@ -1459,7 +1472,7 @@ static int group_1_v8(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 433, -434);
         if (w->sigma[43] < w->chains) w->chains = w->sigma[43];
-        link_point_1(&w->p_J5, &w->p_J2, -0.6891891891891891, 0.36486486486486486, &w->p_J4);
+        link_point_1(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
         link_residual_1(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v8);
         f[0] = w->f1_v8.v;
         df[0] = w->f1_v8.dv;
@@ -1476,7 +1489,7 @@ static int group_1_v8(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 433, -434);
     if (w->sigma[43] < w->chains) w->chains = w->sigma[43];
     /* Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
-    link_point(&w->p_J5, &w->p_J2, -0.6891891891891891, 0.36486486486486486, &w->p_J4);
+    link_point(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
     /* Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v8);
     f[0] = w->f1_v8.v;

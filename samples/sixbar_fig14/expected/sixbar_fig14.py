@@ -169,8 +169,8 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
-def link_point(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -179,12 +179,19 @@ def link_point(j1, j2, along, across):
     dvy = j2_dy - j1_dy
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    rax = along * dax - across * day
-    ray = along * day + across * dax
+    r2 = dx * dx + dy * dy
+    ir = NAN if r2 == 0 else 1 / sqrt(r2)
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = NAN if r2 == 0 else 1 / r2
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
     return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -738,7 +745,7 @@ def _group_1(w, a, da, dda, live):
         w.note(st, 53, -54)
     w.chains = min(w.chains, w.sigma[5])
     # Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
     # Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1, ]
@@ -770,7 +777,7 @@ def _group_1_v1(w, a, da, dda, live):
         w.note(st, 153, -154)
     w.chains = min(w.chains, w.sigma[15])
     # Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
     # Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v1, ]
@@ -802,7 +809,7 @@ def _group_1_v2(w, a, da, dda, live):
         w.note(st, 193, -194)
     w.chains = min(w.chains, w.sigma[19])
     # Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
     # Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v2, ]
@@ -834,7 +841,7 @@ def _group_1_v3(w, a, da, dda, live):
         w.note(st, 233, -234)
     w.chains = min(w.chains, w.sigma[23])
     # Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
     # Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v3, ]
@@ -866,7 +873,7 @@ def _group_1_v4(w, a, da, dda, live):
         w.note(st, 273, -274)
     w.chains = min(w.chains, w.sigma[27])
     # Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
     # Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v4, ]
@@ -898,7 +905,7 @@ def _group_1_v5(w, a, da, dda, live):
         w.note(st, 313, -314)
     w.chains = min(w.chains, w.sigma[31])
     # Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
     # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v5 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v5, ]
@@ -930,7 +937,7 @@ def _group_1_v6(w, a, da, dda, live):
         w.note(st, 353, -354)
     w.chains = min(w.chains, w.sigma[35])
     # Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486)
+    w.p_J4 = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234)
     # Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v6, ]
@@ -962,7 +969,7 @@ def _group_1_v7(w, a, da, dda, live):
         w.note(st, 393, -394)
     w.chains = min(w.chains, w.sigma[39])
     # Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486)
+    w.p_J4 = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234)
     # Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v7 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v7, ]
@@ -994,7 +1001,7 @@ def _group_1_v8(w, a, da, dda, live):
         w.note(st, 433, -434)
     w.chains = min(w.chains, w.sigma[43])
     # Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486)
+    w.p_J4 = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234)
     # Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v8 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v8, ]
