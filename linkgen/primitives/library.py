@@ -56,7 +56,9 @@ def link_point(b: PlaneBuilder) -> Primitive:
     r2 = b.let("r2", d.p.dot(d.p))
     ir = b.let("ir", select(r2.eq(0), NAN, 1 / sqrt(r2)))
     r = b.local("r", b.vec("e", d.p.scaled(ir)), gsi, eta)
-    om, al = b.angle_rates(d, r2)
+    ir2 = b.let("ir2", ir * ir)  # 1 / |d|^2 without a second division
+    om = b.let("om", d.p.cross(d.v) * ir2)
+    al = b.let("al", (d.p.cross(d.a) - 2 * om * d.p.dot(d.v)) * ir2)
     b.output_point("jc", j1 + b.rotating("r", r, om, al))
     return b.build()
 
