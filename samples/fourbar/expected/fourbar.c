@@ -80,7 +80,7 @@ static inline void link_point(const POINT *j1, const POINT *j2, double gsi, doub
     const double ey = ir * dy;
     const double rx = gsi * ex - eta * ey;
     const double ry = gsi * ey + eta * ex;
-    const double ir2 = r2 == 0 ? NAN : 1 / r2;
+    const double ir2 = ir * ir;
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
     const double rvx = -om * ry;

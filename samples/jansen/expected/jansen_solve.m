@@ -461,11 +461,7 @@ function jc = link_point(j1, j2, gsi, eta)
     ey = ir * dy;
     rx = gsi * ex - eta * ey;
     ry = gsi * ey + eta * ex;
-    if r2 == 0
-        ir2 = NaN;
-    else
-        ir2 = 1 / r2;
-    end
+    ir2 = ir * ir;
     om = (dx * dvy - dy * dvx) * ir2;
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
     rvx = -om * ry;

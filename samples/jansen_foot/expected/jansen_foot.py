@@ -92,7 +92,7 @@ def link_point(j1, j2, gsi, eta):
     ey = ir * dy
     rx = gsi * ex - eta * ey
     ry = gsi * ey + eta * ex
-    ir2 = NAN if r2 == 0 else 1 / r2
+    ir2 = ir * ir
     om = (dx * dvy - dy * dvx) * ir2
     rvx = -om * ry
     rvy = om * rx

@@ -166,14 +166,8 @@ def link_point(j1, j2, gsi, eta):
     ey = ir * dy
     rx = gsi * ex - eta * ey
     ry = gsi * ey + eta * ex
-    _c3 = np.asarray(r2 == 0)
-    if not _c3.any():
-        _s2 = 1 / r2
-    elif _c3.all():
-        _s2 = NAN
-    else:
-        _s2 = np.where(_c3, NAN, 1 / r2)
-    om = (dx * dvy - dy * dvx) * _s2
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
     rvx = -om * ry
     rvy = om * rx
     _st = np.asarray(0)

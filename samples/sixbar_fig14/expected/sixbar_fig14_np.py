@@ -251,13 +251,7 @@ def link_point(j1, j2, gsi, eta):
     ey = ir * dy
     rx = gsi * ex - eta * ey
     ry = gsi * ey + eta * ex
-    _c2 = np.asarray(r2 == 0)
-    if not _c2.any():
-        ir2 = 1 / r2
-    elif _c2.all():
-        ir2 = NAN
-    else:
-        ir2 = np.where(_c2, NAN, 1 / r2)
+    ir2 = ir * ir
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     rvx = -om * ry
@@ -470,14 +464,8 @@ def link_point_1(j1, j2, gsi, eta):
     ey = ir * dy
     rx = gsi * ex - eta * ey
     ry = gsi * ey + eta * ex
-    _c3 = np.asarray(r2 == 0)
-    if not _c3.any():
-        _s2 = 1 / r2
-    elif _c3.all():
-        _s2 = NAN
-    else:
-        _s2 = np.where(_c3, NAN, 1 / r2)
-    om = (dx * dvy - dy * dvx) * _s2
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
     rvx = -om * ry
     rvy = om * rx
     _st = np.asarray(0)

@@ -189,13 +189,7 @@ def link_point(j1, j2, gsi, eta):
     ey = ir * dy
     rx = gsi * ex - eta * ey
     ry = gsi * ey + eta * ex
-    _c2 = np.asarray(r2 == 0)
-    if not _c2.any():
-        ir2 = 1 / r2
-    elif _c2.all():
-        ir2 = NAN
-    else:
-        ir2 = np.where(_c2, NAN, 1 / r2)
+    ir2 = ir * ir
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
     rvx = -om * ry
