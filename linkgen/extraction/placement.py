@@ -96,7 +96,8 @@ def point_on(ws: Workspace, link: str, name: str, out: str, reason: str) -> None
         gsi, eta = exact.local(r[0], r[1], d[0], d[1])
         emit(ws, "point", "link_point",
              [Arg("var", ws.pos[base]), Arg("var", ws.pos[far]), Arg("real", value=gsi, label="gsi"),
-              Arg("real", value=eta, label="eta")], [out], name, pairs=(base, far), links=(link,), reason=reason)
+              Arg("real", value=eta, label="eta")], [out], name, pairs=(base, far), links=(link,), fails=True,
+             reason=reason)
         return
     base = tied[0]
     r = tuple(a - b for a, b in zip(here, ws.xy(base)))

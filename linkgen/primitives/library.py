@@ -48,7 +48,8 @@ def coupler_point(b: PlaneBuilder) -> Primitive:
 @primitive
 def link_point(b: PlaneBuilder) -> Primitive:
     """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the
-    unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).
+    unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where
+    the two points coincide (or their distance's square underflows).
     """
     j1, j2 = b.points("j1", "j2")
     gsi, eta = b.scalars("gsi", "eta")
@@ -60,7 +61,7 @@ def link_point(b: PlaneBuilder) -> Primitive:
     om = b.let("om", d.p.cross(d.v) * ir2)
     al = b.let("al", (d.p.cross(d.a) - 2 * om * d.p.dot(d.v)) * ir2)
     b.output_point("jc", j1 + b.rotating("r", r, om, al))
-    return b.build()
+    return b.build(status=select(r2.eq(0), status.CANNOT_CLOSE, 0), fail=r2.eq(0))
 
 
 @primitive
