@@ -124,7 +124,7 @@ def link_angle(j1, j2, off):
     return st, (th, om, al)
 
 def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle)."""
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -146,7 +146,10 @@ def link_point(j1, j2, gsi, eta):
     rvy = om * rx
     rax = -al * ry - om * om * rx
     ray = al * rx - om * om * ry
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -314,7 +317,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 43, -44)
 
     # Step 5: link_point, tip. point tip of link bucket
-    w.p_tip = link_point(p_Q, w.p_M, -550.5882352941177, -1177.6470588235295)
+    st, w.p_tip = link_point(p_Q, w.p_M, -550.5882352941177, -1177.6470588235295)
+    if st == 1:
+        return 51
+    if st:
+        w.note(st, 53, -54)
 
     # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is
     st, w.phi_side_link = link_angle(p_R, w.p_K, 0.0)

@@ -103,7 +103,12 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 43, -44);
 
     % Step 5: link_point, tip. point tip of link bucket
-    w.p_tip = link_point(w.p_Q, w.p_M, -550.5882352941177, -1177.6470588235295);
+    [w.p_tip, st] = link_point(w.p_Q, w.p_M, -550.5882352941177, -1177.6470588235295);
+    if st == 1
+        status = 51;
+        return;
+    end
+    w = note(w, st, 53, -54);
 
     % Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is
     [w.phi_side_link, st] = link_angle(w.p_R, w.p_K, 0.0);
@@ -357,8 +362,8 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function jc = link_point(j1, j2, gsi, eta)
-    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).
+function [jc, st] = link_point(j1, j2, gsi, eta)
+    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
     dvx = j2.dx - j1.dx;
@@ -382,12 +387,25 @@ function jc = link_point(j1, j2, gsi, eta)
     rvy = om * rx;
     rax = -al * ry - om * om * rx;
     ray = al * rx - om * om * ry;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
     jc.x = j1.x + rx;
     jc.y = j1.y + ry;
     jc.dx = j1.dx + rvx;
     jc.dy = j1.dy + rvy;
     jc.ddx = j1.ddx + rax;
     jc.ddy = j1.ddy + ray;
+    if st == 1
+        jc.x = NaN;
+        jc.y = NaN;
+        jc.dx = NaN;
+        jc.dy = NaN;
+        jc.ddx = NaN;
+        jc.ddy = NaN;
+    end
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)

@@ -67,11 +67,11 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle). */
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
 #if defined(__GNUC__)
-static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
 #endif
-static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -92,12 +92,15 @@ static inline void link_point(const POINT *j1, const POINT *j2, double gsi, doub
     const double rvy = om * rx;
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
+    const int st = r2 == 0 ? 1 : 0;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
     jc->DP.y = j1->DP.y + rvy;
     jc->DDP.x = j1->DDP.x + rax;
     jc->DDP.y = j1->DDP.y + ray;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; }
+    return st;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
@@ -865,11 +868,11 @@ static inline int RRR_links_1(const POINT *j1, const POINT *j2, const VARIABLE *
     return st;
 }
 
-/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle). */
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
 #if defined(__GNUC__)
-static inline void link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+static inline int link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
 #endif
-static inline void link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
+static inline int link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -885,10 +888,13 @@ static inline void link_point_1(const POINT *j1, const POINT *j2, double gsi, do
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double rvx = -om * ry;
     const double rvy = om * rx;
+    const int st = r2 == 0 ? 1 : 0;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
     jc->DP.y = j1->DP.y + rvy;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; }
+    return st;
 }
 
 /* Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part). */
@@ -1073,7 +1079,9 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
         if (st == 1) return 1;
         if (live) note(w, st, 53, -54);
         if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
-        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 63, -64);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1);
         f[0] = w->f1.v;
         df[0] = w->f1.dv;
@@ -1090,7 +1098,9 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
     if (live) note(w, st, 53, -54);
     if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
     /* Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 63, -64);
     /* Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1);
     f[0] = w->f1.v;
@@ -1128,7 +1138,9 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 253, -254);
         if (w->sigma[25] < w->chains) w->chains = w->sigma[25];
-        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 263, -264);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v1);
         f[0] = w->f1_v1.v;
         df[0] = w->f1_v1.dv;
@@ -1145,7 +1157,9 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 253, -254);
     if (w->sigma[25] < w->chains) w->chains = w->sigma[25];
     /* Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 263, -264);
     /* Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v1);
     f[0] = w->f1_v1.v;
@@ -1183,7 +1197,9 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 293, -294);
         if (w->sigma[29] < w->chains) w->chains = w->sigma[29];
-        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 303, -304);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v2);
         f[0] = w->f1_v2.v;
         df[0] = w->f1_v2.dv;
@@ -1200,7 +1216,9 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 293, -294);
     if (w->sigma[29] < w->chains) w->chains = w->sigma[29];
     /* Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 303, -304);
     /* Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v2);
     f[0] = w->f1_v2.v;
@@ -1238,7 +1256,9 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 333, -334);
         if (w->sigma[33] < w->chains) w->chains = w->sigma[33];
-        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 343, -344);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v3);
         f[0] = w->f1_v3.v;
         df[0] = w->f1_v3.dv;
@@ -1255,7 +1275,9 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 333, -334);
     if (w->sigma[33] < w->chains) w->chains = w->sigma[33];
     /* Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 343, -344);
     /* Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v3);
     f[0] = w->f1_v3.v;
@@ -1293,7 +1315,9 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 373, -374);
         if (w->sigma[37] < w->chains) w->chains = w->sigma[37];
-        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 383, -384);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v4);
         f[0] = w->f1_v4.v;
         df[0] = w->f1_v4.dv;
@@ -1310,7 +1334,9 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 373, -374);
     if (w->sigma[37] < w->chains) w->chains = w->sigma[37];
     /* Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 383, -384);
     /* Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v4);
     f[0] = w->f1_v4.v;
@@ -1348,7 +1374,9 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 413, -414);
         if (w->sigma[41] < w->chains) w->chains = w->sigma[41];
-        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 423, -424);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v5);
         f[0] = w->f1_v5.v;
         df[0] = w->f1_v5.dv;
@@ -1365,7 +1393,9 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 413, -414);
     if (w->sigma[41] < w->chains) w->chains = w->sigma[41];
     /* Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 423, -424);
     /* Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v5);
     f[0] = w->f1_v5.v;
@@ -1403,7 +1433,9 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 453, -454);
         if (w->sigma[45] < w->chains) w->chains = w->sigma[45];
-        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 463, -464);
         link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v6);
         f[0] = w->f1_v6.v;
         df[0] = w->f1_v6.dv;
@@ -1420,7 +1452,9 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 453, -454);
     if (w->sigma[45] < w->chains) w->chains = w->sigma[45];
     /* Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 463, -464);
     /* Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v6);
     f[0] = w->f1_v6.v;
@@ -1458,7 +1492,9 @@ static int group_2(void *ctx, const double a[], const double da[], const double 
         if (st == 1) return 1;
         if (live) note(w, st, 113, -114);
         if (w->sigma[11] < w->chains) w->chains = w->sigma[11];
-        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 123, -124);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2);
         f[0] = w->f2.v;
         df[0] = w->f2.dv;
@@ -1475,7 +1511,9 @@ static int group_2(void *ctx, const double a[], const double da[], const double 
     if (live) note(w, st, 113, -114);
     if (w->sigma[11] < w->chains) w->chains = w->sigma[11];
     /* Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 123, -124);
     /* Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2);
     f[0] = w->f2.v;
@@ -1515,7 +1553,9 @@ static int group_2_v1(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 493, -494);
         if (w->sigma[49] < w->chains) w->chains = w->sigma[49];
-        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 503, -504);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v1);
         f[0] = w->f2_v1.v;
         df[0] = w->f2_v1.dv;
@@ -1532,7 +1572,9 @@ static int group_2_v1(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 493, -494);
     if (w->sigma[49] < w->chains) w->chains = w->sigma[49];
     /* Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 503, -504);
     /* Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v1);
     f[0] = w->f2_v1.v;
@@ -1572,7 +1614,9 @@ static int group_2_v2(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 533, -534);
         if (w->sigma[53] < w->chains) w->chains = w->sigma[53];
-        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 543, -544);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v2);
         f[0] = w->f2_v2.v;
         df[0] = w->f2_v2.dv;
@@ -1589,7 +1633,9 @@ static int group_2_v2(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 533, -534);
     if (w->sigma[53] < w->chains) w->chains = w->sigma[53];
     /* Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 543, -544);
     /* Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v2);
     f[0] = w->f2_v2.v;
@@ -1629,7 +1675,9 @@ static int group_2_v3(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 573, -574);
         if (w->sigma[57] < w->chains) w->chains = w->sigma[57];
-        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 583, -584);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v3);
         f[0] = w->f2_v3.v;
         df[0] = w->f2_v3.dv;
@@ -1646,7 +1694,9 @@ static int group_2_v3(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 573, -574);
     if (w->sigma[57] < w->chains) w->chains = w->sigma[57];
     /* Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 583, -584);
     /* Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v3);
     f[0] = w->f2_v3.v;
@@ -1686,7 +1736,9 @@ static int group_2_v4(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 613, -614);
         if (w->sigma[61] < w->chains) w->chains = w->sigma[61];
-        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 623, -624);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v4);
         f[0] = w->f2_v4.v;
         df[0] = w->f2_v4.dv;
@@ -1703,7 +1755,9 @@ static int group_2_v4(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 613, -614);
     if (w->sigma[61] < w->chains) w->chains = w->sigma[61];
     /* Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 623, -624);
     /* Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v4);
     f[0] = w->f2_v4.v;
@@ -1743,7 +1797,9 @@ static int group_2_v5(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 653, -654);
         if (w->sigma[65] < w->chains) w->chains = w->sigma[65];
-        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 663, -664);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v5);
         f[0] = w->f2_v5.v;
         df[0] = w->f2_v5.dv;
@@ -1760,7 +1816,9 @@ static int group_2_v5(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 653, -654);
     if (w->sigma[65] < w->chains) w->chains = w->sigma[65];
     /* Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 663, -664);
     /* Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v5);
     f[0] = w->f2_v5.v;
@@ -1800,7 +1858,9 @@ static int group_2_v6(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 693, -694);
         if (w->sigma[69] < w->chains) w->chains = w->sigma[69];
-        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 703, -704);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v6);
         f[0] = w->f2_v6.v;
         df[0] = w->f2_v6.dv;
@@ -1817,7 +1877,9 @@ static int group_2_v6(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 693, -694);
     if (w->sigma[69] < w->chains) w->chains = w->sigma[69];
     /* Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 703, -704);
     /* Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v6);
     f[0] = w->f2_v6.v;
@@ -1855,7 +1917,9 @@ static int group_2_v7(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 733, -734);
         if (w->sigma[73] < w->chains) w->chains = w->sigma[73];
-        link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 743, -744);
         link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v7);
         f[0] = w->f2_v7.v;
         df[0] = w->f2_v7.dv;
@@ -1872,7 +1936,9 @@ static int group_2_v7(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 733, -734);
     if (w->sigma[73] < w->chains) w->chains = w->sigma[73];
     /* Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 743, -744);
     /* Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v7);
     f[0] = w->f2_v7.v;
@@ -1912,7 +1978,9 @@ static int group_2_v8(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 773, -774);
         if (w->sigma[77] < w->chains) w->chains = w->sigma[77];
-        link_point_1(&w->p_K5, &w->p_K2, -41.921741762866105, -22.193863286223234, &w->p_K4);
+        st = link_point_1(&w->p_K5, &w->p_K2, -41.921741762866105, -22.193863286223234, &w->p_K4);
+        if (st == 1) return 1;
+        if (live) note(w, st, 783, -784);
         link_residual_1(&p_K3, &w->p_K4, &l_left_rocker2, &w->f2_v8);
         f[0] = w->f2_v8.v;
         df[0] = w->f2_v8.dv;
@@ -1929,7 +1997,9 @@ static int group_2_v8(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 773, -774);
     if (w->sigma[77] < w->chains) w->chains = w->sigma[77];
     /* Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it */
-    link_point(&w->p_K5, &w->p_K2, -41.921741762866105, -22.193863286223234, &w->p_K4);
+    st = link_point(&w->p_K5, &w->p_K2, -41.921741762866105, -22.193863286223234, &w->p_K4);
+    if (st == 1) return 1;
+    if (live) note(w, st, 783, -784);
     /* Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_K3, &w->p_K4, &l_left_rocker2, &w->f2_v8);
     f[0] = w->f2_v8.v;

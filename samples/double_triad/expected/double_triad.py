@@ -212,7 +212,7 @@ def link_angle(j1, j2, off):
     return st, (th, om, al)
 
 def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle)."""
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -234,7 +234,10 @@ def link_point(j1, j2, gsi, eta):
     rvy = om * rx
     rax = -al * ry - om * om * rx
     ray = al * rx - om * om * ry
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -793,7 +796,11 @@ def _group_1(w, a, da, dda, live):
         w.note(st, 53, -54)
     w.chains = min(w.chains, w.sigma[5])
     # Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 63, -64)
     # Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1, ]
@@ -825,7 +832,11 @@ def _group_1_v1(w, a, da, dda, live):
         w.note(st, 253, -254)
     w.chains = min(w.chains, w.sigma[25])
     # Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 263, -264)
     # Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v1, ]
@@ -857,7 +868,11 @@ def _group_1_v2(w, a, da, dda, live):
         w.note(st, 293, -294)
     w.chains = min(w.chains, w.sigma[29])
     # Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 303, -304)
     # Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v2, ]
@@ -889,7 +904,11 @@ def _group_1_v3(w, a, da, dda, live):
         w.note(st, 333, -334)
     w.chains = min(w.chains, w.sigma[33])
     # Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 343, -344)
     # Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v3, ]
@@ -921,7 +940,11 @@ def _group_1_v4(w, a, da, dda, live):
         w.note(st, 373, -374)
     w.chains = min(w.chains, w.sigma[37])
     # Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 383, -384)
     # Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v4, ]
@@ -953,7 +976,11 @@ def _group_1_v5(w, a, da, dda, live):
         w.note(st, 413, -414)
     w.chains = min(w.chains, w.sigma[41])
     # Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 423, -424)
     # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v5 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v5, ]
@@ -985,7 +1012,11 @@ def _group_1_v6(w, a, da, dda, live):
         w.note(st, 453, -454)
     w.chains = min(w.chains, w.sigma[45])
     # Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 463, -464)
     # Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v6, ]
@@ -1017,7 +1048,11 @@ def _group_2(w, a, da, dda, live):
         w.note(st, 113, -114)
     w.chains = min(w.chains, w.sigma[11])
     # Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 123, -124)
     # Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2, ]
@@ -1050,7 +1085,11 @@ def _group_2_v1(w, a, da, dda, live):
         w.note(st, 493, -494)
     w.chains = min(w.chains, w.sigma[49])
     # Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 503, -504)
     # Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v1 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v1, ]
@@ -1083,7 +1122,11 @@ def _group_2_v2(w, a, da, dda, live):
         w.note(st, 533, -534)
     w.chains = min(w.chains, w.sigma[53])
     # Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 543, -544)
     # Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v2 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v2, ]
@@ -1116,7 +1159,11 @@ def _group_2_v3(w, a, da, dda, live):
         w.note(st, 573, -574)
     w.chains = min(w.chains, w.sigma[57])
     # Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 583, -584)
     # Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v3 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v3, ]
@@ -1149,7 +1196,11 @@ def _group_2_v4(w, a, da, dda, live):
         w.note(st, 613, -614)
     w.chains = min(w.chains, w.sigma[61])
     # Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 623, -624)
     # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v4 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v4, ]
@@ -1182,7 +1233,11 @@ def _group_2_v5(w, a, da, dda, live):
         w.note(st, 653, -654)
     w.chains = min(w.chains, w.sigma[65])
     # Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 663, -664)
     # Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v5 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v5, ]
@@ -1215,7 +1270,11 @@ def _group_2_v6(w, a, da, dda, live):
         w.note(st, 693, -694)
     w.chains = min(w.chains, w.sigma[69])
     # Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 703, -704)
     # Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v6 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v6, ]
@@ -1247,7 +1306,11 @@ def _group_2_v7(w, a, da, dda, live):
         w.note(st, 733, -734)
     w.chains = min(w.chains, w.sigma[73])
     # Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 743, -744)
     # Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v7 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v7, ]
@@ -1280,7 +1343,11 @@ def _group_2_v8(w, a, da, dda, live):
         w.note(st, 773, -774)
     w.chains = min(w.chains, w.sigma[77])
     # Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
-    w.p_K4 = link_point(w.p_K5, w.p_K2, -41.921741762866105, -22.193863286223234)
+    st, w.p_K4 = link_point(w.p_K5, w.p_K2, -41.921741762866105, -22.193863286223234)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 783, -784)
     # Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v8 = link_residual(p_K3, w.p_K4, l_left_rocker2)
     return 0, [w.f2_v8, ]

@@ -298,7 +298,7 @@ def link_angle(j1, j2, off):
     return _st, _sigma, _angle
 
 def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle)."""
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -327,9 +327,21 @@ def link_point(j1, j2, gsi, eta):
     _t1 = om * om
     rax = -al * ry - _t1 * rx
     ray = al * rx - _t1 * ry
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
+    _c2 = np.asarray(r2 == 0)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    if np.any(_singular):  # nan where the rows failed
+        _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]), np.where(_singular, np.nan, _jc[4]), np.where(_singular, np.nan, _jc[5]))
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -513,7 +525,7 @@ def link_residual(j1, j2, l):
     return _st, _sigma, _f
 
 def link_point_1(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle)."""
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy = j1[:4]
     j2_x, j2_y, j2_dx, j2_dy = j2[:4]
     dx = j2_x - j1_x
@@ -536,9 +548,21 @@ def link_point_1(j1, j2, gsi, eta):
     om = (dx * dvy - dy * dvx) * ir2
     rvx = -om * ry
     rvy = om * rx
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
+    _c2 = np.asarray(r2 == 0)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy)
+    if np.any(_singular):  # nan where the rows failed
+        _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]))
     return _st, _sigma, _jc
 
 def RRR_links_1(j1, j2, l1, l2, minv):
@@ -1535,7 +1559,8 @@ def _group_1(w, r, br, a, da, dda):
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     chains = np.minimum(chains, sigma[5])
     # Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step6.gsi"], c["step6.eta"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step6.gsi"], c["step6.eta"])
+    report.append((st, ((1, 61),)))
     # Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1, ), chains
@@ -1565,7 +1590,8 @@ def _group_1_1(w, r, br, a, da, dda):
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     chains = np.minimum(chains, sigma[5])
     # Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step6.gsi"], c["step6.eta"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step6.gsi"], c["step6.eta"])
+    report.append((st, ((1, 61),)))
     # Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1, ), chains
@@ -1595,7 +1621,8 @@ def _group_1_v1(w, r, br, a, da, dda):
     report.append((st, ((1, 251), (3, 253), (4, -254))))
     chains = np.minimum(chains, sigma[25])
     # Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step26.gsi"], c["step26.eta"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step26.gsi"], c["step26.eta"])
+    report.append((st, ((1, 261),)))
     # Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v1, ), chains
@@ -1625,7 +1652,8 @@ def _group_1_v1_1(w, r, br, a, da, dda):
     report.append((st, ((1, 251), (3, 253), (4, -254))))
     chains = np.minimum(chains, sigma[25])
     # Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step26.gsi"], c["step26.eta"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step26.gsi"], c["step26.eta"])
+    report.append((st, ((1, 261),)))
     # Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v1, ), chains
@@ -1655,7 +1683,8 @@ def _group_1_v2(w, r, br, a, da, dda):
     report.append((st, ((1, 291), (3, 293), (4, -294))))
     chains = np.minimum(chains, sigma[29])
     # Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step30.gsi"], c["step30.eta"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step30.gsi"], c["step30.eta"])
+    report.append((st, ((1, 301),)))
     # Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v2, ), chains
@@ -1685,7 +1714,8 @@ def _group_1_v2_1(w, r, br, a, da, dda):
     report.append((st, ((1, 291), (3, 293), (4, -294))))
     chains = np.minimum(chains, sigma[29])
     # Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step30.gsi"], c["step30.eta"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step30.gsi"], c["step30.eta"])
+    report.append((st, ((1, 301),)))
     # Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v2 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v2, ), chains
@@ -1715,7 +1745,8 @@ def _group_1_v3(w, r, br, a, da, dda):
     report.append((st, ((1, 331), (3, 333), (4, -334))))
     chains = np.minimum(chains, sigma[33])
     # Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step34.gsi"], c["step34.eta"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step34.gsi"], c["step34.eta"])
+    report.append((st, ((1, 341),)))
     # Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v3 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v3, ), chains
@@ -1745,7 +1776,8 @@ def _group_1_v3_1(w, r, br, a, da, dda):
     report.append((st, ((1, 331), (3, 333), (4, -334))))
     chains = np.minimum(chains, sigma[33])
     # Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step34.gsi"], c["step34.eta"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step34.gsi"], c["step34.eta"])
+    report.append((st, ((1, 341),)))
     # Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v3 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v3, ), chains
@@ -1775,7 +1807,8 @@ def _group_1_v4(w, r, br, a, da, dda):
     report.append((st, ((1, 371), (3, 373), (4, -374))))
     chains = np.minimum(chains, sigma[37])
     # Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step38.gsi"], c["step38.eta"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step38.gsi"], c["step38.eta"])
+    report.append((st, ((1, 381),)))
     # Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v4 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v4, ), chains
@@ -1805,7 +1838,8 @@ def _group_1_v4_1(w, r, br, a, da, dda):
     report.append((st, ((1, 371), (3, 373), (4, -374))))
     chains = np.minimum(chains, sigma[37])
     # Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step38.gsi"], c["step38.eta"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step38.gsi"], c["step38.eta"])
+    report.append((st, ((1, 381),)))
     # Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v4 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v4, ), chains
@@ -1835,7 +1869,8 @@ def _group_1_v5(w, r, br, a, da, dda):
     report.append((st, ((1, 411), (3, 413), (4, -414))))
     chains = np.minimum(chains, sigma[41])
     # Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step42.gsi"], c["step42.eta"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step42.gsi"], c["step42.eta"])
+    report.append((st, ((1, 421),)))
     # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v5, ), chains
@@ -1865,7 +1900,8 @@ def _group_1_v5_1(w, r, br, a, da, dda):
     report.append((st, ((1, 411), (3, 413), (4, -414))))
     chains = np.minimum(chains, sigma[41])
     # Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step42.gsi"], c["step42.eta"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step42.gsi"], c["step42.eta"])
+    report.append((st, ((1, 421),)))
     # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v5 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v5, ), chains
@@ -1895,7 +1931,8 @@ def _group_1_v6(w, r, br, a, da, dda):
     report.append((st, ((1, 451), (3, 453), (4, -454))))
     chains = np.minimum(chains, sigma[45])
     # Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step46.gsi"], c["step46.eta"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step46.gsi"], c["step46.eta"])
+    report.append((st, ((1, 461),)))
     # Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v6 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v6, ), chains
@@ -1925,7 +1962,8 @@ def _group_1_v6_1(w, r, br, a, da, dda):
     report.append((st, ((1, 451), (3, 453), (4, -454))))
     chains = np.minimum(chains, sigma[45])
     # Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step46.gsi"], c["step46.eta"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step46.gsi"], c["step46.eta"])
+    report.append((st, ((1, 461),)))
     # Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v6 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v6, ), chains
@@ -1955,7 +1993,8 @@ def _group_2(w, r, br, a, da, dda):
     report.append((st, ((1, 111), (3, 113), (4, -114))))
     chains = np.minimum(chains, sigma[11])
     # Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step12.gsi"], c["step12.eta"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step12.gsi"], c["step12.eta"])
+    report.append((st, ((1, 121),)))
     # Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2, ), chains
@@ -1985,7 +2024,8 @@ def _group_2_1(w, r, br, a, da, dda):
     report.append((st, ((1, 111), (3, 113), (4, -114))))
     chains = np.minimum(chains, sigma[11])
     # Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step12.gsi"], c["step12.eta"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step12.gsi"], c["step12.eta"])
+    report.append((st, ((1, 121),)))
     # Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2, ), chains
@@ -2015,7 +2055,8 @@ def _group_2_v1(w, r, br, a, da, dda):
     report.append((st, ((1, 491), (3, 493), (4, -494))))
     chains = np.minimum(chains, sigma[49])
     # Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step50.gsi"], c["step50.eta"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step50.gsi"], c["step50.eta"])
+    report.append((st, ((1, 501),)))
     # Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v1 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v1, ), chains
@@ -2045,7 +2086,8 @@ def _group_2_v1_1(w, r, br, a, da, dda):
     report.append((st, ((1, 491), (3, 493), (4, -494))))
     chains = np.minimum(chains, sigma[49])
     # Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step50.gsi"], c["step50.eta"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step50.gsi"], c["step50.eta"])
+    report.append((st, ((1, 501),)))
     # Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v1 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v1, ), chains
@@ -2075,7 +2117,8 @@ def _group_2_v2(w, r, br, a, da, dda):
     report.append((st, ((1, 531), (3, 533), (4, -534))))
     chains = np.minimum(chains, sigma[53])
     # Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step54.gsi"], c["step54.eta"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step54.gsi"], c["step54.eta"])
+    report.append((st, ((1, 541),)))
     # Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v2 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v2, ), chains
@@ -2105,7 +2148,8 @@ def _group_2_v2_1(w, r, br, a, da, dda):
     report.append((st, ((1, 531), (3, 533), (4, -534))))
     chains = np.minimum(chains, sigma[53])
     # Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step54.gsi"], c["step54.eta"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step54.gsi"], c["step54.eta"])
+    report.append((st, ((1, 541),)))
     # Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v2 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v2, ), chains
@@ -2135,7 +2179,8 @@ def _group_2_v3(w, r, br, a, da, dda):
     report.append((st, ((1, 571), (3, 573), (4, -574))))
     chains = np.minimum(chains, sigma[57])
     # Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step58.gsi"], c["step58.eta"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step58.gsi"], c["step58.eta"])
+    report.append((st, ((1, 581),)))
     # Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v3 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v3, ), chains
@@ -2165,7 +2210,8 @@ def _group_2_v3_1(w, r, br, a, da, dda):
     report.append((st, ((1, 571), (3, 573), (4, -574))))
     chains = np.minimum(chains, sigma[57])
     # Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step58.gsi"], c["step58.eta"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step58.gsi"], c["step58.eta"])
+    report.append((st, ((1, 581),)))
     # Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v3 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v3, ), chains
@@ -2195,7 +2241,8 @@ def _group_2_v4(w, r, br, a, da, dda):
     report.append((st, ((1, 611), (3, 613), (4, -614))))
     chains = np.minimum(chains, sigma[61])
     # Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step62.gsi"], c["step62.eta"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step62.gsi"], c["step62.eta"])
+    report.append((st, ((1, 621),)))
     # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v4 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v4, ), chains
@@ -2225,7 +2272,8 @@ def _group_2_v4_1(w, r, br, a, da, dda):
     report.append((st, ((1, 611), (3, 613), (4, -614))))
     chains = np.minimum(chains, sigma[61])
     # Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step62.gsi"], c["step62.eta"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step62.gsi"], c["step62.eta"])
+    report.append((st, ((1, 621),)))
     # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v4 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v4, ), chains
@@ -2255,7 +2303,8 @@ def _group_2_v5(w, r, br, a, da, dda):
     report.append((st, ((1, 651), (3, 653), (4, -654))))
     chains = np.minimum(chains, sigma[65])
     # Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step66.gsi"], c["step66.eta"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step66.gsi"], c["step66.eta"])
+    report.append((st, ((1, 661),)))
     # Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v5 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v5, ), chains
@@ -2285,7 +2334,8 @@ def _group_2_v5_1(w, r, br, a, da, dda):
     report.append((st, ((1, 651), (3, 653), (4, -654))))
     chains = np.minimum(chains, sigma[65])
     # Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step66.gsi"], c["step66.eta"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step66.gsi"], c["step66.eta"])
+    report.append((st, ((1, 661),)))
     # Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v5 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v5, ), chains
@@ -2315,7 +2365,8 @@ def _group_2_v6(w, r, br, a, da, dda):
     report.append((st, ((1, 691), (3, 693), (4, -694))))
     chains = np.minimum(chains, sigma[69])
     # Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step70.gsi"], c["step70.eta"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step70.gsi"], c["step70.eta"])
+    report.append((st, ((1, 701),)))
     # Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v6 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v6, ), chains
@@ -2345,7 +2396,8 @@ def _group_2_v6_1(w, r, br, a, da, dda):
     report.append((st, ((1, 691), (3, 693), (4, -694))))
     chains = np.minimum(chains, sigma[69])
     # Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step70.gsi"], c["step70.eta"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step70.gsi"], c["step70.eta"])
+    report.append((st, ((1, 701),)))
     # Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v6 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v6, ), chains
@@ -2375,7 +2427,8 @@ def _group_2_v7(w, r, br, a, da, dda):
     report.append((st, ((1, 731), (3, 733), (4, -734))))
     chains = np.minimum(chains, sigma[73])
     # Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step74.gsi"], c["step74.eta"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step74.gsi"], c["step74.eta"])
+    report.append((st, ((1, 741),)))
     # Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v7 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v7, ), chains
@@ -2405,7 +2458,8 @@ def _group_2_v7_1(w, r, br, a, da, dda):
     report.append((st, ((1, 731), (3, 733), (4, -734))))
     chains = np.minimum(chains, sigma[73])
     # Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step74.gsi"], c["step74.eta"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step74.gsi"], c["step74.eta"])
+    report.append((st, ((1, 741),)))
     # Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v7 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v7, ), chains
@@ -2435,7 +2489,8 @@ def _group_2_v8(w, r, br, a, da, dda):
     report.append((st, ((1, 771), (3, 773), (4, -774))))
     chains = np.minimum(chains, sigma[77])
     # Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
-    _, _, w.p_K4 = link_point(w.p_K5, w.p_K2, c["step78.gsi"], c["step78.eta"])
+    st, _, w.p_K4 = link_point(w.p_K5, w.p_K2, c["step78.gsi"], c["step78.eta"])
+    report.append((st, ((1, 781),)))
     # Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v8 = link_residual(w.p_K3, w.p_K4, w.l_left_rocker2)
     return report, sigma, (w.f2_v8, ), chains
@@ -2465,7 +2520,8 @@ def _group_2_v8_1(w, r, br, a, da, dda):
     report.append((st, ((1, 771), (3, 773), (4, -774))))
     chains = np.minimum(chains, sigma[77])
     # Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
-    _, _, w.p_K4 = link_point_1(w.p_K5, w.p_K2, c["step78.gsi"], c["step78.eta"])
+    st, _, w.p_K4 = link_point_1(w.p_K5, w.p_K2, c["step78.gsi"], c["step78.eta"])
+    report.append((st, ((1, 781),)))
     # Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v8 = link_residual_1(w.p_K3, w.p_K4, w.l_left_rocker2)
     return report, sigma, (w.f2_v8, ), chains

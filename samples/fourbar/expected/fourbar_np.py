@@ -187,7 +187,7 @@ def link_angle(j1, j2, off):
     return _st, _sigma, _angle
 
 def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle)."""
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -216,9 +216,21 @@ def link_point(j1, j2, gsi, eta):
     _t1 = om * om
     rax = -al * ry - _t1 * rx
     ray = al * rx - _t1 * ry
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
+    _c2 = np.asarray(r2 == 0)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    if np.any(_singular):  # nan where the rows failed
+        _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]), np.where(_singular, np.nan, _jc[4]), np.where(_singular, np.nan, _jc[5]))
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -549,7 +561,8 @@ def _run(x, dx, ddx, c):
     st, sigma[3], w.p_B = RRR_links(w.p_A, w.p_O2, w.l_coupler, w.l_rocker, 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: link_point, P. point P of link coupler
-    _, _, w.p_P = link_point(w.p_B, w.p_A, c["step4.gsi"], c["step4.eta"])
+    st, _, w.p_P = link_point(w.p_B, w.p_A, c["step4.gsi"], c["step4.eta"])
+    report.append((st, ((1, 41),)))
     # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is
     st, _, w.phi_crank = link_angle(w.p_O1, w.p_A, c["step5.off"])
     report.append((st, ((1, 51),)))

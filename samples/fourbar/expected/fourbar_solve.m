@@ -89,7 +89,12 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 33, -34);
 
     % Step 4: link_point, P. point P of link coupler
-    w.p_P = link_point(w.p_B, w.p_A, 2.5607375986579193, -28.168113585237116);
+    [w.p_P, st] = link_point(w.p_B, w.p_A, 2.5607375986579193, -28.168113585237116);
+    if st == 1
+        status = 41;
+        return;
+    end
+    w = note(w, st, 43, -44);
 
     % Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is
     [w.phi_crank, st] = link_angle(w.p_O1, w.p_A, 0.0);
@@ -308,8 +313,8 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function jc = link_point(j1, j2, gsi, eta)
-    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).
+function [jc, st] = link_point(j1, j2, gsi, eta)
+    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
     dvx = j2.dx - j1.dx;
@@ -333,12 +338,25 @@ function jc = link_point(j1, j2, gsi, eta)
     rvy = om * rx;
     rax = -al * ry - om * om * rx;
     ray = al * rx - om * om * ry;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
     jc.x = j1.x + rx;
     jc.y = j1.y + ry;
     jc.dx = j1.dx + rvx;
     jc.dy = j1.dy + rvy;
     jc.ddx = j1.ddx + rax;
     jc.ddy = j1.ddy + ray;
+    if st == 1
+        jc.x = NaN;
+        jc.y = NaN;
+        jc.dx = NaN;
+        jc.dy = NaN;
+        jc.ddx = NaN;
+        jc.ddy = NaN;
+    end
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)

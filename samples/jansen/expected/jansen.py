@@ -151,7 +151,7 @@ def link_angle(j1, j2, off):
     return st, (th, om, al)
 
 def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle)."""
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -173,7 +173,10 @@ def link_point(j1, j2, gsi, eta):
     rvy = om * rx
     rax = -al * ry - om * om * rx
     ray = al * rx - om * om * ry
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -280,7 +283,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 33, -34)
 
     # Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
-    w.p_D = link_point(p_B, w.p_C, 2.6098795180489716, 40.01497880667611)
+    st, w.p_D = link_point(p_B, w.p_C, 2.6098795180489716, 40.01497880667611)
+    if st == 1:
+        return 41
+    if st:
+        w.note(st, 43, -44)
 
     # Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
     st, w.sigma[5], w.p_E = RRR_links(w.p_A, p_B, l_rod_k, l_rocker_c, 1)
@@ -297,7 +304,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 63, -64)
 
     # Step 7: link_point, foot. point foot of link leg_ghi
-    w.p_foot = link_point(w.p_E, w.p_F, -7.746594005561121, 48.38378118035099)
+    st, w.p_foot = link_point(w.p_E, w.p_F, -7.746594005561121, 48.38378118035099)
+    if st == 1:
+        return 71
+    if st:
+        w.note(st, 73, -74)
 
     # Step 8: link_angle, crank. O and A of link crank are known, so its angle is
     st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)

@@ -93,7 +93,12 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 33, -34);
 
     % Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
-    w.p_D = link_point(w.p_B, w.p_C, 2.6098795180489716, 40.01497880667611);
+    [w.p_D, st] = link_point(w.p_B, w.p_C, 2.6098795180489716, 40.01497880667611);
+    if st == 1
+        status = 41;
+        return;
+    end
+    w = note(w, st, 43, -44);
 
     % Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
     [w.p_E, st, w.sigma(5)] = RRR_links(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1);
@@ -112,7 +117,12 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 63, -64);
 
     % Step 7: link_point, foot. point foot of link leg_ghi
-    w.p_foot = link_point(w.p_E, w.p_F, -7.746594005561121, 48.38378118035099);
+    [w.p_foot, st] = link_point(w.p_E, w.p_F, -7.746594005561121, 48.38378118035099);
+    if st == 1
+        status = 71;
+        return;
+    end
+    w = note(w, st, 73, -74);
 
     % Step 8: link_angle, crank. O and A of link crank are known, so its angle is
     [w.phi_crank, st] = link_angle(w.p_O, w.p_A, 0.0);
@@ -443,8 +453,8 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function jc = link_point(j1, j2, gsi, eta)
-    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).
+function [jc, st] = link_point(j1, j2, gsi, eta)
+    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
     dvx = j2.dx - j1.dx;
@@ -468,12 +478,25 @@ function jc = link_point(j1, j2, gsi, eta)
     rvy = om * rx;
     rax = -al * ry - om * om * rx;
     ray = al * rx - om * om * ry;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
     jc.x = j1.x + rx;
     jc.y = j1.y + ry;
     jc.dx = j1.dx + rvx;
     jc.dy = j1.dy + rvy;
     jc.ddx = j1.ddx + rax;
     jc.ddy = j1.ddy + ray;
+    if st == 1
+        jc.x = NaN;
+        jc.y = NaN;
+        jc.dx = NaN;
+        jc.dy = NaN;
+        jc.ddx = NaN;
+        jc.ddy = NaN;
+    end
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)

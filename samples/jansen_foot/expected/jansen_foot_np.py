@@ -147,7 +147,7 @@ def link_angle(j1, j2, off):
     return _st, _sigma, _angle
 
 def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle)."""
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy = j1
     j2_x, j2_y, j2_dx, j2_dy = j2
     dx = j2_x - j1_x
@@ -170,9 +170,21 @@ def link_point(j1, j2, gsi, eta):
     om = (dx * dvy - dy * dvx) * ir2
     rvx = -om * ry
     rvy = om * rx
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
+    _c2 = np.asarray(r2 == 0)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy)
+    if np.any(_singular):  # nan where the rows failed
+        _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]))
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -497,7 +509,8 @@ def _run(x, dx, ddx, c):
     st, sigma[3], w.p_C = RRR_links(w.p_A, w.p_B, w.l_rod_j, w.l_triangle_bde_C_B, -1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
-    _, _, w.p_D = link_point(w.p_B, w.p_C, c["step4.gsi"], c["step4.eta"])
+    st, _, w.p_D = link_point(w.p_B, w.p_C, c["step4.gsi"], c["step4.eta"])
+    report.append((st, ((1, 41),)))
     # Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
     st, sigma[5], w.p_E = RRR_links(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1)
     report.append((st, ((1, 51), (3, 53), (4, -54))))
@@ -505,7 +518,8 @@ def _run(x, dx, ddx, c):
     st, sigma[6], w.p_F = RRR_links(w.p_D, w.p_E, w.l_rod_f, w.l_leg_ghi, -1)
     report.append((st, ((1, 61), (3, 63), (4, -64))))
     # Step 7: link_point, foot. point foot of link leg_ghi
-    _, _, w.p_foot = link_point(w.p_E, w.p_F, c["step7.gsi"], c["step7.eta"])
+    st, _, w.p_foot = link_point(w.p_E, w.p_F, c["step7.gsi"], c["step7.eta"])
+    report.append((st, ((1, 71),)))
     # Step 8: link_angle, crank. O and A of link crank are known, so its angle is
     st, _, w.phi_crank = link_angle(w.p_O, w.p_A, c["step8.off"])
     report.append((st, ((1, 81),)))

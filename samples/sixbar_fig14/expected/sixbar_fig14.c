@@ -67,11 +67,11 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle). */
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
 #if defined(__GNUC__)
-static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
 #endif
-static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -92,12 +92,15 @@ static inline void link_point(const POINT *j1, const POINT *j2, double gsi, doub
     const double rvy = om * rx;
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
+    const int st = r2 == 0 ? 1 : 0;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
     jc->DP.y = j1->DP.y + rvy;
     jc->DDP.x = j1->DDP.x + rax;
     jc->DDP.y = j1->DDP.y + ray;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; }
+    return st;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
@@ -865,11 +868,11 @@ static inline int RRR_links_1(const POINT *j1, const POINT *j2, const VARIABLE *
     return st;
 }
 
-/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle). */
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
 #if defined(__GNUC__)
-static inline void link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+static inline int link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
 #endif
-static inline void link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
+static inline int link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -885,10 +888,13 @@ static inline void link_point_1(const POINT *j1, const POINT *j2, double gsi, do
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double rvx = -om * ry;
     const double rvy = om * rx;
+    const int st = r2 == 0 ? 1 : 0;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
     jc->DP.y = j1->DP.y + rvy;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; }
+    return st;
 }
 
 /* Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part). */
@@ -1032,7 +1038,9 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
         if (st == 1) return 1;
         if (live) note(w, st, 53, -54);
         if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
-        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 63, -64);
         link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1);
         f[0] = w->f1.v;
         df[0] = w->f1.dv;
@@ -1049,7 +1057,9 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
     if (live) note(w, st, 53, -54);
     if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
     /* Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 63, -64);
     /* Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1);
     f[0] = w->f1.v;
@@ -1087,7 +1097,9 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 153, -154);
         if (w->sigma[15] < w->chains) w->chains = w->sigma[15];
-        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 163, -164);
         link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v1);
         f[0] = w->f1_v1.v;
         df[0] = w->f1_v1.dv;
@@ -1104,7 +1116,9 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 153, -154);
     if (w->sigma[15] < w->chains) w->chains = w->sigma[15];
     /* Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 163, -164);
     /* Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v1);
     f[0] = w->f1_v1.v;
@@ -1142,7 +1156,9 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 193, -194);
         if (w->sigma[19] < w->chains) w->chains = w->sigma[19];
-        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 203, -204);
         link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v2);
         f[0] = w->f1_v2.v;
         df[0] = w->f1_v2.dv;
@@ -1159,7 +1175,9 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 193, -194);
     if (w->sigma[19] < w->chains) w->chains = w->sigma[19];
     /* Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 203, -204);
     /* Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v2);
     f[0] = w->f1_v2.v;
@@ -1197,7 +1215,9 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 233, -234);
         if (w->sigma[23] < w->chains) w->chains = w->sigma[23];
-        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 243, -244);
         link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v3);
         f[0] = w->f1_v3.v;
         df[0] = w->f1_v3.dv;
@@ -1214,7 +1234,9 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 233, -234);
     if (w->sigma[23] < w->chains) w->chains = w->sigma[23];
     /* Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 243, -244);
     /* Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v3);
     f[0] = w->f1_v3.v;
@@ -1252,7 +1274,9 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 273, -274);
         if (w->sigma[27] < w->chains) w->chains = w->sigma[27];
-        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 283, -284);
         link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v4);
         f[0] = w->f1_v4.v;
         df[0] = w->f1_v4.dv;
@@ -1269,7 +1293,9 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 273, -274);
     if (w->sigma[27] < w->chains) w->chains = w->sigma[27];
     /* Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 283, -284);
     /* Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v4);
     f[0] = w->f1_v4.v;
@@ -1307,7 +1333,9 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 313, -314);
         if (w->sigma[31] < w->chains) w->chains = w->sigma[31];
-        link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 323, -324);
         link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v5);
         f[0] = w->f1_v5.v;
         df[0] = w->f1_v5.dv;
@@ -1324,7 +1352,9 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 313, -314);
     if (w->sigma[31] < w->chains) w->chains = w->sigma[31];
     /* Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 323, -324);
     /* Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v5);
     f[0] = w->f1_v5.v;
@@ -1362,7 +1392,9 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 353, -354);
         if (w->sigma[35] < w->chains) w->chains = w->sigma[35];
-        link_point_1(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+        st = link_point_1(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+        if (st == 1) return 1;
+        if (live) note(w, st, 363, -364);
         link_residual_1(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v6);
         f[0] = w->f1_v6.v;
         df[0] = w->f1_v6.dv;
@@ -1379,7 +1411,9 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 353, -354);
     if (w->sigma[35] < w->chains) w->chains = w->sigma[35];
     /* Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
-    link_point(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+    st = link_point(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+    if (st == 1) return 1;
+    if (live) note(w, st, 363, -364);
     /* Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v6);
     f[0] = w->f1_v6.v;
@@ -1417,7 +1451,9 @@ static int group_1_v7(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 393, -394);
         if (w->sigma[39] < w->chains) w->chains = w->sigma[39];
-        link_point_1(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+        st = link_point_1(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+        if (st == 1) return 1;
+        if (live) note(w, st, 403, -404);
         link_residual_1(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v7);
         f[0] = w->f1_v7.v;
         df[0] = w->f1_v7.dv;
@@ -1434,7 +1470,9 @@ static int group_1_v7(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 393, -394);
     if (w->sigma[39] < w->chains) w->chains = w->sigma[39];
     /* Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
-    link_point(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+    st = link_point(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+    if (st == 1) return 1;
+    if (live) note(w, st, 403, -404);
     /* Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v7);
     f[0] = w->f1_v7.v;
@@ -1472,7 +1510,9 @@ static int group_1_v8(void *ctx, const double a[], const double da[], const doub
         if (st == 1) return 1;
         if (live) note(w, st, 433, -434);
         if (w->sigma[43] < w->chains) w->chains = w->sigma[43];
-        link_point_1(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+        st = link_point_1(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+        if (st == 1) return 1;
+        if (live) note(w, st, 443, -444);
         link_residual_1(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v8);
         f[0] = w->f1_v8.v;
         df[0] = w->f1_v8.dv;
@@ -1489,7 +1529,9 @@ static int group_1_v8(void *ctx, const double a[], const double da[], const doub
     if (live) note(w, st, 433, -434);
     if (w->sigma[43] < w->chains) w->chains = w->sigma[43];
     /* Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
-    link_point(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+    st = link_point(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+    if (st == 1) return 1;
+    if (live) note(w, st, 443, -444);
     /* Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v8);
     f[0] = w->f1_v8.v;

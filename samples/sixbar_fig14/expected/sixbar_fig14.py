@@ -170,7 +170,7 @@ def link_angle(j1, j2, off):
     return st, (th, om, al)
 
 def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle)."""
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -192,7 +192,10 @@ def link_point(j1, j2, gsi, eta):
     rvy = om * rx
     rax = -al * ry - om * om * rx
     ray = al * rx - om * om * ry
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -745,7 +748,11 @@ def _group_1(w, a, da, dda, live):
         w.note(st, 53, -54)
     w.chains = min(w.chains, w.sigma[5])
     # Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 63, -64)
     # Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1, ]
@@ -777,7 +784,11 @@ def _group_1_v1(w, a, da, dda, live):
         w.note(st, 153, -154)
     w.chains = min(w.chains, w.sigma[15])
     # Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 163, -164)
     # Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v1, ]
@@ -809,7 +820,11 @@ def _group_1_v2(w, a, da, dda, live):
         w.note(st, 193, -194)
     w.chains = min(w.chains, w.sigma[19])
     # Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 203, -204)
     # Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v2, ]
@@ -841,7 +856,11 @@ def _group_1_v3(w, a, da, dda, live):
         w.note(st, 233, -234)
     w.chains = min(w.chains, w.sigma[23])
     # Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 243, -244)
     # Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v3, ]
@@ -873,7 +892,11 @@ def _group_1_v4(w, a, da, dda, live):
         w.note(st, 273, -274)
     w.chains = min(w.chains, w.sigma[27])
     # Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 283, -284)
     # Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v4, ]
@@ -905,7 +928,11 @@ def _group_1_v5(w, a, da, dda, live):
         w.note(st, 313, -314)
     w.chains = min(w.chains, w.sigma[31])
     # Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 323, -324)
     # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v5 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v5, ]
@@ -937,7 +964,11 @@ def _group_1_v6(w, a, da, dda, live):
         w.note(st, 353, -354)
     w.chains = min(w.chains, w.sigma[35])
     # Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234)
+    st, w.p_J4 = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 363, -364)
     # Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v6, ]
@@ -969,7 +1000,11 @@ def _group_1_v7(w, a, da, dda, live):
         w.note(st, 393, -394)
     w.chains = min(w.chains, w.sigma[39])
     # Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234)
+    st, w.p_J4 = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 403, -404)
     # Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v7 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v7, ]
@@ -1001,7 +1036,11 @@ def _group_1_v8(w, a, da, dda, live):
         w.note(st, 433, -434)
     w.chains = min(w.chains, w.sigma[43])
     # Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234)
+    st, w.p_J4 = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 443, -444)
     # Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v8 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v8, ]

@@ -62,11 +62,11 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle). */
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
 #if defined(__GNUC__)
-static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
 #endif
-static inline void link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -87,12 +87,15 @@ static inline void link_point(const POINT *j1, const POINT *j2, double gsi, doub
     const double rvy = om * rx;
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
+    const int st = r2 == 0 ? 1 : 0;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
     jc->DP.y = j1->DP.y + rvy;
     jc->DDP.x = j1->DDP.x + rax;
     jc->DDP.y = j1->DDP.y + ray;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; }
+    return st;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
@@ -365,7 +368,9 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it */
-    link_point(&p_O2, &w->p_B, 25.307692307692307, -48.46153846153846, &w->p_C);
+    st = link_point(&p_O2, &w->p_B, 25.307692307692307, -48.46153846153846, &w->p_C);
+    if (st == 1) return failed(w, out, 41);
+    note(w, st, 43, -44);
 
 
     /* Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known */
@@ -375,7 +380,9 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 6: link_point, P. point P of link coupler */
-    link_point(&w->p_B, &w->p_A, 13.436634577833267, -19.06454434865348, &w->p_P);
+    st = link_point(&w->p_B, &w->p_A, 13.436634577833267, -19.06454434865348, &w->p_P);
+    if (st == 1) return failed(w, out, 61);
+    note(w, st, 63, -64);
 
 
     /* Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is */

@@ -97,7 +97,7 @@ def link_angle(j1, j2, off):
     return st, (th, om, al)
 
 def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle)."""
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -119,7 +119,10 @@ def link_point(j1, j2, gsi, eta):
     rvy = om * rx
     rax = -al * ry - om * om * rx
     ray = al * rx - om * om * ry
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -281,7 +284,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 33, -34)
 
     # Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
-    w.p_C = link_point(p_O2, w.p_B, 25.307692307692307, -48.46153846153846)
+    st, w.p_C = link_point(p_O2, w.p_B, 25.307692307692307, -48.46153846153846)
+    if st == 1:
+        return 41
+    if st:
+        w.note(st, 43, -44)
 
     # Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
     st, w.sigma[5], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, l_rod, g_S, psi_S, 0.0, 0.0, 1)
@@ -291,7 +298,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 53, -54)
 
     # Step 6: link_point, P. point P of link coupler
-    w.p_P = link_point(w.p_B, w.p_A, 13.436634577833267, -19.06454434865348)
+    st, w.p_P = link_point(w.p_B, w.p_A, 13.436634577833267, -19.06454434865348)
+    if st == 1:
+        return 61
+    if st:
+        w.note(st, 63, -64)
 
     # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is
     st, w.phi_rocker = link_angle(p_O2, w.p_B, 0.0)
