@@ -21,11 +21,14 @@ $(STAMP): pyproject.toml
 install: $(STAMP)
 
 # The tools the tests run the generated programs with, from apt where missing: GNU Octave, clang
-# and clang's sanitizer runtime (gcc and g++ come with the machine).
+# and clang's sanitizer runtime (gcc and g++ come with the machine); chromium and its driver for
+# the browser test of NAME.html (tests/test_page.py).
 tools:
 	@missing=""; \
 	command -v octave-cli >/dev/null 2>&1 || missing="$$missing octave"; \
 	command -v clang >/dev/null 2>&1 || missing="$$missing clang"; \
+	command -v chromium >/dev/null 2>&1 || missing="$$missing chromium"; \
+	command -v chromedriver >/dev/null 2>&1 || missing="$$missing chromium-driver"; \
 	if [ -n "$$missing" ]; then \
 	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
 	  $$SUDO apt-get update -qq && $$SUDO apt-get install -y -qq --no-install-recommends $$missing >/dev/null; \

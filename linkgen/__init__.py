@@ -8,3 +8,13 @@ import os
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 __version__ = "0.1.0"
+
+
+def __getattr__(name: str) -> object:
+    """``linkgen.load`` and ``linkgen.Mechanism``: the Python API (linkgen.api), imported on first use so
+    that the command line starts fast."""
+    if name in ("load", "Mechanism"):
+        from . import api
+
+        return getattr(api, name)
+    raise AttributeError(f"module 'linkgen' has no attribute {name!r}")

@@ -13,7 +13,7 @@ import click
 from . import __version__
 from .errors import FileSystemError, LinkgenError, os_reason
 from .options import ANGLE_FORMS, MAX_ITERATIONS, MAX_TOLERANCE, PREDICTORS, STRATEGIES
-from .policy import MAX_MAGNITUDE, REAL_TYPES
+from .policy import GOOD_LEVER, MAX_MAGNITUDE, REAL_TYPES
 
 USAGE_ERROR = 2  # exit status of a wrong command line; 1 is every other failure
 ANY_PATH = click.Path(readable=False)  # a path click does not check: its faults are linkgen's, exit 1
@@ -92,6 +92,13 @@ def cli(ctx: click.Context) -> None:
 
     Reads a mechanism file (pairs at their sketch positions, links, the fixed
     link, the inputs) and extracts the analysis procedure of two-link chains.
+
+    \b
+    Examples:
+      linkgen check samples/fourbar/fourbar.yaml
+      linkgen build samples/fourbar/fourbar.yaml -o out
+      linkgen run samples/fourbar/fourbar.yaml --samples 13
+      linkgen COMMAND --help
     """
     if ctx.invoked_subcommand is None:
         raise click.UsageError(f"missing command: one of {', '.join(sorted(cli.commands))}.", ctx)
@@ -111,15 +118,23 @@ def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, 
     With --outputs or --order (or outputs/order in the file) the programs compute only
     the steps and derivatives those outputs need; the manual says what was left out.
     The settings flags (--real, --strategy, ..., --angles) override the file's options; every
-    file states the settings it was built with in its first line.
+    file states the settings it was built with in its first line.  The file names go to
+    stdout; a one-line summary (rows that fail, the least transmission angle) to stderr, with
+    a warning when most rows fail.
+
+    \b
+    Examples:
+      linkgen build samples/fourbar/fourbar.yaml
+      linkgen build samples/fourbar/fourbar.yaml -o out --outputs P,rocker --order 1
+      linkgen build samples/sixbar_fig14/sixbar_fig14.yaml --real float --check -o out
     """
-    from .pipeline import build_log
-    from .render import render_all
+    from .api import Mechanism
+    from .summary.text import one_line
     from .writer import differences, write_all
 
-    log = build_log(mechanism, _outputs(outputs), order, options=_given(settings))
-    files = render_all(log)
-    target = outdir or os.path.join("build", log.name)
+    m = Mechanism(mechanism, _outputs(outputs), order, _given(settings))
+    files = m.files()
+    target = outdir or os.path.join("build", m.name)
     if check:
         diffs = differences(files, target)
         for d in diffs:
@@ -127,6 +142,11 @@ def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, 
         sys.exit(1 if diffs else 0)
     for path in write_all(files, target):
         click.echo(path)
+    summary = m.check()
+    click.echo(f"linkgen: {m.name}: {one_line(summary)}", err=True)
+    if 2 * summary.failed > summary.rows:
+        click.echo(f"linkgen: warning: {summary.failed} of {summary.rows} rows of {m.name} fail: "
+                   "the mechanism does not assemble over most of its sweep (see `linkgen check`)", err=True)
 
 
 @cli.command()
@@ -138,15 +158,27 @@ def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, 
 @_settings
 def run(mechanism: str, samples: int | None, order: int | None, outputs: str | None, output: str | None,
         **settings: Any) -> None:
-    """Evaluate the sweep in-process and print it as CSV."""
-    from .evaluate import evaluate, input_rows
-    from .pipeline import build_log
-    from .table import csv
+    """Evaluate the sweep in-process and print it as CSV.
+
+    A progress bar goes to stderr on long sweeps where stderr is a terminal (never into a
+    file or pipe: the output stays the same bytes).
+
+    \b
+    Examples:
+      linkgen run samples/fourbar/fourbar.yaml --samples 13
+      linkgen run samples/slider_crank/slider_crank.yaml --outputs S --order 1 -o sweep.csv
+    """
+    from .api import CHUNK, Mechanism, csv_text
     from .writer import write_all
 
-    log = build_log(mechanism, _outputs(outputs), order, sweep=False, options=_given(settings))
-    values, rates, accs = input_rows(log, samples or log.samples)
-    text = csv(log, evaluate(log, values, rates, accs))
+    m = Mechanism(mechanism, _outputs(outputs), order, _given(settings))
+    rows = samples or m.log.samples
+    if rows > CHUNK and sys.stderr.isatty():
+        with click.progressbar(length=rows, label="rows", file=sys.stderr) as bar:
+            table = m.sweep(rows, progress=bar.update)
+    else:
+        table = m.sweep(rows)
+    text = csv_text(m, table)
     if output:
         directory, name = os.path.split(output)
         if not name:
@@ -156,15 +188,26 @@ def run(mechanism: str, samples: int | None, order: int | None, outputs: str | N
         click.echo(text, nl=False)
 
 
+LJ_LEGEND = ("# Rows are pairs, columns links (then Add-links).  0: the pair is not on the link;\n"
+             "# 1 (2): an unknown revolute (prismatic) pair on it; -1 (-2): a known one.\n"
+             "# A step turns the entries of the pairs it finds negative.\n")
+
+
 @cli.command()
 @click.argument("mechanism", type=ANY_PATH)
 @click.option("--step", "at", type=int, help="Print only the state after this step (0: before step 1).")
 def lj(mechanism: str, at: int | None) -> None:
-    """Print the LJ-matrix before the first step and after each step."""
-    from .ljmatrix import states, text
-    from .pipeline import build_log
+    """Print the LJ-matrix before the first step and after each step.
 
-    log = build_log(mechanism, sweep=False)
+    \b
+    Examples:
+      linkgen lj samples/fourbar/fourbar.yaml
+      linkgen lj samples/sixbar_fig14/sixbar_fig14.yaml --step 3
+    """
+    from .api import load
+    from .ljmatrix import states, text
+
+    log = load(mechanism).log
     chosen = states(log)
     if at is not None:
         if not 0 <= at < len(chosen):
@@ -175,7 +218,7 @@ def lj(mechanism: str, at: int | None) -> None:
     for state in chosen:
         title = "before step 1" if state.step == 0 else f"after step {state.step}: {log.step(state.step).reason}"
         blocks.append(f"# LJ-matrix {title}\n" + text(state))
-    click.echo("\n".join(blocks), nl=False)
+    click.echo(LJ_LEGEND + "\n" + "\n".join(blocks), nl=False)
 
 
 @cli.command()
@@ -183,11 +226,16 @@ def lj(mechanism: str, at: int | None) -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print a JSON array of {pairs, norm, usable, lever}, ranked.")
 def candidates(mechanism: str, as_json: bool) -> None:
     """List the Add-link candidates where the Solver first stops, ranked by the norm of f
-    (those whose lever is below GOOD_LEVER after the others)."""
-    from .pipeline import build_log
-    from .policy import GOOD_LEVER
+    (those whose lever is below {good_lever} after the others).
 
-    log = build_log(mechanism, sweep=False)
+    \b
+    Examples:
+      linkgen candidates samples/sixbar_fig14/sixbar_fig14.yaml
+      linkgen candidates samples/sixbar_fig14/sixbar_fig14.yaml --json
+    """
+    from .api import load
+
+    log = load(mechanism).log
     if not log.add_links:
         if as_json:
             click.echo("[]")
@@ -210,15 +258,39 @@ def candidates(mechanism: str, as_json: bool) -> None:
             click.echo(f"  {rank}. {c.pairs[0]}-{c.pairs[1]}  |f| = {norm}{lever}{mark}")
 
 
+candidates.help = (candidates.help or "").replace("{good_lever}", f"{GOOD_LEVER:g}")  # the number, not its name
+
+
 @cli.command()
 @click.argument("mechanism", type=ANY_PATH)
-def procedure(mechanism: str) -> None:
-    """Print the numbered procedure, one call per step."""
-    from .pipeline import build_log
+@click.option("--outputs", help="Comma-separated outputs: only the steps they need (default: the file's outputs).")
+def procedure(mechanism: str, outputs: str | None) -> None:
+    """Print the numbered procedure, one call per step, then each resolver's fallback blocks
+    under a heading of their own.
 
-    log = build_log(mechanism, sweep=False)
+    \b
+    Examples:
+      linkgen procedure samples/fourbar/fourbar.yaml
+      linkgen procedure samples/sixbar_fig14/sixbar_fig14.yaml --outputs J5
+    """
+    from .api import Mechanism
+
+    log = Mechanism(mechanism, _outputs(outputs)).log
+    variant = 0
     for s in log.steps:
+        if s.variant != variant:
+            variant = s.variant
+            block = next(b for g in log.groups for b in g.variants if b.variant == variant and s.number in b.steps)
+            group = next(g for g in log.groups if block in g.variants)
+            click.echo(f"# fallback block {variant} of the resolver of step {group.step}: steps "
+                       f"{block.steps[0]}-{block.steps[-1]}, tried in turn where the block before cannot solve a row "
+                       f"(Add-link{'s' if len(block.pairs) > 1 else ''} "
+                       f"{', '.join(f'{a}-{b}' for a, b in block.pairs)})")
         click.echo(f"{s.number:3d}  {s.function or s.action:<14} {s.target:<10} {s.reason}")
+    if log.omitted:
+        click.echo(f"# Steps {', '.join(str(o.number) for o in log.omitted)} of the whole procedure are left out: the "
+                   f"outputs {', '.join(log.outputs)} do not need them (the steps keep their numbers, as in the "
+                   "programs and their status codes).")
 
 
 def _values(ctx: click.Context, param: click.Parameter, value: str | None) -> tuple[float, ...] | None:
@@ -247,6 +319,11 @@ def assemblies(mechanism: str, at: tuple[float, ...] | None, as_json: bool, outd
     Both branches of every two-link chain are tried; every class-III group is reduced to
     its characteristic polynomial, whose real roots are isolated exactly.  The sketch's
     assembly (the one the programs follow) is marked.
+
+    \b
+    Examples:
+      linkgen assemblies samples/fourbar/fourbar.yaml --at 90
+      linkgen assemblies samples/double_triad/double_triad.yaml --json -o figures
     """
     from .assemblies import assemblies as census_of
     from .assemblies import whole_log
@@ -269,6 +346,66 @@ def assemblies(mechanism: str, at: tuple[float, ...] | None, as_json: bool, outd
     click.echo(table(log, census), nl=False)
     for path in written:
         click.echo(path)
+
+
+@cli.command()
+@click.argument("mechanism", type=ANY_PATH)
+@click.option("--json", "as_json", is_flag=True, help="Print the summary's records as JSON.")
+def check(mechanism: str, as_json: bool) -> None:
+    """Print the engineering summary; no file is written.
+
+    Mobility, the four-bar loops and their Grashof class, the input range that assembles,
+    limit positions and change points, the transmission angle of each chain (sigma is its
+    sine) with its least value and where, the stroke or swing of every output, time ratios,
+    and the rows that fail and why: in the file's units (degrees where it gives degrees).
+
+    \b
+    Examples:
+      linkgen check samples/fourbar/fourbar.yaml
+      linkgen check samples/slider_crank/slider_crank.yaml --json
+    """
+    from .api import load
+    from .summary.text import text, to_json
+
+    summary = load(mechanism).check()
+    click.echo(to_json(summary) if as_json else text(summary), nl=False)
+
+
+@cli.command(name="ic")
+@click.argument("mechanism", type=ANY_PATH)
+@click.option("--at", "at", callback=_values,
+              help="The inputs' values, comma-separated, in the file's units (default: the sketch's).")
+@click.option("--rates", "rates", callback=_values,
+              help="The inputs' rates, comma-separated, in the file's units per second (default: their speeds).")
+@click.option("--json", "as_json", is_flag=True, help="Print the centres as JSON instead of a table.")
+def instant_centres(mechanism: str, at: tuple[float, ...] | None, rates: tuple[float, ...] | None,
+                    as_json: bool) -> None:
+    """Every instant centre of the mechanism at one row: its class and its place.
+
+    The class (first, secondary, third A, third B) comes from the topology, the place from the
+    links' exact velocities at the inputs and rates given (with several inputs, their ratio).
+
+    \b
+    Examples:
+      linkgen ic samples/fourbar/fourbar.yaml
+      linkgen ic samples/fourbar/fourbar.yaml --at 90 --json
+      linkgen ic samples/fivebar/fivebar.yaml --rates 1,2
+    """
+    from .assemblies import internal_units
+    from .instant.table import centre_outputs, locate, text, to_json
+    from .pipeline import analyse_file, build_log
+
+    m = analyse_file(mechanism)[0]
+    log = build_log(mechanism, outputs=centre_outputs(m), order=1, sweep=False)
+    for flag, given in (("--at", at), ("--rates", rates)):
+        if given is not None and len(given) != len(log.inputs):
+            names = ", ".join(i.column for i in log.inputs)
+            raise click.BadParameter(f"{len(given)} value{'s' if len(given) != 1 else ''} given; {log.name} has "
+                                     f"{len(log.inputs)} input{'s' if len(log.inputs) != 1 else ''} ({names})",
+                                     param_hint=f"'{flag}'")
+    table = locate(log, m, None if at is None else internal_units(log, at),
+                   None if rates is None else internal_units(log, rates))
+    click.echo(to_json(log, table) if as_json else text(log, table), nl=False)
 
 
 def main() -> None:

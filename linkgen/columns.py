@@ -8,6 +8,9 @@ from .steplog import Column
 _POINT = (("x", "x", "position"), ("y", "y", "position"), ("vx", "dx", "velocity"), ("vy", "dy", "velocity"),
           ("ax", "ddx", "acceleration"), ("ay", "ddy", "acceleration"))
 _ANGLE = (("phi", "the", "angle"), ("omega", "dthe", "angular_velocity"), ("alpha", "ddthe", "angular_acceleration"))
+# an instant centre (ic:LINK1:LINK2, linkgen.instant): known from velocities, so every column is of order 1
+_CENTRE = (("x", "x", "centre"), ("y", "y", "centre"), ("ux", "ux", "centre_direction"),
+           ("uy", "uy", "centre_direction"), ("status", "status", "centre_status"), ("sigma", "sigma", "centre_sigma"))
 _SLIDE = (("s", "v", "position"), ("ds", "dv", "velocity"), ("dds", "ddv", "acceleration"))
 # a link's direction (angles: unit): the unit vector (cos, sin) of its angle and its rates, as a
 # POINT record's fields; each takes the place, and the quantity, of the angle column of its order
@@ -21,8 +24,9 @@ def _take(spec: tuple[tuple[str, str, str], ...], per: int, order: int) -> tuple
 
 
 def plan(m: Mechanism, order: int, outputs: tuple[str, ...], positions: dict[str, str], angles: dict[str, str],
-         slides: dict[str, str], input_vars: list[str]) -> tuple[Column, ...]:
-    """Columns in the spec's order for the given outputs (empty: the default set)."""
+         slides: dict[str, str], input_vars: list[str], centres: dict[str, str] | None = None) -> tuple[Column, ...]:
+    """Columns in the spec's order for the given outputs (empty: the default set); ``centres``
+    maps each instant centre among the outputs to its record."""
     cols = []
     for inp, var in zip(m.inputs, input_vars):
         field, quantity = ("the", "angle") if inp.kind == "revolute" else ("v", "position")
@@ -50,7 +54,9 @@ def plan(m: Mechanism, order: int, outputs: tuple[str, ...], positions: dict[str
             slide(name)
     else:
         for name in outputs:
-            if name in links:
+            if centres and name in centres:
+                cols.extend(Column(f"{name}.{c}", centres[name], f, q) for c, f, q in _CENTRE)
+            elif name in links:
                 angle(name)
             else:
                 point(name)

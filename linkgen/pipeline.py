@@ -12,10 +12,14 @@ from .directions import unit_directions
 from .errors import InputError, and_list
 from .extraction import Procedure, extract
 from .extraction.closure import ClosureRefused, with_closures
+from .instant.names import centre_problem, is_centre
+from .instant.steps import centre_records, with_centres
+from .instant.table import at_sketch, centre_outputs
 from .model import Mechanism
 from .options import overridden, policy_for
 from .prune import prune
-from .steplog import Draft, InputInfo, LinkInfo, PairInfo, StepLog
+from .steplog import CentreAt, Draft, InputInfo, LinkInfo, PairInfo, StepLog
+from .summary.compute import summarize
 from .topology import Topology, analyse
 from .validate import read_mechanism
 
@@ -53,7 +57,11 @@ def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = Non
                   s, v)
         for i, s, v in zip(m.inputs, topo.sketch_inputs, input_vars)
     )
-    columns = plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars)
+    centres = centre_records(proc, tuple(o for o in outputs if is_centre(o)))
+    if centres and order == 0:
+        _no_velocities(m, next(iter(centres)), outputs is m.outputs)
+    columns = plan(m, order, outputs, proc.positions, proc.angles, proc.slides, input_vars, centres)
+    proc = with_centres(proc, m, centres)  # before the directions: a centre reads its links' angles
     if opts.angles == "unit":
         proc, columns = unit_directions(proc, columns, len(inputs))
     return Draft(StepLog(
@@ -62,6 +70,14 @@ def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = Non
         proc.lj, proc.add_links, proc.residuals, proc.groups, columns, policy_for(opts),
         outputs=tuple(outputs), options=opts,
     ))
+
+
+def _no_velocities(m: Mechanism, centre: str, in_file: bool) -> None:
+    """An instant centre is known from velocities: at order 0 it is an error where the outputs were given."""
+    given = m.outputs_where if in_file else None
+    where = (m.path, given.line, "outputs") if given else ("command line", 0, "--outputs")
+    raise InputError(f"the instant centre {centre} is found from the links' velocities, and the order is 0 "
+                     f"(displacements only): build with order 1 or 2 (--order 1)", *where)
 
 
 def _closed(proc: Procedure, m: Mechanism, flag: bool) -> Procedure:
@@ -86,8 +102,11 @@ def analyse_file(path: str) -> tuple[Mechanism, Topology, Procedure]:
 def _check_outputs(m: Mechanism, outputs: tuple[str, ...]) -> None:
     """Outputs given on the command line name pairs, points or links of the mechanism."""
     names = [j.name for j in m.joints] + [p.name for p in m.points] + [lk.name for lk in m.links]
+    links = [lk.name for lk in m.links]
     for name in outputs:
-        if name not in names:
+        if is_centre(name) and (problem := centre_problem(name, links, names)):
+            raise InputError(problem, "command line", 0, "--outputs")
+        if name not in names and not is_centre(name):
             raise InputError(f"{name} is not a pair, point or link of {m.name} (they are {and_list(names)})",
                              "command line", 0, "--outputs")
         if outputs.count(name) > 1:
@@ -98,13 +117,29 @@ def build_log(path: str, outputs: tuple[str, ...] | None = None, order: int | No
               sweep: bool = True, options: Mapping[str, object] | None = None) -> StepLog:
     """The step log of a mechanism file for the outputs, order and options asked for (default: the
     file's; see draft), cut to the steps they need: made once from the draft of the whole procedure
-    and its motion facts (with ``sweep``, the conditioning over the sweep too, for the
-    manual: it takes a sweep and root finding), then pruned."""
+    and its motion facts (with ``sweep``, the conditioning over the sweep and every instant centre
+    at the sketch too, for the manual: it takes a sweep and root finding), then pruned; with
+    ``sweep`` the engineering summary of the pruned log too (linkgen.summary)."""
     m, topo, proc = analyse_file(path)
     if outputs is not None:
         _check_outputs(m, outputs)
     whole = draft(topo, proc, outputs, order, options)
-    return prune(with_facts(whole, motion_facts(whole, sweep)))
+    log = with_facts(whole, motion_facts(whole, sweep))
+    if sweep:  # the manual's instant centres
+        log = replace(log, centres=_sketch_centres(topo, proc, options))
+    log = prune(log)
+    return replace(log, summary=summarize(log)) if sweep else log
+
+
+def _sketch_centres(topo: Topology, proc: Procedure, options: Mapping[str, object] | None) -> tuple[CentreAt, ...]:
+    """Every instant centre at the sketch (the manual's); none where a link has no record to compute
+    its centres from."""
+    m = topo.mechanism
+    try:
+        log = draft(topo, proc, centre_outputs(m), 1, options)
+    except InputError:
+        return ()
+    return at_sketch(log, m)
 
 
 

@@ -14,6 +14,7 @@ from typing import NewType
 
 from .codes import StatusCode as StatusCode
 from .codes import status_codes
+from .instant.record import CentreAt as CentreAt
 from .motion import Conditioning as Conditioning
 from .motion import Gap as Gap
 from .motion import Reach as Reach
@@ -21,6 +22,7 @@ from .motion import Singular as Singular
 from .options import Options
 from .policy import Policy
 from .primitives.dsl import record_fields
+from .summary.records import Summary
 
 
 @dataclass(frozen=True)
@@ -331,6 +333,8 @@ class StepLog(Procedure, Header):
     reach: Reach | None = None  # one input: the input values reached from the sketch
     gaps: tuple[Gap, ...] = ()  # one input: where each chain cannot close
     options: Options = Options()  # what the programs compute in and how (the file's options and the flags)
+    summary: Summary | None = None  # the engineering summary over the sweep (linkgen.summary; built with the sweep)
+    centres: tuple[CentreAt, ...] = ()  # every instant centre at the sketch (with the sweep: for the manual)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "status_codes", status_codes(self))
@@ -352,10 +356,10 @@ class StepLog(Procedure, Header):
         return v.value[fields.index(c.field)] if c.field in fields else 0.0
 
     def offset(self, c: Column) -> float:
-        """What a program adds to a computed record's field to publish it: the origin's
-        coordinate for a point's x and y, else 0 (a direction's x and y too)."""
+        """What a program adds to publish a field: the origin's x or y to a point's or a centre's, else 0."""
         v = self.variable(c.variable)
-        if v.kind != "POINT" or v.role == "direction" or c.field not in record_fields("POINT", 0):
+        point = v.kind == "POINT" and v.role != "direction" or v.kind == "CENTRE"
+        if not point or c.field not in ("x", "y"):
             return 0.0
         return self.origin[c.field == "y"]
 

@@ -8,10 +8,11 @@ import numpy as np
 
 from . import status
 from .evaluate import Result
+from .instant.names import CENTRE_QUANTITIES
 from .primitives.dsl import record_fields
 from .steplog import StepLog
 
-_DERIVATIVES = {"velocity", "acceleration", "angular_velocity", "angular_acceleration"}
+_DERIVATIVES = {"velocity", "acceleration", "angular_velocity", "angular_acceleration", *CENTRE_QUANTITIES}
 
 
 def number(x: float) -> str:

@@ -12,6 +12,9 @@ from linkgen.primitives.dsl import RECORD_FIELDS, record_fields
 
 PI = math.pi
 STILL = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)  # a point at the origin, at rest
+# The primitives that give motions (each output a displacement with its rates): every one but
+# instant_centre, whose record is of velocities alone (tests/test_instant_centres.py tests it).
+MOTIONS = tuple(n for n, p in PRIMITIVES.items() if all(RECORD_FIELDS[o.kind][0] for o in p.outputs))
 
 
 def args_of(name: str, order: int, values: dict) -> list:

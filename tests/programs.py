@@ -40,9 +40,10 @@ def _log(path: str, text: str) -> StepLog:
     return build_log(path)
 
 
-def build(mechanism: Path, outdir: Path) -> StepLog:
+def build(mechanism: Path, outdir: Path, motion: bool = False) -> StepLog:
+    """Write a mechanism's files (with ``motion``, the plots and the page too: render_all)."""
     log = _log(str(mechanism), Path(mechanism).read_text(encoding="utf-8"))
-    write_all(render_all(log), str(outdir))
+    write_all(render_all(log, motion), str(outdir))
     return log
 
 

@@ -32,7 +32,7 @@ def test_builds_are_identical_everywhere(tmp_path: Path):
     second = _build(tmp_path / "b" / "deeper", FIG14.name, "elsewhere", "1")
     third = _build(tmp_path / "b", str(local.relative_to(tmp_path / "b")), "x/y", "4242")
     assert first == second == third
-    assert len(first) == 10  # json, svg, md, h, c, main.c, py, _np.py, m, _solve.m
+    assert len(first) == 16  # json, svg, md, h, c, main.c, py, _np.py, m, _solve.m; html and four plots; centres
     for data in first.values():
         assert str(tmp_path).encode() not in data  # no absolute paths
 

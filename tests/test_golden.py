@@ -22,7 +22,7 @@ SAMPLES = sorted(ROOT.glob("samples/*/*.yaml"))
 
 @pytest.mark.parametrize("sample", SAMPLES, ids=lambda p: p.stem)
 def test_sample_matches_its_golden_files(sample: Path):
-    files = render_all(build_log(str(sample)))
+    files = render_all(build_log(str(sample)), motion=True)
     expected = sample.parent / "expected"
     if os.environ.get("LINKGEN_UPDATE_GOLDEN"):
         expected.mkdir(exist_ok=True)
@@ -42,7 +42,7 @@ def test_sample_matches_its_golden_files(sample: Path):
 
 @pytest.mark.parametrize("sample", SAMPLES, ids=lambda p: p.stem)
 def test_output_hygiene(sample: Path):
-    for name, data in render_all(build_log(str(sample))).items():
+    for name, data in render_all(build_log(str(sample)), motion=True).items():
         text = data.decode("utf-8")
         assert "\r" not in text, name
         assert text.endswith("\n") and not text.endswith("\n\n"), name

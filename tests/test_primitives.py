@@ -34,7 +34,7 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
-from primitive_calls import PI, all_outputs, args_of, call_python, field_level, named, special_inputs
+from primitive_calls import MOTIONS, PI, all_outputs, args_of, call_python, field_level, named, special_inputs
 from sympy_oracle import (
     NAN,
     RECORD_FIELDS,
@@ -375,12 +375,12 @@ SAMPLERS: dict[str, Callable] = {
     "angle_direction": sample_angle_direction,
 }
 BRANCHED = {"RRR_links", "PRR_links", "RPR_links", "PPR_links"}
-CASES = [(n, b) for n in PRIMITIVES for b in ((1, -1) if n in BRANCHED else (1,))]
+CASES = [(n, b) for n in MOTIONS for b in ((1, -1) if n in BRANCHED else (1,))]
 CASE_IDS = [f"{n}{'' if n not in BRANCHED else ('+' if b > 0 else '-')}" for n, b in CASES]
 
 
 def test_every_primitive_is_sampled():
-    assert set(SAMPLERS) == set(PRIMITIVES)
+    assert set(SAMPLERS) == set(MOTIONS)
 
 
 @functools.cache
@@ -814,7 +814,7 @@ def _ulps(a: float, b: float) -> float:
 
 
 @pytest.mark.parametrize("order", [0, 1, 2])
-@pytest.mark.parametrize("name", list(PRIMITIVES))
+@pytest.mark.parametrize("name", list(MOTIONS))
 def test_python_and_numpy_backends_bit_identical(name, order):
     rows = float_rows(name)
     st_n, sig_n, outs_n = call_numpy(name, order, list(rows))
@@ -839,7 +839,7 @@ def test_python_and_numpy_backends_bit_identical(name, order):
 
 
 @pytest.mark.parametrize("order", [0, 1])
-@pytest.mark.parametrize("name", list(PRIMITIVES))
+@pytest.mark.parametrize("name", list(MOTIONS))
 def test_lower_orders_are_leading_fields_of_order_2(name, order):
     prim = PRIMITIVES[name]
     rows = list(float_rows(name))
@@ -880,7 +880,7 @@ def test_generated_python_matches_sympy_on_the_same_floats(name, branch):
 # --------------------------------------------------------------------------- (e) status discipline
 
 
-SPECIAL = [(n, *case) for n in PRIMITIVES for case in special_inputs(n)]
+SPECIAL = [(n, *case) for n in MOTIONS for case in special_inputs(n)]
 
 
 @pytest.mark.parametrize(("name", "what", "status", "row"), SPECIAL,

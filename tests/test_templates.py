@@ -17,7 +17,8 @@ ROOT = Path(__file__).resolve().parents[1]
 TEMPLATES = sorted((ROOT / "templates").glob("*/*.j2"))
 NUMBER = re.compile(r"(?<![\w.])(\d+\.\d+|\d+(?:\.\d+)?[eE][-+]?\d+|\d+)(?![\w.])")
 STRUCTURAL = {"0", "1", "2", "3", "4", "0.0", "1.0"}  # zeros, ones, indexes; 3 arrays; warm[4]; nargin < 4
-PROSE = {"6", "8", "41", "2020"}  # the manual: Machines 8(3) 41, 2020, its section 6
+PROSE = {"6", "8", "41", "2020", "11", "4463", "2021"}  # the manual: Machines 8(3) 41, 2020, its section 6;
+# the instant-centre paper: Appl. Sci. 11 4463, 2021
 
 
 def _numbers(path: Path) -> set[str]:

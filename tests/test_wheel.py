@@ -40,4 +40,4 @@ def test_installed_wheel_builds_a_sample(tmp_path: Path):
     subprocess.run([str(env_dir / "bin" / "linkgen"), "build", str(sample), "-o", "out"], cwd=tmp_path, check=True,
                    capture_output=True)
     built = {p.name: p.read_bytes() for p in (tmp_path / "out").iterdir()}
-    assert built == render_all(build_log(str(sample)))
+    assert built == render_all(build_log(str(sample)), motion=True)

@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from ..instant.names import CENTRE_QUANTITIES
 from ..primitives import PRIMITIVES
 from ..primitives.dsl import Primitive
 from . import Runtime
@@ -15,7 +16,7 @@ if TYPE_CHECKING:
 
 # The derivative order of each output quantity.
 LEVEL = {"position": 0, "angle": 0, "velocity": 1, "angular_velocity": 1, "acceleration": 2,
-         "angular_acceleration": 2}
+         "angular_acceleration": 2, **{q: 1 for q in CENTRE_QUANTITIES}}
 
 
 def used_primitives(view: View) -> list[str]:

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from .. import status
+from ..instant.names import field_name, is_centre
 from ..primitives import PRIMITIVES
 from ..primitives.dsl import record_fields
 from ..primitives.printers import literal
@@ -58,7 +59,7 @@ class Spelling:
 
     def ident(self, name: str) -> str:
         """A pair, point or link name as a field of the program's outputs (linkgen.names)."""
-        return self.words.field(name)
+        return self.words.field(field_name(name) if is_centre(name) else name)
 
     @staticmethod
     def lit(value: float | int) -> str:

@@ -38,7 +38,7 @@ def frame(ws: Workspace, link: str) -> str:
     var = ws.new_var(f"phi_{link}", "ANGLE", "link", link, sketch=(wrap_angle(d.angle),))
     emit(ws, "angle", "link_angle", [Arg("var", ws.pos[a]), Arg("var", ws.pos[b]), Arg("real", value=off, label="off")],
          [var], link, pairs=(a, b), links=(link,), fails=True,
-         reason=f"{a} and {b} of link {link} are known, so its angle is")
+         reason=f"{a} and {b} of link {link} are known, so its angle is known")
     ws.orient[link] = var
     ws.angles[link] = var
     return var

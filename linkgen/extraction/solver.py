@@ -131,8 +131,10 @@ def _slider(ws: Workspace, inp: Input) -> bool:
     jp = ws.point_var(inp.joint)
     ws.pos[inp.joint] = jp
     outs = [jp]
-    if other != inp.joint:
-        ws.pos[other] = ws.point_var(other, ws.role(other))
+    if other != inp.joint:  # a pair the slider guides is its copy on the slider (as _crank names it)
+        pair = other.split("@")[0]
+        ws.pos[other] = ws.point_var(other, ws.role(other)) if "@" not in other else \
+            ws.new_var(f"g_{pair}", "POINT", "guide", pair, sketch=ws.xy(other))
         outs.append(ws.pos[other])
     else:
         outs.append(ws.new_var(f"p_{inp.joint}_copy", "POINT", "pair", inp.joint, sketch=ws.xy(other)))

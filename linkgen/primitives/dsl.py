@@ -23,6 +23,8 @@ RECORD_FIELDS: dict[str, tuple[tuple[str, ...], ...]] = {
     "POINT": (("x", "y"), ("dx", "dy"), ("ddx", "ddy")),
     "ANGLE": (("the",), ("dthe",), ("ddthe",)),
     "VARIABLE": (("v",), ("dv",), ("ddv",)),
+    # an instant centre (linkgen.instant): known from velocities, so its fields are all of order 1
+    "CENTRE": ((), ("x", "y", "ux", "uy", "status", "sigma"), ()),
 }
 
 

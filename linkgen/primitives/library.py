@@ -14,6 +14,7 @@ point of a placed link, a link's angle, a residual); ``dyads`` the two-link chai
 from __future__ import annotations
 
 from .. import status
+from .centres import instant_centre
 from .directions import angle_direction, link_direction
 from .dsl import NAN, Primitive, atan2, select, sqrt
 from .dyads import PPR_links, PRP_links, PRR_links, RPR_links, RRR_links
@@ -144,5 +145,6 @@ PRIMITIVES: dict[str, Primitive] = {
         link_residual,
         link_direction,
         angle_direction,
+        instant_centre,
     )
 }

@@ -21,6 +21,7 @@ from ..errors import and_list
 from ..options import describe
 from ..policy import for_real
 from ..steplog import StepLog
+from .plots import figures
 from .svg import render_svg
 from .view import View, build_view
 
@@ -73,6 +74,7 @@ def make_env() -> jinja2.Environment:
     env.globals["zip"] = zip
     env.globals["and_list"] = and_list
     env.globals["status"] = status
+    env.globals["plot_figures"] = figures
     return env
 
 
@@ -106,10 +108,32 @@ def render_backend(backend: Backend[Any], view: View) -> dict[str, bytes]:
     return {name.replace("NAME", log.name): data for name, data in files.items()}
 
 
-def render_all(log: StepLog) -> dict[str, bytes]:
-    """The step log, its figure and every backend's files."""
+def render_all(log: StepLog, motion: bool = False) -> dict[str, bytes]:
+    """The step log, its figure and every backend's files; with ``motion`` (what `linkgen build`
+    writes) the plots of the file's sweep and the page that animates it too (render_motion: it
+    evaluates the sweep, which costs more than the rest of a render for a resolver mechanism)."""
     view = build_view(log)
     files = {f"{log.name}.json": log.to_json().encode("utf-8"), f"{log.name}.svg": render_svg(log).encode("utf-8")}
+    if log.centres:  # the manual's figure of the instant centres (drawn with render.svg's helpers: imported here)
+        from ..instant.figure import render_centres_svg
+
+        files[f"{log.name}_centres.svg"] = render_centres_svg(log).encode("utf-8")
     for backend in backends():
         files.update(render_backend(backend, view))
+    if motion:
+        files.update(render_motion(log))
+    return files
+
+
+def render_motion(log: StepLog) -> dict[str, bytes]:
+    """The plot figures (render.plots) and NAME.html (render.page) of the file's sweep."""
+    from ..sweepdata import sweep_of, thin  # evaluation renders the kernel through this package: imported late
+    from .page import facts, render_page
+    from .plots import render_plots
+
+    whole = sweep_of(log)
+    sweep = thin(whole)
+    plots = render_plots(log, sweep)
+    files = {name: text.encode("utf-8") for name, text in plots.items()}
+    files[f"{log.name}.html"] = render_page(log, sweep, plots, facts(log, whole)).encode("utf-8")
     return files

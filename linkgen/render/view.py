@@ -21,7 +21,7 @@ class Output:
     pair (its position and its slide displacement together)."""
 
     name: str
-    kind: str  # point | angle | prismatic | direction
+    kind: str  # point | angle | prismatic | direction | centre
     columns: tuple[Column, ...]
     kinds: tuple[str, ...]  # record kind (POINT, ANGLE, VARIABLE) of each column's variable
 
@@ -146,6 +146,7 @@ def _outputs(log: StepLog) -> tuple[Output, ...]:
         kinds = tuple(log.variable(c.variable).kind for c in cols)
         kind = "angle" if kinds[0] == "ANGLE" else "prismatic" if "VARIABLE" in kinds else "point"
         kind = "direction" if log.variable(cols[0].variable).role == "direction" else kind
+        kind = "centre" if kinds[0] == "CENTRE" else kind
         out.append(Output(name, kind, tuple(cols), kinds))
     return tuple(out)
 

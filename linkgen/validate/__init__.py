@@ -32,7 +32,7 @@ def validate(root: Mapping, path: str) -> Mechanism:
     parts.connected(sheet, links)
     prismatic = inputs.prismatic(joints, links, given)
     given = inputs.resolve_prismatic(given, prismatic)
-    outputs, outputs_where = header.outputs(sheet)
+    outputs, outputs_where = header.outputs(sheet, [lk.name for lk in links])
     order, samples = header.scalars(sheet)
     options, options_where = header.options(sheet)
     return Mechanism(

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import os
 
+from ..instant.names import centre_problem, is_centre
 from ..loader import Node, Scalar
 from ..model import Where
 from ..options import CHOICES, MAX_ITERATIONS, MAX_TOLERANCE, Options
@@ -71,15 +72,20 @@ def header(sheet: Sheet) -> tuple[str, str, str, str]:
     return name, title, length_unit, angle_unit
 
 
-def outputs(sheet: Sheet) -> tuple[tuple[str, ...], Where | None]:
+def outputs(sheet: Sheet, links: list[str]) -> tuple[tuple[str, ...], Where | None]:
     node = sheet.root.get("outputs")
     if node is None:
         return (), None
     seq = sheet.sequence(node, "the outputs as a list of pair, point and link names, such as [B, P, rocker]")
     names: list[str] = []
     for item in seq.items:
-        name = sheet.name(item, "an output, a pair, point or link name")
-        if name not in sheet.names:
+        text = item.text if isinstance(item, Scalar) else ""
+        centre = is_centre(text)
+        name = text if centre else sheet.name(item, "an output, a pair, point or link name")
+        if centre:
+            if problem := centre_problem(name, links, sheet.names):
+                raise sheet.error(item, problem)
+        elif name not in sheet.names:
             raise sheet.error(item, f"the output {name} is not a pair, point or link of this mechanism"
                               f"{did_you_mean(name, sheet.names)}")
         if name in names:

@@ -156,7 +156,7 @@ def test_a_new_language_is_a_folder(toy_folder: Path):
     assert [b.name for b in backends()] == ["c", "m", "md", "np", "py", "toy"]
     files = render_all(log)
     declared = {p.replace("NAME", log.name) for b in backends() for p in b.files}
-    assert set(files) == declared | {f"{log.name}.json", f"{log.name}.svg"}
+    assert set(files) == declared | {f"{log.name}.json", f"{log.name}.svg", f"{log.name}_centres.svg"}
     steps = files[f"{log.name}.steps"].decode("utf-8").splitlines()
     assert steps == [f"{s.number} {s.function or s.action} {s.target}" for s in log.steps]
 

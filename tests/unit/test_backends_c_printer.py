@@ -24,9 +24,11 @@ ROWS = 40  # random rows per primitive and order, besides the special ones
 
 def _records(order: int) -> str:
     levels = ("P", "DP", "DDP")[: order + 1]
+    centre = record_fields("CENTRE", order) or ("none",)  # no field at order 0, where no program has one
     return (f"typedef struct {{ double x, y; }} VEC2;\ntypedef struct {{ VEC2 {', '.join(levels)}; }} POINT;\n"
             f"typedef struct {{ double {', '.join(('the', 'dthe', 'ddthe')[: order + 1])}; }} ANGLE;\n"
-            f"typedef struct {{ double {', '.join(('v', 'dv', 'ddv')[: order + 1])}; }} VARIABLE;\n")
+            f"typedef struct {{ double {', '.join(('v', 'dv', 'ddv')[: order + 1])}; }} VARIABLE;\n"
+            f"typedef struct {{ double {', '.join(centre)}; }} CENTRE;\n")
 
 
 def _caller(prim: Primitive, order: int) -> str:

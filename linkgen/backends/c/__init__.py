@@ -6,6 +6,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from ...policy import REAL_TYPES
+from ...primitives.dsl import record_fields as record_fields_of
 from .. import Backend, Runtime, Template
 from ..program import input_lists, program_primitive, runtime_sources, sketch_states
 from .printer import c_function
@@ -54,6 +55,8 @@ def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
         "ANGLE": f"double {', '.join(('the', 'dthe', 'ddthe')[: order + 1])};",
         "VARIABLE": f"double {', '.join(('v', 'dv', 'ddv')[: order + 1])};",
     }
+    if any(v.kind == "CENTRE" for v in view.records):  # instant centres: every field a velocity's
+        record_fields["CENTRE"] = f"double {', '.join(record_fields_of('CENTRE', order))};"
     per_kind = {"point": ("x", "y", "vx", "vy", "ax", "ay"), "angle": ("phi", "omega", "alpha"),
                 "slide": ("s", "ds", "dds"), "direction": ("ux", "uy", "dux", "duy", "ddux", "dduy")}
     width = {"point": 2, "angle": 1, "slide": 1, "direction": 2}
@@ -63,7 +66,7 @@ def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
     return {
         "NAME.h": template("NAME.h.j2", upper=upper, n_columns=len(columns), point_fields=fields["point"],
                            angle_fields=fields["angle"], slide_fields=fields["slide"],
-                           direction_fields=fields["direction"]),
+                           direction_fields=fields["direction"], columns=columns, inputs=lists),
         "NAME.c": template("NAME.c.j2", upper=upper,
                            runtime=runtime_sources(view, c_function, RUNTIME, status=_reads_reasons(view))
                            + velocity_variants(view),

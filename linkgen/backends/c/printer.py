@@ -75,6 +75,7 @@ def c_function(prim: Primitive, order: int) -> str:
         touched = used & ({f"{p.name}_{f}" for f in record_fields(p.kind, order)} if p.is_record else {p.name})
         if not touched:
             lines.append(f"    (void){p.name};")
+    lines += [f"    (void){p.name};" for p in prim.outputs if not record_fields(p.kind, order)]  # no field yet
     ints = {p.name for p in prim.params if p.kind == "INT"}
 
     def define(name: str, e: Expr, ctype: str) -> list[str]:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ...primitives.dsl import Expr, Param, Primitive, Select
+from ...primitives.dsl import Expr, Param, Primitive, Select, record_fields
 from ...primitives.printers import RecordExprs, masks, statements
 
 
@@ -41,6 +41,7 @@ def octave_function(prim: Primitive, order: int) -> str:
     def store(p: Param, f: str, e: Expr) -> list[str]:
         return exprs.assign(f"{p.name}.{f}", e)
 
+    lines += [f"    {p.name} = struct();" for p in prim.outputs if not record_fields(p.kind, order)]  # none yet
     lines += statements(prim, order, exprs, lambda name, e, _: exprs.assign(name, e), store)
     if prim.status is not None:
         for cond, fields in masks(prim, order, exprs.or_op):

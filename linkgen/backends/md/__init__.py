@@ -11,6 +11,7 @@ from ...errors import and_list
 from ...ljmatrix import states
 from ...policy import EPSILON, REAL_TYPES, SINGULAR_EPS, TOLERANCE_EPS, for_real
 from ...steplog import Omitted, Step, StepLog
+from ...summary.text import markdown as markdown_summary
 from .. import Backend, Template
 from ..program import used_primitives
 from .spelling import Manual, number
@@ -84,7 +85,8 @@ def render(view: View, spell: Manual, template: Template) -> dict[str, bytes]:
         slides={p.name for p in log.pairs if p.kind == "prismatic"},
         limits=and_list([f"{number(x)} for {i.column}" for x, i in zip(log.step_limits(), log.inputs)]),
         good_lever=log.policy.good_lever, real_policy=for_real(log.policy, log.options.real),
-        tolerance_eps=TOLERANCE_EPS, singular_eps=SINGULAR_EPS, real_eps=EPSILON[log.options.real])}
+        tolerance_eps=TOLERANCE_EPS, singular_eps=SINGULAR_EPS, real_eps=EPSILON[log.options.real],
+        summary=markdown_summary(log.summary, markdown_text) if log.summary else "")}
 
 
 BACKEND = Backend("md", "Markdown", templates="md", files=("NAME.md",), comment=("<!--", " -->"), spelling=Manual,

@@ -471,19 +471,19 @@ static int run(work *w, const double in[], const double din[], const double ddin
     note(w, st, 53, -54);
 
 
-    /* Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is */
+    /* Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is known */
     st = link_angle(&p_R, &w->p_K, 0.0, &w->phi_side_link);
     if (st == 1) return failed(w, out, 61);
     note(w, st, 63, -64);
 
 
-    /* Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is */
+    /* Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is known */
     st = link_angle(&w->p_K, &w->p_M, 0.0, &w->phi_power_link);
     if (st == 1) return failed(w, out, 71);
     note(w, st, 73, -74);
 
 
-    /* Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is */
+    /* Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is known */
     st = link_angle(&p_Q, &w->p_M, 0.0, &w->phi_bucket);
     if (st == 1) return failed(w, out, 81);
     note(w, st, 83, -84);

@@ -16,6 +16,16 @@ extern "C" {
 #define ACTUATOR_N_COLUMNS 64
 #define ACTUATOR_ORDER 2
 #define ACTUATOR_SAMPLES 301
+/* Initialisers (no storage: each program declares its own), e.g.
+   static const char *const names[ACTUATOR_N_COLUMNS] = ACTUATOR_COLUMN_NAMES;
+   The CSV's columns of actuator_columns, inputs first (the CSV adds "status"): */
+#define ACTUATOR_COLUMN_NAMES { "d_S0_K", "S0.x", "S0.y", "S0.vx", "S0.vy", "S0.ax", "S0.ay", "C.x", "C.y", "C.vx", "C.vy", "C.ax", "C.ay", "K.x", "K.y", "K.vx", "K.vy", "K.ax", "K.ay", "R.x", "R.y", "R.vx", "R.vy", "R.ax", "R.ay", "M.x", "M.y", "M.vx", "M.vy", "M.ax", "M.ay", "Q.x", "Q.y", "Q.vx", "Q.vy", "Q.ax", "Q.ay", "tip.x", "tip.y", "tip.vx", "tip.vy", "tip.ax", "tip.ay", "stick.phi", "stick.omega", "stick.alpha", "barrel.phi", "barrel.omega", "barrel.alpha", "rod.phi", "rod.omega", "rod.alpha", "side_link.phi", "side_link.omega", "side_link.alpha", "power_link.phi", "power_link.omega", "power_link.alpha", "bucket.phi", "bucket.omega", "bucket.alpha", "C.s", "C.ds", "C.dds" }
+/* Each input's sweep in the file's order (radians or length units, per second): row k of ACTUATOR_SAMPLES sets
+   input i to START[i] + k (STOP[i] - START[i]) / (ACTUATOR_SAMPLES - 1) and its rate to SPEED[i]. */
+#define ACTUATOR_INPUT_NAMES { "d_S0_K" }
+#define ACTUATOR_INPUT_START { 1300.0 }
+#define ACTUATOR_INPUT_STOP { 2050.0 }
+#define ACTUATOR_INPUT_SPEED { 250.0 }
 /* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in actuator.md. */
 #define ACTUATOR_STATUS_BAD_INPUT 5

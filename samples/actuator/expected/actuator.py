@@ -323,21 +323,21 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 53, -54)
 
-    # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is
+    # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is known
     st, w.phi_side_link = link_angle(p_R, w.p_K, 0.0)
     if st == 1:
         return 61
     if st:
         w.note(st, 63, -64)
 
-    # Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is
+    # Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is known
     st, w.phi_power_link = link_angle(w.p_K, w.p_M, 0.0)
     if st == 1:
         return 71
     if st:
         w.note(st, 73, -74)
 
-    # Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is
+    # Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is known
     st, w.phi_bucket = link_angle(p_Q, w.p_M, 0.0)
     if st == 1:
         return 81

@@ -110,7 +110,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 53, -54);
 
-    % Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is
+    % Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is known
     [w.phi_side_link, st] = link_angle(w.p_R, w.p_K, 0.0);
     if st == 1
         status = 61;
@@ -118,7 +118,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 63, -64);
 
-    % Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is
+    % Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is known
     [w.phi_power_link, st] = link_angle(w.p_K, w.p_M, 0.0);
     if st == 1
         status = 71;
@@ -126,7 +126,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 73, -74);
 
-    % Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is
+    % Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is known
     [w.phi_bucket, st] = link_angle(w.p_Q, w.p_M, 0.0);
     if st == 1
         status = 81;

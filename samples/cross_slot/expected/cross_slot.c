@@ -360,7 +360,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     crank_input(&p_O, 50.0, &w->in1, &ref_O, &w->g_P1);
 
 
-    /* Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is */
+    /* Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is known */
     st = link_angle(&p_O, &w->g_P1, 0.0, &w->phi_arm);
     if (st == 1) return failed(w, out, 31);
     note(w, st, 33, -34);

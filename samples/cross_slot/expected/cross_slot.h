@@ -16,6 +16,16 @@ extern "C" {
 #define CROSS_SLOT_N_COLUMNS 43
 #define CROSS_SLOT_ORDER 2
 #define CROSS_SLOT_SAMPLES 201
+/* Initialisers (no storage: each program declares its own), e.g.
+   static const char *const names[CROSS_SLOT_N_COLUMNS] = CROSS_SLOT_COLUMN_NAMES;
+   The CSV's columns of cross_slot_columns, inputs first (the CSV adds "status"): */
+#define CROSS_SLOT_COLUMN_NAMES { "theta_O", "O.x", "O.y", "O.vx", "O.vy", "O.ax", "O.ay", "P1.x", "P1.y", "P1.vx", "P1.vy", "P1.ax", "P1.ay", "X.x", "X.y", "X.vx", "X.vy", "X.ax", "X.ay", "P2.x", "P2.y", "P2.vx", "P2.vy", "P2.ax", "P2.ay", "frame.phi", "frame.omega", "frame.alpha", "arm.phi", "arm.omega", "arm.alpha", "block1.phi", "block1.omega", "block1.alpha", "block2.phi", "block2.omega", "block2.alpha", "P1.s", "P1.ds", "P1.dds", "P2.s", "P2.ds", "P2.dds" }
+/* Each input's sweep in the file's order (radians or length units, per second): row k of CROSS_SLOT_SAMPLES sets
+   input i to START[i] + k (STOP[i] - START[i]) / (CROSS_SLOT_SAMPLES - 1) and its rate to SPEED[i]. */
+#define CROSS_SLOT_INPUT_NAMES { "theta_O" }
+#define CROSS_SLOT_INPUT_START { -0.8726646259971648 }
+#define CROSS_SLOT_INPUT_STOP { 0.8726646259971648 }
+#define CROSS_SLOT_INPUT_SPEED { 1.7453292519943295 }
 /* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in cross_slot.md. */
 #define CROSS_SLOT_STATUS_BAD_INPUT 5

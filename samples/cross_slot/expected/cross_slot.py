@@ -234,7 +234,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # Step 2: crank_input, P1. O is known and link frame is placed, so the input angle theta_O turns link arm to P1
     w.g_P1 = crank_input(p_O, 50.0, w.in1, ref_O)
 
-    # Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is
+    # Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is known
     st, w.phi_arm = link_angle(p_O, w.g_P1, 0.0)
     if st == 1:
         return 31

@@ -512,7 +512,7 @@ def _run(x, dx, ddx, c):
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
     # Step 2: crank_input, P1. O is known and link frame is placed, so the input angle theta_O turns link arm to P1
     _, _, w.g_P1 = crank_input(w.p_O, c["step2.l"], w.in1, w.ref_O)
-    # Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is
+    # Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is known
     st, _, w.phi_arm = link_angle(w.p_O, w.g_P1, c["step3.off"])
     report.append((st, ((1, 31),)))
     # Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution)

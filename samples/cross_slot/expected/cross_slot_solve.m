@@ -80,7 +80,7 @@ function [status, w] = run(w, in, din, ddin)
     % Step 2: crank_input, P1. O is known and link frame is placed, so the input angle theta_O turns link arm to P1
     w.g_P1 = crank_input(w.p_O, 50.0, w.in1, w.ref_O);
 
-    % Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is
+    % Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is known
     [w.phi_arm, st] = link_angle(w.p_O, w.g_P1, 0.0);
     if st == 1
         status = 31;

@@ -16,6 +16,16 @@ extern "C" {
 #define DOUBLE_TRIAD_N_COLUMNS 103
 #define DOUBLE_TRIAD_ORDER 2
 #define DOUBLE_TRIAD_SAMPLES 361
+/* Initialisers (no storage: each program declares its own), e.g.
+   static const char *const names[DOUBLE_TRIAD_N_COLUMNS] = DOUBLE_TRIAD_COLUMN_NAMES;
+   The CSV's columns of double_triad_columns, inputs first (the CSV adds "status"): */
+#define DOUBLE_TRIAD_COLUMN_NAMES { "theta_J7", "J7.x", "J7.y", "J7.vx", "J7.vy", "J7.ax", "J7.ay", "J6.x", "J6.y", "J6.vx", "J6.vy", "J6.ax", "J6.ay", "J1.x", "J1.y", "J1.vx", "J1.vy", "J1.ax", "J1.ay", "J2.x", "J2.y", "J2.vx", "J2.vy", "J2.ax", "J2.ay", "J3.x", "J3.y", "J3.vx", "J3.vy", "J3.ax", "J3.ay", "J4.x", "J4.y", "J4.vx", "J4.vy", "J4.ax", "J4.ay", "J5.x", "J5.y", "J5.vx", "J5.vy", "J5.ax", "J5.ay", "K1.x", "K1.y", "K1.vx", "K1.vy", "K1.ax", "K1.ay", "K2.x", "K2.y", "K2.vx", "K2.vy", "K2.ax", "K2.ay", "K3.x", "K3.y", "K3.vx", "K3.vy", "K3.ax", "K3.ay", "K4.x", "K4.y", "K4.vx", "K4.vy", "K4.ax", "K4.ay", "K5.x", "K5.y", "K5.vx", "K5.vy", "K5.ax", "K5.ay", "frame.phi", "frame.omega", "frame.alpha", "crank.phi", "crank.omega", "crank.alpha", "right_rocker1.phi", "right_rocker1.omega", "right_rocker1.alpha", "right_ternary.phi", "right_ternary.omega", "right_ternary.alpha", "right_rocker2.phi", "right_rocker2.omega", "right_rocker2.alpha", "right_coupler.phi", "right_coupler.omega", "right_coupler.alpha", "left_rocker1.phi", "left_rocker1.omega", "left_rocker1.alpha", "left_ternary.phi", "left_ternary.omega", "left_ternary.alpha", "left_rocker2.phi", "left_rocker2.omega", "left_rocker2.alpha", "left_coupler.phi", "left_coupler.omega", "left_coupler.alpha" }
+/* Each input's sweep in the file's order (radians or length units, per second): row k of DOUBLE_TRIAD_SAMPLES sets
+   input i to START[i] + k (STOP[i] - START[i]) / (DOUBLE_TRIAD_SAMPLES - 1) and its rate to SPEED[i]. */
+#define DOUBLE_TRIAD_INPUT_NAMES { "theta_J7" }
+#define DOUBLE_TRIAD_INPUT_START { 0.0 }
+#define DOUBLE_TRIAD_INPUT_STOP { 6.283185307179586 }
+#define DOUBLE_TRIAD_INPUT_SPEED { 6.283185307179586 }
 /* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan, the warm start kept.  The other codes are listed in double_triad.md. */
 #define DOUBLE_TRIAD_STATUS_BAD_INPUT 5

@@ -1530,63 +1530,63 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     w.note(3 if w.sigma[14] < 1e-07 else 4 if w.sigma[14] < 0.001 else 0, 143, -144)
 
 
-    # Step 15: link_angle, crank. J7 and J6 of link crank are known, so its angle is
+    # Step 15: link_angle, crank. J7 and J6 of link crank are known, so its angle is known
     st, w.phi_crank = link_angle(p_J7, w.p_J6, 0.0)
     if st == 1:
         return 151
     if st:
         w.note(st, 153, -154)
 
-    # Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is
+    # Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is known
     st, w.phi_right_rocker1 = link_angle(p_J1, w.p_J2, 0.0)
     if st == 1:
         return 161
     if st:
         w.note(st, 163, -164)
 
-    # Step 17: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
+    # Step 17: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is known
     st, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, 0.0)
     if st == 1:
         return 171
     if st:
         w.note(st, 173, -174)
 
-    # Step 18: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is
+    # Step 18: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is known
     st, w.phi_right_rocker2 = link_angle(p_J3, w.p_J4, 0.0)
     if st == 1:
         return 181
     if st:
         w.note(st, 183, -184)
 
-    # Step 19: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is
+    # Step 19: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is known
     st, w.phi_right_coupler = link_angle(w.p_J6, w.p_J5, 0.0)
     if st == 1:
         return 191
     if st:
         w.note(st, 193, -194)
 
-    # Step 20: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is
+    # Step 20: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is known
     st, w.phi_left_rocker1 = link_angle(p_K1, w.p_K2, 0.0)
     if st == 1:
         return 201
     if st:
         w.note(st, 203, -204)
 
-    # Step 21: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
+    # Step 21: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is known
     st, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, 0.0)
     if st == 1:
         return 211
     if st:
         w.note(st, 213, -214)
 
-    # Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is
+    # Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is known
     st, w.phi_left_rocker2 = link_angle(p_K3, w.p_K4, 0.0)
     if st == 1:
         return 221
     if st:
         w.note(st, 223, -224)
 
-    # Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is
+    # Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is known
     st, w.phi_left_coupler = link_angle(w.p_J6, w.p_K5, 0.0)
     if st == 1:
         return 231

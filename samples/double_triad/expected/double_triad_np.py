@@ -2744,31 +2744,31 @@ def _run(x, dx, ddx, c, a, ad, used, order, skip, m, p):
                                 skip | past | ~settled | failed_lanes(report, np.size(skip)), m, p)
     settled = settled & done
     its.append(steps)
-    # Step 15: link_angle, crank. J7 and J6 of link crank are known, so its angle is
+    # Step 15: link_angle, crank. J7 and J6 of link crank are known, so its angle is known
     st, _, w.phi_crank = link_angle(w.p_J7, w.p_J6, c["step15.off"])
     report.append((st, ((1, 151),)))
-    # Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is
+    # Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is known
     st, _, w.phi_right_rocker1 = link_angle(w.p_J1, w.p_J2, c["step16.off"])
     report.append((st, ((1, 161),)))
-    # Step 17: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is
+    # Step 17: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is known
     st, _, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, c["step17.off"])
     report.append((st, ((1, 171),)))
-    # Step 18: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is
+    # Step 18: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is known
     st, _, w.phi_right_rocker2 = link_angle(w.p_J3, w.p_J4, c["step18.off"])
     report.append((st, ((1, 181),)))
-    # Step 19: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is
+    # Step 19: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is known
     st, _, w.phi_right_coupler = link_angle(w.p_J6, w.p_J5, c["step19.off"])
     report.append((st, ((1, 191),)))
-    # Step 20: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is
+    # Step 20: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is known
     st, _, w.phi_left_rocker1 = link_angle(w.p_K1, w.p_K2, c["step20.off"])
     report.append((st, ((1, 201),)))
-    # Step 21: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is
+    # Step 21: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is known
     st, _, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, c["step21.off"])
     report.append((st, ((1, 211),)))
-    # Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is
+    # Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is known
     st, _, w.phi_left_rocker2 = link_angle(w.p_K3, w.p_K4, c["step22.off"])
     report.append((st, ((1, 221),)))
-    # Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is
+    # Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is known
     st, _, w.phi_left_coupler = link_angle(w.p_J6, w.p_K5, c["step23.off"])
     report.append((st, ((1, 231),)))
     code = row_status(report)

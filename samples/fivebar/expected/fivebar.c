@@ -335,25 +335,25 @@ static int run(work *w, const double in[], const double din[], const double ddin
     note(w, st, 43, -44);
 
 
-    /* Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is */
+    /* Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is known */
     st = link_angle(&p_O1, &w->p_A, 0.0, &w->phi_crank1);
     if (st == 1) return failed(w, out, 51);
     note(w, st, 53, -54);
 
 
-    /* Step 6: link_angle, link1. A and P of link link1 are known, so its angle is */
+    /* Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known */
     st = link_angle(&w->p_A, &w->p_P, 0.0, &w->phi_link1);
     if (st == 1) return failed(w, out, 61);
     note(w, st, 63, -64);
 
 
-    /* Step 7: link_angle, link2. P and B of link link2 are known, so its angle is */
+    /* Step 7: link_angle, link2. P and B of link link2 are known, so its angle is known */
     st = link_angle(&w->p_P, &w->p_B, 0.0, &w->phi_link2);
     if (st == 1) return failed(w, out, 71);
     note(w, st, 73, -74);
 
 
-    /* Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is */
+    /* Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is known */
     st = link_angle(&p_O2, &w->p_B, 0.0, &w->phi_crank2);
     if (st == 1) return failed(w, out, 81);
     note(w, st, 83, -84);

@@ -16,6 +16,16 @@ extern "C" {
 #define FIVEBAR_N_COLUMNS 47
 #define FIVEBAR_ORDER 2
 #define FIVEBAR_SAMPLES 361
+/* Initialisers (no storage: each program declares its own), e.g.
+   static const char *const names[FIVEBAR_N_COLUMNS] = FIVEBAR_COLUMN_NAMES;
+   The CSV's columns of fivebar_columns, inputs first (the CSV adds "status"): */
+#define FIVEBAR_COLUMN_NAMES { "theta_O1", "theta_O2", "O1.x", "O1.y", "O1.vx", "O1.vy", "O1.ax", "O1.ay", "A.x", "A.y", "A.vx", "A.vy", "A.ax", "A.ay", "P.x", "P.y", "P.vx", "P.vy", "P.ax", "P.ay", "B.x", "B.y", "B.vx", "B.vy", "B.ax", "B.ay", "O2.x", "O2.y", "O2.vx", "O2.vy", "O2.ax", "O2.ay", "frame.phi", "frame.omega", "frame.alpha", "crank1.phi", "crank1.omega", "crank1.alpha", "link1.phi", "link1.omega", "link1.alpha", "link2.phi", "link2.omega", "link2.alpha", "crank2.phi", "crank2.omega", "crank2.alpha" }
+/* Each input's sweep in the file's order (radians or length units, per second): row k of FIVEBAR_SAMPLES sets
+   input i to START[i] + k (STOP[i] - START[i]) / (FIVEBAR_SAMPLES - 1) and its rate to SPEED[i]. */
+#define FIVEBAR_INPUT_NAMES { "theta_O1", "theta_O2" }
+#define FIVEBAR_INPUT_START { 0.0, 0.0 }
+#define FIVEBAR_INPUT_STOP { 6.283185307179586, 12.566370614359172 }
+#define FIVEBAR_INPUT_SPEED { 6.283185307179586, 12.566370614359172 }
 /* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in fivebar.md. */
 #define FIVEBAR_STATUS_BAD_INPUT 5

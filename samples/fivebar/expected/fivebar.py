@@ -229,28 +229,28 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 43, -44)
 
-    # Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is
+    # Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is known
     st, w.phi_crank1 = link_angle(p_O1, w.p_A, 0.0)
     if st == 1:
         return 51
     if st:
         w.note(st, 53, -54)
 
-    # Step 6: link_angle, link1. A and P of link link1 are known, so its angle is
+    # Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known
     st, w.phi_link1 = link_angle(w.p_A, w.p_P, 0.0)
     if st == 1:
         return 61
     if st:
         w.note(st, 63, -64)
 
-    # Step 7: link_angle, link2. P and B of link link2 are known, so its angle is
+    # Step 7: link_angle, link2. P and B of link link2 are known, so its angle is known
     st, w.phi_link2 = link_angle(w.p_P, w.p_B, 0.0)
     if st == 1:
         return 71
     if st:
         w.note(st, 73, -74)
 
-    # Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is
+    # Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is known
     st, w.phi_crank2 = link_angle(p_O2, w.p_B, 0.0)
     if st == 1:
         return 81

@@ -522,16 +522,16 @@ def _run(x, dx, ddx, c):
     # Step 4: RRR_links, P (branch +1). P is joined to the known A by link1 and to the known B by link2: a 3R two-link chain with both ends known
     st, sigma[4], w.p_P = RRR_links(w.p_A, w.p_B, w.l_link1, w.l_link2, 1)
     report.append((st, ((1, 41), (3, 43), (4, -44))))
-    # Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is
+    # Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is known
     st, _, w.phi_crank1 = link_angle(w.p_O1, w.p_A, c["step5.off"])
     report.append((st, ((1, 51),)))
-    # Step 6: link_angle, link1. A and P of link link1 are known, so its angle is
+    # Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known
     st, _, w.phi_link1 = link_angle(w.p_A, w.p_P, c["step6.off"])
     report.append((st, ((1, 61),)))
-    # Step 7: link_angle, link2. P and B of link link2 are known, so its angle is
+    # Step 7: link_angle, link2. P and B of link link2 are known, so its angle is known
     st, _, w.phi_link2 = link_angle(w.p_P, w.p_B, c["step7.off"])
     report.append((st, ((1, 71),)))
-    # Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is
+    # Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is known
     st, _, w.phi_crank2 = link_angle(w.p_O2, w.p_B, c["step8.off"])
     report.append((st, ((1, 81),)))
     code = row_status(report)

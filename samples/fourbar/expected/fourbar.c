@@ -361,19 +361,19 @@ static int run(work *w, const double in[], const double din[], const double ddin
     note(w, st, 43, -44);
 
 
-    /* Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is */
+    /* Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known */
     st = link_angle(&p_O1, &w->p_A, 0.0, &w->phi_crank);
     if (st == 1) return failed(w, out, 51);
     note(w, st, 53, -54);
 
 
-    /* Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is */
+    /* Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is known */
     st = link_angle(&w->p_A, &w->p_B, 0.0, &w->phi_coupler);
     if (st == 1) return failed(w, out, 61);
     note(w, st, 63, -64);
 
 
-    /* Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is */
+    /* Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is known */
     st = link_angle(&p_O2, &w->p_B, 0.0, &w->phi_rocker);
     if (st == 1) return failed(w, out, 71);
     note(w, st, 73, -74);

@@ -16,6 +16,16 @@ extern "C" {
 #define FOURBAR_N_COLUMNS 43
 #define FOURBAR_ORDER 2
 #define FOURBAR_SAMPLES 361
+/* Initialisers (no storage: each program declares its own), e.g.
+   static const char *const names[FOURBAR_N_COLUMNS] = FOURBAR_COLUMN_NAMES;
+   The CSV's columns of fourbar_columns, inputs first (the CSV adds "status"): */
+#define FOURBAR_COLUMN_NAMES { "theta_O1", "O1.x", "O1.y", "O1.vx", "O1.vy", "O1.ax", "O1.ay", "A.x", "A.y", "A.vx", "A.vy", "A.ax", "A.ay", "B.x", "B.y", "B.vx", "B.vy", "B.ax", "B.ay", "O2.x", "O2.y", "O2.vx", "O2.vy", "O2.ax", "O2.ay", "P.x", "P.y", "P.vx", "P.vy", "P.ax", "P.ay", "frame.phi", "frame.omega", "frame.alpha", "crank.phi", "crank.omega", "crank.alpha", "coupler.phi", "coupler.omega", "coupler.alpha", "rocker.phi", "rocker.omega", "rocker.alpha" }
+/* Each input's sweep in the file's order (radians or length units, per second): row k of FOURBAR_SAMPLES sets
+   input i to START[i] + k (STOP[i] - START[i]) / (FOURBAR_SAMPLES - 1) and its rate to SPEED[i]. */
+#define FOURBAR_INPUT_NAMES { "theta_O1" }
+#define FOURBAR_INPUT_START { 0.0 }
+#define FOURBAR_INPUT_STOP { 6.283185307179586 }
+#define FOURBAR_INPUT_SPEED { 6.283185307179586 }
 /* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in fourbar.md. */
 #define FOURBAR_STATUS_BAD_INPUT 5

@@ -255,21 +255,21 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 43, -44)
 
-    # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is
+    # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
     st, w.phi_crank = link_angle(p_O1, w.p_A, 0.0)
     if st == 1:
         return 51
     if st:
         w.note(st, 53, -54)
 
-    # Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is
+    # Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is known
     st, w.phi_coupler = link_angle(w.p_A, w.p_B, 0.0)
     if st == 1:
         return 61
     if st:
         w.note(st, 63, -64)
 
-    # Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is
+    # Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
     st, w.phi_rocker = link_angle(p_O2, w.p_B, 0.0)
     if st == 1:
         return 71

@@ -96,7 +96,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 43, -44);
 
-    % Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is
+    % Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
     [w.phi_crank, st] = link_angle(w.p_O1, w.p_A, 0.0);
     if st == 1
         status = 51;
@@ -104,7 +104,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 53, -54);
 
-    % Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is
+    % Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is known
     [w.phi_coupler, st] = link_angle(w.p_A, w.p_B, 0.0);
     if st == 1
         status = 61;
@@ -112,7 +112,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 63, -64);
 
-    % Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is
+    % Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
     [w.phi_rocker, st] = link_angle(w.p_O2, w.p_B, 0.0);
     if st == 1
         status = 71;

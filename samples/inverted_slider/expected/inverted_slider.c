@@ -359,7 +359,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     coupler_point(&p_O2, &w->psi_S, 120.00000000000001, 0.0, &w->p_P);
 
 
-    /* Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is */
+    /* Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known */
     st = link_angle(&p_O1, &w->p_A, 0.0, &w->phi_crank);
     if (st == 1) return failed(w, out, 51);
     note(w, st, 53, -54);

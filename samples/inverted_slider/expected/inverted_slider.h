@@ -16,6 +16,16 @@ extern "C" {
 #define INVERTED_SLIDER_N_COLUMNS 46
 #define INVERTED_SLIDER_ORDER 2
 #define INVERTED_SLIDER_SAMPLES 361
+/* Initialisers (no storage: each program declares its own), e.g.
+   static const char *const names[INVERTED_SLIDER_N_COLUMNS] = INVERTED_SLIDER_COLUMN_NAMES;
+   The CSV's columns of inverted_slider_columns, inputs first (the CSV adds "status"): */
+#define INVERTED_SLIDER_COLUMN_NAMES { "theta_O1", "O1.x", "O1.y", "O1.vx", "O1.vy", "O1.ax", "O1.ay", "A.x", "A.y", "A.vx", "A.vy", "A.ax", "A.ay", "O2.x", "O2.y", "O2.vx", "O2.vy", "O2.ax", "O2.ay", "S.x", "S.y", "S.vx", "S.vy", "S.ax", "S.ay", "P.x", "P.y", "P.vx", "P.vy", "P.ax", "P.ay", "frame.phi", "frame.omega", "frame.alpha", "crank.phi", "crank.omega", "crank.alpha", "lever.phi", "lever.omega", "lever.alpha", "block.phi", "block.omega", "block.alpha", "S.s", "S.ds", "S.dds" }
+/* Each input's sweep in the file's order (radians or length units, per second): row k of INVERTED_SLIDER_SAMPLES sets
+   input i to START[i] + k (STOP[i] - START[i]) / (INVERTED_SLIDER_SAMPLES - 1) and its rate to SPEED[i]. */
+#define INVERTED_SLIDER_INPUT_NAMES { "theta_O1" }
+#define INVERTED_SLIDER_INPUT_START { 0.0 }
+#define INVERTED_SLIDER_INPUT_STOP { 6.283185307179586 }
+#define INVERTED_SLIDER_INPUT_SPEED { 6.283185307179586 }
 /* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in inverted_slider.md. */
 #define INVERTED_SLIDER_STATUS_BAD_INPUT 5

@@ -238,7 +238,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # Step 4: coupler_point, P. point P of link lever
     w.p_P = coupler_point(p_O2, w.psi_S, 120.00000000000001, 0.0)
 
-    # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is
+    # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
     st, w.phi_crank = link_angle(p_O1, w.p_A, 0.0)
     if st == 1:
         return 51

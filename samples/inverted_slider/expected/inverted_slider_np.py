@@ -503,7 +503,7 @@ def _run(x, dx, ddx, c):
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: coupler_point, P. point P of link lever
     _, _, w.p_P = coupler_point(w.p_O2, w.psi_S, c["step4.gsi"], c["step4.eta"])
-    # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is
+    # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
     st, _, w.phi_crank = link_angle(w.p_O1, w.p_A, c["step5.off"])
     report.append((st, ((1, 51),)))
     code = row_status(report)

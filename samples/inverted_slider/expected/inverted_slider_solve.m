@@ -89,7 +89,7 @@ function [status, w] = run(w, in, din, ddin)
     % Step 4: coupler_point, P. point P of link lever
     w.p_P = coupler_point(w.p_O2, w.psi_S, 120.00000000000001, 0.0);
 
-    % Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is
+    % Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
     [w.phi_crank, st] = link_angle(w.p_O1, w.p_A, 0.0);
     if st == 1
         status = 51;

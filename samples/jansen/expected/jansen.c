@@ -470,43 +470,43 @@ static int run(work *w, const double in[], const double din[], const double ddin
     note(w, st, 73, -74);
 
 
-    /* Step 8: link_angle, crank. O and A of link crank are known, so its angle is */
+    /* Step 8: link_angle, crank. O and A of link crank are known, so its angle is known */
     st = link_angle(&p_O, &w->p_A, 0.0, &w->phi_crank);
     if (st == 1) return failed(w, out, 81);
     note(w, st, 83, -84);
 
 
-    /* Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is */
+    /* Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is known */
     st = link_angle(&w->p_A, &w->p_C, 0.0, &w->phi_rod_j);
     if (st == 1) return failed(w, out, 91);
     note(w, st, 93, -94);
 
 
-    /* Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is */
+    /* Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is known */
     st = link_angle(&w->p_A, &w->p_E, 0.0, &w->phi_rod_k);
     if (st == 1) return failed(w, out, 101);
     note(w, st, 103, -104);
 
 
-    /* Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is */
+    /* Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is known */
     st = link_angle(&p_B, &w->p_C, 0.0, &w->phi_triangle_bde);
     if (st == 1) return failed(w, out, 111);
     note(w, st, 113, -114);
 
 
-    /* Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is */
+    /* Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is known */
     st = link_angle(&p_B, &w->p_E, 0.0, &w->phi_rocker_c);
     if (st == 1) return failed(w, out, 121);
     note(w, st, 123, -124);
 
 
-    /* Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is */
+    /* Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is known */
     st = link_angle(&w->p_D, &w->p_F, 0.0, &w->phi_rod_f);
     if (st == 1) return failed(w, out, 131);
     note(w, st, 133, -134);
 
 
-    /* Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is */
+    /* Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is known */
     st = link_angle(&w->p_E, &w->p_F, 0.0, &w->phi_leg_ghi);
     if (st == 1) return failed(w, out, 141);
     note(w, st, 143, -144);

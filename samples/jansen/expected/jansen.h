@@ -16,6 +16,16 @@ extern "C" {
 #define JANSEN_N_COLUMNS 73
 #define JANSEN_ORDER 2
 #define JANSEN_SAMPLES 361
+/* Initialisers (no storage: each program declares its own), e.g.
+   static const char *const names[JANSEN_N_COLUMNS] = JANSEN_COLUMN_NAMES;
+   The CSV's columns of jansen_columns, inputs first (the CSV adds "status"): */
+#define JANSEN_COLUMN_NAMES { "theta_O", "O.x", "O.y", "O.vx", "O.vy", "O.ax", "O.ay", "A.x", "A.y", "A.vx", "A.vy", "A.ax", "A.ay", "B.x", "B.y", "B.vx", "B.vy", "B.ax", "B.ay", "C.x", "C.y", "C.vx", "C.vy", "C.ax", "C.ay", "D.x", "D.y", "D.vx", "D.vy", "D.ax", "D.ay", "E.x", "E.y", "E.vx", "E.vy", "E.ax", "E.ay", "F.x", "F.y", "F.vx", "F.vy", "F.ax", "F.ay", "foot.x", "foot.y", "foot.vx", "foot.vy", "foot.ax", "foot.ay", "frame.phi", "frame.omega", "frame.alpha", "crank.phi", "crank.omega", "crank.alpha", "rod_j.phi", "rod_j.omega", "rod_j.alpha", "rod_k.phi", "rod_k.omega", "rod_k.alpha", "triangle_bde.phi", "triangle_bde.omega", "triangle_bde.alpha", "rocker_c.phi", "rocker_c.omega", "rocker_c.alpha", "rod_f.phi", "rod_f.omega", "rod_f.alpha", "leg_ghi.phi", "leg_ghi.omega", "leg_ghi.alpha" }
+/* Each input's sweep in the file's order (radians or length units, per second): row k of JANSEN_SAMPLES sets
+   input i to START[i] + k (STOP[i] - START[i]) / (JANSEN_SAMPLES - 1) and its rate to SPEED[i]. */
+#define JANSEN_INPUT_NAMES { "theta_O" }
+#define JANSEN_INPUT_START { 0.0 }
+#define JANSEN_INPUT_STOP { 6.283185307179586 }
+#define JANSEN_INPUT_SPEED { 6.283185307179586 }
 /* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in jansen.md. */
 #define JANSEN_STATUS_BAD_INPUT 5

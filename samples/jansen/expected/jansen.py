@@ -310,49 +310,49 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 73, -74)
 
-    # Step 8: link_angle, crank. O and A of link crank are known, so its angle is
+    # Step 8: link_angle, crank. O and A of link crank are known, so its angle is known
     st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
     if st == 1:
         return 81
     if st:
         w.note(st, 83, -84)
 
-    # Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is
+    # Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is known
     st, w.phi_rod_j = link_angle(w.p_A, w.p_C, 0.0)
     if st == 1:
         return 91
     if st:
         w.note(st, 93, -94)
 
-    # Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is
+    # Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is known
     st, w.phi_rod_k = link_angle(w.p_A, w.p_E, 0.0)
     if st == 1:
         return 101
     if st:
         w.note(st, 103, -104)
 
-    # Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is
+    # Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is known
     st, w.phi_triangle_bde = link_angle(p_B, w.p_C, 0.0)
     if st == 1:
         return 111
     if st:
         w.note(st, 113, -114)
 
-    # Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is
+    # Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is known
     st, w.phi_rocker_c = link_angle(p_B, w.p_E, 0.0)
     if st == 1:
         return 121
     if st:
         w.note(st, 123, -124)
 
-    # Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is
+    # Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is known
     st, w.phi_rod_f = link_angle(w.p_D, w.p_F, 0.0)
     if st == 1:
         return 131
     if st:
         w.note(st, 133, -134)
 
-    # Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is
+    # Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is known
     st, w.phi_leg_ghi = link_angle(w.p_E, w.p_F, 0.0)
     if st == 1:
         return 141

@@ -124,7 +124,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 73, -74);
 
-    % Step 8: link_angle, crank. O and A of link crank are known, so its angle is
+    % Step 8: link_angle, crank. O and A of link crank are known, so its angle is known
     [w.phi_crank, st] = link_angle(w.p_O, w.p_A, 0.0);
     if st == 1
         status = 81;
@@ -132,7 +132,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 83, -84);
 
-    % Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is
+    % Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is known
     [w.phi_rod_j, st] = link_angle(w.p_A, w.p_C, 0.0);
     if st == 1
         status = 91;
@@ -140,7 +140,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 93, -94);
 
-    % Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is
+    % Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is known
     [w.phi_rod_k, st] = link_angle(w.p_A, w.p_E, 0.0);
     if st == 1
         status = 101;
@@ -148,7 +148,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 103, -104);
 
-    % Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is
+    % Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is known
     [w.phi_triangle_bde, st] = link_angle(w.p_B, w.p_C, 0.0);
     if st == 1
         status = 111;
@@ -156,7 +156,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 113, -114);
 
-    % Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is
+    % Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is known
     [w.phi_rocker_c, st] = link_angle(w.p_B, w.p_E, 0.0);
     if st == 1
         status = 121;
@@ -164,7 +164,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 123, -124);
 
-    % Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is
+    % Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is known
     [w.phi_rod_f, st] = link_angle(w.p_D, w.p_F, 0.0);
     if st == 1
         status = 131;
@@ -172,7 +172,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 133, -134);
 
-    % Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is
+    % Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is known
     [w.phi_leg_ghi, st] = link_angle(w.p_E, w.p_F, 0.0);
     if st == 1
         status = 141;

@@ -16,6 +16,16 @@ extern "C" {
 #define JANSEN_FOOT_N_COLUMNS 7
 #define JANSEN_FOOT_ORDER 1
 #define JANSEN_FOOT_SAMPLES 361
+/* Initialisers (no storage: each program declares its own), e.g.
+   static const char *const names[JANSEN_FOOT_N_COLUMNS] = JANSEN_FOOT_COLUMN_NAMES;
+   The CSV's columns of jansen_foot_columns, inputs first (the CSV adds "status"): */
+#define JANSEN_FOOT_COLUMN_NAMES { "theta_O", "foot.x", "foot.y", "foot.vx", "foot.vy", "crank.phi", "crank.omega" }
+/* Each input's sweep in the file's order (radians or length units, per second): row k of JANSEN_FOOT_SAMPLES sets
+   input i to START[i] + k (STOP[i] - START[i]) / (JANSEN_FOOT_SAMPLES - 1) and its rate to SPEED[i]. */
+#define JANSEN_FOOT_INPUT_NAMES { "theta_O" }
+#define JANSEN_FOOT_INPUT_START { 0.0 }
+#define JANSEN_FOOT_INPUT_STOP { 6.283185307179586 }
+#define JANSEN_FOOT_INPUT_SPEED { 6.283185307179586 }
 /* Returned when a number in in[] or din[] is not finite (nan or inf) or larger than 1e+30 in size; ddin[] is not read:
    every output nan.  The other codes are listed in jansen_foot.md. */
 #define JANSEN_FOOT_STATUS_BAD_INPUT 5

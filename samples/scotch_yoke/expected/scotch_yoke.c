@@ -359,7 +359,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     note(w, st, 33, -34);
 
 
-    /* Step 4: link_angle, crank. O and A of link crank are known, so its angle is */
+    /* Step 4: link_angle, crank. O and A of link crank are known, so its angle is known */
     st = link_angle(&p_O, &w->p_A, 0.0, &w->phi_crank);
     if (st == 1) return failed(w, out, 41);
     note(w, st, 43, -44);

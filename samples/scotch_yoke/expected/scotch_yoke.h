@@ -16,6 +16,16 @@ extern "C" {
 #define SCOTCH_YOKE_N_COLUMNS 43
 #define SCOTCH_YOKE_ORDER 2
 #define SCOTCH_YOKE_SAMPLES 361
+/* Initialisers (no storage: each program declares its own), e.g.
+   static const char *const names[SCOTCH_YOKE_N_COLUMNS] = SCOTCH_YOKE_COLUMN_NAMES;
+   The CSV's columns of scotch_yoke_columns, inputs first (the CSV adds "status"): */
+#define SCOTCH_YOKE_COLUMN_NAMES { "theta_O", "O.x", "O.y", "O.vx", "O.vy", "O.ax", "O.ay", "A.x", "A.y", "A.vx", "A.vy", "A.ax", "A.ay", "P.x", "P.y", "P.vx", "P.vy", "P.ax", "P.ay", "Q.x", "Q.y", "Q.vx", "Q.vy", "Q.ax", "Q.ay", "frame.phi", "frame.omega", "frame.alpha", "crank.phi", "crank.omega", "crank.alpha", "yoke.phi", "yoke.omega", "yoke.alpha", "block.phi", "block.omega", "block.alpha", "P.s", "P.ds", "P.dds", "Q.s", "Q.ds", "Q.dds" }
+/* Each input's sweep in the file's order (radians or length units, per second): row k of SCOTCH_YOKE_SAMPLES sets
+   input i to START[i] + k (STOP[i] - START[i]) / (SCOTCH_YOKE_SAMPLES - 1) and its rate to SPEED[i]. */
+#define SCOTCH_YOKE_INPUT_NAMES { "theta_O" }
+#define SCOTCH_YOKE_INPUT_START { 0.0 }
+#define SCOTCH_YOKE_INPUT_STOP { 6.283185307179586 }
+#define SCOTCH_YOKE_INPUT_SPEED { 6.283185307179586 }
 /* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in scotch_yoke.md. */
 #define SCOTCH_YOKE_STATUS_BAD_INPUT 5

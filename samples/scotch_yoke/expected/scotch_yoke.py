@@ -239,7 +239,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 33, -34)
 
-    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is
+    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
     st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
     if st == 1:
         return 41

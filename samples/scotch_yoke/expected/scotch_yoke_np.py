@@ -548,7 +548,7 @@ def _run(x, dx, ddx, c):
     # Step 3: PPR_links, P. the slider yoke rides on the known line Q and carries the slide P of block, which turns about the known A: a PPR two-link chain (one solution)
     st, sigma[3], w.s_Q, w.p_Q, w.s_P, w.p_P = PPR_links(w.p_A, w.g_Q, w.psi_Q, c["step3.xa"], c["step3.ya"], c["step3.xb"], c["step3.yb"], c["step3.cx"], 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
-    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is
+    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
     st, _, w.phi_crank = link_angle(w.p_O, w.p_A, c["step4.off"])
     report.append((st, ((1, 41),)))
     # Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide

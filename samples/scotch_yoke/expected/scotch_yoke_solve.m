@@ -88,7 +88,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 33, -34);
 
-    % Step 4: link_angle, crank. O and A of link crank are known, so its angle is
+    % Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
     [w.phi_crank, st] = link_angle(w.p_O, w.p_A, 0.0);
     if st == 1
         status = 41;

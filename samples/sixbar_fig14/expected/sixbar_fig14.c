@@ -1882,31 +1882,31 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
 
-    /* Step 9: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is */
+    /* Step 9: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is known */
     st = link_angle(&p_J1, &w->p_J2, 0.0, &w->phi_rocker1);
     if (st == 1) return 91;
     note(w, st, 93, -94);
 
 
-    /* Step 10: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is */
+    /* Step 10: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is known */
     st = link_angle(&w->p_J2, &w->p_J4, 0.0, &w->phi_ternary);
     if (st == 1) return 101;
     note(w, st, 103, -104);
 
 
-    /* Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is */
+    /* Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is known */
     st = link_angle(&p_J3, &w->p_J4, 0.0, &w->phi_rocker2);
     if (st == 1) return 111;
     note(w, st, 113, -114);
 
 
-    /* Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is */
+    /* Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is known */
     st = link_angle(&w->p_J6, &w->p_J5, 0.0, &w->phi_coupler);
     if (st == 1) return 121;
     note(w, st, 123, -124);
 
 
-    /* Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is */
+    /* Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is known */
     st = link_angle(&p_J7, &w->p_J6, 0.0, &w->phi_crank);
     if (st == 1) return 131;
     note(w, st, 133, -134);

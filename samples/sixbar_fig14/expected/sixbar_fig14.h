@@ -16,6 +16,16 @@ extern "C" {
 #define SIXBAR_FIG14_N_COLUMNS 61
 #define SIXBAR_FIG14_ORDER 2
 #define SIXBAR_FIG14_SAMPLES 361
+/* Initialisers (no storage: each program declares its own), e.g.
+   static const char *const names[SIXBAR_FIG14_N_COLUMNS] = SIXBAR_FIG14_COLUMN_NAMES;
+   The CSV's columns of sixbar_fig14_columns, inputs first (the CSV adds "status"): */
+#define SIXBAR_FIG14_COLUMN_NAMES { "theta_J7", "J1.x", "J1.y", "J1.vx", "J1.vy", "J1.ax", "J1.ay", "J2.x", "J2.y", "J2.vx", "J2.vy", "J2.ax", "J2.ay", "J3.x", "J3.y", "J3.vx", "J3.vy", "J3.ax", "J3.ay", "J4.x", "J4.y", "J4.vx", "J4.vy", "J4.ax", "J4.ay", "J5.x", "J5.y", "J5.vx", "J5.vy", "J5.ax", "J5.ay", "J6.x", "J6.y", "J6.vx", "J6.vy", "J6.ax", "J6.ay", "J7.x", "J7.y", "J7.vx", "J7.vy", "J7.ax", "J7.ay", "rocker1.phi", "rocker1.omega", "rocker1.alpha", "ternary.phi", "ternary.omega", "ternary.alpha", "rocker2.phi", "rocker2.omega", "rocker2.alpha", "coupler.phi", "coupler.omega", "coupler.alpha", "crank.phi", "crank.omega", "crank.alpha", "frame.phi", "frame.omega", "frame.alpha" }
+/* Each input's sweep in the file's order (radians or length units, per second): row k of SIXBAR_FIG14_SAMPLES sets
+   input i to START[i] + k (STOP[i] - START[i]) / (SIXBAR_FIG14_SAMPLES - 1) and its rate to SPEED[i]. */
+#define SIXBAR_FIG14_INPUT_NAMES { "theta_J7" }
+#define SIXBAR_FIG14_INPUT_START { 0.0 }
+#define SIXBAR_FIG14_INPUT_STOP { 6.283185307179586 }
+#define SIXBAR_FIG14_INPUT_SPEED { 6.283185307179586 }
 /* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan, the warm start kept.  The other codes are listed in sixbar_fig14.md. */
 #define SIXBAR_FIG14_STATUS_BAD_INPUT 5

@@ -2153,19 +2153,19 @@ def _run(x, dx, ddx, c, a, ad, used, order, skip, m, p):
                                 skip | past | ~settled | failed_lanes(report, np.size(skip)), m, p)
     settled = settled & done
     its.append(steps)
-    # Step 9: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is
+    # Step 9: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is known
     st, _, w.phi_rocker1 = link_angle(w.p_J1, w.p_J2, c["step9.off"])
     report.append((st, ((1, 91),)))
-    # Step 10: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
+    # Step 10: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is known
     st, _, w.phi_ternary = link_angle(w.p_J2, w.p_J4, c["step10.off"])
     report.append((st, ((1, 101),)))
-    # Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is
+    # Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is known
     st, _, w.phi_rocker2 = link_angle(w.p_J3, w.p_J4, c["step11.off"])
     report.append((st, ((1, 111),)))
-    # Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is
+    # Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is known
     st, _, w.phi_coupler = link_angle(w.p_J6, w.p_J5, c["step12.off"])
     report.append((st, ((1, 121),)))
-    # Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is
+    # Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is known
     st, _, w.phi_crank = link_angle(w.p_J7, w.p_J6, c["step13.off"])
     report.append((st, ((1, 131),)))
     code = row_status(report)

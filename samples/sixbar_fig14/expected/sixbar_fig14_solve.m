@@ -155,7 +155,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
     end
 
 
-    % Step 9: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is
+    % Step 9: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is known
     [w.phi_rocker1, st] = link_angle(w.p_J1, w.p_J2, 0.0);
     if st == 1
         status = 91;
@@ -163,7 +163,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
     end
     w = note(w, st, 93, -94);
 
-    % Step 10: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is
+    % Step 10: link_angle, ternary. J2 and J4 of link ternary are known, so its angle is known
     [w.phi_ternary, st] = link_angle(w.p_J2, w.p_J4, 0.0);
     if st == 1
         status = 101;
@@ -171,7 +171,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
     end
     w = note(w, st, 103, -104);
 
-    % Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is
+    % Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is known
     [w.phi_rocker2, st] = link_angle(w.p_J3, w.p_J4, 0.0);
     if st == 1
         status = 111;
@@ -179,7 +179,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
     end
     w = note(w, st, 113, -114);
 
-    % Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is
+    % Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is known
     [w.phi_coupler, st] = link_angle(w.p_J6, w.p_J5, 0.0);
     if st == 1
         status = 121;
@@ -187,7 +187,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
     end
     w = note(w, st, 123, -124);
 
-    % Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is
+    % Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is known
     [w.phi_crank, st] = link_angle(w.p_J7, w.p_J6, 0.0);
     if st == 1
         status = 131;

@@ -385,7 +385,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     note(w, st, 63, -64);
 
 
-    /* Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is */
+    /* Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known */
     st = link_angle(&p_O2, &w->p_B, 0.0, &w->phi_rocker);
     if (st == 1) return failed(w, out, 91);
     note(w, st, 93, -94);

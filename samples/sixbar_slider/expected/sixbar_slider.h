@@ -16,6 +16,16 @@ extern "C" {
 #define SIXBAR_SLIDER_N_COLUMNS 19
 #define SIXBAR_SLIDER_ORDER 2
 #define SIXBAR_SLIDER_SAMPLES 361
+/* Initialisers (no storage: each program declares its own), e.g.
+   static const char *const names[SIXBAR_SLIDER_N_COLUMNS] = SIXBAR_SLIDER_COLUMN_NAMES;
+   The CSV's columns of sixbar_slider_columns, inputs first (the CSV adds "status"): */
+#define SIXBAR_SLIDER_COLUMN_NAMES { "theta_O1", "S.x", "S.y", "S.vx", "S.vy", "S.ax", "S.ay", "S.s", "S.ds", "S.dds", "P.x", "P.y", "P.vx", "P.vy", "P.ax", "P.ay", "rocker.phi", "rocker.omega", "rocker.alpha" }
+/* Each input's sweep in the file's order (radians or length units, per second): row k of SIXBAR_SLIDER_SAMPLES sets
+   input i to START[i] + k (STOP[i] - START[i]) / (SIXBAR_SLIDER_SAMPLES - 1) and its rate to SPEED[i]. */
+#define SIXBAR_SLIDER_INPUT_NAMES { "theta_O1" }
+#define SIXBAR_SLIDER_INPUT_START { 0.0 }
+#define SIXBAR_SLIDER_INPUT_STOP { 6.283185307179586 }
+#define SIXBAR_SLIDER_INPUT_SPEED { 6.283185307179586 }
 /* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in sixbar_slider.md. */
 #define SIXBAR_SLIDER_STATUS_BAD_INPUT 5

@@ -304,7 +304,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 63, -64)
 
-    # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is
+    # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
     st, w.phi_rocker = link_angle(p_O2, w.p_B, 0.0)
     if st == 1:
         return 91

@@ -115,7 +115,7 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 63, -64);
 
-    % Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is
+    % Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
     [w.phi_rocker, st] = link_angle(w.p_O2, w.p_B, 0.0);
     if st == 1
         status = 91;

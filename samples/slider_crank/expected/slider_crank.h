@@ -16,6 +16,16 @@ extern "C" {
 #define SLIDER_CRANK_N_COLUMNS 40
 #define SLIDER_CRANK_ORDER 2
 #define SLIDER_CRANK_SAMPLES 361
+/* Initialisers (no storage: each program declares its own), e.g.
+   static const char *const names[SLIDER_CRANK_N_COLUMNS] = SLIDER_CRANK_COLUMN_NAMES;
+   The CSV's columns of slider_crank_columns, inputs first (the CSV adds "status"): */
+#define SLIDER_CRANK_COLUMN_NAMES { "theta_O", "O.x", "O.y", "O.vx", "O.vy", "O.ax", "O.ay", "A.x", "A.y", "A.vx", "A.vy", "A.ax", "A.ay", "B.x", "B.y", "B.vx", "B.vy", "B.ax", "B.ay", "S.x", "S.y", "S.vx", "S.vy", "S.ax", "S.ay", "frame.phi", "frame.omega", "frame.alpha", "crank.phi", "crank.omega", "crank.alpha", "rod.phi", "rod.omega", "rod.alpha", "block.phi", "block.omega", "block.alpha", "S.s", "S.ds", "S.dds" }
+/* Each input's sweep in the file's order (radians or length units, per second): row k of SLIDER_CRANK_SAMPLES sets
+   input i to START[i] + k (STOP[i] - START[i]) / (SLIDER_CRANK_SAMPLES - 1) and its rate to SPEED[i]. */
+#define SLIDER_CRANK_INPUT_NAMES { "theta_O" }
+#define SLIDER_CRANK_INPUT_START { 0.0 }
+#define SLIDER_CRANK_INPUT_STOP { 6.283185307179586 }
+#define SLIDER_CRANK_INPUT_SPEED { 6.283185307179586 }
 /* Returned when a number in in[], din[] or ddin[] is not finite (nan or inf) or larger than 1e+30 in size:
    every output nan.  The other codes are listed in slider_crank.md. */
 #define SLIDER_CRANK_STATUS_BAD_INPUT 5

@@ -228,14 +228,14 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 33, -34)
 
-    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is
+    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
     st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
     if st == 1:
         return 41
     if st:
         w.note(st, 43, -44)
 
-    # Step 5: link_angle, rod. A and B of link rod are known, so its angle is
+    # Step 5: link_angle, rod. A and B of link rod are known, so its angle is known
     st, w.phi_rod = link_angle(w.p_A, w.p_B, 0.0)
     if st == 1:
         return 51

@@ -506,10 +506,10 @@ def _run(x, dx, ddx, c):
     # Step 3: PRR_links, B (branch +1). B is joined to the known A by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
     st, sigma[3], w.s_S, w.p_S, w.p_B = PRR_links(w.p_A, w.l_rod, w.g_S, w.psi_S, c["step3.gsi"], c["step3.eta"], 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
-    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is
+    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
     st, _, w.phi_crank = link_angle(w.p_O, w.p_A, c["step4.off"])
     report.append((st, ((1, 41),)))
-    # Step 5: link_angle, rod. A and B of link rod are known, so its angle is
+    # Step 5: link_angle, rod. A and B of link rod are known, so its angle is known
     st, _, w.phi_rod = link_angle(w.p_A, w.p_B, c["step5.off"])
     report.append((st, ((1, 51),)))
     # Step 6: offset_angle, block. link block keeps a constant angle to its slide

@@ -1,0 +1,163 @@
+"""The Python API: a mechanism file as an object, its procedure, its sweep as a numpy
+structured array, its engineering summary and its generated files.  The command line
+(linkgen.cli) is a thin layer over it.
+
+>>> import linkgen
+>>> m = linkgen.load("samples/slider_crank/slider_crank.yaml")
+>>> m.name, len(m.procedure)
+('slider_crank', 6)
+>>> rows = m.sweep(samples=5, order=0)
+>>> rows.dtype.names[:3], len(rows)
+(('theta_O', 'O.x', 'O.y'), 5)
+>>> round(float(rows["S.s"][0]), 9)  # the crank at 0: B at x = 20 + sqrt(65^2 - 13^2), drawn at 76
+7.686733312
+>>> summary = m.check()
+>>> summary.failed, [t.name for t in summary.travels if t.quantity == "slide"]
+(0, ['S.s'])
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from .pipeline import build_log
+from .steplog import Step, StepLog
+from .summary.compute import summarize
+from .summary.records import Summary
+
+CHUNK = 65536  # rows evaluated at once by a sweep with progress
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """A mechanism file with the outputs, order and settings to build it with (None: the file's;
+    settings: linkgen.options.Options' fields, e.g. {"real": "float"}).  Its step log is made on
+    first use; ``build`` adds the conditioning over the sweep that the manual shows."""
+
+    path: str
+    outputs: tuple[str, ...] | None = None
+    order: int | None = None
+    settings: Mapping[str, object] = field(default_factory=dict)
+
+    @functools.cached_property
+    def log(self) -> StepLog:
+        """The step log without the conditioning over the sweep (what run and check need)."""
+        return build_log(self.path, self.outputs, self.order, sweep=False, options=self.settings)
+
+    @functools.cached_property
+    def full_log(self) -> StepLog:
+        """The step log with the conditioning over the sweep (what build renders)."""
+        return build_log(self.path, self.outputs, self.order, options=self.settings)
+
+    @property
+    def name(self) -> str:
+        return self.log.name
+
+    @property
+    def procedure(self) -> tuple[Step, ...]:
+        """The numbered steps (fallback blocks' steps included, their ``variant`` > 0)."""
+        return self.log.steps
+
+    @property
+    def columns(self) -> tuple[str, ...]:
+        """The sweep's columns (inputs first), then ``status``."""
+        return (*(c.name for c in self.log.columns), "status")
+
+    def files(self) -> dict[str, bytes]:
+        """Every generated file, by name: the step log, the manual, its figures (the motion's
+        plots too), the page and the programs."""
+        from .render import render_all
+
+        return render_all(self.full_log, motion=True)
+
+    def build(self, outdir: str | None = None) -> list[str]:
+        """Write the generated files into outdir (default build/NAME); the paths written."""
+        from .writer import write_all
+
+        files = self.files()
+        return write_all(files, outdir or os.path.join("build", self.name))
+
+    def sweep(self, samples: int | None = None, order: int | None = None,
+              progress: Callable[[int], None] | None = None) -> np.ndarray:
+        """The sweep (samples rows, default the file's; all inputs move together) as a structured
+        array with one float field per column, as the CSV has them, and an int field ``status``;
+        ``order`` (0, 1, 2) other than the mechanism's gives the columns of that order.  ``progress``
+        is called with the number of rows done after each chunk of CHUNK rows."""
+        from .evaluate import input_rows
+
+        if order is not None and order != self.log.order:
+            return replace(self, order=order).sweep(samples, None, progress)
+        values, rates, accs = input_rows(self.log, samples or self.log.samples)
+        return self._rows(values, rates, accs, progress)
+
+    def at(self, values: Sequence[float], rates: Sequence[float] | None = None,
+           accelerations: Sequence[float] | None = None) -> np.void:
+        """One row at the inputs' values (radians or length units, the programs' units), their
+        rates (default: the inputs' speeds) and accelerations (default 0)."""
+        n = len(self.log.inputs)
+        if len(values) != n:
+            raise ValueError(f"{len(values)} values given; {self.name} has {n} inputs")
+        speeds = [i.speed for i in self.log.inputs] if rates is None else list(rates)
+        accs = [0.0] * n if accelerations is None else list(accelerations)
+        row: np.void = self._rows(np.array([values], dtype=float), np.array([speeds], dtype=float),
+                                  np.array([accs], dtype=float), None)[0]
+        return row
+
+    def check(self) -> Summary:
+        """The engineering summary (linkgen.summary.records): the full log's where it is built,
+        else found now (no conditioning over the sweep: faster)."""
+        if "full_log" in self.__dict__ and self.full_log.summary is not None:
+            return self.full_log.summary
+        return summarize(self.log)
+
+    def _rows(self, values: np.ndarray, rates: np.ndarray, accs: np.ndarray,
+              progress: Callable[[int], None] | None) -> np.ndarray:
+        from .evaluate import evaluate
+        from .table import columns
+
+        log = self.log
+        names = [c.name for c in log.columns]
+        out = np.zeros(len(values), dtype=[*((n, "f8") for n in names), ("status", "i8")])
+        warm = None
+        for lo in range(0, len(values), CHUNK):
+            hi = min(lo + CHUNK, len(values))
+            with np.errstate(all="ignore"):
+                result = evaluate(log, values[lo:hi], rates[lo:hi], accs[lo:hi], warm=warm)
+            warm = result.warm[-1] if result.warm else None
+            _, data = columns(log, result)
+            for k, n in enumerate(names):
+                out[n][lo:hi] = data[:, k]
+            out["status"][lo:hi] = result.status
+            if progress is not None:
+                progress(hi - lo)
+        return out
+
+
+def load(path: str | os.PathLike[str], outputs: Iterable[str] | None = None, order: int | None = None,
+         settings: Mapping[str, object] | None = None) -> Mechanism:
+    """The mechanism of a file (read and checked now: a bad file raises linkgen.errors.InputError)."""
+    m = Mechanism(os.fspath(path), None if outputs is None else tuple(outputs), order, dict(settings or {}))
+    m.log  # noqa: B018 - read the file now, so that a bad one fails here
+    return m
+
+
+def csv_text(m: Mechanism, rows: np.ndarray) -> str:
+    """Rows of a sweep as the CSV the programs write."""
+    from numpy.lib.recfunctions import structured_to_unstructured
+
+    from .table import number
+
+    names = list(m.columns)
+    data = structured_to_unstructured(rows[names[:-1]], dtype=float)
+    lines = [",".join(names)]
+    for row, st in zip(data.tolist(), rows["status"].tolist()):
+        lines.append(",".join([number(x) for x in row] + [str(st)]))
+    return "\n".join(lines) + "\n"
+
+
+__all__ = ["Mechanism", "csv_text", "load"]
