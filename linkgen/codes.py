@@ -31,6 +31,8 @@ def _reasons(s: Step, strategy: str) -> dict[int, str]:
         return {status.SINGULAR: f"the pairs of {s.target} coincide, so the resolver has no rate"}
     if s.function in ("link_angle", "link_direction"):
         return {status.CANNOT_CLOSE: f"the two points of {s.target} coincide"}
+    if s.function == "link_point":
+        return {status.CANNOT_CLOSE: f"the two pairs {s.target} is placed from coincide"}
     return {status.CANNOT_CLOSE: "the chain cannot close", status.SINGULAR: "singular position (toggle)",
             status.NEAR_SINGULAR: "near a singular position"}
 

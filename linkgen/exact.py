@@ -26,6 +26,14 @@ def sin(a: float) -> float:
     return float(_CTX.sin(_CTX.mpf(a)))
 
 
+def local(rx: float, ry: float, dx: float, dy: float) -> tuple[float, float]:
+    """(gsi, eta) with r = gsi e + eta n, e = d / |d| and n = e turned a quarter turn left:
+    (r.d, d x r) / |d|."""
+    x, y, u, v = (_CTX.mpf(t) for t in (rx, ry, dx, dy))
+    d = _CTX.sqrt(u * u + v * v)
+    return float((x * u + y * v) / d), float((u * y - v * x) / d)
+
+
 def along_across(rx: float, ry: float, dx: float, dy: float) -> tuple[float, float]:
     """(a, b) with r = a d + b n, n = (-dy, dx) the base d turned a quarter turn left:
     (r.d, d x r) / |d|^2."""

@@ -702,25 +702,26 @@ def coupler_point_case(src: Source) -> Case:
 
 
 def link_point_case(src: Source) -> Case:
-    """A point of a link from two of its points (a needle of a base with a far point in the short mode):
-    along and across as the extraction rounds them, the exact point from those doubles."""
+    """A point of a link in the frame of two of its points (a needle of a base with a far point in the short
+    mode): gsi and eta as the extraction rounds them, the exact point from those doubles."""
     s = src.scale()
     j1 = src.point(s)
     short = src.flag()
     j2 = src.near(j1, s * src.ratio()) if short else src.point(s)
     jc = src.point(s)
     dx, dy, rx, ry = (MP.mpf(j2[0]) - j1[0], MP.mpf(j2[1]) - j1[1], MP.mpf(jc[0]) - j1[0], MP.mpf(jc[1]) - j1[1])
-    d2 = dx * dx + dy * dy
-    if d2 == 0:
+    q = MP.sqrt(dx * dx + dy * dy)
+    if q == 0:
         raise Degenerate("link_point: the base's points coincide")
-    along, across = float((rx * dx + ry * dy) / d2), float((dx * ry - dy * rx) / d2)
+    gsi, eta = float((rx * dx + ry * dy) / q), float((dx * ry - dy * rx) / q)
     w = _angular(src)
-    args = (_pt_arg(j1, _rates(src, s, w)), _pt_arg(j2, _rates(src, s, w)), along, across)
+    args = (_pt_arg(j1, _rates(src, s, w)), _pt_arg(j2, _rates(src, s, w)), gsi, eta)
     J1, J2 = _pt_jet(args[0]), _pt_jet(args[1])
-    out = {"jc": vadd(J1, local(vsub(J2, J1), mp(along), mp(across)))}
-    arm = math.hypot(along, across)
-    length = max(_magnitude(*j1, *j2, *jc), arm * float(MP.sqrt(d2)))
-    return Case("link_point", args, {"j1": J1, "j2": J2, "along": mp(along), "across": mp(across)}, out, length,
+    d = vsub(J2, J1)
+    out = {"jc": vadd(J1, local(vscale(1 / vnorm(d), d), mp(gsi), mp(eta)))}
+    arm = math.hypot(gsi, eta) / float(q)
+    length = max(_magnitude(*j1, *j2, *jc), math.hypot(gsi, eta))
+    return Case("link_point", args, {"j1": J1, "j2": J2, "gsi": mp(gsi), "eta": mp(eta)}, out, length,
                 max(1.0, arm), math.nan, False, "short" if short else "random")
 
 
@@ -940,9 +941,11 @@ def residuals(case: Case, outs: dict) -> list:
         d = vsub(pt("jc"), _p(v, "j0"))
         u = _dir_mp(_val(v, "phi"))
         return [vdot(d, u) - v["gsi"], vcross(u, d) - v["eta"]]
-    if n == "link_point":  # jc - j1 = along d + across n
+    if n == "link_point":  # jc - j1 = gsi e + eta n, e the unit vector of j2 - j1
         d = vsub(_p(v, "j2"), _p(v, "j1"))
-        return list(vsub(vsub(pt("jc"), _p(v, "j1")), local(d, v["along"], v["across"])))
+        r = vsub(pt("jc"), _p(v, "j1"))
+        q = MP.sqrt(vdot(d, d))
+        return [vdot(r, d) / q - v["gsi"], vcross(d, r) / q - v["eta"]]
     if n == "crank_input":
         d = vsub(pt("j2"), _p(v, "j1"))
         u = _dir_mp(_val(v, "theta") + _val(v, "phi"))

@@ -232,9 +232,10 @@ def sample_coupler_point(r: Draw, branch: int):
 
 
 def sample_link_point(r: Draw, branch: int):
-    j1, j2, along, across = r.point(), r.point(), r.length(), r.length()
-    jc = vadd(j1, local(vsub(j2, j1), along, across))
-    return Sample({"j1": j1, "j2": j2, "along": along, "across": across}, {"jc": jc})
+    j1, rad, phi, gsi, eta = r.point(), r.variable(0.2, 2), r.angle(), r.length(), r.length()
+    j2 = vadd(j1, vscale(rad, direction(phi)))  # the base may stretch: only its direction places the point
+    jc = vadd(j1, local(direction(phi), gsi, eta))
+    return Sample({"j1": j1, "j2": j2, "gsi": gsi, "eta": eta}, {"jc": jc})
 
 
 def sample_slider_input(r: Draw, branch: int):
@@ -556,9 +557,9 @@ def constraints(name: str, v: dict, f: dict) -> tuple[list, list]:
     if name == "coupler_point":
         d, u = _sub(_pt(f, "jc"), p("j0")), _dir(v["phi_the"])
         return [_dot(d, u) - v["gsi"], _cross(u, d) - v["eta"]], []
-    if name == "link_point":  # jc - j1 = along d + across n, d = j2 - j1 and n = d turned a quarter left
+    if name == "link_point":  # jc - j1 = gsi e + eta n, e = d / |d| (d = j2 - j1) and n = e turned a quarter left
         d, r = _sub(p("j2"), p("j1")), _sub(_pt(f, "jc"), p("j1"))
-        return [_dot(r, d) - v["along"] * _dot(d, d), _cross(d, r) - v["across"] * _dot(d, d)], []
+        return [_dot(r, d) - v["gsi"] * _norm(d), _cross(d, r) - v["eta"] * _norm(d)], []
     if name == "slider_input":
         u = _dir(v["psig_the"])
         jp, jc = _pt(f, "jp"), _pt(f, "jc")

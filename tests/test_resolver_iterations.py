@@ -81,15 +81,17 @@ static int square(void *ctx, const double a[], const double da[], const double d
                   double df[], double ddf[])
 {
     (void)ctx; (void)live;
-    f[0] = a[0] * a[0] - 1.0; df[0] = 2.0 * a[0] * da[0]; ddf[0] = 2.0 * da[0] * da[0] + 2.0 * a[0] * dda[0];
+    f[0] = a[0] * a[0] - 1.0; df[0] = 2.0 * a[0] * da[0];
+    if (ddf) ddf[0] = 2.0 * da[0] * da[0] + 2.0 * a[0] * dda[0];  /* null: no accelerations asked for */
     return 0;
 }
 static int pair(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
                 double df[], double ddf[])
 {
     (void)ctx; (void)live; (void)dda;
-    f[0] = a[0] * a[1] - 2.0; df[0] = da[0] * a[1] + a[0] * da[1]; ddf[0] = 0.0;
-    f[1] = a[0] - a[1] - 1.0; df[1] = da[0] - da[1]; ddf[1] = 0.0;
+    f[0] = a[0] * a[1] - 2.0; df[0] = da[0] * a[1] + a[0] * da[1];
+    f[1] = a[0] - a[1] - 1.0; df[1] = da[0] - da[1];
+    if (ddf) ddf[0] = ddf[1] = 0.0;
     return 0;
 }
 static void one(group_fn g, int n, double a0, double a1, int strategy, int polish)

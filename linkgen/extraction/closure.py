@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from .. import exact
 from ..closurelog import Closure, Distance, Frame
 from ..errors import and_list
 from ..steplog import ResolverGroup, Step, Variable
@@ -56,8 +57,9 @@ def closure(group: ResolverGroup, block: list[Step], variables: dict[str, Variab
             frames.append(Frame(s.outputs[0], var[0], (a, b), _ratio(variables, s.outputs[0], var[0], a, b),
                                 s.number, s.links[0]))
         elif s.function == "link_point":
-            along, across = (a.value for a in s.args if a.kind == "real")
-            frames.append(Frame(s.outputs[0], var[0], (var[0], var[1]), (along, across), s.number, s.links[0]))
+            (ax, ay), (bx, by), (px, py) = (variables[n].sketch[:2] for n in (var[0], var[1], s.outputs[0]))
+            ratio = exact.along_across(px - ax, py - ay, bx - ax, by - ay)
+            frames.append(Frame(s.outputs[0], var[0], (var[0], var[1]), ratio, s.number, s.links[0]))
         elif s.function not in ("link_angle", "offset_angle"):
             raise ClosureRefused(f"it handles resolver groups of revolute pairs only, and step {s.number} of "
                                  f"group {group.number} places {s.target} by {s.function}")

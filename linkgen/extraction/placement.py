@@ -82,22 +82,25 @@ def line(ws: Workspace, pair: str) -> tuple[str, str]:
 
 
 def point_on(ws: Workspace, link: str, name: str, out: str, reason: str) -> None:
-    """``name`` (the record ``out``) at its sketch place on a placed link: linear in two known
-    points of the link where it has them (link_point: the second one the farthest from the
-    first, so the base is long), else at its offset from the known point along the link's
-    angle (coupler_point, with link_angle where the angle is not known yet)."""
+    """``name`` (the record ``out``) at its sketch place on a placed link: in the frame of two known points of
+    the link where it has them (link_point, on the pair whose base is longest against the point's distance
+    from its first point: the base's direction error turns the point by that lever), else at its offset from
+    the known point along the link's angle (coupler_point, with link_angle where the angle is not known yet)."""
     tied = [n for n in ws.tied[link] if ws.pos[n] != out]
-    base = tied[0]
-    r = tuple(a - b for a, b in zip(ws.xy(name), ws.xy(base)))
-    far = max(tied[1:], key=lambda n: math.dist(ws.xy(n), ws.xy(base)), default=None)
-    if far is not None and ws.xy(far) != ws.xy(base):
+    here = ws.xy(name)
+    pairs = [(a, b) for a in tied for b in tied if ws.xy(a) != ws.xy(b)]
+    if pairs:
+        base, far = min(pairs, key=lambda p: math.dist(here, ws.xy(p[0])) / math.dist(ws.xy(p[1]), ws.xy(p[0])))
+        r = tuple(a - b for a, b in zip(here, ws.xy(base)))
         d = tuple(a - b for a, b in zip(ws.xy(far), ws.xy(base)))
-        along, across = exact.along_across(r[0], r[1], d[0], d[1])
+        gsi, eta = exact.local(r[0], r[1], d[0], d[1])
         emit(ws, "point", "link_point",
-             [Arg("var", ws.pos[base]), Arg("var", ws.pos[far]), Arg("real", value=along, label="along"),
-              Arg("real", value=across, label="across")], [out], name, pairs=(base, far), links=(link,),
+             [Arg("var", ws.pos[base]), Arg("var", ws.pos[far]), Arg("real", value=gsi, label="gsi"),
+              Arg("real", value=eta, label="eta")], [out], name, pairs=(base, far), links=(link,), fails=True,
              reason=reason)
         return
+    base = tied[0]
+    r = tuple(a - b for a, b in zip(here, ws.xy(base)))
     angle = frame(ws, link)
     gsi, eta = rot(ws.angle0(angle), *r)
     emit(ws, "point", "coupler_point",

@@ -151,8 +151,9 @@ def placement_lever(block: list[Step], steps: list[Step], variables: dict[str, V
         if s.function == "coupler_point":
             b = base(s.args[1].var)
             arm = math.hypot(s.args[2].value, s.args[3].value)
-        elif s.function == "link_point":  # the base j1-j2 itself; the arm in its lengths
-            b, arm = 1.0, math.hypot(s.args[2].value, s.args[3].value)
+        elif s.function == "link_point":  # the base j1-j2 itself; the arm (gsi, eta)
+            (xa, ya), (xb, yb) = (variables[a.var].sketch[:2] for a in s.args[:2])
+            b, arm = math.hypot(xb - xa, yb - ya), math.hypot(s.args[2].value, s.args[3].value)
         else:
             continue
         if b is not None and arm > b:

@@ -16,9 +16,9 @@ from __future__ import annotations
 from .. import status
 from .centres import instant_centre
 from .directions import angle_direction, link_direction
-from .dsl import NAN, Primitive, atan2, select
+from .dsl import NAN, Primitive, atan2, select, sqrt
 from .dyads import PPR_links, PRP_links, PRR_links, RPR_links, RRR_links
-from .vectors import Motion, PlaneBuilder, Vec, primitive
+from .vectors import Motion, PlaneBuilder, primitive
 
 
 @primitive
@@ -48,18 +48,21 @@ def coupler_point(b: PlaneBuilder) -> Primitive:
 
 @primitive
 def link_point(b: PlaneBuilder) -> Primitive:
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a
-    quarter turn left (linear in the two points: no angle, no trigonometry).
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the
+    unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where
+    the two points coincide (or their distance's square underflows).
     """
     j1, j2 = b.points("j1", "j2")
-    along, across = b.scalars("along", "across")
+    gsi, eta = b.scalars("gsi", "eta")
     d = b.difference(j1, j2)
-
-    def local(name: str, v: Vec) -> Vec:
-        return b.vec(name, Vec(along * v.x - across * v.y, along * v.y + across * v.x))
-
-    b.output_point("jc", j1 + Motion(local("r", d.p), local("rv", d.v), local("ra", d.a)))
-    return b.build()
+    r2 = b.let("r2", d.p.dot(d.p))
+    ir = b.let("ir", select(r2.eq(0), NAN, 1 / sqrt(r2)))
+    r = b.local("r", b.vec("e", d.p.scaled(ir)), gsi, eta)
+    ir2 = b.let("ir2", ir * ir)  # 1 / |d|^2 without a second division
+    om = b.let("om", d.p.cross(d.v) * ir2)
+    al = b.let("al", (d.p.cross(d.a) - 2 * om * d.p.dot(d.v)) * ir2)
+    b.output_point("jc", j1 + b.rotating("r", r, om, al))
+    return b.build(status=select(r2.eq(0), status.CANNOT_CLOSE, 0), fail=r2.eq(0))
 
 
 @primitive
@@ -118,7 +121,7 @@ def link_residual(b: PlaneBuilder) -> Primitive:
     # coincident pairs: |d(t)| = t |dv| + t^2 dv.da / (2 |dv|) + ... (t^2 |da| / 2 where dv = 0)
     s = b.let("s", dv.norm())
     iv = b.let("iv", select(s.eq(0), NAN, 1 / s))
-    rd = b.let("rd", select(r.eq(0), s, d.dot(dv) * ir))
+    rd = b.let("rd", select(r.eq(0), dv.norm(), d.dot(dv) * ir))  # s where read: a rate alone needs no sqrt of it
     parting = b.let("rp", select(s.eq(0), da.norm(), dv.dot(da) * iv))
     rdd = b.let("rdd", select(r.eq(0), parting, (dv.dot(dv) + d.dot(da) - rd * rd) * ir))
     b.output("f", "VARIABLE", v=r - ln.v, dv=rd - ln.dv, ddv=rdd - ln.ddv)

@@ -13,12 +13,13 @@ FIG14 = ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"
 def test_each_failing_step_has_its_reasons():
     """The six-bar of Fig. 14: a chain fails (1), is singular (3) or near it (4); the resolver
     does not converge (2) or its Jacobian is (near) singular; a residual's pairs coincide (3); a
-    link angle's points coincide (1); and an input out of range is step 0's 5."""
+    link angle's points coincide (1), and so do the pairs a link_point places from (1); and an input out of
+    range is step 0's 5."""
     log = build_log(str(FIG14), sweep=False)
     reasons: dict[int, set[int]] = {}
     for c in log.status_codes:
         reasons.setdefault(c.step, set()).add(abs(c.code) % 10)
-    want = {"resolve": {2, 3, 4}, "residual": {3}, "link_angle": {1}, "RRR_links": {1, 3, 4}}
+    want = {"resolve": {2, 3, 4}, "residual": {3}, "link_angle": {1}, "link_point": {1}, "RRR_links": {1, 3, 4}}
     for s in log.steps:
         kind = s.action if s.action in ("resolve", "residual") else s.function
         if s.fails and kind in want:

@@ -39,13 +39,14 @@ def test_rot_gives_the_coordinates_in_a_turned_frame(angle: float, x: float, y: 
     assert rot(angle, x, y) == pytest.approx(expected, abs=1e-15)
 
 
-def test_a_point_of_a_link_with_two_known_pairs_is_linear_in_them():
+def test_a_point_of_a_link_with_two_known_pairs_is_placed_in_their_frame():
     proc = _extract(ROOT / "samples" / "fourbar" / "fourbar.yaml")
     (step,) = [s for s in proc.steps if s.target == "P"]
-    # P (60, 70) from A (20, 0) = (40, 70), along A -> B = (60, 50) and across it (-50, 60), in units of |AB|^2
-    assert step.function == "link_point" and [a.var for a in step.args[:2]] == ["p_A", "p_B"]
-    assert _arg(step, "along") == pytest.approx((40 * 60 + 70 * 50) / 6100, rel=1e-15)
-    assert _arg(step, "across") == pytest.approx((70 * 60 - 40 * 50) / 6100, rel=1e-15)
+    # P (60, 70) from B (80, 50) = (-20, 20), along B -> A = (-60, -50) and across it (50, -60), over |AB|:
+    # B is the nearer base (|BP| / |AB| = 0.36; from A it would be 1.03)
+    assert step.function == "link_point" and [a.var for a in step.args[:2]] == ["p_B", "p_A"]
+    assert _arg(step, "gsi") == pytest.approx((20 * 60 - 20 * 50) / math.sqrt(6100), rel=1e-15)
+    assert _arg(step, "eta") == pytest.approx((-20 * 50 - 20 * 60) / math.sqrt(6100), rel=1e-15)
     assert "link_angle" not in {s.function for s in proc.steps if s.number < step.number}  # no angle needed
 
 
@@ -65,7 +66,7 @@ def test_a_moving_guides_line_turns_with_it_and_its_copy_of_the_pair_is_a_point_
     (copy,) = [s for s in slotted.steps if s.outputs == ("g_S",)]
     # S (50, 25) is the middle of A (20, 0) and B (80, 50), both known on the coupler
     assert copy.function == "link_point" and [a.var for a in copy.args[:2]] == ["p_A", "p_B"]
-    assert (_arg(copy, "along"), _arg(copy, "across")) == (0.5, 0.0)
+    assert (_arg(copy, "gsi"), _arg(copy, "eta")) == pytest.approx((math.hypot(60, 50) / 2, 0.0), abs=1e-14)
 
 
 def test_a_fixed_guides_line_is_two_constants():

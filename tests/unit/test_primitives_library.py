@@ -74,13 +74,18 @@ def test_coupler_point_hand():
 
 
 def test_link_point_hand():
-    # d = (3, 4), n = (-4, 3): jc = (1, 2) + (1.5, 2) + (-4, 3); d' = (1, 0), n' = (0, 1); d'' = (0, 1), n'' = (-1, 0)
-    (got,) = py2("link_point", (1.0, 2.0, 0, 0, 0, 0), (4.0, 6.0, 1.0, 0.0, 0.0, 1.0), 0.5, 1.0)[2]
-    assert got == approx((-1.5, 7.0, 0.5, 1.0, -1.0, 0.5))
-    # a point on a crank turning at 2 about j1, as coupler_point places it: the same motion
+    # d = (3, 4), e = (0.6, 0.8), n = (-0.8, 0.6): jc = (1, 2) + 5 (0.6, 0.8) + 2.5 (-0.8, 0.6) = (2, 7.5);
+    # d' = (1, 0): omega = (d x d') / |d|^2 = -4/25, jc' = omega (-ry, rx) with r = (1, 5.5)
+    (got,) = py2("link_point", (1.0, 2.0, 0, 0, 0, 0), (4.0, 6.0, 1.0, 0.0, 0.0, 0.0), 5.0, 2.5)[2]
+    om = -4 / 25
+    al = -2 * om * 3 / 25  # (d x d'' - 2 omega d.d') / |d|^2 with d'' = 0, d.d' = 3
+    assert got == approx((2.0, 7.5, -om * 5.5, om * 1.0, -al * 5.5 - om * om * 1.0, al * 1.0 - om * om * 5.5))
+    # a point on a crank turning at 2 about j1, as coupler_point places it: the same motion, and a base
+    # stretched by rounding (j2 - j1 of any length) does not move it
     (angled,) = py2("coupler_point", (1.0, 1.0, 0, 0, 0, 0), (PI / 2, 2.0, 0.0), 2.0, 1.0)[2]
-    (linear,) = py2("link_point", (1.0, 1.0, 0, 0, 0, 0), (1.0, 2.0, -2.0, 0.0, 0.0, -4.0), 2.0, 1.0)[2]
-    assert linear == approx(angled)
+    for k in (1.0, 1.5):
+        (placed,) = py2("link_point", (1.0, 1.0, 0, 0, 0, 0), (1.0, 1.0 + k, -2.0 * k, 0.0, 0.0, -4.0 * k), 2.0, 1.0)[2]
+        assert placed == approx(angled)
 
 
 def test_slider_input_hand():

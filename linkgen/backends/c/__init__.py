@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from ...policy import REAL_TYPES
 from ...primitives.dsl import record_fields as record_fields_of
 from .. import Backend, Runtime, Template
-from ..program import input_lists, runtime_sources, sketch_states
+from ..program import input_lists, program_primitive, runtime_sources, sketch_states
 from .printer import c_function
 from .real import retype, typedef
 from .spelling import C
@@ -35,6 +36,15 @@ def _reads_reasons(view: View) -> bool:
     return bool(view.groups) or (view.checks and view.log.order > 0)
 
 
+def velocity_variants(view: View) -> list[str]:
+    """Order-1 copies (NAME_1) of the primitives the resolver blocks call, for a program of order 2: the
+    passes that measure residuals and the Jacobian need no accelerations (the same statements, fewer)."""
+    if not view.groups or view.record_order < 2:
+        return []
+    names = sorted({s.function for b in view.blocks for s in b.steps if s.function})
+    return [c_function(replace(program_primitive(view, n), name=f"{n}_1"), 1) for n in names]
+
+
 def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
     log = view.log
     upper = log.name.upper()
@@ -58,7 +68,8 @@ def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
                            angle_fields=fields["angle"], slide_fields=fields["slide"],
                            direction_fields=fields["direction"], columns=columns, inputs=lists),
         "NAME.c": template("NAME.c.j2", upper=upper,
-                           runtime=runtime_sources(view, c_function, RUNTIME, status=_reads_reasons(view)),
+                           runtime=runtime_sources(view, c_function, RUNTIME, status=_reads_reasons(view))
+                           + velocity_variants(view),
                            record_fields=record_fields, sketch_in=lists["sketch"],
                            sketch_a=", ".join("{" + a + "}" for a in sketch_states(view, spell)),
                            column_fields=[f"{spell.ident(c.owner)}.{c.field}" for c in view.cells],

@@ -57,14 +57,19 @@ def _c_type(kind: str) -> str:
 def c_function(prim: Primitive, order: int) -> str:
     """A static C99 function shaped like mech.cpp: records in by pointer to const (no copy of
     a record per call), outputs by pointer, the status as return value (void when the
-    function cannot fail).  Inline: a call with the sketch's constants folds them."""
+    function cannot fail).  Inline, and declared always inline where the compiler has the
+    attribute (gcc, clang): a call with the sketch's constants folds them, and a
+    chain called from several steps is not left a call (Jansen's leg: 1292 -> 998 instructions
+    a row)."""
     exprs = CExprs(prim)
     params = [f"const {p.kind} *{p.name}" if p.is_record else f"{_c_type(p.kind)} {p.name}" for p in prim.params]
     params += [f"{p.kind} *{p.name}" for p in prim.outputs]
     if prim.sigma is not None:
         params.append("double *sigma_out")
     head = "static inline int" if prim.status is not None else "static inline void"
-    lines = [f"/* {prim.doc} */", f"{head} {prim.name}({', '.join(params)})", "{"]
+    signature = f"{head} {prim.name}({', '.join(params)})"
+    lines = [f"/* {prim.doc} */", "#if defined(__GNUC__)", f"{signature} __attribute__((always_inline));", "#endif",
+             signature, "{"]
     used = prim.params_used(order)
     for p in prim.params:
         touched = used & ({f"{p.name}_{f}" for f in record_fields(p.kind, order)} if p.is_record else {p.name})

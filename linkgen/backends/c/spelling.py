@@ -43,14 +43,15 @@ class C(Spelling):
             return "{" + ", ".join(levels) + "}"
         return "{" + ", ".join([self.lit(value[0])] + ["0.0"] * self.order) + "}"
 
-    def call(self, step: Step, scope: Group | None) -> list[str]:
-        """A step's call; a failing chain ends the row (inside a resolver block: the block's pass)."""
+    def call(self, step: Step, scope: Group | None, velocities: bool = False) -> list[str]:
+        """A step's call; a failing chain ends the row (inside a resolver block: the block's pass;
+        ``velocities``: its order-1 copy, for a pass whose accelerations are not read)."""
         prim = self.primitives[step.function]
         args = [("&" if a.kind == "var" else "") + self.arg(a, scope, step) for a in step.args]
         args += [f"&{self.ref(o, scope)}" for o in step.outputs]
         if prim.sigma is not None:
             args.append(f"&{self.sigma(step)}")
-        text = f"{step.function}({', '.join(args)});"
+        text = f"{step.function}{'_1' if velocities else ''}({', '.join(args)});"
         points = ", ".join(self.lit(p) for p in step.change_points)
         head = [f"static const double change_{step.number}[] = {{{points}}};"] if step.change_points else []
         if prim.status is None:
@@ -60,5 +61,5 @@ class C(Spelling):
                     *self.notes("st", step)]
         lines = [*head, f"st = {text}", "if (st == 1) return 1;", *(f"if (live) {n}" for n in self.notes("st", step))]
         if prim.sigma is not None:
-            lines.append(f"w->chains = fmin(w->chains, {self.sigma(step)});")
+            lines.append(f"if ({self.sigma(step)} < w->chains) w->chains = {self.sigma(step)};")
         return lines

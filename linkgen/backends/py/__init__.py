@@ -32,7 +32,7 @@ def render(view: View, spell: Python, template: Template) -> dict[str, bytes]:
     return {"NAME.py": template(
         "NAME.py.j2", runtime=runtime, math_names=math_names, columns=[c.name for c in log.columns],
         levels=[str(LEVEL[cell.column.quantity]) for cell in view.cells],
-        values=[spell.published(cell.column) for cell in view.cells],
+        values=[(cell.column.name, spell.published(cell.column)) for cell in view.cells],
         inputs=[f"{spell.lit(i.start)}, {spell.lit(i.stop)}, {spell.lit(i.speed)}" for i in log.inputs],
         sketch_a=sketch_states(view, spell), limits=lists["limits"], slack=spell.lit(log.policy.path_slack),
         periodic=lists["periodic"])}

@@ -12,6 +12,9 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
+#if defined(__GNUC__)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
 static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -34,8 +37,11 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
-static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
+#if defined(__GNUC__)
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+#endif
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -43,21 +49,34 @@ static inline void link_point(const POINT *j1, const POINT *j2, double along, do
     const double dvy = j2->DP.y - j1->DP.y;
     const double dax = j2->DDP.x - j1->DDP.x;
     const double day = j2->DDP.y - j1->DDP.y;
-    const double rx = along * dx - across * dy;
-    const double ry = along * dy + across * dx;
-    const double rvx = along * dvx - across * dvy;
-    const double rvy = along * dvy + across * dvx;
-    const double rax = along * dax - across * day;
-    const double ray = along * day + across * dax;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = ir * ir;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    const int st = r2 == 0 ? 1 : 0;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
     jc->DP.y = j1->DP.y + rvy;
     jc->DDP.x = j1->DDP.x + rax;
     jc->DDP.y = j1->DDP.y + ray;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; }
+    return st;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
+#if defined(__GNUC__)
+static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+#endif
 static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -114,6 +133,9 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
 }
 
 /* RPR chain: a guide link turning about jg and a slider link turning about js slide along one line; (ag, bg) and (as, bs) are the pair's reference point seen from jg and js in the line's frame.  Gives the line angle psi, the displacement s and the pair's slider point jp. */
+#if defined(__GNUC__)
+static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out) __attribute__((always_inline));
+#endif
 static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out)
 {
     const double dx = js->P.x - jg->P.x;
@@ -444,7 +466,9 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 5: link_point, tip. point tip of link bucket */
-    link_point(&p_Q, &w->p_M, -1.6193771626297577, -3.463667820069204, &w->p_tip);
+    st = link_point(&p_Q, &w->p_M, -550.5882352941177, -1177.6470588235295, &w->p_tip);
+    if (st == 1) return failed(w, out, 51);
+    note(w, st, 53, -54);
 
 
     /* Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is known */

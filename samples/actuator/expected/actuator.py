@@ -123,8 +123,8 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
-def link_point(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -133,13 +133,23 @@ def link_point(j1, j2, along, across):
     dvy = j2_dy - j1_dy
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    rax = along * dax - across * day
-    ray = along * day + across * dax
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    r2 = dx * dx + dy * dy
+    ir = NAN if r2 == 0 else 1 / sqrt(r2)
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -307,7 +317,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 43, -44)
 
     # Step 5: link_point, tip. point tip of link bucket
-    w.p_tip = link_point(p_Q, w.p_M, -1.6193771626297577, -3.463667820069204)
+    st, w.p_tip = link_point(p_Q, w.p_M, -550.5882352941177, -1177.6470588235295)
+    if st == 1:
+        return 51
+    if st:
+        w.note(st, 53, -54)
 
     # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is known
     st, w.phi_side_link = link_angle(p_R, w.p_K, 0.0)
@@ -338,80 +352,76 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            -2000.0,
-            300.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_C[0] - 640.0,
-            w.p_C[1] - 256.0,
-            w.p_C[2],
-            w.p_C[3],
-            w.p_C[4],
-            w.p_C[5],
-            w.p_K[0] - 640.0,
-            w.p_K[1] - 256.0,
-            w.p_K[2],
-            w.p_K[3],
-            w.p_K[4],
-            w.p_K[5],
-            -400.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_M[0] - 640.0,
-            w.p_M[1] - 256.0,
-            w.p_M[2],
-            w.p_M[3],
-            w.p_M[4],
-            w.p_M[5],
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_tip[0] - 640.0,
-            w.p_tip[1] - 256.0,
-            w.p_tip[2],
-            w.p_tip[3],
-            w.p_tip[4],
-            w.p_tip[5],
-            -0.18534794999569476,
-            0.0,
-            0.0,
-            w.psi_C[0],
-            w.psi_C[1],
-            w.psi_C[2],
-            w.psi_C[0],
-            w.psi_C[1],
-            w.psi_C[2],
-            w.phi_side_link[0],
-            w.phi_side_link[1],
-            w.phi_side_link[2],
-            w.phi_power_link[0],
-            w.phi_power_link[1],
-            w.phi_power_link[2],
-            w.phi_bucket[0],
-            w.phi_bucket[1],
-            w.phi_bucket[2],
-            w.s_C[0],
-            w.s_C[1],
-            w.s_C[2],
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "S0.x": -2000.0,
+            "S0.y": 300.0,
+            "S0.vx": 0.0,
+            "S0.vy": 0.0,
+            "S0.ax": 0.0,
+            "S0.ay": 0.0,
+            "C.x": w.p_C[0] - 640.0,
+            "C.y": w.p_C[1] - 256.0,
+            "C.vx": w.p_C[2],
+            "C.vy": w.p_C[3],
+            "C.ax": w.p_C[4],
+            "C.ay": w.p_C[5],
+            "K.x": w.p_K[0] - 640.0,
+            "K.y": w.p_K[1] - 256.0,
+            "K.vx": w.p_K[2],
+            "K.vy": w.p_K[3],
+            "K.ax": w.p_K[4],
+            "K.ay": w.p_K[5],
+            "R.x": -400.0,
+            "R.y": 0.0,
+            "R.vx": 0.0,
+            "R.vy": 0.0,
+            "R.ax": 0.0,
+            "R.ay": 0.0,
+            "M.x": w.p_M[0] - 640.0,
+            "M.y": w.p_M[1] - 256.0,
+            "M.vx": w.p_M[2],
+            "M.vy": w.p_M[3],
+            "M.ax": w.p_M[4],
+            "M.ay": w.p_M[5],
+            "Q.x": 0.0,
+            "Q.y": 0.0,
+            "Q.vx": 0.0,
+            "Q.vy": 0.0,
+            "Q.ax": 0.0,
+            "Q.ay": 0.0,
+            "tip.x": w.p_tip[0] - 640.0,
+            "tip.y": w.p_tip[1] - 256.0,
+            "tip.vx": w.p_tip[2],
+            "tip.vy": w.p_tip[3],
+            "tip.ax": w.p_tip[4],
+            "tip.ay": w.p_tip[5],
+            "stick.phi": -0.18534794999569476,
+            "stick.omega": 0.0,
+            "stick.alpha": 0.0,
+            "barrel.phi": w.psi_C[0],
+            "barrel.omega": w.psi_C[1],
+            "barrel.alpha": w.psi_C[2],
+            "rod.phi": w.psi_C[0],
+            "rod.omega": w.psi_C[1],
+            "rod.alpha": w.psi_C[2],
+            "side_link.phi": w.phi_side_link[0],
+            "side_link.omega": w.phi_side_link[1],
+            "side_link.alpha": w.phi_side_link[2],
+            "power_link.phi": w.phi_power_link[0],
+            "power_link.omega": w.phi_power_link[1],
+            "power_link.alpha": w.phi_power_link[2],
+            "bucket.phi": w.phi_bucket[0],
+            "bucket.omega": w.phi_bucket[1],
+            "bucket.alpha": w.phi_bucket[2],
+            "C.s": w.s_C[0],
+            "C.ds": w.s_C[1],
+            "C.dds": w.s_C[2],
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

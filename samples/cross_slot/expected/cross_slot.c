@@ -12,6 +12,9 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
 static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
     const double t = theta->the + phi->the;
@@ -34,6 +37,9 @@ static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, co
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
+#if defined(__GNUC__)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
 static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -57,6 +63,9 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
 }
 
 /* Angle of a link that keeps a constant angle off to a known angle phi. */
+#if defined(__GNUC__)
+static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
 static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle)
 {
     const double th0 = phi->the + off;
@@ -67,6 +76,9 @@ static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle)
 }
 
 /* 1R2P chain: pair jb joins two sliders on the guide lines (pg1, psig1) and (pg2, psig2), at (gsi1, eta1) and (gsi2, eta2) from their slider points jp1, jp2 (displacements s1, s2). */
+#if defined(__GNUC__)
+static inline int PRP_links(const POINT *pg1, const ANGLE *psig1, double gsi1, double eta1, const POINT *pg2, const ANGLE *psig2, double gsi2, double eta2, VARIABLE *s1, POINT *jp1, VARIABLE *s2, POINT *jp2, POINT *jb, double *sigma_out) __attribute__((always_inline));
+#endif
 static inline int PRP_links(const POINT *pg1, const ANGLE *psig1, double gsi1, double eta1, const POINT *pg2, const ANGLE *psig2, double gsi2, double eta2, VARIABLE *s1, POINT *jp1, VARIABLE *s2, POINT *jp2, POINT *jb, double *sigma_out)
 {
     const double cg1 = cos(psig1->the);

@@ -259,59 +259,55 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_P1[0] + 26.0,
-            w.p_P1[1],
-            w.p_P1[2],
-            w.p_P1[3],
-            w.p_P1[4],
-            w.p_P1[5],
-            w.p_X[0] + 26.0,
-            w.p_X[1],
-            w.p_X[2],
-            w.p_X[3],
-            w.p_X[4],
-            w.p_X[5],
-            w.p_P2[0] + 26.0,
-            w.p_P2[1],
-            w.p_P2[2],
-            w.p_P2[3],
-            w.p_P2[4],
-            w.p_P2[5],
-            0.0,
-            0.0,
-            0.0,
-            w.phi_arm[0],
-            w.phi_arm[1],
-            w.phi_arm[2],
-            w.phi_arm[0],
-            w.phi_arm[1],
-            w.phi_arm[2],
-            w.phi_block2[0],
-            w.phi_block2[1],
-            w.phi_block2[2],
-            w.s_P1[0],
-            w.s_P1[1],
-            w.s_P1[2],
-            w.s_P2[0],
-            w.s_P2[1],
-            w.s_P2[2],
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "O.x": 0.0,
+            "O.y": 0.0,
+            "O.vx": 0.0,
+            "O.vy": 0.0,
+            "O.ax": 0.0,
+            "O.ay": 0.0,
+            "P1.x": w.p_P1[0] + 26.0,
+            "P1.y": w.p_P1[1],
+            "P1.vx": w.p_P1[2],
+            "P1.vy": w.p_P1[3],
+            "P1.ax": w.p_P1[4],
+            "P1.ay": w.p_P1[5],
+            "X.x": w.p_X[0] + 26.0,
+            "X.y": w.p_X[1],
+            "X.vx": w.p_X[2],
+            "X.vy": w.p_X[3],
+            "X.ax": w.p_X[4],
+            "X.ay": w.p_X[5],
+            "P2.x": w.p_P2[0] + 26.0,
+            "P2.y": w.p_P2[1],
+            "P2.vx": w.p_P2[2],
+            "P2.vy": w.p_P2[3],
+            "P2.ax": w.p_P2[4],
+            "P2.ay": w.p_P2[5],
+            "frame.phi": 0.0,
+            "frame.omega": 0.0,
+            "frame.alpha": 0.0,
+            "arm.phi": w.phi_arm[0],
+            "arm.omega": w.phi_arm[1],
+            "arm.alpha": w.phi_arm[2],
+            "block1.phi": w.phi_arm[0],
+            "block1.omega": w.phi_arm[1],
+            "block1.alpha": w.phi_arm[2],
+            "block2.phi": w.phi_block2[0],
+            "block2.omega": w.phi_block2[1],
+            "block2.alpha": w.phi_block2[2],
+            "P1.s": w.s_P1[0],
+            "P1.ds": w.s_P1[1],
+            "P1.dds": w.s_P1[2],
+            "P2.s": w.s_P2[0],
+            "P2.ds": w.s_P2[1],
+            "P2.dds": w.s_P2[2],
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -17,6 +17,9 @@ typedef struct { double v, dv, ddv; } VARIABLE;
 #define LINKGEN_NINPUTS 1
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
 static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
     const double t = theta->the + phi->the;
@@ -39,6 +42,9 @@ static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, co
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
+#if defined(__GNUC__)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
 static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -61,8 +67,11 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
-static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
+#if defined(__GNUC__)
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+#endif
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -70,21 +79,34 @@ static inline void link_point(const POINT *j1, const POINT *j2, double along, do
     const double dvy = j2->DP.y - j1->DP.y;
     const double dax = j2->DDP.x - j1->DDP.x;
     const double day = j2->DDP.y - j1->DDP.y;
-    const double rx = along * dx - across * dy;
-    const double ry = along * dy + across * dx;
-    const double rvx = along * dvx - across * dvy;
-    const double rvy = along * dvy + across * dvx;
-    const double rax = along * dax - across * day;
-    const double ray = along * day + across * dax;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = ir * ir;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    const int st = r2 == 0 ? 1 : 0;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
     jc->DP.y = j1->DP.y + rvy;
     jc->DDP.x = j1->DDP.x + rax;
     jc->DDP.y = j1->DDP.y + ray;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; }
+    return st;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
+#if defined(__GNUC__)
+static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+#endif
 static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -141,6 +163,9 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
 }
 
 /* Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part). */
+#if defined(__GNUC__)
+static inline void link_residual(const POINT *j1, const POINT *j2, const VARIABLE *l, VARIABLE *f) __attribute__((always_inline));
+#endif
 static inline void link_residual(const POINT *j1, const POINT *j2, const VARIABLE *l, VARIABLE *f)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -153,7 +178,7 @@ static inline void link_residual(const POINT *j1, const POINT *j2, const VARIABL
     const double ir = r == 0 ? NAN : 1 / r;
     const double s = sqrt(dvx * dvx + dvy * dvy);
     const double iv = s == 0 ? NAN : 1 / s;
-    const double rd = r == 0 ? s : (dx * dvx + dy * dvy) * ir;
+    const double rd = r == 0 ? sqrt(dvx * dvx + dvy * dvy) : (dx * dvx + dy * dvy) * ir;
     const double rp = s == 0 ? sqrt(dax * dax + day * day) : (dvx * dax + dvy * day) * iv;
     const double rdd = r == 0 ? rp : (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir;
     f->v = r - l->v;
@@ -173,7 +198,8 @@ static int reason_of(int code)
  * the paper's, or fixed-point iteration with the slope of the row's start), then exact rates.
  * group(ctx, a, da, dda, live, f, df, ddf) runs the steps of one resolver group with the
  * Add-link lengths a, their rates da and accelerations dda, and writes the residuals f and
- * their rates df and accelerations ddf (those of the program's order); live == 0 zeroes
+ * their rates df and accelerations ddf (those of the program's order; a null ddf asks for no
+ * accelerations: the passes that measure residuals and the Jacobian); live == 0 zeroes
  * the rates of everything the group reads, so a unit Add-link rate gives one exact
  * Jacobian column through the velocity channel.  Returns 1 when a chain cannot close. */
 typedef int (*group_fn)(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
@@ -222,6 +248,10 @@ static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b
     double a[LINKGEN_NMAX][LINKGEN_NMAX + 1];
     double det = 1.0;
     int r, c, j;
+    if (n == 1) {  /* one Add-link: the same operations as below, without the copies */
+        x[0] = m[0][0] == 0.0 ? NAN : b[0] / m[0][0];
+        return m[0][0];
+    }
     for (r = 0; r < n; r++) {
         for (c = 0; c < n; c++) a[r][c] = m[r][c];
         a[r][n] = b[r];
@@ -254,12 +284,12 @@ static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b
 /* Residuals and Jacobian at a, one pass per Add-link; returns 1 when a chain cannot close. */
 static int jacobian(group_fn group, void *ctx, int n, const double a[], double f[], double jac[][LINKGEN_NMAX])
 {
-    double unit[LINKGEN_NMAX], zero[LINKGEN_NMAX], res[LINKGEN_NMAX], dres[LINKGEN_NMAX], ddres[LINKGEN_NMAX];
+    double unit[LINKGEN_NMAX], zero[LINKGEN_NMAX], res[LINKGEN_NMAX], dres[LINKGEN_NMAX];
     int i, j;
     for (i = 0; i < LINKGEN_NMAX; i++) unit[i] = zero[i] = 0.0;
     for (j = 0; j < n; j++) {
         unit[j] = 1.0;
-        if (group(ctx, a, unit, zero, 0, res, dres, ddres)) return 1;
+        if (group(ctx, a, unit, zero, 0, res, dres, NULL)) return 1;
         unit[j] = 0.0;
         for (i = 0; i < n; i++) { f[i] = res[i]; jac[i][j] = dres[i]; }
     }
@@ -276,7 +306,7 @@ static double conditioning(int n, const double jac[][LINKGEN_NMAX], double det)
         for (i = 0; i < n; i++) s += jac[i][j] * jac[i][j];
         prod *= sqrt(s);
     }
-    return fabs(det) / fmax(prod, 1.0);
+    return fabs(det) / (prod > 1.0 ? prod : 1.0);
 }
 
 /* Whether every residual is at most tol (a nan fails every comparison). */
@@ -339,10 +369,10 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
 /* The residuals f at a, one pass; returns 1 when a chain cannot close. */
 static int residuals(group_fn group, void *ctx, const double a[], double f[])
 {
-    double zero[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX];
+    double zero[LINKGEN_NMAX], df[LINKGEN_NMAX];
     int i;
     for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = 0.0;
-    return group(ctx, a, zero, zero, 0, f, df, ddf);
+    return group(ctx, a, zero, zero, 0, f, df, NULL);
 }
 
 /* The largest residual in size; nan where one is nan. */
@@ -427,7 +457,7 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
     double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], det;
     int i;
     for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
-    group(ctx, a, zero, zero, 1, f, df, ddf);
+    group(ctx, a, zero, zero, 1, f, df, NULL);
     for (i = 0; i < n; i++) rhs[i] = -df[i];
     det = solve_linear(n, jac, rhs, rates);
     if (order >= 2) {
@@ -557,7 +587,10 @@ static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKG
     double move = 0.0, share = p->path_share;
     int g, i;
     for (g = 0; g < LINKGEN_NBLOCKS; g++) {
-        for (i = 0; i < sizes[g]; i++) move = fmax(move, fabs(guess[g][i] - prev[g][i]));
+        for (i = 0; i < sizes[g]; i++) {
+            const double d = fabs(guess[g][i] - prev[g][i]);
+            if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
+        }
         if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
     }
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
@@ -577,16 +610,15 @@ static int within(const double in[], const double last[], const double limits[])
 
 /* Block states a moved by step along their rates into out.  An Add-link length is a
  * distance: where its prediction passes zero the two pairs pass each other, so it is
- * reflected. */
+ * reflected.  The entries past a block's lengths (branches, orientation) have no rates:
+ * they are copied. */
 static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_NMAX], double step,
                     const int sizes[], double out[][LINKGEN_NMAX])
 {
     int g, i;
+    memcpy(out, a, sizeof(double[LINKGEN_NBLOCKS][LINKGEN_NMAX]));
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < LINKGEN_NMAX; i++) {
-            out[g][i] = a[g][i] + step * rate[g][i];
-            if (i < sizes[g]) out[g][i] = fabs(out[g][i]);
-        }
+        for (i = 0; i < sizes[g]; i++) out[g][i] = fabs(a[g][i] + step * rate[g][i]);
 }
 
 /* How far inputs in lie from the warm row's along its input rates, in time (0 without rates). */
@@ -654,7 +686,8 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
         if (passes++ == p->walk_passes) return 0;
         fast = 0.0;
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < m->sizes[g]; i++) fast = fmax(fast, fabs(rate[g][i]));
+            for (i = 0; i < m->sizes[g]; i++)
+                if (fabs(rate[g][i]) > fast) fast = fabs(rate[g][i]);
         if (fast * h > reach) h = reach / fast;
         tt = fmin(1.0, t + h);
         if (tt == t) return 0;
@@ -782,6 +815,103 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         for (g = 0; g < LINKGEN_NGROUPS; g++) warm->used[g] = used[g];
     }
     return code;
+}
+
+/* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
+#if defined(__GNUC__)
+static inline int RRR_links_1(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+#endif
+static inline int RRR_links_1(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double q = sqrt(dx * dx + dy * dy);
+    const double iq = q == 0 ? NAN : 1 / q;
+    const double ux = dx * iq;
+    const double uy = dy * iq;
+    const double hi = (l2->v > l1->v ? l2->v : l1->v);
+    const double lo = (l2->v < l1->v ? l2->v : l1->v);
+    const double x = (q > hi ? q : hi);
+    const double z = (q < lo ? q : lo);
+    const double y = q >= hi ? hi : q <= lo ? lo : q;
+    const double k = z - (x - y);
+    const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
+    const double kk = (0.0 > k ? 0.0 : k);
+    const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
+    const double h = area4 * iq / 2;
+    const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double flat = q >= hi ? (l1->v + (q - l2->v)) / 2 : l1->v >= l2->v ? (l1->v + (q + l2->v)) / 2 : (q - (l1->v + l2->v)) / 2;
+    const double at = k > 0 ? a : flat;
+    const double hn = minv * h;
+    const double e1x = at * ux - hn * uy;
+    const double e1y = at * uy + hn * ux;
+    const double ratio = fail ? 0 : area4 * (0.5 / (l1->v * l2->v));
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
+    const double e2x = -a2 * ux - hn * uy;
+    const double e2y = -a2 * uy + hn * ux;
+    const double ihq = hn == 0 ? NAN : 1 / (hn * q);
+    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
+    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
+    const double buv = (r1v - r2v) * iq;
+    const double bnv = (a2 * r1v + a * r2v) * ihq;
+    const double bvx = buv * ux - bnv * uy;
+    const double bvy = buv * uy + bnv * ux;
+    const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    jb->P.x = j1->P.x + e1x;
+    jb->P.y = j1->P.y + e1y;
+    jb->DP.x = bvx;
+    jb->DP.y = bvy;
+    *sigma_out = sigma;
+    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; }
+    if (st == 1 || st == 3) { jb->DP.x = NAN; jb->DP.y = NAN; }
+    return st;
+}
+
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
+#if defined(__GNUC__)
+static inline int link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+#endif
+static inline int link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = ir * ir;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const int st = r2 == 0 ? 1 : 0;
+    jc->P.x = j1->P.x + rx;
+    jc->P.y = j1->P.y + ry;
+    jc->DP.x = j1->DP.x + rvx;
+    jc->DP.y = j1->DP.y + rvy;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; }
+    return st;
+}
+
+/* Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part). */
+#if defined(__GNUC__)
+static inline void link_residual_1(const POINT *j1, const POINT *j2, const VARIABLE *l, VARIABLE *f) __attribute__((always_inline));
+#endif
+static inline void link_residual_1(const POINT *j1, const POINT *j2, const VARIABLE *l, VARIABLE *f)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double r = sqrt(dx * dx + dy * dy);
+    const double ir = r == 0 ? NAN : 1 / r;
+    const double rd = r == 0 ? sqrt(dvx * dvx + dvy * dvy) : (dx * dvx + dy * dvy) * ir;
+    f->v = r - l->v;
+    f->dv = rd - l->dv;
 }
 
 
@@ -923,7 +1053,8 @@ static const VARIABLE ZERO_LENGTH = { 0.0, 0.0, 0.0 };
 
 /* Steps 4, 5, 6, 7, iterated by the resolver of step 8:
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -939,18 +1070,37 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
     w->add1.dv = da[0];
     w->add1.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J3, &p_J6, &l_right_rocker2, &w->add1, w->br4, &w->p_J4, &w->sigma[4]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 43, -44);
+        if (w->sigma[4] < w->chains) w->chains = w->sigma[4];
+        st = RRR_links_1(&p_J1, &w->p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, w->br5, &w->p_J2, &w->sigma[5]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 53, -54);
+        if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 63, -64);
+        link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1);
+        f[0] = w->f1.v;
+        df[0] = w->f1.dv;
+        return 0;
+    }
     /* Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J3, &p_J6, &l_right_rocker2, &w->add1, w->br4, &w->p_J4, &w->sigma[4]);
     if (st == 1) return 1;
     if (live) note(w, st, 43, -44);
-    w->chains = fmin(w->chains, w->sigma[4]);
+    if (w->sigma[4] < w->chains) w->chains = w->sigma[4];
     /* Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &w->p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, w->br5, &w->p_J2, &w->sigma[5]);
     if (st == 1) return 1;
     if (live) note(w, st, 53, -54);
-    w->chains = fmin(w->chains, w->sigma[5]);
+    if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
     /* Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 63, -64);
     /* Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1);
     f[0] = w->f1.v;
@@ -962,7 +1112,8 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
 
 /* Steps 24, 25, 26, 27, iterated by the resolver of step 8   (fallback 1: the Add-link J6-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v1(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -978,18 +1129,37 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
     w->add1_v1.dv = da[0];
     w->add1_v1.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J1, &p_J6, &l_right_rocker1, &w->add1_v1, w->br24, &w->p_J2, &w->sigma[24]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 243, -244);
+        if (w->sigma[24] < w->chains) w->chains = w->sigma[24];
+        st = RRR_links_1(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br25, &w->p_J4, &w->sigma[25]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 253, -254);
+        if (w->sigma[25] < w->chains) w->chains = w->sigma[25];
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 263, -264);
+        link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v1);
+        f[0] = w->f1_v1.v;
+        df[0] = w->f1_v1.dv;
+        return 0;
+    }
     /* Step 24: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &p_J6, &l_right_rocker1, &w->add1_v1, w->br24, &w->p_J2, &w->sigma[24]);
     if (st == 1) return 1;
     if (live) note(w, st, 243, -244);
-    w->chains = fmin(w->chains, w->sigma[24]);
+    if (w->sigma[24] < w->chains) w->chains = w->sigma[24];
     /* Step 25: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br25, &w->p_J4, &w->sigma[25]);
     if (st == 1) return 1;
     if (live) note(w, st, 253, -254);
-    w->chains = fmin(w->chains, w->sigma[25]);
+    if (w->sigma[25] < w->chains) w->chains = w->sigma[25];
     /* Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 263, -264);
     /* Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v1);
     f[0] = w->f1_v1.v;
@@ -1001,7 +1171,8 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 28, 29, 30, 31, iterated by the resolver of step 8   (fallback 2: the Add-link J7-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v2(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1017,18 +1188,37 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
     w->add1_v2.dv = da[0];
     w->add1_v2.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J1, &p_J7, &l_right_rocker1, &w->add1_v2, w->br28, &w->p_J2, &w->sigma[28]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 283, -284);
+        if (w->sigma[28] < w->chains) w->chains = w->sigma[28];
+        st = RRR_links_1(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br29, &w->p_J4, &w->sigma[29]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 293, -294);
+        if (w->sigma[29] < w->chains) w->chains = w->sigma[29];
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 303, -304);
+        link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v2);
+        f[0] = w->f1_v2.v;
+        df[0] = w->f1_v2.dv;
+        return 0;
+    }
     /* Step 28: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &p_J7, &l_right_rocker1, &w->add1_v2, w->br28, &w->p_J2, &w->sigma[28]);
     if (st == 1) return 1;
     if (live) note(w, st, 283, -284);
-    w->chains = fmin(w->chains, w->sigma[28]);
+    if (w->sigma[28] < w->chains) w->chains = w->sigma[28];
     /* Step 29: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br29, &w->p_J4, &w->sigma[29]);
     if (st == 1) return 1;
     if (live) note(w, st, 293, -294);
-    w->chains = fmin(w->chains, w->sigma[29]);
+    if (w->sigma[29] < w->chains) w->chains = w->sigma[29];
     /* Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 303, -304);
     /* Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v2);
     f[0] = w->f1_v2.v;
@@ -1040,7 +1230,8 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 32, 33, 34, 35, iterated by the resolver of step 8   (fallback 3: the Add-link J7-J4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v3(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1056,18 +1247,37 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
     w->add1_v3.dv = da[0];
     w->add1_v3.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J3, &p_J7, &l_right_rocker2, &w->add1_v3, w->br32, &w->p_J4, &w->sigma[32]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 323, -324);
+        if (w->sigma[32] < w->chains) w->chains = w->sigma[32];
+        st = RRR_links_1(&p_J1, &w->p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, w->br33, &w->p_J2, &w->sigma[33]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 333, -334);
+        if (w->sigma[33] < w->chains) w->chains = w->sigma[33];
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 343, -344);
+        link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v3);
+        f[0] = w->f1_v3.v;
+        df[0] = w->f1_v3.dv;
+        return 0;
+    }
     /* Step 32: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J3, &p_J7, &l_right_rocker2, &w->add1_v3, w->br32, &w->p_J4, &w->sigma[32]);
     if (st == 1) return 1;
     if (live) note(w, st, 323, -324);
-    w->chains = fmin(w->chains, w->sigma[32]);
+    if (w->sigma[32] < w->chains) w->chains = w->sigma[32];
     /* Step 33: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &w->p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, w->br33, &w->p_J2, &w->sigma[33]);
     if (st == 1) return 1;
     if (live) note(w, st, 333, -334);
-    w->chains = fmin(w->chains, w->sigma[33]);
+    if (w->sigma[33] < w->chains) w->chains = w->sigma[33];
     /* Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 343, -344);
     /* Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v3);
     f[0] = w->f1_v3.v;
@@ -1079,7 +1289,8 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 36, 37, 38, 39, iterated by the resolver of step 8   (fallback 4: the Add-link J1-J4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v4(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1095,18 +1306,37 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
     w->add1_v4.dv = da[0];
     w->add1_v4.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J3, &p_J1, &l_right_rocker2, &w->add1_v4, w->br36, &w->p_J4, &w->sigma[36]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 363, -364);
+        if (w->sigma[36] < w->chains) w->chains = w->sigma[36];
+        st = RRR_links_1(&p_J1, &w->p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, w->br37, &w->p_J2, &w->sigma[37]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 373, -374);
+        if (w->sigma[37] < w->chains) w->chains = w->sigma[37];
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 383, -384);
+        link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v4);
+        f[0] = w->f1_v4.v;
+        df[0] = w->f1_v4.dv;
+        return 0;
+    }
     /* Step 36: RRR_links, J4 (branch -1). J4 is joined to the known J3 by right_rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J3, &p_J1, &l_right_rocker2, &w->add1_v4, w->br36, &w->p_J4, &w->sigma[36]);
     if (st == 1) return 1;
     if (live) note(w, st, 363, -364);
-    w->chains = fmin(w->chains, w->sigma[36]);
+    if (w->sigma[36] < w->chains) w->chains = w->sigma[36];
     /* Step 37: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J4 by right_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &w->p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, w->br37, &w->p_J2, &w->sigma[37]);
     if (st == 1) return 1;
     if (live) note(w, st, 373, -374);
-    w->chains = fmin(w->chains, w->sigma[37]);
+    if (w->sigma[37] < w->chains) w->chains = w->sigma[37];
     /* Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 383, -384);
     /* Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v4);
     f[0] = w->f1_v4.v;
@@ -1118,7 +1348,8 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 40, 41, 42, 43, iterated by the resolver of step 8   (fallback 5: the Add-link J3-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v5(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1134,18 +1365,37 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
     w->add1_v5.dv = da[0];
     w->add1_v5.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J1, &p_J3, &l_right_rocker1, &w->add1_v5, w->br40, &w->p_J2, &w->sigma[40]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 403, -404);
+        if (w->sigma[40] < w->chains) w->chains = w->sigma[40];
+        st = RRR_links_1(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br41, &w->p_J4, &w->sigma[41]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 413, -414);
+        if (w->sigma[41] < w->chains) w->chains = w->sigma[41];
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 423, -424);
+        link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v5);
+        f[0] = w->f1_v5.v;
+        df[0] = w->f1_v5.dv;
+        return 0;
+    }
     /* Step 40: RRR_links, J2 (branch +1). J2 is joined to the known J1 by right_rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &p_J3, &l_right_rocker1, &w->add1_v5, w->br40, &w->p_J2, &w->sigma[40]);
     if (st == 1) return 1;
     if (live) note(w, st, 403, -404);
-    w->chains = fmin(w->chains, w->sigma[40]);
+    if (w->sigma[40] < w->chains) w->chains = w->sigma[40];
     /* Step 41: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br41, &w->p_J4, &w->sigma[41]);
     if (st == 1) return 1;
     if (live) note(w, st, 413, -414);
-    w->chains = fmin(w->chains, w->sigma[41]);
+    if (w->sigma[41] < w->chains) w->chains = w->sigma[41];
     /* Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 423, -424);
     /* Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v5);
     f[0] = w->f1_v5.v;
@@ -1157,7 +1407,8 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 44, 45, 46, 47, iterated by the resolver of step 8   (fallback 6: the Add-link K1-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v6(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1173,18 +1424,37 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
     w->add1_v6.dv = da[0];
     w->add1_v6.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J1, &p_K1, &l_right_rocker1, &w->add1_v6, w->br44, &w->p_J2, &w->sigma[44]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 443, -444);
+        if (w->sigma[44] < w->chains) w->chains = w->sigma[44];
+        st = RRR_links_1(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br45, &w->p_J4, &w->sigma[45]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 453, -454);
+        if (w->sigma[45] < w->chains) w->chains = w->sigma[45];
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 463, -464);
+        link_residual_1(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v6);
+        f[0] = w->f1_v6.v;
+        df[0] = w->f1_v6.dv;
+        return 0;
+    }
     /* Step 44: RRR_links, J2 (branch -1). J2 is joined to the known J1 by right_rocker1 and to the known K1 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &p_K1, &l_right_rocker1, &w->add1_v6, w->br44, &w->p_J2, &w->sigma[44]);
     if (st == 1) return 1;
     if (live) note(w, st, 443, -444);
-    w->chains = fmin(w->chains, w->sigma[44]);
+    if (w->sigma[44] < w->chains) w->chains = w->sigma[44];
     /* Step 45: RRR_links, J4 (branch +1). J4 is joined to the known J2 by right_ternary and to the known J3 by right_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br45, &w->p_J4, &w->sigma[45]);
     if (st == 1) return 1;
     if (live) note(w, st, 453, -454);
-    w->chains = fmin(w->chains, w->sigma[45]);
+    if (w->sigma[45] < w->chains) w->chains = w->sigma[45];
     /* Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 463, -464);
     /* Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_right_coupler, &w->f1_v6);
     f[0] = w->f1_v6.v;
@@ -1196,7 +1466,8 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 10, 11, 12, 13, iterated by the resolver of step 14:
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_2(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1212,18 +1483,37 @@ static int group_2(void *ctx, const double a[], const double da[], const double 
     w->add2.dv = da[0];
     w->add2.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_K3, &p_J6, &l_left_rocker2, &w->add2, w->br10, &w->p_K4, &w->sigma[10]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 103, -104);
+        if (w->sigma[10] < w->chains) w->chains = w->sigma[10];
+        st = RRR_links_1(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br11, &w->p_K2, &w->sigma[11]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 113, -114);
+        if (w->sigma[11] < w->chains) w->chains = w->sigma[11];
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 123, -124);
+        link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2);
+        f[0] = w->f2.v;
+        df[0] = w->f2.dv;
+        return 0;
+    }
     /* Step 10: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J6 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(&p_K3, &p_J6, &l_left_rocker2, &w->add2, w->br10, &w->p_K4, &w->sigma[10]);
     if (st == 1) return 1;
     if (live) note(w, st, 103, -104);
-    w->chains = fmin(w->chains, w->sigma[10]);
+    if (w->sigma[10] < w->chains) w->chains = w->sigma[10];
     /* Step 11: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br11, &w->p_K2, &w->sigma[11]);
     if (st == 1) return 1;
     if (live) note(w, st, 113, -114);
-    w->chains = fmin(w->chains, w->sigma[11]);
+    if (w->sigma[11] < w->chains) w->chains = w->sigma[11];
     /* Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 123, -124);
     /* Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2);
     f[0] = w->f2.v;
@@ -1235,7 +1525,8 @@ static int group_2(void *ctx, const double a[], const double da[], const double 
 
 /* Steps 48, 49, 50, 51, iterated by the resolver of step 14   (fallback 1: the Add-link J5-K2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_2_v1(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1253,18 +1544,37 @@ static int group_2_v1(void *ctx, const double a[], const double da[], const doub
     w->add2_v1.dv = da[0];
     w->add2_v1.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_K1, &p_J5, &l_left_rocker1, &w->add2_v1, w->br48, &w->p_K2, &w->sigma[48]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 483, -484);
+        if (w->sigma[48] < w->chains) w->chains = w->sigma[48];
+        st = RRR_links_1(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br49, &w->p_K4, &w->sigma[49]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 493, -494);
+        if (w->sigma[49] < w->chains) w->chains = w->sigma[49];
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 503, -504);
+        link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v1);
+        f[0] = w->f2_v1.v;
+        df[0] = w->f2_v1.dv;
+        return 0;
+    }
     /* Step 48: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J5 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(&p_K1, &p_J5, &l_left_rocker1, &w->add2_v1, w->br48, &w->p_K2, &w->sigma[48]);
     if (st == 1) return 1;
     if (live) note(w, st, 483, -484);
-    w->chains = fmin(w->chains, w->sigma[48]);
+    if (w->sigma[48] < w->chains) w->chains = w->sigma[48];
     /* Step 49: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br49, &w->p_K4, &w->sigma[49]);
     if (st == 1) return 1;
     if (live) note(w, st, 493, -494);
-    w->chains = fmin(w->chains, w->sigma[49]);
+    if (w->sigma[49] < w->chains) w->chains = w->sigma[49];
     /* Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    link_point(&w->p_K2, &w->p_K4, 0.5656108597285068, -0.12217194570135746, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 503, -504);
     /* Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v1);
     f[0] = w->f2_v1.v;
@@ -1276,7 +1586,8 @@ static int group_2_v1(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 52, 53, 54, 55, iterated by the resolver of step 14   (fallback 2: the Add-link J5-K4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_2_v2(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1294,18 +1605,37 @@ static int group_2_v2(void *ctx, const double a[], const double da[], const doub
     w->add2_v2.dv = da[0];
     w->add2_v2.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_K3, &p_J5, &l_left_rocker2, &w->add2_v2, w->br52, &w->p_K4, &w->sigma[52]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 523, -524);
+        if (w->sigma[52] < w->chains) w->chains = w->sigma[52];
+        st = RRR_links_1(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br53, &w->p_K2, &w->sigma[53]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 533, -534);
+        if (w->sigma[53] < w->chains) w->chains = w->sigma[53];
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 543, -544);
+        link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v2);
+        f[0] = w->f2_v2.v;
+        df[0] = w->f2_v2.dv;
+        return 0;
+    }
     /* Step 52: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J5 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(&p_K3, &p_J5, &l_left_rocker2, &w->add2_v2, w->br52, &w->p_K4, &w->sigma[52]);
     if (st == 1) return 1;
     if (live) note(w, st, 523, -524);
-    w->chains = fmin(w->chains, w->sigma[52]);
+    if (w->sigma[52] < w->chains) w->chains = w->sigma[52];
     /* Step 53: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br53, &w->p_K2, &w->sigma[53]);
     if (st == 1) return 1;
     if (live) note(w, st, 533, -534);
-    w->chains = fmin(w->chains, w->sigma[53]);
+    if (w->sigma[53] < w->chains) w->chains = w->sigma[53];
     /* Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 543, -544);
     /* Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v2);
     f[0] = w->f2_v2.v;
@@ -1317,7 +1647,8 @@ static int group_2_v2(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 56, 57, 58, 59, iterated by the resolver of step 14   (fallback 3: the Add-link J2-K4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_2_v3(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1335,18 +1666,37 @@ static int group_2_v3(void *ctx, const double a[], const double da[], const doub
     w->add2_v3.dv = da[0];
     w->add2_v3.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_K3, &p_J2, &l_left_rocker2, &w->add2_v3, w->br56, &w->p_K4, &w->sigma[56]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 563, -564);
+        if (w->sigma[56] < w->chains) w->chains = w->sigma[56];
+        st = RRR_links_1(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br57, &w->p_K2, &w->sigma[57]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 573, -574);
+        if (w->sigma[57] < w->chains) w->chains = w->sigma[57];
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 583, -584);
+        link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v3);
+        f[0] = w->f2_v3.v;
+        df[0] = w->f2_v3.dv;
+        return 0;
+    }
     /* Step 56: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J2 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(&p_K3, &p_J2, &l_left_rocker2, &w->add2_v3, w->br56, &w->p_K4, &w->sigma[56]);
     if (st == 1) return 1;
     if (live) note(w, st, 563, -564);
-    w->chains = fmin(w->chains, w->sigma[56]);
+    if (w->sigma[56] < w->chains) w->chains = w->sigma[56];
     /* Step 57: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br57, &w->p_K2, &w->sigma[57]);
     if (st == 1) return 1;
     if (live) note(w, st, 573, -574);
-    w->chains = fmin(w->chains, w->sigma[57]);
+    if (w->sigma[57] < w->chains) w->chains = w->sigma[57];
     /* Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 583, -584);
     /* Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v3);
     f[0] = w->f2_v3.v;
@@ -1358,7 +1708,8 @@ static int group_2_v3(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 60, 61, 62, 63, iterated by the resolver of step 14   (fallback 4: the Add-link J4-K4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_2_v4(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1376,18 +1727,37 @@ static int group_2_v4(void *ctx, const double a[], const double da[], const doub
     w->add2_v4.dv = da[0];
     w->add2_v4.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_K3, &p_J4, &l_left_rocker2, &w->add2_v4, w->br60, &w->p_K4, &w->sigma[60]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 603, -604);
+        if (w->sigma[60] < w->chains) w->chains = w->sigma[60];
+        st = RRR_links_1(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br61, &w->p_K2, &w->sigma[61]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 613, -614);
+        if (w->sigma[61] < w->chains) w->chains = w->sigma[61];
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 623, -624);
+        link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v4);
+        f[0] = w->f2_v4.v;
+        df[0] = w->f2_v4.dv;
+        return 0;
+    }
     /* Step 60: RRR_links, K4 (branch +1). K4 is joined to the known K3 by left_rocker2 and to the known J4 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(&p_K3, &p_J4, &l_left_rocker2, &w->add2_v4, w->br60, &w->p_K4, &w->sigma[60]);
     if (st == 1) return 1;
     if (live) note(w, st, 603, -604);
-    w->chains = fmin(w->chains, w->sigma[60]);
+    if (w->sigma[60] < w->chains) w->chains = w->sigma[60];
     /* Step 61: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K4 by left_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br61, &w->p_K2, &w->sigma[61]);
     if (st == 1) return 1;
     if (live) note(w, st, 613, -614);
-    w->chains = fmin(w->chains, w->sigma[61]);
+    if (w->sigma[61] < w->chains) w->chains = w->sigma[61];
     /* Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it */
-    link_point(&w->p_K4, &w->p_K2, 0.4343891402714932, 0.12217194570135746, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 623, -624);
     /* Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v4);
     f[0] = w->f2_v4.v;
@@ -1399,7 +1769,8 @@ static int group_2_v4(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 64, 65, 66, 67, iterated by the resolver of step 14   (fallback 5: the Add-link J2-K2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_2_v5(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1417,18 +1788,37 @@ static int group_2_v5(void *ctx, const double a[], const double da[], const doub
     w->add2_v5.dv = da[0];
     w->add2_v5.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_K1, &p_J2, &l_left_rocker1, &w->add2_v5, w->br64, &w->p_K2, &w->sigma[64]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 643, -644);
+        if (w->sigma[64] < w->chains) w->chains = w->sigma[64];
+        st = RRR_links_1(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br65, &w->p_K4, &w->sigma[65]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 653, -654);
+        if (w->sigma[65] < w->chains) w->chains = w->sigma[65];
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 663, -664);
+        link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v5);
+        f[0] = w->f2_v5.v;
+        df[0] = w->f2_v5.dv;
+        return 0;
+    }
     /* Step 64: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J2 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(&p_K1, &p_J2, &l_left_rocker1, &w->add2_v5, w->br64, &w->p_K2, &w->sigma[64]);
     if (st == 1) return 1;
     if (live) note(w, st, 643, -644);
-    w->chains = fmin(w->chains, w->sigma[64]);
+    if (w->sigma[64] < w->chains) w->chains = w->sigma[64];
     /* Step 65: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br65, &w->p_K4, &w->sigma[65]);
     if (st == 1) return 1;
     if (live) note(w, st, 653, -654);
-    w->chains = fmin(w->chains, w->sigma[65]);
+    if (w->sigma[65] < w->chains) w->chains = w->sigma[65];
     /* Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    link_point(&w->p_K2, &w->p_K4, 0.5656108597285068, -0.12217194570135746, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 663, -664);
     /* Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v5);
     f[0] = w->f2_v5.v;
@@ -1440,7 +1830,8 @@ static int group_2_v5(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 68, 69, 70, 71, iterated by the resolver of step 14   (fallback 6: the Add-link J4-K2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_2_v6(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1458,18 +1849,37 @@ static int group_2_v6(void *ctx, const double a[], const double da[], const doub
     w->add2_v6.dv = da[0];
     w->add2_v6.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_K1, &p_J4, &l_left_rocker1, &w->add2_v6, w->br68, &w->p_K2, &w->sigma[68]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 683, -684);
+        if (w->sigma[68] < w->chains) w->chains = w->sigma[68];
+        st = RRR_links_1(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br69, &w->p_K4, &w->sigma[69]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 693, -694);
+        if (w->sigma[69] < w->chains) w->chains = w->sigma[69];
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 703, -704);
+        link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v6);
+        f[0] = w->f2_v6.v;
+        df[0] = w->f2_v6.dv;
+        return 0;
+    }
     /* Step 68: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J4 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(&p_K1, &p_J4, &l_left_rocker1, &w->add2_v6, w->br68, &w->p_K2, &w->sigma[68]);
     if (st == 1) return 1;
     if (live) note(w, st, 683, -684);
-    w->chains = fmin(w->chains, w->sigma[68]);
+    if (w->sigma[68] < w->chains) w->chains = w->sigma[68];
     /* Step 69: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br69, &w->p_K4, &w->sigma[69]);
     if (st == 1) return 1;
     if (live) note(w, st, 693, -694);
-    w->chains = fmin(w->chains, w->sigma[69]);
+    if (w->sigma[69] < w->chains) w->chains = w->sigma[69];
     /* Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    link_point(&w->p_K2, &w->p_K4, 0.5656108597285068, -0.12217194570135746, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 703, -704);
     /* Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v6);
     f[0] = w->f2_v6.v;
@@ -1481,7 +1891,8 @@ static int group_2_v6(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 72, 73, 74, 75, iterated by the resolver of step 14   (fallback 7: the Add-link J6-K2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_2_v7(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1497,18 +1908,37 @@ static int group_2_v7(void *ctx, const double a[], const double da[], const doub
     w->add2_v7.dv = da[0];
     w->add2_v7.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_K1, &p_J6, &l_left_rocker1, &w->add2_v7, w->br72, &w->p_K2, &w->sigma[72]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 723, -724);
+        if (w->sigma[72] < w->chains) w->chains = w->sigma[72];
+        st = RRR_links_1(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br73, &w->p_K4, &w->sigma[73]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 733, -734);
+        if (w->sigma[73] < w->chains) w->chains = w->sigma[73];
+        st = link_point_1(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 743, -744);
+        link_residual_1(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v7);
+        f[0] = w->f2_v7.v;
+        df[0] = w->f2_v7.dv;
+        return 0;
+    }
     /* Step 72: RRR_links, K2 (branch +1). K2 is joined to the known K1 by left_rocker1 and to the known J6 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(&p_K1, &p_J6, &l_left_rocker1, &w->add2_v7, w->br72, &w->p_K2, &w->sigma[72]);
     if (st == 1) return 1;
     if (live) note(w, st, 723, -724);
-    w->chains = fmin(w->chains, w->sigma[72]);
+    if (w->sigma[72] < w->chains) w->chains = w->sigma[72];
     /* Step 73: RRR_links, K4 (branch -1). K4 is joined to the known K2 by left_ternary and to the known K3 by left_rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br73, &w->p_K4, &w->sigma[73]);
     if (st == 1) return 1;
     if (live) note(w, st, 733, -734);
-    w->chains = fmin(w->chains, w->sigma[73]);
+    if (w->sigma[73] < w->chains) w->chains = w->sigma[73];
     /* Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it */
-    link_point(&w->p_K2, &w->p_K4, 0.5656108597285068, -0.12217194570135746, &w->p_K5);
+    st = link_point(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &w->p_K5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 743, -744);
     /* Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_K5, &l_left_coupler, &w->f2_v7);
     f[0] = w->f2_v7.v;
@@ -1520,7 +1950,8 @@ static int group_2_v7(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 76, 77, 78, 79, iterated by the resolver of step 14   (fallback 8: the Add-link J5-K5):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_2_v8(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1538,18 +1969,37 @@ static int group_2_v8(void *ctx, const double a[], const double da[], const doub
     w->add2_v8.dv = da[0];
     w->add2_v8.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J6, &p_J5, &l_left_coupler, &w->add2_v8, w->br76, &w->p_K5, &w->sigma[76]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 763, -764);
+        if (w->sigma[76] < w->chains) w->chains = w->sigma[76];
+        st = RRR_links_1(&p_K1, &w->p_K5, &l_left_rocker1, &l_left_ternary_K2_K5, w->br77, &w->p_K2, &w->sigma[77]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 773, -774);
+        if (w->sigma[77] < w->chains) w->chains = w->sigma[77];
+        st = link_point_1(&w->p_K5, &w->p_K2, -41.921741762866105, -22.193863286223234, &w->p_K4);
+        if (st == 1) return 1;
+        if (live) note(w, st, 783, -784);
+        link_residual_1(&p_K3, &w->p_K4, &l_left_rocker2, &w->f2_v8);
+        f[0] = w->f2_v8.v;
+        df[0] = w->f2_v8.dv;
+        return 0;
+    }
     /* Step 76: RRR_links, K5 (branch -1). K5 is joined to the known J6 by left_coupler and to the known J5 by add2: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J6, &p_J5, &l_left_coupler, &w->add2_v8, w->br76, &w->p_K5, &w->sigma[76]);
     if (st == 1) return 1;
     if (live) note(w, st, 763, -764);
-    w->chains = fmin(w->chains, w->sigma[76]);
+    if (w->sigma[76] < w->chains) w->chains = w->sigma[76];
     /* Step 77: RRR_links, K2 (branch -1). K2 is joined to the known K1 by left_rocker1 and to the known K5 by left_ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_K1, &w->p_K5, &l_left_rocker1, &l_left_ternary_K2_K5, w->br77, &w->p_K2, &w->sigma[77]);
     if (st == 1) return 1;
     if (live) note(w, st, 773, -774);
-    w->chains = fmin(w->chains, w->sigma[77]);
+    if (w->sigma[77] < w->chains) w->chains = w->sigma[77];
     /* Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it */
-    link_point(&w->p_K5, &w->p_K2, -0.6891891891891891, -0.36486486486486486, &w->p_K4);
+    st = link_point(&w->p_K5, &w->p_K2, -41.921741762866105, -22.193863286223234, &w->p_K4);
+    if (st == 1) return 1;
+    if (live) note(w, st, 783, -784);
     /* Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_K3, &w->p_K4, &l_left_rocker2, &w->f2_v8);
     f[0] = w->f2_v8.v;
@@ -1567,7 +2017,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     const work *w = (const work *)ctx;
     VARIABLE f;
     double m;
-    link_residual(&w->p_J6, &w->p_J4, &ZERO_LENGTH, &f);
+    link_residual_1(&w->p_J6, &w->p_J4, &ZERO_LENGTH, &f);
     a[0][0] = f.v;
     ad[0][0] = f.dv;
     m = (w->p_J6.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (w->p_J6.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
@@ -1577,7 +2027,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[0][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][2];
     ad[0][2] = 0.0;
     a[0][LINKGEN_NMAX - 1] = ad[0][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&w->p_J6, &w->p_J2, &ZERO_LENGTH, &f);
+    link_residual_1(&w->p_J6, &w->p_J2, &ZERO_LENGTH, &f);
     a[1][0] = f.v;
     ad[1][0] = f.dv;
     m = (w->p_J6.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J6.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1587,7 +2037,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[1][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][2];
     ad[1][2] = 0.0;
     a[1][LINKGEN_NMAX - 1] = ad[1][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&p_J7, &w->p_J2, &ZERO_LENGTH, &f);
+    link_residual_1(&p_J7, &w->p_J2, &ZERO_LENGTH, &f);
     a[2][0] = f.v;
     ad[2][0] = f.dv;
     m = (p_J7.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J7.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1597,7 +2047,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[2][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][2];
     ad[2][2] = 0.0;
     a[2][LINKGEN_NMAX - 1] = ad[2][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&p_J7, &w->p_J4, &ZERO_LENGTH, &f);
+    link_residual_1(&p_J7, &w->p_J4, &ZERO_LENGTH, &f);
     a[3][0] = f.v;
     ad[3][0] = f.dv;
     m = (p_J7.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J7.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
@@ -1607,7 +2057,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[3][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][2];
     ad[3][2] = 0.0;
     a[3][LINKGEN_NMAX - 1] = ad[3][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&p_J1, &w->p_J4, &ZERO_LENGTH, &f);
+    link_residual_1(&p_J1, &w->p_J4, &ZERO_LENGTH, &f);
     a[4][0] = f.v;
     ad[4][0] = f.dv;
     m = (p_J1.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J1.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
@@ -1617,7 +2067,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[4][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][2];
     ad[4][2] = 0.0;
     a[4][LINKGEN_NMAX - 1] = ad[4][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&p_J3, &w->p_J2, &ZERO_LENGTH, &f);
+    link_residual_1(&p_J3, &w->p_J2, &ZERO_LENGTH, &f);
     a[5][0] = f.v;
     ad[5][0] = f.dv;
     m = (p_J3.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J3.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1627,7 +2077,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[5][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][2];
     ad[5][2] = 0.0;
     a[5][LINKGEN_NMAX - 1] = ad[5][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&p_K1, &w->p_J2, &ZERO_LENGTH, &f);
+    link_residual_1(&p_K1, &w->p_J2, &ZERO_LENGTH, &f);
     a[6][0] = f.v;
     ad[6][0] = f.dv;
     m = (p_K1.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_K1.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1648,7 +2098,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     const work *w = (const work *)ctx;
     VARIABLE f;
     double m;
-    link_residual(&w->p_J6, &w->p_K4, &ZERO_LENGTH, &f);
+    link_residual_1(&w->p_J6, &w->p_K4, &ZERO_LENGTH, &f);
     a[0][0] = f.v;
     ad[0][0] = f.dv;
     m = (w->p_J6.P.x - p_K3.P.x) * (w->p_K4.P.y - p_K3.P.y) - (w->p_J6.P.y - p_K3.P.y) * (w->p_K4.P.x - p_K3.P.x);
@@ -1658,7 +2108,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[0][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][2];
     ad[0][2] = 0.0;
     a[0][LINKGEN_NMAX - 1] = ad[0][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&w->p_J5, &w->p_K2, &ZERO_LENGTH, &f);
+    link_residual_1(&w->p_J5, &w->p_K2, &ZERO_LENGTH, &f);
     a[1][0] = f.v;
     ad[1][0] = f.dv;
     m = (w->p_J5.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_J5.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
@@ -1668,7 +2118,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[1][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][2];
     ad[1][2] = 0.0;
     a[1][LINKGEN_NMAX - 1] = ad[1][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&w->p_J5, &w->p_K4, &ZERO_LENGTH, &f);
+    link_residual_1(&w->p_J5, &w->p_K4, &ZERO_LENGTH, &f);
     a[2][0] = f.v;
     ad[2][0] = f.dv;
     m = (w->p_J5.P.x - p_K3.P.x) * (w->p_K4.P.y - p_K3.P.y) - (w->p_J5.P.y - p_K3.P.y) * (w->p_K4.P.x - p_K3.P.x);
@@ -1678,7 +2128,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[2][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][2];
     ad[2][2] = 0.0;
     a[2][LINKGEN_NMAX - 1] = ad[2][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&w->p_J2, &w->p_K4, &ZERO_LENGTH, &f);
+    link_residual_1(&w->p_J2, &w->p_K4, &ZERO_LENGTH, &f);
     a[3][0] = f.v;
     ad[3][0] = f.dv;
     m = (w->p_J2.P.x - p_K3.P.x) * (w->p_K4.P.y - p_K3.P.y) - (w->p_J2.P.y - p_K3.P.y) * (w->p_K4.P.x - p_K3.P.x);
@@ -1688,7 +2138,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[3][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][2];
     ad[3][2] = 0.0;
     a[3][LINKGEN_NMAX - 1] = ad[3][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&w->p_J4, &w->p_K4, &ZERO_LENGTH, &f);
+    link_residual_1(&w->p_J4, &w->p_K4, &ZERO_LENGTH, &f);
     a[4][0] = f.v;
     ad[4][0] = f.dv;
     m = (w->p_J4.P.x - p_K3.P.x) * (w->p_K4.P.y - p_K3.P.y) - (w->p_J4.P.y - p_K3.P.y) * (w->p_K4.P.x - p_K3.P.x);
@@ -1698,7 +2148,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[4][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][2];
     ad[4][2] = 0.0;
     a[4][LINKGEN_NMAX - 1] = ad[4][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&w->p_J2, &w->p_K2, &ZERO_LENGTH, &f);
+    link_residual_1(&w->p_J2, &w->p_K2, &ZERO_LENGTH, &f);
     a[5][0] = f.v;
     ad[5][0] = f.dv;
     m = (w->p_J2.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_J2.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
@@ -1708,7 +2158,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[5][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][2];
     ad[5][2] = 0.0;
     a[5][LINKGEN_NMAX - 1] = ad[5][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&w->p_J4, &w->p_K2, &ZERO_LENGTH, &f);
+    link_residual_1(&w->p_J4, &w->p_K2, &ZERO_LENGTH, &f);
     a[6][0] = f.v;
     ad[6][0] = f.dv;
     m = (w->p_J4.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_J4.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
@@ -1718,7 +2168,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[6][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[6][2];
     ad[6][2] = 0.0;
     a[6][LINKGEN_NMAX - 1] = ad[6][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&w->p_J6, &w->p_K2, &ZERO_LENGTH, &f);
+    link_residual_1(&w->p_J6, &w->p_K2, &ZERO_LENGTH, &f);
     a[7][0] = f.v;
     ad[7][0] = f.dv;
     m = (w->p_J6.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_J6.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
@@ -1728,7 +2178,7 @@ static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[7][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[7][2];
     ad[7][2] = 0.0;
     a[7][LINKGEN_NMAX - 1] = ad[7][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&w->p_J5, &w->p_K5, &ZERO_LENGTH, &f);
+    link_residual_1(&w->p_J5, &w->p_K5, &ZERO_LENGTH, &f);
     a[8][0] = f.v;
     ad[8][0] = f.dv;
     m = (w->p_J5.P.x - w->p_J6.P.x) * (w->p_K5.P.y - w->p_J6.P.y) - (w->p_J5.P.y - w->p_J6.P.y) * (w->p_K5.P.x - w->p_J6.P.x);

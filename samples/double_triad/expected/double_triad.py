@@ -211,8 +211,8 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
-def link_point(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -221,13 +221,23 @@ def link_point(j1, j2, along, across):
     dvy = j2_dy - j1_dy
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    rax = along * dax - across * day
-    ray = along * day + across * dax
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    r2 = dx * dx + dy * dy
+    ir = NAN if r2 == 0 else 1 / sqrt(r2)
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -297,7 +307,7 @@ def link_residual(j1, j2, l):
     ir = NAN if r == 0 else 1 / r
     s = sqrt(dvx * dvx + dvy * dvy)
     iv = NAN if s == 0 else 1 / s
-    rd = s if r == 0 else (dx * dvx + dy * dvy) * ir
+    rd = sqrt(dvx * dvx + dvy * dvy) if r == 0 else (dx * dvx + dy * dvy) * ir
     rp = sqrt(dax * dax + day * day) if s == 0 else (dvx * dax + dvy * day) * iv
     rdd = rp if r == 0 else (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir
     return (r - l_v, rd - l_dv, rdd - l_ddv)
@@ -786,7 +796,11 @@ def _group_1(w, a, da, dda, live):
         w.note(st, 53, -54)
     w.chains = min(w.chains, w.sigma[5])
     # Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 63, -64)
     # Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1, ]
@@ -818,7 +832,11 @@ def _group_1_v1(w, a, da, dda, live):
         w.note(st, 253, -254)
     w.chains = min(w.chains, w.sigma[25])
     # Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 263, -264)
     # Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v1, ]
@@ -850,7 +868,11 @@ def _group_1_v2(w, a, da, dda, live):
         w.note(st, 293, -294)
     w.chains = min(w.chains, w.sigma[29])
     # Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 303, -304)
     # Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v2, ]
@@ -882,7 +904,11 @@ def _group_1_v3(w, a, da, dda, live):
         w.note(st, 333, -334)
     w.chains = min(w.chains, w.sigma[33])
     # Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 343, -344)
     # Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v3, ]
@@ -914,7 +940,11 @@ def _group_1_v4(w, a, da, dda, live):
         w.note(st, 373, -374)
     w.chains = min(w.chains, w.sigma[37])
     # Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 383, -384)
     # Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v4, ]
@@ -946,7 +976,11 @@ def _group_1_v5(w, a, da, dda, live):
         w.note(st, 413, -414)
     w.chains = min(w.chains, w.sigma[41])
     # Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 423, -424)
     # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v5 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v5, ]
@@ -978,7 +1012,11 @@ def _group_1_v6(w, a, da, dda, live):
         w.note(st, 453, -454)
     w.chains = min(w.chains, w.sigma[45])
     # Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 463, -464)
     # Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(p_J6, w.p_J5, l_right_coupler)
     return 0, [w.f1_v6, ]
@@ -1010,7 +1048,11 @@ def _group_2(w, a, da, dda, live):
         w.note(st, 113, -114)
     w.chains = min(w.chains, w.sigma[11])
     # Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 123, -124)
     # Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2, ]
@@ -1043,7 +1085,11 @@ def _group_2_v1(w, a, da, dda, live):
         w.note(st, 493, -494)
     w.chains = min(w.chains, w.sigma[49])
     # Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 503, -504)
     # Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v1 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v1, ]
@@ -1076,7 +1122,11 @@ def _group_2_v2(w, a, da, dda, live):
         w.note(st, 533, -534)
     w.chains = min(w.chains, w.sigma[53])
     # Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 543, -544)
     # Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v2 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v2, ]
@@ -1109,7 +1159,11 @@ def _group_2_v3(w, a, da, dda, live):
         w.note(st, 573, -574)
     w.chains = min(w.chains, w.sigma[57])
     # Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 583, -584)
     # Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v3 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v3, ]
@@ -1142,7 +1196,11 @@ def _group_2_v4(w, a, da, dda, live):
         w.note(st, 613, -614)
     w.chains = min(w.chains, w.sigma[61])
     # Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 623, -624)
     # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v4 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v4, ]
@@ -1175,7 +1233,11 @@ def _group_2_v5(w, a, da, dda, live):
         w.note(st, 653, -654)
     w.chains = min(w.chains, w.sigma[65])
     # Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 663, -664)
     # Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v5 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v5, ]
@@ -1208,7 +1270,11 @@ def _group_2_v6(w, a, da, dda, live):
         w.note(st, 693, -694)
     w.chains = min(w.chains, w.sigma[69])
     # Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 703, -704)
     # Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v6 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v6, ]
@@ -1240,7 +1306,11 @@ def _group_2_v7(w, a, da, dda, live):
         w.note(st, 733, -734)
     w.chains = min(w.chains, w.sigma[73])
     # Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746)
+    st, w.p_K5 = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 743, -744)
     # Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v7 = link_residual(p_J6, w.p_K5, l_left_coupler)
     return 0, [w.f2_v7, ]
@@ -1273,7 +1343,11 @@ def _group_2_v8(w, a, da, dda, live):
         w.note(st, 773, -774)
     w.chains = min(w.chains, w.sigma[77])
     # Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
-    w.p_K4 = link_point(w.p_K5, w.p_K2, -0.6891891891891891, -0.36486486486486486)
+    st, w.p_K4 = link_point(w.p_K5, w.p_K2, -41.921741762866105, -22.193863286223234)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 783, -784)
     # Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v8 = link_residual(p_K3, w.p_K4, l_left_rocker2)
     return 0, [w.f2_v8, ]
@@ -1527,119 +1601,115 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            -60.0,
-            80.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_J6[0] - 64.0,
-            w.p_J6[1] + 48.0,
-            w.p_J6[2],
-            w.p_J6[3],
-            w.p_J6[4],
-            w.p_J6[5],
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_J2[0] - 64.0,
-            w.p_J2[1] + 48.0,
-            w.p_J2[2],
-            w.p_J2[3],
-            w.p_J2[4],
-            w.p_J2[5],
-            100.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_J4[0] - 64.0,
-            w.p_J4[1] + 48.0,
-            w.p_J4[2],
-            w.p_J4[3],
-            w.p_J4[4],
-            w.p_J4[5],
-            w.p_J5[0] - 64.0,
-            w.p_J5[1] + 48.0,
-            w.p_J5[2],
-            w.p_J5[3],
-            w.p_J5[4],
-            w.p_J5[5],
-            -120.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_K2[0] - 64.0,
-            w.p_K2[1] + 48.0,
-            w.p_K2[2],
-            w.p_K2[3],
-            w.p_K2[4],
-            w.p_K2[5],
-            -220.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_K4[0] - 64.0,
-            w.p_K4[1] + 48.0,
-            w.p_K4[2],
-            w.p_K4[3],
-            w.p_K4[4],
-            w.p_K4[5],
-            w.p_K5[0] - 64.0,
-            w.p_K5[1] + 48.0,
-            w.p_K5[2],
-            w.p_K5[3],
-            w.p_K5[4],
-            w.p_K5[5],
-            -0.9272952180016122,
-            0.0,
-            0.0,
-            w.phi_crank[0],
-            w.phi_crank[1],
-            w.phi_crank[2],
-            w.phi_right_rocker1[0],
-            w.phi_right_rocker1[1],
-            w.phi_right_rocker1[2],
-            w.phi_right_ternary[0],
-            w.phi_right_ternary[1],
-            w.phi_right_ternary[2],
-            w.phi_right_rocker2[0],
-            w.phi_right_rocker2[1],
-            w.phi_right_rocker2[2],
-            w.phi_right_coupler[0],
-            w.phi_right_coupler[1],
-            w.phi_right_coupler[2],
-            w.phi_left_rocker1[0],
-            w.phi_left_rocker1[1],
-            w.phi_left_rocker1[2],
-            w.phi_left_ternary[0],
-            w.phi_left_ternary[1],
-            w.phi_left_ternary[2],
-            w.phi_left_rocker2[0],
-            w.phi_left_rocker2[1],
-            w.phi_left_rocker2[2],
-            w.phi_left_coupler[0],
-            w.phi_left_coupler[1],
-            w.phi_left_coupler[2],
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "J7.x": -60.0,
+            "J7.y": 80.0,
+            "J7.vx": 0.0,
+            "J7.vy": 0.0,
+            "J7.ax": 0.0,
+            "J7.ay": 0.0,
+            "J6.x": w.p_J6[0] - 64.0,
+            "J6.y": w.p_J6[1] + 48.0,
+            "J6.vx": w.p_J6[2],
+            "J6.vy": w.p_J6[3],
+            "J6.ax": w.p_J6[4],
+            "J6.ay": w.p_J6[5],
+            "J1.x": 0.0,
+            "J1.y": 0.0,
+            "J1.vx": 0.0,
+            "J1.vy": 0.0,
+            "J1.ax": 0.0,
+            "J1.ay": 0.0,
+            "J2.x": w.p_J2[0] - 64.0,
+            "J2.y": w.p_J2[1] + 48.0,
+            "J2.vx": w.p_J2[2],
+            "J2.vy": w.p_J2[3],
+            "J2.ax": w.p_J2[4],
+            "J2.ay": w.p_J2[5],
+            "J3.x": 100.0,
+            "J3.y": 0.0,
+            "J3.vx": 0.0,
+            "J3.vy": 0.0,
+            "J3.ax": 0.0,
+            "J3.ay": 0.0,
+            "J4.x": w.p_J4[0] - 64.0,
+            "J4.y": w.p_J4[1] + 48.0,
+            "J4.vx": w.p_J4[2],
+            "J4.vy": w.p_J4[3],
+            "J4.ax": w.p_J4[4],
+            "J4.ay": w.p_J4[5],
+            "J5.x": w.p_J5[0] - 64.0,
+            "J5.y": w.p_J5[1] + 48.0,
+            "J5.vx": w.p_J5[2],
+            "J5.vy": w.p_J5[3],
+            "J5.ax": w.p_J5[4],
+            "J5.ay": w.p_J5[5],
+            "K1.x": -120.0,
+            "K1.y": 0.0,
+            "K1.vx": 0.0,
+            "K1.vy": 0.0,
+            "K1.ax": 0.0,
+            "K1.ay": 0.0,
+            "K2.x": w.p_K2[0] - 64.0,
+            "K2.y": w.p_K2[1] + 48.0,
+            "K2.vx": w.p_K2[2],
+            "K2.vy": w.p_K2[3],
+            "K2.ax": w.p_K2[4],
+            "K2.ay": w.p_K2[5],
+            "K3.x": -220.0,
+            "K3.y": 0.0,
+            "K3.vx": 0.0,
+            "K3.vy": 0.0,
+            "K3.ax": 0.0,
+            "K3.ay": 0.0,
+            "K4.x": w.p_K4[0] - 64.0,
+            "K4.y": w.p_K4[1] + 48.0,
+            "K4.vx": w.p_K4[2],
+            "K4.vy": w.p_K4[3],
+            "K4.ax": w.p_K4[4],
+            "K4.ay": w.p_K4[5],
+            "K5.x": w.p_K5[0] - 64.0,
+            "K5.y": w.p_K5[1] + 48.0,
+            "K5.vx": w.p_K5[2],
+            "K5.vy": w.p_K5[3],
+            "K5.ax": w.p_K5[4],
+            "K5.ay": w.p_K5[5],
+            "frame.phi": -0.9272952180016122,
+            "frame.omega": 0.0,
+            "frame.alpha": 0.0,
+            "crank.phi": w.phi_crank[0],
+            "crank.omega": w.phi_crank[1],
+            "crank.alpha": w.phi_crank[2],
+            "right_rocker1.phi": w.phi_right_rocker1[0],
+            "right_rocker1.omega": w.phi_right_rocker1[1],
+            "right_rocker1.alpha": w.phi_right_rocker1[2],
+            "right_ternary.phi": w.phi_right_ternary[0],
+            "right_ternary.omega": w.phi_right_ternary[1],
+            "right_ternary.alpha": w.phi_right_ternary[2],
+            "right_rocker2.phi": w.phi_right_rocker2[0],
+            "right_rocker2.omega": w.phi_right_rocker2[1],
+            "right_rocker2.alpha": w.phi_right_rocker2[2],
+            "right_coupler.phi": w.phi_right_coupler[0],
+            "right_coupler.omega": w.phi_right_coupler[1],
+            "right_coupler.alpha": w.phi_right_coupler[2],
+            "left_rocker1.phi": w.phi_left_rocker1[0],
+            "left_rocker1.omega": w.phi_left_rocker1[1],
+            "left_rocker1.alpha": w.phi_left_rocker1[2],
+            "left_ternary.phi": w.phi_left_ternary[0],
+            "left_ternary.omega": w.phi_left_ternary[1],
+            "left_ternary.alpha": w.phi_left_ternary[2],
+            "left_rocker2.phi": w.phi_left_rocker2[0],
+            "left_rocker2.omega": w.phi_left_rocker2[1],
+            "left_rocker2.alpha": w.phi_left_rocker2[2],
+            "left_coupler.phi": w.phi_left_coupler[0],
+            "left_coupler.omega": w.phi_left_coupler[1],
+            "left_coupler.alpha": w.phi_left_coupler[2],
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

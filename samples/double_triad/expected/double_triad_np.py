@@ -169,10 +169,10 @@ PARAMS = {  # design parameter -> its value in the sketch
     "l_left_coupler": 121.6552506059644,  # length left_coupler:J6-K5
     "l_left_ternary_K2_K5": 60.8276253029822,  # length left_ternary:K2-K5
     "step2.l": 20.0,  # step 2: crank_input of J6
-    "step6.along": 0.4343891402714932,  # step 6: link_point of J5
-    "step6.across": -0.12217194570135746,  # step 6: link_point of J5
-    "step12.along": 0.4343891402714932,  # step 12: link_point of K5
-    "step12.across": 0.12217194570135746,  # step 12: link_point of K5
+    "step6.gsi": 45.662543438831435,  # step 6: link_point of J5
+    "step6.eta": -12.84259034217134,  # step 6: link_point of J5
+    "step12.gsi": 45.662543438831435,  # step 12: link_point of K5
+    "step12.eta": 12.84259034217134,  # step 12: link_point of K5
     "step15.off": 0.0,  # step 15: link_angle of crank
     "step16.off": 0.0,  # step 16: link_angle of right_rocker1
     "step17.off": 0.0,  # step 17: link_angle of right_ternary
@@ -182,34 +182,34 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step21.off": 0.0,  # step 21: link_angle of left_ternary
     "step22.off": 0.0,  # step 22: link_angle of left_rocker2
     "step23.off": 0.0,  # step 23: link_angle of left_coupler
-    "step26.along": 0.5656108597285068,  # step 26: link_point of J5
-    "step26.across": 0.12217194570135746,  # step 26: link_point of J5
-    "step30.along": 0.5656108597285068,  # step 30: link_point of J5
-    "step30.across": 0.12217194570135746,  # step 30: link_point of J5
-    "step34.along": 0.4343891402714932,  # step 34: link_point of J5
-    "step34.across": -0.12217194570135746,  # step 34: link_point of J5
-    "step38.along": 0.4343891402714932,  # step 38: link_point of J5
-    "step38.across": -0.12217194570135746,  # step 38: link_point of J5
-    "step42.along": 0.5656108597285068,  # step 42: link_point of J5
-    "step42.across": 0.12217194570135746,  # step 42: link_point of J5
-    "step46.along": 0.5656108597285068,  # step 46: link_point of J5
-    "step46.across": 0.12217194570135746,  # step 46: link_point of J5
-    "step50.along": 0.5656108597285068,  # step 50: link_point of K5
-    "step50.across": -0.12217194570135746,  # step 50: link_point of K5
-    "step54.along": 0.4343891402714932,  # step 54: link_point of K5
-    "step54.across": 0.12217194570135746,  # step 54: link_point of K5
-    "step58.along": 0.4343891402714932,  # step 58: link_point of K5
-    "step58.across": 0.12217194570135746,  # step 58: link_point of K5
-    "step62.along": 0.4343891402714932,  # step 62: link_point of K5
-    "step62.across": 0.12217194570135746,  # step 62: link_point of K5
-    "step66.along": 0.5656108597285068,  # step 66: link_point of K5
-    "step66.across": -0.12217194570135746,  # step 66: link_point of K5
-    "step70.along": 0.5656108597285068,  # step 70: link_point of K5
-    "step70.across": -0.12217194570135746,  # step 70: link_point of K5
-    "step74.along": 0.5656108597285068,  # step 74: link_point of K5
-    "step74.across": -0.12217194570135746,  # step 74: link_point of K5
-    "step78.along": -0.6891891891891891,  # step 78: link_point of K4
-    "step78.across": -0.36486486486486486,  # step 78: link_point of K4
+    "step26.gsi": 45.662543438831435,  # step 26: link_point of J5
+    "step26.eta": -12.84259034217134,  # step 26: link_point of J5
+    "step30.gsi": 45.662543438831435,  # step 30: link_point of J5
+    "step30.eta": -12.84259034217134,  # step 30: link_point of J5
+    "step34.gsi": 45.662543438831435,  # step 34: link_point of J5
+    "step34.eta": -12.84259034217134,  # step 34: link_point of J5
+    "step38.gsi": 45.662543438831435,  # step 38: link_point of J5
+    "step38.eta": -12.84259034217134,  # step 38: link_point of J5
+    "step42.gsi": 45.662543438831435,  # step 42: link_point of J5
+    "step42.eta": -12.84259034217134,  # step 42: link_point of J5
+    "step46.gsi": 45.662543438831435,  # step 46: link_point of J5
+    "step46.eta": -12.84259034217134,  # step 46: link_point of J5
+    "step50.gsi": 45.662543438831435,  # step 50: link_point of K5
+    "step50.eta": 12.84259034217134,  # step 50: link_point of K5
+    "step54.gsi": 45.662543438831435,  # step 54: link_point of K5
+    "step54.eta": 12.84259034217134,  # step 54: link_point of K5
+    "step58.gsi": 45.662543438831435,  # step 58: link_point of K5
+    "step58.eta": 12.84259034217134,  # step 58: link_point of K5
+    "step62.gsi": 45.662543438831435,  # step 62: link_point of K5
+    "step62.eta": 12.84259034217134,  # step 62: link_point of K5
+    "step66.gsi": 45.662543438831435,  # step 66: link_point of K5
+    "step66.eta": 12.84259034217134,  # step 66: link_point of K5
+    "step70.gsi": 45.662543438831435,  # step 70: link_point of K5
+    "step70.eta": 12.84259034217134,  # step 70: link_point of K5
+    "step74.gsi": 45.662543438831435,  # step 74: link_point of K5
+    "step74.eta": 12.84259034217134,  # step 74: link_point of K5
+    "step78.gsi": -41.921741762866105,  # step 78: link_point of K4
+    "step78.eta": -22.193863286223234,  # step 78: link_point of K4
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
     name="double_triad_np", n_inputs=N_INPUTS, n_steps=N_STEPS, params=PARAMS,
@@ -297,8 +297,8 @@ def link_angle(j1, j2, off):
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def link_point(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -307,15 +307,41 @@ def link_point(j1, j2, along, across):
     dvy = j2_dy - j1_dy
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    rax = along * dax - across * day
-    ray = along * day + across * dax
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
+    r2 = dx * dx + dy * dy
+    _c1 = np.asarray(r2 == 0)
+    if not _c1.any():
+        ir = 1 / np.sqrt(r2)
+    elif _c1.all():
+        ir = NAN
+    else:
+        ir = np.where(_c1, NAN, 1 / np.sqrt(r2))
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    _t1 = om * om
+    rax = -al * ry - _t1 * rx
+    ray = al * rx - _t1 * ry
+    _c2 = np.asarray(r2 == 0)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    if np.any(_singular):  # nan where the rows failed
+        _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]), np.where(_singular, np.nan, _jc[4]), np.where(_singular, np.nan, _jc[5]))
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -469,9 +495,9 @@ def link_residual(j1, j2, l):
     if not _c2.any():
         rd = (dx * dvx + dy * dvy) * ir
     elif _c2.all():
-        rd = s
+        rd = np.sqrt(dvx * dvx + dvy * dvy)
     else:
-        rd = np.where(_c2, s, (dx * dvx + dy * dvy) * ir)
+        rd = np.where(_c2, np.sqrt(dvx * dvx + dvy * dvy), (dx * dvx + dy * dvy) * ir)
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
     _c4 = np.asarray(r == 0)
@@ -498,21 +524,45 @@ def link_residual(j1, j2, l):
     _f = (r - l_v, rd - l_dv, _f3)
     return _st, _sigma, _f
 
-def link_point_1(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point_1(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy = j1[:4]
     j2_x, j2_y, j2_dx, j2_dy = j2[:4]
     dx = j2_x - j1_x
     dy = j2_y - j1_y
     dvx = j2_dx - j1_dx
     dvy = j2_dy - j1_dy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
+    r2 = dx * dx + dy * dy
+    _c1 = np.asarray(r2 == 0)
+    if not _c1.any():
+        ir = 1 / np.sqrt(r2)
+    elif _c1.all():
+        ir = NAN
+    else:
+        ir = np.where(_c1, NAN, 1 / np.sqrt(r2))
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    _c2 = np.asarray(r2 == 0)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy)
+    if np.any(_singular):  # nan where the rows failed
+        _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]))
     return _st, _sigma, _jc
 
 def RRR_links_1(j1, j2, l1, l2, minv):
@@ -1509,7 +1559,8 @@ def _group_1(w, r, br, a, da, dda):
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     chains = np.minimum(chains, sigma[5])
     # Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step6.along"], c["step6.across"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step6.gsi"], c["step6.eta"])
+    report.append((st, ((1, 61),)))
     # Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1, ), chains
@@ -1539,7 +1590,8 @@ def _group_1_1(w, r, br, a, da, dda):
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     chains = np.minimum(chains, sigma[5])
     # Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step6.along"], c["step6.across"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step6.gsi"], c["step6.eta"])
+    report.append((st, ((1, 61),)))
     # Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1, ), chains
@@ -1569,7 +1621,8 @@ def _group_1_v1(w, r, br, a, da, dda):
     report.append((st, ((1, 251), (3, 253), (4, -254))))
     chains = np.minimum(chains, sigma[25])
     # Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step26.along"], c["step26.across"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step26.gsi"], c["step26.eta"])
+    report.append((st, ((1, 261),)))
     # Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v1, ), chains
@@ -1599,7 +1652,8 @@ def _group_1_v1_1(w, r, br, a, da, dda):
     report.append((st, ((1, 251), (3, 253), (4, -254))))
     chains = np.minimum(chains, sigma[25])
     # Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step26.along"], c["step26.across"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step26.gsi"], c["step26.eta"])
+    report.append((st, ((1, 261),)))
     # Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v1, ), chains
@@ -1629,7 +1683,8 @@ def _group_1_v2(w, r, br, a, da, dda):
     report.append((st, ((1, 291), (3, 293), (4, -294))))
     chains = np.minimum(chains, sigma[29])
     # Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step30.along"], c["step30.across"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step30.gsi"], c["step30.eta"])
+    report.append((st, ((1, 301),)))
     # Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v2, ), chains
@@ -1659,7 +1714,8 @@ def _group_1_v2_1(w, r, br, a, da, dda):
     report.append((st, ((1, 291), (3, 293), (4, -294))))
     chains = np.minimum(chains, sigma[29])
     # Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step30.along"], c["step30.across"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step30.gsi"], c["step30.eta"])
+    report.append((st, ((1, 301),)))
     # Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v2 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v2, ), chains
@@ -1689,7 +1745,8 @@ def _group_1_v3(w, r, br, a, da, dda):
     report.append((st, ((1, 331), (3, 333), (4, -334))))
     chains = np.minimum(chains, sigma[33])
     # Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step34.along"], c["step34.across"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step34.gsi"], c["step34.eta"])
+    report.append((st, ((1, 341),)))
     # Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v3 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v3, ), chains
@@ -1719,7 +1776,8 @@ def _group_1_v3_1(w, r, br, a, da, dda):
     report.append((st, ((1, 331), (3, 333), (4, -334))))
     chains = np.minimum(chains, sigma[33])
     # Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step34.along"], c["step34.across"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step34.gsi"], c["step34.eta"])
+    report.append((st, ((1, 341),)))
     # Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v3 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v3, ), chains
@@ -1749,7 +1807,8 @@ def _group_1_v4(w, r, br, a, da, dda):
     report.append((st, ((1, 371), (3, 373), (4, -374))))
     chains = np.minimum(chains, sigma[37])
     # Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step38.along"], c["step38.across"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step38.gsi"], c["step38.eta"])
+    report.append((st, ((1, 381),)))
     # Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v4 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v4, ), chains
@@ -1779,7 +1838,8 @@ def _group_1_v4_1(w, r, br, a, da, dda):
     report.append((st, ((1, 371), (3, 373), (4, -374))))
     chains = np.minimum(chains, sigma[37])
     # Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step38.along"], c["step38.across"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step38.gsi"], c["step38.eta"])
+    report.append((st, ((1, 381),)))
     # Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v4 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v4, ), chains
@@ -1809,7 +1869,8 @@ def _group_1_v5(w, r, br, a, da, dda):
     report.append((st, ((1, 411), (3, 413), (4, -414))))
     chains = np.minimum(chains, sigma[41])
     # Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step42.along"], c["step42.across"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step42.gsi"], c["step42.eta"])
+    report.append((st, ((1, 421),)))
     # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v5, ), chains
@@ -1839,7 +1900,8 @@ def _group_1_v5_1(w, r, br, a, da, dda):
     report.append((st, ((1, 411), (3, 413), (4, -414))))
     chains = np.minimum(chains, sigma[41])
     # Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step42.along"], c["step42.across"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step42.gsi"], c["step42.eta"])
+    report.append((st, ((1, 421),)))
     # Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v5 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v5, ), chains
@@ -1869,7 +1931,8 @@ def _group_1_v6(w, r, br, a, da, dda):
     report.append((st, ((1, 451), (3, 453), (4, -454))))
     chains = np.minimum(chains, sigma[45])
     # Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step46.along"], c["step46.across"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step46.gsi"], c["step46.eta"])
+    report.append((st, ((1, 461),)))
     # Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v6 = link_residual(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v6, ), chains
@@ -1899,7 +1962,8 @@ def _group_1_v6_1(w, r, br, a, da, dda):
     report.append((st, ((1, 451), (3, 453), (4, -454))))
     chains = np.minimum(chains, sigma[45])
     # Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step46.along"], c["step46.across"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step46.gsi"], c["step46.eta"])
+    report.append((st, ((1, 461),)))
     # Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v6 = link_residual_1(p_J6, w.p_J5, w.l_right_coupler)
     return report, sigma, (w.f1_v6, ), chains
@@ -1929,7 +1993,8 @@ def _group_2(w, r, br, a, da, dda):
     report.append((st, ((1, 111), (3, 113), (4, -114))))
     chains = np.minimum(chains, sigma[11])
     # Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step12.along"], c["step12.across"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step12.gsi"], c["step12.eta"])
+    report.append((st, ((1, 121),)))
     # Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2, ), chains
@@ -1959,7 +2024,8 @@ def _group_2_1(w, r, br, a, da, dda):
     report.append((st, ((1, 111), (3, 113), (4, -114))))
     chains = np.minimum(chains, sigma[11])
     # Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step12.along"], c["step12.across"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step12.gsi"], c["step12.eta"])
+    report.append((st, ((1, 121),)))
     # Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2, ), chains
@@ -1989,7 +2055,8 @@ def _group_2_v1(w, r, br, a, da, dda):
     report.append((st, ((1, 491), (3, 493), (4, -494))))
     chains = np.minimum(chains, sigma[49])
     # Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K2, w.p_K4, c["step50.along"], c["step50.across"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step50.gsi"], c["step50.eta"])
+    report.append((st, ((1, 501),)))
     # Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v1 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v1, ), chains
@@ -2019,7 +2086,8 @@ def _group_2_v1_1(w, r, br, a, da, dda):
     report.append((st, ((1, 491), (3, 493), (4, -494))))
     chains = np.minimum(chains, sigma[49])
     # Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K2, w.p_K4, c["step50.along"], c["step50.across"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step50.gsi"], c["step50.eta"])
+    report.append((st, ((1, 501),)))
     # Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v1 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v1, ), chains
@@ -2049,7 +2117,8 @@ def _group_2_v2(w, r, br, a, da, dda):
     report.append((st, ((1, 531), (3, 533), (4, -534))))
     chains = np.minimum(chains, sigma[53])
     # Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step54.along"], c["step54.across"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step54.gsi"], c["step54.eta"])
+    report.append((st, ((1, 541),)))
     # Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v2 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v2, ), chains
@@ -2079,7 +2148,8 @@ def _group_2_v2_1(w, r, br, a, da, dda):
     report.append((st, ((1, 531), (3, 533), (4, -534))))
     chains = np.minimum(chains, sigma[53])
     # Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step54.along"], c["step54.across"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step54.gsi"], c["step54.eta"])
+    report.append((st, ((1, 541),)))
     # Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v2 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v2, ), chains
@@ -2109,7 +2179,8 @@ def _group_2_v3(w, r, br, a, da, dda):
     report.append((st, ((1, 571), (3, 573), (4, -574))))
     chains = np.minimum(chains, sigma[57])
     # Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step58.along"], c["step58.across"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step58.gsi"], c["step58.eta"])
+    report.append((st, ((1, 581),)))
     # Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v3 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v3, ), chains
@@ -2139,7 +2210,8 @@ def _group_2_v3_1(w, r, br, a, da, dda):
     report.append((st, ((1, 571), (3, 573), (4, -574))))
     chains = np.minimum(chains, sigma[57])
     # Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step58.along"], c["step58.across"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step58.gsi"], c["step58.eta"])
+    report.append((st, ((1, 581),)))
     # Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v3 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v3, ), chains
@@ -2169,7 +2241,8 @@ def _group_2_v4(w, r, br, a, da, dda):
     report.append((st, ((1, 611), (3, 613), (4, -614))))
     chains = np.minimum(chains, sigma[61])
     # Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step62.along"], c["step62.across"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step62.gsi"], c["step62.eta"])
+    report.append((st, ((1, 621),)))
     # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v4 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v4, ), chains
@@ -2199,7 +2272,8 @@ def _group_2_v4_1(w, r, br, a, da, dda):
     report.append((st, ((1, 611), (3, 613), (4, -614))))
     chains = np.minimum(chains, sigma[61])
     # Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step62.along"], c["step62.across"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step62.gsi"], c["step62.eta"])
+    report.append((st, ((1, 621),)))
     # Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v4 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v4, ), chains
@@ -2229,7 +2303,8 @@ def _group_2_v5(w, r, br, a, da, dda):
     report.append((st, ((1, 651), (3, 653), (4, -654))))
     chains = np.minimum(chains, sigma[65])
     # Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K2, w.p_K4, c["step66.along"], c["step66.across"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step66.gsi"], c["step66.eta"])
+    report.append((st, ((1, 661),)))
     # Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v5 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v5, ), chains
@@ -2259,7 +2334,8 @@ def _group_2_v5_1(w, r, br, a, da, dda):
     report.append((st, ((1, 651), (3, 653), (4, -654))))
     chains = np.minimum(chains, sigma[65])
     # Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K2, w.p_K4, c["step66.along"], c["step66.across"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step66.gsi"], c["step66.eta"])
+    report.append((st, ((1, 661),)))
     # Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v5 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v5, ), chains
@@ -2289,7 +2365,8 @@ def _group_2_v6(w, r, br, a, da, dda):
     report.append((st, ((1, 691), (3, 693), (4, -694))))
     chains = np.minimum(chains, sigma[69])
     # Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K2, w.p_K4, c["step70.along"], c["step70.across"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step70.gsi"], c["step70.eta"])
+    report.append((st, ((1, 701),)))
     # Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v6 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v6, ), chains
@@ -2319,7 +2396,8 @@ def _group_2_v6_1(w, r, br, a, da, dda):
     report.append((st, ((1, 691), (3, 693), (4, -694))))
     chains = np.minimum(chains, sigma[69])
     # Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K2, w.p_K4, c["step70.along"], c["step70.across"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step70.gsi"], c["step70.eta"])
+    report.append((st, ((1, 701),)))
     # Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v6 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v6, ), chains
@@ -2349,7 +2427,8 @@ def _group_2_v7(w, r, br, a, da, dda):
     report.append((st, ((1, 731), (3, 733), (4, -734))))
     chains = np.minimum(chains, sigma[73])
     # Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point(w.p_K2, w.p_K4, c["step74.along"], c["step74.across"])
+    st, _, w.p_K5 = link_point(w.p_K4, w.p_K2, c["step74.gsi"], c["step74.eta"])
+    report.append((st, ((1, 741),)))
     # Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v7 = link_residual(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v7, ), chains
@@ -2379,7 +2458,8 @@ def _group_2_v7_1(w, r, br, a, da, dda):
     report.append((st, ((1, 731), (3, 733), (4, -734))))
     chains = np.minimum(chains, sigma[73])
     # Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    _, _, w.p_K5 = link_point_1(w.p_K2, w.p_K4, c["step74.along"], c["step74.across"])
+    st, _, w.p_K5 = link_point_1(w.p_K4, w.p_K2, c["step74.gsi"], c["step74.eta"])
+    report.append((st, ((1, 741),)))
     # Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v7 = link_residual_1(p_J6, w.p_K5, w.l_left_coupler)
     return report, sigma, (w.f2_v7, ), chains
@@ -2409,7 +2489,8 @@ def _group_2_v8(w, r, br, a, da, dda):
     report.append((st, ((1, 771), (3, 773), (4, -774))))
     chains = np.minimum(chains, sigma[77])
     # Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
-    _, _, w.p_K4 = link_point(w.p_K5, w.p_K2, c["step78.along"], c["step78.across"])
+    st, _, w.p_K4 = link_point(w.p_K5, w.p_K2, c["step78.gsi"], c["step78.eta"])
+    report.append((st, ((1, 781),)))
     # Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v8 = link_residual(w.p_K3, w.p_K4, w.l_left_rocker2)
     return report, sigma, (w.f2_v8, ), chains
@@ -2439,7 +2520,8 @@ def _group_2_v8_1(w, r, br, a, da, dda):
     report.append((st, ((1, 771), (3, 773), (4, -774))))
     chains = np.minimum(chains, sigma[77])
     # Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
-    _, _, w.p_K4 = link_point_1(w.p_K5, w.p_K2, c["step78.along"], c["step78.across"])
+    st, _, w.p_K4 = link_point_1(w.p_K5, w.p_K2, c["step78.gsi"], c["step78.eta"])
+    report.append((st, ((1, 781),)))
     # Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f2_v8 = link_residual_1(w.p_K3, w.p_K4, w.l_left_rocker2)
     return report, sigma, (w.f2_v8, ), chains

@@ -310,7 +310,15 @@ function [st, res, w] = group_1(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(5));
     % Step 6: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    [w.p_J5, st] = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 63, -64);
+    end
     % Step 7: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -356,7 +364,15 @@ function [st, res, w] = group_1_v1(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(25));
     % Step 26: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    [w.p_J5, st] = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 263, -264);
+    end
     % Step 27: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -402,7 +418,15 @@ function [st, res, w] = group_1_v2(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(29));
     % Step 30: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    [w.p_J5, st] = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 303, -304);
+    end
     % Step 31: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -448,7 +472,15 @@ function [st, res, w] = group_1_v3(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(33));
     % Step 34: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    [w.p_J5, st] = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 343, -344);
+    end
     % Step 35: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -494,7 +526,15 @@ function [st, res, w] = group_1_v4(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(37));
     % Step 38: link_point, J5. link right_ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    [w.p_J5, st] = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 383, -384);
+    end
     % Step 39: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -540,7 +580,15 @@ function [st, res, w] = group_1_v5(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(41));
     % Step 42: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    [w.p_J5, st] = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 423, -424);
+    end
     % Step 43: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -586,7 +634,15 @@ function [st, res, w] = group_1_v6(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(45));
     % Step 46: link_point, J5. link right_ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    [w.p_J5, st] = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 463, -464);
+    end
     % Step 47: link_residual, right_coupler. J6 and J5 are both known, but link right_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(p_J6, w.p_J5, w.l_right_coupler);
     st = 0;
@@ -631,7 +687,15 @@ function [st, res, w] = group_2(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(11));
     % Step 12: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    [w.p_K5, st] = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 123, -124);
+    end
     % Step 13: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -682,7 +746,15 @@ function [st, res, w] = group_2_v1(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(49));
     % Step 50: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746);
+    [w.p_K5, st] = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 503, -504);
+    end
     % Step 51: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v1 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -733,7 +805,15 @@ function [st, res, w] = group_2_v2(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(53));
     % Step 54: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    [w.p_K5, st] = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 543, -544);
+    end
     % Step 55: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v2 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -784,7 +864,15 @@ function [st, res, w] = group_2_v3(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(57));
     % Step 58: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    [w.p_K5, st] = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 583, -584);
+    end
     % Step 59: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v3 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -835,7 +923,15 @@ function [st, res, w] = group_2_v4(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(61));
     % Step 62: link_point, K5. link left_ternary is placed (its pairs K4, K2 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K4, w.p_K2, 0.4343891402714932, 0.12217194570135746);
+    [w.p_K5, st] = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 623, -624);
+    end
     % Step 63: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v4 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -886,7 +982,15 @@ function [st, res, w] = group_2_v5(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(65));
     % Step 66: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746);
+    [w.p_K5, st] = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 663, -664);
+    end
     % Step 67: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v5 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -937,7 +1041,15 @@ function [st, res, w] = group_2_v6(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(69));
     % Step 70: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746);
+    [w.p_K5, st] = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 703, -704);
+    end
     % Step 71: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v6 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -983,7 +1095,15 @@ function [st, res, w] = group_2_v7(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(73));
     % Step 74: link_point, K5. link left_ternary is placed (its pairs K2, K4 are known), so K5 follows as a point of it
-    w.p_K5 = link_point(w.p_K2, w.p_K4, 0.5656108597285068, -0.12217194570135746);
+    [w.p_K5, st] = link_point(w.p_K4, w.p_K2, 45.662543438831435, 12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 743, -744);
+    end
     % Step 75: link_residual, left_coupler. J6 and K5 are both known, but link left_coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v7 = link_residual(p_J6, w.p_K5, w.l_left_coupler);
     st = 0;
@@ -1034,7 +1154,15 @@ function [st, res, w] = group_2_v8(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(77));
     % Step 78: link_point, K4. link left_ternary is placed (its pairs K5, K2 are known), so K4 follows as a point of it
-    w.p_K4 = link_point(w.p_K5, w.p_K2, -0.6891891891891891, -0.36486486486486486);
+    [w.p_K4, st] = link_point(w.p_K5, w.p_K2, -41.921741762866105, -22.193863286223234);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 783, -784);
+    end
     % Step 79: link_residual, left_rocker2. K3 and K4 are both known, but link left_rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f2_v8 = link_residual(w.p_K3, w.p_K4, w.l_left_rocker2);
     st = 0;
@@ -1501,26 +1629,50 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function jc = link_point(j1, j2, along, across)
-    % Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry).
+function [jc, st] = link_point(j1, j2, gsi, eta)
+    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
     dvx = j2.dx - j1.dx;
     dvy = j2.dy - j1.dy;
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
-    rx = along * dx - across * dy;
-    ry = along * dy + across * dx;
-    rvx = along * dvx - across * dvy;
-    rvy = along * dvy + across * dvx;
-    rax = along * dax - across * day;
-    ray = along * day + across * dax;
+    r2 = dx * dx + dy * dy;
+    if r2 == 0
+        ir = NaN;
+    else
+        ir = 1 / sqrt(r2);
+    end
+    ex = ir * dx;
+    ey = ir * dy;
+    rx = gsi * ex - eta * ey;
+    ry = gsi * ey + eta * ex;
+    ir2 = ir * ir;
+    om = (dx * dvy - dy * dvx) * ir2;
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
     jc.x = j1.x + rx;
     jc.y = j1.y + ry;
     jc.dx = j1.dx + rvx;
     jc.dy = j1.dy + rvy;
     jc.ddx = j1.ddx + rax;
     jc.ddy = j1.ddy + ray;
+    if st == 1
+        jc.x = NaN;
+        jc.y = NaN;
+        jc.dx = NaN;
+        jc.dy = NaN;
+        jc.ddx = NaN;
+        jc.ddy = NaN;
+    end
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
@@ -1645,7 +1797,7 @@ function f = link_residual(j1, j2, l)
         iv = 1 / s;
     end
     if r == 0
-        rd = s;
+        rd = sqrt(dvx * dvx + dvy * dvy);
     else
         rd = (dx * dvx + dy * dvy) * ir;
     end

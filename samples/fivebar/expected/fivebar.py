@@ -265,62 +265,58 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_A[0] + 36.0,
-            w.p_A[1] + 20.0,
-            w.p_A[2],
-            w.p_A[3],
-            w.p_A[4],
-            w.p_A[5],
-            w.p_P[0] + 36.0,
-            w.p_P[1] + 20.0,
-            w.p_P[2],
-            w.p_P[3],
-            w.p_P[4],
-            w.p_P[5],
-            w.p_B[0] + 36.0,
-            w.p_B[1] + 20.0,
-            w.p_B[2],
-            w.p_B[3],
-            w.p_B[4],
-            w.p_B[5],
-            60.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.phi_crank1[0],
-            w.phi_crank1[1],
-            w.phi_crank1[2],
-            w.phi_link1[0],
-            w.phi_link1[1],
-            w.phi_link1[2],
-            w.phi_link2[0],
-            w.phi_link2[1],
-            w.phi_link2[2],
-            w.phi_crank2[0],
-            w.phi_crank2[1],
-            w.phi_crank2[2],
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "O1.x": 0.0,
+            "O1.y": 0.0,
+            "O1.vx": 0.0,
+            "O1.vy": 0.0,
+            "O1.ax": 0.0,
+            "O1.ay": 0.0,
+            "A.x": w.p_A[0] + 36.0,
+            "A.y": w.p_A[1] + 20.0,
+            "A.vx": w.p_A[2],
+            "A.vy": w.p_A[3],
+            "A.ax": w.p_A[4],
+            "A.ay": w.p_A[5],
+            "P.x": w.p_P[0] + 36.0,
+            "P.y": w.p_P[1] + 20.0,
+            "P.vx": w.p_P[2],
+            "P.vy": w.p_P[3],
+            "P.ax": w.p_P[4],
+            "P.ay": w.p_P[5],
+            "B.x": w.p_B[0] + 36.0,
+            "B.y": w.p_B[1] + 20.0,
+            "B.vx": w.p_B[2],
+            "B.vy": w.p_B[3],
+            "B.ax": w.p_B[4],
+            "B.ay": w.p_B[5],
+            "O2.x": 60.0,
+            "O2.y": 0.0,
+            "O2.vx": 0.0,
+            "O2.vy": 0.0,
+            "O2.ax": 0.0,
+            "O2.ay": 0.0,
+            "frame.phi": 0.0,
+            "frame.omega": 0.0,
+            "frame.alpha": 0.0,
+            "crank1.phi": w.phi_crank1[0],
+            "crank1.omega": w.phi_crank1[1],
+            "crank1.alpha": w.phi_crank1[2],
+            "link1.phi": w.phi_link1[0],
+            "link1.omega": w.phi_link1[1],
+            "link1.alpha": w.phi_link1[2],
+            "link2.phi": w.phi_link2[0],
+            "link2.omega": w.phi_link2[1],
+            "link2.alpha": w.phi_link2[2],
+            "crank2.phi": w.phi_crank2[0],
+            "crank2.omega": w.phi_crank2[1],
+            "crank2.alpha": w.phi_crank2[2],
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -120,8 +120,8 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
-def link_point(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -130,13 +130,23 @@ def link_point(j1, j2, along, across):
     dvy = j2_dy - j1_dy
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    rax = along * dax - across * day
-    ray = along * day + across * dax
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    r2 = dx * dx + dy * dy
+    ir = NAN if r2 == 0 else 1 / sqrt(r2)
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -239,7 +249,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 33, -34)
 
     # Step 4: link_point, P. point P of link coupler
-    w.p_P = link_point(w.p_A, w.p_B, 0.9672131147540983, 0.36065573770491804)
+    st, w.p_P = link_point(w.p_B, w.p_A, 2.5607375986579193, -28.168113585237116)
+    if st == 1:
+        return 41
+    if st:
+        w.note(st, 43, -44)
 
     # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
     st, w.phi_crank = link_angle(p_O1, w.p_A, 0.0)
@@ -270,59 +284,55 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_A[0] + 44.0,
-            w.p_A[1] + 36.0,
-            w.p_A[2],
-            w.p_A[3],
-            w.p_A[4],
-            w.p_A[5],
-            w.p_B[0] + 44.0,
-            w.p_B[1] + 36.0,
-            w.p_B[2],
-            w.p_B[3],
-            w.p_B[4],
-            w.p_B[5],
-            90.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_P[0] + 44.0,
-            w.p_P[1] + 36.0,
-            w.p_P[2],
-            w.p_P[3],
-            w.p_P[4],
-            w.p_P[5],
-            0.0,
-            0.0,
-            0.0,
-            w.phi_crank[0],
-            w.phi_crank[1],
-            w.phi_crank[2],
-            w.phi_coupler[0],
-            w.phi_coupler[1],
-            w.phi_coupler[2],
-            w.phi_rocker[0],
-            w.phi_rocker[1],
-            w.phi_rocker[2],
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "O1.x": 0.0,
+            "O1.y": 0.0,
+            "O1.vx": 0.0,
+            "O1.vy": 0.0,
+            "O1.ax": 0.0,
+            "O1.ay": 0.0,
+            "A.x": w.p_A[0] + 44.0,
+            "A.y": w.p_A[1] + 36.0,
+            "A.vx": w.p_A[2],
+            "A.vy": w.p_A[3],
+            "A.ax": w.p_A[4],
+            "A.ay": w.p_A[5],
+            "B.x": w.p_B[0] + 44.0,
+            "B.y": w.p_B[1] + 36.0,
+            "B.vx": w.p_B[2],
+            "B.vy": w.p_B[3],
+            "B.ax": w.p_B[4],
+            "B.ay": w.p_B[5],
+            "O2.x": 90.0,
+            "O2.y": 0.0,
+            "O2.vx": 0.0,
+            "O2.vy": 0.0,
+            "O2.ax": 0.0,
+            "O2.ay": 0.0,
+            "P.x": w.p_P[0] + 44.0,
+            "P.y": w.p_P[1] + 36.0,
+            "P.vx": w.p_P[2],
+            "P.vy": w.p_P[3],
+            "P.ax": w.p_P[4],
+            "P.ay": w.p_P[5],
+            "frame.phi": 0.0,
+            "frame.omega": 0.0,
+            "frame.alpha": 0.0,
+            "crank.phi": w.phi_crank[0],
+            "crank.omega": w.phi_crank[1],
+            "crank.alpha": w.phi_crank[2],
+            "coupler.phi": w.phi_coupler[0],
+            "coupler.omega": w.phi_coupler[1],
+            "coupler.alpha": w.phi_coupler[2],
+            "rocker.phi": w.phi_rocker[0],
+            "rocker.omega": w.phi_rocker[1],
+            "rocker.alpha": w.phi_rocker[2],
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -12,6 +12,9 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
 static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
     const double t = theta->the + phi->the;
@@ -34,6 +37,9 @@ static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, co
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
+#if defined(__GNUC__)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
 static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -57,6 +63,9 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
 }
 
 /* Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi. */
+#if defined(__GNUC__)
+static inline void coupler_point(const POINT *j0, const ANGLE *phi, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+#endif
 static inline void coupler_point(const POINT *j0, const ANGLE *phi, double gsi, double eta, POINT *jc)
 {
     const double cp = cos(phi->the);
@@ -76,6 +85,9 @@ static inline void coupler_point(const POINT *j0, const ANGLE *phi, double gsi, 
 }
 
 /* RPR chain: a guide link turning about jg and a slider link turning about js slide along one line; (ag, bg) and (as, bs) are the pair's reference point seen from jg and js in the line's frame.  Gives the line angle psi, the displacement s and the pair's slider point jp. */
+#if defined(__GNUC__)
+static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out) __attribute__((always_inline));
+#endif
 static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out)
 {
     const double dx = js->P.x - jg->P.x;

@@ -253,62 +253,58 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            0.0,
-            50.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_A[0] + 12.0,
-            w.p_A[1] + 60.0,
-            w.p_A[2],
-            w.p_A[3],
-            w.p_A[4],
-            w.p_A[5],
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_S[0] + 12.0,
-            w.p_S[1] + 60.0,
-            w.p_S[2],
-            w.p_S[3],
-            w.p_S[4],
-            w.p_S[5],
-            w.p_P[0] + 12.0,
-            w.p_P[1] + 60.0,
-            w.p_P[2],
-            w.p_P[3],
-            w.p_P[4],
-            w.p_P[5],
-            -1.5707963267948966,
-            0.0,
-            0.0,
-            w.phi_crank[0],
-            w.phi_crank[1],
-            w.phi_crank[2],
-            w.psi_S[0],
-            w.psi_S[1],
-            w.psi_S[2],
-            w.psi_S[0],
-            w.psi_S[1],
-            w.psi_S[2],
-            w.s_S[0],
-            w.s_S[1],
-            w.s_S[2],
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "O1.x": 0.0,
+            "O1.y": 50.0,
+            "O1.vx": 0.0,
+            "O1.vy": 0.0,
+            "O1.ax": 0.0,
+            "O1.ay": 0.0,
+            "A.x": w.p_A[0] + 12.0,
+            "A.y": w.p_A[1] + 60.0,
+            "A.vx": w.p_A[2],
+            "A.vy": w.p_A[3],
+            "A.ax": w.p_A[4],
+            "A.ay": w.p_A[5],
+            "O2.x": 0.0,
+            "O2.y": 0.0,
+            "O2.vx": 0.0,
+            "O2.vy": 0.0,
+            "O2.ax": 0.0,
+            "O2.ay": 0.0,
+            "S.x": w.p_S[0] + 12.0,
+            "S.y": w.p_S[1] + 60.0,
+            "S.vx": w.p_S[2],
+            "S.vy": w.p_S[3],
+            "S.ax": w.p_S[4],
+            "S.ay": w.p_S[5],
+            "P.x": w.p_P[0] + 12.0,
+            "P.y": w.p_P[1] + 60.0,
+            "P.vx": w.p_P[2],
+            "P.vy": w.p_P[3],
+            "P.ax": w.p_P[4],
+            "P.ay": w.p_P[5],
+            "frame.phi": -1.5707963267948966,
+            "frame.omega": 0.0,
+            "frame.alpha": 0.0,
+            "crank.phi": w.phi_crank[0],
+            "crank.omega": w.phi_crank[1],
+            "crank.alpha": w.phi_crank[2],
+            "lever.phi": w.psi_S[0],
+            "lever.omega": w.psi_S[1],
+            "lever.alpha": w.psi_S[2],
+            "block.phi": w.psi_S[0],
+            "block.omega": w.psi_S[1],
+            "block.alpha": w.psi_S[2],
+            "S.s": w.s_S[0],
+            "S.ds": w.s_S[1],
+            "S.dds": w.s_S[2],
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -150,8 +150,8 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
-def link_point(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -160,13 +160,23 @@ def link_point(j1, j2, along, across):
     dvy = j2_dy - j1_dy
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    rax = along * dax - across * day
-    ray = along * day + across * dax
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    r2 = dx * dx + dy * dy
+    ir = NAN if r2 == 0 else 1 / sqrt(r2)
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -273,7 +283,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 33, -34)
 
     # Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
-    w.p_D = link_point(p_B, w.p_C, 0.06288866308556408, 0.9642163567880923)
+    st, w.p_D = link_point(p_B, w.p_C, 2.6098795180489716, 40.01497880667611)
+    if st == 1:
+        return 41
+    if st:
+        w.note(st, 43, -44)
 
     # Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
     st, w.sigma[5], w.p_E = RRR_links(w.p_A, p_B, l_rod_k, l_rocker_c, 1)
@@ -290,7 +304,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 63, -64)
 
     # Step 7: link_point, foot. point foot of link leg_ghi
-    w.p_foot = link_point(w.p_E, w.p_F, -0.21107885573739069, 1.3183591602277374)
+    st, w.p_foot = link_point(w.p_E, w.p_F, -7.746594005561121, 48.38378118035099)
+    if st == 1:
+        return 71
+    if st:
+        w.note(st, 73, -74)
 
     # Step 8: link_angle, crank. O and A of link crank are known, so its angle is known
     st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
@@ -349,89 +367,85 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_A[0] - 28.0,
-            w.p_A[1] - 32.0,
-            w.p_A[2],
-            w.p_A[3],
-            w.p_A[4],
-            w.p_A[5],
-            -38.0,
-            -7.8,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_C[0] - 28.0,
-            w.p_C[1] - 32.0,
-            w.p_C[2],
-            w.p_C[3],
-            w.p_C[4],
-            w.p_C[5],
-            w.p_D[0] - 28.0,
-            w.p_D[1] - 32.0,
-            w.p_D[2],
-            w.p_D[3],
-            w.p_D[4],
-            w.p_D[5],
-            w.p_E[0] - 28.0,
-            w.p_E[1] - 32.0,
-            w.p_E[2],
-            w.p_E[3],
-            w.p_E[4],
-            w.p_E[5],
-            w.p_F[0] - 28.0,
-            w.p_F[1] - 32.0,
-            w.p_F[2],
-            w.p_F[3],
-            w.p_F[4],
-            w.p_F[5],
-            w.p_foot[0] - 28.0,
-            w.p_foot[1] - 32.0,
-            w.p_foot[2],
-            w.p_foot[3],
-            w.p_foot[4],
-            w.p_foot[5],
-            -2.939141525082713,
-            0.0,
-            0.0,
-            w.phi_crank[0],
-            w.phi_crank[1],
-            w.phi_crank[2],
-            w.phi_rod_j[0],
-            w.phi_rod_j[1],
-            w.phi_rod_j[2],
-            w.phi_rod_k[0],
-            w.phi_rod_k[1],
-            w.phi_rod_k[2],
-            w.phi_triangle_bde[0],
-            w.phi_triangle_bde[1],
-            w.phi_triangle_bde[2],
-            w.phi_rocker_c[0],
-            w.phi_rocker_c[1],
-            w.phi_rocker_c[2],
-            w.phi_rod_f[0],
-            w.phi_rod_f[1],
-            w.phi_rod_f[2],
-            w.phi_leg_ghi[0],
-            w.phi_leg_ghi[1],
-            w.phi_leg_ghi[2],
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "O.x": 0.0,
+            "O.y": 0.0,
+            "O.vx": 0.0,
+            "O.vy": 0.0,
+            "O.ax": 0.0,
+            "O.ay": 0.0,
+            "A.x": w.p_A[0] - 28.0,
+            "A.y": w.p_A[1] - 32.0,
+            "A.vx": w.p_A[2],
+            "A.vy": w.p_A[3],
+            "A.ax": w.p_A[4],
+            "A.ay": w.p_A[5],
+            "B.x": -38.0,
+            "B.y": -7.8,
+            "B.vx": 0.0,
+            "B.vy": 0.0,
+            "B.ax": 0.0,
+            "B.ay": 0.0,
+            "C.x": w.p_C[0] - 28.0,
+            "C.y": w.p_C[1] - 32.0,
+            "C.vx": w.p_C[2],
+            "C.vy": w.p_C[3],
+            "C.ax": w.p_C[4],
+            "C.ay": w.p_C[5],
+            "D.x": w.p_D[0] - 28.0,
+            "D.y": w.p_D[1] - 32.0,
+            "D.vx": w.p_D[2],
+            "D.vy": w.p_D[3],
+            "D.ax": w.p_D[4],
+            "D.ay": w.p_D[5],
+            "E.x": w.p_E[0] - 28.0,
+            "E.y": w.p_E[1] - 32.0,
+            "E.vx": w.p_E[2],
+            "E.vy": w.p_E[3],
+            "E.ax": w.p_E[4],
+            "E.ay": w.p_E[5],
+            "F.x": w.p_F[0] - 28.0,
+            "F.y": w.p_F[1] - 32.0,
+            "F.vx": w.p_F[2],
+            "F.vy": w.p_F[3],
+            "F.ax": w.p_F[4],
+            "F.ay": w.p_F[5],
+            "foot.x": w.p_foot[0] - 28.0,
+            "foot.y": w.p_foot[1] - 32.0,
+            "foot.vx": w.p_foot[2],
+            "foot.vy": w.p_foot[3],
+            "foot.ax": w.p_foot[4],
+            "foot.ay": w.p_foot[5],
+            "frame.phi": -2.939141525082713,
+            "frame.omega": 0.0,
+            "frame.alpha": 0.0,
+            "crank.phi": w.phi_crank[0],
+            "crank.omega": w.phi_crank[1],
+            "crank.alpha": w.phi_crank[2],
+            "rod_j.phi": w.phi_rod_j[0],
+            "rod_j.omega": w.phi_rod_j[1],
+            "rod_j.alpha": w.phi_rod_j[2],
+            "rod_k.phi": w.phi_rod_k[0],
+            "rod_k.omega": w.phi_rod_k[1],
+            "rod_k.alpha": w.phi_rod_k[2],
+            "triangle_bde.phi": w.phi_triangle_bde[0],
+            "triangle_bde.omega": w.phi_triangle_bde[1],
+            "triangle_bde.alpha": w.phi_triangle_bde[2],
+            "rocker_c.phi": w.phi_rocker_c[0],
+            "rocker_c.omega": w.phi_rocker_c[1],
+            "rocker_c.alpha": w.phi_rocker_c[2],
+            "rod_f.phi": w.phi_rod_f[0],
+            "rod_f.omega": w.phi_rod_f[1],
+            "rod_f.alpha": w.phi_rod_f[2],
+            "leg_ghi.phi": w.phi_leg_ghi[0],
+            "leg_ghi.omega": w.phi_leg_ghi[1],
+            "leg_ghi.alpha": w.phi_leg_ghi[2],
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -130,10 +130,10 @@ PARAMS = {  # design parameter -> its value in the sketch
     "l_rod_f": 39.39999999995135,  # length rod_f:D-F
     "l_leg_ghi": 36.69999999999471,  # length leg_ghi:F-E
     "step2.l": 15.0,  # step 2: crank_input of A
-    "step4.along": 0.06288866308556408,  # step 4: link_point of D
-    "step4.across": 0.9642163567880923,  # step 4: link_point of D
-    "step7.along": -0.21107885573739069,  # step 7: link_point of foot
-    "step7.across": 1.3183591602277374,  # step 7: link_point of foot
+    "step4.gsi": 2.6098795180489716,  # step 4: link_point of D
+    "step4.eta": 40.01497880667611,  # step 4: link_point of D
+    "step7.gsi": -7.746594005561121,  # step 7: link_point of foot
+    "step7.eta": 48.38378118035099,  # step 7: link_point of foot
     "step8.off": 0.0,  # step 8: link_angle of crank
     "step9.off": 0.0,  # step 9: link_angle of rod_j
     "step10.off": 0.0,  # step 10: link_angle of rod_k
@@ -226,8 +226,8 @@ def link_angle(j1, j2, off):
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def link_point(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -236,15 +236,41 @@ def link_point(j1, j2, along, across):
     dvy = j2_dy - j1_dy
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    rax = along * dax - across * day
-    ray = along * day + across * dax
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
+    r2 = dx * dx + dy * dy
+    _c1 = np.asarray(r2 == 0)
+    if not _c1.any():
+        ir = 1 / np.sqrt(r2)
+    elif _c1.all():
+        ir = NAN
+    else:
+        ir = np.where(_c1, NAN, 1 / np.sqrt(r2))
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    _t1 = om * om
+    rax = -al * ry - _t1 * rx
+    ray = al * rx - _t1 * ry
+    _c2 = np.asarray(r2 == 0)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    if np.any(_singular):  # nan where the rows failed
+        _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]), np.where(_singular, np.nan, _jc[4]), np.where(_singular, np.nan, _jc[5]))
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -579,7 +605,8 @@ def _run(x, dx, ddx, c):
     st, sigma[3], w.p_C = RRR_links(w.p_A, w.p_B, w.l_rod_j, w.l_triangle_bde_C_B, -1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
-    _, _, w.p_D = link_point(w.p_B, w.p_C, c["step4.along"], c["step4.across"])
+    st, _, w.p_D = link_point(w.p_B, w.p_C, c["step4.gsi"], c["step4.eta"])
+    report.append((st, ((1, 41),)))
     # Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
     st, sigma[5], w.p_E = RRR_links(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1)
     report.append((st, ((1, 51), (3, 53), (4, -54))))
@@ -587,7 +614,8 @@ def _run(x, dx, ddx, c):
     st, sigma[6], w.p_F = RRR_links(w.p_D, w.p_E, w.l_rod_f, w.l_leg_ghi, -1)
     report.append((st, ((1, 61), (3, 63), (4, -64))))
     # Step 7: link_point, foot. point foot of link leg_ghi
-    _, _, w.p_foot = link_point(w.p_E, w.p_F, c["step7.along"], c["step7.across"])
+    st, _, w.p_foot = link_point(w.p_E, w.p_F, c["step7.gsi"], c["step7.eta"])
+    report.append((st, ((1, 71),)))
     # Step 8: link_angle, crank. O and A of link crank are known, so its angle is known
     st, _, w.phi_crank = link_angle(w.p_O, w.p_A, c["step8.off"])
     report.append((st, ((1, 81),)))

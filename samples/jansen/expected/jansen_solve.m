@@ -93,7 +93,12 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 33, -34);
 
     % Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
-    w.p_D = link_point(w.p_B, w.p_C, 0.06288866308556408, 0.9642163567880923);
+    [w.p_D, st] = link_point(w.p_B, w.p_C, 2.6098795180489716, 40.01497880667611);
+    if st == 1
+        status = 41;
+        return;
+    end
+    w = note(w, st, 43, -44);
 
     % Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
     [w.p_E, st, w.sigma(5)] = RRR_links(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1);
@@ -112,7 +117,12 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 63, -64);
 
     % Step 7: link_point, foot. point foot of link leg_ghi
-    w.p_foot = link_point(w.p_E, w.p_F, -0.21107885573739069, 1.3183591602277374);
+    [w.p_foot, st] = link_point(w.p_E, w.p_F, -7.746594005561121, 48.38378118035099);
+    if st == 1
+        status = 71;
+        return;
+    end
+    w = note(w, st, 73, -74);
 
     % Step 8: link_angle, crank. O and A of link crank are known, so its angle is known
     [w.phi_crank, st] = link_angle(w.p_O, w.p_A, 0.0);
@@ -443,26 +453,50 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function jc = link_point(j1, j2, along, across)
-    % Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry).
+function [jc, st] = link_point(j1, j2, gsi, eta)
+    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
     dvx = j2.dx - j1.dx;
     dvy = j2.dy - j1.dy;
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
-    rx = along * dx - across * dy;
-    ry = along * dy + across * dx;
-    rvx = along * dvx - across * dvy;
-    rvy = along * dvy + across * dvx;
-    rax = along * dax - across * day;
-    ray = along * day + across * dax;
+    r2 = dx * dx + dy * dy;
+    if r2 == 0
+        ir = NaN;
+    else
+        ir = 1 / sqrt(r2);
+    end
+    ex = ir * dx;
+    ey = ir * dy;
+    rx = gsi * ex - eta * ey;
+    ry = gsi * ey + eta * ex;
+    ir2 = ir * ir;
+    om = (dx * dvy - dy * dvx) * ir2;
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
     jc.x = j1.x + rx;
     jc.y = j1.y + ry;
     jc.dx = j1.dx + rvx;
     jc.dy = j1.dy + rvy;
     jc.ddx = j1.ddx + rax;
     jc.ddy = j1.ddy + ray;
+    if st == 1
+        jc.x = NaN;
+        jc.y = NaN;
+        jc.dx = NaN;
+        jc.dy = NaN;
+        jc.ddx = NaN;
+        jc.ddy = NaN;
+    end
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)

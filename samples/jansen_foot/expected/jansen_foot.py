@@ -78,19 +78,28 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN)
     return st, (th, om)
 
-def link_point(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy = j1
     j2_x, j2_y, j2_dx, j2_dy = j2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
     dvx = j2_dx - j1_dx
     dvy = j2_dy - j1_dy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy)
+    r2 = dx * dx + dy * dy
+    ir = NAN if r2 == 0 else 1 / sqrt(r2)
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -191,7 +200,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 33, -34)
 
     # Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
-    w.p_D = link_point(p_B, w.p_C, 0.06288866308556408, 0.9642163567880923)
+    st, w.p_D = link_point(p_B, w.p_C, 2.6098795180489716, 40.01497880667611)
+    if st == 1:
+        return 41
+    if st:
+        w.note(st, 43, -44)
 
     # Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
     st, w.sigma[5], w.p_E = RRR_links(w.p_A, p_B, l_rod_k, l_rocker_c, 1)
@@ -208,7 +221,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 63, -64)
 
     # Step 7: link_point, foot. point foot of link leg_ghi
-    w.p_foot = link_point(w.p_E, w.p_F, -0.21107885573739069, 1.3183591602277374)
+    st, w.p_foot = link_point(w.p_E, w.p_F, -7.746594005561121, 48.38378118035099)
+    if st == 1:
+        return 71
+    if st:
+        w.note(st, 73, -74)
 
     # Step 8: link_angle, crank. O and A of link crank are known, so its angle is known
     st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
@@ -225,23 +242,19 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            w.p_foot[0] - 28.0,
-            w.p_foot[1] - 32.0,
-            w.p_foot[2],
-            w.p_foot[3],
-            w.phi_crank[0],
-            w.phi_crank[1],
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "foot.x": w.p_foot[0] - 28.0,
+            "foot.y": w.p_foot[1] - 32.0,
+            "foot.vx": w.p_foot[2],
+            "foot.vy": w.p_foot[3],
+            "crank.phi": w.phi_crank[0],
+            "crank.omega": w.phi_crank[1],
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

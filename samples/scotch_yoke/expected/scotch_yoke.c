@@ -12,6 +12,9 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
 static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
     const double t = theta->the + phi->the;
@@ -34,6 +37,9 @@ static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, co
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
+#if defined(__GNUC__)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
 static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -57,6 +63,9 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
 }
 
 /* Angle of a link that keeps a constant angle off to a known angle phi. */
+#if defined(__GNUC__)
+static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
 static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle)
 {
     const double th0 = phi->the + off;
@@ -67,6 +76,9 @@ static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle)
 }
 
 /* PPR chain: link b slides on the guide line (pg, psig) and shares a second prismatic pair, of axis psig + cx, with link a turning about jr.  (xa, ya): the pair's reference point on a from jr; (xb, yb): on b from b's slider point; both in the guide's frame.  sgn is +1 when a is the slider of the second pair.  Gives s1, jp1 on the guide and sx, jpx of the second pair. */
+#if defined(__GNUC__)
+static inline int PPR_links(const POINT *jr, const POINT *pg, const ANGLE *psig, double xa, double ya, double xb, double yb, double cx, int sgn, VARIABLE *s1, POINT *jp1, VARIABLE *sx, POINT *jpx, double *sigma_out) __attribute__((always_inline));
+#endif
 static inline int PPR_links(const POINT *jr, const POINT *pg, const ANGLE *psig, double xa, double ya, double xb, double yb, double cx, int sgn, VARIABLE *s1, POINT *jp1, VARIABLE *sx, POINT *jpx, double *sigma_out)
 {
     const double cg = cos(psig->the);

@@ -260,59 +260,55 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_A[0] + 40.0,
-            w.p_A[1] + 12.0,
-            w.p_A[2],
-            w.p_A[3],
-            w.p_A[4],
-            w.p_A[5],
-            w.p_P[0] + 40.0,
-            w.p_P[1] + 12.0,
-            w.p_P[2],
-            w.p_P[3],
-            w.p_P[4],
-            w.p_P[5],
-            w.p_Q[0] + 40.0,
-            w.p_Q[1] + 12.0,
-            w.p_Q[2],
-            w.p_Q[3],
-            w.p_Q[4],
-            w.p_Q[5],
-            0.0,
-            0.0,
-            0.0,
-            w.phi_crank[0],
-            w.phi_crank[1],
-            w.phi_crank[2],
-            w.phi_yoke[0],
-            w.phi_yoke[1],
-            w.phi_yoke[2],
-            w.phi_block[0],
-            w.phi_block[1],
-            w.phi_block[2],
-            w.s_P[0],
-            w.s_P[1],
-            w.s_P[2],
-            w.s_Q[0],
-            w.s_Q[1],
-            w.s_Q[2],
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "O.x": 0.0,
+            "O.y": 0.0,
+            "O.vx": 0.0,
+            "O.vy": 0.0,
+            "O.ax": 0.0,
+            "O.ay": 0.0,
+            "A.x": w.p_A[0] + 40.0,
+            "A.y": w.p_A[1] + 12.0,
+            "A.vx": w.p_A[2],
+            "A.vy": w.p_A[3],
+            "A.ax": w.p_A[4],
+            "A.ay": w.p_A[5],
+            "P.x": w.p_P[0] + 40.0,
+            "P.y": w.p_P[1] + 12.0,
+            "P.vx": w.p_P[2],
+            "P.vy": w.p_P[3],
+            "P.ax": w.p_P[4],
+            "P.ay": w.p_P[5],
+            "Q.x": w.p_Q[0] + 40.0,
+            "Q.y": w.p_Q[1] + 12.0,
+            "Q.vx": w.p_Q[2],
+            "Q.vy": w.p_Q[3],
+            "Q.ax": w.p_Q[4],
+            "Q.ay": w.p_Q[5],
+            "frame.phi": 0.0,
+            "frame.omega": 0.0,
+            "frame.alpha": 0.0,
+            "crank.phi": w.phi_crank[0],
+            "crank.omega": w.phi_crank[1],
+            "crank.alpha": w.phi_crank[2],
+            "yoke.phi": w.phi_yoke[0],
+            "yoke.omega": w.phi_yoke[1],
+            "yoke.alpha": w.phi_yoke[2],
+            "block.phi": w.phi_block[0],
+            "block.omega": w.phi_block[1],
+            "block.alpha": w.phi_block[2],
+            "P.s": w.s_P[0],
+            "P.ds": w.s_P[1],
+            "P.dds": w.s_P[2],
+            "Q.s": w.s_Q[0],
+            "Q.ds": w.s_Q[1],
+            "Q.dds": w.s_Q[2],
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -17,6 +17,9 @@ typedef struct { double v, dv, ddv; } VARIABLE;
 #define LINKGEN_NINPUTS 1
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
 static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
     const double t = theta->the + phi->the;
@@ -39,6 +42,9 @@ static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, co
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
+#if defined(__GNUC__)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
 static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -61,8 +67,11 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
-static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
+#if defined(__GNUC__)
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+#endif
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -70,21 +79,34 @@ static inline void link_point(const POINT *j1, const POINT *j2, double along, do
     const double dvy = j2->DP.y - j1->DP.y;
     const double dax = j2->DDP.x - j1->DDP.x;
     const double day = j2->DDP.y - j1->DDP.y;
-    const double rx = along * dx - across * dy;
-    const double ry = along * dy + across * dx;
-    const double rvx = along * dvx - across * dvy;
-    const double rvy = along * dvy + across * dvx;
-    const double rax = along * dax - across * day;
-    const double ray = along * day + across * dax;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = ir * ir;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    const int st = r2 == 0 ? 1 : 0;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
     jc->DP.y = j1->DP.y + rvy;
     jc->DDP.x = j1->DDP.x + rax;
     jc->DDP.y = j1->DDP.y + ray;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; }
+    return st;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
+#if defined(__GNUC__)
+static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+#endif
 static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -141,6 +163,9 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
 }
 
 /* Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part). */
+#if defined(__GNUC__)
+static inline void link_residual(const POINT *j1, const POINT *j2, const VARIABLE *l, VARIABLE *f) __attribute__((always_inline));
+#endif
 static inline void link_residual(const POINT *j1, const POINT *j2, const VARIABLE *l, VARIABLE *f)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -153,7 +178,7 @@ static inline void link_residual(const POINT *j1, const POINT *j2, const VARIABL
     const double ir = r == 0 ? NAN : 1 / r;
     const double s = sqrt(dvx * dvx + dvy * dvy);
     const double iv = s == 0 ? NAN : 1 / s;
-    const double rd = r == 0 ? s : (dx * dvx + dy * dvy) * ir;
+    const double rd = r == 0 ? sqrt(dvx * dvx + dvy * dvy) : (dx * dvx + dy * dvy) * ir;
     const double rp = s == 0 ? sqrt(dax * dax + day * day) : (dvx * dax + dvy * day) * iv;
     const double rdd = r == 0 ? rp : (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir;
     f->v = r - l->v;
@@ -173,7 +198,8 @@ static int reason_of(int code)
  * the paper's, or fixed-point iteration with the slope of the row's start), then exact rates.
  * group(ctx, a, da, dda, live, f, df, ddf) runs the steps of one resolver group with the
  * Add-link lengths a, their rates da and accelerations dda, and writes the residuals f and
- * their rates df and accelerations ddf (those of the program's order); live == 0 zeroes
+ * their rates df and accelerations ddf (those of the program's order; a null ddf asks for no
+ * accelerations: the passes that measure residuals and the Jacobian); live == 0 zeroes
  * the rates of everything the group reads, so a unit Add-link rate gives one exact
  * Jacobian column through the velocity channel.  Returns 1 when a chain cannot close. */
 typedef int (*group_fn)(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
@@ -222,6 +248,10 @@ static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b
     double a[LINKGEN_NMAX][LINKGEN_NMAX + 1];
     double det = 1.0;
     int r, c, j;
+    if (n == 1) {  /* one Add-link: the same operations as below, without the copies */
+        x[0] = m[0][0] == 0.0 ? NAN : b[0] / m[0][0];
+        return m[0][0];
+    }
     for (r = 0; r < n; r++) {
         for (c = 0; c < n; c++) a[r][c] = m[r][c];
         a[r][n] = b[r];
@@ -254,12 +284,12 @@ static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b
 /* Residuals and Jacobian at a, one pass per Add-link; returns 1 when a chain cannot close. */
 static int jacobian(group_fn group, void *ctx, int n, const double a[], double f[], double jac[][LINKGEN_NMAX])
 {
-    double unit[LINKGEN_NMAX], zero[LINKGEN_NMAX], res[LINKGEN_NMAX], dres[LINKGEN_NMAX], ddres[LINKGEN_NMAX];
+    double unit[LINKGEN_NMAX], zero[LINKGEN_NMAX], res[LINKGEN_NMAX], dres[LINKGEN_NMAX];
     int i, j;
     for (i = 0; i < LINKGEN_NMAX; i++) unit[i] = zero[i] = 0.0;
     for (j = 0; j < n; j++) {
         unit[j] = 1.0;
-        if (group(ctx, a, unit, zero, 0, res, dres, ddres)) return 1;
+        if (group(ctx, a, unit, zero, 0, res, dres, NULL)) return 1;
         unit[j] = 0.0;
         for (i = 0; i < n; i++) { f[i] = res[i]; jac[i][j] = dres[i]; }
     }
@@ -276,7 +306,7 @@ static double conditioning(int n, const double jac[][LINKGEN_NMAX], double det)
         for (i = 0; i < n; i++) s += jac[i][j] * jac[i][j];
         prod *= sqrt(s);
     }
-    return fabs(det) / fmax(prod, 1.0);
+    return fabs(det) / (prod > 1.0 ? prod : 1.0);
 }
 
 /* Whether every residual is at most tol (a nan fails every comparison). */
@@ -339,10 +369,10 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
 /* The residuals f at a, one pass; returns 1 when a chain cannot close. */
 static int residuals(group_fn group, void *ctx, const double a[], double f[])
 {
-    double zero[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX];
+    double zero[LINKGEN_NMAX], df[LINKGEN_NMAX];
     int i;
     for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = 0.0;
-    return group(ctx, a, zero, zero, 0, f, df, ddf);
+    return group(ctx, a, zero, zero, 0, f, df, NULL);
 }
 
 /* The largest residual in size; nan where one is nan. */
@@ -427,7 +457,7 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
     double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], det;
     int i;
     for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
-    group(ctx, a, zero, zero, 1, f, df, ddf);
+    group(ctx, a, zero, zero, 1, f, df, NULL);
     for (i = 0; i < n; i++) rhs[i] = -df[i];
     det = solve_linear(n, jac, rhs, rates);
     if (order >= 2) {
@@ -557,7 +587,10 @@ static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKG
     double move = 0.0, share = p->path_share;
     int g, i;
     for (g = 0; g < LINKGEN_NBLOCKS; g++) {
-        for (i = 0; i < sizes[g]; i++) move = fmax(move, fabs(guess[g][i] - prev[g][i]));
+        for (i = 0; i < sizes[g]; i++) {
+            const double d = fabs(guess[g][i] - prev[g][i]);
+            if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
+        }
         if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
     }
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
@@ -577,16 +610,15 @@ static int within(const double in[], const double last[], const double limits[])
 
 /* Block states a moved by step along their rates into out.  An Add-link length is a
  * distance: where its prediction passes zero the two pairs pass each other, so it is
- * reflected. */
+ * reflected.  The entries past a block's lengths (branches, orientation) have no rates:
+ * they are copied. */
 static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_NMAX], double step,
                     const int sizes[], double out[][LINKGEN_NMAX])
 {
     int g, i;
+    memcpy(out, a, sizeof(double[LINKGEN_NBLOCKS][LINKGEN_NMAX]));
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < LINKGEN_NMAX; i++) {
-            out[g][i] = a[g][i] + step * rate[g][i];
-            if (i < sizes[g]) out[g][i] = fabs(out[g][i]);
-        }
+        for (i = 0; i < sizes[g]; i++) out[g][i] = fabs(a[g][i] + step * rate[g][i]);
 }
 
 /* How far inputs in lie from the warm row's along its input rates, in time (0 without rates). */
@@ -654,7 +686,8 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
         if (passes++ == p->walk_passes) return 0;
         fast = 0.0;
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < m->sizes[g]; i++) fast = fmax(fast, fabs(rate[g][i]));
+            for (i = 0; i < m->sizes[g]; i++)
+                if (fabs(rate[g][i]) > fast) fast = fabs(rate[g][i]);
         if (fast * h > reach) h = reach / fast;
         tt = fmin(1.0, t + h);
         if (tt == t) return 0;
@@ -784,6 +817,103 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     return code;
 }
 
+/* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
+#if defined(__GNUC__)
+static inline int RRR_links_1(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+#endif
+static inline int RRR_links_1(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double q = sqrt(dx * dx + dy * dy);
+    const double iq = q == 0 ? NAN : 1 / q;
+    const double ux = dx * iq;
+    const double uy = dy * iq;
+    const double hi = (l2->v > l1->v ? l2->v : l1->v);
+    const double lo = (l2->v < l1->v ? l2->v : l1->v);
+    const double x = (q > hi ? q : hi);
+    const double z = (q < lo ? q : lo);
+    const double y = q >= hi ? hi : q <= lo ? lo : q;
+    const double k = z - (x - y);
+    const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
+    const double kk = (0.0 > k ? 0.0 : k);
+    const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
+    const double h = area4 * iq / 2;
+    const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double flat = q >= hi ? (l1->v + (q - l2->v)) / 2 : l1->v >= l2->v ? (l1->v + (q + l2->v)) / 2 : (q - (l1->v + l2->v)) / 2;
+    const double at = k > 0 ? a : flat;
+    const double hn = minv * h;
+    const double e1x = at * ux - hn * uy;
+    const double e1y = at * uy + hn * ux;
+    const double ratio = fail ? 0 : area4 * (0.5 / (l1->v * l2->v));
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
+    const double e2x = -a2 * ux - hn * uy;
+    const double e2y = -a2 * uy + hn * ux;
+    const double ihq = hn == 0 ? NAN : 1 / (hn * q);
+    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
+    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
+    const double buv = (r1v - r2v) * iq;
+    const double bnv = (a2 * r1v + a * r2v) * ihq;
+    const double bvx = buv * ux - bnv * uy;
+    const double bvy = buv * uy + bnv * ux;
+    const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    jb->P.x = j1->P.x + e1x;
+    jb->P.y = j1->P.y + e1y;
+    jb->DP.x = bvx;
+    jb->DP.y = bvy;
+    *sigma_out = sigma;
+    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; }
+    if (st == 1 || st == 3) { jb->DP.x = NAN; jb->DP.y = NAN; }
+    return st;
+}
+
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
+#if defined(__GNUC__)
+static inline int link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+#endif
+static inline int link_point_1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = ir * ir;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const int st = r2 == 0 ? 1 : 0;
+    jc->P.x = j1->P.x + rx;
+    jc->P.y = j1->P.y + ry;
+    jc->DP.x = j1->DP.x + rvx;
+    jc->DP.y = j1->DP.y + rvy;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; }
+    return st;
+}
+
+/* Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part). */
+#if defined(__GNUC__)
+static inline void link_residual_1(const POINT *j1, const POINT *j2, const VARIABLE *l, VARIABLE *f) __attribute__((always_inline));
+#endif
+static inline void link_residual_1(const POINT *j1, const POINT *j2, const VARIABLE *l, VARIABLE *f)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double r = sqrt(dx * dx + dy * dy);
+    const double ir = r == 0 ? NAN : 1 / r;
+    const double rd = r == 0 ? sqrt(dvx * dvx + dvy * dvy) : (dx * dvx + dy * dvy) * ir;
+    f->v = r - l->v;
+    f->dv = rd - l->dv;
+}
+
 
 static const double SKETCH_IN[LINKGEN_NINPUTS] = { 1.5707963267948966 };
 static const double SKETCH_A[LINKGEN_NBLOCKS][LINKGEN_NMAX] = { {168.67127793433, -1.0, 1.0, 0.0}, {67.08203932499369, -1.0, 1.0, 0.0}, {123.4908903522847, -1.0, 1.0, 0.0}, {122.06555615733703, 1.0, 1.0, 0.0}, {60.8276253029822, -1.0, 1.0, 0.0}, {165.6804152578089, -1.0, 1.0, 0.0}, {89.44271909999159, 1.0, 1.0, 0.0}, {100.0, 1.0, 1.0, 0.0}, {120.0, 1.0, 1.0, 0.0} };
@@ -882,7 +1012,8 @@ static const VARIABLE ZERO_LENGTH = { 0.0, 0.0, 0.0 };
 
 /* Steps 4, 5, 6, 7, iterated by the resolver of step 8:
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -898,18 +1029,37 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
     w->add1.dv = da[0];
     w->add1.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J3, &p_J6, &l_rocker2, &w->add1, w->br4, &w->p_J4, &w->sigma[4]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 43, -44);
+        if (w->sigma[4] < w->chains) w->chains = w->sigma[4];
+        st = RRR_links_1(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br5, &w->p_J2, &w->sigma[5]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 53, -54);
+        if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 63, -64);
+        link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1);
+        f[0] = w->f1.v;
+        df[0] = w->f1.dv;
+        return 0;
+    }
     /* Step 4: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J6 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J3, &p_J6, &l_rocker2, &w->add1, w->br4, &w->p_J4, &w->sigma[4]);
     if (st == 1) return 1;
     if (live) note(w, st, 43, -44);
-    w->chains = fmin(w->chains, w->sigma[4]);
+    if (w->sigma[4] < w->chains) w->chains = w->sigma[4];
     /* Step 5: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br5, &w->p_J2, &w->sigma[5]);
     if (st == 1) return 1;
     if (live) note(w, st, 53, -54);
-    w->chains = fmin(w->chains, w->sigma[5]);
+    if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
     /* Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 63, -64);
     /* Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1);
     f[0] = w->f1.v;
@@ -921,7 +1071,8 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
 
 /* Steps 14, 15, 16, 17, iterated by the resolver of step 8   (fallback 1: the Add-link J6-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v1(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -937,18 +1088,37 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
     w->add1_v1.dv = da[0];
     w->add1_v1.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J1, &p_J6, &l_rocker1, &w->add1_v1, w->br14, &w->p_J2, &w->sigma[14]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 143, -144);
+        if (w->sigma[14] < w->chains) w->chains = w->sigma[14];
+        st = RRR_links_1(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br15, &w->p_J4, &w->sigma[15]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 153, -154);
+        if (w->sigma[15] < w->chains) w->chains = w->sigma[15];
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 163, -164);
+        link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v1);
+        f[0] = w->f1_v1.v;
+        df[0] = w->f1_v1.dv;
+        return 0;
+    }
     /* Step 14: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J6 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &p_J6, &l_rocker1, &w->add1_v1, w->br14, &w->p_J2, &w->sigma[14]);
     if (st == 1) return 1;
     if (live) note(w, st, 143, -144);
-    w->chains = fmin(w->chains, w->sigma[14]);
+    if (w->sigma[14] < w->chains) w->chains = w->sigma[14];
     /* Step 15: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br15, &w->p_J4, &w->sigma[15]);
     if (st == 1) return 1;
     if (live) note(w, st, 153, -154);
-    w->chains = fmin(w->chains, w->sigma[15]);
+    if (w->sigma[15] < w->chains) w->chains = w->sigma[15];
     /* Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 163, -164);
     /* Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v1);
     f[0] = w->f1_v1.v;
@@ -960,7 +1130,8 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 18, 19, 20, 21, iterated by the resolver of step 8   (fallback 2: the Add-link J1-J4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v2(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -976,18 +1147,37 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
     w->add1_v2.dv = da[0];
     w->add1_v2.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J3, &p_J1, &l_rocker2, &w->add1_v2, w->br18, &w->p_J4, &w->sigma[18]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 183, -184);
+        if (w->sigma[18] < w->chains) w->chains = w->sigma[18];
+        st = RRR_links_1(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br19, &w->p_J2, &w->sigma[19]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 193, -194);
+        if (w->sigma[19] < w->chains) w->chains = w->sigma[19];
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 203, -204);
+        link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v2);
+        f[0] = w->f1_v2.v;
+        df[0] = w->f1_v2.dv;
+        return 0;
+    }
     /* Step 18: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J1 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J3, &p_J1, &l_rocker2, &w->add1_v2, w->br18, &w->p_J4, &w->sigma[18]);
     if (st == 1) return 1;
     if (live) note(w, st, 183, -184);
-    w->chains = fmin(w->chains, w->sigma[18]);
+    if (w->sigma[18] < w->chains) w->chains = w->sigma[18];
     /* Step 19: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br19, &w->p_J2, &w->sigma[19]);
     if (st == 1) return 1;
     if (live) note(w, st, 193, -194);
-    w->chains = fmin(w->chains, w->sigma[19]);
+    if (w->sigma[19] < w->chains) w->chains = w->sigma[19];
     /* Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 203, -204);
     /* Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v2);
     f[0] = w->f1_v2.v;
@@ -999,7 +1189,8 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 22, 23, 24, 25, iterated by the resolver of step 8   (fallback 3: the Add-link J3-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v3(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1015,18 +1206,37 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
     w->add1_v3.dv = da[0];
     w->add1_v3.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J1, &p_J3, &l_rocker1, &w->add1_v3, w->br22, &w->p_J2, &w->sigma[22]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 223, -224);
+        if (w->sigma[22] < w->chains) w->chains = w->sigma[22];
+        st = RRR_links_1(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br23, &w->p_J4, &w->sigma[23]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 233, -234);
+        if (w->sigma[23] < w->chains) w->chains = w->sigma[23];
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 243, -244);
+        link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v3);
+        f[0] = w->f1_v3.v;
+        df[0] = w->f1_v3.dv;
+        return 0;
+    }
     /* Step 22: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J3 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &p_J3, &l_rocker1, &w->add1_v3, w->br22, &w->p_J2, &w->sigma[22]);
     if (st == 1) return 1;
     if (live) note(w, st, 223, -224);
-    w->chains = fmin(w->chains, w->sigma[22]);
+    if (w->sigma[22] < w->chains) w->chains = w->sigma[22];
     /* Step 23: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br23, &w->p_J4, &w->sigma[23]);
     if (st == 1) return 1;
     if (live) note(w, st, 233, -234);
-    w->chains = fmin(w->chains, w->sigma[23]);
+    if (w->sigma[23] < w->chains) w->chains = w->sigma[23];
     /* Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 243, -244);
     /* Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v3);
     f[0] = w->f1_v3.v;
@@ -1038,7 +1248,8 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 26, 27, 28, 29, iterated by the resolver of step 8   (fallback 4: the Add-link J7-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v4(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1054,18 +1265,37 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
     w->add1_v4.dv = da[0];
     w->add1_v4.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J1, &p_J7, &l_rocker1, &w->add1_v4, w->br26, &w->p_J2, &w->sigma[26]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 263, -264);
+        if (w->sigma[26] < w->chains) w->chains = w->sigma[26];
+        st = RRR_links_1(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br27, &w->p_J4, &w->sigma[27]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 273, -274);
+        if (w->sigma[27] < w->chains) w->chains = w->sigma[27];
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 283, -284);
+        link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v4);
+        f[0] = w->f1_v4.v;
+        df[0] = w->f1_v4.dv;
+        return 0;
+    }
     /* Step 26: RRR_links, J2 (branch -1). J2 is joined to the known J1 by rocker1 and to the known J7 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &p_J7, &l_rocker1, &w->add1_v4, w->br26, &w->p_J2, &w->sigma[26]);
     if (st == 1) return 1;
     if (live) note(w, st, 263, -264);
-    w->chains = fmin(w->chains, w->sigma[26]);
+    if (w->sigma[26] < w->chains) w->chains = w->sigma[26];
     /* Step 27: RRR_links, J4 (branch +1). J4 is joined to the known J2 by ternary and to the known J3 by rocker2: a 3R two-link chain with both ends known */
     st = RRR_links(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br27, &w->p_J4, &w->sigma[27]);
     if (st == 1) return 1;
     if (live) note(w, st, 273, -274);
-    w->chains = fmin(w->chains, w->sigma[27]);
+    if (w->sigma[27] < w->chains) w->chains = w->sigma[27];
     /* Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it */
-    link_point(&w->p_J2, &w->p_J4, 0.5656108597285068, 0.12217194570135746, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 283, -284);
     /* Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v4);
     f[0] = w->f1_v4.v;
@@ -1077,7 +1307,8 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 30, 31, 32, 33, iterated by the resolver of step 8   (fallback 5: the Add-link J7-J4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v5(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1093,18 +1324,37 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
     w->add1_v5.dv = da[0];
     w->add1_v5.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J3, &p_J7, &l_rocker2, &w->add1_v5, w->br30, &w->p_J4, &w->sigma[30]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 303, -304);
+        if (w->sigma[30] < w->chains) w->chains = w->sigma[30];
+        st = RRR_links_1(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br31, &w->p_J2, &w->sigma[31]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 313, -314);
+        if (w->sigma[31] < w->chains) w->chains = w->sigma[31];
+        st = link_point_1(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+        if (st == 1) return 1;
+        if (live) note(w, st, 323, -324);
+        link_residual_1(&p_J6, &w->p_J5, &l_coupler, &w->f1_v5);
+        f[0] = w->f1_v5.v;
+        df[0] = w->f1_v5.dv;
+        return 0;
+    }
     /* Step 30: RRR_links, J4 (branch -1). J4 is joined to the known J3 by rocker2 and to the known J7 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J3, &p_J7, &l_rocker2, &w->add1_v5, w->br30, &w->p_J4, &w->sigma[30]);
     if (st == 1) return 1;
     if (live) note(w, st, 303, -304);
-    w->chains = fmin(w->chains, w->sigma[30]);
+    if (w->sigma[30] < w->chains) w->chains = w->sigma[30];
     /* Step 31: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J4 by ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br31, &w->p_J2, &w->sigma[31]);
     if (st == 1) return 1;
     if (live) note(w, st, 313, -314);
-    w->chains = fmin(w->chains, w->sigma[31]);
+    if (w->sigma[31] < w->chains) w->chains = w->sigma[31];
     /* Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it */
-    link_point(&w->p_J4, &w->p_J2, 0.4343891402714932, -0.12217194570135746, &w->p_J5);
+    st = link_point(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &w->p_J5);
+    if (st == 1) return 1;
+    if (live) note(w, st, 323, -324);
     /* Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J6, &w->p_J5, &l_coupler, &w->f1_v5);
     f[0] = w->f1_v5.v;
@@ -1116,7 +1366,8 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 34, 35, 36, 37, iterated by the resolver of step 8   (fallback 6: the Add-link J3-J5):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v6(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1132,18 +1383,37 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
     w->add1_v6.dv = da[0];
     w->add1_v6.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J6, &p_J3, &l_coupler, &w->add1_v6, w->br34, &w->p_J5, &w->sigma[34]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 343, -344);
+        if (w->sigma[34] < w->chains) w->chains = w->sigma[34];
+        st = RRR_links_1(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br35, &w->p_J2, &w->sigma[35]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 353, -354);
+        if (w->sigma[35] < w->chains) w->chains = w->sigma[35];
+        st = link_point_1(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+        if (st == 1) return 1;
+        if (live) note(w, st, 363, -364);
+        link_residual_1(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v6);
+        f[0] = w->f1_v6.v;
+        df[0] = w->f1_v6.dv;
+        return 0;
+    }
     /* Step 34: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J3 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J6, &p_J3, &l_coupler, &w->add1_v6, w->br34, &w->p_J5, &w->sigma[34]);
     if (st == 1) return 1;
     if (live) note(w, st, 343, -344);
-    w->chains = fmin(w->chains, w->sigma[34]);
+    if (w->sigma[34] < w->chains) w->chains = w->sigma[34];
     /* Step 35: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br35, &w->p_J2, &w->sigma[35]);
     if (st == 1) return 1;
     if (live) note(w, st, 353, -354);
-    w->chains = fmin(w->chains, w->sigma[35]);
+    if (w->sigma[35] < w->chains) w->chains = w->sigma[35];
     /* Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
-    link_point(&w->p_J5, &w->p_J2, -0.6891891891891891, 0.36486486486486486, &w->p_J4);
+    st = link_point(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+    if (st == 1) return 1;
+    if (live) note(w, st, 363, -364);
     /* Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v6);
     f[0] = w->f1_v6.v;
@@ -1155,7 +1425,8 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 38, 39, 40, 41, iterated by the resolver of step 8   (fallback 7: the Add-link J1-J5):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v7(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1171,18 +1442,37 @@ static int group_1_v7(void *ctx, const double a[], const double da[], const doub
     w->add1_v7.dv = da[0];
     w->add1_v7.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J6, &p_J1, &l_coupler, &w->add1_v7, w->br38, &w->p_J5, &w->sigma[38]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 383, -384);
+        if (w->sigma[38] < w->chains) w->chains = w->sigma[38];
+        st = RRR_links_1(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br39, &w->p_J2, &w->sigma[39]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 393, -394);
+        if (w->sigma[39] < w->chains) w->chains = w->sigma[39];
+        st = link_point_1(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+        if (st == 1) return 1;
+        if (live) note(w, st, 403, -404);
+        link_residual_1(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v7);
+        f[0] = w->f1_v7.v;
+        df[0] = w->f1_v7.dv;
+        return 0;
+    }
     /* Step 38: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J1 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J6, &p_J1, &l_coupler, &w->add1_v7, w->br38, &w->p_J5, &w->sigma[38]);
     if (st == 1) return 1;
     if (live) note(w, st, 383, -384);
-    w->chains = fmin(w->chains, w->sigma[38]);
+    if (w->sigma[38] < w->chains) w->chains = w->sigma[38];
     /* Step 39: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br39, &w->p_J2, &w->sigma[39]);
     if (st == 1) return 1;
     if (live) note(w, st, 393, -394);
-    w->chains = fmin(w->chains, w->sigma[39]);
+    if (w->sigma[39] < w->chains) w->chains = w->sigma[39];
     /* Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
-    link_point(&w->p_J5, &w->p_J2, -0.6891891891891891, 0.36486486486486486, &w->p_J4);
+    st = link_point(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+    if (st == 1) return 1;
+    if (live) note(w, st, 403, -404);
     /* Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v7);
     f[0] = w->f1_v7.v;
@@ -1194,7 +1484,8 @@ static int group_1_v7(void *ctx, const double a[], const double da[], const doub
 
 /* Steps 42, 43, 44, 45, iterated by the resolver of step 8   (fallback 8: the Add-link J7-J5):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
-   and their rates df[] and accelerations ddf[] out (those of the program's order); live == 0
+   and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
+   accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column).  Returns 1 when a chain cannot close. */
 static int group_1_v8(void *ctx, const double a[], const double da[], const double dda[], int live,
@@ -1210,18 +1501,37 @@ static int group_1_v8(void *ctx, const double a[], const double da[], const doub
     w->add1_v8.dv = da[0];
     w->add1_v8.ddv = dda[0];
     w->chains = 1.0;
+    if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
+        st = RRR_links_1(&p_J6, &p_J7, &l_coupler, &w->add1_v8, w->br42, &w->p_J5, &w->sigma[42]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 423, -424);
+        if (w->sigma[42] < w->chains) w->chains = w->sigma[42];
+        st = RRR_links_1(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br43, &w->p_J2, &w->sigma[43]);
+        if (st == 1) return 1;
+        if (live) note(w, st, 433, -434);
+        if (w->sigma[43] < w->chains) w->chains = w->sigma[43];
+        st = link_point_1(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+        if (st == 1) return 1;
+        if (live) note(w, st, 443, -444);
+        link_residual_1(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v8);
+        f[0] = w->f1_v8.v;
+        df[0] = w->f1_v8.dv;
+        return 0;
+    }
     /* Step 42: RRR_links, J5 (branch +1). J5 is joined to the known J6 by coupler and to the known J7 by add1: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J6, &p_J7, &l_coupler, &w->add1_v8, w->br42, &w->p_J5, &w->sigma[42]);
     if (st == 1) return 1;
     if (live) note(w, st, 423, -424);
-    w->chains = fmin(w->chains, w->sigma[42]);
+    if (w->sigma[42] < w->chains) w->chains = w->sigma[42];
     /* Step 43: RRR_links, J2 (branch +1). J2 is joined to the known J1 by rocker1 and to the known J5 by ternary: a 3R two-link chain with both ends known */
     st = RRR_links(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br43, &w->p_J2, &w->sigma[43]);
     if (st == 1) return 1;
     if (live) note(w, st, 433, -434);
-    w->chains = fmin(w->chains, w->sigma[43]);
+    if (w->sigma[43] < w->chains) w->chains = w->sigma[43];
     /* Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it */
-    link_point(&w->p_J5, &w->p_J2, -0.6891891891891891, 0.36486486486486486, &w->p_J4);
+    st = link_point(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &w->p_J4);
+    if (st == 1) return 1;
+    if (live) note(w, st, 443, -444);
     /* Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures */
     link_residual(&p_J3, &w->p_J4, &l_rocker2, &w->f1_v8);
     f[0] = w->f1_v8.v;
@@ -1239,7 +1549,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     const work *w = (const work *)ctx;
     VARIABLE f;
     double m;
-    link_residual(&w->p_J6, &w->p_J4, &ZERO_LENGTH, &f);
+    link_residual_1(&w->p_J6, &w->p_J4, &ZERO_LENGTH, &f);
     a[0][0] = f.v;
     ad[0][0] = f.dv;
     m = (w->p_J6.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (w->p_J6.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
@@ -1249,7 +1559,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[0][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][2];
     ad[0][2] = 0.0;
     a[0][LINKGEN_NMAX - 1] = ad[0][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&w->p_J6, &w->p_J2, &ZERO_LENGTH, &f);
+    link_residual_1(&w->p_J6, &w->p_J2, &ZERO_LENGTH, &f);
     a[1][0] = f.v;
     ad[1][0] = f.dv;
     m = (w->p_J6.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J6.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1259,7 +1569,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[1][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][2];
     ad[1][2] = 0.0;
     a[1][LINKGEN_NMAX - 1] = ad[1][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&p_J1, &w->p_J4, &ZERO_LENGTH, &f);
+    link_residual_1(&p_J1, &w->p_J4, &ZERO_LENGTH, &f);
     a[2][0] = f.v;
     ad[2][0] = f.dv;
     m = (p_J1.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J1.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
@@ -1269,7 +1579,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[2][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][2];
     ad[2][2] = 0.0;
     a[2][LINKGEN_NMAX - 1] = ad[2][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&p_J3, &w->p_J2, &ZERO_LENGTH, &f);
+    link_residual_1(&p_J3, &w->p_J2, &ZERO_LENGTH, &f);
     a[3][0] = f.v;
     ad[3][0] = f.dv;
     m = (p_J3.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J3.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1279,7 +1589,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[3][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][2];
     ad[3][2] = 0.0;
     a[3][LINKGEN_NMAX - 1] = ad[3][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&p_J7, &w->p_J2, &ZERO_LENGTH, &f);
+    link_residual_1(&p_J7, &w->p_J2, &ZERO_LENGTH, &f);
     a[4][0] = f.v;
     ad[4][0] = f.dv;
     m = (p_J7.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J7.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
@@ -1289,7 +1599,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[4][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][2];
     ad[4][2] = 0.0;
     a[4][LINKGEN_NMAX - 1] = ad[4][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&p_J7, &w->p_J4, &ZERO_LENGTH, &f);
+    link_residual_1(&p_J7, &w->p_J4, &ZERO_LENGTH, &f);
     a[5][0] = f.v;
     ad[5][0] = f.dv;
     m = (p_J7.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J7.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
@@ -1299,7 +1609,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[5][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][2];
     ad[5][2] = 0.0;
     a[5][LINKGEN_NMAX - 1] = ad[5][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&p_J3, &w->p_J5, &ZERO_LENGTH, &f);
+    link_residual_1(&p_J3, &w->p_J5, &ZERO_LENGTH, &f);
     a[6][0] = f.v;
     ad[6][0] = f.dv;
     m = (p_J3.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J3.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
@@ -1309,7 +1619,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[6][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[6][2];
     ad[6][2] = 0.0;
     a[6][LINKGEN_NMAX - 1] = ad[6][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&p_J1, &w->p_J5, &ZERO_LENGTH, &f);
+    link_residual_1(&p_J1, &w->p_J5, &ZERO_LENGTH, &f);
     a[7][0] = f.v;
     ad[7][0] = f.dv;
     m = (p_J1.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J1.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
@@ -1319,7 +1629,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
     a[7][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[7][2];
     ad[7][2] = 0.0;
     a[7][LINKGEN_NMAX - 1] = ad[7][LINKGEN_NMAX - 1] = 0.0;
-    link_residual(&p_J7, &w->p_J5, &ZERO_LENGTH, &f);
+    link_residual_1(&p_J7, &w->p_J5, &ZERO_LENGTH, &f);
     a[8][0] = f.v;
     ad[8][0] = f.dv;
     m = (p_J7.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J7.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);

@@ -169,8 +169,8 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
-def link_point(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -179,13 +179,23 @@ def link_point(j1, j2, along, across):
     dvy = j2_dy - j1_dy
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    rax = along * dax - across * day
-    ray = along * day + across * dax
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    r2 = dx * dx + dy * dy
+    ir = NAN if r2 == 0 else 1 / sqrt(r2)
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -255,7 +265,7 @@ def link_residual(j1, j2, l):
     ir = NAN if r == 0 else 1 / r
     s = sqrt(dvx * dvx + dvy * dvy)
     iv = NAN if s == 0 else 1 / s
-    rd = s if r == 0 else (dx * dvx + dy * dvy) * ir
+    rd = sqrt(dvx * dvx + dvy * dvy) if r == 0 else (dx * dvx + dy * dvy) * ir
     rp = sqrt(dax * dax + day * day) if s == 0 else (dvx * dax + dvy * day) * iv
     rdd = rp if r == 0 else (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir
     return (r - l_v, rd - l_dv, rdd - l_ddv)
@@ -738,7 +748,11 @@ def _group_1(w, a, da, dda, live):
         w.note(st, 53, -54)
     w.chains = min(w.chains, w.sigma[5])
     # Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 63, -64)
     # Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1, ]
@@ -770,7 +784,11 @@ def _group_1_v1(w, a, da, dda, live):
         w.note(st, 153, -154)
     w.chains = min(w.chains, w.sigma[15])
     # Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 163, -164)
     # Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v1, ]
@@ -802,7 +820,11 @@ def _group_1_v2(w, a, da, dda, live):
         w.note(st, 193, -194)
     w.chains = min(w.chains, w.sigma[19])
     # Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 203, -204)
     # Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v2, ]
@@ -834,7 +856,11 @@ def _group_1_v3(w, a, da, dda, live):
         w.note(st, 233, -234)
     w.chains = min(w.chains, w.sigma[23])
     # Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 243, -244)
     # Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v3, ]
@@ -866,7 +892,11 @@ def _group_1_v4(w, a, da, dda, live):
         w.note(st, 273, -274)
     w.chains = min(w.chains, w.sigma[27])
     # Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 283, -284)
     # Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v4, ]
@@ -898,7 +928,11 @@ def _group_1_v5(w, a, da, dda, live):
         w.note(st, 313, -314)
     w.chains = min(w.chains, w.sigma[31])
     # Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746)
+    st, w.p_J5 = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 323, -324)
     # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v5 = link_residual(p_J6, w.p_J5, l_coupler)
     return 0, [w.f1_v5, ]
@@ -930,7 +964,11 @@ def _group_1_v6(w, a, da, dda, live):
         w.note(st, 353, -354)
     w.chains = min(w.chains, w.sigma[35])
     # Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486)
+    st, w.p_J4 = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 363, -364)
     # Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v6, ]
@@ -962,7 +1000,11 @@ def _group_1_v7(w, a, da, dda, live):
         w.note(st, 393, -394)
     w.chains = min(w.chains, w.sigma[39])
     # Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486)
+    st, w.p_J4 = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 403, -404)
     # Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v7 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v7, ]
@@ -994,7 +1036,11 @@ def _group_1_v8(w, a, da, dda, live):
         w.note(st, 433, -434)
     w.chains = min(w.chains, w.sigma[43])
     # Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486)
+    st, w.p_J4 = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234)
+    if st == 1:
+        return 1, None
+    if live:
+        w.note(st, 443, -444)
     # Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v8 = link_residual(p_J3, w.p_J4, l_rocker2)
     return 0, [w.f1_v8, ]
@@ -1145,77 +1191,73 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_J2[0] + 24.0,
-            w.p_J2[1] + 48.0,
-            w.p_J2[2],
-            w.p_J2[3],
-            w.p_J2[4],
-            w.p_J2[5],
-            100.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_J4[0] + 24.0,
-            w.p_J4[1] + 48.0,
-            w.p_J4[2],
-            w.p_J4[3],
-            w.p_J4[4],
-            w.p_J4[5],
-            w.p_J5[0] + 24.0,
-            w.p_J5[1] + 48.0,
-            w.p_J5[2],
-            w.p_J5[3],
-            w.p_J5[4],
-            w.p_J5[5],
-            w.p_J6[0] + 24.0,
-            w.p_J6[1] + 48.0,
-            w.p_J6[2],
-            w.p_J6[3],
-            w.p_J6[4],
-            w.p_J6[5],
-            -60.0,
-            80.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.phi_rocker1[0],
-            w.phi_rocker1[1],
-            w.phi_rocker1[2],
-            w.phi_ternary[0],
-            w.phi_ternary[1],
-            w.phi_ternary[2],
-            w.phi_rocker2[0],
-            w.phi_rocker2[1],
-            w.phi_rocker2[2],
-            w.phi_coupler[0],
-            w.phi_coupler[1],
-            w.phi_coupler[2],
-            w.phi_crank[0],
-            w.phi_crank[1],
-            w.phi_crank[2],
-            0.0,
-            0.0,
-            0.0,
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "J1.x": 0.0,
+            "J1.y": 0.0,
+            "J1.vx": 0.0,
+            "J1.vy": 0.0,
+            "J1.ax": 0.0,
+            "J1.ay": 0.0,
+            "J2.x": w.p_J2[0] + 24.0,
+            "J2.y": w.p_J2[1] + 48.0,
+            "J2.vx": w.p_J2[2],
+            "J2.vy": w.p_J2[3],
+            "J2.ax": w.p_J2[4],
+            "J2.ay": w.p_J2[5],
+            "J3.x": 100.0,
+            "J3.y": 0.0,
+            "J3.vx": 0.0,
+            "J3.vy": 0.0,
+            "J3.ax": 0.0,
+            "J3.ay": 0.0,
+            "J4.x": w.p_J4[0] + 24.0,
+            "J4.y": w.p_J4[1] + 48.0,
+            "J4.vx": w.p_J4[2],
+            "J4.vy": w.p_J4[3],
+            "J4.ax": w.p_J4[4],
+            "J4.ay": w.p_J4[5],
+            "J5.x": w.p_J5[0] + 24.0,
+            "J5.y": w.p_J5[1] + 48.0,
+            "J5.vx": w.p_J5[2],
+            "J5.vy": w.p_J5[3],
+            "J5.ax": w.p_J5[4],
+            "J5.ay": w.p_J5[5],
+            "J6.x": w.p_J6[0] + 24.0,
+            "J6.y": w.p_J6[1] + 48.0,
+            "J6.vx": w.p_J6[2],
+            "J6.vy": w.p_J6[3],
+            "J6.ax": w.p_J6[4],
+            "J6.ay": w.p_J6[5],
+            "J7.x": -60.0,
+            "J7.y": 80.0,
+            "J7.vx": 0.0,
+            "J7.vy": 0.0,
+            "J7.ax": 0.0,
+            "J7.ay": 0.0,
+            "rocker1.phi": w.phi_rocker1[0],
+            "rocker1.omega": w.phi_rocker1[1],
+            "rocker1.alpha": w.phi_rocker1[2],
+            "ternary.phi": w.phi_ternary[0],
+            "ternary.omega": w.phi_ternary[1],
+            "ternary.alpha": w.phi_ternary[2],
+            "rocker2.phi": w.phi_rocker2[0],
+            "rocker2.omega": w.phi_rocker2[1],
+            "rocker2.alpha": w.phi_rocker2[2],
+            "coupler.phi": w.phi_coupler[0],
+            "coupler.omega": w.phi_coupler[1],
+            "coupler.alpha": w.phi_coupler[2],
+            "crank.phi": w.phi_crank[0],
+            "crank.omega": w.phi_crank[1],
+            "crank.alpha": w.phi_crank[2],
+            "frame.phi": 0.0,
+            "frame.omega": 0.0,
+            "frame.alpha": 0.0,
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

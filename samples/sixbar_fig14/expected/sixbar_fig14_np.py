@@ -119,29 +119,29 @@ PARAMS = {  # design parameter -> its value in the sketch
     "l_coupler": 121.6552506059644,  # length coupler:J6-J5
     "l_ternary_J2_J5": 60.8276253029822,  # length ternary:J2-J5
     "step2.l": 20.0,  # step 2: crank_input of J6
-    "step6.along": 0.4343891402714932,  # step 6: link_point of J5
-    "step6.across": -0.12217194570135746,  # step 6: link_point of J5
+    "step6.gsi": 45.662543438831435,  # step 6: link_point of J5
+    "step6.eta": -12.84259034217134,  # step 6: link_point of J5
     "step9.off": 0.0,  # step 9: link_angle of rocker1
     "step10.off": 0.0,  # step 10: link_angle of ternary
     "step11.off": 0.0,  # step 11: link_angle of rocker2
     "step12.off": 0.0,  # step 12: link_angle of coupler
     "step13.off": 0.0,  # step 13: link_angle of crank
-    "step16.along": 0.5656108597285068,  # step 16: link_point of J5
-    "step16.across": 0.12217194570135746,  # step 16: link_point of J5
-    "step20.along": 0.4343891402714932,  # step 20: link_point of J5
-    "step20.across": -0.12217194570135746,  # step 20: link_point of J5
-    "step24.along": 0.5656108597285068,  # step 24: link_point of J5
-    "step24.across": 0.12217194570135746,  # step 24: link_point of J5
-    "step28.along": 0.5656108597285068,  # step 28: link_point of J5
-    "step28.across": 0.12217194570135746,  # step 28: link_point of J5
-    "step32.along": 0.4343891402714932,  # step 32: link_point of J5
-    "step32.across": -0.12217194570135746,  # step 32: link_point of J5
-    "step36.along": -0.6891891891891891,  # step 36: link_point of J4
-    "step36.across": 0.36486486486486486,  # step 36: link_point of J4
-    "step40.along": -0.6891891891891891,  # step 40: link_point of J4
-    "step40.across": 0.36486486486486486,  # step 40: link_point of J4
-    "step44.along": -0.6891891891891891,  # step 44: link_point of J4
-    "step44.across": 0.36486486486486486,  # step 44: link_point of J4
+    "step16.gsi": 45.662543438831435,  # step 16: link_point of J5
+    "step16.eta": -12.84259034217134,  # step 16: link_point of J5
+    "step20.gsi": 45.662543438831435,  # step 20: link_point of J5
+    "step20.eta": -12.84259034217134,  # step 20: link_point of J5
+    "step24.gsi": 45.662543438831435,  # step 24: link_point of J5
+    "step24.eta": -12.84259034217134,  # step 24: link_point of J5
+    "step28.gsi": 45.662543438831435,  # step 28: link_point of J5
+    "step28.eta": -12.84259034217134,  # step 28: link_point of J5
+    "step32.gsi": 45.662543438831435,  # step 32: link_point of J5
+    "step32.eta": -12.84259034217134,  # step 32: link_point of J5
+    "step36.gsi": -41.921741762866105,  # step 36: link_point of J4
+    "step36.eta": 22.193863286223234,  # step 36: link_point of J4
+    "step40.gsi": -41.921741762866105,  # step 40: link_point of J4
+    "step40.eta": 22.193863286223234,  # step 40: link_point of J4
+    "step44.gsi": -41.921741762866105,  # step 44: link_point of J4
+    "step44.eta": 22.193863286223234,  # step 44: link_point of J4
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
     name="sixbar_fig14_np", n_inputs=N_INPUTS, n_steps=N_STEPS, params=PARAMS,
@@ -229,8 +229,8 @@ def link_angle(j1, j2, off):
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def link_point(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -239,15 +239,41 @@ def link_point(j1, j2, along, across):
     dvy = j2_dy - j1_dy
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    rax = along * dax - across * day
-    ray = along * day + across * dax
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
+    r2 = dx * dx + dy * dy
+    _c1 = np.asarray(r2 == 0)
+    if not _c1.any():
+        ir = 1 / np.sqrt(r2)
+    elif _c1.all():
+        ir = NAN
+    else:
+        ir = np.where(_c1, NAN, 1 / np.sqrt(r2))
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    _t1 = om * om
+    rax = -al * ry - _t1 * rx
+    ray = al * rx - _t1 * ry
+    _c2 = np.asarray(r2 == 0)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    if np.any(_singular):  # nan where the rows failed
+        _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]), np.where(_singular, np.nan, _jc[4]), np.where(_singular, np.nan, _jc[5]))
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -401,9 +427,9 @@ def link_residual(j1, j2, l):
     if not _c2.any():
         rd = (dx * dvx + dy * dvy) * ir
     elif _c2.all():
-        rd = s
+        rd = np.sqrt(dvx * dvx + dvy * dvy)
     else:
-        rd = np.where(_c2, s, (dx * dvx + dy * dvy) * ir)
+        rd = np.where(_c2, np.sqrt(dvx * dvx + dvy * dvy), (dx * dvx + dy * dvy) * ir)
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
     _c4 = np.asarray(r == 0)
@@ -430,21 +456,45 @@ def link_residual(j1, j2, l):
     _f = (r - l_v, rd - l_dv, _f3)
     return _st, _sigma, _f
 
-def link_point_1(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point_1(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy = j1[:4]
     j2_x, j2_y, j2_dx, j2_dy = j2[:4]
     dx = j2_x - j1_x
     dy = j2_y - j1_y
     dvx = j2_dx - j1_dx
     dvy = j2_dy - j1_dy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
+    r2 = dx * dx + dy * dy
+    _c1 = np.asarray(r2 == 0)
+    if not _c1.any():
+        ir = 1 / np.sqrt(r2)
+    elif _c1.all():
+        ir = NAN
+    else:
+        ir = np.where(_c1, NAN, 1 / np.sqrt(r2))
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    _c2 = np.asarray(r2 == 0)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy)
+    if np.any(_singular):  # nan where the rows failed
+        _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]))
     return _st, _sigma, _jc
 
 def RRR_links_1(j1, j2, l1, l2, minv):
@@ -1441,7 +1491,8 @@ def _group_1(w, r, br, a, da, dda):
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     chains = np.minimum(chains, sigma[5])
     # Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step6.along"], c["step6.across"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step6.gsi"], c["step6.eta"])
+    report.append((st, ((1, 61),)))
     # Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1, ), chains
@@ -1471,7 +1522,8 @@ def _group_1_1(w, r, br, a, da, dda):
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     chains = np.minimum(chains, sigma[5])
     # Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step6.along"], c["step6.across"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step6.gsi"], c["step6.eta"])
+    report.append((st, ((1, 61),)))
     # Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1, ), chains
@@ -1501,7 +1553,8 @@ def _group_1_v1(w, r, br, a, da, dda):
     report.append((st, ((1, 151), (3, 153), (4, -154))))
     chains = np.minimum(chains, sigma[15])
     # Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step16.along"], c["step16.across"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step16.gsi"], c["step16.eta"])
+    report.append((st, ((1, 161),)))
     # Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v1, ), chains
@@ -1531,7 +1584,8 @@ def _group_1_v1_1(w, r, br, a, da, dda):
     report.append((st, ((1, 151), (3, 153), (4, -154))))
     chains = np.minimum(chains, sigma[15])
     # Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step16.along"], c["step16.across"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step16.gsi"], c["step16.eta"])
+    report.append((st, ((1, 161),)))
     # Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v1 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v1, ), chains
@@ -1561,7 +1615,8 @@ def _group_1_v2(w, r, br, a, da, dda):
     report.append((st, ((1, 191), (3, 193), (4, -194))))
     chains = np.minimum(chains, sigma[19])
     # Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step20.along"], c["step20.across"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step20.gsi"], c["step20.eta"])
+    report.append((st, ((1, 201),)))
     # Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v2, ), chains
@@ -1591,7 +1646,8 @@ def _group_1_v2_1(w, r, br, a, da, dda):
     report.append((st, ((1, 191), (3, 193), (4, -194))))
     chains = np.minimum(chains, sigma[19])
     # Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step20.along"], c["step20.across"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step20.gsi"], c["step20.eta"])
+    report.append((st, ((1, 201),)))
     # Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v2 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v2, ), chains
@@ -1621,7 +1677,8 @@ def _group_1_v3(w, r, br, a, da, dda):
     report.append((st, ((1, 231), (3, 233), (4, -234))))
     chains = np.minimum(chains, sigma[23])
     # Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step24.along"], c["step24.across"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step24.gsi"], c["step24.eta"])
+    report.append((st, ((1, 241),)))
     # Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v3 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v3, ), chains
@@ -1651,7 +1708,8 @@ def _group_1_v3_1(w, r, br, a, da, dda):
     report.append((st, ((1, 231), (3, 233), (4, -234))))
     chains = np.minimum(chains, sigma[23])
     # Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step24.along"], c["step24.across"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step24.gsi"], c["step24.eta"])
+    report.append((st, ((1, 241),)))
     # Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v3 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v3, ), chains
@@ -1681,7 +1739,8 @@ def _group_1_v4(w, r, br, a, da, dda):
     report.append((st, ((1, 271), (3, 273), (4, -274))))
     chains = np.minimum(chains, sigma[27])
     # Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J2, w.p_J4, c["step28.along"], c["step28.across"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step28.gsi"], c["step28.eta"])
+    report.append((st, ((1, 281),)))
     # Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v4 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v4, ), chains
@@ -1711,7 +1770,8 @@ def _group_1_v4_1(w, r, br, a, da, dda):
     report.append((st, ((1, 271), (3, 273), (4, -274))))
     chains = np.minimum(chains, sigma[27])
     # Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J2, w.p_J4, c["step28.along"], c["step28.across"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step28.gsi"], c["step28.eta"])
+    report.append((st, ((1, 281),)))
     # Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v4 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v4, ), chains
@@ -1741,7 +1801,8 @@ def _group_1_v5(w, r, br, a, da, dda):
     report.append((st, ((1, 311), (3, 313), (4, -314))))
     chains = np.minimum(chains, sigma[31])
     # Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step32.along"], c["step32.across"])
+    st, _, w.p_J5 = link_point(w.p_J4, w.p_J2, c["step32.gsi"], c["step32.eta"])
+    report.append((st, ((1, 321),)))
     # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v5, ), chains
@@ -1771,7 +1832,8 @@ def _group_1_v5_1(w, r, br, a, da, dda):
     report.append((st, ((1, 311), (3, 313), (4, -314))))
     chains = np.minimum(chains, sigma[31])
     # Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    _, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step32.along"], c["step32.across"])
+    st, _, w.p_J5 = link_point_1(w.p_J4, w.p_J2, c["step32.gsi"], c["step32.eta"])
+    report.append((st, ((1, 321),)))
     # Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v5 = link_residual_1(p_J6, w.p_J5, w.l_coupler)
     return report, sigma, (w.f1_v5, ), chains
@@ -1801,7 +1863,8 @@ def _group_1_v6(w, r, br, a, da, dda):
     report.append((st, ((1, 351), (3, 353), (4, -354))))
     chains = np.minimum(chains, sigma[35])
     # Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    _, _, w.p_J4 = link_point(w.p_J5, w.p_J2, c["step36.along"], c["step36.across"])
+    st, _, w.p_J4 = link_point(w.p_J5, w.p_J2, c["step36.gsi"], c["step36.eta"])
+    report.append((st, ((1, 361),)))
     # Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v6 = link_residual(w.p_J3, w.p_J4, w.l_rocker2)
     return report, sigma, (w.f1_v6, ), chains
@@ -1831,7 +1894,8 @@ def _group_1_v6_1(w, r, br, a, da, dda):
     report.append((st, ((1, 351), (3, 353), (4, -354))))
     chains = np.minimum(chains, sigma[35])
     # Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    _, _, w.p_J4 = link_point_1(w.p_J5, w.p_J2, c["step36.along"], c["step36.across"])
+    st, _, w.p_J4 = link_point_1(w.p_J5, w.p_J2, c["step36.gsi"], c["step36.eta"])
+    report.append((st, ((1, 361),)))
     # Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v6 = link_residual_1(w.p_J3, w.p_J4, w.l_rocker2)
     return report, sigma, (w.f1_v6, ), chains
@@ -1861,7 +1925,8 @@ def _group_1_v7(w, r, br, a, da, dda):
     report.append((st, ((1, 391), (3, 393), (4, -394))))
     chains = np.minimum(chains, sigma[39])
     # Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    _, _, w.p_J4 = link_point(w.p_J5, w.p_J2, c["step40.along"], c["step40.across"])
+    st, _, w.p_J4 = link_point(w.p_J5, w.p_J2, c["step40.gsi"], c["step40.eta"])
+    report.append((st, ((1, 401),)))
     # Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v7 = link_residual(w.p_J3, w.p_J4, w.l_rocker2)
     return report, sigma, (w.f1_v7, ), chains
@@ -1891,7 +1956,8 @@ def _group_1_v7_1(w, r, br, a, da, dda):
     report.append((st, ((1, 391), (3, 393), (4, -394))))
     chains = np.minimum(chains, sigma[39])
     # Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    _, _, w.p_J4 = link_point_1(w.p_J5, w.p_J2, c["step40.along"], c["step40.across"])
+    st, _, w.p_J4 = link_point_1(w.p_J5, w.p_J2, c["step40.gsi"], c["step40.eta"])
+    report.append((st, ((1, 401),)))
     # Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v7 = link_residual_1(w.p_J3, w.p_J4, w.l_rocker2)
     return report, sigma, (w.f1_v7, ), chains
@@ -1921,7 +1987,8 @@ def _group_1_v8(w, r, br, a, da, dda):
     report.append((st, ((1, 431), (3, 433), (4, -434))))
     chains = np.minimum(chains, sigma[43])
     # Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    _, _, w.p_J4 = link_point(w.p_J5, w.p_J2, c["step44.along"], c["step44.across"])
+    st, _, w.p_J4 = link_point(w.p_J5, w.p_J2, c["step44.gsi"], c["step44.eta"])
+    report.append((st, ((1, 441),)))
     # Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v8 = link_residual(w.p_J3, w.p_J4, w.l_rocker2)
     return report, sigma, (w.f1_v8, ), chains
@@ -1951,7 +2018,8 @@ def _group_1_v8_1(w, r, br, a, da, dda):
     report.append((st, ((1, 431), (3, 433), (4, -434))))
     chains = np.minimum(chains, sigma[43])
     # Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    _, _, w.p_J4 = link_point_1(w.p_J5, w.p_J2, c["step44.along"], c["step44.across"])
+    st, _, w.p_J4 = link_point_1(w.p_J5, w.p_J2, c["step44.gsi"], c["step44.eta"])
+    report.append((st, ((1, 441),)))
     # Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     _, _, w.f1_v8 = link_residual_1(w.p_J3, w.p_J4, w.l_rocker2)
     return report, sigma, (w.f1_v8, ), chains

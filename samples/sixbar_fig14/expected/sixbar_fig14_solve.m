@@ -239,7 +239,15 @@ function [st, res, w] = group_1(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(5));
     % Step 6: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    [w.p_J5, st] = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 63, -64);
+    end
     % Step 7: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
@@ -285,7 +293,15 @@ function [st, res, w] = group_1_v1(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(15));
     % Step 16: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    [w.p_J5, st] = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 163, -164);
+    end
     % Step 17: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v1 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
@@ -331,7 +347,15 @@ function [st, res, w] = group_1_v2(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(19));
     % Step 20: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    [w.p_J5, st] = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 203, -204);
+    end
     % Step 21: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v2 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
@@ -377,7 +401,15 @@ function [st, res, w] = group_1_v3(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(23));
     % Step 24: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    [w.p_J5, st] = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 243, -244);
+    end
     % Step 25: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v3 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
@@ -423,7 +455,15 @@ function [st, res, w] = group_1_v4(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(27));
     % Step 28: link_point, J5. link ternary is placed (its pairs J2, J4 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J2, w.p_J4, 0.5656108597285068, 0.12217194570135746);
+    [w.p_J5, st] = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 283, -284);
+    end
     % Step 29: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v4 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
@@ -469,7 +509,15 @@ function [st, res, w] = group_1_v5(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(31));
     % Step 32: link_point, J5. link ternary is placed (its pairs J4, J2 are known), so J5 follows as a point of it
-    w.p_J5 = link_point(w.p_J4, w.p_J2, 0.4343891402714932, -0.12217194570135746);
+    [w.p_J5, st] = link_point(w.p_J4, w.p_J2, 45.662543438831435, -12.84259034217134);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 323, -324);
+    end
     % Step 33: link_residual, coupler. J6 and J5 are both known, but link coupler was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v5 = link_residual(p_J6, w.p_J5, w.l_coupler);
     st = 0;
@@ -515,7 +563,15 @@ function [st, res, w] = group_1_v6(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(35));
     % Step 36: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486);
+    [w.p_J4, st] = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 363, -364);
+    end
     % Step 37: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v6 = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
     st = 0;
@@ -561,7 +617,15 @@ function [st, res, w] = group_1_v7(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(39));
     % Step 40: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486);
+    [w.p_J4, st] = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 403, -404);
+    end
     % Step 41: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v7 = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
     st = 0;
@@ -607,7 +671,15 @@ function [st, res, w] = group_1_v8(w, a, da, dda, live)
     end
     w.chains = min(w.chains, w.sigma(43));
     % Step 44: link_point, J4. link ternary is placed (its pairs J5, J2 are known), so J4 follows as a point of it
-    w.p_J4 = link_point(w.p_J5, w.p_J2, -0.6891891891891891, 0.36486486486486486);
+    [w.p_J4, st] = link_point(w.p_J5, w.p_J2, -41.921741762866105, 22.193863286223234);
+    if st == 1
+        st = 1;
+        res = [];
+        return;
+    end
+    if live
+        w = note(w, st, 443, -444);
+    end
     % Step 45: link_residual, rocker2. J3 and J4 are both known, but link rocker2 was not used to find them: its length must come out right, which the resolver ensures
     w.f1_v8 = link_residual(w.p_J3, w.p_J4, w.l_rocker2);
     st = 0;
@@ -912,26 +984,50 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function jc = link_point(j1, j2, along, across)
-    % Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry).
+function [jc, st] = link_point(j1, j2, gsi, eta)
+    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
     dvx = j2.dx - j1.dx;
     dvy = j2.dy - j1.dy;
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
-    rx = along * dx - across * dy;
-    ry = along * dy + across * dx;
-    rvx = along * dvx - across * dvy;
-    rvy = along * dvy + across * dvx;
-    rax = along * dax - across * day;
-    ray = along * day + across * dax;
+    r2 = dx * dx + dy * dy;
+    if r2 == 0
+        ir = NaN;
+    else
+        ir = 1 / sqrt(r2);
+    end
+    ex = ir * dx;
+    ey = ir * dy;
+    rx = gsi * ex - eta * ey;
+    ry = gsi * ey + eta * ex;
+    ir2 = ir * ir;
+    om = (dx * dvy - dy * dvx) * ir2;
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
     jc.x = j1.x + rx;
     jc.y = j1.y + ry;
     jc.dx = j1.dx + rvx;
     jc.dy = j1.dy + rvy;
     jc.ddx = j1.ddx + rax;
     jc.ddy = j1.ddy + ray;
+    if st == 1
+        jc.x = NaN;
+        jc.y = NaN;
+        jc.dx = NaN;
+        jc.dy = NaN;
+        jc.ddx = NaN;
+        jc.ddy = NaN;
+    end
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
@@ -1056,7 +1152,7 @@ function f = link_residual(j1, j2, l)
         iv = 1 / s;
     end
     if r == 0
-        rd = s;
+        rd = sqrt(dvx * dvx + dvy * dvy);
     else
         rd = (dx * dvx + dy * dvy) * ir;
     end

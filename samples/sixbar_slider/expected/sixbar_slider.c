@@ -12,6 +12,9 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
 static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
     const double t = theta->the + phi->the;
@@ -34,6 +37,9 @@ static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, co
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
+#if defined(__GNUC__)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
 static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -56,8 +62,11 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry). */
-static inline void link_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
+#if defined(__GNUC__)
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+#endif
+static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -65,21 +74,34 @@ static inline void link_point(const POINT *j1, const POINT *j2, double along, do
     const double dvy = j2->DP.y - j1->DP.y;
     const double dax = j2->DDP.x - j1->DDP.x;
     const double day = j2->DDP.y - j1->DDP.y;
-    const double rx = along * dx - across * dy;
-    const double ry = along * dy + across * dx;
-    const double rvx = along * dvx - across * dvy;
-    const double rvy = along * dvy + across * dvx;
-    const double rax = along * dax - across * day;
-    const double ray = along * day + across * dax;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = ir * ir;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    const int st = r2 == 0 ? 1 : 0;
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
     jc->DP.y = j1->DP.y + rvy;
     jc->DDP.x = j1->DDP.x + rax;
     jc->DDP.y = j1->DDP.y + ray;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; }
+    return st;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
+#if defined(__GNUC__)
+static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+#endif
 static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -136,6 +158,9 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
 }
 
 /* 2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side. */
+#if defined(__GNUC__)
+static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out) __attribute__((always_inline));
+#endif
 static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out)
 {
     const double cg = cos(psig->the);
@@ -343,7 +368,9 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it */
-    link_point(&p_O2, &w->p_B, 0.48668639053254437, -0.9319526627218935, &w->p_C);
+    st = link_point(&p_O2, &w->p_B, 25.307692307692307, -48.46153846153846, &w->p_C);
+    if (st == 1) return failed(w, out, 41);
+    note(w, st, 43, -44);
 
 
     /* Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known */
@@ -353,7 +380,9 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 6: link_point, P. point P of link coupler */
-    link_point(&w->p_A, &w->p_B, 0.7636869780389731, 0.3352922981750696, &w->p_P);
+    st = link_point(&w->p_B, &w->p_A, 13.436634577833267, -19.06454434865348, &w->p_P);
+    if (st == 1) return failed(w, out, 61);
+    note(w, st, 63, -64);
 
 
     /* Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known */

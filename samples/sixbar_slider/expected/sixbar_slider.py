@@ -96,8 +96,8 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
-def link_point(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -106,13 +106,23 @@ def link_point(j1, j2, along, across):
     dvy = j2_dy - j1_dy
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    rax = along * dax - across * day
-    ray = along * day + across * dax
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    r2 = dx * dx + dy * dy
+    ir = NAN if r2 == 0 else 1 / sqrt(r2)
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -274,7 +284,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 33, -34)
 
     # Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
-    w.p_C = link_point(p_O2, w.p_B, 0.48668639053254437, -0.9319526627218935)
+    st, w.p_C = link_point(p_O2, w.p_B, 25.307692307692307, -48.46153846153846)
+    if st == 1:
+        return 41
+    if st:
+        w.note(st, 43, -44)
 
     # Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
     st, w.sigma[5], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, l_rod, g_S, psi_S, 0.0, 0.0, 1)
@@ -284,7 +298,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 53, -54)
 
     # Step 6: link_point, P. point P of link coupler
-    w.p_P = link_point(w.p_A, w.p_B, 0.7636869780389731, 0.3352922981750696)
+    st, w.p_P = link_point(w.p_B, w.p_A, 13.436634577833267, -19.06454434865348)
+    if st == 1:
+        return 61
+    if st:
+        w.note(st, 63, -64)
 
     # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
     st, w.phi_rocker = link_angle(p_O2, w.p_B, 0.0)
@@ -301,35 +319,31 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            w.p_S[0] + 72.0,
-            w.p_S[1] + 32.0,
-            w.p_S[2],
-            w.p_S[3],
-            w.p_S[4],
-            w.p_S[5],
-            w.s_S[0],
-            w.s_S[1],
-            w.s_S[2],
-            w.p_P[0] + 72.0,
-            w.p_P[1] + 32.0,
-            w.p_P[2],
-            w.p_P[3],
-            w.p_P[4],
-            w.p_P[5],
-            w.phi_rocker[0],
-            w.phi_rocker[1],
-            w.phi_rocker[2],
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "S.x": w.p_S[0] + 72.0,
+            "S.y": w.p_S[1] + 32.0,
+            "S.vx": w.p_S[2],
+            "S.vy": w.p_S[3],
+            "S.ax": w.p_S[4],
+            "S.ay": w.p_S[5],
+            "S.s": w.s_S[0],
+            "S.ds": w.s_S[1],
+            "S.dds": w.s_S[2],
+            "P.x": w.p_P[0] + 72.0,
+            "P.y": w.p_P[1] + 32.0,
+            "P.vx": w.p_P[2],
+            "P.vy": w.p_P[3],
+            "P.ax": w.p_P[4],
+            "P.ay": w.p_P[5],
+            "rocker.phi": w.phi_rocker[0],
+            "rocker.omega": w.phi_rocker[1],
+            "rocker.alpha": w.phi_rocker[2],
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

@@ -75,12 +75,12 @@ PARAMS = {  # design parameter -> its value in the sketch
     "psi_S": 0.0,  # line S
     "l_rod": 65.27633568147036,  # length rod:C-D
     "step2.l": 27.730849247724095,  # step 2: crank_input of A
-    "step4.along": 0.48668639053254437,  # step 4: link_point of C
-    "step4.across": -0.9319526627218935,  # step 4: link_point of C
+    "step4.gsi": 25.307692307692307,  # step 4: link_point of C
+    "step4.eta": -48.46153846153846,  # step 4: link_point of C
     "step5.gsi": 0.0,  # step 5: PRR_links of D
     "step5.eta": 0.0,  # step 5: PRR_links of D
-    "step6.along": 0.7636869780389731,  # step 6: link_point of P
-    "step6.across": 0.3352922981750696,  # step 6: link_point of P
+    "step6.gsi": 13.436634577833267,  # step 6: link_point of P
+    "step6.eta": -19.06454434865348,  # step 6: link_point of P
     "step9.off": 0.0,  # step 9: link_angle of rocker
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
@@ -167,8 +167,8 @@ def link_angle(j1, j2, off):
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def link_point(j1, j2, along, across):
-    """Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry)."""
+def link_point(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -177,15 +177,41 @@ def link_point(j1, j2, along, across):
     dvy = j2_dy - j1_dy
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
-    rx = along * dx - across * dy
-    ry = along * dy + across * dx
-    rvx = along * dvx - across * dvy
-    rvy = along * dvy + across * dvx
-    rax = along * dax - across * day
-    ray = along * day + across * dax
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
+    r2 = dx * dx + dy * dy
+    _c1 = np.asarray(r2 == 0)
+    if not _c1.any():
+        ir = 1 / np.sqrt(r2)
+    elif _c1.all():
+        ir = NAN
+    else:
+        ir = np.where(_c1, NAN, 1 / np.sqrt(r2))
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    _t1 = om * om
+    rax = -al * ry - _t1 * rx
+    ray = al * rx - _t1 * ry
+    _c2 = np.asarray(r2 == 0)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    if np.any(_singular):  # nan where the rows failed
+        _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]), np.where(_singular, np.nan, _jc[4]), np.where(_singular, np.nan, _jc[5]))
     return _st, _sigma, _jc
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -619,12 +645,14 @@ def _run(x, dx, ddx, c):
     st, sigma[3], w.p_B = RRR_links(w.p_A, w.p_O2, w.l_coupler, w.l_rocker_B_O2, 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
-    _, _, w.p_C = link_point(w.p_O2, w.p_B, c["step4.along"], c["step4.across"])
+    st, _, w.p_C = link_point(w.p_O2, w.p_B, c["step4.gsi"], c["step4.eta"])
+    report.append((st, ((1, 41),)))
     # Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
     st, sigma[5], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, w.l_rod, w.g_S, w.psi_S, c["step5.gsi"], c["step5.eta"], 1)
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     # Step 6: link_point, P. point P of link coupler
-    _, _, w.p_P = link_point(w.p_A, w.p_B, c["step6.along"], c["step6.across"])
+    st, _, w.p_P = link_point(w.p_B, w.p_A, c["step6.gsi"], c["step6.eta"])
+    report.append((st, ((1, 61),)))
     # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
     st, _, w.phi_rocker = link_angle(w.p_O2, w.p_B, c["step9.off"])
     report.append((st, ((1, 91),)))

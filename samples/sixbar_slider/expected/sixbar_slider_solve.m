@@ -92,7 +92,12 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 33, -34);
 
     % Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
-    w.p_C = link_point(w.p_O2, w.p_B, 0.48668639053254437, -0.9319526627218935);
+    [w.p_C, st] = link_point(w.p_O2, w.p_B, 25.307692307692307, -48.46153846153846);
+    if st == 1
+        status = 41;
+        return;
+    end
+    w = note(w, st, 43, -44);
 
     % Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
     [w.s_S, w.p_S, w.p_D, st, w.sigma(5)] = PRR_links(w.p_C, w.l_rod, w.g_S, w.psi_S, 0.0, 0.0, 1);
@@ -103,7 +108,12 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 53, -54);
 
     % Step 6: link_point, P. point P of link coupler
-    w.p_P = link_point(w.p_A, w.p_B, 0.7636869780389731, 0.3352922981750696);
+    [w.p_P, st] = link_point(w.p_B, w.p_A, 13.436634577833267, -19.06454434865348);
+    if st == 1
+        status = 61;
+        return;
+    end
+    w = note(w, st, 63, -64);
 
     % Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
     [w.phi_rocker, st] = link_angle(w.p_O2, w.p_B, 0.0);
@@ -242,26 +252,50 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function jc = link_point(j1, j2, along, across)
-    % Point jc of a link from two of its points j1, j2: jc = j1 + along (j2 - j1) + across n, n = j2 - j1 turned a quarter turn left (linear in the two points: no angle, no trigonometry).
+function [jc, st] = link_point(j1, j2, gsi, eta)
+    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
     dvx = j2.dx - j1.dx;
     dvy = j2.dy - j1.dy;
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
-    rx = along * dx - across * dy;
-    ry = along * dy + across * dx;
-    rvx = along * dvx - across * dvy;
-    rvy = along * dvy + across * dvx;
-    rax = along * dax - across * day;
-    ray = along * day + across * dax;
+    r2 = dx * dx + dy * dy;
+    if r2 == 0
+        ir = NaN;
+    else
+        ir = 1 / sqrt(r2);
+    end
+    ex = ir * dx;
+    ey = ir * dy;
+    rx = gsi * ex - eta * ey;
+    ry = gsi * ey + eta * ex;
+    ir2 = ir * ir;
+    om = (dx * dvy - dy * dvx) * ir2;
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
     jc.x = j1.x + rx;
     jc.y = j1.y + ry;
     jc.dx = j1.dx + rvx;
     jc.dy = j1.dy + rvy;
     jc.ddx = j1.ddx + rax;
     jc.ddy = j1.ddy + ray;
+    if st == 1
+        jc.x = NaN;
+        jc.y = NaN;
+        jc.dx = NaN;
+        jc.dy = NaN;
+        jc.ddx = NaN;
+        jc.ddy = NaN;
+    end
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)

@@ -12,6 +12,9 @@ typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
 static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
     const double t = theta->the + phi->the;
@@ -34,6 +37,9 @@ static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, co
 }
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
+#if defined(__GNUC__)
+static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
 static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
     const double dx = j2->P.x - j1->P.x;
@@ -57,6 +63,9 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
 }
 
 /* Angle of a link that keeps a constant angle off to a known angle phi. */
+#if defined(__GNUC__)
+static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
 static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle)
 {
     const double th0 = phi->the + off;
@@ -67,6 +76,9 @@ static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle)
 }
 
 /* 2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side. */
+#if defined(__GNUC__)
+static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out) __attribute__((always_inline));
+#endif
 static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out)
 {
     const double cg = cos(psig->the);

@@ -253,56 +253,52 @@ def _publish(w, code, order):
     failed = reason_of(code) in (1, 2)
     singular = reason_of(code) == 3
     if failed:
-        values = (NAN,) * len(_LEVELS)
-    else:
-        values = (
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-            w.p_A[0] + 40.0,
-            w.p_A[1],
-            w.p_A[2],
-            w.p_A[3],
-            w.p_A[4],
-            w.p_A[5],
-            w.p_B[0] + 40.0,
-            w.p_B[1],
-            w.p_B[2],
-            w.p_B[3],
-            w.p_B[4],
-            w.p_B[5],
-            w.p_S[0] + 40.0,
-            w.p_S[1],
-            w.p_S[2],
-            w.p_S[3],
-            w.p_S[4],
-            w.p_S[5],
-            -0.16941304388961834,
-            0.0,
-            0.0,
-            w.phi_crank[0],
-            w.phi_crank[1],
-            w.phi_crank[2],
-            w.phi_rod[0],
-            w.phi_rod[1],
-            w.phi_rod[2],
-            w.phi_block[0],
-            w.phi_block[1],
-            w.phi_block[2],
-            w.s_S[0],
-            w.s_S[1],
-            w.s_S[2],
-        )
-    if order >= ORDER and not singular:  # every column as computed
-        out = dict(zip(_OUTPUTS, values))
-    else:
-        out = {}
-        for name, level, value in zip(_OUTPUTS, _LEVELS, values):
-            if level <= order:
-                out[name] = NAN if singular and level > 0 else value
+        out = dict.fromkeys(_OUTPUTS, NAN)
+    else:  # a dict display: one step, where dict(zip()) of a tuple took three
+        out = {
+            "O.x": 0.0,
+            "O.y": 0.0,
+            "O.vx": 0.0,
+            "O.vy": 0.0,
+            "O.ax": 0.0,
+            "O.ay": 0.0,
+            "A.x": w.p_A[0] + 40.0,
+            "A.y": w.p_A[1],
+            "A.vx": w.p_A[2],
+            "A.vy": w.p_A[3],
+            "A.ax": w.p_A[4],
+            "A.ay": w.p_A[5],
+            "B.x": w.p_B[0] + 40.0,
+            "B.y": w.p_B[1],
+            "B.vx": w.p_B[2],
+            "B.vy": w.p_B[3],
+            "B.ax": w.p_B[4],
+            "B.ay": w.p_B[5],
+            "S.x": w.p_S[0] + 40.0,
+            "S.y": w.p_S[1],
+            "S.vx": w.p_S[2],
+            "S.vy": w.p_S[3],
+            "S.ax": w.p_S[4],
+            "S.ay": w.p_S[5],
+            "frame.phi": -0.16941304388961834,
+            "frame.omega": 0.0,
+            "frame.alpha": 0.0,
+            "crank.phi": w.phi_crank[0],
+            "crank.omega": w.phi_crank[1],
+            "crank.alpha": w.phi_crank[2],
+            "rod.phi": w.phi_rod[0],
+            "rod.omega": w.phi_rod[1],
+            "rod.alpha": w.phi_rod[2],
+            "block.phi": w.phi_block[0],
+            "block.omega": w.phi_block[1],
+            "block.alpha": w.phi_block[2],
+            "S.s": w.s_S[0],
+            "S.ds": w.s_S[1],
+            "S.dds": w.s_S[2],
+        }
+    if order < ORDER or singular:
+        out = {name: NAN if singular and level > 0 else value
+               for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
     out["sigma"] = list(w.sigma)
     return out

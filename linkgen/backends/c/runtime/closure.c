@@ -56,14 +56,14 @@ static int resolve_closure(const closure_group *c, const group_fn fns[], int cou
                            double *sigma, const double *chains, int order, const resolver_mechanism *m,
                            const resolver_policy *p)
 {
-    double x[LINKGEN_NMAX], zero[LINKGEN_NMAX], f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX];
+    double x[LINKGEN_NMAX], zero[LINKGEN_NMAX], f[LINKGEN_NMAX], df[LINKGEN_NMAX];
     resolver_policy polished = *p;
     int t, i, steps, closed = 0, solved;
     for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = 0.0;
     *its = 0;
     for (t = 0; t < count && !closed; t++) {
         const int k = t == 0 ? *used : (t - 1 < *used ? t - 1 : t);
-        closed = !fns[k](ctx, a[first + k], zero, zero, 0, f, df, ddf);
+        closed = !fns[k](ctx, a[first + k], zero, zero, 0, f, df, NULL);
     }
     if (!closed) return 0;
     c->place(ctx, x);

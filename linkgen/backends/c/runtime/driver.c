@@ -52,7 +52,10 @@ static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKG
     double move = 0.0, share = p->path_share;
     int g, i;
     for (g = 0; g < LINKGEN_NBLOCKS; g++) {
-        for (i = 0; i < sizes[g]; i++) move = fmax(move, fabs(guess[g][i] - prev[g][i]));
+        for (i = 0; i < sizes[g]; i++) {
+            const double d = fabs(guess[g][i] - prev[g][i]);
+            if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
+        }
         if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
     }
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
@@ -72,16 +75,15 @@ static int within(const double in[], const double last[], const double limits[])
 
 /* Block states a moved by step along their rates into out.  An Add-link length is a
  * distance: where its prediction passes zero the two pairs pass each other, so it is
- * reflected. */
+ * reflected.  The entries past a block's lengths (branches, orientation) have no rates:
+ * they are copied. */
 static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_NMAX], double step,
                     const int sizes[], double out[][LINKGEN_NMAX])
 {
     int g, i;
+    memcpy(out, a, sizeof(double[LINKGEN_NBLOCKS][LINKGEN_NMAX]));
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < LINKGEN_NMAX; i++) {
-            out[g][i] = a[g][i] + step * rate[g][i];
-            if (i < sizes[g]) out[g][i] = fabs(out[g][i]);
-        }
+        for (i = 0; i < sizes[g]; i++) out[g][i] = fabs(a[g][i] + step * rate[g][i]);
 }
 
 /* How far inputs in lie from the warm row's along its input rates, in time (0 without rates). */
@@ -149,7 +151,8 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
         if (passes++ == p->walk_passes) return 0;
         fast = 0.0;
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < m->sizes[g]; i++) fast = fmax(fast, fabs(rate[g][i]));
+            for (i = 0; i < m->sizes[g]; i++)
+                if (fabs(rate[g][i]) > fast) fast = fabs(rate[g][i]);
         if (fast * h > reach) h = reach / fast;
         tt = fmin(1.0, t + h);
         if (tt == t) return 0;

@@ -2,7 +2,8 @@
  * the paper's, or fixed-point iteration with the slope of the row's start), then exact rates.
  * group(ctx, a, da, dda, live, f, df, ddf) runs the steps of one resolver group with the
  * Add-link lengths a, their rates da and accelerations dda, and writes the residuals f and
- * their rates df and accelerations ddf (those of the program's order); live == 0 zeroes
+ * their rates df and accelerations ddf (those of the program's order; a null ddf asks for no
+ * accelerations: the passes that measure residuals and the Jacobian); live == 0 zeroes
  * the rates of everything the group reads, so a unit Add-link rate gives one exact
  * Jacobian column through the velocity channel.  Returns 1 when a chain cannot close. */
 typedef int (*group_fn)(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
@@ -51,6 +52,10 @@ static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b
     double a[LINKGEN_NMAX][LINKGEN_NMAX + 1];
     double det = 1.0;
     int r, c, j;
+    if (n == 1) {  /* one Add-link: the same operations as below, without the copies */
+        x[0] = m[0][0] == 0.0 ? NAN : b[0] / m[0][0];
+        return m[0][0];
+    }
     for (r = 0; r < n; r++) {
         for (c = 0; c < n; c++) a[r][c] = m[r][c];
         a[r][n] = b[r];
@@ -83,12 +88,12 @@ static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b
 /* Residuals and Jacobian at a, one pass per Add-link; returns 1 when a chain cannot close. */
 static int jacobian(group_fn group, void *ctx, int n, const double a[], double f[], double jac[][LINKGEN_NMAX])
 {
-    double unit[LINKGEN_NMAX], zero[LINKGEN_NMAX], res[LINKGEN_NMAX], dres[LINKGEN_NMAX], ddres[LINKGEN_NMAX];
+    double unit[LINKGEN_NMAX], zero[LINKGEN_NMAX], res[LINKGEN_NMAX], dres[LINKGEN_NMAX];
     int i, j;
     for (i = 0; i < LINKGEN_NMAX; i++) unit[i] = zero[i] = 0.0;
     for (j = 0; j < n; j++) {
         unit[j] = 1.0;
-        if (group(ctx, a, unit, zero, 0, res, dres, ddres)) return 1;
+        if (group(ctx, a, unit, zero, 0, res, dres, NULL)) return 1;
         unit[j] = 0.0;
         for (i = 0; i < n; i++) { f[i] = res[i]; jac[i][j] = dres[i]; }
     }
@@ -105,7 +110,7 @@ static double conditioning(int n, const double jac[][LINKGEN_NMAX], double det)
         for (i = 0; i < n; i++) s += jac[i][j] * jac[i][j];
         prod *= sqrt(s);
     }
-    return fabs(det) / fmax(prod, 1.0);
+    return fabs(det) / (prod > 1.0 ? prod : 1.0);
 }
 
 /* Whether every residual is at most tol (a nan fails every comparison). */
@@ -168,10 +173,10 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
 /* The residuals f at a, one pass; returns 1 when a chain cannot close. */
 static int residuals(group_fn group, void *ctx, const double a[], double f[])
 {
-    double zero[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX];
+    double zero[LINKGEN_NMAX], df[LINKGEN_NMAX];
     int i;
     for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = 0.0;
-    return group(ctx, a, zero, zero, 0, f, df, ddf);
+    return group(ctx, a, zero, zero, 0, f, df, NULL);
 }
 
 /* The largest residual in size; nan where one is nan. */
@@ -256,7 +261,7 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
     double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], det;
     int i;
     for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
-    group(ctx, a, zero, zero, 1, f, df, ddf);
+    group(ctx, a, zero, zero, 1, f, df, NULL);
     for (i = 0; i < n; i++) rhs[i] = -df[i];
     det = solve_linear(n, jac, rhs, rates);
     if (order >= 2) {

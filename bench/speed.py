@@ -1,0 +1,83 @@
+"""The speed targets of issue 19, each measured alone: C ns and instructions per configuration, the
+generated Python's us per configuration, the numpy kernel's rows per second.
+
+    python bench/speed.py                    # every target
+    python bench/speed.py fourbar_P jansen_foot   # some of them
+
+- C (gcc -O2 -std=c99, double, order 2 unless the build says less): NAME_solve over C_ROWS rows of the
+  file's range in order, the warm state kept (bench/languages.py's driver); the median of C_RUNS runs.
+  Instructions: the same driver with one run under `valgrind --tool=callgrind`, the instructions of
+  NAME_solve and what it calls, per configuration (repeatable on a shared machine, unlike times).
+- Python: the generated NAME.py's solve over the file's sweep (bench/languages.py), median of its runs.
+- numpy: rows per second of NAME_np.solve at 1e6 rows (bench/languages.py).
+"""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "bench"))
+
+import languages as lang  # noqa: E402
+
+from linkgen.pipeline import build_log  # noqa: E402
+from linkgen.render import render_all  # noqa: E402
+from linkgen.writer import write_all  # noqa: E402
+
+C_ROWS, C_RUNS, GRIND_ROWS = 3600, 31, 3600
+
+# name -> (sample, outputs or None for the file's, what is measured)
+TARGETS = {
+    "fourbar_P": ("fourbar", ("P",), "C"),
+    "fourbar": ("fourbar", None, "C Python numpy"),
+    "jansen_foot": ("jansen_foot", None, "C"),
+    "jansen": ("jansen", None, "C numpy"),
+    "sixbar_fig14": ("sixbar_fig14", None, "C numpy"),
+}
+
+
+def instructions(log, folder: Path) -> float:
+    """Instructions per configuration of NAME_solve (callgrind, one run of GRIND_ROWS rows)."""
+    driver = (folder / "bench_driver.c").read_text()
+    driver = re.sub(r"\b3600\b", str(GRIND_ROWS), driver).replace(f"{lang.C_RUNS}]", "1]")
+    driver = re.sub(r"run < \d+", "run < 1", driver).replace(f"times[{lang.C_RUNS} / 2]", "times[0]")
+    driver = driver.replace(f"qsort(times, {lang.C_RUNS},", "qsort(times, 1,")
+    (folder / "grind_driver.c").write_text(driver)
+    subprocess.run(["gcc", "-O2", "-std=c99", "-g", f"{log.name}.c", "grind_driver.c", "-lm", "-o", "grind_c"],
+                   cwd=folder, check=True)
+    out = subprocess.run(["valgrind", "--tool=callgrind", f"--toggle-collect={log.name}_solve",
+                          "--callgrind-out-file=/dev/null", "./grind_c"], cwd=folder, capture_output=True, text=True,
+                         check=True).stderr
+    total = int(re.search(r"Collected : (\d+)", out).group(1))  # type: ignore[union-attr]
+    return total / GRIND_ROWS
+
+
+def measure(name: str) -> str:
+    sample, outputs, what = TARGETS[name]
+    log = build_log(str(ROOT / "samples" / sample / f"{sample}.yaml"), outputs)
+    parts = [name]
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        write_all(render_all(log), str(folder))
+        if "C" in what:
+            lang.C_ROWS, lang.C_RUNS = C_ROWS, C_RUNS
+            ns = lang.time_c(log, folder)[0] * 1e9
+            parts.append(f"C {ns:.1f} ns, {instructions(log, folder):.0f} instructions")
+        if "Python" in what:
+            parts.append(f"Python {lang.time_python(log, folder, f'speed_{name}')[0] * 1e6:.2f} us")
+        if "numpy" in what:
+            lang.NP_ROWS, lang.NP_BUDGET = (10**5, 10**6), 60.0
+            rates = lang.time_numpy(log, folder, f'speed_np_{name}')[0]
+            parts.append("numpy " + ", ".join(f"{r:.3g} rows/s at {lang.size(n)}" for n, r in rates.items()))
+    return ": ".join(parts[:2]) + ("; " + "; ".join(parts[2:]) if parts[2:] else "")
+
+
+if __name__ == "__main__":
+    for target in sys.argv[1:] or list(TARGETS):
+        print(measure(target), flush=True)
