@@ -46,9 +46,10 @@ def file_rows(log: StepLog) -> Result:
     """The file's sweep (its samples, all inputs together, the CSV's rows) evaluated at the log's
     order with its settings: once for the steps and settings asked for last.  The conditioning
     over the sweep (linkgen.analysis), the summary and the plots of a build read the one result
-    where their logs compute the same steps with the same settings (the facts found from it and
-    the manual's centres do not change it).  A result is read, never changed."""
-    return _rows(replace(log, conditioning=(), centres=(), summary=None))
+    where their logs compute the same steps with the same settings (the facts found from it, the
+    manual's centres and the assemblies listed at the sketch do not change it).  A result is read,
+    never changed."""
+    return _rows(replace(log, conditioning=(), centres=(), summary=None, assemblies=None))
 
 
 @functools.lru_cache(maxsize=1)

@@ -19,7 +19,7 @@ from linkgen.pipeline import build_log
 from linkgen.render import render_all
 from linkgen.table import columns
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 FIG14 = ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"
 FOURBAR = ROOT / "samples" / "fourbar" / "fourbar.yaml"
 
