@@ -1,6 +1,6 @@
 """The plots of the sweep, read back from their SVG and checked against routes of their own: the
-generated Python program's CSV, the four-bar's closed-form limit positions and crank circle, and
-values worked by hand for the writer's pieces."""
+generated Python program's CSV, the four-bar's closed-form limit positions and crank circle (the writer's pieces by
+hand: tests/unit/test_render_svgwriter.py)."""
 
 from __future__ import annotations
 
@@ -10,11 +10,9 @@ import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
-import numpy as np
 import pytest
 from programs import build, parse, run_python
 
-from linkgen.render.svgwriter import fit, label, num, path_data, ticks
 from linkgen.sweepdata import MAX_ROWS
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -150,19 +148,6 @@ def test_the_manual_shows_every_figure(sample: Path):
                    if re.fullmatch(rf"{name}_(points|angles|conditioning|paths)\.svg", p.name))
     assert sorted(shown) == plots and f"{name}_paths.svg" in plots
     assert f"({name}.html)" in manual and (sample.parent / "expected" / f"{name}.html").is_file()
-
-
-def test_the_writer_by_hand():
-    assert [num(x) for x in (2.0, -0.04, 12.34, -3.06, 0.0)] == ["2", "0", "12.3", "-3.1", "0"]
-    nan = math.nan
-    xs, ys = np.array([0.04, nan, 1.25, 2.0, 3.0, -0.06]), np.array([0.0, 1.0, -1.0, 2.0, nan, 5.0])
-    assert path_data(xs, ys) == "M0 0L0 0M1.2 -1L2 2M-0.1 5L-0.1 5"
-    assert ticks(0.0, 360.0, 6, (1.5, 3.0, 4.5, 9.0)) == [0.0, 90.0, 180.0, 270.0, 360.0]
-    assert ticks(-25.0, 25.0, 4) == [-20.0, 0.0, 20.0]
-    assert ticks(0.0, 1.05, 4) == [0.0, 0.5, 1.0]  # a step of at least 1.05 / 4 = 0.2625: 0.5
-    assert [label(v, s) for v, s in ((90.0, 90.0), (0.25, 0.25), (-5e6, 2.5e6), (2.5e-5, 1e-5), (0.0, 1e6))] == [
-        "90", "0.25", "-5e6", "2.5e-5", "0"]
-    assert fit("abcdefghij", 55.0, 10.0) == "abcdefghij" and fit("abcdefghij", 44.0, 10.0) == "abcdefg…"
 
 
 def test_a_long_sweep_is_thinned_and_keeps_every_gap(tmp_path: Path):

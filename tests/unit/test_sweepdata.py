@@ -88,7 +88,8 @@ def test_the_sweep_holds_the_closed_form_positions_and_fails_beyond_the_limit():
     (ax, ay), (bx, by) = sweep.places["A"], sweep.places["B"]
     assert np.all(np.isnan(ax[beyond])) and np.all(np.isnan(bx[beyond])) and np.all(np.isnan(by[beyond]))
     ok = ~beyond
-    assert np.allclose(ax[ok], a * np.cos(theta[ok]), atol=1e-9) and np.allclose(ay[ok], a * np.sin(theta[ok]), atol=1e-9)
+    assert np.allclose(ax[ok], a * np.cos(theta[ok]), atol=1e-9)
+    assert np.allclose(ay[ok], a * np.sin(theta[ok]), atol=1e-9)
     assert np.allclose(np.hypot(bx - ax, by - ay)[ok], b, atol=1e-9)
     assert np.allclose(np.hypot(bx - d, by)[ok], c, atol=1e-9)
     for step, sigma in sweep.sigma.items():  # a failed step is a gap; every step runs on a solved row
