@@ -1,6 +1,7 @@
 """A build evaluates the file's sweep once (linkgen.sweepdata.file_rows): the conditioning over
 the sweep, the engineering summary and the plots read one result where their logs compute the
-same steps with the same settings, and what they read is what evaluating the sweep anew gives."""
+same steps with the same settings, and what they read is what evaluating the sweep anew gives.
+sweep_of's places against the partial four-bar's closed forms, and thin on sweeps made by hand."""
 
 from __future__ import annotations
 
