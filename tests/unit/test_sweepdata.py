@@ -131,7 +131,7 @@ def test_thin_leaves_a_short_sweep_alone():
 def test_thin_keeps_both_ends_of_every_nan_run():
     """21 rows, every 4th kept (6 rows, the limit), and the nan runs of a column (rows 6-7), of a sigma
     (row 10 alone) and of a place (rows 13-15): both ends of each run stay, so every gap stays a gap
-(the limit bounds the every-k-th rows; the ends of the runs come on top)."""
+    (the limit bounds the every-k-th rows; the ends of the runs come on top)."""
     sweep = _hand_sweep(21, data_nan=(6, 7), sigma_nan=(10,), place_nan=(13, 14, 15))
     thinned = sweepdata.thin(sweep, 6)
     regular = [0, 4, 8, 12, 16, 20]
