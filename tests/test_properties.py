@@ -1483,7 +1483,8 @@ def test_addlink_with_a_poor_lever_ranks_after_the_others(tmp_path):
     log = build_log(str(tmp_path / "triad_short_base.yaml"), outputs=(), sweep=False)
     add = log.add_links[0]
     j = {n: (ref.joints[n].x, ref.joints[n].y) for n in ("J2", "J4", "J5")}
-    short = math.dist(j["J5"], j["J2"]) / math.dist(j["J5"], j["J4"])  # J4 placed from J5 on J5-J2
+    # J4 placed on the base J5-J2 from whichever end gives the better lever (link_point's choice)
+    short = max(math.dist(j["J5"], j["J2"]) / math.dist(j[a], j["J4"]) for a in ("J5", "J2"))
     poor = [c for c in add.candidates if c.lever is not None and c.lever < GOOD_LEVER]
     assert poor and all(c.lever == pytest.approx(short, rel=1e-12) for c in poor)
     best_poor = min(c.norm for c in poor if c.norm is not None)

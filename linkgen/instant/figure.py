@@ -3,17 +3,21 @@ manual's figure), the Aronhold-Kennedy lines that place or carry them drawn fain
 
 Links are numbered in the file's order (I13: the centre of links 1 and 3, as the paper writes
 them); the legend names them.  The view is the sketch's box widened by its size on every side:
-a centre beyond it is listed at the foot, not drawn.  Every number is rounded to 0.01 of the
+a centre beyond it is listed at the foot, not drawn; centres on one spot (a crank along the frame
+puts two pairs of them together) get their labels one under the other.  Every number is rounded to 0.01 of the
 drawing unit, so the bytes are the same on every machine.
 """
 
 from __future__ import annotations
+
+import math
 
 from ..render.svg import _esc, _f, _line
 from ..steplog import CentreAt, StepLog
 
 WIDTH = 640.0
 MARGIN = 30.0
+LABEL_GAP = 13.0  # px: centres closer than this share a spot, their labels stacked one line apart
 
 Point = tuple[float, float]
 
@@ -89,6 +93,7 @@ def render_centres_svg(log: StepLog) -> str:
         x, y = at((pair.x, pair.y))
         out.append(f'<circle cx="{_f(x)}" cy="{_f(y)}" r="3" fill="white" stroke="#555555"/>')
     off: list[str] = []
+    placed: list[Point] = []  # centres drawn so far: a centre drawn on one stacks its label under theirs
     for c in log.centres:
         name = label(log, c)
         if c.x is None or c.y is None or not (box[0] <= c.x <= box[2] and box[1] <= c.y <= box[3]):
@@ -96,8 +101,10 @@ def render_centres_svg(log: StepLog) -> str:
             continue
         x, y = at((c.x, c.y))
         colour = {"first": "#1f77b4", "secondary": "#2ca02c", "third A": "#d62728"}.get(c.kind, "#ff7f0e")
+        below = sum(1 for p in placed if math.dist(p, (x, y)) < LABEL_GAP)
+        placed.append((x, y))
         out.append(f'<circle cx="{_f(x)}" cy="{_f(y)}" r="4" fill="{colour}"/>')
-        out.append(f'<text x="{_f(x + 5)}" y="{_f(y - 5)}" fill="{colour}">{_esc(name)}</text>')
+        out.append(f'<text x="{_f(x + 5)}" y="{_f(y - 5 + LABEL_GAP * below)}" fill="{colour}">{_esc(name)}</text>')
     legend = ", ".join(f"{k + 1} {lk.name}" for k, lk in enumerate(log.links))
     foot = [f"links: {legend}",
             "blue first, green secondary, red third A, orange third B; faint: the Aronhold-Kennedy lines",
