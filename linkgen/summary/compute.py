@@ -127,9 +127,19 @@ def _inputs(log: StepLog, units: _Units, edges: Edges) -> tuple[InputRange, ...]
     return tuple(out)
 
 
+def _in_sweep(log: StepLog, x: float) -> float:
+    """An input angle moved by a whole turn into the sweep's range where it lies outside and a turn
+    brings it in (the analysis gives a limit of a periodic motion modulo a turn)."""
+    i = log.inputs[0]
+    lo, hi = sorted((i.start, i.stop))
+    if i.kind != "revolute" or lo <= x <= hi:
+        return x
+    return next((x + s for s in (-TURN, TURN) if lo <= x + s <= hi), x)
+
+
 def _positions(log: StepLog, units: _Units, edges: Edges) -> tuple[Position, ...]:
-    found = [Position(s, log.step(s).target, "limit", (units.input(0, x),)) for s, x in edges]
-    found += [Position(g.step, log.step(g.step).target, "cannot close", (units.input(0, g.low),))
+    found = [Position(s, log.step(s).target, "limit", (units.input(0, _in_sweep(log, x)),)) for s, x in edges]
+    found += [Position(g.step, log.step(g.step).target, "cannot close", (units.input(0, _in_sweep(log, g.low)),))
               for g in log.gaps if g.point and g.low is not None]
     found += [Position(s.number, s.target, "change point", (units.input(0, x),))
               for s in log.steps if not s.variant for x in s.change_points]
@@ -279,8 +289,8 @@ def _extreme(log: StepLog, result: Result, lam: Array, k: int, variable: str, wr
         out: Array = sign * (_wrapped(np.asarray(y) - wrapped) if angle else np.asarray(y) - wrapped)
         return out
 
-    def measure(r: Result) -> Array:
-        return measure_at(np.asarray(r.values[variable][0], dtype=float))
+    def measure(r: Result) -> Array:  # a row that fails further on has no motion: never an extreme
+        return np.where(status.failed(r.status), np.inf, measure_at(np.asarray(r.values[variable][0], dtype=float)))
 
     found = _stationary(log, result, lam, k, variable) if log.groups else None
     if found is not None:

@@ -168,3 +168,18 @@ def test_a_resolvers_extreme_is_the_greatest_of_a_fine_sweep_around_it(tmp_path)
     assert max(angles) <= rocker.high + 1e-12
     assert rocker.high - max(angles) < 1e-9
     assert abs(math.degrees(rows["theta_J7"][angles.index(max(angles))]) - place) < 2e-3
+
+
+def test_a_sweep_across_the_seam_gives_limits_and_swings_inside_it(tmp_path):
+    """The non-Grashof four-bar swept over -180..180 degrees: its limits at -+theta_l (law of cosines), not
+    at 360 - theta_l outside the sweep; the crank swings 2 theta_l between them, not to the first failing
+    rows (its angle is computed before the chain that fails there)."""
+    a, b, c, d = 40.0, 50.0, 41.0, 60.0
+    path = four_bar(tmp_path, "seam", a, b, c, d, 30.0, samples=73)
+    path.write_text(path.read_text(encoding="utf-8").replace("range: [0, 360]", "range: [-180, 180]"),
+                    encoding="utf-8")
+    s = _summary(path)
+    limit = math.degrees(toggle(a, b, c, d, far=True))
+    assert [p.inputs[0] for p in s.positions] == pytest.approx([-limit, limit], abs=1e-9)
+    crank = next(t for t in s.travels if t.name == "crank.phi")
+    assert (crank.low, crank.high, crank.travel) == pytest.approx((-limit, limit, 2 * limit), abs=1e-7)
