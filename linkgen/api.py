@@ -225,13 +225,11 @@ class Mechanism:
         the sketch and the inputs' speeds): its class from the topology, its place from the
         links' velocities (with several inputs, their ratio matters).  Raises InputCountError for
         a wrong count of values."""
-        from .assemblies import internal_units
         from .instant.table import centre_outputs, locate
 
         log = replace(self, outputs=centre_outputs(self.model), order=1).log
         _one_per_input(log, at=at, rates=rates)
-        return Centres(log, locate(log, self.model, None if at is None else internal_units(log, at),
-                                   None if rates is None else internal_units(log, rates)))
+        return Centres(log, locate(log, self.model, at, rates))
 
     def _rows(self, values: np.ndarray, rates: np.ndarray, accs: np.ndarray,
               progress: Callable[[int], None] | None) -> np.ndarray:

@@ -8,29 +8,17 @@ shape off the step log, ``polynomial`` reduces it to one polynomial and isolates
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 from ..errors import ProcedureError
 from ..pipeline import build_log
 from ..steplog import StepLog
+from ..units import from_file, to_file
 from ..validate import read_mechanism
 from .enumerate import Census, census
 from .triad import NotReducible
 
-__all__ = ["Census", "assemblies", "file_units", "internal_units", "whole_log"]
-
-
-def internal_units(log: StepLog, values: Sequence[float]) -> tuple[float, ...]:
-    """Input values in file units (degrees where the file's angles are) as the procedure takes them."""
-    scale = math.pi / 180 if log.angle_unit == "deg" else 1.0
-    return tuple(v * scale if i.kind == "revolute" else float(v) for i, v in zip(log.inputs, values))
-
-
-def file_units(log: StepLog, values: Sequence[float]) -> tuple[float, ...]:
-    """Input values as the procedure takes them (radians) in the file's units."""
-    scale = 180 / math.pi if log.angle_unit == "deg" else 1.0
-    return tuple(v * scale if i.kind == "revolute" else float(v) for i, v in zip(log.inputs, values))
+__all__ = ["Census", "assemblies", "whole_log"]
 
 
 def whole_log(path: str) -> StepLog:
@@ -42,7 +30,7 @@ def whole_log(path: str) -> StepLog:
 def assemblies(path: str, log: StepLog, at: Sequence[float] | None = None) -> Census:
     """Every assembly of the mechanism file ``path`` (its ``whole_log``) at the input values ``at``
     in file units (default: the sketch's)."""
-    values = tuple(i.sketch for i in log.inputs) if at is None else internal_units(log, at)
+    values = tuple(i.sketch for i in log.inputs) if at is None else from_file(log, at)
     try:
         out = census(log, values)
     except (NotReducible, ArithmeticError) as exc:
@@ -50,5 +38,5 @@ def assemblies(path: str, log: StepLog, at: Sequence[float] | None = None) -> Ce
         what = "its assemblies are not counted" if isinstance(exc, NotReducible) else "the count is not certified"
         raise ProcedureError(f"linkgen cannot count the assemblies of this mechanism: {exc} ({what})", m.path,
                              m.where.line, "links") from None
-    out.at = file_units(log, values) if at is None else tuple(float(v) for v in at)
+    out.at = to_file(log, values) if at is None else tuple(float(v) for v in at)
     return out

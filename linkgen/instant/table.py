@@ -14,6 +14,7 @@ from ..evaluate import evaluate
 from ..model import Mechanism
 from ..steplog import CentreAt, StepLog
 from ..table import columns
+from ..units import from_file, to_file
 from .classify import Centre, classify
 
 STATES = ("finite", "at infinity", "links move alike")  # the centre's status 0, 1, 2
@@ -34,7 +35,7 @@ class Located:
 
 @dataclass(frozen=True)
 class Table:
-    inputs: tuple[float, ...]  # radians or length units
+    inputs: tuple[float, ...]  # in the file's units, as given (degrees where the file's angles are)
     rates: tuple[float, ...]
     row_status: int
     centres: tuple[Located, ...]
@@ -48,9 +49,10 @@ def centre_outputs(m: Mechanism) -> tuple[str, ...]:
 def locate(log: StepLog, m: Mechanism, values: Sequence[float] | None = None,
            rates: Sequence[float] | None = None) -> Table:
     """Every centre of a log built with every centre as an output (``centre_outputs``), at the input
-    values and rates (radians, length units; default: the sketch and the inputs' speeds)."""
-    here = tuple(i.sketch for i in log.inputs) if values is None else tuple(values)
-    speeds = tuple(i.speed for i in log.inputs) if rates is None else tuple(rates)
+    values and rates in the file's units (default: the sketch and the inputs' speeds); the table
+    keeps them as given."""
+    here = tuple(i.sketch for i in log.inputs) if values is None else from_file(log, values)
+    speeds = tuple(i.speed for i in log.inputs) if rates is None else from_file(log, rates)
     result = evaluate(log, np.array([here], dtype=float), np.array([speeds], dtype=float), np.zeros((1, len(here))),
                       order=1)
     names, data = columns(log, result)
@@ -59,13 +61,9 @@ def locate(log: StepLog, m: Mechanism, values: Sequence[float] | None = None,
     for c in classify(m):
         st, x, y, ux, uy, sigma = (float(row[f"{c.name}.{f}"]) for f in ("status", "x", "y", "ux", "uy", "sigma"))
         out.append(Located(c, x, y, ux, uy, int(st) if math.isfinite(st) else -1, sigma))
-    return Table(here, speeds, int(result.status[0]), tuple(out))
-
-
-def file_units(log: StepLog, values: Sequence[float]) -> tuple[float, ...]:
-    """Input values or rates (radians) in the file's units, as --at and --rates take them."""
-    scale = 180 / math.pi if log.angle_unit == "deg" else 1.0
-    return tuple(v * scale if i.kind == "revolute" else float(v) for i, v in zip(log.inputs, values))
+    shown = (to_file(log, here) if values is None else tuple(map(float, values)),
+             to_file(log, speeds) if rates is None else tuple(map(float, rates)))
+    return Table(*shown, int(result.status[0]), tuple(out))
 
 
 def _g(x: float) -> str:
@@ -85,8 +83,8 @@ def where(c: Located) -> str:
 
 def text(log: StepLog, table: Table) -> str:
     """The table of centres as ``linkgen ic`` prints it."""
-    units = ", ".join(f"{i.column} = {_g(v)}" for i, v in zip(log.inputs, file_units(log, table.inputs)))
-    rates = ", ".join(_g(r) for r in file_units(log, table.rates))
+    units = ", ".join(f"{i.column} = {_g(v)}" for i, v in zip(log.inputs, table.inputs))
+    rates = ", ".join(_g(r) for r in table.rates)
     lines = [f"Instant centres of {log.name} ({len(table.centres)}): class from the topology, place at {units} "
              f"moving at {rates} per second (the file's units; row status {table.row_status})"]
     width = max(len(c.centre.name) for c in table.centres)
@@ -105,8 +103,8 @@ def to_json(log: StepLog, table: Table) -> str:
     rows = [{"centre": c.centre.name, "links": list(c.centre.links), "class": c.centre.kind, "pair": c.centre.pair,
              "placed_by_theorem": c.centre.placed, "lines": list(c.centre.lines), "x": _num(c.x), "y": _num(c.y),
              "ux": _num(c.ux), "uy": _num(c.uy), "status": c.status, "sigma": _num(c.sigma)} for c in table.centres]
-    doc = {"mechanism": log.name, "inputs": list(file_units(log, table.inputs)),
-           "rates": list(file_units(log, table.rates)),
+    doc = {"mechanism": log.name, "inputs": list(table.inputs),
+           "rates": list(table.rates),
            "row_status": table.row_status, "centres": rows}
     return json.dumps(doc, indent=2) + "\n"
 

@@ -1,27 +1,16 @@
-"""The package's entry: input values in the file's units, the whole procedure's log, and groups it
-cannot count refused as errors that name the file."""
+"""The package's entry: the whole procedure's log, and groups it cannot count refused as errors that
+name the file (input values in the file's units: tests/unit/test_units.py)."""
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import pytest
 
-from linkgen.assemblies import assemblies, file_units, internal_units, whole_log
+from linkgen.assemblies import assemblies, whole_log
 from linkgen.errors import ProcedureError
 
 ROOT = Path(__file__).resolve().parents[2]
-
-
-def test_input_values_convert_between_the_files_units_and_radians():
-    fivebar = whole_log(str(ROOT / "samples" / "fivebar" / "fivebar.yaml"))  # degrees
-    assert internal_units(fivebar, [90.0, -30.0]) == (math.pi / 2, math.radians(-30.0))
-    assert file_units(fivebar, internal_units(fivebar, [90.0, -30.0])) == pytest.approx((90.0, -30.0), abs=1e-13)
-    actuator = whole_log(str(ROOT / "samples" / "actuator" / "actuator.yaml"))  # a length input
-    assert internal_units(actuator, [1500.0]) == (1500.0,) == file_units(actuator, [1500.0])
-    watt = whole_log(str(ROOT / "tests" / "mechanisms" / "watt_circuit.yaml"))  # radians
-    assert internal_units(watt, [1.75]) == (1.75,)
 
 
 def test_the_whole_procedure_is_walked_whatever_the_files_outputs():

@@ -6,7 +6,7 @@ import json
 import math
 from pathlib import Path
 
-from linkgen.instant.table import centre_outputs, file_units, locate, text, to_json, where
+from linkgen.instant.table import centre_outputs, locate, text, to_json, where
 from linkgen.pipeline import analyse_file, build_log
 
 SAMPLES = Path(__file__).resolve().parents[2] / "samples"
@@ -21,11 +21,11 @@ def located(name: str, values=None, rates=None):
 
 def test_fourbar_at_a_right_angle():
     """Crank at 90 deg: the first centres are the pairs; frame-coupler on the crank's line x = 0."""
-    log, table = located("fourbar", (math.pi / 2,), (1.0,))
+    log, table = located("fourbar", (90.0,), (math.degrees(1.0),))  # the file's units: degrees
     by = {c.centre.name: c for c in table.centres}
     assert (by["ic:frame:crank"].x, by["ic:frame:crank"].y) == (0.0, 0.0)
     assert abs(by["ic:frame:coupler"].x) < 1e-9 and by["ic:frame:coupler"].status == 0
-    assert table.inputs == (math.pi / 2,) and file_units(log, table.inputs) == (90.0,)
+    assert table.inputs == (90.0,) and table.rates == (math.degrees(1.0),)  # as given, not through radians
     assert where(by["ic:frame:crank"]) == "(0, 0)"
 
 
