@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import itertools
 import re
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -152,3 +154,18 @@ def test_grid_on_one_input_is_together(tmp_path: Path):
     assert run_python(grid, tmp_path / "grid") == out
     assert _evaluator(grid) == _evaluator(together)
     assert np.array_equal(input_rows(grid, 7)[0], input_rows(together, 7)[0])
+
+
+def test_run_samples_on_a_grid(tmp_path: Path):
+    """linkgen run --samples N on a grid: N^2 rows, the evaluator's bytes; a grid over the row limit
+    is a command-line error."""
+    path = _grid_file("fivebar", tmp_path)
+    log = build(path, tmp_path)
+    done = subprocess.run([sys.executable, "-m", "linkgen", "run", str(path), "--samples", "3"],
+                          capture_output=True, text=True)
+    values, rates, accs = input_rows(log, 3)
+    assert done.returncode == 0 and done.stdout == csv(log, evaluate(log, values, rates, accs))
+    assert len(done.stdout.splitlines()) == 1 + 9
+    done = subprocess.run([sys.executable, "-m", "linkgen", "run", str(path), "--samples", "5000"],
+                          capture_output=True, text=True)
+    assert done.returncode == 2 and "has 25000000 rows; at most 10000000" in done.stderr and not done.stdout
