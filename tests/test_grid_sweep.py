@@ -83,6 +83,7 @@ def test_fivebar_grid_in_every_language(tmp_path: Path):
     evaluator = _evaluator(log)
     assert run_numpy(log, tmp_path) == evaluator
     assert linkgen.load(tmp_path / "fivebar.yaml").sweep().shape == (SAMPLES ** 2,)
+    assert f"The sweep is a grid of {SAMPLES ** 2} rows" in (tmp_path / "fivebar.md").read_text(encoding="utf-8")
     script = (tmp_path / "fivebar.m").read_text(encoding="utf-8")  # its variables are refused as the name
     assert "stride" in set(re.findall(r"^\s*(?:for\s+)?(\w+)\s*=[^=]", script, re.M)) <= SCRIPT_VARIABLES
     compare(log, c, evaluator)
