@@ -168,16 +168,18 @@ class Mechanism:
 
     def sweep(self, samples: int | None = None, order: int | None = None,
               progress: Callable[[int], None] | None = None) -> np.ndarray:
-        """The sweep (samples rows, default the file's; all inputs move together) as a structured
-        array with one float field per column, as the CSV has them, and an int field ``status``;
+        """The sweep (samples rows, default the file's samples; all inputs move together, or every
+        combination of them with the file's ``sweep: grid``: samples to the power of the inputs
+        rows) as a structured array with one float field per column, as the CSV has them, and an
+        int field ``status``;
         ``order`` (0, 1, 2) other than the mechanism's gives the columns of that order.  ``progress``
         is called with the number of rows done after each chunk of CHUNK rows."""
-        from .evaluate import input_rows
+        from .evaluate import input_rows, line_length
 
         if order is not None and order != self.log.order:
             return replace(self, order=order).sweep(samples, None, progress)
         values, rates, accs = input_rows(self.log, samples or self.log.samples)
-        return self._rows(values, rates, accs, progress)
+        return self._rows(values, rates, accs, progress, line_length(self.log, samples or self.log.samples))
 
     def at(self, values: Sequence[float], rates: Sequence[float] | None = None,
            accelerations: Sequence[float] | None = None) -> np.void:
@@ -232,7 +234,9 @@ class Mechanism:
         return Centres(log, locate(log, self.model, at, rates))
 
     def _rows(self, values: np.ndarray, rates: np.ndarray, accs: np.ndarray,
-              progress: Callable[[int], None] | None) -> np.ndarray:
+              progress: Callable[[int], None] | None, line: int = 0) -> np.ndarray:
+        """The rows evaluated CHUNK at a time (whole lines of ``line`` rows: see evaluate), each
+        chunk from the last one's warm start (a line's first row: from the sketch)."""
         from .evaluate import evaluate
         from .table import columns
 
@@ -240,11 +244,12 @@ class Mechanism:
         names = [c.name for c in log.columns]
         out = np.zeros(len(values), dtype=[*((n, "f8") for n in names), ("status", "i8")])
         warm = None
-        for lo in range(0, len(values), CHUNK):
-            hi = min(lo + CHUNK, len(values))
+        chunk = max(CHUNK // line, 1) * line if line else CHUNK
+        for lo in range(0, len(values), chunk):
+            hi = min(lo + chunk, len(values))
             with np.errstate(all="ignore"):
-                result = evaluate(log, values[lo:hi], rates[lo:hi], accs[lo:hi], warm=warm)
-            warm = result.warm[-1] if result.warm else None
+                result = evaluate(log, values[lo:hi], rates[lo:hi], accs[lo:hi], warm=warm, line=line)
+            warm = result.warm[-1] if result.warm and not line else None
             _, data = columns(log, result)
             for k, n in enumerate(names):
                 out[n][lo:hi] = data[:, k]

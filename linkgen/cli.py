@@ -118,7 +118,8 @@ def build(mechanism: str, outdir: str | None, check: bool, outputs: str | None, 
 
 @cli.command()
 @click.argument("mechanism", type=ANY_PATH)
-@click.option("--samples", type=click.IntRange(min=2), help="Rows in the sweep (default: the file's samples).")
+@click.option("--samples", type=click.IntRange(min=2),
+              help="Rows in the sweep, or each input's values with sweep: grid (default: the file's samples).")
 @click.option("--order", type=click.IntRange(0, 2), help="Derivatives: 0, 1 or 2 (default: the file's order).")
 @click.option("--outputs", help="Comma-separated outputs (default: the file's outputs).")
 @click.option("-o", "--output", type=ANY_PATH, help="Write the CSV here instead of stdout.")
@@ -136,15 +137,20 @@ def run(mechanism: str, samples: int | None, order: int | None, outputs: str | N
       linkgen run samples/slider_crank/slider_crank.yaml --outputs S --order 1 -o sweep.csv
     """
     from .api import CHUNK, Mechanism, csv_text
+    from .validate.header import MAX_SAMPLES
     from .writer import write_all
 
     m = Mechanism(mechanism, flags.outputs(outputs), order, flags.given(settings))
-    rows = samples or m.log.samples
+    each = samples or m.log.samples
+    rows = each ** len(m.log.inputs) if m.log.sweep == "grid" else each
+    if rows > MAX_SAMPLES:
+        raise click.BadParameter(f"a grid over {len(m.log.inputs)} inputs of {each} samples each has {rows} rows; "
+                                 f"at most {MAX_SAMPLES}", param_hint="'--samples'")
     if rows > CHUNK and sys.stderr.isatty():
         with click.progressbar(length=rows, label="rows", file=sys.stderr) as bar:
-            table = m.sweep(rows, progress=bar.update)
+            table = m.sweep(each, progress=bar.update)
     else:
-        table = m.sweep(rows)
+        table = m.sweep(each)
     text = csv_text(m, table)
     if output:
         directory, name = os.path.split(output)

@@ -126,11 +126,26 @@ def row_status(report: Report) -> Any:
     return fail + (fail == 0) * (singular + (singular == 0) * near)
 
 
-def input_rows(log: StepLog, samples: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    k = np.arange(samples, dtype=float)
-    values = np.stack([i.start + k * (i.stop - i.start) / (samples - 1) for i in log.inputs], axis=1)
-    rates = np.tile([i.speed for i in log.inputs], (samples, 1)).astype(float)
+def input_rows(log: StepLog, samples: int, grid: bool | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The sweep's input values, rates (each input's speed) and accelerations (0), row by row:
+    together, row k sets every input to start + k (stop - start) / (samples - 1); on a grid
+    (``grid``, default the log's sweep) every combination of the inputs' samples values, the
+    first input varying slowest (row k has input m at index k // samples**(n-1-m) % samples)."""
+    grid = log.sweep == "grid" if grid is None else grid
+    n = len(log.inputs)
+    rows = samples ** n if grid else samples
+    k = np.arange(rows)
+    index = [(k // samples ** (n - 1 - m) % samples if grid else k).astype(float) for m in range(n)]
+    values = np.stack([i.start + j * (i.stop - i.start) / (samples - 1) for i, j in zip(log.inputs, index)], axis=1)
+    rates = np.tile([i.speed for i in log.inputs], (rows, 1)).astype(float)
     return values, rates, np.zeros_like(values)
+
+
+def line_length(log: StepLog, samples: int) -> int:
+    """Rows of one line of the sweep: a resolver restarts from the sketch at every line's
+    first row (a grid's row where the last input is at its start), so every line of a grid is
+    solved as a together sweep of the last input is; 0 for a together sweep (one line)."""
+    return samples if log.sweep == "grid" and len(log.inputs) > 1 else 0
 
 
 @dataclass
@@ -152,16 +167,17 @@ def _input_env(log: StepLog, order: int, values: Any, rates: Any, accs: Any) -> 
 
 
 def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarray, order: int | None = None,
-             warm: Any = None, stop: int = 0) -> Result:
+             warm: Any = None, stop: int = 0, line: int = 0) -> Result:
     """Evaluate the procedure at rows of input values, rates and accelerations.
 
     With resolvers the rows are solved in order, the first from ``warm`` (a previous
-    result's warm start) when given, else from the sketch; ``stop`` (a step number)
+    result's warm start) when given, else from the sketch, and every ``line``-th row
+    from the sketch again (line_length; 0: never); ``stop`` (a step number)
     leaves the rows after the first one that fails at or before that step unsolved (nan).
     """
     order = log.order if order is None else order
     if log.groups:
-        return _evaluate_rows(log, values, rates, accs, order, warm, stop)
+        return _evaluate_rows(log, values, rates, accs, order, warm, stop, line)
     module = kernel(log, order)
     with np.errstate(all="ignore"):
         w, code, sigma = module._run(list(values.T), list(rates.T), list(accs.T), dict(module.PARAMS))
@@ -375,12 +391,14 @@ class RowSolver:
 
 
 def _evaluate_rows(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarray, order: int, warm: Any,
-                   stop: int) -> Result:
+                   stop: int, line: int) -> Result:
     solver = RowSolver(log, max(order, 1))  # the resolver's rates start the next row at every order
     solver.warm = warm
     rows: list[Row] = []
     warms: list[Any] = []
     for r in range(values.shape[0]):
+        if line and r and r % line == 0:
+            solver.warm = None
         failed = {n: rep for n, rep in rows[-1].report.items() if rep[0] in status.FAILED} if rows else {}
         stopped = bool(stop) and any(n <= stop for n in failed)
         rows.append(Row({}, failed, {}, rows[-1].code) if stopped else solver.solve(values[r], rates[r], accs[r]))

@@ -105,6 +105,7 @@ class Mechanism:
     inputs_where: Where  # the inputs: key
     options: Options = Options()  # options: what the programs compute in and how
     options_where: Mapping[str, Where] = field(default_factory=dict)  # where the file gives each option
+    sweep: str = "together"  # how the inputs move over the sweep: "together" or "grid" (every combination)
 
     @cached_property
     def _joints(self) -> dict[str, Joint]:

@@ -67,8 +67,8 @@ def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = Non
         proc, columns = unit_directions(proc, columns, len(inputs))
     return Draft(StepLog(
         __version__, m.name, m.title, m.source, m.length_unit, m.angle_unit, topo.length_scale, topo.origin,
-        topo.grubler, topo.mobility, topo.redundant, order, m.samples, pairs, links, inputs, proc.variables, proc.steps,
-        proc.lj, proc.add_links, proc.residuals, proc.groups, columns, policy_for(opts),
+        topo.grubler, topo.mobility, topo.redundant, order, m.samples, m.sweep, pairs, links, inputs, proc.variables,
+        proc.steps, proc.lj, proc.add_links, proc.residuals, proc.groups, columns, policy_for(opts),
         outputs=tuple(outputs), options=opts,
     ))
 

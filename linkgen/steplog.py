@@ -252,6 +252,7 @@ class Header:
     redundant: int
     order: int
     samples: int
+    sweep: str  # "together" (row k: every input at k/(samples-1) of its range) or "grid" (every combination)
     pairs: tuple[PairInfo, ...]
     links: tuple[LinkInfo, ...]
     inputs: tuple[InputInfo, ...]

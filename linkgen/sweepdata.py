@@ -43,7 +43,8 @@ class Sweep:
 
 
 def file_rows(log: StepLog) -> Result:
-    """The file's sweep (its samples, all inputs together, the CSV's rows) evaluated at the log's
+    """The file's sweep (its samples, all inputs together, the CSV's rows; with ``sweep: grid``
+    the inputs together still, the diagonal the plots and summary follow) evaluated at the log's
     order with its settings: once for the steps and settings asked for last.  The conditioning
     over the sweep (linkgen.analysis), the summary and the plots of a build read the one result
     where their logs compute the same steps with the same settings (the facts found from it, the
@@ -54,7 +55,7 @@ def file_rows(log: StepLog) -> Result:
 
 @functools.lru_cache(maxsize=1)
 def _rows(log: StepLog) -> Result:
-    values, rates, accs = input_rows(log, log.samples)
+    values, rates, accs = input_rows(log, log.samples, grid=False)  # a grid's plots: its together sweep
     with np.errstate(all="ignore"):
         return evaluate(log, values, rates, accs)
 

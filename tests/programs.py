@@ -115,7 +115,7 @@ def compare(log: StepLog, a: str, b: str, tol: float = 1e-9) -> float:
     ha, da, sa = parse(a)
     hb, db, sb = parse(b)
     assert ha == hb == [c.name for c in log.columns] + ["status"]
-    assert len(da) == len(db) == log.samples
+    assert len(da) == len(db) == log.samples ** (len(log.inputs) if log.sweep == "grid" else 1)
     assert sa == sb, [(k, x, y) for k, (x, y) in enumerate(zip(sa, sb)) if x != y][:5]
     scale = [max(x, y) for x, y in zip(scales(log, da), scales(log, db))]
     worst = 0.0

@@ -146,6 +146,8 @@ EXPECT: dict[str, tuple[int | None, str | None]] = {
     "samples_one": (15, "samples"),
     "samples_text": (15, "samples"),
     "samples_too_many": (17, "samples"),
+    "sweep_grid_too_many": (21, "sweep"),
+    "sweep_unknown": (16, "sweep"),
     "sketch_in_line": (5, "joints.A"),
     "sketch_too_large": (7, "joints.O2"),
     "sketch_too_small": (6, "joints.B"),

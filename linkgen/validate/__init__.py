@@ -38,7 +38,7 @@ def validate(root: Mapping, path: str) -> Mechanism:
     return Mechanism(
         name, title, file_label(path), path, length_unit, angle_unit, joints, links,
         given, prismatic, outputs, outputs_where, order, samples, Where(1, ""), header.key_where(sheet, "inputs"),
-        options, options_where,
+        options, options_where, header.sweep(sheet, samples, len(given)),
     )
 
 

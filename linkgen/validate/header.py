@@ -1,4 +1,5 @@
-"""The file's own keys: the format version, the name, title and units, the outputs, order and samples."""
+"""The file's own keys: the format version, the name, title and units, the outputs, order, samples
+and sweep."""
 
 from __future__ import annotations
 
@@ -17,7 +18,8 @@ MAX_SAMPLES = 10_000_000
 DEFAULT_SAMPLES = 361
 DEFAULT_ORDER = 2
 TOP_REQUIRED = ("linkgen", "name", "joints", "links", "inputs")
-TOP_OPTIONAL = ("title", "units", "outputs", "order", "samples", "options")
+TOP_OPTIONAL = ("title", "units", "outputs", "order", "samples", "sweep", "options")
+SWEEPS = ("together", "grid")  # every input along its range at once; every combination of the inputs' values
 
 
 def file_label(path: str) -> str:
@@ -114,6 +116,22 @@ def scalars(sheet: Sheet) -> tuple[int, int]:
             assert isinstance(node, Scalar)  # integer() reads scalars only
             raise sheet.error(node, f"a sweep has at most {MAX_SAMPLES} samples, got {node.text}")
     return order, samples
+
+
+def sweep(sheet: Sheet, samples: int, inputs: int) -> str:
+    """How the inputs move over the sweep (SWEEPS; together without the key); a grid's rows,
+    samples to the power of the inputs, at most MAX_SAMPLES."""
+    node = sheet.root.get("sweep")
+    if node is None:
+        return SWEEPS[0]
+    kind = sheet.text(node, "the sweep: together or grid")
+    if kind not in SWEEPS:
+        raise sheet.error(node, f"the sweep is together (every input along its range at once) or grid "
+                          f"(every combination of the inputs' samples), got {kind!r}")
+    if kind == "grid" and samples ** inputs > MAX_SAMPLES:
+        raise sheet.error(node, f"a grid over {inputs} inputs of {samples} samples each has {samples ** inputs} rows; "
+                          f"at most {MAX_SAMPLES}")
+    return kind
 
 
 def options(sheet: Sheet) -> tuple[Options, dict[str, Where]]:

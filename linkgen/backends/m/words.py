@@ -18,7 +18,7 @@ KEYWORDS = frozenset("""
 # Octave's functions (functions.txt; a superset of what the generated .m files call).
 FUNCTIONS = word_list(__name__, "functions.txt")
 # The variables of the sweep script NAME.m: after one run, a variable named NAME hides the script.
-SCRIPT_VARIABLES = frozenset("start stop speed samples names warm k in out status row c".split())
+SCRIPT_VARIABLES = frozenset("start stop speed samples names warm k in out status row c stride".split())
 # Fields of the struct out besides the outputs.
 STATE_FIELDS = frozenset("sigma iterations columns".split())
 MAX_NAME = 57  # MATLAB's 63 characters for NAME_solve
