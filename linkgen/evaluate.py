@@ -126,10 +126,12 @@ def row_status(report: Report) -> Any:
     return fail + (fail == 0) * (singular + (singular == 0) * near)
 
 
-def input_rows(log: StepLog, samples: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def input_rows(log: StepLog, samples: int,
+               sweep: dict[str, list[float]] | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     k = np.arange(samples, dtype=float)
-    values = np.stack([i.start + k * (i.stop - i.start) / (samples - 1) for i in log.inputs], axis=1)
-    rates = np.tile([i.speed for i in log.inputs], (samples, 1)).astype(float)
+    s = sweep or {key: [getattr(i, key) for i in log.inputs] for key in ("start", "stop", "speed")}
+    values = np.stack([a + k * (b - a) / (samples - 1) for a, b in zip(s["start"], s["stop"])], axis=1)
+    rates = np.tile(s["speed"], (samples, 1)).astype(float)
     return values, rates, np.zeros_like(values)
 
 
