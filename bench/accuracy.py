@@ -33,9 +33,10 @@ sys.path.insert(0, str(ROOT))
 
 from linkgen.backends.c.printer import c_function  # noqa: E402
 from linkgen.backends.m.printer import octave_function  # noqa: E402
-from linkgen.evaluate import evaluate, input_rows  # noqa: E402
+from linkgen.evaluate import evaluate  # noqa: E402
 from linkgen.pipeline import build_log  # noqa: E402
 from linkgen.primitives import PRIMITIVES, numpy_backend, python_backend  # noqa: E402
+from linkgen.rows import input_rows  # noqa: E402
 
 MP = mpmath.MPContext()
 MP.dps = 50

@@ -26,8 +26,9 @@ sys.path.insert(0, str(ROOT / "tests"))
 from programs import noise_floors, parse  # noqa: E402
 from reference import Reference, wrap  # noqa: E402
 
-from linkgen.evaluate import evaluate, input_rows  # noqa: E402
+from linkgen.evaluate import evaluate  # noqa: E402
 from linkgen.pipeline import build_log  # noqa: E402
+from linkgen.rows import input_rows  # noqa: E402
 from linkgen.table import columns  # noqa: E402
 
 ROWS = 37  # reference rows spread over the sweep (every 10 degrees of a full turn in 361 rows)

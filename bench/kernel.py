@@ -74,9 +74,10 @@ def _profile(module: ModuleType, rows: int) -> list[tuple[str, float]]:
 
 
 def bench_kernel() -> None:
-    from linkgen.evaluate import evaluate, input_rows
+    from linkgen.evaluate import evaluate
     from linkgen.pipeline import build_log
     from linkgen.render import render_all
+    from linkgen.rows import input_rows
     from linkgen.writer import write_all
 
     print(f"## The numpy kernel NAME_np.py: rows per second (median of {RUNS} after 2 warm-up calls)")

@@ -30,9 +30,9 @@ import exact  # noqa: E402
 import languages as lang  # noqa: E402
 from performance_doc import write_section  # noqa: E402
 
-from linkgen.evaluate import input_rows  # noqa: E402
 from linkgen.pipeline import build_log  # noqa: E402
 from linkgen.render import render_all  # noqa: E402
+from linkgen.rows import input_rows  # noqa: E402
 from linkgen.writer import write_all  # noqa: E402
 
 SAMPLES = ("fourbar", "jansen", "sixbar_fig14")

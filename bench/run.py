@@ -19,8 +19,9 @@ sys.path.insert(0, str(ROOT))
 import numpy as np  # noqa: E402
 from ladders import write_ladder  # noqa: E402
 
-from linkgen.evaluate import evaluate, input_rows  # noqa: E402  (linkgen first: it sets BLAS threads)
+from linkgen.evaluate import evaluate  # noqa: E402  (linkgen first: it sets BLAS threads)
 from linkgen.pipeline import analyse_file, build_log  # noqa: E402
+from linkgen.rows import input_rows  # noqa: E402
 
 
 def median_time(fn, repeat: int) -> float:

@@ -174,21 +174,25 @@ class Mechanism:
         int field ``status``;
         ``order`` (0, 1, 2) other than the mechanism's gives the columns of that order.  ``progress``
         is called with the number of rows done after each chunk of CHUNK rows."""
-        from .evaluate import input_rows, line_length
+        from .rows import input_rows, line_length
+        from .units import sweep_lists
 
         if order is not None and order != self.log.order:
             return replace(self, order=order).sweep(samples, None, progress)
-        values, rates, accs = input_rows(self.log, samples or self.log.samples)
-        return self._rows(values, rates, accs, progress, line_length(self.log, samples or self.log.samples))
+        n = samples or self.log.samples
+        values, rates, accs = input_rows(self.log, n, sweep_lists(self.log))
+        return self._rows(values, rates, accs, progress, line_length(self.log, n))
 
     def at(self, values: Sequence[float], rates: Sequence[float] | None = None,
            accelerations: Sequence[float] | None = None) -> np.void:
-        """One row at the inputs' values (radians or length units, the programs' units), their
+        """One row at the inputs' values (the programs' units: radians, or degrees with units: file), their
         rates (default: the inputs' speeds) and accelerations (default 0)."""
+        from .units import sweep_lists
+
         n = len(self.log.inputs)
         if len(values) != n:
             raise ValueError(f"{len(values)} values given; {self.name} has {n} inputs")
-        speeds = [i.speed for i in self.log.inputs] if rates is None else list(rates)
+        speeds = sweep_lists(self.log)["speed"] if rates is None else list(rates)
         accs = [0.0] * n if accelerations is None else list(accelerations)
         row: np.void = self._rows(np.array([values], dtype=float), np.array([speeds], dtype=float),
                                   np.array([accs], dtype=float), None)[0]
@@ -239,6 +243,7 @@ class Mechanism:
         chunk from the last one's warm start (a line's first row: from the sketch)."""
         from .evaluate import evaluate
         from .table import columns
+        from .units import outputs_from_si, to_si
 
         log = self.log
         names = [c.name for c in log.columns]
@@ -248,9 +253,11 @@ class Mechanism:
         for lo in range(0, len(values), chunk):
             hi = min(lo + chunk, len(values))
             with np.errstate(all="ignore"):
-                result = evaluate(log, values[lo:hi], rates[lo:hi], accs[lo:hi], warm=warm, line=line)
+                result = evaluate(log, *to_si(log, values[lo:hi], rates[lo:hi], accs[lo:hi]), warm=warm, line=line)
             warm = result.warm[-1] if result.warm and not line else None
             _, data = columns(log, result)
+            data[:, :len(log.inputs)] = values[lo:hi]  # the inputs as given
+            outputs_from_si(log, data)
             for k, n in enumerate(names):
                 out[n][lo:hi] = data[:, k]
             out["status"][lo:hi] = result.status

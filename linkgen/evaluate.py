@@ -126,28 +126,6 @@ def row_status(report: Report) -> Any:
     return fail + (fail == 0) * (singular + (singular == 0) * near)
 
 
-def input_rows(log: StepLog, samples: int, grid: bool | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The sweep's input values, rates (each input's speed) and accelerations (0), row by row:
-    together, row k sets every input to start + k (stop - start) / (samples - 1); on a grid
-    (``grid``, default the log's sweep) every combination of the inputs' samples values, the
-    first input varying slowest (row k has input m at index k // samples**(n-1-m) % samples)."""
-    grid = log.sweep == "grid" if grid is None else grid
-    n = len(log.inputs)
-    rows = samples ** n if grid else samples
-    k = np.arange(rows)
-    index = [(k // samples ** (n - 1 - m) % samples if grid else k).astype(float) for m in range(n)]
-    values = np.stack([i.start + j * (i.stop - i.start) / (samples - 1) for i, j in zip(log.inputs, index)], axis=1)
-    rates = np.tile([i.speed for i in log.inputs], (rows, 1)).astype(float)
-    return values, rates, np.zeros_like(values)
-
-
-def line_length(log: StepLog, samples: int) -> int:
-    """Rows of one line of the sweep: a resolver restarts from the sketch at every line's
-    first row (a grid's row where the last input is at its start), so every line of a grid is
-    solved as a together sweep of the last input is; 0 for a together sweep (one line)."""
-    return samples if log.sweep == "grid" and len(log.inputs) > 1 else 0
-
-
 @dataclass
 class Result:
     inputs: np.ndarray  # rows x inputs

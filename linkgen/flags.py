@@ -8,7 +8,7 @@ from typing import Any
 
 import click
 
-from .options import ANGLE_FORMS, MAX_ITERATIONS, MAX_TOLERANCE, PREDICTORS, STRATEGIES
+from .options import ANGLE_FORMS, MAX_ITERATIONS, MAX_TOLERANCE, PREDICTORS, STRATEGIES, UNIT_SYSTEMS
 from .policy import MAX_MAGNITUDE, REAL_TYPES
 
 SETTINGS = (  # the flags that override the file's options (linkgen.options.Options), all of build and run
@@ -25,6 +25,8 @@ SETTINGS = (  # the flags that override the file's options (linkgen.options.Opti
     click.option("--checks/--no-checks", default=None,
                  help="Conditioning and status per step (off: positions and rates only)."),
     click.option("--angles", type=click.Choice(ANGLE_FORMS), help="Angle outputs as angles or as unit vectors."),
+    click.option("--units", type=click.Choice(UNIT_SYSTEMS),
+                 help="Angle inputs and outputs in radians (SI) or in the file's unit (degrees where it uses them)."),
     click.option("--assembly", type=click.IntRange(min=1),
                  help="Follow assembly K at the sketch's inputs (linkgen assemblies numbers them), not the sketch's."),
 )

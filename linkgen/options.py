@@ -13,6 +13,7 @@ from .policy import DEFAULT_REAL, POLICY, REAL_TYPES, Policy
 STRATEGIES = ("newton", "fixed-point", "closure")  # the resolver strategies (see Options.strategy)
 PREDICTORS = (0, 1, 2)  # the warm start's order: the last row's state, along its rates, with its accelerations
 ANGLE_FORMS = ("angle", "unit")  # angle outputs as angles (atan2) or as unit vectors (no trigonometry)
+UNIT_SYSTEMS = ("si", "file")  # the programs' inputs and outputs in radians (SI) or in the file's angle unit
 MAX_ITERATIONS = 100  # the largest iteration cap a user may set
 MAX_TOLERANCE = 1e-3  # the loosest resolver tolerance a user may set, relative to the length scale
 
@@ -32,10 +33,11 @@ class Options:
     angles: str = "angle"  # angle outputs as angles or as unit vectors (ANGLE_FORMS)
     assembly: int = 0  # the assembly the programs follow (linkgen assemblies' number at the sketch's
     # inputs); 0: the sketch's
+    units: str = "si"  # inputs and outputs in SI radians, or in the file's units (degrees; linkgen.units)
 
 
 CHOICES: dict[str, tuple[object, ...]] = {"real": REAL_TYPES, "strategy": STRATEGIES, "predictor": PREDICTORS,
-                                          "angles": ANGLE_FORMS}
+                                          "angles": ANGLE_FORMS, "units": UNIT_SYSTEMS}
 
 
 def overridden(options: Options, given: Mapping[str, object]) -> Options:
@@ -76,6 +78,8 @@ def describe(options: Options, resolver: Policy | None) -> str:
     only where the mechanism has one (its tolerance and cap as its program's ``resolver`` policy has them)."""
     words = [f"checks {'on' if options.checks else 'off'}",
              f"angles as {'angles' if options.angles == 'angle' else 'unit vectors'}"]
+    if options.units == "file":
+        words.append("units the file's")
     if options.assembly:
         words.append(f"assembly {options.assembly}")
     if resolver:

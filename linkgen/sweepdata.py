@@ -19,7 +19,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from . import status
-from .evaluate import Result, evaluate, input_rows
+from .evaluate import Result, evaluate
+from .rows import input_rows
 from .steplog import StepLog
 from .table import columns
 

@@ -20,8 +20,9 @@ import sketches as sk
 from programs import noise_floors
 from reference import Reference, wrap
 
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
 from linkgen.pipeline import build_log
+from linkgen.rows import input_rows
 from linkgen.table import columns
 
 ROOT = Path(__file__).resolve().parent.parent

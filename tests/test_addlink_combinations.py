@@ -22,8 +22,9 @@ from pathlib import Path
 import pytest
 from reference import Reference
 
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
 from linkgen.pipeline import build_log
+from linkgen.rows import input_rows
 from linkgen.table import csv
 
 ROOT = Path(__file__).resolve().parents[1]

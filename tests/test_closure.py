@@ -28,10 +28,11 @@ from programs import SANITIZE, STRICT, compile_step, different_bits, need, parse
 
 from linkgen.backends import backends
 from linkgen.backends.program import LEVEL
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
 from linkgen.pipeline import build_log
 from linkgen.render import render_all, render_backend
 from linkgen.render.view import build_view
+from linkgen.rows import input_rows
 from linkgen.steplog import StepLog, held
 from linkgen.table import csv
 from linkgen.writer import write_all

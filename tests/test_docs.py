@@ -80,7 +80,8 @@ def test_linkgen_run_gives_the_python_programs_bits_with_add_links(name: str, tm
     `python NAME.py` (the closed-form ones agree within the spec's rule: tests/test_programs.py)."""
     from programs import build, run_python
 
-    from linkgen.evaluate import evaluate, input_rows
+    from linkgen.evaluate import evaluate
+    from linkgen.rows import input_rows
     from linkgen.table import csv
 
     log = build(ROOT / "samples" / name / f"{name}.yaml", tmp_path)

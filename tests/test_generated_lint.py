@@ -1,6 +1,6 @@
 """Generated Python is clean under pyflakes' rules (no unused import, no undefined name),
 for every sample, for pruned builds, where most of the runtime is left out, and for builds with
-the links' directions as unit vectors (angles: unit)."""
+the links' directions as unit vectors (angles: unit) or angles in degrees (units: file)."""
 
 from __future__ import annotations
 
@@ -42,6 +42,10 @@ def test_generated_python_has_no_pyflakes_findings(tmp_path):
         log = build_log(str(ROOT / f"samples/{name}/{name}.yaml"), sweep=False, options={"angles": "unit"})
         write_all(render_all(log), str(tmp_path / f"{name}_unit"))
         files += [tmp_path / f"{name}_unit" / f"{log.name}.py", tmp_path / f"{name}_unit" / f"{log.name}_np.py"]
+    for name in ("fourbar", "double_triad"):  # units: file, solve() taking degrees (a resolver's too)
+        log = build_log(str(ROOT / f"samples/{name}/{name}.yaml"), sweep=False, options={"units": "file"})
+        write_all(render_all(log), str(tmp_path / f"{name}_deg"))
+        files += [tmp_path / f"{name}_deg" / f"{log.name}.py", tmp_path / f"{name}_deg" / f"{log.name}_np.py"]
     done = subprocess.run([ruff, "check", "--no-cache", "--isolated", "--select", "F", *map(str, files)],
                           capture_output=True, text=True)
     assert done.returncode == 0, done.stdout + done.stderr

@@ -25,7 +25,8 @@ from reference import Reference, wrap
 import linkgen
 import linkgen.api
 from linkgen.backends.m.words import SCRIPT_VARIABLES
-from linkgen.evaluate import evaluate, input_rows, line_length
+from linkgen.evaluate import evaluate
+from linkgen.rows import input_rows, line_length
 from linkgen.table import csv
 
 ROOT = Path(__file__).resolve().parent.parent

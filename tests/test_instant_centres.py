@@ -19,13 +19,14 @@ from programs import CFLAGS, need, run_c, run_octave, run_python
 from reference import MP, Jet, Reference, _coef, derivatives
 
 from linkgen.errors import InputError
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
 from linkgen.instant.classify import FIRST, SECONDARY, THIRD_A, THIRD_B, classify
 from linkgen.instant.table import centre_outputs
 from linkgen.pipeline import build_log
 from linkgen.primitives import PRIMITIVES, numpy_backend, python_backend
 from linkgen.primitives.dsl import record_fields
 from linkgen.render import render_all
+from linkgen.rows import input_rows
 from linkgen.table import columns
 from linkgen.validate import read_mechanism
 from linkgen.writer import write_all

@@ -17,8 +17,9 @@ from pathlib import Path
 import pytest
 from programs import ROOT, build, compare, parse, run_c, run_octave, run_python, scales
 
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
 from linkgen.pipeline import build_log
+from linkgen.rows import input_rows
 from linkgen.table import csv
 
 MECHANISMS = ("fourbar", "slider_crank", "sixbar_fig14")

@@ -20,9 +20,10 @@ import numpy as np
 import pytest
 from programs import ROOT, SAMPLES, build, compare, parse, run_c
 
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
 from linkgen.kernel import kernel
 from linkgen.pipeline import build_log
+from linkgen.rows import input_rows
 from linkgen.table import csv
 
 MECHANISMS = [pytest.param(p, id=p.stem) for p in SAMPLES] + [

@@ -22,11 +22,11 @@ import pytest
 from programs import ROOT, SAMPLES, noise_floors, parse
 from test_real_type import BOUND_EPS, _worst_eps
 
-from linkgen.evaluate import input_rows
 from linkgen.kernel import kernel
 from linkgen.pipeline import analyse_file, build_log
 from linkgen.policy import EPSILON
 from linkgen.render import render_all
+from linkgen.rows import input_rows
 from linkgen.writer import write_all
 
 DENSE = 2000  # rows of the second sweep

@@ -40,9 +40,10 @@ from programs import (
     scales,
 )
 
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
 from linkgen.render import render_all
 from linkgen.render.view import build_view
+from linkgen.rows import input_rows
 from linkgen.table import csv
 from linkgen.writer import write_all
 

@@ -21,9 +21,10 @@ import sketches as sk
 from programs import CFLAGS, ROOT, SAMPLES, build, need
 from reference import MP, Reference
 
-from linkgen.evaluate import RowSolver, evaluate, input_rows, runtime
+from linkgen.evaluate import RowSolver, evaluate, runtime
 from linkgen.pipeline import build_log
 from linkgen.policy import POLICY
+from linkgen.rows import input_rows
 
 MECHANISMS = SAMPLES + sorted((ROOT / "tests" / "mechanisms").glob("*.yaml"))
 PARTIAL = ROOT / "tests" / "mechanisms" / "sixbar_partial.yaml"  # a crank that meets two limit positions

@@ -12,10 +12,11 @@ import numpy as np
 import pytest
 
 from linkgen.analysis import Facts, with_facts
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
 from linkgen.pipeline import analyse_file, draft
 from linkgen.prune import prune
 from linkgen.render import render_all
+from linkgen.rows import input_rows
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "bench"))
 from ladders import ladder, write_ladder  # noqa: E402

@@ -37,9 +37,10 @@ from programs import (
 )
 
 from linkgen import status
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
+from linkgen.rows import input_rows
 from linkgen.steplog import StepLog
 from linkgen.table import csv
 from linkgen.writer import write_all

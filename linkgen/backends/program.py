@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 from ..instant.names import CENTRE_QUANTITIES
 from ..primitives import PRIMITIVES
 from ..primitives.dsl import Primitive
+from ..units import sweep_lists
 from . import Runtime
 
 if TYPE_CHECKING:
@@ -59,7 +60,7 @@ def sketch_states(view: View, spell: Spelling) -> list[str]:
 def input_lists(view: View, spell: Spelling) -> dict[str, str]:
     """The inputs' sweep (start, stop, speed), sketch values, step limits and periodicity, as lists of literals."""
     log = view.log
-    lists = {k: ", ".join(spell.lit(getattr(i, k)) for i in log.inputs) for k in ("start", "stop", "speed")}
+    lists = {k: ", ".join(spell.lit(x) for x in xs) for k, xs in sweep_lists(log).items()}  # the programs' units
     lists["sketch"] = ", ".join(spell.lit(i.sketch) for i in log.inputs)
     lists["limits"] = ", ".join(spell.lit(x) for x in log.step_limits())
     lists["periodic"] = ", ".join(spell.flag(i.kind == "revolute") for i in log.inputs)

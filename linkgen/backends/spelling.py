@@ -16,6 +16,7 @@ from ..primitives import PRIMITIVES
 from ..primitives.dsl import record_fields
 from ..primitives.printers import literal
 from ..steplog import Arg, BranchSign, Column, Step, StepLog, Variable, held
+from ..units import DEGREE, converted
 from . import Words
 from .program import program_primitive
 
@@ -129,11 +130,16 @@ class Spelling:
         a computed point's x and y with the origin added back, any other field as computed."""
         drawn = self.log.drawn(c)
         if drawn is not None:
-            return self.lit(drawn)
+            return self.in_units(c, self.lit(drawn))
         text, offset = self.get(c.variable, c.field), self.log.offset(c)
         if not offset:
-            return text
+            return self.in_units(c, text)
         return f"{text} + {self.lit(offset)}" if offset > 0 else f"{text} - {self.lit(-offset)}"
+
+    def in_units(self, c: Column, text: str) -> str:
+        """An output column's value in the programs' units: an angle or its rate times DEGREE where
+        they work in degrees (linkgen.units), else as computed."""
+        return f"{text} * {self.lit(DEGREE)}" if converted(self.log, c) else text
 
     def change_points(self, step: Step) -> str:
         """The change points of a step's chain as branch_at takes them."""

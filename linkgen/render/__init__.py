@@ -21,6 +21,7 @@ from ..errors import and_list
 from ..options import describe
 from ..policy import for_real
 from ..steplog import StepLog
+from ..units import DEGREE
 from .plots import figures
 from .svg import render_svg
 from .view import View, build_view
@@ -96,7 +97,7 @@ def render_backend(backend: Backend[Any], view: View) -> dict[str, bytes]:
         view = build_view(log)
     spell = backend.spelling(view)
     common: dict[str, object] = dict(v=view, L=spell, banner=_banner(log, backend), name=log.name,
-                                     max_input=log.policy.max_input)
+                                     max_input=log.policy.max_input, degree=DEGREE)
 
     def template(name: str, /, **context: object) -> bytes:
         text = make_env().get_template(f"{backend.templates}/{name}").render(**common, **context)

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 from .. import status
 from ..steplog import Column, ResolverGroup, Step, StepLog, Variable
+from ..units import angular_inputs, factor
 from .closure import Plan, plan
 
 
@@ -82,6 +83,17 @@ class View:
     nmax: int  # the largest block state (Add-link lengths, measured branches, orientation), with the closure
     # strategy at least its largest group's Newton unknowns (its Jacobian is solved as the Add-links' is)
     record_order: int  # derivative order of the records: a resolver needs velocities for its Jacobian
+
+    @property
+    def degree_inputs(self) -> tuple[int, ...]:
+        """The inputs the programs take in degrees (options.units file, linkgen.units): solve()
+        divides them by DEGREE before it computes."""
+        return angular_inputs(self.log)
+
+    @property
+    def angle_words(self) -> str:
+        """The unit the programs take and give angles in: degrees with units: file (linkgen.units), else radians."""
+        return "degrees" if factor(self.log) else "radians"
 
     @property
     def checks(self) -> bool:

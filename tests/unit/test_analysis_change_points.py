@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 from linkages import four_bar
 
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
 from linkgen.pipeline import build_log
+from linkgen.rows import input_rows
 
 
 def test_a_parallelogram_flips_where_its_pivots_are_in_line(tmp_path):

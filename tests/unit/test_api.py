@@ -15,7 +15,8 @@ import pytest
 
 import linkgen
 import linkgen.api
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
+from linkgen.rows import input_rows
 from linkgen.table import csv
 from tests.programs import CFLAGS, build, need, parse
 

@@ -14,9 +14,10 @@ from programs import build, compare, need, run_c
 from spelled import ROOT
 
 from linkgen.backends.c import BACKEND
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
+from linkgen.rows import input_rows
 from linkgen.table import csv
 
 MECHANISMS = {"jansen_foot": "samples/jansen_foot/jansen_foot.yaml",  # order 1, many outputs

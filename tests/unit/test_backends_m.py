@@ -12,7 +12,8 @@ from programs import build, compare, need, run_octave
 from spelled import ROOT
 
 from linkgen.backends.m import BACKEND
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
+from linkgen.rows import input_rows
 from linkgen.table import csv
 
 MECHANISMS = {"jansen_foot": "samples/jansen_foot/jansen_foot.yaml",  # order 1, many outputs

@@ -15,7 +15,8 @@ from programs import build, compare, run_python
 from spelled import ROOT
 
 from linkgen.backends.py import BACKEND, python_text
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
+from linkgen.rows import input_rows
 from linkgen.table import csv
 
 MECHANISMS = {"jansen_foot": "samples/jansen_foot/jansen_foot.yaml",  # order 1, many outputs

@@ -35,6 +35,12 @@ def test_a_value_out_of_range_is_a_usage_error():
     assert CliRunner().invoke(_command(), ["--predictor", "3"]).exit_code == 2
 
 
+def test_units_is_si_or_file():
+    assert CliRunner().invoke(_command(), ["--units", "file"]).output.strip() == "[('units', 'file')]"
+    result = CliRunner().invoke(_command(), ["--units", "deg"])
+    assert result.exit_code == 2 and "'deg' is not one of 'si', 'file'" in result.output
+
+
 def test_outputs_splits_on_commas_and_drops_blanks():
     assert flags.outputs(" P, rocker,,") == ("P", "rocker")
     assert flags.outputs("") is None and flags.outputs(None) is None

@@ -11,8 +11,8 @@ from linkgen.policy import POLICY
 
 def test_the_defaults_are_what_linkgen_builds_without_options():
     o = Options()
-    assert (o.real, o.strategy, o.polish, o.predictor, o.checks, o.angles) == (
-        "double", "newton", True, 1, True, "angle")
+    assert (o.real, o.strategy, o.polish, o.predictor, o.checks, o.angles, o.units) == (
+        "double", "newton", True, 1, True, "angle", "si")
     assert policy_for(o) == POLICY  # the step log of a file without options keeps the policy's numbers
 
 
@@ -35,6 +35,12 @@ def test_the_settings_as_the_first_lines_state_them():
     assert describe(o, None) == "Settings: checks off, angles as unit vectors."
     assert describe(o, policy_for(o)) == ("Settings: resolver fixed-point (tolerance 1e-08, at most 8 iterations, "
                                           "polish off, predictor order 0), checks off, angles as unit vectors.")
+
+
+def test_the_first_lines_state_the_files_units_only_where_asked():
+    assert describe(Options(units="file"), None) == "Settings: checks on, angles as angles, units the file's."
+    assert describe(Options(units="file", assembly=2), None) == (
+        "Settings: checks on, angles as angles, units the file's, assembly 2.")
 
 
 def test_the_runtime_reads_the_policys_numbers_and_the_resolvers_settings():

@@ -16,9 +16,10 @@ import linkgen.analysis.sweep  # noqa: F401 - the modules whose evaluations are 
 import linkgen.evaluate
 import linkgen.summary.compute  # noqa: F401
 from linkgen import status, sweepdata
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
+from linkgen.rows import input_rows
 from linkgen.table import columns
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -11,8 +11,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from linkgen.evaluate import evaluate, input_rows
+from linkgen.evaluate import evaluate
 from linkgen.pipeline import build_log
+from linkgen.rows import input_rows
 from linkgen.table import columns, csv, number
 
 FOURBAR = Path(__file__).resolve().parents[2] / "samples" / "fourbar" / "fourbar.yaml"

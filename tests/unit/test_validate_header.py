@@ -47,16 +47,16 @@ def test_the_real_type_from_the_options(text: str, real: str):
 
 def test_every_option_as_the_file_gives_it():
     text = ("options: {strategy: fixed-point, tolerance: 1.0e-8, iterations: 20, polish: false, predictor: 2,\n"
-            "  checks: false, angles: unit}\n")
+            "  checks: false, angles: unit, units: file}\n")
     o = read(FOURBAR + text).options
-    assert (o.strategy, o.tolerance, o.iterations, o.polish, o.predictor, o.checks, o.angles) == (
-        "fixed-point", 1e-8, 20, False, 2, False, "unit")
+    assert (o.strategy, o.tolerance, o.iterations, o.polish, o.predictor, o.checks, o.angles, o.units) == (
+        "fixed-point", 1e-8, 20, False, 2, False, "unit", "file")
 
 
 @pytest.mark.parametrize("value, key, message", [
     ("options: {real: quad}", "options.real", "options: real is float, double or long double, got 'quad'"),
     ("options: {precision: float}", "options.precision", "unknown key 'precision' in options; the keys are: real, "
-     "strategy, tolerance, iterations, polish, predictor, checks, angles, assembly"),
+     "strategy, tolerance, iterations, polish, predictor, checks, angles, assembly, units"),
     ("options: {assembly: 0}", "options.assembly",
      "options: assembly is a number from 1 (see linkgen assemblies), got 0"),
     ("options: {assembly: two}", "options.assembly",
@@ -71,6 +71,8 @@ def test_every_option_as_the_file_gives_it():
     ("options: {polish: yes}", "options.polish",
      "expected options: polish: true or false, got the text 'yes' (YAML 1.2 reads yes, no, on and off as text)"),
     ("options: {angles: degrees}", "options.angles", "options: angles is angle or unit, got 'degrees'"),
+    ("options: {units: deg}", "options.units", "options: units is si or file, got 'deg'"),
+    ("options: {units: [file]}", "options.units", "expected units, got a list"),
 ])
 def test_a_wrong_option_is_refused_at_its_line(value: str, key: str, message: str):
     error = refused(FOURBAR + value + "\n")

@@ -6,6 +6,7 @@ import functools
 from typing import TYPE_CHECKING
 
 from ...primitives import PRIMITIVES
+from ...units import sweep_lists
 from .. import Backend, Runtime, Template
 from ..program import LEVEL, used_primitives
 from .printer import numpy_function
@@ -69,7 +70,7 @@ def render(view: View, spell: Numpy, template: Template) -> dict[str, bytes]:
         "NAME_np.py.j2", runtime=runtime_sources(view), columns=[c.name for c in log.columns],
         levels=[str(LEVEL[cell.column.quantity]) for cell in view.cells],
         values=[spell.published(cell.column) for cell in view.cells],
-        inputs=[f"{spell.lit(i.start)}, {spell.lit(i.stop)}, {spell.lit(i.speed)}" for i in log.inputs],
+        inputs=[", ".join(spell.lit(x) for x in row) for row in zip(*sweep_lists(log).values())],
         params=params, example=example, fast=fast(view), real=REALS.get(log.options.real, REALS["double"]))}
 
 

@@ -73,7 +73,7 @@ class Numpy(Python):
         if not v.constant:
             return super().published(c)
         fields = record_fields(v.kind, 0)
-        return f'c["{self.param_names(v)[fields.index(c.field)]}"]' if c.field in fields else "0.0"
+        return self.in_units(c, f'c["{self.param_names(v)[fields.index(c.field)]}"]' if c.field in fields else "0.0")
 
     def sigma(self, step: Step) -> str:
         """A step's conditioning on the block, in the list the block's steps fill."""

@@ -5,6 +5,7 @@ from __future__ import annotations
 import re
 from typing import TYPE_CHECKING
 
+from ...units import sweep_lists
 from .. import Backend, Runtime, Template
 from ..program import LEVEL, input_lists, runtime_sources, sketch_states
 from .printer import python_function
@@ -33,7 +34,7 @@ def render(view: View, spell: Python, template: Template) -> dict[str, bytes]:
         "NAME.py.j2", runtime=runtime, math_names=math_names, columns=[c.name for c in log.columns],
         levels=[str(LEVEL[cell.column.quantity]) for cell in view.cells],
         values=[(cell.column.name, spell.published(cell.column)) for cell in view.cells],
-        inputs=[f"{spell.lit(i.start)}, {spell.lit(i.stop)}, {spell.lit(i.speed)}" for i in log.inputs],
+        inputs=[", ".join(spell.lit(x) for x in row) for row in zip(*sweep_lists(log).values())],
         sketch_a=sketch_states(view, spell), limits=lists["limits"], slack=spell.lit(log.policy.path_slack),
         periodic=lists["periodic"])}
 
