@@ -20,6 +20,7 @@ from assembly_oracle import MP, TRIAD_STARTS, tree_assemblies, triad_search, wor
 from reference import Reference
 
 from linkgen.assemblies import assemblies, whole_log
+from linkgen.errors import ProcedureError
 
 ROOT = Path(__file__).resolve().parents[1]
 TOLERANCE = 1e-12  # every constraint, relative to the length scale
@@ -187,8 +188,13 @@ def test_the_multistart_search_does_not_hang_on_its_seed(seed):
 MECHANISMS = sorted(ROOT.glob("samples/*/*.yaml")) + sorted((ROOT / "tests" / "mechanisms").glob("*.yaml"))
 
 
+NOT_COUNTED = {"quaternary_fold": "a class-IV group (two Add-links at once): assemblies does not count it yet"}
+
+
 @LONG
-@pytest.mark.parametrize("path", MECHANISMS, ids=lambda p: p.stem)
+@pytest.mark.parametrize("path", [pytest.param(p, marks=pytest.mark.xfail(raises=ProcedureError, strict=True,
+                                                                          reason=NOT_COUNTED[p.stem]))
+                                  if p.stem in NOT_COUNTED else p for p in MECHANISMS], ids=lambda p: p.stem)
 def test_where_the_programs_assemble_their_configuration_is_an_assembly(path):
     """At 8 inputs over the range: the programs' configuration (followed from the sketch) is one of
     the assemblies whenever they assemble, and every assembly keeps its links' lengths."""

@@ -6,6 +6,7 @@ import math
 
 from .. import exact
 from ..model import Input
+from ..policy import GOOD_LEVER
 from ..steplog import Arg
 from ..topology import wrap_angle
 from .emit import emit
@@ -85,12 +86,18 @@ def point_on(ws: Workspace, link: str, name: str, out: str, reason: str) -> None
     """``name`` (the record ``out``) at its sketch place on a placed link: in the frame of two known points of
     the link where it has them (link_point, on the pair whose base is longest against the point's distance
     from its first point: the base's direction error turns the point by that lever), else at its offset from
-    the known point along the link's angle (coupler_point, with link_angle where the angle is not known yet)."""
+    the nearest known point along the link's angle (coupler_point, with link_angle where the angle is not known
+    yet); also where that lever is below GOOD_LEVER and the link's angle is known otherwise (a slider link
+    turning with its line: an RPR chain's angle does not depend on the short base)."""
     tied = [n for n in ws.tied[link] if ws.pos[n] != out]
     here = ws.xy(name)
     pairs = [(a, b) for a in tied for b in tied if ws.xy(a) != ws.xy(b)]
-    if pairs:
-        base, far = min(pairs, key=lambda p: math.dist(here, ws.xy(p[0])) / math.dist(ws.xy(p[1]), ws.xy(p[0])))
+    best = min(pairs, key=lambda p: math.dist(here, ws.xy(p[0])) / math.dist(ws.xy(p[1]), ws.xy(p[0])), default=None)
+    oriented = link in ws.orient or link in ws.coupled  # its angle known without these points (a slide's line)
+    if best is not None and oriented and math.dist(*map(ws.xy, best)) < GOOD_LEVER * math.dist(here, ws.xy(best[0])):
+        best = None  # a short base against a long arm: the line's angle places the point better
+    if best is not None:
+        base, far = best
         r = tuple(a - b for a, b in zip(here, ws.xy(base)))
         d = tuple(a - b for a, b in zip(ws.xy(far), ws.xy(base)))
         gsi, eta = exact.local(r[0], r[1], d[0], d[1])
@@ -99,7 +106,7 @@ def point_on(ws: Workspace, link: str, name: str, out: str, reason: str) -> None
               Arg("real", value=eta, label="eta")], [out], name, pairs=(base, far), links=(link,), fails=True,
              reason=reason)
         return
-    base = tied[0]
+    base = min(tied, key=lambda n: math.dist(here, ws.xy(n)))
     r = tuple(a - b for a, b in zip(here, ws.xy(base)))
     angle = frame(ws, link)
     gsi, eta = rot(ws.angle0(angle), *r)
