@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import math
 
+from ..render.svg import _f
+from ..render.svgwriter import esc
 from ..steplog import StepLog
 from .enumerate import Assembly, Census
 from .report import inputs_text
@@ -20,15 +22,6 @@ COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#1
 FIXED = "#555555"
 
 Page = tuple[float, float, float, float]  # x0, y1 (the drawing's top left in sketch units), scale, height
-
-
-def _f(x: float) -> str:
-    text = f"{x:.2f}".rstrip("0").rstrip(".")
-    return "0" if text in ("-0", "") else text
-
-
-def _esc(text: str) -> str:
-    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
 
 
 def _spots(log: StepLog, a: Assembly) -> dict[str, tuple[float, float]]:
@@ -65,7 +58,7 @@ def render_assembly(log: StepLog, census: Census, a: Assembly, where: Page) -> s
     title = caption(log, census, a)
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{_f(WIDTH)}" height="{_f(height)}" '
            f'viewBox="0 0 {_f(WIDTH)} {_f(height)}" font-family="sans-serif" font-size="11">',
-           f"<title>{_esc(log.title or log.name)}: {_esc(title)}</title>",
+           f"<title>{esc(log.title or log.name)}: {esc(title)}</title>",
            '<rect width="100%" height="100%" fill="white"/>']
     guides = {p.name: p.guide for p in log.pairs if p.kind == "prismatic"}
     for k, link in enumerate(log.links):
@@ -92,12 +85,12 @@ def render_assembly(log: StepLog, census: Census, a: Assembly, where: Page) -> s
         else:
             fill = FIXED if p.name in pivots else "white"
             out.append(f'<circle cx="{_f(x)}" cy="{_f(y)}" r="4" fill="{fill}" stroke="black" stroke-width="1.5"/>')
-        out.append(f'<text x="{_f(x + 7)}" y="{_f(y + 14)}">{_esc(p.name)}</text>')
+        out.append(f'<text x="{_f(x + 7)}" y="{_f(y + 14)}">{esc(p.name)}</text>')
     for name in (q for lk in log.links for q in lk.points):
         x, y = at(name)
         out.append(f'<circle cx="{_f(x)}" cy="{_f(y)}" r="2.5" fill="black"/>')
-        out.append(f'<text x="{_f(x + 5)}" y="{_f(y - 5)}">{_esc(name)}</text>')
-    out.append(f'<text x="{_f(MARGIN / 2)}" y="{_f(height - CAPTION / 2)}" fill="{FIXED}">{_esc(title)}</text>')
+        out.append(f'<text x="{_f(x + 5)}" y="{_f(y - 5)}">{esc(name)}</text>')
+    out.append(f'<text x="{_f(MARGIN / 2)}" y="{_f(height - CAPTION / 2)}" fill="{FIXED}">{esc(title)}</text>')
     out.append("</svg>")
     return "\n".join(out) + "\n"
 

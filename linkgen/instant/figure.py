@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import math
 
-from ..render.svg import _esc, _f, _line
+from ..render.svg import _f, _line
+from ..render.svgwriter import esc
 from ..steplog import CentreAt, StepLog
 
 WIDTH = 640.0
@@ -71,7 +72,7 @@ def render_centres_svg(log: StepLog) -> str:
 
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{_f(WIDTH)}" height="{_f(height)}" '
            f'viewBox="0 0 {_f(WIDTH)} {_f(height)}" font-family="sans-serif" font-size="11">',
-           f"<title>{_esc(log.title)}: instant centres at the sketch, the inputs at their speeds</title>",
+           f"<title>{esc(log.title)}: instant centres at the sketch, the inputs at their speeds</title>",
            '<rect width="100%" height="100%" fill="white"/>']
     by = {frozenset(c.links): c for c in log.centres}
     drawn: set[tuple[str, ...]] = set()
@@ -104,13 +105,13 @@ def render_centres_svg(log: StepLog) -> str:
         below = sum(1 for p in placed if math.dist(p, (x, y)) < LABEL_GAP)
         placed.append((x, y))
         out.append(f'<circle cx="{_f(x)}" cy="{_f(y)}" r="4" fill="{colour}"/>')
-        out.append(f'<text x="{_f(x + 5)}" y="{_f(y - 5 + LABEL_GAP * below)}" fill="{colour}">{_esc(name)}</text>')
+        out.append(f'<text x="{_f(x + 5)}" y="{_f(y - 5 + LABEL_GAP * below)}" fill="{colour}">{esc(name)}</text>')
     legend = ", ".join(f"{k + 1} {lk.name}" for k, lk in enumerate(log.links))
     foot = [f"links: {legend}",
             "blue first, green secondary, red third A, orange third B; faint: the Aronhold-Kennedy lines",
             ("not drawn: " + ", ".join(off)) if off else "every centre is drawn"]
     for row, text in enumerate(foot):
         out.append(f'<text x="{_f(MARGIN / 2)}" y="{_f(height - 10 - 16 * (2 - row))}" fill="#555555">'
-                   f"{_esc(text)}</text>")
+                   f"{esc(text)}</text>")
     out.append("</svg>")
     return "\n".join(out) + "\n"

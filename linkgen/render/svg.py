@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 
 from ..steplog import PairInfo, StepLog
+from .svgwriter import esc, num
 
 WIDTH = 640.0
 MARGIN = 60.0
@@ -17,12 +18,8 @@ COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#1
 
 
 def _f(x: float) -> str:
-    text = f"{x:.2f}".rstrip("0").rstrip(".")
-    return "0" if text in ("-0", "") else text
-
-
-def _esc(text: str) -> str:
-    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    """A drawing coordinate to 0.01 of the drawing unit."""
+    return num(x, 2)
 
 
 def _line(a: tuple[float, float], b: tuple[float, float], style: str) -> str:
@@ -104,7 +101,7 @@ class _Labels:
         _, tx, ty, end = best
         self.labels.append(_box(tx, ty, text, end))
         anchor = ' text-anchor="end"' if end else ""
-        self.out.append(f'<text x="{_f(tx)}" y="{_f(ty)}"{anchor}{attrs}>{_esc(text)}</text>')
+        self.out.append(f'<text x="{_f(tx)}" y="{_f(ty)}"{anchor}{attrs}>{esc(text)}</text>')
 
 
 def _foot(p: tuple[float, float], on: tuple[float, float], u: tuple[float, float]) -> tuple[float, float]:
@@ -134,7 +131,7 @@ def render_svg(log: StepLog) -> str:
     out = [
         f'<svg xmlns="http://www.w3.org/2000/svg" width="{_f(WIDTH)}" height="{_f(height)}" '
         f'viewBox="0 0 {_f(WIDTH)} {_f(height)}" font-family="sans-serif" font-size="12">',
-        f"<title>{_esc(log.title)}: sketch, pairs and links, with the step that finds each pair</title>",
+        f"<title>{esc(log.title)}: sketch, pairs and links, with the step that finds each pair</title>",
         '<rect width="100%" height="100%" fill="white"/>',
     ]
     guided = {p.name: p for p in log.pairs if p.kind == "prismatic" and any(lk.fixed and lk.name == p.guide

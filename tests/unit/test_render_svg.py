@@ -10,7 +10,8 @@ from pathlib import Path
 import pytest
 
 from linkgen.pipeline import build_log
-from linkgen.render.svg import MARGIN, WIDTH, _esc, _f, render_svg
+from linkgen.render.svg import MARGIN, WIDTH, _f, render_svg
+from linkgen.render.svgwriter import esc
 
 ROOT = Path(__file__).resolve().parents[2]
 NS = {"s": "http://www.w3.org/2000/svg"}
@@ -28,7 +29,7 @@ def test_numbers_have_at_most_two_decimals_and_no_trailing_zeros(x: float, text:
 
 
 def test_text_is_escaped():
-    assert _esc("a<b & c>d") == "a&lt;b &amp; c&gt;d"
+    assert esc("a<b & c>d") == "a&lt;b &amp; c&gt;d"
 
 
 def test_the_fourbar_is_drawn_to_scale():
