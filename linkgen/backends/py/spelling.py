@@ -28,6 +28,10 @@ class Python(Spelling):
         fields = ", ".join(f"{src}[{k}]" for src in sources) + ("," if self.order == 0 else "")
         return f"w.{var.name} = ({fields})"
 
+    def literals(self, var: str) -> list[str]:
+        """A constant record's fields as literals (a call inlined reads them in place)."""
+        return [self.lit(x) for x in self.padded(self.variables[var])]
+
     def unpacked(self, var: str) -> str:
         """The statement that unpacks a computed record into one local per field (_p_A_x, ...)."""
         names = [f"_{var}_{f}" for f in self.fields(self.variables[var].kind)]
@@ -42,9 +46,8 @@ class Python(Spelling):
         """A step's call; a failing chain ends the row (inside a resolver block: the block's pass)."""
         prim = self.primitives[step.function]
         args = [self.arg(a, scope, step) for a in step.args]
-        fields: list[str | list[str]] = [  # a constant record's fields as literals
-            [self.lit(x) for x in self.padded(self.variables[a.var])] if a.kind == "var" and self.variables[a.var].constant
-            else text for a, text in zip(step.args, args)]
+        fields: list[str | list[str]] = [self.literals(a.var) if a.kind == "var" and self.variables[a.var].constant
+                                         else text for a, text in zip(step.args, args)]
         targets = [self.ref(o, scope) for o in step.outputs]
         failed = [f"return {self.status_code(step, 1)}" if scope is None else "return 1, None"]
         lines = [f"# {step.function}({', '.join(args)}), inline"]
@@ -52,7 +55,8 @@ class Python(Spelling):
         if prim.status is None:
             return lines
         if scope is None:
-            return lines + [line for n in self.notes("st", step) for line in ("if st:", f"    {n}")]  # a call saved a row
+            notes = [line for n in self.notes("st", step) for line in ("if st:", f"    {n}")]  # a call saved a row
+            return lines + notes
         lines += [line for n in self.notes("st", step) for line in ("if live:", f"    {n}")]
         if prim.sigma is not None:
             lines.append(f"w.chains = min(w.chains, {self.sigma(step)})")
