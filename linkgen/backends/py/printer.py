@@ -3,7 +3,9 @@ generated programs and the evaluator's scalar runtime; the numpy twin is backend
 
 from __future__ import annotations
 
+import math
 import re
+import sys
 
 from ... import status
 from ...primitives.dsl import Param, Primitive, field_order, record_fields
@@ -23,6 +25,8 @@ class PythonExprs(ExprPrinter):
 class InlineExprs(PythonExprs):
     """A primitive's expressions inside the calling function: its names with a leading underscore
     (no template name has one), a scalar argument given as a literal in its place."""
+
+    consts = {**PythonExprs.consts, "eps": repr(sys.float_info.epsilon), "pi": repr(math.pi)}  # folded with literals
 
     def __init__(self, literals: dict[str, str]):
         self.literals = literals

@@ -9,7 +9,7 @@ from ..spelling import Spelling, Syntax
 from .printer import inline_lines
 
 if TYPE_CHECKING:
-    from ...render.view import Group
+    from ...render.view import Group, View
 
 
 class Python(Spelling):
@@ -22,19 +22,44 @@ class Python(Spelling):
     def reach_fail(self, low: int, high: int) -> list[str]:
         return [f"st = {self.reach_call('inputs[0]')}", "if st:", f"    return {low} if st < 0 else {high}"]
 
+    def __init__(self, view: View):
+        super().__init__(view)
+        # records _run holds in locals too (_p_A_x, ...) once a step of its own has computed them: all but
+        # those a resolver's blocks compute, which its passes rewrite in the work
+        self.held: set[str] = set()
+        self.rewritten = {o for b in view.blocks for s in b.steps for o in s.outputs}
+
     def input_record(self, var: Variable, k: int) -> str:
-        """The statement that builds an input record from the k-th input, rate and acceleration."""
+        """The statement that builds an input record from the k-th input, rate and acceleration (in _run,
+        held in locals too)."""
         sources = ("inputs", "d_inputs", "dd_inputs")[: self.order + 1]
         fields = ", ".join(f"{src}[{k}]" for src in sources) + ("," if self.order == 0 else "")
-        return f"w.{var.name} = ({fields})"
+        return f"{self.hold(var.name, None)} = ({fields})"
 
-    def literals(self, var: str) -> list[str]:
-        """A constant record's fields as literals (a call inlined reads them in place)."""
-        return [self.lit(x) for x in self.padded(self.variables[var])]
+    def local_names(self, var: str) -> list[str]:
+        """The locals a record's fields are held in (_p_A_x, ...)."""
+        return [f"_{var}_{f}" for f in self.fields(self.variables[var].kind)]
+
+    def hold(self, var: str, scope: Group | None) -> str:
+        """The target of a record a step computes: in _run (scope None) its locals and the work's record
+        (``_p_A_x, ... = w.p_A``), from then on read from the locals; elsewhere the work's record."""
+        target = self.ref(var, scope)
+        if scope is not None or var in self.rewritten:
+            return target
+        self.held.add(var)
+        names = self.local_names(var)
+        return f"{', '.join(names)}{',' if len(names) == 1 else ''} = {target}"
+
+    def fields_of(self, var: str, scope: Group | None) -> list[str]:
+        """What a call inlined reads in place of a record's fields: a constant's literals, the locals _run
+        holds a record in; none (the record is unpacked) for the others."""
+        if self.variables[var].constant:
+            return [self.lit(x) for x in self.padded(self.variables[var])]
+        return self.local_names(var) if scope is None and var in self.held else []
 
     def unpacked(self, var: str) -> str:
         """The statement that unpacks a computed record into one local per field (_p_A_x, ...)."""
-        names = [f"_{var}_{f}" for f in self.fields(self.variables[var].kind)]
+        names = self.local_names(var)
         return f"{', '.join(names)}{',' if len(names) == 1 else ''} = {self.ref(var, None)}"
 
     def initializer(self, v: Variable) -> str:
@@ -46,9 +71,8 @@ class Python(Spelling):
         """A step's call; a failing chain ends the row (inside a resolver block: the block's pass)."""
         prim = self.primitives[step.function]
         args = [self.arg(a, scope, step) for a in step.args]
-        fields: list[str | list[str]] = [self.literals(a.var) if a.kind == "var" and self.variables[a.var].constant
-                                         else text for a, text in zip(step.args, args)]
-        targets = [self.ref(o, scope) for o in step.outputs]
+        fields = [self.fields_of(a.var, scope) or text if a.kind == "var" else text for a, text in zip(step.args, args)]
+        targets = [self.hold(o, scope) for o in step.outputs]
         failed = [f"return {self.status_code(step, 1)}" if scope is None else "return 1, None"]
         lines = [f"# {step.function}({', '.join(args)}), inline"]
         lines += inline_lines(prim, self.order, fields, targets, self.sigma(step), failed)
