@@ -357,48 +357,47 @@ def _run(w, inputs, d_inputs, dd_inputs):
     """The procedure of actuator.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in1_v, _in1_dv, _in1_ddv = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
     # Step 1: fixed, stick. link stick is the frame: its pairs are fixed
 
     # Step 2: RRR_links, K (branch -1). K is joined to the known R by side_link and to the known S0 by d_S0_K: a 3R two-link chain with both ends known
     # RRR_links(p_R, p_S0, l_side_link, w.in1, -1), inline
-    _l2_v, _l2_dv, _l2_ddv = w.in1
     _dx = (-1360.0) - 240.0
     _dy = 556.0 - 256.0
     _q = sqrt(_dx * _dx + _dy * _dy)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
-    _hi = (_l2_v if _l2_v > 565.685424949238 else 565.685424949238)
-    _lo = (_l2_v if _l2_v < 565.685424949238 else 565.685424949238)
+    _hi = (_in1_v if _in1_v > 565.685424949238 else 565.685424949238)
+    _lo = (_in1_v if _in1_v < 565.685424949238 else 565.685424949238)
     _x = (_q if _q > _hi else _hi)
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
-    _a = (_q + (565.685424949238 - _l2_v) * ((565.685424949238 + _l2_v) * _iq)) / 2
-    _a2 = (_q + (_l2_v - 565.685424949238) * ((565.685424949238 + _l2_v) * _iq)) / 2
-    _flat = (565.685424949238 + (_q - _l2_v)) / 2 if _q >= _hi else (565.685424949238 + (_q + _l2_v)) / 2 if 565.685424949238 >= _l2_v else (_q - (565.685424949238 + _l2_v)) / 2
+    _a = (_q + (565.685424949238 - _in1_v) * ((565.685424949238 + _in1_v) * _iq)) / 2
+    _a2 = (_q + (_in1_v - 565.685424949238) * ((565.685424949238 + _in1_v) * _iq)) / 2
+    _flat = (565.685424949238 + (_q - _in1_v)) / 2 if _q >= _hi else (565.685424949238 + (_q + _in1_v)) / 2 if 565.685424949238 >= _in1_v else (_q - (565.685424949238 + _in1_v)) / 2
     _at = _a if _k > 0 else _flat
     _hn = (-1) * _h
     _e1x = _at * _ux - _hn * _uy
     _e1y = _at * _uy + _hn * _ux
-    _ratio = 0 if _fail else _area4 * (0.5 / (565.685424949238 * _l2_v))
+    _ratio = 0 if _fail else _area4 * (0.5 / (565.685424949238 * _in1_v))
     _sigma = (1 if 1 < _ratio else _ratio)
     _e2x = -_a2 * _ux - _hn * _uy
     _e2y = -_a2 * _uy + _hn * _ux
     _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
     _r1v = 565.685424949238 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
-    _r2v = _l2_v * _l2_dv + (_e2x * 0.0 + _e2y * 0.0)
+    _r2v = _in1_v * _in1_dv + (_e2x * 0.0 + _e2y * 0.0)
     _buv = (_r1v - _r2v) * _iq
     _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
     _bvx = _buv * _ux - _bnv * _uy
     _bvy = _buv * _uy + _bnv * _ux
     _r1a = 565.685424949238 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
+    _r2a = _in1_v * _in1_ddv + _in1_dv * _in1_dv - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
     _bua = (_r1a - _r2a) * _iq
     _bna = (_a2 * _r1a + _a * _r2a) * _ihq
     _bax = _bua * _ux - _bna * _uy
@@ -406,30 +405,29 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[2] = _sigma
     if st == 1:
-        w.p_K = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_K_x, _p_K_y, _p_K_dx, _p_K_dy, _p_K_ddx, _p_K_ddy = w.p_K = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 21
     elif st == 3:
-        w.p_K = (240.0 + _e1x, 256.0 + _e1y, NAN, NAN, NAN, NAN)
+        _p_K_x, _p_K_y, _p_K_dx, _p_K_dy, _p_K_ddx, _p_K_ddy = w.p_K = (240.0 + _e1x, 256.0 + _e1y, NAN, NAN, NAN, NAN)
     else:
-        w.p_K = (240.0 + _e1x, 256.0 + _e1y, _bvx, _bvy, _bax, _bay)
+        _p_K_x, _p_K_y, _p_K_dx, _p_K_dy, _p_K_ddx, _p_K_ddy = w.p_K = (240.0 + _e1x, 256.0 + _e1y, _bvx, _bvy, _bax, _bay)
     if st:
         w.note(st, 23, -24)
 
     # Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known
     # RPR_links(p_S0, w.p_K, 850.0, 0.0, -850.0, 0.0, 1), inline
-    _js_x, _js_y, _js_dx, _js_dy, _js_ddx, _js_ddy = w.p_K
-    _dx = _js_x - (-1360.0)
-    _dy = _js_y - 556.0
-    _dvx = _js_dx - 0.0
-    _dvy = _js_dy - 0.0
-    _dax = _js_ddx - 0.0
-    _day = _js_ddy - 0.0
+    _dx = _p_K_x - (-1360.0)
+    _dy = _p_K_y - 556.0
+    _dvx = _p_K_dx - 0.0
+    _dvy = _p_K_dy - 0.0
+    _dax = _p_K_ddx - 0.0
+    _day = _p_K_ddy - 0.0
     _hh = 0.0 - 0.0
     _q = sqrt(_dx * _dx + _dy * _dy)
     _ah = abs(_hh)
     _k = _q - _ah
     _big = (_ah if _ah > _q else _q)
-    _fail = _k < -8 * EPS * _big or _q == 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _big or _q == 0
     _t = sqrt((0 if 0 > _k else _k) * (_q + _ah))
     _iq = NAN if _q == 0 else 1 / _q
     _mt = 1 * _t
@@ -463,26 +461,25 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[3] = _sigma
     if st == 1:
-        w.psi_C = (NAN, NAN, NAN)
-        w.s_C = (NAN, NAN, NAN)
-        w.p_C = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _psi_C_the, _psi_C_dthe, _psi_C_ddthe = w.psi_C = (NAN, NAN, NAN)
+        _s_C_v, _s_C_dv, _s_C_ddv = w.s_C = (NAN, NAN, NAN)
+        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 31
     elif st == 3:
-        w.psi_C = (_th, NAN, NAN)
-        w.s_C = (_sv, NAN, NAN)
-        w.p_C = (_js_x + _rx, _js_y + _ry, NAN, NAN, NAN, NAN)
+        _psi_C_the, _psi_C_dthe, _psi_C_ddthe = w.psi_C = (_th, NAN, NAN)
+        _s_C_v, _s_C_dv, _s_C_ddv = w.s_C = (_sv, NAN, NAN)
+        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = (_p_K_x + _rx, _p_K_y + _ry, NAN, NAN, NAN, NAN)
     else:
-        w.psi_C = (_th, _om, _al)
-        w.s_C = (_sv, _ds, _dds)
-        w.p_C = (_js_x + _rx, _js_y + _ry, _js_dx + _rvx, _js_dy + _rvy, _js_ddx + _rax, _js_ddy + _ray)
+        _psi_C_the, _psi_C_dthe, _psi_C_ddthe = w.psi_C = (_th, _om, _al)
+        _s_C_v, _s_C_dv, _s_C_ddv = w.s_C = (_sv, _ds, _dds)
+        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = (_p_K_x + _rx, _p_K_y + _ry, _p_K_dx + _rvx, _p_K_dy + _rvy, _p_K_ddx + _rax, _p_K_ddy + _ray)
     if st:
         w.note(st, 33, -34)
 
     # Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known
     # RRR_links(w.p_K, p_Q, l_power_link, l_bucket, 1), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_K
-    _dx = 640.0 - _j1_x
-    _dy = 256.0 - _j1_y
+    _dx = 640.0 - _p_K_x
+    _dy = 256.0 - _p_K_y
     _q = sqrt(_dx * _dx + _dy * _dy)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
@@ -493,7 +490,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -509,13 +506,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _e2x = -_a2 * _ux - _hn * _uy
     _e2y = -_a2 * _uy + _hn * _ux
     _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
-    _r1v = 545.8937625582472 * 0.0 + (_e1x * _j1_dx + _e1y * _j1_dy)
+    _r1v = 545.8937625582472 * 0.0 + (_e1x * _p_K_dx + _e1y * _p_K_dy)
     _r2v = 340.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
     _buv = (_r1v - _r2v) * _iq
     _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
     _bvx = _buv * _ux - _bnv * _uy
     _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 545.8937625582472 * 0.0 + 0.0 * 0.0 - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy)) + (_e1x * _j1_ddx + _e1y * _j1_ddy)
+    _r1a = 545.8937625582472 * 0.0 + 0.0 * 0.0 - ((_bvx - _p_K_dx) * (_bvx - _p_K_dx) + (_bvy - _p_K_dy) * (_bvy - _p_K_dy)) + (_e1x * _p_K_ddx + _e1y * _p_K_ddy)
     _r2a = 340.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
     _bua = (_r1a - _r2a) * _iq
     _bna = (_a2 * _r1a + _a * _r2a) * _ihq
@@ -524,24 +521,23 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[4] = _sigma
     if st == 1:
-        w.p_M = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_M_x, _p_M_y, _p_M_dx, _p_M_dy, _p_M_ddx, _p_M_ddy = w.p_M = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 41
     elif st == 3:
-        w.p_M = (_j1_x + _e1x, _j1_y + _e1y, NAN, NAN, NAN, NAN)
+        _p_M_x, _p_M_y, _p_M_dx, _p_M_dy, _p_M_ddx, _p_M_ddy = w.p_M = (_p_K_x + _e1x, _p_K_y + _e1y, NAN, NAN, NAN, NAN)
     else:
-        w.p_M = (_j1_x + _e1x, _j1_y + _e1y, _bvx, _bvy, _bax, _bay)
+        _p_M_x, _p_M_y, _p_M_dx, _p_M_dy, _p_M_ddx, _p_M_ddy = w.p_M = (_p_K_x + _e1x, _p_K_y + _e1y, _bvx, _bvy, _bax, _bay)
     if st:
         w.note(st, 43, -44)
 
     # Step 5: link_point, tip. point tip of link bucket
     # link_point(p_Q, w.p_M, -550.5882352941177, -1177.6470588235295), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_M
-    _dx = _j2_x - 640.0
-    _dy = _j2_y - 256.0
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_M_x - 640.0
+    _dy = _p_M_y - 256.0
+    _dvx = _p_M_dx - 0.0
+    _dvy = _p_M_dy - 0.0
+    _dax = _p_M_ddx - 0.0
+    _day = _p_M_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _ir = NAN if _r2 == 0 else 1 / sqrt(_r2)
     _ex = _ir * _dx
@@ -557,83 +553,79 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _ray = _al * _rx - _om * _om * _ry
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.p_tip = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_tip_x, _p_tip_y, _p_tip_dx, _p_tip_dy, _p_tip_ddx, _p_tip_ddy = w.p_tip = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 51
     else:
-        w.p_tip = (640.0 + _rx, 256.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+        _p_tip_x, _p_tip_y, _p_tip_dx, _p_tip_dy, _p_tip_ddx, _p_tip_ddy = w.p_tip = (640.0 + _rx, 256.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
     if st:
         w.note(st, 53, -54)
 
     # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is known
     # link_angle(p_R, w.p_K, 0.0), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_K
-    _dx = _j2_x - 240.0
-    _dy = _j2_y - 256.0
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_K_x - 240.0
+    _dy = _p_K_y - 256.0
+    _dvx = _p_K_dx - 0.0
+    _dvy = _p_K_dy - 0.0
+    _dax = _p_K_ddx - 0.0
+    _day = _p_K_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_side_link = (NAN, NAN, NAN)
+        _phi_side_link_the, _phi_side_link_dthe, _phi_side_link_ddthe = w.phi_side_link = (NAN, NAN, NAN)
         return 61
     else:
-        w.phi_side_link = (_th, _om, _al)
+        _phi_side_link_the, _phi_side_link_dthe, _phi_side_link_ddthe = w.phi_side_link = (_th, _om, _al)
     if st:
         w.note(st, 63, -64)
 
     # Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is known
     # link_angle(w.p_K, w.p_M, 0.0), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_K
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_M
-    _dx = _j2_x - _j1_x
-    _dy = _j2_y - _j1_y
-    _dvx = _j2_dx - _j1_dx
-    _dvy = _j2_dy - _j1_dy
-    _dax = _j2_ddx - _j1_ddx
-    _day = _j2_ddy - _j1_ddy
+    _dx = _p_M_x - _p_K_x
+    _dy = _p_M_y - _p_K_y
+    _dvx = _p_M_dx - _p_K_dx
+    _dvy = _p_M_dy - _p_K_dy
+    _dax = _p_M_ddx - _p_K_ddx
+    _day = _p_M_ddy - _p_K_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_power_link = (NAN, NAN, NAN)
+        _phi_power_link_the, _phi_power_link_dthe, _phi_power_link_ddthe = w.phi_power_link = (NAN, NAN, NAN)
         return 71
     else:
-        w.phi_power_link = (_th, _om, _al)
+        _phi_power_link_the, _phi_power_link_dthe, _phi_power_link_ddthe = w.phi_power_link = (_th, _om, _al)
     if st:
         w.note(st, 73, -74)
 
     # Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is known
     # link_angle(p_Q, w.p_M, 0.0), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_M
-    _dx = _j2_x - 640.0
-    _dy = _j2_y - 256.0
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_M_x - 640.0
+    _dy = _p_M_y - 256.0
+    _dvx = _p_M_dx - 0.0
+    _dvy = _p_M_dy - 0.0
+    _dax = _p_M_ddx - 0.0
+    _day = _p_M_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_bucket = (NAN, NAN, NAN)
+        _phi_bucket_the, _phi_bucket_dthe, _phi_bucket_ddthe = w.phi_bucket = (NAN, NAN, NAN)
         return 81
     else:
-        w.phi_bucket = (_th, _om, _al)
+        _phi_bucket_the, _phi_bucket_dthe, _phi_bucket_ddthe = w.phi_bucket = (_th, _om, _al)
     if st:
         w.note(st, 83, -84)
 

@@ -272,55 +272,51 @@ def _run(w, inputs, d_inputs, dd_inputs):
     """The procedure of cross_slot.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in1_the, _in1_dthe, _in1_ddthe = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, P1. O is known and link frame is placed, so the input angle theta_O turns link arm to P1
     # crank_input(p_O, 50.0, w.in1, ref_O), inline
-    _theta_the, _theta_dthe, _theta_ddthe = w.in1
-    _t = _theta_the + 0.0
+    _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 50.0 * _ct
     _ry = 50.0 * _st
-    _om = _theta_dthe + 0.0
-    _al = _theta_ddthe + 0.0
+    _om = _in1_dthe + 0.0
+    _al = _in1_ddthe + 0.0
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    w.g_P1 = ((-26.0) + _rx, 0.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _g_P1_x, _g_P1_y, _g_P1_dx, _g_P1_dy, _g_P1_ddx, _g_P1_ddy = w.g_P1 = ((-26.0) + _rx, 0.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is known
     # link_angle(p_O, w.g_P1, 0.0), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.g_P1
-    _dx = _j2_x - (-26.0)
-    _dy = _j2_y - 0.0
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _g_P1_x - (-26.0)
+    _dy = _g_P1_y - 0.0
+    _dvx = _g_P1_dx - 0.0
+    _dvy = _g_P1_dy - 0.0
+    _dax = _g_P1_ddx - 0.0
+    _day = _g_P1_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_arm = (NAN, NAN, NAN)
+        _phi_arm_the, _phi_arm_dthe, _phi_arm_ddthe = w.phi_arm = (NAN, NAN, NAN)
         return 31
     else:
-        w.phi_arm = (_th, _om, _al)
+        _phi_arm_the, _phi_arm_dthe, _phi_arm_ddthe = w.phi_arm = (_th, _om, _al)
     if st:
         w.note(st, 33, -34)
 
     # Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution)
     # PRP_links(w.g_P1, w.phi_arm, 0.0, 0.0, g_P2, psi_P2, 0.0, 0.0), inline
-    _pg1_x, _pg1_y, _pg1_dx, _pg1_dy, _pg1_ddx, _pg1_ddy = w.g_P1
-    _psig1_the, _psig1_dthe, _psig1_ddthe = w.phi_arm
-    _cg1 = cos(_psig1_the)
-    _sg1 = sin(_psig1_the)
+    _cg1 = cos(_phi_arm_the)
+    _sg1 = sin(_phi_arm_the)
     _r1x = 0.0 * _cg1 - 0.0 * _sg1
     _r1y = 0.0 * _sg1 + 0.0 * _cg1
     _cg2 = cos(1.5707963267948966)
@@ -329,11 +325,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _r2y = 0.0 * _sg2 + 0.0 * _cg2
     _cr = _cg1 * _sg2 - _sg1 * _cg2
     _icr = NAN if _cr == 0 else 1 / _cr
-    _gx = 24.0 + _r2x - _pg1_x - _r1x
-    _gy = 0.0 + _r2y - _pg1_y - _r1y
+    _gx = 24.0 + _r2x - _g_P1_x - _r1x
+    _gy = 0.0 + _r2y - _g_P1_y - _r1y
     _sv1 = (_gx * _sg2 - _gy * _cg2) * _icr
-    _jp1x = _pg1_x + _sv1 * _cg1
-    _jp1y = _pg1_y + _sv1 * _sg1
+    _jp1x = _g_P1_x + _sv1 * _cg1
+    _jp1y = _g_P1_y + _sv1 * _sg1
     _jbx = _jp1x + _r1x
     _jby = _jp1y + _r1y
     _jp2x = _jbx - _r2x
@@ -341,28 +337,28 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _sv2 = (_jp2x - 24.0) * _cg2 + (_jp2y - 0.0) * _sg2
     _acr = abs(_cr)
     _sigma = (1 if 1 < _acr else _acr)
-    _r1vx = -_psig1_dthe * _r1y
-    _r1vy = _psig1_dthe * _r1x
-    _r1ax = -_psig1_ddthe * _r1y - _psig1_dthe * _psig1_dthe * _r1x
-    _r1ay = _psig1_ddthe * _r1x - _psig1_dthe * _psig1_dthe * _r1y
+    _r1vx = -_phi_arm_dthe * _r1y
+    _r1vy = _phi_arm_dthe * _r1x
+    _r1ax = -_phi_arm_ddthe * _r1y - _phi_arm_dthe * _phi_arm_dthe * _r1x
+    _r1ay = _phi_arm_ddthe * _r1x - _phi_arm_dthe * _phi_arm_dthe * _r1y
     _r2vx = -0.0 * _r2y
     _r2vy = 0.0 * _r2x
     _r2ax = -0.0 * _r2y - 0.0 * 0.0 * _r2x
     _r2ay = 0.0 * _r2x - 0.0 * 0.0 * _r2y
-    _gvx = 0.0 + _r2vx - _sv2 * 0.0 * _sg2 - _pg1_dx - _r1vx + _sv1 * _psig1_dthe * _sg1
-    _gvy = 0.0 + _r2vy + _sv2 * 0.0 * _cg2 - _pg1_dy - _r1vy - _sv1 * _psig1_dthe * _cg1
+    _gvx = 0.0 + _r2vx - _sv2 * 0.0 * _sg2 - _g_P1_dx - _r1vx + _sv1 * _phi_arm_dthe * _sg1
+    _gvy = 0.0 + _r2vy + _sv2 * 0.0 * _cg2 - _g_P1_dy - _r1vy - _sv1 * _phi_arm_dthe * _cg1
     _ds1 = (_gvx * _sg2 - _gvy * _cg2) * _icr
     _ds2 = (_gvx * _sg1 - _gvy * _cg1) * _icr
-    _jp1vx = _pg1_dx + _ds1 * _cg1 - _sv1 * _psig1_dthe * _sg1
-    _jp1vy = _pg1_dy + _ds1 * _sg1 + _sv1 * _psig1_dthe * _cg1
+    _jp1vx = _g_P1_dx + _ds1 * _cg1 - _sv1 * _phi_arm_dthe * _sg1
+    _jp1vy = _g_P1_dy + _ds1 * _sg1 + _sv1 * _phi_arm_dthe * _cg1
     _jp2vx = 0.0 + _ds2 * _cg2 - _sv2 * 0.0 * _sg2
     _jp2vy = 0.0 + _ds2 * _sg2 + _sv2 * 0.0 * _cg2
-    _t1n = 2 * _ds1 * _psig1_dthe + _sv1 * _psig1_ddthe
+    _t1n = 2 * _ds1 * _phi_arm_dthe + _sv1 * _phi_arm_ddthe
     _t2n = 2 * _ds2 * 0.0 + _sv2 * 0.0
-    _t1u = _sv1 * _psig1_dthe * _psig1_dthe
+    _t1u = _sv1 * _phi_arm_dthe * _phi_arm_dthe
     _t2u = _sv2 * 0.0 * 0.0
-    _k1x = _pg1_ddx - _t1n * _sg1 - _t1u * _cg1
-    _k1y = _pg1_ddy + _t1n * _cg1 - _t1u * _sg1
+    _k1x = _g_P1_ddx - _t1n * _sg1 - _t1u * _cg1
+    _k1y = _g_P1_ddy + _t1n * _cg1 - _t1u * _sg1
     _k2x = 0.0 - _t2n * _sg2 - _t2u * _cg2
     _k2y = 0.0 + _t2n * _cg2 - _t2u * _sg2
     _gax = _k2x + _r2ax - _k1x - _r1ax
@@ -376,32 +372,32 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st = 1 if _cr == 0 else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[4] = _sigma
     if st == 1:
-        w.s_P1 = (NAN, NAN, NAN)
-        w.p_P1 = (NAN, NAN, NAN, NAN, NAN, NAN)
-        w.s_P2 = (NAN, NAN, NAN)
-        w.p_P2 = (NAN, NAN, NAN, NAN, NAN, NAN)
-        w.p_X = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _s_P1_v, _s_P1_dv, _s_P1_ddv = w.s_P1 = (NAN, NAN, NAN)
+        _p_P1_x, _p_P1_y, _p_P1_dx, _p_P1_dy, _p_P1_ddx, _p_P1_ddy = w.p_P1 = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _s_P2_v, _s_P2_dv, _s_P2_ddv = w.s_P2 = (NAN, NAN, NAN)
+        _p_P2_x, _p_P2_y, _p_P2_dx, _p_P2_dy, _p_P2_ddx, _p_P2_ddy = w.p_P2 = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_X_x, _p_X_y, _p_X_dx, _p_X_dy, _p_X_ddx, _p_X_ddy = w.p_X = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 41
     elif st == 3:
-        w.s_P1 = (_sv1, NAN, NAN)
-        w.p_P1 = (_jp1x, _jp1y, NAN, NAN, NAN, NAN)
-        w.s_P2 = (_sv2, NAN, NAN)
-        w.p_P2 = (_jp2x, _jp2y, NAN, NAN, NAN, NAN)
-        w.p_X = (_jbx, _jby, NAN, NAN, NAN, NAN)
+        _s_P1_v, _s_P1_dv, _s_P1_ddv = w.s_P1 = (_sv1, NAN, NAN)
+        _p_P1_x, _p_P1_y, _p_P1_dx, _p_P1_dy, _p_P1_ddx, _p_P1_ddy = w.p_P1 = (_jp1x, _jp1y, NAN, NAN, NAN, NAN)
+        _s_P2_v, _s_P2_dv, _s_P2_ddv = w.s_P2 = (_sv2, NAN, NAN)
+        _p_P2_x, _p_P2_y, _p_P2_dx, _p_P2_dy, _p_P2_ddx, _p_P2_ddy = w.p_P2 = (_jp2x, _jp2y, NAN, NAN, NAN, NAN)
+        _p_X_x, _p_X_y, _p_X_dx, _p_X_dy, _p_X_ddx, _p_X_ddy = w.p_X = (_jbx, _jby, NAN, NAN, NAN, NAN)
     else:
-        w.s_P1 = (_sv1, _ds1, _dds1)
-        w.p_P1 = (_jp1x, _jp1y, _jp1vx, _jp1vy, _jp1ax, _jp1ay)
-        w.s_P2 = (_sv2, _ds2, _dds2)
-        w.p_P2 = (_jp2x, _jp2y, _jp2vx, _jp2vy, _jp2ax, _jp2ay)
-        w.p_X = (_jbx, _jby, _jp1vx + _r1vx, _jp1vy + _r1vy, _jp1ax + _r1ax, _jp1ay + _r1ay)
+        _s_P1_v, _s_P1_dv, _s_P1_ddv = w.s_P1 = (_sv1, _ds1, _dds1)
+        _p_P1_x, _p_P1_y, _p_P1_dx, _p_P1_dy, _p_P1_ddx, _p_P1_ddy = w.p_P1 = (_jp1x, _jp1y, _jp1vx, _jp1vy, _jp1ax, _jp1ay)
+        _s_P2_v, _s_P2_dv, _s_P2_ddv = w.s_P2 = (_sv2, _ds2, _dds2)
+        _p_P2_x, _p_P2_y, _p_P2_dx, _p_P2_dy, _p_P2_ddx, _p_P2_ddy = w.p_P2 = (_jp2x, _jp2y, _jp2vx, _jp2vy, _jp2ax, _jp2ay)
+        _p_X_x, _p_X_y, _p_X_dx, _p_X_dy, _p_X_ddx, _p_X_ddy = w.p_X = (_jbx, _jby, _jp1vx + _r1vx, _jp1vy + _r1vy, _jp1ax + _r1ax, _jp1ay + _r1ay)
     if st:
         w.note(st, 43, -44)
 
     # Step 5: offset_angle, block2. link block2 keeps a constant angle to its slide
     # offset_angle(phi_frame, 1.5707963267948966), inline
     _th0 = 0.0 + 1.5707963267948966
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
-    w.phi_block2 = (_th, 0.0, 0.0)
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_block2_the, _phi_block2_dthe, _phi_block2_ddthe = w.phi_block2 = (_th, 0.0, 0.0)
 
     return w.singular or w.near
 

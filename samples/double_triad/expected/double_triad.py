@@ -902,7 +902,7 @@ def _group_1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -958,7 +958,7 @@ def _group_1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1078,7 +1078,7 @@ def _group_1_v1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1134,7 +1134,7 @@ def _group_1_v1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1253,7 +1253,7 @@ def _group_1_v2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1309,7 +1309,7 @@ def _group_1_v2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1428,7 +1428,7 @@ def _group_1_v3(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1484,7 +1484,7 @@ def _group_1_v3(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1603,7 +1603,7 @@ def _group_1_v4(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1659,7 +1659,7 @@ def _group_1_v4(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1778,7 +1778,7 @@ def _group_1_v5(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1834,7 +1834,7 @@ def _group_1_v5(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1953,7 +1953,7 @@ def _group_1_v6(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2009,7 +2009,7 @@ def _group_1_v6(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2129,7 +2129,7 @@ def _group_2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2185,7 +2185,7 @@ def _group_2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2306,7 +2306,7 @@ def _group_2_v1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2362,7 +2362,7 @@ def _group_2_v1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2483,7 +2483,7 @@ def _group_2_v2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2539,7 +2539,7 @@ def _group_2_v2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2660,7 +2660,7 @@ def _group_2_v3(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2716,7 +2716,7 @@ def _group_2_v3(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2837,7 +2837,7 @@ def _group_2_v4(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2893,7 +2893,7 @@ def _group_2_v4(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -3014,7 +3014,7 @@ def _group_2_v5(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -3070,7 +3070,7 @@ def _group_2_v5(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -3191,7 +3191,7 @@ def _group_2_v6(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -3247,7 +3247,7 @@ def _group_2_v6(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -3367,7 +3367,7 @@ def _group_2_v7(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -3423,7 +3423,7 @@ def _group_2_v7(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -3545,7 +3545,7 @@ def _group_2_v8(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -3601,7 +3601,7 @@ def _group_2_v8(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -3791,24 +3791,23 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     """The procedure of double_triad.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in1_the, _in1_dthe, _in1_ddthe = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, J6. J7 is known and link frame is placed, so the input angle theta_J7 turns link crank to J6
     # crank_input(p_J7, 20.0, w.in1, ref_J7), inline
-    _theta_the, _theta_dthe, _theta_ddthe = w.in1
-    _t = _theta_the + 0.0
+    _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 20.0 * _ct
     _ry = 20.0 * _st
-    _om = _theta_dthe + 0.0
-    _al = _theta_ddthe + 0.0
+    _om = _in1_dthe + 0.0
+    _al = _in1_ddthe + 0.0
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    w.p_J6 = (4.0 + _rx, 32.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_J6_x, _p_J6_y, _p_J6_dx, _p_J6_dy, _p_J6_ddx, _p_J6_ddy = w.p_J6 = (4.0 + _rx, 32.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
@@ -3884,25 +3883,24 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
 
     # Step 15: link_angle, crank. J7 and J6 of link crank are known, so its angle is known
     # link_angle(p_J7, w.p_J6, 0.0), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_J6
-    _dx = _j2_x - 4.0
-    _dy = _j2_y - 32.0
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_J6_x - 4.0
+    _dy = _p_J6_y - 32.0
+    _dvx = _p_J6_dx - 0.0
+    _dvy = _p_J6_dy - 0.0
+    _dax = _p_J6_ddx - 0.0
+    _day = _p_J6_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_crank = (NAN, NAN, NAN)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (NAN, NAN, NAN)
         return 151
     else:
-        w.phi_crank = (_th, _om, _al)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _om, _al)
     if st:
         w.note(st, 153, -154)
 
@@ -3917,16 +3915,16 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     _day = _j2_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_right_rocker1 = (NAN, NAN, NAN)
+        _phi_right_rocker1_the, _phi_right_rocker1_dthe, _phi_right_rocker1_ddthe = w.phi_right_rocker1 = (NAN, NAN, NAN)
         return 161
     else:
-        w.phi_right_rocker1 = (_th, _om, _al)
+        _phi_right_rocker1_the, _phi_right_rocker1_dthe, _phi_right_rocker1_ddthe = w.phi_right_rocker1 = (_th, _om, _al)
     if st:
         w.note(st, 163, -164)
 
@@ -3942,16 +3940,16 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     _day = _j2_ddy - _j1_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_right_ternary = (NAN, NAN, NAN)
+        _phi_right_ternary_the, _phi_right_ternary_dthe, _phi_right_ternary_ddthe = w.phi_right_ternary = (NAN, NAN, NAN)
         return 171
     else:
-        w.phi_right_ternary = (_th, _om, _al)
+        _phi_right_ternary_the, _phi_right_ternary_dthe, _phi_right_ternary_ddthe = w.phi_right_ternary = (_th, _om, _al)
     if st:
         w.note(st, 173, -174)
 
@@ -3966,41 +3964,40 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     _day = _j2_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_right_rocker2 = (NAN, NAN, NAN)
+        _phi_right_rocker2_the, _phi_right_rocker2_dthe, _phi_right_rocker2_ddthe = w.phi_right_rocker2 = (NAN, NAN, NAN)
         return 181
     else:
-        w.phi_right_rocker2 = (_th, _om, _al)
+        _phi_right_rocker2_the, _phi_right_rocker2_dthe, _phi_right_rocker2_ddthe = w.phi_right_rocker2 = (_th, _om, _al)
     if st:
         w.note(st, 183, -184)
 
     # Step 19: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is known
     # link_angle(w.p_J6, w.p_J5, 0.0), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_J6
     _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_J5
-    _dx = _j2_x - _j1_x
-    _dy = _j2_y - _j1_y
-    _dvx = _j2_dx - _j1_dx
-    _dvy = _j2_dy - _j1_dy
-    _dax = _j2_ddx - _j1_ddx
-    _day = _j2_ddy - _j1_ddy
+    _dx = _j2_x - _p_J6_x
+    _dy = _j2_y - _p_J6_y
+    _dvx = _j2_dx - _p_J6_dx
+    _dvy = _j2_dy - _p_J6_dy
+    _dax = _j2_ddx - _p_J6_ddx
+    _day = _j2_ddy - _p_J6_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_right_coupler = (NAN, NAN, NAN)
+        _phi_right_coupler_the, _phi_right_coupler_dthe, _phi_right_coupler_ddthe = w.phi_right_coupler = (NAN, NAN, NAN)
         return 191
     else:
-        w.phi_right_coupler = (_th, _om, _al)
+        _phi_right_coupler_the, _phi_right_coupler_dthe, _phi_right_coupler_ddthe = w.phi_right_coupler = (_th, _om, _al)
     if st:
         w.note(st, 193, -194)
 
@@ -4015,16 +4012,16 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     _day = _j2_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_left_rocker1 = (NAN, NAN, NAN)
+        _phi_left_rocker1_the, _phi_left_rocker1_dthe, _phi_left_rocker1_ddthe = w.phi_left_rocker1 = (NAN, NAN, NAN)
         return 201
     else:
-        w.phi_left_rocker1 = (_th, _om, _al)
+        _phi_left_rocker1_the, _phi_left_rocker1_dthe, _phi_left_rocker1_ddthe = w.phi_left_rocker1 = (_th, _om, _al)
     if st:
         w.note(st, 203, -204)
 
@@ -4040,16 +4037,16 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     _day = _j2_ddy - _j1_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_left_ternary = (NAN, NAN, NAN)
+        _phi_left_ternary_the, _phi_left_ternary_dthe, _phi_left_ternary_ddthe = w.phi_left_ternary = (NAN, NAN, NAN)
         return 211
     else:
-        w.phi_left_ternary = (_th, _om, _al)
+        _phi_left_ternary_the, _phi_left_ternary_dthe, _phi_left_ternary_ddthe = w.phi_left_ternary = (_th, _om, _al)
     if st:
         w.note(st, 213, -214)
 
@@ -4064,41 +4061,40 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     _day = _j2_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_left_rocker2 = (NAN, NAN, NAN)
+        _phi_left_rocker2_the, _phi_left_rocker2_dthe, _phi_left_rocker2_ddthe = w.phi_left_rocker2 = (NAN, NAN, NAN)
         return 221
     else:
-        w.phi_left_rocker2 = (_th, _om, _al)
+        _phi_left_rocker2_the, _phi_left_rocker2_dthe, _phi_left_rocker2_ddthe = w.phi_left_rocker2 = (_th, _om, _al)
     if st:
         w.note(st, 223, -224)
 
     # Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is known
     # link_angle(w.p_J6, w.p_K5, 0.0), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_J6
     _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_K5
-    _dx = _j2_x - _j1_x
-    _dy = _j2_y - _j1_y
-    _dvx = _j2_dx - _j1_dx
-    _dvy = _j2_dy - _j1_dy
-    _dax = _j2_ddx - _j1_ddx
-    _day = _j2_ddy - _j1_ddy
+    _dx = _j2_x - _p_J6_x
+    _dy = _j2_y - _p_J6_y
+    _dvx = _j2_dx - _p_J6_dx
+    _dvy = _j2_dy - _p_J6_dy
+    _dax = _j2_ddx - _p_J6_ddx
+    _day = _j2_ddy - _p_J6_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_left_coupler = (NAN, NAN, NAN)
+        _phi_left_coupler_the, _phi_left_coupler_dthe, _phi_left_coupler_ddthe = w.phi_left_coupler = (NAN, NAN, NAN)
         return 231
     else:
-        w.phi_left_coupler = (_th, _om, _al)
+        _phi_left_coupler_the, _phi_left_coupler_dthe, _phi_left_coupler_ddthe = w.phi_left_coupler = (_th, _om, _al)
     if st:
         w.note(st, 233, -234)
 

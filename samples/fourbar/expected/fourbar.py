@@ -279,30 +279,28 @@ def _run(w, inputs, d_inputs, dd_inputs):
     """The procedure of fourbar.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in1_the, _in1_dthe, _in1_ddthe = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A
     # crank_input(p_O1, 20.0, w.in1, ref_O1), inline
-    _theta_the, _theta_dthe, _theta_ddthe = w.in1
-    _t = _theta_the + 0.0
+    _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 20.0 * _ct
     _ry = 20.0 * _st
-    _om = _theta_dthe + 0.0
-    _al = _theta_ddthe + 0.0
+    _om = _in1_dthe + 0.0
+    _al = _in1_ddthe + 0.0
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    w.p_A = ((-44.0) + _rx, (-36.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-44.0) + _rx, (-36.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known
     # RRR_links(w.p_A, p_O2, l_coupler, l_rocker, 1), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_A
-    _dx = 46.0 - _j1_x
-    _dy = (-36.0) - _j1_y
+    _dx = 46.0 - _p_A_x
+    _dy = (-36.0) - _p_A_y
     _q = sqrt(_dx * _dx + _dy * _dy)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
@@ -313,7 +311,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -329,13 +327,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _e2x = -_a2 * _ux - _hn * _uy
     _e2y = -_a2 * _uy + _hn * _ux
     _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
-    _r1v = 78.10249675906654 * 0.0 + (_e1x * _j1_dx + _e1y * _j1_dy)
+    _r1v = 78.10249675906654 * 0.0 + (_e1x * _p_A_dx + _e1y * _p_A_dy)
     _r2v = 50.99019513592785 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
     _buv = (_r1v - _r2v) * _iq
     _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
     _bvx = _buv * _ux - _bnv * _uy
     _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 78.10249675906654 * 0.0 + 0.0 * 0.0 - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy)) + (_e1x * _j1_ddx + _e1y * _j1_ddy)
+    _r1a = 78.10249675906654 * 0.0 + 0.0 * 0.0 - ((_bvx - _p_A_dx) * (_bvx - _p_A_dx) + (_bvy - _p_A_dy) * (_bvy - _p_A_dy)) + (_e1x * _p_A_ddx + _e1y * _p_A_ddy)
     _r2a = 50.99019513592785 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
     _bua = (_r1a - _r2a) * _iq
     _bna = (_a2 * _r1a + _a * _r2a) * _ihq
@@ -344,25 +342,23 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[3] = _sigma
     if st == 1:
-        w.p_B = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 31
     elif st == 3:
-        w.p_B = (_j1_x + _e1x, _j1_y + _e1y, NAN, NAN, NAN, NAN)
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (_p_A_x + _e1x, _p_A_y + _e1y, NAN, NAN, NAN, NAN)
     else:
-        w.p_B = (_j1_x + _e1x, _j1_y + _e1y, _bvx, _bvy, _bax, _bay)
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (_p_A_x + _e1x, _p_A_y + _e1y, _bvx, _bvy, _bax, _bay)
     if st:
         w.note(st, 33, -34)
 
     # Step 4: link_point, P. point P of link coupler
     # link_point(w.p_B, w.p_A, 2.5607375986579193, -28.168113585237116), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_B
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_A
-    _dx = _j2_x - _j1_x
-    _dy = _j2_y - _j1_y
-    _dvx = _j2_dx - _j1_dx
-    _dvy = _j2_dy - _j1_dy
-    _dax = _j2_ddx - _j1_ddx
-    _day = _j2_ddy - _j1_ddy
+    _dx = _p_A_x - _p_B_x
+    _dy = _p_A_y - _p_B_y
+    _dvx = _p_A_dx - _p_B_dx
+    _dvy = _p_A_dy - _p_B_dy
+    _dax = _p_A_ddx - _p_B_ddx
+    _day = _p_A_ddy - _p_B_ddy
     _r2 = _dx * _dx + _dy * _dy
     _ir = NAN if _r2 == 0 else 1 / sqrt(_r2)
     _ex = _ir * _dx
@@ -378,83 +374,79 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _ray = _al * _rx - _om * _om * _ry
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.p_P = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 41
     else:
-        w.p_P = (_j1_x + _rx, _j1_y + _ry, _j1_dx + _rvx, _j1_dy + _rvy, _j1_ddx + _rax, _j1_ddy + _ray)
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (_p_B_x + _rx, _p_B_y + _ry, _p_B_dx + _rvx, _p_B_dy + _rvy, _p_B_ddx + _rax, _p_B_ddy + _ray)
     if st:
         w.note(st, 43, -44)
 
     # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
     # link_angle(p_O1, w.p_A, 0.0), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_A
-    _dx = _j2_x - (-44.0)
-    _dy = _j2_y - (-36.0)
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_A_x - (-44.0)
+    _dy = _p_A_y - (-36.0)
+    _dvx = _p_A_dx - 0.0
+    _dvy = _p_A_dy - 0.0
+    _dax = _p_A_ddx - 0.0
+    _day = _p_A_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_crank = (NAN, NAN, NAN)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (NAN, NAN, NAN)
         return 51
     else:
-        w.phi_crank = (_th, _om, _al)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _om, _al)
     if st:
         w.note(st, 53, -54)
 
     # Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is known
     # link_angle(w.p_A, w.p_B, 0.0), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_A
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_B
-    _dx = _j2_x - _j1_x
-    _dy = _j2_y - _j1_y
-    _dvx = _j2_dx - _j1_dx
-    _dvy = _j2_dy - _j1_dy
-    _dax = _j2_ddx - _j1_ddx
-    _day = _j2_ddy - _j1_ddy
+    _dx = _p_B_x - _p_A_x
+    _dy = _p_B_y - _p_A_y
+    _dvx = _p_B_dx - _p_A_dx
+    _dvy = _p_B_dy - _p_A_dy
+    _dax = _p_B_ddx - _p_A_ddx
+    _day = _p_B_ddy - _p_A_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_coupler = (NAN, NAN, NAN)
+        _phi_coupler_the, _phi_coupler_dthe, _phi_coupler_ddthe = w.phi_coupler = (NAN, NAN, NAN)
         return 61
     else:
-        w.phi_coupler = (_th, _om, _al)
+        _phi_coupler_the, _phi_coupler_dthe, _phi_coupler_ddthe = w.phi_coupler = (_th, _om, _al)
     if st:
         w.note(st, 63, -64)
 
     # Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
     # link_angle(p_O2, w.p_B, 0.0), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_B
-    _dx = _j2_x - 46.0
-    _dy = _j2_y - (-36.0)
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_B_x - 46.0
+    _dy = _p_B_y - (-36.0)
+    _dvx = _p_B_dx - 0.0
+    _dvy = _p_B_dy - 0.0
+    _dax = _p_B_ddx - 0.0
+    _day = _p_B_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_rocker = (NAN, NAN, NAN)
+        _phi_rocker_the, _phi_rocker_dthe, _phi_rocker_ddthe = w.phi_rocker = (NAN, NAN, NAN)
         return 71
     else:
-        w.phi_rocker = (_th, _om, _al)
+        _phi_rocker_the, _phi_rocker_dthe, _phi_rocker_ddthe = w.phi_rocker = (_th, _om, _al)
     if st:
         w.note(st, 73, -74)
 

@@ -269,40 +269,38 @@ def _run(w, inputs, d_inputs, dd_inputs):
     """The procedure of inverted_slider.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in1_the, _in1_dthe, _in1_ddthe = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A
     # crank_input(p_O1, 25.0, w.in1, ref_O1), inline
-    _theta_the, _theta_dthe, _theta_ddthe = w.in1
-    _t = _theta_the + 0.0
+    _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 25.0 * _ct
     _ry = 25.0 * _st
-    _om = _theta_dthe + 0.0
-    _al = _theta_ddthe + 0.0
+    _om = _in1_dthe + 0.0
+    _al = _in1_ddthe + 0.0
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    w.p_A = ((-12.0) + _rx, (-10.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-12.0) + _rx, (-10.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 3: RPR_links, S (branch +1). the guide lever turns about the known O2 and the slider block about the known A, sliding along one line at S: an RPR two-link chain with both ends known
     # RPR_links(p_O2, w.p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1), inline
-    _js_x, _js_y, _js_dx, _js_dy, _js_ddx, _js_ddy = w.p_A
-    _dx = _js_x - (-12.0)
-    _dy = _js_y - (-60.0)
-    _dvx = _js_dx - 0.0
-    _dvy = _js_dy - 0.0
-    _dax = _js_ddx - 0.0
-    _day = _js_ddy - 0.0
+    _dx = _p_A_x - (-12.0)
+    _dy = _p_A_y - (-60.0)
+    _dvx = _p_A_dx - 0.0
+    _dvy = _p_A_dy - 0.0
+    _dax = _p_A_ddx - 0.0
+    _day = _p_A_ddy - 0.0
     _hh = (-1.7763568394002505e-15) - 0.0
     _q = sqrt(_dx * _dx + _dy * _dy)
     _ah = abs(_hh)
     _k = _q - _ah
     _big = (_ah if _ah > _q else _q)
-    _fail = _k < -8 * EPS * _big or _q == 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _big or _q == 0
     _t = sqrt((0 if 0 > _k else _k) * (_q + _ah))
     _iq = NAN if _q == 0 else 1 / _q
     _mt = 1 * _t
@@ -336,55 +334,53 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[3] = _sigma
     if st == 1:
-        w.psi_S = (NAN, NAN, NAN)
-        w.s_S = (NAN, NAN, NAN)
-        w.p_S = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _psi_S_the, _psi_S_dthe, _psi_S_ddthe = w.psi_S = (NAN, NAN, NAN)
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (NAN, NAN, NAN)
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 31
     elif st == 3:
-        w.psi_S = (_th, NAN, NAN)
-        w.s_S = (_sv, NAN, NAN)
-        w.p_S = (_js_x + _rx, _js_y + _ry, NAN, NAN, NAN, NAN)
+        _psi_S_the, _psi_S_dthe, _psi_S_ddthe = w.psi_S = (_th, NAN, NAN)
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (_sv, NAN, NAN)
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (_p_A_x + _rx, _p_A_y + _ry, NAN, NAN, NAN, NAN)
     else:
-        w.psi_S = (_th, _om, _al)
-        w.s_S = (_sv, _ds, _dds)
-        w.p_S = (_js_x + _rx, _js_y + _ry, _js_dx + _rvx, _js_dy + _rvy, _js_ddx + _rax, _js_ddy + _ray)
+        _psi_S_the, _psi_S_dthe, _psi_S_ddthe = w.psi_S = (_th, _om, _al)
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (_sv, _ds, _dds)
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (_p_A_x + _rx, _p_A_y + _ry, _p_A_dx + _rvx, _p_A_dy + _rvy, _p_A_ddx + _rax, _p_A_ddy + _ray)
     if st:
         w.note(st, 33, -34)
 
     # Step 4: coupler_point, P. point P of link lever
     # coupler_point(p_O2, w.psi_S, 120.00000000000001, 0.0), inline
-    _phi_the, _phi_dthe, _phi_ddthe = w.psi_S
-    _cp = cos(_phi_the)
-    _sp = sin(_phi_the)
+    _cp = cos(_psi_S_the)
+    _sp = sin(_psi_S_the)
     _rx = 120.00000000000001 * _cp - 0.0 * _sp
     _ry = 120.00000000000001 * _sp + 0.0 * _cp
-    _rvx = -_phi_dthe * _ry
-    _rvy = _phi_dthe * _rx
-    _rax = -_phi_ddthe * _ry - _phi_dthe * _phi_dthe * _rx
-    _ray = _phi_ddthe * _rx - _phi_dthe * _phi_dthe * _ry
-    w.p_P = ((-12.0) + _rx, (-60.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _rvx = -_psi_S_dthe * _ry
+    _rvy = _psi_S_dthe * _rx
+    _rax = -_psi_S_ddthe * _ry - _psi_S_dthe * _psi_S_dthe * _rx
+    _ray = _psi_S_ddthe * _rx - _psi_S_dthe * _psi_S_dthe * _ry
+    _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = ((-12.0) + _rx, (-60.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
     # link_angle(p_O1, w.p_A, 0.0), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_A
-    _dx = _j2_x - (-12.0)
-    _dy = _j2_y - (-10.0)
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_A_x - (-12.0)
+    _dy = _p_A_y - (-10.0)
+    _dvx = _p_A_dx - 0.0
+    _dvy = _p_A_dy - 0.0
+    _dax = _p_A_ddx - 0.0
+    _day = _p_A_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_crank = (NAN, NAN, NAN)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (NAN, NAN, NAN)
         return 51
     else:
-        w.phi_crank = (_th, _om, _al)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _om, _al)
     if st:
         w.note(st, 53, -54)
 

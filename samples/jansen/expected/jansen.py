@@ -343,30 +343,28 @@ def _run(w, inputs, d_inputs, dd_inputs):
     """The procedure of jansen.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in1_the, _in1_dthe, _in1_ddthe = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
     # crank_input(p_O, 15.0, w.in1, ref_O), inline
-    _theta_the, _theta_dthe, _theta_ddthe = w.in1
-    _t = _theta_the + 0.0
+    _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 15.0 * _ct
     _ry = 15.0 * _st
-    _om = _theta_dthe + 0.0
-    _al = _theta_ddthe + 0.0
+    _om = _in1_dthe + 0.0
+    _al = _in1_ddthe + 0.0
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    w.p_A = (28.0 + _rx, 32.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = (28.0 + _rx, 32.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 3: RRR_links, C (branch -1). C is joined to the known A by rod_j and to the known B by triangle_bde: a 3R two-link chain with both ends known
     # RRR_links(w.p_A, p_B, l_rod_j, l_triangle_bde_C_B, -1), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_A
-    _dx = (-10.0) - _j1_x
-    _dy = 24.2 - _j1_y
+    _dx = (-10.0) - _p_A_x
+    _dy = 24.2 - _p_A_y
     _q = sqrt(_dx * _dx + _dy * _dy)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
@@ -377,7 +375,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -393,13 +391,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _e2x = -_a2 * _ux - _hn * _uy
     _e2y = -_a2 * _uy + _hn * _ux
     _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
-    _r1v = 49.999999999951626 * 0.0 + (_e1x * _j1_dx + _e1y * _j1_dy)
+    _r1v = 49.999999999951626 * 0.0 + (_e1x * _p_A_dx + _e1y * _p_A_dy)
     _r2v = 41.499999999969184 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
     _buv = (_r1v - _r2v) * _iq
     _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
     _bvx = _buv * _ux - _bnv * _uy
     _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 49.999999999951626 * 0.0 + 0.0 * 0.0 - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy)) + (_e1x * _j1_ddx + _e1y * _j1_ddy)
+    _r1a = 49.999999999951626 * 0.0 + 0.0 * 0.0 - ((_bvx - _p_A_dx) * (_bvx - _p_A_dx) + (_bvy - _p_A_dy) * (_bvy - _p_A_dy)) + (_e1x * _p_A_ddx + _e1y * _p_A_ddy)
     _r2a = 41.499999999969184 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
     _bua = (_r1a - _r2a) * _iq
     _bna = (_a2 * _r1a + _a * _r2a) * _ihq
@@ -408,24 +406,23 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[3] = _sigma
     if st == 1:
-        w.p_C = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 31
     elif st == 3:
-        w.p_C = (_j1_x + _e1x, _j1_y + _e1y, NAN, NAN, NAN, NAN)
+        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = (_p_A_x + _e1x, _p_A_y + _e1y, NAN, NAN, NAN, NAN)
     else:
-        w.p_C = (_j1_x + _e1x, _j1_y + _e1y, _bvx, _bvy, _bax, _bay)
+        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = (_p_A_x + _e1x, _p_A_y + _e1y, _bvx, _bvy, _bax, _bay)
     if st:
         w.note(st, 33, -34)
 
     # Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
     # link_point(p_B, w.p_C, 2.6098795180489716, 40.01497880667611), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_C
-    _dx = _j2_x - (-10.0)
-    _dy = _j2_y - 24.2
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_C_x - (-10.0)
+    _dy = _p_C_y - 24.2
+    _dvx = _p_C_dx - 0.0
+    _dvy = _p_C_dy - 0.0
+    _dax = _p_C_ddx - 0.0
+    _day = _p_C_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _ir = NAN if _r2 == 0 else 1 / sqrt(_r2)
     _ex = _ir * _dx
@@ -441,18 +438,17 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _ray = _al * _rx - _om * _om * _ry
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.p_D = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_D_x, _p_D_y, _p_D_dx, _p_D_dy, _p_D_ddx, _p_D_ddy = w.p_D = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 41
     else:
-        w.p_D = ((-10.0) + _rx, 24.2 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+        _p_D_x, _p_D_y, _p_D_dx, _p_D_dy, _p_D_ddx, _p_D_ddy = w.p_D = ((-10.0) + _rx, 24.2 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
     if st:
         w.note(st, 43, -44)
 
     # Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
     # RRR_links(w.p_A, p_B, l_rod_k, l_rocker_c, 1), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_A
-    _dx = (-10.0) - _j1_x
-    _dy = 24.2 - _j1_y
+    _dx = (-10.0) - _p_A_x
+    _dy = 24.2 - _p_A_y
     _q = sqrt(_dx * _dx + _dy * _dy)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
@@ -463,7 +459,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -479,13 +475,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _e2x = -_a2 * _ux - _hn * _uy
     _e2y = -_a2 * _uy + _hn * _ux
     _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
-    _r1v = 61.90000000003217 * 0.0 + (_e1x * _j1_dx + _e1y * _j1_dy)
+    _r1v = 61.90000000003217 * 0.0 + (_e1x * _p_A_dx + _e1y * _p_A_dy)
     _r2v = 39.30000000001047 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
     _buv = (_r1v - _r2v) * _iq
     _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
     _bvx = _buv * _ux - _bnv * _uy
     _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 61.90000000003217 * 0.0 + 0.0 * 0.0 - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy)) + (_e1x * _j1_ddx + _e1y * _j1_ddy)
+    _r1a = 61.90000000003217 * 0.0 + 0.0 * 0.0 - ((_bvx - _p_A_dx) * (_bvx - _p_A_dx) + (_bvy - _p_A_dy) * (_bvy - _p_A_dy)) + (_e1x * _p_A_ddx + _e1y * _p_A_ddy)
     _r2a = 39.30000000001047 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
     _bua = (_r1a - _r2a) * _iq
     _bna = (_a2 * _r1a + _a * _r2a) * _ihq
@@ -494,21 +490,19 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[5] = _sigma
     if st == 1:
-        w.p_E = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_E_x, _p_E_y, _p_E_dx, _p_E_dy, _p_E_ddx, _p_E_ddy = w.p_E = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 51
     elif st == 3:
-        w.p_E = (_j1_x + _e1x, _j1_y + _e1y, NAN, NAN, NAN, NAN)
+        _p_E_x, _p_E_y, _p_E_dx, _p_E_dy, _p_E_ddx, _p_E_ddy = w.p_E = (_p_A_x + _e1x, _p_A_y + _e1y, NAN, NAN, NAN, NAN)
     else:
-        w.p_E = (_j1_x + _e1x, _j1_y + _e1y, _bvx, _bvy, _bax, _bay)
+        _p_E_x, _p_E_y, _p_E_dx, _p_E_dy, _p_E_ddx, _p_E_ddy = w.p_E = (_p_A_x + _e1x, _p_A_y + _e1y, _bvx, _bvy, _bax, _bay)
     if st:
         w.note(st, 53, -54)
 
     # Step 6: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known
     # RRR_links(w.p_D, w.p_E, l_rod_f, l_leg_ghi, -1), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_D
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_E
-    _dx = _j2_x - _j1_x
-    _dy = _j2_y - _j1_y
+    _dx = _p_E_x - _p_D_x
+    _dy = _p_E_y - _p_D_y
     _q = sqrt(_dx * _dx + _dy * _dy)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
@@ -519,7 +513,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -535,14 +529,14 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _e2x = -_a2 * _ux - _hn * _uy
     _e2y = -_a2 * _uy + _hn * _ux
     _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
-    _r1v = 39.39999999995135 * 0.0 + (_e1x * _j1_dx + _e1y * _j1_dy)
-    _r2v = 36.69999999999471 * 0.0 + (_e2x * _j2_dx + _e2y * _j2_dy)
+    _r1v = 39.39999999995135 * 0.0 + (_e1x * _p_D_dx + _e1y * _p_D_dy)
+    _r2v = 36.69999999999471 * 0.0 + (_e2x * _p_E_dx + _e2y * _p_E_dy)
     _buv = (_r1v - _r2v) * _iq
     _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
     _bvx = _buv * _ux - _bnv * _uy
     _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 39.39999999995135 * 0.0 + 0.0 * 0.0 - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy)) + (_e1x * _j1_ddx + _e1y * _j1_ddy)
-    _r2a = 36.69999999999471 * 0.0 + 0.0 * 0.0 - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy)) + (_e2x * _j2_ddx + _e2y * _j2_ddy)
+    _r1a = 39.39999999995135 * 0.0 + 0.0 * 0.0 - ((_bvx - _p_D_dx) * (_bvx - _p_D_dx) + (_bvy - _p_D_dy) * (_bvy - _p_D_dy)) + (_e1x * _p_D_ddx + _e1y * _p_D_ddy)
+    _r2a = 36.69999999999471 * 0.0 + 0.0 * 0.0 - ((_bvx - _p_E_dx) * (_bvx - _p_E_dx) + (_bvy - _p_E_dy) * (_bvy - _p_E_dy)) + (_e2x * _p_E_ddx + _e2y * _p_E_ddy)
     _bua = (_r1a - _r2a) * _iq
     _bna = (_a2 * _r1a + _a * _r2a) * _ihq
     _bax = _bua * _ux - _bna * _uy
@@ -550,25 +544,23 @@ def _run(w, inputs, d_inputs, dd_inputs):
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[6] = _sigma
     if st == 1:
-        w.p_F = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_F_x, _p_F_y, _p_F_dx, _p_F_dy, _p_F_ddx, _p_F_ddy = w.p_F = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 61
     elif st == 3:
-        w.p_F = (_j1_x + _e1x, _j1_y + _e1y, NAN, NAN, NAN, NAN)
+        _p_F_x, _p_F_y, _p_F_dx, _p_F_dy, _p_F_ddx, _p_F_ddy = w.p_F = (_p_D_x + _e1x, _p_D_y + _e1y, NAN, NAN, NAN, NAN)
     else:
-        w.p_F = (_j1_x + _e1x, _j1_y + _e1y, _bvx, _bvy, _bax, _bay)
+        _p_F_x, _p_F_y, _p_F_dx, _p_F_dy, _p_F_ddx, _p_F_ddy = w.p_F = (_p_D_x + _e1x, _p_D_y + _e1y, _bvx, _bvy, _bax, _bay)
     if st:
         w.note(st, 63, -64)
 
     # Step 7: link_point, foot. point foot of link leg_ghi
     # link_point(w.p_E, w.p_F, -7.746594005561121, 48.38378118035099), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_E
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_F
-    _dx = _j2_x - _j1_x
-    _dy = _j2_y - _j1_y
-    _dvx = _j2_dx - _j1_dx
-    _dvy = _j2_dy - _j1_dy
-    _dax = _j2_ddx - _j1_ddx
-    _day = _j2_ddy - _j1_ddy
+    _dx = _p_F_x - _p_E_x
+    _dy = _p_F_y - _p_E_y
+    _dvx = _p_F_dx - _p_E_dx
+    _dvy = _p_F_dy - _p_E_dy
+    _dax = _p_F_ddx - _p_E_ddx
+    _day = _p_F_ddy - _p_E_ddy
     _r2 = _dx * _dx + _dy * _dy
     _ir = NAN if _r2 == 0 else 1 / sqrt(_r2)
     _ex = _ir * _dx
@@ -584,182 +576,171 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _ray = _al * _rx - _om * _om * _ry
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.p_foot = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_foot_x, _p_foot_y, _p_foot_dx, _p_foot_dy, _p_foot_ddx, _p_foot_ddy = w.p_foot = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 71
     else:
-        w.p_foot = (_j1_x + _rx, _j1_y + _ry, _j1_dx + _rvx, _j1_dy + _rvy, _j1_ddx + _rax, _j1_ddy + _ray)
+        _p_foot_x, _p_foot_y, _p_foot_dx, _p_foot_dy, _p_foot_ddx, _p_foot_ddy = w.p_foot = (_p_E_x + _rx, _p_E_y + _ry, _p_E_dx + _rvx, _p_E_dy + _rvy, _p_E_ddx + _rax, _p_E_ddy + _ray)
     if st:
         w.note(st, 73, -74)
 
     # Step 8: link_angle, crank. O and A of link crank are known, so its angle is known
     # link_angle(p_O, w.p_A, 0.0), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_A
-    _dx = _j2_x - 28.0
-    _dy = _j2_y - 32.0
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_A_x - 28.0
+    _dy = _p_A_y - 32.0
+    _dvx = _p_A_dx - 0.0
+    _dvy = _p_A_dy - 0.0
+    _dax = _p_A_ddx - 0.0
+    _day = _p_A_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_crank = (NAN, NAN, NAN)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (NAN, NAN, NAN)
         return 81
     else:
-        w.phi_crank = (_th, _om, _al)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _om, _al)
     if st:
         w.note(st, 83, -84)
 
     # Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is known
     # link_angle(w.p_A, w.p_C, 0.0), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_A
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_C
-    _dx = _j2_x - _j1_x
-    _dy = _j2_y - _j1_y
-    _dvx = _j2_dx - _j1_dx
-    _dvy = _j2_dy - _j1_dy
-    _dax = _j2_ddx - _j1_ddx
-    _day = _j2_ddy - _j1_ddy
+    _dx = _p_C_x - _p_A_x
+    _dy = _p_C_y - _p_A_y
+    _dvx = _p_C_dx - _p_A_dx
+    _dvy = _p_C_dy - _p_A_dy
+    _dax = _p_C_ddx - _p_A_ddx
+    _day = _p_C_ddy - _p_A_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_rod_j = (NAN, NAN, NAN)
+        _phi_rod_j_the, _phi_rod_j_dthe, _phi_rod_j_ddthe = w.phi_rod_j = (NAN, NAN, NAN)
         return 91
     else:
-        w.phi_rod_j = (_th, _om, _al)
+        _phi_rod_j_the, _phi_rod_j_dthe, _phi_rod_j_ddthe = w.phi_rod_j = (_th, _om, _al)
     if st:
         w.note(st, 93, -94)
 
     # Step 10: link_angle, rod_k. A and E of link rod_k are known, so its angle is known
     # link_angle(w.p_A, w.p_E, 0.0), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_A
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_E
-    _dx = _j2_x - _j1_x
-    _dy = _j2_y - _j1_y
-    _dvx = _j2_dx - _j1_dx
-    _dvy = _j2_dy - _j1_dy
-    _dax = _j2_ddx - _j1_ddx
-    _day = _j2_ddy - _j1_ddy
+    _dx = _p_E_x - _p_A_x
+    _dy = _p_E_y - _p_A_y
+    _dvx = _p_E_dx - _p_A_dx
+    _dvy = _p_E_dy - _p_A_dy
+    _dax = _p_E_ddx - _p_A_ddx
+    _day = _p_E_ddy - _p_A_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_rod_k = (NAN, NAN, NAN)
+        _phi_rod_k_the, _phi_rod_k_dthe, _phi_rod_k_ddthe = w.phi_rod_k = (NAN, NAN, NAN)
         return 101
     else:
-        w.phi_rod_k = (_th, _om, _al)
+        _phi_rod_k_the, _phi_rod_k_dthe, _phi_rod_k_ddthe = w.phi_rod_k = (_th, _om, _al)
     if st:
         w.note(st, 103, -104)
 
     # Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is known
     # link_angle(p_B, w.p_C, 0.0), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_C
-    _dx = _j2_x - (-10.0)
-    _dy = _j2_y - 24.2
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_C_x - (-10.0)
+    _dy = _p_C_y - 24.2
+    _dvx = _p_C_dx - 0.0
+    _dvy = _p_C_dy - 0.0
+    _dax = _p_C_ddx - 0.0
+    _day = _p_C_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_triangle_bde = (NAN, NAN, NAN)
+        _phi_triangle_bde_the, _phi_triangle_bde_dthe, _phi_triangle_bde_ddthe = w.phi_triangle_bde = (NAN, NAN, NAN)
         return 111
     else:
-        w.phi_triangle_bde = (_th, _om, _al)
+        _phi_triangle_bde_the, _phi_triangle_bde_dthe, _phi_triangle_bde_ddthe = w.phi_triangle_bde = (_th, _om, _al)
     if st:
         w.note(st, 113, -114)
 
     # Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is known
     # link_angle(p_B, w.p_E, 0.0), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_E
-    _dx = _j2_x - (-10.0)
-    _dy = _j2_y - 24.2
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_E_x - (-10.0)
+    _dy = _p_E_y - 24.2
+    _dvx = _p_E_dx - 0.0
+    _dvy = _p_E_dy - 0.0
+    _dax = _p_E_ddx - 0.0
+    _day = _p_E_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_rocker_c = (NAN, NAN, NAN)
+        _phi_rocker_c_the, _phi_rocker_c_dthe, _phi_rocker_c_ddthe = w.phi_rocker_c = (NAN, NAN, NAN)
         return 121
     else:
-        w.phi_rocker_c = (_th, _om, _al)
+        _phi_rocker_c_the, _phi_rocker_c_dthe, _phi_rocker_c_ddthe = w.phi_rocker_c = (_th, _om, _al)
     if st:
         w.note(st, 123, -124)
 
     # Step 13: link_angle, rod_f. D and F of link rod_f are known, so its angle is known
     # link_angle(w.p_D, w.p_F, 0.0), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_D
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_F
-    _dx = _j2_x - _j1_x
-    _dy = _j2_y - _j1_y
-    _dvx = _j2_dx - _j1_dx
-    _dvy = _j2_dy - _j1_dy
-    _dax = _j2_ddx - _j1_ddx
-    _day = _j2_ddy - _j1_ddy
+    _dx = _p_F_x - _p_D_x
+    _dy = _p_F_y - _p_D_y
+    _dvx = _p_F_dx - _p_D_dx
+    _dvy = _p_F_dy - _p_D_dy
+    _dax = _p_F_ddx - _p_D_ddx
+    _day = _p_F_ddy - _p_D_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_rod_f = (NAN, NAN, NAN)
+        _phi_rod_f_the, _phi_rod_f_dthe, _phi_rod_f_ddthe = w.phi_rod_f = (NAN, NAN, NAN)
         return 131
     else:
-        w.phi_rod_f = (_th, _om, _al)
+        _phi_rod_f_the, _phi_rod_f_dthe, _phi_rod_f_ddthe = w.phi_rod_f = (_th, _om, _al)
     if st:
         w.note(st, 133, -134)
 
     # Step 14: link_angle, leg_ghi. E and F of link leg_ghi are known, so its angle is known
     # link_angle(w.p_E, w.p_F, 0.0), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_E
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_F
-    _dx = _j2_x - _j1_x
-    _dy = _j2_y - _j1_y
-    _dvx = _j2_dx - _j1_dx
-    _dvy = _j2_dy - _j1_dy
-    _dax = _j2_ddx - _j1_ddx
-    _day = _j2_ddy - _j1_ddy
+    _dx = _p_F_x - _p_E_x
+    _dy = _p_F_y - _p_E_y
+    _dvx = _p_F_dx - _p_E_dx
+    _dvy = _p_F_dy - _p_E_dy
+    _dax = _p_F_ddx - _p_E_ddx
+    _day = _p_F_ddy - _p_E_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_leg_ghi = (NAN, NAN, NAN)
+        _phi_leg_ghi_the, _phi_leg_ghi_dthe, _phi_leg_ghi_ddthe = w.phi_leg_ghi = (NAN, NAN, NAN)
         return 141
     else:
-        w.phi_leg_ghi = (_th, _om, _al)
+        _phi_leg_ghi_the, _phi_leg_ghi_dthe, _phi_leg_ghi_ddthe = w.phi_leg_ghi = (_th, _om, _al)
     if st:
         w.note(st, 143, -144)
 

@@ -270,28 +270,26 @@ def _run(w, inputs, d_inputs, dd_inputs):
     """The procedure of scotch_yoke.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in1_the, _in1_dthe, _in1_ddthe = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
     # crank_input(p_O, 25.0, w.in1, ref_O), inline
-    _theta_the, _theta_dthe, _theta_ddthe = w.in1
-    _t = _theta_the + 0.0
+    _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 25.0 * _ct
     _ry = 25.0 * _st
-    _om = _theta_dthe + 0.0
-    _al = _theta_ddthe + 0.0
+    _om = _in1_dthe + 0.0
+    _al = _in1_ddthe + 0.0
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    w.p_A = ((-40.0) + _rx, (-12.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-40.0) + _rx, (-12.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 3: PPR_links, P. the slider yoke rides on the known line Q and carries the slide P of block, which turns about the known A: a PPR two-link chain (one solution)
     # PPR_links(w.p_A, g_Q, psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1), inline
-    _jr_x, _jr_y, _jr_dx, _jr_dy, _jr_ddx, _jr_ddy = w.p_A
     _cg = cos(0.0)
     _sg = sin(0.0)
     _cax = cos(0.0 + 1.5707963267948966)
@@ -300,8 +298,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _ray = 0.0 * _sg + 0.0 * _cg
     _rbx = (-65.0) * _cg - 20.0 * _sg
     _rby = (-65.0) * _sg + 20.0 * _cg
-    _pax = _jr_x + _rax
-    _pay = _jr_y + _ray
+    _pax = _p_A_x + _rax
+    _pay = _p_A_y + _ray
     _wx = _pax - 40.0 - _rbx
     _wy = _pay - (-12.0) - _rby
     _cr = _cg * _sax - _sg * _cax
@@ -324,8 +322,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _rbvy = 0.0 * _rbx
     _rbax = -0.0 * _rby - 0.0 * 0.0 * _rbx
     _rbay = 0.0 * _rbx - 0.0 * 0.0 * _rby
-    _k1x = _jr_dx + _ravx - 0.0 - _rbvx + _sv1 * 0.0 * _sg
-    _k1y = _jr_dy + _ravy - 0.0 - _rbvy - _sv1 * 0.0 * _cg
+    _k1x = _p_A_dx + _ravx - 0.0 - _rbvx + _sv1 * 0.0 * _sg
+    _k1y = _p_A_dy + _ravy - 0.0 - _rbvy - _sv1 * 0.0 * _cg
     _ds1 = (_k1x * _sax - _k1y * _cax + 0.0 * _mu) * _icr
     _mvx = _k1x - _ds1 * _cg
     _mvy = _k1y - _ds1 * _sg
@@ -334,73 +332,72 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _jp1vy = 0.0 + _ds1 * _sg + _sv1 * 0.0 * _cg
     _tn = 2 * _ds1 * 0.0 + _sv1 * 0.0
     _tu = _sv1 * 0.0 * 0.0
-    _k2x = _jr_ddx + _raax - 0.0 - _rbax + _tn * _sg + _tu * _cg
-    _k2y = _jr_ddy + _raay - 0.0 - _rbay - _tn * _cg + _tu * _sg
+    _k2x = _p_A_ddx + _raax - 0.0 - _rbax + _tn * _sg + _tu * _cg
+    _k2y = _p_A_ddy + _raay - 0.0 - _rbay - _tn * _cg + _tu * _sg
     _dds1 = (_k2x * _sax - _k2y * _cax + 2 * 0.0 * _mvu + 0.0 * _mu) * _icr
     _jp1ax = 0.0 + _dds1 * _cg - _tn * _sg - _tu * _cg
     _jp1ay = 0.0 + _dds1 * _sg + _tn * _cg - _tu * _sg
     _jxx = _pax if 1 > 0 else _pbx
     _jxy = _pay if 1 > 0 else _pby
-    _jxdx = _jr_dx + _ravx if 1 > 0 else _jp1vx + _rbvx
-    _jxdy = _jr_dy + _ravy if 1 > 0 else _jp1vy + _rbvy
-    _jxddx = _jr_ddx + _raax if 1 > 0 else _jp1ax + _rbax
-    _jxddy = _jr_ddy + _raay if 1 > 0 else _jp1ay + _rbay
+    _jxdx = _p_A_dx + _ravx if 1 > 0 else _jp1vx + _rbvx
+    _jxdy = _p_A_dy + _ravy if 1 > 0 else _jp1vy + _rbvy
+    _jxddx = _p_A_ddx + _raax if 1 > 0 else _jp1ax + _rbax
+    _jxddy = _p_A_ddy + _raay if 1 > 0 else _jp1ay + _rbay
     st = 1 if _cr == 0 else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[3] = _sigma
     if st == 1:
-        w.s_Q = (NAN, NAN, NAN)
-        w.p_Q = (NAN, NAN, NAN, NAN, NAN, NAN)
-        w.s_P = (NAN, NAN, NAN)
-        w.p_P = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _s_Q_v, _s_Q_dv, _s_Q_ddv = w.s_Q = (NAN, NAN, NAN)
+        _p_Q_x, _p_Q_y, _p_Q_dx, _p_Q_dy, _p_Q_ddx, _p_Q_ddy = w.p_Q = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _s_P_v, _s_P_dv, _s_P_ddv = w.s_P = (NAN, NAN, NAN)
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 31
     elif st == 3:
-        w.s_Q = (_sv1, NAN, NAN)
-        w.p_Q = (_jp1x, _jp1y, NAN, NAN, NAN, NAN)
-        w.s_P = (1 * _mu, NAN, NAN)
-        w.p_P = (_jxx, _jxy, NAN, NAN, NAN, NAN)
+        _s_Q_v, _s_Q_dv, _s_Q_ddv = w.s_Q = (_sv1, NAN, NAN)
+        _p_Q_x, _p_Q_y, _p_Q_dx, _p_Q_dy, _p_Q_ddx, _p_Q_ddy = w.p_Q = (_jp1x, _jp1y, NAN, NAN, NAN, NAN)
+        _s_P_v, _s_P_dv, _s_P_ddv = w.s_P = (1 * _mu, NAN, NAN)
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (_jxx, _jxy, NAN, NAN, NAN, NAN)
     else:
-        w.s_Q = (_sv1, _ds1, _dds1)
-        w.p_Q = (_jp1x, _jp1y, _jp1vx, _jp1vy, _jp1ax, _jp1ay)
-        w.s_P = (1 * _mu, 1 * _mvu, 1 * ((_k2x - _dds1 * _cg) * _cax + (_k2y - _dds1 * _sg) * _sax + 0.0 * (_cax * _mvy - _sax * _mvx)))
-        w.p_P = (_jxx, _jxy, _jxdx, _jxdy, _jxddx, _jxddy)
+        _s_Q_v, _s_Q_dv, _s_Q_ddv = w.s_Q = (_sv1, _ds1, _dds1)
+        _p_Q_x, _p_Q_y, _p_Q_dx, _p_Q_dy, _p_Q_ddx, _p_Q_ddy = w.p_Q = (_jp1x, _jp1y, _jp1vx, _jp1vy, _jp1ax, _jp1ay)
+        _s_P_v, _s_P_dv, _s_P_ddv = w.s_P = (1 * _mu, 1 * _mvu, 1 * ((_k2x - _dds1 * _cg) * _cax + (_k2y - _dds1 * _sg) * _sax + 0.0 * (_cax * _mvy - _sax * _mvx)))
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (_jxx, _jxy, _jxdx, _jxdy, _jxddx, _jxddy)
     if st:
         w.note(st, 33, -34)
 
     # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
     # link_angle(p_O, w.p_A, 0.0), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_A
-    _dx = _j2_x - (-40.0)
-    _dy = _j2_y - (-12.0)
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_A_x - (-40.0)
+    _dy = _p_A_y - (-12.0)
+    _dvx = _p_A_dx - 0.0
+    _dvy = _p_A_dy - 0.0
+    _dax = _p_A_ddx - 0.0
+    _day = _p_A_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_crank = (NAN, NAN, NAN)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (NAN, NAN, NAN)
         return 41
     else:
-        w.phi_crank = (_th, _om, _al)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _om, _al)
     if st:
         w.note(st, 43, -44)
 
     # Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide
     # offset_angle(phi_frame, -0.2984989315861793), inline
     _th0 = 0.0 + (-0.2984989315861793)
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
-    w.phi_yoke = (_th, 0.0, 0.0)
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_yoke_the, _phi_yoke_dthe, _phi_yoke_ddthe = w.phi_yoke = (_th, 0.0, 0.0)
 
     # Step 6: offset_angle, block. link block keeps a constant angle to its slide
     # offset_angle(psi_Q, 1.5707963267948966), inline
     _th0 = 0.0 + 1.5707963267948966
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
-    w.phi_block = (_th, 0.0, 0.0)
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_block_the, _phi_block_dthe, _phi_block_ddthe = w.phi_block = (_th, 0.0, 0.0)
 
     return w.singular or w.near
 

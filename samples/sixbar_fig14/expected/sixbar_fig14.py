@@ -812,7 +812,7 @@ def _group_1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -868,7 +868,7 @@ def _group_1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -988,7 +988,7 @@ def _group_1_v1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1044,7 +1044,7 @@ def _group_1_v1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1163,7 +1163,7 @@ def _group_1_v2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1219,7 +1219,7 @@ def _group_1_v2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1338,7 +1338,7 @@ def _group_1_v3(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1394,7 +1394,7 @@ def _group_1_v3(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1513,7 +1513,7 @@ def _group_1_v4(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1569,7 +1569,7 @@ def _group_1_v4(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1688,7 +1688,7 @@ def _group_1_v5(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1744,7 +1744,7 @@ def _group_1_v5(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1864,7 +1864,7 @@ def _group_1_v6(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -1920,7 +1920,7 @@ def _group_1_v6(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2039,7 +2039,7 @@ def _group_1_v7(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2095,7 +2095,7 @@ def _group_1_v7(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2214,7 +2214,7 @@ def _group_1_v8(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2270,7 +2270,7 @@ def _group_1_v8(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * EPS * _x or _q == 0 or _lo <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
     _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
@@ -2418,24 +2418,23 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     """The procedure of sixbar_fig14.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in1_the, _in1_dthe, _in1_ddthe = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, J6. J7 is known and link frame is placed, so the input angle theta_J7 turns link crank to J6
     # crank_input(p_J7, 20.0, w.in1, ref_J7), inline
-    _theta_the, _theta_dthe, _theta_ddthe = w.in1
-    _t = _theta_the + 0.0
+    _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 20.0 * _ct
     _ry = 20.0 * _st
-    _om = _theta_dthe + 0.0
-    _al = _theta_ddthe + 0.0
+    _om = _in1_dthe + 0.0
+    _al = _in1_ddthe + 0.0
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    w.p_J6 = ((-84.0) + _rx, 32.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_J6_x, _p_J6_y, _p_J6_dx, _p_J6_dy, _p_J6_ddx, _p_J6_ddy = w.p_J6 = ((-84.0) + _rx, 32.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
@@ -2487,16 +2486,16 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     _day = _j2_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_rocker1 = (NAN, NAN, NAN)
+        _phi_rocker1_the, _phi_rocker1_dthe, _phi_rocker1_ddthe = w.phi_rocker1 = (NAN, NAN, NAN)
         return 91
     else:
-        w.phi_rocker1 = (_th, _om, _al)
+        _phi_rocker1_the, _phi_rocker1_dthe, _phi_rocker1_ddthe = w.phi_rocker1 = (_th, _om, _al)
     if st:
         w.note(st, 93, -94)
 
@@ -2512,16 +2511,16 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     _day = _j2_ddy - _j1_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_ternary = (NAN, NAN, NAN)
+        _phi_ternary_the, _phi_ternary_dthe, _phi_ternary_ddthe = w.phi_ternary = (NAN, NAN, NAN)
         return 101
     else:
-        w.phi_ternary = (_th, _om, _al)
+        _phi_ternary_the, _phi_ternary_dthe, _phi_ternary_ddthe = w.phi_ternary = (_th, _om, _al)
     if st:
         w.note(st, 103, -104)
 
@@ -2536,65 +2535,63 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     _day = _j2_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_rocker2 = (NAN, NAN, NAN)
+        _phi_rocker2_the, _phi_rocker2_dthe, _phi_rocker2_ddthe = w.phi_rocker2 = (NAN, NAN, NAN)
         return 111
     else:
-        w.phi_rocker2 = (_th, _om, _al)
+        _phi_rocker2_the, _phi_rocker2_dthe, _phi_rocker2_ddthe = w.phi_rocker2 = (_th, _om, _al)
     if st:
         w.note(st, 113, -114)
 
     # Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is known
     # link_angle(w.p_J6, w.p_J5, 0.0), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_J6
     _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_J5
-    _dx = _j2_x - _j1_x
-    _dy = _j2_y - _j1_y
-    _dvx = _j2_dx - _j1_dx
-    _dvy = _j2_dy - _j1_dy
-    _dax = _j2_ddx - _j1_ddx
-    _day = _j2_ddy - _j1_ddy
+    _dx = _j2_x - _p_J6_x
+    _dy = _j2_y - _p_J6_y
+    _dvx = _j2_dx - _p_J6_dx
+    _dvy = _j2_dy - _p_J6_dy
+    _dax = _j2_ddx - _p_J6_ddx
+    _day = _j2_ddy - _p_J6_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_coupler = (NAN, NAN, NAN)
+        _phi_coupler_the, _phi_coupler_dthe, _phi_coupler_ddthe = w.phi_coupler = (NAN, NAN, NAN)
         return 121
     else:
-        w.phi_coupler = (_th, _om, _al)
+        _phi_coupler_the, _phi_coupler_dthe, _phi_coupler_ddthe = w.phi_coupler = (_th, _om, _al)
     if st:
         w.note(st, 123, -124)
 
     # Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is known
     # link_angle(p_J7, w.p_J6, 0.0), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_J6
-    _dx = _j2_x - (-84.0)
-    _dy = _j2_y - 32.0
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_J6_x - (-84.0)
+    _dy = _p_J6_y - 32.0
+    _dvx = _p_J6_dx - 0.0
+    _dvy = _p_J6_dy - 0.0
+    _dax = _p_J6_ddx - 0.0
+    _day = _p_J6_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_crank = (NAN, NAN, NAN)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (NAN, NAN, NAN)
         return 131
     else:
-        w.phi_crank = (_th, _om, _al)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _om, _al)
     if st:
         w.note(st, 133, -134)
 

@@ -256,55 +256,53 @@ def _run(w, inputs, d_inputs, dd_inputs):
     """The procedure of slider_crank.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in1_the, _in1_dthe, _in1_ddthe = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
     # crank_input(p_O, 20.0, w.in1, ref_O), inline
-    _theta_the, _theta_dthe, _theta_ddthe = w.in1
-    _t = _theta_the + 0.0
+    _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 20.0 * _ct
     _ry = 20.0 * _st
-    _om = _theta_dthe + 0.0
-    _al = _theta_ddthe + 0.0
+    _om = _in1_dthe + 0.0
+    _al = _in1_ddthe + 0.0
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    w.p_A = ((-40.0) + _rx, 0.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-40.0) + _rx, 0.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 3: PRR_links, B (branch +1). B is joined to the known A by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
     # PRR_links(w.p_A, l_rod, g_S, psi_S, 0.0, 0.0, 1), inline
-    _jr_x, _jr_y, _jr_dx, _jr_dy, _jr_ddx, _jr_ddy = w.p_A
     _cg = cos(0.0)
     _sg = sin(0.0)
     _rx = 0.0 * _cg - 0.0 * _sg
     _ry = 0.0 * _sg + 0.0 * _cg
-    _wx = 36.0 + _rx - _jr_x
-    _wy = (-13.0) + _ry - _jr_y
+    _wx = 36.0 + _rx - _p_A_x
+    _wy = (-13.0) + _ry - _p_A_y
     _wu = _wx * _cg + _wy * _sg
     _pn = _wx * _sg - _wy * _cg
     _ap = abs(_pn)
     _k = 65.0 - _ap
     _big = (_ap if _ap > 65.0 else 65.0)
-    _fail = _k < -8 * EPS * _big or 65.0 <= 0
+    _fail = _k < -8 * 2.220446049250313e-16 * _big or 65.0 <= 0
     _rd = sqrt((0 if 0 > _k else _k) * (65.0 + _ap))
     _eu = 1 * _rd
     _ex = _eu * _cg - -_pn * _sg
     _ey = _eu * _sg + -_pn * _cg
     _sv = _eu - _wu
-    _jbx = _jr_x + _ex
-    _jby = _jr_y + _ey
+    _jbx = _p_A_x + _ex
+    _jby = _p_A_y + _ey
     _jpx = _jbx - _rx
     _jpy = _jby - _ry
     _ratio = 0 if _rd == 0 else _rd * (1 / 65.0)
     _sigma = (1 if 1 < _ratio else _ratio)
     _ieu = NAN if _eu == 0 else 1 / _eu
     _sgsi = _sv + 0.0
-    _relvx = 0.0 - _jr_dx
-    _relvy = 0.0 - _jr_dy
+    _relvx = 0.0 - _p_A_dx
+    _relvy = 0.0 - _p_A_dy
     _ds = (65.0 * 0.0 - (_ex * _relvx + _ey * _relvy) - 0.0 * (_sgsi * -_pn - 0.0 * _eu)) * _ieu
     _jpvx = 0.0 + _ds * _cg - _sv * 0.0 * _sg
     _jpvy = 0.0 + _ds * _sg + _sv * 0.0 * _cg
@@ -314,85 +312,82 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _ray = 0.0 * _rx - 0.0 * 0.0 * _ry
     _jbvx = _jpvx + _rvx
     _jbvy = _jpvy + _rvy
-    _relax = 0.0 - _jr_ddx
-    _relay = 0.0 - _jr_ddy
+    _relax = 0.0 - _p_A_ddx
+    _relay = 0.0 - _p_A_ddy
     _om2 = 0.0 * 0.0
-    _dds = (65.0 * 0.0 + 0.0 * 0.0 - ((_jbvx - _jr_dx) * (_jbvx - _jr_dx) + (_jbvy - _jr_dy) * (_jbvy - _jr_dy)) - (_ex * _relax + _ey * _relay) - 2 * _ds * 0.0 * -_pn - _sgsi * (0.0 * -_pn - _om2 * _eu) + 0.0 * (0.0 * _eu + _om2 * -_pn)) * _ieu
+    _dds = (65.0 * 0.0 + 0.0 * 0.0 - ((_jbvx - _p_A_dx) * (_jbvx - _p_A_dx) + (_jbvy - _p_A_dy) * (_jbvy - _p_A_dy)) - (_ex * _relax + _ey * _relay) - 2 * _ds * 0.0 * -_pn - _sgsi * (0.0 * -_pn - _om2 * _eu) + 0.0 * (0.0 * _eu + _om2 * -_pn)) * _ieu
     _tn = 2 * _ds * 0.0 + _sv * 0.0
     _jpax = 0.0 + _dds * _cg - _tn * _sg - _sv * _om2 * _cg
     _jpay = 0.0 + _dds * _sg + _tn * _cg - _sv * _om2 * _sg
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[3] = _sigma
     if st == 1:
-        w.s_S = (NAN, NAN, NAN)
-        w.p_S = (NAN, NAN, NAN, NAN, NAN, NAN)
-        w.p_B = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (NAN, NAN, NAN)
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 31
     elif st == 3:
-        w.s_S = (_sv, NAN, NAN)
-        w.p_S = (_jpx, _jpy, NAN, NAN, NAN, NAN)
-        w.p_B = (_jbx, _jby, NAN, NAN, NAN, NAN)
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (_sv, NAN, NAN)
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (_jpx, _jpy, NAN, NAN, NAN, NAN)
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (_jbx, _jby, NAN, NAN, NAN, NAN)
     else:
-        w.s_S = (_sv, _ds, _dds)
-        w.p_S = (_jpx, _jpy, _jpvx, _jpvy, _jpax, _jpay)
-        w.p_B = (_jbx, _jby, _jbvx, _jbvy, _jpax + _rax, _jpay + _ray)
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (_sv, _ds, _dds)
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (_jpx, _jpy, _jpvx, _jpvy, _jpax, _jpay)
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (_jbx, _jby, _jbvx, _jbvy, _jpax + _rax, _jpay + _ray)
     if st:
         w.note(st, 33, -34)
 
     # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
     # link_angle(p_O, w.p_A, 0.0), inline
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_A
-    _dx = _j2_x - (-40.0)
-    _dy = _j2_y - 0.0
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dx = _p_A_x - (-40.0)
+    _dy = _p_A_y - 0.0
+    _dvx = _p_A_dx - 0.0
+    _dvy = _p_A_dy - 0.0
+    _dax = _p_A_ddx - 0.0
+    _day = _p_A_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_crank = (NAN, NAN, NAN)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (NAN, NAN, NAN)
         return 41
     else:
-        w.phi_crank = (_th, _om, _al)
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _om, _al)
     if st:
         w.note(st, 43, -44)
 
     # Step 5: link_angle, rod. A and B of link rod are known, so its angle is known
     # link_angle(w.p_A, w.p_B, 0.0), inline
-    _j1_x, _j1_y, _j1_dx, _j1_dy, _j1_ddx, _j1_ddy = w.p_A
-    _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_B
-    _dx = _j2_x - _j1_x
-    _dy = _j2_y - _j1_y
-    _dvx = _j2_dx - _j1_dx
-    _dvy = _j2_dy - _j1_dy
-    _dax = _j2_ddx - _j1_ddx
-    _day = _j2_ddy - _j1_ddy
+    _dx = _p_B_x - _p_A_x
+    _dy = _p_B_y - _p_A_y
+    _dvx = _p_B_dx - _p_A_dx
+    _dvy = _p_B_dy - _p_A_dy
+    _dax = _p_B_ddx - _p_A_ddx
+    _day = _p_B_ddy - _p_A_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
     _ir2 = NAN if _r2 == 0 else 1 / _r2
     _om = (_dx * _dvy - _dy * _dvx) * _ir2
     _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
     st = 1 if _r2 == 0 else 0
     if st == 1:
-        w.phi_rod = (NAN, NAN, NAN)
+        _phi_rod_the, _phi_rod_dthe, _phi_rod_ddthe = w.phi_rod = (NAN, NAN, NAN)
         return 51
     else:
-        w.phi_rod = (_th, _om, _al)
+        _phi_rod_the, _phi_rod_dthe, _phi_rod_ddthe = w.phi_rod = (_th, _om, _al)
     if st:
         w.note(st, 53, -54)
 
     # Step 6: offset_angle, block. link block keeps a constant angle to its slide
     # offset_angle(phi_frame, 0.16941304388961834), inline
     _th0 = (-0.16941304388961834) + 0.16941304388961834
-    _th = _th0 - 2 * PI if _th0 > PI else _th0 + 2 * PI if _th0 <= -PI else _th0
-    w.phi_block = (_th, 0.0, 0.0)
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_block_the, _phi_block_dthe, _phi_block_ddthe = w.phi_block = (_th, 0.0, 0.0)
 
     return w.singular or w.near
 
