@@ -16,18 +16,18 @@ class Python(Spelling):
     syntax = Syntax(note="w.note({st}, {codes})", conditional="{a} if {cond} else {b}", change_list="({points},)",
                     booleans=("False", "True"))
 
-    def member(self, kind: str, field: str) -> str:
-        return f"[{self.fields(kind).index(field)}]"
-
-    def reach_fail(self, low: int, high: int) -> list[str]:
-        return [f"st = {self.reach_call('inputs[0]')}", "if st:", f"    return {low} if st < 0 else {high}"]
-
     def __init__(self, view: View):
         super().__init__(view)
         # records _run holds in locals too (_p_A_x, ...) once a step of its own has computed them: all but
         # those a resolver's blocks compute, which its passes rewrite in the work
         self.held: set[str] = set()
         self.rewritten = {o for b in view.blocks for s in b.steps for o in s.outputs}
+
+    def member(self, kind: str, field: str) -> str:
+        return f"[{self.fields(kind).index(field)}]"
+
+    def reach_fail(self, low: int, high: int) -> list[str]:
+        return [f"st = {self.reach_call('inputs[0]')}", "if st:", f"    return {low} if st < 0 else {high}"]
 
     def input_record(self, var: Variable, k: int) -> str:
         """The statement that builds an input record from the k-th input, rate and acceleration (in _run,
