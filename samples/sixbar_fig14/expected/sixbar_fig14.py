@@ -169,6 +169,14 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
+
 def link_point(j1, j2, gsi, eta):
     """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -1176,12 +1184,8 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     if st:
         w.note(st, 123, -124)
 
-    # Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is known
-    st, w.phi_crank = link_angle(p_J7, w.p_J6, 0.0)
-    if st == 1:
-        return 131
-    if st:
-        w.note(st, 133, -134)
+    # Step 13: crank_angle, crank. the input theta_J7 turns link crank, so its angle is the input's
+    w.phi_crank = crank_angle(w.in1, ref_J7, 0.0)
 
     return w.singular or w.near
 

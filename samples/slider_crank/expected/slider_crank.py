@@ -117,6 +117,14 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
+
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
@@ -228,12 +236,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 33, -34)
 
-    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
-    st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
-    if st == 1:
-        return 41
-    if st:
-        w.note(st, 43, -44)
+    # Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
+    w.phi_crank = crank_angle(w.in1, ref_O, 0.0)
 
     # Step 5: link_angle, rod. A and B of link rod are known, so its angle is known
     st, w.phi_rod = link_angle(w.p_A, w.p_B, 0.0)
