@@ -171,6 +171,14 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
+
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -347,28 +355,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 43, -44)
 
-    # Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is known
-    # link_angle(p_O1, w.p_A, 0.0), inline
-    _dx = _p_A_x - (-36.0)
-    _dy = _p_A_y - (-20.0)
-    _dvx = _p_A_dx - 0.0
-    _dvy = _p_A_dy - 0.0
-    _dax = _p_A_ddx - 0.0
-    _day = _p_A_ddy - 0.0
-    _r2 = _dx * _dx + _dy * _dy
-    _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
-    _ir2 = NAN if _r2 == 0 else 1 / _r2
-    _om = (_dx * _dvy - _dy * _dvx) * _ir2
-    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
-    st = 1 if _r2 == 0 else 0
-    if st == 1:
-        _phi_crank1_the, _phi_crank1_dthe, _phi_crank1_ddthe = w.phi_crank1 = (NAN, NAN, NAN)
-        return 51
-    else:
-        _phi_crank1_the, _phi_crank1_dthe, _phi_crank1_ddthe = w.phi_crank1 = (_th, _om, _al)
-    if st:
-        w.note(st, 53, -54)
+    # Step 5: crank_angle, crank1. the input theta_O1 turns link crank1, so its angle is the input's
+    # crank_angle(w.in1, ref_O1, 0.0), inline
+    _th0 = _in1_the + 0.0 + 0.0
+    _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_crank1_the, _phi_crank1_dthe, _phi_crank1_ddthe = w.phi_crank1 = (_th, _in1_dthe + 0.0, _in1_ddthe + 0.0)
 
     # Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known
     # link_angle(w.p_A, w.p_P, 0.0), inline
@@ -416,28 +407,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 73, -74)
 
-    # Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is known
-    # link_angle(p_O2, w.p_B, 0.0), inline
-    _dx = _p_B_x - 24.0
-    _dy = _p_B_y - (-20.0)
-    _dvx = _p_B_dx - 0.0
-    _dvy = _p_B_dy - 0.0
-    _dax = _p_B_ddx - 0.0
-    _day = _p_B_ddy - 0.0
-    _r2 = _dx * _dx + _dy * _dy
-    _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
-    _ir2 = NAN if _r2 == 0 else 1 / _r2
-    _om = (_dx * _dvy - _dy * _dvx) * _ir2
-    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
-    st = 1 if _r2 == 0 else 0
-    if st == 1:
-        _phi_crank2_the, _phi_crank2_dthe, _phi_crank2_ddthe = w.phi_crank2 = (NAN, NAN, NAN)
-        return 81
-    else:
-        _phi_crank2_the, _phi_crank2_dthe, _phi_crank2_ddthe = w.phi_crank2 = (_th, _om, _al)
-    if st:
-        w.note(st, 83, -84)
+    # Step 8: crank_angle, crank2. the input theta_O2 turns link crank2, so its angle is the input's
+    # crank_angle(w.in2, ref_O2, 0.0), inline
+    _th0 = _in2_the + 0.0 + 0.0
+    _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_crank2_the, _phi_crank2_dthe, _phi_crank2_ddthe = w.phi_crank2 = (_th, _in2_dthe + 0.0, _in2_ddthe + 0.0)
 
     return w.singular or w.near
 

@@ -149,26 +149,13 @@ def crank_input(j1, l, theta, phi):
     ray = al * rx - om * om * ry
     return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
-def link_angle(j1, j2, off):
-    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    dx = j2_x - j1_x
-    dy = j2_y - j1_y
-    dvx = j2_dx - j1_dx
-    dvy = j2_dy - j1_dy
-    dax = j2_ddx - j1_ddx
-    day = j2_ddy - j1_ddy
-    r2 = dx * dx + dy * dy
-    th0 = atan2(dy, dx) + off
-    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
-    ir2 = NAN if r2 == 0 else 1 / r2
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    st = 1 if r2 == 0 else 0
-    if st == 1:
-        return st, (NAN, NAN, NAN)
-    return st, (th, om, al)
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
 
 def coupler_point(j0, phi, gsi, eta):
     """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
@@ -361,28 +348,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _ray = _psi_S_ddthe * _rx - _psi_S_dthe * _psi_S_dthe * _ry
     _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = ((-12.0) + _rx, (-60.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
-    # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
-    # link_angle(p_O1, w.p_A, 0.0), inline
-    _dx = _p_A_x - (-12.0)
-    _dy = _p_A_y - (-10.0)
-    _dvx = _p_A_dx - 0.0
-    _dvy = _p_A_dy - 0.0
-    _dax = _p_A_ddx - 0.0
-    _day = _p_A_ddy - 0.0
-    _r2 = _dx * _dx + _dy * _dy
-    _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
-    _ir2 = NAN if _r2 == 0 else 1 / _r2
-    _om = (_dx * _dvy - _dy * _dvx) * _ir2
-    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
-    st = 1 if _r2 == 0 else 0
-    if st == 1:
-        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (NAN, NAN, NAN)
-        return 51
-    else:
-        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _om, _al)
-    if st:
-        w.note(st, 53, -54)
+    # Step 5: crank_angle, crank. the input theta_O1 turns link crank, so its angle is the input's
+    # crank_angle(w.in1, ref_O1, 0.0), inline
+    _th0 = _in1_the + 0.0 + 0.0
+    _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe + 0.0, _in1_ddthe + 0.0)
 
     return w.singular or w.near
 

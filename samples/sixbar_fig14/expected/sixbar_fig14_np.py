@@ -125,7 +125,7 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step10.off": 0.0,  # step 10: link_angle of ternary
     "step11.off": 0.0,  # step 11: link_angle of rocker2
     "step12.off": 0.0,  # step 12: link_angle of coupler
-    "step13.off": 0.0,  # step 13: link_angle of crank
+    "step13.off": 0.0,  # step 13: crank_angle of crank
     "step16.gsi": 45.662543438831435,  # step 16: link_point of J5
     "step16.eta": -12.84259034217134,  # step 16: link_point of J5
     "step20.gsi": 45.662543438831435,  # step 20: link_point of J5
@@ -227,6 +227,35 @@ def link_angle(j1, j2, off):
     _angle = (_f1, om, al)
     if np.any(_singular):  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
+    return _st, _sigma, _angle
+
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
     return _st, _sigma, _angle
 
 def link_point(j1, j2, gsi, eta):
@@ -2165,9 +2194,8 @@ def _run(x, dx, ddx, c, a, ad, used, order, skip, m, p):
     # Step 12: link_angle, coupler. J6 and J5 of link coupler are known, so its angle is known
     st, _, w.phi_coupler = link_angle(w.p_J6, w.p_J5, c["step12.off"])
     report.append((st, ((1, 121),)))
-    # Step 13: link_angle, crank. J7 and J6 of link crank are known, so its angle is known
-    st, _, w.phi_crank = link_angle(w.p_J7, w.p_J6, c["step13.off"])
-    report.append((st, ((1, 131),)))
+    # Step 13: crank_angle, crank. the input theta_J7 turns link crank, so its angle is the input's
+    _, _, w.phi_crank = crank_angle(w.in1, w.ref_J7, c["step13.off"])
     code = row_status(report)
     return w, code, sigma, its, settled, past
 def _publish(w, c):

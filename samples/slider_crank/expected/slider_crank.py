@@ -158,6 +158,14 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
+
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
@@ -337,28 +345,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 33, -34)
 
-    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
-    # link_angle(p_O, w.p_A, 0.0), inline
-    _dx = _p_A_x - (-40.0)
-    _dy = _p_A_y - 0.0
-    _dvx = _p_A_dx - 0.0
-    _dvy = _p_A_dy - 0.0
-    _dax = _p_A_ddx - 0.0
-    _day = _p_A_ddy - 0.0
-    _r2 = _dx * _dx + _dy * _dy
-    _th0 = atan2(_dy, _dx) + 0.0
-    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
-    _ir2 = NAN if _r2 == 0 else 1 / _r2
-    _om = (_dx * _dvy - _dy * _dvx) * _ir2
-    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
-    st = 1 if _r2 == 0 else 0
-    if st == 1:
-        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (NAN, NAN, NAN)
-        return 41
-    else:
-        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _om, _al)
-    if st:
-        w.note(st, 43, -44)
+    # Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
+    # crank_angle(w.in1, ref_O, 0.0), inline
+    _th0 = _in1_the + 0.0 + 0.0
+    _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe + 0.0, _in1_ddthe + 0.0)
 
     # Step 5: link_angle, rod. A and B of link rod are known, so its angle is known
     # link_angle(w.p_A, w.p_B, 0.0), inline

@@ -95,7 +95,7 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step2.l": 20.0,  # step 2: crank_input of A
     "step3.gsi": 0.0,  # step 3: PRR_links of B
     "step3.eta": 0.0,  # step 3: PRR_links of B
-    "step4.off": 0.0,  # step 4: link_angle of crank
+    "step4.off": 0.0,  # step 4: crank_angle of crank
     "step5.off": 0.0,  # step 5: link_angle of rod
     "step6.off": 0.16941304388961834,  # step 6: offset_angle of block
 }
@@ -181,6 +181,35 @@ def link_angle(j1, j2, off):
     _angle = (_f1, om, al)
     if np.any(_singular):  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
+    return _st, _sigma, _angle
+
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
     return _st, _sigma, _angle
 
 def offset_angle(phi, off):
@@ -506,9 +535,8 @@ def _run(x, dx, ddx, c):
     # Step 3: PRR_links, B (branch +1). B is joined to the known A by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
     st, sigma[3], w.s_S, w.p_S, w.p_B = PRR_links(w.p_A, w.l_rod, w.g_S, w.psi_S, c["step3.gsi"], c["step3.eta"], 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
-    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
-    st, _, w.phi_crank = link_angle(w.p_O, w.p_A, c["step4.off"])
-    report.append((st, ((1, 41),)))
+    # Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
+    _, _, w.phi_crank = crank_angle(w.in1, w.ref_O, c["step4.off"])
     # Step 5: link_angle, rod. A and B of link rod are known, so its angle is known
     st, _, w.phi_rod = link_angle(w.p_A, w.p_B, c["step5.off"])
     report.append((st, ((1, 51),)))
