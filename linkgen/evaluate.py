@@ -352,8 +352,10 @@ class RowSolver:
 
     def _state(self, env: Env, b: ResolverGroup, old: list[float]) -> tuple[list[float], list[float]]:
         """A block's state and its rates read off a solved configuration (the generated
-        _lengths_N): its Add-link lengths (link_residual against a zero length), the branches
-        of its chains (rate 0; a sign of zero keeps the old one), then its orientation (0)."""
+        _lengths_N): its Add-link lengths (link_residual against a zero length), the measures
+        whose signs are the branches of its chains with their rates (the predictor moves them,
+        so a chain passing its fold goes on on its other branch; a zero keeps the old one, rate
+        0), then its orientation (0)."""
         zero = (0.0,) * (self.width + 1)
         f = [self.call("link_residual", [env[self.pos[k]], env[self.pos[u]], zero])[2][0] for k, u in b.pairs]
         n, marks, turns = len(b.pairs), [], []
