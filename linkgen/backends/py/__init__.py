@@ -26,7 +26,8 @@ def python_text(text: str) -> str:
 def render(view: View, spell: Python, template: Template) -> dict[str, bytes]:
     log = view.log
     runtime = [text.rstrip("\n") for text in runtime_sources(view, python_function, RUNTIME)]
-    code = runtime + [spell.sign_measure(b) for g in view.blocks for b in g.group.branches]
+    measures = (spell.sign_measure, spell.sign_rate)
+    code = runtime + [f(b) for g in view.blocks for b in g.group.branches for f in measures]
     math_names = [f for f in ("atan2", "cos", "floor", "sin", "sqrt")
                   if any(re.search(rf"\b{f}\(", text) for text in code)]
     lists = input_lists(view, spell)

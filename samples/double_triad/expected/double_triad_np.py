@@ -1274,7 +1274,8 @@ def empty_state(k, lanes):
 
 def agree(s, t, k):
     """Lanes where two states of the same rows would start the next row alike: both failed, or
-    both solved with the same blocks, branches and orientations, lengths within the resolver's
+    both solved with the same blocks, branches and orientations (the signs of the entries past
+    the lengths: a branch is held as a measure, see _lengths_N), lengths within the resolver's
     tolerance and rates within a millionth."""
     tol = k.p.tolerance * k.m.length_scale
     same = s.ok == t.ok
@@ -1282,7 +1283,7 @@ def agree(s, t, k):
         same = same & (u == v)
     for b, c, n in zip(s.a, t.a, k.m.sizes):
         for i, (x, y) in enumerate(zip(b, c)):
-            same = same & (_close(x, y, tol) if i < n else (x == y))
+            same = same & (_close(x, y, tol) if i < n else (np.sign(x) == np.sign(y)))
     for b, c in zip(s.ad, t.ad):
         for x, y in zip(b, c):
             same = same & _close(x, y, RATES_AGREE * np.maximum(np.abs(x), np.abs(y)) + tol)
@@ -2558,44 +2559,53 @@ def _group_2_v8_1(w, r, br, a, da, dda):
 
 def _lengths_1(w, a):
     """The state of every block of group 1 on lanes of rows, read off the solved
-    records: its Add-link lengths, the branches of its chains (a zero keeps the branch of a),
-    then its orientation (0 here: the solving block's is set by the resolver); and their rates."""
+    records: its Add-link lengths, the measures whose signs are the branches of its chains (a
+    zero keeps the one of a), then its orientation (0 here: the solving block's is set by the
+    resolver); and their rates (the measures' too, so the predictor flips a branch where its
+    chain passes its fold)."""
     states, rates = [], []
     f = (link_residual_1(w.p_J6, w.p_J4, ZERO_LENGTH)[2], )
     m = ((w.p_J6[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J6[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]), (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[0][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J6[2] - w.p_J3[2]) * (w.p_J4[1] - w.p_J3[1]) + (w.p_J6[0] - w.p_J3[0]) * (w.p_J4[3] - w.p_J3[3]) - (w.p_J6[3] - w.p_J3[3]) * (w.p_J4[0] - w.p_J3[0]) - (w.p_J6[1] - w.p_J3[1]) * (w.p_J4[2] - w.p_J3[2]), (w.p_J4[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J4[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[0][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J6, w.p_J2, ZERO_LENGTH)[2], )
     m = ((w.p_J6[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J6[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[1][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J6[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J6[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J6[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J6[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), (w.p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (w.p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[1][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J7, w.p_J2, ZERO_LENGTH)[2], )
     m = ((w.p_J7[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J7[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[2][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J7[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J7[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J7[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J7[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), (w.p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (w.p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[2][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J7, w.p_J4, ZERO_LENGTH)[2], )
     m = ((w.p_J7[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J7[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]), (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[3][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J7[2] - w.p_J3[2]) * (w.p_J4[1] - w.p_J3[1]) + (w.p_J7[0] - w.p_J3[0]) * (w.p_J4[3] - w.p_J3[3]) - (w.p_J7[3] - w.p_J3[3]) * (w.p_J4[0] - w.p_J3[0]) - (w.p_J7[1] - w.p_J3[1]) * (w.p_J4[2] - w.p_J3[2]), (w.p_J4[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J4[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[3][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J1, w.p_J4, ZERO_LENGTH)[2], )
     m = ((w.p_J1[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J1[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]), (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[4][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J1[2] - w.p_J3[2]) * (w.p_J4[1] - w.p_J3[1]) + (w.p_J1[0] - w.p_J3[0]) * (w.p_J4[3] - w.p_J3[3]) - (w.p_J1[3] - w.p_J3[3]) * (w.p_J4[0] - w.p_J3[0]) - (w.p_J1[1] - w.p_J3[1]) * (w.p_J4[2] - w.p_J3[2]), (w.p_J4[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J4[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[4][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J3, w.p_J2, ZERO_LENGTH)[2], )
     m = ((w.p_J3[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J3[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[5][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J3[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J3[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J3[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J3[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), (w.p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (w.p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[5][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_K1, w.p_J2, ZERO_LENGTH)[2], )
     m = ((w.p_K1[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_K1[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[6][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_K1[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_K1[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_K1[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_K1[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), (w.p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (w.p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[6][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     return states, rates
 _GROUP_1 = SimpleNamespace(  # group 1: its blocks (the chosen one, then the fallbacks), resolved at step 8
     blocks=(
@@ -2635,54 +2645,65 @@ _GROUP_1 = SimpleNamespace(  # group 1: its blocks (the chosen one, then the fal
 
 def _lengths_2(w, a):
     """The state of every block of group 2 on lanes of rows, read off the solved
-    records: its Add-link lengths, the branches of its chains (a zero keeps the branch of a),
-    then its orientation (0 here: the solving block's is set by the resolver); and their rates."""
+    records: its Add-link lengths, the measures whose signs are the branches of its chains (a
+    zero keeps the one of a), then its orientation (0 here: the solving block's is set by the
+    resolver); and their rates (the measures' too, so the predictor flips a branch where its
+    chain passes its fold)."""
     states, rates = [], []
     f = (link_residual_1(w.p_J6, w.p_K4, ZERO_LENGTH)[2], )
     m = ((w.p_J6[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J6[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0]), (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[7][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J6[2] - w.p_K3[2]) * (w.p_K4[1] - w.p_K3[1]) + (w.p_J6[0] - w.p_K3[0]) * (w.p_K4[3] - w.p_K3[3]) - (w.p_J6[3] - w.p_K3[3]) * (w.p_K4[0] - w.p_K3[0]) - (w.p_J6[1] - w.p_K3[1]) * (w.p_K4[2] - w.p_K3[2]), (w.p_K4[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_K4[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[7][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J5, w.p_K2, ZERO_LENGTH)[2], )
     m = ((w.p_J5[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J5[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[8][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J5[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_J5[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_J5[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_J5[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), (w.p_K3[2] - w.p_K2[2]) * (w.p_K4[1] - w.p_K2[1]) + (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[3] - w.p_K2[3]) - (w.p_K3[3] - w.p_K2[3]) * (w.p_K4[0] - w.p_K2[0]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[2] - w.p_K2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[8][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J5, w.p_K4, ZERO_LENGTH)[2], )
     m = ((w.p_J5[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J5[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0]), (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[9][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J5[2] - w.p_K3[2]) * (w.p_K4[1] - w.p_K3[1]) + (w.p_J5[0] - w.p_K3[0]) * (w.p_K4[3] - w.p_K3[3]) - (w.p_J5[3] - w.p_K3[3]) * (w.p_K4[0] - w.p_K3[0]) - (w.p_J5[1] - w.p_K3[1]) * (w.p_K4[2] - w.p_K3[2]), (w.p_K4[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_K4[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[9][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J2, w.p_K4, ZERO_LENGTH)[2], )
     m = ((w.p_J2[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J2[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0]), (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[10][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J2[2] - w.p_K3[2]) * (w.p_K4[1] - w.p_K3[1]) + (w.p_J2[0] - w.p_K3[0]) * (w.p_K4[3] - w.p_K3[3]) - (w.p_J2[3] - w.p_K3[3]) * (w.p_K4[0] - w.p_K3[0]) - (w.p_J2[1] - w.p_K3[1]) * (w.p_K4[2] - w.p_K3[2]), (w.p_K4[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_K4[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[10][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J4, w.p_K4, ZERO_LENGTH)[2], )
     m = ((w.p_J4[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J4[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0]), (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[11][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J4[2] - w.p_K3[2]) * (w.p_K4[1] - w.p_K3[1]) + (w.p_J4[0] - w.p_K3[0]) * (w.p_K4[3] - w.p_K3[3]) - (w.p_J4[3] - w.p_K3[3]) * (w.p_K4[0] - w.p_K3[0]) - (w.p_J4[1] - w.p_K3[1]) * (w.p_K4[2] - w.p_K3[2]), (w.p_K4[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_K4[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[11][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J2, w.p_K2, ZERO_LENGTH)[2], )
     m = ((w.p_J2[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J2[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[12][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J2[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_J2[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_J2[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_J2[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), (w.p_K3[2] - w.p_K2[2]) * (w.p_K4[1] - w.p_K2[1]) + (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[3] - w.p_K2[3]) - (w.p_K3[3] - w.p_K2[3]) * (w.p_K4[0] - w.p_K2[0]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[2] - w.p_K2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[12][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J4, w.p_K2, ZERO_LENGTH)[2], )
     m = ((w.p_J4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[13][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J4[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_J4[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_J4[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_J4[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), (w.p_K3[2] - w.p_K2[2]) * (w.p_K4[1] - w.p_K2[1]) + (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[3] - w.p_K2[3]) - (w.p_K3[3] - w.p_K2[3]) * (w.p_K4[0] - w.p_K2[0]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[2] - w.p_K2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[13][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J6, w.p_K2, ZERO_LENGTH)[2], )
     m = ((w.p_J6[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J6[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[14][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J6[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_J6[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_J6[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_J6[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), (w.p_K3[2] - w.p_K2[2]) * (w.p_K4[1] - w.p_K2[1]) + (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[3] - w.p_K2[3]) - (w.p_K3[3] - w.p_K2[3]) * (w.p_K4[0] - w.p_K2[0]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[2] - w.p_K2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[14][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J5, w.p_K5, ZERO_LENGTH)[2], )
     m = ((w.p_J5[0] - w.p_J6[0]) * (w.p_K5[1] - w.p_J6[1]) - (w.p_J5[1] - w.p_J6[1]) * (w.p_K5[0] - w.p_J6[0]), (w.p_K5[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K5[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[15][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J5[2] - w.p_J6[2]) * (w.p_K5[1] - w.p_J6[1]) + (w.p_J5[0] - w.p_J6[0]) * (w.p_K5[3] - w.p_J6[3]) - (w.p_J5[3] - w.p_J6[3]) * (w.p_K5[0] - w.p_J6[0]) - (w.p_J5[1] - w.p_J6[1]) * (w.p_K5[2] - w.p_J6[2]), (w.p_K5[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_K5[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_K5[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_K5[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[15][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     return states, rates
 _GROUP_2 = SimpleNamespace(  # group 2: its blocks (the chosen one, then the fallbacks), resolved at step 14
     blocks=(

@@ -608,7 +608,9 @@ def resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains,
 
 def advance(a, rates, step, sizes):
     """Block states moved by step along their rates.  An Add-link length is a distance:
-    where its prediction passes zero the two pairs pass each other, so it is reflected."""
+    where its prediction passes zero the two pairs pass each other, so it is reflected.  A
+    branch's measure moves too: where it passes zero the chain passes its fold and goes on
+    on its other branch, as a chain outside the groups does at a change point."""
     return [[abs(v + step * r) if i < n else v + step * r for i, (v, r) in enumerate(zip(g, gr))]
             for g, gr, n in zip(a, rates, sizes)]
 
@@ -627,9 +629,9 @@ def predict(warm, inputs, sizes, order):
     if back == 0.0:
         return first
     out = []
-    for g, gr, gb, n in zip(a, ad, warm[5][1], sizes):
+    for g, gr, gb, n, f in zip(a, ad, warm[5][1], sizes, first):
         bend = [(b - v - back * r) / (back * back) for v, r, b in zip(g[:n], gr, gb)]
-        out.append([abs(v + tau * r + tau * tau * c) for v, r, c in zip(g, gr, bend)] + list(g[n:]))
+        out.append([abs(v + tau * r + tau * tau * c) for v, r, c in zip(g, gr, bend)] + f[n:])
     return out
 
 
@@ -2372,53 +2374,54 @@ def _group_1_v8(w, a, da, dda, live):
 
 def _lengths_1(w, a, ad):
     """The state of every block of group 1, read off the solved pairs: its Add-link
-    lengths, the branches of its chains (a zero keeps the branch it had), then its orientation
-    (0 here: the solving block's is set by the resolver)."""
+    lengths, the measures whose signs are the branches of its chains (a zero keeps the one it
+    had), then its orientation (0 here: the solving block's is set by the resolver); and their
+    rates (the measures' too, so the predictor flips a branch where its chain passes its fold)."""
     f = [link_residual(w.p_J6, w.p_J4, ZERO_LENGTH)]
     m = [(w.p_J6[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (w.p_J6[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
-    a[0] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[0][1:])] + [0.0]
-    ad[0] = [x[1] for x in f] + [0.0] * 3
+    dm = [(w.p_J6[2] - p_J3[2]) * (w.p_J4[1] - p_J3[1]) + (w.p_J6[0] - p_J3[0]) * (w.p_J4[3] - p_J3[3]) - (w.p_J6[3] - p_J3[3]) * (w.p_J4[0] - p_J3[0]) - (w.p_J6[1] - p_J3[1]) * (w.p_J4[2] - p_J3[2]), (w.p_J4[2] - p_J1[2]) * (w.p_J2[1] - p_J1[1]) + (w.p_J4[0] - p_J1[0]) * (w.p_J2[3] - p_J1[3]) - (w.p_J4[3] - p_J1[3]) * (w.p_J2[0] - p_J1[0]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[2] - p_J1[2])]
+    a[0] = [x[0] for x in f] + [x if x != 0 else old for x, old in zip(m, a[0][1:])] + [0.0]
+    ad[0] = [x[1] for x in f] + [r if x != 0 else 0.0 for x, r in zip(m, dm)] + [0.0]
     f = [link_residual(w.p_J6, w.p_J2, ZERO_LENGTH)]
     m = [(w.p_J6[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J6[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
-    a[1] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[1][1:])] + [0.0]
-    ad[1] = [x[1] for x in f] + [0.0] * 3
+    dm = [(w.p_J6[2] - p_J1[2]) * (w.p_J2[1] - p_J1[1]) + (w.p_J6[0] - p_J1[0]) * (w.p_J2[3] - p_J1[3]) - (w.p_J6[3] - p_J1[3]) * (w.p_J2[0] - p_J1[0]) - (w.p_J6[1] - p_J1[1]) * (w.p_J2[2] - p_J1[2]), (p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2])]
+    a[1] = [x[0] for x in f] + [x if x != 0 else old for x, old in zip(m, a[1][1:])] + [0.0]
+    ad[1] = [x[1] for x in f] + [r if x != 0 else 0.0 for x, r in zip(m, dm)] + [0.0]
     f = [link_residual(p_J1, w.p_J4, ZERO_LENGTH)]
     m = [(p_J1[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (p_J1[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
-    a[2] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[2][1:])] + [0.0]
-    ad[2] = [x[1] for x in f] + [0.0] * 3
+    dm = [(p_J1[2] - p_J3[2]) * (w.p_J4[1] - p_J3[1]) + (p_J1[0] - p_J3[0]) * (w.p_J4[3] - p_J3[3]) - (p_J1[3] - p_J3[3]) * (w.p_J4[0] - p_J3[0]) - (p_J1[1] - p_J3[1]) * (w.p_J4[2] - p_J3[2]), (w.p_J4[2] - p_J1[2]) * (w.p_J2[1] - p_J1[1]) + (w.p_J4[0] - p_J1[0]) * (w.p_J2[3] - p_J1[3]) - (w.p_J4[3] - p_J1[3]) * (w.p_J2[0] - p_J1[0]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[2] - p_J1[2])]
+    a[2] = [x[0] for x in f] + [x if x != 0 else old for x, old in zip(m, a[2][1:])] + [0.0]
+    ad[2] = [x[1] for x in f] + [r if x != 0 else 0.0 for x, r in zip(m, dm)] + [0.0]
     f = [link_residual(p_J3, w.p_J2, ZERO_LENGTH)]
     m = [(p_J3[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (p_J3[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
-    a[3] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[3][1:])] + [0.0]
-    ad[3] = [x[1] for x in f] + [0.0] * 3
+    dm = [(p_J3[2] - p_J1[2]) * (w.p_J2[1] - p_J1[1]) + (p_J3[0] - p_J1[0]) * (w.p_J2[3] - p_J1[3]) - (p_J3[3] - p_J1[3]) * (w.p_J2[0] - p_J1[0]) - (p_J3[1] - p_J1[1]) * (w.p_J2[2] - p_J1[2]), (p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2])]
+    a[3] = [x[0] for x in f] + [x if x != 0 else old for x, old in zip(m, a[3][1:])] + [0.0]
+    ad[3] = [x[1] for x in f] + [r if x != 0 else 0.0 for x, r in zip(m, dm)] + [0.0]
     f = [link_residual(p_J7, w.p_J2, ZERO_LENGTH)]
     m = [(p_J7[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (p_J7[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0]), (p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])]
-    a[4] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[4][1:])] + [0.0]
-    ad[4] = [x[1] for x in f] + [0.0] * 3
+    dm = [(p_J7[2] - p_J1[2]) * (w.p_J2[1] - p_J1[1]) + (p_J7[0] - p_J1[0]) * (w.p_J2[3] - p_J1[3]) - (p_J7[3] - p_J1[3]) * (w.p_J2[0] - p_J1[0]) - (p_J7[1] - p_J1[1]) * (w.p_J2[2] - p_J1[2]), (p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2])]
+    a[4] = [x[0] for x in f] + [x if x != 0 else old for x, old in zip(m, a[4][1:])] + [0.0]
+    ad[4] = [x[1] for x in f] + [r if x != 0 else 0.0 for x, r in zip(m, dm)] + [0.0]
     f = [link_residual(p_J7, w.p_J4, ZERO_LENGTH)]
     m = [(p_J7[0] - p_J3[0]) * (w.p_J4[1] - p_J3[1]) - (p_J7[1] - p_J3[1]) * (w.p_J4[0] - p_J3[0]), (w.p_J4[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
-    a[5] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[5][1:])] + [0.0]
-    ad[5] = [x[1] for x in f] + [0.0] * 3
+    dm = [(p_J7[2] - p_J3[2]) * (w.p_J4[1] - p_J3[1]) + (p_J7[0] - p_J3[0]) * (w.p_J4[3] - p_J3[3]) - (p_J7[3] - p_J3[3]) * (w.p_J4[0] - p_J3[0]) - (p_J7[1] - p_J3[1]) * (w.p_J4[2] - p_J3[2]), (w.p_J4[2] - p_J1[2]) * (w.p_J2[1] - p_J1[1]) + (w.p_J4[0] - p_J1[0]) * (w.p_J2[3] - p_J1[3]) - (w.p_J4[3] - p_J1[3]) * (w.p_J2[0] - p_J1[0]) - (w.p_J4[1] - p_J1[1]) * (w.p_J2[2] - p_J1[2])]
+    a[5] = [x[0] for x in f] + [x if x != 0 else old for x, old in zip(m, a[5][1:])] + [0.0]
+    ad[5] = [x[1] for x in f] + [r if x != 0 else 0.0 for x, r in zip(m, dm)] + [0.0]
     f = [link_residual(p_J3, w.p_J5, ZERO_LENGTH)]
     m = [(p_J3[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (p_J3[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
-    a[6] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[6][1:])] + [0.0]
-    ad[6] = [x[1] for x in f] + [0.0] * 3
+    dm = [(p_J3[2] - w.p_J6[2]) * (w.p_J5[1] - w.p_J6[1]) + (p_J3[0] - w.p_J6[0]) * (w.p_J5[3] - w.p_J6[3]) - (p_J3[3] - w.p_J6[3]) * (w.p_J5[0] - w.p_J6[0]) - (p_J3[1] - w.p_J6[1]) * (w.p_J5[2] - w.p_J6[2]), (w.p_J5[2] - p_J1[2]) * (w.p_J2[1] - p_J1[1]) + (w.p_J5[0] - p_J1[0]) * (w.p_J2[3] - p_J1[3]) - (w.p_J5[3] - p_J1[3]) * (w.p_J2[0] - p_J1[0]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[2] - p_J1[2])]
+    a[6] = [x[0] for x in f] + [x if x != 0 else old for x, old in zip(m, a[6][1:])] + [0.0]
+    ad[6] = [x[1] for x in f] + [r if x != 0 else 0.0 for x, r in zip(m, dm)] + [0.0]
     f = [link_residual(p_J1, w.p_J5, ZERO_LENGTH)]
     m = [(p_J1[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (p_J1[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
-    a[7] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[7][1:])] + [0.0]
-    ad[7] = [x[1] for x in f] + [0.0] * 3
+    dm = [(p_J1[2] - w.p_J6[2]) * (w.p_J5[1] - w.p_J6[1]) + (p_J1[0] - w.p_J6[0]) * (w.p_J5[3] - w.p_J6[3]) - (p_J1[3] - w.p_J6[3]) * (w.p_J5[0] - w.p_J6[0]) - (p_J1[1] - w.p_J6[1]) * (w.p_J5[2] - w.p_J6[2]), (w.p_J5[2] - p_J1[2]) * (w.p_J2[1] - p_J1[1]) + (w.p_J5[0] - p_J1[0]) * (w.p_J2[3] - p_J1[3]) - (w.p_J5[3] - p_J1[3]) * (w.p_J2[0] - p_J1[0]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[2] - p_J1[2])]
+    a[7] = [x[0] for x in f] + [x if x != 0 else old for x, old in zip(m, a[7][1:])] + [0.0]
+    ad[7] = [x[1] for x in f] + [r if x != 0 else 0.0 for x, r in zip(m, dm)] + [0.0]
     f = [link_residual(p_J7, w.p_J5, ZERO_LENGTH)]
     m = [(p_J7[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (p_J7[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - p_J1[0]) * (w.p_J2[1] - p_J1[1]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[0] - p_J1[0])]
-    a[8] = [x[0] for x in f] + [1.0 if x > 0 else -1.0 if x < 0 else old
-                                  for x, old in zip(m, a[8][1:])] + [0.0]
-    ad[8] = [x[1] for x in f] + [0.0] * 3
+    dm = [(p_J7[2] - w.p_J6[2]) * (w.p_J5[1] - w.p_J6[1]) + (p_J7[0] - w.p_J6[0]) * (w.p_J5[3] - w.p_J6[3]) - (p_J7[3] - w.p_J6[3]) * (w.p_J5[0] - w.p_J6[0]) - (p_J7[1] - w.p_J6[1]) * (w.p_J5[2] - w.p_J6[2]), (w.p_J5[2] - p_J1[2]) * (w.p_J2[1] - p_J1[1]) + (w.p_J5[0] - p_J1[0]) * (w.p_J2[3] - p_J1[3]) - (w.p_J5[3] - p_J1[3]) * (w.p_J2[0] - p_J1[0]) - (w.p_J5[1] - p_J1[1]) * (w.p_J2[2] - p_J1[2])]
+    a[8] = [x[0] for x in f] + [x if x != 0 else old for x, old in zip(m, a[8][1:])] + [0.0]
+    ad[8] = [x[1] for x in f] + [r if x != 0 else 0.0 for x, r in zip(m, dm)] + [0.0]
 
 
 
