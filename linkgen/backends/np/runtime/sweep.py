@@ -85,15 +85,15 @@ def _close(x, y, bound):
 
 
 def predict_lanes(prev, x, sizes):
-    """The Python runtime's predict on every lane: the block states along their rates to x."""
+    """The Python runtime's predict on every lane: the block states along their rates to x.  A
+    branch or an orientation has no rate (0: it stays as it is, as v + tau * 0 is v)."""
     den, num = 0.0, 0.0
     for r in prev.rates:
         den = den + r * r
     for xi, yi, r in zip(x, prev.inputs, prev.rates):
         num = num + (xi - yi) * r
     tau = np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
-    return [[np.abs(v + tau * r) if i < n else v + tau * r for i, (v, r) in enumerate(zip(b, br))]
-            for b, br, n in zip(prev.a, prev.ad, sizes)]
+    return [[np.abs(v + tau * r) for v, r in zip(b[:n], br)] + list(b[n:]) for b, br, n in zip(prev.a, prev.ad, sizes)]
 
 
 def on_path_lanes(prev, guess, new, sizes, slack, p):
