@@ -105,3 +105,16 @@ def span(j1, j2):
     if np.any(together):
         rate = np.where(together, np.sqrt(dvx * dvx + dvy * dvy), rate)
     return r, rate
+
+
+def sign_of(measure):
+    """A chain's sign measure on lanes with its sign, and whether every lane has one (+1 or -1:
+    the measure is neither 0 nor nan)."""
+    sign = np.sign(measure)
+    return measure, sign, bool(np.all(np.abs(sign) == 1))
+
+
+def branch_of(signed, old):
+    """The branch a sign measure (sign_of's) gives each lane: its sign, else (0 or nan) old."""
+    measure, sign, clean = signed
+    return sign if clean else np.where(measure > 0, 1.0, np.where(measure < 0, -1.0, old))

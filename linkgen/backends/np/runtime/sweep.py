@@ -11,13 +11,17 @@
 # runtime would (no warm start, continuation, another block) is solved by the standard-library
 # module's solve() from its lane's state.  k holds the kernel: run, publish, rows (the
 # standard-library module), m (its MECHANISM), p (its POLICY), order, c, the columns x, dx, ddx
-# of every row, and out, status, sigma, its (the arrays a call fills) or None.
+# of every row, out, status, sigma, its (the arrays a call fills) or None, and same (the columns
+# of constant records, the same on every row: filled once, not carried through the passes).
+# The chunks of the call's rows hold STEPS rows; a seeding sweep's SEED_STEPS (its passes are
+# narrow, so their fixed cost counts most).
 
 LANES = 16384  # rows solved side by side at most (measured: 7% faster than 8192 at 1e6 rows)
 STEPS = 16  # rows of a chunk of the call's rows (fewer: one row at a time)
 SEED_STEPS = 4  # rows of a chunk of a seeding sweep (narrow passes: their fixed cost dominates)
 RATES_AGREE = 1e-6  # two states' rates agree to this share
 ALONE = 48  # a sweep of no more rows is solved by the standard-library module, row after row
+ALONE_NEAR = 128  # nor of no more rows each within a continuation step of the last (no walk between them)
 WARM_KEPT = 5  # entries of the standard-library module's warm start a lane keeps (see alone_row)
 
 
@@ -140,8 +144,14 @@ def advance(k, prev, rows, sink=None, spot=None):
     if sink is not None:
         j, at = spot
         for name, value in zip(k.columns, k.publish(w, k.c)):
-            if name in sink.cols:
+            if name not in sink.cols:
+                continue
+            if np.ndim(value):
+                if name in k.same:
+                    raise RuntimeError(f"column {name}: a number on some rows, an array on others")
                 sink.cols[name][j, at] = value
+            else:  # a constant record's field: the same on every row, filled once (see solve_sweep)
+                k.same[name] = value
         sink.status[j, at] = code
         for n, value in enumerate(sigma):
             if not isinstance(value, float):
@@ -188,6 +198,15 @@ def alone_row(k, prev, row):
                               ad=[[np.array([v], dtype=REAL) for v in b] for b in ad],
                               used=[np.array([u]) for u in used], ok=np.array([True]))
     return out, new
+
+
+def steps_apart(k, seq):
+    """Whether each row of seq is within a continuation step (k.m.limits) of the row before it:
+    the standard-library module solves them from one another without a walk."""
+    for col, lim in zip(k.x, k.m.limits):
+        if np.ndim(col) and not (np.abs(np.diff(col[seq])) <= lim).all():
+            return False
+    return True
 
 
 def layout(n, steps):
@@ -245,7 +264,8 @@ def flush(k, sink, rows, lengths):
 def copy_all(k, sink, copy):
     """copy(the call's array, the sink's) for every output, status, conditioning and Newton steps."""
     for name, value in sink.cols.items():
-        copy(k.out[name], value)
+        if name not in k.same:
+            copy(k.out[name], value)
     copy(k.status, sink.status)
     for n, value in sink.sigma.items():
         copy(k.sigma[n], value)
@@ -259,7 +279,7 @@ def sweep(k, seq, prev, emit=False, keep=False):
     (keep) or None."""
     n = len(seq)
     kept = empty_state(k, n) if keep else None
-    if n <= ALONE or not k.lanes:  # few rows: one by one, faster than passes of a lane or two
+    if n <= ALONE or (n <= ALONE_NEAR and steps_apart(k, seq)) or not k.lanes:  # one by one: faster than passes
         for j, row in enumerate(seq):
             out, prev = alone_row(k, prev, row)
             if emit:
@@ -337,9 +357,11 @@ def solve_sweep(run, publish, rows, inputs, d_inputs, dd_inputs, order, params, 
     p = SimpleNamespace(**{**vars(rows.POLICY), "tolerance": m.tolerance, "path_slack": m.path_slack})
     k = SimpleNamespace(run=run, publish=publish, rows=rows, m=rows.MECHANISM, p=p, order=order, c=c,
                         x=columns[0], dx=columns[1], ddx=columns[2], out=out, status=status, sigma=sigma, its=its,
-                        columns=m.columns, sinks={}, lanes=m.lanes)
+                        columns=m.columns, sinks={}, lanes=m.lanes, same={})
     with np.errstate(all="ignore"):
         sweep(k, np.flatnonzero(~bad), empty_state(k, 1), True)
+    for name, value in k.same.items():  # the columns of constant records, the lanes' value on every row
+        out[name].fill(value)
     result = finish(out, status, sigma, bad, shape, m)
     result["iterations"] = its.reshape((rows.N_GROUPS, *shape))
     return result
