@@ -1213,6 +1213,19 @@ def span(j1, j2):
         rate = np.where(together, np.sqrt(dvx * dvx + dvy * dvy), rate)
     return r, rate
 
+
+def sign_of(measure):
+    """A chain's sign measure on lanes with its sign, and whether every lane has one (+1 or -1:
+    the measure is neither 0 nor nan)."""
+    sign = np.sign(measure)
+    return measure, sign, bool(np.all(np.abs(sign) == 1))
+
+
+def branch_of(signed, old):
+    """The branch a sign measure (sign_of's) gives each lane: its sign, else (0 or nan) old."""
+    measure, sign, clean = signed
+    return sign if clean else np.where(measure > 0, 1.0, np.where(measure < 0, -1.0, old))
+
 # The rows of a mechanism with resolvers, in order, each from the last (the Python runtime's row
 # driver, drive(), on lanes).  A state holds, per lane, what a solved row leaves for the next
 # one: its inputs and rates, every block's state (Add-link lengths, branches, orientation) and
@@ -1226,13 +1239,17 @@ def span(j1, j2):
 # runtime would (no warm start, continuation, another block) is solved by the standard-library
 # module's solve() from its lane's state.  k holds the kernel: run, publish, rows (the
 # standard-library module), m (its MECHANISM), p (its POLICY), order, c, the columns x, dx, ddx
-# of every row, and out, status, sigma, its (the arrays a call fills) or None.
+# of every row, out, status, sigma, its (the arrays a call fills) or None, and same (the columns
+# of constant records, the same on every row: filled once, not carried through the passes).
+# The chunks of the call's rows hold STEPS rows; a seeding sweep's SEED_STEPS (its passes are
+# narrow, so their fixed cost counts most).
 
 LANES = 16384  # rows solved side by side at most (measured: 7% faster than 8192 at 1e6 rows)
 STEPS = 16  # rows of a chunk of the call's rows (fewer: one row at a time)
 SEED_STEPS = 4  # rows of a chunk of a seeding sweep (narrow passes: their fixed cost dominates)
 RATES_AGREE = 1e-6  # two states' rates agree to this share
 ALONE = 48  # a sweep of no more rows is solved by the standard-library module, row after row
+ALONE_NEAR = 128  # nor of no more rows each within a continuation step of the last (no walk between them)
 WARM_KEPT = 5  # entries of the standard-library module's warm start a lane keeps (see alone_row)
 
 
@@ -1355,8 +1372,14 @@ def advance(k, prev, rows, sink=None, spot=None):
     if sink is not None:
         j, at = spot
         for name, value in zip(k.columns, k.publish(w, k.c)):
-            if name in sink.cols:
+            if name not in sink.cols:
+                continue
+            if np.ndim(value):
+                if name in k.same:
+                    raise RuntimeError(f"column {name}: a number on some rows, an array on others")
                 sink.cols[name][j, at] = value
+            else:  # a constant record's field: the same on every row, filled once (see solve_sweep)
+                k.same[name] = value
         sink.status[j, at] = code
         for n, value in enumerate(sigma):
             if not isinstance(value, float):
@@ -1403,6 +1426,15 @@ def alone_row(k, prev, row):
                               ad=[[np.array([v], dtype=REAL) for v in b] for b in ad],
                               used=[np.array([u]) for u in used], ok=np.array([True]))
     return out, new
+
+
+def steps_apart(k, seq):
+    """Whether each row of seq is within a continuation step (k.m.limits) of the row before it:
+    the standard-library module solves them from one another without a walk."""
+    for col, lim in zip(k.x, k.m.limits):
+        if np.ndim(col) and not (np.abs(np.diff(col[seq])) <= lim).all():
+            return False
+    return True
 
 
 def layout(n, steps):
@@ -1460,7 +1492,8 @@ def flush(k, sink, rows, lengths):
 def copy_all(k, sink, copy):
     """copy(the call's array, the sink's) for every output, status, conditioning and Newton steps."""
     for name, value in sink.cols.items():
-        copy(k.out[name], value)
+        if name not in k.same:
+            copy(k.out[name], value)
     copy(k.status, sink.status)
     for n, value in sink.sigma.items():
         copy(k.sigma[n], value)
@@ -1474,7 +1507,7 @@ def sweep(k, seq, prev, emit=False, keep=False):
     (keep) or None."""
     n = len(seq)
     kept = empty_state(k, n) if keep else None
-    if n <= ALONE or not k.lanes:  # few rows: one by one, faster than passes of a lane or two
+    if n <= ALONE or (n <= ALONE_NEAR and steps_apart(k, seq)) or not k.lanes:  # one by one: faster than passes
         for j, row in enumerate(seq):
             out, prev = alone_row(k, prev, row)
             if emit:
@@ -1552,9 +1585,11 @@ def solve_sweep(run, publish, rows, inputs, d_inputs, dd_inputs, order, params, 
     p = SimpleNamespace(**{**vars(rows.POLICY), "tolerance": m.tolerance, "path_slack": m.path_slack})
     k = SimpleNamespace(run=run, publish=publish, rows=rows, m=rows.MECHANISM, p=p, order=order, c=c,
                         x=columns[0], dx=columns[1], ddx=columns[2], out=out, status=status, sigma=sigma, its=its,
-                        columns=m.columns, sinks={}, lanes=m.lanes)
+                        columns=m.columns, sinks={}, lanes=m.lanes, same={})
     with np.errstate(all="ignore"):
         sweep(k, np.flatnonzero(~bad), empty_state(k, 1), True)
+    for name, value in k.same.items():  # the columns of constant records, the lanes' value on every row
+        out[name].fill(value)
     result = finish(out, status, sigma, bad, shape, m)
     result["iterations"] = its.reshape((rows.N_GROUPS, *shape))
     return result
@@ -2577,42 +2612,35 @@ def _lengths_1(w, a):
     then its orientation (0 here: the solving block's is set by the resolver); and their rates.
     The chains' sign measures are each computed once (blocks share chains)."""
     states, rates = [], []
-    m1 = (w.p_J6[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J6[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0])
-    m2 = (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0])
-    m3 = (w.p_J6[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J6[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0])
-    m4 = (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0])
-    m5 = (w.p_J7[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J7[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0])
-    m6 = (w.p_J7[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J7[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0])
-    m7 = (w.p_J1[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J1[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0])
-    m8 = (w.p_J3[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J3[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0])
-    m9 = (w.p_K1[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_K1[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0])
+    m1 = sign_of((w.p_J6[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J6[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]))
+    m2 = sign_of((w.p_J4[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]))
+    m3 = sign_of((w.p_J6[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J6[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]))
+    m4 = sign_of((w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0]))
+    m5 = sign_of((w.p_J7[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J7[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]))
+    m6 = sign_of((w.p_J7[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J7[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]))
+    m7 = sign_of((w.p_J1[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J1[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]))
+    m8 = sign_of((w.p_J3[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J3[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]))
+    m9 = sign_of((w.p_K1[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_K1[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]))
     f = (span(w.p_J6, w.p_J4), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m1, m2, ), a[0][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m1, m2, ), a[0][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_J6, w.p_J2), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m3, m4, ), a[1][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m3, m4, ), a[1][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_J7, w.p_J2), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m5, m4, ), a[2][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m5, m4, ), a[2][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_J7, w.p_J4), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m6, m2, ), a[3][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m6, m2, ), a[3][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_J1, w.p_J4), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m7, m2, ), a[4][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m7, m2, ), a[4][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_J3, w.p_J2), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m8, m4, ), a[5][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m8, m4, ), a[5][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_K1, w.p_J2), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m9, m4, ), a[6][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m9, m4, ), a[6][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     return states, rates
 _GROUP_1 = SimpleNamespace(  # group 1: its blocks (the chosen one, then the fallbacks), resolved at step 8
@@ -2657,53 +2685,44 @@ def _lengths_2(w, a):
     then its orientation (0 here: the solving block's is set by the resolver); and their rates.
     The chains' sign measures are each computed once (blocks share chains)."""
     states, rates = [], []
-    m1 = (w.p_J6[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J6[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0])
-    m2 = (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0])
-    m3 = (w.p_J5[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J5[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0])
-    m4 = (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0])
-    m5 = (w.p_J5[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J5[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0])
-    m6 = (w.p_J2[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J2[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0])
-    m7 = (w.p_J4[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J4[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0])
-    m8 = (w.p_J2[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J2[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0])
-    m9 = (w.p_J4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0])
-    m10 = (w.p_J6[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J6[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0])
-    m11 = (w.p_J5[0] - w.p_J6[0]) * (w.p_K5[1] - w.p_J6[1]) - (w.p_J5[1] - w.p_J6[1]) * (w.p_K5[0] - w.p_J6[0])
-    m12 = (w.p_K5[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K5[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0])
+    m1 = sign_of((w.p_J6[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J6[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0]))
+    m2 = sign_of((w.p_K4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]))
+    m3 = sign_of((w.p_J5[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J5[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]))
+    m4 = sign_of((w.p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0]))
+    m5 = sign_of((w.p_J5[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J5[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0]))
+    m6 = sign_of((w.p_J2[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J2[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0]))
+    m7 = sign_of((w.p_J4[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J4[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0]))
+    m8 = sign_of((w.p_J2[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J2[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]))
+    m9 = sign_of((w.p_J4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]))
+    m10 = sign_of((w.p_J6[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J6[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]))
+    m11 = sign_of((w.p_J5[0] - w.p_J6[0]) * (w.p_K5[1] - w.p_J6[1]) - (w.p_J5[1] - w.p_J6[1]) * (w.p_K5[0] - w.p_J6[0]))
+    m12 = sign_of((w.p_K5[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K5[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]))
     f = (span(w.p_J6, w.p_K4), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m1, m2, ), a[7][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m1, m2, ), a[7][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_J5, w.p_K2), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m3, m4, ), a[8][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m3, m4, ), a[8][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_J5, w.p_K4), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m5, m2, ), a[9][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m5, m2, ), a[9][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_J2, w.p_K4), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m6, m2, ), a[10][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m6, m2, ), a[10][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_J4, w.p_K4), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m7, m2, ), a[11][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m7, m2, ), a[11][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_J2, w.p_K2), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m8, m4, ), a[12][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m8, m4, ), a[12][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_J4, w.p_K2), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m9, m4, ), a[13][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m9, m4, ), a[13][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_J6, w.p_K2), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m10, m4, ), a[14][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m10, m4, ), a[14][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     f = (span(w.p_J5, w.p_K5), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip((m11, m12, ), a[15][1:])] + [0.0])
+    states.append([x[0] for x in f] + [branch_of(x, old) for x, old in zip((m11, m12, ), a[15][1:])] + [0.0])
     rates.append([x[1] for x in f] + [0.0] * 3)
     return states, rates
 _GROUP_2 = SimpleNamespace(  # group 2: its blocks (the chosen one, then the fallbacks), resolved at step 14
