@@ -1431,10 +1431,7 @@ def alone_row(k, prev, row):
 def steps_apart(k, seq):
     """Whether each row of seq is within a continuation step (k.m.limits) of the row before it:
     the standard-library module solves them from one another without a walk."""
-    for col, lim in zip(k.x, k.m.limits):
-        if np.ndim(col) and not (np.abs(np.diff(col[seq])) <= lim).all():
-            return False
-    return True
+    return all(np.ndim(col) == 0 or bool((np.abs(np.diff(col[seq])) <= lim).all()) for col, lim in zip(k.x, k.m.limits))
 
 
 def layout(n, steps):
