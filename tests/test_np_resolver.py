@@ -133,3 +133,24 @@ def test_without_the_checks_the_rows_handed_to_the_standard_library_program_give
         if c.quantity in ("position", "angle"):
             diff = np.abs(out[c.name] - [r[c.name] for r in ref])
             assert (diff <= log.policy.tolerance * log.length_scale / sigma).all(), (c.name, diff.max())
+
+
+def test_refused_rows_amid_the_lanes_leave_the_others_as_the_standard_library_program_solves_them():
+    """Refused rows in the middle of a sweep the lanes solve (rows not consecutive: the outputs go
+    through the flush's mask): the other rows as NAME.py solves them without the refused ones."""
+    log = build_log(str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"))
+    module = kernel(log, 2)
+    values, rates, accs = input_rows(log, 403)
+    bad = values.copy()
+    bad[[7, 200, 201]] = np.nan
+    out = module.solve(bad, rates, accs)
+    keep = ~np.isnan(bad[:, 0])
+    assert (out["status"][~keep] == 5).all()
+    ref = _one_by_one(module.ROWS, values[keep], rates[keep], accs[keep], 2)
+    assert np.array_equal(out["status"][keep], [r["status"] for r in ref])
+    assert np.array_equal(out["iterations"][:, keep].T, [r["iterations"] for r in ref])
+    sigma = np.maximum([min(r["sigma"]) for r in ref], log.policy.singular)
+    for c in log.columns[len(log.inputs):]:
+        if c.quantity in ("position", "angle"):
+            diff = np.abs(out[c.name][keep] - [r[c.name] for r in ref])
+            assert (diff <= log.policy.tolerance * log.length_scale / sigma).all(), (c.name, diff.max())
