@@ -1249,7 +1249,6 @@ STEPS = 16  # rows of a chunk of the call's rows (fewer: one row at a time)
 SEED_STEPS = 4  # rows of a chunk of a seeding sweep (narrow passes: their fixed cost dominates)
 RATES_AGREE = 1e-6  # two states' rates agree to this share
 ALONE = 48  # a sweep of no more rows is solved by the standard-library module, row after row
-ALONE_NEAR = 128  # nor of no more rows each within a continuation step of the last (no walk between them)
 WARM_KEPT = 5  # entries of the standard-library module's warm start a lane keeps (see alone_row)
 
 
@@ -1428,12 +1427,6 @@ def alone_row(k, prev, row):
     return out, new
 
 
-def steps_apart(k, seq):
-    """Whether each row of seq is within a continuation step (k.m.limits) of the row before it:
-    the standard-library module solves them from one another without a walk."""
-    return all(np.ndim(col) == 0 or bool((np.abs(np.diff(col[seq])) <= lim).all()) for col, lim in zip(k.x, k.m.limits))
-
-
 def layout(n, steps):
     """(rows a chunk, chunks) of a sweep of n rows in chunks of steps rows: one chunk where n is small."""
     return (max(n, 1), 1) if n <= steps else (steps, -(-n // steps))
@@ -1504,7 +1497,7 @@ def sweep(k, seq, prev, emit=False, keep=False):
     (keep) or None."""
     n = len(seq)
     kept = empty_state(k, n) if keep else None
-    if n <= ALONE or (n <= ALONE_NEAR and steps_apart(k, seq)) or not k.lanes:  # one by one: faster than passes
+    if n <= ALONE or not k.lanes:  # few rows: one by one, faster than passes of a lane or two
         for j, row in enumerate(seq):
             out, prev = alone_row(k, prev, row)
             if emit:
