@@ -107,3 +107,50 @@ def test_the_kernel_in_float32_agrees_with_double_to_its_bound(mechanism: Path, 
     assert worst <= BOUND_EPS
     assert runs["float"] != runs["double"]  # computed in float32 indeed
     assert parse(runs["float"])[0] == parse(runs["double"])[0]
+
+
+@pytest.mark.parametrize("rows", [30, 400])
+def test_without_the_checks_the_rows_handed_to_the_standard_library_program_give_no_sigma(rows):
+    """Regression (docs/performance.md, "checks off": KeyError: 'sigma'): a kernel built without the
+    checks hands NAME.py the rows of a short sweep (all of them) and the row after a jump of the
+    input (the sweep rolled by half: no warm start there), and NAME.py's rows carry no sigma.  The
+    same statuses and Newton steps as NAME.py row after row, positions within the resolver's
+    tolerance over the worst conditioning the checked build measures."""
+    path = str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml")
+    log = build_log(path, options={"checks": False})
+    module = kernel(log, log.order)
+    values, rates, accs = input_rows(log, rows)
+    values = np.roll(values, rows // 2, axis=0)
+    out = module.solve(values, rates, accs)
+    assert "sigma" not in out
+    ref = _one_by_one(module.ROWS, values, rates, accs, log.order)
+    assert np.array_equal(out["status"], [r["status"] for r in ref])
+    assert np.array_equal(out["iterations"].T, [r["iterations"] for r in ref])
+    checked = build_log(path)
+    sigma = np.maximum(kernel(checked, checked.order).solve(values, rates, accs)["sigma"].min(axis=0),
+                       log.policy.singular)
+    for c in log.columns[len(log.inputs):]:
+        if c.quantity in ("position", "angle"):
+            diff = np.abs(out[c.name] - [r[c.name] for r in ref])
+            assert (diff <= log.policy.tolerance * log.length_scale / sigma).all(), (c.name, diff.max())
+
+
+def test_refused_rows_amid_the_lanes_leave_the_others_as_the_standard_library_program_solves_them():
+    """Refused rows in the middle of a sweep the lanes solve (rows not consecutive: the outputs go
+    through the flush's mask): the other rows as NAME.py solves them without the refused ones."""
+    log = build_log(str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"))
+    module = kernel(log, 2)
+    values, rates, accs = input_rows(log, 403)
+    bad = values.copy()
+    bad[[7, 200, 201]] = np.nan
+    out = module.solve(bad, rates, accs)
+    keep = ~np.isnan(bad[:, 0])
+    assert (out["status"][~keep] == 5).all()
+    ref = _one_by_one(module.ROWS, values[keep], rates[keep], accs[keep], 2)
+    assert np.array_equal(out["status"][keep], [r["status"] for r in ref])
+    assert np.array_equal(out["iterations"][:, keep].T, [r["iterations"] for r in ref])
+    sigma = np.maximum([min(r["sigma"]) for r in ref], log.policy.singular)
+    for c in log.columns[len(log.inputs):]:
+        if c.quantity in ("position", "angle"):
+            diff = np.abs(out[c.name][keep] - [r[c.name] for r in ref])
+            assert (diff <= log.policy.tolerance * log.length_scale / sigma).all(), (c.name, diff.max())

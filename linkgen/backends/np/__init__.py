@@ -40,7 +40,7 @@ def fast_primitives(view: View) -> list[str]:
     records are of order 1 anyway)."""
     if not fast(view):
         return []
-    names = {s.function for b in view.blocks for s in b.steps if s.function} | {"link_residual"}
+    names = {s.function for b in view.blocks for s in b.steps if s.function}
     return [p for p in PRIMITIVES if p in names]
 
 

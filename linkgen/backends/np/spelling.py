@@ -13,7 +13,7 @@ from ..py.spelling import Python
 from ..spelling import Syntax
 
 if TYPE_CHECKING:
-    from ...render.view import Group
+    from ...render.view import Group, View
 
 
 class Numpy(Python):
@@ -96,6 +96,17 @@ class Numpy(Python):
     def sign_rate(self, b: BranchSign) -> str:
         """The rate of sign_measure (on arrays)."""
         return super().sign_rate(b).replace("cos(", "np.cos(").replace("sin(", "np.sin(")
+
+    def group_measures(self, g: Group, view: View) -> list[tuple[str, str]]:
+        """The distinct sign measures of the chains of every block of a resolver group, with their
+        rates, in order (blocks share chains: each is computed once)."""
+        pairs = [(self.sign_measure(bs), self.sign_rate(bs)) for b in view.blocks_of(g) for bs in b.group.branches]
+        return list(dict.fromkeys(pairs))
+
+    def block_measures(self, g: Group, view: View, block: Group) -> list[int]:
+        """The numbers (from 1, in group_measures' order) of a block's chains' sign measures."""
+        texts = [m for m, _ in self.group_measures(g, view)]
+        return [texts.index(self.sign_measure(bs)) + 1 for bs in block.group.branches]
 
     @staticmethod
     def position_fields(v: Variable) -> int:

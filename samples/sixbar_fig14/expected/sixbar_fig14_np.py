@@ -883,6 +883,14 @@ def solve_lanes(m, b):
     pivoting, the first largest pivot as the Python runtime's solve_linear takes it; returns
     (x, det), x nan and det 0 on a lane with a zero pivot."""
     n = len(b)
+    if n == 1:  # one Add-link: the same operations, without the pivot search
+        det = np.asarray(m[0][0], dtype=REAL)
+        x = np.asarray(b[0], dtype=REAL) / det
+        det = det if det.shape == x.shape else np.broadcast_to(det, x.shape)
+        zero = det == 0
+        if zero.any():
+            return [np.where(zero, NAN, x)], np.where(zero, 0.0, det)
+        return [x], det
     a = [[np.asarray(v, dtype=REAL) for v in row] + [np.asarray(b[i], dtype=REAL)] for i, row in enumerate(m)]
     det = np.ones(np.broadcast_shapes(*(v.shape for row in a for v in row)), dtype=REAL)
     zero = det == 0
@@ -984,6 +992,10 @@ def newton_lanes(b, w, r, br, a, tol, max_iter, reach, halvings):
         for v in f:
             done = done & (np.abs(v) <= tol)
         a, f, jac = trial, f2, jac2
+        if idx.size == lanes and done.all():  # every lane converged at once (the usual row): no copies
+            for x, s in zip(a, start):
+                done = done & (np.abs(x - s) <= reach)
+            return done, a, its, jac, np.asarray(chains, dtype=REAL), sens
         if done.any():
             near = done
             for x, s in zip(a, start):
@@ -1068,6 +1080,7 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
     cond, turn, solver = np.ones(lanes, dtype=REAL), np.zeros(lanes, dtype=REAL), np.full(lanes, -1)
     prefer = used[g.slot]
     written = {}
+    only = None  # the block that solved every lane, if one did
     for k, b in enumerate(g.blocks):
         mine = (prefer == k) & ~skip
         at = np.flatnonzero(mine)
@@ -1085,12 +1098,17 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
         good = np.flatnonzero(ok & (chains >= p.min_chain_sigma))
         if not good.size:
             continue
-        x, jac, live, br, sens = (take(v, good) for v in (x, jac, live, br, sens))
+        if good.size < at.size:
+            x, jac, live, br, sens = (take(v, good) for v in (x, jac, live, br, sens))
         failed, cond_b, turn_b, rep, sig = rates_lanes(b, wb, live, br, x, jac, sens, order)
-        fine = np.flatnonzero(~failed)
-        done = at[good[fine]]
-        settled[done], cond[done], turn[done], solver[done] = True, cond_b[fine], turn_b[fine], k
-        whole = done.size == lanes
+        whole = good.size == lanes and not failed.any()
+        if whole:  # every lane solved by this block: its arrays as they are
+            fine, only = slice(None), k
+            settled[:], cond, turn, solver[:] = True, np.asarray(cond_b, dtype=REAL), np.asarray(turn_b, dtype=REAL), k
+        else:
+            fine = np.flatnonzero(~failed)
+            done = at[good[fine]]
+            settled[done], cond[done], turn[done], solver[done] = True, cond_b[fine], turn_b[fine], k
         for name, fields, _ in b.writes:
             record = getattr(wb, name)
             if whole:  # every lane solved by this block: its records as they are
@@ -1121,8 +1139,10 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
         setattr(w, name, record)
     if resolved.any():
         new_a, new_ad = g.lengths(w, a)
+        none = np.zeros(lanes, dtype=REAL)
         for j in range(g.count):
-            a[g.first + j] = [lanes_of(x, lanes) for x in new_a[j][:-1]] + [np.where(solver == j, turn, 0.0)]
+            orient = np.where(solver == j, turn, 0.0) if only is None else turn if j == only else none
+            a[g.first + j] = [lanes_of(x, lanes) for x in new_a[j][:-1]] + [orient]
             ad[g.first + j] = [lanes_of(x, lanes) for x in new_ad[j]]
     report.append((np.where(resolved & (cond < g.singular), 3, np.where(resolved & (cond < g.near), 4, 0)), g.codes))
     sigma[g.step] = cond
@@ -1141,6 +1161,19 @@ def failed_lanes(report, lanes):
         out = out | (st == 1)
     return out
 
+
+def span(j1, j2):
+    """The distance of two points and its rate, on lanes: link_residual of a zero length, the same
+    operations (where the points coincide, the rate as they part), without its checks."""
+    dx, dy = j2[0] - j1[0], j2[1] - j1[1]
+    dvx, dvy = j2[2] - j1[2], j2[3] - j1[3]
+    r = np.sqrt(dx * dx + dy * dy)
+    rate = (dx * dvx + dy * dvy) * (1 / r)
+    together = r == 0
+    if np.any(together):
+        rate = np.where(together, np.sqrt(dvx * dvx + dvy * dvy), rate)
+    return r, rate
+
 # The rows of a mechanism with resolvers, in order, each from the last (the Python runtime's row
 # driver, drive(), on lanes).  A state holds, per lane, what a solved row leaves for the next
 # one: its inputs and rates, every block's state (Add-link lengths, branches, orientation) and
@@ -1154,10 +1187,14 @@ def failed_lanes(report, lanes):
 # runtime would (no warm start, continuation, another block) is solved by the standard-library
 # module's solve() from its lane's state.  k holds the kernel: run, publish, rows (the
 # standard-library module), m (its MECHANISM), p (its POLICY), order, c, the columns x, dx, ddx
-# of every row, and out, status, sigma, its (the arrays a call fills) or None.
+# of every row, out, status, sigma, its (the arrays a call fills) or None, and same (the columns
+# of constant records, the same on every row: filled once, not carried through the passes).
+# The chunks of the call's rows hold STEPS rows; a seeding sweep's SEED_STEPS (its passes are
+# narrow, so their fixed cost counts most).
 
-LANES = 8192  # rows solved side by side at most
-STEPS = 16  # rows of a chunk (fewer: one row at a time)
+LANES = 16384  # rows solved side by side at most (measured: 7% faster than 8192 at 1e6 rows)
+STEPS = 16  # rows of a chunk of the call's rows (fewer: one row at a time)
+SEED_STEPS = 4  # rows of a chunk of a seeding sweep (narrow passes: their fixed cost dominates)
 RATES_AGREE = 1e-6  # two states' rates agree to this share
 ALONE = 48  # a sweep of no more rows is solved by the standard-library module, row after row
 WARM_KEPT = 5  # entries of the standard-library module's warm start a lane keeps (see alone_row)
@@ -1228,7 +1265,9 @@ def _close(x, y, bound):
 
 
 def predict_lanes(prev, x, sizes):
-    """The Python runtime's predict on every lane: the block states along their rates to x."""
+    """The Python runtime's predict on every lane: the block states along their rates to x (a
+    chain's sign measure too, so its branch flips where it passes zero; an orientation has no
+    rate)."""
     den, num = 0.0, 0.0
     for r in prev.rates:
         den = den + r * r
@@ -1283,8 +1322,14 @@ def advance(k, prev, rows, sink=None, spot=None):
     if sink is not None:
         j, at = spot
         for name, value in zip(k.columns, k.publish(w, k.c)):
-            if name in sink.cols:
+            if name not in sink.cols:
+                continue
+            if np.ndim(value):
+                if name in k.same:
+                    raise RuntimeError(f"column {name}: a number on some rows, an array on others")
                 sink.cols[name][j, at] = value
+            else:  # a constant record's field: the same on every row, filled once (see solve_sweep)
+                k.same[name] = value
         sink.status[j, at] = code
         for n, value in enumerate(sigma):
             if not isinstance(value, float):
@@ -1333,9 +1378,9 @@ def alone_row(k, prev, row):
     return out, new
 
 
-def layout(n):
-    """(rows a chunk, chunks) of a sweep of n rows: one chunk where n is small."""
-    return (max(n, 1), 1) if n <= STEPS else (STEPS, -(-n // STEPS))
+def layout(n, steps):
+    """(rows a chunk, chunks) of a sweep of n rows in chunks of steps rows: one chunk where n is small."""
+    return (max(n, 1), 1) if n <= steps else (steps, -(-n // steps))
 
 
 def new_sink(k, steps, lanes):
@@ -1361,28 +1406,40 @@ def sink_sigma(sink, n):
 
 def flush(k, sink, rows, lengths):
     """The sink's outputs into the call's arrays: pass j of lane i is row rows[i, j] where j is
-    below the lane's length."""
+    below the lane's length.  Whole chunks of consecutive rows are copied straight into a view of
+    the arrays (one strided copy a column), the rest through a mask."""
     lanes, steps = rows.shape
-    count = int(lengths.sum())
-    if count == lanes * steps and rows[-1, -1] - rows[0, 0] == count - 1:  # whole chunks of consecutive rows
-        at = slice(int(rows[0, 0]), int(rows[0, 0]) + count)
+    whole = lanes - int(lengths[-1] < steps)  # the leading chunks all of whose rows are there
+    first = int(rows[0, 0])
+    if not (whole and (lengths[:whole] == steps).all() and rows[whole - 1, -1] - first == whole * steps - 1):
+        whole = 0  # not consecutive rows: all through the mask
+    if whole:
+        at = slice(first, first + whole * steps)
 
-        def pick(value):
-            return value.T.reshape(-1)
-    else:
-        mask = np.arange(steps) < lengths[:, None]
-        at = rows[mask]
+        def copy(into, value):
+            np.copyto(into[at].reshape(whole, steps), value[:, :whole].T)
 
-        def pick(value):
-            return value.T[mask]
+        copy_all(k, sink, copy)
+    if whole < lanes:
+        mask = np.arange(steps) < lengths[whole:, None]
+        at = rows[whole:][mask]
 
+        def copy(into, value):
+            into[at] = value[:, whole:].T[mask]
+
+        copy_all(k, sink, copy)
+
+
+def copy_all(k, sink, copy):
+    """copy(the call's array, the sink's) for every output, status, conditioning and Newton steps."""
     for name, value in sink.cols.items():
-        k.out[name][at] = pick(value)
-    k.status[at] = pick(sink.status)
+        if name not in k.same:
+            copy(k.out[name], value)
+    copy(k.status, sink.status)
     for n, value in sink.sigma.items():
-        k.sigma[n, at] = pick(value)
+        copy(k.sigma[n], value)
     for g in range(k.its.shape[0]):
-        k.its[g, at] = pick(sink.its[g])
+        copy(k.its[g], sink.its[g])
 
 
 def sweep(k, seq, prev, emit=False, keep=False):
@@ -1401,7 +1458,7 @@ def sweep(k, seq, prev, emit=False, keep=False):
             if keep:
                 state_put(kept, [j], prev)
         return kept
-    steps, chunks = layout(n)
+    steps, chunks = layout(n, STEPS if emit else SEED_STEPS)
     starts = np.arange(chunks) * steps
     first = prev if chunks == 1 else state_cat([prev, sweep(k, seq[starts[1:] - 1], prev, False, True)])
     ends = run_tiles(k, seq, starts, steps, np.arange(chunks), first, emit, kept)
@@ -1469,14 +1526,15 @@ def solve_sweep(run, publish, rows, inputs, d_inputs, dd_inputs, order, params, 
     p = SimpleNamespace(**{**vars(rows.POLICY), "tolerance": m.tolerance, "path_slack": m.path_slack})
     k = SimpleNamespace(run=run, publish=publish, rows=rows, m=rows.MECHANISM, p=p, order=order, c=c,
                         x=columns[0], dx=columns[1], ddx=columns[2], out=out, status=status, sigma=sigma, its=its,
-                        columns=m.columns, sinks={}, lanes=m.lanes)
+                        columns=m.columns, sinks={}, lanes=m.lanes, same={})
     with np.errstate(all="ignore"):
         sweep(k, np.flatnonzero(~bad), empty_state(k, 1), True)
+    for name, value in k.same.items():  # the columns of constant records, the lanes' value on every row
+        out[name].fill(value)
     result = finish(out, status, sigma, bad, shape, m)
     result["iterations"] = its.reshape((rows.N_GROUPS, *shape))
     return result
 
-ZERO_LENGTH = (0.0, 0.0, 0.0,)
 ROWS = None  # sixbar_fig14.py, the standard-library module (loaded from beside this file when first needed)
 
 
@@ -2060,59 +2118,71 @@ def _lengths_1(w, a):
     records: its Add-link lengths, the measures whose signs are the branches of its chains (a
     zero keeps the one of a), then its orientation (0 here: the solving block's is set by the
     resolver); and their rates (the measures' too, so the predictor flips a branch where its
-    chain passes its fold)."""
+    chain passes its fold).  Each chain's measure is computed once (blocks share chains)."""
     states, rates = [], []
-    f = (link_residual_1(w.p_J6, w.p_J4, ZERO_LENGTH)[2], )
-    m = ((w.p_J6[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J6[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]), (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), )
-    dm = ((w.p_J6[2] - w.p_J3[2]) * (w.p_J4[1] - w.p_J3[1]) + (w.p_J6[0] - w.p_J3[0]) * (w.p_J4[3] - w.p_J3[3]) - (w.p_J6[3] - w.p_J3[3]) * (w.p_J4[0] - w.p_J3[0]) - (w.p_J6[1] - w.p_J3[1]) * (w.p_J4[2] - w.p_J3[2]), (w.p_J4[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J4[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), )
+    m1, dm1 = (w.p_J6[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J6[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]), (w.p_J6[2] - w.p_J3[2]) * (w.p_J4[1] - w.p_J3[1]) + (w.p_J6[0] - w.p_J3[0]) * (w.p_J4[3] - w.p_J3[3]) - (w.p_J6[3] - w.p_J3[3]) * (w.p_J4[0] - w.p_J3[0]) - (w.p_J6[1] - w.p_J3[1]) * (w.p_J4[2] - w.p_J3[2])
+    m2, dm2 = (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J4[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J4[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2])
+    m3, dm3 = (w.p_J6[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J6[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J6[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J6[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J6[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J6[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2])
+    m4, dm4 = (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0]), (w.p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (w.p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2])
+    m5, dm5 = (w.p_J1[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J1[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]), (w.p_J1[2] - w.p_J3[2]) * (w.p_J4[1] - w.p_J3[1]) + (w.p_J1[0] - w.p_J3[0]) * (w.p_J4[3] - w.p_J3[3]) - (w.p_J1[3] - w.p_J3[3]) * (w.p_J4[0] - w.p_J3[0]) - (w.p_J1[1] - w.p_J3[1]) * (w.p_J4[2] - w.p_J3[2])
+    m6, dm6 = (w.p_J3[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J3[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J3[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J3[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J3[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J3[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2])
+    m7, dm7 = (w.p_J7[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J7[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J7[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J7[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J7[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J7[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2])
+    m8, dm8 = (w.p_J7[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J7[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]), (w.p_J7[2] - w.p_J3[2]) * (w.p_J4[1] - w.p_J3[1]) + (w.p_J7[0] - w.p_J3[0]) * (w.p_J4[3] - w.p_J3[3]) - (w.p_J7[3] - w.p_J3[3]) * (w.p_J4[0] - w.p_J3[0]) - (w.p_J7[1] - w.p_J3[1]) * (w.p_J4[2] - w.p_J3[2])
+    m9, dm9 = (w.p_J3[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (w.p_J3[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J3[2] - w.p_J6[2]) * (w.p_J5[1] - w.p_J6[1]) + (w.p_J3[0] - w.p_J6[0]) * (w.p_J5[3] - w.p_J6[3]) - (w.p_J3[3] - w.p_J6[3]) * (w.p_J5[0] - w.p_J6[0]) - (w.p_J3[1] - w.p_J6[1]) * (w.p_J5[2] - w.p_J6[2])
+    m10, dm10 = (w.p_J5[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J5[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J5[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J5[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J5[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J5[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2])
+    m11, dm11 = (w.p_J1[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (w.p_J1[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J1[2] - w.p_J6[2]) * (w.p_J5[1] - w.p_J6[1]) + (w.p_J1[0] - w.p_J6[0]) * (w.p_J5[3] - w.p_J6[3]) - (w.p_J1[3] - w.p_J6[3]) * (w.p_J5[0] - w.p_J6[0]) - (w.p_J1[1] - w.p_J6[1]) * (w.p_J5[2] - w.p_J6[2])
+    m12, dm12 = (w.p_J7[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (w.p_J7[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J7[2] - w.p_J6[2]) * (w.p_J5[1] - w.p_J6[1]) + (w.p_J7[0] - w.p_J6[0]) * (w.p_J5[3] - w.p_J6[3]) - (w.p_J7[3] - w.p_J6[3]) * (w.p_J5[0] - w.p_J6[0]) - (w.p_J7[1] - w.p_J6[1]) * (w.p_J5[2] - w.p_J6[2])
+    f = (span(w.p_J6, w.p_J4), )
+    m = (m1, m2, )
+    dm = (dm1, dm2, )
     states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[0][1:])]
                   + [0.0])
     rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
-    f = (link_residual_1(w.p_J6, w.p_J2, ZERO_LENGTH)[2], )
-    m = ((w.p_J6[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J6[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0]), )
-    dm = ((w.p_J6[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J6[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J6[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J6[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), (w.p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (w.p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2]), )
+    f = (span(w.p_J6, w.p_J2), )
+    m = (m3, m4, )
+    dm = (dm3, dm4, )
     states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[1][1:])]
                   + [0.0])
     rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
-    f = (link_residual_1(w.p_J1, w.p_J4, ZERO_LENGTH)[2], )
-    m = ((w.p_J1[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J1[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]), (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), )
-    dm = ((w.p_J1[2] - w.p_J3[2]) * (w.p_J4[1] - w.p_J3[1]) + (w.p_J1[0] - w.p_J3[0]) * (w.p_J4[3] - w.p_J3[3]) - (w.p_J1[3] - w.p_J3[3]) * (w.p_J4[0] - w.p_J3[0]) - (w.p_J1[1] - w.p_J3[1]) * (w.p_J4[2] - w.p_J3[2]), (w.p_J4[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J4[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), )
+    f = (span(w.p_J1, w.p_J4), )
+    m = (m5, m2, )
+    dm = (dm5, dm2, )
     states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[2][1:])]
                   + [0.0])
     rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
-    f = (link_residual_1(w.p_J3, w.p_J2, ZERO_LENGTH)[2], )
-    m = ((w.p_J3[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J3[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0]), )
-    dm = ((w.p_J3[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J3[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J3[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J3[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), (w.p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (w.p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2]), )
+    f = (span(w.p_J3, w.p_J2), )
+    m = (m6, m4, )
+    dm = (dm6, dm4, )
     states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[3][1:])]
                   + [0.0])
     rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
-    f = (link_residual_1(w.p_J7, w.p_J2, ZERO_LENGTH)[2], )
-    m = ((w.p_J7[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J7[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0]), )
-    dm = ((w.p_J7[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J7[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J7[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J7[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), (w.p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (w.p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2]), )
+    f = (span(w.p_J7, w.p_J2), )
+    m = (m7, m4, )
+    dm = (dm7, dm4, )
     states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[4][1:])]
                   + [0.0])
     rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
-    f = (link_residual_1(w.p_J7, w.p_J4, ZERO_LENGTH)[2], )
-    m = ((w.p_J7[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J7[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]), (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), )
-    dm = ((w.p_J7[2] - w.p_J3[2]) * (w.p_J4[1] - w.p_J3[1]) + (w.p_J7[0] - w.p_J3[0]) * (w.p_J4[3] - w.p_J3[3]) - (w.p_J7[3] - w.p_J3[3]) * (w.p_J4[0] - w.p_J3[0]) - (w.p_J7[1] - w.p_J3[1]) * (w.p_J4[2] - w.p_J3[2]), (w.p_J4[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J4[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), )
+    f = (span(w.p_J7, w.p_J4), )
+    m = (m8, m2, )
+    dm = (dm8, dm2, )
     states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[5][1:])]
                   + [0.0])
     rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
-    f = (link_residual_1(w.p_J3, w.p_J5, ZERO_LENGTH)[2], )
-    m = ((w.p_J3[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (w.p_J3[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J5[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), )
-    dm = ((w.p_J3[2] - w.p_J6[2]) * (w.p_J5[1] - w.p_J6[1]) + (w.p_J3[0] - w.p_J6[0]) * (w.p_J5[3] - w.p_J6[3]) - (w.p_J3[3] - w.p_J6[3]) * (w.p_J5[0] - w.p_J6[0]) - (w.p_J3[1] - w.p_J6[1]) * (w.p_J5[2] - w.p_J6[2]), (w.p_J5[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J5[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J5[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J5[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), )
+    f = (span(w.p_J3, w.p_J5), )
+    m = (m9, m10, )
+    dm = (dm9, dm10, )
     states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[6][1:])]
                   + [0.0])
     rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
-    f = (link_residual_1(w.p_J1, w.p_J5, ZERO_LENGTH)[2], )
-    m = ((w.p_J1[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (w.p_J1[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J5[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), )
-    dm = ((w.p_J1[2] - w.p_J6[2]) * (w.p_J5[1] - w.p_J6[1]) + (w.p_J1[0] - w.p_J6[0]) * (w.p_J5[3] - w.p_J6[3]) - (w.p_J1[3] - w.p_J6[3]) * (w.p_J5[0] - w.p_J6[0]) - (w.p_J1[1] - w.p_J6[1]) * (w.p_J5[2] - w.p_J6[2]), (w.p_J5[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J5[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J5[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J5[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), )
+    f = (span(w.p_J1, w.p_J5), )
+    m = (m11, m10, )
+    dm = (dm11, dm10, )
     states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[7][1:])]
                   + [0.0])
     rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
-    f = (link_residual_1(w.p_J7, w.p_J5, ZERO_LENGTH)[2], )
-    m = ((w.p_J7[0] - w.p_J6[0]) * (w.p_J5[1] - w.p_J6[1]) - (w.p_J7[1] - w.p_J6[1]) * (w.p_J5[0] - w.p_J6[0]), (w.p_J5[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J5[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), )
-    dm = ((w.p_J7[2] - w.p_J6[2]) * (w.p_J5[1] - w.p_J6[1]) + (w.p_J7[0] - w.p_J6[0]) * (w.p_J5[3] - w.p_J6[3]) - (w.p_J7[3] - w.p_J6[3]) * (w.p_J5[0] - w.p_J6[0]) - (w.p_J7[1] - w.p_J6[1]) * (w.p_J5[2] - w.p_J6[2]), (w.p_J5[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J5[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J5[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J5[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), )
+    f = (span(w.p_J7, w.p_J5), )
+    m = (m12, m10, )
+    dm = (dm12, dm10, )
     states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[8][1:])]
                   + [0.0])
     rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])

@@ -12,6 +12,7 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
     cond, turn, solver = np.ones(lanes, dtype=REAL), np.zeros(lanes, dtype=REAL), np.full(lanes, -1)
     prefer = used[g.slot]
     written = {}
+    only = None  # the block that solved every lane, if one did
     for k, b in enumerate(g.blocks):
         mine = (prefer == k) & ~skip
         at = np.flatnonzero(mine)
@@ -29,12 +30,17 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
         good = np.flatnonzero(ok & (chains >= p.min_chain_sigma))
         if not good.size:
             continue
-        x, jac, live, br, sens = (take(v, good) for v in (x, jac, live, br, sens))
+        if good.size < at.size:
+            x, jac, live, br, sens = (take(v, good) for v in (x, jac, live, br, sens))
         failed, cond_b, turn_b, rep, sig = rates_lanes(b, wb, live, br, x, jac, sens, order)
-        fine = np.flatnonzero(~failed)
-        done = at[good[fine]]
-        settled[done], cond[done], turn[done], solver[done] = True, cond_b[fine], turn_b[fine], k
-        whole = done.size == lanes
+        whole = good.size == lanes and not failed.any()
+        if whole:  # every lane solved by this block: its arrays as they are
+            fine, only = slice(None), k
+            settled[:], cond, turn, solver[:] = True, np.asarray(cond_b, dtype=REAL), np.asarray(turn_b, dtype=REAL), k
+        else:
+            fine = np.flatnonzero(~failed)
+            done = at[good[fine]]
+            settled[done], cond[done], turn[done], solver[done] = True, cond_b[fine], turn_b[fine], k
         for name, fields, _ in b.writes:
             record = getattr(wb, name)
             if whole:  # every lane solved by this block: its records as they are
@@ -65,8 +71,10 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
         setattr(w, name, record)
     if resolved.any():
         new_a, new_ad = g.lengths(w, a)
+        none = np.zeros(lanes, dtype=REAL)
         for j in range(g.count):
-            a[g.first + j] = [lanes_of(x, lanes) for x in new_a[j][:-1]] + [np.where(solver == j, turn, 0.0)]
+            orient = np.where(solver == j, turn, 0.0) if only is None else turn if j == only else none
+            a[g.first + j] = [lanes_of(x, lanes) for x in new_a[j][:-1]] + [orient]
             ad[g.first + j] = [lanes_of(x, lanes) for x in new_ad[j]]
     report.append((np.where(resolved & (cond < g.singular), 3, np.where(resolved & (cond < g.near), 4, 0)), g.codes))
     sigma[g.step] = cond
@@ -84,3 +92,17 @@ def failed_lanes(report, lanes):
     for st, _ in report:
         out = out | (st == 1)
     return out
+
+
+def span(j1, j2):
+    """The distance of two points and its rate, on lanes: link_residual of a zero length, the same
+    operations (where the points coincide, the rate as they part), without its checks."""
+    dx, dy = j2[0] - j1[0], j2[1] - j1[1]
+    dvx, dvy = j2[2] - j1[2], j2[3] - j1[3]
+    r = np.sqrt(dx * dx + dy * dy)
+    rate = (dx * dvx + dy * dvy) * (1 / r)
+    together = r == 0
+    if np.any(together):
+        rate = np.where(together, np.sqrt(dvx * dvx + dvy * dvy), rate)
+    return r, rate
+

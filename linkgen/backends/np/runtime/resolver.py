@@ -31,6 +31,14 @@ def solve_lanes(m, b):
     pivoting, the first largest pivot as the Python runtime's solve_linear takes it; returns
     (x, det), x nan and det 0 on a lane with a zero pivot."""
     n = len(b)
+    if n == 1:  # one Add-link: the same operations, without the pivot search
+        det = np.asarray(m[0][0], dtype=REAL)
+        x = np.asarray(b[0], dtype=REAL) / det
+        det = det if det.shape == x.shape else np.broadcast_to(det, x.shape)
+        zero = det == 0
+        if zero.any():
+            return [np.where(zero, NAN, x)], np.where(zero, 0.0, det)
+        return [x], det
     a = [[np.asarray(v, dtype=REAL) for v in row] + [np.asarray(b[i], dtype=REAL)] for i, row in enumerate(m)]
     det = np.ones(np.broadcast_shapes(*(v.shape for row in a for v in row)), dtype=REAL)
     zero = det == 0
@@ -132,6 +140,10 @@ def newton_lanes(b, w, r, br, a, tol, max_iter, reach, halvings):
         for v in f:
             done = done & (np.abs(v) <= tol)
         a, f, jac = trial, f2, jac2
+        if idx.size == lanes and done.all():  # every lane converged at once (the usual row): no copies
+            for x, s in zip(a, start):
+                done = done & (np.abs(x - s) <= reach)
+            return done, a, its, jac, np.asarray(chains, dtype=REAL), sens
         if done.any():
             near = done
             for x, s in zip(a, start):

@@ -11,10 +11,14 @@
 # runtime would (no warm start, continuation, another block) is solved by the standard-library
 # module's solve() from its lane's state.  k holds the kernel: run, publish, rows (the
 # standard-library module), m (its MECHANISM), p (its POLICY), order, c, the columns x, dx, ddx
-# of every row, and out, status, sigma, its (the arrays a call fills) or None.
+# of every row, out, status, sigma, its (the arrays a call fills) or None, and same (the columns
+# of constant records, the same on every row: filled once, not carried through the passes).
+# The chunks of the call's rows hold STEPS rows; a seeding sweep's SEED_STEPS (its passes are
+# narrow, so their fixed cost counts most).
 
-LANES = 8192  # rows solved side by side at most
-STEPS = 16  # rows of a chunk (fewer: one row at a time)
+LANES = 16384  # rows solved side by side at most (measured: 7% faster than 8192 at 1e6 rows)
+STEPS = 16  # rows of a chunk of the call's rows (fewer: one row at a time)
+SEED_STEPS = 4  # rows of a chunk of a seeding sweep (narrow passes: their fixed cost dominates)
 RATES_AGREE = 1e-6  # two states' rates agree to this share
 ALONE = 48  # a sweep of no more rows is solved by the standard-library module, row after row
 WARM_KEPT = 5  # entries of the standard-library module's warm start a lane keeps (see alone_row)
@@ -85,7 +89,9 @@ def _close(x, y, bound):
 
 
 def predict_lanes(prev, x, sizes):
-    """The Python runtime's predict on every lane: the block states along their rates to x."""
+    """The Python runtime's predict on every lane: the block states along their rates to x (a
+    chain's sign measure too, so its branch flips where it passes zero; an orientation has no
+    rate)."""
     den, num = 0.0, 0.0
     for r in prev.rates:
         den = den + r * r
@@ -140,8 +146,14 @@ def advance(k, prev, rows, sink=None, spot=None):
     if sink is not None:
         j, at = spot
         for name, value in zip(k.columns, k.publish(w, k.c)):
-            if name in sink.cols:
+            if name not in sink.cols:
+                continue
+            if np.ndim(value):
+                if name in k.same:
+                    raise RuntimeError(f"column {name}: a number on some rows, an array on others")
                 sink.cols[name][j, at] = value
+            else:  # a constant record's field: the same on every row, filled once (see solve_sweep)
+                k.same[name] = value
         sink.status[j, at] = code
         for n, value in enumerate(sigma):
             if not isinstance(value, float):
@@ -190,9 +202,9 @@ def alone_row(k, prev, row):
     return out, new
 
 
-def layout(n):
-    """(rows a chunk, chunks) of a sweep of n rows: one chunk where n is small."""
-    return (max(n, 1), 1) if n <= STEPS else (STEPS, -(-n // STEPS))
+def layout(n, steps):
+    """(rows a chunk, chunks) of a sweep of n rows in chunks of steps rows: one chunk where n is small."""
+    return (max(n, 1), 1) if n <= steps else (steps, -(-n // steps))
 
 
 def new_sink(k, steps, lanes):
@@ -218,28 +230,40 @@ def sink_sigma(sink, n):
 
 def flush(k, sink, rows, lengths):
     """The sink's outputs into the call's arrays: pass j of lane i is row rows[i, j] where j is
-    below the lane's length."""
+    below the lane's length.  Whole chunks of consecutive rows are copied straight into a view of
+    the arrays (one strided copy a column), the rest through a mask."""
     lanes, steps = rows.shape
-    count = int(lengths.sum())
-    if count == lanes * steps and rows[-1, -1] - rows[0, 0] == count - 1:  # whole chunks of consecutive rows
-        at = slice(int(rows[0, 0]), int(rows[0, 0]) + count)
+    whole = lanes - int(lengths[-1] < steps)  # the leading chunks all of whose rows are there
+    first = int(rows[0, 0])
+    if not (whole and (lengths[:whole] == steps).all() and rows[whole - 1, -1] - first == whole * steps - 1):
+        whole = 0  # not consecutive rows: all through the mask
+    if whole:
+        at = slice(first, first + whole * steps)
 
-        def pick(value):
-            return value.T.reshape(-1)
-    else:
-        mask = np.arange(steps) < lengths[:, None]
-        at = rows[mask]
+        def copy(into, value):
+            np.copyto(into[at].reshape(whole, steps), value[:, :whole].T)
 
-        def pick(value):
-            return value.T[mask]
+        copy_all(k, sink, copy)
+    if whole < lanes:
+        mask = np.arange(steps) < lengths[whole:, None]
+        at = rows[whole:][mask]
 
+        def copy(into, value):
+            into[at] = value[:, whole:].T[mask]
+
+        copy_all(k, sink, copy)
+
+
+def copy_all(k, sink, copy):
+    """copy(the call's array, the sink's) for every output, status, conditioning and Newton steps."""
     for name, value in sink.cols.items():
-        k.out[name][at] = pick(value)
-    k.status[at] = pick(sink.status)
+        if name not in k.same:
+            copy(k.out[name], value)
+    copy(k.status, sink.status)
     for n, value in sink.sigma.items():
-        k.sigma[n, at] = pick(value)
+        copy(k.sigma[n], value)
     for g in range(k.its.shape[0]):
-        k.its[g, at] = pick(sink.its[g])
+        copy(k.its[g], sink.its[g])
 
 
 def sweep(k, seq, prev, emit=False, keep=False):
@@ -258,7 +282,7 @@ def sweep(k, seq, prev, emit=False, keep=False):
             if keep:
                 state_put(kept, [j], prev)
         return kept
-    steps, chunks = layout(n)
+    steps, chunks = layout(n, STEPS if emit else SEED_STEPS)
     starts = np.arange(chunks) * steps
     first = prev if chunks == 1 else state_cat([prev, sweep(k, seq[starts[1:] - 1], prev, False, True)])
     ends = run_tiles(k, seq, starts, steps, np.arange(chunks), first, emit, kept)
@@ -326,9 +350,11 @@ def solve_sweep(run, publish, rows, inputs, d_inputs, dd_inputs, order, params, 
     p = SimpleNamespace(**{**vars(rows.POLICY), "tolerance": m.tolerance, "path_slack": m.path_slack})
     k = SimpleNamespace(run=run, publish=publish, rows=rows, m=rows.MECHANISM, p=p, order=order, c=c,
                         x=columns[0], dx=columns[1], ddx=columns[2], out=out, status=status, sigma=sigma, its=its,
-                        columns=m.columns, sinks={}, lanes=m.lanes)
+                        columns=m.columns, sinks={}, lanes=m.lanes, same={})
     with np.errstate(all="ignore"):
         sweep(k, np.flatnonzero(~bad), empty_state(k, 1), True)
+    for name, value in k.same.items():  # the columns of constant records, the lanes' value on every row
+        out[name].fill(value)
     result = finish(out, status, sigma, bad, shape, m)
     result["iterations"] = its.reshape((rows.N_GROUPS, *shape))
     return result
