@@ -14,6 +14,7 @@ from collections import Counter
 from ...primitives.dsl import (
     Binary,
     Call,
+    Const,
     Expr,
     Let,
     Logic,
@@ -142,26 +143,64 @@ def _cos_sin_pairs(lets: tuple[Let, ...]) -> dict[str, tuple[str, str]]:
     return {c: (c, calls["sin", arg]) for (fn, arg), c in calls.items() if fn == "cos" and ("sin", arg) in calls}
 
 
+def _rebuilt(e: Expr, kids: list[Expr]) -> Expr:
+    """e with other children (e itself where they are its own)."""
+    if all(n is c for n, c in zip(kids, children(e))):
+        return e
+    if isinstance(e, Binary):
+        return type(e)(e.op, kids[0], kids[1])
+    if isinstance(e, Neg):
+        return Neg(kids[0])
+    if isinstance(e, Call):
+        return Call(e.fn, tuple(kids))
+    if isinstance(e, Select):
+        return Select(kids[0], kids[1], kids[2])
+    return e
+
+
 def _substituted(e: Expr, names: dict[str, Expr], memo: dict[int, Expr]) -> Expr:
     """e with the symbols named in names replaced by their expressions (a node met twice, once)."""
     if id(e) in memo:
         return memo[id(e)]
-    kids = children(e)
-    new = [_substituted(c, names, memo) for c in kids]
-    out: Expr = e
-    if isinstance(e, Sym):
-        out = names.get(e.name, e)
-    elif any(n is not c for n, c in zip(new, kids)):
-        if isinstance(e, Binary):
-            out = type(e)(e.op, new[0], new[1])
-        elif isinstance(e, Neg):
-            out = Neg(new[0])
-        elif isinstance(e, Call):
-            out = Call(e.fn, tuple(new))
-        elif isinstance(e, Select):
-            out = Select(new[0], new[1], new[2])
+    out = names.get(e.name, e) if isinstance(e, Sym) else _rebuilt(e, [_substituted(c, names, memo) for c in children(e)])
     memo[id(e)] = out
     return out
+
+
+def _merged(roots: list[Expr]) -> list[Expr]:
+    """The roots with the nodes written alike (the same operations on the same operands) made one
+    node where one of them is read outside every selection's branch: computed once then, at no
+    cost to a row that takes a branch, with the same bits."""
+    keys: dict[int, tuple[object, ...]] = {}
+
+    def key(e: Expr) -> tuple[object, ...]:
+        if id(e) not in keys:
+            own = {Sym: lambda: (e.name,), Const: lambda: (e.name,),  # type: ignore[attr-defined]
+                   Num: lambda: (type(e.value).__name__, repr(e.value)),  # type: ignore[attr-defined]
+                   Call: lambda: (e.fn,)}.get(type(e), lambda: (getattr(e, "op", None),))()  # type: ignore[attr-defined]
+            keys[id(e)] = (type(e).__name__, *own, *(key(c) for c in children(e)))
+        return keys[id(e)]
+
+    outside: set[tuple[object, ...]] = set()
+
+    def walk(e: Expr, inside: bool) -> None:
+        if not inside:
+            outside.add(key(e))
+        for k, c in enumerate(children(e)):
+            walk(c, inside or (isinstance(e, Select) and k > 0))
+
+    for root in roots:
+        walk(root, False)
+    one: dict[tuple[object, ...], Expr] = {}
+    memo: dict[int, Expr] = {}
+
+    def rebuild(e: Expr) -> Expr:
+        if id(e) not in memo:
+            node = _rebuilt(e, [rebuild(c) for c in children(e)])
+            memo[id(e)] = one.setdefault(key(e), node) if key(e) in outside else node
+        return memo[id(e)]
+
+    return [rebuild(root) for root in roots]
 
 
 def _uses(exprs: list[Expr]) -> tuple[Counter[str], set[str]]:
@@ -213,6 +252,11 @@ def numpy_function(prim: Primitive, order: int, suffix: str = "") -> str:
     lets = tuple(body)
     fields = [(o, f, _substituted(e, inline, memo)) for o, f, e in fields]
     status, sigma_of = (None if e is None else _substituted(e, inline, memo) for e in (prim.status, prim.sigma))
+    tails = [e for e in (status, sigma_of) if e is not None]
+    merged = iter(_merged([let.expr for let in lets] + [e for _, _, e in fields] + tails))
+    lets = tuple(Let(let.name, next(merged), let.order) for let in lets)
+    fields = [(o, f, next(merged)) for o, f, _ in fields]
+    status, sigma_of = (None if e is None else next(merged) for e in (status, sigma_of))
     roots = [let.expr for let in lets] + [e for _, _, e in fields] + [e for e in (status, sigma_of) if e is not None]
     out = _Lines(exprs, _shared(roots))
     unpack = parameter_lines(prim, order)
