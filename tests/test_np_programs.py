@@ -10,6 +10,7 @@ form; calls it cannot answer are refused as the C program refuses them.
 
 from __future__ import annotations
 
+import importlib.util
 import math
 import subprocess
 import sys
@@ -149,6 +150,37 @@ def test_a_design_sweep_in_one_call_is_the_separate_builds(every: int, tmp_path:
         for c in log.columns[1:]:
             scale = max(np.max(np.abs(alone[c.name])), 1.0)
             assert np.max(np.abs(out[c.name][k] - alone[c.name])) <= 1e-11 * scale, (k, c.name)
+
+
+def test_sketch_coordinates_and_a_length_broadcast_as_the_scalar_program_computes_them(tmp_path: Path):
+    """O2's place and the rocker's length as arrays of five designs against 36 rows in one call:
+    each design's rows are bit for bit the call with that design's numbers alone, and what the
+    standard-library fourbar.py (one row at a time) computes with those constants in place."""
+    log = build(FOURBAR, tmp_path)
+    spec = importlib.util.spec_from_file_location("fourbar_scalar", tmp_path / "fourbar.py")
+    assert spec is not None and spec.loader is not None
+    scalar = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(scalar)
+    module = kernel(log, 2)
+    o2x, o2y, rocker = O2[0] + np.linspace(-3.0, 3.0, 5), O2[1] + np.linspace(2.0, -2.0, 5), ROCKER + np.linspace(-1, 1, 5)
+    theta = _theta()[::10]
+    out = module.solve(theta[:, None], [2 * np.pi], [0.0],
+                       params={"O2.x": o2x[:, None], "O2.y": o2y[:, None], "l_rocker": rocker[:, None]})
+    assert out["B.x"].shape == out["status"].shape == (5, len(theta)) and (out["status"] == 0).all()
+    computed = [c.name for c in log.columns[1:] if c.name.split(".")[0] in ("A", "B", "P", "crank", "coupler", "rocker")]
+    for d in range(5):
+        alone = module.solve(theta[:, None], [2 * np.pi], [0.0],
+                             params={"O2.x": o2x[d], "O2.y": o2y[d], "l_rocker": rocker[d]})
+        for name in (*computed, "status"):
+            assert np.array_equal(out[name][d], alone[name]), (d, name)
+        assert np.array_equal(out["sigma"][:, d], alone["sigma"])
+        scalar.p_O2 = (o2x[d] - log.origin[0], o2y[d] - log.origin[1], 0.0, 0.0, 0.0, 0.0)
+        scalar.l_rocker = (float(rocker[d]), 0.0, 0.0)
+        rows = [scalar.solve([float(t)], [2 * np.pi], [0.0]) for t in theta]
+        assert [r["status"] for r in rows] == out["status"][d].tolist()
+        for name in computed:
+            want = np.array([r[name] for r in rows])
+            assert np.max(np.abs(out[name][d] - want)) <= 1e-9 * max(np.max(np.abs(want)), 1.0), (d, name)
 
 
 # -- calls it cannot answer ----------------------------------------------------
