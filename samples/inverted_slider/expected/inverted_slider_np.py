@@ -150,7 +150,8 @@ def link_angle(j1, j2, off):
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
     th0 = np.arctan2(dy, dx) + off
-    _c1 = np.asarray(r2 == 0)
+    _t1 = r2 == 0
+    _c1 = np.asarray(_t1)
     if not _c1.any():
         ir2 = 1 / r2
     elif _c1.all():
@@ -159,7 +160,7 @@ def link_angle(j1, j2, off):
         ir2 = np.where(_c1, NAN, 1 / r2)
     om = (dx * dvy - dy * dvx) * ir2
     al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    _c2 = np.asarray(r2 == 0)
+    _c2 = np.asarray(_t1)
     if not _c2.any():
         _st = 0
     elif _c2.all():
@@ -221,9 +222,10 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     ah = np.abs(hh)
     k = q - ah
     big = np.maximum(q, ah)
-    fail = (k < -8 * EPS * big) | (q == 0)
+    _t1 = q == 0
+    fail = (k < -8 * EPS * big) | (_t1)
     t = np.sqrt(np.maximum(k, 0) * (q + ah))
-    _c1 = np.asarray(q == 0)
+    _c1 = np.asarray(_t1)
     if not _c1.any():
         iq = 1 / q
     elif _c1.all():
@@ -263,13 +265,13 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     dvu = dvx * ux + dvy * uy
     om = dvn * imt
     ds = dvu + om * hh
-    al = (ux * day - uy * dax - 2 * om * dvu - om * om * hh) * imt
+    _t3 = om * om
+    al = (ux * day - uy * dax - 2 * om * dvu - _t3 * hh) * imt
     dds = dax * ux + day * uy + om * dvn + al * hh
     rvx = -om * ry
     rvy = om * rx
-    _t2 = om * om
-    rax = -al * ry - _t2 * rx
-    ray = al * rx - _t2 * ry
+    rax = -al * ry - _t3 * rx
+    ray = al * rx - _t3 * ry
     _c5 = np.asarray(fail)
     if not _c5.any():
         _c6 = np.asarray(sigma < 1e-07)
@@ -385,56 +387,61 @@ def block(x, s, e):
     return x if np.ndim(x) == 0 else x[s:e]
 
 
-def filled(out, shape, order, m):
+def filled(out, shape, order, m, ones=True):
     """The flat arrays a call fills (its columns up to order, status, sigma): those of out, a
-    dict an earlier call returned for rows of this shape, else new ones."""
+    dict an earlier call returned for rows of this shape, else new ones, the columns and sigma
+    the rows of one array (one allocation: large enough for the allocator's huge pages, a
+    call pays the first touch of its memory once per 2 MB rather than per 4 kB).  sigma holds
+    1.0 where ones, else whatever the memory held."""
     n = int(np.prod(shape))
     names = [name for name, level in zip(m.columns, m.levels) if level <= order]
     if out is None:
-        return ({name: np.empty(n, dtype=REAL) for name in names}, np.empty(n, dtype=int),
-                np.ones((m.n_steps + 1, n), dtype=REAL))
+        reals = np.empty((len(names) + m.n_steps + 1, n), dtype=REAL)
+        sigma = reals[len(names):]
+        if ones:
+            sigma.fill(1.0)
+        return dict(zip(names, reals)), np.empty(n, dtype=int), sigma
     wanted = [(name, shape, REAL) for name in names] + [("status", shape, int)]
     if m.checks:
         wanted.append(("sigma", (m.n_steps + 1, *shape), REAL))
-    flat = {"sigma": np.ones((m.n_steps + 1, n), dtype=REAL)}  # the call's own where it gives no conditioning
+    flat = {}
     for name, like, dtype in wanted:
         a = out.get(name)
         if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
             raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
         flat[name] = a.reshape(-1) if name != "sigma" else a.reshape(m.n_steps + 1, n)
-    flat["sigma"].fill(1.0)
+    if "sigma" not in flat:  # the call's own where it gives no conditioning
+        flat["sigma"] = np.empty((m.n_steps + 1, n), dtype=REAL)
+    if ones:
+        flat["sigma"].fill(1.0)
     return {name: flat[name] for name in names}, flat["status"], flat["sigma"]
 
 
 def solve_rows(run, publish, inputs, d_inputs, dd_inputs, order, params, m, out=None):
     """Every row of a call, a block at a time: run(x, dx, ddx, c) solves a block (its records,
     the rows' status codes and each step's conditioning), publish(w, c) gives its columns,
-    written into new arrays or those of out (see filled).  Returns finish's dict.  A row that
-    fails is nan by design: numpy does not warn of it."""
+    written into new arrays or those of out (see filled), the programs' rules applied to the
+    block while it is in the cache (see lose).  Returns shaped's dict.  A row that fails is
+    nan by design: numpy does not warn of it."""
     shape, columns, c = rows_of(inputs, d_inputs, dd_inputs, design(params, m), m)
     n = int(np.prod(shape))
-    out, status, sigma = filled(out, shape, order, m)
-    same = {}  # the columns the same on every row (a number in every block): filled once
+    out, status, sigma = filled(out, shape, order, m, ones=False)
     with np.errstate(all="ignore"):
         for s in range(0, n, BLOCK):
             e = min(s + BLOCK, n)
             x, dx, ddx = ([block(v, s, e) for v in col] for col in columns)
             cb = {k: block(v, s, e) for k, v in c.items()}
             w, status[s:e], steps = run(x, dx, ddx, cb)
+            cols = {}
             for name, value in zip(m.columns, publish(w, cb)):
-                if name not in out:
-                    continue
-                if np.ndim(value):
-                    out[name][s:e] = value
-                else:
-                    same[name] = value
-            for k, value in enumerate(steps):
-                if np.ndim(value):
+                if name in out:
+                    cols[name] = out[name][s:e]
+                    cols[name][...] = value
+            if m.checks:
+                for k, value in enumerate(steps):
                     sigma[k, s:e] = value
-        for name, value in same.items():
-            out[name].fill(value)
-        bad = np.broadcast_to(refused(columns, m), (n,))
-    return finish(out, status, sigma, bad, shape, m)
+            lose(cols, status[s:e], sigma[:, s:e] if m.checks else None, refused((x, dx, ddx), m), m)
+    return shaped(out, status, sigma, shape, m)
 
 
 def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
@@ -461,10 +468,22 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
 
 def finish(out, status, sigma, bad, shape, m):
     """The columns, "status" and "sigma" (sigma[n]: step n's conditioning), each of the rows'
-    shape, with the programs' rules: a refused row has status m.bad_input and nan everywhere, a
-    failed one nan outputs, one at a singular position nan derivatives."""
-    status[bad] = m.bad_input
-    sigma[:, bad] = np.nan
+    shape, with the programs' rules (see lose)."""
+    lose(out, status, sigma, bad, m)
+    return shaped(out, status, sigma, shape, m)
+
+
+def lose(out, status, sigma, bad, m):
+    """The programs' rules on the flat arrays of some rows: a refused row (bad) has status
+    m.bad_input and nan everywhere, a failed one nan outputs, one at a singular position nan
+    derivatives (sigma None: no conditioning kept)."""
+    if np.any(bad):
+        bad = np.broadcast_to(bad, status.shape)
+        status[bad] = m.bad_input
+        if sigma is not None:
+            sigma[:, bad] = np.nan
+    elif not (status > 0).any():  # every row solved (a positive code is a failure's)
+        return
     reason = reason_of(status)
     failed = bad
     for code in m.failed:
@@ -474,6 +493,10 @@ def finish(out, status, sigma, bad, shape, m):
         lost = failed if level == 0 else singular
         if name in out and lost.any():
             out[name][lost] = np.nan
+
+
+def shaped(out, status, sigma, shape, m):
+    """The dict a call returns: the flat arrays in the rows' shape (sigma with the checks)."""
     result = {name: x.reshape(shape) for name, x in out.items()}
     result["status"] = status.reshape(shape)
     if m.checks:
