@@ -162,12 +162,14 @@ def test_sketch_coordinates_and_a_length_broadcast_as_the_scalar_program_compute
     scalar = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(scalar)
     module = kernel(log, 2)
-    o2x, o2y, rocker = O2[0] + np.linspace(-3.0, 3.0, 5), O2[1] + np.linspace(2.0, -2.0, 5), ROCKER + np.linspace(-1, 1, 5)
+    o2x, o2y = O2[0] + np.linspace(-3.0, 3.0, 5), O2[1] + np.linspace(2.0, -2.0, 5)
+    rocker = ROCKER + np.linspace(-1.0, 1.0, 5)
     theta = _theta()[::10]
     out = module.solve(theta[:, None], [2 * np.pi], [0.0],
                        params={"O2.x": o2x[:, None], "O2.y": o2y[:, None], "l_rocker": rocker[:, None]})
     assert out["B.x"].shape == out["status"].shape == (5, len(theta)) and (out["status"] == 0).all()
-    computed = [c.name for c in log.columns[1:] if c.name.split(".")[0] in ("A", "B", "P", "crank", "coupler", "rocker")]
+    moving = ("A", "B", "P", "crank", "coupler", "rocker")
+    computed = [c.name for c in log.columns[1:] if c.name.split(".")[0] in moving]
     for d in range(5):
         alone = module.solve(theta[:, None], [2 * np.pi], [0.0],
                              params={"O2.x": o2x[d], "O2.y": o2y[d], "l_rocker": rocker[d]})
