@@ -135,58 +135,6 @@ def crank_input(j1, l, theta, phi):
     _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _j2
 
-def link_angle(j1, j2, off):
-    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    dx = j2_x - j1_x
-    dy = j2_y - j1_y
-    dvx = j2_dx - j1_dx
-    dvy = j2_dy - j1_dy
-    dax = j2_ddx - j1_ddx
-    day = j2_ddy - j1_ddy
-    r2 = dx * dx + dy * dy
-    th0 = np.arctan2(dy, dx) + off
-    _t1 = r2 == 0
-    _c1 = np.asarray(_t1)
-    if not _c1.any():
-        ir2 = 1 / r2
-    elif _c1.all():
-        ir2 = NAN
-    else:
-        ir2 = np.where(_c1, NAN, 1 / r2)
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    _c2 = np.asarray(_t1)
-    if not _c2.any():
-        _st = 0
-    elif _c2.all():
-        _st = 1
-    else:
-        _st = np.where(_c2, 1, 0)
-    _sigma = 1.0
-    _st = np.asarray(_st)
-    _sigma = np.asarray(_sigma, dtype=REAL)
-    _fails = _st == 1
-    _singular = _fails | (_st == 3)
-    _c3 = np.asarray(th0 > PI)
-    if not _c3.any():
-        _c4 = np.asarray(th0 <= -PI)
-        if not _c4.any():
-            _f1 = th0
-        elif _c4.all():
-            _f1 = th0 + 2 * PI
-        else:
-            _f1 = np.where(_c4, th0 + 2 * PI, th0)
-    elif _c3.all():
-        _f1 = th0 - 2 * PI
-    else:
-        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
-    _angle = (_f1, om, al)
-    if np.any(_singular):  # nan where the rows failed
-        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
-    return _st, _sigma, _angle
-
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
@@ -313,13 +261,65 @@ def PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
     _s2 = (sv2, ds2, dds2)
     _jp2 = (jp2x, jp2y, jp2vx, jp2vy, jp2ax, jp2ay)
     _jb = (jbx, jby, jp1vx + r1vx, jp1vy + r1vy, jp1ax + r1ax, jp1ay + r1ay)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _s1 = (np.where(_fails, np.nan, _s1[0]), np.where(_singular, np.nan, _s1[1]), np.where(_singular, np.nan, _s1[2]))
         _jp1 = (np.where(_fails, np.nan, _jp1[0]), np.where(_fails, np.nan, _jp1[1]), np.where(_singular, np.nan, _jp1[2]), np.where(_singular, np.nan, _jp1[3]), np.where(_singular, np.nan, _jp1[4]), np.where(_singular, np.nan, _jp1[5]))
         _s2 = (np.where(_fails, np.nan, _s2[0]), np.where(_singular, np.nan, _s2[1]), np.where(_singular, np.nan, _s2[2]))
         _jp2 = (np.where(_fails, np.nan, _jp2[0]), np.where(_fails, np.nan, _jp2[1]), np.where(_singular, np.nan, _jp2[2]), np.where(_singular, np.nan, _jp2[3]), np.where(_singular, np.nan, _jp2[4]), np.where(_singular, np.nan, _jp2[5]))
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
     return _st, _sigma, _s1, _jp1, _s2, _jp2, _jb
+
+def link_angle_still_j1(j1, j2, off):
+    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
+    j1_x, j1_y, _, _, _, _ = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
+    r2 = dx * dx + dy * dy
+    th0 = np.arctan2(dy, dx) + off
+    _t1 = r2 == 0
+    _c1 = np.asarray(_t1)
+    if not _c1.any():
+        ir2 = 1 / r2
+    elif _c1.all():
+        ir2 = NAN
+    else:
+        ir2 = np.where(_c1, NAN, 1 / r2)
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    _c2 = np.asarray(_t1)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
+    _c3 = np.asarray(th0 > PI)
+    if not _c3.any():
+        _c4 = np.asarray(th0 <= -PI)
+        if not _c4.any():
+            _f1 = th0
+        elif _c4.all():
+            _f1 = th0 + 2 * PI
+        else:
+            _f1 = np.where(_c4, th0 + 2 * PI, th0)
+    elif _c3.all():
+        _f1 = th0 - 2 * PI
+    else:
+        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    _angle = (_f1, om, al)
+    if _singular.any():  # nan where the rows failed
+        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
+    return _st, _sigma, _angle
 
 def cos_sin(t):
     """cos t and sin t from one tangent of the half angle, within an eps of the library's:
@@ -394,13 +394,15 @@ def refused(columns, m):
     bad = False
     for col in columns[: m.reads]:
         for x in col:
-            bad = bad | ~(np.abs(x) <= m.max_input)
+            fine = np.abs(x) <= m.max_input
+            if not fine.all():
+                bad = bad | ~fine
     return bad
 
 
 def block(x, s, e):
     """Rows s to e of a flattened column (a number is the same on every row)."""
-    return x if np.ndim(x) == 0 else x[s:e]
+    return x[s:e] if isinstance(x, np.ndarray) else x
 
 
 def filled(out, shape, order, m, ones=True):
@@ -540,7 +542,7 @@ def _run(x, dx, ddx, c):
     # Step 2: crank_input, P1. O is known and link frame is placed, so the input angle theta_O turns link arm to P1
     _, _, w.g_P1 = crank_input(w.p_O, c["step2.l"], w.in1, w.ref_O)
     # Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is known
-    st, _, w.phi_arm = link_angle(w.p_O, w.g_P1, c["step3.off"])
+    st, _, w.phi_arm = link_angle_still_j1(w.p_O, w.g_P1, c["step3.off"])
     report.append((st, ((1, 31),)))
     # Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution)
     st, sigma[4], w.s_P1, w.p_P1, w.s_P2, w.p_P2, w.p_X = PRP_links(w.g_P1, w.phi_arm, c["step4.gsi1"], c["step4.eta1"], w.g_P2, w.psi_P2, c["step4.gsi1"], c["step4.eta1"])

@@ -294,7 +294,7 @@ def link_angle(j1, j2, off):
     else:
         _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     _angle = (_f1, om, al)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
@@ -342,7 +342,7 @@ def link_point(j1, j2, gsi, eta):
     _fails = _st == 1
     _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]), np.where(_singular, np.nan, _jc[4]), np.where(_singular, np.nan, _jc[5]))
     return _st, _sigma, _jc
 
@@ -476,7 +476,7 @@ def RRR_links(j1, j2, l1, l2, minv):
     _fails = _st == 1
     _singular = _fails | (_st == 3)
     _jb = (j1_x + e1x, j1_y + e1y, bvx, bvy, bax, bay)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
     return _st, _sigma, _jb
 
@@ -574,7 +574,7 @@ def link_point_1(j1, j2, gsi, eta):
     _fails = _st == 1
     _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]))
     return _st, _sigma, _jc
 
@@ -698,7 +698,7 @@ def RRR_links_1(j1, j2, l1, l2, minv):
     _fails = _st == 1
     _singular = _fails | (_st == 3)
     _jb = (j1_x + e1x, j1_y + e1y, bvx, bvy)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]))
     return _st, _sigma, _jb
 
@@ -806,13 +806,15 @@ def refused(columns, m):
     bad = False
     for col in columns[: m.reads]:
         for x in col:
-            bad = bad | ~(np.abs(x) <= m.max_input)
+            fine = np.abs(x) <= m.max_input
+            if not fine.all():
+                bad = bad | ~fine
     return bad
 
 
 def block(x, s, e):
     """Rows s to e of a flattened column (a number is the same on every row)."""
-    return x if np.ndim(x) == 0 else x[s:e]
+    return x[s:e] if isinstance(x, np.ndarray) else x
 
 
 def filled(out, shape, order, m, ones=True):

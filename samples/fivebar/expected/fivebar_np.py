@@ -188,7 +188,7 @@ def link_angle(j1, j2, off):
     else:
         _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     _angle = (_f1, om, al)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
@@ -322,9 +322,61 @@ def RRR_links(j1, j2, l1, l2, minv):
     _fails = _st == 1
     _singular = _fails | (_st == 3)
     _jb = (j1_x + e1x, j1_y + e1y, bvx, bvy, bax, bay)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
     return _st, _sigma, _jb
+
+def link_angle_still_j1(j1, j2, off):
+    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
+    j1_x, j1_y, _, _, _, _ = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
+    r2 = dx * dx + dy * dy
+    th0 = np.arctan2(dy, dx) + off
+    _t1 = r2 == 0
+    _c1 = np.asarray(_t1)
+    if not _c1.any():
+        ir2 = 1 / r2
+    elif _c1.all():
+        ir2 = NAN
+    else:
+        ir2 = np.where(_c1, NAN, 1 / r2)
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    _c2 = np.asarray(_t1)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
+    _c3 = np.asarray(th0 > PI)
+    if not _c3.any():
+        _c4 = np.asarray(th0 <= -PI)
+        if not _c4.any():
+            _f1 = th0
+        elif _c4.all():
+            _f1 = th0 + 2 * PI
+        else:
+            _f1 = np.where(_c4, th0 + 2 * PI, th0)
+    elif _c3.all():
+        _f1 = th0 - 2 * PI
+    else:
+        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    _angle = (_f1, om, al)
+    if _singular.any():  # nan where the rows failed
+        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
+    return _st, _sigma, _angle
 
 def cos_sin(t):
     """cos t and sin t from one tangent of the half angle, within an eps of the library's:
@@ -399,13 +451,15 @@ def refused(columns, m):
     bad = False
     for col in columns[: m.reads]:
         for x in col:
-            bad = bad | ~(np.abs(x) <= m.max_input)
+            fine = np.abs(x) <= m.max_input
+            if not fine.all():
+                bad = bad | ~fine
     return bad
 
 
 def block(x, s, e):
     """Rows s to e of a flattened column (a number is the same on every row)."""
-    return x if np.ndim(x) == 0 else x[s:e]
+    return x[s:e] if isinstance(x, np.ndarray) else x
 
 
 def filled(out, shape, order, m, ones=True):
@@ -552,7 +606,7 @@ def _run(x, dx, ddx, c):
     st, sigma[4], w.p_P = RRR_links(w.p_A, w.p_B, w.l_link1, w.l_link2, 1)
     report.append((st, ((1, 41), (3, 43), (4, -44))))
     # Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is known
-    st, _, w.phi_crank1 = link_angle(w.p_O1, w.p_A, c["step5.off"])
+    st, _, w.phi_crank1 = link_angle_still_j1(w.p_O1, w.p_A, c["step5.off"])
     report.append((st, ((1, 51),)))
     # Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known
     st, _, w.phi_link1 = link_angle(w.p_A, w.p_P, c["step6.off"])
@@ -561,7 +615,7 @@ def _run(x, dx, ddx, c):
     st, _, w.phi_link2 = link_angle(w.p_P, w.p_B, c["step7.off"])
     report.append((st, ((1, 71),)))
     # Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is known
-    st, _, w.phi_crank2 = link_angle(w.p_O2, w.p_B, c["step8.off"])
+    st, _, w.phi_crank2 = link_angle_still_j1(w.p_O2, w.p_B, c["step8.off"])
     report.append((st, ((1, 81),)))
     code = row_status(report)
     return w, code, sigma

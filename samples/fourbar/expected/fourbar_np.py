@@ -183,7 +183,7 @@ def link_angle(j1, j2, off):
     else:
         _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     _angle = (_f1, om, al)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
@@ -231,14 +231,66 @@ def link_point(j1, j2, gsi, eta):
     _fails = _st == 1
     _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]), np.where(_singular, np.nan, _jc[4]), np.where(_singular, np.nan, _jc[5]))
     return _st, _sigma, _jc
 
-def RRR_links(j1, j2, l1, l2, minv):
+def link_angle_still_j1(j1, j2, off):
+    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
+    j1_x, j1_y, _, _, _, _ = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
+    r2 = dx * dx + dy * dy
+    th0 = np.arctan2(dy, dx) + off
+    _t1 = r2 == 0
+    _c1 = np.asarray(_t1)
+    if not _c1.any():
+        ir2 = 1 / r2
+    elif _c1.all():
+        ir2 = NAN
+    else:
+        ir2 = np.where(_c1, NAN, 1 / r2)
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    _c2 = np.asarray(_t1)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
+    _c3 = np.asarray(th0 > PI)
+    if not _c3.any():
+        _c4 = np.asarray(th0 <= -PI)
+        if not _c4.any():
+            _f1 = th0
+        elif _c4.all():
+            _f1 = th0 + 2 * PI
+        else:
+            _f1 = np.where(_c4, th0 + 2 * PI, th0)
+    elif _c3.all():
+        _f1 = th0 - 2 * PI
+    else:
+        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    _angle = (_f1, om, al)
+    if _singular.any():  # nan where the rows failed
+        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
+    return _st, _sigma, _angle
+
+def RRR_links_still_j2(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    j2_x, j2_y, _, _, _, _ = j2
     l1_v, l1_dv, l1_ddv = l1
     l2_v, l2_dv, l2_ddv = l2
     dx = j2_x - j1_x
@@ -325,17 +377,16 @@ def RRR_links(j1, j2, l1, l2, minv):
     else:
         ihq = np.where(_c9, NAN, 1 / (hn * q))
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
-    r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
+    _t10 = e2x * 0.0 + e2y * 0.0
+    r2v = l2_v * l2_dv + _t10
     buv = (r1v - r2v) * iq
     bnv = (a2 * r1v + a * r2v) * ihq
     bvx = buv * ux - bnv * uy
     bvy = buv * uy + bnv * ux
-    _t10 = bvx - j1_dx
-    _t11 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t10 * _t10 + _t11 * _t11) + (e1x * j1_ddx + e1y * j1_ddy)
-    _t12 = bvx - j2_dx
-    _t13 = bvy - j2_dy
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t12 * _t12 + _t13 * _t13) + (e2x * j2_ddx + e2y * j2_ddy)
+    _t11 = bvx - j1_dx
+    _t12 = bvy - j1_dy
+    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t11 * _t11 + _t12 * _t12) + (e1x * j1_ddx + e1y * j1_ddy)
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (bvx * bvx + bvy * bvy) + _t10
     bua = (r1a - r2a) * iq
     bna = (a2 * r1a + a * r2a) * ihq
     bax = bua * ux - bna * uy
@@ -365,7 +416,7 @@ def RRR_links(j1, j2, l1, l2, minv):
     _fails = _st == 1
     _singular = _fails | (_st == 3)
     _jb = (j1_x + e1x, j1_y + e1y, bvx, bvy, bax, bay)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
     return _st, _sigma, _jb
 
@@ -442,13 +493,15 @@ def refused(columns, m):
     bad = False
     for col in columns[: m.reads]:
         for x in col:
-            bad = bad | ~(np.abs(x) <= m.max_input)
+            fine = np.abs(x) <= m.max_input
+            if not fine.all():
+                bad = bad | ~fine
     return bad
 
 
 def block(x, s, e):
     """Rows s to e of a flattened column (a number is the same on every row)."""
-    return x if np.ndim(x) == 0 else x[s:e]
+    return x[s:e] if isinstance(x, np.ndarray) else x
 
 
 def filled(out, shape, order, m, ones=True):
@@ -588,19 +641,19 @@ def _run(x, dx, ddx, c):
     # Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A
     _, _, w.p_A = crank_input(w.p_O1, c["step2.l"], w.in1, w.ref_O1)
     # Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known
-    st, sigma[3], w.p_B = RRR_links(w.p_A, w.p_O2, w.l_coupler, w.l_rocker, 1)
+    st, sigma[3], w.p_B = RRR_links_still_j2(w.p_A, w.p_O2, w.l_coupler, w.l_rocker, 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: link_point, P. point P of link coupler
     st, _, w.p_P = link_point(w.p_B, w.p_A, c["step4.gsi"], c["step4.eta"])
     report.append((st, ((1, 41),)))
     # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
-    st, _, w.phi_crank = link_angle(w.p_O1, w.p_A, c["step5.off"])
+    st, _, w.phi_crank = link_angle_still_j1(w.p_O1, w.p_A, c["step5.off"])
     report.append((st, ((1, 51),)))
     # Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is known
     st, _, w.phi_coupler = link_angle(w.p_A, w.p_B, c["step6.off"])
     report.append((st, ((1, 61),)))
     # Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
-    st, _, w.phi_rocker = link_angle(w.p_O2, w.p_B, c["step7.off"])
+    st, _, w.phi_rocker = link_angle_still_j1(w.p_O2, w.p_B, c["step7.off"])
     report.append((st, ((1, 71),)))
     code = row_status(report)
     return w, code, sigma

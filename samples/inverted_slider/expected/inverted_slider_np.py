@@ -138,16 +138,33 @@ def crank_input(j1, l, theta, phi):
     _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _j2
 
-def link_angle(j1, j2, off):
+def coupler_point(j0, phi, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
+    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
+    phi_the, phi_dthe, phi_ddthe = phi
+    cp, sp = cos_sin(phi_the)
+    rx = gsi * cp - eta * sp
+    ry = gsi * sp + eta * cp
+    rvx = -phi_dthe * ry
+    rvy = phi_dthe * rx
+    _t1 = phi_dthe * phi_dthe
+    rax = -phi_ddthe * ry - _t1 * rx
+    ray = phi_ddthe * rx - _t1 * ry
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+    return _st, _sigma, _jc
+
+def link_angle_still_j1(j1, j2, off):
     """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j1_x, j1_y, _, _, _, _ = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
-    dvx = j2_dx - j1_dx
-    dvy = j2_dy - j1_dy
-    dax = j2_ddx - j1_ddx
-    day = j2_ddy - j1_ddy
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
     r2 = dx * dx + dy * dy
     th0 = np.arctan2(dy, dx) + off
     _t1 = r2 == 0
@@ -186,37 +203,20 @@ def link_angle(j1, j2, off):
     else:
         _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     _angle = (_f1, om, al)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def coupler_point(j0, phi, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
-    phi_the, phi_dthe, phi_ddthe = phi
-    cp, sp = cos_sin(phi_the)
-    rx = gsi * cp - eta * sp
-    ry = gsi * sp + eta * cp
-    rvx = -phi_dthe * ry
-    rvy = phi_dthe * rx
-    _t1 = phi_dthe * phi_dthe
-    rax = -phi_ddthe * ry - _t1 * rx
-    ray = phi_ddthe * rx - _t1 * ry
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
-    return _st, _sigma, _jc
-
-def RPR_links(jg, js, ag, bg, as_, bs, minv):
+def RPR_links_still_jg(jg, js, ag, bg, as_, bs, minv):
     """RPR chain: a guide link turning about jg and a slider link turning about js slide along one line; (ag, bg) and (as, bs) are the pair's reference point seen from jg and js in the line's frame.  Gives the line angle psi, the displacement s and the pair's slider point jp."""
-    jg_x, jg_y, jg_dx, jg_dy, jg_ddx, jg_ddy = jg
+    jg_x, jg_y, _, _, _, _ = jg
     js_x, js_y, js_dx, js_dy, js_ddx, js_ddy = js
     dx = js_x - jg_x
     dy = js_y - jg_y
-    dvx = js_dx - jg_dx
-    dvy = js_dy - jg_dy
-    dax = js_ddx - jg_ddx
-    day = js_ddy - jg_ddy
+    dvx = js_dx
+    dvy = js_dy
+    dax = js_ddx
+    day = js_ddy
     hh = bg - bs
     q = np.sqrt(dx * dx + dy * dy)
     ah = np.abs(hh)
@@ -299,7 +299,7 @@ def RPR_links(jg, js, ag, bg, as_, bs, minv):
     _psi = (th, om, al)
     _s = (sv, ds, dds)
     _jp = (js_x + rx, js_y + ry, js_dx + rvx, js_dy + rvy, js_ddx + rax, js_ddy + ray)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _psi = (np.where(_fails, np.nan, _psi[0]), np.where(_singular, np.nan, _psi[1]), np.where(_singular, np.nan, _psi[2]))
         _s = (np.where(_fails, np.nan, _s[0]), np.where(_singular, np.nan, _s[1]), np.where(_singular, np.nan, _s[2]))
         _jp = (np.where(_fails, np.nan, _jp[0]), np.where(_fails, np.nan, _jp[1]), np.where(_singular, np.nan, _jp[2]), np.where(_singular, np.nan, _jp[3]), np.where(_singular, np.nan, _jp[4]), np.where(_singular, np.nan, _jp[5]))
@@ -378,13 +378,15 @@ def refused(columns, m):
     bad = False
     for col in columns[: m.reads]:
         for x in col:
-            bad = bad | ~(np.abs(x) <= m.max_input)
+            fine = np.abs(x) <= m.max_input
+            if not fine.all():
+                bad = bad | ~fine
     return bad
 
 
 def block(x, s, e):
     """Rows s to e of a flattened column (a number is the same on every row)."""
-    return x if np.ndim(x) == 0 else x[s:e]
+    return x[s:e] if isinstance(x, np.ndarray) else x
 
 
 def filled(out, shape, order, m, ones=True):
@@ -522,12 +524,12 @@ def _run(x, dx, ddx, c):
     # Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A
     _, _, w.p_A = crank_input(w.p_O1, c["step2.l"], w.in1, w.ref_O1)
     # Step 3: RPR_links, S (branch +1). the guide lever turns about the known O2 and the slider block about the known A, sliding along one line at S: an RPR two-link chain with both ends known
-    st, sigma[3], w.psi_S, w.s_S, w.p_S = RPR_links(w.p_O2, w.p_A, c["step3.ag"], c["step3.bg"], c["step3.as"], c["step3.bs"], 1)
+    st, sigma[3], w.psi_S, w.s_S, w.p_S = RPR_links_still_jg(w.p_O2, w.p_A, c["step3.ag"], c["step3.bg"], c["step3.as"], c["step3.bs"], 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: coupler_point, P. point P of link lever
     _, _, w.p_P = coupler_point(w.p_O2, w.psi_S, c["step4.gsi"], c["step4.eta"])
     # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
-    st, _, w.phi_crank = link_angle(w.p_O1, w.p_A, c["step5.off"])
+    st, _, w.phi_crank = link_angle_still_j1(w.p_O1, w.p_A, c["step5.off"])
     report.append((st, ((1, 51),)))
     code = row_status(report)
     return w, code, sigma

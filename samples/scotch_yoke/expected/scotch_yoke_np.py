@@ -137,16 +137,38 @@ def crank_input(j1, l, theta, phi):
     _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _j2
 
-def link_angle(j1, j2, off):
+def offset_angle(phi, off):
+    """Angle of a link that keeps a constant angle off to a known angle phi."""
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(th0 > PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 <= -PI)
+        if not _c2.any():
+            _f1 = th0
+        elif _c2.all():
+            _f1 = th0 + 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 + 2 * PI, th0)
+    elif _c1.all():
+        _f1 = th0 - 2 * PI
+    else:
+        _f1 = np.where(_c1, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    _angle = (_f1, phi_dthe, phi_ddthe)
+    return _st, _sigma, _angle
+
+def link_angle_still_j1(j1, j2, off):
     """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j1_x, j1_y, _, _, _, _ = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
-    dvx = j2_dx - j1_dx
-    dvy = j2_dy - j1_dy
-    dax = j2_ddx - j1_ddx
-    day = j2_ddy - j1_ddy
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
     r2 = dx * dx + dy * dy
     th0 = np.arctan2(dy, dx) + off
     _t1 = r2 == 0
@@ -185,36 +207,14 @@ def link_angle(j1, j2, off):
     else:
         _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     _angle = (_f1, om, al)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def offset_angle(phi, off):
-    """Angle of a link that keeps a constant angle off to a known angle phi."""
-    phi_the, phi_dthe, phi_ddthe = phi
-    th0 = phi_the + off
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _c1 = np.asarray(th0 > PI)
-    if not _c1.any():
-        _c2 = np.asarray(th0 <= -PI)
-        if not _c2.any():
-            _f1 = th0
-        elif _c2.all():
-            _f1 = th0 + 2 * PI
-        else:
-            _f1 = np.where(_c2, th0 + 2 * PI, th0)
-    elif _c1.all():
-        _f1 = th0 - 2 * PI
-    else:
-        _f1 = np.where(_c1, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
-    _angle = (_f1, phi_dthe, phi_ddthe)
-    return _st, _sigma, _angle
-
-def PPR_links(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
+def PPR_links_still_pg(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
     """PPR chain: link b slides on the guide line (pg, psig) and shares a second prismatic pair, of axis psig + cx, with link a turning about jr.  (xa, ya): the pair's reference point on a from jr; (xb, yb): on b from b's slider point; both in the guide's frame.  sgn is +1 when a is the slider of the second pair.  Gives s1, jp1 on the guide and sx, jpx of the second pair."""
     jr_x, jr_y, jr_dx, jr_dy, jr_ddx, jr_ddy = jr
-    pg_x, pg_y, pg_dx, pg_dy, pg_ddx, pg_ddy = pg
+    pg_x, pg_y, _, _, _, _ = pg
     psig_the, psig_dthe, psig_ddthe = psig
     cg = np.cos(psig_the)
     sg = np.sin(psig_the)
@@ -262,33 +262,33 @@ def PPR_links(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
     _t8 = jr_dx + ravx
     _t9 = sv1 * psig_dthe
     _t10 = _t9 * sg
-    k1x = _t8 - pg_dx - rbvx + _t10
+    k1x = _t8 - rbvx + _t10
     _t11 = jr_dy + ravy
     _t12 = _t9 * cg
-    k1y = _t11 - pg_dy - rbvy - _t12
+    k1y = _t11 - rbvy - _t12
     ds1 = (k1x * sax - k1y * cax + psig_dthe * mu) * icr
     _t13 = ds1 * cg
     mvx = k1x - _t13
     _t14 = ds1 * sg
     mvy = k1y - _t14
     mvu = mvx * cax + mvy * sax
-    jp1vx = pg_dx + _t13 - _t10
-    jp1vy = pg_dy + _t14 + _t12
+    jp1vx = 0.0 + _t13 - _t10
+    jp1vy = 0.0 + _t14 + _t12
     tn = 2 * ds1 * psig_dthe + sv1 * psig_ddthe
     tu = _t9 * psig_dthe
     _t15 = jr_ddx + raax
     _t16 = tn * sg
     _t17 = tu * cg
-    k2x = _t15 - pg_ddx - rbax + _t16 + _t17
+    k2x = _t15 - rbax + _t16 + _t17
     _t18 = jr_ddy + raay
     _t19 = tn * cg
     _t20 = tu * sg
-    k2y = _t18 - pg_ddy - rbay - _t19 + _t20
+    k2y = _t18 - rbay - _t19 + _t20
     dds1 = (k2x * sax - k2y * cax + 2 * psig_dthe * mvu + psig_ddthe * mu) * icr
     _t21 = dds1 * cg
-    jp1ax = pg_ddx + _t21 - _t16 - _t17
+    jp1ax = 0.0 + _t21 - _t16 - _t17
     _t22 = dds1 * sg
-    jp1ay = pg_ddy + _t22 + _t19 - _t20
+    jp1ay = 0.0 + _t22 + _t19 - _t20
     _c2 = np.asarray(_t2)
     if not _c2.any():
         _c3 = np.asarray(sigma < 1e-07)
@@ -360,7 +360,7 @@ def PPR_links(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
     _jp1 = (jp1x, jp1y, jp1vx, jp1vy, jp1ax, jp1ay)
     _sx = (sgn * mu, sgn * mvu, sgn * ((k2x - _t21) * cax + (k2y - _t22) * sax + psig_dthe * (cax * mvy - sax * mvx)))
     _jpx = (_f13, _f14, _f15, _f16, _f17, _f18)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _s1 = (np.where(_fails, np.nan, _s1[0]), np.where(_singular, np.nan, _s1[1]), np.where(_singular, np.nan, _s1[2]))
         _jp1 = (np.where(_fails, np.nan, _jp1[0]), np.where(_fails, np.nan, _jp1[1]), np.where(_singular, np.nan, _jp1[2]), np.where(_singular, np.nan, _jp1[3]), np.where(_singular, np.nan, _jp1[4]), np.where(_singular, np.nan, _jp1[5]))
         _sx = (np.where(_fails, np.nan, _sx[0]), np.where(_singular, np.nan, _sx[1]), np.where(_singular, np.nan, _sx[2]))
@@ -440,13 +440,15 @@ def refused(columns, m):
     bad = False
     for col in columns[: m.reads]:
         for x in col:
-            bad = bad | ~(np.abs(x) <= m.max_input)
+            fine = np.abs(x) <= m.max_input
+            if not fine.all():
+                bad = bad | ~fine
     return bad
 
 
 def block(x, s, e):
     """Rows s to e of a flattened column (a number is the same on every row)."""
-    return x if np.ndim(x) == 0 else x[s:e]
+    return x[s:e] if isinstance(x, np.ndarray) else x
 
 
 def filled(out, shape, order, m, ones=True):
@@ -586,10 +588,10 @@ def _run(x, dx, ddx, c):
     # Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
     _, _, w.p_A = crank_input(w.p_O, c["step2.l"], w.in1, w.ref_O)
     # Step 3: PPR_links, P. the slider yoke rides on the known line Q and carries the slide P of block, which turns about the known A: a PPR two-link chain (one solution)
-    st, sigma[3], w.s_Q, w.p_Q, w.s_P, w.p_P = PPR_links(w.p_A, w.g_Q, w.psi_Q, c["step3.xa"], c["step3.ya"], c["step3.xb"], c["step3.yb"], c["step3.cx"], 1)
+    st, sigma[3], w.s_Q, w.p_Q, w.s_P, w.p_P = PPR_links_still_pg(w.p_A, w.g_Q, w.psi_Q, c["step3.xa"], c["step3.ya"], c["step3.xb"], c["step3.yb"], c["step3.cx"], 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
-    st, _, w.phi_crank = link_angle(w.p_O, w.p_A, c["step4.off"])
+    st, _, w.phi_crank = link_angle_still_j1(w.p_O, w.p_A, c["step4.off"])
     report.append((st, ((1, 41),)))
     # Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide
     _, _, w.phi_yoke = offset_angle(w.phi_frame, c["step5.off"])

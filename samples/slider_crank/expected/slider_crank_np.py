@@ -180,7 +180,7 @@ def link_angle(j1, j2, off):
     else:
         _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     _angle = (_f1, om, al)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
@@ -301,11 +301,63 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     _s = (sv, ds, dds)
     _jp = (jpx, jpy, jpvx, jpvy, jpax, jpay)
     _jb = (jbx, jby, jbvx, jbvy, jpax + rax, jpay + ray)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _s = (np.where(_fails, np.nan, _s[0]), np.where(_singular, np.nan, _s[1]), np.where(_singular, np.nan, _s[2]))
         _jp = (np.where(_fails, np.nan, _jp[0]), np.where(_fails, np.nan, _jp[1]), np.where(_singular, np.nan, _jp[2]), np.where(_singular, np.nan, _jp[3]), np.where(_singular, np.nan, _jp[4]), np.where(_singular, np.nan, _jp[5]))
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
     return _st, _sigma, _s, _jp, _jb
+
+def link_angle_still_j1(j1, j2, off):
+    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
+    j1_x, j1_y, _, _, _, _ = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
+    r2 = dx * dx + dy * dy
+    th0 = np.arctan2(dy, dx) + off
+    _t1 = r2 == 0
+    _c1 = np.asarray(_t1)
+    if not _c1.any():
+        ir2 = 1 / r2
+    elif _c1.all():
+        ir2 = NAN
+    else:
+        ir2 = np.where(_c1, NAN, 1 / r2)
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    _c2 = np.asarray(_t1)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
+    _c3 = np.asarray(th0 > PI)
+    if not _c3.any():
+        _c4 = np.asarray(th0 <= -PI)
+        if not _c4.any():
+            _f1 = th0
+        elif _c4.all():
+            _f1 = th0 + 2 * PI
+        else:
+            _f1 = np.where(_c4, th0 + 2 * PI, th0)
+    elif _c3.all():
+        _f1 = th0 - 2 * PI
+    else:
+        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    _angle = (_f1, om, al)
+    if _singular.any():  # nan where the rows failed
+        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
+    return _st, _sigma, _angle
 
 def cos_sin(t):
     """cos t and sin t from one tangent of the half angle, within an eps of the library's:
@@ -380,13 +432,15 @@ def refused(columns, m):
     bad = False
     for col in columns[: m.reads]:
         for x in col:
-            bad = bad | ~(np.abs(x) <= m.max_input)
+            fine = np.abs(x) <= m.max_input
+            if not fine.all():
+                bad = bad | ~fine
     return bad
 
 
 def block(x, s, e):
     """Rows s to e of a flattened column (a number is the same on every row)."""
-    return x if np.ndim(x) == 0 else x[s:e]
+    return x[s:e] if isinstance(x, np.ndarray) else x
 
 
 def filled(out, shape, order, m, ones=True):
@@ -530,7 +584,7 @@ def _run(x, dx, ddx, c):
     st, sigma[3], w.s_S, w.p_S, w.p_B = PRR_links(w.p_A, w.l_rod, w.g_S, w.psi_S, c["step3.gsi"], c["step3.eta"], 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
-    st, _, w.phi_crank = link_angle(w.p_O, w.p_A, c["step4.off"])
+    st, _, w.phi_crank = link_angle_still_j1(w.p_O, w.p_A, c["step4.off"])
     report.append((st, ((1, 41),)))
     # Step 5: link_angle, rod. A and B of link rod are known, so its angle is known
     st, _, w.phi_rod = link_angle(w.p_A, w.p_B, c["step5.off"])
