@@ -20,7 +20,8 @@
         stay), and the branches' change points stay the sketch's.
         out: a dict an earlier call returned for rows of the same shape and order, whose
         arrays this call fills instead of new ones (a loop over many calls saves the
-        first touch of fresh memory); the dict returned holds the same arrays.
+        first touch of fresh memory); the dict returned holds the same arrays.  Without
+        out the columns and "sigma" are views of one new array (a column kept keeps it).
     python jansen_foot_np.py
         writes the sweep over the inputs' ranges as CSV to standard output, as jansen_foot.py does.
 """
