@@ -207,6 +207,22 @@ def test_a_row_the_kernel_cannot_answer_is_refused_and_the_others_are_solved():
         c.name for c in log.columns[1:] if c.quantity in ("position", "angle")} | {"status", "sigma"}
 
 
+def test_one_row_and_no_rows_are_calls_like_the_others():
+    """A call of one row (every array of the call a number) keeps its conditioning and its
+    values as the same row of a sweep has them; a call of no rows gives empty arrays."""
+    log = build_log(str(FOURBAR))
+    module = kernel(log, 2)
+    values, rates, accs = input_rows(log, 7)
+    sweep = module.solve(values, rates, accs)
+    one = module.solve(values[3], rates[3], accs[3])
+    assert one["status"].shape == () and one["sigma"].shape == (log.steps[-1].number + 1,)
+    assert np.array_equal(one["sigma"], sweep["sigma"][:, 3]) and (one["sigma"][3] < 1.0)
+    for c in log.columns[1:]:
+        assert np.array_equal(one[c.name], sweep[c.name][3]), c.name
+    none = module.solve(values[:0], rates[:0], accs[:0])
+    assert none["B.x"].shape == none["status"].shape == (0,) and none["sigma"].shape[1:] == (0,)
+
+
 def test_a_call_fills_the_arrays_of_an_earlier_one():
     log = build_log(str(FOURBAR))
     module = kernel(log, 2)
