@@ -403,7 +403,7 @@ def filled(out, shape, order, m, ones=True):
     n = int(np.prod(shape))
     names = [name for name, level in zip(m.columns, m.levels) if level <= order]
     if out is None:
-        per = max(1, SHARED // (n * np.dtype(REAL).itemsize))  # columns an array
+        per = max(1, SHARED // max(1, n * np.dtype(REAL).itemsize))  # columns an array
         reals = [x for k in range(0, len(names), per) for x in np.empty((min(per, len(names) - k), n), dtype=REAL)]
         sigma = np.empty((m.n_steps + 1, n), dtype=REAL)
         if ones:
