@@ -702,8 +702,8 @@ def reason_of(code):
 BLOCK = 16384  # rows a block (measured: 20% faster than 4096, as fast as 32768)
 # A call's new columns are the rows of arrays of up to SHARED bytes: large enough for the
 # allocator's huge pages (a first touch once per 2 MB, not per 4 kB), small enough to come back
-# from the heap on the next call (measured on 51 and 110 columns of 1e5 and 1e6 rows: 1.1x to
-# 1.8x faster than an array a column, where one array for all was up to 4x slower above 64 MB).
+# from the heap on the next call (measured, CPU time, on 51 and 110 columns of 1e5 and 1e6 rows:
+# as fast as an array a column to 1.8x faster; one array for all, above 64 MB, 2x to 9x slower).
 SHARED = 32 * 2**20
 
 
