@@ -2,7 +2,8 @@
 
 Every link angle an output column reads becomes a direction record (a POINT record of role
 ``direction``: (cos, sin) of the angle and their rates).  Where the angle comes from two
-points of the link (``link_angle``, or ``offset_angle`` of such an angle), ``link_direction``
+points of the link (``link_angle``, ``crank_angle`` of a crank's two pairs, or ``offset_angle`` of such an
+angle), ``link_direction``
 takes the direction straight from the two points, turned by the sketch offset; an angle that
 a chain computes (the line of an RPR chain) is turned into its direction by
 ``angle_direction`` (cos and sin); a constant angle gives a constant direction.
@@ -50,6 +51,10 @@ def source(proc: Procedure, producer: dict[str, Step], name: str) -> Source:
         return Source("angle_direction", angle=name)
     if s.function == "link_angle":
         return Source("link_direction", (s.args[0].var, s.args[1].var), off=s.args[2].value, step=s)
+    if s.function == "crank_angle":  # from the crank's two pairs, as its link_angle would be
+        crank = next(c for c in producer.values() if c.function == "crank_input" and
+                     (c.args[2].var, c.args[3].var) == (s.args[0].var, s.args[1].var))
+        return Source("link_direction", (crank.args[0].var, crank.outputs[0]), off=s.args[2].value, step=s)
     if s.function == "offset_angle":
         base = source(proc, producer, s.args[0].var)
         if base.kind != "angle_direction":

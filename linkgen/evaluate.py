@@ -352,20 +352,28 @@ class RowSolver:
 
     def _state(self, env: Env, b: ResolverGroup, old: list[float]) -> tuple[list[float], list[float]]:
         """A block's state and its rates read off a solved configuration (the generated
-        _lengths_N): its Add-link lengths (link_residual against a zero length), the branches
-        of its chains (rate 0; a sign of zero keeps the old one), then its orientation (0)."""
+        _lengths_N): its Add-link lengths (link_residual against a zero length), the measures
+        whose signs are the branches of its chains with their rates (the predictor moves them,
+        so a chain passing its fold goes on on its other branch; a zero keeps the old one, rate
+        0), then its orientation (0)."""
         zero = (0.0,) * (self.width + 1)
         f = [self.call("link_residual", [env[self.pos[k]], env[self.pos[u]], zero])[2][0] for k, u in b.pairs]
-        n, signs = len(b.pairs), []
+        n, marks, turns = len(b.pairs), [], []
         for j, bs in enumerate(b.branches):
             q = [env[v] for v in bs.points]
             if bs.kind == "side":
                 m = (q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0])
+                dm = ((q[1][2] - q[0][2]) * (q[2][1] - q[0][1]) + (q[1][0] - q[0][0]) * (q[2][3] - q[0][3])
+                      - (q[1][3] - q[0][3]) * (q[2][0] - q[0][0]) - (q[1][1] - q[0][1]) * (q[2][2] - q[0][2]))
             else:
-                t = env[bs.angle][0]
-                m = (q[1][0] - q[0][0]) * math.cos(t) + (q[1][1] - q[0][1]) * math.sin(t)
-            signs.append(1.0 if m > 0 else -1.0 if m < 0 else old[n + j])
-        return [r[0] for r in f] + signs + [0.0], [r[1] for r in f] + [0.0] * (len(signs) + 1)
+                t, dt = env[bs.angle][0], env[bs.angle][1]
+                c, s = math.cos(t), math.sin(t)
+                m = (q[1][0] - q[0][0]) * c + (q[1][1] - q[0][1]) * s
+                dm = ((q[1][2] - q[0][2]) * c + (q[1][3] - q[0][3]) * s
+                      + ((q[1][1] - q[0][1]) * c - (q[1][0] - q[0][0]) * s) * dt)
+            marks.append(m if m != 0 else old[n + j])
+            turns.append(dm if m != 0 else 0.0)
+        return [r[0] for r in f] + marks + [0.0], [r[1] for r in f] + turns + [0.0]
 
 
 def _evaluate_rows(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarray, order: int, warm: Any,

@@ -15,7 +15,7 @@ import functools
 import linecache
 from collections import OrderedDict
 from dataclasses import replace
-from types import ModuleType
+from types import CodeType, ModuleType
 from typing import Any
 
 import numpy as np
@@ -24,7 +24,7 @@ from .backends import Backend
 from .backends.np import BACKEND, RUNTIME
 from .backends.program import LEVEL
 from .backends.py import BACKEND as PYTHON
-from .render import render_backend
+from .render import make_env, render_backend
 from .render.view import build_view
 from .steplog import StepLog
 
@@ -36,8 +36,23 @@ def _module(name: str, source: str) -> ModuleType:
     filename = f"<linkgen {name}>"
     linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
     module = ModuleType(name)
-    exec(compile(source, filename, "exec"), module.__dict__)
+    exec(compiled(source, filename), module.__dict__)
     return module
+
+
+def compiled(source: str, filename: str) -> CodeType:
+    """The code of a generated source, compiled once per user: kept in the templates' bytecode cache
+    (render.make_env's, in the temporary directory) under the text's own hash, since compiling a
+    kernel takes longer than executing it.  Where that cache cannot be written, compiled every time."""
+    env = make_env()
+    cache = env.bytecode_cache
+    if cache is None:
+        return compile(source, filename, "exec")
+    bucket = cache.get_bucket(env, f"linkgen code {filename}", cache.get_source_checksum(source), source)
+    if not isinstance(bucket.code, CodeType):
+        bucket.code = compile(source, filename, "exec")
+        cache.set_bucket(bucket)
+    return bucket.code
 
 
 @functools.lru_cache(maxsize=64)

@@ -5,7 +5,7 @@ header state.  The numbers they set reach the resolver through the log's policy.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import asdict, dataclass, replace
+from dataclasses import dataclass, fields, replace
 from types import SimpleNamespace
 
 from .policy import DEFAULT_REAL, POLICY, REAL_TYPES, Policy
@@ -69,8 +69,8 @@ def reference(options: Options) -> Options:
 def runtime_policy(policy: Policy, options: Options) -> SimpleNamespace:
     """The resolver policy as the runtime reads it (the programs' POLICY): the policy's numbers
     with the options' strategy, polish and predictor."""
-    return SimpleNamespace(**asdict(policy), strategy=options.strategy, polish=options.polish,
-                           predictor=options.predictor)
+    numbers = {f.name: getattr(policy, f.name) for f in fields(policy)}  # asdict's deep copy of numbers: 20x slower
+    return SimpleNamespace(**numbers, strategy=options.strategy, polish=options.polish, predictor=options.predictor)
 
 
 def describe(options: Options, resolver: Policy | None) -> str:

@@ -820,6 +820,20 @@ def offset_angle_case(src: Source) -> Case:
     return Case("offset_angle", args, {"phi": PH, "off": mp(off)}, out, math.pi, 1.0, math.nan)
 
 
+def crank_angle_case(src: Source) -> Case:
+    """An input angle (now and then many turns away) and a root angle, summed with an offset and wrapped."""
+    theta = src.angle() + 2 * math.pi * src.choice((0, 0, 0, 2, -7))
+    phi, off = src.angle(), src.angle()
+    w = _angular(src)
+    args = ((theta, w * src.real(-1, 1), w * w * src.real(-1, 1)), (phi, w * src.real(-1, 1), w * w * src.real(-1, 1)),
+            off)
+    TH, PH = _rec_jet(args[0]), _rec_jet(args[1])
+    total = TH + PH
+    out = {"angle": Jet(wrap(total.v + mp(off)), total.d, total.dd)}
+    return Case("crank_angle", args, {"theta": TH, "phi": PH, "off": mp(off)}, out, max(math.pi, abs(theta)), 1.0,
+                math.nan)
+
+
 def link_residual_case(src: Source) -> Case:
     s = src.scale()
     j1 = src.point(s)
@@ -862,6 +876,7 @@ CHAINS = {
     "crank_input": crank_input_case,
     "slider_input": slider_input_case,
     "offset_angle": offset_angle_case,
+    "crank_angle": crank_angle_case,
     "link_residual": link_residual_case,
 }
 CHAINS = {name: _checked(make) for name, make in CHAINS.items()}
@@ -970,6 +985,8 @@ def residuals(case: Case, outs: dict) -> list:
         return [u[0] - MP.cos(phi), u[1] - MP.sin(phi)]
     if n == "offset_angle":
         return [wrap(sc("angle") - _val(v, "phi") - v["off"])]
+    if n == "crank_angle":
+        return [wrap(sc("angle") - _val(v, "theta") - _val(v, "phi") - v["off"])]
     if n == "link_residual":
         return [sc("f") - (vnorm(vsub(_p(v, "j2"), _p(v, "j1"))) - _val(v, "l"))]
     raise KeyError(n)

@@ -444,9 +444,10 @@ def test_a_wrong_centre_name_is_an_error(tmp_path, outputs, message):
 
 
 def test_pruned_build_computes_only_what_the_centre_needs():
-    """ic:frame:crank needs O1, A and the crank's angle only: the coupler and rocker steps are left out."""
+    """ic:frame:crank needs the crank's angle only (the input's: crank_angle, not A's place): the crank_input,
+    coupler and rocker steps are left out."""
     log = build_log(str(mech("fourbar")), outputs=("ic:frame:crank",), order=1, sweep=False)
-    assert [s.function for s in log.steps] == ["", "crank_input", "link_angle", "instant_centre"]
+    assert [s.function for s in log.steps] == ["", "crank_angle", "instant_centre"]
 
 
 def test_linkgen_ic_prints_the_table_and_json():

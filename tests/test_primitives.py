@@ -270,6 +270,18 @@ def sample_offset_angle(r: Draw, branch: int):
     return Sample({"phi": phi, "off": off}, {"angle": Jet(wrap(phi.v + off), phi.d, phi.dd)})
 
 
+def sample_crank_angle(r: Draw, branch: int):
+    """An input angle theta and a root angle phi (theta some whole turns away, now and then: the atan2 wrap)."""
+    theta, phi = r.angle(), r.angle()
+    turns = r.rng.choice((0, 0, 0, 3, -5))
+    theta = Jet(theta.v + turns * 2 * _lib(theta.v).pi, theta.d, theta.dd)
+    total = theta + phi
+    off = _offset(r, Jet(wrap(total.v)))
+    if off is None:
+        return None
+    return Sample({"theta": theta, "phi": phi, "off": off}, {"angle": Jet(wrap(total.v + off), total.d, total.dd)})
+
+
 def sample_link_direction(r: Draw, branch: int):
     """A link turning through phi + off (any angle: a direction needs no wrap), seen from two of its points."""
     j1, rad, phi, off = r.point(), r.variable(0.2, 2), r.angle(), r.num(-3.1, 3.1)
@@ -363,6 +375,7 @@ SAMPLERS: dict[str, Callable] = {
     "slider_input": sample_slider_input,
     "link_angle": sample_link_angle,
     "offset_angle": sample_offset_angle,
+    "crank_angle": sample_crank_angle,
     "coupler_point": sample_coupler_point,
     "link_point": sample_link_point,
     "RRR_links": sample_rrr,
@@ -565,9 +578,10 @@ def constraints(name: str, v: dict, f: dict) -> tuple[list, list]:
         jp, jc = _pt(f, "jp"), _pt(f, "jc")
         res = [_cross(_sub(jp, p("pg")), u), _dot(_sub(jp, p("pg")), u) - v["s_v"]]
         return res + [_dot(_sub(jc, jp), u) - v["gsi"], _cross(u, _sub(jc, jp)) - v["eta"]], []
-    if name in ("link_angle", "offset_angle"):
+    if name in ("link_angle", "offset_angle", "crank_angle"):
         th = f[("angle", "the")]
-        base = v["phi_the"] if name == "offset_angle" else mpmath.atan2(*reversed(_sub(p("j2"), p("j1"))))
+        base = v["phi_the"] if name == "offset_angle" else v["theta_the"] + v["phi_the"] if name == "crank_angle" \
+            else mpmath.atan2(*reversed(_sub(p("j2"), p("j1"))))
         diff = th - base - v["off"]
         return [mpmath.sin(diff), 1 - mpmath.cos(diff)], [-mpmath.pi < th <= mpmath.pi]
     if name == "link_residual":
@@ -651,12 +665,14 @@ def test_samples_cover_every_sorting_of_the_3r_triangle():
 
 def test_samples_cover_both_wraps_of_the_angles():
     """phi + off leaves (-pi, pi] on both sides in the angle samples, so the wrap is exercised."""
-    for name in ("link_angle", "offset_angle"):
+    for name in ("link_angle", "offset_angle", "crank_angle"):
         sums = []
         for smp in samples(name, 1):
             v = smp.values()
             if name == "offset_angle":
                 base = v["phi_the"]
+            elif name == "crank_angle":
+                base = v["theta_the"] + v["phi_the"]
             else:
                 base = mpmath.atan2(v["j2_y"] - v["j1_y"], v["j2_x"] - v["j1_x"])
             sums.append(base + v["off"])
@@ -804,8 +820,9 @@ def _flat(outs) -> list[float]:
 
 # numpy's arctan2 is its own (vectorised) implementation, not the platform's libm: the
 # angles it gives may differ from math.atan2 in the last bits.  Everything else is the
-# same arithmetic in the same order, so it must give the same bits.
-ATAN2_FIELDS = {("link_angle", "angle", "the"), ("RPR_links", "psi", "the")}
+# same arithmetic in the same order, so it must give the same bits (crank_angle: its atan2(sin, cos)
+# of an input many turns away).
+ATAN2_FIELDS = {("link_angle", "angle", "the"), ("RPR_links", "psi", "the"), ("crank_angle", "angle", "the")}
 ATAN2_ULPS = 4
 
 

@@ -288,7 +288,7 @@ def chain_cases(draw, name: str) -> sk.Case:
 CHAIN_EXAMPLES = {"RRR_links": 500, "PRR_links": 400, "RPR_links": 400, "PRP_links": 300, "PPR_links": 300,
                   "coupler_point": 150, "link_point": 150, "link_angle": 150, "link_direction": 100,
                   "angle_direction": 50, "crank_input": 100, "slider_input": 100,
-                  "offset_angle": 50, "link_residual": 100}
+                  "offset_angle": 50, "crank_angle": 50, "link_residual": 100}
 
 
 # Counterexamples found by the chain tests, as the numbers they drew (a failure's note prints them)

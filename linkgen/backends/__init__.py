@@ -61,8 +61,14 @@ class Runtime:
 
     def source(self, name: str) -> str:
         """The source ``name`` (status, branch, reach, resolver, driver)."""
-        path = resources.files(self.package).joinpath(self.folder).joinpath(name + self.suffix)
-        return path.read_text(encoding="utf-8")
+        return _packaged_text(self.package, self.folder, name + self.suffix)
+
+
+@functools.cache
+def _packaged_text(package: str, folder: str, name: str) -> str:
+    """A file shipped in a package's folder, read once per process (a build pastes each runtime source
+    into several programs and kernels)."""
+    return resources.files(package).joinpath(folder).joinpath(name).read_text(encoding="utf-8")
 
 
 @dataclass(frozen=True)

@@ -125,6 +125,20 @@ class Spelling:
         t = self.angle(b.angle)
         return f"({p[1][0]} - {p[0][0]}) * cos({t}) + ({p[1][1]} - {p[0][1]}) * sin({t})"
 
+    def sign_rate(self, b: BranchSign) -> str:
+        """The rate of sign_measure: a block's state holds the measure and this rate, so the
+        predictor moves it along and the chain's branch flips where it passes zero (a chain
+        passing its fold, where its two links are in line, goes on on its other branch)."""
+        p = [self.xy(v) for v in b.points]
+        d = [(self.get(v, "dx"), self.get(v, "dy")) for v in b.points]
+        if b.kind == "side":
+            return (f"({d[1][0]} - {d[0][0]}) * ({p[2][1]} - {p[0][1]}) + ({p[1][0]} - {p[0][0]}) * "
+                    f"({d[2][1]} - {d[0][1]}) - ({d[1][1]} - {d[0][1]}) * ({p[2][0]} - {p[0][0]}) - "
+                    f"({p[1][1]} - {p[0][1]}) * ({d[2][0]} - {d[0][0]})")
+        t, dt = self.angle(b.angle), self.get(b.angle, "dthe")
+        return (f"({d[1][0]} - {d[0][0]}) * cos({t}) + ({d[1][1]} - {d[0][1]}) * sin({t}) + "
+                f"(({p[1][1]} - {p[0][1]}) * cos({t}) - ({p[1][0]} - {p[0][0]}) * sin({t})) * {dt}")
+
     def published(self, c: Column) -> str:
         """What a program writes into an output column: a constant record's field as drawn,
         a computed point's x and y with the origin added back, any other field as computed."""

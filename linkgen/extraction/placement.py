@@ -7,7 +7,7 @@ import math
 from .. import exact
 from ..model import Input
 from ..policy import GOOD_LEVER
-from ..steplog import Arg
+from ..steplog import Arg, Step
 from ..topology import wrap_angle
 from .emit import emit
 from .state import Workspace
@@ -26,6 +26,9 @@ def frame(ws: Workspace, link: str) -> str:
     if link in ws.coupled:
         ws.orient[link] = frame(ws, ws.coupled[link])
         return ws.orient[link]
+    crank = _crank_step(ws, link)
+    if crank is not None:
+        return _crank_angle(ws, link, crank)
     tied = ws.tied[link]
     d = ws.topo.direction(link)
     origin, target = ws.named(d.origin, link), ws.named(d.target, link) if d.target else ""
@@ -40,6 +43,30 @@ def frame(ws: Workspace, link: str) -> str:
     emit(ws, "angle", "link_angle", [Arg("var", ws.pos[a]), Arg("var", ws.pos[b]), Arg("real", value=off, label="off")],
          [var], link, pairs=(a, b), links=(link,), fails=True,
          reason=f"{a} and {b} of link {link} are known, so its angle is known")
+    ws.orient[link] = var
+    ws.angles[link] = var
+    return var
+
+
+def _crank_step(ws: Workspace, link: str) -> Step | None:
+    """The crank_input step that turns ``link`` by an input, outside a resolver group (None elsewhere)."""
+    if ws.group:
+        return None
+    return next((s for s in ws.steps if s.function == "crank_input" and s.links[0] == link), None)
+
+
+def _crank_angle(ws: Workspace, link: str, crank: Step) -> str:
+    """The angle of a link an input turns: the input angle plus its reference plus the offset from the
+    crank's direction (its pair to the pair it places) to the link's (crank_angle: no atan2)."""
+    joint, placed = crank.args[0].var, crank.outputs[0]
+    (xa, ya), (xb, yb) = (ws.variables[n].sketch[:2] for n in (joint, placed))
+    d = ws.topo.direction(link)
+    off = wrap_angle(d.angle - exact.atan2(yb - ya, xb - xa))
+    theta, phi = crank.args[2].var, crank.args[3].var
+    var = ws.new_var(f"phi_{link}", "ANGLE", "link", link, sketch=(wrap_angle(d.angle),))
+    emit(ws, "angle", "crank_angle", [Arg("var", theta), Arg("var", phi), Arg("real", value=off, label="off")],
+         [var], link, pairs=(ws.variables[joint].entity, ws.variables[placed].entity), links=(link,),
+         reason=f"the input {ws.variables[theta].entity} turns link {link}, so its angle is the input's")
     ws.orient[link] = var
     ws.angles[link] = var
     return var

@@ -22,9 +22,11 @@ RuntimeFunction = Callable[..., tuple[Any, ...]]
 
 def _compile(source: str, filename: str, namespace: dict[str, Any]) -> dict[str, Any]:
     """Exec generated source under a fake file name so tracebacks show it (the namespace is
-    exec's globals: it holds whatever the source defines)."""
+    exec's globals: it holds whatever the source defines); its code compiled once per user (kernel.compiled)."""
+    from ..kernel import compiled  # the kernel renders through the backends, which import this package
+
     linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
-    exec(compile(source, filename, "exec"), namespace)
+    exec(compiled(source, filename), namespace)
     return namespace
 
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from typing import TypeVar
 
 from ..status import CANNOT_CLOSE
 
@@ -41,6 +42,7 @@ def field_order(kind: str, name: str) -> int:
     raise KeyError(f"{kind} has no field {name}")
 
 
+_T = TypeVar("_T")
 Operator = Callable[["Expr", object], "Expr"]
 
 
@@ -296,6 +298,21 @@ class Primitive:
 
     def live(self, order: int, with_sigma: bool = True) -> tuple[Let, ...]:
         """The assignments needed for the outputs up to ``order`` (dead code dropped)."""
+        return self._memo("live", order, with_sigma, self._live)
+
+    def params_used(self, order: int, with_sigma: bool = True) -> set[str]:
+        """Parameter fields (``j1_x``) and scalars read at ``order``."""
+        return set(self._memo("used", order, with_sigma, self._params_used))
+
+    def _memo(self, what: str, order: int, with_sigma: bool, compute: Callable[[int, bool], _T]) -> _T:
+        """A walk of the body computed once per primitive (the printers ask for it per call they print)."""
+        memo = self.__dict__.setdefault("_walks", {})  # not a field: replace() and == ignore it
+        key = (what, order, with_sigma)
+        if key not in memo:
+            memo[key] = compute(order, with_sigma)
+        return memo[key]  # type: ignore[no-any-return]
+
+    def _live(self, order: int, with_sigma: bool) -> tuple[Let, ...]:
         roots = [e for _, _, e in self.result_fields(order)]
         roots += [e for e in (self.status, self.sigma if with_sigma else None) if e is not None]
         needed: set[str] = set()
@@ -308,15 +325,14 @@ class Primitive:
                 needed |= symbols(let.expr)
         return tuple(reversed(kept))
 
-    def params_used(self, order: int, with_sigma: bool = True) -> set[str]:
-        """Parameter fields (``j1_x``) and scalars read at ``order``."""
+    def _params_used(self, order: int, with_sigma: bool) -> frozenset[str]:
         used: set[str] = set()
         for let in self.live(order, with_sigma):
             used |= symbols(let.expr)
         for e in [e for _, _, e in self.result_fields(order)] + [self.status, self.sigma if with_sigma else None]:
             if e is not None:
                 used |= symbols(e)
-        return used - {let.name for let in self.body}
+        return frozenset(used - {let.name for let in self.body})
 
 
 class Builder:

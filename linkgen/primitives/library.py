@@ -16,7 +16,7 @@ from __future__ import annotations
 from .. import status
 from .centres import instant_centre
 from .directions import angle_direction, link_direction
-from .dsl import NAN, Primitive, atan2, select, sqrt
+from .dsl import NAN, PI, Primitive, atan2, cos, fabs, select, sin, sqrt
 from .dyads import PPR_links, PRP_links, PRR_links, RPR_links, RRR_links
 from .vectors import Motion, PlaneBuilder, primitive
 
@@ -98,6 +98,21 @@ def link_angle(b: PlaneBuilder) -> Primitive:
 
 
 @primitive
+def crank_angle(b: PlaneBuilder) -> Primitive:
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi
+    plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their
+    rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by
+    atan2 of its sine and cosine."""
+    theta, phi = b.record("theta", "ANGLE"), b.record("phi", "ANGLE")
+    off = b.scalar("off")
+    raw = b.let("th0", theta.the + phi.the + off)
+    near = select(raw > PI, raw - 2 * PI, select(raw <= -PI, raw + 2 * PI, raw))
+    th = b.let("th", select(fabs(raw) >= 3 * PI, atan2(sin(raw), cos(raw)), near))
+    b.output("angle", "ANGLE", the=th, dthe=theta.dthe + phi.dthe, ddthe=theta.ddthe + phi.ddthe)
+    return b.build()
+
+
+@primitive
 def offset_angle(b: PlaneBuilder) -> Primitive:
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi = b.record("phi", "ANGLE")
@@ -134,6 +149,7 @@ PRIMITIVES: dict[str, Primitive] = {
         crank_input,
         slider_input,
         link_angle,
+        crank_angle,
         offset_angle,
         coupler_point,
         link_point,

@@ -264,6 +264,9 @@ def _travels(log: StepLog, result: Result, lam: Array, units: _Units) -> tuple[T
             continue
         high_at, high = _extreme(log, result, lam, kh, c.variable, float(x[kh]), float(u[kh]), angle, -1.0)
         low_at, low = _extreme(log, result, lam, kl, c.variable, float(x[kl]), float(u[kl]), angle, 1.0)
+        if angle:  # the unwrapped sweep may start a turn away: the swing's middle in (-pi, pi]
+            turns = TURN * math.ceil((low + high) / 2 / TURN - 0.5)
+            low, high = low - turns, high - turns
         scale = units.angle if angle else (lambda t: t)
         out.append(Travel(c.name, "angle" if angle else "slide", ("deg" if units.deg else "rad") if angle
                           else log.length_unit, scale(low), scale(high), units.at(_folded(log, low_at)),

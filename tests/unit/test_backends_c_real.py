@@ -39,3 +39,11 @@ def test_the_header_defines_the_real_type_after_its_guard(real: str):
     lines = text.splitlines()
     assert lines[:2] == ["#ifndef M_H", "#define M_H"] and f"typedef {real} m_real;" in lines
     assert lines.index(f"typedef {real} m_real;") < lines.index("int x;")
+
+
+def test_float_calls_its_own_atan2_in_code_only():
+    code = "#include <math.h>\n/* atan2(y, x) */\nstatic double f(double y, double x) { return atan2(y, x); }\n"
+    out = retype(code, "float", "m")
+    assert "/* atan2(y, x) */" in out and "return atan2_real(y, x);" in out
+    assert out.index("static m_real atan2_real(m_real y, m_real x)") < out.index("static m_real f(")
+    assert "atan2_real" not in retype(code, "long double", "m") and retype(code, "double", "m") == code

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import sys
 from importlib import resources
 
 import pytest
@@ -37,9 +38,9 @@ def run_one(step, env: dict, order: int) -> tuple:
     return python_backend(order)[step.function](*args)
 
 
-def program(name: str) -> str:
+def program(name: str, spell: Python | None = None) -> str:
     v = view(name)
-    spell = Python(v)
+    spell = spell or Python(v)
     lines = [f"{c.name} = {spell.initializer(c)}" for c in v.constants]
     lines.append("def run(w, inputs, d_inputs, dd_inputs):")
     lines += [f"    {spell.input_record(var, k)}" for k, var in enumerate(v.inputs)]
@@ -48,10 +49,16 @@ def program(name: str) -> str:
     return "\n".join(lines) + "\n"
 
 
+def namespace(order: int) -> dict:
+    """What NAME.py gives its steps: the runtime functions and the math they inline."""
+    return {**python_backend(order), "sqrt": math.sqrt, "atan2": math.atan2, "cos": math.cos, "sin": math.sin,
+            "floor": math.floor, "EPS": sys.float_info.epsilon, "NAN": math.nan, "PI": math.pi}
+
+
 @pytest.mark.parametrize("name", NAMES)
 def test_the_spelled_procedure_computes_every_record(name: str):
     v = view(name)
-    space = dict(python_backend(v.record_order))
+    space = namespace(v.record_order)
     exec(program(name), space)
     w = Work(v.last_step)
     assert space["run"](w, *row(v)) == 0
@@ -73,12 +80,13 @@ def test_the_spelled_procedure_computes_every_record(name: str):
 
 def test_a_chain_that_cannot_close_ends_the_row_with_its_steps_code():
     v = view("fourbar")
-    space = dict(python_backend(v.record_order))
-    exec(program("fourbar"), space)
-    w = Work(v.last_step)
+    space = namespace(v.record_order)
     chain = next(s for s in v.run if s.function == "RRR_links")
     grounded = next(c for c in v.constants if c.role == "pair" and any(a.var == c.name for a in chain.args))
-    space[grounded.name] = (1e6, 1e6, 0.0, 0.0, 0.0, 0.0)  # the chain's known pair far away: it cannot close
+    spell = Python(v)  # the chain's known pair far away (the inlined call reads its literals): it cannot close
+    spell.variables[grounded.name] = dataclasses.replace(grounded, value=(1e6, 1e6))
+    exec(program("fourbar", spell), space)
+    w = Work(v.last_step)
     assert space["run"](w, *row(v)) == status.code(chain.number, status.CANNOT_CLOSE)
 
 
@@ -87,9 +95,10 @@ def test_records_are_tuples_of_the_programs_order():
     spell = Python(v)
     assert v.record_order == 1 and spell.member("POINT", "dy") == "[3]" and spell.member("ANGLE", "dthe") == "[1]"
     angle = next(var for var in v.inputs)
-    assert spell.input_record(angle, 0) == f"w.{angle.name} = (inputs[0], d_inputs[0])"
+    held = f"_{angle.name}_the, _{angle.name}_dthe = w.{angle.name}"  # _run's steps read the locals
+    assert spell.input_record(angle, 0) == f"{held} = (inputs[0], d_inputs[0])"
     order0 = Python(dataclasses.replace(v, record_order=0))
-    assert order0.input_record(angle, 0) == f"w.{angle.name} = (inputs[0],)"
+    assert order0.input_record(angle, 0) == f"_{angle.name}_the, = w.{angle.name} = (inputs[0],)"
     length = next(c for c in v.constants if c.kind == "VARIABLE")
     assert eval(order0.initializer(length)) == (length.value[0],)  # a one-field tuple keeps its comma
 

@@ -16,7 +16,7 @@ from linkgen.primitives.dsl import Primitive
 def test_the_library_lists_every_primitive_of_the_four_modules_once_by_its_name():
     defined = {p.name for module in (library, dyads, directions, centres) for p in vars(module).values()
                if isinstance(p, Primitive)}
-    assert set(library.PRIMITIVES) == defined and len(defined) == 15
+    assert set(library.PRIMITIVES) == defined and len(defined) == 16
     assert all(name == p.name for name, p in library.PRIMITIVES.items())
     # the placing functions first, then the chains, then the residual (the programs paste them in this order)
     order = list(library.PRIMITIVES)
@@ -59,6 +59,16 @@ def test_offset_angle_hand():
     assert got == approx((4.0 - 2 * PI, 1.0, 2.0))
     (got,) = py2("offset_angle", (PI, 0.0, 0.0), PI)[2]  # 2 pi wraps to 0
     assert got == approx((0.0, 0.0, 0.0))
+
+
+def test_crank_angle_hand():
+    """theta + phi + off wrapped, rates summed; many turns away wrapped all the same (atan2 of sin, cos)."""
+    (got,) = py2("crank_angle", (3.0, 1.0, 2.0), (0.5, 0.25, -1.0), 1.0)[2]
+    assert got == approx((4.5 - 2 * PI, 1.25, 1.0))
+    (got,) = py2("crank_angle", (-2.0, 0.0, 0.0), (-0.5, 0.0, 0.0), -1.0)[2]
+    assert got == approx((2 * PI - 3.5, 0.0, 0.0))
+    (got,) = py2("crank_angle", (0.3 + 40 * PI, 0.0, 0.0), (0.0, 0.0, 0.0), 0.0)[2]
+    assert abs(got[0] - 0.3) < 1e-13
 
 
 def test_crank_input_hand():

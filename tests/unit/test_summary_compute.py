@@ -183,3 +183,17 @@ def test_a_sweep_across_the_seam_gives_limits_and_swings_inside_it(tmp_path):
     assert [p.inputs[0] for p in s.positions] == pytest.approx([-limit, limit], abs=1e-9)
     crank = next(t for t in s.travels if t.name == "crank.phi")
     assert (crank.low, crank.high, crank.travel) == pytest.approx((-limit, limit, 2 * limit), abs=1e-7)
+
+
+@pytest.mark.parametrize("ground", [45.0, 60.0, 75.0, -150.0])
+def test_a_rocker_swing_is_stated_round_its_middle_within_a_half_turn(tmp_path, ground):
+    """The rocker's angles from the frame line, turned with the frame: the swing's ends are the
+    closed form's plus the ground angle (modulo a turn), stated with their middle in (-180, 180]
+    however the sweep's first row unwraps."""
+    a, b, c, d = 20.0, 78.0, 51.0, 90.0
+    s = _summary(four_bar(tmp_path, "turned", a, b, c, d, 40.0, ground=ground, samples=361))
+    rocker = next(r for r in s.travels if r.name == "rocker.phi")
+    ends = sorted([_toggle_rocker(a, b, c, d, b - a), _toggle_rocker(a, b, c, d, b + a)])
+    assert -180 < (rocker.low + rocker.high) / 2 <= 180
+    assert rocker.high - rocker.low == pytest.approx(ends[1] - ends[0], abs=1e-9)
+    assert _apart(rocker.low, ends[0] + ground) < 1e-9 and _apart(rocker.high, ends[1] + ground) < 1e-9

@@ -94,6 +94,10 @@ class Numpy(Python):
         """The expression whose sign is a chain's branch in a solved configuration (on arrays)."""
         return super().sign_measure(b).replace("cos(", "np.cos(").replace("sin(", "np.sin(")
 
+    def sign_rate(self, b: BranchSign) -> str:
+        """The rate of sign_measure (on arrays)."""
+        return super().sign_rate(b).replace("cos(", "np.cos(").replace("sin(", "np.sin(")
+
     @staticmethod
     def position_fields(v: Variable) -> int:
         """The fields of a record that hold its position (the rest are its rates)."""

@@ -3,8 +3,15 @@ generated programs and the evaluator's scalar runtime; the numpy twin is backend
 
 from __future__ import annotations
 
+import math
+import re
+import sys
+
+from ... import status
 from ...primitives.dsl import Param, Primitive, field_order, record_fields
 from ...primitives.printers import MASKS, ExprPrinter
+
+_LITERAL = re.compile(r"-?[0-9][0-9.e+-]*")  # a number as printers.literal writes it
 
 
 class PythonExprs(ExprPrinter):
@@ -13,6 +20,19 @@ class PythonExprs(ExprPrinter):
 
     def select(self, cond: str, a: str, b: str) -> str:
         return f"{a} if {cond} else {b}"
+
+
+class InlineExprs(PythonExprs):
+    """A primitive's expressions inside the calling function: its names with a leading underscore
+    (no template name has one), a scalar argument given as a literal in its place."""
+
+    consts = {**PythonExprs.consts, "eps": repr(sys.float_info.epsilon), "pi": repr(math.pi)}  # folded with literals
+
+    def __init__(self, literals: dict[str, str]):
+        self.literals = literals
+
+    def sym(self, name: str) -> str:
+        return self.literals.get(name, f"_{name}")
 
 
 def _field_names(p: Param, order: int) -> list[str]:
@@ -29,6 +49,46 @@ def parameter_lines(prim: Primitive, order: int) -> list[str]:
             if any(n != "_" for n in names):
                 lines.append(f"    {', '.join(names)}{',' if len(names) == 1 else ''} = {p.name}")
     return lines
+
+
+def inline_lines(prim: Primitive, order: int, args: list[str | list[str]], targets: list[str], sigma: str,
+                 failed: list[str]) -> list[str]:
+    """A call of a primitive as the caller's own statements (no call, no tuples but the output records).
+
+    A record argument is an expression (unpacked into locals) or the literals of its fields (a constant
+    record: read in place, as is a scalar given as a literal; another scalar is bound once); then the
+    body, ``st`` and the conditioning into ``sigma``, and each output record into its target (the fields
+    a failing status makes nan, nan), with the lines ``failed`` where the chain cannot close (st 1).
+    """
+    used = prim.params_used(order)
+    literals: dict[str, str] = {}
+    lines = []
+    for p, arg in zip(prim.params, args):
+        fields = _field_names(p, order) if p.is_record else [p.name]
+        if isinstance(arg, list) or _LITERAL.fullmatch(arg):
+            values = arg if isinstance(arg, list) else [arg]
+            literals.update((n, f"({x})" if x.startswith("-") else x) for n, x in zip(fields, values) if n in used)
+        elif p.is_record:
+            names = [f"_{n}" if n in used else "_" for n in fields]
+            if any(n != "_" for n in names):
+                lines.append(f"{', '.join(names)}{',' if len(names) == 1 else ''} = {arg}")
+        elif p.name in used:
+            lines.append(f"_{p.name} = {arg}")
+    exprs = InlineExprs(literals)
+    lines += [f"_{let.name} = {exprs.expr(let.expr)}" for let in prim.live(order)]
+    if prim.status is not None:
+        lines.append(f"st = {exprs.expr(prim.status)}")
+    if prim.sigma is not None:
+        lines.append(f"{sigma} = {exprs.expr(prim.sigma)}")
+    cases = [(code, nan_from) for code, nan_from in MASKS if nan_from <= order and code in prim.codes()]
+    full = [f"{t} = {v}" for t, v in zip(targets, _result_tuples(prim, order, exprs, None))]
+    if not cases:
+        return lines + full
+    for k, (code, nan_from) in enumerate(cases):
+        lines.append(f"{'el' if k else ''}if st == {code}:")
+        lines += [f"    {t} = {v}" for t, v in zip(targets, _result_tuples(prim, order, exprs, nan_from))]
+        lines += [f"    {line}" for line in failed if code == status.CANNOT_CLOSE]
+    return lines + ["else:"] + [f"    {line}" for line in full]
 
 
 def _result_tuples(prim: Primitive, order: int, exprs: ExprPrinter, nan_from: int | None) -> list[str]:

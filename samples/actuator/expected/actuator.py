@@ -98,6 +98,71 @@ COLUMNS = (
 )
 _OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
+_FIXED = {  # every output column: those of the fixed sketch with their values, the computed ones nan until _publish
+    "S0.x": -2000.0,
+    "S0.y": 300.0,
+    "S0.vx": 0.0,
+    "S0.vy": 0.0,
+    "S0.ax": 0.0,
+    "S0.ay": 0.0,
+    "C.x": NAN,
+    "C.y": NAN,
+    "C.vx": NAN,
+    "C.vy": NAN,
+    "C.ax": NAN,
+    "C.ay": NAN,
+    "K.x": NAN,
+    "K.y": NAN,
+    "K.vx": NAN,
+    "K.vy": NAN,
+    "K.ax": NAN,
+    "K.ay": NAN,
+    "R.x": -400.0,
+    "R.y": 0.0,
+    "R.vx": 0.0,
+    "R.vy": 0.0,
+    "R.ax": 0.0,
+    "R.ay": 0.0,
+    "M.x": NAN,
+    "M.y": NAN,
+    "M.vx": NAN,
+    "M.vy": NAN,
+    "M.ax": NAN,
+    "M.ay": NAN,
+    "Q.x": 0.0,
+    "Q.y": 0.0,
+    "Q.vx": 0.0,
+    "Q.vy": 0.0,
+    "Q.ax": 0.0,
+    "Q.ay": 0.0,
+    "tip.x": NAN,
+    "tip.y": NAN,
+    "tip.vx": NAN,
+    "tip.vy": NAN,
+    "tip.ax": NAN,
+    "tip.ay": NAN,
+    "stick.phi": -0.18534794999569476,
+    "stick.omega": 0.0,
+    "stick.alpha": 0.0,
+    "barrel.phi": NAN,
+    "barrel.omega": NAN,
+    "barrel.alpha": NAN,
+    "rod.phi": NAN,
+    "rod.omega": NAN,
+    "rod.alpha": NAN,
+    "side_link.phi": NAN,
+    "side_link.omega": NAN,
+    "side_link.alpha": NAN,
+    "power_link.phi": NAN,
+    "power_link.omega": NAN,
+    "power_link.alpha": NAN,
+    "bucket.phi": NAN,
+    "bucket.omega": NAN,
+    "bucket.alpha": NAN,
+    "C.s": NAN,
+    "C.ds": NAN,
+    "C.dds": NAN,
+}
 
 
 # -- the mech.cpp functions this procedure uses -------------------------------
@@ -292,55 +357,275 @@ def _run(w, inputs, d_inputs, dd_inputs):
     """The procedure of actuator.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in1_v, _in1_dv, _in1_ddv = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
     # Step 1: fixed, stick. link stick is the frame: its pairs are fixed
 
     # Step 2: RRR_links, K (branch -1). K is joined to the known R by side_link and to the known S0 by d_S0_K: a 3R two-link chain with both ends known
-    st, w.sigma[2], w.p_K = RRR_links(p_R, p_S0, l_side_link, w.in1, -1)
+    # RRR_links(p_R, p_S0, l_side_link, w.in1, -1), inline
+    _dx = (-1360.0) - 240.0
+    _dy = 556.0 - 256.0
+    _q = sqrt(_dx * _dx + _dy * _dy)
+    _iq = NAN if _q == 0 else 1 / _q
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hi = (_in1_v if _in1_v > 565.685424949238 else 565.685424949238)
+    _lo = (_in1_v if _in1_v < 565.685424949238 else 565.685424949238)
+    _x = (_q if _q > _hi else _hi)
+    _z = (_q if _q < _lo else _lo)
+    _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
+    _k = _z - (_x - _y)
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
+    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _h = _area4 * _iq / 2
+    _a = (_q + (565.685424949238 - _in1_v) * ((565.685424949238 + _in1_v) * _iq)) / 2
+    _a2 = (_q + (_in1_v - 565.685424949238) * ((565.685424949238 + _in1_v) * _iq)) / 2
+    _flat = (565.685424949238 + (_q - _in1_v)) / 2 if _q >= _hi else (565.685424949238 + (_q + _in1_v)) / 2 if 565.685424949238 >= _in1_v else (_q - (565.685424949238 + _in1_v)) / 2
+    _at = _a if _k > 0 else _flat
+    _hn = (-1) * _h
+    _e1x = _at * _ux - _hn * _uy
+    _e1y = _at * _uy + _hn * _ux
+    _ratio = 0 if _fail else _area4 * (0.5 / (565.685424949238 * _in1_v))
+    _sigma = (1 if 1 < _ratio else _ratio)
+    _e2x = -_a2 * _ux - _hn * _uy
+    _e2y = -_a2 * _uy + _hn * _ux
+    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _r1v = 565.685424949238 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
+    _r2v = _in1_v * _in1_dv + (_e2x * 0.0 + _e2y * 0.0)
+    _buv = (_r1v - _r2v) * _iq
+    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
+    _bvx = _buv * _ux - _bnv * _uy
+    _bvy = _buv * _uy + _bnv * _ux
+    _r1a = 565.685424949238 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
+    _r2a = _in1_v * _in1_ddv + _in1_dv * _in1_dv - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
+    _bua = (_r1a - _r2a) * _iq
+    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
+    _bax = _bua * _ux - _bna * _uy
+    _bay = _bua * _uy + _bna * _ux
+    st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
+    w.sigma[2] = _sigma
     if st == 1:
+        _p_K_x, _p_K_y, _p_K_dx, _p_K_dy, _p_K_ddx, _p_K_ddy = w.p_K = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 21
+    elif st == 3:
+        _p_K_x, _p_K_y, _p_K_dx, _p_K_dy, _p_K_ddx, _p_K_ddy = w.p_K = (240.0 + _e1x, 256.0 + _e1y, NAN, NAN, NAN, NAN)
+    else:
+        _p_K_x, _p_K_y, _p_K_dx, _p_K_dy, _p_K_ddx, _p_K_ddy = w.p_K = (240.0 + _e1x, 256.0 + _e1y, _bvx, _bvy, _bax, _bay)
     if st:
         w.note(st, 23, -24)
 
     # Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known
-    st, w.sigma[3], w.psi_C, w.s_C, w.p_C = RPR_links(p_S0, w.p_K, 850.0, 0.0, -850.0, 0.0, 1)
+    # RPR_links(p_S0, w.p_K, 850.0, 0.0, -850.0, 0.0, 1), inline
+    _dx = _p_K_x - (-1360.0)
+    _dy = _p_K_y - 556.0
+    _dvx = _p_K_dx - 0.0
+    _dvy = _p_K_dy - 0.0
+    _dax = _p_K_ddx - 0.0
+    _day = _p_K_ddy - 0.0
+    _hh = 0.0 - 0.0
+    _q = sqrt(_dx * _dx + _dy * _dy)
+    _ah = abs(_hh)
+    _k = _q - _ah
+    _big = (_ah if _ah > _q else _q)
+    _fail = _k < -8 * 2.220446049250313e-16 * _big or _q == 0
+    _t = sqrt((0 if 0 > _k else _k) * (_q + _ah))
+    _iq = NAN if _q == 0 else 1 / _q
+    _mt = 1 * _t
+    _ux = (_mt * _dx + _hh * _dy) * _iq * _iq
+    _uy = (_mt * _dy - _hh * _dx) * _iq * _iq
+    _th = atan2(_uy, _ux)
+    _sv = _mt + ((-850.0) - 850.0)
+    _rx = (-850.0) * _ux - 0.0 * _uy
+    _ry = (-850.0) * _uy + 0.0 * _ux
+    _a0 = abs(850.0)
+    _a1 = abs((-850.0))
+    _a2 = abs(0.0)
+    _a3 = abs(0.0)
+    _arm1 = (_a1 if _a1 > _a0 else _a0)
+    _arm2 = (_a3 if _a3 > _a2 else _a2)
+    _arm = (_arm2 if _arm2 > _arm1 else _arm1)
+    _reach = (_arm if _arm > _q else _q)
+    _ratio = 0 if _fail else _t / _reach
+    _sigma = (1 if 1 < _ratio else _ratio)
+    _imt = NAN if _mt == 0 else 1 / _mt
+    _dvn = _ux * _dvy - _uy * _dvx
+    _dvu = _dvx * _ux + _dvy * _uy
+    _om = _dvn * _imt
+    _ds = _dvu + _om * _hh
+    _al = (_ux * _day - _uy * _dax - 2 * _om * _dvu - _om * _om * _hh) * _imt
+    _dds = _dax * _ux + _day * _uy + _om * _dvn + _al * _hh
+    _rvx = -_om * _ry
+    _rvy = _om * _rx
+    _rax = -_al * _ry - _om * _om * _rx
+    _ray = _al * _rx - _om * _om * _ry
+    st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
+    w.sigma[3] = _sigma
     if st == 1:
+        _psi_C_the, _psi_C_dthe, _psi_C_ddthe = w.psi_C = (NAN, NAN, NAN)
+        _s_C_v, _s_C_dv, _s_C_ddv = w.s_C = (NAN, NAN, NAN)
+        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 31
+    elif st == 3:
+        _psi_C_the, _psi_C_dthe, _psi_C_ddthe = w.psi_C = (_th, NAN, NAN)
+        _s_C_v, _s_C_dv, _s_C_ddv = w.s_C = (_sv, NAN, NAN)
+        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = (_p_K_x + _rx, _p_K_y + _ry, NAN, NAN, NAN, NAN)
+    else:
+        _psi_C_the, _psi_C_dthe, _psi_C_ddthe = w.psi_C = (_th, _om, _al)
+        _s_C_v, _s_C_dv, _s_C_ddv = w.s_C = (_sv, _ds, _dds)
+        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = (_p_K_x + _rx, _p_K_y + _ry, _p_K_dx + _rvx, _p_K_dy + _rvy, _p_K_ddx + _rax, _p_K_ddy + _ray)
     if st:
         w.note(st, 33, -34)
 
     # Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known
-    st, w.sigma[4], w.p_M = RRR_links(w.p_K, p_Q, l_power_link, l_bucket, 1)
+    # RRR_links(w.p_K, p_Q, l_power_link, l_bucket, 1), inline
+    _dx = 640.0 - _p_K_x
+    _dy = 256.0 - _p_K_y
+    _q = sqrt(_dx * _dx + _dy * _dy)
+    _iq = NAN if _q == 0 else 1 / _q
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hi = (340.0 if 340.0 > 545.8937625582472 else 545.8937625582472)
+    _lo = (340.0 if 340.0 < 545.8937625582472 else 545.8937625582472)
+    _x = (_q if _q > _hi else _hi)
+    _z = (_q if _q < _lo else _lo)
+    _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
+    _k = _z - (_x - _y)
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
+    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _h = _area4 * _iq / 2
+    _a = (_q + (545.8937625582472 - 340.0) * ((545.8937625582472 + 340.0) * _iq)) / 2
+    _a2 = (_q + (340.0 - 545.8937625582472) * ((545.8937625582472 + 340.0) * _iq)) / 2
+    _flat = (545.8937625582472 + (_q - 340.0)) / 2 if _q >= _hi else (545.8937625582472 + (_q + 340.0)) / 2 if 545.8937625582472 >= 340.0 else (_q - (545.8937625582472 + 340.0)) / 2
+    _at = _a if _k > 0 else _flat
+    _hn = 1 * _h
+    _e1x = _at * _ux - _hn * _uy
+    _e1y = _at * _uy + _hn * _ux
+    _ratio = 0 if _fail else _area4 * (0.5 / (545.8937625582472 * 340.0))
+    _sigma = (1 if 1 < _ratio else _ratio)
+    _e2x = -_a2 * _ux - _hn * _uy
+    _e2y = -_a2 * _uy + _hn * _ux
+    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _r1v = 545.8937625582472 * 0.0 + (_e1x * _p_K_dx + _e1y * _p_K_dy)
+    _r2v = 340.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
+    _buv = (_r1v - _r2v) * _iq
+    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
+    _bvx = _buv * _ux - _bnv * _uy
+    _bvy = _buv * _uy + _bnv * _ux
+    _r1a = 545.8937625582472 * 0.0 + 0.0 * 0.0 - ((_bvx - _p_K_dx) * (_bvx - _p_K_dx) + (_bvy - _p_K_dy) * (_bvy - _p_K_dy)) + (_e1x * _p_K_ddx + _e1y * _p_K_ddy)
+    _r2a = 340.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
+    _bua = (_r1a - _r2a) * _iq
+    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
+    _bax = _bua * _ux - _bna * _uy
+    _bay = _bua * _uy + _bna * _ux
+    st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
+    w.sigma[4] = _sigma
     if st == 1:
+        _p_M_x, _p_M_y, _p_M_dx, _p_M_dy, _p_M_ddx, _p_M_ddy = w.p_M = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 41
+    elif st == 3:
+        _p_M_x, _p_M_y, _p_M_dx, _p_M_dy, _p_M_ddx, _p_M_ddy = w.p_M = (_p_K_x + _e1x, _p_K_y + _e1y, NAN, NAN, NAN, NAN)
+    else:
+        _p_M_x, _p_M_y, _p_M_dx, _p_M_dy, _p_M_ddx, _p_M_ddy = w.p_M = (_p_K_x + _e1x, _p_K_y + _e1y, _bvx, _bvy, _bax, _bay)
     if st:
         w.note(st, 43, -44)
 
     # Step 5: link_point, tip. point tip of link bucket
-    st, w.p_tip = link_point(p_Q, w.p_M, -550.5882352941177, -1177.6470588235295)
+    # link_point(p_Q, w.p_M, -550.5882352941177, -1177.6470588235295), inline
+    _dx = _p_M_x - 640.0
+    _dy = _p_M_y - 256.0
+    _dvx = _p_M_dx - 0.0
+    _dvy = _p_M_dy - 0.0
+    _dax = _p_M_ddx - 0.0
+    _day = _p_M_ddy - 0.0
+    _r2 = _dx * _dx + _dy * _dy
+    _ir = NAN if _r2 == 0 else 1 / sqrt(_r2)
+    _ex = _ir * _dx
+    _ey = _ir * _dy
+    _rx = (-550.5882352941177) * _ex - (-1177.6470588235295) * _ey
+    _ry = (-550.5882352941177) * _ey + (-1177.6470588235295) * _ex
+    _ir2 = _ir * _ir
+    _om = (_dx * _dvy - _dy * _dvx) * _ir2
+    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
+    _rvx = -_om * _ry
+    _rvy = _om * _rx
+    _rax = -_al * _ry - _om * _om * _rx
+    _ray = _al * _rx - _om * _om * _ry
+    st = 1 if _r2 == 0 else 0
     if st == 1:
+        _p_tip_x, _p_tip_y, _p_tip_dx, _p_tip_dy, _p_tip_ddx, _p_tip_ddy = w.p_tip = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 51
+    else:
+        _p_tip_x, _p_tip_y, _p_tip_dx, _p_tip_dy, _p_tip_ddx, _p_tip_ddy = w.p_tip = (640.0 + _rx, 256.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
     if st:
         w.note(st, 53, -54)
 
     # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is known
-    st, w.phi_side_link = link_angle(p_R, w.p_K, 0.0)
+    # link_angle(p_R, w.p_K, 0.0), inline
+    _dx = _p_K_x - 240.0
+    _dy = _p_K_y - 256.0
+    _dvx = _p_K_dx - 0.0
+    _dvy = _p_K_dy - 0.0
+    _dax = _p_K_ddx - 0.0
+    _day = _p_K_ddy - 0.0
+    _r2 = _dx * _dx + _dy * _dy
+    _th0 = atan2(_dy, _dx) + 0.0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _ir2 = NAN if _r2 == 0 else 1 / _r2
+    _om = (_dx * _dvy - _dy * _dvx) * _ir2
+    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
+    st = 1 if _r2 == 0 else 0
     if st == 1:
+        _phi_side_link_the, _phi_side_link_dthe, _phi_side_link_ddthe = w.phi_side_link = (NAN, NAN, NAN)
         return 61
+    else:
+        _phi_side_link_the, _phi_side_link_dthe, _phi_side_link_ddthe = w.phi_side_link = (_th, _om, _al)
     if st:
         w.note(st, 63, -64)
 
     # Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is known
-    st, w.phi_power_link = link_angle(w.p_K, w.p_M, 0.0)
+    # link_angle(w.p_K, w.p_M, 0.0), inline
+    _dx = _p_M_x - _p_K_x
+    _dy = _p_M_y - _p_K_y
+    _dvx = _p_M_dx - _p_K_dx
+    _dvy = _p_M_dy - _p_K_dy
+    _dax = _p_M_ddx - _p_K_ddx
+    _day = _p_M_ddy - _p_K_ddy
+    _r2 = _dx * _dx + _dy * _dy
+    _th0 = atan2(_dy, _dx) + 0.0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _ir2 = NAN if _r2 == 0 else 1 / _r2
+    _om = (_dx * _dvy - _dy * _dvx) * _ir2
+    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
+    st = 1 if _r2 == 0 else 0
     if st == 1:
+        _phi_power_link_the, _phi_power_link_dthe, _phi_power_link_ddthe = w.phi_power_link = (NAN, NAN, NAN)
         return 71
+    else:
+        _phi_power_link_the, _phi_power_link_dthe, _phi_power_link_ddthe = w.phi_power_link = (_th, _om, _al)
     if st:
         w.note(st, 73, -74)
 
     # Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is known
-    st, w.phi_bucket = link_angle(p_Q, w.p_M, 0.0)
+    # link_angle(p_Q, w.p_M, 0.0), inline
+    _dx = _p_M_x - 640.0
+    _dy = _p_M_y - 256.0
+    _dvx = _p_M_dx - 0.0
+    _dvy = _p_M_dy - 0.0
+    _dax = _p_M_ddx - 0.0
+    _day = _p_M_ddy - 0.0
+    _r2 = _dx * _dx + _dy * _dy
+    _th0 = atan2(_dy, _dx) + 0.0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _ir2 = NAN if _r2 == 0 else 1 / _r2
+    _om = (_dx * _dvy - _dy * _dvx) * _ir2
+    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
+    st = 1 if _r2 == 0 else 0
     if st == 1:
+        _phi_bucket_the, _phi_bucket_dthe, _phi_bucket_ddthe = w.phi_bucket = (NAN, NAN, NAN)
         return 81
+    else:
+        _phi_bucket_the, _phi_bucket_dthe, _phi_bucket_ddthe = w.phi_bucket = (_th, _om, _al)
     if st:
         w.note(st, 83, -84)
 
@@ -349,81 +634,69 @@ def _run(w, inputs, d_inputs, dd_inputs):
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = reason_of(code) in (1, 2)
-    singular = reason_of(code) == 3
+    reason = code % 10 if code > 0 else 0  # reason_of(code), without the call
+    failed = reason in (1, 2)
+    singular = reason == 3
     if failed:
         out = dict.fromkeys(_OUTPUTS, NAN)
-    else:  # a dict display: one step, where dict(zip()) of a tuple took three
-        out = {
-            "S0.x": -2000.0,
-            "S0.y": 300.0,
-            "S0.vx": 0.0,
-            "S0.vy": 0.0,
-            "S0.ax": 0.0,
-            "S0.ay": 0.0,
-            "C.x": w.p_C[0] - 640.0,
-            "C.y": w.p_C[1] - 256.0,
-            "C.vx": w.p_C[2],
-            "C.vy": w.p_C[3],
-            "C.ax": w.p_C[4],
-            "C.ay": w.p_C[5],
-            "K.x": w.p_K[0] - 640.0,
-            "K.y": w.p_K[1] - 256.0,
-            "K.vx": w.p_K[2],
-            "K.vy": w.p_K[3],
-            "K.ax": w.p_K[4],
-            "K.ay": w.p_K[5],
-            "R.x": -400.0,
-            "R.y": 0.0,
-            "R.vx": 0.0,
-            "R.vy": 0.0,
-            "R.ax": 0.0,
-            "R.ay": 0.0,
-            "M.x": w.p_M[0] - 640.0,
-            "M.y": w.p_M[1] - 256.0,
-            "M.vx": w.p_M[2],
-            "M.vy": w.p_M[3],
-            "M.ax": w.p_M[4],
-            "M.ay": w.p_M[5],
-            "Q.x": 0.0,
-            "Q.y": 0.0,
-            "Q.vx": 0.0,
-            "Q.vy": 0.0,
-            "Q.ax": 0.0,
-            "Q.ay": 0.0,
-            "tip.x": w.p_tip[0] - 640.0,
-            "tip.y": w.p_tip[1] - 256.0,
-            "tip.vx": w.p_tip[2],
-            "tip.vy": w.p_tip[3],
-            "tip.ax": w.p_tip[4],
-            "tip.ay": w.p_tip[5],
-            "stick.phi": -0.18534794999569476,
-            "stick.omega": 0.0,
-            "stick.alpha": 0.0,
-            "barrel.phi": w.psi_C[0],
-            "barrel.omega": w.psi_C[1],
-            "barrel.alpha": w.psi_C[2],
-            "rod.phi": w.psi_C[0],
-            "rod.omega": w.psi_C[1],
-            "rod.alpha": w.psi_C[2],
-            "side_link.phi": w.phi_side_link[0],
-            "side_link.omega": w.phi_side_link[1],
-            "side_link.alpha": w.phi_side_link[2],
-            "power_link.phi": w.phi_power_link[0],
-            "power_link.omega": w.phi_power_link[1],
-            "power_link.alpha": w.phi_power_link[2],
-            "bucket.phi": w.phi_bucket[0],
-            "bucket.omega": w.phi_bucket[1],
-            "bucket.alpha": w.phi_bucket[2],
-            "C.s": w.s_C[0],
-            "C.ds": w.s_C[1],
-            "C.dds": w.s_C[2],
-        }
+    else:  # _FIXED copied, then the computed columns set: half the time of a dict display of every column
+        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C
+        _p_K_x, _p_K_y, _p_K_dx, _p_K_dy, _p_K_ddx, _p_K_ddy = w.p_K
+        _p_M_x, _p_M_y, _p_M_dx, _p_M_dy, _p_M_ddx, _p_M_ddy = w.p_M
+        _p_tip_x, _p_tip_y, _p_tip_dx, _p_tip_dy, _p_tip_ddx, _p_tip_ddy = w.p_tip
+        _psi_C_the, _psi_C_dthe, _psi_C_ddthe = w.psi_C
+        _phi_side_link_the, _phi_side_link_dthe, _phi_side_link_ddthe = w.phi_side_link
+        _phi_power_link_the, _phi_power_link_dthe, _phi_power_link_ddthe = w.phi_power_link
+        _phi_bucket_the, _phi_bucket_dthe, _phi_bucket_ddthe = w.phi_bucket
+        _s_C_v, _s_C_dv, _s_C_ddv = w.s_C
+        out = _FIXED.copy()
+        out["C.x"] = _p_C_x - 640.0
+        out["C.y"] = _p_C_y - 256.0
+        out["C.vx"] = _p_C_dx
+        out["C.vy"] = _p_C_dy
+        out["C.ax"] = _p_C_ddx
+        out["C.ay"] = _p_C_ddy
+        out["K.x"] = _p_K_x - 640.0
+        out["K.y"] = _p_K_y - 256.0
+        out["K.vx"] = _p_K_dx
+        out["K.vy"] = _p_K_dy
+        out["K.ax"] = _p_K_ddx
+        out["K.ay"] = _p_K_ddy
+        out["M.x"] = _p_M_x - 640.0
+        out["M.y"] = _p_M_y - 256.0
+        out["M.vx"] = _p_M_dx
+        out["M.vy"] = _p_M_dy
+        out["M.ax"] = _p_M_ddx
+        out["M.ay"] = _p_M_ddy
+        out["tip.x"] = _p_tip_x - 640.0
+        out["tip.y"] = _p_tip_y - 256.0
+        out["tip.vx"] = _p_tip_dx
+        out["tip.vy"] = _p_tip_dy
+        out["tip.ax"] = _p_tip_ddx
+        out["tip.ay"] = _p_tip_ddy
+        out["barrel.phi"] = _psi_C_the
+        out["barrel.omega"] = _psi_C_dthe
+        out["barrel.alpha"] = _psi_C_ddthe
+        out["rod.phi"] = _psi_C_the
+        out["rod.omega"] = _psi_C_dthe
+        out["rod.alpha"] = _psi_C_ddthe
+        out["side_link.phi"] = _phi_side_link_the
+        out["side_link.omega"] = _phi_side_link_dthe
+        out["side_link.alpha"] = _phi_side_link_ddthe
+        out["power_link.phi"] = _phi_power_link_the
+        out["power_link.omega"] = _phi_power_link_dthe
+        out["power_link.alpha"] = _phi_power_link_ddthe
+        out["bucket.phi"] = _phi_bucket_the
+        out["bucket.omega"] = _phi_bucket_dthe
+        out["bucket.alpha"] = _phi_bucket_ddthe
+        out["C.s"] = _s_C_v
+        out["C.ds"] = _s_C_dv
+        out["C.dds"] = _s_C_ddv
     if order < ORDER or singular:
         out = {name: NAN if singular and level > 0 else value
                for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
-    out["sigma"] = list(w.sigma)
+    out["sigma"] = w.sigma  # a new list each solve
     return out
 
 
@@ -441,6 +714,8 @@ def _check(inputs, d_inputs, dd_inputs):
                                 f"not {type(values).__name__}")
             if len(values) != N_INPUTS:
                 raise ValueError(f"actuator.solve: expected {N_INPUTS} {what}, got {len(values)}")
+    if abs(inputs[0]) <= 1e+30 and abs(d_inputs[0]) <= 1e+30 and abs(dd_inputs[0]) <= 1e+30:
+        return  # every number in range: the loops below find the first one that is not
     for k, x in enumerate(inputs):
         if not abs(x) <= 1e+30:
             raise ValueError(f"actuator.solve: inputs[{k}] is not finite or larger than 1e+30: {x!r}")

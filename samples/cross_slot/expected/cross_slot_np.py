@@ -96,7 +96,7 @@ PARAMS = {  # design parameter -> its value in the sketch
     "g_P2.y": 0.0,  # guide P2 (as drawn)
     "psi_P2": 1.5707963267948966,  # line P2
     "step2.l": 50.0,  # step 2: crank_input of P1
-    "step3.off": 0.0,  # step 3: link_angle of arm
+    "step3.off": 0.0,  # step 3: crank_angle of arm
     "step4.gsi1": 0.0,  # step 4: PRP_links of X
     "step4.eta1": 0.0,  # step 4: PRP_links of X
     "step4.gsi2": 0.0,  # step 4: PRP_links of X
@@ -135,6 +135,35 @@ def crank_input(j1, l, theta, phi):
     _sigma = np.asarray(1.0, dtype=REAL)
     _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _j2
+
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
+    return _st, _sigma, _angle
 
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
@@ -269,58 +298,6 @@ def PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
         _jp2 = (np.where(_fails, np.nan, _jp2[0]), np.where(_fails, np.nan, _jp2[1]), np.where(_singular, np.nan, _jp2[2]), np.where(_singular, np.nan, _jp2[3]), np.where(_singular, np.nan, _jp2[4]), np.where(_singular, np.nan, _jp2[5]))
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
     return _st, _sigma, _s1, _jp1, _s2, _jp2, _jb
-
-def link_angle_still_j1(j1, j2, off):
-    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
-    j1_x, j1_y, _, _, _, _ = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    dx = j2_x - j1_x
-    dy = j2_y - j1_y
-    dvx = j2_dx
-    dvy = j2_dy
-    dax = j2_ddx
-    day = j2_ddy
-    r2 = dx * dx + dy * dy
-    th0 = np.arctan2(dy, dx) + off
-    _t1 = r2 == 0
-    _c1 = np.asarray(_t1)
-    if not _c1.any():
-        ir2 = 1 / r2
-    elif _c1.all():
-        ir2 = NAN
-    else:
-        ir2 = np.where(_c1, NAN, 1 / r2)
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    _c2 = np.asarray(_t1)
-    if not _c2.any():
-        _st = 0
-    elif _c2.all():
-        _st = 1
-    else:
-        _st = np.where(_c2, 1, 0)
-    _sigma = 1.0
-    _st = np.asarray(_st)
-    _sigma = np.asarray(_sigma, dtype=REAL)
-    _fails = _st == 1
-    _singular = _fails | (_st == 3)
-    _c3 = np.asarray(th0 > PI)
-    if not _c3.any():
-        _c4 = np.asarray(th0 <= -PI)
-        if not _c4.any():
-            _f1 = th0
-        elif _c4.all():
-            _f1 = th0 + 2 * PI
-        else:
-            _f1 = np.where(_c4, th0 + 2 * PI, th0)
-    elif _c3.all():
-        _f1 = th0 - 2 * PI
-    else:
-        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
-    _angle = (_f1, om, al)
-    if _singular.any():  # nan where the rows failed
-        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
-    return _st, _sigma, _angle
 
 def cos_sin(t):
     """cos t and sin t from one tangent of the half angle, within an eps of the library's:
@@ -547,9 +524,8 @@ def _run(x, dx, ddx, c):
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
     # Step 2: crank_input, P1. O is known and link frame is placed, so the input angle theta_O turns link arm to P1
     _, _, w.g_P1 = crank_input(w.p_O, c["step2.l"], w.in1, w.ref_O)
-    # Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is known
-    st, _, w.phi_arm = link_angle_still_j1(w.p_O, w.g_P1, c["step3.off"])
-    report.append((st, ((1, 31),)))
+    # Step 3: crank_angle, arm. the input theta_O turns link arm, so its angle is the input's
+    _, _, w.phi_arm = crank_angle(w.in1, w.ref_O, c["step3.off"])
     # Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution)
     st, sigma[4], w.s_P1, w.p_P1, w.s_P2, w.p_P2, w.p_X = PRP_links(w.g_P1, w.phi_arm, c["step4.gsi1"], c["step4.eta1"], w.g_P2, w.psi_P2, c["step4.gsi1"], c["step4.eta1"])
     report.append((st, ((1, 41), (3, 43), (4, -44))))

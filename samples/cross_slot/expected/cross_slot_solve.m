@@ -80,13 +80,8 @@ function [status, w] = run(w, in, din, ddin)
     % Step 2: crank_input, P1. O is known and link frame is placed, so the input angle theta_O turns link arm to P1
     w.g_P1 = crank_input(w.p_O, 50.0, w.in1, w.ref_O);
 
-    % Step 3: link_angle, arm. O and P1@arm of link arm are known, so its angle is known
-    [w.phi_arm, st] = link_angle(w.p_O, w.g_P1, 0.0);
-    if st == 1
-        status = 31;
-        return;
-    end
-    w = note(w, st, 33, -34);
+    % Step 3: crank_angle, arm. the input theta_O turns link arm, so its angle is the input's
+    w.phi_arm = crank_angle(w.in1, w.ref_O, 0.0);
 
     % Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution)
     [w.s_P1, w.p_P1, w.s_P2, w.p_P2, w.p_X, st, w.sigma(4)] = PRP_links(w.g_P1, w.phi_arm, 0.0, 0.0, w.g_P2, w.psi_P2, 0.0, 0.0);
@@ -253,43 +248,21 @@ function j2 = crank_input(j1, l, theta, phi)
     j2.ddy = j1.ddy + ray;
 end
 
-function [angle, st] = link_angle(j1, j2, off)
-    % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
-    dx = j2.x - j1.x;
-    dy = j2.y - j1.y;
-    dvx = j2.dx - j1.dx;
-    dvy = j2.dy - j1.dy;
-    dax = j2.ddx - j1.ddx;
-    day = j2.ddy - j1.ddy;
-    r2 = dx * dx + dy * dy;
-    th0 = atan2(dy, dx) + off;
-    if th0 > pi
+function angle = crank_angle(theta, phi, off)
+    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
+    th0 = theta.the + phi.the + off;
+    if abs(th0) >= 3 * pi
+        th = atan2(sin(th0), cos(th0));
+    elseif th0 > pi
         th = th0 - 2 * pi;
     elseif th0 <= -pi
         th = th0 + 2 * pi;
     else
         th = th0;
     end
-    if r2 == 0
-        ir2 = NaN;
-    else
-        ir2 = 1 / r2;
-    end
-    om = (dx * dvy - dy * dvx) * ir2;
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
-    if r2 == 0
-        st = 1;
-    else
-        st = 0;
-    end
     angle.the = th;
-    angle.dthe = om;
-    angle.ddthe = al;
-    if st == 1
-        angle.the = NaN;
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
+    angle.dthe = theta.dthe + phi.dthe;
+    angle.ddthe = theta.ddthe + phi.ddthe;
 end
 
 function angle = offset_angle(phi, off)

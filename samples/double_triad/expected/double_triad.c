@@ -67,6 +67,19 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
+/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
+#if defined(__GNUC__)
+static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
+static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
+{
+    const double th0 = theta->the + phi->the + off;
+    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
+    angle->the = th;
+    angle->dthe = theta->dthe + phi->dthe;
+    angle->ddthe = theta->ddthe + phi->ddthe;
+}
+
 /* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
 #if defined(__GNUC__)
 static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
@@ -610,15 +623,18 @@ static int within(const double in[], const double last[], const double limits[])
 
 /* Block states a moved by step along their rates into out.  An Add-link length is a
  * distance: where its prediction passes zero the two pairs pass each other, so it is
- * reflected.  The entries past a block's lengths (branches, orientation) have no rates:
- * they are copied. */
+ * reflected.  A branch's measure moves too: where it passes zero the chain passes its fold
+ * and goes on on its other branch, as a chain outside the groups does at a change point.
+ * The orientation (the last entry) is copied. */
 static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_NMAX], double step,
                     const int sizes[], double out[][LINKGEN_NMAX])
 {
     int g, i;
-    memcpy(out, a, sizeof(double[LINKGEN_NBLOCKS][LINKGEN_NMAX]));
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+    for (g = 0; g < LINKGEN_NBLOCKS; g++) {
         for (i = 0; i < sizes[g]; i++) out[g][i] = fabs(a[g][i] + step * rate[g][i]);
+        for (; i < LINKGEN_NMAX - 1; i++) out[g][i] = a[g][i] + step * rate[g][i];
+        out[g][LINKGEN_NMAX - 1] = a[g][LINKGEN_NMAX - 1];
+    }
 }
 
 /* How far inputs in lie from the warm row's along its input rates, in time (0 without rates). */
@@ -2010,183 +2026,205 @@ static int group_2_v8(void *ctx, const double a[], const double da[], const doub
 
 
 /* The state of every block of group 1, read off the solved pairs: its Add-link
-   lengths, the branches of its chains (a zero keeps the branch it had), then, in the last
-   entry, its orientation (0 here: the solving block's is set by the resolver). */
+   lengths, the measures whose signs are the branches of its chains (a zero keeps the one it
+   had), then, in the last entry, its orientation (0 here: the solving block's is set by the
+   resolver); and their rates (the measures' too, so the predictor flips a branch where its
+   chain passes its fold). */
 static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
 {
     const work *w = (const work *)ctx;
     VARIABLE f;
+    int i;
     double m;
     link_residual_1(&w->p_J6, &w->p_J4, &ZERO_LENGTH, &f);
     a[0][0] = f.v;
     ad[0][0] = f.dv;
     m = (w->p_J6.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (w->p_J6.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
-    a[0][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][1];
-    ad[0][1] = 0.0;
+    if (m != 0.0) a[0][1] = m;
+    ad[0][1] = m != 0.0 ? (w->p_J6.DP.x - p_J3.DP.x) * (w->p_J4.P.y - p_J3.P.y) + (w->p_J6.P.x - p_J3.P.x) * (w->p_J4.DP.y - p_J3.DP.y) - (w->p_J6.DP.y - p_J3.DP.y) * (w->p_J4.P.x - p_J3.P.x) - (w->p_J6.P.y - p_J3.P.y) * (w->p_J4.DP.x - p_J3.DP.x) : 0.0;
     m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    a[0][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][2];
-    ad[0][2] = 0.0;
+    if (m != 0.0) a[0][2] = m;
+    ad[0][2] = m != 0.0 ? (w->p_J4.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J4.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[0][i] = 0.0;  /* unused: no rate */
     a[0][LINKGEN_NMAX - 1] = ad[0][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&w->p_J6, &w->p_J2, &ZERO_LENGTH, &f);
     a[1][0] = f.v;
     ad[1][0] = f.dv;
     m = (w->p_J6.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J6.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    a[1][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][1];
-    ad[1][1] = 0.0;
+    if (m != 0.0) a[1][1] = m;
+    ad[1][1] = m != 0.0 ? (w->p_J6.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J6.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J6.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J6.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
     m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
-    a[1][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][2];
-    ad[1][2] = 0.0;
+    if (m != 0.0) a[1][2] = m;
+    ad[1][2] = m != 0.0 ? (p_J3.DP.x - w->p_J2.DP.x) * (w->p_J4.P.y - w->p_J2.P.y) + (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.DP.y - w->p_J2.DP.y) - (p_J3.DP.y - w->p_J2.DP.y) * (w->p_J4.P.x - w->p_J2.P.x) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.DP.x - w->p_J2.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[1][i] = 0.0;  /* unused: no rate */
     a[1][LINKGEN_NMAX - 1] = ad[1][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&p_J7, &w->p_J2, &ZERO_LENGTH, &f);
     a[2][0] = f.v;
     ad[2][0] = f.dv;
     m = (p_J7.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J7.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    a[2][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][1];
-    ad[2][1] = 0.0;
+    if (m != 0.0) a[2][1] = m;
+    ad[2][1] = m != 0.0 ? (p_J7.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (p_J7.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (p_J7.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (p_J7.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
     m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
-    a[2][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][2];
-    ad[2][2] = 0.0;
+    if (m != 0.0) a[2][2] = m;
+    ad[2][2] = m != 0.0 ? (p_J3.DP.x - w->p_J2.DP.x) * (w->p_J4.P.y - w->p_J2.P.y) + (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.DP.y - w->p_J2.DP.y) - (p_J3.DP.y - w->p_J2.DP.y) * (w->p_J4.P.x - w->p_J2.P.x) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.DP.x - w->p_J2.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[2][i] = 0.0;  /* unused: no rate */
     a[2][LINKGEN_NMAX - 1] = ad[2][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&p_J7, &w->p_J4, &ZERO_LENGTH, &f);
     a[3][0] = f.v;
     ad[3][0] = f.dv;
     m = (p_J7.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J7.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
-    a[3][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][1];
-    ad[3][1] = 0.0;
+    if (m != 0.0) a[3][1] = m;
+    ad[3][1] = m != 0.0 ? (p_J7.DP.x - p_J3.DP.x) * (w->p_J4.P.y - p_J3.P.y) + (p_J7.P.x - p_J3.P.x) * (w->p_J4.DP.y - p_J3.DP.y) - (p_J7.DP.y - p_J3.DP.y) * (w->p_J4.P.x - p_J3.P.x) - (p_J7.P.y - p_J3.P.y) * (w->p_J4.DP.x - p_J3.DP.x) : 0.0;
     m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    a[3][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][2];
-    ad[3][2] = 0.0;
+    if (m != 0.0) a[3][2] = m;
+    ad[3][2] = m != 0.0 ? (w->p_J4.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J4.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[3][i] = 0.0;  /* unused: no rate */
     a[3][LINKGEN_NMAX - 1] = ad[3][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&p_J1, &w->p_J4, &ZERO_LENGTH, &f);
     a[4][0] = f.v;
     ad[4][0] = f.dv;
     m = (p_J1.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J1.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
-    a[4][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][1];
-    ad[4][1] = 0.0;
+    if (m != 0.0) a[4][1] = m;
+    ad[4][1] = m != 0.0 ? (p_J1.DP.x - p_J3.DP.x) * (w->p_J4.P.y - p_J3.P.y) + (p_J1.P.x - p_J3.P.x) * (w->p_J4.DP.y - p_J3.DP.y) - (p_J1.DP.y - p_J3.DP.y) * (w->p_J4.P.x - p_J3.P.x) - (p_J1.P.y - p_J3.P.y) * (w->p_J4.DP.x - p_J3.DP.x) : 0.0;
     m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    a[4][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][2];
-    ad[4][2] = 0.0;
+    if (m != 0.0) a[4][2] = m;
+    ad[4][2] = m != 0.0 ? (w->p_J4.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J4.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[4][i] = 0.0;  /* unused: no rate */
     a[4][LINKGEN_NMAX - 1] = ad[4][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&p_J3, &w->p_J2, &ZERO_LENGTH, &f);
     a[5][0] = f.v;
     ad[5][0] = f.dv;
     m = (p_J3.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J3.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    a[5][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][1];
-    ad[5][1] = 0.0;
+    if (m != 0.0) a[5][1] = m;
+    ad[5][1] = m != 0.0 ? (p_J3.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (p_J3.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (p_J3.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (p_J3.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
     m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
-    a[5][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][2];
-    ad[5][2] = 0.0;
+    if (m != 0.0) a[5][2] = m;
+    ad[5][2] = m != 0.0 ? (p_J3.DP.x - w->p_J2.DP.x) * (w->p_J4.P.y - w->p_J2.P.y) + (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.DP.y - w->p_J2.DP.y) - (p_J3.DP.y - w->p_J2.DP.y) * (w->p_J4.P.x - w->p_J2.P.x) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.DP.x - w->p_J2.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[5][i] = 0.0;  /* unused: no rate */
     a[5][LINKGEN_NMAX - 1] = ad[5][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&p_K1, &w->p_J2, &ZERO_LENGTH, &f);
     a[6][0] = f.v;
     ad[6][0] = f.dv;
     m = (p_K1.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_K1.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    a[6][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[6][1];
-    ad[6][1] = 0.0;
+    if (m != 0.0) a[6][1] = m;
+    ad[6][1] = m != 0.0 ? (p_K1.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (p_K1.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (p_K1.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (p_K1.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
     m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
-    a[6][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[6][2];
-    ad[6][2] = 0.0;
+    if (m != 0.0) a[6][2] = m;
+    ad[6][2] = m != 0.0 ? (p_J3.DP.x - w->p_J2.DP.x) * (w->p_J4.P.y - w->p_J2.P.y) + (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.DP.y - w->p_J2.DP.y) - (p_J3.DP.y - w->p_J2.DP.y) * (w->p_J4.P.x - w->p_J2.P.x) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.DP.x - w->p_J2.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[6][i] = 0.0;  /* unused: no rate */
     a[6][LINKGEN_NMAX - 1] = ad[6][LINKGEN_NMAX - 1] = 0.0;
 }
 
 
 /* The state of every block of group 2, read off the solved pairs: its Add-link
-   lengths, the branches of its chains (a zero keeps the branch it had), then, in the last
-   entry, its orientation (0 here: the solving block's is set by the resolver). */
+   lengths, the measures whose signs are the branches of its chains (a zero keeps the one it
+   had), then, in the last entry, its orientation (0 here: the solving block's is set by the
+   resolver); and their rates (the measures' too, so the predictor flips a branch where its
+   chain passes its fold). */
 static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
 {
     const work *w = (const work *)ctx;
     VARIABLE f;
+    int i;
     double m;
     link_residual_1(&w->p_J6, &w->p_K4, &ZERO_LENGTH, &f);
     a[0][0] = f.v;
     ad[0][0] = f.dv;
     m = (w->p_J6.P.x - p_K3.P.x) * (w->p_K4.P.y - p_K3.P.y) - (w->p_J6.P.y - p_K3.P.y) * (w->p_K4.P.x - p_K3.P.x);
-    a[0][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][1];
-    ad[0][1] = 0.0;
+    if (m != 0.0) a[0][1] = m;
+    ad[0][1] = m != 0.0 ? (w->p_J6.DP.x - p_K3.DP.x) * (w->p_K4.P.y - p_K3.P.y) + (w->p_J6.P.x - p_K3.P.x) * (w->p_K4.DP.y - p_K3.DP.y) - (w->p_J6.DP.y - p_K3.DP.y) * (w->p_K4.P.x - p_K3.P.x) - (w->p_J6.P.y - p_K3.P.y) * (w->p_K4.DP.x - p_K3.DP.x) : 0.0;
     m = (w->p_K4.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_K4.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
-    a[0][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[0][2];
-    ad[0][2] = 0.0;
+    if (m != 0.0) a[0][2] = m;
+    ad[0][2] = m != 0.0 ? (w->p_K4.DP.x - p_K1.DP.x) * (w->p_K2.P.y - p_K1.P.y) + (w->p_K4.P.x - p_K1.P.x) * (w->p_K2.DP.y - p_K1.DP.y) - (w->p_K4.DP.y - p_K1.DP.y) * (w->p_K2.P.x - p_K1.P.x) - (w->p_K4.P.y - p_K1.P.y) * (w->p_K2.DP.x - p_K1.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[0][i] = 0.0;  /* unused: no rate */
     a[0][LINKGEN_NMAX - 1] = ad[0][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&w->p_J5, &w->p_K2, &ZERO_LENGTH, &f);
     a[1][0] = f.v;
     ad[1][0] = f.dv;
     m = (w->p_J5.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_J5.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
-    a[1][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][1];
-    ad[1][1] = 0.0;
+    if (m != 0.0) a[1][1] = m;
+    ad[1][1] = m != 0.0 ? (w->p_J5.DP.x - p_K1.DP.x) * (w->p_K2.P.y - p_K1.P.y) + (w->p_J5.P.x - p_K1.P.x) * (w->p_K2.DP.y - p_K1.DP.y) - (w->p_J5.DP.y - p_K1.DP.y) * (w->p_K2.P.x - p_K1.P.x) - (w->p_J5.P.y - p_K1.P.y) * (w->p_K2.DP.x - p_K1.DP.x) : 0.0;
     m = (p_K3.P.x - w->p_K2.P.x) * (w->p_K4.P.y - w->p_K2.P.y) - (p_K3.P.y - w->p_K2.P.y) * (w->p_K4.P.x - w->p_K2.P.x);
-    a[1][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[1][2];
-    ad[1][2] = 0.0;
+    if (m != 0.0) a[1][2] = m;
+    ad[1][2] = m != 0.0 ? (p_K3.DP.x - w->p_K2.DP.x) * (w->p_K4.P.y - w->p_K2.P.y) + (p_K3.P.x - w->p_K2.P.x) * (w->p_K4.DP.y - w->p_K2.DP.y) - (p_K3.DP.y - w->p_K2.DP.y) * (w->p_K4.P.x - w->p_K2.P.x) - (p_K3.P.y - w->p_K2.P.y) * (w->p_K4.DP.x - w->p_K2.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[1][i] = 0.0;  /* unused: no rate */
     a[1][LINKGEN_NMAX - 1] = ad[1][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&w->p_J5, &w->p_K4, &ZERO_LENGTH, &f);
     a[2][0] = f.v;
     ad[2][0] = f.dv;
     m = (w->p_J5.P.x - p_K3.P.x) * (w->p_K4.P.y - p_K3.P.y) - (w->p_J5.P.y - p_K3.P.y) * (w->p_K4.P.x - p_K3.P.x);
-    a[2][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][1];
-    ad[2][1] = 0.0;
+    if (m != 0.0) a[2][1] = m;
+    ad[2][1] = m != 0.0 ? (w->p_J5.DP.x - p_K3.DP.x) * (w->p_K4.P.y - p_K3.P.y) + (w->p_J5.P.x - p_K3.P.x) * (w->p_K4.DP.y - p_K3.DP.y) - (w->p_J5.DP.y - p_K3.DP.y) * (w->p_K4.P.x - p_K3.P.x) - (w->p_J5.P.y - p_K3.P.y) * (w->p_K4.DP.x - p_K3.DP.x) : 0.0;
     m = (w->p_K4.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_K4.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
-    a[2][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[2][2];
-    ad[2][2] = 0.0;
+    if (m != 0.0) a[2][2] = m;
+    ad[2][2] = m != 0.0 ? (w->p_K4.DP.x - p_K1.DP.x) * (w->p_K2.P.y - p_K1.P.y) + (w->p_K4.P.x - p_K1.P.x) * (w->p_K2.DP.y - p_K1.DP.y) - (w->p_K4.DP.y - p_K1.DP.y) * (w->p_K2.P.x - p_K1.P.x) - (w->p_K4.P.y - p_K1.P.y) * (w->p_K2.DP.x - p_K1.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[2][i] = 0.0;  /* unused: no rate */
     a[2][LINKGEN_NMAX - 1] = ad[2][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&w->p_J2, &w->p_K4, &ZERO_LENGTH, &f);
     a[3][0] = f.v;
     ad[3][0] = f.dv;
     m = (w->p_J2.P.x - p_K3.P.x) * (w->p_K4.P.y - p_K3.P.y) - (w->p_J2.P.y - p_K3.P.y) * (w->p_K4.P.x - p_K3.P.x);
-    a[3][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][1];
-    ad[3][1] = 0.0;
+    if (m != 0.0) a[3][1] = m;
+    ad[3][1] = m != 0.0 ? (w->p_J2.DP.x - p_K3.DP.x) * (w->p_K4.P.y - p_K3.P.y) + (w->p_J2.P.x - p_K3.P.x) * (w->p_K4.DP.y - p_K3.DP.y) - (w->p_J2.DP.y - p_K3.DP.y) * (w->p_K4.P.x - p_K3.P.x) - (w->p_J2.P.y - p_K3.P.y) * (w->p_K4.DP.x - p_K3.DP.x) : 0.0;
     m = (w->p_K4.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_K4.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
-    a[3][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[3][2];
-    ad[3][2] = 0.0;
+    if (m != 0.0) a[3][2] = m;
+    ad[3][2] = m != 0.0 ? (w->p_K4.DP.x - p_K1.DP.x) * (w->p_K2.P.y - p_K1.P.y) + (w->p_K4.P.x - p_K1.P.x) * (w->p_K2.DP.y - p_K1.DP.y) - (w->p_K4.DP.y - p_K1.DP.y) * (w->p_K2.P.x - p_K1.P.x) - (w->p_K4.P.y - p_K1.P.y) * (w->p_K2.DP.x - p_K1.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[3][i] = 0.0;  /* unused: no rate */
     a[3][LINKGEN_NMAX - 1] = ad[3][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&w->p_J4, &w->p_K4, &ZERO_LENGTH, &f);
     a[4][0] = f.v;
     ad[4][0] = f.dv;
     m = (w->p_J4.P.x - p_K3.P.x) * (w->p_K4.P.y - p_K3.P.y) - (w->p_J4.P.y - p_K3.P.y) * (w->p_K4.P.x - p_K3.P.x);
-    a[4][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][1];
-    ad[4][1] = 0.0;
+    if (m != 0.0) a[4][1] = m;
+    ad[4][1] = m != 0.0 ? (w->p_J4.DP.x - p_K3.DP.x) * (w->p_K4.P.y - p_K3.P.y) + (w->p_J4.P.x - p_K3.P.x) * (w->p_K4.DP.y - p_K3.DP.y) - (w->p_J4.DP.y - p_K3.DP.y) * (w->p_K4.P.x - p_K3.P.x) - (w->p_J4.P.y - p_K3.P.y) * (w->p_K4.DP.x - p_K3.DP.x) : 0.0;
     m = (w->p_K4.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_K4.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
-    a[4][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[4][2];
-    ad[4][2] = 0.0;
+    if (m != 0.0) a[4][2] = m;
+    ad[4][2] = m != 0.0 ? (w->p_K4.DP.x - p_K1.DP.x) * (w->p_K2.P.y - p_K1.P.y) + (w->p_K4.P.x - p_K1.P.x) * (w->p_K2.DP.y - p_K1.DP.y) - (w->p_K4.DP.y - p_K1.DP.y) * (w->p_K2.P.x - p_K1.P.x) - (w->p_K4.P.y - p_K1.P.y) * (w->p_K2.DP.x - p_K1.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[4][i] = 0.0;  /* unused: no rate */
     a[4][LINKGEN_NMAX - 1] = ad[4][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&w->p_J2, &w->p_K2, &ZERO_LENGTH, &f);
     a[5][0] = f.v;
     ad[5][0] = f.dv;
     m = (w->p_J2.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_J2.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
-    a[5][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][1];
-    ad[5][1] = 0.0;
+    if (m != 0.0) a[5][1] = m;
+    ad[5][1] = m != 0.0 ? (w->p_J2.DP.x - p_K1.DP.x) * (w->p_K2.P.y - p_K1.P.y) + (w->p_J2.P.x - p_K1.P.x) * (w->p_K2.DP.y - p_K1.DP.y) - (w->p_J2.DP.y - p_K1.DP.y) * (w->p_K2.P.x - p_K1.P.x) - (w->p_J2.P.y - p_K1.P.y) * (w->p_K2.DP.x - p_K1.DP.x) : 0.0;
     m = (p_K3.P.x - w->p_K2.P.x) * (w->p_K4.P.y - w->p_K2.P.y) - (p_K3.P.y - w->p_K2.P.y) * (w->p_K4.P.x - w->p_K2.P.x);
-    a[5][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[5][2];
-    ad[5][2] = 0.0;
+    if (m != 0.0) a[5][2] = m;
+    ad[5][2] = m != 0.0 ? (p_K3.DP.x - w->p_K2.DP.x) * (w->p_K4.P.y - w->p_K2.P.y) + (p_K3.P.x - w->p_K2.P.x) * (w->p_K4.DP.y - w->p_K2.DP.y) - (p_K3.DP.y - w->p_K2.DP.y) * (w->p_K4.P.x - w->p_K2.P.x) - (p_K3.P.y - w->p_K2.P.y) * (w->p_K4.DP.x - w->p_K2.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[5][i] = 0.0;  /* unused: no rate */
     a[5][LINKGEN_NMAX - 1] = ad[5][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&w->p_J4, &w->p_K2, &ZERO_LENGTH, &f);
     a[6][0] = f.v;
     ad[6][0] = f.dv;
     m = (w->p_J4.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_J4.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
-    a[6][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[6][1];
-    ad[6][1] = 0.0;
+    if (m != 0.0) a[6][1] = m;
+    ad[6][1] = m != 0.0 ? (w->p_J4.DP.x - p_K1.DP.x) * (w->p_K2.P.y - p_K1.P.y) + (w->p_J4.P.x - p_K1.P.x) * (w->p_K2.DP.y - p_K1.DP.y) - (w->p_J4.DP.y - p_K1.DP.y) * (w->p_K2.P.x - p_K1.P.x) - (w->p_J4.P.y - p_K1.P.y) * (w->p_K2.DP.x - p_K1.DP.x) : 0.0;
     m = (p_K3.P.x - w->p_K2.P.x) * (w->p_K4.P.y - w->p_K2.P.y) - (p_K3.P.y - w->p_K2.P.y) * (w->p_K4.P.x - w->p_K2.P.x);
-    a[6][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[6][2];
-    ad[6][2] = 0.0;
+    if (m != 0.0) a[6][2] = m;
+    ad[6][2] = m != 0.0 ? (p_K3.DP.x - w->p_K2.DP.x) * (w->p_K4.P.y - w->p_K2.P.y) + (p_K3.P.x - w->p_K2.P.x) * (w->p_K4.DP.y - w->p_K2.DP.y) - (p_K3.DP.y - w->p_K2.DP.y) * (w->p_K4.P.x - w->p_K2.P.x) - (p_K3.P.y - w->p_K2.P.y) * (w->p_K4.DP.x - w->p_K2.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[6][i] = 0.0;  /* unused: no rate */
     a[6][LINKGEN_NMAX - 1] = ad[6][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&w->p_J6, &w->p_K2, &ZERO_LENGTH, &f);
     a[7][0] = f.v;
     ad[7][0] = f.dv;
     m = (w->p_J6.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_J6.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
-    a[7][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[7][1];
-    ad[7][1] = 0.0;
+    if (m != 0.0) a[7][1] = m;
+    ad[7][1] = m != 0.0 ? (w->p_J6.DP.x - p_K1.DP.x) * (w->p_K2.P.y - p_K1.P.y) + (w->p_J6.P.x - p_K1.P.x) * (w->p_K2.DP.y - p_K1.DP.y) - (w->p_J6.DP.y - p_K1.DP.y) * (w->p_K2.P.x - p_K1.P.x) - (w->p_J6.P.y - p_K1.P.y) * (w->p_K2.DP.x - p_K1.DP.x) : 0.0;
     m = (p_K3.P.x - w->p_K2.P.x) * (w->p_K4.P.y - w->p_K2.P.y) - (p_K3.P.y - w->p_K2.P.y) * (w->p_K4.P.x - w->p_K2.P.x);
-    a[7][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[7][2];
-    ad[7][2] = 0.0;
+    if (m != 0.0) a[7][2] = m;
+    ad[7][2] = m != 0.0 ? (p_K3.DP.x - w->p_K2.DP.x) * (w->p_K4.P.y - w->p_K2.P.y) + (p_K3.P.x - w->p_K2.P.x) * (w->p_K4.DP.y - w->p_K2.DP.y) - (p_K3.DP.y - w->p_K2.DP.y) * (w->p_K4.P.x - w->p_K2.P.x) - (p_K3.P.y - w->p_K2.P.y) * (w->p_K4.DP.x - w->p_K2.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[7][i] = 0.0;  /* unused: no rate */
     a[7][LINKGEN_NMAX - 1] = ad[7][LINKGEN_NMAX - 1] = 0.0;
     link_residual_1(&w->p_J5, &w->p_K5, &ZERO_LENGTH, &f);
     a[8][0] = f.v;
     ad[8][0] = f.dv;
     m = (w->p_J5.P.x - w->p_J6.P.x) * (w->p_K5.P.y - w->p_J6.P.y) - (w->p_J5.P.y - w->p_J6.P.y) * (w->p_K5.P.x - w->p_J6.P.x);
-    a[8][1] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[8][1];
-    ad[8][1] = 0.0;
+    if (m != 0.0) a[8][1] = m;
+    ad[8][1] = m != 0.0 ? (w->p_J5.DP.x - w->p_J6.DP.x) * (w->p_K5.P.y - w->p_J6.P.y) + (w->p_J5.P.x - w->p_J6.P.x) * (w->p_K5.DP.y - w->p_J6.DP.y) - (w->p_J5.DP.y - w->p_J6.DP.y) * (w->p_K5.P.x - w->p_J6.P.x) - (w->p_J5.P.y - w->p_J6.P.y) * (w->p_K5.DP.x - w->p_J6.DP.x) : 0.0;
     m = (w->p_K5.P.x - p_K1.P.x) * (w->p_K2.P.y - p_K1.P.y) - (w->p_K5.P.y - p_K1.P.y) * (w->p_K2.P.x - p_K1.P.x);
-    a[8][2] = m > 0.0 ? 1.0 : m < 0.0 ? -1.0 : a[8][2];
-    ad[8][2] = 0.0;
+    if (m != 0.0) a[8][2] = m;
+    ad[8][2] = m != 0.0 ? (w->p_K5.DP.x - p_K1.DP.x) * (w->p_K2.P.y - p_K1.P.y) + (w->p_K5.P.x - p_K1.P.x) * (w->p_K2.DP.y - p_K1.DP.y) - (w->p_K5.DP.y - p_K1.DP.y) * (w->p_K2.P.x - p_K1.P.x) - (w->p_K5.P.y - p_K1.P.y) * (w->p_K2.DP.x - p_K1.DP.x) : 0.0;
+    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[8][i] = 0.0;  /* unused: no rate */
     a[8][LINKGEN_NMAX - 1] = ad[8][LINKGEN_NMAX - 1] = 0.0;
 }
 
@@ -2571,10 +2609,8 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
 
-    /* Step 15: link_angle, crank. J7 and J6 of link crank are known, so its angle is known */
-    st = link_angle(&p_J7, &w->p_J6, 0.0, &w->phi_crank);
-    if (st == 1) return 151;
-    note(w, st, 153, -154);
+    /* Step 15: crank_angle, crank. the input theta_J7 turns link crank, so its angle is the input's */
+    crank_angle(&w->in1, &ref_J7, 0.0, &w->phi_crank);
 
 
     /* Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is known */

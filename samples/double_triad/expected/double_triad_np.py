@@ -174,7 +174,7 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step6.eta": -12.84259034217134,  # step 6: link_point of J5
     "step12.gsi": 45.662543438831435,  # step 12: link_point of K5
     "step12.eta": 12.84259034217134,  # step 12: link_point of K5
-    "step15.off": 0.0,  # step 15: link_angle of crank
+    "step15.off": 0.0,  # step 15: crank_angle of crank
     "step16.off": 0.0,  # step 16: link_angle of right_rocker1
     "step17.off": 0.0,  # step 17: link_angle of right_ternary
     "step18.off": 0.0,  # step 18: link_angle of right_rocker2
@@ -297,6 +297,35 @@ def link_angle(j1, j2, off):
     _angle = (_f1, om, al)
     if _singular.any():  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
+    return _st, _sigma, _angle
+
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
     return _st, _sigma, _angle
 
 def link_point(j1, j2, gsi, eta):
@@ -1295,7 +1324,8 @@ def empty_state(k, lanes):
 
 def agree(s, t, k):
     """Lanes where two states of the same rows would start the next row alike: both failed, or
-    both solved with the same blocks, branches and orientations, lengths within the resolver's
+    both solved with the same blocks, branches and orientations (the signs of the entries past
+    the lengths: a branch is held as a measure, see _lengths_N), lengths within the resolver's
     tolerance and rates within a millionth."""
     tol = k.p.tolerance * k.m.length_scale
     same = s.ok == t.ok
@@ -1303,7 +1333,7 @@ def agree(s, t, k):
         same = same & (u == v)
     for b, c, n in zip(s.a, t.a, k.m.sizes):
         for i, (x, y) in enumerate(zip(b, c)):
-            same = same & (_close(x, y, tol) if i < n else (x == y))
+            same = same & (_close(x, y, tol) if i < n else (np.sign(x) == np.sign(y)))
     for b, c in zip(s.ad, t.ad):
         for x, y in zip(b, c):
             same = same & _close(x, y, RATES_AGREE * np.maximum(np.abs(x), np.abs(y)) + tol)
@@ -2579,44 +2609,53 @@ def _group_2_v8_1(w, r, br, a, da, dda):
 
 def _lengths_1(w, a):
     """The state of every block of group 1 on lanes of rows, read off the solved
-    records: its Add-link lengths, the branches of its chains (a zero keeps the branch of a),
-    then its orientation (0 here: the solving block's is set by the resolver); and their rates."""
+    records: its Add-link lengths, the measures whose signs are the branches of its chains (a
+    zero keeps the one of a), then its orientation (0 here: the solving block's is set by the
+    resolver); and their rates (the measures' too, so the predictor flips a branch where its
+    chain passes its fold)."""
     states, rates = [], []
     f = (link_residual_1(w.p_J6, w.p_J4, ZERO_LENGTH)[2], )
     m = ((w.p_J6[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J6[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]), (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[0][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J6[2] - w.p_J3[2]) * (w.p_J4[1] - w.p_J3[1]) + (w.p_J6[0] - w.p_J3[0]) * (w.p_J4[3] - w.p_J3[3]) - (w.p_J6[3] - w.p_J3[3]) * (w.p_J4[0] - w.p_J3[0]) - (w.p_J6[1] - w.p_J3[1]) * (w.p_J4[2] - w.p_J3[2]), (w.p_J4[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J4[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[0][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J6, w.p_J2, ZERO_LENGTH)[2], )
     m = ((w.p_J6[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J6[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[1][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J6[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J6[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J6[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J6[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), (w.p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (w.p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[1][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J7, w.p_J2, ZERO_LENGTH)[2], )
     m = ((w.p_J7[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J7[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[2][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J7[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J7[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J7[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J7[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), (w.p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (w.p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[2][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J7, w.p_J4, ZERO_LENGTH)[2], )
     m = ((w.p_J7[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J7[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]), (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[3][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J7[2] - w.p_J3[2]) * (w.p_J4[1] - w.p_J3[1]) + (w.p_J7[0] - w.p_J3[0]) * (w.p_J4[3] - w.p_J3[3]) - (w.p_J7[3] - w.p_J3[3]) * (w.p_J4[0] - w.p_J3[0]) - (w.p_J7[1] - w.p_J3[1]) * (w.p_J4[2] - w.p_J3[2]), (w.p_J4[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J4[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[3][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J1, w.p_J4, ZERO_LENGTH)[2], )
     m = ((w.p_J1[0] - w.p_J3[0]) * (w.p_J4[1] - w.p_J3[1]) - (w.p_J1[1] - w.p_J3[1]) * (w.p_J4[0] - w.p_J3[0]), (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[4][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J1[2] - w.p_J3[2]) * (w.p_J4[1] - w.p_J3[1]) + (w.p_J1[0] - w.p_J3[0]) * (w.p_J4[3] - w.p_J3[3]) - (w.p_J1[3] - w.p_J3[3]) * (w.p_J4[0] - w.p_J3[0]) - (w.p_J1[1] - w.p_J3[1]) * (w.p_J4[2] - w.p_J3[2]), (w.p_J4[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J4[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J4[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J4[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[4][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J3, w.p_J2, ZERO_LENGTH)[2], )
     m = ((w.p_J3[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_J3[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[5][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J3[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_J3[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_J3[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_J3[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), (w.p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (w.p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[5][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_K1, w.p_J2, ZERO_LENGTH)[2], )
     m = ((w.p_K1[0] - w.p_J1[0]) * (w.p_J2[1] - w.p_J1[1]) - (w.p_K1[1] - w.p_J1[1]) * (w.p_J2[0] - w.p_J1[0]), (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[1] - w.p_J2[1]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[0] - w.p_J2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[6][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_K1[2] - w.p_J1[2]) * (w.p_J2[1] - w.p_J1[1]) + (w.p_K1[0] - w.p_J1[0]) * (w.p_J2[3] - w.p_J1[3]) - (w.p_K1[3] - w.p_J1[3]) * (w.p_J2[0] - w.p_J1[0]) - (w.p_K1[1] - w.p_J1[1]) * (w.p_J2[2] - w.p_J1[2]), (w.p_J3[2] - w.p_J2[2]) * (w.p_J4[1] - w.p_J2[1]) + (w.p_J3[0] - w.p_J2[0]) * (w.p_J4[3] - w.p_J2[3]) - (w.p_J3[3] - w.p_J2[3]) * (w.p_J4[0] - w.p_J2[0]) - (w.p_J3[1] - w.p_J2[1]) * (w.p_J4[2] - w.p_J2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[6][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     return states, rates
 _GROUP_1 = SimpleNamespace(  # group 1: its blocks (the chosen one, then the fallbacks), resolved at step 8
     blocks=(
@@ -2656,54 +2695,65 @@ _GROUP_1 = SimpleNamespace(  # group 1: its blocks (the chosen one, then the fal
 
 def _lengths_2(w, a):
     """The state of every block of group 2 on lanes of rows, read off the solved
-    records: its Add-link lengths, the branches of its chains (a zero keeps the branch of a),
-    then its orientation (0 here: the solving block's is set by the resolver); and their rates."""
+    records: its Add-link lengths, the measures whose signs are the branches of its chains (a
+    zero keeps the one of a), then its orientation (0 here: the solving block's is set by the
+    resolver); and their rates (the measures' too, so the predictor flips a branch where its
+    chain passes its fold)."""
     states, rates = [], []
     f = (link_residual_1(w.p_J6, w.p_K4, ZERO_LENGTH)[2], )
     m = ((w.p_J6[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J6[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0]), (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[7][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J6[2] - w.p_K3[2]) * (w.p_K4[1] - w.p_K3[1]) + (w.p_J6[0] - w.p_K3[0]) * (w.p_K4[3] - w.p_K3[3]) - (w.p_J6[3] - w.p_K3[3]) * (w.p_K4[0] - w.p_K3[0]) - (w.p_J6[1] - w.p_K3[1]) * (w.p_K4[2] - w.p_K3[2]), (w.p_K4[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_K4[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[7][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J5, w.p_K2, ZERO_LENGTH)[2], )
     m = ((w.p_J5[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J5[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[8][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J5[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_J5[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_J5[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_J5[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), (w.p_K3[2] - w.p_K2[2]) * (w.p_K4[1] - w.p_K2[1]) + (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[3] - w.p_K2[3]) - (w.p_K3[3] - w.p_K2[3]) * (w.p_K4[0] - w.p_K2[0]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[2] - w.p_K2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[8][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J5, w.p_K4, ZERO_LENGTH)[2], )
     m = ((w.p_J5[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J5[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0]), (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[9][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J5[2] - w.p_K3[2]) * (w.p_K4[1] - w.p_K3[1]) + (w.p_J5[0] - w.p_K3[0]) * (w.p_K4[3] - w.p_K3[3]) - (w.p_J5[3] - w.p_K3[3]) * (w.p_K4[0] - w.p_K3[0]) - (w.p_J5[1] - w.p_K3[1]) * (w.p_K4[2] - w.p_K3[2]), (w.p_K4[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_K4[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[9][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J2, w.p_K4, ZERO_LENGTH)[2], )
     m = ((w.p_J2[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J2[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0]), (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[10][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J2[2] - w.p_K3[2]) * (w.p_K4[1] - w.p_K3[1]) + (w.p_J2[0] - w.p_K3[0]) * (w.p_K4[3] - w.p_K3[3]) - (w.p_J2[3] - w.p_K3[3]) * (w.p_K4[0] - w.p_K3[0]) - (w.p_J2[1] - w.p_K3[1]) * (w.p_K4[2] - w.p_K3[2]), (w.p_K4[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_K4[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[10][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J4, w.p_K4, ZERO_LENGTH)[2], )
     m = ((w.p_J4[0] - w.p_K3[0]) * (w.p_K4[1] - w.p_K3[1]) - (w.p_J4[1] - w.p_K3[1]) * (w.p_K4[0] - w.p_K3[0]), (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[11][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J4[2] - w.p_K3[2]) * (w.p_K4[1] - w.p_K3[1]) + (w.p_J4[0] - w.p_K3[0]) * (w.p_K4[3] - w.p_K3[3]) - (w.p_J4[3] - w.p_K3[3]) * (w.p_K4[0] - w.p_K3[0]) - (w.p_J4[1] - w.p_K3[1]) * (w.p_K4[2] - w.p_K3[2]), (w.p_K4[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_K4[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_K4[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_K4[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[11][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J2, w.p_K2, ZERO_LENGTH)[2], )
     m = ((w.p_J2[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J2[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[12][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J2[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_J2[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_J2[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_J2[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), (w.p_K3[2] - w.p_K2[2]) * (w.p_K4[1] - w.p_K2[1]) + (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[3] - w.p_K2[3]) - (w.p_K3[3] - w.p_K2[3]) * (w.p_K4[0] - w.p_K2[0]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[2] - w.p_K2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[12][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J4, w.p_K2, ZERO_LENGTH)[2], )
     m = ((w.p_J4[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J4[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[13][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J4[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_J4[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_J4[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_J4[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), (w.p_K3[2] - w.p_K2[2]) * (w.p_K4[1] - w.p_K2[1]) + (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[3] - w.p_K2[3]) - (w.p_K3[3] - w.p_K2[3]) * (w.p_K4[0] - w.p_K2[0]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[2] - w.p_K2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[13][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J6, w.p_K2, ZERO_LENGTH)[2], )
     m = ((w.p_J6[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_J6[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[1] - w.p_K2[1]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[0] - w.p_K2[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[14][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J6[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_J6[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_J6[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_J6[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), (w.p_K3[2] - w.p_K2[2]) * (w.p_K4[1] - w.p_K2[1]) + (w.p_K3[0] - w.p_K2[0]) * (w.p_K4[3] - w.p_K2[3]) - (w.p_K3[3] - w.p_K2[3]) * (w.p_K4[0] - w.p_K2[0]) - (w.p_K3[1] - w.p_K2[1]) * (w.p_K4[2] - w.p_K2[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[14][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     f = (link_residual_1(w.p_J5, w.p_K5, ZERO_LENGTH)[2], )
     m = ((w.p_J5[0] - w.p_J6[0]) * (w.p_K5[1] - w.p_J6[1]) - (w.p_J5[1] - w.p_J6[1]) * (w.p_K5[0] - w.p_J6[0]), (w.p_K5[0] - w.p_K1[0]) * (w.p_K2[1] - w.p_K1[1]) - (w.p_K5[1] - w.p_K1[1]) * (w.p_K2[0] - w.p_K1[0]), )
-    states.append([x[0] for x in f] + [np.where(x > 0, 1.0, np.where(x < 0, -1.0, old))
-                                       for x, old in zip(m, a[15][1:])] + [0.0])
-    rates.append([x[1] for x in f] + [0.0] * 3)
+    dm = ((w.p_J5[2] - w.p_J6[2]) * (w.p_K5[1] - w.p_J6[1]) + (w.p_J5[0] - w.p_J6[0]) * (w.p_K5[3] - w.p_J6[3]) - (w.p_J5[3] - w.p_J6[3]) * (w.p_K5[0] - w.p_J6[0]) - (w.p_J5[1] - w.p_J6[1]) * (w.p_K5[2] - w.p_J6[2]), (w.p_K5[2] - w.p_K1[2]) * (w.p_K2[1] - w.p_K1[1]) + (w.p_K5[0] - w.p_K1[0]) * (w.p_K2[3] - w.p_K1[3]) - (w.p_K5[3] - w.p_K1[3]) * (w.p_K2[0] - w.p_K1[0]) - (w.p_K5[1] - w.p_K1[1]) * (w.p_K2[2] - w.p_K1[2]), )
+    states.append([x[0] for x in f] + [np.where(x != 0, x, old) for x, old in zip(m, a[15][1:])]
+                  + [0.0])
+    rates.append([x[1] for x in f] + [np.where(x != 0, r, 0.0) for x, r in zip(m, dm)] + [0.0])
     return states, rates
 _GROUP_2 = SimpleNamespace(  # group 2: its blocks (the chosen one, then the fallbacks), resolved at step 14
     blocks=(
@@ -2794,9 +2844,8 @@ def _run(x, dx, ddx, c, a, ad, used, order, skip, m, p):
                                 skip | past | ~settled | failed_lanes(report, np.size(skip)), m, p)
     settled = settled & done
     its.append(steps)
-    # Step 15: link_angle, crank. J7 and J6 of link crank are known, so its angle is known
-    st, _, w.phi_crank = link_angle(w.p_J7, w.p_J6, c["step15.off"])
-    report.append((st, ((1, 151),)))
+    # Step 15: crank_angle, crank. the input theta_J7 turns link crank, so its angle is the input's
+    _, _, w.phi_crank = crank_angle(w.in1, w.ref_J7, c["step15.off"])
     # Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is known
     st, _, w.phi_right_rocker1 = link_angle(w.p_J1, w.p_J2, c["step16.off"])
     report.append((st, ((1, 161),)))

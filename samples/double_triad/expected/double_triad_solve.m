@@ -194,13 +194,8 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
     end
 
 
-    % Step 15: link_angle, crank. J7 and J6 of link crank are known, so its angle is known
-    [w.phi_crank, st] = link_angle(w.p_J7, w.p_J6, 0.0);
-    if st == 1
-        status = 151;
-        return;
-    end
-    w = note(w, st, 153, -154);
+    % Step 15: crank_angle, crank. the input theta_J7 turns link crank, so its angle is the input's
+    w.phi_crank = crank_angle(w.in1, w.ref_J7, 0.0);
 
     % Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is known
     [w.phi_right_rocker1, st] = link_angle(w.p_J1, w.p_J2, 0.0);
@@ -1172,113 +1167,149 @@ end
 
 function [a, ad] = lengths_1(w, a, ad)
     % The state of every block of group 1, read off the solved pairs: its Add-link
-    % lengths, the branches of its chains (a zero keeps the branch it had), then its
-    % orientation (0 here: the solving block's is set by the resolver).
+    % lengths, the measures whose signs are the branches of its chains (a zero keeps the one
+    % it had), then its orientation (0 here: the solving block's is set by the resolver); and
+    % their rates (the measures' too, so the predictor flips a branch where its chain passes
+    % its fold).
     zero = struct('v', 0, 'dv', 0, 'ddv', 0);
     f = [link_residual(w.p_J6, w.p_J4, zero)];
     m = [(w.p_J6.x - w.p_J3.x) * (w.p_J4.y - w.p_J3.y) - (w.p_J6.y - w.p_J3.y) * (w.p_J4.x - w.p_J3.x); (w.p_J4.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J4.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x)];
+    dm = [(w.p_J6.dx - w.p_J3.dx) * (w.p_J4.y - w.p_J3.y) + (w.p_J6.x - w.p_J3.x) * (w.p_J4.dy - w.p_J3.dy) - (w.p_J6.dy - w.p_J3.dy) * (w.p_J4.x - w.p_J3.x) - (w.p_J6.y - w.p_J3.y) * (w.p_J4.dx - w.p_J3.dx); (w.p_J4.dx - w.p_J1.dx) * (w.p_J2.y - w.p_J1.y) + (w.p_J4.x - w.p_J1.x) * (w.p_J2.dy - w.p_J1.dy) - (w.p_J4.dy - w.p_J1.dy) * (w.p_J2.x - w.p_J1.x) - (w.p_J4.y - w.p_J1.y) * (w.p_J2.dx - w.p_J1.dx)];
     old = a{1}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{1} = [[f.v]'; sign(m); 0];
-    ad{1} = [[f.dv]'; zeros(3, 1)];
+    a{1} = [[f.v]'; m; 0];
+    ad{1} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_J6, w.p_J2, zero)];
     m = [(w.p_J6.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J6.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x); (w.p_J3.x - w.p_J2.x) * (w.p_J4.y - w.p_J2.y) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.x - w.p_J2.x)];
+    dm = [(w.p_J6.dx - w.p_J1.dx) * (w.p_J2.y - w.p_J1.y) + (w.p_J6.x - w.p_J1.x) * (w.p_J2.dy - w.p_J1.dy) - (w.p_J6.dy - w.p_J1.dy) * (w.p_J2.x - w.p_J1.x) - (w.p_J6.y - w.p_J1.y) * (w.p_J2.dx - w.p_J1.dx); (w.p_J3.dx - w.p_J2.dx) * (w.p_J4.y - w.p_J2.y) + (w.p_J3.x - w.p_J2.x) * (w.p_J4.dy - w.p_J2.dy) - (w.p_J3.dy - w.p_J2.dy) * (w.p_J4.x - w.p_J2.x) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.dx - w.p_J2.dx)];
     old = a{2}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{2} = [[f.v]'; sign(m); 0];
-    ad{2} = [[f.dv]'; zeros(3, 1)];
+    a{2} = [[f.v]'; m; 0];
+    ad{2} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_J7, w.p_J2, zero)];
     m = [(w.p_J7.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J7.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x); (w.p_J3.x - w.p_J2.x) * (w.p_J4.y - w.p_J2.y) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.x - w.p_J2.x)];
+    dm = [(w.p_J7.dx - w.p_J1.dx) * (w.p_J2.y - w.p_J1.y) + (w.p_J7.x - w.p_J1.x) * (w.p_J2.dy - w.p_J1.dy) - (w.p_J7.dy - w.p_J1.dy) * (w.p_J2.x - w.p_J1.x) - (w.p_J7.y - w.p_J1.y) * (w.p_J2.dx - w.p_J1.dx); (w.p_J3.dx - w.p_J2.dx) * (w.p_J4.y - w.p_J2.y) + (w.p_J3.x - w.p_J2.x) * (w.p_J4.dy - w.p_J2.dy) - (w.p_J3.dy - w.p_J2.dy) * (w.p_J4.x - w.p_J2.x) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.dx - w.p_J2.dx)];
     old = a{3}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{3} = [[f.v]'; sign(m); 0];
-    ad{3} = [[f.dv]'; zeros(3, 1)];
+    a{3} = [[f.v]'; m; 0];
+    ad{3} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_J7, w.p_J4, zero)];
     m = [(w.p_J7.x - w.p_J3.x) * (w.p_J4.y - w.p_J3.y) - (w.p_J7.y - w.p_J3.y) * (w.p_J4.x - w.p_J3.x); (w.p_J4.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J4.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x)];
+    dm = [(w.p_J7.dx - w.p_J3.dx) * (w.p_J4.y - w.p_J3.y) + (w.p_J7.x - w.p_J3.x) * (w.p_J4.dy - w.p_J3.dy) - (w.p_J7.dy - w.p_J3.dy) * (w.p_J4.x - w.p_J3.x) - (w.p_J7.y - w.p_J3.y) * (w.p_J4.dx - w.p_J3.dx); (w.p_J4.dx - w.p_J1.dx) * (w.p_J2.y - w.p_J1.y) + (w.p_J4.x - w.p_J1.x) * (w.p_J2.dy - w.p_J1.dy) - (w.p_J4.dy - w.p_J1.dy) * (w.p_J2.x - w.p_J1.x) - (w.p_J4.y - w.p_J1.y) * (w.p_J2.dx - w.p_J1.dx)];
     old = a{4}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{4} = [[f.v]'; sign(m); 0];
-    ad{4} = [[f.dv]'; zeros(3, 1)];
+    a{4} = [[f.v]'; m; 0];
+    ad{4} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_J1, w.p_J4, zero)];
     m = [(w.p_J1.x - w.p_J3.x) * (w.p_J4.y - w.p_J3.y) - (w.p_J1.y - w.p_J3.y) * (w.p_J4.x - w.p_J3.x); (w.p_J4.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J4.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x)];
+    dm = [(w.p_J1.dx - w.p_J3.dx) * (w.p_J4.y - w.p_J3.y) + (w.p_J1.x - w.p_J3.x) * (w.p_J4.dy - w.p_J3.dy) - (w.p_J1.dy - w.p_J3.dy) * (w.p_J4.x - w.p_J3.x) - (w.p_J1.y - w.p_J3.y) * (w.p_J4.dx - w.p_J3.dx); (w.p_J4.dx - w.p_J1.dx) * (w.p_J2.y - w.p_J1.y) + (w.p_J4.x - w.p_J1.x) * (w.p_J2.dy - w.p_J1.dy) - (w.p_J4.dy - w.p_J1.dy) * (w.p_J2.x - w.p_J1.x) - (w.p_J4.y - w.p_J1.y) * (w.p_J2.dx - w.p_J1.dx)];
     old = a{5}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{5} = [[f.v]'; sign(m); 0];
-    ad{5} = [[f.dv]'; zeros(3, 1)];
+    a{5} = [[f.v]'; m; 0];
+    ad{5} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_J3, w.p_J2, zero)];
     m = [(w.p_J3.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_J3.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x); (w.p_J3.x - w.p_J2.x) * (w.p_J4.y - w.p_J2.y) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.x - w.p_J2.x)];
+    dm = [(w.p_J3.dx - w.p_J1.dx) * (w.p_J2.y - w.p_J1.y) + (w.p_J3.x - w.p_J1.x) * (w.p_J2.dy - w.p_J1.dy) - (w.p_J3.dy - w.p_J1.dy) * (w.p_J2.x - w.p_J1.x) - (w.p_J3.y - w.p_J1.y) * (w.p_J2.dx - w.p_J1.dx); (w.p_J3.dx - w.p_J2.dx) * (w.p_J4.y - w.p_J2.y) + (w.p_J3.x - w.p_J2.x) * (w.p_J4.dy - w.p_J2.dy) - (w.p_J3.dy - w.p_J2.dy) * (w.p_J4.x - w.p_J2.x) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.dx - w.p_J2.dx)];
     old = a{6}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{6} = [[f.v]'; sign(m); 0];
-    ad{6} = [[f.dv]'; zeros(3, 1)];
+    a{6} = [[f.v]'; m; 0];
+    ad{6} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_K1, w.p_J2, zero)];
     m = [(w.p_K1.x - w.p_J1.x) * (w.p_J2.y - w.p_J1.y) - (w.p_K1.y - w.p_J1.y) * (w.p_J2.x - w.p_J1.x); (w.p_J3.x - w.p_J2.x) * (w.p_J4.y - w.p_J2.y) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.x - w.p_J2.x)];
+    dm = [(w.p_K1.dx - w.p_J1.dx) * (w.p_J2.y - w.p_J1.y) + (w.p_K1.x - w.p_J1.x) * (w.p_J2.dy - w.p_J1.dy) - (w.p_K1.dy - w.p_J1.dy) * (w.p_J2.x - w.p_J1.x) - (w.p_K1.y - w.p_J1.y) * (w.p_J2.dx - w.p_J1.dx); (w.p_J3.dx - w.p_J2.dx) * (w.p_J4.y - w.p_J2.y) + (w.p_J3.x - w.p_J2.x) * (w.p_J4.dy - w.p_J2.dy) - (w.p_J3.dy - w.p_J2.dy) * (w.p_J4.x - w.p_J2.x) - (w.p_J3.y - w.p_J2.y) * (w.p_J4.dx - w.p_J2.dx)];
     old = a{7}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{7} = [[f.v]'; sign(m); 0];
-    ad{7} = [[f.dv]'; zeros(3, 1)];
+    a{7} = [[f.v]'; m; 0];
+    ad{7} = [[f.dv]'; dm; 0];
 end
 
 
 function [a, ad] = lengths_2(w, a, ad)
     % The state of every block of group 2, read off the solved pairs: its Add-link
-    % lengths, the branches of its chains (a zero keeps the branch it had), then its
-    % orientation (0 here: the solving block's is set by the resolver).
+    % lengths, the measures whose signs are the branches of its chains (a zero keeps the one
+    % it had), then its orientation (0 here: the solving block's is set by the resolver); and
+    % their rates (the measures' too, so the predictor flips a branch where its chain passes
+    % its fold).
     zero = struct('v', 0, 'dv', 0, 'ddv', 0);
     f = [link_residual(w.p_J6, w.p_K4, zero)];
     m = [(w.p_J6.x - w.p_K3.x) * (w.p_K4.y - w.p_K3.y) - (w.p_J6.y - w.p_K3.y) * (w.p_K4.x - w.p_K3.x); (w.p_K4.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_K4.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x)];
+    dm = [(w.p_J6.dx - w.p_K3.dx) * (w.p_K4.y - w.p_K3.y) + (w.p_J6.x - w.p_K3.x) * (w.p_K4.dy - w.p_K3.dy) - (w.p_J6.dy - w.p_K3.dy) * (w.p_K4.x - w.p_K3.x) - (w.p_J6.y - w.p_K3.y) * (w.p_K4.dx - w.p_K3.dx); (w.p_K4.dx - w.p_K1.dx) * (w.p_K2.y - w.p_K1.y) + (w.p_K4.x - w.p_K1.x) * (w.p_K2.dy - w.p_K1.dy) - (w.p_K4.dy - w.p_K1.dy) * (w.p_K2.x - w.p_K1.x) - (w.p_K4.y - w.p_K1.y) * (w.p_K2.dx - w.p_K1.dx)];
     old = a{8}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{8} = [[f.v]'; sign(m); 0];
-    ad{8} = [[f.dv]'; zeros(3, 1)];
+    a{8} = [[f.v]'; m; 0];
+    ad{8} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_J5, w.p_K2, zero)];
     m = [(w.p_J5.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_J5.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x); (w.p_K3.x - w.p_K2.x) * (w.p_K4.y - w.p_K2.y) - (w.p_K3.y - w.p_K2.y) * (w.p_K4.x - w.p_K2.x)];
+    dm = [(w.p_J5.dx - w.p_K1.dx) * (w.p_K2.y - w.p_K1.y) + (w.p_J5.x - w.p_K1.x) * (w.p_K2.dy - w.p_K1.dy) - (w.p_J5.dy - w.p_K1.dy) * (w.p_K2.x - w.p_K1.x) - (w.p_J5.y - w.p_K1.y) * (w.p_K2.dx - w.p_K1.dx); (w.p_K3.dx - w.p_K2.dx) * (w.p_K4.y - w.p_K2.y) + (w.p_K3.x - w.p_K2.x) * (w.p_K4.dy - w.p_K2.dy) - (w.p_K3.dy - w.p_K2.dy) * (w.p_K4.x - w.p_K2.x) - (w.p_K3.y - w.p_K2.y) * (w.p_K4.dx - w.p_K2.dx)];
     old = a{9}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{9} = [[f.v]'; sign(m); 0];
-    ad{9} = [[f.dv]'; zeros(3, 1)];
+    a{9} = [[f.v]'; m; 0];
+    ad{9} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_J5, w.p_K4, zero)];
     m = [(w.p_J5.x - w.p_K3.x) * (w.p_K4.y - w.p_K3.y) - (w.p_J5.y - w.p_K3.y) * (w.p_K4.x - w.p_K3.x); (w.p_K4.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_K4.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x)];
+    dm = [(w.p_J5.dx - w.p_K3.dx) * (w.p_K4.y - w.p_K3.y) + (w.p_J5.x - w.p_K3.x) * (w.p_K4.dy - w.p_K3.dy) - (w.p_J5.dy - w.p_K3.dy) * (w.p_K4.x - w.p_K3.x) - (w.p_J5.y - w.p_K3.y) * (w.p_K4.dx - w.p_K3.dx); (w.p_K4.dx - w.p_K1.dx) * (w.p_K2.y - w.p_K1.y) + (w.p_K4.x - w.p_K1.x) * (w.p_K2.dy - w.p_K1.dy) - (w.p_K4.dy - w.p_K1.dy) * (w.p_K2.x - w.p_K1.x) - (w.p_K4.y - w.p_K1.y) * (w.p_K2.dx - w.p_K1.dx)];
     old = a{10}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{10} = [[f.v]'; sign(m); 0];
-    ad{10} = [[f.dv]'; zeros(3, 1)];
+    a{10} = [[f.v]'; m; 0];
+    ad{10} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_J2, w.p_K4, zero)];
     m = [(w.p_J2.x - w.p_K3.x) * (w.p_K4.y - w.p_K3.y) - (w.p_J2.y - w.p_K3.y) * (w.p_K4.x - w.p_K3.x); (w.p_K4.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_K4.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x)];
+    dm = [(w.p_J2.dx - w.p_K3.dx) * (w.p_K4.y - w.p_K3.y) + (w.p_J2.x - w.p_K3.x) * (w.p_K4.dy - w.p_K3.dy) - (w.p_J2.dy - w.p_K3.dy) * (w.p_K4.x - w.p_K3.x) - (w.p_J2.y - w.p_K3.y) * (w.p_K4.dx - w.p_K3.dx); (w.p_K4.dx - w.p_K1.dx) * (w.p_K2.y - w.p_K1.y) + (w.p_K4.x - w.p_K1.x) * (w.p_K2.dy - w.p_K1.dy) - (w.p_K4.dy - w.p_K1.dy) * (w.p_K2.x - w.p_K1.x) - (w.p_K4.y - w.p_K1.y) * (w.p_K2.dx - w.p_K1.dx)];
     old = a{11}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{11} = [[f.v]'; sign(m); 0];
-    ad{11} = [[f.dv]'; zeros(3, 1)];
+    a{11} = [[f.v]'; m; 0];
+    ad{11} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_J4, w.p_K4, zero)];
     m = [(w.p_J4.x - w.p_K3.x) * (w.p_K4.y - w.p_K3.y) - (w.p_J4.y - w.p_K3.y) * (w.p_K4.x - w.p_K3.x); (w.p_K4.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_K4.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x)];
+    dm = [(w.p_J4.dx - w.p_K3.dx) * (w.p_K4.y - w.p_K3.y) + (w.p_J4.x - w.p_K3.x) * (w.p_K4.dy - w.p_K3.dy) - (w.p_J4.dy - w.p_K3.dy) * (w.p_K4.x - w.p_K3.x) - (w.p_J4.y - w.p_K3.y) * (w.p_K4.dx - w.p_K3.dx); (w.p_K4.dx - w.p_K1.dx) * (w.p_K2.y - w.p_K1.y) + (w.p_K4.x - w.p_K1.x) * (w.p_K2.dy - w.p_K1.dy) - (w.p_K4.dy - w.p_K1.dy) * (w.p_K2.x - w.p_K1.x) - (w.p_K4.y - w.p_K1.y) * (w.p_K2.dx - w.p_K1.dx)];
     old = a{12}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{12} = [[f.v]'; sign(m); 0];
-    ad{12} = [[f.dv]'; zeros(3, 1)];
+    a{12} = [[f.v]'; m; 0];
+    ad{12} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_J2, w.p_K2, zero)];
     m = [(w.p_J2.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_J2.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x); (w.p_K3.x - w.p_K2.x) * (w.p_K4.y - w.p_K2.y) - (w.p_K3.y - w.p_K2.y) * (w.p_K4.x - w.p_K2.x)];
+    dm = [(w.p_J2.dx - w.p_K1.dx) * (w.p_K2.y - w.p_K1.y) + (w.p_J2.x - w.p_K1.x) * (w.p_K2.dy - w.p_K1.dy) - (w.p_J2.dy - w.p_K1.dy) * (w.p_K2.x - w.p_K1.x) - (w.p_J2.y - w.p_K1.y) * (w.p_K2.dx - w.p_K1.dx); (w.p_K3.dx - w.p_K2.dx) * (w.p_K4.y - w.p_K2.y) + (w.p_K3.x - w.p_K2.x) * (w.p_K4.dy - w.p_K2.dy) - (w.p_K3.dy - w.p_K2.dy) * (w.p_K4.x - w.p_K2.x) - (w.p_K3.y - w.p_K2.y) * (w.p_K4.dx - w.p_K2.dx)];
     old = a{13}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{13} = [[f.v]'; sign(m); 0];
-    ad{13} = [[f.dv]'; zeros(3, 1)];
+    a{13} = [[f.v]'; m; 0];
+    ad{13} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_J4, w.p_K2, zero)];
     m = [(w.p_J4.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_J4.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x); (w.p_K3.x - w.p_K2.x) * (w.p_K4.y - w.p_K2.y) - (w.p_K3.y - w.p_K2.y) * (w.p_K4.x - w.p_K2.x)];
+    dm = [(w.p_J4.dx - w.p_K1.dx) * (w.p_K2.y - w.p_K1.y) + (w.p_J4.x - w.p_K1.x) * (w.p_K2.dy - w.p_K1.dy) - (w.p_J4.dy - w.p_K1.dy) * (w.p_K2.x - w.p_K1.x) - (w.p_J4.y - w.p_K1.y) * (w.p_K2.dx - w.p_K1.dx); (w.p_K3.dx - w.p_K2.dx) * (w.p_K4.y - w.p_K2.y) + (w.p_K3.x - w.p_K2.x) * (w.p_K4.dy - w.p_K2.dy) - (w.p_K3.dy - w.p_K2.dy) * (w.p_K4.x - w.p_K2.x) - (w.p_K3.y - w.p_K2.y) * (w.p_K4.dx - w.p_K2.dx)];
     old = a{14}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{14} = [[f.v]'; sign(m); 0];
-    ad{14} = [[f.dv]'; zeros(3, 1)];
+    a{14} = [[f.v]'; m; 0];
+    ad{14} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_J6, w.p_K2, zero)];
     m = [(w.p_J6.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_J6.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x); (w.p_K3.x - w.p_K2.x) * (w.p_K4.y - w.p_K2.y) - (w.p_K3.y - w.p_K2.y) * (w.p_K4.x - w.p_K2.x)];
+    dm = [(w.p_J6.dx - w.p_K1.dx) * (w.p_K2.y - w.p_K1.y) + (w.p_J6.x - w.p_K1.x) * (w.p_K2.dy - w.p_K1.dy) - (w.p_J6.dy - w.p_K1.dy) * (w.p_K2.x - w.p_K1.x) - (w.p_J6.y - w.p_K1.y) * (w.p_K2.dx - w.p_K1.dx); (w.p_K3.dx - w.p_K2.dx) * (w.p_K4.y - w.p_K2.y) + (w.p_K3.x - w.p_K2.x) * (w.p_K4.dy - w.p_K2.dy) - (w.p_K3.dy - w.p_K2.dy) * (w.p_K4.x - w.p_K2.x) - (w.p_K3.y - w.p_K2.y) * (w.p_K4.dx - w.p_K2.dx)];
     old = a{15}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{15} = [[f.v]'; sign(m); 0];
-    ad{15} = [[f.dv]'; zeros(3, 1)];
+    a{15} = [[f.v]'; m; 0];
+    ad{15} = [[f.dv]'; dm; 0];
     f = [link_residual(w.p_J5, w.p_K5, zero)];
     m = [(w.p_J5.x - w.p_J6.x) * (w.p_K5.y - w.p_J6.y) - (w.p_J5.y - w.p_J6.y) * (w.p_K5.x - w.p_J6.x); (w.p_K5.x - w.p_K1.x) * (w.p_K2.y - w.p_K1.y) - (w.p_K5.y - w.p_K1.y) * (w.p_K2.x - w.p_K1.x)];
+    dm = [(w.p_J5.dx - w.p_J6.dx) * (w.p_K5.y - w.p_J6.y) + (w.p_J5.x - w.p_J6.x) * (w.p_K5.dy - w.p_J6.dy) - (w.p_J5.dy - w.p_J6.dy) * (w.p_K5.x - w.p_J6.x) - (w.p_J5.y - w.p_J6.y) * (w.p_K5.dx - w.p_J6.dx); (w.p_K5.dx - w.p_K1.dx) * (w.p_K2.y - w.p_K1.y) + (w.p_K5.x - w.p_K1.x) * (w.p_K2.dy - w.p_K1.dy) - (w.p_K5.dy - w.p_K1.dy) * (w.p_K2.x - w.p_K1.x) - (w.p_K5.y - w.p_K1.y) * (w.p_K2.dx - w.p_K1.dx)];
     old = a{16}(2:3);
+    dm(m == 0) = 0;
     m(m == 0) = old(m == 0);
-    a{16} = [[f.v]'; sign(m); 0];
-    ad{16} = [[f.dv]'; zeros(3, 1)];
+    a{16} = [[f.v]'; m; 0];
+    ad{16} = [[f.dv]'; dm; 0];
 end
 
 
@@ -1627,6 +1658,23 @@ function [angle, st] = link_angle(j1, j2, off)
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
+end
+
+function angle = crank_angle(theta, phi, off)
+    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
+    th0 = theta.the + phi.the + off;
+    if abs(th0) >= 3 * pi
+        th = atan2(sin(th0), cos(th0));
+    elseif th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    angle.the = th;
+    angle.dthe = theta.dthe + phi.dthe;
+    angle.ddthe = theta.ddthe + phi.ddthe;
 end
 
 function [jc, st] = link_point(j1, j2, gsi, eta)

@@ -62,6 +62,19 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
+/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
+#if defined(__GNUC__)
+static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
+static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
+{
+    const double th0 = theta->the + phi->the + off;
+    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
+    angle->the = th;
+    angle->dthe = theta->dthe + phi->dthe;
+    angle->ddthe = theta->ddthe + phi->ddthe;
+}
+
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
 #if defined(__GNUC__)
 static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
@@ -335,10 +348,8 @@ static int run(work *w, const double in[], const double din[], const double ddin
     note(w, st, 43, -44);
 
 
-    /* Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is known */
-    st = link_angle(&p_O1, &w->p_A, 0.0, &w->phi_crank1);
-    if (st == 1) return failed(w, out, 51);
-    note(w, st, 53, -54);
+    /* Step 5: crank_angle, crank1. the input theta_O1 turns link crank1, so its angle is the input's */
+    crank_angle(&w->in1, &ref_O1, 0.0, &w->phi_crank1);
 
 
     /* Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known */
@@ -353,10 +364,8 @@ static int run(work *w, const double in[], const double din[], const double ddin
     note(w, st, 73, -74);
 
 
-    /* Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is known */
-    st = link_angle(&p_O2, &w->p_B, 0.0, &w->phi_crank2);
-    if (st == 1) return failed(w, out, 81);
-    note(w, st, 83, -84);
+    /* Step 8: crank_angle, crank2. the input theta_O2 turns link crank2, so its angle is the input's */
+    crank_angle(&w->in2, &ref_O2, 0.0, &w->phi_crank2);
 
     st = w->singular ? w->singular : w->near;
     publish(w, st, out);

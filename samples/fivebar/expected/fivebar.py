@@ -81,6 +81,53 @@ COLUMNS = (
 )
 _OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
+_FIXED = {  # every output column: those of the fixed sketch with their values, the computed ones nan until _publish
+    "O1.x": 0.0,
+    "O1.y": 0.0,
+    "O1.vx": 0.0,
+    "O1.vy": 0.0,
+    "O1.ax": 0.0,
+    "O1.ay": 0.0,
+    "A.x": NAN,
+    "A.y": NAN,
+    "A.vx": NAN,
+    "A.vy": NAN,
+    "A.ax": NAN,
+    "A.ay": NAN,
+    "P.x": NAN,
+    "P.y": NAN,
+    "P.vx": NAN,
+    "P.vy": NAN,
+    "P.ax": NAN,
+    "P.ay": NAN,
+    "B.x": NAN,
+    "B.y": NAN,
+    "B.vx": NAN,
+    "B.vy": NAN,
+    "B.ax": NAN,
+    "B.ay": NAN,
+    "O2.x": 60.0,
+    "O2.y": 0.0,
+    "O2.vx": 0.0,
+    "O2.vy": 0.0,
+    "O2.ax": 0.0,
+    "O2.ay": 0.0,
+    "frame.phi": 0.0,
+    "frame.omega": 0.0,
+    "frame.alpha": 0.0,
+    "crank1.phi": NAN,
+    "crank1.omega": NAN,
+    "crank1.alpha": NAN,
+    "link1.phi": NAN,
+    "link1.omega": NAN,
+    "link1.alpha": NAN,
+    "link2.phi": NAN,
+    "link2.omega": NAN,
+    "link2.alpha": NAN,
+    "crank2.phi": NAN,
+    "crank2.omega": NAN,
+    "crank2.alpha": NAN,
+}
 
 
 # -- the mech.cpp functions this procedure uses -------------------------------
@@ -123,6 +170,14 @@ def link_angle(j1, j2, off):
     if st == 1:
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
+
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
 
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
@@ -212,113 +267,206 @@ def _run(w, inputs, d_inputs, dd_inputs):
     """The procedure of fivebar.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
-    w.in2 = (inputs[1], d_inputs[1], dd_inputs[1])
+    _in1_the, _in1_dthe, _in1_ddthe = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in2_the, _in2_dthe, _in2_ddthe = w.in2 = (inputs[1], d_inputs[1], dd_inputs[1])
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank1 to A
-    w.p_A = crank_input(p_O1, 15.0, w.in1, ref_O1)
+    # crank_input(p_O1, 15.0, w.in1, ref_O1), inline
+    _t = _in1_the + 0.0
+    _ct = cos(_t)
+    _st = sin(_t)
+    _rx = 15.0 * _ct
+    _ry = 15.0 * _st
+    _om = _in1_dthe + 0.0
+    _al = _in1_ddthe + 0.0
+    _rvx = -_om * _ry
+    _rvy = _om * _rx
+    _rax = -_al * _ry - _om * _om * _rx
+    _ray = _al * _rx - _om * _om * _ry
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-36.0) + _rx, (-20.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 3: crank_input, B. O2 is known and link frame is placed, so the input angle theta_O2 turns link crank2 to B
-    w.p_B = crank_input(p_O2, 15.0, w.in2, ref_O2)
+    # crank_input(p_O2, 15.0, w.in2, ref_O2), inline
+    _t = _in2_the + 0.0
+    _ct = cos(_t)
+    _st = sin(_t)
+    _rx = 15.0 * _ct
+    _ry = 15.0 * _st
+    _om = _in2_dthe + 0.0
+    _al = _in2_ddthe + 0.0
+    _rvx = -_om * _ry
+    _rvy = _om * _rx
+    _rax = -_al * _ry - _om * _om * _rx
+    _ray = _al * _rx - _om * _om * _ry
+    _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (24.0 + _rx, (-20.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 4: RRR_links, P (branch +1). P is joined to the known A by link1 and to the known B by link2: a 3R two-link chain with both ends known
-    st, w.sigma[4], w.p_P = RRR_links(w.p_A, w.p_B, l_link1, l_link2, 1)
+    # RRR_links(w.p_A, w.p_B, l_link1, l_link2, 1), inline
+    _dx = _p_B_x - _p_A_x
+    _dy = _p_B_y - _p_A_y
+    _q = sqrt(_dx * _dx + _dy * _dy)
+    _iq = NAN if _q == 0 else 1 / _q
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hi = (50.0 if 50.0 > 50.0 else 50.0)
+    _lo = (50.0 if 50.0 < 50.0 else 50.0)
+    _x = (_q if _q > _hi else _hi)
+    _z = (_q if _q < _lo else _lo)
+    _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
+    _k = _z - (_x - _y)
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
+    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _h = _area4 * _iq / 2
+    _a = (_q + (50.0 - 50.0) * ((50.0 + 50.0) * _iq)) / 2
+    _a2 = (_q + (50.0 - 50.0) * ((50.0 + 50.0) * _iq)) / 2
+    _flat = (50.0 + (_q - 50.0)) / 2 if _q >= _hi else (50.0 + (_q + 50.0)) / 2 if 50.0 >= 50.0 else (_q - (50.0 + 50.0)) / 2
+    _at = _a if _k > 0 else _flat
+    _hn = 1 * _h
+    _e1x = _at * _ux - _hn * _uy
+    _e1y = _at * _uy + _hn * _ux
+    _ratio = 0 if _fail else _area4 * (0.5 / (50.0 * 50.0))
+    _sigma = (1 if 1 < _ratio else _ratio)
+    _e2x = -_a2 * _ux - _hn * _uy
+    _e2y = -_a2 * _uy + _hn * _ux
+    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _r1v = 50.0 * 0.0 + (_e1x * _p_A_dx + _e1y * _p_A_dy)
+    _r2v = 50.0 * 0.0 + (_e2x * _p_B_dx + _e2y * _p_B_dy)
+    _buv = (_r1v - _r2v) * _iq
+    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
+    _bvx = _buv * _ux - _bnv * _uy
+    _bvy = _buv * _uy + _bnv * _ux
+    _r1a = 50.0 * 0.0 + 0.0 * 0.0 - ((_bvx - _p_A_dx) * (_bvx - _p_A_dx) + (_bvy - _p_A_dy) * (_bvy - _p_A_dy)) + (_e1x * _p_A_ddx + _e1y * _p_A_ddy)
+    _r2a = 50.0 * 0.0 + 0.0 * 0.0 - ((_bvx - _p_B_dx) * (_bvx - _p_B_dx) + (_bvy - _p_B_dy) * (_bvy - _p_B_dy)) + (_e2x * _p_B_ddx + _e2y * _p_B_ddy)
+    _bua = (_r1a - _r2a) * _iq
+    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
+    _bax = _bua * _ux - _bna * _uy
+    _bay = _bua * _uy + _bna * _ux
+    st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
+    w.sigma[4] = _sigma
     if st == 1:
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 41
+    elif st == 3:
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (_p_A_x + _e1x, _p_A_y + _e1y, NAN, NAN, NAN, NAN)
+    else:
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (_p_A_x + _e1x, _p_A_y + _e1y, _bvx, _bvy, _bax, _bay)
     if st:
         w.note(st, 43, -44)
 
-    # Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is known
-    st, w.phi_crank1 = link_angle(p_O1, w.p_A, 0.0)
-    if st == 1:
-        return 51
-    if st:
-        w.note(st, 53, -54)
+    # Step 5: crank_angle, crank1. the input theta_O1 turns link crank1, so its angle is the input's
+    # crank_angle(w.in1, ref_O1, 0.0), inline
+    _th0 = _in1_the + 0.0 + 0.0
+    _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_crank1_the, _phi_crank1_dthe, _phi_crank1_ddthe = w.phi_crank1 = (_th, _in1_dthe + 0.0, _in1_ddthe + 0.0)
 
     # Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known
-    st, w.phi_link1 = link_angle(w.p_A, w.p_P, 0.0)
+    # link_angle(w.p_A, w.p_P, 0.0), inline
+    _dx = _p_P_x - _p_A_x
+    _dy = _p_P_y - _p_A_y
+    _dvx = _p_P_dx - _p_A_dx
+    _dvy = _p_P_dy - _p_A_dy
+    _dax = _p_P_ddx - _p_A_ddx
+    _day = _p_P_ddy - _p_A_ddy
+    _r2 = _dx * _dx + _dy * _dy
+    _th0 = atan2(_dy, _dx) + 0.0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _ir2 = NAN if _r2 == 0 else 1 / _r2
+    _om = (_dx * _dvy - _dy * _dvx) * _ir2
+    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
+    st = 1 if _r2 == 0 else 0
     if st == 1:
+        _phi_link1_the, _phi_link1_dthe, _phi_link1_ddthe = w.phi_link1 = (NAN, NAN, NAN)
         return 61
+    else:
+        _phi_link1_the, _phi_link1_dthe, _phi_link1_ddthe = w.phi_link1 = (_th, _om, _al)
     if st:
         w.note(st, 63, -64)
 
     # Step 7: link_angle, link2. P and B of link link2 are known, so its angle is known
-    st, w.phi_link2 = link_angle(w.p_P, w.p_B, 0.0)
+    # link_angle(w.p_P, w.p_B, 0.0), inline
+    _dx = _p_B_x - _p_P_x
+    _dy = _p_B_y - _p_P_y
+    _dvx = _p_B_dx - _p_P_dx
+    _dvy = _p_B_dy - _p_P_dy
+    _dax = _p_B_ddx - _p_P_ddx
+    _day = _p_B_ddy - _p_P_ddy
+    _r2 = _dx * _dx + _dy * _dy
+    _th0 = atan2(_dy, _dx) + 0.0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _ir2 = NAN if _r2 == 0 else 1 / _r2
+    _om = (_dx * _dvy - _dy * _dvx) * _ir2
+    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
+    st = 1 if _r2 == 0 else 0
     if st == 1:
+        _phi_link2_the, _phi_link2_dthe, _phi_link2_ddthe = w.phi_link2 = (NAN, NAN, NAN)
         return 71
+    else:
+        _phi_link2_the, _phi_link2_dthe, _phi_link2_ddthe = w.phi_link2 = (_th, _om, _al)
     if st:
         w.note(st, 73, -74)
 
-    # Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is known
-    st, w.phi_crank2 = link_angle(p_O2, w.p_B, 0.0)
-    if st == 1:
-        return 81
-    if st:
-        w.note(st, 83, -84)
+    # Step 8: crank_angle, crank2. the input theta_O2 turns link crank2, so its angle is the input's
+    # crank_angle(w.in2, ref_O2, 0.0), inline
+    _th0 = _in2_the + 0.0 + 0.0
+    _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_crank2_the, _phi_crank2_dthe, _phi_crank2_ddthe = w.phi_crank2 = (_th, _in2_dthe + 0.0, _in2_ddthe + 0.0)
 
     return w.singular or w.near
 
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = reason_of(code) in (1, 2)
-    singular = reason_of(code) == 3
+    reason = code % 10 if code > 0 else 0  # reason_of(code), without the call
+    failed = reason in (1, 2)
+    singular = reason == 3
     if failed:
         out = dict.fromkeys(_OUTPUTS, NAN)
-    else:  # a dict display: one step, where dict(zip()) of a tuple took three
-        out = {
-            "O1.x": 0.0,
-            "O1.y": 0.0,
-            "O1.vx": 0.0,
-            "O1.vy": 0.0,
-            "O1.ax": 0.0,
-            "O1.ay": 0.0,
-            "A.x": w.p_A[0] + 36.0,
-            "A.y": w.p_A[1] + 20.0,
-            "A.vx": w.p_A[2],
-            "A.vy": w.p_A[3],
-            "A.ax": w.p_A[4],
-            "A.ay": w.p_A[5],
-            "P.x": w.p_P[0] + 36.0,
-            "P.y": w.p_P[1] + 20.0,
-            "P.vx": w.p_P[2],
-            "P.vy": w.p_P[3],
-            "P.ax": w.p_P[4],
-            "P.ay": w.p_P[5],
-            "B.x": w.p_B[0] + 36.0,
-            "B.y": w.p_B[1] + 20.0,
-            "B.vx": w.p_B[2],
-            "B.vy": w.p_B[3],
-            "B.ax": w.p_B[4],
-            "B.ay": w.p_B[5],
-            "O2.x": 60.0,
-            "O2.y": 0.0,
-            "O2.vx": 0.0,
-            "O2.vy": 0.0,
-            "O2.ax": 0.0,
-            "O2.ay": 0.0,
-            "frame.phi": 0.0,
-            "frame.omega": 0.0,
-            "frame.alpha": 0.0,
-            "crank1.phi": w.phi_crank1[0],
-            "crank1.omega": w.phi_crank1[1],
-            "crank1.alpha": w.phi_crank1[2],
-            "link1.phi": w.phi_link1[0],
-            "link1.omega": w.phi_link1[1],
-            "link1.alpha": w.phi_link1[2],
-            "link2.phi": w.phi_link2[0],
-            "link2.omega": w.phi_link2[1],
-            "link2.alpha": w.phi_link2[2],
-            "crank2.phi": w.phi_crank2[0],
-            "crank2.omega": w.phi_crank2[1],
-            "crank2.alpha": w.phi_crank2[2],
-        }
+    else:  # _FIXED copied, then the computed columns set: half the time of a dict display of every column
+        _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B
+        _phi_crank1_the, _phi_crank1_dthe, _phi_crank1_ddthe = w.phi_crank1
+        _phi_link1_the, _phi_link1_dthe, _phi_link1_ddthe = w.phi_link1
+        _phi_link2_the, _phi_link2_dthe, _phi_link2_ddthe = w.phi_link2
+        _phi_crank2_the, _phi_crank2_dthe, _phi_crank2_ddthe = w.phi_crank2
+        out = _FIXED.copy()
+        out["A.x"] = _p_A_x + 36.0
+        out["A.y"] = _p_A_y + 20.0
+        out["A.vx"] = _p_A_dx
+        out["A.vy"] = _p_A_dy
+        out["A.ax"] = _p_A_ddx
+        out["A.ay"] = _p_A_ddy
+        out["P.x"] = _p_P_x + 36.0
+        out["P.y"] = _p_P_y + 20.0
+        out["P.vx"] = _p_P_dx
+        out["P.vy"] = _p_P_dy
+        out["P.ax"] = _p_P_ddx
+        out["P.ay"] = _p_P_ddy
+        out["B.x"] = _p_B_x + 36.0
+        out["B.y"] = _p_B_y + 20.0
+        out["B.vx"] = _p_B_dx
+        out["B.vy"] = _p_B_dy
+        out["B.ax"] = _p_B_ddx
+        out["B.ay"] = _p_B_ddy
+        out["crank1.phi"] = _phi_crank1_the
+        out["crank1.omega"] = _phi_crank1_dthe
+        out["crank1.alpha"] = _phi_crank1_ddthe
+        out["link1.phi"] = _phi_link1_the
+        out["link1.omega"] = _phi_link1_dthe
+        out["link1.alpha"] = _phi_link1_ddthe
+        out["link2.phi"] = _phi_link2_the
+        out["link2.omega"] = _phi_link2_dthe
+        out["link2.alpha"] = _phi_link2_ddthe
+        out["crank2.phi"] = _phi_crank2_the
+        out["crank2.omega"] = _phi_crank2_dthe
+        out["crank2.alpha"] = _phi_crank2_ddthe
     if order < ORDER or singular:
         out = {name: NAN if singular and level > 0 else value
                for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
-    out["sigma"] = list(w.sigma)
+    out["sigma"] = w.sigma  # a new list each solve
     return out
 
 
@@ -336,6 +484,8 @@ def _check(inputs, d_inputs, dd_inputs):
                                 f"not {type(values).__name__}")
             if len(values) != N_INPUTS:
                 raise ValueError(f"fivebar.solve: expected {N_INPUTS} {what}, got {len(values)}")
+    if abs(inputs[0]) <= 1e+30 and abs(inputs[1]) <= 1e+30 and abs(d_inputs[0]) <= 1e+30 and abs(d_inputs[1]) <= 1e+30 and abs(dd_inputs[0]) <= 1e+30 and abs(dd_inputs[1]) <= 1e+30:
+        return  # every number in range: the loops below find the first one that is not
     for k, x in enumerate(inputs):
         if not abs(x) <= 1e+30:
             raise ValueError(f"fivebar.solve: inputs[{k}] is not finite or larger than 1e+30: {x!r}")

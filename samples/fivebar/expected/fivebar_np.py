@@ -103,10 +103,10 @@ PARAMS = {  # design parameter -> its value in the sketch
     "l_link2": 50.0,  # length link2:P-B
     "step2.l": 15.0,  # step 2: crank_input of A
     "step3.l": 15.0,  # step 3: crank_input of B
-    "step5.off": 0.0,  # step 5: link_angle of crank1
+    "step5.off": 0.0,  # step 5: crank_angle of crank1
     "step6.off": 0.0,  # step 6: link_angle of link1
     "step7.off": 0.0,  # step 7: link_angle of link2
-    "step8.off": 0.0,  # step 8: link_angle of crank2
+    "step8.off": 0.0,  # step 8: crank_angle of crank2
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
     name="fivebar_np", n_inputs=N_INPUTS, n_steps=N_STEPS, params=PARAMS,
@@ -191,6 +191,35 @@ def link_angle(j1, j2, off):
     _angle = (_f1, om, al)
     if _singular.any():  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
+    return _st, _sigma, _angle
+
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
     return _st, _sigma, _angle
 
 def RRR_links(j1, j2, l1, l2, minv):
@@ -326,58 +355,6 @@ def RRR_links(j1, j2, l1, l2, minv):
     if _singular.any():  # nan where the rows failed
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
     return _st, _sigma, _jb
-
-def link_angle_still_j1(j1, j2, off):
-    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
-    j1_x, j1_y, _, _, _, _ = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    dx = j2_x - j1_x
-    dy = j2_y - j1_y
-    dvx = j2_dx
-    dvy = j2_dy
-    dax = j2_ddx
-    day = j2_ddy
-    r2 = dx * dx + dy * dy
-    th0 = np.arctan2(dy, dx) + off
-    _t1 = r2 == 0
-    _c1 = np.asarray(_t1)
-    if not _c1.any():
-        ir2 = 1 / r2
-    elif _c1.all():
-        ir2 = NAN
-    else:
-        ir2 = np.where(_c1, NAN, 1 / r2)
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    _c2 = np.asarray(_t1)
-    if not _c2.any():
-        _st = 0
-    elif _c2.all():
-        _st = 1
-    else:
-        _st = np.where(_c2, 1, 0)
-    _sigma = 1.0
-    _st = np.asarray(_st)
-    _sigma = np.asarray(_sigma, dtype=REAL)
-    _fails = _st == 1
-    _singular = _fails | (_st == 3)
-    _c3 = np.asarray(th0 > PI)
-    if not _c3.any():
-        _c4 = np.asarray(th0 <= -PI)
-        if not _c4.any():
-            _f1 = th0
-        elif _c4.all():
-            _f1 = th0 + 2 * PI
-        else:
-            _f1 = np.where(_c4, th0 + 2 * PI, th0)
-    elif _c3.all():
-        _f1 = th0 - 2 * PI
-    else:
-        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
-    _angle = (_f1, om, al)
-    if _singular.any():  # nan where the rows failed
-        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
-    return _st, _sigma, _angle
 
 def cos_sin(t):
     """cos t and sin t from one tangent of the half angle, within an eps of the library's:
@@ -611,18 +588,16 @@ def _run(x, dx, ddx, c):
     # Step 4: RRR_links, P (branch +1). P is joined to the known A by link1 and to the known B by link2: a 3R two-link chain with both ends known
     st, sigma[4], w.p_P = RRR_links(w.p_A, w.p_B, w.l_link1, w.l_link2, 1)
     report.append((st, ((1, 41), (3, 43), (4, -44))))
-    # Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is known
-    st, _, w.phi_crank1 = link_angle_still_j1(w.p_O1, w.p_A, c["step5.off"])
-    report.append((st, ((1, 51),)))
+    # Step 5: crank_angle, crank1. the input theta_O1 turns link crank1, so its angle is the input's
+    _, _, w.phi_crank1 = crank_angle(w.in1, w.ref_O1, c["step5.off"])
     # Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known
     st, _, w.phi_link1 = link_angle(w.p_A, w.p_P, c["step6.off"])
     report.append((st, ((1, 61),)))
     # Step 7: link_angle, link2. P and B of link link2 are known, so its angle is known
     st, _, w.phi_link2 = link_angle(w.p_P, w.p_B, c["step7.off"])
     report.append((st, ((1, 71),)))
-    # Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is known
-    st, _, w.phi_crank2 = link_angle_still_j1(w.p_O2, w.p_B, c["step8.off"])
-    report.append((st, ((1, 81),)))
+    # Step 8: crank_angle, crank2. the input theta_O2 turns link crank2, so its angle is the input's
+    _, _, w.phi_crank2 = crank_angle(w.in2, w.ref_O2, c["step8.off"])
     code = row_status(report)
     return w, code, sigma
 

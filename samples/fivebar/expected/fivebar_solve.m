@@ -93,13 +93,8 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 43, -44);
 
-    % Step 5: link_angle, crank1. O1 and A of link crank1 are known, so its angle is known
-    [w.phi_crank1, st] = link_angle(w.p_O1, w.p_A, 0.0);
-    if st == 1
-        status = 51;
-        return;
-    end
-    w = note(w, st, 53, -54);
+    % Step 5: crank_angle, crank1. the input theta_O1 turns link crank1, so its angle is the input's
+    w.phi_crank1 = crank_angle(w.in1, w.ref_O1, 0.0);
 
     % Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known
     [w.phi_link1, st] = link_angle(w.p_A, w.p_P, 0.0);
@@ -117,13 +112,8 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 73, -74);
 
-    % Step 8: link_angle, crank2. O2 and B of link crank2 are known, so its angle is known
-    [w.phi_crank2, st] = link_angle(w.p_O2, w.p_B, 0.0);
-    if st == 1
-        status = 81;
-        return;
-    end
-    w = note(w, st, 83, -84);
+    % Step 8: crank_angle, crank2. the input theta_O2 turns link crank2, so its angle is the input's
+    w.phi_crank2 = crank_angle(w.in2, w.ref_O2, 0.0);
 
     if w.singular > 0
         status = w.singular;
@@ -324,6 +314,23 @@ function [angle, st] = link_angle(j1, j2, off)
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
+end
+
+function angle = crank_angle(theta, phi, off)
+    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
+    th0 = theta.the + phi.the + off;
+    if abs(th0) >= 3 * pi
+        th = atan2(sin(th0), cos(th0));
+    elseif th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    angle.the = th;
+    angle.dthe = theta.dthe + phi.dthe;
+    angle.ddthe = theta.ddthe + phi.ddthe;
 end
 
 function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)

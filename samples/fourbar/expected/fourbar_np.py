@@ -99,7 +99,7 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step2.l": 20.0,  # step 2: crank_input of A
     "step4.gsi": 2.5607375986579193,  # step 4: link_point of P
     "step4.eta": -28.168113585237116,  # step 4: link_point of P
-    "step5.off": 0.0,  # step 5: link_angle of crank
+    "step5.off": 0.0,  # step 5: crank_angle of crank
     "step6.off": 0.0,  # step 6: link_angle of coupler
     "step7.off": 0.0,  # step 7: link_angle of rocker
 }
@@ -186,6 +186,35 @@ def link_angle(j1, j2, off):
     _angle = (_f1, om, al)
     if _singular.any():  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
+    return _st, _sigma, _angle
+
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
     return _st, _sigma, _angle
 
 def link_point(j1, j2, gsi, eta):
@@ -652,9 +681,8 @@ def _run(x, dx, ddx, c):
     # Step 4: link_point, P. point P of link coupler
     st, _, w.p_P = link_point(w.p_B, w.p_A, c["step4.gsi"], c["step4.eta"])
     report.append((st, ((1, 41),)))
-    # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
-    st, _, w.phi_crank = link_angle_still_j1(w.p_O1, w.p_A, c["step5.off"])
-    report.append((st, ((1, 51),)))
+    # Step 5: crank_angle, crank. the input theta_O1 turns link crank, so its angle is the input's
+    _, _, w.phi_crank = crank_angle(w.in1, w.ref_O1, c["step5.off"])
     # Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is known
     st, _, w.phi_coupler = link_angle(w.p_A, w.p_B, c["step6.off"])
     report.append((st, ((1, 61),)))

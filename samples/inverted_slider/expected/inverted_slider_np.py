@@ -104,7 +104,7 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step3.bs": 0.0,  # step 3: RPR_links of S
     "step4.gsi": 120.00000000000001,  # step 4: coupler_point of P
     "step4.eta": 0.0,  # step 4: coupler_point of P
-    "step5.off": 0.0,  # step 5: link_angle of crank
+    "step5.off": 0.0,  # step 5: crank_angle of crank
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
     name="inverted_slider_np", n_inputs=N_INPUTS, n_steps=N_STEPS, params=PARAMS,
@@ -139,6 +139,35 @@ def crank_input(j1, l, theta, phi):
     _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _j2
 
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
+    return _st, _sigma, _angle
+
 def coupler_point(j0, phi, gsi, eta):
     """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
     j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
@@ -155,58 +184,6 @@ def coupler_point(j0, phi, gsi, eta):
     _sigma = np.asarray(1.0, dtype=REAL)
     _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
     return _st, _sigma, _jc
-
-def link_angle_still_j1(j1, j2, off):
-    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
-    j1_x, j1_y, _, _, _, _ = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    dx = j2_x - j1_x
-    dy = j2_y - j1_y
-    dvx = j2_dx
-    dvy = j2_dy
-    dax = j2_ddx
-    day = j2_ddy
-    r2 = dx * dx + dy * dy
-    th0 = np.arctan2(dy, dx) + off
-    _t1 = r2 == 0
-    _c1 = np.asarray(_t1)
-    if not _c1.any():
-        ir2 = 1 / r2
-    elif _c1.all():
-        ir2 = NAN
-    else:
-        ir2 = np.where(_c1, NAN, 1 / r2)
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    _c2 = np.asarray(_t1)
-    if not _c2.any():
-        _st = 0
-    elif _c2.all():
-        _st = 1
-    else:
-        _st = np.where(_c2, 1, 0)
-    _sigma = 1.0
-    _st = np.asarray(_st)
-    _sigma = np.asarray(_sigma, dtype=REAL)
-    _fails = _st == 1
-    _singular = _fails | (_st == 3)
-    _c3 = np.asarray(th0 > PI)
-    if not _c3.any():
-        _c4 = np.asarray(th0 <= -PI)
-        if not _c4.any():
-            _f1 = th0
-        elif _c4.all():
-            _f1 = th0 + 2 * PI
-        else:
-            _f1 = np.where(_c4, th0 + 2 * PI, th0)
-    elif _c3.all():
-        _f1 = th0 - 2 * PI
-    else:
-        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
-    _angle = (_f1, om, al)
-    if _singular.any():  # nan where the rows failed
-        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
-    return _st, _sigma, _angle
 
 def RPR_links_still_jg(jg, js, ag, bg, as_, bs, minv):
     """RPR chain: a guide link turning about jg and a slider link turning about js slide along one line; (ag, bg) and (as, bs) are the pair's reference point seen from jg and js in the line's frame.  Gives the line angle psi, the displacement s and the pair's slider point jp."""
@@ -534,9 +511,8 @@ def _run(x, dx, ddx, c):
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: coupler_point, P. point P of link lever
     _, _, w.p_P = coupler_point(w.p_O2, w.psi_S, c["step4.gsi"], c["step4.eta"])
-    # Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
-    st, _, w.phi_crank = link_angle_still_j1(w.p_O1, w.p_A, c["step5.off"])
-    report.append((st, ((1, 51),)))
+    # Step 5: crank_angle, crank. the input theta_O1 turns link crank, so its angle is the input's
+    _, _, w.phi_crank = crank_angle(w.in1, w.ref_O1, c["step5.off"])
     code = row_status(report)
     return w, code, sigma
 

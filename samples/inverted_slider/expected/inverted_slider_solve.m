@@ -89,13 +89,8 @@ function [status, w] = run(w, in, din, ddin)
     % Step 4: coupler_point, P. point P of link lever
     w.p_P = coupler_point(w.p_O2, w.psi_S, 120.00000000000001, 0.0);
 
-    % Step 5: link_angle, crank. O1 and A of link crank are known, so its angle is known
-    [w.phi_crank, st] = link_angle(w.p_O1, w.p_A, 0.0);
-    if st == 1
-        status = 51;
-        return;
-    end
-    w = note(w, st, 53, -54);
+    % Step 5: crank_angle, crank. the input theta_O1 turns link crank, so its angle is the input's
+    w.phi_crank = crank_angle(w.in1, w.ref_O1, 0.0);
 
     if w.singular > 0
         status = w.singular;
@@ -259,43 +254,21 @@ function j2 = crank_input(j1, l, theta, phi)
     j2.ddy = j1.ddy + ray;
 end
 
-function [angle, st] = link_angle(j1, j2, off)
-    % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
-    dx = j2.x - j1.x;
-    dy = j2.y - j1.y;
-    dvx = j2.dx - j1.dx;
-    dvy = j2.dy - j1.dy;
-    dax = j2.ddx - j1.ddx;
-    day = j2.ddy - j1.ddy;
-    r2 = dx * dx + dy * dy;
-    th0 = atan2(dy, dx) + off;
-    if th0 > pi
+function angle = crank_angle(theta, phi, off)
+    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
+    th0 = theta.the + phi.the + off;
+    if abs(th0) >= 3 * pi
+        th = atan2(sin(th0), cos(th0));
+    elseif th0 > pi
         th = th0 - 2 * pi;
     elseif th0 <= -pi
         th = th0 + 2 * pi;
     else
         th = th0;
     end
-    if r2 == 0
-        ir2 = NaN;
-    else
-        ir2 = 1 / r2;
-    end
-    om = (dx * dvy - dy * dvx) * ir2;
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
-    if r2 == 0
-        st = 1;
-    else
-        st = 0;
-    end
     angle.the = th;
-    angle.dthe = om;
-    angle.ddthe = al;
-    if st == 1
-        angle.the = NaN;
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
+    angle.dthe = theta.dthe + phi.dthe;
+    angle.ddthe = theta.ddthe + phi.ddthe;
 end
 
 function jc = coupler_point(j0, phi, gsi, eta)

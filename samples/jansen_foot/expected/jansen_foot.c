@@ -31,26 +31,16 @@ static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, co
     j2->DP.y = j1->DP.y + rvy;
 }
 
-/* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
+/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
 #if defined(__GNUC__)
-static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
+static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
 #endif
-static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
+static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
 {
-    const double dx = j2->P.x - j1->P.x;
-    const double dy = j2->P.y - j1->P.y;
-    const double dvx = j2->DP.x - j1->DP.x;
-    const double dvy = j2->DP.y - j1->DP.y;
-    const double r2 = dx * dx + dy * dy;
-    const double th0 = atan2(dy, dx) + off;
-    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
-    const double ir2 = r2 == 0 ? NAN : 1 / r2;
-    const double om = (dx * dvy - dy * dvx) * ir2;
-    const int st = r2 == 0 ? 1 : 0;
+    const double th0 = theta->the + phi->the + off;
+    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     angle->the = th;
-    angle->dthe = om;
-    if (st == 1) { angle->the = NAN; angle->dthe = NAN; }
-    return st;
+    angle->dthe = theta->dthe + phi->dthe;
 }
 
 /* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
@@ -264,10 +254,8 @@ static int run(work *w, const double in[], const double din[], const double ddin
     note(w, st, 73, -74);
 
 
-    /* Step 8: link_angle, crank. O and A of link crank are known, so its angle is known */
-    st = link_angle(&p_O, &w->p_A, 0.0, &w->phi_crank);
-    if (st == 1) return failed(w, out, 81);
-    note(w, st, 83, -84);
+    /* Step 8: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's */
+    crank_angle(&w->in1, &ref_O, 0.0, &w->phi_crank);
 
     st = w->singular ? w->singular : w->near;
     publish(w, st, out);

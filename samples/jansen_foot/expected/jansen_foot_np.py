@@ -68,7 +68,7 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step4.eta": 40.01497880667611,  # step 4: link_point of D
     "step7.gsi": -7.746594005561121,  # step 7: link_point of foot
     "step7.eta": 48.38378118035099,  # step 7: link_point of foot
-    "step8.off": 0.0,  # step 8: link_angle of crank
+    "step8.off": 0.0,  # step 8: crank_angle of crank
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
     name="jansen_foot_np", n_inputs=N_INPUTS, n_steps=N_STEPS, params=PARAMS,
@@ -98,6 +98,35 @@ def crank_input(j1, l, theta, phi):
     _sigma = np.asarray(1.0, dtype=REAL)
     _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy)
     return _st, _sigma, _j2
+
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe = theta
+    phi_the, phi_dthe = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe + phi_dthe)
+    return _st, _sigma, _angle
 
 def link_point(j1, j2, gsi, eta):
     """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
@@ -264,55 +293,6 @@ def RRR_links(j1, j2, l1, l2, minv):
     if _singular.any():  # nan where the rows failed
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]))
     return _st, _sigma, _jb
-
-def link_angle_still_j1(j1, j2, off):
-    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
-    j1_x, j1_y, _, _ = j1
-    j2_x, j2_y, j2_dx, j2_dy = j2
-    dx = j2_x - j1_x
-    dy = j2_y - j1_y
-    dvx = j2_dx
-    dvy = j2_dy
-    r2 = dx * dx + dy * dy
-    th0 = np.arctan2(dy, dx) + off
-    _t1 = r2 == 0
-    _c2 = np.asarray(_t1)
-    if not _c2.any():
-        _s1 = 1 / r2
-    elif _c2.all():
-        _s1 = NAN
-    else:
-        _s1 = np.where(_c2, NAN, 1 / r2)
-    om = (dx * dvy - dy * dvx) * _s1
-    _c3 = np.asarray(_t1)
-    if not _c3.any():
-        _st = 0
-    elif _c3.all():
-        _st = 1
-    else:
-        _st = np.where(_c3, 1, 0)
-    _sigma = 1.0
-    _st = np.asarray(_st)
-    _sigma = np.asarray(_sigma, dtype=REAL)
-    _fails = _st == 1
-    _singular = _fails | (_st == 3)
-    _c4 = np.asarray(th0 > PI)
-    if not _c4.any():
-        _c5 = np.asarray(th0 <= -PI)
-        if not _c5.any():
-            _f1 = th0
-        elif _c5.all():
-            _f1 = th0 + 2 * PI
-        else:
-            _f1 = np.where(_c5, th0 + 2 * PI, th0)
-    elif _c4.all():
-        _f1 = th0 - 2 * PI
-    else:
-        _f1 = np.where(_c4, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
-    _angle = (_f1, om)
-    if _singular.any():  # nan where the rows failed
-        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]))
-    return _st, _sigma, _angle
 
 def link_point_still_j1(j1, j2, gsi, eta):
     """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
@@ -724,9 +704,8 @@ def _run(x, dx, ddx, c):
     # Step 7: link_point, foot. point foot of link leg_ghi
     st, _, w.p_foot = link_point(w.p_E, w.p_F, c["step7.gsi"], c["step7.eta"])
     report.append((st, ((1, 71),)))
-    # Step 8: link_angle, crank. O and A of link crank are known, so its angle is known
-    st, _, w.phi_crank = link_angle_still_j1(w.p_O, w.p_A, c["step8.off"])
-    report.append((st, ((1, 81),)))
+    # Step 8: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
+    _, _, w.phi_crank = crank_angle(w.in1, w.ref_O, c["step8.off"])
     code = row_status(report)
     return w, code, sigma
 

@@ -124,13 +124,8 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 73, -74);
 
-    % Step 8: link_angle, crank. O and A of link crank are known, so its angle is known
-    [w.phi_crank, st] = link_angle(w.p_O, w.p_A, 0.0);
-    if st == 1
-        status = 81;
-        return;
-    end
-    w = note(w, st, 83, -84);
+    % Step 8: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
+    w.phi_crank = crank_angle(w.in1, w.ref_O, 0.0);
 
     if w.singular > 0
         status = w.singular;
@@ -184,38 +179,20 @@ function j2 = crank_input(j1, l, theta, phi)
     j2.dy = j1.dy + rvy;
 end
 
-function [angle, st] = link_angle(j1, j2, off)
-    % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
-    dx = j2.x - j1.x;
-    dy = j2.y - j1.y;
-    dvx = j2.dx - j1.dx;
-    dvy = j2.dy - j1.dy;
-    r2 = dx * dx + dy * dy;
-    th0 = atan2(dy, dx) + off;
-    if th0 > pi
+function angle = crank_angle(theta, phi, off)
+    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
+    th0 = theta.the + phi.the + off;
+    if abs(th0) >= 3 * pi
+        th = atan2(sin(th0), cos(th0));
+    elseif th0 > pi
         th = th0 - 2 * pi;
     elseif th0 <= -pi
         th = th0 + 2 * pi;
     else
         th = th0;
     end
-    if r2 == 0
-        ir2 = NaN;
-    else
-        ir2 = 1 / r2;
-    end
-    om = (dx * dvy - dy * dvx) * ir2;
-    if r2 == 0
-        st = 1;
-    else
-        st = 0;
-    end
     angle.the = th;
-    angle.dthe = om;
-    if st == 1
-        angle.the = NaN;
-        angle.dthe = NaN;
-    end
+    angle.dthe = theta.dthe + phi.dthe;
 end
 
 function [jc, st] = link_point(j1, j2, gsi, eta)

@@ -77,6 +77,50 @@ COLUMNS = (
 )
 _OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
+_FIXED = {  # every output column: those of the fixed sketch with their values, the computed ones nan until _publish
+    "O.x": 0.0,
+    "O.y": 0.0,
+    "O.vx": 0.0,
+    "O.vy": 0.0,
+    "O.ax": 0.0,
+    "O.ay": 0.0,
+    "A.x": NAN,
+    "A.y": NAN,
+    "A.vx": NAN,
+    "A.vy": NAN,
+    "A.ax": NAN,
+    "A.ay": NAN,
+    "P.x": NAN,
+    "P.y": NAN,
+    "P.vx": NAN,
+    "P.vy": NAN,
+    "P.ax": NAN,
+    "P.ay": NAN,
+    "Q.x": NAN,
+    "Q.y": NAN,
+    "Q.vx": NAN,
+    "Q.vy": NAN,
+    "Q.ax": NAN,
+    "Q.ay": NAN,
+    "frame.phi": 0.0,
+    "frame.omega": 0.0,
+    "frame.alpha": 0.0,
+    "crank.phi": NAN,
+    "crank.omega": NAN,
+    "crank.alpha": NAN,
+    "yoke.phi": NAN,
+    "yoke.omega": NAN,
+    "yoke.alpha": NAN,
+    "block.phi": NAN,
+    "block.omega": NAN,
+    "block.alpha": NAN,
+    "P.s": NAN,
+    "P.ds": NAN,
+    "P.dds": NAN,
+    "Q.s": NAN,
+    "Q.ds": NAN,
+    "Q.dds": NAN,
+}
 
 
 # -- the mech.cpp functions this procedure uses -------------------------------
@@ -99,26 +143,13 @@ def crank_input(j1, l, theta, phi):
     ray = al * rx - om * om * ry
     return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
-def link_angle(j1, j2, off):
-    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    dx = j2_x - j1_x
-    dy = j2_y - j1_y
-    dvx = j2_dx - j1_dx
-    dvy = j2_dy - j1_dy
-    dax = j2_ddx - j1_ddx
-    day = j2_ddy - j1_ddy
-    r2 = dx * dx + dy * dy
-    th0 = atan2(dy, dx) + off
-    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
-    ir2 = NAN if r2 == 0 else 1 / r2
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    st = 1 if r2 == 0 else 0
-    if st == 1:
-        return st, (NAN, NAN, NAN)
-    return st, (th, om, al)
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
 
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
@@ -226,91 +257,176 @@ def _run(w, inputs, d_inputs, dd_inputs):
     """The procedure of scotch_yoke.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in1_the, _in1_dthe, _in1_ddthe = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
-    w.p_A = crank_input(p_O, 25.0, w.in1, ref_O)
+    # crank_input(p_O, 25.0, w.in1, ref_O), inline
+    _t = _in1_the + 0.0
+    _ct = cos(_t)
+    _st = sin(_t)
+    _rx = 25.0 * _ct
+    _ry = 25.0 * _st
+    _om = _in1_dthe + 0.0
+    _al = _in1_ddthe + 0.0
+    _rvx = -_om * _ry
+    _rvy = _om * _rx
+    _rax = -_al * _ry - _om * _om * _rx
+    _ray = _al * _rx - _om * _om * _ry
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-40.0) + _rx, (-12.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 3: PPR_links, P. the slider yoke rides on the known line Q and carries the slide P of block, which turns about the known A: a PPR two-link chain (one solution)
-    st, w.sigma[3], w.s_Q, w.p_Q, w.s_P, w.p_P = PPR_links(w.p_A, g_Q, psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1)
+    # PPR_links(w.p_A, g_Q, psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1), inline
+    _cg = cos(0.0)
+    _sg = sin(0.0)
+    _cax = cos(0.0 + 1.5707963267948966)
+    _sax = sin(0.0 + 1.5707963267948966)
+    _rax = 0.0 * _cg - 0.0 * _sg
+    _ray = 0.0 * _sg + 0.0 * _cg
+    _rbx = (-65.0) * _cg - 20.0 * _sg
+    _rby = (-65.0) * _sg + 20.0 * _cg
+    _pax = _p_A_x + _rax
+    _pay = _p_A_y + _ray
+    _wx = _pax - 40.0 - _rbx
+    _wy = _pay - (-12.0) - _rby
+    _cr = _cg * _sax - _sg * _cax
+    _icr = NAN if _cr == 0 else 1 / _cr
+    _sv1 = (_wx * _sax - _wy * _cax) * _icr
+    _mx = _wx - _sv1 * _cg
+    _my = _wy - _sv1 * _sg
+    _mu = _mx * _cax + _my * _sax
+    _jp1x = 40.0 + _sv1 * _cg
+    _jp1y = (-12.0) + _sv1 * _sg
+    _pbx = _jp1x + _rbx
+    _pby = _jp1y + _rby
+    _acr = abs(_cr)
+    _sigma = (1 if 1 < _acr else _acr)
+    _ravx = -0.0 * _ray
+    _ravy = 0.0 * _rax
+    _raax = -0.0 * _ray - 0.0 * 0.0 * _rax
+    _raay = 0.0 * _rax - 0.0 * 0.0 * _ray
+    _rbvx = -0.0 * _rby
+    _rbvy = 0.0 * _rbx
+    _rbax = -0.0 * _rby - 0.0 * 0.0 * _rbx
+    _rbay = 0.0 * _rbx - 0.0 * 0.0 * _rby
+    _k1x = _p_A_dx + _ravx - 0.0 - _rbvx + _sv1 * 0.0 * _sg
+    _k1y = _p_A_dy + _ravy - 0.0 - _rbvy - _sv1 * 0.0 * _cg
+    _ds1 = (_k1x * _sax - _k1y * _cax + 0.0 * _mu) * _icr
+    _mvx = _k1x - _ds1 * _cg
+    _mvy = _k1y - _ds1 * _sg
+    _mvu = _mvx * _cax + _mvy * _sax
+    _jp1vx = 0.0 + _ds1 * _cg - _sv1 * 0.0 * _sg
+    _jp1vy = 0.0 + _ds1 * _sg + _sv1 * 0.0 * _cg
+    _tn = 2 * _ds1 * 0.0 + _sv1 * 0.0
+    _tu = _sv1 * 0.0 * 0.0
+    _k2x = _p_A_ddx + _raax - 0.0 - _rbax + _tn * _sg + _tu * _cg
+    _k2y = _p_A_ddy + _raay - 0.0 - _rbay - _tn * _cg + _tu * _sg
+    _dds1 = (_k2x * _sax - _k2y * _cax + 2 * 0.0 * _mvu + 0.0 * _mu) * _icr
+    _jp1ax = 0.0 + _dds1 * _cg - _tn * _sg - _tu * _cg
+    _jp1ay = 0.0 + _dds1 * _sg + _tn * _cg - _tu * _sg
+    _jxx = _pax if 1 > 0 else _pbx
+    _jxy = _pay if 1 > 0 else _pby
+    _jxdx = _p_A_dx + _ravx if 1 > 0 else _jp1vx + _rbvx
+    _jxdy = _p_A_dy + _ravy if 1 > 0 else _jp1vy + _rbvy
+    _jxddx = _p_A_ddx + _raax if 1 > 0 else _jp1ax + _rbax
+    _jxddy = _p_A_ddy + _raay if 1 > 0 else _jp1ay + _rbay
+    st = 1 if _cr == 0 else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
+    w.sigma[3] = _sigma
     if st == 1:
+        _s_Q_v, _s_Q_dv, _s_Q_ddv = w.s_Q = (NAN, NAN, NAN)
+        _p_Q_x, _p_Q_y, _p_Q_dx, _p_Q_dy, _p_Q_ddx, _p_Q_ddy = w.p_Q = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _s_P_v, _s_P_dv, _s_P_ddv = w.s_P = (NAN, NAN, NAN)
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 31
+    elif st == 3:
+        _s_Q_v, _s_Q_dv, _s_Q_ddv = w.s_Q = (_sv1, NAN, NAN)
+        _p_Q_x, _p_Q_y, _p_Q_dx, _p_Q_dy, _p_Q_ddx, _p_Q_ddy = w.p_Q = (_jp1x, _jp1y, NAN, NAN, NAN, NAN)
+        _s_P_v, _s_P_dv, _s_P_ddv = w.s_P = (1 * _mu, NAN, NAN)
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (_jxx, _jxy, NAN, NAN, NAN, NAN)
+    else:
+        _s_Q_v, _s_Q_dv, _s_Q_ddv = w.s_Q = (_sv1, _ds1, _dds1)
+        _p_Q_x, _p_Q_y, _p_Q_dx, _p_Q_dy, _p_Q_ddx, _p_Q_ddy = w.p_Q = (_jp1x, _jp1y, _jp1vx, _jp1vy, _jp1ax, _jp1ay)
+        _s_P_v, _s_P_dv, _s_P_ddv = w.s_P = (1 * _mu, 1 * _mvu, 1 * ((_k2x - _dds1 * _cg) * _cax + (_k2y - _dds1 * _sg) * _sax + 0.0 * (_cax * _mvy - _sax * _mvx)))
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (_jxx, _jxy, _jxdx, _jxdy, _jxddx, _jxddy)
     if st:
         w.note(st, 33, -34)
 
-    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
-    st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
-    if st == 1:
-        return 41
-    if st:
-        w.note(st, 43, -44)
+    # Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
+    # crank_angle(w.in1, ref_O, 0.0), inline
+    _th0 = _in1_the + 0.0 + 0.0
+    _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe + 0.0, _in1_ddthe + 0.0)
 
     # Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide
-    w.phi_yoke = offset_angle(phi_frame, -0.2984989315861793)
+    # offset_angle(phi_frame, -0.2984989315861793), inline
+    _th0 = 0.0 + (-0.2984989315861793)
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_yoke_the, _phi_yoke_dthe, _phi_yoke_ddthe = w.phi_yoke = (_th, 0.0, 0.0)
 
     # Step 6: offset_angle, block. link block keeps a constant angle to its slide
-    w.phi_block = offset_angle(psi_Q, 1.5707963267948966)
+    # offset_angle(psi_Q, 1.5707963267948966), inline
+    _th0 = 0.0 + 1.5707963267948966
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_block_the, _phi_block_dthe, _phi_block_ddthe = w.phi_block = (_th, 0.0, 0.0)
 
     return w.singular or w.near
 
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = reason_of(code) in (1, 2)
-    singular = reason_of(code) == 3
+    reason = code % 10 if code > 0 else 0  # reason_of(code), without the call
+    failed = reason in (1, 2)
+    singular = reason == 3
     if failed:
         out = dict.fromkeys(_OUTPUTS, NAN)
-    else:  # a dict display: one step, where dict(zip()) of a tuple took three
-        out = {
-            "O.x": 0.0,
-            "O.y": 0.0,
-            "O.vx": 0.0,
-            "O.vy": 0.0,
-            "O.ax": 0.0,
-            "O.ay": 0.0,
-            "A.x": w.p_A[0] + 40.0,
-            "A.y": w.p_A[1] + 12.0,
-            "A.vx": w.p_A[2],
-            "A.vy": w.p_A[3],
-            "A.ax": w.p_A[4],
-            "A.ay": w.p_A[5],
-            "P.x": w.p_P[0] + 40.0,
-            "P.y": w.p_P[1] + 12.0,
-            "P.vx": w.p_P[2],
-            "P.vy": w.p_P[3],
-            "P.ax": w.p_P[4],
-            "P.ay": w.p_P[5],
-            "Q.x": w.p_Q[0] + 40.0,
-            "Q.y": w.p_Q[1] + 12.0,
-            "Q.vx": w.p_Q[2],
-            "Q.vy": w.p_Q[3],
-            "Q.ax": w.p_Q[4],
-            "Q.ay": w.p_Q[5],
-            "frame.phi": 0.0,
-            "frame.omega": 0.0,
-            "frame.alpha": 0.0,
-            "crank.phi": w.phi_crank[0],
-            "crank.omega": w.phi_crank[1],
-            "crank.alpha": w.phi_crank[2],
-            "yoke.phi": w.phi_yoke[0],
-            "yoke.omega": w.phi_yoke[1],
-            "yoke.alpha": w.phi_yoke[2],
-            "block.phi": w.phi_block[0],
-            "block.omega": w.phi_block[1],
-            "block.alpha": w.phi_block[2],
-            "P.s": w.s_P[0],
-            "P.ds": w.s_P[1],
-            "P.dds": w.s_P[2],
-            "Q.s": w.s_Q[0],
-            "Q.ds": w.s_Q[1],
-            "Q.dds": w.s_Q[2],
-        }
+    else:  # _FIXED copied, then the computed columns set: half the time of a dict display of every column
+        _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P
+        _p_Q_x, _p_Q_y, _p_Q_dx, _p_Q_dy, _p_Q_ddx, _p_Q_ddy = w.p_Q
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank
+        _phi_yoke_the, _phi_yoke_dthe, _phi_yoke_ddthe = w.phi_yoke
+        _phi_block_the, _phi_block_dthe, _phi_block_ddthe = w.phi_block
+        _s_P_v, _s_P_dv, _s_P_ddv = w.s_P
+        _s_Q_v, _s_Q_dv, _s_Q_ddv = w.s_Q
+        out = _FIXED.copy()
+        out["A.x"] = _p_A_x + 40.0
+        out["A.y"] = _p_A_y + 12.0
+        out["A.vx"] = _p_A_dx
+        out["A.vy"] = _p_A_dy
+        out["A.ax"] = _p_A_ddx
+        out["A.ay"] = _p_A_ddy
+        out["P.x"] = _p_P_x + 40.0
+        out["P.y"] = _p_P_y + 12.0
+        out["P.vx"] = _p_P_dx
+        out["P.vy"] = _p_P_dy
+        out["P.ax"] = _p_P_ddx
+        out["P.ay"] = _p_P_ddy
+        out["Q.x"] = _p_Q_x + 40.0
+        out["Q.y"] = _p_Q_y + 12.0
+        out["Q.vx"] = _p_Q_dx
+        out["Q.vy"] = _p_Q_dy
+        out["Q.ax"] = _p_Q_ddx
+        out["Q.ay"] = _p_Q_ddy
+        out["crank.phi"] = _phi_crank_the
+        out["crank.omega"] = _phi_crank_dthe
+        out["crank.alpha"] = _phi_crank_ddthe
+        out["yoke.phi"] = _phi_yoke_the
+        out["yoke.omega"] = _phi_yoke_dthe
+        out["yoke.alpha"] = _phi_yoke_ddthe
+        out["block.phi"] = _phi_block_the
+        out["block.omega"] = _phi_block_dthe
+        out["block.alpha"] = _phi_block_ddthe
+        out["P.s"] = _s_P_v
+        out["P.ds"] = _s_P_dv
+        out["P.dds"] = _s_P_ddv
+        out["Q.s"] = _s_Q_v
+        out["Q.ds"] = _s_Q_dv
+        out["Q.dds"] = _s_Q_ddv
     if order < ORDER or singular:
         out = {name: NAN if singular and level > 0 else value
                for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
-    out["sigma"] = list(w.sigma)
+    out["sigma"] = w.sigma  # a new list each solve
     return out
 
 
@@ -328,6 +444,8 @@ def _check(inputs, d_inputs, dd_inputs):
                                 f"not {type(values).__name__}")
             if len(values) != N_INPUTS:
                 raise ValueError(f"scotch_yoke.solve: expected {N_INPUTS} {what}, got {len(values)}")
+    if abs(inputs[0]) <= 1e+30 and abs(d_inputs[0]) <= 1e+30 and abs(dd_inputs[0]) <= 1e+30:
+        return  # every number in range: the loops below find the first one that is not
     for k, x in enumerate(inputs):
         if not abs(x) <= 1e+30:
             raise ValueError(f"scotch_yoke.solve: inputs[{k}] is not finite or larger than 1e+30: {x!r}")

@@ -101,7 +101,7 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step3.xb": -65.0,  # step 3: PPR_links of P
     "step3.yb": 20.0,  # step 3: PPR_links of P
     "step3.cx": 1.5707963267948966,  # step 3: PPR_links of P
-    "step4.off": 0.0,  # step 4: link_angle of crank
+    "step4.off": 0.0,  # step 4: crank_angle of crank
     "step5.off": -0.2984989315861793,  # step 5: offset_angle of yoke
     "step6.off": 1.5707963267948966,  # step 6: offset_angle of block
 }
@@ -138,6 +138,35 @@ def crank_input(j1, l, theta, phi):
     _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _j2
 
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
+    return _st, _sigma, _angle
+
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
@@ -158,58 +187,6 @@ def offset_angle(phi, off):
     else:
         _f1 = np.where(_c1, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
     _angle = (_f1, phi_dthe, phi_ddthe)
-    return _st, _sigma, _angle
-
-def link_angle_still_j1(j1, j2, off):
-    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
-    j1_x, j1_y, _, _, _, _ = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    dx = j2_x - j1_x
-    dy = j2_y - j1_y
-    dvx = j2_dx
-    dvy = j2_dy
-    dax = j2_ddx
-    day = j2_ddy
-    r2 = dx * dx + dy * dy
-    th0 = np.arctan2(dy, dx) + off
-    _t1 = r2 == 0
-    _c1 = np.asarray(_t1)
-    if not _c1.any():
-        ir2 = 1 / r2
-    elif _c1.all():
-        ir2 = NAN
-    else:
-        ir2 = np.where(_c1, NAN, 1 / r2)
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    _c2 = np.asarray(_t1)
-    if not _c2.any():
-        _st = 0
-    elif _c2.all():
-        _st = 1
-    else:
-        _st = np.where(_c2, 1, 0)
-    _sigma = 1.0
-    _st = np.asarray(_st)
-    _sigma = np.asarray(_sigma, dtype=REAL)
-    _fails = _st == 1
-    _singular = _fails | (_st == 3)
-    _c3 = np.asarray(th0 > PI)
-    if not _c3.any():
-        _c4 = np.asarray(th0 <= -PI)
-        if not _c4.any():
-            _f1 = th0
-        elif _c4.all():
-            _f1 = th0 + 2 * PI
-        else:
-            _f1 = np.where(_c4, th0 + 2 * PI, th0)
-    elif _c3.all():
-        _f1 = th0 - 2 * PI
-    else:
-        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
-    _angle = (_f1, om, al)
-    if _singular.any():  # nan where the rows failed
-        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
 def PPR_links_still_pg(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
@@ -596,9 +573,8 @@ def _run(x, dx, ddx, c):
     # Step 3: PPR_links, P. the slider yoke rides on the known line Q and carries the slide P of block, which turns about the known A: a PPR two-link chain (one solution)
     st, sigma[3], w.s_Q, w.p_Q, w.s_P, w.p_P = PPR_links_still_pg(w.p_A, w.g_Q, w.psi_Q, c["step3.xa"], c["step3.ya"], c["step3.xb"], c["step3.yb"], c["step3.cx"], 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
-    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
-    st, _, w.phi_crank = link_angle_still_j1(w.p_O, w.p_A, c["step4.off"])
-    report.append((st, ((1, 41),)))
+    # Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
+    _, _, w.phi_crank = crank_angle(w.in1, w.ref_O, c["step4.off"])
     # Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide
     _, _, w.phi_yoke = offset_angle(w.phi_frame, c["step5.off"])
     # Step 6: offset_angle, block. link block keeps a constant angle to its slide

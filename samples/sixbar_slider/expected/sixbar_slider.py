@@ -53,6 +53,26 @@ COLUMNS = (
 )
 _OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2,)  # derivative level of each output column
+_FIXED = {  # every output column: those of the fixed sketch with their values, the computed ones nan until _publish
+    "S.x": NAN,
+    "S.y": NAN,
+    "S.vx": NAN,
+    "S.vy": NAN,
+    "S.ax": NAN,
+    "S.ay": NAN,
+    "S.s": NAN,
+    "S.ds": NAN,
+    "S.dds": NAN,
+    "P.x": NAN,
+    "P.y": NAN,
+    "P.vx": NAN,
+    "P.vy": NAN,
+    "P.ax": NAN,
+    "P.ay": NAN,
+    "rocker.phi": NAN,
+    "rocker.omega": NAN,
+    "rocker.alpha": NAN,
+}
 
 
 # -- the mech.cpp functions this procedure uses -------------------------------
@@ -270,44 +290,221 @@ def _run(w, inputs, d_inputs, dd_inputs):
     """The procedure of sixbar_slider.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in1_the, _in1_dthe, _in1_ddthe = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A
-    w.p_A = crank_input(p_O1, 27.730849247724095, w.in1, ref_O1)
+    # crank_input(p_O1, 27.730849247724095, w.in1, ref_O1), inline
+    _t = _in1_the + 0.0
+    _ct = cos(_t)
+    _st = sin(_t)
+    _rx = 27.730849247724095 * _ct
+    _ry = 27.730849247724095 * _st
+    _om = _in1_dthe + 0.0
+    _al = _in1_ddthe + 0.0
+    _rvx = -_om * _ry
+    _rvy = _om * _rx
+    _rax = -_al * _ry - _om * _om * _rx
+    _ray = _al * _rx - _om * _om * _ry
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-72.0) + _rx, (-32.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known
-    st, w.sigma[3], w.p_B = RRR_links(w.p_A, p_O2, l_coupler, l_rocker_B_O2, 1)
+    # RRR_links(w.p_A, p_O2, l_coupler, l_rocker_B_O2, 1), inline
+    _dx = (-12.0) - _p_A_x
+    _dy = (-32.0) - _p_A_y
+    _q = sqrt(_dx * _dx + _dy * _dy)
+    _iq = NAN if _q == 0 else 1 / _q
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hi = (52.0 if 52.0 > 56.859475903318 else 56.859475903318)
+    _lo = (52.0 if 52.0 < 56.859475903318 else 56.859475903318)
+    _x = (_q if _q > _hi else _hi)
+    _z = (_q if _q < _lo else _lo)
+    _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
+    _k = _z - (_x - _y)
+    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
+    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _h = _area4 * _iq / 2
+    _a = (_q + (56.859475903318 - 52.0) * ((56.859475903318 + 52.0) * _iq)) / 2
+    _a2 = (_q + (52.0 - 56.859475903318) * ((56.859475903318 + 52.0) * _iq)) / 2
+    _flat = (56.859475903318 + (_q - 52.0)) / 2 if _q >= _hi else (56.859475903318 + (_q + 52.0)) / 2 if 56.859475903318 >= 52.0 else (_q - (56.859475903318 + 52.0)) / 2
+    _at = _a if _k > 0 else _flat
+    _hn = 1 * _h
+    _e1x = _at * _ux - _hn * _uy
+    _e1y = _at * _uy + _hn * _ux
+    _ratio = 0 if _fail else _area4 * (0.5 / (56.859475903318 * 52.0))
+    _sigma = (1 if 1 < _ratio else _ratio)
+    _e2x = -_a2 * _ux - _hn * _uy
+    _e2y = -_a2 * _uy + _hn * _ux
+    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _r1v = 56.859475903318 * 0.0 + (_e1x * _p_A_dx + _e1y * _p_A_dy)
+    _r2v = 52.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
+    _buv = (_r1v - _r2v) * _iq
+    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
+    _bvx = _buv * _ux - _bnv * _uy
+    _bvy = _buv * _uy + _bnv * _ux
+    _r1a = 56.859475903318 * 0.0 + 0.0 * 0.0 - ((_bvx - _p_A_dx) * (_bvx - _p_A_dx) + (_bvy - _p_A_dy) * (_bvy - _p_A_dy)) + (_e1x * _p_A_ddx + _e1y * _p_A_ddy)
+    _r2a = 52.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
+    _bua = (_r1a - _r2a) * _iq
+    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
+    _bax = _bua * _ux - _bna * _uy
+    _bay = _bua * _uy + _bna * _ux
+    st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
+    w.sigma[3] = _sigma
     if st == 1:
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 31
+    elif st == 3:
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (_p_A_x + _e1x, _p_A_y + _e1y, NAN, NAN, NAN, NAN)
+    else:
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (_p_A_x + _e1x, _p_A_y + _e1y, _bvx, _bvy, _bax, _bay)
     if st:
         w.note(st, 33, -34)
 
     # Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
-    st, w.p_C = link_point(p_O2, w.p_B, 25.307692307692307, -48.46153846153846)
+    # link_point(p_O2, w.p_B, 25.307692307692307, -48.46153846153846), inline
+    _dx = _p_B_x - (-12.0)
+    _dy = _p_B_y - (-32.0)
+    _dvx = _p_B_dx - 0.0
+    _dvy = _p_B_dy - 0.0
+    _dax = _p_B_ddx - 0.0
+    _day = _p_B_ddy - 0.0
+    _r2 = _dx * _dx + _dy * _dy
+    _ir = NAN if _r2 == 0 else 1 / sqrt(_r2)
+    _ex = _ir * _dx
+    _ey = _ir * _dy
+    _rx = 25.307692307692307 * _ex - (-48.46153846153846) * _ey
+    _ry = 25.307692307692307 * _ey + (-48.46153846153846) * _ex
+    _ir2 = _ir * _ir
+    _om = (_dx * _dvy - _dy * _dvx) * _ir2
+    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
+    _rvx = -_om * _ry
+    _rvy = _om * _rx
+    _rax = -_al * _ry - _om * _om * _rx
+    _ray = _al * _rx - _om * _om * _ry
+    st = 1 if _r2 == 0 else 0
     if st == 1:
+        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 41
+    else:
+        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = ((-12.0) + _rx, (-32.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
     if st:
         w.note(st, 43, -44)
 
     # Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
-    st, w.sigma[5], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, l_rod, g_S, psi_S, 0.0, 0.0, 1)
+    # PRR_links(w.p_C, l_rod, g_S, psi_S, 0.0, 0.0, 1), inline
+    _cg = cos(0.0)
+    _sg = sin(0.0)
+    _rx = 0.0 * _cg - 0.0 * _sg
+    _ry = 0.0 * _sg + 0.0 * _cg
+    _wx = 88.0 + _rx - _p_C_x
+    _wy = 4.0 + _ry - _p_C_y
+    _wu = _wx * _cg + _wy * _sg
+    _pn = _wx * _sg - _wy * _cg
+    _ap = abs(_pn)
+    _k = 65.27633568147036 - _ap
+    _big = (_ap if _ap > 65.27633568147036 else 65.27633568147036)
+    _fail = _k < -8 * 2.220446049250313e-16 * _big or 65.27633568147036 <= 0
+    _rd = sqrt((0 if 0 > _k else _k) * (65.27633568147036 + _ap))
+    _eu = 1 * _rd
+    _ex = _eu * _cg - -_pn * _sg
+    _ey = _eu * _sg + -_pn * _cg
+    _sv = _eu - _wu
+    _jbx = _p_C_x + _ex
+    _jby = _p_C_y + _ey
+    _jpx = _jbx - _rx
+    _jpy = _jby - _ry
+    _ratio = 0 if _rd == 0 else _rd * (1 / 65.27633568147036)
+    _sigma = (1 if 1 < _ratio else _ratio)
+    _ieu = NAN if _eu == 0 else 1 / _eu
+    _sgsi = _sv + 0.0
+    _relvx = 0.0 - _p_C_dx
+    _relvy = 0.0 - _p_C_dy
+    _ds = (65.27633568147036 * 0.0 - (_ex * _relvx + _ey * _relvy) - 0.0 * (_sgsi * -_pn - 0.0 * _eu)) * _ieu
+    _jpvx = 0.0 + _ds * _cg - _sv * 0.0 * _sg
+    _jpvy = 0.0 + _ds * _sg + _sv * 0.0 * _cg
+    _rvx = -0.0 * _ry
+    _rvy = 0.0 * _rx
+    _rax = -0.0 * _ry - 0.0 * 0.0 * _rx
+    _ray = 0.0 * _rx - 0.0 * 0.0 * _ry
+    _jbvx = _jpvx + _rvx
+    _jbvy = _jpvy + _rvy
+    _relax = 0.0 - _p_C_ddx
+    _relay = 0.0 - _p_C_ddy
+    _om2 = 0.0 * 0.0
+    _dds = (65.27633568147036 * 0.0 + 0.0 * 0.0 - ((_jbvx - _p_C_dx) * (_jbvx - _p_C_dx) + (_jbvy - _p_C_dy) * (_jbvy - _p_C_dy)) - (_ex * _relax + _ey * _relay) - 2 * _ds * 0.0 * -_pn - _sgsi * (0.0 * -_pn - _om2 * _eu) + 0.0 * (0.0 * _eu + _om2 * -_pn)) * _ieu
+    _tn = 2 * _ds * 0.0 + _sv * 0.0
+    _jpax = 0.0 + _dds * _cg - _tn * _sg - _sv * _om2 * _cg
+    _jpay = 0.0 + _dds * _sg + _tn * _cg - _sv * _om2 * _sg
+    st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
+    w.sigma[5] = _sigma
     if st == 1:
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (NAN, NAN, NAN)
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_D_x, _p_D_y, _p_D_dx, _p_D_dy, _p_D_ddx, _p_D_ddy = w.p_D = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 51
+    elif st == 3:
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (_sv, NAN, NAN)
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (_jpx, _jpy, NAN, NAN, NAN, NAN)
+        _p_D_x, _p_D_y, _p_D_dx, _p_D_dy, _p_D_ddx, _p_D_ddy = w.p_D = (_jbx, _jby, NAN, NAN, NAN, NAN)
+    else:
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (_sv, _ds, _dds)
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (_jpx, _jpy, _jpvx, _jpvy, _jpax, _jpay)
+        _p_D_x, _p_D_y, _p_D_dx, _p_D_dy, _p_D_ddx, _p_D_ddy = w.p_D = (_jbx, _jby, _jbvx, _jbvy, _jpax + _rax, _jpay + _ray)
     if st:
         w.note(st, 53, -54)
 
     # Step 6: link_point, P. point P of link coupler
-    st, w.p_P = link_point(w.p_B, w.p_A, 13.436634577833267, -19.06454434865348)
+    # link_point(w.p_B, w.p_A, 13.436634577833267, -19.06454434865348), inline
+    _dx = _p_A_x - _p_B_x
+    _dy = _p_A_y - _p_B_y
+    _dvx = _p_A_dx - _p_B_dx
+    _dvy = _p_A_dy - _p_B_dy
+    _dax = _p_A_ddx - _p_B_ddx
+    _day = _p_A_ddy - _p_B_ddy
+    _r2 = _dx * _dx + _dy * _dy
+    _ir = NAN if _r2 == 0 else 1 / sqrt(_r2)
+    _ex = _ir * _dx
+    _ey = _ir * _dy
+    _rx = 13.436634577833267 * _ex - (-19.06454434865348) * _ey
+    _ry = 13.436634577833267 * _ey + (-19.06454434865348) * _ex
+    _ir2 = _ir * _ir
+    _om = (_dx * _dvy - _dy * _dvx) * _ir2
+    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
+    _rvx = -_om * _ry
+    _rvy = _om * _rx
+    _rax = -_al * _ry - _om * _om * _rx
+    _ray = _al * _rx - _om * _om * _ry
+    st = 1 if _r2 == 0 else 0
     if st == 1:
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 61
+    else:
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (_p_B_x + _rx, _p_B_y + _ry, _p_B_dx + _rvx, _p_B_dy + _rvy, _p_B_ddx + _rax, _p_B_ddy + _ray)
     if st:
         w.note(st, 63, -64)
 
     # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
-    st, w.phi_rocker = link_angle(p_O2, w.p_B, 0.0)
+    # link_angle(p_O2, w.p_B, 0.0), inline
+    _dx = _p_B_x - (-12.0)
+    _dy = _p_B_y - (-32.0)
+    _dvx = _p_B_dx - 0.0
+    _dvy = _p_B_dy - 0.0
+    _dax = _p_B_ddx - 0.0
+    _day = _p_B_ddy - 0.0
+    _r2 = _dx * _dx + _dy * _dy
+    _th0 = atan2(_dy, _dx) + 0.0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _ir2 = NAN if _r2 == 0 else 1 / _r2
+    _om = (_dx * _dvy - _dy * _dvx) * _ir2
+    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
+    st = 1 if _r2 == 0 else 0
     if st == 1:
+        _phi_rocker_the, _phi_rocker_dthe, _phi_rocker_ddthe = w.phi_rocker = (NAN, NAN, NAN)
         return 91
+    else:
+        _phi_rocker_the, _phi_rocker_dthe, _phi_rocker_ddthe = w.phi_rocker = (_th, _om, _al)
     if st:
         w.note(st, 93, -94)
 
@@ -316,36 +513,40 @@ def _run(w, inputs, d_inputs, dd_inputs):
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = reason_of(code) in (1, 2)
-    singular = reason_of(code) == 3
+    reason = code % 10 if code > 0 else 0  # reason_of(code), without the call
+    failed = reason in (1, 2)
+    singular = reason == 3
     if failed:
         out = dict.fromkeys(_OUTPUTS, NAN)
-    else:  # a dict display: one step, where dict(zip()) of a tuple took three
-        out = {
-            "S.x": w.p_S[0] + 72.0,
-            "S.y": w.p_S[1] + 32.0,
-            "S.vx": w.p_S[2],
-            "S.vy": w.p_S[3],
-            "S.ax": w.p_S[4],
-            "S.ay": w.p_S[5],
-            "S.s": w.s_S[0],
-            "S.ds": w.s_S[1],
-            "S.dds": w.s_S[2],
-            "P.x": w.p_P[0] + 72.0,
-            "P.y": w.p_P[1] + 32.0,
-            "P.vx": w.p_P[2],
-            "P.vy": w.p_P[3],
-            "P.ax": w.p_P[4],
-            "P.ay": w.p_P[5],
-            "rocker.phi": w.phi_rocker[0],
-            "rocker.omega": w.phi_rocker[1],
-            "rocker.alpha": w.phi_rocker[2],
-        }
+    else:  # _FIXED copied, then the computed columns set: half the time of a dict display of every column
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S
+        _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P
+        _phi_rocker_the, _phi_rocker_dthe, _phi_rocker_ddthe = w.phi_rocker
+        out = _FIXED.copy()
+        out["S.x"] = _p_S_x + 72.0
+        out["S.y"] = _p_S_y + 32.0
+        out["S.vx"] = _p_S_dx
+        out["S.vy"] = _p_S_dy
+        out["S.ax"] = _p_S_ddx
+        out["S.ay"] = _p_S_ddy
+        out["S.s"] = _s_S_v
+        out["S.ds"] = _s_S_dv
+        out["S.dds"] = _s_S_ddv
+        out["P.x"] = _p_P_x + 72.0
+        out["P.y"] = _p_P_y + 32.0
+        out["P.vx"] = _p_P_dx
+        out["P.vy"] = _p_P_dy
+        out["P.ax"] = _p_P_ddx
+        out["P.ay"] = _p_P_ddy
+        out["rocker.phi"] = _phi_rocker_the
+        out["rocker.omega"] = _phi_rocker_dthe
+        out["rocker.alpha"] = _phi_rocker_ddthe
     if order < ORDER or singular:
         out = {name: NAN if singular and level > 0 else value
                for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
-    out["sigma"] = list(w.sigma)
+    out["sigma"] = w.sigma  # a new list each solve
     return out
 
 
@@ -363,6 +564,8 @@ def _check(inputs, d_inputs, dd_inputs):
                                 f"not {type(values).__name__}")
             if len(values) != N_INPUTS:
                 raise ValueError(f"sixbar_slider.solve: expected {N_INPUTS} {what}, got {len(values)}")
+    if abs(inputs[0]) <= 1e+30 and abs(d_inputs[0]) <= 1e+30 and abs(dd_inputs[0]) <= 1e+30:
+        return  # every number in range: the loops below find the first one that is not
     for k, x in enumerate(inputs):
         if not abs(x) <= 1e+30:
             raise ValueError(f"sixbar_slider.solve: inputs[{k}] is not finite or larger than 1e+30: {x!r}")

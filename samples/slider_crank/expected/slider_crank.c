@@ -62,6 +62,19 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
+/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
+#if defined(__GNUC__)
+static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
+static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
+{
+    const double th0 = theta->the + phi->the + off;
+    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
+    angle->the = th;
+    angle->dthe = theta->dthe + phi->dthe;
+    angle->ddthe = theta->ddthe + phi->ddthe;
+}
+
 /* Angle of a link that keeps a constant angle off to a known angle phi. */
 #if defined(__GNUC__)
 static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
@@ -338,10 +351,8 @@ static int run(work *w, const double in[], const double din[], const double ddin
     note(w, st, 33, -34);
 
 
-    /* Step 4: link_angle, crank. O and A of link crank are known, so its angle is known */
-    st = link_angle(&p_O, &w->p_A, 0.0, &w->phi_crank);
-    if (st == 1) return failed(w, out, 41);
-    note(w, st, 43, -44);
+    /* Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's */
+    crank_angle(&w->in1, &ref_O, 0.0, &w->phi_crank);
 
 
     /* Step 5: link_angle, rod. A and B of link rod are known, so its angle is known */

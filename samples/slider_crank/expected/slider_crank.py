@@ -74,6 +74,47 @@ COLUMNS = (
 )
 _OUTPUTS = COLUMNS[N_INPUTS:]
 _LEVELS = (0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2, 0, 1, 2,)  # derivative level of each output column
+_FIXED = {  # every output column: those of the fixed sketch with their values, the computed ones nan until _publish
+    "O.x": 0.0,
+    "O.y": 0.0,
+    "O.vx": 0.0,
+    "O.vy": 0.0,
+    "O.ax": 0.0,
+    "O.ay": 0.0,
+    "A.x": NAN,
+    "A.y": NAN,
+    "A.vx": NAN,
+    "A.vy": NAN,
+    "A.ax": NAN,
+    "A.ay": NAN,
+    "B.x": NAN,
+    "B.y": NAN,
+    "B.vx": NAN,
+    "B.vy": NAN,
+    "B.ax": NAN,
+    "B.ay": NAN,
+    "S.x": NAN,
+    "S.y": NAN,
+    "S.vx": NAN,
+    "S.vy": NAN,
+    "S.ax": NAN,
+    "S.ay": NAN,
+    "frame.phi": -0.16941304388961834,
+    "frame.omega": 0.0,
+    "frame.alpha": 0.0,
+    "crank.phi": NAN,
+    "crank.omega": NAN,
+    "crank.alpha": NAN,
+    "rod.phi": NAN,
+    "rod.omega": NAN,
+    "rod.alpha": NAN,
+    "block.phi": NAN,
+    "block.omega": NAN,
+    "block.alpha": NAN,
+    "S.s": NAN,
+    "S.ds": NAN,
+    "S.dds": NAN,
+}
 
 
 # -- the mech.cpp functions this procedure uses -------------------------------
@@ -116,6 +157,14 @@ def link_angle(j1, j2, off):
     if st == 1:
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
+
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
 
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
@@ -215,92 +264,176 @@ def _run(w, inputs, d_inputs, dd_inputs):
     """The procedure of slider_crank.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
-    w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
+    _in1_the, _in1_dthe, _in1_ddthe = w.in1 = (inputs[0], d_inputs[0], dd_inputs[0])
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
-    w.p_A = crank_input(p_O, 20.0, w.in1, ref_O)
+    # crank_input(p_O, 20.0, w.in1, ref_O), inline
+    _t = _in1_the + 0.0
+    _ct = cos(_t)
+    _st = sin(_t)
+    _rx = 20.0 * _ct
+    _ry = 20.0 * _st
+    _om = _in1_dthe + 0.0
+    _al = _in1_ddthe + 0.0
+    _rvx = -_om * _ry
+    _rvy = _om * _rx
+    _rax = -_al * _ry - _om * _om * _rx
+    _ray = _al * _rx - _om * _om * _ry
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-40.0) + _rx, 0.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
 
     # Step 3: PRR_links, B (branch +1). B is joined to the known A by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
-    st, w.sigma[3], w.s_S, w.p_S, w.p_B = PRR_links(w.p_A, l_rod, g_S, psi_S, 0.0, 0.0, 1)
+    # PRR_links(w.p_A, l_rod, g_S, psi_S, 0.0, 0.0, 1), inline
+    _cg = cos(0.0)
+    _sg = sin(0.0)
+    _rx = 0.0 * _cg - 0.0 * _sg
+    _ry = 0.0 * _sg + 0.0 * _cg
+    _wx = 36.0 + _rx - _p_A_x
+    _wy = (-13.0) + _ry - _p_A_y
+    _wu = _wx * _cg + _wy * _sg
+    _pn = _wx * _sg - _wy * _cg
+    _ap = abs(_pn)
+    _k = 65.0 - _ap
+    _big = (_ap if _ap > 65.0 else 65.0)
+    _fail = _k < -8 * 2.220446049250313e-16 * _big or 65.0 <= 0
+    _rd = sqrt((0 if 0 > _k else _k) * (65.0 + _ap))
+    _eu = 1 * _rd
+    _ex = _eu * _cg - -_pn * _sg
+    _ey = _eu * _sg + -_pn * _cg
+    _sv = _eu - _wu
+    _jbx = _p_A_x + _ex
+    _jby = _p_A_y + _ey
+    _jpx = _jbx - _rx
+    _jpy = _jby - _ry
+    _ratio = 0 if _rd == 0 else _rd * (1 / 65.0)
+    _sigma = (1 if 1 < _ratio else _ratio)
+    _ieu = NAN if _eu == 0 else 1 / _eu
+    _sgsi = _sv + 0.0
+    _relvx = 0.0 - _p_A_dx
+    _relvy = 0.0 - _p_A_dy
+    _ds = (65.0 * 0.0 - (_ex * _relvx + _ey * _relvy) - 0.0 * (_sgsi * -_pn - 0.0 * _eu)) * _ieu
+    _jpvx = 0.0 + _ds * _cg - _sv * 0.0 * _sg
+    _jpvy = 0.0 + _ds * _sg + _sv * 0.0 * _cg
+    _rvx = -0.0 * _ry
+    _rvy = 0.0 * _rx
+    _rax = -0.0 * _ry - 0.0 * 0.0 * _rx
+    _ray = 0.0 * _rx - 0.0 * 0.0 * _ry
+    _jbvx = _jpvx + _rvx
+    _jbvy = _jpvy + _rvy
+    _relax = 0.0 - _p_A_ddx
+    _relay = 0.0 - _p_A_ddy
+    _om2 = 0.0 * 0.0
+    _dds = (65.0 * 0.0 + 0.0 * 0.0 - ((_jbvx - _p_A_dx) * (_jbvx - _p_A_dx) + (_jbvy - _p_A_dy) * (_jbvy - _p_A_dy)) - (_ex * _relax + _ey * _relay) - 2 * _ds * 0.0 * -_pn - _sgsi * (0.0 * -_pn - _om2 * _eu) + 0.0 * (0.0 * _eu + _om2 * -_pn)) * _ieu
+    _tn = 2 * _ds * 0.0 + _sv * 0.0
+    _jpax = 0.0 + _dds * _cg - _tn * _sg - _sv * _om2 * _cg
+    _jpay = 0.0 + _dds * _sg + _tn * _cg - _sv * _om2 * _sg
+    st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
+    w.sigma[3] = _sigma
     if st == 1:
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (NAN, NAN, NAN)
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (NAN, NAN, NAN, NAN, NAN, NAN)
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 31
+    elif st == 3:
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (_sv, NAN, NAN)
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (_jpx, _jpy, NAN, NAN, NAN, NAN)
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (_jbx, _jby, NAN, NAN, NAN, NAN)
+    else:
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (_sv, _ds, _dds)
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (_jpx, _jpy, _jpvx, _jpvy, _jpax, _jpay)
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (_jbx, _jby, _jbvx, _jbvy, _jpax + _rax, _jpay + _ray)
     if st:
         w.note(st, 33, -34)
 
-    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
-    st, w.phi_crank = link_angle(p_O, w.p_A, 0.0)
-    if st == 1:
-        return 41
-    if st:
-        w.note(st, 43, -44)
+    # Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
+    # crank_angle(w.in1, ref_O, 0.0), inline
+    _th0 = _in1_the + 0.0 + 0.0
+    _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe + 0.0, _in1_ddthe + 0.0)
 
     # Step 5: link_angle, rod. A and B of link rod are known, so its angle is known
-    st, w.phi_rod = link_angle(w.p_A, w.p_B, 0.0)
+    # link_angle(w.p_A, w.p_B, 0.0), inline
+    _dx = _p_B_x - _p_A_x
+    _dy = _p_B_y - _p_A_y
+    _dvx = _p_B_dx - _p_A_dx
+    _dvy = _p_B_dy - _p_A_dy
+    _dax = _p_B_ddx - _p_A_ddx
+    _day = _p_B_ddy - _p_A_ddy
+    _r2 = _dx * _dx + _dy * _dy
+    _th0 = atan2(_dy, _dx) + 0.0
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _ir2 = NAN if _r2 == 0 else 1 / _r2
+    _om = (_dx * _dvy - _dy * _dvx) * _ir2
+    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
+    st = 1 if _r2 == 0 else 0
     if st == 1:
+        _phi_rod_the, _phi_rod_dthe, _phi_rod_ddthe = w.phi_rod = (NAN, NAN, NAN)
         return 51
+    else:
+        _phi_rod_the, _phi_rod_dthe, _phi_rod_ddthe = w.phi_rod = (_th, _om, _al)
     if st:
         w.note(st, 53, -54)
 
     # Step 6: offset_angle, block. link block keeps a constant angle to its slide
-    w.phi_block = offset_angle(phi_frame, 0.16941304388961834)
+    # offset_angle(phi_frame, 0.16941304388961834), inline
+    _th0 = (-0.16941304388961834) + 0.16941304388961834
+    _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
+    _phi_block_the, _phi_block_dthe, _phi_block_ddthe = w.phi_block = (_th, 0.0, 0.0)
 
     return w.singular or w.near
 
 
 def _publish(w, code, order):
     """The outputs as a dict, with the status rules of the CSV."""
-    failed = reason_of(code) in (1, 2)
-    singular = reason_of(code) == 3
+    reason = code % 10 if code > 0 else 0  # reason_of(code), without the call
+    failed = reason in (1, 2)
+    singular = reason == 3
     if failed:
         out = dict.fromkeys(_OUTPUTS, NAN)
-    else:  # a dict display: one step, where dict(zip()) of a tuple took three
-        out = {
-            "O.x": 0.0,
-            "O.y": 0.0,
-            "O.vx": 0.0,
-            "O.vy": 0.0,
-            "O.ax": 0.0,
-            "O.ay": 0.0,
-            "A.x": w.p_A[0] + 40.0,
-            "A.y": w.p_A[1],
-            "A.vx": w.p_A[2],
-            "A.vy": w.p_A[3],
-            "A.ax": w.p_A[4],
-            "A.ay": w.p_A[5],
-            "B.x": w.p_B[0] + 40.0,
-            "B.y": w.p_B[1],
-            "B.vx": w.p_B[2],
-            "B.vy": w.p_B[3],
-            "B.ax": w.p_B[4],
-            "B.ay": w.p_B[5],
-            "S.x": w.p_S[0] + 40.0,
-            "S.y": w.p_S[1],
-            "S.vx": w.p_S[2],
-            "S.vy": w.p_S[3],
-            "S.ax": w.p_S[4],
-            "S.ay": w.p_S[5],
-            "frame.phi": -0.16941304388961834,
-            "frame.omega": 0.0,
-            "frame.alpha": 0.0,
-            "crank.phi": w.phi_crank[0],
-            "crank.omega": w.phi_crank[1],
-            "crank.alpha": w.phi_crank[2],
-            "rod.phi": w.phi_rod[0],
-            "rod.omega": w.phi_rod[1],
-            "rod.alpha": w.phi_rod[2],
-            "block.phi": w.phi_block[0],
-            "block.omega": w.phi_block[1],
-            "block.alpha": w.phi_block[2],
-            "S.s": w.s_S[0],
-            "S.ds": w.s_S[1],
-            "S.dds": w.s_S[2],
-        }
+    else:  # _FIXED copied, then the computed columns set: half the time of a dict display of every column
+        _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B
+        _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S
+        _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank
+        _phi_rod_the, _phi_rod_dthe, _phi_rod_ddthe = w.phi_rod
+        _phi_block_the, _phi_block_dthe, _phi_block_ddthe = w.phi_block
+        _s_S_v, _s_S_dv, _s_S_ddv = w.s_S
+        out = _FIXED.copy()
+        out["A.x"] = _p_A_x + 40.0
+        out["A.y"] = _p_A_y
+        out["A.vx"] = _p_A_dx
+        out["A.vy"] = _p_A_dy
+        out["A.ax"] = _p_A_ddx
+        out["A.ay"] = _p_A_ddy
+        out["B.x"] = _p_B_x + 40.0
+        out["B.y"] = _p_B_y
+        out["B.vx"] = _p_B_dx
+        out["B.vy"] = _p_B_dy
+        out["B.ax"] = _p_B_ddx
+        out["B.ay"] = _p_B_ddy
+        out["S.x"] = _p_S_x + 40.0
+        out["S.y"] = _p_S_y
+        out["S.vx"] = _p_S_dx
+        out["S.vy"] = _p_S_dy
+        out["S.ax"] = _p_S_ddx
+        out["S.ay"] = _p_S_ddy
+        out["crank.phi"] = _phi_crank_the
+        out["crank.omega"] = _phi_crank_dthe
+        out["crank.alpha"] = _phi_crank_ddthe
+        out["rod.phi"] = _phi_rod_the
+        out["rod.omega"] = _phi_rod_dthe
+        out["rod.alpha"] = _phi_rod_ddthe
+        out["block.phi"] = _phi_block_the
+        out["block.omega"] = _phi_block_dthe
+        out["block.alpha"] = _phi_block_ddthe
+        out["S.s"] = _s_S_v
+        out["S.ds"] = _s_S_dv
+        out["S.dds"] = _s_S_ddv
     if order < ORDER or singular:
         out = {name: NAN if singular and level > 0 else value
                for (name, value), level in zip(out.items(), _LEVELS) if level <= order}
     out["status"] = code
-    out["sigma"] = list(w.sigma)
+    out["sigma"] = w.sigma  # a new list each solve
     return out
 
 
@@ -318,6 +451,8 @@ def _check(inputs, d_inputs, dd_inputs):
                                 f"not {type(values).__name__}")
             if len(values) != N_INPUTS:
                 raise ValueError(f"slider_crank.solve: expected {N_INPUTS} {what}, got {len(values)}")
+    if abs(inputs[0]) <= 1e+30 and abs(d_inputs[0]) <= 1e+30 and abs(dd_inputs[0]) <= 1e+30:
+        return  # every number in range: the loops below find the first one that is not
     for k, x in enumerate(inputs):
         if not abs(x) <= 1e+30:
             raise ValueError(f"slider_crank.solve: inputs[{k}] is not finite or larger than 1e+30: {x!r}")

@@ -96,7 +96,7 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step2.l": 20.0,  # step 2: crank_input of A
     "step3.gsi": 0.0,  # step 3: PRR_links of B
     "step3.eta": 0.0,  # step 3: PRR_links of B
-    "step4.off": 0.0,  # step 4: link_angle of crank
+    "step4.off": 0.0,  # step 4: crank_angle of crank
     "step5.off": 0.0,  # step 5: link_angle of rod
     "step6.off": 0.16941304388961834,  # step 6: offset_angle of block
 }
@@ -183,6 +183,35 @@ def link_angle(j1, j2, off):
     _angle = (_f1, om, al)
     if _singular.any():  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
+    return _st, _sigma, _angle
+
+def crank_angle(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, phi_dthe, phi_ddthe = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
     return _st, _sigma, _angle
 
 def offset_angle(phi, off):
@@ -307,58 +336,6 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
         _jp = (np.where(_fails, np.nan, _jp[0]), np.where(_fails, np.nan, _jp[1]), np.where(_singular, np.nan, _jp[2]), np.where(_singular, np.nan, _jp[3]), np.where(_singular, np.nan, _jp[4]), np.where(_singular, np.nan, _jp[5]))
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
     return _st, _sigma, _s, _jp, _jb
-
-def link_angle_still_j1(j1, j2, off):
-    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
-    j1_x, j1_y, _, _, _, _ = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    dx = j2_x - j1_x
-    dy = j2_y - j1_y
-    dvx = j2_dx
-    dvy = j2_dy
-    dax = j2_ddx
-    day = j2_ddy
-    r2 = dx * dx + dy * dy
-    th0 = np.arctan2(dy, dx) + off
-    _t1 = r2 == 0
-    _c1 = np.asarray(_t1)
-    if not _c1.any():
-        ir2 = 1 / r2
-    elif _c1.all():
-        ir2 = NAN
-    else:
-        ir2 = np.where(_c1, NAN, 1 / r2)
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    _c2 = np.asarray(_t1)
-    if not _c2.any():
-        _st = 0
-    elif _c2.all():
-        _st = 1
-    else:
-        _st = np.where(_c2, 1, 0)
-    _sigma = 1.0
-    _st = np.asarray(_st)
-    _sigma = np.asarray(_sigma, dtype=REAL)
-    _fails = _st == 1
-    _singular = _fails | (_st == 3)
-    _c3 = np.asarray(th0 > PI)
-    if not _c3.any():
-        _c4 = np.asarray(th0 <= -PI)
-        if not _c4.any():
-            _f1 = th0
-        elif _c4.all():
-            _f1 = th0 + 2 * PI
-        else:
-            _f1 = np.where(_c4, th0 + 2 * PI, th0)
-    elif _c3.all():
-        _f1 = th0 - 2 * PI
-    else:
-        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
-    _angle = (_f1, om, al)
-    if _singular.any():  # nan where the rows failed
-        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
-    return _st, _sigma, _angle
 
 def cos_sin(t):
     """cos t and sin t from one tangent of the half angle, within an eps of the library's:
@@ -589,9 +566,8 @@ def _run(x, dx, ddx, c):
     # Step 3: PRR_links, B (branch +1). B is joined to the known A by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
     st, sigma[3], w.s_S, w.p_S, w.p_B = PRR_links(w.p_A, w.l_rod, w.g_S, w.psi_S, c["step3.gsi"], c["step3.eta"], 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
-    # Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
-    st, _, w.phi_crank = link_angle_still_j1(w.p_O, w.p_A, c["step4.off"])
-    report.append((st, ((1, 41),)))
+    # Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
+    _, _, w.phi_crank = crank_angle(w.in1, w.ref_O, c["step4.off"])
     # Step 5: link_angle, rod. A and B of link rod are known, so its angle is known
     st, _, w.phi_rod = link_angle(w.p_A, w.p_B, c["step5.off"])
     report.append((st, ((1, 51),)))

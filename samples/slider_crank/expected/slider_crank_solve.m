@@ -89,13 +89,8 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 33, -34);
 
-    % Step 4: link_angle, crank. O and A of link crank are known, so its angle is known
-    [w.phi_crank, st] = link_angle(w.p_O, w.p_A, 0.0);
-    if st == 1
-        status = 41;
-        return;
-    end
-    w = note(w, st, 43, -44);
+    % Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
+    w.phi_crank = crank_angle(w.in1, w.ref_O, 0.0);
 
     % Step 5: link_angle, rod. A and B of link rod are known, so its angle is known
     [w.phi_rod, st] = link_angle(w.p_A, w.p_B, 0.0);
@@ -291,6 +286,23 @@ function [angle, st] = link_angle(j1, j2, off)
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
+end
+
+function angle = crank_angle(theta, phi, off)
+    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
+    th0 = theta.the + phi.the + off;
+    if abs(th0) >= 3 * pi
+        th = atan2(sin(th0), cos(th0));
+    elseif th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    angle.the = th;
+    angle.dthe = theta.dthe + phi.dthe;
+    angle.ddthe = theta.ddthe + phi.ddthe;
 end
 
 function angle = offset_angle(phi, off)

@@ -75,15 +75,18 @@ static int within(const double in[], const double last[], const double limits[])
 
 /* Block states a moved by step along their rates into out.  An Add-link length is a
  * distance: where its prediction passes zero the two pairs pass each other, so it is
- * reflected.  The entries past a block's lengths (branches, orientation) have no rates:
- * they are copied. */
+ * reflected.  A branch's measure moves too: where it passes zero the chain passes its fold
+ * and goes on on its other branch, as a chain outside the groups does at a change point.
+ * The orientation (the last entry) is copied. */
 static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_NMAX], double step,
                     const int sizes[], double out[][LINKGEN_NMAX])
 {
     int g, i;
-    memcpy(out, a, sizeof(double[LINKGEN_NBLOCKS][LINKGEN_NMAX]));
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+    for (g = 0; g < LINKGEN_NBLOCKS; g++) {
         for (i = 0; i < sizes[g]; i++) out[g][i] = fabs(a[g][i] + step * rate[g][i]);
+        for (; i < LINKGEN_NMAX - 1; i++) out[g][i] = a[g][i] + step * rate[g][i];
+        out[g][LINKGEN_NMAX - 1] = a[g][LINKGEN_NMAX - 1];
+    }
 }
 
 /* How far inputs in lie from the warm row's along its input rates, in time (0 without rates). */

@@ -63,7 +63,8 @@ def empty_state(k, lanes):
 
 def agree(s, t, k):
     """Lanes where two states of the same rows would start the next row alike: both failed, or
-    both solved with the same blocks, branches and orientations, lengths within the resolver's
+    both solved with the same blocks, branches and orientations (the signs of the entries past
+    the lengths: a branch is held as a measure, see _lengths_N), lengths within the resolver's
     tolerance and rates within a millionth."""
     tol = k.p.tolerance * k.m.length_scale
     same = s.ok == t.ok
@@ -71,7 +72,7 @@ def agree(s, t, k):
         same = same & (u == v)
     for b, c, n in zip(s.a, t.a, k.m.sizes):
         for i, (x, y) in enumerate(zip(b, c)):
-            same = same & (_close(x, y, tol) if i < n else (x == y))
+            same = same & (_close(x, y, tol) if i < n else (np.sign(x) == np.sign(y)))
     for b, c in zip(s.ad, t.ad):
         for x, y in zip(b, c):
             same = same & _close(x, y, RATES_AGREE * np.maximum(np.abs(x), np.abs(y)) + tol)

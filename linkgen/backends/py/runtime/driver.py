@@ -10,7 +10,9 @@
 
 def advance(a, rates, step, sizes):
     """Block states moved by step along their rates.  An Add-link length is a distance:
-    where its prediction passes zero the two pairs pass each other, so it is reflected."""
+    where its prediction passes zero the two pairs pass each other, so it is reflected.  A
+    branch's measure moves too: where it passes zero the chain passes its fold and goes on
+    on its other branch, as a chain outside the groups does at a change point."""
     return [[abs(v + step * r) if i < n else v + step * r for i, (v, r) in enumerate(zip(g, gr))]
             for g, gr, n in zip(a, rates, sizes)]
 
@@ -29,9 +31,9 @@ def predict(warm, inputs, sizes, order):
     if back == 0.0:
         return first
     out = []
-    for g, gr, gb, n in zip(a, ad, warm[5][1], sizes):
+    for g, gr, gb, n, f in zip(a, ad, warm[5][1], sizes, first):
         bend = [(b - v - back * r) / (back * back) for v, r, b in zip(g[:n], gr, gb)]
-        out.append([abs(v + tau * r + tau * tau * c) for v, r, c in zip(g, gr, bend)] + list(g[n:]))
+        out.append([abs(v + tau * r + tau * tau * c) for v, r, c in zip(g, gr, bend)] + f[n:])
     return out
 
 
