@@ -10,7 +10,6 @@ form; calls it cannot answer are refused as the C program refuses them.
 
 from __future__ import annotations
 
-import importlib.util
 import math
 import subprocess
 import sys
@@ -21,8 +20,9 @@ import numpy as np
 import pytest
 from programs import ROOT, SAMPLES, build, compare, parse, run_c
 
+from linkgen.backends.py import BACKEND as PYTHON
 from linkgen.evaluate import evaluate
-from linkgen.kernel import kernel
+from linkgen.kernel import kernel, source
 from linkgen.pipeline import build_log
 from linkgen.rows import input_rows
 from linkgen.table import csv
@@ -152,37 +152,48 @@ def test_a_design_sweep_in_one_call_is_the_separate_builds(every: int, tmp_path:
             assert np.max(np.abs(out[c.name][k] - alone[c.name])) <= 1e-11 * scale, (k, c.name)
 
 
+def _fourbar_moved(o2: tuple[float, float], rocker: float, path: Path) -> Path:
+    """fourbar.yaml with O2 at o2 and B where the coupler keeps its length and the rocker has this
+    one (left of A -> O2, as drawn), P where it keeps its place on the coupler."""
+    a, o = np.array([20.0, 0.0]), np.array(o2)  # A as drawn
+    d = np.hypot(*(o - a))
+    along = (COUPLER**2 - rocker**2 + d**2) / (2 * d)
+    b = a + (along * (o - a) + np.sqrt(COUPLER**2 - along**2) * np.array([a[1] - o[1], o[0] - a[0]])) / d
+    u = (b - a) / COUPLER
+    gsi, eta = 75.54175916040862, 28.168113585237116  # P in the coupler's frame (fourbar_np.PARAMS)
+    p = a + gsi * u + eta * np.array([-u[1], u[0]])
+    text = FOURBAR.read_text(encoding="utf-8").replace("O2: [90, 0]", f"O2: [{float(o[0])!r}, {float(o[1])!r}]")
+    text = text.replace("B: [80, 50]", f"B: [{float(b[0])!r}, {float(b[1])!r}]")
+    path.write_text(text.replace("P: [60, 70]", f"P: [{float(p[0])!r}, {float(p[1])!r}]"), encoding="utf-8")
+    return path
+
+
 def test_sketch_coordinates_and_a_length_broadcast_as_the_scalar_program_computes_them(tmp_path: Path):
     """O2's place and the rocker's length as arrays of five designs against 36 rows in one call:
-    each design's rows are bit for bit the call with that design's numbers alone, and what the
-    standard-library fourbar.py (one row at a time) computes with those constants in place."""
-    log = build(FOURBAR, tmp_path)
-    spec = importlib.util.spec_from_file_location("fourbar_scalar", tmp_path / "fourbar.py")
-    assert spec is not None and spec.loader is not None
-    scalar = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(scalar)
-    module = kernel(log, 2)
+    each design's rows are bit for bit the call with that design's numbers alone, and its points
+    what the standard-library fourbar.py of the four-bar drawn so computes, one row at a time, to
+    the rounding of its sketch's numbers (its angles keep their own sketch's offsets)."""
+    module = kernel(build_log(str(FOURBAR)), 2)
     o2x, o2y = O2[0] + np.linspace(-3.0, 3.0, 5), O2[1] + np.linspace(2.0, -2.0, 5)
     rocker = ROCKER + np.linspace(-1.0, 1.0, 5)
     theta = _theta()[::10]
     out = module.solve(theta[:, None], [2 * np.pi], [0.0],
                        params={"O2.x": o2x[:, None], "O2.y": o2y[:, None], "l_rocker": rocker[:, None]})
     assert out["B.x"].shape == out["status"].shape == (5, len(theta)) and (out["status"] == 0).all()
-    moving = ("A", "B", "P", "crank", "coupler", "rocker")
-    computed = [c.name for c in log.columns[1:] if c.name.split(".")[0] in moving]
+    points = [c for c in out if c.split(".")[0] in ("A", "B", "P")]
     for d in range(5):
         alone = module.solve(theta[:, None], [2 * np.pi], [0.0],
                              params={"O2.x": o2x[d], "O2.y": o2y[d], "l_rocker": rocker[d]})
-        for name in (*computed, "status"):
-            assert np.array_equal(out[name][d], alone[name]), (d, name)
-        assert np.array_equal(out["sigma"][:, d], alone["sigma"])
-        scalar.p_O2 = (o2x[d] - log.origin[0], o2y[d] - log.origin[1], 0.0, 0.0, 0.0, 0.0)
-        scalar.l_rocker = (float(rocker[d]), 0.0, 0.0)
+        for name in alone:
+            assert np.array_equal(out[name][d] if name != "sigma" else out[name][:, d], alone[name]), (d, name)
+        log = build_log(str(_fourbar_moved((o2x[d], o2y[d]), rocker[d], tmp_path / f"fourbar_{d}.yaml")), sweep=False)
+        scalar = ModuleType(f"fourbar_{d}")
+        exec(compile(source(PYTHON, log, 2), f"fourbar_{d}.py", "exec"), scalar.__dict__)
         rows = [scalar.solve([float(t)], [2 * np.pi], [0.0]) for t in theta]
         assert [r["status"] for r in rows] == out["status"][d].tolist()
-        for name in computed:
+        for name in points:
             want = np.array([r[name] for r in rows])
-            assert np.max(np.abs(out[name][d] - want)) <= 1e-9 * max(np.max(np.abs(want)), 1.0), (d, name)
+            assert np.max(np.abs(out[name][d] - want)) <= 1e-11 * max(np.max(np.abs(want)), 1.0), (d, name)
 
 
 # -- calls it cannot answer ----------------------------------------------------
