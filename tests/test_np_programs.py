@@ -20,8 +20,9 @@ import numpy as np
 import pytest
 from programs import ROOT, SAMPLES, build, compare, parse, run_c
 
+from linkgen.backends.py import BACKEND as PYTHON
 from linkgen.evaluate import evaluate
-from linkgen.kernel import kernel
+from linkgen.kernel import kernel, source
 from linkgen.pipeline import build_log
 from linkgen.rows import input_rows
 from linkgen.table import csv
@@ -151,6 +152,50 @@ def test_a_design_sweep_in_one_call_is_the_separate_builds(every: int, tmp_path:
             assert np.max(np.abs(out[c.name][k] - alone[c.name])) <= 1e-11 * scale, (k, c.name)
 
 
+def _fourbar_moved(o2: tuple[float, float], rocker: float, path: Path) -> Path:
+    """fourbar.yaml with O2 at o2 and B where the coupler keeps its length and the rocker has this
+    one (left of A -> O2, as drawn), P where it keeps its place on the coupler."""
+    a, o = np.array([20.0, 0.0]), np.array(o2)  # A as drawn
+    d = np.hypot(*(o - a))
+    along = (COUPLER**2 - rocker**2 + d**2) / (2 * d)
+    b = a + (along * (o - a) + np.sqrt(COUPLER**2 - along**2) * np.array([a[1] - o[1], o[0] - a[0]])) / d
+    u = (b - a) / COUPLER
+    gsi, eta = 75.54175916040862, 28.168113585237116  # P in the coupler's frame (fourbar_np.PARAMS)
+    p = a + gsi * u + eta * np.array([-u[1], u[0]])
+    text = FOURBAR.read_text(encoding="utf-8").replace("O2: [90, 0]", f"O2: [{float(o[0])!r}, {float(o[1])!r}]")
+    text = text.replace("B: [80, 50]", f"B: [{float(b[0])!r}, {float(b[1])!r}]")
+    path.write_text(text.replace("P: [60, 70]", f"P: [{float(p[0])!r}, {float(p[1])!r}]"), encoding="utf-8")
+    return path
+
+
+def test_sketch_coordinates_and_a_length_broadcast_as_the_scalar_program_computes_them(tmp_path: Path):
+    """O2's place and the rocker's length as arrays of five designs against 36 rows in one call:
+    each design's rows are bit for bit the call with that design's numbers alone, and its points
+    what the standard-library fourbar.py of the four-bar drawn so computes, one row at a time, to
+    the rounding of its sketch's numbers (its angles keep their own sketch's offsets)."""
+    module = kernel(build_log(str(FOURBAR)), 2)
+    o2x, o2y = O2[0] + np.linspace(-3.0, 3.0, 5), O2[1] + np.linspace(2.0, -2.0, 5)
+    rocker = ROCKER + np.linspace(-1.0, 1.0, 5)
+    theta = _theta()[::10]
+    out = module.solve(theta[:, None], [2 * np.pi], [0.0],
+                       params={"O2.x": o2x[:, None], "O2.y": o2y[:, None], "l_rocker": rocker[:, None]})
+    assert out["B.x"].shape == out["status"].shape == (5, len(theta)) and (out["status"] == 0).all()
+    points = [c for c in out if c.split(".")[0] in ("A", "B", "P")]
+    for d in range(5):
+        alone = module.solve(theta[:, None], [2 * np.pi], [0.0],
+                             params={"O2.x": o2x[d], "O2.y": o2y[d], "l_rocker": rocker[d]})
+        for name in alone:
+            assert np.array_equal(out[name][d] if name != "sigma" else out[name][:, d], alone[name]), (d, name)
+        log = build_log(str(_fourbar_moved((o2x[d], o2y[d]), rocker[d], tmp_path / f"fourbar_{d}.yaml")), sweep=False)
+        scalar = ModuleType(f"fourbar_{d}")
+        exec(compile(source(PYTHON, log, 2), f"fourbar_{d}.py", "exec"), scalar.__dict__)
+        rows = [scalar.solve([float(t)], [2 * np.pi], [0.0]) for t in theta]
+        assert [r["status"] for r in rows] == out["status"][d].tolist()
+        for name in points:
+            want = np.array([r[name] for r in rows])
+            assert np.max(np.abs(out[name][d] - want)) <= 1e-11 * max(np.max(np.abs(want)), 1.0), (d, name)
+
+
 # -- calls it cannot answer ----------------------------------------------------
 
 def test_a_row_the_kernel_cannot_answer_is_refused_and_the_others_are_solved():
@@ -171,6 +216,22 @@ def test_a_row_the_kernel_cannot_answer_is_refused_and_the_others_are_solved():
         module.solve(values, rates, accs, params={"crank": 3.0})
     assert set(module.solve(values, rates, accs, order=0)) == {
         c.name for c in log.columns[1:] if c.quantity in ("position", "angle")} | {"status", "sigma"}
+
+
+def test_one_row_and_no_rows_are_calls_like_the_others():
+    """A call of one row (every array of the call a number) keeps its conditioning and its
+    values as the same row of a sweep has them; a call of no rows gives empty arrays."""
+    log = build_log(str(FOURBAR))
+    module = kernel(log, 2)
+    values, rates, accs = input_rows(log, 7)
+    sweep = module.solve(values, rates, accs)
+    one = module.solve(values[3], rates[3], accs[3])
+    assert one["status"].shape == () and one["sigma"].shape == (log.steps[-1].number + 1,)
+    assert np.array_equal(one["sigma"], sweep["sigma"][:, 3]) and (one["sigma"][3] < 1.0)
+    for c in log.columns[1:]:
+        assert np.array_equal(one[c.name], sweep[c.name][3]), c.name
+    none = module.solve(values[:0], rates[:0], accs[:0])
+    assert none["B.x"].shape == none["status"].shape == (0,) and none["sigma"].shape[1:] == (0,)
 
 
 def test_a_call_fills_the_arrays_of_an_earlier_one():

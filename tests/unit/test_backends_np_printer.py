@@ -3,7 +3,7 @@
 platform's atan2, as tests/test_primitives.py measures; a cosine and a sine of one angle from one
 half-angle tangent, within COS_SIN_EPS eps of the size of what they scale), always as (status, sigma,
 ...); what the DSL computes twice is computed once; with a suffix, at a lower order, it takes the
-records of a higher one."""
+records of a higher one; a record held still (its rates 0) gives the bits it gives with its rates 0."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from dsl_walk import evaluate, rows, same
 
-from linkgen.backends.np.printer import numpy_function
+from linkgen.backends.np.printer import held_still, numpy_function
 from linkgen.backends.py.printer import python_function
 from linkgen.primitives import PRIMITIVES
 from linkgen.primitives.dsl import Primitive, field_order, record_fields
@@ -98,3 +98,35 @@ def test_the_suffixed_function_takes_records_of_a_higher_order():
     low = space["RRR_links_1"](j1, j2, l1, l2, 1)
     high = space["RRR_links"](j1, j2, l1, l2, 1)
     assert low[:2] == high[:2] and low[2] == high[2][:4]
+
+
+@pytest.mark.parametrize("order", (1, 2))
+@pytest.mark.parametrize("name", list(PRIMITIVES))
+def test_a_record_held_still_gives_the_bits_of_its_rates_at_zero(name: str, order: int):
+    """held_still(prim, (p,)): each record parameter held still (a subtraction of its rates left out)
+    gives, bit for bit (zeros' signs and nan included), what the primitive gives with that record's
+    rates 0.0, on the DSL's rows (tests/dsl_walk.py) with a -0.0, a nan and an inf in every field."""
+    prim = PRIMITIVES[name]
+    table = rows(name, ROWS)
+    columns = {k: np.array([r[k] for r in table], dtype=float) for k in table[0]}
+    for i, k in enumerate(sorted(columns)):
+        for j, special in enumerate((-0.0, math.nan, math.inf)):
+            columns[k][(3 * i + j) % len(table)] = special
+    for p in (p for p in prim.params if p.is_record and p.kind != "CENTRE"):
+        held, saved = held_still(prim, (p.name,))
+        space = _space()
+        exec(numpy_function(prim, order) + numpy_function(held, order, name="held"), space)
+        still = dict(columns)
+        for f in record_fields(p.kind, order):
+            if field_order(p.kind, f) > 0:
+                still[f"{p.name}_{f}"] = np.zeros(len(table))
+        with np.errstate(all="ignore"):
+            want = space[name](*_args(prim, order, still))
+            got = space["held"](*_args(prim, order, still))
+        for a, b in zip(_columns(want, len(table)), _columns(got, len(table)), strict=True):
+            assert all(same(float(x), float(y)) for x, y in zip(a, b)), (p.name, saved)
+
+
+def _columns(result: tuple, n: int) -> list[np.ndarray]:
+    """A primitive's (status, sigma, records...) as columns of n rows."""
+    return [np.broadcast_to(x, (n,)) for x in (result[0], result[1], *(f for record in result[2:] for f in record))]

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import functools
 from typing import TYPE_CHECKING
 
 from ...primitives import PRIMITIVES
@@ -11,6 +10,7 @@ from .. import Backend, Runtime, Template
 from ..program import LEVEL, used_primitives
 from .printer import numpy_function
 from .spelling import Numpy
+from .still import held_params, printed
 
 if TYPE_CHECKING:
     from ...render.view import View
@@ -20,13 +20,6 @@ REALS = {"float": "float32", "double": "float64"}  # the real types of options.r
 
 
 FAST = "_1"  # the suffix of the primitives and resolver blocks at order 1 (a resolver's Newton passes)
-
-
-@functools.cache
-def printed(name: str, order: int, suffix: str = "", checks: bool = True) -> str:
-    """A primitive on arrays of rows at an order (named with the suffix), with its checks or without
-    (printed once: the evaluator renders many logs)."""
-    return numpy_function(PRIMITIVES[name] if checks else PRIMITIVES[name].unchecked(), order, suffix)
 
 
 def fast(view: View) -> str:
@@ -49,7 +42,11 @@ def runtime_sources(view: View) -> list[str]:
     branch_at and reach_at where the procedure needs them, and the row driver; with resolver
     groups the resolver on lanes of rows and the sweep that solves the rows in order."""
     log = view.log
-    texts = [printed(p, view.record_order, "", view.measures) for p in used_primitives(view)]
+    calls = {(s.function, held_params(log, view.record_order, s)) for s in log.steps if s.function}
+    held = sorted((call for call in calls if call[1]), key=lambda call: (list(PRIMITIVES).index(call[0]), call[1]))
+    texts = [printed(p, view.record_order, "", view.measures) for p in used_primitives(view)
+             if (p, ()) in calls or all(p != f for f, _ in held)]  # none where every call holds a record still
+    texts += [printed(p, view.record_order, "", view.measures, still) for p, still in held]
     texts += [printed(p, 1, FAST, view.measures) for p in fast_primitives(view)]
     if any("cos_sin(" in text for text in texts):
         texts.append(RUNTIME.source("trig"))

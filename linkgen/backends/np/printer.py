@@ -9,11 +9,16 @@ the same numbers.
 
 from __future__ import annotations
 
+import math
 from collections import Counter
+from dataclasses import replace
 
 from ...primitives.dsl import (
+    RECORD_FIELDS,
+    Bin,
     Binary,
     Call,
+    Const,
     Expr,
     Let,
     Logic,
@@ -142,26 +147,108 @@ def _cos_sin_pairs(lets: tuple[Let, ...]) -> dict[str, tuple[str, str]]:
     return {c: (c, calls["sin", arg]) for (fn, arg), c in calls.items() if fn == "cos" and ("sin", arg) in calls}
 
 
+def _rebuilt(e: Expr, kids: list[Expr]) -> Expr:
+    """e with other children (e itself where they are its own)."""
+    if all(n is c for n, c in zip(kids, children(e))):
+        return e
+    if isinstance(e, Binary):
+        return type(e)(e.op, kids[0], kids[1])
+    if isinstance(e, Neg):
+        return Neg(kids[0])
+    if isinstance(e, Call):
+        return Call(e.fn, tuple(kids))
+    if isinstance(e, Select):
+        return Select(kids[0], kids[1], kids[2])
+    return e
+
+
 def _substituted(e: Expr, names: dict[str, Expr], memo: dict[int, Expr]) -> Expr:
     """e with the symbols named in names replaced by their expressions (a node met twice, once)."""
     if id(e) in memo:
         return memo[id(e)]
-    kids = children(e)
-    new = [_substituted(c, names, memo) for c in kids]
-    out: Expr = e
     if isinstance(e, Sym):
         out = names.get(e.name, e)
-    elif any(n is not c for n, c in zip(new, kids)):
-        if isinstance(e, Binary):
-            out = type(e)(e.op, new[0], new[1])
-        elif isinstance(e, Neg):
-            out = Neg(new[0])
-        elif isinstance(e, Call):
-            out = Call(e.fn, tuple(new))
-        elif isinstance(e, Select):
-            out = Select(new[0], new[1], new[2])
+    else:
+        out = _rebuilt(e, [_substituted(c, names, memo) for c in children(e)])
     memo[id(e)] = out
     return out
+
+
+def _own(e: Expr) -> tuple[object, ...]:
+    """What a node is besides its children: a symbol's or a constant's name, a number's type and
+    value, a call's function, an operator."""
+    if isinstance(e, (Sym, Const)):
+        return (e.name,)
+    if isinstance(e, Num):
+        return (type(e.value).__name__, repr(e.value))
+    if isinstance(e, Call):
+        return (e.fn,)
+    if isinstance(e, Binary):
+        return (e.op,)
+    return ()
+
+
+def _merged(roots: list[Expr]) -> list[Expr]:
+    """The roots with the nodes written alike (the same operations on the same operands) made one
+    node where one of them is read outside every selection's branch: computed once then, at no
+    cost to a row that takes a branch, with the same bits."""
+    keys: dict[int, tuple[object, ...]] = {}
+
+    def key(e: Expr) -> tuple[object, ...]:
+        if id(e) not in keys:
+            keys[id(e)] = (type(e).__name__, *_own(e), *(key(c) for c in children(e)))
+        return keys[id(e)]
+
+    outside: set[tuple[object, ...]] = set()
+
+    def walk(e: Expr, inside: bool) -> None:
+        if not inside:
+            outside.add(key(e))
+        for k, c in enumerate(children(e)):
+            walk(c, inside or (isinstance(e, Select) and k > 0))
+
+    for root in roots:
+        walk(root, False)
+    one: dict[tuple[object, ...], Expr] = {}
+    memo: dict[int, Expr] = {}
+
+    def rebuild(e: Expr) -> Expr:
+        if id(e) not in memo:
+            node = _rebuilt(e, [rebuild(c) for c in children(e)])
+            memo[id(e)] = one.setdefault(key(e), node) if key(e) in outside else node
+        return memo[id(e)]
+
+    return [rebuild(root) for root in roots]
+
+
+def held_still(prim: Primitive, still: tuple[str, ...]) -> tuple[Primitive, int]:
+    """The primitive where the record parameters named hold still, as a constant record of the
+    sketch does (every rate +0.0): a rate of theirs subtracted is not subtracted, since x - 0.0
+    is x bit for bit (-0.0 and nan included); every other reading reads 0.0 as before.  Returns
+    it and the subtractions it leaves out."""
+    zero: dict[str, Expr] = {f"{p.name}_{f}": Num(0.0) for p in prim.params if p.name in still
+                             for level in RECORD_FIELDS[p.kind][1:] for f in level}
+    memo: dict[int, Expr] = {}
+    kept: dict[int, Expr] = {}
+    saved = Counter[str]()
+
+    def fold(e: Expr) -> Expr:
+        if id(e) not in kept:
+            kids = [fold(c) for c in children(e)]
+            b = kids[1] if isinstance(e, Bin) and e.op == "-" else None
+            plus_zero = isinstance(b, Num) and b.value == 0 and math.copysign(1.0, b.value) > 0
+            saved["-"] += plus_zero
+            kept[id(e)] = kids[0] if plus_zero else _rebuilt(e, kids)
+        return kept[id(e)]
+
+    def still_(e: Expr) -> Expr:
+        return fold(_substituted(e, zero, memo))
+
+    body = tuple(Let(let.name, still_(let.expr), let.order) for let in prim.body)
+    results = {o: {f: still_(e) for f, e in fields.items()} for o, fields in prim.results.items()}
+    held = replace(prim, body=body, results=results, status=prim.status and still_(prim.status),
+                   sigma=prim.sigma and still_(prim.sigma), fail=prim.fail and still_(prim.fail))
+    return held, saved["-"]
 
 
 def _uses(exprs: list[Expr]) -> tuple[Counter[str], set[str]]:
@@ -187,13 +274,14 @@ def _record(fields: list[str]) -> str:
     return "(" + ", ".join(fields) + ("," if len(fields) == 1 else "") + ")"
 
 
-def numpy_function(prim: Primitive, order: int, suffix: str = "") -> str:
+def numpy_function(prim: Primitive, order: int, suffix: str = "", name: str = "") -> str:
     """A primitive on arrays of rows (records are tuples of arrays or numbers).
 
     Returns ``(status, sigma, outputs...)`` always: status 0 and sigma 1 where the function
     cannot fail.  A chain that cannot close (status 1) gives nan in every output field, a
     singular position (3) in the derivatives.  With a suffix it is named name + suffix and
-    takes records of any higher order too (their first fields).
+    takes records of any higher order too (their first fields); name (the primitive's unless
+    given) is what it is called by before the suffix.
     """
     exprs = NumpyExprs()
     # a selection read once, and what a branch alone reads once, is computed where it is read: then
@@ -213,12 +301,17 @@ def numpy_function(prim: Primitive, order: int, suffix: str = "") -> str:
     lets = tuple(body)
     fields = [(o, f, _substituted(e, inline, memo)) for o, f, e in fields]
     status, sigma_of = (None if e is None else _substituted(e, inline, memo) for e in (prim.status, prim.sigma))
+    tails = [e for e in (status, sigma_of) if e is not None]
+    merged = iter(_merged([let.expr for let in lets] + [e for _, _, e in fields] + tails))
+    lets = tuple(Let(let.name, next(merged), let.order) for let in lets)
+    fields = [(o, f, next(merged)) for o, f, _ in fields]
+    status, sigma_of = (None if e is None else next(merged) for e in (status, sigma_of))
     roots = [let.expr for let in lets] + [e for _, _, e in fields] + [e for e in (status, sigma_of) if e is not None]
     out = _Lines(exprs, _shared(roots))
     unpack = parameter_lines(prim, order)
     if suffix:
         unpack = [f"{line}[:{line.split(' = ')[0].count(',') + 1}]" for line in unpack]
-    out.lines = [f"def {prim.name}{suffix}({', '.join(p.name for p in prim.params)}):", f'    """{prim.doc}"""',
+    out.lines = [f"def {name or prim.name}{suffix}({', '.join(p.name for p in prim.params)}):", f'    """{prim.doc}"""',
                  *unpack]
     pairs = _cos_sin_pairs(lets) if prim.status is None else {}  # no status decided on a rounded cosine
     sines = {s for _, s in pairs.values()}
@@ -248,7 +341,7 @@ def numpy_function(prim: Primitive, order: int, suffix: str = "") -> str:
         fields_of = [exprs.expr(by_field[p.name, f]) for f in record_fields(p.kind, order)]
         out.lines.append(f"    _{p.name} = {_record(fields_of)}")
     if prim.status is not None:
-        out.lines.append(f"    if np.any({'_singular' if order > 0 else '_fails'}):  # nan where the rows failed")
+        out.lines.append(f"    if {'_singular' if order > 0 else '_fails'}.any():  # nan where the rows failed")
         for p in prim.outputs:
             masked = [f"np.where({'_fails' if field_order(p.kind, f) == 0 else '_singular'}, np.nan, _{p.name}[{k}])"
                       for k, f in enumerate(record_fields(p.kind, order))]

@@ -11,6 +11,7 @@ from ...primitives.dsl import record_fields
 from ...steplog import Arg, BranchSign, Column, Step, Variable
 from ..py.spelling import Python
 from ..spelling import Syntax
+from .still import held_params, still_suffix
 
 if TYPE_CHECKING:
     from ...render.view import Group, View
@@ -144,9 +145,12 @@ class Numpy(Python):
         return lines
 
     def call(self, step: Step, scope: Group | None, suffix: str = "") -> list[str]:
-        """A step's call on a block of rows (to the primitive named with the suffix); one that can
-        fail reports its status and codes."""
+        """A step's call on a block of rows (to the primitive named with the suffix, outside a
+        resolver block to its variant with the sketch's records held still where it has one); one
+        that can fail reports its status and codes."""
         prim = self.primitives[step.function]
+        if scope is None and not suffix:
+            suffix = still_suffix(held_params(self.log, self.order, step))
         args = ", ".join(self.arg(a, scope, step) for a in step.args)
         targets = ", ".join(self.ref(o, scope) for o in step.outputs)
         if prim.status is None:

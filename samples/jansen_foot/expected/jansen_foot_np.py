@@ -20,7 +20,8 @@
         stay), and the branches' change points stay the sketch's.
         out: a dict an earlier call returned for rows of the same shape and order, whose
         arrays this call fills instead of new ones (a loop over many calls saves the
-        first touch of fresh memory); the dict returned holds the same arrays.
+        first touch of fresh memory); the dict returned holds the same arrays.  Without
+        out the columns are rows of new arrays of up to 32 MB (a column kept keeps its array).
     python jansen_foot_np.py
         writes the sweep over the inputs' ranges as CSV to standard output, as jansen_foot.py does.
 """
@@ -136,7 +137,8 @@ def link_point(j1, j2, gsi, eta):
     dvx = j2_dx - j1_dx
     dvy = j2_dy - j1_dy
     r2 = dx * dx + dy * dy
-    _c1 = np.asarray(r2 == 0)
+    _t1 = r2 == 0
+    _c1 = np.asarray(_t1)
     if not _c1.any():
         ir = 1 / np.sqrt(r2)
     elif _c1.all():
@@ -151,7 +153,7 @@ def link_point(j1, j2, gsi, eta):
     om = (dx * dvy - dy * dvx) * ir2
     rvx = -om * ry
     rvy = om * rx
-    _c2 = np.asarray(r2 == 0)
+    _c2 = np.asarray(_t1)
     if not _c2.any():
         _st = 0
     elif _c2.all():
@@ -164,7 +166,7 @@ def link_point(j1, j2, gsi, eta):
     _fails = _st == 1
     _singular = _fails | (_st == 3)
     _jc = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
         _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]))
     return _st, _sigma, _jc
 
@@ -177,7 +179,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     dx = j2_x - j1_x
     dy = j2_y - j1_y
     q = np.sqrt(dx * dx + dy * dy)
-    _c1 = np.asarray(q == 0)
+    _t1 = q == 0
+    _c1 = np.asarray(_t1)
     if not _c1.any():
         iq = 1 / q
     elif _c1.all():
@@ -190,7 +193,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     lo = np.minimum(l1_v, l2_v)
     x = np.maximum(hi, q)
     z = np.minimum(lo, q)
-    _c2 = np.asarray(q >= hi)
+    _t2 = q >= hi
+    _c2 = np.asarray(_t2)
     if not _c2.any():
         _c3 = np.asarray(q <= lo)
         if not _c3.any():
@@ -203,35 +207,40 @@ def RRR_links(j1, j2, l1, l2, minv):
         y = hi
     else:
         y = np.where(_c2, hi, np.where(q <= lo, lo, q))
-    k = z - (x - y)
-    fail = ((k < -8 * EPS * x) | (q == 0)) | (lo <= 0)
+    _t3 = x - y
+    k = z - _t3
+    fail = ((k < -8 * EPS * x) | (_t1)) | (lo <= 0)
     kk = np.maximum(k, 0)
-    area4 = np.sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
+    area4 = np.sqrt((x + (y + z)) * kk * (z + _t3) * (x + (y - z)))
     h = area4 * iq / 2
-    a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
-    a2 = (q + (l2_v - l1_v) * ((l1_v + l2_v) * iq)) / 2
+    _t4 = l1_v + l2_v
+    _t5 = _t4 * iq
+    a = (q + (l1_v - l2_v) * _t5) / 2
+    a2 = (q + (l2_v - l1_v) * _t5) / 2
     _c4 = np.asarray(k > 0)
     if not _c4.any():
-        _c5 = np.asarray(q >= hi)
+        _c5 = np.asarray(_t2)
         if not _c5.any():
             _c6 = np.asarray(l1_v >= l2_v)
             if not _c6.any():
-                at = (q - (l1_v + l2_v)) / 2
+                at = (q - _t4) / 2
             elif _c6.all():
                 at = (l1_v + (q + l2_v)) / 2
             else:
-                at = np.where(_c6, (l1_v + (q + l2_v)) / 2, (q - (l1_v + l2_v)) / 2)
+                at = np.where(_c6, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)
         elif _c5.all():
             at = (l1_v + (q - l2_v)) / 2
         else:
-            at = np.where(_c5, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - (l1_v + l2_v)) / 2))
+            at = np.where(_c5, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2))
     elif _c4.all():
         at = a
     else:
-        at = np.where(_c4, a, np.where(q >= hi, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - (l1_v + l2_v)) / 2)))
+        at = np.where(_c4, a, np.where(_t2, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
     hn = minv * h
-    e1x = at * ux - hn * uy
-    e1y = at * uy + hn * ux
+    _t6 = hn * uy
+    e1x = at * ux - _t6
+    _t7 = hn * ux
+    e1y = at * uy + _t7
     _c8 = np.asarray(fail)
     if not _c8.any():
         _s7 = area4 * (0.5 / (l1_v * l2_v))
@@ -240,9 +249,9 @@ def RRR_links(j1, j2, l1, l2, minv):
     else:
         _s7 = np.where(_c8, 0, area4 * (0.5 / (l1_v * l2_v)))
     sigma = np.minimum(_s7, 1)
-    _t2 = -a2
-    e2x = _t2 * ux - hn * uy
-    e2y = _t2 * uy + hn * ux
+    _t9 = -a2
+    e2x = _t9 * ux - _t6
+    e2y = _t9 * uy + _t7
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
     buv = (r1v - r2v) * iq
@@ -281,7 +290,173 @@ def RRR_links(j1, j2, l1, l2, minv):
     _fails = _st == 1
     _singular = _fails | (_st == 3)
     _jb = (j1_x + e1x, j1_y + e1y, bvx, bvy)
-    if np.any(_singular):  # nan where the rows failed
+    if _singular.any():  # nan where the rows failed
+        _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]))
+    return _st, _sigma, _jb
+
+def link_point_still_j1(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
+    j1_x, j1_y, _, _ = j1
+    j2_x, j2_y, j2_dx, j2_dy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx
+    dvy = j2_dy
+    r2 = dx * dx + dy * dy
+    _t1 = r2 == 0
+    _c1 = np.asarray(_t1)
+    if not _c1.any():
+        ir = 1 / np.sqrt(r2)
+    elif _c1.all():
+        ir = NAN
+    else:
+        ir = np.where(_c1, NAN, 1 / np.sqrt(r2))
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    _c2 = np.asarray(_t1)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
+    _jc = (j1_x + rx, j1_y + ry, 0.0 + rvx, 0.0 + rvy)
+    if _singular.any():  # nan where the rows failed
+        _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]))
+    return _st, _sigma, _jc
+
+def RRR_links_still_j2(j1, j2, l1, l2, minv):
+    """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
+    j1_x, j1_y, j1_dx, j1_dy = j1
+    j2_x, j2_y, _, _ = j2
+    l1_v, l1_dv = l1
+    l2_v, l2_dv = l2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    q = np.sqrt(dx * dx + dy * dy)
+    _t1 = q == 0
+    _c1 = np.asarray(_t1)
+    if not _c1.any():
+        iq = 1 / q
+    elif _c1.all():
+        iq = NAN
+    else:
+        iq = np.where(_c1, NAN, 1 / q)
+    ux = dx * iq
+    uy = dy * iq
+    hi = np.maximum(l1_v, l2_v)
+    lo = np.minimum(l1_v, l2_v)
+    x = np.maximum(hi, q)
+    z = np.minimum(lo, q)
+    _t2 = q >= hi
+    _c2 = np.asarray(_t2)
+    if not _c2.any():
+        _c3 = np.asarray(q <= lo)
+        if not _c3.any():
+            y = q
+        elif _c3.all():
+            y = lo
+        else:
+            y = np.where(_c3, lo, q)
+    elif _c2.all():
+        y = hi
+    else:
+        y = np.where(_c2, hi, np.where(q <= lo, lo, q))
+    _t3 = x - y
+    k = z - _t3
+    fail = ((k < -8 * EPS * x) | (_t1)) | (lo <= 0)
+    kk = np.maximum(k, 0)
+    area4 = np.sqrt((x + (y + z)) * kk * (z + _t3) * (x + (y - z)))
+    h = area4 * iq / 2
+    _t4 = l1_v + l2_v
+    _t5 = _t4 * iq
+    a = (q + (l1_v - l2_v) * _t5) / 2
+    a2 = (q + (l2_v - l1_v) * _t5) / 2
+    _c4 = np.asarray(k > 0)
+    if not _c4.any():
+        _c5 = np.asarray(_t2)
+        if not _c5.any():
+            _c6 = np.asarray(l1_v >= l2_v)
+            if not _c6.any():
+                at = (q - _t4) / 2
+            elif _c6.all():
+                at = (l1_v + (q + l2_v)) / 2
+            else:
+                at = np.where(_c6, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)
+        elif _c5.all():
+            at = (l1_v + (q - l2_v)) / 2
+        else:
+            at = np.where(_c5, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2))
+    elif _c4.all():
+        at = a
+    else:
+        at = np.where(_c4, a, np.where(_t2, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
+    hn = minv * h
+    _t6 = hn * uy
+    e1x = at * ux - _t6
+    _t7 = hn * ux
+    e1y = at * uy + _t7
+    _c8 = np.asarray(fail)
+    if not _c8.any():
+        _s7 = area4 * (0.5 / (l1_v * l2_v))
+    elif _c8.all():
+        _s7 = 0
+    else:
+        _s7 = np.where(_c8, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s7, 1)
+    _t9 = -a2
+    e2x = _t9 * ux - _t6
+    e2y = _t9 * uy + _t7
+    r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
+    r2v = l2_v * l2_dv + (e2x * 0.0 + e2y * 0.0)
+    buv = (r1v - r2v) * iq
+    _c10 = np.asarray(hn == 0)
+    if not _c10.any():
+        _s9 = 1 / (hn * q)
+    elif _c10.all():
+        _s9 = NAN
+    else:
+        _s9 = np.where(_c10, NAN, 1 / (hn * q))
+    bnv = (a2 * r1v + a * r2v) * _s9
+    bvx = buv * ux - bnv * uy
+    bvy = buv * uy + bnv * ux
+    _c11 = np.asarray(fail)
+    if not _c11.any():
+        _c12 = np.asarray(sigma < 1e-07)
+        if not _c12.any():
+            _c13 = np.asarray(sigma < 0.001)
+            if not _c13.any():
+                _st = 0
+            elif _c13.all():
+                _st = 4
+            else:
+                _st = np.where(_c13, 4, 0)
+        elif _c12.all():
+            _st = 3
+        else:
+            _st = np.where(_c12, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c11.all():
+        _st = 1
+    else:
+        _st = np.where(_c11, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+    _sigma = sigma
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
+    _jb = (j1_x + e1x, j1_y + e1y, bvx, bvy)
+    if _singular.any():  # nan where the rows failed
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]))
     return _st, _sigma, _jb
 
@@ -319,6 +494,11 @@ def reason_of(code):
 # failed, singular, bad_input, params, checks).
 
 BLOCK = 16384  # rows a block (measured: 20% faster than 4096, as fast as 32768)
+# A call's new columns are the rows of arrays of up to SHARED bytes: large enough for the
+# allocator's huge pages (a first touch once per 2 MB, not per 4 kB), small enough to come back
+# from the heap on the next call (measured, CPU time, on 51 and 110 columns of 1e5 and 1e6 rows:
+# as fast as an array a column to 1.8x faster; one array for all, above 64 MB, 2x to 9x slower).
+SHARED = 32 * 2**20
 
 
 def design(params, m):
@@ -358,65 +538,72 @@ def refused(columns, m):
     bad = False
     for col in columns[: m.reads]:
         for x in col:
-            bad = bad | ~(np.abs(x) <= m.max_input)
+            fine = np.abs(x) <= m.max_input
+            if not fine.all():
+                bad = bad | ~fine
     return bad
 
 
 def block(x, s, e):
     """Rows s to e of a flattened column (a number is the same on every row)."""
-    return x if np.ndim(x) == 0 else x[s:e]
+    return x[s:e] if isinstance(x, np.ndarray) else x
 
 
-def filled(out, shape, order, m):
+def filled(out, shape, order, m, ones=True):
     """The flat arrays a call fills (its columns up to order, status, sigma): those of out, a
-    dict an earlier call returned for rows of this shape, else new ones."""
+    dict an earlier call returned for rows of this shape, else new ones, the columns the rows
+    of arrays of up to SHARED bytes (see there).  sigma holds 1.0 where ones, else whatever
+    the memory held."""
     n = int(np.prod(shape))
     names = [name for name, level in zip(m.columns, m.levels) if level <= order]
     if out is None:
-        return ({name: np.empty(n, dtype=REAL) for name in names}, np.empty(n, dtype=int),
-                np.ones((m.n_steps + 1, n), dtype=REAL))
+        per = max(1, SHARED // max(1, n * np.dtype(REAL).itemsize))  # columns an array
+        reals = [x for k in range(0, len(names), per) for x in np.empty((min(per, len(names) - k), n), dtype=REAL)]
+        sigma = np.empty((m.n_steps + 1, n), dtype=REAL)
+        if ones:
+            sigma.fill(1.0)
+        return dict(zip(names, reals)), np.empty(n, dtype=int), sigma
     wanted = [(name, shape, REAL) for name in names] + [("status", shape, int)]
     if m.checks:
         wanted.append(("sigma", (m.n_steps + 1, *shape), REAL))
-    flat = {"sigma": np.ones((m.n_steps + 1, n), dtype=REAL)}  # the call's own where it gives no conditioning
+    flat = {}
     for name, like, dtype in wanted:
         a = out.get(name)
         if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
             raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
         flat[name] = a.reshape(-1) if name != "sigma" else a.reshape(m.n_steps + 1, n)
-    flat["sigma"].fill(1.0)
+    if "sigma" not in flat:  # the call's own where it gives no conditioning
+        flat["sigma"] = np.empty((m.n_steps + 1, n), dtype=REAL)
+    if ones:
+        flat["sigma"].fill(1.0)
     return {name: flat[name] for name in names}, flat["status"], flat["sigma"]
 
 
 def solve_rows(run, publish, inputs, d_inputs, dd_inputs, order, params, m, out=None):
     """Every row of a call, a block at a time: run(x, dx, ddx, c) solves a block (its records,
     the rows' status codes and each step's conditioning), publish(w, c) gives its columns,
-    written into new arrays or those of out (see filled).  Returns finish's dict.  A row that
-    fails is nan by design: numpy does not warn of it."""
+    written into new arrays or those of out (see filled), the programs' rules applied to the
+    block while it is in the cache (see lose).  Returns shaped's dict.  A row that fails is
+    nan by design: numpy does not warn of it."""
     shape, columns, c = rows_of(inputs, d_inputs, dd_inputs, design(params, m), m)
     n = int(np.prod(shape))
-    out, status, sigma = filled(out, shape, order, m)
-    same = {}  # the columns the same on every row (a number in every block): filled once
+    out, status, sigma = filled(out, shape, order, m, ones=False)
     with np.errstate(all="ignore"):
         for s in range(0, n, BLOCK):
             e = min(s + BLOCK, n)
             x, dx, ddx = ([block(v, s, e) for v in col] for col in columns)
             cb = {k: block(v, s, e) for k, v in c.items()}
             w, status[s:e], steps = run(x, dx, ddx, cb)
+            cols = {}
             for name, value in zip(m.columns, publish(w, cb)):
-                if name not in out:
-                    continue
-                if np.ndim(value):
-                    out[name][s:e] = value
-                else:
-                    same[name] = value
-            for k, value in enumerate(steps):
-                if np.ndim(value):
+                if name in out:
+                    cols[name] = out[name][s:e]
+                    cols[name][...] = value
+            if m.checks:
+                for k, value in enumerate(steps):
                     sigma[k, s:e] = value
-        for name, value in same.items():
-            out[name].fill(value)
-        bad = np.broadcast_to(refused(columns, m), (n,))
-    return finish(out, status, sigma, bad, shape, m)
+            lose(cols, status[s:e], sigma[:, s:e] if m.checks else None, refused((x, dx, ddx), m), m)
+    return shaped(out, status, sigma, shape, m)
 
 
 def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
@@ -443,10 +630,22 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
 
 def finish(out, status, sigma, bad, shape, m):
     """The columns, "status" and "sigma" (sigma[n]: step n's conditioning), each of the rows'
-    shape, with the programs' rules: a refused row has status m.bad_input and nan everywhere, a
-    failed one nan outputs, one at a singular position nan derivatives."""
-    status[bad] = m.bad_input
-    sigma[:, bad] = np.nan
+    shape, with the programs' rules (see lose)."""
+    lose(out, status, sigma, bad, m)
+    return shaped(out, status, sigma, shape, m)
+
+
+def lose(out, status, sigma, bad, m):
+    """The programs' rules on the flat arrays of some rows: a refused row (bad) has status
+    m.bad_input and nan everywhere, a failed one nan outputs, one at a singular position nan
+    derivatives (sigma None: no conditioning kept)."""
+    if np.any(bad):
+        bad = np.broadcast_to(bad, status.shape)
+        status[bad] = m.bad_input
+        if sigma is not None:
+            sigma[:, bad] = np.nan
+    elif not (status > 0).any():  # every row solved (a positive code is a failure's)
+        return
     reason = reason_of(status)
     failed = bad
     for code in m.failed:
@@ -456,6 +655,10 @@ def finish(out, status, sigma, bad, shape, m):
         lost = failed if level == 0 else singular
         if name in out and lost.any():
             out[name][lost] = np.nan
+
+
+def shaped(out, status, sigma, shape, m):
+    """The dict a call returns: the flat arrays in the rows' shape (sigma with the checks)."""
     result = {name: x.reshape(shape) for name, x in out.items()}
     result["status"] = status.reshape(shape)
     if m.checks:
@@ -487,13 +690,13 @@ def _run(x, dx, ddx, c):
     # Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
     _, _, w.p_A = crank_input(w.p_O, c["step2.l"], w.in1, w.ref_O)
     # Step 3: RRR_links, C (branch -1). C is joined to the known A by rod_j and to the known B by triangle_bde: a 3R two-link chain with both ends known
-    st, sigma[3], w.p_C = RRR_links(w.p_A, w.p_B, w.l_rod_j, w.l_triangle_bde_C_B, -1)
+    st, sigma[3], w.p_C = RRR_links_still_j2(w.p_A, w.p_B, w.l_rod_j, w.l_triangle_bde_C_B, -1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
-    st, _, w.p_D = link_point(w.p_B, w.p_C, c["step4.gsi"], c["step4.eta"])
+    st, _, w.p_D = link_point_still_j1(w.p_B, w.p_C, c["step4.gsi"], c["step4.eta"])
     report.append((st, ((1, 41),)))
     # Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
-    st, sigma[5], w.p_E = RRR_links(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1)
+    st, sigma[5], w.p_E = RRR_links_still_j2(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1)
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     # Step 6: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known
     st, sigma[6], w.p_F = RRR_links(w.p_D, w.p_E, w.l_rod_f, w.l_leg_ghi, -1)
