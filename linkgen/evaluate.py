@@ -351,11 +351,10 @@ class RowSolver:
         return group
 
     def _state(self, env: Env, b: ResolverGroup, old: list[float]) -> tuple[list[float], list[float]]:
-        """A block's state and its rates read off a solved configuration (the generated
-        _lengths_N): its Add-link lengths (link_residual against a zero length), the measures
-        whose signs are the branches of its chains with their rates (the predictor moves them,
-        so a chain passing its fold goes on on its other branch; a zero keeps the old one, rate
-        0), then its orientation (0)."""
+        """A block's state and rates off a solved configuration (the generated _lengths_N): its
+        Add-link lengths (link_residual at a zero length), its chains' sign measures and their rates
+        (the predictor moves them: a chain passing its fold changes branch; a zero keeps the old
+        one, rate 0), then its orientation (0)."""
         zero = (0.0,) * (self.width + 1)
         f = [self.call("link_residual", [env[self.pos[k]], env[self.pos[u]], zero])[2][0] for k, u in b.pairs]
         n, marks, turns = len(b.pairs), [], []
@@ -366,8 +365,7 @@ class RowSolver:
                 dm = ((q[1][2] - q[0][2]) * (q[2][1] - q[0][1]) + (q[1][0] - q[0][0]) * (q[2][3] - q[0][3])
                       - (q[1][3] - q[0][3]) * (q[2][0] - q[0][0]) - (q[1][1] - q[0][1]) * (q[2][2] - q[0][2]))
             else:
-                t, dt = env[bs.angle][0], env[bs.angle][1]
-                c, s = math.cos(t), math.sin(t)
+                c, s, dt = math.cos(env[bs.angle][0]), math.sin(env[bs.angle][0]), env[bs.angle][1]
                 m = (q[1][0] - q[0][0]) * c + (q[1][1] - q[0][1]) * s
                 dm = ((q[1][2] - q[0][2]) * c + (q[1][3] - q[0][3]) * s
                       + ((q[1][1] - q[0][1]) * c - (q[1][0] - q[0][0]) * s) * dt)

@@ -68,6 +68,7 @@ def test_the_chain_passes_its_fold_and_every_row_solves(log):
     assert least < 0.01  # its links come in line there
 
 
+@pytest.mark.long  # four programs over the sweep: about 10 s
 def test_every_language_follows_it(log, tmp_path):
     write_all(render_all(log), str(tmp_path))
     own = csv(log, _sweep(log)[2])

@@ -69,6 +69,7 @@ def _manual_bytes(n: int, folder: Path) -> int:
     return len(render_all(prune(with_facts(draft(topo, proc), Facts())))[f"ladder{n}.md"])
 
 
+@pytest.mark.long  # two ladder manuals: about 15 s
 def test_the_manual_grows_linearly_with_the_dyads(tmp_path: Path):
     """Bytes per dyad at 100 dyads within a tenth of those at 25 (a whole LJ-matrix per step grew as n^3);
     the change points, reach and conditioning are left out (their sections are a line per step)."""

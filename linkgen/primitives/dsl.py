@@ -1,13 +1,11 @@
 """A tiny straight-line language in which every runtime primitive is written once.
 
-Each primitive (``RRR_links``, ``crank_input``, ...) is a list of scalar assignments
-over the fields of its record arguments.  Printers turn that one definition into
-Python (``math``), NumPy (the evaluator), C99 and MATLAB/Octave, and ``to_sympy``
-turns it into sympy expressions so the tests can prove the derivative formulas.
-
-Every assignment carries the derivative order it belongs to (0 displacement,
-1 velocity, 2 acceleration) so a program built for a lower order contains none
-of the higher-order code.
+Each primitive (``RRR_links``, ``crank_input``, ...) is a list of scalar assignments over the
+fields of its record arguments.  Printers turn that one definition into Python (``math``), NumPy
+(the evaluator), C99 and MATLAB/Octave, and ``to_sympy`` turns it into sympy expressions so the
+tests can prove the derivative formulas.  Every assignment carries the derivative order it
+belongs to (0 displacement, 1 velocity, 2 acceleration) so a program built for a lower order
+contains none of the higher-order code.
 """
 
 from __future__ import annotations
@@ -307,10 +305,9 @@ class Primitive:
     def _memo(self, what: str, order: int, with_sigma: bool, compute: Callable[[int, bool], _T]) -> _T:
         """A walk of the body computed once per primitive (the printers ask for it per call they print)."""
         memo = self.__dict__.setdefault("_walks", {})  # not a field: replace() and == ignore it
-        key = (what, order, with_sigma)
-        if key not in memo:
-            memo[key] = compute(order, with_sigma)
-        return memo[key]  # type: ignore[no-any-return]
+        if (what, order, with_sigma) not in memo:
+            memo[what, order, with_sigma] = compute(order, with_sigma)
+        return memo[what, order, with_sigma]  # type: ignore[no-any-return]
 
     def _live(self, order: int, with_sigma: bool) -> tuple[Let, ...]:
         roots = [e for _, _, e in self.result_fields(order)]

@@ -21,7 +21,7 @@
         out: a dict an earlier call returned for rows of the same shape and order, whose
         arrays this call fills instead of new ones (a loop over many calls saves the
         first touch of fresh memory); the dict returned holds the same arrays.  Without
-        out the columns are rows of new arrays of up to 32 MB (a column kept keeps its array).
+        out the columns are rows of new arrays shared by several columns (a column kept keeps its array).
     python jansen_np.py
         writes the sweep over the inputs' ranges as CSV to standard output, as jansen.py does.
 """
