@@ -15,12 +15,15 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 from assembly_oracle import MP, TRIAD_STARTS, bodies_search, tree_assemblies, triad_search, worst_residual
 from reference import Reference
 
 from linkgen.assemblies import assemblies, whole_log
 from linkgen.errors import ProcedureError
+from linkgen.evaluate import evaluate
+from linkgen.table import columns
 
 ROOT = Path(__file__).resolve().parents[1]
 TOLERANCE = 1e-12  # every constraint, relative to the length scale
@@ -259,3 +262,25 @@ def test_where_the_programs_assemble_their_configuration_is_an_assembly(path):
                                              else v for v, i in zip(at, log.inputs)])
         assert "none of the assemblies" not in census.sketch_note
         assert all(a.error < TOLERANCE for a in census.assemblies)
+
+
+def test_a_class_iv_group_with_a_prismatic_pair_is_extracted_and_its_rows_close_but_not_counted():
+    """Issue 20 says a class-IV group with one prismatic pair is refused by extraction ("an Add-link
+    group is left open"): quaternary_fold with leg4 replaced by a block sliding on a frame line is not.
+    Its group takes two Add-links, the first placing B2 by a 2R1P chain on the slide; the evaluator's
+    rows keep every constraint of the reference model (tests/reference.py: lengths and the slide line)
+    to 1e-12; `linkgen assemblies` refuses it with its reason (class IV is counted for revolute pairs)."""
+    path = str(ROOT / "tests" / "regressions" / "quaternary_slide.yaml")  # one file: not in every suite's glob
+    log = whole_log(path)
+    (g,) = log.groups
+    assert len(g.add_links) == 2 and any(log.step(n).function == "PRR_links" for n in g.steps)
+    ref = Reference(path)
+    t0 = ref.sketch_inputs()[0]
+    values = [t0 + d for d in (0.0, 0.3, -0.4)]
+    v = np.array(values).reshape(-1, 1)
+    names, data = columns(log, evaluate(log, v, np.ones_like(v), np.zeros_like(v), order=0))
+    for k, value in enumerate(values):
+        row = dict(zip(names, (float(x) for x in data[k])))
+        assert worst_residual(ref, row, [value]) < TOLERANCE
+    with pytest.raises(ProcedureError, match="prismatic pair"):
+        assemblies(path, log)
