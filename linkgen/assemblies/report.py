@@ -71,10 +71,11 @@ def notes(log: StepLog, census: Census) -> list[str]:
     for g in census.solves:
         pi = ", and theta = pi is a root too" if g.at_pi else ""
         if g.factors:
+            pi = ", and one assembly has theta = pi" if g.at_pi else ""
             out.append(f"group {g.group} ({g.triad}, class IV): eliminant of degree {g.degree} in t = tan(theta/2), "
                        f"theta the first link's turn from the sketch (irreducible factors of degree "
                        f"{', '.join(map(str, g.factors))}); {g.real_roots} real roots, {g.real_roots - g.rejected} of "
-                       f"them assemblies, {g.rejected} rejected by back-substitution{pi.replace('a root', 'an assembly')}")
+                       f"them assemblies, {g.rejected} rejected by back-substitution{pi}")
             continue
         out.append(f"group {g.group} ({g.triad}): characteristic polynomial of degree {g.degree} in "
                    f"t = tan(theta/2), theta the ternary's turn from the sketch; {g.real_roots} real roots{pi}")
