@@ -32,8 +32,8 @@ CHECK = 1e-9  # an assembly whose link lengths are off by more (relative to L) b
 MATCH = 1e-6  # the programs' configuration is an assembly this close (see distance)
 
 if TYPE_CHECKING:
-    from .polynomial import Solution
-    from .resultant import Count
+    from .polynomial import Root, Solution
+    from .resultant import Assembled, Count
 
 Env = dict[str, tuple[float, ...]]
 
@@ -185,7 +185,8 @@ class _Walk:
         """One subtree per real root of the group's polynomial."""
         triad = self.triads[g.number]
         solution = self._solve(triad, env)
-        for k, root in enumerate(solution.roots):
+        roots: tuple[Root | Assembled, ...] = solution.roots
+        for k, root in enumerate(roots):
             root_env = dict(env)
             placed = dict(zip(triad.pairs, root.positions))
             for s in (self.log.step(n) for n in g.steps):

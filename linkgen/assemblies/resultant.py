@@ -29,7 +29,7 @@ from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
 
-import flint  # type: ignore[import-untyped]  # python-flint ships no type information
+import flint
 import mpmath
 
 from .bodies import TwoBodies
@@ -72,7 +72,7 @@ class Count:
         return self.real_roots - len({r.theta for r in self.roots if abs(r.theta) < math.pi})
 
 
-def equations(bodies: TwoBodies, bases: list[Exact], unit: Fraction) -> list[list[Term] | Any]:
+def equations(bodies: TwoBodies, bases: list[Exact], unit: Fraction) -> list[tuple[list[Term], int]]:
     """[(terms, length2 over unit^2)] of F_L, F_R, C_1, C_2; ``bases`` the first and second legs'
     bases of body 0 then body 1, now."""
     def grid(v: Exact) -> tuple[int, int]:
@@ -92,7 +92,7 @@ def equations(bodies: TwoBodies, bases: list[Exact], unit: Fraction) -> list[lis
 
     (left, right), (c1, c2) = bodies.bodies, bodies.couplers
     gl, hl, gr, hr = (grid(b) for b in bases)
-    out: list[Any] = []
+    out: list[tuple[list[Term], int]] = []
     for k, (b, g, h) in enumerate(((left, gl, hl), (right, gr, hr))):
         out.append(([(None, g), (2 * k, grid(b.leg)), (2 * k + 1, grid(b.held)), (None, neg(h))], l2(b.length2)))
     for c in (c1, c2):
@@ -195,7 +195,7 @@ def solve(bodies: TwoBodies, bases: list[Exact], unit: Fraction, scale: float) -
     ctx = flint.fmpz_mpoly_ctx.get(NAMES, "lex")
     eqs = equations(bodies, bases, unit)
     polys = [polynomial(ctx, terms, length2) for terms, length2 in eqs]
-    s1, s2, p = eliminate(*polys, ctx)
+    s1, s2, p = eliminate(polys[0], polys[1], polys[2], polys[3], ctx)
     if p == 0:
         raise NotReducible("the group's equations do not fix it at this position (its couplers' resultants "
                            "share a factor)")
