@@ -6,6 +6,8 @@
   all distinct and valid; each chain has at most two solutions, so that is the count.
 * Fig. 14 and the double triad at three inputs each: as many assemblies as a 50-digit multistart
   Newton search over the group's equations finds (TRIAD_STARTS starts per group), pose for pose.
+* quaternary_fold's class-IV group (two Add-links at once) at the sketch: as many assemblies as a
+  50-digit multistart search of the two bodies' six distance equations finds, pose for pose (long).
 * Every assembly satisfies every constraint of the reference model to 1e-12 of the length
   scale, and the sketch's assembly is among them and marked.
 """
