@@ -48,20 +48,20 @@ def test_a_triads_group_is_not_two_bodies():
         two_bodies_of(log, log.groups[0])
 
 
-def _rot(t: Fraction, v: tuple[Fraction, Fraction]) -> tuple[Fraction, Fraction]:
-    c, s = (1 - t * t) / (1 + t * t), 2 * t / (1 + t * t)
+def _rot(t: Fraction | None, v: tuple[Fraction, Fraction]) -> tuple[Fraction, Fraction]:
+    """v turned by the angle of tangent half-angle t (None: half a turn)."""
+    c, s = (Fraction(-1), Fraction(0)) if t is None else ((1 - t * t) / (1 + t * t), 2 * t / (1 + t * t))
     return c * v[0] - s * v[1], s * v[0] + c * v[1]
 
 
-def _posed(seed: int):
+def _posed(seed: int, turns: tuple[Fraction | None, ...] = (Fraction(1, 2), Fraction(1, 3), Fraction(2), Fraction(3))):
     """Two bodies (three pairs each) with integer sketch data, closed at phi_L, theta_L, phi_R, theta_R
-    of tangents 1/2, 1/3, 2, 3 (exact); the legs' and couplers' lengths are those of that pose."""
+    of tangents ``turns`` (exact); the legs' and couplers' lengths are those of that pose."""
     rng = random.Random(seed)
 
     def pt(r: int = 60) -> tuple[Fraction, Fraction]:
         return Fraction(rng.randint(-r, r)), Fraction(rng.randint(-r, r))
 
-    turns = (Fraction(1, 2), Fraction(1, 3), Fraction(2), Fraction(3))
     bases = [pt(), pt()] + [(x + 150, y) for x, y in (pt(), pt())]  # body 1's bases right of body 0's
     made, where = [], []
     for k in (0, 1):
@@ -138,3 +138,14 @@ def test_the_small_groups_count_is_the_multistart_searchs(seed):
         legs.append((k, 1, (mp(bases[2 * k + 1][0]), mp(bases[2 * k + 1][1])), mp(b.length2)))
     ties = [(j, j, mp(c.length2)) for j, c in zip((1, 2), bodies.couplers)]
     assert len(bodies_search(local, legs, ties)) == len(count.roots)
+
+
+def test_an_assembly_with_the_first_body_turned_half_a_turn_is_found_on_its_own():
+    """theta_L = pi is t_L = infinity, no root of the eliminant: the equations' leading coefficients
+    in t_L find it."""
+    bodies, bases, turns = _posed(3, (Fraction(1, 2), None, Fraction(2), Fraction(3)))
+    count = solve(bodies, bases, UNIT, 200.0)
+    assert count.at_pi
+    (half,) = [r for r in count.roots if abs(abs(r.theta) - math.pi) < 1e-12]
+    assert half.angles[0] == pytest.approx(2 * math.atan(0.5), abs=1e-12)
+    assert all(max(_distances(bodies, bases, r)) < 1e-12 for r in count.roots)
