@@ -277,7 +277,9 @@ def assemblies(mechanism: str, at: tuple[float, ...] | None, as_json: bool, outd
     """Every assembly of the mechanism at one input, the count certified.
 
     Both branches of every two-link chain are tried; every class-III group is reduced to
-    its characteristic polynomial, whose real roots are isolated exactly.  The sketch's
+    its characteristic polynomial, whose real roots are isolated exactly; a class-IV group of two
+    links on four-bars tied by two couplers to one eliminant by resultants (a minute or two), whose
+    real roots are isolated exactly and back-substituted.  The sketch's
     assembly (the one the programs follow) is marked.
 
     \b

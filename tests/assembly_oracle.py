@@ -24,6 +24,7 @@ from linkgen.validate import read_mechanism
 MP = mpmath.mp.clone()
 MP.dps = 50
 TRIAD_STARTS = 64  # starts of the multistart search: one in each 64th of a turn of the ternary
+BODIES_STARTS = 400  # starts of the two-body search (measured: see tests/test_assemblies.py)
 
 
 def _rot(c, s, x, y):
@@ -174,3 +175,72 @@ def worst_residual(ref: Reference, row: dict, values) -> float:
     u = ref.turned_inputs(q, values)
     res = ref.constraints(q, u)
     return max(float(abs(r)) / s for r, s in zip(res, ref.constraint_scales()))
+
+
+def bodies_search(bodies, legs, couplers, starts=BODIES_STARTS, seed=20):
+    """Every pose of two rigid bodies held by legs and tied by couplers, by Newton's method at 50
+    digits from ``starts`` starts (a multistart search on the six distance equations in the bodies'
+    poses: no resultant, no leg angles).  ``bodies``: two lists of pair offsets from each body's
+    first pair; ``legs``: (body, pair index, base point, squared length); ``couplers``: (pair index
+    on body 0, on body 1, squared length).  Returns the distinct poses (x0, y0, t0, x1, y1, t1)."""
+    rng = random.Random(seed)
+    rows = [(k, bodies[k][i], base, l2) for k, i, base, l2 in legs]
+    scale = max(MP.sqrt(l2) for *_, l2 in rows)
+    tol = MP.mpf(10) ** -40
+    found: list[tuple] = []
+
+    def system(z):
+        f, jac = [], []
+        rot = [(MP.cos(z[3 * k + 2]), MP.sin(z[3 * k + 2])) for k in (0, 1)]
+
+        def point(k, a):
+            c, s = rot[k]
+            return (z[3 * k] + c * a[0] - s * a[1], z[3 * k + 1] + s * a[0] + c * a[1]), (-s * a[0] - c * a[1],
+                                                                                         c * a[0] - s * a[1])
+
+        for k, a, base, l2 in rows:
+            (px, py), (dx, dy) = point(k, a)
+            vx, vy = px - base[0], py - base[1]
+            f.append((vx * vx + vy * vy - l2) / scale**2)
+            row = [MP.mpf(0)] * 6
+            row[3 * k], row[3 * k + 1], row[3 * k + 2] = 2 * vx, 2 * vy, 2 * (vx * dx + vy * dy)
+            jac.append([v / scale**2 for v in row])
+        for i, j, l2 in couplers:
+            (px, py), (dx, dy) = point(0, bodies[0][i])
+            (qx, qy), (ex, ey) = point(1, bodies[1][j])
+            vx, vy = px - qx, py - qy
+            f.append((vx * vx + vy * vy - l2) / scale**2)
+            row = [2 * vx, 2 * vy, 2 * (vx * dx + vy * dy), -2 * vx, -2 * vy, -2 * (vx * ex + vy * ey)]
+            jac.append([v / scale**2 for v in row])
+        return f, jac
+
+    first = {k: next(r for r in rows if r[0] == k and r[1] == bodies[k][0]) for k in (0, 1)}
+    for _ in range(starts):
+        z = []
+        for k in (0, 1):
+            _, _, base, l2 = first[k]
+            phi = rng.uniform(-math.pi, math.pi)
+            z += [base[0] + MP.sqrt(l2) * MP.cos(phi), base[1] + MP.sqrt(l2) * MP.sin(phi),
+                  MP.mpf(rng.uniform(-math.pi, math.pi))]
+        f, jac = system(z)
+        for _ in range(60):
+            try:
+                step = MP.lu_solve(MP.matrix(jac), MP.matrix(f))
+            except ZeroDivisionError:
+                break
+            norm, lam = sum(v * v for v in f), 1.0
+            while True:
+                nz = [z[i] - lam * step[i] for i in range(6)]
+                nf, njac = system(nz)
+                if sum(v * v for v in nf) < norm or lam < 1e-3:
+                    break
+                lam /= 2
+            if lam < 1e-3:
+                break
+            z, f, jac = nz, nf, njac
+            if lam == 1 and max(abs(step[i]) / (scale if i % 3 < 2 else 1) for i in range(6)) < tol:
+                z[2], z[5] = MP.atan2(MP.sin(z[2]), MP.cos(z[2])), MP.atan2(MP.sin(z[5]), MP.cos(z[5]))
+                if not any(max(abs(z[i] - u[i]) for i in range(6)) < MP.mpf(10) ** -25 * scale for u in found):
+                    found.append(tuple(z))
+                break
+    return sorted(found, key=lambda p: p[2])

@@ -6,6 +6,8 @@
   all distinct and valid; each chain has at most two solutions, so that is the count.
 * Fig. 14 and the double triad at three inputs each: as many assemblies as a 50-digit multistart
   Newton search over the group's equations finds (TRIAD_STARTS starts per group), pose for pose.
+* quaternary_fold's class-IV group (two Add-links at once) at the sketch: as many assemblies as a
+  50-digit multistart search of the two bodies' six distance equations finds, pose for pose (long).
 * Every assembly satisfies every constraint of the reference model to 1e-12 of the length
   scale, and the sketch's assembly is among them and marked.
 """
@@ -15,12 +17,15 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
-from assembly_oracle import MP, TRIAD_STARTS, tree_assemblies, triad_search, worst_residual
+from assembly_oracle import MP, TRIAD_STARTS, bodies_search, tree_assemblies, triad_search, worst_residual
 from reference import Reference
 
 from linkgen.assemblies import assemblies, whole_log
 from linkgen.errors import ProcedureError
+from linkgen.evaluate import evaluate
+from linkgen.table import columns
 
 ROOT = Path(__file__).resolve().parents[1]
 TOLERANCE = 1e-12  # every constraint, relative to the length scale
@@ -185,11 +190,64 @@ def test_the_multistart_search_does_not_hang_on_its_seed(seed):
                 assert len(_triad_poses(path, log, census, *group, seed=seed)) == solve.real_roots
 
 
+QUATERNARY = (("A1", "A2", "A3", "A4"), ("B1", "B2", "B3", "B4"))
+QUATERNARY_LEGS = ((0, "A1", "G1"), (0, "A2", "G2"), (1, "B1", "G3"), (1, "B2", "G4"))
+QUATERNARY_COUPLERS = (("A3", "B3"), ("A4", "B4"))
+
+
+def _bodies_poses(path, census, bodies, legs, couplers, crank=("O", "G3")):
+    """The two-body search's poses at the census's input (the crank tip turned from the sketch at 50
+    digits; the other bases are frame pairs), as pair -> position."""
+    ref = Reference(path)
+    sketch = {k: (MP.mpf(x), MP.mpf(y)) for k, (x, y) in ref.m.positions.items()}
+    turn = MP.mpf(census.inputs[0]) - ref.sketch_inputs(exact=True)[0]
+    c, s = MP.cos(turn), MP.sin(turn)
+    o, tip = (sketch[n] for n in crank)
+    where = {**sketch, crank[1]: (o[0] + c * (tip[0] - o[0]) - s * (tip[1] - o[1]),
+                                  o[1] + s * (tip[0] - o[0]) + c * (tip[1] - o[1]))}
+
+    def off(a, b):
+        return sketch[a][0] - sketch[b][0], sketch[a][1] - sketch[b][1]
+
+    def d2(a, b):
+        v = off(a, b)
+        return v[0] ** 2 + v[1] ** 2
+
+    local = [[off(p, body[0]) for p in body] for body in bodies]
+    rows = [(k, bodies[k].index(p), where[b], d2(p, b)) for k, p, b in legs]
+    ties = [(bodies[0].index(a), bodies[1].index(b), d2(a, b)) for a, b in couplers]
+    out = []
+    for z in bodies_search(local, rows, ties):
+        pose = {}
+        for k in (0, 1):
+            cc, ss = MP.cos(z[3 * k + 2]), MP.sin(z[3 * k + 2])
+            for p, (ax, ay) in zip(bodies[k], local[k]):
+                pose[p] = (float(z[3 * k] + cc * ax - ss * ay), float(z[3 * k + 1] + ss * ax + cc * ay))
+        out.append(pose)
+    return out
+
+
+@LONG
+def test_quaternary_folds_class_iv_count_is_the_multistart_searchs():
+    """Two quaternaries on four-bars tied by two couplers (two Add-links at once) at the sketch: every
+    assembly the resultant's real roots give after back-substitution is a pose of the six distance
+    equations found by a 50-digit multistart search (400 starts: 100 found 16 of 18), and no more."""
+    path = str(ROOT / "tests" / "mechanisms" / "quaternary_fold.yaml")
+    log = whole_log(path)
+    census = assemblies(path, log)
+    poses = _bodies_poses(path, census, QUATERNARY, QUATERNARY_LEGS, QUATERNARY_COUPLERS)
+    (solve,) = census.solves
+    assert solve.factors and sum(solve.factors) <= solve.degree
+    assert solve.real_roots - solve.rejected == len(poses) == len(census.assemblies)
+    assert _matches(census, poses, log.length_scale) == [1] * len(poses)
+    _valid_and_distinct(path, log, census)
+
+
 MECHANISMS = sorted(ROOT.glob("samples/*/*.yaml")) + sorted((ROOT / "tests" / "mechanisms").glob("*.yaml"))
 
 
-NOT_COUNTED = {"quaternary_fold": "a class-IV group (two Add-links at once): assemblies does not count it yet"}
-
+NOT_COUNTED: dict[str, str] = {}  # mechanism -> why `linkgen assemblies` refuses it (a strict xfail)
+FEW_INPUTS = {"quaternary_fold": 2}  # class IV: one elimination takes one to two minutes
 
 @LONG
 @pytest.mark.parametrize("path", [pytest.param(p, marks=pytest.mark.xfail(raises=ProcedureError, strict=True,
@@ -199,9 +257,51 @@ def test_where_the_programs_assemble_their_configuration_is_an_assembly(path):
     """At 8 inputs over the range: the programs' configuration (followed from the sketch) is one of
     the assemblies whenever they assemble, and every assembly keeps its links' lengths."""
     log = whole_log(str(path))
-    for k in range(8):
-        at = [i.start + (i.stop - i.start) * (k + 0.37) / 8 for i in log.inputs]
+    n = FEW_INPUTS.get(path.stem, 8)
+    for k in range(n):
+        at = [i.start + (i.stop - i.start) * (k + 0.37) / n for i in log.inputs]
         census = assemblies(str(path), log, [v * 180 / math.pi if i.kind == "revolute" and log.angle_unit == "deg"
                                              else v for v, i in zip(at, log.inputs)])
         assert "none of the assemblies" not in census.sketch_note
         assert all(a.error < TOLERANCE for a in census.assemblies)
+
+
+def _rows_keep_the_reference_constraints(path, log):
+    """The evaluator's rows near the sketch keep every constraint of the reference model
+    (tests/reference.py: lengths and slide lines) to 1e-12 of the length scale."""
+    ref = Reference(path)
+    t0 = ref.sketch_inputs()[0]
+    values = [t0 + d for d in (0.0, 0.3, -0.4)]
+    v = np.array(values).reshape(-1, 1)
+    names, data = columns(log, evaluate(log, v, np.ones_like(v), np.zeros_like(v), order=0))
+    for k, value in enumerate(values):
+        row = dict(zip(names, (float(x) for x in data[k])))
+        assert worst_residual(ref, row, [value]) < TOLERANCE
+
+
+def test_a_class_iv_group_with_a_prismatic_pair_is_extracted_and_its_rows_close_but_not_counted():
+    """Issue 20 says a class-IV group with one prismatic pair is refused by extraction ("an Add-link
+    group is left open"): quaternary_fold with leg4 replaced by a block sliding on a frame line is not.
+    Its group takes two Add-links, the first placing B2 by a 2R1P chain on the slide; the evaluator's
+    rows keep every constraint of the reference model (tests/reference.py: lengths and the slide line)
+    to 1e-12; `linkgen assemblies` refuses it with its reason (class IV is counted for revolute pairs)."""
+    path = str(ROOT / "tests" / "regressions" / "quaternary_slide.yaml")  # one file: not in every suite's glob
+    log = whole_log(path)
+    (g,) = log.groups
+    assert len(g.add_links) == 2 and any(log.step(n).function == "PRR_links" for n in g.steps)
+    _rows_keep_the_reference_constraints(path, log)
+    with pytest.raises(ProcedureError, match="prismatic pair"):
+        assemblies(path, log)
+
+
+@pytest.mark.xfail(raises=ProcedureError, strict=True, reason="extraction: 'an Add-link group is left open'")
+def test_two_ternaries_tied_by_a_link_and_a_slot_are_extracted():
+    """Issue 20's shape: two ternaries on their own pivots (O1; O2 the crank tip) tied by the link
+    upper and a block on C in a slot of right.  A procedure exists (the Add-link O1-E, E by a 3R
+    chain, C by a 2R1P chain on right's slot, B a point of left, upper a link residual), but the
+    Solver places B by the 3R chain O1-B-E (left and upper) first, C follows as a point of left,
+    and the one constraint left unused is C's slot: residuals are made for unused links only
+    (link_residual), none for a slide line, so the group has no residual and stays open."""
+    path = str(ROOT / "tests" / "regressions" / "class4_slot.yaml")  # one file: not in every suite's glob
+    log = whole_log(path)
+    _rows_keep_the_reference_constraints(path, log)

@@ -1,8 +1,10 @@
 """Every assembly of a mechanism at one input, the count certified (``linkgen assemblies``).
 
 ``enumerate`` walks the procedure as a tree (both branches of every two-link chain, every
-real root of every class-III group's characteristic polynomial); ``triad`` reads a group's
-shape off the step log, ``polynomial`` reduces it to one polynomial and isolates its roots;
+real root of every class-III group's characteristic polynomial, every assembly of a class-IV
+group); ``triad`` reads a group's shape off the step log, ``polynomial`` reduces it to one
+polynomial and isolates its roots; ``bodies`` and ``resultant`` do the same for a class-IV group
+of two links on four-bars tied by two couplers (resultants, back-substitution);
 ``report`` writes the table and the JSON, ``render`` one SVG per assembly.
 """
 

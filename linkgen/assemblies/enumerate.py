@@ -24,6 +24,7 @@ from ..primitives import PRIMITIVES, python_backend
 from ..primitives.dsl import record_fields
 from ..primitives.interpret import constant_record
 from ..steplog import ResolverGroup, Step, StepLog, held
+from .bodies import TwoBodies, two_bodies_of
 from .triad import NotReducible, Triad, grid, snap, triad_of
 
 CHAINS = ("RRR_links", "PRR_links", "RPR_links", "PRP_links", "PPR_links")
@@ -31,7 +32,8 @@ CHECK = 1e-9  # an assembly whose link lengths are off by more (relative to L) b
 MATCH = 1e-6  # the programs' configuration is an assembly this close (see distance)
 
 if TYPE_CHECKING:
-    from .polynomial import Solution
+    from .polynomial import Root, Solution
+    from .resultant import Assembled, Count
 
 Env = dict[str, tuple[float, ...]]
 
@@ -59,6 +61,8 @@ class GroupCount:
     thetas: tuple[float, ...]
     coefficients: tuple[float, ...]
     multiple: tuple[tuple[float, int], ...] = ()  # (theta, multiplicity) of its multiple roots: singular positions
+    factors: tuple[int, ...] = ()  # class IV: the degrees of the eliminant's irreducible factors
+    rejected: int = 0  # class IV: real roots of the eliminant that no assembly has (back-substitution)
 
 
 @dataclass(frozen=True)
@@ -84,9 +88,11 @@ class Census:
     at: tuple[float, ...] = ()  # the input values in the file's units, as given (empty: from ``inputs``)
 
 
-def census(log: StepLog, values: Sequence[float]) -> Census:
-    """Every assembly of the log's mechanism at the input values (radians, length units)."""
-    walk = _Walk(log, tuple(float(v) for v in values))
+def census(log: StepLog, values: Sequence[float], class_iv: bool = True) -> Census:
+    """Every assembly of the log's mechanism at the input values (radians, length units); without
+    ``class_iv`` a group of two bodies on four-bars (``bodies``: its elimination takes a minute) is
+    NotReducible."""
+    walk = _Walk(log, tuple(float(v) for v in values), class_iv)
     walk.run(0, dict(walk.start), ())
     out = walk.out
     out.cannot_close = dict(sorted(walk.closed.items()))
@@ -107,10 +113,10 @@ def census(log: StepLog, values: Sequence[float]) -> Census:
 
 
 class _Walk:
-    def __init__(self, log: StepLog, values: tuple[float, ...]):
+    def __init__(self, log: StepLog, values: tuple[float, ...], class_iv: bool):
         self.log = log
         self.fns = python_backend(0)
-        self.triads = {g.number: triad_of(log, g) for g in log.groups}
+        self.triads = {g.number: shape_of(log, g, class_iv) for g in log.groups}
         self.groups = {g.step: g for g in log.groups}
         inside = {n for g in log.groups for b in (g, *g.variants) for n in b.steps}
         self.steps = [s for s in log.steps
@@ -118,7 +124,7 @@ class _Walk:
         self.start: Env = {v.name: constant_record(v, 0, log.origin) for v in log.variables if v.constant}
         self.start.update((i.variable, (x,)) for i, x in zip(log.inputs, values))
         self.pos = {c.name[:-2]: c.variable for c in log.columns if c.name.endswith(".x")}
-        self.solutions: dict[Any, Solution] = {}
+        self.solutions: dict[Any, Solution | Count] = {}
         self.closed: Counter[int] = Counter()
         self.out = Census(values)
         self.leaves: list[tuple[dict[str, float], tuple[Choice, ...]]] = []
@@ -179,7 +185,8 @@ class _Walk:
         """One subtree per real root of the group's polynomial."""
         triad = self.triads[g.number]
         solution = self._solve(triad, env)
-        for k, root in enumerate(solution.roots):
+        roots: tuple[Root | Assembled, ...] = solution.roots
+        for k, root in enumerate(roots):
             root_env = dict(env)
             placed = dict(zip(triad.pairs, root.positions))
             for s in (self.log.step(n) for n in g.steps):
@@ -199,11 +206,13 @@ class _Walk:
             self.run(i + 1, root_env, (*choices, Choice(g.step, f"group {g.number}", k + 1, len(solution.roots),
                                                         root.theta)))
 
-    def _solve(self, triad: Triad, env: Env) -> Solution:
-        """The triad's solution at the bases' positions in ``env`` (solved once per position)."""
+    def _solve(self, triad: Triad | TwoBodies, env: Env) -> Solution | Count:
+        """The group's solution at the bases' positions in ``env`` (solved once per position)."""
         from .polynomial import solve  # sympy takes 0.7 s to import: only mechanisms with a group need it
 
         unit = grid(self.log.length_scale)
+        if isinstance(triad, TwoBodies):
+            return self._solve_bodies(triad, env, unit)
         bases = [tuple(snap(x, unit) for x in env[self.pos[leg.base]][:2]) for leg in triad.legs]
         lengths2 = [leg.length2 if leg.length2 is not None else snap(env[self.log.inputs[leg.input].variable][0], unit)
                     ** 2 for leg in triad.legs]
@@ -216,11 +225,38 @@ class _Walk:
                 sol.coefficients, tuple((r.theta, r.multiplicity) for r in sol.roots if r.multiplicity > 1)))
         return self.solutions[key]
 
+    def _solve_bodies(self, bodies: TwoBodies, env: Env, unit: Any) -> Count:
+        """The class-IV group's solution at its legs' bases in ``env`` (``resultant``)."""
+        from . import resultant
+
+        names = [n for b in bodies.bodies for n in (b.base, b.other_base)]
+        bases = [(snap(env[self.pos[n]][0], unit), snap(env[self.pos[n]][1], unit)) for n in names]
+        key = (bodies.group, tuple(bases))
+        if key not in self.solutions:
+            sol = resultant.solve(bodies, bases, unit, self.log.length_scale)
+            self.solutions[key] = sol
+            self.out.solves.append(GroupCount(bodies.group, bodies.describe(), sol.degree, sol.real_roots, sol.at_pi,
+                                              tuple(r.theta for r in sol.roots), (), (), sol.factors, sol.rejected))
+        found = self.solutions[key]
+        assert isinstance(found, resultant.Count)
+        return found
+
     def _values(self, env: Env) -> dict[str, float]:
         return _columns(self.log, lambda name, field: env[name][record_fields(self._kind(name), 0).index(field)])
 
     def _kind(self, name: str) -> str:
         return self.log.variable(name).kind
+
+
+def shape_of(log: StepLog, g: ResolverGroup, class_iv: bool = True) -> Triad | TwoBodies:
+    """What the group is: a triad (one Add-link), or two bodies on four-bars tied by two couplers
+    (two Add-links at once: class IV, counted only with ``class_iv``)."""
+    if len(g.add_links) == 2:
+        if not class_iv:
+            raise NotReducible(f"resolver group {g.number} needs 2 Add-links at once (class IV); `linkgen "
+                               "assemblies` counts it (its elimination takes about a minute), the build does not")
+        return two_bodies_of(log, g)
+    return triad_of(log, g)
 
 
 def _columns(log: StepLog, get: Any) -> dict[str, float]:

@@ -29,7 +29,7 @@ def listing(log: StepLog, assembly: int = 0) -> Assemblies:
     make is recorded with its reason (no count rather than a wrong one)."""
     values = tuple(i.sketch for i in log.inputs)
     try:
-        found = census(log, values)
+        found = census(log, values, class_iv=False)
     except NotReducible as exc:
         return Assemblies(values, False, 0, (f"linkgen cannot count the assemblies of this mechanism: {exc}",), ())
     except ArithmeticError as exc:

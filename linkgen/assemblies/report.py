@@ -13,6 +13,11 @@ METHOD = ("characteristic polynomial has its real roots isolated exactly (sympy'
           "fractions on its rational coefficients) and counted again by Sturm's theorem, each root polished by "
           "Newton's method at 50 digits")
 
+METHOD_IV = ("class-IV group's eliminant (resultants of its four closure equations in tangent half-angles, "
+             "python-flint) has its real roots isolated from its exact integer coefficients (arb's certified "
+             "complex_roots on each irreducible factor), each root back-substituted and polished by Newton's method "
+             "at 50 digits, the spurious ones rejected")
+
 MANUAL_METHOD = ("every resolver group's characteristic polynomial\nhas its real roots isolated in exact "
                  "arithmetic and counted by Sturm's theorem, each\npolished at 50 digits")
 
@@ -65,6 +70,13 @@ def notes(log: StepLog, census: Census) -> list[str]:
     out = []
     for g in census.solves:
         pi = ", and theta = pi is a root too" if g.at_pi else ""
+        if g.factors:
+            pi = ", and one assembly has theta = pi" if g.at_pi else ""
+            out.append(f"group {g.group} ({g.triad}, class IV): eliminant of degree {g.degree} in t = tan(theta/2), "
+                       f"theta the first link's turn from the sketch (irreducible factors of degree "
+                       f"{', '.join(map(str, g.factors))}); {g.real_roots} real roots, {g.real_roots - g.rejected} of "
+                       f"them assemblies, {g.rejected} rejected by back-substitution{pi}")
+            continue
         out.append(f"group {g.group} ({g.triad}): characteristic polynomial of degree {g.degree} in "
                    f"t = tan(theta/2), theta the ternary's turn from the sketch; {g.real_roots} real roots{pi}")
         for theta, k in g.multiple:
@@ -84,12 +96,22 @@ def notes(log: StepLog, census: Census) -> list[str]:
     return out
 
 
+def _methods(census: Census) -> list[str]:
+    """How the census's groups were counted: triads, class-IV groups (each named once)."""
+    out = []
+    if any(not g.factors for g in census.solves):
+        out.append(METHOD)
+    if any(g.factors for g in census.solves):
+        out.append(METHOD_IV)
+    return out
+
+
 def table(log: StepLog, census: Census) -> str:
     """The census as text: a heading, the notes, one row per assembly (pair positions as x, y)."""
     n = len(census.assemblies)
     lines = [f"{log.name} at {inputs_text(log, census)}: {n} assembl{'y' if n == 1 else 'ies'}"]
     lines.append("The count is exact: both branches of every two-link chain are tried"
-                 + (f"; every group's {METHOD}." if census.solves else "."))
+                 + "".join("; every " + (m if m is METHOD_IV else "group's " + m) for m in _methods(census)) + ".")
     lines += notes(log, census)
     if not n:
         return "\n".join(lines) + "\n"
@@ -134,11 +156,13 @@ def to_json(log: StepLog, census: Census) -> str:
         "count": len(census.assemblies),
         "sketch": marked[0] if marked else None,
         "sketch_note": census.sketch_note,
-        "method": METHOD if census.solves else "",
+        "method": "; ".join(_methods(census)),
         "groups": [{"group": g.group, "triad": g.triad, "degree": g.degree, "real_roots": g.real_roots,
                     "theta_pi_root": g.at_pi, "thetas": [_angle(log, t) for t in g.thetas],
                     "multiple": [{"theta": _angle(log, t), "multiplicity": k} for t, k in g.multiple],
-                    "coefficients": list(g.coefficients)} for g in census.solves],
+                    "coefficients": list(g.coefficients),
+                    **({"class": "IV", "factors": list(g.factors), "rejected": g.rejected} if g.factors else {})}
+                   for g in census.solves],
         "cannot_close": [{"step": s, "pair": steps[s].target, "ends": k} for s, k in census.cannot_close.items()],
         "toggles": list(census.toggles),
         "dropped": [{"link": link, "length_error": e} for link, e in census.broken],
