@@ -1,9 +1,9 @@
-"""Class IV: quaternary_fold's group read as two bodies on four-bars (by hand from its file), and the
-resultant route on a small two-body group built to close at a rational pose: the equations and
-the eliminant vanish exactly there, the pose is among the assemblies found, every assembly keeps
-the six distances (recomputed here in mpmath from the data alone), and the count agrees with a
-50-digit multistart search (tests/assembly_oracle.py; long: 20 s a group).  Sympy's Sturm count
-of the eliminant's real roots is not run: on its degree-192 eliminant it took minutes."""
+"""linkgen.assemblies.resultant, the class-IV route, on a small two-body group built to close at a
+rational pose: the equations and the eliminant vanish exactly there, the pose is among the
+assemblies found, every assembly keeps the six distances (recomputed here in mpmath from the
+data alone), and the count agrees with a 50-digit multistart search (tests/assembly_oracle.py;
+long: 20 s a group).  Sympy's Sturm count of the eliminant's real roots is not run: on its
+degree-192 eliminant it took minutes."""
 
 from __future__ import annotations
 
@@ -17,35 +17,13 @@ import mpmath
 import pytest
 from assembly_oracle import bodies_search
 
-from linkgen.assemblies import whole_log
-from linkgen.assemblies.bodies import Body, Coupler, TwoBodies, two_bodies_of
+from linkgen.assemblies.bodies import Body, Coupler, TwoBodies
 from linkgen.assemblies.resultant import NAMES, eliminate, equations, polynomial, solve, univariate
-from linkgen.assemblies.triad import NotReducible
 
 ROOT = Path(__file__).resolve().parents[2]
 MP = mpmath.mp.clone()
 MP.dps = 50
 UNIT = Fraction(1, 625)  # rotations by t = 1/2, 1/3, 2, 3 have cos, sin in fifths: the data stay on this grid
-
-
-def test_quaternary_folds_group_is_two_quaternaries_on_four_bars_tied_by_two_couplers():
-    log = whole_log(str(ROOT / "tests" / "mechanisms" / "quaternary_fold.yaml"))
-    b = two_bodies_of(log, log.groups[0])
-    left, right = b.bodies
-    assert (left.link, set(left.pairs), right.link, set(right.pairs)) == ("left", {"A1", "A2", "A3", "A4"}, "right",
-                                                                          {"B1", "B2", "B3", "B4"})
-    legs = {(left.base, left.pair), (left.other_base,), (right.base, right.pair), (right.other_base,)}
-    assert legs == {("G1", "A1"), ("G2",), ("G3", "B1"), ("G4",)}
-    assert {c.link for c in b.couplers} == {"upper", "lower"}
-    upper = next(c for c in b.couplers if c.link == "upper")
-    assert float(upper.length2) == pytest.approx((103.5 - 5.8) ** 2 + (109.2 - 110.4) ** 2, rel=1e-15)
-    assert float(left.length2) == pytest.approx((46.0 - 44.2) ** 2 + (68.1 - 3.1) ** 2, rel=1e-15)
-
-
-def test_a_triads_group_is_not_two_bodies():
-    log = whole_log(str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"))
-    with pytest.raises(NotReducible, match="not two links on four-bars"):
-        two_bodies_of(log, log.groups[0])
 
 
 def _rot(t: Fraction | None, v: tuple[Fraction, Fraction]) -> tuple[Fraction, Fraction]:
