@@ -453,3 +453,11 @@ class Reference:
 
     def sketch_pose(self) -> list[float]:
         return [0.0] * self.n
+
+
+def walked(ref: Reference, q: list, u: float, target: float, step: float = math.radians(1)) -> list:
+    """The pose q at the (one) input u carried to target by float Newton in equal steps of at most step."""
+    steps = max(1, math.ceil(abs(target - u) / step))
+    for j in range(1, steps + 1):
+        q = ref.newton(q, ref.turned_inputs(q, [u + (target - u) * j / steps]), exact=False)[0]
+    return q

@@ -4,9 +4,10 @@ design found by a random search for a full turn where the first pair of Add-link
 
 No single Add-link completes the group, so extraction ranks combinations of two, installs the best
 and keeps the other usable combinations as fallback blocks (before: every single candidate was
-"cannot close" and the group had no fallback block).  Between 225 and 270 degrees the chosen pair
-degenerates (the resolver's conditioning falls to 0.007): with that block alone every row there
-failed with status 152; a fallback combination now takes over.  The sweep in every language against
+"cannot close" and the group had no fallback block).  Between 225 and 270 degrees a chain of the
+chosen block passes its fold (its sigma falls below 0.01): with that block alone and no branch
+change every row there failed with status 152 (tests/test_fold_branch.py); a fallback combination
+takes over there, and the chosen block alone now changes the chain's branch.  The sweep in every language against
 the 50-digit reference is tests/test_accuracy.py's and tests/test_programs.py's (every test mechanism).
 """
 
@@ -14,13 +15,12 @@ from __future__ import annotations
 
 import csv as csvlib
 import io
-import math
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
-from reference import Reference
+from reference import Reference, walked
 
 from linkgen.evaluate import evaluate
 from linkgen.pipeline import build_log
@@ -76,10 +76,7 @@ def test_rows_where_the_first_pair_degenerates_solve_and_are_the_reference():
     q = ref.sketch_pose()
     for k in FAILED:
         target = float(values[k][0])
-        steps = max(1, math.ceil(abs(target - u) / math.radians(1)))
-        for j in range(1, steps + 1):
-            q = ref.newton(q, ref.turned_inputs(q, [u + (target - u) * j / steps]), exact=False)[0]
-        u = target
+        q, u = walked(ref, q, u, target), target
         want = ref.solve([target], [float(rates[k][0])], q).columns
         for name, x in want.items():
             if name.endswith((".x", ".y")):

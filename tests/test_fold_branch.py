@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 from programs import compare, run_c, run_numpy, run_octave, run_python
-from reference import Reference
+from reference import Reference, walked
 
 from linkgen import status
 from linkgen.evaluate import evaluate
@@ -93,10 +93,7 @@ def test_the_followed_assembly_is_the_reference(log):
     turn = 2 * math.pi * math.floor((first - u) / (2 * math.pi) + 0.5)  # the sweep's value less the walk's
     for k, row in enumerate(rows):
         target = float(values[k][0]) - turn
-        steps = max(1, math.ceil(abs(target - u) / math.radians(1)))
-        for j in range(1, steps + 1):
-            q = ref.newton(q, ref.turned_inputs(q, [u + (target - u) * j / steps]), exact=False)[0]
-        u = target
+        q, u = walked(ref, q, u, target), target
         want = ref.solve([target], [float(rates[k][0])], q).columns
         for name, x in want.items():
             if name.endswith((".x", ".y")):
