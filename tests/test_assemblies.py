@@ -294,14 +294,18 @@ def test_a_class_iv_group_with_a_prismatic_pair_is_extracted_and_its_rows_close_
         assemblies(path, log)
 
 
-@pytest.mark.xfail(raises=ProcedureError, strict=True, reason="extraction: 'an Add-link group is left open'")
 def test_two_ternaries_tied_by_a_link_and_a_slot_are_extracted():
     """Issue 20's shape: two ternaries on their own pivots (O1; O2 the crank tip) tied by the link
-    upper and a block on C in a slot of right.  A procedure exists (the Add-link O1-E, E by a 3R
-    chain, C by a 2R1P chain on right's slot, B a point of left, upper a link residual), but the
-    Solver places B by the 3R chain O1-B-E (left and upper) first, C follows as a point of left,
-    and the one constraint left unused is C's slot: residuals are made for unused links only
-    (link_residual), none for a slide line, so the group has no residual and stays open."""
+    upper and a block on C in a slot of right.  The Solver's first pass placed B by the 3R chain
+    O1-B-E and C as a point of left, leaving C's slot as the one unused constraint, which gives no
+    residual (link_residual is for links), so the group stayed open; extraction now tries again with
+    chains on a slide first inside the group: one Add-link, right by the inverted slider-crank chain
+    (RPR_links), upper's length the residual.  Its rows keep every constraint of the reference model;
+    `linkgen assemblies` refuses it with its reason (tests/test_class4_slot.py: the sweep)."""
     path = str(ROOT / "tests" / "regressions" / "class4_slot.yaml")  # one file: not in every suite's glob
     log = whole_log(path)
+    (g,) = log.groups
+    assert len(g.add_links) == 1 and any(log.step(n).function == "RPR_links" for n in g.steps)
     _rows_keep_the_reference_constraints(path, log)
+    with pytest.raises(ProcedureError, match="prismatic pair"):
+        assemblies(path, log)

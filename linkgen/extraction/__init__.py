@@ -39,20 +39,38 @@ def stuck(topo: Topology) -> SolverState | None:
     return None if solve(ws) else ws.frozen()
 
 
+class _LeftOpen(Unsupported):
+    """Every pair is known but an Add-link group has fewer residuals than Add-links."""
+
+
 def extract(topo: Topology) -> Procedure:
-    """Run the Solver, installing Add-links where it stops, and finish with angles and points."""
-    ws = start(topo)
+    """Run the Solver, installing Add-links where it stops, and finish with angles and points.
+    Where a group is left open (the constraint left unused is a slide line, which gives no
+    residual), extract again with chains on a slide first inside groups (``slides_first``):
+    the unused constraint is then a link, whose length is a residual.  A mechanism that
+    extracts in the first pass keeps its procedure."""
     try:
-        while not solve(ws):
-            ws = Workspace.thaw(rank(ws.frozen()))
-        if ws.group:
-            raise Unsupported("an Add-link group is left open")
+        try:
+            ws = _solved(start(topo))
+        except _LeftOpen:
+            first = start(topo)
+            first.slides_first = True
+            ws = _solved(first)
         finish(ws)
     except Unsupported as exc:
         m = topo.mechanism
         raise ProcedureError(f"linkgen cannot extract a procedure for this mechanism: {exc}",
                              m.path, m.where.line, "links") from None
     return _procedure(ws)
+
+
+def _solved(ws: Workspace) -> Workspace:
+    """The Solver run to the end, an Add-link installed wherever it stops."""
+    while not solve(ws):
+        ws = Workspace.thaw(rank(ws.frozen()))
+    if ws.group:
+        raise _LeftOpen("an Add-link group is left open")
+    return ws
 
 
 def _procedure(ws: Workspace) -> Procedure:

@@ -37,9 +37,9 @@ def ends(ws: Workspace, carrier: Carrier, middle: str) -> list[tuple[str, str]]:
     return out
 
 
-def try_chain(ws: Workspace, pair: str, only: str = "") -> bool:
+def try_chain(ws: Workspace, pair: str, only: str = "", slides: bool = False) -> bool:
     """The pair as the middle of a two-link chain whose two ends are known (through the
-    carrier ``only`` when given)."""
+    carrier ``only`` when given; with ``slides``, only a chain with a prismatic pair)."""
     carriers = [c for c in carriers_of(ws, pair) if not (c.kind == "link" and c.name in ws.placed)]
     joint = ws.m.joint(pair)
     if not joint.revolute:
@@ -54,7 +54,7 @@ def try_chain(ws: Workspace, pair: str, only: str = "") -> bool:
                     if e1 == e2:
                         continue
                     kind = t1 + ("R" if joint.revolute else "P") + t2
-                    if kind != "PPP" and _chain(ws, kind, pair, a, e1, b, e2):
+                    if kind != "PPP" and (not slides or "P" in kind) and _chain(ws, kind, pair, a, e1, b, e2):
                         return True
     return False
 

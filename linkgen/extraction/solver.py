@@ -3,7 +3,8 @@
 It scans the unknown pairs in declaration order and computes the first it can: as a
 point of a placed link (``link_point``, or ``coupler_point`` where one point of it is
 known), through an input (``crank_input``, ``slider_input``), or as the middle pair of a
-two-link chain whose ends are known.
+two-link chain whose ends are known (in extract's second pass, a chain on a slide first
+inside an Add-link group: ``slides_first``).
 Every choice breaks ties by declaration order, so a file always gives the same procedure.
 """
 
@@ -85,10 +86,20 @@ def _progress(ws: Workspace) -> bool:
         if inp.index not in ws.applied and _apply_input(ws, inp):
             ws.applied.add(inp.index)
             return True
+    if ws.slides_first and ws.group and _slide_first(ws):
+        return True
     while (pair := ws.frontier.pop()) is not None:
         if not ws.is_known(pair) and (_try_point(ws, pair) or try_chain(ws, pair)):
             return True
     return False
+
+
+def _slide_first(ws: Workspace) -> bool:
+    """In an open group, a point of a placed link, else a chain on a slide, before any other
+    chain: a slide line has no residual, so a group whose slide the Solver leaves unused never
+    closes (extract's second pass; the first pair in declaration order, as everywhere)."""
+    unknown = [j.name for j in ws.m.joints if not ws.is_known(j.name)]
+    return any(_try_point(ws, p) for p in unknown) or any(try_chain(ws, p, slides=True) for p in unknown)
 
 
 def _apply_input(ws: Workspace, inp: Input) -> bool:

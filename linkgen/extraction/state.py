@@ -119,6 +119,7 @@ class SolverState:
     variants: tuple[VariantDraft, ...]
     group: int
     residual_links: frozenset[str]
+    slides_first: bool = False
 
 
 @dataclass
@@ -159,6 +160,7 @@ class Workspace:
     variants: list[VariantDraft] = field(default_factory=list)
     group: int = 0
     residual_links: set[str] = field(default_factory=set)
+    slides_first: bool = False  # in an open group, chains on a slide before the others (see solver._progress)
 
     def __post_init__(self) -> None:
         self.m = self.topo.mechanism

@@ -67,3 +67,21 @@ def test_the_solver_stops_where_a_group_closes_or_nothing_is_computable():
     unknown = [j.name for j in ws.m.joints if not ws.is_known(j.name)]
     assert unknown == ["K2", "K4", "K5"]  # the second triad
     assert not solve(ws)  # stuck again: it needs an Add-link of its own
+
+
+def test_a_group_left_open_by_its_slide_is_solved_again_with_slide_chains_first():
+    """tests/regressions/class4_slot.yaml: with the first Add-link installed the Solver knows every
+    pair but leaves the slot S unused (no residual), so the group is open; with ``slides_first``
+    the same Add-link's group closes, S placed by a chain on its slide and a link left as residual."""
+    topo = analyse(read_mechanism(str(ROOT / "tests" / "regressions" / "class4_slot.yaml")))
+    ws = start(topo)
+    assert not solve(ws)
+    state = ws.frozen()
+    for slides_first in (False, True):
+        trial = Workspace.thaw(state)
+        trial.slides_first = slides_first
+        install(trial, "O2", "B")
+        assert solve(trial, stop_at_close=True)
+        assert bool(trial.group) is not slides_first
+        assert ("S" in trial.slides) is slides_first
+        assert any(s.function == "link_residual" for s in trial.steps) is slides_first
