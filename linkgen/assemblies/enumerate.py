@@ -250,7 +250,7 @@ class _Walk:
 
     def _solve_slides(self, triad: Triad, env: Env, unit: Any) -> Solution:
         """The triad with blocks on fixed slides at its revolute legs' bases in ``env`` (``slides``)."""
-        from . import slides
+        from . import polynomial, slides
 
         holds: list[slides.Hold] = []
         for leg in triad.legs:
@@ -268,7 +268,7 @@ class _Walk:
                 triad.group, triad.describe(), sol.degree, sol.real_roots, sol.at_pi, tuple(r.theta for r in sol.roots),
                 sol.coefficients, tuple((r.theta, r.multiplicity) for r in sol.roots if r.multiplicity > 1)))
         found = self.solutions[key]
-        assert isinstance(found, slides.Solution)
+        assert isinstance(found, polynomial.Solution)
         return found
 
     def _solve_bodies(self, bodies: TwoBodies, env: Env, unit: Any) -> Count:

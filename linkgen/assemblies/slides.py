@@ -14,8 +14,8 @@ Cramer's rule gives ``X = N / D`` and the kept equation times D^2,
 
 is one equation in theta.  With ``t = tan(theta / 2)`` every row is written over q = 1 + t^2 so
 that q^6 F is a polynomial in t with exact rational coefficients; its factors (1 + t^2) carry no
-real root and are divided out (a slide's row carries one q, so the degree drops: 4 for one slide,
-2 for two).  Roots are isolated and counted as the triad's are (``polynomial``: sympy's
+real root and are divided out: degree 6 for one slide, as the revolute triad's, and 4 for two (X is
+then linear in cos theta and sin theta, the kept circle quadratic in them).  Roots are isolated and counted as the triad's are (``polynomial``: sympy's
 ``Poly.intervals`` checked by Sturm's theorem), theta = pi checked on its own, every root polished
 by Newton's method on the three leg equations at 50 digits and kept only inside its interval.
 """
@@ -24,14 +24,14 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from fractions import Fraction
-from typing import Any, Union
+from typing import Any
 
 import sympy  # type: ignore[import-untyped]  # sympy ships no type information
 
-from .polynomial import INTERVAL, MP, MULTIPLE, NEWTON_STEPS, T, Root, Solution, sturm_count
+from .polynomial import INTERVAL, MP, MULTIPLE, NEWTON_STEPS, Root, Solution, T, sturm_count
 from .triad import Exact, NotReducible
 
-Hold = Union[tuple[Exact, Fraction], tuple[Exact, Fraction, str]]  # (B, l^2) revolute; (n, d, "slide") a slide
+Hold = tuple[Exact, Fraction] | tuple[Exact, Fraction, str]  # (B, l^2) revolute; (n, d, "slide") a slide
 
 
 def closure(c: Any, s: Any, q: Any, local: list[Exact], holds: list[Hold], num: Callable[[Fraction], Any]) -> tuple[
@@ -57,7 +57,8 @@ def closure(c: Any, s: Any, q: Any, local: list[Exact], holds: list[Hold], num: 
             rows.append(((2 * (w[i][0] - w[kept][0]), 2 * (w[i][1] - w[kept][1])), k[kept] - k[i]))
         else:
             (nx, ny), d = h[0], h[1]
-            rows.append(((q * num(nx), q * num(ny)), q * (q * num(d) - num(nx) * turned[i][0] - num(ny) * turned[i][1])))
+            along = num(nx) * turned[i][0] + num(ny) * turned[i][1]  # q n_i . R a_i
+            rows.append(((q * num(nx), q * num(ny)), q * (q * num(d) - along)))
     (m0, r0), (m1, r1) = rows
     d = m0[0] * m1[1] - m0[1] * m1[0]  # q^2 D
     x = r0 * m1[1] - r1 * m0[1]  # q^3 N
