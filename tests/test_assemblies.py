@@ -210,9 +210,9 @@ def _slide_search(legs, local, starts=TRIAD_STARTS, seed=20):
     return sorted(found, key=lambda p: p[2])
 
 
-def _slider_leg_poses(path, census):
-    """slider_leg's triad (J2 from J1, J4 on the slide at 80 degrees through its sketch, J5 from the crank
-    tip J6) by the multistart search at the census's input, as pair -> position."""
+def _slider_leg_poses(path, census, axis_deg=80):
+    """slider_leg's triad (J2 from J1, J4 on the slide at ``axis_deg`` degrees through its sketch, J5 from
+    the crank tip J6) by the multistart search at the census's input, as pair -> position."""
     ref = Reference(path)
     sketch = {k: (MP.mpf(x), MP.mpf(y)) for k, (x, y) in ref.m.positions.items()}
     turn = MP.mpf(census.inputs[0]) - ref.sketch_inputs(exact=True)[0]
@@ -225,7 +225,7 @@ def _slider_leg_poses(path, census):
     def d2(a, b):
         return (sketch[a][0] - sketch[b][0]) ** 2 + (sketch[a][1] - sketch[b][1]) ** 2
 
-    axis = MP.radians(80)
+    axis = MP.radians(axis_deg)
     legs = [("R", sketch["J1"], d2("J2", "J1")), ("P", (-MP.sin(axis), MP.cos(axis)), sketch["J4"]),
             ("R", tip, d2("J5", "J6"))]
     out = []
@@ -248,6 +248,20 @@ def test_a_triad_with_a_block_on_a_fixed_slide_has_every_assembly_the_search_fin
     (solve,) = census.solves
     assert "block on the slide S" in solve.triad
     assert (solve.degree, solve.real_roots + solve.at_pi) == (6, len(poses)) and (poses or deg == 200.0)
+    assert len(census.assemblies) == len(poses) and _matches(census, poses, log.length_scale) == [1] * len(poses)
+    _valid_and_distinct(path, log, census)
+
+
+@pytest.mark.parametrize("deg", [pytest.param(30.0), pytest.param(200.0, marks=LONG)])
+def test_a_slide_triad_with_four_assemblies_has_the_searchs(deg):
+    """tests/regressions/slide_triad.yaml: slider_leg's slide turned to 11 degrees; 4 assemblies at 30
+    degrees, 2 at 200 (as the search finds them)."""
+    path = str(ROOT / "tests" / "regressions" / "slide_triad.yaml")  # one file: not in every suite's glob
+    log = whole_log(path)
+    census = assemblies(path, log, [deg])
+    poses = _slider_leg_poses(path, census, 11)
+    (solve,) = census.solves
+    assert (solve.degree, solve.real_roots + solve.at_pi) == (6, len(poses)) and len(poses) >= 2
     assert len(census.assemblies) == len(poses) and _matches(census, poses, log.length_scale) == [1] * len(poses)
     _valid_and_distinct(path, log, census)
 
