@@ -1,10 +1,11 @@
 """A resolver group's shape: the class-III triad whose closure reduces to one polynomial.
 
 A triad is a ternary link T whose three pairs P1, P2, P3 are held by three legs, each a
-binary link or a linear actuator from Pi to a pair Bi known before the group; every pair
-of the group is revolute.  It is read off the step log: the pairs the group's block
-writes, the links that carry them, the pairs known before the group.  Any other group
-(one with a prismatic pair, one that needs several Add-links at once) is ``NotReducible``.
+binary link or a linear actuator from Pi to a pair Bi known before the group, or a block on
+a slide fixed to the frame (Pi then stays on a line: ``slides``); the ternary's own pairs are
+revolute.  It is read off the step log: the pairs the group's block writes, the links that
+carry them, the pairs known before the group.  Any other group (one with another prismatic
+pair, one that needs several Add-links at once) is ``NotReducible``.
 All the triad's numbers are exact fractions: the sketch's coordinates rounded to the grid of
 ``grid`` (2^-64 of the length scale, far below a double's own spacing there, 2^-52 of it;
 a coordinate of 1e-300 in a sketch of size 100 would otherwise carry a denominator of
