@@ -15,7 +15,8 @@ Cramer's rule gives ``X = N / D`` and the kept equation times D^2,
 is one equation in theta.  With ``t = tan(theta / 2)`` every row is written over q = 1 + t^2 so
 that q^6 F is a polynomial in t with exact rational coefficients; its factors (1 + t^2) carry no
 real root and are divided out: degree 6 for one slide, as the revolute triad's, and 4 for two (X is
-then linear in cos theta and sin theta, the kept circle quadratic in them).  Roots are isolated and counted as the triad's are (``polynomial``: sympy's
+then linear in cos theta and sin theta, the kept circle quadratic in them).
+Roots are isolated and counted as the triad's are (``polynomial``: sympy's
 ``Poly.intervals`` checked by Sturm's theorem), theta = pi checked on its own, every root polished
 by Newton's method on the three leg equations at 50 digits and kept only inside its interval.
 """
