@@ -210,30 +210,38 @@ def _slide_search(legs, local, starts=TRIAD_STARTS, seed=20):
     return sorted(found, key=lambda p: p[2])
 
 
-def _slider_leg_poses(path, census, axis_deg=80):
-    """slider_leg's triad (J2 from J1, J4 on the slide at ``axis_deg`` degrees through its sketch, J5 from
-    the crank tip J6) by the multistart search at the census's input, as pair -> position."""
+def _slide_poses(path, census, held):
+    """A triad's poses by the multistart search at the census's input; ``held``: pair -> ("R", base) held
+    at its sketch distance from base (J6 the crank tip, turned from the sketch at 50 digits), or ("P",
+    axis in degrees) on a frame slide through its sketch position; the first held by "R"."""
     ref = Reference(path)
     sketch = {k: (MP.mpf(x), MP.mpf(y)) for k, (x, y) in ref.m.positions.items()}
     turn = MP.mpf(census.inputs[0]) - ref.sketch_inputs(exact=True)[0]
     c, s = MP.cos(turn), MP.sin(turn)
     j7, j6 = sketch["J7"], sketch["J6"]
-    tip = (j7[0] + c * (j6[0] - j7[0]) - s * (j6[1] - j7[1]), j7[1] + s * (j6[0] - j7[0]) + c * (j6[1] - j7[1]))
-    pairs = ("J2", "J4", "J5")
-    local = [(sketch[p][0] - sketch["J2"][0], sketch[p][1] - sketch["J2"][1]) for p in pairs]
-
-    def d2(a, b):
-        return (sketch[a][0] - sketch[b][0]) ** 2 + (sketch[a][1] - sketch[b][1]) ** 2
-
-    axis = MP.radians(axis_deg)
-    legs = [("R", sketch["J1"], d2("J2", "J1")), ("P", (-MP.sin(axis), MP.cos(axis)), sketch["J4"]),
-            ("R", tip, d2("J5", "J6"))]
+    where = {**sketch, "J6": (j7[0] + c * (j6[0] - j7[0]) - s * (j6[1] - j7[1]),
+                              j7[1] + s * (j6[0] - j7[0]) + c * (j6[1] - j7[1]))}
+    pairs = list(held)
+    local = [(sketch[p][0] - sketch[pairs[0]][0], sketch[p][1] - sketch[pairs[0]][1]) for p in pairs]
+    legs = []
+    for p, (kind, what) in held.items():
+        if kind == "R":
+            d2 = (sketch[p][0] - sketch[what][0]) ** 2 + (sketch[p][1] - sketch[what][1]) ** 2
+            legs.append(("R", where[what], d2))
+        else:
+            axis = MP.radians(what)
+            legs.append(("P", (-MP.sin(axis), MP.cos(axis)), sketch[p]))
     out = []
     for x, y, t in _slide_search(legs, local):
         cc, ss = MP.cos(t), MP.sin(t)
         out.append({p: (float(x + cc * ax - ss * ay), float(y + ss * ax + cc * ay)) for p, (ax, ay) in
                     zip(pairs, local)})
     return out
+
+
+def _slider_leg_poses(path, census, axis_deg=80):
+    """slider_leg's triad: J2 from J1, J4 on the slide at ``axis_deg`` degrees, J5 from the crank tip J6."""
+    return _slide_poses(path, census, {"J2": ("R", "J1"), "J4": ("P", axis_deg), "J5": ("R", "J6")})
 
 
 SLIDE_INPUTS = [pytest.param(30.0), pytest.param(300.0, marks=LONG), pytest.param(200.0, marks=LONG)]  # 200: none
@@ -262,6 +270,20 @@ def test_a_slide_triad_with_four_assemblies_has_the_searchs(deg):
     poses = _slider_leg_poses(path, census, 11)
     (solve,) = census.solves
     assert (solve.degree, solve.real_roots + solve.at_pi) == (6, len(poses)) and len(poses) >= 2
+    assert len(census.assemblies) == len(poses) and _matches(census, poses, log.length_scale) == [1] * len(poses)
+    _valid_and_distinct(path, log, census)
+
+
+@pytest.mark.parametrize("deg", [pytest.param(120.0, marks=LONG), pytest.param(30.0, marks=LONG)])
+def test_a_triad_on_two_slides_has_the_searchs_assemblies(deg):
+    """tests/regressions/two_slides.yaml: the ternary held by the crank's coupler and two blocks on frame
+    slides; its polynomial has degree 4; 2 assemblies at 120 degrees, none at 30 (as the search finds)."""
+    path = str(ROOT / "tests" / "regressions" / "two_slides.yaml")  # one file: not in every suite's glob
+    log = whole_log(path)
+    census = assemblies(path, log, [deg])
+    poses = _slide_poses(path, census, {"J5": ("R", "J6"), "J2": ("P", 100), "J4": ("P", 11)})
+    (solve,) = census.solves
+    assert (solve.degree, solve.real_roots + solve.at_pi) == (4, len(poses)) and (poses or deg == 30.0)
     assert len(census.assemblies) == len(poses) and _matches(census, poses, log.length_scale) == [1] * len(poses)
     _valid_and_distinct(path, log, census)
 
