@@ -8,6 +8,9 @@
   Newton search over the group's equations finds (TRIAD_STARTS starts per group), pose for pose.
 * quaternary_fold's class-IV group (two Add-links at once) at the sketch: as many assemblies as a
   50-digit multistart search of the two bodies' six distance equations finds, pose for pose (long).
+* slider_leg's triad (a ternary held by two binary links and a block on a fixed slide) at three
+  inputs: as many assemblies as a 50-digit multistart Newton search of its three leg equations
+  (two distances, one line) finds, pose for pose.
 * Every assembly satisfies every constraint of the reference model to 1e-12 of the length
   scale, and the sketch's assembly is among them and marked.
 """
@@ -146,6 +149,141 @@ def test_fig14_has_every_assembly_the_multistart_search_finds(deg):
     poses = _triad_poses(path, log, census, *RIGHT)
     (solve,) = census.solves
     assert (solve.degree, solve.real_roots) == (6, len(poses))
+    assert len(census.assemblies) == len(poses) and _matches(census, poses, log.length_scale) == [1] * len(poses)
+    _valid_and_distinct(path, log, census)
+
+
+def _slide_search(legs, local, starts=TRIAD_STARTS, seed=20):
+    """Every pose (x, y, theta) of a ternary (pair offsets ``local`` from its first pair) held by ``legs``:
+    ("R", B, l^2) keeps its pair at distance l from B, ("P", n, P0) on the line through P0 normal to n;
+    by a damped Newton's method at 50 digits from ``starts`` starts (the first pair on its leg's circle,
+    theta in each slice of a turn): no polynomial, no elimination.  Distinct poses, by theta."""
+    import random
+
+    rng = random.Random(seed)
+    scale = max(MP.sqrt(h[2]) for h in legs if h[0] == "R")
+    tol = MP.mpf(10) ** -42
+    found: list[tuple] = []
+
+    def system(z):
+        c, s = MP.cos(z[2]), MP.sin(z[2])
+        f, jac = [], []
+        for (ax, ay), (kind, v, w) in zip(local, legs):
+            px, py = z[0] + c * ax - s * ay, z[1] + s * ax + c * ay
+            dx, dy = -s * ax - c * ay, c * ax - s * ay
+            if kind == "R":
+                f.append(((px - v[0]) ** 2 + (py - v[1]) ** 2 - w) / scale)
+                jac.append([2 * (px - v[0]) / scale, 2 * (py - v[1]) / scale,
+                            2 * ((px - v[0]) * dx + (py - v[1]) * dy) / scale])
+            else:
+                f.append(v[0] * (px - w[0]) + v[1] * (py - w[1]))
+                jac.append([v[0], v[1], v[0] * dx + v[1] * dy])
+        return f, jac
+
+    first = legs[0]
+    assert first[0] == "R"
+    for k in range(starts):
+        phi = MP.mpf(rng.uniform(-math.pi, math.pi))
+        z = [first[1][0] + MP.sqrt(first[2]) * MP.cos(phi), first[1][1] + MP.sqrt(first[2]) * MP.sin(phi),
+             MP.mpf(-math.pi + 2 * math.pi * (k + rng.random()) / starts)]
+        f, jac = system(z)
+        for _ in range(40):
+            try:
+                step = MP.lu_solve(MP.matrix(jac), MP.matrix(f))
+            except ZeroDivisionError:
+                break
+            norm, lam = sum(v * v for v in f), 1.0
+            while True:
+                nz = [z[i] - lam * step[i] for i in range(3)]
+                nf, njac = system(nz)
+                if sum(v * v for v in nf) < norm or lam < 1e-3:
+                    break
+                lam /= 2
+            if lam < 1e-3:
+                break
+            z, f, jac = nz, nf, njac
+            if lam == 1 and max(abs(step[0]) / scale, abs(step[1]) / scale, abs(step[2])) < tol:
+                t = MP.atan2(MP.sin(z[2]), MP.cos(z[2]))
+                if not any(abs(t - u[2]) < MP.mpf(10) ** -30 for u in found):
+                    found.append((z[0], z[1], t))
+                break
+    return sorted(found, key=lambda p: p[2])
+
+
+def _slide_poses(path, census, held):
+    """A triad's poses by the multistart search at the census's input; ``held``: pair -> ("R", base) held
+    at its sketch distance from base (J6 the crank tip, turned from the sketch at 50 digits), or ("P",
+    axis in degrees) on a frame slide through its sketch position; the first held by "R"."""
+    ref = Reference(path)
+    sketch = {k: (MP.mpf(x), MP.mpf(y)) for k, (x, y) in ref.m.positions.items()}
+    turn = MP.mpf(census.inputs[0]) - ref.sketch_inputs(exact=True)[0]
+    c, s = MP.cos(turn), MP.sin(turn)
+    j7, j6 = sketch["J7"], sketch["J6"]
+    where = {**sketch, "J6": (j7[0] + c * (j6[0] - j7[0]) - s * (j6[1] - j7[1]),
+                              j7[1] + s * (j6[0] - j7[0]) + c * (j6[1] - j7[1]))}
+    pairs = list(held)
+    local = [(sketch[p][0] - sketch[pairs[0]][0], sketch[p][1] - sketch[pairs[0]][1]) for p in pairs]
+    legs = []
+    for p, (kind, what) in held.items():
+        if kind == "R":
+            d2 = (sketch[p][0] - sketch[what][0]) ** 2 + (sketch[p][1] - sketch[what][1]) ** 2
+            legs.append(("R", where[what], d2))
+        else:
+            axis = MP.radians(what)
+            legs.append(("P", (-MP.sin(axis), MP.cos(axis)), sketch[p]))
+    out = []
+    for x, y, t in _slide_search(legs, local):
+        cc, ss = MP.cos(t), MP.sin(t)
+        out.append({p: (float(x + cc * ax - ss * ay), float(y + ss * ax + cc * ay)) for p, (ax, ay) in
+                    zip(pairs, local)})
+    return out
+
+
+def _slider_leg_poses(path, census, axis_deg=80):
+    """slider_leg's triad: J2 from J1, J4 on the slide at ``axis_deg`` degrees, J5 from the crank tip J6."""
+    return _slide_poses(path, census, {"J2": ("R", "J1"), "J4": ("P", axis_deg), "J5": ("R", "J6")})
+
+
+SLIDE_INPUTS = [pytest.param(30.0), pytest.param(300.0, marks=LONG), pytest.param(200.0, marks=LONG)]  # 200: none
+
+
+@pytest.mark.parametrize("deg", SLIDE_INPUTS)
+def test_a_triad_with_a_block_on_a_fixed_slide_has_every_assembly_the_search_finds(deg):
+    path = str(ROOT / "tests" / "assemblies" / "slider_leg.yaml")
+    log = whole_log(path)
+    census = assemblies(path, log, [deg])
+    poses = _slider_leg_poses(path, census)
+    (solve,) = census.solves
+    assert "block on the slide S" in solve.triad
+    assert (solve.degree, solve.real_roots + solve.at_pi) == (6, len(poses)) and (poses or deg == 200.0)
+    assert len(census.assemblies) == len(poses) and _matches(census, poses, log.length_scale) == [1] * len(poses)
+    _valid_and_distinct(path, log, census)
+
+
+@pytest.mark.parametrize("deg", [pytest.param(30.0), pytest.param(200.0, marks=LONG)])
+def test_a_slide_triad_with_four_assemblies_has_the_searchs(deg):
+    """tests/regressions/slide_triad.yaml: slider_leg's slide turned to 11 degrees; 4 assemblies at 30
+    degrees, 2 at 200 (as the search finds them)."""
+    path = str(ROOT / "tests" / "regressions" / "slide_triad.yaml")  # one file: not in every suite's glob
+    log = whole_log(path)
+    census = assemblies(path, log, [deg])
+    poses = _slider_leg_poses(path, census, 11)
+    (solve,) = census.solves
+    assert (solve.degree, solve.real_roots + solve.at_pi) == (6, len(poses)) and len(poses) >= 2
+    assert len(census.assemblies) == len(poses) and _matches(census, poses, log.length_scale) == [1] * len(poses)
+    _valid_and_distinct(path, log, census)
+
+
+@pytest.mark.parametrize("deg", [pytest.param(120.0, marks=LONG), pytest.param(30.0, marks=LONG)])
+def test_a_triad_on_two_slides_has_the_searchs_assemblies(deg):
+    """tests/regressions/two_slides.yaml: the ternary held by the crank's coupler and two blocks on frame
+    slides; its polynomial has degree 4; 2 assemblies at 120 degrees, none at 30 (as the search finds)."""
+    path = str(ROOT / "tests" / "regressions" / "two_slides.yaml")  # one file: not in every suite's glob
+    log = whole_log(path)
+    census = assemblies(path, log, [deg])
+    poses = _slide_poses(path, census, {"J5": ("R", "J6"), "J2": ("P", 100), "J4": ("P", 11)})
+    (solve,) = census.solves
+    assert (solve.degree, solve.real_roots + solve.at_pi) == (4, len(poses)) and (poses or deg == 30.0)
     assert len(census.assemblies) == len(poses) and _matches(census, poses, log.length_scale) == [1] * len(poses)
     _valid_and_distinct(path, log, census)
 

@@ -192,9 +192,12 @@ class _Walk:
             for s in (self.log.step(n) for n in g.steps):
                 if s.function in CHAINS:
                     entity = self.log.variable(s.outputs[-1]).entity
-                    if entity not in placed or len(s.outputs) != 1:
+                    if entity not in placed:
                         raise NotReducible(f"resolver group {g.number}: step {s.number} is not a chain of the triad")
-                    root_env[s.outputs[0]] = placed[entity]
+                    if len(s.outputs) == 1:
+                        root_env[s.outputs[0]] = placed[entity]
+                    else:  # a block's chain: its slide and slider point too
+                        root_env.update(zip(s.outputs, self._slider(s, g, root_env, placed)))
                     continue
                 st, _, outs = self.call(s, root_env)
                 if st == status.CANNOT_CLOSE:
@@ -206,6 +209,24 @@ class _Walk:
             self.run(i + 1, root_env, (*choices, Choice(g.step, f"group {g.number}", k + 1, len(solution.roots),
                                                         root.theta)))
 
+    def _slider(self, s: Step, g: ResolverGroup, env: Env, placed: dict[str, tuple[float, float]]) -> tuple[Any, ...]:
+        """A block's chain step run at the root: its Add-links' lengths from the placed pairs, the branch whose
+        pair is the placed one."""
+        for name, (a, b) in zip(g.add_links, g.pairs):
+            if a in placed or b in placed:
+                pa, pb = (placed[p] if p in placed else env[self.pos[p]] for p in (a, b))
+                env[name] = (math.hypot(pa[0] - pb[0], pa[1] - pb[1]), *[0.0] * (len(record_fields(
+                    self._kind(name), 0)) - 1))
+        want = placed[self.log.variable(s.outputs[-1]).entity]
+        best: tuple[float, tuple[Any, ...]] = (math.inf, ())
+        for branch in (1, -1):
+            st, _, outs = self.call(s, env, branch)
+            if st != status.CANNOT_CLOSE:
+                best = min(best, (math.hypot(outs[-1][0] - want[0], outs[-1][1] - want[1]), outs), key=lambda b: b[0])
+        if best[0] > CHECK * self.log.length_scale:
+            raise ArithmeticError(f"resolver group {g.number}: step {s.number} does not reach the root")
+        return best[1]
+
     def _solve(self, triad: Triad | TwoBodies, env: Env) -> Solution | Count:
         """The group's solution at the bases' positions in ``env`` (solved once per position)."""
         from .polynomial import solve  # sympy takes 0.7 s to import: only mechanisms with a group need it
@@ -213,6 +234,8 @@ class _Walk:
         unit = grid(self.log.length_scale)
         if isinstance(triad, TwoBodies):
             return self._solve_bodies(triad, env, unit)
+        if any(leg.line for leg in triad.legs):
+            return self._solve_slides(triad, env, unit)
         bases = [tuple(snap(x, unit) for x in env[self.pos[leg.base]][:2]) for leg in triad.legs]
         lengths2 = [leg.length2 if leg.length2 is not None else snap(env[self.log.inputs[leg.input].variable][0], unit)
                     ** 2 for leg in triad.legs]
@@ -224,6 +247,29 @@ class _Walk:
                 triad.group, triad.describe(), sol.degree, sol.real_roots, sol.at_pi, tuple(r.theta for r in sol.roots),
                 sol.coefficients, tuple((r.theta, r.multiplicity) for r in sol.roots if r.multiplicity > 1)))
         return self.solutions[key]
+
+    def _solve_slides(self, triad: Triad, env: Env, unit: Any) -> Solution:
+        """The triad with blocks on fixed slides at its revolute legs' bases in ``env`` (``slides``)."""
+        from . import polynomial, slides
+
+        holds: list[slides.Hold] = []
+        for leg in triad.legs:
+            if leg.line:
+                holds.append((leg.line[0], leg.line[1], "slide"))
+                continue
+            base = (snap(env[self.pos[leg.base]][0], unit), snap(env[self.pos[leg.base]][1], unit))
+            holds.append((base, leg.length2 if leg.length2 is not None else
+                          snap(env[self.log.inputs[leg.input].variable][0], unit) ** 2))
+        key = (triad.group, tuple(holds))
+        if key not in self.solutions:
+            sol = slides.solve(list(triad.local), holds, self.log.length_scale)
+            self.solutions[key] = sol
+            self.out.solves.append(GroupCount(
+                triad.group, triad.describe(), sol.degree, sol.real_roots, sol.at_pi, tuple(r.theta for r in sol.roots),
+                sol.coefficients, tuple((r.theta, r.multiplicity) for r in sol.roots if r.multiplicity > 1)))
+        found = self.solutions[key]
+        assert isinstance(found, polynomial.Solution)
+        return found
 
     def _solve_bodies(self, bodies: TwoBodies, env: Env, unit: Any) -> Count:
         """The class-IV group's solution at its legs' bases in ``env`` (``resultant``)."""

@@ -1,10 +1,11 @@
 """A resolver group's shape: the class-III triad whose closure reduces to one polynomial.
 
 A triad is a ternary link T whose three pairs P1, P2, P3 are held by three legs, each a
-binary link or a linear actuator from Pi to a pair Bi known before the group; every pair
-of the group is revolute.  It is read off the step log: the pairs the group's block
-writes, the links that carry them, the pairs known before the group.  Any other group
-(one with a prismatic pair, one that needs several Add-links at once) is ``NotReducible``.
+binary link or a linear actuator from Pi to a pair Bi known before the group, or a block on
+a slide fixed to the frame (Pi then stays on a line: ``slides``); the ternary's own pairs are
+revolute.  It is read off the step log: the pairs the group's block writes, the links that
+carry them, the pairs known before the group.  Any other group (one with another prismatic
+pair, one that needs several Add-links at once) is ``NotReducible``.
 All the triad's numbers are exact fractions: the sketch's coordinates rounded to the grid of
 ``grid`` (2^-64 of the length scale, far below a double's own spacing there, 2^-52 of it;
 a coordinate of 1e-300 in a sketch of size 100 would otherwise carry a denominator of
@@ -36,6 +37,8 @@ class Leg:
     base: str
     length2: Fraction | None  # the squared sketch length; None for an actuator (its input's value)
     input: int = -1  # the actuator's input index
+    line: tuple[Exact, Fraction] | None = None  # a block on a fixed slide (``base`` its prismatic pair):
+    # ``pair`` stays on the line n . P = d, as (n, d) in the programs' coordinates
 
 
 @dataclass(frozen=True)
@@ -50,7 +53,8 @@ class Triad:
     legs: tuple[Leg, Leg, Leg]
 
     def describe(self) -> str:
-        held = ", ".join(f"{leg.carrier} at {leg.base}" for leg in self.legs)
+        held = ", ".join(f"{leg.carrier} on the slide {leg.base}" if leg.line else f"{leg.carrier} at {leg.base}"
+                         for leg in self.legs)
         return f"the ternary link {self.ternary} held by {held}"
 
 
@@ -89,17 +93,18 @@ def triad_of(log: StepLog, g: ResolverGroup) -> Triad:
     inside = group_pairs(log, g)
     known = known_before(log, g)
     carriers = _carriers(log)
-    prismatic = [p for p in inside if pairs[p].kind == "prismatic"]
-    if prismatic:
-        raise NotReducible(f"resolver group {g.number} has the prismatic pair {prismatic[0]}; linkgen reduces only "
-                           "groups of revolute pairs to one polynomial")
-    ternaries = [lk for lk in log.links if sum(p in inside for p in lk.pairs) >= 2]
+    slides = {p: _slide(log, p, g.number) for p in inside if pairs[p].kind == "prismatic"}
+    blocks = {block: pair for pair, (block, _) in slides.items()}
+    inside = [p for p in inside if p not in slides]
+    ternaries = [lk for lk in log.links if lk.name not in blocks and sum(p in inside for p in lk.pairs) >= 2]
     if len(ternaries) != 1:
         raise NotReducible(f"resolver group {g.number} is not a class-III triad (one ternary link held by three "
                            f"binary links): {and_list(lk.name for lk in ternaries)} each join two or more of its "
                            "pairs (a group of class IV or higher); linkgen reduces only triads to one polynomial")
     t = ternaries[0]
-    legs = [leg for p in t.pairs if p in inside for leg in _legs(log, p, t.name, known, set(inside), carriers)]
+    legs = [leg for p in t.pairs if p in inside
+            for leg in _legs(log, p, t.name, known, set(inside), carriers, {b: (s, slides[s][1]) for b, s in
+                                                                             blocks.items()})]
     placed = {leg.pair for leg in legs}
     if len(legs) != 3 or len(placed) != 3 or any(p not in t.pairs for p in inside):
         raise NotReducible(f"resolver group {g.number} is not a class-III triad (one ternary link held by three "
@@ -110,6 +115,19 @@ def triad_of(log: StepLog, g: ResolverGroup) -> Triad:
     local = tuple((snap(pairs[p].x, unit) - x0, snap(pairs[p].y, unit) - y0) for p in held)
     return Triad(g.number, t.name, (held[0], held[1], held[2]), (local[0], local[1], local[2]),
                  (legs[0], legs[1], legs[2]))
+
+
+def _slide(log: StepLog, pair: str, group: int) -> tuple[str, float]:
+    """(the block, the slide's axis) of a prismatic pair of the group that holds a block on a fixed slide, else
+    NotReducible."""
+    p = next(q for q in log.pairs if q.name == pair)
+    links = {lk.name: lk for lk in log.links}
+    block = p.slider if links[p.guide].fixed else p.guide if links[p.slider].fixed else ""
+    if not block or len(links[block].pairs) != 2:
+        raise NotReducible(f"resolver group {group} has the prismatic pair {pair}, not a block on a slide fixed to "
+                           "the frame; linkgen reduces only triads whose legs are binary links or such blocks to one "
+                           "polynomial")
+    return block, p.axis
 
 
 def _carriers(log: StepLog) -> dict[str, list[tuple[str, tuple[str, ...]]]]:
@@ -127,14 +145,21 @@ def _carriers(log: StepLog) -> dict[str, list[tuple[str, tuple[str, ...]]]]:
 
 
 def _legs(log: StepLog, pair: str, ternary: str, known: set[str], inside: set[str],
-          carriers: dict[str, list[tuple[str, tuple[str, ...]]]]) -> list[Leg]:
-    """The legs that hold the ternary's pair: carriers with exactly one known pair and no other of the group's."""
+          carriers: dict[str, list[tuple[str, tuple[str, ...]]]], blocks: dict[str, tuple[str, float]]) -> list[Leg]:
+    """The legs that hold the ternary's pair: carriers with exactly one known pair and no other of the group's,
+    and blocks on a fixed slide (the pair moves on the line along the slide's axis through its sketch position)."""
     pairs = {p.name: p for p in log.pairs}
     actuators = {i.column: i.index for i in log.inputs if i.kind == "distance"}
     unit = grid(log.length_scale)
     out = []
     for name, others in carriers.get(pair, ()):
         if name == ternary:
+            continue
+        if name in blocks:
+            slide, axis = blocks[name]
+            n = (Fraction(-math.sin(axis)), Fraction(math.cos(axis)))
+            at = (snap(pairs[pair].x - log.origin[0], unit), snap(pairs[pair].y - log.origin[1], unit))
+            out.append(Leg(name, pair, slide, None, line=(n, n[0] * at[0] + n[1] * at[1])))
             continue
         bases = [q for q in others if q in known]
         if any(q in inside for q in others) or len(bases) > 1:

@@ -38,10 +38,12 @@ def test_a_cylinder_is_a_leg_whose_length_is_its_input():
     assert (cylinder.pair, cylinder.base, cylinder.length2, cylinder.input) == ("J4", "J3", None, 0)
 
 
-def test_a_group_with_a_prismatic_pair_is_refused():
+def test_a_block_on_a_fixed_slide_is_a_leg_and_the_ternary_is_found_past_it():
     log = whole_log(str(ROOT / "tests" / "assemblies" / "slider_leg.yaml"))
-    with pytest.raises(NotReducible, match="prismatic pair S"):
-        triad_of(log, log.groups[0])
+    t = triad_of(log, log.groups[0])  # the block joins two pairs the group writes (J4, S): it is no ternary
+    assert t.ternary == "ternary" and t.pairs == ("J2", "J4", "J5")
+    assert [(leg.carrier, leg.base, leg.line is not None) for leg in t.legs] == [
+        ("rocker1", "J1", False), ("block", "S", True), ("coupler", "J6", False)]
 
 
 def test_a_group_of_class_iv_is_refused():
