@@ -4,18 +4,21 @@ The group is two rigid links L and R (each with three or more pairs, all of the 
 other link of it binary: a leg joins a body's pair to a pair known before the group, a coupler
 joins a pair of L to a pair of R.  Each body has two legs (it rides on a four-bar of the known
 pairs) and two couplers tie the bodies: the six distance equations of quaternary_fold's group,
-which needs two Add-links at once.  Any other class-IV shape is ``NotReducible``.  As for the
+which needs two Add-links at once.  A body's second leg may instead be a block on a slide fixed to
+the frame (quaternary_slide): its pair then stays on the line along the slide's axis through the
+pair's sketch position.  Any other class-IV shape is ``NotReducible``.  As for the
 triad (``triad``), every number is an exact fraction on the grid of ``triad.grid``.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from fractions import Fraction
 
 from ..errors import and_list
 from ..steplog import ResolverGroup, StepLog
-from .triad import Exact, NotReducible, grid, group_pairs, known_before, snap
+from .triad import Exact, NotReducible, _slide, grid, group_pairs, known_before, snap
 
 
 @dataclass(frozen=True)
@@ -33,6 +36,8 @@ class Body:
     legs: tuple[str, str]  # the two legs' link names
     pairs: tuple[str, ...]  # the body's pairs
     local: tuple[Exact, ...]  # their sketch offsets from ``pair``
+    line: tuple[Exact, Exact] | None = None  # a second leg that is a block on a fixed slide (``other_base`` its
+    # prismatic pair): (n, a), ``held``'s pair stays on n . P = n . a (programs' coordinates; ``length2`` 0)
 
 
 @dataclass(frozen=True)
@@ -68,11 +73,11 @@ def two_bodies_of(log: StepLog, g: ResolverGroup) -> TwoBodies:
     pairs = {p.name: p for p in log.pairs}
     inside = set(group_pairs(log, g))
     known = known_before(log, g)
-    if any(pairs[p].kind == "prismatic" for p in inside):
-        raise NotReducible(f"resolver group {g.number} has a prismatic pair; linkgen counts class-IV groups of "
-                           "revolute pairs only")
+    slides = {p: _slide(log, p, g.number) for p in inside if pairs[p].kind == "prismatic"}
+    blocks = {block: (pair, axis) for pair, (block, axis) in slides.items()}
+    inside -= set(slides)
     bodies = [lk for lk in log.links if len(lk.pairs) >= 3 and set(lk.pairs) <= inside]
-    binary = [lk for lk in log.links if len(lk.pairs) == 2 and set(lk.pairs) & inside]
+    binary = [lk for lk in log.links if len(lk.pairs) == 2 and set(lk.pairs) & inside and lk.name not in blocks]
     shape = (f"resolver group {g.number} is not two links on four-bars tied by two couplers (the class-IV shape "
              "linkgen counts)")
     actuated = any(i.kind == "distance" and set(i.between) & inside for i in log.inputs)
@@ -80,6 +85,9 @@ def two_bodies_of(log: StepLog, g: ResolverGroup) -> TwoBodies:
         raise NotReducible(f"{shape}: its links with three or more pairs are {and_list(b.name for b in bodies)}")
     owner = {p: k for k, b in enumerate(bodies) for p in b.pairs}
     legs: list[list[tuple[str, str, str]]] = [[], []]
+    for name, (slide, _) in blocks.items():
+        (p,) = (q for q in next(lk for lk in log.links if lk.name == name).pairs if q != slide)
+        legs[owner[p]].append((name, p, slide))
     couplers: list[tuple[str, str, str]] = []
     for lk in binary:
         a, b = lk.pairs
@@ -105,12 +113,19 @@ def two_bodies_of(log: StepLog, g: ResolverGroup) -> TwoBodies:
 
     made = []
     for k, lk in enumerate(bodies):
-        (leg0, p0, b0), (leg1, p1, b1) = legs[k]
+        (leg0, p0, b0), (leg1, p1, b1) = sorted(legs[k], key=lambda leg: leg[0] in blocks)  # a block second
+        if leg0 in blocks:
+            raise NotReducible(f"{shape}: both legs of {lk.name} are blocks on slides")
         first = at(p0)
         held = minus(at(p1), first)
-        d = minus(at(p1), at(b1))
+        line = None
+        if leg1 in blocks:
+            axis = blocks[leg1][1]
+            line = ((Fraction(-math.sin(axis)), Fraction(math.cos(axis))),
+                    (snap(pairs[p1].x - log.origin[0], unit), snap(pairs[p1].y - log.origin[1], unit)))
+        d = minus(at(p1), at(b1)) if line is None else (Fraction(0), Fraction(0))
         made.append(Body(lk.name, b0, p0, minus(first, at(b0)), b1, held, d[0] ** 2 + d[1] ** 2, (leg0, leg1),
-                         tuple(lk.pairs), tuple(minus(at(p), first) for p in lk.pairs)))
+                         tuple(lk.pairs), tuple(minus(at(p), first) for p in lk.pairs), line))
     ties = []
     for name, a, b in couplers:
         d = minus(at(a), at(b))

@@ -275,7 +275,7 @@ class _Walk:
         """The class-IV group's solution at its legs' bases in ``env`` (``resultant``)."""
         from . import resultant
 
-        names = [n for b in bodies.bodies for n in (b.base, b.other_base)]
+        names = [n for b in bodies.bodies for n in (b.base, b.base if b.line else b.other_base)]  # a slide: unused
         bases = [(snap(env[self.pos[n]][0], unit), snap(env[self.pos[n]][1], unit)) for n in names]
         key = (bodies.group, tuple(bases))
         if key not in self.solutions:

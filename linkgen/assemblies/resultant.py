@@ -6,7 +6,11 @@ Body k's first leg turns by phi_k from the sketch, the body by theta_k, so its p
     G_k + R(phi_k) v_k + R(theta_k) a     (G_k the leg's base now, v_k the leg's sketch vector).
 
 Four equations hold the four angles: each body's second leg (F_L in phi_L, theta_L; F_R), and the
-two couplers (C_1, C_2 in all four).  With t = tan(angle / 2) each is a polynomial of degree 2 in
+two couplers (C_1, C_2 in all four).  A second leg that is a block on a slide fixed to the frame
+keeps its pair P on a line, n . P = n . a (a the pair's sketch position): n . (G + R(phi) v +
+R(theta) h - a) = 0 is linear in cos and sin of each angle, so times (1 + t_phi^2)(1 + t_theta^2)
+it too is of degree 2 in each (n scaled to integers, the powers of 2 of its binary fractions
+cleared).  With t = tan(angle / 2) each is a polynomial of degree 2 in
 each of its unknowns with exact integer coefficients (the data on the grid of ``triad.grid``,
 divided by it).  Resultants eliminate phi_L (F_L against each coupler), then phi_R (F_R against
 both), then theta_R, leaving P(t_L), t_L = tan(theta_L / 2); factors (1 + t^2) are divided out on
@@ -72,9 +76,13 @@ class Count:
         return self.real_roots - len({r.theta for r in self.roots if abs(r.theta) < math.pi})
 
 
-def equations(bodies: TwoBodies, bases: list[Exact], unit: Fraction) -> list[tuple[list[Term], int]]:
-    """[(terms, length2 over unit^2)] of F_L, F_R, C_1, C_2; ``bases`` the first and second legs'
-    bases of body 0 then body 1, now."""
+Equation = tuple[list[Term], int, tuple[int, int] | None]  # |sum|^2 = length2, or normal . sum = 0 (a slide)
+
+
+def equations(bodies: TwoBodies, bases: list[Exact], unit: Fraction) -> list[Equation]:
+    """[(terms, length2 over unit^2, None)] of F_L, F_R, C_1, C_2, or (terms, 0, integer normal) for a
+    second leg on a slide; ``bases`` the first and second legs' bases of body 0 then body 1, now (a
+    slide leg's second base is not used)."""
     def grid(v: Exact) -> tuple[int, int]:
         x, y = v[0] / unit, v[1] / unit
         if x.denominator != 1 or y.denominator != 1:
@@ -91,18 +99,26 @@ def equations(bodies: TwoBodies, bases: list[Exact], unit: Fraction) -> list[tup
         return int(v)
 
     (left, right), (c1, c2) = bodies.bodies, bodies.couplers
-    gl, hl, gr, hr = (grid(b) for b in bases)
-    out: list[tuple[list[Term], int]] = []
+    gl, gr = grid(bases[0]), grid(bases[2])
+    hl, hr = bases[1], bases[3]
+    out: list[Equation] = []
     for k, (b, g, h) in enumerate(((left, gl, hl), (right, gr, hr))):
-        out.append(([(None, g), (2 * k, grid(b.leg)), (2 * k + 1, grid(b.held)), (None, neg(h))], l2(b.length2)))
+        normal = None
+        if b.line is not None:
+            (nx, ny), h = b.line
+            scale = math.lcm(nx.denominator, ny.denominator)
+            normal = (int(nx * scale), int(ny * scale))
+        out.append(([(None, g), (2 * k, grid(b.leg)), (2 * k + 1, grid(b.held)), (None, neg(grid(h)))],
+                    l2(b.length2), normal))
     for c in (c1, c2):
         out.append(([(None, gl), (0, grid(left.leg)), (1, grid(c.left)), (None, neg(gr)), (2, neg(grid(right.leg))),
-                     (3, neg(grid(c.right)))], l2(c.length2)))
+                     (3, neg(grid(c.right)))], l2(c.length2), None))
     return out
 
 
-def polynomial(ctx: Any, terms: list[Term], length2: int) -> Any:
-    """|sum of the terms|^2 - length2 times (1 + t^2) for each angle the terms turn by."""
+def polynomial(ctx: Any, terms: list[Term], length2: int, normal: tuple[int, int] | None = None) -> Any:
+    """|sum of the terms|^2 - length2 over (1 + t^2) for each angle the terms turn by; with a
+    ``normal``, normal . (sum of the terms) times (1 + t^2) for each angle."""
     gens = ctx.gens()
     used = sorted({v for v, _ in terms if v is not None})
     q = {v: 1 + gens[v] ** 2 for v in used}
@@ -117,6 +133,8 @@ def polynomial(ctx: Any, terms: list[Term], length2: int) -> Any:
         else:
             c, s = 1 - gens[v] ** 2, 2 * gens[v]
             x, y = x + (c * ax - s * ay) * rest, y + (s * ax + c * ay) * rest
+    if normal is not None:
+        return normal[0] * x + normal[1] * y
     whole = ctx.from_dict({tuple(0 for _ in NAMES): 1})
     for u in used:
         whole = whole * q[u]
@@ -194,7 +212,7 @@ def solve(bodies: TwoBodies, bases: list[Exact], unit: Fraction, scale: float) -
     body 1; positions as the bases': the same origin)."""
     ctx = flint.fmpz_mpoly_ctx.get(NAMES, "lex")
     eqs = equations(bodies, bases, unit)
-    polys = [polynomial(ctx, terms, length2) for terms, length2 in eqs]
+    polys = [polynomial(ctx, *e) for e in eqs]
     s1, s2, p = eliminate(polys[0], polys[1], polys[2], polys[3], ctx)
     if p == 0:
         raise NotReducible("the group's equations do not fix it at this position (its couplers' resultants "
@@ -296,7 +314,7 @@ def _over(eqs: list[Any], polys: list[Any], s1: Any, t_l: Any, t_r: Any, size: A
         for tr in t_rs:
             for p_r in _roots(_values(polys[1], {3: tr}, 2)) if tr is not None else _pi_roots(polys[1], 3, 2):
                 angles = [_angle(p_l), _angle(t_l), _angle(p_r), _angle(tr)]
-                res, _ = _equations(eqs, angles)
+                res, _ = _equations(eqs, angles, size)
                 if max(abs(r) for r in res) / size**2 > LOOSE:
                     continue
                 out.append(_polish(eqs, angles, size))
@@ -313,11 +331,12 @@ def _pi_roots(f: Any, turned: int, free: int) -> list[Any]:
     return _roots([top.get(k, MP.mpf(0)) for k in range(max(top, default=0), -1, -1)])
 
 
-def _equations(eqs: list[Any], angles: list[Any]) -> tuple[list[Any], list[list[Any]]]:
-    """The four equations |sum of the terms|^2 - length^2 (grid units) at the angles, and their Jacobian."""
+def _equations(eqs: list[Any], angles: list[Any], size: Any) -> tuple[list[Any], list[list[Any]]]:
+    """The four equations |sum of the terms|^2 - length^2 (grid units) at the angles, and their
+    Jacobian; a slide's as size times its pair's distance from the line (also an area)."""
     rot = [(MP.cos(a), MP.sin(a)) for a in angles]
     res, jac = [], []
-    for terms, length2 in eqs:
+    for terms, length2, normal in eqs:
         vx = vy = MP.mpf(0)
         turned = []
         for v, (ax, ay) in terms:
@@ -328,10 +347,16 @@ def _equations(eqs: list[Any], angles: list[Any]) -> tuple[list[Any], list[list[
             x, y = c * ax - s * ay, s * ax + c * ay
             vx, vy = vx + x, vy + y
             turned.append((v, -y, x))  # d/dangle of R(angle) a
-        res.append(vx * vx + vy * vy - length2)
         row = [MP.mpf(0)] * 4
-        for v, dx, dy in turned:
-            row[v] += 2 * (vx * dx + vy * dy)
+        if normal is not None:
+            nx, ny = (MP.mpf(n) * size / MP.sqrt(MP.mpf(normal[0] ** 2 + normal[1] ** 2)) for n in normal)
+            res.append(nx * vx + ny * vy)
+            for v, dx, dy in turned:
+                row[v] += nx * dx + ny * dy
+        else:
+            res.append(vx * vx + vy * vy - length2)
+            for v, dx, dy in turned:
+                row[v] += 2 * (vx * dx + vy * dy)
         jac.append(row)
     return res, jac
 
@@ -339,14 +364,14 @@ def _equations(eqs: list[Any], angles: list[Any]) -> tuple[list[Any], list[list[
 def _polish(eqs: list[Any], angles: list[Any], size: Any) -> tuple[Assembled, Any]:
     """Newton's method on the four equations at 50 digits from a candidate that nearly closes."""
     for _ in range(NEWTON_STEPS):
-        res, jac = _equations(eqs, angles)
+        res, jac = _equations(eqs, angles, size)
         step = MP.lu_solve(MP.matrix(jac), MP.matrix(res))
         angles = [a - step[k] for k, a in enumerate(angles)]
         if max(abs(step[k]) for k in range(4)) < MP.mpf(10) ** (5 - MP.dps):
             break
     else:
         raise ArithmeticError("Newton's method did not converge from a root of the class-IV eliminant")
-    res, _ = _equations(eqs, angles)
+    res, _ = _equations(eqs, angles, size)
     error = max(abs(r) for r in res) / size**2
     if error > MP.mpf(10) ** -30:
         raise ArithmeticError(f"a root of the class-IV eliminant leaves its equations off by {float(error):.3g} L^2")
