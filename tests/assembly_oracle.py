@@ -177,12 +177,13 @@ def worst_residual(ref: Reference, row: dict, values) -> float:
     return max(float(abs(r)) / s for r, s in zip(res, ref.constraint_scales()))
 
 
-def bodies_search(bodies, legs, couplers, starts=BODIES_STARTS, seed=20):
+def bodies_search(bodies, legs, couplers, starts=BODIES_STARTS, seed=20, slides=()):
     """Every pose of two rigid bodies held by legs and tied by couplers, by Newton's method at 50
     digits from ``starts`` starts (a multistart search on the six distance equations in the bodies'
     poses: no resultant, no leg angles).  ``bodies``: two lists of pair offsets from each body's
     first pair; ``legs``: (body, pair index, base point, squared length); ``couplers``: (pair index
-    on body 0, on body 1, squared length).  Returns the distinct poses (x0, y0, t0, x1, y1, t1)."""
+    on body 0, on body 1, squared length); ``slides``: (body, pair index, unit normal n, d) of blocks on
+    fixed slides, n . P = d.  Returns the distinct poses (x0, y0, t0, x1, y1, t1)."""
     rng = random.Random(seed)
     rows = [(k, bodies[k][i], base, l2) for k, i, base, l2 in legs]
     scale = max(MP.sqrt(l2) for *_, l2 in rows)
@@ -205,6 +206,12 @@ def bodies_search(bodies, legs, couplers, starts=BODIES_STARTS, seed=20):
             row = [MP.mpf(0)] * 6
             row[3 * k], row[3 * k + 1], row[3 * k + 2] = 2 * vx, 2 * vy, 2 * (vx * dx + vy * dy)
             jac.append([v / scale**2 for v in row])
+        for k, i, n, d in slides:
+            (px, py), (dx, dy) = point(k, bodies[k][i])
+            f.append((n[0] * px + n[1] * py - d) / scale)
+            row = [MP.mpf(0)] * 6
+            row[3 * k], row[3 * k + 1], row[3 * k + 2] = n[0], n[1], n[0] * dx + n[1] * dy
+            jac.append([v / scale for v in row])
         for i, j, l2 in couplers:
             (px, py), (dx, dy) = point(0, bodies[0][i])
             (qx, qy), (ex, ey) = point(1, bodies[1][j])

@@ -333,9 +333,10 @@ QUATERNARY_LEGS = ((0, "A1", "G1"), (0, "A2", "G2"), (1, "B1", "G3"), (1, "B2", 
 QUATERNARY_COUPLERS = (("A3", "B3"), ("A4", "B4"))
 
 
-def _bodies_poses(path, census, bodies, legs, couplers, crank=("O", "G3")):
+def _bodies_poses(path, census, bodies, legs, couplers, crank=("O", "G3"), slides=()):
     """The two-body search's poses at the census's input (the crank tip turned from the sketch at 50
-    digits; the other bases are frame pairs), as pair -> position."""
+    digits; the other bases are frame pairs), as pair -> position; ``slides``: (body, pair, axis in
+    degrees) of blocks on frame slides through the pair's sketch position."""
     ref = Reference(path)
     sketch = {k: (MP.mpf(x), MP.mpf(y)) for k, (x, y) in ref.m.positions.items()}
     turn = MP.mpf(census.inputs[0]) - ref.sketch_inputs(exact=True)[0]
@@ -354,8 +355,12 @@ def _bodies_poses(path, census, bodies, legs, couplers, crank=("O", "G3")):
     local = [[off(p, body[0]) for p in body] for body in bodies]
     rows = [(k, bodies[k].index(p), where[b], d2(p, b)) for k, p, b in legs]
     ties = [(bodies[0].index(a), bodies[1].index(b), d2(a, b)) for a, b in couplers]
+    lines = []
+    for k, p, axis in slides:
+        n = (-MP.sin(MP.radians(axis)), MP.cos(MP.radians(axis)))
+        lines.append((k, bodies[k].index(p), n, n[0] * sketch[p][0] + n[1] * sketch[p][1]))
     out = []
-    for z in bodies_search(local, rows, ties):
+    for z in bodies_search(local, rows, ties, slides=lines):
         pose = {}
         for k in (0, 1):
             cc, ss = MP.cos(z[3 * k + 2]), MP.sin(z[3 * k + 2])
@@ -417,19 +422,38 @@ def _rows_keep_the_reference_constraints(path, log):
         assert worst_residual(ref, row, [value]) < TOLERANCE
 
 
-def test_a_class_iv_group_with_a_prismatic_pair_is_extracted_and_its_rows_close_but_not_counted():
+QUATERNARY_SLIDE = QUATERNARY_LEGS[:3]  # leg4 is a block on B2 sliding on the frame line at 80 deg
+QSLIDE = (1, "B2", 80.0)
+
+
+def test_a_class_iv_group_with_a_prismatic_pair_is_extracted_and_its_rows_close():
     """Issue 20 says a class-IV group with one prismatic pair is refused by extraction ("an Add-link
     group is left open"): quaternary_fold with leg4 replaced by a block sliding on a frame line is not.
     Its group takes two Add-links, the first placing B2 by a 2R1P chain on the slide; the evaluator's
     rows keep every constraint of the reference model (tests/reference.py: lengths and the slide line)
-    to 1e-12; `linkgen assemblies` refuses it with its reason (class IV is counted for revolute pairs)."""
+    to 1e-12.  Its count is the long test below."""
     path = str(ROOT / "tests" / "regressions" / "quaternary_slide.yaml")  # one file: not in every suite's glob
     log = whole_log(path)
     (g,) = log.groups
     assert len(g.add_links) == 2 and any(log.step(n).function == "PRR_links" for n in g.steps)
     _rows_keep_the_reference_constraints(path, log)
-    with pytest.raises(ProcedureError, match="prismatic pair"):
-        assemblies(path, log)
+
+
+@LONG
+def test_quaternary_slides_class_iv_count_is_the_multistart_searchs():
+    """quaternary_slide's group (a body on a four-bar and one on a slider-crank, tied by two couplers)
+    at the sketch: the resultant's assemblies are the poses a 50-digit multistart search of the five
+    distance equations and the slide line finds, and no more; every assembly keeps every constraint
+    of the reference model to 1e-12 (about a minute: the elimination)."""
+    path = str(ROOT / "tests" / "regressions" / "quaternary_slide.yaml")
+    log = whole_log(path)
+    census = assemblies(path, log)
+    poses = _bodies_poses(path, census, QUATERNARY, QUATERNARY_SLIDE, QUATERNARY_COUPLERS, slides=[QSLIDE])
+    (solve,) = census.solves
+    assert solve.factors and sum(solve.factors) <= solve.degree
+    assert solve.real_roots - solve.rejected == len(poses) == len(census.assemblies)
+    assert _matches(census, poses, log.length_scale) == [1] * len(poses)
+    _valid_and_distinct(path, log, census)
 
 
 def test_two_ternaries_tied_by_a_link_and_a_slot_are_extracted():

@@ -3,6 +3,7 @@ couplers (checked by hand against its file), and a triad's group refused."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
@@ -32,3 +33,16 @@ def test_a_triads_group_is_not_two_bodies():
     log = whole_log(str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"))
     with pytest.raises(NotReducible, match="not two links on four-bars"):
         two_bodies_of(log, log.groups[0])
+
+
+def test_quaternary_slides_right_body_has_its_block_as_second_leg_on_the_frame_line():
+    """quaternary_slide.yaml: right rides on leg3 (from G3) and the block on B2, whose line is the slide S's
+    axis (80 deg) through B2's sketch position (153.9, 69.0), in the programs' coordinates (less the origin)."""
+    log = whole_log(str(ROOT / "tests" / "regressions" / "quaternary_slide.yaml"))
+    left, right = two_bodies_of(log, log.groups[0]).bodies
+    assert (left.legs, right.legs, right.base, right.other_base) == (("leg1", "leg2"), ("leg3", "block"), "G3", "S")
+    assert left.line is None and right.line is not None
+    (nx, ny), (ax, ay) = right.line
+    assert (float(nx), float(ny)) == pytest.approx((-math.sin(math.radians(80)), math.cos(math.radians(80))), abs=1e-15)
+    assert (float(ax) + log.origin[0], float(ay) + log.origin[1]) == pytest.approx((153.9, 69.0), abs=1e-12)
+    assert float(right.held[0]) == pytest.approx(153.9 - 75.9, abs=1e-12)

@@ -87,7 +87,7 @@ def _at(p, values) -> Fraction:
 def test_the_eliminant_vanishes_at_the_pose_and_every_assembly_is_one(seed):
     bodies, bases, turns = _posed(seed)
     ctx = flint.fmpz_mpoly_ctx.get(NAMES, "lex")
-    polys = [polynomial(ctx, terms, l2) for terms, l2 in equations(bodies, bases, UNIT)]
+    polys = [polynomial(ctx, *e) for e in equations(bodies, bases, UNIT)]
     assert all(_at(p, turns) == 0 for p in polys)
     _, _, p = eliminate(*polys, ctx)
     eliminant = univariate(p, 1)
@@ -127,3 +127,59 @@ def test_an_assembly_with_the_first_body_turned_half_a_turn_is_found_on_its_own(
     (half,) = [r for r in count.roots if abs(abs(r.theta) - math.pi) < 1e-12]
     assert half.angles[0] == pytest.approx(2 * math.atan(0.5), abs=1e-12)
     assert all(max(_distances(bodies, bases, r)) < 1e-12 for r in count.roots)
+
+
+NORMAL = (Fraction(3, 8), Fraction(-1, 2))  # the slide's normal (any rational: scaled to integers)
+
+
+def _slid(seed: int):
+    """_posed with body 1's second leg a block on a frame slide: its pair on the line with NORMAL through a
+    point 16 |n| along the line from the pair's posed position (not the pose itself)."""
+    bodies, bases, turns = _posed(seed)
+    left, right = bodies.bodies
+    p = (bases[2][0] + _rot(turns[2], right.leg)[0], bases[2][1] + _rot(turns[2], right.leg)[1])
+    q = _rot(turns[3], right.held)
+    on = (p[0] + q[0] - 16 * NORMAL[1], p[1] + q[1] + 16 * NORMAL[0])
+    slid = Body(right.link, right.base, right.pair, right.leg, "S", right.held, Fraction(0), right.legs,
+                right.pairs, right.local, (NORMAL, on))
+    return TwoBodies(1, (left, slid), bodies.couplers), bases, turns, on
+
+
+def test_a_slide_legs_equation_is_the_half_angle_form_of_n_dot_p_and_vanishes_at_the_pose():
+    """Body 1's slide equation is (1 + t_phi^2)(1 + t_theta^2) n . (P - a) (sympy, from cos = (1 - t^2) / (1 +
+    t^2), sin = 2 t / (1 + t^2)) up to a constant; it and the eliminant vanish exactly at the pose (which is
+    among the assemblies, every one on the line and at its distances to 1e-12)."""
+    import sympy
+
+    bodies, bases, turns, on = _slid(3)
+    ctx = flint.fmpz_mpoly_ctx.get(NAMES, "lex")
+    polys = [polynomial(ctx, *e) for e in equations(bodies, bases, UNIT)]
+    assert all(_at(p, turns) == 0 for p in polys)
+    assert _at(polys[1], (0, 0, turns[2], turns[3] + 1)) != 0
+    tp, tt = sympy.symbols("tp tt")
+    right = bodies.bodies[1]
+
+    def turned(t, v):
+        c, s = (1 - t**2) / (1 + t**2), 2 * t / (1 + t**2)
+        return c * sympy.Rational(v[0]) - s * sympy.Rational(v[1]), s * sympy.Rational(v[0]) + c * sympy.Rational(v[1])
+
+    leg, held = turned(tp, right.leg), turned(tt, right.held)
+    px = sympy.Rational(bases[2][0]) + leg[0] + held[0]
+    py = sympy.Rational(bases[2][1]) + leg[1] + held[1]
+    nx, ny, ax, ay = (sympy.Rational(v) for v in (*NORMAL, *on))
+    want = sympy.expand(sympy.cancel((1 + tp**2) * (1 + tt**2) * (nx * (px - ax) + ny * (py - ay))))
+    got = sympy.expand(sum(int(c) * tp ** int(e[2]) * tt ** int(e[3]) for e, c in polys[1].to_dict().items()))
+    ratio = sympy.cancel(got / want)
+    assert ratio.is_number and ratio != 0
+    _, _, p = eliminate(*polys, ctx)
+    assert sum(int(c) * turns[1] ** k for k, c in enumerate(univariate(p, 1).coeffs())) == 0
+    count = solve(bodies, bases, UNIT, 200.0)
+    assert any(max(abs(math.remainder(a - 2 * math.atan(float(t)), 2 * math.pi)) for a, t in zip(r.angles, turns))
+               < 1e-12 for r in count.roots)
+    n = math.hypot(*NORMAL)
+    for r in count.roots:
+        pos = dict(zip(bodies.pairs, r.positions))
+        x, y = pos[right.pairs[1]]
+        assert abs(float(NORMAL[0]) * (x - float(on[0])) + float(NORMAL[1]) * (y - float(on[1]))) / n / 200 < 1e-12
+        errors = _distances(bodies, bases, r)
+        assert max(errors[:3] + errors[4:]) < 1e-12  # the fourth: body 1's second leg, a slide here
