@@ -10,20 +10,19 @@ two couplers (C_1, C_2 in all four).  A second leg that is a block on a slide fi
 keeps its pair P on a line, n . P = n . a (a the pair's sketch position): n . (G + R(phi) v +
 R(theta) h - a) = 0 is linear in cos and sin of each angle, so times (1 + t_phi^2)(1 + t_theta^2)
 it too is of degree 2 in each (n scaled to integers, the powers of 2 of its binary fractions
-cleared).  With t = tan(angle / 2) each is a polynomial of degree 2 in
-each of its unknowns with exact integer coefficients (the data on the grid of ``triad.grid``,
-divided by it).  Resultants eliminate phi_L (F_L against each coupler), then phi_R (F_R against
-both), then theta_R, leaving P(t_L), t_L = tan(theta_L / 2); factors (1 + t^2) are divided out on
-the way.  Every assembly's theta_L is a root of P (a resultant vanishes wherever its two
-polynomials have a common root, finite or where both leading coefficients vanish); theta_L = pi
-(t_L infinite) is checked on its own, from the equations' leading coefficients in t_L.  P also has
-roots where F_L's two branches (or F_R's) close the two couplers separately: every real root is
-back-substituted (both roots of F_L and of F_R, every root of the theta_R resultant, and half a
-turn for each), polished by Newton's method on the four equations at 50 digits, and kept only
-where it converges, every equation holds to 1e-30 L^2 and theta_L stays at the root (to 1e-30).
-Real roots are isolated from the exact coefficients by FLINT (python-flint: arb's certified
-``complex_roots`` on each irreducible factor of P, ball arithmetic).  Sturm's theorem is not
-used here: on P's factors of degree 50 to 64 its sequence takes minutes (measured: 125 s).
+cleared).  With t = tan(angle / 2) each is a polynomial of degree 2 in each of its unknowns with
+exact integer coefficients (the data on the grid of ``triad.grid``, divided by it).  Resultants
+eliminate phi_L (F_L against each coupler), then phi_R (F_R against both), then theta_R, leaving
+P(t_L), t_L = tan(theta_L / 2); factors (1 + t^2) are divided out on the way.  Every assembly's
+theta_L is a root of P (a resultant vanishes wherever its two polynomials have a common root,
+finite or where both leading coefficients vanish); theta_L = pi (t_L infinite) is checked on its
+own, from the equations' leading coefficients in t_L.  P also has roots where F_L's two branches
+(or F_R's) close the two couplers separately: every real root is back-substituted (both roots of
+F_L and of F_R, every root of the theta_R resultant, and half a turn for each), polished by
+Newton's method on the four equations at 50 digits, and kept only where it converges, every
+equation holds to 1e-30 L^2 and theta_L stays at the root (to 1e-30).  Real roots are isolated from
+the exact coefficients by FLINT (python-flint: arb's certified ``complex_roots`` on each
+irreducible factor of P, ball arithmetic); no Sturm count (125 s on P's factors of degree 50-64).
 """
 
 from __future__ import annotations
