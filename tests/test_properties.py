@@ -787,7 +787,9 @@ def test_resolver_sweep(kind, work, data):
     assembly (up to a full turn): Newton steps per warm-started row (mean <= 3.5, max <= 8), no failed
     row, no other assembly, positions within 4 eps L of the 50-digit reference where every sigma >= 0.5
     (Fig. 14 family).  (The sweep stops where the reference does: rows past an assembly limit fail
-    anyway, and each costs the evaluator a continuation.)"""
+    anyway, and each costs the evaluator a continuation.)  A sketch at a singular position
+    (conditioning below MIN_COND) is where assemblies meet: there each row is held to the assembly
+    through its own pose (reference Newton from it), which a row that keeps no constraint fails."""
     sketch = data.draw(sketches(kind))
     b = build(sketch, work)
     assert b.log.groups, "a class-III six-bar without a resolver"
@@ -827,6 +829,8 @@ def test_resolver_sweep(kind, work, data):
         assert not (st_k > 0 and st_k % 10 in (1, 2)), (
             f"{where}: status {st_k} on the sketch's assembly (conditioning {b.cond if k == 0 else 'walked'})")
         row = dict(zip(names, (float(x) for x in table[k])))
+        if b.cond < sk.MIN_COND:  # a singular sketch: assemblies meet there, the row may be on any of them
+            q = ref.newton(ref.guess(row), ref.turned_inputs(ref.guess(row), [values[k]]), exact=False)[0]
         outs = ref.outputs(q)
         off = max(abs(row[c] - float(x)) for c, x in outs.items() if sk.quantity(c) == "position")
         assert off <= 1e-7 * b.length, f"{where}: {off / b.length:.3g} L from the sketch's assembly"
@@ -1542,3 +1546,20 @@ def test_a_slider_links_point_over_a_short_base_is_placed_from_the_lines_angle()
         for c in ("P.x", "P.y"):
             err = float(abs(sk.MP.mpf(row[c]) - reached.columns[c]) / (EPS * ref.length_scale))
             assert err <= RESOLVER_POSITION, f"row {k} {c}: {err:.3g} eps L (2.7e4 from the short base)"
+
+
+def test_a_singular_sketch_goes_on_along_an_assembly_that_meets_there(tmp_path):
+    """Found by test_resolver_sweep[triad] in the long tier (triad_120): J1, J2, J3, J4 and J7 on one line,
+    the sketch at conditioning 5.6e-9, a position where assemblies meet.  The reference's walk and the
+    sweep leave it on different ones (0.143 L apart three degrees on), and the test held the sweep to the
+    walk's; either is the mechanism's.  Every row, one degree apart, solves and is the assembly through
+    its own pose (the reference's Newton from it), which a row that breaks a constraint is not."""
+    text = (Path(__file__).parent / "regressions" / "triad_singular_sketch.yaml").read_text()
+    names, data, result, ref, values = _triad_rows(tmp_path, text, "triad_singular_sketch")
+    assert sk.sketch_condition(ref) < sk.MIN_COND
+    assert list(result.status[1:]) == [0] * (len(values) - 1)
+    for k in range(1, len(values)):
+        row = dict(zip(names, (float(x) for x in data[k])))
+        q = ref.newton(ref.guess(row), ref.turned_inputs(ref.guess(row), [values[k]]), exact=False)[0]
+        off = max(abs(row[c] - float(x)) for c, x in ref.outputs(q).items() if sk.quantity(c) == "position")
+        assert off <= 1e-9 * ref.length_scale, f"row {k}: {off / ref.length_scale:.3g} L from an assembly"
