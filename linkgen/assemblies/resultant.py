@@ -51,10 +51,11 @@ Term = tuple[int | None, tuple[int, int]]  # (the angle that turns the vector, o
 
 @dataclass(frozen=True)
 class Assembled:
-    """One assembly of the group: theta_L, the four angles (radians) and every body pair's position."""
+    """One assembly of the group: theta_L, its angles (radians; four, or two for ``pivoted``) and every body
+    pair's position."""
 
     theta: float
-    angles: tuple[float, float, float, float]
+    angles: tuple[float, ...]
     positions: tuple[tuple[float, float], ...]  # in the order of TwoBodies.pairs
     error: float  # the worst equation's residual after polishing, over L^2
 
