@@ -164,7 +164,7 @@ def test_an_assembly_out_of_range_is_an_error(tmp_path):
 
 
 def test_a_group_linkgen_cannot_count_cannot_be_followed():
-    path = ROOT / "tests" / "assemblies" / "class4.yaml"
+    path = ROOT / "tests" / "assemblies" / "moving_slot.yaml"  # a block in a slot of a moving rocker
     with pytest.raises(InputError, match=r"--assembly: linkgen cannot count the assemblies"):
         build_log(str(path), options={"assembly": 1})
     log = build_log(str(path), sweep=False)

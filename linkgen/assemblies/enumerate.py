@@ -14,7 +14,7 @@ import math
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -190,7 +190,7 @@ class _Walk:
         for k, root in enumerate(roots):
             root_env = dict(env)
             placed = dict(zip(triad.pairs, root.positions))
-            axes = triad.axes(root.angles) if isinstance(triad, Pivoted) else {}
+            axes = triad.axes(cast("Assembled", root).angles) if isinstance(triad, Pivoted) else {}
             for s in (self.log.step(n) for n in g.steps):
                 if s.function in CHAINS:
                     entity = self.log.variable(s.outputs[-1]).entity
@@ -297,7 +297,7 @@ class _Walk:
 
     def _solve_pivoted(self, shape: Pivoted, env: Env, unit: Any) -> Count:
         """The group of two links on their own pivots at the pivots' positions in ``env`` (``pivoted``)."""
-        from . import pivoted, resultant
+        from . import pivoted
 
         pivots = [(snap(env[self.pos[n]][0], unit), snap(env[self.pos[n]][1], unit)) for n in shape.pivots]
         key = (shape.group, tuple(pivots))
@@ -306,9 +306,7 @@ class _Walk:
             self.solutions[key] = sol
             self.out.solves.append(GroupCount(shape.group, shape.describe(), sol.degree, sol.real_roots, sol.at_pi,
                                               tuple(r.theta for r in sol.roots), (), (), sol.factors, sol.rejected))
-        found = self.solutions[key]
-        assert isinstance(found, resultant.Count)
-        return found
+        return cast("Count", self.solutions[key])
 
     def _values(self, env: Env) -> dict[str, float]:
         return _columns(self.log, lambda name, field: env[name][record_fields(self._kind(name), 0).index(field)])

@@ -13,10 +13,11 @@ METHOD = ("characteristic polynomial has its real roots isolated exactly (sympy'
           "fractions on its rational coefficients) and counted again by Sturm's theorem, each root polished by "
           "Newton's method at 50 digits")
 
-METHOD_IV = ("class-IV group's eliminant (resultants of its four closure equations in tangent half-angles, "
-             "python-flint) has its real roots isolated from its exact integer coefficients (arb's certified "
-             "complex_roots on each irreducible factor), each root back-substituted and polished by Newton's method "
-             "at 50 digits, the spurious ones rejected")
+METHOD_IV = ("class-IV group's eliminant (resultants of its closure equations in tangent half-angles, python-flint) "
+             "has its real roots isolated from its exact integer coefficients (arb's certified complex_roots on each "
+             "irreducible factor; for two links on their own pivots, sympy's exact isolation counted again by Sturm's "
+             "theorem), each root back-substituted and polished by Newton's method at 50 digits, the spurious ones "
+             "rejected")
 
 MANUAL_METHOD = ("every resolver group's characteristic polynomial\nhas its real roots isolated in exact "
                  "arithmetic and counted by Sturm's theorem, each\npolished at 50 digits")
