@@ -35,7 +35,7 @@ from typing import Any
 import flint
 import mpmath
 
-from . import interpolate
+from . import ballroots, interpolate
 from .bodies import TwoBodies
 from .triad import Exact, NotReducible
 
@@ -293,9 +293,9 @@ def _roots(coeffs: list[Any]) -> list[Any]:
             root = MP.sqrt(max(disc, 0))
             out += [(-b + root) / (2 * a), (-b - root) / (2 * a)]
     elif len(coeffs) > 3:
-        for z in MP.polyroots(coeffs, maxsteps=200, extraprec=400):
-            if abs(MP.im(z)) <= MP.mpf(10) ** -20 * (1 + abs(z)):
-                out.append(MP.re(z))
+        balls = ballroots.real_roots(coeffs, MP)
+        out += balls if balls is not None else [MP.re(z) for z in MP.polyroots(coeffs, maxsteps=200, extraprec=400)
+                                                if abs(MP.im(z)) <= MP.mpf(10) ** -20 * (1 + abs(z))]
     return out
 
 
