@@ -237,7 +237,7 @@ def _reached(statuses: list[int], values: list[list[float]], sketch: float) -> l
 @LONG  # class4_slot: 10 s a case (the reference's continuation over the turn); quaternary_fold: about 2 min
 @pytest.mark.parametrize(("path", "k"), CLASS4, ids=[f"{p.stem}-{k}" for p, k in CLASS4])
 def test_a_class_iv_assembly_is_followed(tmp_path, path, k):
-    """Assembly K of a class-IV group (quaternary_fold: counted at the build, about 20 s): the programs'
+    """Assembly K of a class-IV group (quaternary_fold: counted at the build, about 10 s): the programs'
     first solve is assembly K as listed to 1e-12 L, which keeps every constraint of the reference model
     to 1e-12 L (its count and poses are checked against the multistart searches in tests/
     test_assemblies_pivots.py and tests/test_assemblies.py); every row the programs reach from the

@@ -27,7 +27,7 @@ def listing(log: StepLog, assembly: int = 0) -> Assemblies:
     """Every assembly of ``log``'s mechanism (its whole procedure at order 0) at the sketch's
     inputs; the programs follow ``assembly``, 0 for the sketch's.  A census linkgen cannot
     make is recorded with its reason (no count rather than a wrong one).  A group of two bodies
-    on four-bars (two Add-links at once, its elimination 20 s) is counted only for an assembly asked for."""
+    on four-bars (two Add-links at once, its elimination 10 s) is counted only for an assembly asked for."""
     values = tuple(i.sketch for i in log.inputs)
     try:
         found = census(log, values, class_iv=assembly > 0)
