@@ -34,9 +34,15 @@ def _rot(t, v):
     return c * v[0] - s * v[1], s * v[0] + c * v[1]
 
 
-def search(deg: float, grid: int = GRID) -> list[dict[str, tuple[float, float]]]:
-    """Every pose of left and right at the crank angle ``deg`` (file degrees), as pair -> position."""
-    ref = Reference(SLOT)
+LEFT, RIGHT = ("B", "C"), ("E", "F", "S")  # the pairs of left (on O1) and right (on O2) in both files
+SLOT_TIES = ((("B", "E"),), (("C", "S", AXIS),))  # class4_slot: upper B-E; C in right's slot through S
+LINK_TIES = ((("B", "E"), ("C", "F")), ())  # class4: upper B-E, lower C-F
+
+
+def search(deg: float, grid: int = GRID, path: str = "", ties=SLOT_TIES) -> list[dict[str, tuple[float, float]]]:
+    """Every pose of left and right at the crank angle ``deg`` (file degrees), as pair -> position;
+    ``ties``: (links (a on left, b on right)), (slots (a on left, s on right, axis in degrees))."""
+    ref = Reference(path or SLOT)
     p = {k: (MP.mpf(x), MP.mpf(y)) for k, (x, y) in ref.m.positions.items()}
     turn = MP.radians(MP.mpf(deg)) - ref.sketch_inputs(exact=True)[0]
     tip = _rot(turn, (p["O2"][0] - p["J7"][0], p["O2"][1] - p["J7"][1]))
@@ -45,19 +51,22 @@ def search(deg: float, grid: int = GRID) -> list[dict[str, tuple[float, float]]]
     def off(a, b):
         return p[a][0] - p[b][0], p[a][1] - p[b][1]
 
-    length2 = sum(x * x for x in off("B", "E"))
-    n = (-MP.sin(MP.radians(AXIS)), MP.cos(MP.radians(AXIS)))
+    links, slots = ties
 
     def pose(z):
-        return {"B": _add(p["O1"], _rot(z[0], off("B", "O1"))), "C": _add(p["O1"], _rot(z[0], off("C", "O1"))),
-                "E": _add(o2, _rot(z[1], off("E", "O2"))), "S'": _add(o2, _rot(z[1], off("S", "O2")))}
+        return {**{a: _add(p["O1"], _rot(z[0], off(a, "O1"))) for a in LEFT if a in p},
+                **{b: _add(o2, _rot(z[1], off(b, "O2"))) for b in RIGHT if b in p}}
 
     def _f(z):
-        q = pose(z)
-        v = (q["B"][0] - q["E"][0], q["B"][1] - q["E"][1])
-        w = (q["C"][0] - q["S'"][0], q["C"][1] - q["S'"][1])
-        nn = _rot(z[1], n)
-        return [(v[0] ** 2 + v[1] ** 2 - length2) / 100, nn[0] * w[0] + nn[1] * w[1]]
+        q, out = pose(z), []
+        for a, b in links:
+            v = (q[a][0] - q[b][0], q[a][1] - q[b][1])
+            out.append((v[0] ** 2 + v[1] ** 2 - sum(x * x for x in off(a, b))) / 100)
+        for a, b, axis in slots:  # a on the line through b's place on right, at axis turned with right
+            w = (q[a][0] - q[b][0], q[a][1] - q[b][1])
+            nn = _rot(z[1], (-MP.sin(MP.radians(axis)), MP.cos(MP.radians(axis))))
+            out.append(nn[0] * w[0] + nn[1] * w[1])
+        return out
 
     def system(z):  # the residuals and their Jacobian by a forward difference of 1e-30 (50 digits)
         h = MP.mpf(10) ** -30
@@ -92,7 +101,7 @@ def search(deg: float, grid: int = GRID) -> list[dict[str, tuple[float, float]]]
     out = []
     for z in sorted(found):
         q = pose(z)
-        out.append({k: (float(x), float(y)) for k, (x, y) in q.items() if k != "S'"})
+        out.append({k: (float(x), float(y)) for k, (x, y) in q.items() if k != "S"})  # S: the slot's place
     return out
 
 
@@ -137,3 +146,18 @@ def test_the_slot_count_states_its_eliminant():
     text = table(log, assemblies(SLOT, log))
     assert "left (on O1) and right (on O2) tied by upper and the slot of block, class IV" in text
     assert "eliminant of degree 6" in text and "2 real roots" in text and math.isfinite(log.length_scale)
+
+
+@pytest.mark.long
+@pytest.mark.parametrize("deg", [90.0, 200.0])
+def test_class4s_count_is_the_multistart_searchs(deg):
+    """tests/assemblies/class4.yaml (the same two ternaries tied by two links, upper and lower): its
+    resultant's assemblies are the search's poses (2 at both inputs)."""
+    path = str(ROOT / "tests" / "assemblies" / "class4.yaml")
+    log = whole_log(path)
+    census = assemblies(path, log, [deg])
+    poses = search(deg, path=path, ties=LINK_TIES)
+    (solve,) = census.solves
+    assert solve.degree == 6 and solve.real_roots - solve.rejected == len(poses) == len(census.assemblies) >= 2
+    assert _matches(census, poses, log.length_scale) == [1] * len(poses)
+    _valid_and_distinct(path, log, census)
