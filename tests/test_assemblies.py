@@ -390,7 +390,7 @@ MECHANISMS = sorted(ROOT.glob("samples/*/*.yaml")) + sorted((ROOT / "tests" / "m
 
 
 NOT_COUNTED: dict[str, str] = {}  # mechanism -> why `linkgen assemblies` refuses it (a strict xfail)
-FEW_INPUTS = {"quaternary_fold": 2}  # class IV: one elimination takes one to two minutes
+FEW_INPUTS = {"quaternary_fold": 2}  # class IV: one elimination takes about 10 s
 
 @LONG
 @pytest.mark.parametrize("path", [pytest.param(p, marks=pytest.mark.xfail(raises=ProcedureError, strict=True,

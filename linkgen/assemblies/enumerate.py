@@ -91,7 +91,7 @@ class Census:
 
 def census(log: StepLog, values: Sequence[float], class_iv: bool = True) -> Census:
     """Every assembly of the log's mechanism at the input values (radians, length units); without
-    ``class_iv`` a group of two bodies on four-bars (``bodies``: its elimination takes a minute) is
+    ``class_iv`` a group of two bodies on four-bars (``bodies``: its elimination takes 10 s) is
     NotReducible."""
     walk = _Walk(log, tuple(float(v) for v in values), class_iv)
     walk.run(0, dict(walk.start), ())
@@ -321,8 +321,8 @@ def shape_of(log: StepLog, g: ResolverGroup, class_iv: bool = True) -> Triad | T
     Add-links at once: class IV, counted only with ``class_iv``)."""
     if len(g.add_links) == 2:
         if not class_iv:
-            raise NotReducible(f"resolver group {g.number} needs 2 Add-links at once (class IV); `linkgen "
-                               "assemblies` counts it (its elimination takes about a minute), the build does not")
+            raise NotReducible(f"resolver group {g.number} needs 2 Add-links at once (class IV); `linkgen assemblies` "
+                               "counts it (in about 10 s), as does a build asked for an assembly; other builds do not")
         return two_bodies_of(log, g)
     try:
         return triad_of(log, g)
