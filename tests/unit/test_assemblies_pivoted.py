@@ -5,6 +5,7 @@ returns keeps both equations (evaluated here in floating point from the file's n
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 from pathlib import Path
 
 import flint
@@ -81,3 +82,32 @@ def test_every_assembly_keeps_both_ties():
         assert abs(n[0] * (p["C"][0] - s0[0]) + n[1] * (p["C"][1] - s0[1])) < 1e-12
         assert abs(math.hypot(p["B"][0] + log.origin[0], p["B"][1] + log.origin[1]) - math.hypot(30, 60)) < 1e-12
         assert a == r.theta
+
+
+def test_an_assembly_with_the_first_link_turned_half_a_turn_is_found_on_its_own():
+    """Ties made to close exactly at theta_0 = pi (t_0 infinite: no root of the eliminant) and
+    tan(theta_1 / 2) = 1/2 (cos 3/5, sin 4/5): the solve finds that assembly, from the equations'
+    coefficients of t_0^2, and says so."""
+    from linkgen.assemblies.pivots import Pivoted, Tie
+
+    def turned(v, c, s):
+        return (c * v[0] - s * v[1], s * v[0] + c * v[1])
+
+    f = Fraction
+    p0, p1 = (f(0), f(0)), (f(100), f(20))
+    c1, s1 = f(3, 5), f(4, 5)
+    a, b, a2, b2 = (f(30), f(60)), (f(-20), f(60)), (f(60), f(20)), (f(-40), f(0))
+
+    def v(x, y):  # P_0 + R(pi) x - P_1 - R(theta_1) y
+        ry = turned(y, c1, s1)
+        return (p0[0] - x[0] - p1[0] - ry[0], p0[1] - x[1] - p1[1] - ry[1])
+
+    link = v(a, b)
+    w = v(a2, b2)
+    normal = turned((-w[1], w[0]), c1, -s1)  # R(-theta_1) of w's normal: R(theta_1) n . w = 0
+    shape = Pivoted(1, ("left", "right"), ("P0", "P1"),
+                    (Tie("upper", 0, a, b, link[0] ** 2 + link[1] ** 2), Tie("block", 0, a2, b2, f(0), normal)), (), ())
+    count = solve(shape, [p0, p1], f(1, 625), 100.0)
+    assert count.at_pi
+    assert any(abs(abs(r.angles[0]) - math.pi) < 1e-15 and abs(r.angles[1] - 2 * math.atan(0.5)) < 1e-15
+               for r in count.roots)
