@@ -345,7 +345,7 @@ def solve_sweep(run, publish, rows, inputs, d_inputs, dd_inputs, order, params, 
     shape, columns, c = rows_of(inputs, d_inputs, dd_inputs, design(None, m), m)
     n = int(np.prod(shape))
     bad = np.broadcast_to(refused(columns, m), (n,))
-    out, status, sigma = filled(out, shape, order, m)
+    out, status, sigma, new, made = filled(out, shape, order, m)
     its = np.zeros((rows.N_GROUPS, n), dtype=int)
     p = SimpleNamespace(**{**vars(rows.POLICY), "tolerance": m.tolerance, "path_slack": m.path_slack})
     k = SimpleNamespace(run=run, publish=publish, rows=rows, m=rows.MECHANISM, p=p, order=order, c=c,
@@ -353,8 +353,9 @@ def solve_sweep(run, publish, rows, inputs, d_inputs, dd_inputs, order, params, 
                         columns=m.columns, sinks={}, lanes=m.lanes, same={})
     with np.errstate(all="ignore"):
         sweep(k, np.flatnonzero(~bad), empty_state(k, 1), True)
-    for name, value in k.same.items():  # the columns of constant records, the lanes' value on every row
-        out[name].fill(value)
-    result = finish(out, status, sigma, bad, shape, m)
+    lose({name: x for name, x in out.items() if name not in k.same}, status, sigma, bad, m)
+    keep_same(out, k.same, new, status, m)  # the columns of constant records, the lanes' value on every row
+    keep_spare(made)
+    result = shaped(out, status, sigma, shape, m)
     result["iterations"] = its.reshape((rows.N_GROUPS, *shape))
     return result
