@@ -78,7 +78,8 @@ def filled(out, shape, order, m, ones=True):
             a = out.get(name)
             if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype
                     and (a.flags.c_contiguous or not a.flags.writeable)):
-                raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
+                raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} "
+                                 f"for {name!r}")
             if a.flags.writeable:
                 flat[name] = a.reshape(-1) if name != "sigma" else a.reshape(m.n_steps + 1, n)
     new = [name for name in names if name not in flat]
