@@ -20,8 +20,12 @@
         stay), and the branches' change points stay the sketch's.
         out: a dict an earlier call returned for rows of the same shape and order, whose
         arrays this call fills instead of new ones (a loop over many calls saves the
-        first touch of fresh memory); the dict returned holds the same arrays.  Without
-        out the columns are rows of new arrays shared by several columns (a column kept keeps its array).
+        first touch of fresh memory); the dict returned holds the same arrays (a
+        read-only one in out is given anew).  Without out the columns are rows of new
+        arrays shared by several columns (a column kept keeps its array), those of the
+        last call's result that nothing holds any longer (SPARE; SPARE.clear() frees
+        them).  A column that is one number on every row (a constant record's) is a
+        read-only view of it (np.broadcast_to) unless a row lost it: copy it to write.
     python actuator_np.py
         writes the sweep over the inputs' ranges as CSV to standard output, as actuator.py does.
 """
