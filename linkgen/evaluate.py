@@ -199,6 +199,7 @@ def mechanism(log: StepLog, one_way: bool = False) -> SimpleNamespace:
     return SimpleNamespace(
         length_scale=log.length_scale, sketch_inputs=tuple(i.sketch for i in log.inputs),
         sketch_a=tuple(b.start() for b in blocks), sizes=tuple(len(b.add_links) for b in blocks),
+        loops=tuple(int(log.variable(b.add_links[0]).role == "loop") for b in blocks),
         limits=log.step_limits(), periodic=tuple(i.kind == "revolute" and not one_way for i in log.inputs),
         low=math.nan if log.reach is None or log.reach.low is None else log.reach.low, groups=len(log.groups),
         another=status.code(log.groups[0].step, NOT_CONVERGED) if log.groups else 0, not_converged=NOT_CONVERGED)
@@ -356,7 +357,13 @@ class RowSolver:
         (the predictor moves them: a chain passing its fold changes branch; a zero keeps the old
         one, rate 0), then its orientation (0)."""
         zero = (0.0,) * (self.width + 1)
-        f = [self.call("link_residual", [env[self.pos[k]], env[self.pos[u]], zero])[2][0] for k, u in b.pairs]
+        first = self.log.step(b.steps[0])
+        if first.function == "loop_point":  # a loop block's arc length, unwrapped from the last row's
+            (k, u), arm = b.pairs[0], first.args[1].var
+            r = self.call("loop_residual", [env[self.pos[k]], env[self.pos[u]], env[arm], (old[0], *zero[1:])])[2][0]
+            f = [(old[0] + r[0], *r[1:])]
+        else:
+            f = [self.call("link_residual", [env[self.pos[k]], env[self.pos[u]], zero])[2][0] for k, u in b.pairs]
         n, marks, turns = len(b.pairs), [], []
         for j, bs in enumerate(b.branches):
             q = [env[v] for v in bs.points]
