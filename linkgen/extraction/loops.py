@@ -23,6 +23,7 @@ from dataclasses import dataclass, replace
 from ..model import Mechanism
 from ..steplog import Arg, BranchSign, ResolverGroup, Step, Variable
 
+LOOP_ITERATIONS = 60  # strategy loop's iteration cap unless one is set: |g'| = 0.6 gains 1e-13 in 60 steps
 LOOP_ROLE = "loop"  # the role of a loop block's arc length and of the pair it places again
 
 

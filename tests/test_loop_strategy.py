@@ -1,0 +1,104 @@
+"""The loop strategy (options: strategy loop, issue 20): the literature's fixed-point iteration on one
+assumed angle of a class-III group, in every program language.
+
+Checked against independent routes: the 50-digit reference (tests/reference.py) over the sample's sweep,
+C = Python = Octave bit for bit, and the contraction check on a loop built to have |g'| > 1 (the
+reverse loop then contracts, its slope the reciprocal)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+from programs import compare, different_bits, parse, run_c, run_octave, run_python
+from reference import Reference
+
+from linkgen.evaluate import runtime
+from linkgen.pipeline import build_log
+from linkgen.render import render_all
+from linkgen.writer import write_all
+
+ROOT = Path(__file__).resolve().parents[1]
+FIG14 = ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"
+TRIADS = ROOT / "samples" / "double_triad" / "double_triad.yaml"
+
+
+def _built(path: Path, outdir: Path, **options: object):
+    log = build_log(str(path), options={"strategy": "loop", **options}, sweep=False)
+    write_all(render_all(log), str(outdir))
+    return log
+
+
+def _against_reference(path: Path, log, text: str, every: int) -> float:
+    """The worst distance of the program's pairs from the 50-digit reference (started from each row)."""
+    ref = Reference(str(path))
+    names, data, statuses = parse(text)
+    assert statuses == [0] * log.samples
+    worst = 0.0
+    for r in range(0, log.samples, every):
+        row = dict(zip(names, data[r]))
+        want = ref.solve(data[r][:1], [ref.m.inputs[0].speed], ref.guess(row)).columns
+        for name, x in row.items():
+            if name in want and name.endswith((".x", ".y")):
+                worst = max(worst, abs(x - float(want[name])) / log.length_scale)
+    return worst
+
+
+def test_the_step_log_has_a_forward_and_a_reverse_loop_per_class_three_group(tmp_path):
+    log = _built(FIG14, tmp_path)
+    (g,) = log.groups
+    loops = [b for b in g.variants if log.variable(b.add_links[0]).role == "loop"]
+    assert len(loops) == 2 and log.policy.max_iterations == 60
+    functions = [[log.step(n).function for n in b.steps] for b in loops]
+    assert functions == [["loop_point", "RRR_links", "RRR_links", "RRR_links", "loop_residual"]] * 2
+    # the forward loop places the body's pairs one way round, the reverse the other, X1 again last
+    forward, reverse = ([log.step(n).target for n in b.steps[1:4]] for b in loops)
+    assert forward[2] == reverse[2] == log.step(loops[0].steps[0]).target and forward[:2] == reverse[1::-1]
+    assert "strategy loop" in log.step(g.step).reason
+    assert "resolver loop" in (tmp_path / "sixbar_fig14.py").read_text().splitlines()[0]
+
+
+@pytest.mark.parametrize("path", [FIG14, TRIADS], ids=lambda p: p.stem)
+def test_python_agrees_with_the_50_digit_reference(tmp_path, path):
+    log = _built(path, tmp_path)
+    assert _against_reference(path, log, run_python(log, tmp_path), 15) <= 1e-9
+
+
+@pytest.mark.long
+@pytest.mark.parametrize("path", [FIG14, TRIADS], ids=lambda p: p.stem)
+def test_every_language_is_the_same_bits_and_the_reference(tmp_path, path):
+    log = _built(path, tmp_path)
+    py = run_python(log, tmp_path)
+    assert different_bits(py, run_c(log, tmp_path)) == []
+    assert different_bits(py, run_octave(log, tmp_path)) == []
+    assert _against_reference(path, log, py, 1) <= 1e-9
+    newton = build_log(str(path), sweep=False)
+    write_all(render_all(newton), str(tmp_path / "newton"))
+    compare(log, py, run_python(newton, tmp_path / "newton"))
+
+
+def _loop(g_slope: float):
+    """A loop block whose map is the line theta' = theta* + g (theta - theta*) (the group function's
+    residual f = l (theta' - theta) as the runtime reads it, with its rate for the Jacobian)."""
+    arm, star = 2.0, 0.3
+
+    def group(a, da, dda, live):
+        theta = a[0] / arm
+        back = star + g_slope * (theta - star)
+        return 0, [(arm * (back - theta), (g_slope - 1) * da[0], 0.0)]
+    return group, arm * star
+
+
+@pytest.mark.parametrize("slope", [0.5, -0.8, 1.5, -2.0])
+def test_the_contraction_check_fires_where_the_loop_does_not_contract(slope):
+    loop_iteration = runtime()["loop_iteration"]
+    group, fixed = _loop(slope)
+    ok, a, its, jac = loop_iteration(group, [fixed + 0.1], 1e-12, 200, 1.0, 1)
+    if abs(slope) < 1:
+        assert ok == 1 and abs(a[0] - fixed) <= 1e-11 and abs(1 + jac[0][0] - slope) <= 1e-12
+    else:  # the check fires; the reverse loop (the inverse map, slope 1/g) contracts
+        assert ok == -1 and its == 1
+        inverse, fixed = _loop(1 / slope)
+        ok, a, its, jac = loop_iteration(inverse, [fixed + 0.1], 1e-12, 200, 1.0, 1)
+        assert ok == 1 and abs(a[0] - fixed) <= 1e-11
