@@ -23,6 +23,7 @@ import numpy as np
 from . import status
 from .kernel import kernel
 from .kernel import runtime as numpy_runtime
+from .loopstate import lengths, loop_flags
 from .options import runtime_policy
 from .primitives import PRIMITIVES, python_backend
 from .primitives.dsl import record_fields
@@ -199,7 +200,7 @@ def mechanism(log: StepLog, one_way: bool = False) -> SimpleNamespace:
     return SimpleNamespace(
         length_scale=log.length_scale, sketch_inputs=tuple(i.sketch for i in log.inputs),
         sketch_a=tuple(b.start() for b in blocks), sizes=tuple(len(b.add_links) for b in blocks),
-        loops=tuple(int(log.variable(b.add_links[0]).role == "loop") for b in blocks),
+        loops=loop_flags(log),
         limits=log.step_limits(), periodic=tuple(i.kind == "revolute" and not one_way for i in log.inputs),
         low=math.nan if log.reach is None or log.reach.low is None else log.reach.low, groups=len(log.groups),
         another=status.code(log.groups[0].step, NOT_CONVERGED) if log.groups else 0, not_converged=NOT_CONVERGED)
@@ -352,18 +353,10 @@ class RowSolver:
         return group
 
     def _state(self, env: Env, b: ResolverGroup, old: list[float]) -> tuple[list[float], list[float]]:
-        """A block's state and rates off a solved configuration (the generated _lengths_N): its
-        Add-link lengths (link_residual at a zero length), its chains' sign measures and their rates
-        (the predictor moves them: a chain passing its fold changes branch; a zero keeps the old
-        one, rate 0), then its orientation (0)."""
-        zero = (0.0,) * (self.width + 1)
-        first = self.log.step(b.steps[0])
-        if first.function == "loop_point":  # a loop block's arc length, unwrapped from the last row's
-            (k, u), arm = b.pairs[0], first.args[1].var
-            r = self.call("loop_residual", [env[self.pos[k]], env[self.pos[u]], env[arm], (old[0], *zero[1:])])[2][0]
-            f = [(old[0] + r[0], *r[1:])]
-        else:
-            f = [self.call("link_residual", [env[self.pos[k]], env[self.pos[u]], zero])[2][0] for k, u in b.pairs]
+        """A block's state and rates off a solved configuration (the generated _lengths_N): its Add-link lengths
+        or loop's arc (loopstate.lengths), its chains' sign measures and rates (the predictor moves them: a chain
+        passing its fold changes branch; a zero keeps the old one, rate 0), then its orientation (0)."""
+        f = lengths(self.call, env, self.pos, self.log, b, old, self.width)
         n, marks, turns = len(b.pairs), [], []
         for j, bs in enumerate(b.branches):
             q = [env[v] for v in bs.points]

@@ -7,7 +7,6 @@ reverse loop then contracts, its slope the reciprocal)."""
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import pytest

@@ -75,7 +75,8 @@ def _side(a: tuple[float, float], b: tuple[float, float], c: tuple[float, float]
 
 
 def loop_block(t: Triad, group: ResolverGroup, reverse: bool, variant: int, first: int,
-               variables: dict[str, Variable], sketch: dict[str, tuple[float, float]]) -> tuple[list[Step], ResolverGroup]:
+               variables: dict[str, Variable],
+               sketch: dict[str, tuple[float, float]]) -> tuple[list[Step], ResolverGroup]:
     """The steps and record of one loop block (fallback ``variant`` of its group, steps numbered after ``first``)."""
     pos = {v.entity: v.name for v in variables.values() if v.role == "pair"}
     order = (0, 1, 2) if reverse else (0, 2, 1)  # the pairs the chains place in turn, X1 again last
@@ -138,7 +139,7 @@ def with_loops(m: Mechanism, steps: tuple[Step, ...], variables: tuple[Variable,
             unlooped.append(g.number)
             done.append(g)
             continue
-        blocks = []
+        blocks: list[ResolverGroup] = []
         for reverse in (False, True):
             vsteps, block = loop_block(t, g, reverse, len(g.variants) + len(blocks) + 1, len(out), by_name, sketch)
             out += vsteps
