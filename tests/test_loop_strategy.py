@@ -7,12 +7,15 @@ reverse loop then contracts, its slope the reciprocal)."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
 from programs import compare, different_bits, parse, run_c, run_octave, run_python
 from reference import Reference
 
+from linkgen import loopmap
+from linkgen.assemblies import assemblies, whole_log
 from linkgen.evaluate import runtime
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
@@ -101,3 +104,22 @@ def test_the_contraction_check_fires_where_the_loop_does_not_contract(slope):
         inverse, fixed = _loop(1 / slope)
         ok, a, its, jac = loop_iteration(inverse, [fixed + 0.1], 1e-12, 200, 1.0, 1)
         assert ok == 1 and abs(a[0] - fixed) <= 1e-11
+
+
+@pytest.mark.parametrize("path", [FIG14, pytest.param(TRIADS, marks=pytest.mark.long)], ids=lambda p: p.stem)
+@pytest.mark.parametrize("at", [90.0, 30.0, 250.0])
+def test_the_fixed_points_per_branch_combination_are_the_certified_assemblies(path, at):
+    """Over the 2^3 branch combinations of each group's loop, the fixed points (mirror images of the body
+    left out) are the group's assemblies linkgen assemblies counts, to 1e-9 of the length scale; the group's
+    assemblies combine across groups (the census counts their product)."""
+    log = build_log(str(path), order=0, sweep=False, options={"strategy": "loop"})
+    found = [loopmap.fixed_points(loop) for loop in loopmap.loops(log, [math.radians(at)])]
+    census = assemblies(str(path), whole_log(str(path)), [at])
+    assert math.prod(len(points) for points in found) == len(census.assemblies)
+    for points in found:
+        names = sorted(points[0].pairs)
+        want = {tuple(round(a.values[f"{n}.{c}"] / log.length_scale, 9) for n in names for c in "xy")
+                for a in census.assemblies}
+        got = {tuple(round(p.pairs[n][i] / log.length_scale, 9) for n in names for i in (0, 1)) for p in points}
+        assert got == want
+        assert all(abs(p.slope) != 1 for p in points)  # one of the two loops contracts at each
