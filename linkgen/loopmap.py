@@ -15,12 +15,13 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
 from .evaluate import evaluate
-from .steplog import StepLog
+from .steplog import ResolverGroup, StepLog
 
 GRID = 7200  # assumed angles per turn the map is sampled at
 Point = tuple[float, float]
@@ -87,32 +88,50 @@ def loops(log: StepLog, values: list[float]) -> list[Loop]:
     """The forward loop of every looped group of a log built with strategy loop, at the inputs ``values``."""
     row = evaluate(log, np.array([values]), np.zeros((1, len(values))), np.zeros((1, len(values))), order=0)
     ox, oy = log.origin
-    out = []
+
+    def at(var: str) -> Point:
+        v = log.variable(var)
+        return (v.value[0], v.value[1]) if v.constant else (float(row.values[var][0][0]) + ox,
+                                                            float(row.values[var][1][0]) + oy)
+
+    return [loop for g in log.groups if (loop := _loop(log, g, at)) is not None]
+
+
+def _loop(log: StepLog, g: ResolverGroup, at: Callable[[str], Point]) -> Loop | None:
+    """A group's forward loop (None: the group has none), its legs' known pairs placed by ``at``."""
+    forward = next((b for b in g.variants if log.variable(b.add_links[0]).role == "loop"), None)
+    if forward is None:
+        return None
+    steps = [log.step(n) for n in forward.steps]
+    pos = {v.name: v.entity for v in log.variables if v.role == "pair"}
+
+    def length(var: str) -> float:
+        return log.variable(var).value[0]
+
+    chains = steps[1:4]
+    x1, x3, x2 = steps[0].outputs[0], chains[0].outputs[0], chains[1].outputs[0]
+    ks = (at(steps[0].args[0].var), at(chains[1].args[1].var), at(chains[0].args[1].var))
+    legs = (length(steps[0].args[1].var), length(chains[1].args[3].var), length(chains[0].args[3].var))
+    sides = (length(chains[2].args[2].var), length(chains[0].args[2].var), length(chains[1].args[2].var))
+    drawn = [log.variable(x).sketch for x in (x1, x2, x3)]
+    turn = _turn(*((p[0], p[1]) for p in drawn))
+    return Loop(g.number, (pos[x1], pos[x2], pos[x3]), ks, legs, sides, turn)
+
+
+def sketch_slopes(log: StepLog) -> dict[int, float]:
+    """|g'| of each loop block (by its index among the group's blocks' variants) at the sketch's pose: the
+    forward loop's, and the reverse loop's its reciprocal."""
+    out = {}
     for g in log.groups:
-        forward = next((b for b in g.variants if log.variable(b.add_links[0]).role == "loop"), None)
-        if forward is None:
+        loop = _loop(log, g, lambda var: (log.variable(var).sketch[0], log.variable(var).sketch[1]))
+        if loop is None:
             continue
-        steps = [log.step(n) for n in forward.steps]
-        pos = {v.name: v.entity for v in log.variables if v.role == "pair"}
-
-        def at(var: str) -> Point:
-            v = log.variable(var)
-            if v.constant:
-                return v.value[0], v.value[1]
-            return float(row.values[var][0][0]) + ox, float(row.values[var][1][0]) + oy
-
-        def length(var: str) -> float:
-            return log.variable(var).value[0]
-
-        chains = steps[1:4]
-        x1 = steps[0].outputs[0]
-        x3, x2 = chains[0].outputs[0], chains[1].outputs[0]
-        ks = (at(steps[0].args[0].var), at(chains[1].args[1].var), at(chains[0].args[1].var))
-        legs = (length(steps[0].args[1].var), length(chains[1].args[3].var), length(chains[0].args[3].var))
-        sides = (length(chains[2].args[2].var), length(chains[0].args[2].var), length(chains[1].args[2].var))
-        drawn = [log.variable(x).sketch for x in (x1, x2, x3)]
-        turn = _turn(*((p[0], p[1]) for p in drawn))
-        out.append(Loop(g.number, (pos[x1], pos[x2], pos[x3]), ks, legs, sides, turn))
+        forward, reverse = (b for b in g.variants if log.variable(b.add_links[0]).role == "loop")
+        branches = tuple(log.step(n).branch for n in forward.steps[1:4])
+        theta, h = forward.lengths[0] / loop.legs[0], 1e-7
+        up, down = loop.mismatch(theta + h, branches), loop.mismatch(theta - h, branches)
+        slope = abs(1.0 + (up - down) / (2 * h)) if up is not None and down is not None else math.nan
+        out[forward.variant], out[reverse.variant] = slope, 1.0 / slope
     return out
 
 

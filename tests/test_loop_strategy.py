@@ -61,7 +61,7 @@ def test_the_step_log_has_a_forward_and_a_reverse_loop_per_class_three_group(tmp
     assert "resolver loop" in (tmp_path / "sixbar_fig14.py").read_text().splitlines()[0]
 
 
-@pytest.mark.parametrize("path", [FIG14, TRIADS], ids=lambda p: p.stem)
+@pytest.mark.parametrize("path", [FIG14, pytest.param(TRIADS, marks=pytest.mark.long)], ids=lambda p: p.stem)
 def test_python_agrees_with_the_50_digit_reference(tmp_path, path):
     log = _built(path, tmp_path)
     assert _against_reference(path, log, run_python(log, tmp_path), 15) <= 1e-9
@@ -106,8 +106,9 @@ def test_the_contraction_check_fires_where_the_loop_does_not_contract(slope):
         assert ok == 1 and abs(a[0] - fixed) <= 1e-11
 
 
-@pytest.mark.parametrize("path", [FIG14, pytest.param(TRIADS, marks=pytest.mark.long)], ids=lambda p: p.stem)
-@pytest.mark.parametrize("at", [90.0, 30.0, 250.0])
+@pytest.mark.parametrize(("path", "at"), [(FIG14, 90.0)] + [pytest.param(p, at, marks=pytest.mark.long) for p, at in
+                                                      [(FIG14, 30.0), (FIG14, 250.0), (TRIADS, 90.0), (TRIADS, 30.0),
+                                                       (TRIADS, 250.0)]], ids=str)
 def test_the_fixed_points_per_branch_combination_are_the_certified_assemblies(path, at):
     """Over the 2^3 branch combinations of each group's loop, the fixed points (mirror images of the body
     left out) are the group's assemblies linkgen assemblies counts, to 1e-9 of the length scale; the group's

@@ -47,3 +47,12 @@ def test_the_listing_names_the_loop_and_which_way_contracts():
     text = loopmap.text(log, [math.pi / 2])
     assert text.startswith("group 1: the forward loop assumes the angle of the leg at J2 and places J5, J4, then J2")
     assert "4 fixed points" in text and "theta 90 deg, |g'| 0.4893 (forward loop contracts)" in text
+
+
+def test_the_slopes_at_the_sketch_are_the_sketch_fixed_points_and_reciprocal_for_the_reverse_loop():
+    log = build_log(str(FIG14), order=0, sweep=False, options={"strategy": "loop"})
+    slopes = loopmap.sketch_slopes(log)
+    forward, reverse = (b.variant for b in log.groups[0].variants[-2:])
+    (loop,) = loopmap.loops(log, [math.pi / 2])  # the crank as drawn: the known pairs from the procedure
+    (drawn,) = [p for p in loopmap.fixed_points(loop) if math.dist(p.pairs["J2"], (0.0, 70.0)) < 1e-9]
+    assert abs(slopes[forward] - abs(drawn.slope)) < 1e-6 and abs(slopes[forward] * slopes[reverse] - 1) < 1e-15
