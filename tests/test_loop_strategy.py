@@ -10,13 +10,14 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
-from programs import compare, different_bits, parse, run_c, run_octave, run_python
+from programs import compare, different_bits, parse, run_c, run_numpy, run_octave, run_python
 from reference import Reference
 
 from linkgen import loopmap
 from linkgen.assemblies import assemblies, whole_log
-from linkgen.evaluate import runtime
+from linkgen.evaluate import evaluate, runtime
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
 from linkgen.writer import write_all
@@ -74,6 +75,7 @@ def test_every_language_is_the_same_bits_and_the_reference(tmp_path, path):
     py = run_python(log, tmp_path)
     assert different_bits(py, run_c(log, tmp_path)) == []
     assert different_bits(py, run_octave(log, tmp_path)) == []
+    assert different_bits(py, run_numpy(log, tmp_path)) == []  # the kernel solves such rows through NAME.py
     assert _against_reference(path, log, py, 1) <= 1e-9
     newton = build_log(str(path), sweep=False)
     write_all(render_all(newton), str(tmp_path / "newton"))
@@ -124,3 +126,16 @@ def test_the_fixed_points_per_branch_combination_are_the_certified_assemblies(pa
         got = {tuple(round(p.pairs[n][i] / log.length_scale, 9) for n in names for i in (0, 1)) for p in points}
         assert got == want
         assert all(abs(p.slope) != 1 for p in points)  # one of the two loops contracts at each
+
+
+def test_the_sweep_turns_to_the_reverse_loop_where_the_forward_one_stops_contracting():
+    """Fig. 14's forward loop contracts at the sketch (|g'| 0.49) and not everywhere: over the sweep the check
+    fires and the reverse loop solves rows (on every row the fixed point is the 50-digit reference's:
+    test_python_agrees_with_the_50_digit_reference)."""
+    log = build_log(str(FIG14), sweep=False, options={"strategy": "loop"})
+    forward, reverse = (b.variant for b in log.groups[0].variants[-2:])
+    values = np.radians(np.arange(0.0, 361.0, 5.0))[:, None]
+    result = evaluate(log, values, np.ones_like(values), np.zeros_like(values))
+    used = [w[4][0] for w in result.warm]
+    assert forward in used and reverse in used
+    assert all(code == 0 for code in result.status)
