@@ -16,7 +16,7 @@ import settings  # noqa: E402
 from knobs import OUT, Sample  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
-SAMPLES = [ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml", ROOT / "samples" / "double_triad" / "double_triad.yaml"]
+SAMPLES = [ROOT / "samples" / name / f"{name}.yaml" for name in ("sixbar_fig14", "double_triad")]
 STRATEGIES = [{}, {"strategy": "loop"}, {"strategy": "loop", "tolerance": 1e-13}]
 
 
