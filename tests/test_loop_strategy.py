@@ -12,11 +12,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from click.testing import CliRunner
 from programs import compare, different_bits, parse, run_c, run_numpy, run_octave, run_python
 from reference import Reference
 
 from linkgen import loopmap
 from linkgen.assemblies import assemblies, whole_log
+from linkgen.cli import cli
 from linkgen.evaluate import evaluate, runtime
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
@@ -139,3 +141,40 @@ def test_the_sweep_turns_to_the_reverse_loop_where_the_forward_one_stops_contrac
     used = [w[4][0] for w in result.warm]
     assert forward in used and reverse in used
     assert all(code == 0 for code in result.status)
+
+
+def _beside_newton(path: Path) -> tuple[list[int], list[int], float]:
+    """The loop's and Newton's failing rows over 121 rows of the sweep, and the loop's worst pair distance from
+    Newton's on the rows both solve (over the length scale)."""
+    loop, newton = (build_log(str(path), sweep=False, options=o) for o in ({"strategy": "loop"}, {}))
+    values = np.linspace(loop.inputs[0].start, loop.inputs[0].stop, 121)[:, None]
+    a, b = (evaluate(log, values, np.ones_like(values), np.zeros_like(values)) for log in (loop, newton))
+    both = (a.status <= 0) & (b.status <= 0)
+    worst = max(float(np.max(np.abs(a.values[v.name][k] - b.values[v.name][k])[both]))
+                for v in newton.variables if v.role == "pair" and not v.constant for k in (0, 1))
+    return [i for i, c in enumerate(a.status) if c > 0], [i for i, c in enumerate(b.status) if c > 0], \
+        worst / loop.length_scale
+
+
+TRIAD_FILES = sorted((ROOT / "tests" / "mechanisms").glob("triad_*.yaml"))
+
+
+@pytest.mark.parametrize("path", [pytest.param(p, marks=[] if p.stem == "triad_sharp_turn" else [pytest.mark.long])
+                                  for p in TRIAD_FILES], ids=lambda p: p.stem)
+def test_the_loop_solves_the_rows_newton_solves_and_the_same_assembly(path):
+    """Every triad test mechanism: the loop strategy fails exactly Newton's rows (past a reach, ...) and
+    lands on Newton's assembly within its tolerance; triad_sharp_turn's assumed leg passes its sketch
+    angle's zero, where an arc length must not be reflected as an Add-link length is."""
+    loop_fails, newton_fails, worst = _beside_newton(path)
+    assert loop_fails == newton_fails and worst <= 1e-9
+
+
+def test_assemblies_lists_the_loops_with_the_census():
+    """`linkgen assemblies --loops --at 30`: the census, then one line per fixed point (as many as the census
+    counts, the sketch's turn of the crank moved to 30 deg)."""
+    result = CliRunner().invoke(cli, ["assemblies", str(FIG14), "--at", "30", "--loops"])
+    assert result.exit_code == 0, result.output
+    counted = int(result.output.split(": ", 1)[1].split(" assemblies")[0])
+    lines = [line for line in result.output.splitlines() if line.startswith("  branches ")]
+    assert len(lines) == counted == 4 and f"{counted} fixed points" in result.output
+    assert all("|g'|" in line and "loop contracts" in line for line in lines)
