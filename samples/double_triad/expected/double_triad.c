@@ -447,7 +447,8 @@ static int fixed_point(group_fn group, void *ctx, int n, double a[], double tol,
 
 /* The literature's iteration on a loop block (strategy loop): from the assumed angle, as the
  * leg's arc length a[0], the chains run round the loop and the angle that comes back is the
- * next one, a <- a + f(a), until |f| <= tol, then (polish) one step more.  It converges where
+ * next one, a <- a + f(a), until |f| <= tol and the distance left to the fixed point,
+ * |f| q / (1 - q) with q the last ratio of steps, is too, then (polish) one step more.  It converges where
  * the map contracts: the ratio of successive steps |f_k+1| / |f_k| estimates |g'|, and at
  * least 1 stops it (-1; the reverse loop, whose slope is the reciprocal, is the next block);
  * so do the cap (every step counts, a polishing one too) and a chain that cannot close (0).
@@ -457,15 +458,16 @@ static int loop_iteration(group_fn group, void *ctx, double a[], double tol, int
                           double jac[][LINKGEN_NMAX], int *iterations)
 {
     const double start = a[0];
-    double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], trial[LINKGEN_NMAX];
+    double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], trial[LINKGEN_NMAX], q = 0.0;
     *iterations = 0;
     if (residuals(group, ctx, a, f)) return 0;
-    while (!met(1, f, tol)) {
+    while (!(fabs(f[0]) <= tol && fabs(f[0]) * q <= tol * (1.0 - q))) {  /* the error |f| q / (1 - q) too */
         if (*iterations == max_iter - polish) return 0;
         ++*iterations;
         trial[0] = a[0] + f[0];
         if (residuals(group, ctx, trial, f2) || isnan(f2[0])) return 0;
         if (fabs(f2[0]) >= fabs(f[0])) return -1;
+        q = fabs(f2[0]) / fabs(f[0]);
         a[0] = trial[0];
         f[0] = f2[0];
     }

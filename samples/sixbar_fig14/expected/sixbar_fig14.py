@@ -514,7 +514,8 @@ def loop_iteration(group, a, tol, max_iter, reach, polish):
     """The literature's iteration on a loop block (strategy loop): from the assumed angle, as
     the leg's arc length s, the chains run round the loop and the angle that comes back is
     the next one, s <- s + f(s) (f: the angle that came back less the one assumed, as an arc),
-    until |f| <= tol, then (polish) one step more.  It converges where the map contracts:
+    until |f| <= tol and the distance left to the fixed point, |f| q / (1 - q) with q the
+    last ratio of steps, is too, then (polish) one step more.  It converges where the map contracts:
     the ratio of successive steps |f_k+1| / |f_k| estimates |g'|, and at least 1 stops it
     (the reverse loop, whose slope is the reciprocal, is the next block); so does the cap
     (every step counts, a polishing one too) and a chain that cannot close.  The Jacobian at
@@ -527,8 +528,8 @@ def loop_iteration(group, a, tol, max_iter, reach, polish):
     f = _residuals(group, a)
     if f is None:
         return 0, a, 0, None
-    its = 0
-    while not _met(f, tol):
+    its, q = 0, 0.0
+    while not (abs(f[0]) <= tol and abs(f[0]) * q <= tol * (1.0 - q)):  # the error |f| q / (1 - q) too
         if its == max_iter - polish:
             return 0, a, its, None
         its += 1
@@ -538,6 +539,7 @@ def loop_iteration(group, a, tol, max_iter, reach, polish):
             return 0, a, its, None
         if abs(f2[0]) >= abs(f[0]):
             return -1, a, its, None
+        q = abs(f2[0]) / abs(f[0])
         a, f = trial, f2
     if polish:
         its += 1

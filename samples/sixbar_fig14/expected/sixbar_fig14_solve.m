@@ -1380,7 +1380,8 @@ end
 function [ok, a, its, jac, w] = resolver_loop(group, w, a, tol, max_iter, reach, polish)
     % The literature's iteration on a loop block (strategy loop): from the assumed angle, as
     % the leg's arc length a, the chains run round the loop and the angle that comes back is
-    % the next one, a <- a + f(a), until |f| <= tol, then (polish) one step more.  It converges
+    % the next one, a <- a + f(a), until |f| <= tol and the distance left to the fixed point,
+    % |f| q / (1 - q) with q the last ratio of steps, is too, then (polish) one step more.  It converges
     % where the map contracts: the ratio of successive steps |f_k+1| / |f_k| estimates |g'|,
     % and at least 1 stops it (ok -1; the reverse loop, whose slope is the reciprocal, is the
     % next block); so do the cap and a chain that cannot close (ok 0).  The Jacobian at the
@@ -1395,7 +1396,8 @@ function [ok, a, its, jac, w] = resolver_loop(group, w, a, tol, max_iter, reach,
         return;
     end
     f = res(1, 1);
-    while ~(abs(f) <= tol)
+    q = 0;
+    while ~(abs(f) <= tol && abs(f) * q <= tol * (1 - q))  % the error |f| q / (1 - q) too
         if its == max_iter - polish
             return;
         end
@@ -1409,6 +1411,7 @@ function [ok, a, its, jac, w] = resolver_loop(group, w, a, tol, max_iter, reach,
             ok = -1;
             return;
         end
+        q = abs(res(1, 1)) / abs(f);
         a = trial;
         f = res(1, 1);
     end
