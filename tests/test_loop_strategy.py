@@ -169,6 +169,7 @@ def test_the_loop_solves_the_rows_newton_solves_and_the_same_assembly(path):
     assert loop_fails == newton_fails and worst <= 1e-9
 
 
+@pytest.mark.long
 def test_assemblies_lists_the_loops_with_the_census():
     """`linkgen assemblies --loops --at 30`: the census, then one line per fixed point (as many as the census
     counts, the sketch's turn of the crank moved to 30 deg)."""
