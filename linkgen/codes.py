@@ -30,6 +30,8 @@ def _reasons(s: Step, strategy: str) -> dict[int, str]:
                 **(stuck if strategy in ("fixed-point", "loop") else {})}
     if s.action == "residual":
         return {status.SINGULAR: f"the pairs of {s.target} coincide, so the resolver has no rate"}
+    if s.function == "loop_turn":
+        return {status.CANNOT_CLOSE: f"the loop's body {s.target} is turned over (its mirror image, no assembly)"}
     if s.function in ("link_angle", "link_direction"):
         return {status.CANNOT_CLOSE: f"the two points of {s.target} coincide"}
     if s.function == "link_point":

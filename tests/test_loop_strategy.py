@@ -19,7 +19,7 @@ from reference import Reference
 from linkgen import loopmap
 from linkgen.assemblies import assemblies, whole_log
 from linkgen.cli import cli
-from linkgen.evaluate import evaluate, runtime
+from linkgen.evaluate import RowSolver, evaluate, runtime
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
 from linkgen.writer import write_all
@@ -56,7 +56,8 @@ def test_the_step_log_has_a_forward_and_a_reverse_loop_per_class_three_group(tmp
     loops = [b for b in g.variants if log.variable(b.add_links[0]).role == "loop"]
     assert len(loops) == 2 and log.policy.max_iterations == 60
     functions = [[log.step(n).function for n in b.steps] for b in loops]
-    assert functions == [["loop_point", "RRR_links", "RRR_links", "RRR_links", "loop_residual"]] * 2
+    assert functions == [["loop_point", "RRR_links", "RRR_links", "RRR_links", "loop_turn",
+                          "loop_residual"]] * 2
     # the forward loop places the body's pairs one way round, the reverse the other, X1 again last
     forward, reverse = ([log.step(n).target for n in b.steps[1:4]] for b in loops)
     assert forward[2] == reverse[2] == log.step(loops[0].steps[0]).target and forward[:2] == reverse[1::-1]
@@ -179,3 +180,25 @@ def test_assemblies_lists_the_loops_with_the_census():
     lines = [line for line in result.output.splitlines() if line.startswith("  branches ")]
     assert len(lines) == counted == 4 and f"{counted} fixed points" in result.output
     assert all("|g'|" in line and "loop contracts" in line for line in lines)
+
+
+@pytest.mark.long
+def test_a_loop_refuses_the_bodys_mirror_image_where_it_would_contract():
+    """Fig. 14 at the sketch's input: the body turned over is a fixed point of the loop 5 deg from the drawn pose
+    (loopmap without its mirror filter: theta 94.99 deg, |g'| 4.36, so the reverse loop contracts to it at
+    0.23 a step); started there the reverse block gives up (loop_turn), started at the drawn pose it solves."""
+    log = build_log(str(FIG14), sweep=False, options={"strategy": "loop"})
+    solver = RowSolver(log, 1)
+    row = solver.solve([math.pi / 2], [1.0], [0.0])
+    forward, reverse = log.groups[0].variants[-2:]
+    (loop,) = loopmap.loops(log, [math.pi / 2])
+    turned = loopmap.Loop(loop.group, loop.names, loop.ks, loop.legs, loop.sides, -loop.turn)
+    (mirror,) = [p for p in loopmap.fixed_points(turned) if abs(math.degrees(p.theta) - 95) < 1]
+    assert abs(1 / mirror.slope) < 1  # the reverse loop contracts to the mirror image
+    arm, rt = loop.legs[0], runtime()
+    for block, start, solved in ((reverse, mirror.theta + 1e-3, 0), (forward, math.pi / 2 + 1e-3, 1)):
+        group = solver._group(block, dict(row.env), dict(row.env), {}, [0.0])
+        ok, a, _, _ = rt["loop_iteration"](group, [arm * start], 1e-10 * log.length_scale, 60,
+                                           0.1 * log.length_scale, 1)
+        assert ok == solved
+    assert abs(a[0] - arm * math.pi / 2) < 1e-9 * log.length_scale

@@ -108,7 +108,14 @@ def loop_block(t: Triad, group: ResolverGroup, reverse: bool, variant: int, firs
                           f"round the loop: {xb} from {xa} by the side {xa}{xb} of {t.body} and {leg} from {kb}",
                           f"the sketch has {xb} {'left' if branch > 0 else 'right'} of {xa}->{kb}", (xb,),
                           group.number, True, variant=variant))
-    steps.append(Step(first + 5, "residual", "loop_residual",
+    turn, side_of = f"c{tag}", _side(sketch[x1], sketch[t.xs[1]], sketch[t.xs[2]])
+    variables[turn] = Variable(turn, "VARIABLE", LOOP_ROLE, f"{t.body} (loop {tag})", (), ())
+    steps.append(Step(first + 5, "check", "loop_turn", (*(Arg("var", pos[x]) for x in t.xs),
+                                                        Arg("int", value=side_of, label="turn")), (turn,), t.body,
+                      "", t.xs, (t.body,), 0,
+                      f"the body {t.body} as drawn, not turned over (its mirror image keeps every length round the "
+                      "loop but is no assembly)", "", (), group.number, True, variant=variant))
+    steps.append(Step(first + 6, "residual", "loop_residual",
                       (Arg("var", pos[k1]), Arg("var", again), Arg("var", arm), Arg("var", s)), (f,), leg1, "",
                       (k1, x1), (leg1,), 0,
                       f"the angle of {leg1} that comes back round the loop must be the one assumed", "", (),

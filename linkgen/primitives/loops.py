@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from .. import status
 from .dsl import Primitive, atan2, select
-from .vectors import PlaneBuilder, primitive
+from .vectors import Motion, PlaneBuilder, primitive
 
 
 @primitive
@@ -39,3 +39,19 @@ def loop_residual(b: PlaneBuilder) -> Primitive:
     om, al = b.angle_rates(d, r2)
     b.output("f", "VARIABLE", v=ln.v * th, dv=ln.v * om - s.dv, ddv=ln.v * al - s.ddv)
     return b.build(status=select(r2.eq(0), status.CANNOT_CLOSE, 0), fail=r2.eq(0))
+
+
+@primitive
+def loop_turn(b: PlaneBuilder) -> Primitive:
+    """The turn c = (j2 - j1) x (j3 - j1) of the body a loop places, with its rates; fails (code 1) where its sign is
+    not the drawn one, turn (+1 or -1): a body turned over, its mirror image, keeps every length round the loop
+    but is no assembly."""
+    j1, j2, j3 = b.points("j1", "j2", "j3")
+    turn = b.scalar("turn", "INT")
+    u = Motion(b.vec("u", j2.p - j1.p), b.vec("uv", j2.v - j1.v), b.vec("ua", j2.a - j1.a))
+    w = Motion(b.vec("w", j3.p - j1.p), b.vec("wv", j3.v - j1.v), b.vec("wa", j3.a - j1.a))
+    c = b.let("k", u.p.cross(w.p))
+    dc = u.v.cross(w.p) + u.p.cross(w.v)
+    ddc = u.a.cross(w.p) + 2 * u.v.cross(w.v) + u.p.cross(w.a)
+    b.output("c", "VARIABLE", v=c, dv=dc, ddv=ddc)
+    return b.build(status=select(c * turn > 0, 0, status.CANNOT_CLOSE), fail=(c * turn <= 0))

@@ -9,7 +9,7 @@ import sympy as sp
 from sympy_oracle import time_derivative, to_sympy
 
 from linkgen.primitives import python_backend
-from linkgen.primitives.loops import loop_point, loop_residual
+from linkgen.primitives.loops import loop_point, loop_residual, loop_turn
 
 STILL_LEG = {sp.Symbol(n, real=True): 0 for n in ("l_dv", "l_ddv")}  # a leg's length is a link's: constant
 
@@ -46,3 +46,15 @@ def test_loop_residual_is_the_arc_between_the_angle_that_comes_back_and_the_one_
     assert st == 0 and -math.pi < v <= math.pi and abs(v - (math.atan2(-1e-3, -1.0) - 3.1 + 2 * math.pi)) < 1e-15
     st, _ = call((1.0, 1.0, 0.0, 0.0, 0.0, 0.0), (1.0, 1.0, 0.0, 0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 0.0, 0.0))
     assert st == 1  # the two points coincide
+
+
+def test_loop_turn_is_the_bodys_cross_product_and_refuses_its_mirror_image():
+    c = to_sympy(loop_turn).results["c"]
+    assert _zero(time_derivative(loop_turn, c["v"]) - c["dv"])
+    assert _zero(time_derivative(loop_turn, c["dv"]) - c["ddv"])
+    call = python_backend(2)["loop_turn"]
+    x1, x2, x3 = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0), (2.0, 0.0, 1.0, 0.0, 0.0, 0.0), (0.0, 3.0, 0.0, 0.0, 0.0, 0.0)
+    st, (v, dv, ddv) = call(x1, x2, x3, 1)
+    assert st == 0 and v == 6.0 and dv == 3.0 and ddv == 0.0  # (2, 0) x (0, 3); x2 moving at (1, 0): (1, 0) x (0, 3)
+    st, (v, _, _) = call(x1, x2, x3, -1)
+    assert st == 1 and v != v  # drawn the other way round: this one is the mirror image
