@@ -480,18 +480,27 @@ static int loop_iteration(group_fn group, void *ctx, double a[], double tol, int
 }
 
 /* The resolver strategy's iteration on one block from its start lengths a: the one place a
- * strategy is chosen (p->strategy; loop: 1 for a loop block, which strategy loop iterates by
- * loop_iteration, its other blocks by Newton).  Returns what newton and fixed_point return. */
-static int solve_block(group_fn group, void *ctx, int n, int loop, double a[], const resolver_policy *p,
-                       double scale, double jac[][LINKGEN_NMAX], int *iterations)
+ * strategy is chosen (p->strategy; strategy loop's loop blocks: solve_variant).  Returns what
+ * newton and fixed_point return. */
+static int solve_block(group_fn group, void *ctx, int n, double a[], const resolver_policy *p, double scale,
+                       double jac[][LINKGEN_NMAX], int *iterations)
 {
     const double tol = p->tolerance * scale, reach = p->max_move * scale;
-    if (p->strategy == RESOLVER_LOOP && loop)
-        return loop_iteration(group, ctx, a, tol, p->max_iterations, reach, p->polish, jac, iterations);
     if (p->strategy == RESOLVER_FIXED_POINT)
         return fixed_point(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac,
                            iterations);
     return newton(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac, iterations);
+}
+
+/* One block's iteration: loop_iteration for a loop block (loop 1) under strategy loop, which
+ * iterates its other blocks as the others do (solve_block). */
+static int solve_variant(group_fn group, void *ctx, int n, int loop, double a[], const resolver_policy *p,
+                         double scale, double jac[][LINKGEN_NMAX], int *iterations)
+{
+    if (p->strategy == RESOLVER_LOOP && loop)
+        return loop_iteration(group, ctx, a, p->tolerance * scale, p->max_iterations, p->max_move * scale, p->polish,
+                              jac, iterations);
+    return solve_block(group, ctx, n, a, p, scale, jac, iterations);
 }
 
 /* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
@@ -522,7 +531,7 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
     return group(ctx, a, rates, accs, 1, f, df, ddf);
 }
 
-/* The strategy's iteration (solve_block) on a group's blocks (its chosen Add-link candidate,
+/* The strategy's iteration (solve_variant) on a group's blocks (its chosen Add-link candidate,
  * then the fallbacks), the preferred block first, the others in order.  The first that
  * converges with its chains conditioned at least p->min_chain_sigma (*chains: the worst of
  * the last pass, from the block's lever down) is kept; else the best conditioned of those
@@ -544,7 +553,7 @@ static int resolve_variants(const group_fn fns[], const int sizes[], const int l
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         if (p->strategy == RESOLVER_LOOP ? (loops[k] != 0) != (pass == 0) : pass == 1) continue;
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
-        solved = solve_block(fns[k], ctx, sizes[k], loops[k], x, p, scale, jac, its);
+        solved = solve_variant(fns[k], ctx, sizes[k], loops[k], x, p, scale, jac, its);
         if (solved < 0) stuck = 1;
         if (solved <= 0) continue;
         if (*chains < p->min_chain_sigma) {
@@ -559,7 +568,7 @@ static int resolve_variants(const group_fn fns[], const int sizes[], const int l
     }
     if (best >= 0) {
         for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
-        if (solve_block(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, its) > 0
+        if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, its) > 0
             && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma,
                              turn) != 1)
             return best;
