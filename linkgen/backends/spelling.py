@@ -8,7 +8,7 @@ computed: that is the step log's job.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from .. import status
 from ..instant.names import field_name, is_centre
@@ -149,6 +149,11 @@ class Spelling:
         if not offset:
             return self.in_units(c, text)
         return f"{text} + {self.lit(offset)}" if offset > 0 else f"{text} - {self.lit(-offset)}"
+
+    def all_drawn(self, outputs: Any) -> bool:
+        """Whether every field of the outputs is a constant record's as drawn (a program's
+        publish() then reads nothing the row computed)."""
+        return all(self.log.drawn(c) is not None for o in outputs for _, c, _ in o.fields)
 
     def in_units(self, c: Column, text: str) -> str:
         """An output column's value in the programs' units: an angle or its rate times DEGREE where
