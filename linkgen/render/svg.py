@@ -15,7 +15,7 @@ from .svgwriter import esc, num
 
 WIDTH = 640.0
 MARGIN = 60.0
-SPOT_SPACE = 24.0  # the least width per pair and point of the figure (wider than WIDTH beyond 21 of them)
+SPOT_SPACE = 40.0  # the least width per pair and point of the figure (wider than WIDTH beyond 16 of them)
 COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#ff7f0e")
 
 
@@ -62,9 +62,15 @@ def _overlaps(a: Box, b: Box) -> bool:
     return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
 
 
+SLACK = 1e-6  # a segment's bounds widened by this on the page: its sampled points' rounding stays inside
+
+
 def _crosses(box: Box, seg: Segment) -> bool:
     """Whether a segment passes through a box (sampled finely enough for a 12-pixel label)."""
     (x1, y1), (x2, y2) = seg
+    if max(x1, x2) + SLACK <= box[0] or min(x1, x2) - SLACK >= box[2] or max(y1, y2) + SLACK <= box[1] \
+            or min(y1, y2) - SLACK >= box[3]:  # no sampled point can be inside
+        return False
     n = max(2, int(math.hypot(x2 - x1, y2 - y1) / 3))
     return any(box[0] < x1 + (x2 - x1) * k / n < box[2] and box[1] < y1 + (y2 - y1) * k / n < box[3]
                for k in range(n + 1))
@@ -88,18 +94,15 @@ class _Cells(Generic[T]):
         self.items.append(item)
 
     def near(self, box: Box) -> list[T]:
-        """The items whose bounds share a cell with the box, each once, in the order added."""
-        found = {k for cell in _cells(box) for k in self.cells.get(cell, ())}
-        return [self.items[k] for k in sorted(found)]
+        """The items whose bounds share a cell with the box, each once (in no particular order:
+        they are counted)."""
+        return [self.items[k] for k in {k for cell in _cells(box) for k in self.cells.get(cell, ())}]
 
 
 def _cells(b: Box) -> list[tuple[int, int]]:
     """The cells a box's closed bounds touch."""
     i0, j0, i1, j1 = (math.floor(v / CELL) for v in b)
     return [(i, j) for i in range(i0, i1 + 1) for j in range(j0, j1 + 1)]
-
-
-SLACK = 1e-6  # a segment's bounds widened by this on the page: its sampled points' rounding stays inside
 
 
 class _Labels:
@@ -266,10 +269,10 @@ def _slide_line(log: StepLog, p: PairInfo, spot: tuple[float, float], pivots: li
 def _page(log: StepLog) -> tuple[float, float]:
     """(the figure's width, its scale): the sketch's extent fills WIDTH, or SPOT_SPACE per pair
     and point where that is wider (a large mechanism's labels get room: a chain of 1000
-    dyads is drawn 90,000 units wide, not 640)."""
+    dyads is drawn 120,000 units wide, not 640)."""
     spots = [(p.x, p.y) for p in log.pairs] + [(v.sketch[0], v.sketch[1]) for v in log.variables
                                               if v.role == "point" and v.sketch]
     xs = [x for x, _ in spots]
     ys = [y for _, y in spots]
-    width = max(WIDTH, 2 * MARGIN + SPOT_SPACE * len(spots))
+    width = max(WIDTH, SPOT_SPACE * len(spots))
     return width, (width - 2 * MARGIN) / max(max(xs) - min(xs), max(ys) - min(ys), log.length_scale * 1e-3)
