@@ -186,6 +186,10 @@ class _Records(Mapping[str, tuple[np.ndarray, ...]]):
 
 
 def _column(x: Any, rows: int) -> np.ndarray:
+    """A kernel's value as an array of the rows: its own where the kernel made one (a result is
+    read, never changed), else a copy (a number, or a view of the caller's inputs)."""
+    if isinstance(x, np.ndarray) and x.base is None and x.shape == (rows,) and x.dtype == np.float64:
+        return x
     out: np.ndarray = np.broadcast_to(np.asarray(x, dtype=float), (rows,)).copy()
     return out
 

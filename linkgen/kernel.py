@@ -70,7 +70,14 @@ def at_order(log: StepLog, order: int) -> StepLog:
 
 def source(backend: Backend[Any], log: StepLog, order: int) -> str:
     """The text of the backend's program (the numpy kernel, or NAME.py) for the log at an order,
-    in double whatever real type the log asks for (the evaluator's: the analysis runs it)."""
+    in double whatever real type the log asks for (the evaluator's: the analysis runs it); a log
+    equal to one of the last few is not rendered again (the analysis makes equal logs anew)."""
+    return _source(backend.name, log, order)
+
+
+@functools.lru_cache(maxsize=8)
+def _source(name: str, log: StepLog, order: int) -> str:
+    backend = {BACKEND.name: BACKEND, PYTHON.name: PYTHON}[name]
     if log.options.real != "double":
         log = replace(log, options=replace(log.options, real="double"))
     files = render_backend(backend, build_view(at_order(log, order)))
