@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from .backends import Backend
+from .backends import Backend, backends
 from .backends.np import BACKEND, RUNTIME
 from .backends.program import LEVEL
 from .backends.py import BACKEND as PYTHON
@@ -77,7 +77,7 @@ def source(backend: Backend[Any], log: StepLog, order: int) -> str:
 
 @functools.lru_cache(maxsize=8)
 def _source(name: str, log: StepLog, order: int) -> str:
-    backend = {BACKEND.name: BACKEND, PYTHON.name: PYTHON}[name]
+    backend = next(b for b in backends() if b.name == name)
     if log.options.real != "double":
         log = replace(log, options=replace(log.options, real="double"))
     files = render_backend(backend, build_view(at_order(log, order)))
