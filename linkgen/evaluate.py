@@ -156,7 +156,7 @@ def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarr
     order = log.order if order is None else order
     if log.groups:
         return _evaluate_rows(log, values, rates, accs, order, warm, stop, line)
-    module = kernel(log, order)
+    module = kernel(log, order, outputs=False)
     with np.errstate(all="ignore"):
         w, code, sigma = module._run(list(values.T), list(rates.T), list(accs.T), dict(module.PARAMS))
     rows = values.shape[0]

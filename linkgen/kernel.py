@@ -84,18 +84,22 @@ def _source(name: str, log: StepLog, order: int) -> str:
     return files[backend.files[0].replace("NAME", log.name)].decode("utf-8")
 
 
-_recent: OrderedDict[tuple[int, int], tuple[StepLog, ModuleType]] = OrderedDict()
+_recent: OrderedDict[tuple[int, int, bool], tuple[StepLog, ModuleType]] = OrderedDict()
 
 
-def kernel(log: StepLog, order: int) -> ModuleType:
+def kernel(log: StepLog, order: int, outputs: bool = True) -> ModuleType:
     """The log's NAME_np.py at ``order``, executed (its solve; _run and _publish where the log has
-    no resolver groups); with resolver groups its ROWS is NAME.py, executed too."""
-    key = (id(log), order)
+    no resolver groups); with resolver groups its ROWS is NAME.py, executed too.  Without
+    ``outputs`` a log without resolver groups is rendered without its output columns: its _run
+    and PARAMS, what the evaluator reads, are the same (spelling a column costs more than a
+    step: 24,000 columns of a 1000-dyad chain)."""
+    key = (id(log), order, outputs)
     hit = _recent.get(key)
     if hit is not None and hit[0] is log:
         _recent.move_to_end(key)
         return hit[1]
-    module = _compiled(f"{log.name}_np", source(BACKEND, log, order))
+    bare = log if outputs or log.groups else replace(log, columns=())
+    module = _compiled(f"{log.name}_np", source(BACKEND, bare, order))
     if log.groups:
         module.ROWS = _compiled(log.name, source(PYTHON, log, order))  # type: ignore[attr-defined]
     _recent[key] = (log, module)
