@@ -3,10 +3,10 @@
     python bench/run.py kernel
 
 For the four-bar and Jansen's leg at 1e5 and 1e6 rows (the file's range, its speed): the median
-rows per second of NAME_np.solve (written by `linkgen build`, imported from the file; blocks of
+rows per second (wall and CPU time) of NAME_np.solve (written by `linkgen build`, imported from the file; blocks of
 rows) into new arrays and into those of its last call (out=), and of the in-process evaluator (the
 same module's procedure on all rows at once), each after two calls that warm the caches and the
-allocator (new arrays still pay the first touch of their memory, costly on a virtual machine);
+allocator (new arrays reuse those of the last result nothing holds, SPARE in the driver);
 then the time of one solve into its last arrays at 1e5 rows per runtime function, in ns per row
 (cProfile: the function's own time).  The machine is shared:
 medians and ratios hold better than single times.
@@ -40,16 +40,19 @@ def _module(path: Path) -> ModuleType:
     return module
 
 
-def _rate(call: Any, rows: int, *args: Any) -> float:
-    """Median rows per second of call(*args) over RUNS runs, after two warm-up calls."""
+def _rate(call: Any, rows: int, *args: Any) -> str:
+    """Median rows per second of call(*args) over RUNS runs, after two warm-up calls, in wall
+    time / in the process's CPU time (on a shared machine the wall time also holds the time the
+    other processes took the core: up to 2x here; the CPU time holds none of it)."""
     call(*args)
     call(*args)
-    times = []
+    wall, cpu = [], []
     for _ in range(RUNS):
-        t = time.perf_counter()
+        t, c = time.perf_counter(), time.process_time()
         call(*args)
-        times.append(time.perf_counter() - t)
-    return rows / statistics.median(times)
+        wall.append(time.perf_counter() - t)
+        cpu.append(time.process_time() - c)
+    return f"{rows / statistics.median(wall):.3g} / {rows / statistics.median(cpu):.3g}"
 
 
 def _inputs(module: ModuleType, rows: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -80,9 +83,9 @@ def bench_kernel() -> None:
     from linkgen.rows import input_rows
     from linkgen.writer import write_all
 
-    print(f"## The numpy kernel NAME_np.py: rows per second (median of {RUNS} after 2 warm-up calls)")
+    print(f"## The numpy kernel NAME_np.py: rows per second, wall / CPU (median of {RUNS} after 2 warm-up calls)")
     print("| sample | rows | NAME_np.solve | solve into its last arrays | evaluator (all rows at once) | "
-          "solve / evaluator |")
+          "solve / evaluator (CPU) |")
     print("| --- | ---: | ---: | ---: | ---: | ---: |")
     profiles = {}
     with tempfile.TemporaryDirectory() as tmp:
@@ -96,7 +99,8 @@ def bench_kernel() -> None:
                 last = module.solve(*args)
                 reused = _rate(lambda: module.solve(*args, out=last), rows)  # noqa: B023 (called at once)
                 whole = _rate(evaluate, rows, log, *input_rows(log, rows))
-                print(f"| {sample} | {rows:.0e} | {solve:.3g} | {reused:.3g} | {whole:.3g} | {solve / whole:.1f} |")
+                ratio = float(solve.split(" / ")[1]) / float(whole.split(" / ")[1])
+                print(f"| {sample} | {rows:.0e} | {solve} | {reused} | {whole} | {ratio:.1f} |")
             profiles[sample] = _profile(module, ROWS[0])
     for sample, rows in profiles.items():
         print(f"\n{sample}_np.solve into its last arrays at {ROWS[0]:.0e} rows, ns per row by function (own time): "

@@ -14,7 +14,8 @@ Setting = dict[str, object]  # Options field -> value, passed to build_log(optio
 DEFAULT = Options()
 EVERY = [{"real": "float"}, {"real": "long double"}, {"checks": False}, {"angles": "unit"}]
 # the resolver's knobs: only where the mechanism has Add-links
-RESOLVER = [{"strategy": "fixed-point"}, {"strategy": "closure"}, {"polish": False}, {"predictor": 0},
+RESOLVER = [{"strategy": "fixed-point"}, {"strategy": "closure"}, {"strategy": "loop"}, {"polish": False},
+            {"predictor": 0},
             {"predictor": 2}, {"tolerance": 1e-6}]
 
 

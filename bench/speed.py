@@ -3,6 +3,7 @@ generated Python's us per configuration, the numpy kernel's rows per second.
 
     python bench/speed.py                    # every target
     python bench/speed.py fourbar_P jansen_foot   # some of them
+    python bench/speed.py --lines fourbar_P  # and where its C instructions go, line by line
 
 - C (gcc -O2 -std=c99, double, order 2 unless the build says less): NAME_solve over C_ROWS rows of the
   file's range in order, the warm state kept (bench/languages.py's driver); the median of C_RUNS runs.
@@ -10,6 +11,8 @@ generated Python's us per configuration, the numpy kernel's rows per second.
   NAME_solve and what it calls, per configuration (repeatable on a shared machine, unlike times).
 - Python: the generated NAME.py's solve over the file's sweep (bench/languages.py), median of its runs.
 - numpy: rows per second of NAME_np.solve at 1e6 rows (bench/languages.py).
+- --lines: the instructions per configuration of each line of NAME.c (callgrind_annotate), most first, a
+  library call (glibc's sincos, atan2) as "=> function" with all it costs: where a C target's time goes.
 """
 
 from __future__ import annotations
@@ -42,8 +45,9 @@ TARGETS = {
 }
 
 
-def instructions(log, folder: Path) -> float:
-    """Instructions per configuration of NAME_solve (callgrind, one run of GRIND_ROWS rows)."""
+def instructions(log, folder: Path, lines: bool = False) -> float:
+    """Instructions per configuration of NAME_solve (callgrind, one run of GRIND_ROWS rows); with ``lines``
+    printed line by line too (profile())."""
     driver = (folder / "bench_driver.c").read_text()
     driver = re.sub(r"\b3600\b", str(GRIND_ROWS), driver).replace(f"{lang.C_RUNS}]", "1]")
     driver = re.sub(r"run < \d+", "run < 1", driver).replace(f"times[{lang.C_RUNS} / 2]", "times[0]")
@@ -52,13 +56,37 @@ def instructions(log, folder: Path) -> float:
     subprocess.run(["gcc", "-O2", "-std=c99", "-g", f"{log.name}.c", "grind_driver.c", "-lm", "-o", "grind_c"],
                    cwd=folder, check=True)
     out = subprocess.run(["valgrind", "--tool=callgrind", f"--toggle-collect={log.name}_solve",
-                          "--callgrind-out-file=/dev/null", "./grind_c"], cwd=folder, capture_output=True, text=True,
+                          "--callgrind-out-file=grind.out", "./grind_c"], cwd=folder, capture_output=True, text=True,
                          check=True).stderr
     total = int(re.search(r"Collected : (\d+)", out).group(1))  # type: ignore[union-attr]
+    if lines:
+        print(profile(folder, log.name), flush=True)
     return total / GRIND_ROWS
 
 
-def measure(name: str) -> str:
+def profile(folder: Path, name: str, least: float = 2.0) -> str:
+    """The lines of NAME.c with at least ``least`` instructions per configuration, most first
+    (callgrind_annotate of the grind run): a line's own, and a call's ("=> function", all it costs)."""
+    text = subprocess.run(["callgrind_annotate", "--auto=yes", "--show-percs=no", "grind.out"], cwd=folder,
+                          capture_output=True, text=True, check=True).stdout
+    rows: list[tuple[float, str]] = []
+    source = False
+    for line in text.splitlines():
+        if line.startswith("-- Auto-annotated source:"):
+            source = line.split(":", 1)[1].strip() == f"{name}.c"
+            continue
+        m = re.match(r"\s*([\d,]+)\s+(.*)", line)
+        if not m or "PROGRAM TOTALS" in line or "events annotated" in line:
+            continue
+        count = int(m.group(1).replace(",", "")) / GRIND_ROWS
+        what = m.group(2).strip()
+        if source and count >= least:
+            rows.append((count, what))
+    rows.sort(key=lambda r: -r[0])
+    return "\n".join(f"{count:8.1f}  {what[:110]}" for count, what in rows)
+
+
+def measure(name: str, lines: bool = False) -> str:
     sample, outputs, what = TARGETS[name]
     log = build_log(str(ROOT / "samples" / sample / f"{sample}.yaml"), outputs)
     parts = [name]
@@ -68,7 +96,7 @@ def measure(name: str) -> str:
         if "C" in what:
             lang.C_ROWS, lang.C_RUNS = C_ROWS, C_RUNS
             ns = lang.time_c(log, folder)[0] * 1e9
-            parts.append(f"C {ns:.1f} ns, {instructions(log, folder):.0f} instructions")
+            parts.append(f"C {ns:.1f} ns, {instructions(log, folder, lines):.0f} instructions")
         if "Python" in what:
             parts.append(f"Python {lang.time_python(log, folder, f'speed_{name}')[0] * 1e6:.2f} us")
         if "numpy" in what:
@@ -79,5 +107,6 @@ def measure(name: str) -> str:
 
 
 if __name__ == "__main__":
-    for target in sys.argv[1:] or list(TARGETS):
-        print(measure(target), flush=True)
+    args = [a for a in sys.argv[1:] if a != "--lines"]
+    for target in args or list(TARGETS):
+        print(measure(target, "--lines" in sys.argv), flush=True)

@@ -273,7 +273,9 @@ def procedure(mechanism: str, outputs: str | None) -> None:
               help="The inputs' values, comma-separated, in the file's units (default: the sketch's).")
 @click.option("--json", "as_json", is_flag=True, help="Print the census as JSON instead of a table.")
 @click.option("-o", "--outdir", type=ANY_PATH, help="Write one SVG per assembly here (NAME_assembly_K.svg).")
-def assemblies(mechanism: str, at: tuple[float, ...] | None, as_json: bool, outdir: str | None) -> None:
+@click.option("--loops", is_flag=True, help="Then the loop strategy's loops: per class-III group and branch "
+              "combination, the fixed points of the map it iterates and |g'| there.")
+def assemblies(mechanism: str, at: tuple[float, ...] | None, as_json: bool, outdir: str | None, loops: bool) -> None:
     """Every assembly of the mechanism at one input, the count certified.
 
     Both branches of every two-link chain are tried; every class-III group is reduced to
@@ -286,6 +288,7 @@ def assemblies(mechanism: str, at: tuple[float, ...] | None, as_json: bool, outd
     Examples:
       linkgen assemblies samples/fourbar/fourbar.yaml --at 90
       linkgen assemblies samples/double_triad/double_triad.yaml --json -o figures
+      linkgen assemblies samples/sixbar_fig14/sixbar_fig14.yaml --at 30 --loops
     """
     from .api import Mechanism
     from .writer import write_all
@@ -299,6 +302,13 @@ def assemblies(mechanism: str, at: tuple[float, ...] | None, as_json: bool, outd
     click.echo(found.text(), nl=False)
     for path in written:
         click.echo(path)
+    if loops:
+        from . import loopmap
+        from .pipeline import build_log
+        from .units import from_file
+
+        log = build_log(mechanism, order=0, sweep=False, options={"strategy": "loop", "assembly": 0})
+        click.echo(loopmap.text(log, list(from_file(log, at) if at else (i.sketch for i in log.inputs))), nl=False)
 
 
 @cli.command()

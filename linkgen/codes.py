@@ -22,13 +22,16 @@ class StatusCode:
 def _reasons(s: Step, strategy: str) -> dict[int, str]:
     """What each failure of a step means, by reason (a resolver's by its strategy)."""
     if s.action == "resolve":
-        stuck = {status.NOT_CONTRACTING: "the resolver's fixed-point iteration does not contract"}
+        stuck = {status.NOT_CONTRACTING: "the resolver's fixed-point iteration does not contract"
+                 + (" (neither loop, and no Add-link block converges)" if strategy == "loop" else "")}
         return {status.NOT_CONVERGED: "the resolver did not converge",
                 status.SINGULAR: "the resolver's Jacobian is singular",
                 status.NEAR_SINGULAR: "the resolver's Jacobian is near singular",
-                **(stuck if strategy == "fixed-point" else {})}
+                **(stuck if strategy in ("fixed-point", "loop") else {})}
     if s.action == "residual":
         return {status.SINGULAR: f"the pairs of {s.target} coincide, so the resolver has no rate"}
+    if s.function == "loop_turn":
+        return {status.CANNOT_CLOSE: f"the loop's body {s.target} is turned over (its mirror image, no assembly)"}
     if s.function in ("link_angle", "link_direction"):
         return {status.CANNOT_CLOSE: f"the two points of {s.target} coincide"}
     if s.function == "link_point":

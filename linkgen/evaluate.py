@@ -23,6 +23,7 @@ import numpy as np
 from . import status
 from .kernel import kernel
 from .kernel import runtime as numpy_runtime
+from .loopstate import lengths, loop_flags
 from .options import runtime_policy
 from .primitives import PRIMITIVES, python_backend
 from .primitives.dsl import record_fields
@@ -223,6 +224,7 @@ def mechanism(log: StepLog, one_way: bool = False) -> SimpleNamespace:
     return SimpleNamespace(
         length_scale=log.length_scale, sketch_inputs=tuple(i.sketch for i in log.inputs),
         sketch_a=tuple(b.start() for b in blocks), sizes=tuple(len(b.add_links) for b in blocks),
+        loops=loop_flags(log),
         limits=log.step_limits(), periodic=tuple(i.kind == "revolute" and not one_way for i in log.inputs),
         low=math.nan if log.reach is None or log.reach.low is None else log.reach.low, groups=len(log.groups),
         another=status.code(log.groups[0].step, NOT_CONVERGED) if log.groups else 0, not_converged=NOT_CONVERGED)
@@ -375,12 +377,10 @@ class RowSolver:
         return group
 
     def _state(self, env: Env, b: ResolverGroup, old: list[float]) -> tuple[list[float], list[float]]:
-        """A block's state and rates off a solved configuration (the generated _lengths_N): its
-        Add-link lengths (link_residual at a zero length), its chains' sign measures and their rates
-        (the predictor moves them: a chain passing its fold changes branch; a zero keeps the old
-        one, rate 0), then its orientation (0)."""
-        zero = (0.0,) * (self.width + 1)
-        f = [self.call("link_residual", [env[self.pos[k]], env[self.pos[u]], zero])[2][0] for k, u in b.pairs]
+        """A block's state and rates off a solved configuration (the generated _lengths_N): its Add-link lengths
+        or loop's arc (loopstate.lengths), its chains' sign measures and rates (the predictor moves them: a chain
+        passing its fold changes branch; a zero keeps the old one, rate 0), then its orientation (0)."""
+        f = lengths(self.call, env, self.pos, self.log, b, old, self.width)
         n, marks, turns = len(b.pairs), [], []
         for j, bs in enumerate(b.branches):
             q = [env[v] for v in bs.points]

@@ -10,7 +10,7 @@ from types import SimpleNamespace
 
 from .policy import DEFAULT_REAL, POLICY, REAL_TYPES, Policy
 
-STRATEGIES = ("newton", "fixed-point", "closure")  # the resolver strategies (see Options.strategy)
+STRATEGIES = ("newton", "fixed-point", "closure", "loop")  # the resolver strategies (see Options.strategy)
 PREDICTORS = (0, 1, 2)  # the warm start's order: the last row's state, along its rates, with its accelerations
 ANGLE_FORMS = ("angle", "unit")  # angle outputs as angles (atan2) or as unit vectors (no trigonometry)
 UNIT_SYSTEMS = ("si", "file")  # the programs' inputs and outputs in radians (SI) or in the file's angle unit
@@ -24,7 +24,8 @@ class Options:
 
     real: str = DEFAULT_REAL  # the real type: float, double or long double (C; numpy: float32 for float)
     strategy: str = "newton"  # resolver: newton on the Add-link lengths (the paper's), fixed-point
-    # iteration on the decomposed group, or closure: Newton on the group's loop-closure equations
+    # iteration on the decomposed group, closure: Newton on the group's loop-closure equations, or loop: the
+    # literature's fixed-point iteration on one assumed angle of a class-III group (extraction.loops)
     tolerance: float = POLICY.tolerance  # the resolver stops at this residual, relative to the length scale
     iterations: int = POLICY.max_iterations  # the resolver's iteration cap
     polish: bool = True  # one resolver step more once the tolerance is met

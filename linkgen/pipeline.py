@@ -13,6 +13,7 @@ from .directions import unit_directions
 from .errors import InputError, and_list
 from .extraction import Procedure, extract
 from .extraction.closure import ClosureRefused, with_closures
+from .extraction.loops import LOOP_ITERATIONS, with_loops
 from .instant.names import centre_problem, is_centre
 from .instant.steps import centre_records, with_centres
 from .instant.table import at_sketch, centre_outputs
@@ -35,6 +36,11 @@ def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = Non
     opts = overridden(m.options, options or {})
     if opts.strategy == "closure" and proc.groups:
         proc = _closed(proc, m, "strategy" in (options or {}))
+    if opts.strategy == "loop" and "iterations" not in m.options_where and "iterations" not in (options or {}):
+        opts = replace(opts, iterations=LOOP_ITERATIONS)  # the loop converges linearly (|g'| per step)
+    if opts.strategy == "loop" and proc.groups:  # the loop blocks of every class-III group (extraction.loops)
+        steps, variables, groups, _ = with_loops(m, proc.steps, proc.variables, proc.groups)
+        proc = replace(proc, steps=steps, variables=variables, groups=groups)
     order = m.order if order is None else order
     outputs = m.outputs if outputs is None else outputs
     input_vars = [v.name for v in proc.variables if v.role == "input"]

@@ -16,7 +16,7 @@ NOT_CONVERGED = 2  # the resolver did not converge
 SINGULAR = 3  # a singular position: positions given, derivatives nan
 NEAR_SINGULAR = 4  # near a singular position: everything given, the code negative
 BAD_INPUT = 5  # step 0: an input the program refuses (not finite, or out of the supported range)
-NOT_CONTRACTING = 6  # the resolver's fixed-point iteration does not contract (options: strategy: fixed-point)
+NOT_CONTRACTING = 6  # the resolver's fixed-point iteration does not contract (options: strategy: fixed-point or loop)
 FAILED = (CANNOT_CLOSE, NOT_CONVERGED, NOT_CONTRACTING)  # every output of such a row is nan
 STEP_WEIGHT = 10  # a code is STEP_WEIGHT * step + reason (each runtime's reason_of reads it back)
 
@@ -44,8 +44,8 @@ def failed(status: Any) -> Any:
 
 def failures(strategy: str | None) -> tuple[int, ...]:
     """The reasons of a failed row in a program whose resolvers run ``strategy`` (None: it has
-    none): only a fixed-point iteration can fail to contract."""
-    return FAILED if strategy == "fixed-point" else (CANNOT_CLOSE, NOT_CONVERGED)
+    none): only a fixed-point iteration (fixed-point, loop) can fail to contract."""
+    return FAILED if strategy in ("fixed-point", "loop") else (CANNOT_CLOSE, NOT_CONVERGED)
 
 
 def singular(status: Any) -> Any:

@@ -1,6 +1,7 @@
 """``linkgen build --assembly K`` (``options: assembly``): the programs follow assembly K.
 
-For every assembly K of the four-bar and of the Fig. 14 six-bar at the sketch's inputs:
+For every assembly K of the four-bar and of the Fig. 14 six-bar at the sketch's inputs (and
+assemblies of the class-IV class4_slot and quaternary_fold, long):
 
 * the programs' first solve (a fresh state, at the sketch's inputs) is assembly K: its pairs
   where an independent route puts them at 50 digits (the closed form for the four-bar, the
@@ -164,7 +165,7 @@ def test_an_assembly_out_of_range_is_an_error(tmp_path):
 
 
 def test_a_group_linkgen_cannot_count_cannot_be_followed():
-    path = ROOT / "tests" / "assemblies" / "class4.yaml"
+    path = ROOT / "tests" / "assemblies" / "moving_slot.yaml"  # a block in a slot of a moving rocker
     with pytest.raises(InputError, match=r"--assembly: linkgen cannot count the assemblies"):
         build_log(str(path), options={"assembly": 1})
     log = build_log(str(path), sweep=False)
@@ -215,3 +216,53 @@ def test_every_assembly_of_every_sample_is_the_first_solve(path):
         want = dict(a.values)
         worst = max(abs(float(got[n]) - want[n]) for n in want if n.endswith((".x", ".y")) and n in got)
         assert worst <= 1e-14 * log.length_scale, (k, worst)
+
+
+SLOT = ROOT / "tests" / "regressions" / "class4_slot.yaml"  # class IV: two links on their own pivots, a slot
+QUATERNARY = ROOT / "tests" / "mechanisms" / "quaternary_fold.yaml"  # class IV: two Add-links at once
+CLASS4 = [(SLOT, 1), (SLOT, 2), (QUATERNARY, 3)]  # quaternary_fold: the sketch's is 9 of 18; 3 reaches 0 to 143 deg
+
+
+def _reached(statuses: list[int], values: list[list[float]], sketch: float) -> list[int]:
+    """The rows the programs reach from the sketch without crossing a failed row: the run of rows of
+    status 0 between the failures on either side of the sketch's input (all rows if none fails)."""
+    if all(s == 0 for s in statuses):
+        return list(range(len(statuses)))
+    below = [r for r, v in enumerate(values) if v[0] <= sketch]
+    start = max((r for r in below if statuses[r] != 0), default=-1) + 1
+    stop = min((r for r in range(start, len(values)) if statuses[r] != 0), default=len(values))
+    return list(range(start, stop))
+
+
+@LONG  # class4_slot: 10 s a case (the reference's continuation over the turn); quaternary_fold: about 2 min
+@pytest.mark.parametrize(("path", "k"), CLASS4, ids=[f"{p.stem}-{k}" for p, k in CLASS4])
+def test_a_class_iv_assembly_is_followed(tmp_path, path, k):
+    """Assembly K of a class-IV group (quaternary_fold: counted at the build, about 10 s): the programs'
+    first solve is assembly K as listed to 1e-12 L, which keeps every constraint of the reference model
+    to 1e-12 L (its count and poses are checked against the multistart searches in tests/
+    test_assemblies_pivots.py and tests/test_assemblies.py); every row the programs reach from the
+    sketch is the 50-digit reference continued from assembly K; C, Octave and numpy give the Python
+    program's sweep."""
+    log = _built(path, k, tmp_path)
+    assert log.assemblies is not None and log.assemblies.counted and log.assemblies.follows == k
+    listed = dict(log.assemblies.listing[k - 1].values)
+    row = _first_solve(log, tmp_path)
+    assert row["status"] == 0
+    assert all(abs(row[n] - x) <= 1e-12 * log.length_scale for n, x in listed.items() if n.endswith((".x", ".y")))
+    ref = Reference(str(path))
+    q = ref.guess(listed)
+    res = ref.constraints([MP.mpf(v) for v in q], ref.turned_inputs([MP.mpf(v) for v in q], ref.sketch_inputs()))
+    assert max(float(abs(r)) / s for r, s in zip(res, ref.constraint_scales())) < 1e-12
+    py = run_python(log, tmp_path)
+    names, data, statuses = parse(py)
+    rows = _reached(statuses, data, log.inputs[0].sketch)
+    assert rows and all(statuses[r] == 0 for r in rows)
+    want = _reference_sweep(path, listed, [data[r][:1] for r in rows])
+    for r, w in zip(rows, want):
+        for name, x in zip(names[1:], data[r][1:]):
+            if name in w and name.endswith((".x", ".y")):
+                assert abs(x - float(w[name])) <= 1e-9 * log.length_scale, (r, name, x, float(w[name]))
+            elif name in w and name.endswith(".phi"):
+                assert abs(math.remainder(x - float(w[name]), 2 * math.pi)) <= 1e-9, (r, name, x, float(w[name]))
+    for other in (run_c(log, tmp_path), run_octave(log, tmp_path), run_numpy(log, tmp_path)):
+        compare(log, py, other)

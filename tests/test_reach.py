@@ -184,7 +184,7 @@ def test_walk_gives_up_after_its_passes():
         return True, a, [[0.0, 0.0]]
 
     limit, passes = 0.05, POLICY.walk_passes
-    mechanism = SimpleNamespace(length_scale=1.0, limits=[limit], sizes=[1])
+    mechanism = SimpleNamespace(length_scale=1.0, limits=[limit], sizes=[1], loops=[0])
     for steps, reached, count in ((512, True, 513), (passes, False, passes), (1e30, False, 0)):
         calls.clear()
         out = runtime()["walk"](run, [0.0], [[1.0, 0.0]], [steps * limit], mechanism, POLICY)

@@ -14,7 +14,7 @@ import math
 from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -25,6 +25,7 @@ from ..primitives.dsl import record_fields
 from ..primitives.interpret import constant_record
 from ..steplog import ResolverGroup, Step, StepLog, held
 from .bodies import TwoBodies, two_bodies_of
+from .pivots import Pivoted, pivoted_of
 from .triad import NotReducible, Triad, grid, snap, triad_of
 
 CHAINS = ("RRR_links", "PRR_links", "RPR_links", "PRP_links", "PPR_links")
@@ -90,7 +91,7 @@ class Census:
 
 def census(log: StepLog, values: Sequence[float], class_iv: bool = True) -> Census:
     """Every assembly of the log's mechanism at the input values (radians, length units); without
-    ``class_iv`` a group of two bodies on four-bars (``bodies``: its elimination takes a minute) is
+    ``class_iv`` a group of two bodies on four-bars (``bodies``: its elimination takes 10 s) is
     NotReducible."""
     walk = _Walk(log, tuple(float(v) for v in values), class_iv)
     walk.run(0, dict(walk.start), ())
@@ -189,6 +190,7 @@ class _Walk:
         for k, root in enumerate(roots):
             root_env = dict(env)
             placed = dict(zip(triad.pairs, root.positions))
+            axes = triad.axes(cast("Assembled", root).angles) if isinstance(triad, Pivoted) else {}
             for s in (self.log.step(n) for n in g.steps):
                 if s.function in CHAINS:
                     entity = self.log.variable(s.outputs[-1]).entity
@@ -197,7 +199,7 @@ class _Walk:
                     if len(s.outputs) == 1:
                         root_env[s.outputs[0]] = placed[entity]
                     else:  # a block's chain: its slide and slider point too
-                        root_env.update(zip(s.outputs, self._slider(s, g, root_env, placed)))
+                        root_env.update(zip(s.outputs, self._slider(s, g, root_env, placed, axes.get(entity))))
                     continue
                 st, _, outs = self.call(s, root_env)
                 if st == status.CANNOT_CLOSE:
@@ -209,9 +211,10 @@ class _Walk:
             self.run(i + 1, root_env, (*choices, Choice(g.step, f"group {g.number}", k + 1, len(solution.roots),
                                                         root.theta)))
 
-    def _slider(self, s: Step, g: ResolverGroup, env: Env, placed: dict[str, tuple[float, float]]) -> tuple[Any, ...]:
+    def _slider(self, s: Step, g: ResolverGroup, env: Env, placed: dict[str, tuple[float, float]],
+                axis: float | None) -> tuple[Any, ...]:
         """A block's chain step run at the root: its Add-links' lengths from the placed pairs, the branch whose
-        pair is the placed one."""
+        pair is the placed one (and whose slide's angle, its first output, is ``axis`` where the slide turns)."""
         for name, (a, b) in zip(g.add_links, g.pairs):
             if a in placed or b in placed:
                 pa, pb = (placed[p] if p in placed else env[self.pos[p]] for p in (a, b))
@@ -222,18 +225,23 @@ class _Walk:
         for branch in (1, -1):
             st, _, outs = self.call(s, env, branch)
             if st != status.CANNOT_CLOSE:
-                best = min(best, (math.hypot(outs[-1][0] - want[0], outs[-1][1] - want[1]), outs), key=lambda b: b[0])
+                off = math.hypot(outs[-1][0] - want[0], outs[-1][1] - want[1])
+                if axis is not None:
+                    off += self.log.length_scale * abs(math.remainder(outs[0][0] - axis, 2 * math.pi))
+                best = min(best, (off, outs), key=lambda b: b[0])
         if best[0] > CHECK * self.log.length_scale:
             raise ArithmeticError(f"resolver group {g.number}: step {s.number} does not reach the root")
         return best[1]
 
-    def _solve(self, triad: Triad | TwoBodies, env: Env) -> Solution | Count:
+    def _solve(self, triad: Triad | TwoBodies | Pivoted, env: Env) -> Solution | Count:
         """The group's solution at the bases' positions in ``env`` (solved once per position)."""
         from .polynomial import solve  # sympy takes 0.7 s to import: only mechanisms with a group need it
 
         unit = grid(self.log.length_scale)
         if isinstance(triad, TwoBodies):
             return self._solve_bodies(triad, env, unit)
+        if isinstance(triad, Pivoted):
+            return self._solve_pivoted(triad, env, unit)
         if any(leg.line for leg in triad.legs):
             return self._solve_slides(triad, env, unit)
         bases = [tuple(snap(x, unit) for x in env[self.pos[leg.base]][:2]) for leg in triad.legs]
@@ -287,6 +295,19 @@ class _Walk:
         assert isinstance(found, resultant.Count)
         return found
 
+    def _solve_pivoted(self, shape: Pivoted, env: Env, unit: Any) -> Count:
+        """The group of two links on their own pivots at the pivots' positions in ``env`` (``pivoted``)."""
+        from . import pivoted
+
+        pivots = [(snap(env[self.pos[n]][0], unit), snap(env[self.pos[n]][1], unit)) for n in shape.pivots]
+        key = (shape.group, tuple(pivots))
+        if key not in self.solutions:
+            sol = pivoted.solve(shape, pivots, unit, self.log.length_scale)
+            self.solutions[key] = sol
+            self.out.solves.append(GroupCount(shape.group, shape.describe(), sol.degree, sol.real_roots, sol.at_pi,
+                                              tuple(r.theta for r in sol.roots), (), (), sol.factors, sol.rejected))
+        return cast("Count", self.solutions[key])
+
     def _values(self, env: Env) -> dict[str, float]:
         return _columns(self.log, lambda name, field: env[name][record_fields(self._kind(name), 0).index(field)])
 
@@ -294,15 +315,22 @@ class _Walk:
         return self.log.variable(name).kind
 
 
-def shape_of(log: StepLog, g: ResolverGroup, class_iv: bool = True) -> Triad | TwoBodies:
-    """What the group is: a triad (one Add-link), or two bodies on four-bars tied by two couplers
-    (two Add-links at once: class IV, counted only with ``class_iv``)."""
+def shape_of(log: StepLog, g: ResolverGroup, class_iv: bool = True) -> Triad | TwoBodies | Pivoted:
+    """What the group is: a triad (one Add-link), two links on their own pivots tied by two links or
+    slots (one Add-link, class IV: ``pivots``), or two bodies on four-bars tied by two couplers (two
+    Add-links at once: class IV, counted only with ``class_iv``)."""
     if len(g.add_links) == 2:
         if not class_iv:
-            raise NotReducible(f"resolver group {g.number} needs 2 Add-links at once (class IV); `linkgen "
-                               "assemblies` counts it (its elimination takes about a minute), the build does not")
+            raise NotReducible(f"resolver group {g.number} needs 2 Add-links at once (class IV); `linkgen assemblies` "
+                               "counts it (in about 10 s), as does a build asked for an assembly; other builds do not")
         return two_bodies_of(log, g)
-    return triad_of(log, g)
+    try:
+        return triad_of(log, g)
+    except NotReducible as exc:
+        try:
+            return pivoted_of(log, g)
+        except NotReducible as other:
+            raise NotReducible(f"{exc}; nor is it {other.args[0].split(' is not ', 1)[-1]}") from None
 
 
 def _columns(log: StepLog, get: Any) -> dict[str, float]:

@@ -13,13 +13,17 @@ METHOD = ("characteristic polynomial has its real roots isolated exactly (sympy'
           "fractions on its rational coefficients) and counted again by Sturm's theorem, each root polished by "
           "Newton's method at 50 digits")
 
-METHOD_IV = ("class-IV group's eliminant (resultants of its four closure equations in tangent half-angles, "
-             "python-flint) has its real roots isolated from its exact integer coefficients (arb's certified "
-             "complex_roots on each irreducible factor), each root back-substituted and polished by Newton's method "
-             "at 50 digits, the spurious ones rejected")
+METHOD_IV = ("class-IV group's eliminant (resultants of its closure equations in tangent half-angles, python-flint) "
+             "has its real roots isolated from its exact integer coefficients (arb's certified complex_roots on each "
+             "irreducible factor; for two links on their own pivots, sympy's exact isolation counted again by Sturm's "
+             "theorem), each root back-substituted and polished by Newton's method at 50 digits, the spurious ones "
+             "rejected")
 
 MANUAL_METHOD = ("every resolver group's characteristic polynomial\nhas its real roots isolated in exact "
                  "arithmetic and counted by Sturm's theorem, each\npolished at 50 digits")
+MANUAL_METHOD_IV = ("every resolver group's polynomial (a class-IV group's eliminant\nby resultants) has its real "
+                    "roots isolated from its exact coefficients (Sturm's\ntheorem; arb's certified ball arithmetic "
+                    "for two bodies on four-bars), each\nback-substituted and polished at 50 digits")
 
 
 def _g(x: float) -> str:
@@ -191,7 +195,8 @@ def manual(log: StepLog) -> dict[str, Any] | None:
     return {"inputs": inputs_text(log, census), "counted": rec.counted, "notes": list(rec.notes),
             "count": n, "follows": rec.follows, "sketch": sketch, "chosen": log.options.assembly,
             "header": header, "rows": rows,
-            "method": MANUAL_METHOD if any(n.startswith("group") for n in rec.notes) else "",
+            "method": MANUAL_METHOD_IV if any(", class IV)" in n for n in rec.notes) else
+            MANUAL_METHOD if any(n.startswith("group") for n in rec.notes) else "",
             "prismatic": any(p.kind == "prismatic" for p in log.pairs),
             "figures": " ".join(f"![assembly {a.number} of {n}]({log.name}_assembly_{a.number}.svg)"
                                 for a in census.assemblies)}

@@ -12,8 +12,8 @@ R(theta) h - a) = 0 is linear in cos and sin of each angle, so times (1 + t_phi^
 it too is of degree 2 in each (n scaled to integers, the powers of 2 of its binary fractions
 cleared).  With t = tan(angle / 2) each is a polynomial of degree 2 in each of its unknowns with
 exact integer coefficients (the data on the grid of ``triad.grid``, divided by it).  Resultants
-eliminate phi_L (F_L against each coupler), then phi_R (F_R against both), then theta_R, leaving
-P(t_L), t_L = tan(theta_L / 2); factors (1 + t^2) are divided out on the way.  Every assembly's
+eliminate phi_L (F_L against each coupler), then phi_R (F_R against both), then theta_R (by
+evaluation and interpolation: ``interpolate``), leaving P(t_L), t_L = tan(theta_L / 2).  Every assembly's
 theta_L is a root of P (a resultant vanishes wherever its two polynomials have a common root,
 finite or where both leading coefficients vanish); theta_L = pi (t_L infinite) is checked on its
 own, from the equations' leading coefficients in t_L.  P also has roots where F_L's two branches
@@ -35,6 +35,7 @@ from typing import Any
 import flint
 import mpmath
 
+from . import ballroots, interpolate
 from .bodies import TwoBodies
 from .triad import Exact, NotReducible
 
@@ -51,10 +52,11 @@ Term = tuple[int | None, tuple[int, int]]  # (the angle that turns the vector, o
 
 @dataclass(frozen=True)
 class Assembled:
-    """One assembly of the group: theta_L, the four angles (radians) and every body pair's position."""
+    """One assembly of the group: theta_L, its angles (radians; four, or two for ``pivoted``) and every body
+    pair's position."""
 
     theta: float
-    angles: tuple[float, float, float, float]
+    angles: tuple[float, ...]
     positions: tuple[tuple[float, float], ...]  # in the order of TwoBodies.pairs
     error: float  # the worst equation's residual after polishing, over L^2
 
@@ -166,31 +168,30 @@ def _clean(p: Any, ctx: Any) -> Any:
 
 
 def eliminate(f_l: Any, f_r: Any, c1: Any, c2: Any, ctx: Any) -> tuple[Any, Any, Any]:
-    """(S_1, S_2, P): the couplers' resultants in theta_L, theta_R and their resultant in theta_L."""
+    """(S_1, S_2, P): the couplers' resultants in theta_L, theta_R and their resultant, an fmpz_poly in
+    t_L (by evaluation and interpolation: ``interpolate``)."""
     s = []
     for c in (c1, c2):
         r = _clean(f_l.resultant(c, "pL"), ctx)
         s.append(_clean(f_r.resultant(r, "pR"), ctx))
     if s[0] == 0 or s[1] == 0:
         raise NotReducible("the group's equations do not fix it at this position")
-    return s[0], s[1], s[0].resultant(s[1], "tR")
+    return s[0], s[1], interpolate.resultant(s[0], s[1], 3, 1)
 
 
 def univariate(p: Any, index: int) -> Any:
     """An fmpz_mpoly in the variable ``index`` only as an fmpz_poly."""
-    coeffs: dict[int, int] = {}
-    for exps, c in p.to_dict().items():
-        if any(e for k, e in enumerate(exps) if k != index):
-            raise ArithmeticError("the eliminant still has other unknowns")
-        coeffs[exps[index]] = int(c)
+    if any(e for exps in p.to_dict() for k, e in enumerate(exps) if k != index):
+        raise ArithmeticError("the eliminant still has other unknowns")
+    coeffs = {int(exps[index]): int(c) for exps, c in p.to_dict().items()}
     return flint.fmpz_poly([coeffs.get(k, 0) for k in range(max(coeffs) + 1)])
 
 
-def real_roots(f: Any) -> list[tuple[Any, Any]]:
+def real_roots(f: Any, factors: Any = None) -> list[tuple[Any, Any]]:
     """Every distinct real root of the integer polynomial f as an isolating interval (lo, hi) of
     mpf, by FLINT's certified isolation (arb's complex_roots: ball arithmetic on the exact
-    coefficients) on each irreducible factor."""
-    _, factors = f.factor()
+    coefficients) on each irreducible factor (``factors``: f's, when already known)."""
+    factors = factors or f.factor()[1]
     out = []
     for g, _ in factors:
         if g.degree() < 1:
@@ -212,13 +213,12 @@ def solve(bodies: TwoBodies, bases: list[Exact], unit: Fraction, scale: float) -
     ctx = flint.fmpz_mpoly_ctx.get(NAMES, "lex")
     eqs = equations(bodies, bases, unit)
     polys = [polynomial(ctx, *e) for e in eqs]
-    s1, s2, p = eliminate(polys[0], polys[1], polys[2], polys[3], ctx)
-    if p == 0:
+    s1, s2, eliminant = eliminate(polys[0], polys[1], polys[2], polys[3], ctx)
+    if eliminant == 0:
         raise NotReducible("the group's equations do not fix it at this position (its couplers' resultants "
                            "share a factor)")
-    eliminant = univariate(p, 1)
     _, factors = eliminant.factor()
-    intervals = real_roots(eliminant)
+    intervals = real_roots(eliminant, factors)
     size = MP.mpf(scale) / MP.mpf(unit.numerator) * unit.denominator  # L in grid units
     found: list[Assembled] = []
     mids = [(lo + hi) / 2 for lo, hi in intervals]
@@ -293,9 +293,9 @@ def _roots(coeffs: list[Any]) -> list[Any]:
             root = MP.sqrt(max(disc, 0))
             out += [(-b + root) / (2 * a), (-b - root) / (2 * a)]
     elif len(coeffs) > 3:
-        for z in MP.polyroots(coeffs, maxsteps=200, extraprec=400):
-            if abs(MP.im(z)) <= MP.mpf(10) ** -20 * (1 + abs(z)):
-                out.append(MP.re(z))
+        balls = ballroots.real_roots(coeffs, MP)
+        out += balls if balls is not None else [MP.re(z) for z in MP.polyroots(coeffs, maxsteps=200, extraprec=400)
+                                                if abs(MP.im(z)) <= MP.mpf(10) ** -20 * (1 + abs(z))]
     return out
 
 

@@ -18,6 +18,7 @@ from .centres import instant_centre
 from .directions import angle_direction, link_direction
 from .dsl import NAN, PI, Primitive, atan2, cos, fabs, select, sin, sqrt
 from .dyads import PPR_links, PRP_links, PRR_links, RPR_links, RRR_links
+from .loops import loop_point, loop_residual, loop_turn
 from .vectors import Motion, PlaneBuilder, primitive
 
 
@@ -159,6 +160,9 @@ PRIMITIVES: dict[str, Primitive] = {
         RPR_links,
         PPR_links,
         link_residual,
+        loop_point,
+        loop_residual,
+        loop_turn,
         link_direction,
         angle_direction,
         instant_centre,

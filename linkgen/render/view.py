@@ -64,6 +64,17 @@ class Group:
         return len(self.group.add_links)
 
     @property
+    def loop(self) -> bool:
+        """Whether the block is a loop block (strategy loop, extraction.loops): its state is an assumed
+        angle as the arc length of the leg its first step places, read off the pairs as one."""
+        return bool(self.steps) and self.steps[0].function == "loop_point"
+
+    @property
+    def arm(self) -> str:
+        """A loop block's leg length record (the arc length's radius; "" for an Add-link block)."""
+        return self.steps[0].args[1].var if self.loop else ""
+
+    @property
     def suffix(self) -> str:
         """Names the block's function: 1 for group 1, 1_v2 for its second fallback."""
         k = self.group.variant

@@ -21,7 +21,7 @@ def test_the_whole_procedure_is_walked_whatever_the_files_outputs():
     assert len(c.assemblies) == 8 and all("C.x" in a.values for a in c.assemblies)
 
 
-@pytest.mark.parametrize("name, reason", [("assemblies/class4", "class IV or higher")])  # quaternary_slide: counted
+@pytest.mark.parametrize("name, reason", [("assemblies/moving_slot", "not a block on a slide fixed to the frame")])
 def test_a_group_it_cannot_reduce_is_an_error_naming_the_file(name, reason):
     path = str(ROOT / "tests" / f"{name}.yaml")
     with pytest.raises(ProcedureError) as info:

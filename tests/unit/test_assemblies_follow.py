@@ -14,7 +14,7 @@ from linkgen.validate import read_mechanism
 
 ROOT = Path(__file__).resolve().parents[2]
 INVERTED = str(ROOT / "samples" / "inverted_slider" / "inverted_slider.yaml")
-CLASS4 = str(ROOT / "tests" / "assemblies" / "class4.yaml")
+UNCOUNTED = str(ROOT / "tests" / "assemblies" / "moving_slot.yaml")  # a group linkgen does not count
 
 
 def _lengths(m) -> dict[tuple[str, str], float]:
@@ -56,8 +56,8 @@ def test_the_listing_reads_back_as_the_census():
 
 
 def test_a_group_it_cannot_count_is_recorded_and_cannot_be_chosen():
-    log = whole_log(CLASS4)
+    log = whole_log(UNCOUNTED)
     found = listing(log)
     assert not found.counted and found.listing == () and "cannot count" in found.notes[0]
     with pytest.raises(InputError, match="linkgen cannot count"):
-        chosen(read_mechanism(CLASS4), 1, found, True)
+        chosen(read_mechanism(UNCOUNTED), 1, found, True)

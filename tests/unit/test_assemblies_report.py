@@ -70,3 +70,16 @@ def test_a_multiple_root_is_said_to_be_a_singular_position():
                      "meet there (a singular position), counted once"]
     assert json.loads(to_json(log, census))["groups"][0]["multiple"] == [{"theta": math.degrees(0.5),
                                                                            "multiplicity": 2}]
+
+
+def test_the_manual_names_a_class_iv_groups_method():
+    """class4_slot's build (two links on their own pivots, counted at every build): the manual's method
+    names the class-IV eliminant; the Fig. 14 six-bar's keeps the triads' wording."""
+    from linkgen.assemblies.report import manual
+    from linkgen.pipeline import build_log
+
+    slot = manual(build_log(str(ROOT / "tests" / "regressions" / "class4_slot.yaml"), sweep=False))
+    fig14 = manual(build_log(str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"), sweep=False))
+    assert slot is not None and fig14 is not None and slot["count"] == 2 and fig14["count"] == 4
+    assert "class-IV group's eliminant" in slot["method"] and "class-IV" not in fig14["method"]
+    assert "Sturm's theorem" in fig14["method"]

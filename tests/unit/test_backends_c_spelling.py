@@ -44,10 +44,10 @@ def unit(v: View, name: str, moved: dict[str, str] | None = None) -> str:
               for c in v.constants]
     lines.append("typedef struct {")
     lines += [f"    {r.kind} {r.name};" for r in v.records]
-    lines += [f"    double sigma[{v.last_step + 1}];", "} work;", ""]
+    lines += ["} work;", ""]
     lines += ["static void note(work *w, int st, int singular, int near)", "{",
               '    printf("note %d %d %d %d\\n", st, singular, near, (int)(w != NULL));', "}", "", FAILED]
-    lines += ["static int run(work *w, const double in[], const double din[], const double ddin[], int *out)", "{",
+    lines += ["static int run(work *w, const double in[], const double din[], const double ddin[], state *out)", "{",
               "    int st;", "    (void)st; (void)in; (void)din; (void)ddin;"]
     lines += [f"    {spell.input_record(var, k)}" for k, var in enumerate(v.inputs)]
     lines += [f"    {line}" for s in v.run if s.function for line in spell.call(s, None)]
@@ -55,8 +55,8 @@ def unit(v: View, name: str, moved: dict[str, str] | None = None) -> str:
     lines += [f"    static const double in[] = {{{', '.join(repr(x) for x in values)}}};",
               f"    static const double din[] = {{{', '.join(repr(x) for x in rates)}}};",
               f"    static const double ddin[] = {{{', '.join(repr(x) for x in accelerations)}}};",
-              "    work w;", "    int failure = 0;", "    int code = run(&w, in, din, ddin, &failure);",
-              '    printf("code %d failed %d\\n", code, failure);']
+              "    work w;", "    state failure = {0, 0, {0.0}};", "    int code = run(&w, in, din, ddin, &failure);",
+              '    printf("code %d failed %d at %d\\n", code, failure.code, failure.step);']
     for rec, f in computed(v):
         kind = next(r.kind for r in v.records if r.name == rec)
         lines.append(f'    printf("{rec}.{f} %a\\n", w.{rec}.{field(kind, f)});')
@@ -64,9 +64,11 @@ def unit(v: View, name: str, moved: dict[str, str] | None = None) -> str:
     return "\n".join(lines) + "\n"
 
 
-# failed() of the program: the row ends with a failure's code (here noted in *out)
-FAILED = ("static int failed(const void *w, int *out, int code)\n"
-          "{\n    (void)w;\n    *out = code;\n    return code;\n}\n")
+# the public state the steps write their conditioning into, and failed() of the program: the row ends with a
+# failure's code at a step (here noted in out->code)
+FAILED = ("typedef struct { int code, step; double sigma[64]; } state;\n"
+          "static int failed(state *out, int code, int step)\n"
+          "{\n    out->code = code;\n    out->step = step;\n    return code;\n}\n")
 
 
 def run_units(units: dict[str, str], folder: Path) -> dict[str, list[str]]:
@@ -99,7 +101,7 @@ def outputs(tmp_path_factory: pytest.TempPathFactory) -> dict[str, list[str]]:
 def test_the_spelled_procedure_computes_every_record(name: str, outputs):
     v = view(name)
     lines = outputs[name]
-    assert lines[-len(computed(v)) - 1] == "code 0 failed 0"
+    assert lines[-len(computed(v)) - 1] == "code 0 failed 0 at 0"
     got = dict(line.split() for line in lines[-len(computed(v)):])
     want = reference(v)
     kinds = {r.name: r.kind for r in v.records}
@@ -118,7 +120,8 @@ def test_a_chain_that_cannot_close_returns_its_steps_code(tmp_path: Path):
     text = unit(v, "far", {grounded.name: "{{1e6, 1e6}, {0.0, 0.0}, {0.0, 0.0}}"})  # its pair far away
     lines = run_units({"far": text}, tmp_path)["far"]
     code = status.code(chain.number, status.CANNOT_CLOSE)
-    assert f"code {code} failed {code}" in lines  # through failed(), which publishes the failed row
+    # through failed(), which publishes the failed row (the conditioning of the steps after it reset)
+    assert f"code {code} failed {code} at {chain.number}" in lines
 
 
 def test_constants_are_braced_initializers_with_zero_rates():
@@ -143,7 +146,8 @@ def test_the_reach_check_ends_a_row_past_the_reach_with_its_codes(tmp_path: Path
     body = "\n".join(f"    {line}" for line in spell.reach_check())
     probes = (log.reach.low - 0.1, (log.reach.low + log.reach.high) / 2, log.reach.high + 0.1)
     text = (f"#include <math.h>\n#include <stdio.h>\n{RUNTIME.source('reach')}\n{FAILED}"
-            f"static int check(const double in[])\n{{\n    int st, failure = 0, *out = &failure;\n    void *w = NULL;\n"
+            "static int check(const double in[])\n{\n    int st;\n"
+            "    state failure = {0, 0, {0.0}}, *out = &failure;\n"
             f"{body}\n    return 0;\n}}\n"
             "void run_reach(void);\nvoid run_reach(void)\n{\n"
             + "".join(f"    {{ const double in[] = {{{x!r}}}; printf(\"%d\\n\", check(in)); }}\n" for x in probes)

@@ -59,6 +59,8 @@ def test_the_numpy_twin_computes_a_column_of_rows_at_once(name: str, order: int)
         for (o, f), a, b in zip(names, got, fields, strict=True):
             if (o, f) in angles and "atan2" in python_function(prim, order) and math.isfinite(b):
                 assert abs(a - b) <= ATAN2_ULPS * math.ulp(b), (row, o, f)
+            elif (name, f) == ("loop_residual", "v") and math.isfinite(b):  # l times an angle off atan2
+                assert abs(a - b) <= ATAN2_ULPS * math.ulp(math.pi) * abs(row["l_v"]), (row, o, f)
             elif "cos_sin(" in text and math.isfinite(b):
                 size = max([1.0, abs(b)] + [abs(v) for v in row.values()]) ** (field_order(o_kind(prim, o), f) + 2)
                 assert abs(a - b) <= COS_SIN_EPS * EPS * size, (row, o, f, a, b)

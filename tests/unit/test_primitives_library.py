@@ -9,14 +9,14 @@ import math
 import pytest
 from primitive_calls import PI, STILL, approx, py2
 
-from linkgen.primitives import centres, directions, dyads, library
+from linkgen.primitives import centres, directions, dyads, library, loops
 from linkgen.primitives.dsl import Primitive
 
 
 def test_the_library_lists_every_primitive_of_the_four_modules_once_by_its_name():
-    defined = {p.name for module in (library, dyads, directions, centres) for p in vars(module).values()
+    defined = {p.name for module in (library, dyads, directions, centres, loops) for p in vars(module).values()
                if isinstance(p, Primitive)}
-    assert set(library.PRIMITIVES) == defined and len(defined) == 16
+    assert set(library.PRIMITIVES) == defined and len(defined) == 19
     assert all(name == p.name for name, p in library.PRIMITIVES.items())
     # the placing functions first, then the chains, then the residual (the programs paste them in this order)
     order = list(library.PRIMITIVES)

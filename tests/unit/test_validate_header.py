@@ -63,7 +63,7 @@ def test_every_option_as_the_file_gives_it():
      "expected the assembly to follow, a whole number (linkgen assemblies numbers them), got the text 'two'"),
     ("options: [float]", "options", "expected the options as {real: float, strategy: newton, ...}, got a list"),
     ("options: {strategy: bisection}", "options.strategy",
-     "options: strategy is newton, fixed-point or closure, got 'bisection'"),
+     "options: strategy is newton, fixed-point, closure or loop, got 'bisection'"),
     ("options: {tolerance: 0}", "options.tolerance", "the resolver tolerance is above 0 and at most 0.001, got 0"),
     ("options: {tolerance: 0.1}", "options.tolerance", "the resolver tolerance is above 0 and at most 0.001, got 0.1"),
     ("options: {iterations: 0}", "options.iterations", "the resolver's iteration cap is 1 to 100, got 0"),

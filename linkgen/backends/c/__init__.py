@@ -45,6 +45,11 @@ def velocity_variants(view: View) -> list[str]:
     return [c_function(replace(program_primitive(view, n), name=f"{n}_1"), 1) for n in names]
 
 
+def conditioned_steps(view: View) -> tuple[int, ...]:
+    """The steps of the run whose call writes its conditioning (its primitive's sigma) into the state."""
+    return tuple(s.number for s in view.run if s.function and program_primitive(view, s.function).sigma is not None)
+
+
 def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
     log = view.log
     upper = log.name.upper()
@@ -74,7 +79,7 @@ def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
                            sketch_a=", ".join("{" + a + "}" for a in sketch_states(view, spell)),
                            column_fields=[f"{spell.ident(c.owner)}.{c.field}" for c in view.cells],
                            limits=lists["limits"], slack=spell.lit(log.policy.path_slack),
-                           periodic=lists["periodic"]),
+                           periodic=lists["periodic"], conditioned=conditioned_steps(view)),
         "NAME_main.c": template("NAME_main.c.j2", upper=upper, columns=columns, inputs=lists),
     }
 

@@ -28,6 +28,19 @@ class CExprs(RecordExprs):
     def select(self, cond: str, a: str, b: str) -> str:
         return f"{cond} ? {a} : {b}"
 
+    def logic(self, e: Logic) -> str:
+        """Of two truth values (comparisons, and and or of them) ``(a) | (b)`` and ``(a) & (b)``: both sides
+        evaluated, no branch (a chain's fail flag: 3 instructions less a chain); else C's || and &&."""
+        if not all(isinstance(x, (Cmp, Logic)) for x in (e.a, e.b)):
+            return super().logic(e)
+        op = "&" if e.op == "and" else "|"
+
+        def side(x: Expr) -> str:
+            text = self.expr(x)
+            return text if isinstance(x, Logic) and x.op == e.op and f" {op} " in text else f"({text})"
+
+        return f"{side(e.a)} {op} {side(e.b)}"
+
     def expr(self, e: Expr) -> str:
         """As every language, but a whole number given to a math function is a real literal (0.0):
         under <tgmath.h> an int argument would make a call a double call for a float operand."""

@@ -27,10 +27,16 @@ class C(Spelling):
         sources = ("in", "din", "ddin")
         return " ".join(f"w->{var.name}.{f} = {src}[{k}];" for f, src in zip(self.fields(var.kind), sources))
 
-    def exit(self, code: str) -> str:
-        """The statement that ends a row with a failure's code: through failed() where run() publishes
-        its rows, else back to the resolvers' row driver."""
-        return f"return {code};" if self.log.groups else f"return failed(w, out, {code});"
+    def exit(self, code: str, step: int = 0) -> str:
+        """The statement that ends a row with a failure's code at step ``step``: through failed() where run()
+        publishes its rows (the conditioning of the steps after it reset there), else back to the resolvers'
+        row driver."""
+        return f"return {code};" if self.log.groups else f"return failed(out, {code}, {step});"
+
+    def sigma(self, step: Step) -> str:
+        """Where a step's conditioning goes: straight into the public state where run() publishes its rows
+        (no per-row copy), else the work record the resolvers' row driver reads."""
+        return super().sigma(step) if self.log.groups else f"out->sigma[{step.number}]"
 
     def reach_fail(self, low: int, high: int) -> list[str]:
         return [f"st = {self.reach_call('in[0]')};", f"if (st != 0) {self.exit(f'st < 0 ? {low} : {high}')}"]
@@ -57,7 +63,7 @@ class C(Spelling):
         if prim.status is None:
             return [*head, text]
         if scope is None:
-            return [*head, f"st = {text}", f"if (st == 1) {self.exit(str(self.status_code(step, 1)))}",
+            return [*head, f"st = {text}", f"if (st == 1) {self.exit(str(self.status_code(step, 1)), step.number)}",
                     *self.notes("st", step)]
         lines = [*head, f"st = {text}", "if (st == 1) return 1;", *(f"if (live) {n}" for n in self.notes("st", step))]
         if prim.sigma is not None:

@@ -75,6 +75,7 @@ def _omitted(log: StepLog) -> str:
 
 def render(view: View, spell: Manual, template: Template) -> dict[str, bytes]:
     from ...assemblies.report import manual  # linkgen.assemblies builds logs: the pipeline imports the backends
+    from ...loopmap import sketch_slopes  # the evaluator renders through the backends
 
     log = view.log
     seq = states(log)
@@ -88,7 +89,7 @@ def render(view: View, spell: Manual, template: Template) -> dict[str, bytes]:
         limits=and_list([f"{number(x)} for {i.column}" for x, i in zip(log.step_limits(), log.inputs)]),
         good_lever=log.policy.good_lever, real_policy=for_real(log.policy, log.options.real),
         tolerance_eps=TOLERANCE_EPS, singular_eps=SINGULAR_EPS, real_eps=EPSILON[log.options.real],
-        assemblies=manual(log),
+        assemblies=manual(log), loop_slopes=sketch_slopes(log),
         summary=markdown_summary(log.summary, markdown_text) if log.summary else "")}
 
 

@@ -91,7 +91,7 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double z = (q < lo ? q : lo);
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
-    const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
+    const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
     const double kk = (0.0 > k ? 0.0 : k);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
@@ -149,7 +149,7 @@ static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double 
     const double ah = fabs(hh);
     const double k = q - ah;
     const double big = (ah > q ? ah : q);
-    const int fail = k < -8 * DBL_EPSILON * big || q == 0;
+    const int fail = (k < -8 * DBL_EPSILON * big) | (q == 0);
     const double t = sqrt((0.0 > k ? 0.0 : k) * (q + ah));
     const double iq = q == 0 ? NAN : 1 / q;
     const double mt = minv * t;
@@ -229,7 +229,6 @@ typedef struct {
     ANGLE phi_side_link;
     ANGLE phi_power_link;
     ANGLE phi_bucket;
-    double sigma[ACTUATOR_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
@@ -308,12 +307,13 @@ static void no_outputs(actuator_state *out)
     out->bucket.alpha = NAN;
 }
 
-/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
-static int failed(const work *w, actuator_state *out, int code)
+/* A row that failed at step `step` (reason 1 or 2): its code, conditioning 1 for the steps after it (the
+   steps before wrote theirs), every output nan. */
+static int failed(actuator_state *out, int code, int step)
 {
     int k;
     out->status = code;
-    for (k = 0; k <= ACTUATOR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    for (k = step + 1; k <= ACTUATOR_N_STEPS; k++) out->sigma[k] = 1.0;
     no_outputs(out);
     return code;
 }
@@ -321,9 +321,7 @@ static int failed(const work *w, actuator_state *out, int code)
 /* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, actuator_state *out)
 {
-    int k;
     out->status = code;
-    for (k = 0; k <= ACTUATOR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     out->S0.x = -2000.0;
     out->S0.y = 300.0;
     out->S0.vx = 0.0;
@@ -441,51 +439,57 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    for (st = 0; st <= ACTUATOR_N_STEPS; st++) w->sigma[st] = 1.0;
+    /* the steps without a conditioning (the others write theirs as they run) */
+    out->sigma[0] = 1.0;
+    out->sigma[1] = 1.0;
+    out->sigma[5] = 1.0;
+    out->sigma[6] = 1.0;
+    out->sigma[7] = 1.0;
+    out->sigma[8] = 1.0;
     w->in1.v = in[0]; w->in1.dv = din[0]; w->in1.ddv = ddin[0];
 
     /* Step 1: fixed, stick. link stick is the frame: its pairs are fixed */
 
 
     /* Step 2: RRR_links, K (branch -1). K is joined to the known R by side_link and to the known S0 by d_S0_K: a 3R two-link chain with both ends known */
-    st = RRR_links(&p_R, &p_S0, &l_side_link, &w->in1, -1, &w->p_K, &w->sigma[2]);
-    if (st == 1) return failed(w, out, 21);
+    st = RRR_links(&p_R, &p_S0, &l_side_link, &w->in1, -1, &w->p_K, &out->sigma[2]);
+    if (st == 1) return failed(out, 21, 2);
     note(w, st, 23, -24);
 
 
     /* Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known */
-    st = RPR_links(&p_S0, &w->p_K, 850.0, 0.0, -850.0, 0.0, 1, &w->psi_C, &w->s_C, &w->p_C, &w->sigma[3]);
-    if (st == 1) return failed(w, out, 31);
+    st = RPR_links(&p_S0, &w->p_K, 850.0, 0.0, -850.0, 0.0, 1, &w->psi_C, &w->s_C, &w->p_C, &out->sigma[3]);
+    if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
 
     /* Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_K, &p_Q, &l_power_link, &l_bucket, 1, &w->p_M, &w->sigma[4]);
-    if (st == 1) return failed(w, out, 41);
+    st = RRR_links(&w->p_K, &p_Q, &l_power_link, &l_bucket, 1, &w->p_M, &out->sigma[4]);
+    if (st == 1) return failed(out, 41, 4);
     note(w, st, 43, -44);
 
 
     /* Step 5: link_point, tip. point tip of link bucket */
     st = link_point(&p_Q, &w->p_M, -550.5882352941177, -1177.6470588235295, &w->p_tip);
-    if (st == 1) return failed(w, out, 51);
+    if (st == 1) return failed(out, 51, 5);
     note(w, st, 53, -54);
 
 
     /* Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is known */
     st = link_angle(&p_R, &w->p_K, 0.0, &w->phi_side_link);
-    if (st == 1) return failed(w, out, 61);
+    if (st == 1) return failed(out, 61, 6);
     note(w, st, 63, -64);
 
 
     /* Step 7: link_angle, power_link. K and M of link power_link are known, so its angle is known */
     st = link_angle(&w->p_K, &w->p_M, 0.0, &w->phi_power_link);
-    if (st == 1) return failed(w, out, 71);
+    if (st == 1) return failed(out, 71, 7);
     note(w, st, 73, -74);
 
 
     /* Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is known */
     st = link_angle(&p_Q, &w->p_M, 0.0, &w->phi_bucket);
-    if (st == 1) return failed(w, out, 81);
+    if (st == 1) return failed(out, 81, 8);
     note(w, st, 83, -84);
 
     st = w->singular ? w->singular : w->near;

@@ -181,7 +181,6 @@ typedef struct {
     POINT p_P2;
     POINT p_X;
     ANGLE phi_block2;
-    double sigma[CROSS_SLOT_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
@@ -239,12 +238,13 @@ static void no_outputs(cross_slot_state *out)
     out->block2.alpha = NAN;
 }
 
-/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
-static int failed(const work *w, cross_slot_state *out, int code)
+/* A row that failed at step `step` (reason 1 or 2): its code, conditioning 1 for the steps after it (the
+   steps before wrote theirs), every output nan. */
+static int failed(cross_slot_state *out, int code, int step)
 {
     int k;
     out->status = code;
-    for (k = 0; k <= CROSS_SLOT_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    for (k = step + 1; k <= CROSS_SLOT_N_STEPS; k++) out->sigma[k] = 1.0;
     no_outputs(out);
     return code;
 }
@@ -252,9 +252,7 @@ static int failed(const work *w, cross_slot_state *out, int code)
 /* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, cross_slot_state *out)
 {
-    int k;
     out->status = code;
-    for (k = 0; k <= CROSS_SLOT_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     out->O.x = 0.0;
     out->O.y = 0.0;
     out->O.vx = 0.0;
@@ -337,7 +335,12 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    for (st = 0; st <= CROSS_SLOT_N_STEPS; st++) w->sigma[st] = 1.0;
+    /* the steps without a conditioning (the others write theirs as they run) */
+    out->sigma[0] = 1.0;
+    out->sigma[1] = 1.0;
+    out->sigma[2] = 1.0;
+    out->sigma[3] = 1.0;
+    out->sigma[5] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
@@ -352,8 +355,8 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution) */
-    st = PRP_links(&w->g_P1, &w->phi_arm, 0.0, 0.0, &g_P2, &psi_P2, 0.0, 0.0, &w->s_P1, &w->p_P1, &w->s_P2, &w->p_P2, &w->p_X, &w->sigma[4]);
-    if (st == 1) return failed(w, out, 41);
+    st = PRP_links(&w->g_P1, &w->phi_arm, 0.0, 0.0, &g_P2, &psi_P2, 0.0, 0.0, &w->s_P1, &w->p_P1, &w->s_P2, &w->p_P2, &w->p_X, &out->sigma[4]);
+    if (st == 1) return failed(out, 41, 4);
     note(w, st, 43, -44);
 
 

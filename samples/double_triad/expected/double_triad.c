@@ -134,7 +134,7 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double z = (q < lo ? q : lo);
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
-    const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
+    const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
     const double kk = (0.0 > k ? 0.0 : k);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
@@ -222,7 +222,7 @@ typedef int (*group_fn)(void *ctx, const double a[], const double da[], const do
 typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
 
 /* The resolver strategies (options: strategy), as resolver_policy.strategy names them. */
-enum { RESOLVER_NEWTON, RESOLVER_FIXED_POINT, RESOLVER_CLOSURE };
+enum { RESOLVER_NEWTON, RESOLVER_FIXED_POINT, RESOLVER_CLOSURE, RESOLVER_LOOP };
 
 /* The resolver policy (linkgen/policy.py, as the step log has it, with the strategy, polish and
  * predictor of the build's options); lengths relative to the length scale. */
@@ -237,7 +237,7 @@ typedef struct {
     double path_share;    /* ... its share of the largest predicted move */
     double turn_share;    /* ... where a block's orientation turned */
     int walk_passes;      /* a continuation walk gives up after this many passes */
-    int strategy;         /* the resolver's iteration: RESOLVER_NEWTON, RESOLVER_FIXED_POINT or RESOLVER_CLOSURE */
+    int strategy;         /* the resolver's iteration: RESOLVER_NEWTON, _FIXED_POINT, _CLOSURE or _LOOP */
     int polish;           /* 1: one step more once the tolerance is met */
     int predictor;        /* the warm start's order: 0, 1 or 2 */
 } resolver_policy;
@@ -248,6 +248,7 @@ typedef struct {
     const double *sketch_in;  /* the sketch's inputs */
     const double (*sketch_a)[LINKGEN_NMAX];  /* per block: lengths, branches, orientation in the sketch */
     const int *sizes;  /* Add-links of each block */
+    const int *loops;  /* 1: a loop block (strategy loop iterates it by loop_iteration) */
     const double *limits;  /* the continuation's largest step of each input */
     const int *periodic;  /* angle inputs: the continuation goes the shorter way round */
     double low;  /* where the reach of an angle input starts (nan: no reach) */
@@ -444,8 +445,43 @@ static int fixed_point(group_fn group, void *ctx, int n, double a[], double tol,
     return kept(n, a, start, reach);
 }
 
+/* The literature's iteration on a loop block (strategy loop): from the assumed angle, as the
+ * leg's arc length a[0], the chains run round the loop and the angle that comes back is the
+ * next one, a <- a + f(a), until |f| <= tol and the distance left to the fixed point,
+ * |f| q / (1 - q) with q the last ratio of steps, is too, then (polish) one step more.  It converges where
+ * the map contracts: the ratio of successive steps |f_k+1| / |f_k| estimates |g'|, and at
+ * least 1 stops it (-1; the reverse loop, whose slope is the reciprocal, is the next block);
+ * so do the cap (every step counts, a polishing one too) and a chain that cannot close (0).
+ * The Jacobian at the solution (g' - 1) then gives the exact rates (jac).  A solution farther
+ * than reach from the start is another assembly and refused. */
+static int loop_iteration(group_fn group, void *ctx, double a[], double tol, int max_iter, double reach, int polish,
+                          double jac[][LINKGEN_NMAX], int *iterations)
+{
+    const double start = a[0];
+    double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], trial[LINKGEN_NMAX], q = 0.0;
+    *iterations = 0;
+    if (residuals(group, ctx, a, f)) return 0;
+    while (!(fabs(f[0]) <= tol && fabs(f[0]) * q <= tol * (1.0 - q))) {  /* the error |f| q / (1 - q) too */
+        if (*iterations == max_iter - polish) return 0;
+        ++*iterations;
+        trial[0] = a[0] + f[0];
+        if (residuals(group, ctx, trial, f2) || isnan(f2[0])) return 0;
+        if (fabs(f2[0]) >= fabs(f[0])) return -1;
+        q = fabs(f2[0]) / fabs(f[0]);
+        a[0] = trial[0];
+        f[0] = f2[0];
+    }
+    if (polish) {
+        ++*iterations;
+        a[0] += f[0];
+    }
+    if (jacobian(group, ctx, 1, a, f, jac)) return 0;
+    return kept(1, a, &start, reach);
+}
+
 /* The resolver strategy's iteration on one block from its start lengths a: the one place a
- * strategy is chosen (p->strategy).  Returns what newton and fixed_point return. */
+ * strategy is chosen (p->strategy; strategy loop's loop blocks: solve_variant).  Returns what
+ * newton and fixed_point return. */
 static int solve_block(group_fn group, void *ctx, int n, double a[], const resolver_policy *p, double scale,
                        double jac[][LINKGEN_NMAX], int *iterations)
 {
@@ -454,6 +490,17 @@ static int solve_block(group_fn group, void *ctx, int n, double a[], const resol
         return fixed_point(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac,
                            iterations);
     return newton(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac, iterations);
+}
+
+/* One block's iteration: loop_iteration for a loop block (loop 1) under strategy loop, which
+ * iterates its other blocks as the others do (solve_block). */
+static int solve_variant(group_fn group, void *ctx, int n, int loop, double a[], const resolver_policy *p,
+                         double scale, double jac[][LINKGEN_NMAX], int *iterations)
+{
+    if (p->strategy == RESOLVER_LOOP && loop)
+        return loop_iteration(group, ctx, a, p->tolerance * scale, p->max_iterations, p->max_move * scale, p->polish,
+                              jac, iterations);
+    return solve_block(group, ctx, n, a, p, scale, jac, iterations);
 }
 
 /* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
@@ -484,7 +531,7 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
     return group(ctx, a, rates, accs, 1, f, df, ddf);
 }
 
-/* The strategy's iteration (solve_block) on a group's blocks (its chosen Add-link candidate,
+/* The strategy's iteration (solve_variant) on a group's blocks (its chosen Add-link candidate,
  * then the fallbacks), the preferred block first, the others in order.  The first that
  * converges with its chains conditioned at least p->min_chain_sigma (*chains: the worst of
  * the last pass, from the block's lever down) is kept; else the best conditioned of those
@@ -494,17 +541,19 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
  * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
-static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
-                            int order, int prefer, int *its, double *sigma, double *turn, const double *chains,
-                            const resolver_policy *p, double scale)
+static int resolve_variants(const group_fn fns[], const int sizes[], const int loops[], int count, void *ctx,
+                            double a[][LINKGEN_NMAX], int order, int prefer, int *its, double *sigma, double *turn,
+                            const double *chains, const resolver_policy *p, double scale)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
-    int t, k, i, best = -1, stuck = 0;
+    int t, k, i, pass, best = -1, stuck = 0;
+    for (pass = 0; pass < 2; pass++)  /* strategy loop: the loop blocks first, the Add-link blocks after */
     for (t = 0; t < count; t++) {
         int solved;
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
+        if (p->strategy == RESOLVER_LOOP ? (loops[k] != 0) != (pass == 0) : pass == 1) continue;
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
-        solved = solve_block(fns[k], ctx, sizes[k], x, p, scale, jac, its);
+        solved = solve_variant(fns[k], ctx, sizes[k], loops[k], x, p, scale, jac, its);
         if (solved < 0) stuck = 1;
         if (solved <= 0) continue;
         if (*chains < p->min_chain_sigma) {
@@ -519,7 +568,7 @@ static int resolve_variants(const group_fn fns[], const int sizes[], int count, 
     }
     if (best >= 0) {
         for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
-        if (solve_block(fns[best], ctx, sizes[best], x, p, scale, jac, its) > 0
+        if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, its) > 0
             && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma,
                              turn) != 1)
             return best;
@@ -537,8 +586,8 @@ static int resolve_group(const group_fn fns[], int count, lengths_fn lengths, vo
                          const double *chains, int order, const resolver_mechanism *m, const resolver_policy *p)
 {
     double turn = 0.0;
-    const int k = resolve_variants(fns, m->sizes + first, count, ctx, a + first, order, *used, its, sigma, &turn,
-                                   chains, p, m->length_scale);
+    const int k = resolve_variants(fns, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used, its,
+                                   sigma, &turn, chains, p, m->length_scale);
     if (k < 0) return k == -1 ? 0 : -1;
     *used = k;
     lengths(ctx, a + first, ad + first);
@@ -627,11 +676,12 @@ static int within(const double in[], const double last[], const double limits[])
  * and goes on on its other branch, as a chain outside the groups does at a change point.
  * The orientation (the last entry) is copied. */
 static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_NMAX], double step,
-                    const int sizes[], double out[][LINKGEN_NMAX])
+                    const int sizes[], const int loops[], double out[][LINKGEN_NMAX])
 {
     int g, i;
     for (g = 0; g < LINKGEN_NBLOCKS; g++) {
-        for (i = 0; i < sizes[g]; i++) out[g][i] = fabs(a[g][i] + step * rate[g][i]);
+        for (i = 0; i < sizes[g]; i++)  /* a loop block's arc length is an angle: not reflected */
+            out[g][i] = loops[g] ? a[g][i] + step * rate[g][i] : fabs(a[g][i] + step * rate[g][i]);
         for (; i < LINKGEN_NMAX - 1; i++) out[g][i] = a[g][i] + step * rate[g][i];
         out[g][LINKGEN_NMAX - 1] = a[g][LINKGEN_NMAX - 1];
     }
@@ -654,20 +704,21 @@ static double warm_tau(const resolver_warm *warm, const double in[])
  * parabola with those rates that also passes through the row before them (order 2; first
  * order without one).  Both need positions and rates only, and the rates exist at every
  * order, so the positions do not depend on the order computed. */
-static void predict(const resolver_warm *warm, const double in[], const int sizes[], int order,
+static void predict(const resolver_warm *warm, const double in[], const int sizes[], const int loops[], int order,
                     double a[][LINKGEN_NMAX])
 {
     const double tau = warm_tau(warm, in);
     double back;
     int g, i;
-    advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad, tau, sizes, a);
+    advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad, tau, sizes, loops, a);
     if (order < 2 || !*warm->back_valid) return;
     back = warm_tau(warm, warm->back_in);
     if (back == 0.0) return;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < sizes[g]; i++) {
             const double bend = (warm->back_a[g][i] - warm->a[g][i] - back * warm->ad[g][i]) / (back * back);
-            a[g][i] = fabs(warm->a[g][i] + tau * warm->ad[g][i] + tau * tau * bend);
+            const double ahead = warm->a[g][i] + tau * warm->ad[g][i] + tau * tau * bend;
+            a[g][i] = loops[g] ? ahead : fabs(ahead);
         }
 }
 
@@ -708,7 +759,8 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
         tt = fmin(1.0, t + h);
         if (tt == t) return 0;
         for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
-        advance((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])rate, tt - t, m->sizes, guess);
+        advance((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])rate, tt - t, m->sizes, m->loops,
+                guess);
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
             for (i = 0; i < LINKGEN_NMAX; i++) now[g][i] = guess[g][i];
         if (path_pass(path, trial, d, 1, now, rate2)
@@ -783,7 +835,7 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         /* past a limit position: the pass fails the row at once with the limit's code */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
     } else if (*warm->valid && within(in, warm->in, m->limits)) {
-        predict(warm, in, m->sizes, p->predictor, guess);
+        predict(warm, in, m->sizes, m->loops, p->predictor, guess);
         for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* predictor order 0: from the warm states as they were */
             for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = p->predictor ? guess[g][i] : warm->a[g][i];
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
@@ -851,7 +903,7 @@ static inline int RRR_links_1(const POINT *j1, const POINT *j2, const VARIABLE *
     const double z = (q < lo ? q : lo);
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
-    const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
+    const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
     const double kk = (0.0 > k ? 0.0 : k);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
@@ -934,13 +986,14 @@ static inline void link_residual_1(const POINT *j1, const POINT *j2, const VARIA
 static const double SKETCH_IN[LINKGEN_NINPUTS] = { 1.5707963267948966 };
 static const double SKETCH_A[LINKGEN_NBLOCKS][LINKGEN_NMAX] = { {168.67127793433, -1.0, 1.0, 0.0}, {67.08203932499369, -1.0, 1.0, 0.0}, {60.8276253029822, -1.0, 1.0, 0.0}, {165.6804152578089, -1.0, 1.0, 0.0}, {123.4908903522847, -1.0, 1.0, 0.0}, {122.06555615733703, 1.0, 1.0, 0.0}, {138.92443989449805, -1.0, 1.0, 0.0}, {168.67127793433, 1.0, -1.0, 0.0}, {180.27756377319946, 1.0, -1.0, 0.0}, {285.3944638566067, 1.0, -1.0, 0.0}, {225.055548698538, 1.0, -1.0, 0.0}, {330.0, 1.0, -1.0, 0.0}, {120.0, 1.0, -1.0, 0.0}, {225.055548698538, 1.0, -1.0, 0.0}, {67.08203932499369, 1.0, -1.0, 0.0}, {240.0, -1.0, -1.0, 0.0} };
 static const int BLOCK_SIZES[LINKGEN_NBLOCKS] = { 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1 };
+static const int BLOCK_LOOPS[LINKGEN_NBLOCKS] = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
 static const double LIMITS[LINKGEN_NINPUTS] = { 0.1 };
 static const int PERIODIC[LINKGEN_NINPUTS] = { 1 };
 
 /* What the row driver needs of the mechanism; its length scale is the largest distance
    between two of the sketch's pairs or points. */
 static const resolver_mechanism MECHANISM = {
-    331.436268383531, SKETCH_IN, SKETCH_A, BLOCK_SIZES, LIMITS, PERIODIC, NAN,
+    331.436268383531, SKETCH_IN, SKETCH_A, BLOCK_SIZES, BLOCK_LOOPS, LIMITS, PERIODIC, NAN,
     82, 2
 };
 

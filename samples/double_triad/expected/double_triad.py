@@ -250,6 +250,7 @@ MECHANISM = SimpleNamespace(  # what the row driver needs of the mechanism
     sketch_inputs=(1.5707963267948966, ),
     sketch_a=([168.67127793433, -1.0, 1.0, 0.0], [67.08203932499369, -1.0, 1.0, 0.0], [60.8276253029822, -1.0, 1.0, 0.0], [165.6804152578089, -1.0, 1.0, 0.0], [123.4908903522847, -1.0, 1.0, 0.0], [122.06555615733703, 1.0, 1.0, 0.0], [138.92443989449805, -1.0, 1.0, 0.0], [168.67127793433, 1.0, -1.0, 0.0], [180.27756377319946, 1.0, -1.0, 0.0], [285.3944638566067, 1.0, -1.0, 0.0], [225.055548698538, 1.0, -1.0, 0.0], [330.0, 1.0, -1.0, 0.0], [120.0, 1.0, -1.0, 0.0], [225.055548698538, 1.0, -1.0, 0.0], [67.08203932499369, 1.0, -1.0, 0.0], [240.0, -1.0, -1.0, 0.0], ),  # per block: lengths, branches, orientation
     sizes=(1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, ),  # Add-links of each block
+    loops=(0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, ),  # 1: a loop block (strategy loop)
     limits=(0.1,),  # the continuation's largest step of each input
     periodic=(True,),  # angle inputs: the continuation goes the shorter way round
     low=NAN,  # where the reach of an angle input starts (nan: no reach)
@@ -593,11 +594,54 @@ def fixed_point(group, a, tol, max_iter, reach, halvings, polish):
     return _kept(a, start, reach), a, its, jac
 
 
-def solve_block(group, a, p, scale):
+def loop_iteration(group, a, tol, max_iter, reach, polish):
+    """The literature's iteration on a loop block (strategy loop): from the assumed angle, as
+    the leg's arc length s, the chains run round the loop and the angle that comes back is
+    the next one, s <- s + f(s) (f: the angle that came back less the one assumed, as an arc),
+    until |f| <= tol and the distance left to the fixed point, |f| q / (1 - q) with q the
+    last ratio of steps, is too, then (polish) one step more.  It converges where the map contracts:
+    the ratio of successive steps |f_k+1| / |f_k| estimates |g'|, and at least 1 stops it
+    (the reverse loop, whose slope is the reciprocal, is the next block); so does the cap
+    (every step counts, a polishing one too) and a chain that cannot close.  The Jacobian at
+    the solution (g' - 1) then gives the exact rates.  A solution farther than reach from the
+    start is another assembly: refused.
+
+    Returns (solved, a, iterations, jac) as fixed_point does.
+    """
+    start = a
+    f = _residuals(group, a)
+    if f is None:
+        return 0, a, 0, None
+    its, q = 0, 0.0
+    while not (abs(f[0]) <= tol and abs(f[0]) * q <= tol * (1.0 - q)):  # the error |f| q / (1 - q) too
+        if its == max_iter - polish:
+            return 0, a, its, None
+        its += 1
+        trial = [a[0] + f[0]]
+        f2 = _residuals(group, trial)
+        if f2 is None or f2[0] != f2[0]:
+            return 0, a, its, None
+        if abs(f2[0]) >= abs(f[0]):
+            return -1, a, its, None
+        q = abs(f2[0]) / abs(f[0])
+        a, f = trial, f2
+    if polish:
+        its += 1
+        a = [a[0] + f[0]]
+    f, jac = _jacobian(group, a)
+    if f is None:
+        return 0, a, its, None
+    return _kept(a, start, reach), a, its, jac
+
+
+def solve_block(group, a, p, scale, loop=0):
     """The resolver strategy's iteration on one block from its start lengths a: the one
-    place a strategy is chosen (p.strategy).  Returns (solved, a, iterations, jac) as
-    newton and fixed_point do."""
+    place a strategy is chosen (p.strategy; loop: 1 for a loop block, which strategy loop
+    iterates by loop_iteration, its other blocks by Newton).  Returns (solved, a,
+    iterations, jac) as newton and fixed_point do."""
     tol, reach = p.tolerance * scale, p.max_move * scale
+    if p.strategy == "loop" and loop:
+        return loop_iteration(group, a, tol, p.max_iterations, reach, p.polish)
     if p.strategy == "fixed-point":
         return fixed_point(group, a, tol, p.max_iterations, reach, p.newton_halvings, p.polish)
     return newton(group, a, tol, p.max_iterations, reach, p.newton_halvings, p.polish)
@@ -629,7 +673,7 @@ def addlink_rates(group, a, jac, order):
     return st, sigma, 1 if det > 0.0 else -1 if det < 0.0 else 0
 
 
-def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale):
+def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale, loops=None):
     """The strategy's iteration (solve_block) on a group's blocks (its chosen Add-link
     candidate, then the fallbacks), the preferred block first, the others in order.  The
     first that converges with its chains conditioned at least p.min_chain_sigma (chains():
@@ -640,12 +684,17 @@ def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale):
     rounding, decides).
 
     a[first + k] is block k's state: its sizes[k] start lengths, its branches, its orientation.
+    Under strategy loop the loop blocks (loops[k] 1) come first, the Add-link blocks after.
     Returns (k, iterations, sigma, orientation), k = -1 when no block converges, -2 when
     none does and the iteration of one of them did not contract.
     """
     its, best, best_sigma, stuck = 0, -1, -1.0, False
-    for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
-        ok, x, its, jac = solve_block(groups[k], a[first + k][:sizes[k]], p, scale)
+    loops = loops or [0] * len(groups)
+    tries = [prefer] + [j for j in range(len(groups)) if j != prefer]
+    if p.strategy == "loop":
+        tries = [k for k in tries if loops[k]] + [k for k in tries if not loops[k]]
+    for k in tries:
+        ok, x, its, jac = solve_block(groups[k], a[first + k][:sizes[k]], p, scale, loops[k])
         stuck = stuck or ok < 0
         if ok <= 0:
             continue
@@ -657,7 +706,7 @@ def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale):
         if st != 1:
             return k, its, sigma, turn
     if best >= 0:
-        ok, x, its, jac = solve_block(groups[best], a[first + best][:sizes[best]], p, scale)
+        ok, x, its, jac = solve_block(groups[best], a[first + best][:sizes[best]], p, scale, loops[best])
         if ok > 0:
             st, sigma, turn = addlink_rates(groups[best], x, jac, order)
             if st != 1:
@@ -672,7 +721,8 @@ def resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains,
     its orientation.  its[slot] gets the iterations.  Returns (solved, sigma): solved 1, 0
     where no block converged, -1 where a block's iteration did not contract."""
     k, its[slot], sigma, turn = resolve_variants(groups, a, first, order, used[slot],
-                                                 m.sizes[first:first + len(groups)], chains, p, m.length_scale)
+                                                 m.sizes[first:first + len(groups)], chains, p, m.length_scale,
+                                                 m.loops[first:first + len(groups)])
     if k < 0:
         return (0 if k == -1 else -1), sigma
     used[slot] = k
@@ -690,16 +740,17 @@ def resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains,
 # groups, another, not_converged), p the resolver policy (the step log's).
 
 
-def advance(a, rates, step, sizes):
+def advance(a, rates, step, sizes, loops):
     """Block states moved by step along their rates.  An Add-link length is a distance:
-    where its prediction passes zero the two pairs pass each other, so it is reflected.  A
+    where its prediction passes zero the two pairs pass each other, so it is reflected (a
+    loop block's arc length, loops[k] 1, is an angle: it is not).  A
     branch's measure moves too: where it passes zero the chain passes its fold and goes on
     on its other branch, as a chain outside the groups does at a change point."""
-    return [[abs(v + step * r) if i < n else v + step * r for i, (v, r) in enumerate(zip(g, gr))]
-            for g, gr, n in zip(a, rates, sizes)]
+    return [[abs(v + step * r) if i < n and not loop else v + step * r for i, (v, r) in enumerate(zip(g, gr))]
+            for g, gr, n, loop in zip(a, rates, sizes, loops)]
 
 
-def predict(warm, inputs, sizes, order):
+def predict(warm, inputs, sizes, order, loops):
     """The path the assembly is expected on at new inputs: the warm states advanced along
     their rates (order 1: first-order Taylor in the warm row's input direction), or along
     the parabola with those rates that also passes through the row before them (order 2;
@@ -708,14 +759,15 @@ def predict(warm, inputs, sizes, order):
     the same positions whatever order it computes."""
     w_in, w_rates, a, ad = warm[:4]
     tau = _tau(w_in, w_rates, inputs)
-    first = advance(a, ad, tau, sizes)
+    first = advance(a, ad, tau, sizes, loops)
     back = _tau(w_in, w_rates, warm[5][0]) if order == 2 and warm[5] is not None else 0.0
     if back == 0.0:
         return first
     out = []
-    for g, gr, gb, n, f in zip(a, ad, warm[5][1], sizes, first):
+    for g, gr, gb, n, f, loop in zip(a, ad, warm[5][1], sizes, first, loops):
         bend = [(b - v - back * r) / (back * back) for v, r, b in zip(g[:n], gr, gb)]
-        out.append([abs(v + tau * r + tau * tau * c) for v, r, c in zip(g, gr, bend)] + f[n:])
+        ahead = [v + tau * r + tau * tau * c for v, r, c in zip(g, gr, bend)]
+        out.append((ahead if loop else [abs(x) for x in ahead]) + f[n:])
     return out
 
 
@@ -795,7 +847,7 @@ def walk(run, base, a, goal, m, p):
         if tt == t:
             return None
         trial = [b + tt * x for b, x in zip(base, d)] if tt < 1.0 else goal
-        guess = advance(a, rate, tt - t, sizes)
+        guess = advance(a, rate, tt - t, sizes, m.loops)
         ok, a2, rate2 = run(trial, d, 1, guess)
         if ok and on_path(a, guess, a2, sizes, slack, p):
             t, a, rate, h, cuts = tt, a2, rate2, min(2 * h, h_max), 0
@@ -825,7 +877,7 @@ def drive(run, warm, inputs, rates, accs, order, past, m, p):
     if past:  # past a limit position: the pass fails the row at once with the limit's code
         code, ad = run(inputs, rates, accs, order, a, used, True)
     elif warm and within(inputs, warm[0], m.limits):
-        guess = predict(warm, inputs, m.sizes, max(p.predictor, 1))
+        guess = predict(warm, inputs, m.sizes, max(p.predictor, 1), m.loops)
         a = [list(g) for g in (guess if p.predictor else warm[2])]  # order 0: the warm states as they were
         code, ad = run(inputs, rates, accs, order, a, used, True)
         solved = code <= 0 and on_path(warm[2], guess, a, m.sizes, p.path_slack * m.length_scale, p)

@@ -75,6 +75,7 @@ function w = new_work()
     m.sketch_in = [1.5707963267948966];
     m.sketch_a = {[168.67127793433, -1.0, 1.0, 0.0]', [67.08203932499369, -1.0, 1.0, 0.0]', [60.8276253029822, -1.0, 1.0, 0.0]', [165.6804152578089, -1.0, 1.0, 0.0]', [123.4908903522847, -1.0, 1.0, 0.0]', [122.06555615733703, 1.0, 1.0, 0.0]', [138.92443989449805, -1.0, 1.0, 0.0]', [168.67127793433, 1.0, -1.0, 0.0]', [180.27756377319946, 1.0, -1.0, 0.0]', [285.3944638566067, 1.0, -1.0, 0.0]', [225.055548698538, 1.0, -1.0, 0.0]', [330.0, 1.0, -1.0, 0.0]', [120.0, 1.0, -1.0, 0.0]', [225.055548698538, 1.0, -1.0, 0.0]', [67.08203932499369, 1.0, -1.0, 0.0]', [240.0, -1.0, -1.0, 0.0]'};  % per block: lengths, branches, orientation
     m.sizes = [1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1];  % Add-links of each block
+    m.loops = [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0];  % 1: a loop block (strategy loop)
     m.limits = [0.1];  % the continuation's largest step of each input
     m.periodic = [1];  % angle inputs: the continuation goes the shorter way round
     m.low = NaN;  % where the reach of an angle input starts (NaN: no reach)
@@ -2037,13 +2038,62 @@ function [ok, a, its, jac, w] = resolver_fixed_point(group, w, a, tol, max_iter,
     ok = closed && all(abs(a - start) <= reach);
 end
 
-function [ok, a, its, jac, w] = resolver_solve_block(group, w, a, p, scale)
+function [ok, a, its, jac, w] = resolver_loop(group, w, a, tol, max_iter, reach, polish)
+    % The literature's iteration on a loop block (strategy loop): from the assumed angle, as
+    % the leg's arc length a, the chains run round the loop and the angle that comes back is
+    % the next one, a <- a + f(a), until |f| <= tol and the distance left to the fixed point,
+    % |f| q / (1 - q) with q the last ratio of steps, is too, then (polish) one step more.  It converges
+    % where the map contracts: the ratio of successive steps |f_k+1| / |f_k| estimates |g'|,
+    % and at least 1 stops it (ok -1; the reverse loop, whose slope is the reciprocal, is the
+    % next block); so do the cap and a chain that cannot close (ok 0).  The Jacobian at the
+    % solution (g' - 1) gives the exact rates; a solution farther than reach from the start
+    % is another assembly.
+    ok = 0;
+    its = 0;
+    jac = [];
+    start = a;
+    [st, res, w] = group(w, a, 0, 0, false);
+    if st
+        return;
+    end
+    f = res(1, 1);
+    q = 0;
+    while ~(abs(f) <= tol && abs(f) * q <= tol * (1 - q))  % the error |f| q / (1 - q) too
+        if its == max_iter - polish
+            return;
+        end
+        its = its + 1;
+        trial = a + f;
+        [st, res, w] = group(w, trial, 0, 0, false);
+        if st || isnan(res(1, 1))
+            return;
+        end
+        if abs(res(1, 1)) >= abs(f)
+            ok = -1;
+            return;
+        end
+        q = abs(res(1, 1)) / abs(f);
+        a = trial;
+        f = res(1, 1);
+    end
+    if polish
+        its = its + 1;
+        a = a + f;
+    end
+    [closed, ~, jac, w] = resolver_jacobian(group, w, a);
+    ok = closed && abs(a - start) <= reach;
+end
+
+function [ok, a, its, jac, w] = resolver_solve_block(group, w, a, p, scale, loop)
     % The resolver strategy's iteration on one block from its start lengths a: the one place
-    % a strategy is chosen (p.strategy).  Returns what resolver_newton and
-    % resolver_fixed_point return.
+    % a strategy is chosen (p.strategy; loop: 1 for a loop block, which strategy loop
+    % iterates by resolver_loop, its other blocks by Newton).  Returns what resolver_newton
+    % and resolver_fixed_point return.
     tol = p.tolerance * scale;
     reach = p.max_move * scale;
-    if strcmp(p.strategy, 'fixed-point')
+    if strcmp(p.strategy, 'loop') && loop
+        [ok, a, its, jac, w] = resolver_loop(group, w, a, tol, p.max_iterations, reach, p.polish);
+    elseif strcmp(p.strategy, 'fixed-point')
         [ok, a, its, jac, w] = resolver_fixed_point(group, w, a, tol, p.max_iterations, reach, p.newton_halvings, ...
                                                     p.polish);
     else
@@ -2077,7 +2127,7 @@ function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order)
     [st, ~, w] = group(w, a, rates, accs, true);
 end
 
-function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, prefer, sizes, p, scale)
+function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, prefer, sizes, loops, p, scale)
     % The strategy's iteration (resolver_solve_block) on a group's blocks (its chosen Add-link
     % candidate, then the fallbacks), the preferred block first, the others in order.  The
     % first that converges with its chains conditioned at least p.min_chain_sigma (w.chains:
@@ -2095,8 +2145,12 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
     best_sigma = -1;
     stuck = false;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
+    if strcmp(p.strategy, 'loop')  % the loop blocks first, the Add-link blocks after
+        tries = [tries(loops(tries + 1) ~= 0), tries(loops(tries + 1) == 0)];
+    end
     for k = tries
-        [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale);
+        [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale, ...
+                                                    loops(k + 1));
         stuck = stuck || ok < 0;
         if ok <= 0
             continue;
@@ -2115,7 +2169,8 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
     end
     k = best;
     if k >= 0
-        [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale);
+        [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale, ...
+                                                    loops(k + 1));
         if ok > 0
             [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
             if st ~= 1
@@ -2133,7 +2188,8 @@ function [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a
     % the solving block keeps its orientation.  ok: 1 when a block solved, 0 when none
     % converged, -1 when the iteration of one did not contract; its: its iterations.
     [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, used(slot), ...
-                                                 m.sizes(first:first + numel(groups) - 1), p, m.length_scale);
+                                                 m.sizes(first:first + numel(groups) - 1), ...
+                                                 m.loops(first:first + numel(groups) - 1), p, m.length_scale);
     ok = 1;
     if k < 0
         ok = -(k == -2);  % 0: none converged, -1: an iteration did not contract
@@ -2168,12 +2224,15 @@ function ok = resolver_on_path(prev, guess, now, sizes, slack, p)
     end
 end
 
-function a = resolver_advance(a, rate, step, sizes)
+function a = resolver_advance(a, rate, step, sizes, loops)
     % Block states moved by step along their rates.  An Add-link length is a distance:
-    % where its prediction passes zero the two pairs pass each other, so it is reflected.
+    % where its prediction passes zero the two pairs pass each other, so it is reflected (a
+    % loop block's arc length, loops(g) 1, is an angle: it is not).
     for g = 1:numel(a)
         a{g} = a{g} + step * rate{g};
-        a{g}(1:sizes(g)) = abs(a{g}(1:sizes(g)));
+        if ~loops(g)
+            a{g}(1:sizes(g)) = abs(a{g}(1:sizes(g)));
+        end
     end
 end
 
@@ -2186,7 +2245,7 @@ function tau = resolver_tau(warm, in)
     end
 end
 
-function a = resolver_predict(warm, in, sizes, order)
+function a = resolver_predict(warm, in, sizes, order, loops)
     % The path the assembly is expected on at new inputs: the warm states advanced along
     % their rates (order 1: first-order Taylor in the warm row's input direction), or along
     % the parabola with those rates that also passes through the row before them (order 2;
@@ -2194,7 +2253,7 @@ function a = resolver_predict(warm, in, sizes, order)
     % order).  Both need positions and rates only, and the rates exist at every order, so
     % the positions do not depend on the order computed.
     tau = resolver_tau(warm, in);
-    a = resolver_advance(warm.a, warm.ad, tau, sizes);
+    a = resolver_advance(warm.a, warm.ad, tau, sizes, loops);
     if order < 2 || isempty(warm.back)
         return;
     end
@@ -2205,7 +2264,10 @@ function a = resolver_predict(warm, in, sizes, order)
     for g = 1:numel(a)
         n = 1:sizes(g);
         bend = (warm.back.a{g}(n) - warm.a{g}(n) - back * warm.ad{g}(n)) / (back * back);
-        a{g}(n) = abs(warm.a{g}(n) + tau * warm.ad{g}(n) + tau * tau * bend);
+        a{g}(n) = warm.a{g}(n) + tau * warm.ad{g}(n) + tau * tau * bend;
+        if ~loops(g)
+            a{g}(n) = abs(a{g}(n));
+        end
     end
 end
 
@@ -2305,7 +2367,7 @@ function [ok, a] = resolver_walk(run, base, a, goal, m, p)
         else
             trial = goal;
         end
-        guess = resolver_advance(a, rate, tt - t, sizes);
+        guess = resolver_advance(a, rate, tt - t, sizes, m.loops);
         [closed, a2, rate2] = run(trial, d, 1, guess);
         if closed && resolver_on_path(a, guess, a2, sizes, slack, p)
             t = tt;
@@ -2357,7 +2419,7 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
         [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
     elseif warm.valid && all(abs(in - warm.in) <= m.limits)
         % from the previous row, where the predictor points (order 0: its block states as they were)
-        guess = resolver_predict(warm, in, m.sizes, p.predictor);
+        guess = resolver_predict(warm, in, m.sizes, p.predictor, m.loops);
         a = guess;
         if p.predictor == 0
             a = warm.a;

@@ -93,7 +93,7 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double z = (q < lo ? q : lo);
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
-    const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
+    const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
     const double kk = (0.0 > k ? 0.0 : k);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
@@ -163,7 +163,6 @@ typedef struct {
     ANGLE phi_link1;
     ANGLE phi_link2;
     ANGLE phi_crank2;
-    double sigma[FIVEBAR_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
@@ -224,12 +223,13 @@ static void no_outputs(fivebar_state *out)
     out->crank2.alpha = NAN;
 }
 
-/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
-static int failed(const work *w, fivebar_state *out, int code)
+/* A row that failed at step `step` (reason 1 or 2): its code, conditioning 1 for the steps after it (the
+   steps before wrote theirs), every output nan. */
+static int failed(fivebar_state *out, int code, int step)
 {
     int k;
     out->status = code;
-    for (k = 0; k <= FIVEBAR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    for (k = step + 1; k <= FIVEBAR_N_STEPS; k++) out->sigma[k] = 1.0;
     no_outputs(out);
     return code;
 }
@@ -237,9 +237,7 @@ static int failed(const work *w, fivebar_state *out, int code)
 /* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, fivebar_state *out)
 {
-    int k;
     out->status = code;
-    for (k = 0; k <= FIVEBAR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     out->O1.x = 0.0;
     out->O1.y = 0.0;
     out->O1.vx = 0.0;
@@ -327,7 +325,15 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    for (st = 0; st <= FIVEBAR_N_STEPS; st++) w->sigma[st] = 1.0;
+    /* the steps without a conditioning (the others write theirs as they run) */
+    out->sigma[0] = 1.0;
+    out->sigma[1] = 1.0;
+    out->sigma[2] = 1.0;
+    out->sigma[3] = 1.0;
+    out->sigma[5] = 1.0;
+    out->sigma[6] = 1.0;
+    out->sigma[7] = 1.0;
+    out->sigma[8] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
     w->in2.the = in[1]; w->in2.dthe = din[1]; w->in2.ddthe = ddin[1];
 
@@ -343,8 +349,8 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 4: RRR_links, P (branch +1). P is joined to the known A by link1 and to the known B by link2: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_A, &w->p_B, &l_link1, &l_link2, 1, &w->p_P, &w->sigma[4]);
-    if (st == 1) return failed(w, out, 41);
+    st = RRR_links(&w->p_A, &w->p_B, &l_link1, &l_link2, 1, &w->p_P, &out->sigma[4]);
+    if (st == 1) return failed(out, 41, 4);
     note(w, st, 43, -44);
 
 
@@ -354,13 +360,13 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     /* Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known */
     st = link_angle(&w->p_A, &w->p_P, 0.0, &w->phi_link1);
-    if (st == 1) return failed(w, out, 61);
+    if (st == 1) return failed(out, 61, 6);
     note(w, st, 63, -64);
 
 
     /* Step 7: link_angle, link2. P and B of link link2 are known, so its angle is known */
     st = link_angle(&w->p_P, &w->p_B, 0.0, &w->phi_link2);
-    if (st == 1) return failed(w, out, 71);
+    if (st == 1) return failed(out, 71, 7);
     note(w, st, 73, -74);
 
 

@@ -129,7 +129,7 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double z = (q < lo ? q : lo);
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
-    const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
+    const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
     const double kk = (0.0 > k ? 0.0 : k);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
@@ -196,7 +196,6 @@ typedef struct {
     ANGLE phi_crank;
     ANGLE phi_coupler;
     ANGLE phi_rocker;
-    double sigma[FOURBAR_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
@@ -254,12 +253,13 @@ static void no_outputs(fourbar_state *out)
     out->rocker.alpha = NAN;
 }
 
-/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
-static int failed(const work *w, fourbar_state *out, int code)
+/* A row that failed at step `step` (reason 1 or 2): its code, conditioning 1 for the steps after it (the
+   steps before wrote theirs), every output nan. */
+static int failed(fourbar_state *out, int code, int step)
 {
     int k;
     out->status = code;
-    for (k = 0; k <= FOURBAR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    for (k = step + 1; k <= FOURBAR_N_STEPS; k++) out->sigma[k] = 1.0;
     no_outputs(out);
     return code;
 }
@@ -267,9 +267,7 @@ static int failed(const work *w, fourbar_state *out, int code)
 /* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, fourbar_state *out)
 {
-    int k;
     out->status = code;
-    for (k = 0; k <= FOURBAR_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     out->O1.x = 0.0;
     out->O1.y = 0.0;
     out->O1.vx = 0.0;
@@ -352,7 +350,14 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    for (st = 0; st <= FOURBAR_N_STEPS; st++) w->sigma[st] = 1.0;
+    /* the steps without a conditioning (the others write theirs as they run) */
+    out->sigma[0] = 1.0;
+    out->sigma[1] = 1.0;
+    out->sigma[2] = 1.0;
+    out->sigma[4] = 1.0;
+    out->sigma[5] = 1.0;
+    out->sigma[6] = 1.0;
+    out->sigma[7] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
@@ -363,14 +368,14 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_A, &p_O2, &l_coupler, &l_rocker, 1, &w->p_B, &w->sigma[3]);
-    if (st == 1) return failed(w, out, 31);
+    st = RRR_links(&w->p_A, &p_O2, &l_coupler, &l_rocker, 1, &w->p_B, &out->sigma[3]);
+    if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
 
     /* Step 4: link_point, P. point P of link coupler */
     st = link_point(&w->p_B, &w->p_A, 2.5607375986579193, -28.168113585237116, &w->p_P);
-    if (st == 1) return failed(w, out, 41);
+    if (st == 1) return failed(out, 41, 4);
     note(w, st, 43, -44);
 
 
@@ -380,13 +385,13 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     /* Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is known */
     st = link_angle(&w->p_A, &w->p_B, 0.0, &w->phi_coupler);
-    if (st == 1) return failed(w, out, 61);
+    if (st == 1) return failed(out, 61, 6);
     note(w, st, 63, -64);
 
 
     /* Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is known */
     st = link_angle(&p_O2, &w->p_B, 0.0, &w->phi_rocker);
-    if (st == 1) return failed(w, out, 71);
+    if (st == 1) return failed(out, 71, 7);
     note(w, st, 73, -74);
 
     st = w->singular ? w->singular : w->near;

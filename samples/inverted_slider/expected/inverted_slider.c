@@ -88,7 +88,7 @@ static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double 
     const double ah = fabs(hh);
     const double k = q - ah;
     const double big = (ah > q ? ah : q);
-    const int fail = k < -8 * DBL_EPSILON * big || q == 0;
+    const int fail = (k < -8 * DBL_EPSILON * big) | (q == 0);
     const double t = sqrt((0.0 > k ? 0.0 : k) * (q + ah));
     const double iq = q == 0 ? NAN : 1 / q;
     const double mt = minv * t;
@@ -162,7 +162,6 @@ typedef struct {
     POINT p_S;
     POINT p_P;
     ANGLE phi_crank;
-    double sigma[INVERTED_SLIDER_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
@@ -223,12 +222,13 @@ static void no_outputs(inverted_slider_state *out)
     out->block.alpha = NAN;
 }
 
-/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
-static int failed(const work *w, inverted_slider_state *out, int code)
+/* A row that failed at step `step` (reason 1 or 2): its code, conditioning 1 for the steps after it (the
+   steps before wrote theirs), every output nan. */
+static int failed(inverted_slider_state *out, int code, int step)
 {
     int k;
     out->status = code;
-    for (k = 0; k <= INVERTED_SLIDER_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    for (k = step + 1; k <= INVERTED_SLIDER_N_STEPS; k++) out->sigma[k] = 1.0;
     no_outputs(out);
     return code;
 }
@@ -236,9 +236,7 @@ static int failed(const work *w, inverted_slider_state *out, int code)
 /* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, inverted_slider_state *out)
 {
-    int k;
     out->status = code;
-    for (k = 0; k <= INVERTED_SLIDER_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     out->O1.x = 0.0;
     out->O1.y = 50.0;
     out->O1.vx = 0.0;
@@ -326,7 +324,12 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    for (st = 0; st <= INVERTED_SLIDER_N_STEPS; st++) w->sigma[st] = 1.0;
+    /* the steps without a conditioning (the others write theirs as they run) */
+    out->sigma[0] = 1.0;
+    out->sigma[1] = 1.0;
+    out->sigma[2] = 1.0;
+    out->sigma[4] = 1.0;
+    out->sigma[5] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
@@ -337,8 +340,8 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 3: RPR_links, S (branch +1). the guide lever turns about the known O2 and the slider block about the known A, sliding along one line at S: an RPR two-link chain with both ends known */
-    st = RPR_links(&p_O2, &w->p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1, &w->psi_S, &w->s_S, &w->p_S, &w->sigma[3]);
-    if (st == 1) return failed(w, out, 31);
+    st = RPR_links(&p_O2, &w->p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1, &w->psi_S, &w->s_S, &w->p_S, &out->sigma[3]);
+    if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
 

@@ -90,7 +90,7 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double z = (q < lo ? q : lo);
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
-    const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
+    const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
     const double kk = (0.0 > k ? 0.0 : k);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
@@ -154,7 +154,6 @@ typedef struct {
     POINT p_F;
     POINT p_foot;
     ANGLE phi_crank;
-    double sigma[JANSEN_FOOT_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
@@ -176,12 +175,13 @@ static void no_outputs(jansen_foot_state *out)
     out->crank.omega = NAN;
 }
 
-/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
-static int failed(const work *w, jansen_foot_state *out, int code)
+/* A row that failed at step `step` (reason 1 or 2): its code, conditioning 1 for the steps after it (the
+   steps before wrote theirs), every output nan. */
+static int failed(jansen_foot_state *out, int code, int step)
 {
     int k;
     out->status = code;
-    for (k = 0; k <= JANSEN_FOOT_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    for (k = step + 1; k <= JANSEN_FOOT_N_STEPS; k++) out->sigma[k] = 1.0;
     no_outputs(out);
     return code;
 }
@@ -189,9 +189,7 @@ static int failed(const work *w, jansen_foot_state *out, int code)
 /* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, jansen_foot_state *out)
 {
-    int k;
     out->status = code;
-    for (k = 0; k <= JANSEN_FOOT_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     out->foot.x = w->p_foot.P.x - 28.0;
     out->foot.y = w->p_foot.P.y - 32.0;
     out->foot.vx = w->p_foot.DP.x;
@@ -214,7 +212,13 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    for (st = 0; st <= JANSEN_FOOT_N_STEPS; st++) w->sigma[st] = 1.0;
+    /* the steps without a conditioning (the others write theirs as they run) */
+    out->sigma[0] = 1.0;
+    out->sigma[1] = 1.0;
+    out->sigma[2] = 1.0;
+    out->sigma[4] = 1.0;
+    out->sigma[7] = 1.0;
+    out->sigma[8] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
@@ -225,32 +229,32 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 3: RRR_links, C (branch -1). C is joined to the known A by rod_j and to the known B by triangle_bde: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_A, &p_B, &l_rod_j, &l_triangle_bde_C_B, -1, &w->p_C, &w->sigma[3]);
-    if (st == 1) return failed(w, out, 31);
+    st = RRR_links(&w->p_A, &p_B, &l_rod_j, &l_triangle_bde_C_B, -1, &w->p_C, &out->sigma[3]);
+    if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
 
     /* Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it */
     st = link_point(&p_B, &w->p_C, 2.6098795180489716, 40.01497880667611, &w->p_D);
-    if (st == 1) return failed(w, out, 41);
+    if (st == 1) return failed(out, 41, 4);
     note(w, st, 43, -44);
 
 
     /* Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_A, &p_B, &l_rod_k, &l_rocker_c, 1, &w->p_E, &w->sigma[5]);
-    if (st == 1) return failed(w, out, 51);
+    st = RRR_links(&w->p_A, &p_B, &l_rod_k, &l_rocker_c, 1, &w->p_E, &out->sigma[5]);
+    if (st == 1) return failed(out, 51, 5);
     note(w, st, 53, -54);
 
 
     /* Step 6: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_D, &w->p_E, &l_rod_f, &l_leg_ghi, -1, &w->p_F, &w->sigma[6]);
-    if (st == 1) return failed(w, out, 61);
+    st = RRR_links(&w->p_D, &w->p_E, &l_rod_f, &l_leg_ghi, -1, &w->p_F, &out->sigma[6]);
+    if (st == 1) return failed(out, 61, 6);
     note(w, st, 63, -64);
 
 
     /* Step 7: link_point, foot. point foot of link leg_ghi */
     st = link_point(&w->p_E, &w->p_F, -7.746594005561121, 48.38378118035099, &w->p_foot);
-    if (st == 1) return failed(w, out, 71);
+    if (st == 1) return failed(out, 71, 7);
     note(w, st, 73, -74);
 
 

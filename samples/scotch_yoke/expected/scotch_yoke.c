@@ -174,7 +174,6 @@ typedef struct {
     ANGLE phi_crank;
     ANGLE phi_yoke;
     ANGLE phi_block;
-    double sigma[SCOTCH_YOKE_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
@@ -232,12 +231,13 @@ static void no_outputs(scotch_yoke_state *out)
     out->block.alpha = NAN;
 }
 
-/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
-static int failed(const work *w, scotch_yoke_state *out, int code)
+/* A row that failed at step `step` (reason 1 or 2): its code, conditioning 1 for the steps after it (the
+   steps before wrote theirs), every output nan. */
+static int failed(scotch_yoke_state *out, int code, int step)
 {
     int k;
     out->status = code;
-    for (k = 0; k <= SCOTCH_YOKE_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    for (k = step + 1; k <= SCOTCH_YOKE_N_STEPS; k++) out->sigma[k] = 1.0;
     no_outputs(out);
     return code;
 }
@@ -245,9 +245,7 @@ static int failed(const work *w, scotch_yoke_state *out, int code)
 /* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, scotch_yoke_state *out)
 {
-    int k;
     out->status = code;
-    for (k = 0; k <= SCOTCH_YOKE_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     out->O.x = 0.0;
     out->O.y = 0.0;
     out->O.vx = 0.0;
@@ -330,7 +328,13 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    for (st = 0; st <= SCOTCH_YOKE_N_STEPS; st++) w->sigma[st] = 1.0;
+    /* the steps without a conditioning (the others write theirs as they run) */
+    out->sigma[0] = 1.0;
+    out->sigma[1] = 1.0;
+    out->sigma[2] = 1.0;
+    out->sigma[4] = 1.0;
+    out->sigma[5] = 1.0;
+    out->sigma[6] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
@@ -341,8 +345,8 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 3: PPR_links, P. the slider yoke rides on the known line Q and carries the slide P of block, which turns about the known A: a PPR two-link chain (one solution) */
-    st = PPR_links(&w->p_A, &g_Q, &psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1, &w->s_Q, &w->p_Q, &w->s_P, &w->p_P, &w->sigma[3]);
-    if (st == 1) return failed(w, out, 31);
+    st = PPR_links(&w->p_A, &g_Q, &psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1, &w->s_Q, &w->p_Q, &w->s_P, &w->p_P, &out->sigma[3]);
+    if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
 

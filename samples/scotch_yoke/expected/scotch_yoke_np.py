@@ -20,8 +20,12 @@
         stay), and the branches' change points stay the sketch's.
         out: a dict an earlier call returned for rows of the same shape and order, whose
         arrays this call fills instead of new ones (a loop over many calls saves the
-        first touch of fresh memory); the dict returned holds the same arrays.  Without
-        out the columns are rows of new arrays shared by several columns (a column kept keeps its array).
+        first touch of fresh memory); the dict returned holds the same arrays (a
+        read-only one in out is given anew).  Without out the columns are rows of new
+        arrays shared by several columns (a column kept keeps its array), those of the
+        last call's result that nothing holds any longer (SPARE; SPARE.clear() frees
+        them).  A column that is one number on every row (a constant record's) is a
+        read-only view of it (np.broadcast_to) unless a row lost it: copy it to write.
     python scotch_yoke_np.py
         writes the sweep over the inputs' ranges as CSV to standard output, as scotch_yoke.py does.
 """
@@ -435,44 +439,133 @@ def block(x, s, e):
 
 
 def filled(out, shape, order, m, ones=True):
-    """The flat arrays a call fills (its columns up to order, status, sigma): those of out, a
+    """The flat arrays a call fills (its columns up to order, status, sigma), the names of the
+    columns whose arrays are new and the arrays it made (see fresh, keep_spare): those of out, a
     dict an earlier call returned for rows of this shape, else new ones, the columns the rows
-    of arrays of up to SHARED bytes (see there).  sigma holds 1.0 where ones, else whatever
-    the memory held."""
+    of arrays of up to SHARED bytes (see there; a column never written costs no memory).  A
+    read-only column of out (one number on every row, see keep_same) gets a new array.  sigma
+    holds 1.0 where ones, else whatever the memory held."""
     n = int(np.prod(shape))
     names = [name for name, level in zip(m.columns, m.levels) if level <= order]
-    if out is None:
-        per = max(1, SHARED // max(1, n * np.dtype(REAL).itemsize))  # columns an array
-        reals = [x for k in range(0, len(names), per) for x in np.empty((min(per, len(names) - k), n), dtype=REAL)]
-        sigma = np.empty((m.n_steps + 1, n), dtype=REAL)
-        if ones:
-            sigma.fill(1.0)
-        return dict(zip(names, reals)), np.empty(n, dtype=int), sigma
-    wanted = [(name, shape, REAL) for name in names] + [("status", shape, int)]
-    if m.checks:
-        wanted.append(("sigma", (m.n_steps + 1, *shape), REAL))
     flat = {}
-    for name, like, dtype in wanted:
-        a = out.get(name)
-        if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype and a.flags.c_contiguous):
-            raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} for {name!r}")
-        flat[name] = a.reshape(-1) if name != "sigma" else a.reshape(m.n_steps + 1, n)
-    if "sigma" not in flat:  # the call's own where it gives no conditioning
-        flat["sigma"] = np.empty((m.n_steps + 1, n), dtype=REAL)
+    if out is not None:
+        wanted = [(name, shape, REAL) for name in names] + [("status", shape, int)]
+        if m.checks:
+            wanted.append(("sigma", (m.n_steps + 1, *shape), REAL))
+        for name, like, dtype in wanted:
+            a = out.get(name)
+            if not (isinstance(a, np.ndarray) and a.shape == like and a.dtype == dtype
+                    and (a.flags.c_contiguous or not a.flags.writeable)):
+                raise ValueError(f"{m.name}.solve: out has no {np.dtype(dtype).name} array of shape {like} "
+                                 f"for {name!r}")
+            if a.flags.writeable:
+                flat[name] = a.reshape(-1) if name != "sigma" else a.reshape(m.n_steps + 1, n)
+    new = [name for name in names if name not in flat]
+    per = max(1, SHARED // max(1, n * np.dtype(REAL).itemsize))  # columns an array
+    made = [fresh((min(per, len(new) - k), n), REAL) for k in range(0, len(new), per)]
+    flat.update(zip(new, (x for a in made for x in a)))
+    if "status" not in flat:
+        made.append(fresh((n,), int))
+        flat["status"] = made[-1]
+    if "sigma" not in flat:  # new, or the call's own where it gives no conditioning
+        made.append(fresh((m.n_steps + 1, n), REAL))
+        flat["sigma"] = made[-1]
     if ones:
         flat["sigma"].fill(1.0)
-    return {name: flat[name] for name in names}, flat["status"], flat["sigma"]
+    return {name: flat[name] for name in names}, flat["status"], flat["sigma"], set(new), made
+
+
+# The arrays of the last call's new outputs, by (shape, dtype): the next call takes those that
+# nothing else holds any longer instead of new memory (the system's fresh memory costs its first
+# touch: measured 25-30 ns a row of the four-bar at 1e6 rows, a third of its time; the allocator
+# hands a call's 32 MB arrays back to the system when they are freed).  SPARE.clear() frees them.
+SPARE = {}
+
+
+def _held_by_one():
+    a = np.empty(0)
+    return sys.getrefcount(a)
+
+
+HELD_BY_ONE = _held_by_one()  # sys.getrefcount of an array only one local name holds
+
+
+def _raise_thresholds():
+    """Free one 16 MB array (never touched): glibc's malloc then serves blocks up to that size from
+    its heap and keeps up to twice it there.  It does so at the first large array a process frees;
+    with SPARE a process may free none, and then gives the heap of a block's temporaries back to
+    the system and takes it again at every block (measured: the four-bar 1.5x slower at 1e5 rows)."""
+    a = np.empty(2**21)
+    del a
+
+
+_raise_thresholds()
+
+
+def fresh(shape, dtype):
+    """A new array for a call's outputs: a spare one (see SPARE) that only this function holds
+    now, else np.empty."""
+    spare = SPARE.get((shape, np.dtype(dtype).str))
+    while spare:
+        try:
+            a = spare.pop()
+        except IndexError:  # another thread took the last one
+            break
+        if sys.getrefcount(a) == HELD_BY_ONE:  # no result, view or buffer of a caller holds it
+            return a
+    return np.empty(shape, dtype=dtype)
+
+
+def keep_spare(made):
+    """The arrays a call made become SPARE, in place of the last call's (a call that made none,
+    into the arrays of out, leaves SPARE as it is)."""
+    if not made:
+        return
+    spare = {}
+    for a in made:
+        spare.setdefault((a.shape, a.dtype.str), []).append(a)
+    SPARE.clear()
+    SPARE.update(spare)
+
+
+def keep_same(cols, same, new, status, m):
+    """The columns of constant records (same: column -> the one number of every row) into cols,
+    the call's flat arrays, after the other columns: a read-only view of the number (no memory
+    written) where the column's array is new (in new) and no row has lost it, else the number
+    filled in, the rows that lose it nan (see lose; a refused row's status is m.bad_input)."""
+    lost = bool((status > 0).any())
+    written = {}
+    for name, value in same.items():
+        if name in new and not lost:
+            cols[name] = np.broadcast_to(np.asarray(value, dtype=REAL), status.shape)
+        else:
+            cols[name].fill(value)
+            written[name] = cols[name]
+    if lost and written:
+        lose(written, status, None, status == m.bad_input, m)
+
+
+def is_same(value, known):
+    """Whether a block's value of a column is the number known, bit for bit (or both nan)."""
+    if value is known:
+        return True
+    if np.ndim(value):
+        return False
+    a, b = np.asarray(value, dtype=REAL), np.asarray(known, dtype=REAL)
+    return a.tobytes() == b.tobytes() or bool(np.isnan(a) and np.isnan(b))
 
 
 def solve_rows(run, publish, inputs, d_inputs, dd_inputs, order, params, m, out=None):
     """Every row of a call, a block at a time: run(x, dx, ddx, c) solves a block (its records,
     the rows' status codes and each step's conditioning), publish(w, c) gives its columns,
     written into new arrays or those of out (see filled), the programs' rules applied to the
-    block while it is in the cache (see lose).  Returns shaped's dict.  A row that fails is
-    nan by design: numpy does not warn of it."""
+    block while it is in the cache (see lose).  A column that is one number on every row (a
+    constant record's) is not written row by row but put in at the end (see keep_same).
+    Returns shaped's dict.  A row that fails is nan by design: numpy does not warn of it."""
     shape, columns, c = rows_of(inputs, d_inputs, dd_inputs, design(params, m), m)
     n = int(np.prod(shape))
-    out, status, sigma = filled(out, shape, order, m, ones=False)
+    out, status, sigma, new, made = filled(out, shape, order, m, ones=False)
+    same = {}  # column -> the number every row so far has (none written yet)
     with np.errstate(all="ignore"):
         for s in range(0, n, BLOCK):
             e = min(s + BLOCK, n)
@@ -481,13 +574,24 @@ def solve_rows(run, publish, inputs, d_inputs, dd_inputs, order, params, m, out=
             w, status[s:e], steps = run(x, dx, ddx, cb)
             cols = {}
             for name, value in zip(m.columns, publish(w, cb)):
-                if name in out:
-                    cols[name] = out[name][s:e]
-                    cols[name][...] = value
+                if name not in out:
+                    continue
+                if s == 0 and not np.ndim(value):
+                    same[name] = value
+                    continue
+                if name in same:
+                    if is_same(value, same[name]):
+                        continue
+                    out[name][:s] = same.pop(name)  # no longer one number: the rows before written
+                    lose({name: out[name][:s]}, status[:s], None, status[:s] == m.bad_input, m)
+                cols[name] = out[name][s:e]
+                cols[name][...] = value
             if m.checks:
                 for k, value in enumerate(steps):
                     sigma[k, s:e] = value
             lose(cols, status[s:e], sigma[:, s:e] if m.checks else None, refused((x, dx, ddx), m), m)
+    keep_same(out, same, new, status, m)
+    keep_spare(made)
     return shaped(out, status, sigma, shape, m)
 
 
@@ -500,7 +604,7 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
     shape, columns, _ = rows_of(inputs, d_inputs, dd_inputs, {}, m)
     n = int(np.prod(shape))
     bad = np.broadcast_to(refused(columns, m), (n,))
-    out, status, sigma = filled(out, shape, order, m)
+    out, status, sigma, _, made = filled(out, shape, order, m)
     state = {}
     for r in np.flatnonzero(~bad):
         x, dx, ddx = ([float(v if np.ndim(v) == 0 else v[r]) for v in col] for col in columns)
@@ -510,6 +614,7 @@ def solve_each(solve, inputs, d_inputs, dd_inputs, order, params, m, out=None):
         status[r] = row["status"]
         if m.checks:
             sigma[:, r] = row["sigma"]
+    keep_spare(made)
     return finish(out, status, sigma, bad, shape, m)
 
 

@@ -116,7 +116,7 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double z = (q < lo ? q : lo);
     const double y = q >= hi ? hi : q <= lo ? lo : q;
     const double k = z - (x - y);
-    const int fail = k < -8 * DBL_EPSILON * x || q == 0 || lo <= 0;
+    const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
     const double kk = (0.0 > k ? 0.0 : k);
     const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
@@ -174,7 +174,7 @@ static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg,
     const double ap = fabs(pn);
     const double k = l->v - ap;
     const double big = (ap > l->v ? ap : l->v);
-    const int fail = k < -8 * DBL_EPSILON * big || l->v <= 0;
+    const int fail = (k < -8 * DBL_EPSILON * big) | (l->v <= 0);
     const double rd = sqrt((0.0 > k ? 0.0 : k) * (l->v + ap));
     const double eu = minv * rd;
     const double ex = eu * cg - -pn * sg;
@@ -259,7 +259,6 @@ typedef struct {
     VARIABLE s_S;
     POINT p_P;
     ANGLE phi_rocker;
-    double sigma[SIXBAR_SLIDER_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
@@ -293,12 +292,13 @@ static void no_outputs(sixbar_slider_state *out)
     out->rocker.alpha = NAN;
 }
 
-/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
-static int failed(const work *w, sixbar_slider_state *out, int code)
+/* A row that failed at step `step` (reason 1 or 2): its code, conditioning 1 for the steps after it (the
+   steps before wrote theirs), every output nan. */
+static int failed(sixbar_slider_state *out, int code, int step)
 {
     int k;
     out->status = code;
-    for (k = 0; k <= SIXBAR_SLIDER_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    for (k = step + 1; k <= SIXBAR_SLIDER_N_STEPS; k++) out->sigma[k] = 1.0;
     no_outputs(out);
     return code;
 }
@@ -306,9 +306,7 @@ static int failed(const work *w, sixbar_slider_state *out, int code)
 /* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, sixbar_slider_state *out)
 {
-    int k;
     out->status = code;
-    for (k = 0; k <= SIXBAR_SLIDER_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     out->S.x = w->p_S.P.x + 72.0;
     out->S.y = w->p_S.P.y + 32.0;
     out->S.vx = w->p_S.DP.x;
@@ -351,7 +349,15 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    for (st = 0; st <= SIXBAR_SLIDER_N_STEPS; st++) w->sigma[st] = 1.0;
+    /* the steps without a conditioning (the others write theirs as they run) */
+    out->sigma[0] = 1.0;
+    out->sigma[1] = 1.0;
+    out->sigma[2] = 1.0;
+    out->sigma[4] = 1.0;
+    out->sigma[6] = 1.0;
+    out->sigma[7] = 1.0;
+    out->sigma[8] = 1.0;
+    out->sigma[9] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
@@ -362,32 +368,32 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_A, &p_O2, &l_coupler, &l_rocker_B_O2, 1, &w->p_B, &w->sigma[3]);
-    if (st == 1) return failed(w, out, 31);
+    st = RRR_links(&w->p_A, &p_O2, &l_coupler, &l_rocker_B_O2, 1, &w->p_B, &out->sigma[3]);
+    if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
 
     /* Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it */
     st = link_point(&p_O2, &w->p_B, 25.307692307692307, -48.46153846153846, &w->p_C);
-    if (st == 1) return failed(w, out, 41);
+    if (st == 1) return failed(out, 41, 4);
     note(w, st, 43, -44);
 
 
     /* Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known */
-    st = PRR_links(&w->p_C, &l_rod, &g_S, &psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_D, &w->sigma[5]);
-    if (st == 1) return failed(w, out, 51);
+    st = PRR_links(&w->p_C, &l_rod, &g_S, &psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_D, &out->sigma[5]);
+    if (st == 1) return failed(out, 51, 5);
     note(w, st, 53, -54);
 
 
     /* Step 6: link_point, P. point P of link coupler */
     st = link_point(&w->p_B, &w->p_A, 13.436634577833267, -19.06454434865348, &w->p_P);
-    if (st == 1) return failed(w, out, 61);
+    if (st == 1) return failed(out, 61, 6);
     note(w, st, 63, -64);
 
 
     /* Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known */
     st = link_angle(&p_O2, &w->p_B, 0.0, &w->phi_rocker);
-    if (st == 1) return failed(w, out, 91);
+    if (st == 1) return failed(out, 91, 9);
     note(w, st, 93, -94);
 
     st = w->singular ? w->singular : w->near;

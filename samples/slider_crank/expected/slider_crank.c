@@ -105,7 +105,7 @@ static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg,
     const double ap = fabs(pn);
     const double k = l->v - ap;
     const double big = (ap > l->v ? ap : l->v);
-    const int fail = k < -8 * DBL_EPSILON * big || l->v <= 0;
+    const int fail = (k < -8 * DBL_EPSILON * big) | (l->v <= 0);
     const double rd = sqrt((0.0 > k ? 0.0 : k) * (l->v + ap));
     const double eu = minv * rd;
     const double ex = eu * cg - -pn * sg;
@@ -187,7 +187,6 @@ typedef struct {
     ANGLE phi_crank;
     ANGLE phi_rod;
     ANGLE phi_block;
-    double sigma[SLIDER_CRANK_N_STEPS + 1];
     int singular, near;  /* first singular / near-singular step codes */
 } work;
 
@@ -242,12 +241,13 @@ static void no_outputs(slider_crank_state *out)
     out->block.alpha = NAN;
 }
 
-/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
-static int failed(const work *w, slider_crank_state *out, int code)
+/* A row that failed at step `step` (reason 1 or 2): its code, conditioning 1 for the steps after it (the
+   steps before wrote theirs), every output nan. */
+static int failed(slider_crank_state *out, int code, int step)
 {
     int k;
     out->status = code;
-    for (k = 0; k <= SLIDER_CRANK_N_STEPS; k++) out->sigma[k] = w->sigma[k];
+    for (k = step + 1; k <= SLIDER_CRANK_N_STEPS; k++) out->sigma[k] = 1.0;
     no_outputs(out);
     return code;
 }
@@ -255,9 +255,7 @@ static int failed(const work *w, slider_crank_state *out, int code)
 /* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, slider_crank_state *out)
 {
-    int k;
     out->status = code;
-    for (k = 0; k <= SLIDER_CRANK_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     out->O.x = 0.0;
     out->O.y = 0.0;
     out->O.vx = 0.0;
@@ -335,7 +333,13 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    for (st = 0; st <= SLIDER_CRANK_N_STEPS; st++) w->sigma[st] = 1.0;
+    /* the steps without a conditioning (the others write theirs as they run) */
+    out->sigma[0] = 1.0;
+    out->sigma[1] = 1.0;
+    out->sigma[2] = 1.0;
+    out->sigma[4] = 1.0;
+    out->sigma[5] = 1.0;
+    out->sigma[6] = 1.0;
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
@@ -346,8 +350,8 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 3: PRR_links, B (branch +1). B is joined to the known A by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known */
-    st = PRR_links(&w->p_A, &l_rod, &g_S, &psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_B, &w->sigma[3]);
-    if (st == 1) return failed(w, out, 31);
+    st = PRR_links(&w->p_A, &l_rod, &g_S, &psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_B, &out->sigma[3]);
+    if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
 
@@ -357,7 +361,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     /* Step 5: link_angle, rod. A and B of link rod are known, so its angle is known */
     st = link_angle(&w->p_A, &w->p_B, 0.0, &w->phi_rod);
-    if (st == 1) return failed(w, out, 51);
+    if (st == 1) return failed(out, 51, 5);
     note(w, st, 53, -54);
 
 

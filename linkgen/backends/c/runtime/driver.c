@@ -79,11 +79,12 @@ static int within(const double in[], const double last[], const double limits[])
  * and goes on on its other branch, as a chain outside the groups does at a change point.
  * The orientation (the last entry) is copied. */
 static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_NMAX], double step,
-                    const int sizes[], double out[][LINKGEN_NMAX])
+                    const int sizes[], const int loops[], double out[][LINKGEN_NMAX])
 {
     int g, i;
     for (g = 0; g < LINKGEN_NBLOCKS; g++) {
-        for (i = 0; i < sizes[g]; i++) out[g][i] = fabs(a[g][i] + step * rate[g][i]);
+        for (i = 0; i < sizes[g]; i++)  /* a loop block's arc length is an angle: not reflected */
+            out[g][i] = loops[g] ? a[g][i] + step * rate[g][i] : fabs(a[g][i] + step * rate[g][i]);
         for (; i < LINKGEN_NMAX - 1; i++) out[g][i] = a[g][i] + step * rate[g][i];
         out[g][LINKGEN_NMAX - 1] = a[g][LINKGEN_NMAX - 1];
     }
@@ -106,20 +107,21 @@ static double warm_tau(const resolver_warm *warm, const double in[])
  * parabola with those rates that also passes through the row before them (order 2; first
  * order without one).  Both need positions and rates only, and the rates exist at every
  * order, so the positions do not depend on the order computed. */
-static void predict(const resolver_warm *warm, const double in[], const int sizes[], int order,
+static void predict(const resolver_warm *warm, const double in[], const int sizes[], const int loops[], int order,
                     double a[][LINKGEN_NMAX])
 {
     const double tau = warm_tau(warm, in);
     double back;
     int g, i;
-    advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad, tau, sizes, a);
+    advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad, tau, sizes, loops, a);
     if (order < 2 || !*warm->back_valid) return;
     back = warm_tau(warm, warm->back_in);
     if (back == 0.0) return;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < sizes[g]; i++) {
             const double bend = (warm->back_a[g][i] - warm->a[g][i] - back * warm->ad[g][i]) / (back * back);
-            a[g][i] = fabs(warm->a[g][i] + tau * warm->ad[g][i] + tau * tau * bend);
+            const double ahead = warm->a[g][i] + tau * warm->ad[g][i] + tau * tau * bend;
+            a[g][i] = loops[g] ? ahead : fabs(ahead);
         }
 }
 
@@ -160,7 +162,8 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
         tt = fmin(1.0, t + h);
         if (tt == t) return 0;
         for (i = 0; i < LINKGEN_NINPUTS; i++) trial[i] = tt < 1.0 ? base[i] + tt * d[i] : goal[i];
-        advance((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])rate, tt - t, m->sizes, guess);
+        advance((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])rate, tt - t, m->sizes, m->loops,
+                guess);
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
             for (i = 0; i < LINKGEN_NMAX; i++) now[g][i] = guess[g][i];
         if (path_pass(path, trial, d, 1, now, rate2)
@@ -235,7 +238,7 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         /* past a limit position: the pass fails the row at once with the limit's code */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
     } else if (*warm->valid && within(in, warm->in, m->limits)) {
-        predict(warm, in, m->sizes, p->predictor, guess);
+        predict(warm, in, m->sizes, m->loops, p->predictor, guess);
         for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* predictor order 0: from the warm states as they were */
             for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = p->predictor ? guess[g][i] : warm->a[g][i];
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);

@@ -13,7 +13,7 @@ typedef int (*group_fn)(void *ctx, const double a[], const double da[], const do
 typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
 
 /* The resolver strategies (options: strategy), as resolver_policy.strategy names them. */
-enum { RESOLVER_NEWTON, RESOLVER_FIXED_POINT, RESOLVER_CLOSURE };
+enum { RESOLVER_NEWTON, RESOLVER_FIXED_POINT, RESOLVER_CLOSURE, RESOLVER_LOOP };
 
 /* The resolver policy (linkgen/policy.py, as the step log has it, with the strategy, polish and
  * predictor of the build's options); lengths relative to the length scale. */
@@ -28,7 +28,7 @@ typedef struct {
     double path_share;    /* ... its share of the largest predicted move */
     double turn_share;    /* ... where a block's orientation turned */
     int walk_passes;      /* a continuation walk gives up after this many passes */
-    int strategy;         /* the resolver's iteration: RESOLVER_NEWTON, RESOLVER_FIXED_POINT or RESOLVER_CLOSURE */
+    int strategy;         /* the resolver's iteration: RESOLVER_NEWTON, _FIXED_POINT, _CLOSURE or _LOOP */
     int polish;           /* 1: one step more once the tolerance is met */
     int predictor;        /* the warm start's order: 0, 1 or 2 */
 } resolver_policy;
@@ -39,6 +39,7 @@ typedef struct {
     const double *sketch_in;  /* the sketch's inputs */
     const double (*sketch_a)[LINKGEN_NMAX];  /* per block: lengths, branches, orientation in the sketch */
     const int *sizes;  /* Add-links of each block */
+    const int *loops;  /* 1: a loop block (strategy loop iterates it by loop_iteration) */
     const double *limits;  /* the continuation's largest step of each input */
     const int *periodic;  /* angle inputs: the continuation goes the shorter way round */
     double low;  /* where the reach of an angle input starts (nan: no reach) */
@@ -235,8 +236,43 @@ static int fixed_point(group_fn group, void *ctx, int n, double a[], double tol,
     return kept(n, a, start, reach);
 }
 
+/* The literature's iteration on a loop block (strategy loop): from the assumed angle, as the
+ * leg's arc length a[0], the chains run round the loop and the angle that comes back is the
+ * next one, a <- a + f(a), until |f| <= tol and the distance left to the fixed point,
+ * |f| q / (1 - q) with q the last ratio of steps, is too, then (polish) one step more.  It converges where
+ * the map contracts: the ratio of successive steps |f_k+1| / |f_k| estimates |g'|, and at
+ * least 1 stops it (-1; the reverse loop, whose slope is the reciprocal, is the next block);
+ * so do the cap (every step counts, a polishing one too) and a chain that cannot close (0).
+ * The Jacobian at the solution (g' - 1) then gives the exact rates (jac).  A solution farther
+ * than reach from the start is another assembly and refused. */
+static int loop_iteration(group_fn group, void *ctx, double a[], double tol, int max_iter, double reach, int polish,
+                          double jac[][LINKGEN_NMAX], int *iterations)
+{
+    const double start = a[0];
+    double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], trial[LINKGEN_NMAX], q = 0.0;
+    *iterations = 0;
+    if (residuals(group, ctx, a, f)) return 0;
+    while (!(fabs(f[0]) <= tol && fabs(f[0]) * q <= tol * (1.0 - q))) {  /* the error |f| q / (1 - q) too */
+        if (*iterations == max_iter - polish) return 0;
+        ++*iterations;
+        trial[0] = a[0] + f[0];
+        if (residuals(group, ctx, trial, f2) || isnan(f2[0])) return 0;
+        if (fabs(f2[0]) >= fabs(f[0])) return -1;
+        q = fabs(f2[0]) / fabs(f[0]);
+        a[0] = trial[0];
+        f[0] = f2[0];
+    }
+    if (polish) {
+        ++*iterations;
+        a[0] += f[0];
+    }
+    if (jacobian(group, ctx, 1, a, f, jac)) return 0;
+    return kept(1, a, &start, reach);
+}
+
 /* The resolver strategy's iteration on one block from its start lengths a: the one place a
- * strategy is chosen (p->strategy).  Returns what newton and fixed_point return. */
+ * strategy is chosen (p->strategy; strategy loop's loop blocks: solve_variant).  Returns what
+ * newton and fixed_point return. */
 static int solve_block(group_fn group, void *ctx, int n, double a[], const resolver_policy *p, double scale,
                        double jac[][LINKGEN_NMAX], int *iterations)
 {
@@ -245,6 +281,17 @@ static int solve_block(group_fn group, void *ctx, int n, double a[], const resol
         return fixed_point(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac,
                            iterations);
     return newton(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac, iterations);
+}
+
+/* One block's iteration: loop_iteration for a loop block (loop 1) under strategy loop, which
+ * iterates its other blocks as the others do (solve_block). */
+static int solve_variant(group_fn group, void *ctx, int n, int loop, double a[], const resolver_policy *p,
+                         double scale, double jac[][LINKGEN_NMAX], int *iterations)
+{
+    if (p->strategy == RESOLVER_LOOP && loop)
+        return loop_iteration(group, ctx, a, p->tolerance * scale, p->max_iterations, p->max_move * scale, p->polish,
+                              jac, iterations);
+    return solve_block(group, ctx, n, a, p, scale, jac, iterations);
 }
 
 /* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
@@ -275,7 +322,7 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
     return group(ctx, a, rates, accs, 1, f, df, ddf);
 }
 
-/* The strategy's iteration (solve_block) on a group's blocks (its chosen Add-link candidate,
+/* The strategy's iteration (solve_variant) on a group's blocks (its chosen Add-link candidate,
  * then the fallbacks), the preferred block first, the others in order.  The first that
  * converges with its chains conditioned at least p->min_chain_sigma (*chains: the worst of
  * the last pass, from the block's lever down) is kept; else the best conditioned of those
@@ -285,17 +332,19 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
  * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
-static int resolve_variants(const group_fn fns[], const int sizes[], int count, void *ctx, double a[][LINKGEN_NMAX],
-                            int order, int prefer, int *its, double *sigma, double *turn, const double *chains,
-                            const resolver_policy *p, double scale)
+static int resolve_variants(const group_fn fns[], const int sizes[], const int loops[], int count, void *ctx,
+                            double a[][LINKGEN_NMAX], int order, int prefer, int *its, double *sigma, double *turn,
+                            const double *chains, const resolver_policy *p, double scale)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
-    int t, k, i, best = -1, stuck = 0;
+    int t, k, i, pass, best = -1, stuck = 0;
+    for (pass = 0; pass < 2; pass++)  /* strategy loop: the loop blocks first, the Add-link blocks after */
     for (t = 0; t < count; t++) {
         int solved;
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
+        if (p->strategy == RESOLVER_LOOP ? (loops[k] != 0) != (pass == 0) : pass == 1) continue;
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
-        solved = solve_block(fns[k], ctx, sizes[k], x, p, scale, jac, its);
+        solved = solve_variant(fns[k], ctx, sizes[k], loops[k], x, p, scale, jac, its);
         if (solved < 0) stuck = 1;
         if (solved <= 0) continue;
         if (*chains < p->min_chain_sigma) {
@@ -310,7 +359,7 @@ static int resolve_variants(const group_fn fns[], const int sizes[], int count, 
     }
     if (best >= 0) {
         for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
-        if (solve_block(fns[best], ctx, sizes[best], x, p, scale, jac, its) > 0
+        if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, its) > 0
             && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma,
                              turn) != 1)
             return best;
@@ -328,8 +377,8 @@ static int resolve_group(const group_fn fns[], int count, lengths_fn lengths, vo
                          const double *chains, int order, const resolver_mechanism *m, const resolver_policy *p)
 {
     double turn = 0.0;
-    const int k = resolve_variants(fns, m->sizes + first, count, ctx, a + first, order, *used, its, sigma, &turn,
-                                   chains, p, m->length_scale);
+    const int k = resolve_variants(fns, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used, its,
+                                   sigma, &turn, chains, p, m->length_scale);
     if (k < 0) return k == -1 ? 0 : -1;
     *used = k;
     lengths(ctx, a + first, ad + first);

@@ -22,12 +22,15 @@ function ok = resolver_on_path(prev, guess, now, sizes, slack, p)
     end
 end
 
-function a = resolver_advance(a, rate, step, sizes)
+function a = resolver_advance(a, rate, step, sizes, loops)
     % Block states moved by step along their rates.  An Add-link length is a distance:
-    % where its prediction passes zero the two pairs pass each other, so it is reflected.
+    % where its prediction passes zero the two pairs pass each other, so it is reflected (a
+    % loop block's arc length, loops(g) 1, is an angle: it is not).
     for g = 1:numel(a)
         a{g} = a{g} + step * rate{g};
-        a{g}(1:sizes(g)) = abs(a{g}(1:sizes(g)));
+        if ~loops(g)
+            a{g}(1:sizes(g)) = abs(a{g}(1:sizes(g)));
+        end
     end
 end
 
@@ -40,7 +43,7 @@ function tau = resolver_tau(warm, in)
     end
 end
 
-function a = resolver_predict(warm, in, sizes, order)
+function a = resolver_predict(warm, in, sizes, order, loops)
     % The path the assembly is expected on at new inputs: the warm states advanced along
     % their rates (order 1: first-order Taylor in the warm row's input direction), or along
     % the parabola with those rates that also passes through the row before them (order 2;
@@ -48,7 +51,7 @@ function a = resolver_predict(warm, in, sizes, order)
     % order).  Both need positions and rates only, and the rates exist at every order, so
     % the positions do not depend on the order computed.
     tau = resolver_tau(warm, in);
-    a = resolver_advance(warm.a, warm.ad, tau, sizes);
+    a = resolver_advance(warm.a, warm.ad, tau, sizes, loops);
     if order < 2 || isempty(warm.back)
         return;
     end
@@ -59,7 +62,10 @@ function a = resolver_predict(warm, in, sizes, order)
     for g = 1:numel(a)
         n = 1:sizes(g);
         bend = (warm.back.a{g}(n) - warm.a{g}(n) - back * warm.ad{g}(n)) / (back * back);
-        a{g}(n) = abs(warm.a{g}(n) + tau * warm.ad{g}(n) + tau * tau * bend);
+        a{g}(n) = warm.a{g}(n) + tau * warm.ad{g}(n) + tau * tau * bend;
+        if ~loops(g)
+            a{g}(n) = abs(a{g}(n));
+        end
     end
 end
 
@@ -159,7 +165,7 @@ function [ok, a] = resolver_walk(run, base, a, goal, m, p)
         else
             trial = goal;
         end
-        guess = resolver_advance(a, rate, tt - t, sizes);
+        guess = resolver_advance(a, rate, tt - t, sizes, m.loops);
         [closed, a2, rate2] = run(trial, d, 1, guess);
         if closed && resolver_on_path(a, guess, a2, sizes, slack, p)
             t = tt;
@@ -211,7 +217,7 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
         [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
     elseif warm.valid && all(abs(in - warm.in) <= m.limits)
         % from the previous row, where the predictor points (order 0: its block states as they were)
-        guess = resolver_predict(warm, in, m.sizes, p.predictor);
+        guess = resolver_predict(warm, in, m.sizes, p.predictor, m.loops);
         a = guess;
         if p.predictor == 0
             a = warm.a;

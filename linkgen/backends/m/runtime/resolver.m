@@ -161,13 +161,62 @@ function [ok, a, its, jac, w] = resolver_fixed_point(group, w, a, tol, max_iter,
     ok = closed && all(abs(a - start) <= reach);
 end
 
-function [ok, a, its, jac, w] = resolver_solve_block(group, w, a, p, scale)
+function [ok, a, its, jac, w] = resolver_loop(group, w, a, tol, max_iter, reach, polish)
+    % The literature's iteration on a loop block (strategy loop): from the assumed angle, as
+    % the leg's arc length a, the chains run round the loop and the angle that comes back is
+    % the next one, a <- a + f(a), until |f| <= tol and the distance left to the fixed point,
+    % |f| q / (1 - q) with q the last ratio of steps, is too, then (polish) one step more.  It converges
+    % where the map contracts: the ratio of successive steps |f_k+1| / |f_k| estimates |g'|,
+    % and at least 1 stops it (ok -1; the reverse loop, whose slope is the reciprocal, is the
+    % next block); so do the cap and a chain that cannot close (ok 0).  The Jacobian at the
+    % solution (g' - 1) gives the exact rates; a solution farther than reach from the start
+    % is another assembly.
+    ok = 0;
+    its = 0;
+    jac = [];
+    start = a;
+    [st, res, w] = group(w, a, 0, 0, false);
+    if st
+        return;
+    end
+    f = res(1, 1);
+    q = 0;
+    while ~(abs(f) <= tol && abs(f) * q <= tol * (1 - q))  % the error |f| q / (1 - q) too
+        if its == max_iter - polish
+            return;
+        end
+        its = its + 1;
+        trial = a + f;
+        [st, res, w] = group(w, trial, 0, 0, false);
+        if st || isnan(res(1, 1))
+            return;
+        end
+        if abs(res(1, 1)) >= abs(f)
+            ok = -1;
+            return;
+        end
+        q = abs(res(1, 1)) / abs(f);
+        a = trial;
+        f = res(1, 1);
+    end
+    if polish
+        its = its + 1;
+        a = a + f;
+    end
+    [closed, ~, jac, w] = resolver_jacobian(group, w, a);
+    ok = closed && abs(a - start) <= reach;
+end
+
+function [ok, a, its, jac, w] = resolver_solve_block(group, w, a, p, scale, loop)
     % The resolver strategy's iteration on one block from its start lengths a: the one place
-    % a strategy is chosen (p.strategy).  Returns what resolver_newton and
-    % resolver_fixed_point return.
+    % a strategy is chosen (p.strategy; loop: 1 for a loop block, which strategy loop
+    % iterates by resolver_loop, its other blocks by Newton).  Returns what resolver_newton
+    % and resolver_fixed_point return.
     tol = p.tolerance * scale;
     reach = p.max_move * scale;
-    if strcmp(p.strategy, 'fixed-point')
+    if strcmp(p.strategy, 'loop') && loop
+        [ok, a, its, jac, w] = resolver_loop(group, w, a, tol, p.max_iterations, reach, p.polish);
+    elseif strcmp(p.strategy, 'fixed-point')
         [ok, a, its, jac, w] = resolver_fixed_point(group, w, a, tol, p.max_iterations, reach, p.newton_halvings, ...
                                                     p.polish);
     else
@@ -201,7 +250,7 @@ function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order)
     [st, ~, w] = group(w, a, rates, accs, true);
 end
 
-function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, prefer, sizes, p, scale)
+function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, prefer, sizes, loops, p, scale)
     % The strategy's iteration (resolver_solve_block) on a group's blocks (its chosen Add-link
     % candidate, then the fallbacks), the preferred block first, the others in order.  The
     % first that converges with its chains conditioned at least p.min_chain_sigma (w.chains:
@@ -219,8 +268,12 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
     best_sigma = -1;
     stuck = false;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
+    if strcmp(p.strategy, 'loop')  % the loop blocks first, the Add-link blocks after
+        tries = [tries(loops(tries + 1) ~= 0), tries(loops(tries + 1) == 0)];
+    end
     for k = tries
-        [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale);
+        [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale, ...
+                                                    loops(k + 1));
         stuck = stuck || ok < 0;
         if ok <= 0
             continue;
@@ -239,7 +292,8 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
     end
     k = best;
     if k >= 0
-        [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale);
+        [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale, ...
+                                                    loops(k + 1));
         if ok > 0
             [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
             if st ~= 1
@@ -257,7 +311,8 @@ function [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a
     % the solving block keeps its orientation.  ok: 1 when a block solved, 0 when none
     % converged, -1 when the iteration of one did not contract; its: its iterations.
     [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, used(slot), ...
-                                                 m.sizes(first:first + numel(groups) - 1), p, m.length_scale);
+                                                 m.sizes(first:first + numel(groups) - 1), ...
+                                                 m.loops(first:first + numel(groups) - 1), p, m.length_scale);
     ok = 1;
     if k < 0
         ok = -(k == -2);  % 0: none converged, -1: an iteration did not contract

@@ -157,7 +157,7 @@ def advance(k, prev, rows, sink=None, spot=None):
         sink.status[j, at] = code
         for n, value in enumerate(sigma):
             if not isinstance(value, float):
-                sink_sigma(sink, n)[j, at] = value
+                sink_sigma(k, sink, n)[j, at] = value
         for g, value in enumerate(its):
             sink.its[g, j, at] = value
     if alone.size:
@@ -172,7 +172,7 @@ def advance(k, prev, rows, sink=None, spot=None):
                 sink.status[spot[0], c], sink.its[:, spot[0], c] = out["status"], out["iterations"]
                 for n, value in enumerate(out.get("sigma", ())):  # none without the checks
                     if value != 1.0 or n in sink.sigma:
-                        sink_sigma(sink, n)[spot[0], c] = value
+                        sink_sigma(k, sink, n)[spot[0], c] = value
     return new
 
 
@@ -212,19 +212,26 @@ def new_sink(k, steps, lanes):
     same arrays for every tile of a call (fresh memory is slow to touch)."""
     key = (steps, lanes)
     if key not in k.sinks:
-        k.sinks[key] = SimpleNamespace(cols={name: np.empty(key, dtype=REAL) for name in k.out},
-                                       status=np.empty(key, dtype=int), sigma={},
-                                       its=np.empty((k.its.shape[0], *key), dtype=int))
+        k.sinks[key] = SimpleNamespace(cols={name: made(k, key, REAL) for name in k.out}, status=made(k, key, int),
+                                       sigma={}, its=made(k, (k.its.shape[0], *key), int))
     sink = k.sinks[key]
     for value in sink.sigma.values():
         value.fill(1.0)
     return sink
 
 
-def sink_sigma(sink, n):
+def made(k, shape, dtype):
+    """A new array for the call's sinks (a spare one where there is one, see fresh), kept as
+    spare for the next call."""
+    k.made.append(fresh(shape, dtype))
+    return k.made[-1]
+
+
+def sink_sigma(k, sink, n):
     """The sink's array of step n's conditioning (made at its first value; 1 where none came)."""
     if n not in sink.sigma:
-        sink.sigma[n] = np.ones(sink.status.shape, dtype=REAL)
+        sink.sigma[n] = made(k, sink.status.shape, REAL)
+        sink.sigma[n].fill(1.0)
     return sink.sigma[n]
 
 
@@ -345,16 +352,17 @@ def solve_sweep(run, publish, rows, inputs, d_inputs, dd_inputs, order, params, 
     shape, columns, c = rows_of(inputs, d_inputs, dd_inputs, design(None, m), m)
     n = int(np.prod(shape))
     bad = np.broadcast_to(refused(columns, m), (n,))
-    out, status, sigma = filled(out, shape, order, m)
+    out, status, sigma, new, fresh_arrays = filled(out, shape, order, m)
     its = np.zeros((rows.N_GROUPS, n), dtype=int)
     p = SimpleNamespace(**{**vars(rows.POLICY), "tolerance": m.tolerance, "path_slack": m.path_slack})
     k = SimpleNamespace(run=run, publish=publish, rows=rows, m=rows.MECHANISM, p=p, order=order, c=c,
                         x=columns[0], dx=columns[1], ddx=columns[2], out=out, status=status, sigma=sigma, its=its,
-                        columns=m.columns, sinks={}, lanes=m.lanes, same={})
+                        columns=m.columns, sinks={}, lanes=m.lanes, same={}, made=fresh_arrays)
     with np.errstate(all="ignore"):
         sweep(k, np.flatnonzero(~bad), empty_state(k, 1), True)
-    for name, value in k.same.items():  # the columns of constant records, the lanes' value on every row
-        out[name].fill(value)
-    result = finish(out, status, sigma, bad, shape, m)
+    lose({name: x for name, x in out.items() if name not in k.same}, status, sigma, bad, m)
+    keep_same(out, k.same, new, status, m)  # the columns of constant records, the lanes' value on every row
+    keep_spare(k.made)
+    result = shaped(out, status, sigma, shape, m)
     result["iterations"] = its.reshape((rows.N_GROUPS, *shape))
     return result

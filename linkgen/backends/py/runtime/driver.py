@@ -8,16 +8,17 @@
 # groups, another, not_converged), p the resolver policy (the step log's).
 
 
-def advance(a, rates, step, sizes):
+def advance(a, rates, step, sizes, loops):
     """Block states moved by step along their rates.  An Add-link length is a distance:
-    where its prediction passes zero the two pairs pass each other, so it is reflected.  A
+    where its prediction passes zero the two pairs pass each other, so it is reflected (a
+    loop block's arc length, loops[k] 1, is an angle: it is not).  A
     branch's measure moves too: where it passes zero the chain passes its fold and goes on
     on its other branch, as a chain outside the groups does at a change point."""
-    return [[abs(v + step * r) if i < n else v + step * r for i, (v, r) in enumerate(zip(g, gr))]
-            for g, gr, n in zip(a, rates, sizes)]
+    return [[abs(v + step * r) if i < n and not loop else v + step * r for i, (v, r) in enumerate(zip(g, gr))]
+            for g, gr, n, loop in zip(a, rates, sizes, loops)]
 
 
-def predict(warm, inputs, sizes, order):
+def predict(warm, inputs, sizes, order, loops):
     """The path the assembly is expected on at new inputs: the warm states advanced along
     their rates (order 1: first-order Taylor in the warm row's input direction), or along
     the parabola with those rates that also passes through the row before them (order 2;
@@ -26,14 +27,15 @@ def predict(warm, inputs, sizes, order):
     the same positions whatever order it computes."""
     w_in, w_rates, a, ad = warm[:4]
     tau = _tau(w_in, w_rates, inputs)
-    first = advance(a, ad, tau, sizes)
+    first = advance(a, ad, tau, sizes, loops)
     back = _tau(w_in, w_rates, warm[5][0]) if order == 2 and warm[5] is not None else 0.0
     if back == 0.0:
         return first
     out = []
-    for g, gr, gb, n, f in zip(a, ad, warm[5][1], sizes, first):
+    for g, gr, gb, n, f, loop in zip(a, ad, warm[5][1], sizes, first, loops):
         bend = [(b - v - back * r) / (back * back) for v, r, b in zip(g[:n], gr, gb)]
-        out.append([abs(v + tau * r + tau * tau * c) for v, r, c in zip(g, gr, bend)] + f[n:])
+        ahead = [v + tau * r + tau * tau * c for v, r, c in zip(g, gr, bend)]
+        out.append((ahead if loop else [abs(x) for x in ahead]) + f[n:])
     return out
 
 
@@ -113,7 +115,7 @@ def walk(run, base, a, goal, m, p):
         if tt == t:
             return None
         trial = [b + tt * x for b, x in zip(base, d)] if tt < 1.0 else goal
-        guess = advance(a, rate, tt - t, sizes)
+        guess = advance(a, rate, tt - t, sizes, m.loops)
         ok, a2, rate2 = run(trial, d, 1, guess)
         if ok and on_path(a, guess, a2, sizes, slack, p):
             t, a, rate, h, cuts = tt, a2, rate2, min(2 * h, h_max), 0
@@ -143,7 +145,7 @@ def drive(run, warm, inputs, rates, accs, order, past, m, p):
     if past:  # past a limit position: the pass fails the row at once with the limit's code
         code, ad = run(inputs, rates, accs, order, a, used, True)
     elif warm and within(inputs, warm[0], m.limits):
-        guess = predict(warm, inputs, m.sizes, max(p.predictor, 1))
+        guess = predict(warm, inputs, m.sizes, max(p.predictor, 1), m.loops)
         a = [list(g) for g in (guess if p.predictor else warm[2])]  # order 0: the warm states as they were
         code, ad = run(inputs, rates, accs, order, a, used, True)
         solved = code <= 0 and on_path(warm[2], guess, a, m.sizes, p.path_slack * m.length_scale, p)

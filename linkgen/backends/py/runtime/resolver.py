@@ -161,11 +161,54 @@ def fixed_point(group, a, tol, max_iter, reach, halvings, polish):
     return _kept(a, start, reach), a, its, jac
 
 
-def solve_block(group, a, p, scale):
+def loop_iteration(group, a, tol, max_iter, reach, polish):
+    """The literature's iteration on a loop block (strategy loop): from the assumed angle, as
+    the leg's arc length s, the chains run round the loop and the angle that comes back is
+    the next one, s <- s + f(s) (f: the angle that came back less the one assumed, as an arc),
+    until |f| <= tol and the distance left to the fixed point, |f| q / (1 - q) with q the
+    last ratio of steps, is too, then (polish) one step more.  It converges where the map contracts:
+    the ratio of successive steps |f_k+1| / |f_k| estimates |g'|, and at least 1 stops it
+    (the reverse loop, whose slope is the reciprocal, is the next block); so does the cap
+    (every step counts, a polishing one too) and a chain that cannot close.  The Jacobian at
+    the solution (g' - 1) then gives the exact rates.  A solution farther than reach from the
+    start is another assembly: refused.
+
+    Returns (solved, a, iterations, jac) as fixed_point does.
+    """
+    start = a
+    f = _residuals(group, a)
+    if f is None:
+        return 0, a, 0, None
+    its, q = 0, 0.0
+    while not (abs(f[0]) <= tol and abs(f[0]) * q <= tol * (1.0 - q)):  # the error |f| q / (1 - q) too
+        if its == max_iter - polish:
+            return 0, a, its, None
+        its += 1
+        trial = [a[0] + f[0]]
+        f2 = _residuals(group, trial)
+        if f2 is None or f2[0] != f2[0]:
+            return 0, a, its, None
+        if abs(f2[0]) >= abs(f[0]):
+            return -1, a, its, None
+        q = abs(f2[0]) / abs(f[0])
+        a, f = trial, f2
+    if polish:
+        its += 1
+        a = [a[0] + f[0]]
+    f, jac = _jacobian(group, a)
+    if f is None:
+        return 0, a, its, None
+    return _kept(a, start, reach), a, its, jac
+
+
+def solve_block(group, a, p, scale, loop=0):
     """The resolver strategy's iteration on one block from its start lengths a: the one
-    place a strategy is chosen (p.strategy).  Returns (solved, a, iterations, jac) as
-    newton and fixed_point do."""
+    place a strategy is chosen (p.strategy; loop: 1 for a loop block, which strategy loop
+    iterates by loop_iteration, its other blocks by Newton).  Returns (solved, a,
+    iterations, jac) as newton and fixed_point do."""
     tol, reach = p.tolerance * scale, p.max_move * scale
+    if p.strategy == "loop" and loop:
+        return loop_iteration(group, a, tol, p.max_iterations, reach, p.polish)
     if p.strategy == "fixed-point":
         return fixed_point(group, a, tol, p.max_iterations, reach, p.newton_halvings, p.polish)
     return newton(group, a, tol, p.max_iterations, reach, p.newton_halvings, p.polish)
@@ -197,7 +240,7 @@ def addlink_rates(group, a, jac, order):
     return st, sigma, 1 if det > 0.0 else -1 if det < 0.0 else 0
 
 
-def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale):
+def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale, loops=None):
     """The strategy's iteration (solve_block) on a group's blocks (its chosen Add-link
     candidate, then the fallbacks), the preferred block first, the others in order.  The
     first that converges with its chains conditioned at least p.min_chain_sigma (chains():
@@ -208,12 +251,17 @@ def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale):
     rounding, decides).
 
     a[first + k] is block k's state: its sizes[k] start lengths, its branches, its orientation.
+    Under strategy loop the loop blocks (loops[k] 1) come first, the Add-link blocks after.
     Returns (k, iterations, sigma, orientation), k = -1 when no block converges, -2 when
     none does and the iteration of one of them did not contract.
     """
     its, best, best_sigma, stuck = 0, -1, -1.0, False
-    for k in [prefer] + [j for j in range(len(groups)) if j != prefer]:
-        ok, x, its, jac = solve_block(groups[k], a[first + k][:sizes[k]], p, scale)
+    loops = loops or [0] * len(groups)
+    tries = [prefer] + [j for j in range(len(groups)) if j != prefer]
+    if p.strategy == "loop":
+        tries = [k for k in tries if loops[k]] + [k for k in tries if not loops[k]]
+    for k in tries:
+        ok, x, its, jac = solve_block(groups[k], a[first + k][:sizes[k]], p, scale, loops[k])
         stuck = stuck or ok < 0
         if ok <= 0:
             continue
@@ -225,7 +273,7 @@ def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale):
         if st != 1:
             return k, its, sigma, turn
     if best >= 0:
-        ok, x, its, jac = solve_block(groups[best], a[first + best][:sizes[best]], p, scale)
+        ok, x, its, jac = solve_block(groups[best], a[first + best][:sizes[best]], p, scale, loops[best])
         if ok > 0:
             st, sigma, turn = addlink_rates(groups[best], x, jac, order)
             if st != 1:
@@ -240,7 +288,8 @@ def resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains,
     its orientation.  its[slot] gets the iterations.  Returns (solved, sigma): solved 1, 0
     where no block converged, -1 where a block's iteration did not contract."""
     k, its[slot], sigma, turn = resolve_variants(groups, a, first, order, used[slot],
-                                                 m.sizes[first:first + len(groups)], chains, p, m.length_scale)
+                                                 m.sizes[first:first + len(groups)], chains, p, m.length_scale,
+                                                 m.loops[first:first + len(groups)])
     if k < 0:
         return (0 if k == -1 else -1), sigma
     used[slot] = k
