@@ -171,9 +171,10 @@ def _too_many(log: StepLog) -> str:
     chains = sum(1 for s in log.steps if s.branch and s.number not in inside and not s.variant)
     if 2 ** chains * ROOTS ** len(log.groups) <= LISTED:
         return ""
-    groups = f" and {len(log.groups)} resolver groups" if log.groups else ""
+    n = len(log.groups)
+    groups, roots = (f" and {n} resolver groups", f" x {ROOTS}^{n}") if n else ("", "")
     return (f"linkgen does not count the assemblies of this mechanism: its {chains} two-link chains (two branches "
-            f"each){groups} allow more than {LISTED}, which linkgen does not walk")
+            f"each){groups} allow up to 2^{chains}{roots} of them, more than the {LISTED} a build walks")
 
 
 def _sketch_centres(topo: Topology, proc: Procedure, options: Mapping[str, object] | None) -> tuple[CentreAt, ...]:
