@@ -14,6 +14,7 @@ Writes the section "Build time" of docs/performance.md.
 
 from __future__ import annotations
 
+import os
 import statistics
 import subprocess
 import sys
@@ -78,6 +79,7 @@ def bench_builds() -> None:
             probes = [_probe(path, out) for _ in range(PROBES)]
             imports, first, later = (statistics.median(p[k] for p in probes) for k in range(3))
             lines.append(f"| {path.stem} | {command:.2f} s | {imports:.2f} s | {first:.2f} s | {later:.3f} s |")
+    lines += ["", f"The machine's load average when the run ended: {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores."]
     text = "\n".join(lines) + "\n"
     print(text)
     write_section("Build time", text)

@@ -14,6 +14,7 @@ left as it is), and to stdout.
 
 from __future__ import annotations
 
+import os
 import statistics
 import sys
 import tempfile
@@ -168,9 +169,24 @@ whether a margin reaches zero stops once its grid is flat to TOUCH away from zer
 chains of the ladder share their brackets for five refinements, then part on rounding).
 The facts are unchanged, byte for byte.  At 1000 dyads the analysis evaluates two
 procedures seven times in all (the chains' union over the span: change points and gaps, a
-sweep and two refinements each; the whole log over the sweep: the conditioning); rendering
-and compiling each one's vectorised kernel (`linkgen.kernel`) takes about 1 s each, and
-copying every variable into the result about as long as the kernel's arithmetic.
+sweep and two refinements each; the whole log over the sweep: the conditioning); a kernel
+source is rendered once for equal logs (`linkgen.kernel` keeps the last eight), and a
+result makes a variable's arrays when it is read, keeping the kernel's own arrays.
+
+Three parts of a build grew faster than N and are bounded now.  The census of assemblies
+(`linkgen assemblies`, listed in the manual) walks both branches of every chain: a chain of N
+dyads has up to 2^N assemblies (14 dyads took 6 to 10 s, 25 never ended), so a build walks it
+only while the assemblies possible (two per chain, six per resolver group) are at most
+`pipeline.LISTED` = 1024, and the manual says why it lists none beyond.  The instant
+centres at the sketch are n(n-1)/2 for n links, each a step of a log evaluated and
+classified (5.7 s at 50 dyads): the manual lists them for at most 20 links
+(`render.view.CENTRE_LINKS`; the outputs `ic:LINK1:LINK2` and `linkgen ic` give any of
+them).  NAME.svg placed each label by testing every label, marker and line placed before
+(14 s at 1000 dyads): a cell index finds the ones a place can meet (the same placements:
+goldens byte-identical), and past 16 pairs and points the figure is 40 units wide per pair
+or point, so a long chain is drawn long rather than squeezed into 640 units.  The summary's
+four-bar loops are found through each pair's neighbours, not every pair against every other
+(4.3 s at 1000 dyads, now 0.1 s).
 
 The frame ladder (`ladder(n, "frame")`, the ladder bench/run.py timed before) hangs every
 rocker on the frame instead, so the frame carries N + 1 pairs and rule (i) makes it a truss of
@@ -190,6 +206,12 @@ def frame_table(sizes: tuple[int, ...], folder: Path) -> str:
     return "\n".join(lines) + "\n"
 
 
+def load() -> str:
+    """The machine's load when a run ends: wall times above CPU times are time spent waiting for a core."""
+    return (f"\nThe machine's load average when the run ended: {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores "
+            "(wall time above CPU time is time spent waiting for a core).\n")
+
+
 def bench_scaling(sizes: tuple[int, ...] = SIZES) -> None:
     print("## Scaling: a chain of N 3R dyads built in-process (bench/ladders.py)")
     rows: list[Row] = []
@@ -201,7 +223,7 @@ def bench_scaling(sizes: tuple[int, ...] = SIZES) -> None:
             whole = whole and rows[-1].whole is not None and rows[-1].whole.wall < BUDGET
             print(f"- {n} dyads: extraction {_s(rows[-1].extraction)}, whole build {_s(rows[-1].whole)}", flush=True)
         frame = frame_table(sizes, Path(tmp))
-    text = INTRO.format(budget=BUDGET) + table(rows) + OUTRO + frame
+    text = INTRO.format(budget=BUDGET) + table(rows) + load() + OUTRO + frame
     print(table(rows) + "\n" + frame)
     write_section("Scaling", text)
 

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from .backends import Backend
+from .backends import Backend, backends
 from .backends.np import BACKEND, RUNTIME
 from .backends.program import LEVEL
 from .backends.py import BACKEND as PYTHON
@@ -70,25 +70,36 @@ def at_order(log: StepLog, order: int) -> StepLog:
 
 def source(backend: Backend[Any], log: StepLog, order: int) -> str:
     """The text of the backend's program (the numpy kernel, or NAME.py) for the log at an order,
-    in double whatever real type the log asks for (the evaluator's: the analysis runs it)."""
+    in double whatever real type the log asks for (the evaluator's: the analysis runs it); a log
+    equal to one of the last few is not rendered again (the analysis makes equal logs anew)."""
+    return _source(backend.name, log, order)
+
+
+@functools.lru_cache(maxsize=8)
+def _source(name: str, log: StepLog, order: int) -> str:
+    backend = next(b for b in backends() if b.name == name)
     if log.options.real != "double":
         log = replace(log, options=replace(log.options, real="double"))
     files = render_backend(backend, build_view(at_order(log, order)))
     return files[backend.files[0].replace("NAME", log.name)].decode("utf-8")
 
 
-_recent: OrderedDict[tuple[int, int], tuple[StepLog, ModuleType]] = OrderedDict()
+_recent: OrderedDict[tuple[int, int, bool], tuple[StepLog, ModuleType]] = OrderedDict()
 
 
-def kernel(log: StepLog, order: int) -> ModuleType:
+def kernel(log: StepLog, order: int, outputs: bool = True) -> ModuleType:
     """The log's NAME_np.py at ``order``, executed (its solve; _run and _publish where the log has
-    no resolver groups); with resolver groups its ROWS is NAME.py, executed too."""
-    key = (id(log), order)
+    no resolver groups); with resolver groups its ROWS is NAME.py, executed too.  Without
+    ``outputs`` a log without resolver groups is rendered without its output columns: its _run
+    and PARAMS, what the evaluator reads, are the same (spelling a column costs more than a
+    step: 24,000 columns of a 1000-dyad chain)."""
+    key = (id(log), order, outputs)
     hit = _recent.get(key)
     if hit is not None and hit[0] is log:
         _recent.move_to_end(key)
         return hit[1]
-    module = _compiled(f"{log.name}_np", source(BACKEND, log, order))
+    bare = log if outputs or log.groups else replace(log, columns=())
+    module = _compiled(f"{log.name}_np", source(BACKEND, bare, order))
     if log.groups:
         module.ROWS = _compiled(log.name, source(PYTHON, log, order))  # type: ignore[attr-defined]
     _recent[key] = (log, module)

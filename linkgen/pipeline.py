@@ -20,6 +20,7 @@ from .instant.table import at_sketch, centre_outputs
 from .model import Mechanism
 from .options import overridden, policy_for
 from .prune import prune
+from .render.view import CENTRE_LINKS
 from .steplog import CentreAt, Draft, InputInfo, LinkInfo, PairInfo, StepLog
 from .summary.compute import summarize
 from .topology import Topology, analyse
@@ -150,16 +151,38 @@ def _assembly(m: Mechanism, topo: Topology, proc: Procedure, options: Mapping[st
 
     census_log = draft(topo, proc, (), 0, {**options, "strategy": "newton", "angles": "angle"})
     k = overridden(m.options, options).assembly
-    found = listing(census_log, k)
+    too_many = _too_many(census_log)
+    found = Assemblies(tuple(i.sketch for i in census_log.inputs), False, 0, (too_many,), ()) if too_many else listing(
+        census_log, k)
     if not k:
         return m, found
     return moved(m, census_log, chosen(m, k, found, "assembly" in options)), found
+
+
+LISTED = 1024  # assemblies a census walks at most: beyond, the build lists none (the walk doubles with every chain)
+ROOTS = 6  # real roots of a triad's characteristic polynomial at most: the assemblies a resolver group adds
+
+
+def _too_many(log: StepLog) -> str:
+    """Why the census is not walked where the assemblies the log can have (both branches of every
+    chain, every root of every group) exceed LISTED; "" where they do not.  A chain of N dyads has
+    up to 2^N: the walk over them takes seconds at 14 and cannot end at 1000."""
+    inside = {n for g in log.groups for b in (g, *g.variants) for n in b.steps}
+    chains = sum(1 for s in log.steps if s.branch and s.number not in inside and not s.variant)
+    if 2 ** chains * ROOTS ** len(log.groups) <= LISTED:
+        return ""
+    n = len(log.groups)
+    groups, roots = (f" and {n} resolver groups", f" x {ROOTS}^{n}") if n else ("", "")
+    return (f"linkgen does not count the assemblies of this mechanism: its {chains} two-link chains (two branches "
+            f"each){groups} allow up to 2^{chains}{roots} of them, more than the {LISTED} a build walks")
 
 
 def _sketch_centres(topo: Topology, proc: Procedure, options: Mapping[str, object] | None) -> tuple[CentreAt, ...]:
     """Every instant centre at the sketch (the manual's); none where a link has no record to compute
     its centres from."""
     m = topo.mechanism
+    if len(m.links) > CENTRE_LINKS:  # n(n-1)/2 centres, each a step of the log below: the manual says why none
+        return ()
     try:
         log = draft(topo, proc, centre_outputs(m), 1, options)
     except InputError:

@@ -82,3 +82,30 @@ def test_a_ladder_file_names_its_kind_and_size():
     assert ladder(3, "frame").splitlines()[1] == "name: frame_ladder3"
     with pytest.raises(ValueError):
         ladder(0)
+
+
+def test_a_chain_of_dyads_is_counted_while_its_assemblies_are_few(tmp_path: Path):
+    """A chain of n dyads has both branches of each of its n chains, 2^n assemblies, all of them
+    closing at the sketch (each dyad's triangle is a right angle at A): the census lists them up
+    to pipeline.LISTED and the build does not walk it beyond (2^11 = 2048), saying why."""
+    from linkgen.pipeline import LISTED, build_log
+
+    few = build_log(str(write_ladder(3, tmp_path)), sweep=False).assemblies
+    assert few is not None and few.counted and len(few.listing) == 2 ** 3
+    n = 11
+    assert 2 ** n > LISTED >= 2 ** 3
+    many = build_log(str(write_ladder(n, tmp_path)), sweep=False).assemblies
+    assert many is not None and not many.counted and not many.listing
+    assert f"its {n} two-link chains" in many.notes[0]
+
+
+def test_a_large_mechanism_lists_no_instant_centres_but_says_why(tmp_path: Path):
+    """Ten dyads: the frame, the crank and two links a dyad, 22 links and 231 centres, past the 20
+    links the manual lists them for; its manual says so instead of a table."""
+    from linkgen.pipeline import build_log
+    from linkgen.render.view import CENTRE_LINKS
+
+    log = build_log(str(write_ladder(10, tmp_path)))
+    assert len(log.links) == 22 > CENTRE_LINKS and log.centres == ()
+    manual = render_all(log)["ladder10.md"].decode()
+    assert "The mechanism has 22 links, so 231 instant centres" in manual

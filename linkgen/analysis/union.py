@@ -82,8 +82,8 @@ class Union:
         first = self._first
         early = (first > 0) & (first <= before)
         inside = np.zeros(len(first), dtype=bool)
-        for number in np.unique(first[early]):
-            if step.number in self.readers.after(int(number)):
+        for number in sorted(set(first[early].tolist())):  # not np.unique: it imports numpy.ma (7 ms)
+            if step.number in self.readers.after(number):
                 inside |= first == number
         return early & inside, early & ~inside
 

@@ -24,7 +24,7 @@ from ..steplog import StepLog
 from ..units import DEGREE
 from .plots import figures
 from .svg import render_svg
-from .view import View, build_view
+from .view import CENTRE_LINKS, View, build_view
 
 
 def template_dir() -> Path:
@@ -76,6 +76,7 @@ def make_env() -> jinja2.Environment:
     env.globals["and_list"] = and_list
     env.globals["status"] = status
     env.globals["plot_figures"] = figures
+    env.globals["centre_links"] = CENTRE_LINKS
     return env
 
 

@@ -8,12 +8,14 @@ on every machine.
 from __future__ import annotations
 
 import math
+from typing import Generic, TypeVar
 
 from ..steplog import PairInfo, StepLog
 from .svgwriter import esc, num
 
 WIDTH = 640.0
 MARGIN = 60.0
+SPOT_SPACE = 40.0  # the least width per pair and point of the figure (wider than WIDTH beyond 16 of them)
 COLOURS = ("#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22", "#ff7f0e")
 
 
@@ -60,12 +62,47 @@ def _overlaps(a: Box, b: Box) -> bool:
     return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
 
 
+SLACK = 1e-6  # a segment's bounds widened by this on the page: its sampled points' rounding stays inside
+
+
 def _crosses(box: Box, seg: Segment) -> bool:
     """Whether a segment passes through a box (sampled finely enough for a 12-pixel label)."""
     (x1, y1), (x2, y2) = seg
+    if max(x1, x2) + SLACK <= box[0] or min(x1, x2) - SLACK >= box[2] or max(y1, y2) + SLACK <= box[1] \
+            or min(y1, y2) - SLACK >= box[3]:  # no sampled point can be inside
+        return False
     n = max(2, int(math.hypot(x2 - x1, y2 - y1) / 3))
     return any(box[0] < x1 + (x2 - x1) * k / n < box[2] and box[1] < y1 + (y2 - y1) * k / n < box[3]
                for k in range(n + 1))
+
+
+T = TypeVar("T")
+CELL = 64.0  # the side of a cell of the labels' index, on the page
+
+
+class _Cells(Generic[T]):
+    """Boxes or segments by the cells of the page their bounds touch: what may meet a box is
+    found among those sharing a cell with it, not among all (a figure of thousands of pairs)."""
+
+    def __init__(self) -> None:
+        self.items: list[T] = []
+        self.cells: dict[tuple[int, int], list[int]] = {}
+
+    def add(self, item: T, bounds: Box) -> None:
+        for cell in _cells(bounds):
+            self.cells.setdefault(cell, []).append(len(self.items))
+        self.items.append(item)
+
+    def near(self, box: Box) -> list[T]:
+        """The items whose bounds share a cell with the box, each once (in no particular order:
+        they are counted)."""
+        return [self.items[k] for k in {k for cell in _cells(box) for k in self.cells.get(cell, ())}]
+
+
+def _cells(b: Box) -> list[tuple[int, int]]:
+    """The cells a box's closed bounds touch."""
+    i0, j0, i1, j1 = (math.floor(v / CELL) for v in b)
+    return [(i, j) for i in range(i0, i1 + 1) for j in range(j0, j1 + 1)]
 
 
 class _Labels:
@@ -73,25 +110,28 @@ class _Labels:
     where every place is taken, the one covering least (first of the equals): deterministic."""
 
     def __init__(self, width: float, height: float) -> None:
-        self.boxes: list[Box] = []  # markers
-        self.labels: list[Box] = []
-        self.segments: list[Segment] = []
+        self.boxes: _Cells[Box] = _Cells()  # markers
+        self.labels: _Cells[Box] = _Cells()
+        self.segments: _Cells[Segment] = _Cells()
         self.width, self.height = width, height
         self.out: list[str] = []
 
     def mark(self, x: float, y: float, r: float) -> None:
-        self.boxes.append((x - r, y - r, x + r, y + r))
+        box = (x - r, y - r, x + r, y + r)
+        self.boxes.add(box, box)
 
     def line(self, a: tuple[float, float], b: tuple[float, float]) -> None:
-        self.segments.append((a, b))
+        self.segments.add((a, b), (min(a[0], b[0]) - SLACK, min(a[1], b[1]) - SLACK,
+                                   max(a[0], b[0]) + SLACK, max(a[1], b[1]) + SLACK))
 
     def put(self, x: float, y: float, text: str, attrs: str = "", places: tuple[tuple[int, int], ...] = PLACES) -> None:
         best: tuple[int, float, float, bool] | None = None
         for dx, dy in places:
             end = dx < 0
             box = _box(x + dx, y + dy, text, end)
-            cost = (100 * sum(_overlaps(box, b) for b in self.labels) + 20 * sum(_overlaps(box, b) for b in self.boxes)
-                    + 5 * sum(_crosses(box, s) for s in self.segments)
+            cost = (100 * sum(_overlaps(box, b) for b in self.labels.near(box))
+                    + 20 * sum(_overlaps(box, b) for b in self.boxes.near(box))
+                    + 5 * sum(_crosses(box, s) for s in self.segments.near(box))
                     + 50 * (box[0] < 0 or box[2] > self.width or box[1] < 0 or box[3] > self.height))
             if best is None or cost < best[0]:
                 best = (cost, x + dx, y + dy, end)
@@ -99,7 +139,8 @@ class _Labels:
                 break
         assert best is not None
         _, tx, ty, end = best
-        self.labels.append(_box(tx, ty, text, end))
+        placed = _box(tx, ty, text, end)
+        self.labels.add(placed, placed)
         anchor = ' text-anchor="end"' if end else ""
         self.out.append(f'<text x="{_f(tx)}" y="{_f(ty)}"{anchor}{attrs}>{esc(text)}</text>')
 
@@ -117,8 +158,7 @@ def render_svg(log: StepLog) -> str:
             spots[v.entity] = (v.sketch[0], v.sketch[1])
     xs = [x for x, _ in spots.values()]
     ys = [y for _, y in spots.values()]
-    span = max(max(xs) - min(xs), max(ys) - min(ys), log.length_scale * 1e-3)
-    scale = (WIDTH - 2 * MARGIN) / span
+    width, scale = _page(log)
     height = (max(ys) - min(ys)) * scale + 2 * MARGIN
     x0, y1 = min(xs), max(ys)
 
@@ -127,10 +167,10 @@ def render_svg(log: StepLog) -> str:
         return MARGIN + (x - x0) * scale, MARGIN + (y1 - y) * scale
 
     step_of = first_steps(log)
-    labels = _Labels(WIDTH, height)
+    labels = _Labels(width, height)
     out = [
-        f'<svg xmlns="http://www.w3.org/2000/svg" width="{_f(WIDTH)}" height="{_f(height)}" '
-        f'viewBox="0 0 {_f(WIDTH)} {_f(height)}" font-family="sans-serif" font-size="12">',
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{_f(width)}" height="{_f(height)}" '
+        f'viewBox="0 0 {_f(width)} {_f(height)}" font-family="sans-serif" font-size="12">',
         f"<title>{esc(log.title)}: sketch, pairs and links, with the step that finds each pair</title>",
         '<rect width="100%" height="100%" fill="white"/>',
     ]
@@ -214,7 +254,7 @@ def _slide_line(log: StepLog, p: PairInfo, spot: tuple[float, float], pivots: li
     b = (spot[0] + reach * u[0], spot[1] + reach * u[1])
     out = [_line(a, b, 'stroke="#555555" stroke-width="2"')]
     labels.line(a, b)
-    scale = (WIDTH - 2 * MARGIN) / max(1e-300, _page_span(log))
+    scale = _page(log)[1]
     for q in pivots:
         foot = _foot(q, spot, u)
         offset = math.dist(q, foot) / scale
@@ -226,10 +266,13 @@ def _slide_line(log: StepLog, p: PairInfo, spot: tuple[float, float], pivots: li
     return out
 
 
-def _page_span(log: StepLog) -> float:
-    """The sketch's extent that fills the figure's width (as render_svg scales it)."""
+def _page(log: StepLog) -> tuple[float, float]:
+    """(the figure's width, its scale): the sketch's extent fills WIDTH, or SPOT_SPACE per pair
+    and point where that is wider (a large mechanism's labels get room: a chain of 1000
+    dyads is drawn 120,000 units wide, not 640)."""
     spots = [(p.x, p.y) for p in log.pairs] + [(v.sketch[0], v.sketch[1]) for v in log.variables
                                               if v.role == "point" and v.sketch]
     xs = [x for x, _ in spots]
     ys = [y for _, y in spots]
-    return max(max(xs) - min(xs), max(ys) - min(ys), log.length_scale * 1e-3)
+    width = max(WIDTH, SPOT_SPACE * len(spots))
+    return width, (width - 2 * MARGIN) / max(max(xs) - min(xs), max(ys) - min(ys), log.length_scale * 1e-3)

@@ -15,6 +15,8 @@ from ..steplog import Column, ResolverGroup, Step, StepLog, Variable
 from ..units import angular_inputs, factor
 from .closure import Plan, plan
 
+CENTRE_LINKS = 20  # links of a mechanism whose instant centres the manual lists (n(n-1)/2 of them: 190)
+
 
 @dataclass(frozen=True)
 class Output:

@@ -33,13 +33,18 @@ def four_bars(log: StepLog) -> tuple[FourBar, ...]:
             for a, b, length in lk.lengths:
                 if a in revolute and b in revolute:
                     members.setdefault(frozenset((a, b)), []).append((lk.name, length))
+    near: dict[str, set[str]] = {}  # the pairs a member joins to each pair (a pair without one closes no loop)
+    for ends in members:
+        for p in ends:
+            near.setdefault(p, set()).update(ends - {p})
+    moving = revolute - set(frame.pairs)
     out = []
     for o1 in pivots:
         for o2 in pivots:
             if order[o1] >= order[o2]:
                 continue
-            for a in sorted(revolute - set(frame.pairs), key=order.__getitem__):
-                for b in sorted(revolute - set(frame.pairs) - {a}, key=order.__getitem__):
+            for a in sorted(near.get(o1, set()) & moving, key=order.__getitem__):
+                for b in sorted(near[a] & near.get(o2, set()) & moving - {a}, key=order.__getitem__):
                     for x, la in members.get(frozenset((o1, a)), []):
                         for y, lb in members.get(frozenset((a, b)), []):
                             for z, lc in members.get(frozenset((b, o2)), []):

@@ -3,6 +3,7 @@ numbers rounded to 0.01 so the bytes are the same everywhere."""
 
 from __future__ import annotations
 
+import random
 import re
 import xml.etree.ElementTree as ET
 from pathlib import Path
@@ -10,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from linkgen.pipeline import build_log
-from linkgen.render.svg import MARGIN, WIDTH, _f, render_svg
+from linkgen.render.svg import MARGIN, PLACES, WIDTH, Box, Segment, _box, _crosses, _f, _Labels, _overlaps, render_svg
 from linkgen.render.svgwriter import esc
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -76,3 +77,45 @@ def test_a_prismatic_pair_is_a_block_turned_to_its_axis():
 def test_every_number_is_rounded_to_two_decimals(sample: str):
     text = render_svg(build_log(str(ROOT / "samples" / sample / f"{sample}.yaml")))
     assert re.findall(r"\d\.\d\d", text) and not re.findall(r"\d\.\d{3,}", text)
+
+
+
+def test_labels_are_placed_as_by_counting_every_label_marker_and_line():
+    """The cell index finds what a place covers: the placements equal a search that counts every
+    label, marker and line placed before (random figures, labels far wider than a cell, lines long)."""
+    rng = random.Random(7)
+    for _ in range(20):
+        width, height = rng.uniform(100, 900), rng.uniform(100, 400)
+        fast = _Labels(width, height)
+        marks: list[Box] = []
+        lines: list[Segment] = []
+        placed: list[Box] = []
+        want = []
+        for _ in range(40):
+            x, y, kind = rng.uniform(0, width), rng.uniform(0, height), rng.random()
+            if kind < 0.3:
+                fast.mark(x, y, 6)
+                marks.append((x - 6, y - 6, x + 6, y + 6))
+            elif kind < 0.6:
+                b = (rng.uniform(0, width), rng.uniform(0, height))
+                fast.line((x, y), b)
+                lines.append(((x, y), b))
+            else:
+                text = "J" * rng.randint(1, 12)
+                best: tuple[int, float, float, bool] | None = None
+                for dx, dy in PLACES:
+                    box = _box(x + dx, y + dy, text, dx < 0)
+                    cost = (100 * sum(_overlaps(box, b) for b in placed) + 20 * sum(_overlaps(box, b) for b in marks)
+                            + 5 * sum(_crosses(box, s) for s in lines)
+                            + 50 * (box[0] < 0 or box[2] > width or box[1] < 0 or box[3] > height))
+                    if best is None or cost < best[0]:
+                        best = (cost, x + dx, y + dy, dx < 0)
+                    if cost == 0:
+                        break
+                assert best is not None
+                placed.append(_box(best[1], best[2], text, best[3]))
+                want.append((_f(best[1]), _f(best[2]), best[3]))
+                fast.put(x, y, text)
+        got = [(m[1], m[2], m[3] is not None) for m in
+               (re.match(r'<text x="([^"]+)" y="([^"]+)"( text-anchor="end")?>', t) for t in fast.out) if m]
+        assert got == want

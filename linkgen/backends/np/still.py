@@ -37,4 +37,11 @@ def held_params(log: StepLog, order: int, step: Step) -> tuple[str, ...]:
         return ()
     prim = PRIMITIVES[step.function]
     return tuple(p.name for p, a in zip(prim.params, step.args) if p.is_record and a.kind == "var"
-                 and log.variable(a.var).constant and held_still(prim, (p.name,))[1])
+                 and log.variable(a.var).constant and _saves(step.function, p.name))
+
+
+@functools.cache
+def _saves(name: str, param: str) -> int:
+    """The subtractions a primitive leaves out with one record parameter held still (found once:
+    the evaluator renders many logs)."""
+    return held_still(PRIMITIVES[name], (param,))[1]
