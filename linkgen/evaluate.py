@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 from importlib import resources
 from types import SimpleNamespace
@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from . import status
-from .kernel import kernel
+from .kernel import Records, column, kernel
 from .kernel import runtime as numpy_runtime
 from .loopstate import lengths, loop_flags
 from .options import runtime_policy
@@ -161,38 +161,9 @@ def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarr
     with np.errstate(all="ignore"):
         w, code, sigma = module._run(list(values.T), list(rates.T), list(accs.T), dict(module.PARAMS))
     rows = values.shape[0]
-    return Result(values, _Records(vars(w), rows),
+    return Result(values, Records(vars(w), rows),
                   np.broadcast_to(np.asarray(code, dtype=int), (rows,)).copy(),
-                  {s.number: _column(sigma[s.number], rows) for s in log.steps if s.function})
-
-
-class _Records(Mapping[str, tuple[np.ndarray, ...]]):
-    """The kernel's records as a result holds them: each variable's fields as arrays of the rows,
-    made when first read (the analysis reads a few of thousands)."""
-
-    def __init__(self, records: dict[str, Any], rows: int):
-        self._records, self._rows = records, rows
-        self._made: dict[str, tuple[np.ndarray, ...]] = {}
-
-    def __getitem__(self, name: str) -> tuple[np.ndarray, ...]:
-        if name not in self._made:
-            self._made[name] = tuple(_column(x, self._rows) for x in self._records[name])
-        return self._made[name]
-
-    def __iter__(self) -> Iterator[str]:
-        return iter(self._records)
-
-    def __len__(self) -> int:
-        return len(self._records)
-
-
-def _column(x: Any, rows: int) -> np.ndarray:
-    """A kernel's value as an array of the rows: its own where the kernel made one (a result is
-    read, never changed), else a copy (a number, or a view of the caller's inputs)."""
-    if isinstance(x, np.ndarray) and x.base is None and x.shape == (rows,) and x.dtype == np.float64:
-        return x
-    out: np.ndarray = np.broadcast_to(np.asarray(x, dtype=float), (rows,)).copy()
-    return out
+                  {s.number: column(sigma[s.number], rows) for s in log.steps if s.function})
 
 
 def _still(rec: tuple[float, ...], kind: str) -> tuple[float, ...]:

@@ -6,7 +6,8 @@ order is rendered as the log built at that order) and executes each distinct sou
 analysis evaluates many logs that differ only where the kernel does not look.  A resolver
 mechanism's kernel gets its standard-library module NAME.py, rendered and executed the same
 way, for the rows it solves one by one.  ``runtime()`` holds the numpy runtime's branch_at and
-reach_at for the rows the evaluator checks itself.
+reach_at for the rows the evaluator checks itself.  ``Records`` holds a kernel's records as a
+result does: arrays of the rows, made when first read.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from __future__ import annotations
 import functools
 import linecache
 from collections import OrderedDict
+from collections.abc import Iterator, Mapping
 from dataclasses import replace
 from types import CodeType, ModuleType
 from typing import Any
@@ -115,3 +117,32 @@ def runtime() -> dict[str, Any]:
     for name in ("status", "branch", "reach"):
         exec(compile(RUNTIME.source(name), f"<linkgen numpy runtime {name}>", "exec"), ns)
     return ns
+
+
+class Records(Mapping[str, tuple[np.ndarray, ...]]):
+    """The kernel's records as a result holds them: each variable's fields as arrays of the rows,
+    made when first read (the analysis reads a few of thousands)."""
+
+    def __init__(self, records: dict[str, Any], rows: int):
+        self._records, self._rows = records, rows
+        self._made: dict[str, tuple[np.ndarray, ...]] = {}
+
+    def __getitem__(self, name: str) -> tuple[np.ndarray, ...]:
+        if name not in self._made:
+            self._made[name] = tuple(column(x, self._rows) for x in self._records[name])
+        return self._made[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._records)
+
+    def __len__(self) -> int:
+        return len(self._records)
+
+
+def column(x: Any, rows: int) -> np.ndarray:
+    """A kernel's value as an array of the rows: its own where the kernel made one (a result is
+    read, never changed), else a copy (a number, or a view of the caller's inputs)."""
+    if isinstance(x, np.ndarray) and x.base is None and x.shape == (rows,) and x.dtype == np.float64:
+        return x
+    out: np.ndarray = np.broadcast_to(np.asarray(x, dtype=float), (rows,)).copy()
+    return out

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from linkgen.kernel import at_order, kernel, runtime
+from linkgen.kernel import Records, at_order, column, kernel, runtime
 from linkgen.pipeline import build_log
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -71,3 +71,16 @@ def test_the_numpy_runtime_reads_a_status_as_linkgen_does():
     codes = np.array([0, 5, 31, 42, 53, -64])
     got = runtime()["reason_of"](codes)
     assert list(np.asarray(got)) == [status.reason(int(c)) if c > 0 else 0 for c in codes]
+
+
+def test_records_make_a_variables_arrays_when_read_and_keep_the_kernels_own():
+    own = np.array([1.0, 2.0, 3.0])
+    view = np.arange(6.0)[::2]
+    records = Records({"a": (own, 2.5, view)}, 3)
+    assert list(records) == ["a"] and len(records) == 1 and not records._made
+    a = records["a"]
+    assert a[0] is own  # the kernel's own array, not a copy
+    assert a[1].tolist() == [2.5, 2.5, 2.5] and a[1].flags.writeable  # a number: a column of it
+    assert a[2].tolist() == [0.0, 2.0, 4.0] and a[2].base is None  # a view of the caller's: copied
+    assert records["a"] is a
+    assert column(np.float32([1, 2, 3]), 3).dtype == np.float64  # another type: copied as float
