@@ -223,6 +223,26 @@ QUATERNARY = ROOT / "tests" / "mechanisms" / "quaternary_fold.yaml"  # class IV:
 CLASS4 = [(SLOT, 1), (SLOT, 2), (QUATERNARY, 3)]  # quaternary_fold: the sketch's is 9 of 18; 3 reaches 0 to 143 deg
 
 
+def test_a_build_lists_every_assembly_of_a_class_iv_group():
+    """quaternary_fold's build, no assembly asked for, counts its class-IV group (two Add-links at once):
+    the manual's listing has the 18 assemblies the 50-digit multistart search of tests/test_assemblies.py
+    finds (long), distinct, the sketch's among them and followed, each keeping every constraint of the
+    reference model (tests/reference.py, written from the file) to 1e-12 L."""
+    log = build_log(str(QUATERNARY), sweep=False)
+    found = log.assemblies
+    assert found is not None and found.counted and len(found.listing) == 18
+    assert [a.number for a in found.listing if a.sketch] == [found.follows]
+    ref = Reference(str(QUATERNARY))
+    poses = []
+    for a in found.listing:
+        q = ref.guess(dict(a.values))
+        res = ref.constraints([MP.mpf(v) for v in q], ref.turned_inputs([MP.mpf(v) for v in q], ref.sketch_inputs()))
+        assert max(float(abs(r)) / s for r, s in zip(res, ref.constraint_scales())) < 1e-12, a.number
+        poses.append([v for n, v in a.values if n.endswith((".x", ".y"))])
+    assert min(max(abs(x - y) for x, y in zip(p, q)) for i, p in enumerate(poses) for q in poses[i + 1:]) \
+        > 1e-6 * log.length_scale
+
+
 def _reached(statuses: list[int], values: list[list[float]], sketch: float) -> list[int]:
     """The rows the programs reach from the sketch without crossing a failed row: the run of rows of
     status 0 between the failures on either side of the sketch's input (all rows if none fails)."""
@@ -237,7 +257,7 @@ def _reached(statuses: list[int], values: list[list[float]], sketch: float) -> l
 @LONG  # class4_slot: 10 s a case (the reference's continuation over the turn); quaternary_fold: about 2 min
 @pytest.mark.parametrize(("path", "k"), CLASS4, ids=[f"{p.stem}-{k}" for p, k in CLASS4])
 def test_a_class_iv_assembly_is_followed(tmp_path, path, k):
-    """Assembly K of a class-IV group (quaternary_fold: counted at the build, about 10 s): the programs'
+    """Assembly K of a class-IV group (quaternary_fold: counted at every build, about 6 s): the programs'
     first solve is assembly K as listed to 1e-12 L, which keeps every constraint of the reference model
     to 1e-12 L (its count and poses are checked against the multistart searches in tests/
     test_assemblies_pivots.py and tests/test_assemblies.py); every row the programs reach from the

@@ -89,11 +89,9 @@ class Census:
     at: tuple[float, ...] = ()  # the input values in the file's units, as given (empty: from ``inputs``)
 
 
-def census(log: StepLog, values: Sequence[float], class_iv: bool = True) -> Census:
-    """Every assembly of the log's mechanism at the input values (radians, length units); without
-    ``class_iv`` a group of two bodies on four-bars (``bodies``: its elimination takes 10 s) is
-    NotReducible."""
-    walk = _Walk(log, tuple(float(v) for v in values), class_iv)
+def census(log: StepLog, values: Sequence[float]) -> Census:
+    """Every assembly of the log's mechanism at the input values (radians, length units)."""
+    walk = _Walk(log, tuple(float(v) for v in values))
     walk.run(0, dict(walk.start), ())
     out = walk.out
     out.cannot_close = dict(sorted(walk.closed.items()))
@@ -114,10 +112,10 @@ def census(log: StepLog, values: Sequence[float], class_iv: bool = True) -> Cens
 
 
 class _Walk:
-    def __init__(self, log: StepLog, values: tuple[float, ...], class_iv: bool):
+    def __init__(self, log: StepLog, values: tuple[float, ...]):
         self.log = log
         self.fns = python_backend(0)
-        self.triads = {g.number: shape_of(log, g, class_iv) for g in log.groups}
+        self.triads = {g.number: shape_of(log, g) for g in log.groups}
         self.groups = {g.step: g for g in log.groups}
         inside = {n for g in log.groups for b in (g, *g.variants) for n in b.steps}
         self.steps = [s for s in log.steps
@@ -287,7 +285,7 @@ class _Walk:
         bases = [(snap(env[self.pos[n]][0], unit), snap(env[self.pos[n]][1], unit)) for n in names]
         key = (bodies.group, tuple(bases))
         if key not in self.solutions:
-            sol = resultant.solve(bodies, bases, unit, self.log.length_scale)
+            sol = resultant.solve(bodies, tuple(bases), unit, self.log.length_scale)
             self.solutions[key] = sol
             self.out.solves.append(GroupCount(bodies.group, bodies.describe(), sol.degree, sol.real_roots, sol.at_pi,
                                               tuple(r.theta for r in sol.roots), (), (), sol.factors, sol.rejected))
@@ -315,14 +313,11 @@ class _Walk:
         return self.log.variable(name).kind
 
 
-def shape_of(log: StepLog, g: ResolverGroup, class_iv: bool = True) -> Triad | TwoBodies | Pivoted:
+def shape_of(log: StepLog, g: ResolverGroup) -> Triad | TwoBodies | Pivoted:
     """What the group is: a triad (one Add-link), two links on their own pivots tied by two links or
     slots (one Add-link, class IV: ``pivots``), or two bodies on four-bars tied by two couplers (two
-    Add-links at once: class IV, counted only with ``class_iv``)."""
+    Add-links at once: class IV)."""
     if len(g.add_links) == 2:
-        if not class_iv:
-            raise NotReducible(f"resolver group {g.number} needs 2 Add-links at once (class IV); `linkgen assemblies` "
-                               "counts it (in about 10 s), as does a build asked for an assembly; other builds do not")
         return two_bodies_of(log, g)
     try:
         return triad_of(log, g)

@@ -26,11 +26,10 @@ SAME = 1e-12  # a pair the assembly moves by less (over the length scale) keeps 
 def listing(log: StepLog, assembly: int = 0) -> Assemblies:
     """Every assembly of ``log``'s mechanism (its whole procedure at order 0) at the sketch's
     inputs; the programs follow ``assembly``, 0 for the sketch's.  A census linkgen cannot
-    make is recorded with its reason (no count rather than a wrong one).  A group of two bodies
-    on four-bars (two Add-links at once, its elimination 10 s) is counted only for an assembly asked for."""
+    make is recorded with its reason (no count rather than a wrong one)."""
     values = tuple(i.sketch for i in log.inputs)
     try:
-        found = census(log, values, class_iv=assembly > 0)
+        found = census(log, values)
     except NotReducible as exc:
         return Assemblies(values, False, 0, (f"linkgen cannot count the assemblies of this mechanism: {exc}",), ())
     except ArithmeticError as exc:

@@ -5,29 +5,28 @@ Body k's first leg turns by phi_k from the sketch, the body by theta_k, so its p
 
     G_k + R(phi_k) v_k + R(theta_k) a     (G_k the leg's base now, v_k the leg's sketch vector).
 
-Four equations hold the four angles: each body's second leg (F_L in phi_L, theta_L; F_R), and the
-two couplers (C_1, C_2 in all four).  A second leg that is a block on a slide fixed to the frame
-keeps its pair P on a line, n . P = n . a (a the pair's sketch position): n . (G + R(phi) v +
-R(theta) h - a) = 0 is linear in cos and sin of each angle, so times (1 + t_phi^2)(1 + t_theta^2)
-it too is of degree 2 in each (n scaled to integers, the powers of 2 of its binary fractions
-cleared).  With t = tan(angle / 2) each is a polynomial of degree 2 in each of its unknowns with
-exact integer coefficients (the data on the grid of ``triad.grid``, divided by it).  Resultants
-eliminate phi_L (F_L against each coupler), then phi_R (F_R against both), then theta_R (by
-evaluation and interpolation: ``interpolate``), leaving P(t_L), t_L = tan(theta_L / 2).  Every assembly's
-theta_L is a root of P (a resultant vanishes wherever its two polynomials have a common root,
-finite or where both leading coefficients vanish); theta_L = pi (t_L infinite) is checked on its
-own, from the equations' leading coefficients in t_L.  P also has roots where F_L's two branches
-(or F_R's) close the two couplers separately: every real root is back-substituted (both roots of
-F_L and of F_R, every root of the theta_R resultant, and half a turn for each), polished by
-Newton's method on the four equations at 50 digits, and kept only where it converges, every
-equation holds to 1e-30 L^2 and theta_L stays at the root (to 1e-30).  Real roots are isolated from
-the exact coefficients by FLINT (python-flint: arb's certified ``complex_roots`` on each
-irreducible factor of P, ball arithmetic); no Sturm count (125 s on P's factors of degree 50-64).
+Four equations hold the four angles: each body's second leg (F_L in phi_L, theta_L; F_R), and the two couplers (C_1,
+C_2 in all four). A second leg that is a block on a slide fixed to the frame keeps its pair P on a line, n . P = n .
+a (a the pair's sketch position): n . (G + R(phi) v + R(theta) h - a) = 0 is linear in cos and sin of each angle, so
+times (1 + t_phi^2)(1 + t_theta^2) it too is of degree 2 in each (n scaled to integers, the powers of 2 of its
+binary fractions cleared). With t = tan(angle / 2) each is a polynomial of degree 2 in each of its unknowns with
+exact integer coefficients (the data on the grid of ``triad.grid``, divided by it). Resultants eliminate phi_L (F_L
+against each coupler), then phi_R (F_R against both), then theta_R (by evaluation and interpolation:
+``interpolate``), leaving P(t_L), t_L = tan(theta_L / 2). Every assembly's theta_L is a root of P (a resultant
+vanishes wherever its two polynomials have a common root, finite or where both leading coefficients vanish); theta_L
+= pi (t_L infinite) is checked on its own, from the equations' leading coefficients in t_L. P also has roots where
+F_L's two branches (or F_R's) close the two couplers separately: every real root is back-substituted (both roots of
+F_L and of F_R, every root of the theta_R resultant, and half a turn for each), polished by Newton's method on the
+four equations at 50 digits, and kept only where it converges, every equation holds to 1e-30 L^2 and theta_L stays
+at the root (to 1e-30). Real roots are isolated from the exact coefficients by FLINT (arb's certified
+``complex_roots`` on each irreducible factor of P); no Sturm count (125 s).
 """
 
 from __future__ import annotations
 
+import functools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 from fractions import Fraction
 from typing import Any
@@ -80,7 +79,7 @@ class Count:
 Equation = tuple[list[Term], int, tuple[int, int] | None]  # |sum|^2 = length2, or normal . sum = 0 (a slide)
 
 
-def equations(bodies: TwoBodies, bases: list[Exact], unit: Fraction) -> list[Equation]:
+def equations(bodies: TwoBodies, bases: Sequence[Exact], unit: Fraction) -> list[Equation]:
     """[(terms, length2 over unit^2, None)] of F_L, F_R, C_1, C_2, or (terms, 0, integer normal) for a
     second leg on a slide; ``bases`` the first and second legs' bases of body 0 then body 1, now (a
     slide leg's second base is not used)."""
@@ -207,7 +206,8 @@ def real_roots(f: Any, factors: Any = None) -> list[tuple[Any, Any]]:
     return sorted(out)
 
 
-def solve(bodies: TwoBodies, bases: list[Exact], unit: Fraction, scale: float) -> Count:
+@functools.lru_cache(maxsize=8)  # an elimination takes seconds: a process's builds of one mechanism share it
+def solve(bodies: TwoBodies, bases: tuple[Exact, ...], unit: Fraction, scale: float) -> Count:
     """Every assembly of the two bodies with these legs' bases (first and second of body 0, then of
     body 1; positions as the bases': the same origin)."""
     ctx = flint.fmpz_mpoly_ctx.get(NAMES, "lex")
@@ -380,7 +380,7 @@ def _polish(eqs: list[Any], angles: list[Any], size: Any) -> tuple[Assembled, An
         MP.tan(angles[1] / 2)
 
 
-def positions(bodies: TwoBodies, bases: list[Exact], angles: tuple[float, ...]) -> tuple[tuple[float, float], ...]:
+def positions(bodies: TwoBodies, bases: Sequence[Exact], angles: tuple[float, ...]) -> tuple[tuple[float, float], ...]:
     """Every body pair's position at the four angles (at 50 digits, rounded once), in the order of
     ``bodies.pairs``."""
     out = []
