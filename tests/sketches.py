@@ -861,7 +861,8 @@ def loop_point_case(src: Source) -> Case:
     ln = s * (src.ratio() if short else src.real(0.1, 2))
     sv = ln * src.angle()
     w = _angular(src)
-    args = (_pt_arg(j1, _rates(src, s, w)), (ln, 0.0, 0.0), (sv, ln * w * src.real(-1, 1), ln * w * w * src.real(-1, 1)))
+    args = (_pt_arg(j1, _rates(src, s, w)), (ln, 0.0, 0.0),
+            (sv, ln * w * src.real(-1, 1), ln * w * w * src.real(-1, 1)))
     J1, LN, S = _pt_jet(args[0]), _rec_jet(args[1]), _rec_jet(args[2])
     out = {"j2": vadd(J1, vscale(LN, direction(S / LN)))}
     length = _magnitude(*j1, ln, sv, out["j2"][0].v, out["j2"][1].v)
