@@ -114,4 +114,11 @@ def special_inputs(name: str) -> list[tuple[str, int | None, dict]]:
     elif name == "link_residual":
         cases.append(("coincident", None, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), **var("l", 1.0)}))
         cases.append(("parting", None, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0, 3.5, 3.75), **var("l", 1.0)}))
+    elif name == "loop_residual":  # no angle comes back where the pairs coincide
+        cases.append(("coincident", 1, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), **var("l", 1.0, 0.0, 0.0),
+                                        **var("s", 0.5)}))
+    elif name == "loop_turn":  # the body turned over (its mirror image), and flat: either turn fails
+        for what, j3, turn in (("turned over", (0.0, -1.0), 1), ("turned over", (0.0, 1.0), -1),
+                               ("flat", (2.0, 0.0), 1), ("flat", (2.0, 0.0), -1)):
+            cases.append((what, 1, {**pt("j1", 0.0, 0.0), **pt("j2", 1.0, 0.0), **pt("j3", *j3), "turn": turn}))
     return cases

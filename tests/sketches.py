@@ -329,6 +329,7 @@ class Case:
     toggle: bool = False
     what: str = ""
     arm: float = 1.0  # length that turns an angle output's error into a length
+    per: float = 1.0  # length that divides an area output (loop_turn's c) and its rates into lengths
     drawn: tuple = ()  # the numbers drawn (sketches.replay makes the case again from them)
 
     def note(self) -> str:
@@ -851,6 +852,76 @@ def link_residual_case(src: Source) -> Case:
     return Case("link_residual", args, values, {"f": r - LN}, length, length / float(r.v), math.nan)
 
 
+def loop_point_case(src: Source) -> Case:
+    """A loop's leg of length l (a needle now and then) at the assumed angle theta in (-pi, pi], carried as the
+    arc length s = l theta rounded to a double; the leg's length is constant (no rates)."""
+    s = src.scale()
+    j1 = src.point(s)
+    short = src.flag()
+    ln = s * (src.ratio() if short else src.real(0.1, 2))
+    sv = ln * src.angle()
+    w = _angular(src)
+    args = (_pt_arg(j1, _rates(src, s, w)), (ln, 0.0, 0.0),
+            (sv, ln * w * src.real(-1, 1), ln * w * w * src.real(-1, 1)))
+    J1, LN, S = _pt_jet(args[0]), _rec_jet(args[1]), _rec_jet(args[2])
+    out = {"j2": vadd(J1, vscale(LN, direction(S / LN)))}
+    length = _magnitude(*j1, ln, sv, out["j2"][0].v, out["j2"][1].v)
+    return Case("loop_point", args, {"j1": J1, "l": LN, "s": S}, out, length, 1.0, math.nan, False,
+                "short" if short else "random")
+
+
+def loop_residual_case(src: Source) -> Case:
+    """X1 come back round the loop at the distance l from K1 (a needle now and then), the assumed angle theta
+    = atan2 - m a turn away now and then (m in (-3.1, 3.1): the wrap is never within 0.04 of its edge), carried
+    as s = l theta: f = l wrap(atan2(X1 - K1) - s / l) with its rates."""
+    s = src.scale()
+    j1 = src.point(s)
+    short = src.flag()
+    j2 = src.near(j1, s * src.ratio()) if short else src.point(s)
+    ln = _exact_len(j1, j2)
+    if ln == 0:
+        raise Degenerate("loop_residual: the points coincide")
+    theta = math.atan2(j2[1] - j1[1], j2[0] - j1[0]) - src.real(-3.1, 3.1) + 2 * math.pi * src.choice((0, 0, 1, -1))
+    w = _angular(src)
+    args = (_pt_arg(j1, _rates(src, s, w)), _pt_arg(j2, _rates(src, s, w)), (ln, 0.0, 0.0),
+            (ln * theta, ln * w * src.real(-1, 1), ln * w * w * src.real(-1, 1)))
+    J1, J2, LN, S = _pt_jet(args[0]), _pt_jet(args[1]), _rec_jet(args[2]), _rec_jet(args[3])
+    d = vsub(J2, J1)
+    if d[0].v == 0 and d[1].v == 0:
+        raise Degenerate("loop_residual: the points coincide")
+    th = jatan2(d[1], d[0])
+    back = S / LN
+    f = LN * Jet(wrap(th.v - back.v), th.d - back.d, th.dd - back.dd)
+    length = _magnitude(*j1, *j2, ln, args[3][0])
+    return Case("loop_residual", args, {"j1": J1, "j2": J2, "l": LN, "s": S}, {"f": f}, length, length / ln,
+                math.nan, False, "short" if short else "random")
+
+
+def loop_turn_case(src: Source) -> Case:
+    """A body's three pairs (two of them close now and then) and the turn they are drawn with: c = (j2 - j1) x
+    (j3 - j1), an area, compared as a length over the longer side; within 4 eps of collinear the float inputs
+    do not resolve the sign (no exact answer is required there)."""
+    s = src.scale()
+    j1 = src.point(s)
+    short = src.choice(("", "j2", "j3"))
+    j2 = src.near(j1, s * src.ratio()) if short == "j2" else src.point(s)
+    j3 = src.near(j1, s * src.ratio()) if short == "j3" else src.point(s)
+    w = _angular(src)
+    pts = tuple(_pt_arg(p, _rates(src, s, w)) for p in (j1, j2, j3))
+    J1, J2, J3 = (_pt_jet(p) for p in pts)
+    u, v = vsub(J2, J1), vsub(J3, J1)
+    c = vcross(u, v)
+    if c.v == 0:
+        raise Degenerate("loop_turn: the pairs are collinear")
+    args = (*pts, _sign(c.v))
+    sides = (float(vnorm(u).v), float(vnorm(v).v))
+    sine = float(abs(c.v)) / (sides[0] * sides[1])
+    exact = {"c": c} if sine > 4 * EPS else None
+    length = max(_magnitude(*j1, *j2, *j3), *sides)
+    return Case("loop_turn", args, {"j1": J1, "j2": J2, "j3": J3, "turn": _sign(c.v)}, exact, length, 1.0, sine,
+                False, short or "random", per=max(sides))
+
+
 def _checked(make):
     def case(src: Source) -> Case:
         c = make(src)
@@ -878,6 +949,9 @@ CHAINS = {
     "offset_angle": offset_angle_case,
     "crank_angle": crank_angle_case,
     "link_residual": link_residual_case,
+    "loop_point": loop_point_case,
+    "loop_residual": loop_residual_case,
+    "loop_turn": loop_turn_case,
 }
 CHAINS = {name: _checked(make) for name, make in CHAINS.items()}
 
@@ -989,6 +1063,15 @@ def residuals(case: Case, outs: dict) -> list:
         return [wrap(sc("angle") - _val(v, "theta") - _val(v, "phi") - v["off"])]
     if n == "link_residual":
         return [sc("f") - (vnorm(vsub(_p(v, "j2"), _p(v, "j1"))) - _val(v, "l"))]
+    if n == "loop_point":  # j2 at the distance l from j1, at the angle s / l
+        d, u = vsub(pt("j2"), _p(v, "j1")), _dir_mp(_val(v, "s") / _val(v, "l"))
+        return [vcross(d, u), vdot(d, u) - _val(v, "l")]
+    if n == "loop_residual":  # f = l wrap(angle of j2 - j1 less s / l)
+        d, ln = vsub(_p(v, "j2"), _p(v, "j1")), _val(v, "l")
+        return [sc("f") - ln * wrap(MP.atan2(d[1], d[0]) - _val(v, "s") / ln)]
+    if n == "loop_turn":  # c = (j2 - j1) x (j3 - j1), over the longer side
+        c = vcross(vsub(_p(v, "j2"), _p(v, "j1")), vsub(_p(v, "j3"), _p(v, "j1")))
+        return [(sc("c") - c) / case.per]
     raise KeyError(n)
 
 

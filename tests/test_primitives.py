@@ -370,6 +370,37 @@ def sample_ppr(r: Draw, branch: int):
     return Sample(inputs, {"s1": s1, "jp1": jp1, "sx": sx, "jpx": pa if branch > 0 else pb})
 
 
+def sample_loop_point(r: Draw, branch: int):
+    """A leg of constant length l turning through theta (some whole turns away, now and then), its angle carried
+    as the arc length s = l theta."""
+    j1, ln, theta = r.point(), r.variable(0.2, 2).v, r.angle()
+    theta = Jet(theta.v + r.rng.choice((0, 0, 0, 2, -3)) * 2 * _lib(theta.v).pi, theta.d, theta.dd)
+    j2 = vadd(j1, vscale(ln, direction(theta)))
+    return Sample({"j1": j1, "l": Jet(ln), "s": ln * theta}, {"j2": j2})
+
+
+def sample_loop_residual(r: Draw, branch: int):
+    """j2 at the angle phi from j1 (the angle that came back round the loop), the assumed angle theta = phi - m
+    a whole turn away now and then, so that phi - theta leaves (-pi, pi] on either side: f = l m.  (The wrap
+    takes one turn off: theta more than a turn away from (-pi, pi] is outside what the primitive answers.)"""
+    j1, rad, phi, ln = r.point(), r.variable(0.2, 2), r.angle(), r.variable(0.2, 2).v
+    j2 = vadd(j1, vscale(rad, direction(phi)))
+    m, turns = r.num(-3.1, 3.1), r.rng.choice((0, 0, 1, -1))
+    theta = Jet(phi.v - m - turns * 2 * _lib(m).pi, r.num(-2, 2), r.num(-2, 2))
+    f = Jet(ln * m, ln * (phi.d - theta.d), ln * (phi.dd - theta.dd))
+    return Sample({"j1": j1, "j2": j2, "l": Jet(ln), "s": ln * theta}, {"f": f})
+
+
+def sample_loop_turn(r: Draw, branch: int):
+    """A body's three points, drawn turned the way ``branch`` says (well away from collinear)."""
+    j1, j2, j3 = r.point(), r.point(), r.point()
+    u, w = vsub(j2, j1), vsub(j3, j1)
+    c = vcross(u, w)
+    if sign(c.v) != branch or abs(c.v) < MIN_CONDITION * jsqrt(vdot(u, u)).v * jsqrt(vdot(w, w)).v:
+        return None
+    return Sample({"j1": j1, "j2": j2, "j3": j3, "turn": branch}, {"c": c})
+
+
 SAMPLERS: dict[str, Callable] = {
     "crank_input": sample_crank_input,
     "slider_input": sample_slider_input,
@@ -386,8 +417,11 @@ SAMPLERS: dict[str, Callable] = {
     "link_residual": sample_link_residual,
     "link_direction": sample_link_direction,
     "angle_direction": sample_angle_direction,
+    "loop_point": sample_loop_point,
+    "loop_residual": sample_loop_residual,
+    "loop_turn": sample_loop_turn,
 }
-BRANCHED = {"RRR_links", "PRR_links", "RPR_links", "PPR_links"}
+BRANCHED = {"RRR_links", "PRR_links", "RPR_links", "PPR_links", "loop_turn"}
 CASES = [(n, b) for n in MOTIONS for b in ((1, -1) if n in BRANCHED else (1,))]
 CASE_IDS = [f"{n}{'' if n not in BRANCHED else ('+' if b > 0 else '-')}" for n, b in CASES]
 
@@ -627,6 +661,16 @@ def constraints(name: str, v: dict, f: dict) -> tuple[list, list]:
         res += [_cross(_sub(pa, pb), ux), f[("sx", "v")] - v["sgn"] * _dot(_sub(pa, pb), ux)]
         res += list(_sub(_pt(f, "jpx"), pa if v["sgn"] > 0 else pb))
         return res, []
+    if name == "loop_point":  # j2 at the distance l from j1, at the angle s / l
+        d, u = _sub(_pt(f, "j2"), p("j1")), _dir(v["s_v"] / v["l_v"])
+        return [_cross(d, u), _dot(d, u) - v["l_v"]], []
+    if name == "loop_residual":  # f / l is the angle of j2 - j1 less s / l, up to whole turns, in (-pi, pi]
+        ln, fv = v["l_v"], f[("f", "v")]
+        diff = fv / ln - (mpmath.atan2(*reversed(_sub(p("j2"), p("j1")))) - v["s_v"] / ln)
+        return [ln * mpmath.sin(diff), ln * (1 - mpmath.cos(diff))], [-mpmath.pi * ln < fv <= mpmath.pi * ln]
+    if name == "loop_turn":  # c = (j2 - j1) x (j3 - j1), of the sign turn
+        c = f[("c", "v")]
+        return [c - _cross(_sub(p("j2"), p("j1")), _sub(p("j3"), p("j1")))], [sign(c) == v["turn"]]
     raise KeyError(name)
 
 
@@ -824,6 +868,9 @@ def _flat(outs) -> list[float]:
 # of an input many turns away).
 ATAN2_FIELDS = {("link_angle", "angle", "the"), ("RPR_links", "psi", "the"), ("crank_angle", "angle", "the")}
 ATAN2_ULPS = 4
+# loop_residual's f is an arc, l times an angle from atan2 less s / l: the atan2 bits' difference, after the
+# subtraction, is within ATAN2_ULPS ulps of pi times the leg l
+ATAN2_ARCS = {("loop_residual", "f", "v"): "l_v"}
 
 
 def _ulps(a: float, b: float) -> float:
@@ -849,6 +896,9 @@ def test_python_and_numpy_backends_bit_identical(name, order):
         assert len(py) == len(npv) == len(fields)
         for (o, f), a, b in zip(fields, py, npv):
             if (name, o, f) in ATAN2_FIELDS and _ulps(a, b) <= ATAN2_ULPS:
+                continue
+            arc = ATAN2_ARCS.get((name, o, f))
+            if arc is not None and abs(a - b) <= ATAN2_ULPS * math.ulp(math.pi) * abs(row[arc]):
                 continue
             if not same(a, b):
                 mismatches.append(f"row {i} {o}.{f}: math {a!r} numpy {b!r}")
