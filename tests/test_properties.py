@@ -383,13 +383,6 @@ def _outside_cases(magnitude: str) -> list[tuple[str, tuple]]:
     return cases
 
 
-# Known to break the discipline below the range, found by test_chain_outside_the_range (kept as strict xfails so
-# that a fix shows): loop_point at a subnormal or zero leg length l (1 / l overflows and math.cos(inf) raises
-# ValueError (a needle leg 1e-300 down is one), or 1 / 0 raises ZeroDivisionError; it has no status to report it),
-# loop_residual at l == 0 (s / l raises ZeroDivisionError).  A leg of a drawn loop is a link's length, inside the range.
-OUTSIDE_BROKEN = [("tiny", "loop_point"), ("subnormal", "loop_point"), ("subnormal", "loop_residual")]
-
-
 def _outside_failures(magnitude: str, names) -> list[str]:
     """The calls of the outside cases of the primitives ``names`` that raise or break the status discipline."""
     bad = []
@@ -412,14 +405,7 @@ def test_chain_outside_the_range(magnitude):
     exception, no inf, no status 0 with a nan.  Above the range (squares overflow from about 1e154 on) no
     primitive is ever called: a sketch that large is refused by the build (tests/errors), and an input, rate
     or acceleration over 1e30 by the programs, as a number that is not finite is (tests/test_programs.py)."""
-    bad = _outside_failures(magnitude, {n for n in MOTIONS if (magnitude, n) not in OUTSIDE_BROKEN})
-    assert not bad, f"{len(bad)} calls:\n" + "\n".join(bad[:5])
-
-
-@pytest.mark.xfail(strict=True, reason="loop_point / loop_residual raise at a subnormal or zero leg length")
-@pytest.mark.parametrize(("magnitude", "name"), OUTSIDE_BROKEN)
-def test_loop_primitives_outside_the_range(magnitude, name):
-    bad = _outside_failures(magnitude, {name})
+    bad = _outside_failures(magnitude, set(MOTIONS))
     assert not bad, f"{len(bad)} calls:\n" + "\n".join(bad[:5])
 
 

@@ -10,35 +10,45 @@ residual is the angle that comes back less the one assumed, as an arc of the sam
 from __future__ import annotations
 
 from .. import status
-from .dsl import Primitive, atan2, select
+from .dsl import NAN, Primitive, atan2, either, fabs, select
 from .vectors import Motion, PlaneBuilder, primitive
 
 
 @primitive
 def loop_point(b: PlaneBuilder) -> Primitive:
     """Pair j2 of a leg of length l at the arc length s from its known pair j1: at the angle s / l (the angle a
-    loop assumes), with the rates of s (the leg's length is a link's, constant)."""
+    loop assumes), with the rates of s (the leg's length is a link's, constant).  Fails where the angle is no
+    number (a leg shorter than 1e-300, or s / l beyond 1e300 rad: no angle a loop reaches)."""
     j1 = b.point("j1")
     ln, s = b.record("l", "VARIABLE"), b.record("s", "VARIABLE")
-    il = b.let("il", 1 / ln.v)
-    r = b.vec("r", b.direction("t", s.v * il).scaled(ln.v))
+    zero = ln.v.eq(0)
+    il = b.let("il", select(zero, NAN, 1 / ln.v))
+    t = b.let("t", select(zero, NAN, s.v / ln.v))
+    bad = either(either(zero, fabs(il) > 1e300), fabs(t) > 1e300)
+    r = b.vec("r", b.direction("a", b.let("ta", select(bad, NAN, t))).scaled(ln.v))
     b.output_point("j2", j1 + b.rotating("r", r, s.dv * il, s.ddv * il))
-    return b.build()
+    return b.build(status=select(bad, status.CANNOT_CLOSE, 0), fail=bad)
 
 
 @primitive
 def loop_residual(b: PlaneBuilder) -> Primitive:
     """The loop's residual f = l wrap(theta' - s / l): the angle theta' of j2 - j1 that comes back round the loop
-    less the angle assumed (the arc length s of the leg of length l), as an arc of the leg, wrapped to
-    (-pi l, pi l], with its rates.  Fails where the two points coincide."""
+    less the angle assumed (the arc length s of the leg of length l), as an arc of the leg, in (-pi l, pi l]
+    however many turns s / l is from theta' (the angle from the assumed direction u to j2 - j1:
+    atan2(u x d, u . d)), with its rates.  Fails where the two points coincide or the assumed angle is no
+    number (as loop_point)."""
     j1, j2 = b.points("j1", "j2")
     ln, s = b.record("l", "VARIABLE"), b.record("s", "VARIABLE")
     d = b.difference(j1, j2)
     r2 = b.let("r2", d.p.dot(d.p))
-    th = b.wrapped("th", atan2(d.p.y, d.p.x) - s.v / ln.v)
+    zero = ln.v.eq(0)
+    t = b.let("t", select(zero, NAN, s.v / ln.v))
+    bad = either(either(zero, fabs(t) > 1e300), r2.eq(0))
+    u = b.direction("a", b.let("ta", select(bad, NAN, t)))
+    th = b.let("th", atan2(u.cross(d.p), u.dot(d.p)))
     om, al = b.angle_rates(d, r2)
     b.output("f", "VARIABLE", v=ln.v * th, dv=ln.v * om - s.dv, ddv=ln.v * al - s.ddv)
-    return b.build(status=select(r2.eq(0), status.CANNOT_CLOSE, 0), fail=r2.eq(0))
+    return b.build(status=select(bad, status.CANNOT_CLOSE, 0), fail=bad)
 
 
 @primitive

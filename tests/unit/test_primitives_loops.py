@@ -29,8 +29,13 @@ def test_loop_point_is_the_leg_at_the_angle_s_over_l_with_its_rates():
     for pos, vel, acc in (("x", "dx", "ddx"), ("y", "dy", "ddy")):
         assert _zero(time_derivative(loop_point, q[pos]) - q[vel])
         assert _zero(time_derivative(loop_point, q[vel]) - q[acc])
-    j2 = python_backend(2)["loop_point"]((1.0, 2.0, 0.0, 0.0, 0.0, 0.0), (2.0, 0.0, 0.0), (math.pi, 0.0, 0.0))
+    call = python_backend(2)["loop_point"]
+    st, j2 = call((1.0, 2.0, 0.0, 0.0, 0.0, 0.0), (2.0, 0.0, 0.0), (math.pi, 0.0, 0.0))
+    assert st == 0
     assert abs(j2[0] - 1.0) < 1e-15 and abs(j2[1] - 4.0) < 1e-15  # a quarter turn of a leg of 2 (arc pi)
+    for length in (0.0, 1e-310):  # no leg, or one below the range (1 / l is not finite): no angle
+        st, j2 = call((1.0, 2.0, 0.0, 0.0, 0.0, 0.0), (length, 0.0, 0.0), (1e-310, 1.0, 0.0))
+        assert st == 1 and all(x != x for x in j2)
 
 
 def test_loop_residual_is_the_arc_between_the_angle_that_comes_back_and_the_one_assumed():
@@ -44,8 +49,12 @@ def test_loop_residual_is_the_arc_between_the_angle_that_comes_back_and_the_one_
     st, (v, _, _) = call((0.0, 0.0, 0.0, 0.0, 0.0, 0.0), (-1.0, -1e-3, 0.0, 0.0, 0.0, 0.0), (1.0, 0.0, 0.0),
                          (3.1, 0.0, 0.0))
     assert st == 0 and -math.pi < v <= math.pi and abs(v - (math.atan2(-1e-3, -1.0) - 3.1 + 2 * math.pi)) < 1e-15
+    st, (v, _, _) = call((1.0, 2.0, 0.0, 0.0, 0.0, 0.0), back, (2.0, 0.0, 0.0), (1.0 + 2 * 14 * math.pi, 0.0, 0.0))
+    assert st == 0 and abs(v - 2 * (0.6 - 0.5)) < 1e-13  # the angle assumed seven turns away: the same arc
     st, _ = call((1.0, 1.0, 0.0, 0.0, 0.0, 0.0), (1.0, 1.0, 0.0, 0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 0.0, 0.0))
     assert st == 1  # the two points coincide
+    st, (v, _, _) = call((1.0, 2.0, 0.0, 0.0, 0.0, 0.0), back, (0.0, 0.0, 0.0), (1.0, 0.0, 0.0))
+    assert st == 1 and v != v  # a leg of length 0: no angle
 
 
 def test_loop_turn_is_the_bodys_cross_product_and_refuses_its_mirror_image():
