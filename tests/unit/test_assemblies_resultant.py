@@ -93,7 +93,7 @@ def test_the_eliminant_vanishes_at_the_pose_and_every_assembly_is_one(seed):
     assert eliminant == univariate(s1.resultant(s2, "tR"), 1)  # interpolated: FLINT's own resultant
     t_l = turns[1]
     assert sum(int(c) * t_l ** k for k, c in enumerate(eliminant.coeffs())) == 0
-    count = solve(bodies, bases, UNIT, 200.0)
+    count = solve(bodies, tuple(bases), UNIT, 200.0)
     assert any(max(abs(math.remainder(a - 2 * math.atan(float(t)), 2 * math.pi)) for a, t in zip(r.angles, turns))
                < 1e-12 for r in count.roots)
     assert all(max(_distances(bodies, bases, r)) < 1e-12 for r in count.roots)
@@ -103,7 +103,7 @@ def test_the_eliminant_vanishes_at_the_pose_and_every_assembly_is_one(seed):
 @pytest.mark.parametrize("seed", [3, 5])
 def test_the_small_groups_count_is_the_multistart_searchs(seed):
     bodies, bases, _ = _posed(seed)
-    count = solve(bodies, bases, UNIT, 200.0)
+    count = solve(bodies, tuple(bases), UNIT, 200.0)
     left, right = bodies.bodies
 
     def mp(v):
@@ -122,7 +122,7 @@ def test_an_assembly_with_the_first_body_turned_half_a_turn_is_found_on_its_own(
     """theta_L = pi is t_L = infinity, no root of the eliminant: the equations' leading coefficients
     in t_L find it."""
     bodies, bases, turns = _posed(3, (Fraction(1, 2), None, Fraction(2), Fraction(3)))
-    count = solve(bodies, bases, UNIT, 200.0)
+    count = solve(bodies, tuple(bases), UNIT, 200.0)
     assert count.at_pi
     (half,) = [r for r in count.roots if abs(abs(r.theta) - math.pi) < 1e-12]
     assert half.angles[0] == pytest.approx(2 * math.atan(0.5), abs=1e-12)
@@ -173,7 +173,7 @@ def test_a_slide_legs_equation_is_the_half_angle_form_of_n_dot_p_and_vanishes_at
     assert ratio.is_number and ratio != 0
     _, _, p = eliminate(*polys, ctx)
     assert sum(int(c) * turns[1] ** k for k, c in enumerate(p.coeffs())) == 0
-    count = solve(bodies, bases, UNIT, 200.0)
+    count = solve(bodies, tuple(bases), UNIT, 200.0)
     assert any(max(abs(math.remainder(a - 2 * math.atan(float(t)), 2 * math.pi)) for a, t in zip(r.angles, turns))
                < 1e-12 for r in count.roots)
     n = math.hypot(*NORMAL)
