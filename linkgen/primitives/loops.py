@@ -10,7 +10,7 @@ residual is the angle that comes back less the one assumed, as an arc of the sam
 from __future__ import annotations
 
 from .. import status
-from .dsl import NAN, Primitive, atan2, either, fabs, select
+from .dsl import EPS, NAN, Primitive, atan2, either, fabs, select
 from .vectors import Motion, PlaneBuilder, primitive
 
 
@@ -18,15 +18,15 @@ from .vectors import Motion, PlaneBuilder, primitive
 def loop_point(b: PlaneBuilder) -> Primitive:
     """Pair j2 of a leg of length l at the arc length s from its known pair j1: at the angle s / l (the angle a
     loop assumes), with the rates of s (the leg's length is a link's, constant).  Fails where the angle is no
-    number (a leg shorter than 1e-300, or s / l beyond 1e300 rad: no angle a loop reaches)."""
+    number (a leg of length 0, or s / l beyond 1 / eps rad, where an angle has no digits left)."""
     j1 = b.point("j1")
     ln, s = b.record("l", "VARIABLE"), b.record("s", "VARIABLE")
     zero = ln.v.eq(0)
-    il = b.let("il", select(zero, NAN, 1 / ln.v))
     t = b.let("t", select(zero, NAN, s.v / ln.v))
-    bad = either(either(zero, fabs(il) > 1e300), fabs(t) > 1e300)
+    bad = either(zero, fabs(t) * EPS > 1)
     r = b.vec("r", b.direction("a", b.let("ta", select(bad, NAN, t))).scaled(ln.v))
-    b.output_point("j2", j1 + b.rotating("r", r, s.dv * il, s.ddv * il))
+    om, al = b.let("om", select(zero, NAN, s.dv / ln.v)), b.let("al", select(zero, NAN, s.ddv / ln.v))
+    b.output_point("j2", j1 + b.rotating("r", r, om, al))
     return b.build(status=select(bad, status.CANNOT_CLOSE, 0), fail=bad)
 
 
@@ -43,7 +43,7 @@ def loop_residual(b: PlaneBuilder) -> Primitive:
     r2 = b.let("r2", d.p.dot(d.p))
     zero = ln.v.eq(0)
     t = b.let("t", select(zero, NAN, s.v / ln.v))
-    bad = either(either(zero, fabs(t) > 1e300), r2.eq(0))
+    bad = either(either(zero, fabs(t) * EPS > 1), r2.eq(0))
     u = b.direction("a", b.let("ta", select(bad, NAN, t)))
     th = b.let("th", atan2(u.cross(d.p), u.dot(d.p)))
     om, al = b.angle_rates(d, r2)

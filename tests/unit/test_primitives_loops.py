@@ -33,8 +33,8 @@ def test_loop_point_is_the_leg_at_the_angle_s_over_l_with_its_rates():
     st, j2 = call((1.0, 2.0, 0.0, 0.0, 0.0, 0.0), (2.0, 0.0, 0.0), (math.pi, 0.0, 0.0))
     assert st == 0
     assert abs(j2[0] - 1.0) < 1e-15 and abs(j2[1] - 4.0) < 1e-15  # a quarter turn of a leg of 2 (arc pi)
-    for length in (0.0, 1e-310):  # no leg, or one below the range (1 / l is not finite): no angle
-        st, j2 = call((1.0, 2.0, 0.0, 0.0, 0.0, 0.0), (length, 0.0, 0.0), (1e-310, 1.0, 0.0))
+    for length, arc in ((0.0, 1.0), (1e-310, 1e-290)):  # no leg, or an arc of 1e20 rad: no angle
+        st, j2 = call((1.0, 2.0, 0.0, 0.0, 0.0, 0.0), (length, 0.0, 0.0), (arc, 1.0, 0.0))
         assert st == 1 and all(x != x for x in j2)
 
 
