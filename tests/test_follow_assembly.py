@@ -131,12 +131,7 @@ def test_the_sweep_follows_assembly_k(tmp_path, path, k):
     assert statuses == [0] * log.samples
     rows = list(range(0, log.samples, 12 if (path, k) in QUICK else 1))
     want = _reference_sweep(path, first, [data[r][:1] for r in rows])
-    for r, w in zip(rows, want):
-        for name, x in zip(names[1:], data[r][1:]):
-            if name in w and name.endswith((".x", ".y")):
-                assert abs(x - float(w[name])) <= 1e-9 * log.length_scale, (r, name, x, float(w[name]))
-            elif name in w and name.endswith(".phi"):
-                assert abs(math.remainder(x - float(w[name]), 2 * math.pi)) <= 1e-9, (r, name, x, float(w[name]))
+    _agree(names, data, rows, want, log.length_scale)
 
 
 @LONG
@@ -243,6 +238,16 @@ def test_a_build_lists_every_assembly_of_a_class_iv_group():
         > 1e-6 * log.length_scale
 
 
+def _agree(names: list[str], data: list[list[float]], rows: list[int], want: list[dict], scale: float) -> None:
+    """The program's rows against the reference's: positions to 1e-9 L, angles to 1e-9 rad (mod a turn)."""
+    for r, w in zip(rows, want):
+        for name, x in zip(names[1:], data[r][1:]):
+            if name in w and name.endswith((".x", ".y")):
+                assert abs(x - float(w[name])) <= 1e-9 * scale, (r, name, x, float(w[name]))
+            elif name in w and name.endswith(".phi"):
+                assert abs(math.remainder(x - float(w[name]), 2 * math.pi)) <= 1e-9, (r, name, x, float(w[name]))
+
+
 def _reached(statuses: list[int], values: list[list[float]], sketch: float) -> list[int]:
     """The rows the programs reach from the sketch without crossing a failed row: the run of rows of
     status 0 between the failures on either side of the sketch's input (all rows if none fails)."""
@@ -278,11 +283,6 @@ def test_a_class_iv_assembly_is_followed(tmp_path, path, k):
     rows = _reached(statuses, data, log.inputs[0].sketch)
     assert rows and all(statuses[r] == 0 for r in rows)
     want = _reference_sweep(path, listed, [data[r][:1] for r in rows])
-    for r, w in zip(rows, want):
-        for name, x in zip(names[1:], data[r][1:]):
-            if name in w and name.endswith((".x", ".y")):
-                assert abs(x - float(w[name])) <= 1e-9 * log.length_scale, (r, name, x, float(w[name]))
-            elif name in w and name.endswith(".phi"):
-                assert abs(math.remainder(x - float(w[name]), 2 * math.pi)) <= 1e-9, (r, name, x, float(w[name]))
+    _agree(names, data, rows, want, log.length_scale)
     for other in (run_c(log, tmp_path), run_octave(log, tmp_path), run_numpy(log, tmp_path)):
         compare(log, py, other)
