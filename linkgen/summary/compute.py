@@ -152,6 +152,10 @@ def _usable(result: Result) -> Array:
 
 
 def _transmission(log: StepLog, result: Result, lam: Array, units: _Units, edges: Edges) -> tuple[Transmission, ...]:
+    """Each chain's least and greatest transmission angle over the sweep: 0 at a limit position the
+    sweep reaches (a limit outside its range is the mechanism's, not the sweep's)."""
+    lo, hi = sorted((log.inputs[0].start, log.inputs[0].stop))
+    edges = [(s, x) for s, x in ((s, _in_sweep(log, x)) for s, x in edges) if lo <= x <= hi]
     limited = {s for s, _ in edges}
     added = {a.name for a in log.add_links}  # a chain on an Add-link transmits nothing: the resolver sets it
     out = []

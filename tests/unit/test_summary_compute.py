@@ -11,7 +11,7 @@ import pytest
 
 from linkgen.pipeline import build_log
 from linkgen.summary.compute import summarize
-from tests.linkages import four_bar, toggle
+from tests.linkages import four_bar, sigma, toggle
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -37,6 +37,23 @@ def test_non_grashof_assembling_range_and_limit_positions_in_degrees(tmp_path):
     assert all(f.meaning.endswith("the chain cannot close") for f in s.failures)
     (t,) = s.transmission
     assert t.at_limit and t.minimum == 0.0 and t.at[0] == pytest.approx(limit, abs=1e-9)
+
+
+def test_a_limit_outside_the_sweeps_range_is_not_the_sweeps_least_transmission_angle(tmp_path):
+    """The non-Grashof four-bar swept over -20..20 deg only, inside its limits: the chain's least transmission
+    angle is the sweep's, the least over the range of the closed form (sigma is its sine), not 0 at a limit."""
+    a, b, c, d = 40.0, 50.0, 41.0, 60.0
+    limit = math.degrees(toggle(a, b, c, d, far=True))
+    assert limit > 20
+    path = four_bar(tmp_path, "ng", a, b, c, d, 0.0, samples=41)
+    path.write_text(path.read_text().replace("range: [0, 360]", "range: [-20, 20]"))
+    s = _summary(path)
+    assert s.failed == 0
+    (t,) = s.transmission
+    grid = [math.radians(-20 + k / 100) for k in range(4001)]
+    least = min(math.degrees(math.asin(sigma(a, b, c, d, x))) for x in grid)
+    assert not t.at_limit and t.minimum == pytest.approx(least, abs=1e-6)
+    assert -20 <= t.at[0] <= 20
 
 
 def _apart(x: float, y: float) -> float:
