@@ -232,9 +232,10 @@ build` builds it (`build_log(path, options=...)`), so a knob shows here once it 
 - C: `NAME_solve` (gcc -O2 -std=c99) over @C_ROWS@ rows of the file's range in order, the warm
   state kept; the median of @C_RUNS@ runs, per configuration.  Python: the generated `NAME.py`'s
   `solve` over the file's sweep in order (median of @PY_RUNS@ runs).  numpy: rows per second of
-  `NAME_np.solve` on all rows at once (median of @NP_RUNS@ calls after one; '-': not run, as the
-  size before predicts over @NP_BUDGET@ s a call; where 1e5 rows are not run, the largest size run
-  in brackets).
+  `NAME_np.solve` on all rows at once (median of @NP_RUNS@ calls after one; 1e3, 1e4, 1e5, 1e6 rows
+  in turn; '-': not run, as the sizes before predict over @NP_BUDGET@ s a call from the last call
+  and the cost per row between the last two; where 1e5 rows are not run, the largest size run in
+  brackets).
   Octave: `NAME_solve.m` over @OCTAVE_ROWS@ rows (a smaller run), per configuration.
 - Error: the worst over @ROWS@ rows of the sweep (every 10 degrees of a turn) of the program's own
   sweep (`NAME_main.c`, `NAME.py`, `NAME_np.py`) against the 50-digit reference of

@@ -5,8 +5,10 @@
 - Python (the generated NAME.py, imported): solve over the file's sweep rows in order, the warm
   state kept; the median of PY_RUNS runs after one more, per configuration.
 - numpy (the generated NAME_np.py, imported): rows per second of solve on NP_ROWS rows at once,
-  the median of NP_RUNS calls after a warm-up call; a size whose call the size before predicts to
-  take over NP_BUDGET seconds is not run.
+  the median of NP_RUNS calls after a warm-up call; a size whose call the sizes before predict to
+  take over NP_BUDGET seconds is not run (the last call's time and the added rows at the cost per row
+  between the last two sizes: a kernel with a fixed cost a call, as the resolver's seeding, is not
+  judged by its smallest size).
 - Octave (NAME_solve.m, a smaller run): OCTAVE_ROWS rows of the range in order, tic/toc over the
   loop after one row; every build of a sample in one octave-cli process.
 The sweeps whose errors are measured are the programs' own: NAME_main.c, NAME.py and NAME_np.py
@@ -29,7 +31,7 @@ import numpy as np
 
 C_ROWS, C_RUNS = 3600, 15
 PY_RUNS = 5
-NP_ROWS, NP_RUNS, NP_BUDGET = (10**3, 10**5, 10**6), 3, 1.5
+NP_ROWS, NP_RUNS, NP_BUDGET = (10**3, 10**4, 10**5, 10**6), 3, 1.5
 OCTAVE_ROWS = 37
 LANGUAGES = {"C": ("{n}.c", "{n}.h", "{n}_main.c"), "Python": ("{n}.py",), "numpy": ("{n}_np.py",),
              "Octave": ("{n}.m", "{n}_solve.m")}
@@ -167,10 +169,12 @@ def time_numpy(log, folder: Path, unique: str) -> tuple[dict[int, float], str]:
     mod = module(folder / f"{log.name}_np.py", unique)
     speed, zero = np.array([i.speed for i in log.inputs]), np.zeros(len(log.inputs))
     rates: dict[int, float] = {}
-    per_row = 0.0
+    done: list[tuple[int, float]] = []  # (rows, seconds) of the sizes run
     for rows in NP_ROWS:
-        if per_row * rows > NP_BUDGET:
-            break
+        if done:
+            (n0, t0), (n1, t1) = ([(0, 0.0)] + done)[-2:]
+            if t1 + (rows - n1) * max(t1 - t0, 0.0) / (n1 - n0) > NP_BUDGET:
+                break
         x = _range(log, rows)
         mod.solve(x, speed, zero)
         times = []
@@ -178,8 +182,8 @@ def time_numpy(log, folder: Path, unique: str) -> tuple[dict[int, float], str]:
             t = time.perf_counter()
             mod.solve(x, speed, zero)
             times.append(time.perf_counter() - t)
-        per_row = statistics.median(times) / rows
-        rates[rows] = 1.0 / per_row
+        done.append((rows, statistics.median(times)))
+        rates[rows] = rows / done[-1][1]
     return rates, _run_python(folder, f"{log.name}_np.py")
 
 
