@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .evaluate import evaluate
+from .extraction.loops import side
 from .steplog import ResolverGroup, StepLog
 
 GRID = 7200  # assumed angles per turn the map is sampled at
@@ -35,10 +36,6 @@ class FixedPoint:
     theta: float  # the assumed angle of the loop's leg at the fixed point (radians)
     slope: float  # g'(theta): |slope| < 1 the forward loop contracts there, > 1 the reverse one
     pairs: dict[str, Point]  # the group's pairs, as drawn (the file's frame)
-
-
-def _turn(a: Point, b: Point, c: Point) -> int:
-    return 1 if (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) >= 0 else -1
 
 
 def _chain(a: Point, k: Point, la: float, lk: float, side: int) -> Point | None:
@@ -75,7 +72,7 @@ class Loop:
         back = _chain(x2, k1, s12, l1, branches[2]) if x2 else None
         if back is None or x2 is None or x3 is None:
             return None
-        if _turn(x1, x2, x3) != self.turn:  # the body's mirror image: its distances, not the body
+        if side(x1, x2, x3) != self.turn:  # the body's mirror image: its distances, not the body
             return math.nan, {}
         return math.atan2(back[1] - k1[1], back[0] - k1[0]), dict(zip(self.names, (x1, x2, x3)))
 
@@ -114,7 +111,7 @@ def _loop(log: StepLog, g: ResolverGroup, at: Callable[[str], Point]) -> Loop | 
     legs = (length(steps[0].args[1].var), length(chains[1].args[3].var), length(chains[0].args[3].var))
     sides = (length(chains[2].args[2].var), length(chains[0].args[2].var), length(chains[1].args[2].var))
     drawn = [log.variable(x).sketch for x in (x1, x2, x3)]
-    turn = _turn(*((p[0], p[1]) for p in drawn))
+    turn = side(*((p[0], p[1]) for p in drawn))
     return Loop(g.number, (pos[x1], pos[x2], pos[x3]), ks, legs, sides, turn)
 
 
@@ -128,11 +125,20 @@ def sketch_slopes(log: StepLog) -> dict[int, float]:
             continue
         forward, reverse = (b for b in g.variants if log.variable(b.add_links[0]).role == "loop")
         branches = tuple(log.step(n).branch for n in forward.steps[1:4])
-        theta, h = forward.lengths[0] / loop.legs[0], 1e-7
-        up, down = loop.mismatch(theta + h, branches), loop.mismatch(theta - h, branches)
-        slope = abs(1.0 + (up - down) / (2 * h)) if up is not None and down is not None else math.nan
+        slope = abs(_slope(loop, forward.lengths[0] / loop.legs[0], branches))
         out[forward.variant], out[reverse.variant] = slope, 1.0 / slope
     return out
+
+
+def _slope(loop: Loop, theta: float, branches: Branches, h: float = 1e-7) -> float:
+    """g'(theta) = 1 + the mismatch's slope, by central differences (one-sided next to a fold; nan where the
+    map is not defined on either side)."""
+    up, down, here = (loop.mismatch(theta + d, branches) for d in (h, -h, 0.0))
+    if up is not None and down is not None:
+        return 1.0 + (up - down) / (2 * h)
+    if here is None:
+        return math.nan
+    return 1.0 + (up - here if up is not None else here - down if down is not None else math.nan) / h
 
 
 def _edge(loop: Loop, inside: float, outside: float, branches: Branches) -> list[float]:
@@ -164,15 +170,10 @@ def fixed_points(loop: Loop) -> list[FixedPoint]:
                 if fm is None or mid in (a, b):
                     break
                 a, b, fa = (mid, b, fm) if (fm > 0) == (fa > 0) else (a, mid, fa)
-            theta, h = 0.5 * (a + b) if fa else a, 1e-7
-            up, down = loop.mismatch(theta + h, branches), loop.mismatch(theta - h, branches)
-            if up is not None and down is not None:
-                slope = 1.0 + (up - down) / (2 * h)
-            else:  # next to a fold: one-sided
-                slope = 1.0 + (up - fa if up is not None else fa - (down if down is not None else math.nan)) / h
+            theta = 0.5 * (a + b) if fa else a
             got = loop.around(theta, branches)
             if got is not None and got[1]:
-                out.append(FixedPoint(loop.group, branches, theta, slope, got[1]))
+                out.append(FixedPoint(loop.group, branches, theta, _slope(loop, theta, branches), got[1]))
     return out
 
 

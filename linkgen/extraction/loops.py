@@ -69,8 +69,9 @@ def _length(variables: dict[str, Variable], link: str, a: str, b: str, sketch: d
     return name
 
 
-def _side(a: tuple[float, float], b: tuple[float, float], c: tuple[float, float]) -> int:
-    """The branch of the chain on a -> b placing c: +1 where c lies left of a -> b in the sketch."""
+def side(a: tuple[float, float], b: tuple[float, float], c: tuple[float, float]) -> int:
+    """+1 where c lies left of a -> b (or on it), else -1: the branch of the chain on a -> b placing c, and
+    the turn of a body a, b, c."""
     return 1 if (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]) >= 0 else -1
 
 
@@ -98,17 +99,17 @@ def loop_block(t: Triad, group: ResolverGroup, reverse: bool, variant: int, firs
     for i, (a, b) in enumerate(chains):
         xa, xb, kb, leg = t.xs[a], t.xs[b], t.ks[b], t.legs[b]
         out = again if i == 2 else pos[xb]
-        side = _length(variables, t.body, xa, xb, sketch)
+        body_side = _length(variables, t.body, xa, xb, sketch)
         length = _length(variables, leg, kb, xb, sketch)
-        branch = _side(sketch[xa], sketch[kb], sketch[xb])
+        branch = side(sketch[xa], sketch[kb], sketch[xb])
         steps.append(Step(first + 2 + i, "chain", "RRR_links",
-                          (Arg("var", pos[xa]), Arg("var", pos[kb]), Arg("var", side), Arg("var", length),
+                          (Arg("var", pos[xa]), Arg("var", pos[kb]), Arg("var", body_side), Arg("var", length),
                            Arg("int", value=branch, label="minv")),
                           (out,), xb, "RRR", (xa, kb), (t.body, leg), branch,
                           f"round the loop: {xb} from {xa} by the side {xa}{xb} of {t.body} and {leg} from {kb}",
                           f"the sketch has {xb} {'left' if branch > 0 else 'right'} of {xa}->{kb}", (xb,),
                           group.number, True, variant=variant))
-    turn, side_of = f"c{tag}", _side(sketch[x1], sketch[t.xs[1]], sketch[t.xs[2]])
+    turn, side_of = f"c{tag}", side(sketch[x1], sketch[t.xs[1]], sketch[t.xs[2]])
     variables[turn] = Variable(turn, "VARIABLE", LOOP_ROLE, f"{t.body} (loop {tag})", (), ())
     steps.append(Step(first + 5, "check", "loop_turn", (*(Arg("var", pos[x]) for x in t.xs),
                                                         Arg("int", value=side_of, label="turn")), (turn,), t.body,
