@@ -14,9 +14,9 @@ polynomial of degree 2 in each t_k with exact integer coefficients (the data on 
 ``triad.grid``, divided by it; n scaled to integers).  Their resultant in t_1 is P(t_0), of degree
 at most 8 (the Bezout number of two curves of bidegree (2, 2)), its factors (1 + t_0^2) divided out.
 Every assembly's theta_0 is a real root of P; theta_0 = pi (t_0 infinite) is checked on its own,
-from the two equations' coefficients of t_0^2.  Real roots are isolated by sympy's
-``Poly.intervals`` (exact rational arithmetic) and counted again by Sturm's theorem, as a triad's
-(``polynomial``).  Each root is back-substituted (every real root in t_1 of either equation, and
+from the two equations' coefficients of t_0^2.  Real roots are isolated by arb
+on its factors over the integers and counted again by Sturm's theorem, as a triad's
+(``realroots``).  Each root is back-substituted (every real root in t_1 of either equation, and
 half a turn), polished by Newton's method on the two equations at 50 digits and kept only where it
 converges, both equations hold to 1e-30 L^2 and theta_0 stays at the root; a root with no assembly
 (a common root of the two equations in t_1 that is not real) is rejected and counted as such.
@@ -29,10 +29,10 @@ from fractions import Fraction
 from typing import Any
 
 import flint
-import sympy  # type: ignore[import-untyped]  # sympy ships no type information
 
 from .pivots import Pivoted, Tie
-from .polynomial import INTERVAL, MULTIPLE, NEWTON_STEPS, T, sturm_count
+from .polynomial import NEWTON_STEPS
+from .realroots import isolate
 from .resultant import LOOSE, MP, SAME_ROOT, Assembled, Count, _add, _clean, _roots, _values, univariate
 from .triad import Exact, NotReducible
 
@@ -106,19 +106,11 @@ def solve(shape: Pivoted, pivots: list[Exact], unit: Fraction, scale: float) -> 
     if p == 0:
         raise NotReducible("the group's equations do not fix it at this position (its ties share a curve)")
     eliminant = univariate(p, 0) if not p.is_constant() else flint.fmpz_poly([1])
-    f = sympy.Poly([int(eliminant[k]) for k in range(eliminant.degree(), -1, -1)], T, domain="ZZ")
-    intervals = f.intervals() if f.degree() > 0 else []
-    count = sturm_count(f) if f.degree() > 0 else 0
-    if count != len(intervals):
-        raise ArithmeticError(f"root isolation found {len(intervals)} real roots, Sturm's theorem {count}")
+    intervals = isolate(eliminant) if eliminant.degree() > 0 else []
     size = MP.mpf(scale) / MP.mpf(unit.numerator) * unit.denominator  # L in grid units
-    square_free = f.sqf_part()
     found: list[Assembled] = []
-    for (a, b), mult in intervals:
-        width = (INTERVAL if mult == 1 else MULTIPLE) * max(1, abs(a), abs(b))
-        if b - a > width:
-            a, b = square_free.refine_root(a, b, eps=width)
-        lo, hi = (MP.mpf(v.p) / v.q for v in (a, b))
+    for a, b, mult in intervals:
+        lo, hi = (MP.mpf(v.numerator) / v.denominator for v in (a, b))
         t = (lo + hi) / 2
         for tr in _candidates(polys, t):
             got = _polish(eqs, [_angle(t), _angle(tr)], size, 0 if mult > 1 else NEWTON_STEPS)
@@ -132,7 +124,8 @@ def solve(shape: Pivoted, pivots: list[Exact], unit: Fraction, scale: float) -> 
             at_pi = True
     found = [_placed(shape, pivots, a) for a in found]
     factors = tuple(sorted(g.degree() for g, _ in eliminant.factor()[1])) or (0,)
-    return Count(f.degree(), factors, count, at_pi, tuple(sorted(found, key=lambda r: r.theta)))
+    return Count(max(eliminant.degree(), 0), factors, len(intervals), at_pi,
+                 tuple(sorted(found, key=lambda r: r.theta)))
 
 
 def _candidates(polys: list[Any], t: Any) -> list[Any]:
@@ -152,15 +145,15 @@ def _at_pi(polys: list[Any]) -> list[Any]:
         for (e0, e1), c in p.to_dict().items():
             if e0 == 2:
                 top[int(e1)] = top.get(int(e1), 0) + int(c)
-        tops.append(sympy.Poly([top.get(k, 0) for k in range(2, -1, -1)], T, domain="ZZ"))
-    if tops[0].is_zero and tops[1].is_zero:
+        tops.append(flint.fmpz_poly([top.get(k, 0) for k in range(3)]))
+    if tops[0].is_zero() and tops[1].is_zero():
         raise NotReducible("the group's equations do not fix it where its first link is turned half a turn")
-    common = tops[0] if tops[1].is_zero else tops[1] if tops[0].is_zero else sympy.gcd(tops[0], tops[1])
+    common = tops[0] if tops[1].is_zero() else tops[1] if tops[0].is_zero() else tops[0].gcd(tops[1])
     out: list[Any] = []
     if all(p.degree() < 2 for p in tops):  # both leading coefficients in t_1 vanish: theta_1 = pi too
         out.append(None)
     if common.degree() > 0:
-        out += [MP.mpf((a + b).p) / (2 * (a + b).q) for (a, b), _ in common.intervals(eps=sympy.Rational(1, 10**20))]
+        out += [MP.mpf((a + b).numerator) / (2 * (a + b).denominator) for a, b, _ in isolate(common)]
     return out
 
 

@@ -17,9 +17,9 @@ carries the factor (1 + t^2)^3, which has no real root; divided out, the 3-RRR t
 characteristic polynomial has degree 6 (less where theta = pi is a root: t is infinite there,
 so theta = pi is checked on its own).
 
-Real roots are isolated by sympy's ``Poly.intervals`` (exact rational arithmetic, the
-continued-fraction method of Vincent, Akritas and Strzebonski on the square-free part) and
-counted again by Sturm's theorem (``sympy.sturm``); the two must agree.  A root where D
+The polynomial is formed exactly over the rationals (python-flint's fmpq_poly); its real roots are
+isolated by arb on its factors over the integers and counted again by Sturm's theorem
+(``realroots``); the two must agree.  A root where D
 vanishes too (the linear equations lose rank, the triad is at a special position) is not
 counted: the polynomial's greatest common divisor with D must have no real root.  Each root
 is polished by Newton's method on the three leg equations in (X, theta) at 50 digits (mpmath)
@@ -33,17 +33,15 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
+import flint
 import mpmath
-import sympy  # type: ignore[import-untyped]  # sympy ships no type information
 
+from .realroots import Interval, isolate, sturm_count
 from .triad import Exact, NotReducible
 
 MP = mpmath.mp.clone()
 MP.dps = 50
-T = sympy.Symbol("t")
-NEWTON_STEPS = 60  # Newton's method at 50 digits from a root isolated to 1e-12: a handful suffice
-INTERVAL = sympy.Rational(1, 10**12)  # isolating intervals are refined to this relative width before Newton
-MULTIPLE = sympy.Rational(1, 10**45)  # ... and a multiple root's to this (Newton converges slowly there)
+NEWTON_STEPS = 60  # Newton's method at 50 digits from a root isolated to 1e-45: one or two suffice
 
 
 @dataclass(frozen=True)
@@ -84,61 +82,63 @@ def closure(c: Any, s: Any, q: Any, bases: list[Exact], local: list[Exact], leng
     return f, d
 
 
-def characteristic(bases: list[Exact], local: list[Exact], lengths2: list[Fraction]) -> tuple[sympy.Poly, sympy.Poly]:
-    """The characteristic polynomial in t (the factors 1 + t^2 divided out) and D's, q^2 D."""
-    def num(x: Fraction) -> sympy.Rational:
-        return sympy.Rational(x.numerator, x.denominator)
-
-    c, s, q = (sympy.Poly(e, T, domain="QQ") for e in (1 - T**2, 2 * T, 1 + T**2))
-    f, d = closure(c, s, q, bases, local, lengths2, num)
-    if f.is_zero or d.is_zero:
+def characteristic(bases: list[Exact], local: list[Exact], lengths2: list[Fraction]) -> tuple[Any, Any]:
+    """The characteristic polynomial in t (the factors 1 + t^2 divided out; an fmpz_poly, primitive)
+    and D's, q^2 D (an fmpq_poly)."""
+    f, d = closure(*QUARTER, bases, local, lengths2, rational)
+    if f == 0 or d == 0:
         raise NotReducible("the triad's equations do not fix it at this position (a ternary similar to its base, "
                            "or coincident pairs)")
-    while f.degree() >= 2 and f.rem(q).is_zero:
-        f = f.quo(q)
-    return f.clear_denoms(convert=True)[1].primitive()[1], d
+    return primitive(f), d
 
 
-def sturm_count(p: sympy.Poly) -> int:
-    """Distinct real roots of p by Sturm's theorem: sign changes of the sequence at -inf and +inf."""
-    seq = sympy.sturm(p)
+QUARTER = (flint.fmpq_poly([1, 0, -1]), flint.fmpq_poly([0, 2]), flint.fmpq_poly([1, 0, 1]))  # q cos, q sin, q
 
-    def changes(signs: list[int]) -> int:
-        nz = [x for x in signs if x]
-        return sum(1 for a, b in zip(nz, nz[1:]) if a != b)
 
-    at_plus = [int(sympy.sign(g.LC())) for g in seq]
-    at_minus = [int(sympy.sign(g.LC())) * (-1) ** g.degree() for g in seq]
-    return changes(at_minus) - changes(at_plus)
+def rational(x: Fraction) -> Any:
+    return flint.fmpq(x.numerator, x.denominator)
+
+
+def primitive(f: Any) -> Any:
+    """The fmpq_poly f with the factors q = 1 + t^2 divided out, as an integer polynomial whose
+    coefficients have no common factor (its leading coefficient's sign kept)."""
+    q = QUARTER[2]
+    while f.degree() >= 2 and f % q == 0:
+        f = f // q
+    whole = f.numer()
+    content = int(whole.content())
+    return flint.fmpz_poly([int(c) // content for c in whole.coeffs()])
+
+
+def special(f: Any, d: Any) -> bool:
+    """Whether f and D share a real root (the legs' equations lose rank there)."""
+    common = flint.fmpq_poly(f).gcd(d)
+    return common.degree() > 0 and sturm_count(common) > 0
 
 
 def solve(bases: list[Exact], local: list[Exact], lengths2: list[Fraction], scale: float) -> Solution:
     """Every assembly of the triad with these bases (positions as the bases': the same origin)."""
     f, d = characteristic(bases, local, lengths2)
-    common = sympy.gcd(f, d)
-    if common.degree() > 0 and sturm_count(common) > 0:
+    if special(f, d):
         raise NotReducible("the triad is at a special position here (a root where its legs' equations lose rank)")
     f_pi, d_pi = closure(Fraction(-1), Fraction(0), Fraction(1), bases, local, lengths2, lambda x: x)
     if f_pi == 0 and d_pi == 0:
         raise NotReducible("the triad is at a special position here (turned half a turn, its legs' equations lose "
                            "rank)")
-    intervals = f.intervals()
-    count = sturm_count(f)
-    if count != len(intervals):
-        raise ArithmeticError(f"root isolation found {len(intervals)} real roots, Sturm's theorem {count}")
+    intervals = isolate(f)
     data = (bases, local, lengths2)
-    square_free = f.sqf_part()
-    roots = []
-    for (a, b), mult in intervals:  # refined to a relative width: Newton's start, or a multiple root itself
-        width = (INTERVAL if mult == 1 else MULTIPLE) * max(1, abs(a), abs(b))
-        if b - a > width:
-            a, b = square_free.refine_root(a, b, eps=width)
-        roots.append(_polish(data, sympy.Rational(a + b) / 2, (a, b), mult, scale))
+    roots = [_polish(data, (low + high) / 2, (low, high, mult), scale) for low, high, mult in intervals]
     if f_pi == 0:
-        roots.append(_polish(data, None, None, 1, scale))
-    top = max(abs(float(x)) for x in f.all_coeffs())
-    return Solution(f.degree(), count, f_pi == 0, tuple(sorted(roots, key=lambda r: r.theta)),
-                    tuple(float(x) / top for x in f.all_coeffs()))
+        roots.append(_polish(data, None, None, scale))
+    return Solution(f.degree(), len(intervals), f_pi == 0, tuple(sorted(roots, key=lambda r: r.theta)),
+                    scaled(f))
+
+
+def scaled(f: Any) -> tuple[float, ...]:
+    """The fmpz_poly's coefficients, highest first, over the largest's size."""
+    coeffs = [int(c) for c in reversed(f.coeffs())]
+    top = max(abs(float(x)) for x in coeffs)
+    return tuple(float(x) / top for x in coeffs)
 
 
 Data = tuple[list[Exact], list[Exact], list[Fraction]]
@@ -148,12 +148,14 @@ def _mp(x: Fraction) -> Any:
     return MP.mpf(x.numerator) / x.denominator
 
 
-def _polish(data: Data, t: Any, interval: tuple[Any, Any] | None, multiplicity: int, scale: float) -> Root:
-    """Newton on the leg equations in (X, theta) at 50 digits from the root t (None: theta = pi)."""
+def _polish(data: Data, t: Fraction | None, interval: Interval | None, scale: float) -> Root:
+    """Newton on the leg equations in (X, theta) at 50 digits from the root t in its isolating
+    interval (None: theta = pi; a multiple root is t itself)."""
+    multiplicity = 1 if interval is None else interval[2]
     bases = [(_mp(x), _mp(y)) for x, y in data[0]]
     local = [(_mp(x), _mp(y)) for x, y in data[1]]
     l2 = [_mp(x) for x in data[2]]
-    theta = MP.pi if t is None else 2 * MP.atan(MP.mpf(t.p) / t.q)
+    theta = MP.pi if t is None else 2 * MP.atan(_mp(t))
     x, y = _linear(bases, local, l2, theta)
     size = MP.mpf(scale)
     for _ in range(NEWTON_STEPS if multiplicity == 1 else 0):
@@ -172,7 +174,7 @@ def _polish(data: Data, t: Any, interval: tuple[Any, Any] | None, multiplicity: 
     theta = MP.atan2(MP.sin(theta), MP.cos(theta))
     if interval is not None:
         tt = MP.tan(theta / 2)
-        lo, hi = (MP.mpf(v.p) / v.q for v in interval)
+        lo, hi = _mp(interval[0]), _mp(interval[1])
         if not lo - MP.mpf(10) ** -40 <= tt <= hi + MP.mpf(10) ** -40:
             raise ArithmeticError(f"Newton's method left the isolating interval of the root at t = {t}")
     elif abs(abs(theta) - MP.pi) > MP.mpf(10) ** -40:

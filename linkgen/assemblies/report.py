@@ -9,21 +9,22 @@ from typing import Any
 from ..steplog import StepLog
 from .enumerate import Assembly, Census
 
-METHOD = ("characteristic polynomial has its real roots isolated exactly (sympy's Poly.intervals: continued "
-          "fractions on its rational coefficients) and counted again by Sturm's theorem, each root polished by "
-          "Newton's method at 50 digits")
+METHOD = ("characteristic polynomial has its real roots isolated from its exact rational coefficients (arb's "
+          "certified complex_roots on each irreducible factor, python-flint) and counted again by Sturm's theorem, "
+          "each root polished by Newton's method at 50 digits")
 
 METHOD_IV = ("class-IV group's eliminant (resultants of its closure equations in tangent half-angles, python-flint) "
              "has its real roots isolated from its exact integer coefficients (arb's certified complex_roots on each "
-             "irreducible factor; for two links on their own pivots, sympy's exact isolation counted again by Sturm's "
-             "theorem), each root back-substituted and polished by Newton's method at 50 digits, the spurious ones "
-             "rejected")
+             "irreducible factor; for two links on their own pivots, counted again by Sturm's theorem), each root "
+             "back-substituted and polished by Newton's method at 50 digits, the spurious ones rejected")
 
-MANUAL_METHOD = ("every resolver group's characteristic polynomial\nhas its real roots isolated in exact "
-                 "arithmetic and counted by Sturm's theorem, each\npolished at 50 digits")
+MANUAL_METHOD = ("every resolver group's characteristic polynomial\nhas its real roots isolated from its exact "
+                 "coefficients (arb's certified\nball arithmetic) and counted by Sturm's theorem, each polished at 50 "
+                 "digits")
 MANUAL_METHOD_IV = ("every resolver group's polynomial (a class-IV group's eliminant\nby resultants) has its real "
-                    "roots isolated from its exact coefficients (Sturm's\ntheorem; arb's certified ball arithmetic "
-                    "for two bodies on four-bars), each\nback-substituted and polished at 50 digits")
+                    "roots isolated from its exact coefficients (arb's certified ball\narithmetic; counted again by "
+                    "Sturm's theorem for two links on their own pivots), each\nback-substituted and polished at 50 "
+                    "digits")
 
 
 def _g(x: float) -> str:

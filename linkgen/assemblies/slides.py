@@ -16,8 +16,8 @@ is one equation in theta.  With ``t = tan(theta / 2)`` every row is written over
 that q^6 F is a polynomial in t with exact rational coefficients; its factors (1 + t^2) carry no
 real root and are divided out: degree 6 for one slide, as the revolute triad's, and 4 for two (X is
 then linear in cos theta and sin theta, the kept circle quadratic in them).
-Roots are isolated and counted as the triad's are (``polynomial``: sympy's
-``Poly.intervals`` checked by Sturm's theorem), theta = pi checked on its own, every root polished
+Roots are isolated and counted as the triad's are (``realroots``: arb's isolation checked by
+Sturm's theorem), theta = pi checked on its own, every root polished
 by Newton's method on the three leg equations at 50 digits and kept only inside its interval.
 """
 
@@ -27,9 +27,8 @@ from collections.abc import Callable
 from fractions import Fraction
 from typing import Any
 
-import sympy  # type: ignore[import-untyped]  # sympy ships no type information
-
-from .polynomial import INTERVAL, MP, MULTIPLE, NEWTON_STEPS, Root, Solution, T, sturm_count
+from .polynomial import MP, NEWTON_STEPS, QUARTER, Root, Solution, primitive, rational, scaled, special
+from .realroots import Interval, isolate
 from .triad import Exact, NotReducible
 
 Hold = tuple[Exact, Fraction] | tuple[Exact, Fraction, str]  # (B, l^2) revolute; (n, d, "slide") a slide
@@ -69,26 +68,20 @@ def closure(c: Any, s: Any, q: Any, local: list[Exact], holds: list[Hold], num: 
     return f, d
 
 
-def characteristic(local: list[Exact], holds: list[Hold]) -> tuple[sympy.Poly, sympy.Poly]:
-    """The characteristic polynomial in t (the factors 1 + t^2 divided out) and q^2 D."""
-    def num(x: Fraction) -> sympy.Rational:
-        return sympy.Rational(x.numerator, x.denominator)
-
-    c, s, q = (sympy.Poly(e, T, domain="QQ") for e in (1 - T**2, 2 * T, 1 + T**2))
-    f, d = closure(c, s, q, local, holds, num)
-    if f.is_zero or d.is_zero:
+def characteristic(local: list[Exact], holds: list[Hold]) -> tuple[Any, Any]:
+    """The characteristic polynomial in t (the factors 1 + t^2 divided out; an fmpz_poly, primitive)
+    and q^2 D (an fmpq_poly)."""
+    f, d = closure(*QUARTER, local, holds, rational)
+    if f == 0 or d == 0:
         raise NotReducible("the triad's equations do not fix it at this position (its slides parallel, or its "
                            "pairs coincident)")
-    while f.degree() >= 2 and f.rem(q).is_zero:
-        f = f.quo(q)
-    return f.clear_denoms(convert=True)[1].primitive()[1], d
+    return primitive(f), d
 
 
 def solve(local: list[Exact], holds: list[Hold], scale: float) -> Solution:
     """Every assembly of the triad with these legs (positions in the programs' coordinates)."""
     f, d = characteristic(local, holds)
-    common = sympy.gcd(f, d)
-    if common.degree() > 0 and sturm_count(common) > 0:
+    if special(f, d):
         raise NotReducible("the triad is at a special position here (a root where its legs' equations lose rank)")
     f_pi, d_pi = closure(Fraction(-1), Fraction(0), Fraction(1), local, holds, lambda x: x)
     if f_pi == 0 and d_pi == 0:
@@ -96,35 +89,26 @@ def solve(local: list[Exact], holds: list[Hold], scale: float) -> Solution:
                            "rank)")
     if f.degree() < 1:
         raise NotReducible("the triad's polynomial is a constant here: it has no isolated assembly")
-    intervals = f.intervals()
-    count = sturm_count(f)
-    if count != len(intervals):
-        raise ArithmeticError(f"root isolation found {len(intervals)} real roots, Sturm's theorem {count}")
-    square_free = f.sqf_part()
-    roots = []
-    for (a, b), mult in intervals:
-        width = (INTERVAL if mult == 1 else MULTIPLE) * max(1, abs(a), abs(b))
-        if b - a > width:
-            a, b = square_free.refine_root(a, b, eps=width)
-        roots.append(polish(local, holds, sympy.Rational(a + b) / 2, (a, b), mult, scale))
+    intervals = isolate(f)
+    roots = [polish(local, holds, (low + high) / 2, (low, high, mult), scale) for low, high, mult in intervals]
     if f_pi == 0:
-        roots.append(polish(local, holds, None, None, 1, scale))
-    top = max(abs(float(x)) for x in f.all_coeffs())
-    return Solution(f.degree(), count, f_pi == 0, tuple(sorted(roots, key=lambda r: r.theta)),
-                    tuple(float(x) / top for x in f.all_coeffs()))
+        roots.append(polish(local, holds, None, None, scale))
+    return Solution(f.degree(), len(intervals), f_pi == 0, tuple(sorted(roots, key=lambda r: r.theta)),
+                    scaled(f))
 
 
 def _mp(x: Fraction) -> Any:
     return MP.mpf(x.numerator) / x.denominator
 
 
-def polish(local: list[Exact], holds: list[Hold], t: Any, interval: tuple[Any, Any] | None, multiplicity: int,
-           scale: float) -> Root:
-    """Newton on the leg equations in (X, theta) at 50 digits from the root t (None: theta = pi)."""
+def polish(local: list[Exact], holds: list[Hold], t: Fraction | None, interval: Interval | None, scale: float) -> Root:
+    """Newton on the leg equations in (X, theta) at 50 digits from the root t in its isolating
+    interval (None: theta = pi; a multiple root is t itself)."""
+    multiplicity = 1 if interval is None else interval[2]
     size = MP.mpf(scale)
     a = [(_mp(x), _mp(y)) for x, y in local]
     data = [((_mp(h[0][0]), _mp(h[0][1])), _mp(h[1]), len(h) == 2) for h in holds]
-    theta = MP.pi if t is None else 2 * MP.atan(MP.mpf(t.p) / t.q)
+    theta = MP.pi if t is None else 2 * MP.atan(_mp(t))
     x, y = _start(a, data, theta)
     for _ in range(NEWTON_STEPS if multiplicity == 1 else 0):
         res, jac = equations(a, data, x, y, theta, size)
@@ -142,7 +126,7 @@ def polish(local: list[Exact], holds: list[Hold], t: Any, interval: tuple[Any, A
     theta = MP.atan2(MP.sin(theta), MP.cos(theta))
     if interval is not None:
         tt = MP.tan(theta / 2)
-        lo, hi = (MP.mpf(v.p) / v.q for v in interval)
+        lo, hi = _mp(interval[0]), _mp(interval[1])
         if not lo - MP.mpf(10) ** -40 <= tt <= hi + MP.mpf(10) ** -40:
             raise ArithmeticError(f"Newton's method left the isolating interval of the root at t = {t}")
     elif abs(abs(theta) - MP.pi) > MP.mpf(10) ** -40:
