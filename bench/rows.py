@@ -92,7 +92,7 @@ def _least(runs: list[list[tuple[int, float]]]) -> list[tuple[int, float]]:
 
 def _evaluator(log, values: list[float]) -> list[tuple[int, float]]:
     from linkgen import status
-    from linkgen.evaluate import RowSolver
+    from linkgen.rowsolver import RowSolver
 
     solver = RowSolver(log, max(log.order, 1))
     out = []

@@ -19,7 +19,8 @@ from reference import Reference
 from linkgen import loopmap
 from linkgen.assemblies import assemblies, whole_log
 from linkgen.cli import cli
-from linkgen.evaluate import RowSolver, evaluate, runtime
+from linkgen.evaluate import evaluate
+from linkgen.rowsolver import RowSolver, runtime
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
 from linkgen.writer import write_all

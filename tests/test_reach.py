@@ -21,7 +21,8 @@ import sketches as sk
 from programs import CFLAGS, ROOT, SAMPLES, build, need
 from reference import MP, Reference
 
-from linkgen.evaluate import RowSolver, evaluate, runtime
+from linkgen.evaluate import evaluate
+from linkgen.rowsolver import RowSolver, runtime
 from linkgen.pipeline import build_log
 from linkgen.policy import POLICY
 from linkgen.rows import input_rows

@@ -14,7 +14,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..evaluate import RowSolver
+from ..rowsolver import RowSolver
 from ..motion import Reach
 from ..steplog import StepLog
 from .sweep import span

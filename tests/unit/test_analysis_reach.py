@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from linkgen.analysis.reach import _outward
-from linkgen.evaluate import RowSolver
+from linkgen.rowsolver import RowSolver
 from linkgen.pipeline import build_log
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from linkgen.evaluate import _scalar_call
+from linkgen.rowsolver import _scalar_call
 from linkgen.loopstate import arc_state, loop_flags
 from linkgen.pipeline import build_log
 

@@ -1,4 +1,4 @@
-"""linkgen.evaluate: the row status rule against codes worked out by hand, and the row driver
+"""linkgen.rowsolver: the row status rule against codes worked out by hand, and the row driver
 the evaluator runs against the generated Python program's: the same numbers handed to the
 runtime, the same rows out (status, Newton steps, positions to the bit)."""
 
@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from linkgen.evaluate import RowSolver, mechanism, row_status
+from linkgen.rowsolver import RowSolver, mechanism, row_status
 from linkgen.options import runtime_policy
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
