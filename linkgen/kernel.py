@@ -121,22 +121,28 @@ def runtime() -> dict[str, Any]:
 
 class Records(Mapping[str, tuple[np.ndarray, ...]]):
     """The kernel's records as a result holds them: each variable's fields as arrays of the rows,
-    made when first read (the analysis reads a few of thousands)."""
+    made when first read (the analysis reads a few of thousands); ``blocks``: the records of each
+    call of the kernel and its rows, in the order of the rows."""
 
-    def __init__(self, records: dict[str, Any], rows: int):
-        self._records, self._rows = records, rows
+    def __init__(self, blocks: list[tuple[dict[str, Any], int]]):
+        self._blocks = blocks
         self._made: dict[str, tuple[np.ndarray, ...]] = {}
 
     def __getitem__(self, name: str) -> tuple[np.ndarray, ...]:
         if name not in self._made:
-            self._made[name] = tuple(column(x, self._rows) for x in self._records[name])
+            if len(self._blocks) == 1:
+                records, rows = self._blocks[0]
+                self._made[name] = tuple(column(x, rows) for x in records[name])
+            else:
+                parts = [[column(x, rows) for x in records[name]] for records, rows in self._blocks]
+                self._made[name] = tuple(np.concatenate(fields) for fields in zip(*parts))
         return self._made[name]
 
     def __iter__(self) -> Iterator[str]:
-        return iter(self._records)
+        return iter(self._blocks[0][0])
 
     def __len__(self) -> int:
-        return len(self._records)
+        return len(self._blocks[0][0])
 
 
 def column(x: Any, rows: int) -> np.ndarray:

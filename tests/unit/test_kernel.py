@@ -76,7 +76,7 @@ def test_the_numpy_runtime_reads_a_status_as_linkgen_does():
 def test_records_make_a_variables_arrays_when_read_and_keep_the_kernels_own():
     own = np.array([1.0, 2.0, 3.0])
     view = np.arange(6.0)[::2]
-    records = Records({"a": (own, 2.5, view)}, 3)
+    records = Records([({"a": (own, 2.5, view)}, 3)])
     assert list(records) == ["a"] and len(records) == 1 and not records._made
     a = records["a"]
     assert a[0] is own  # the kernel's own array, not a copy
@@ -84,3 +84,8 @@ def test_records_make_a_variables_arrays_when_read_and_keep_the_kernels_own():
     assert a[2].tolist() == [0.0, 2.0, 4.0] and a[2].base is None  # a view of the caller's: copied
     assert records["a"] is a
     assert column(np.float32([1, 2, 3]), 3).dtype == np.float64  # another type: copied as float
+
+
+def test_records_of_several_calls_are_their_rows_in_order():
+    blocks = Records([({"a": (np.array([1.0, 2.0]), 7.0)}, 2), ({"a": (np.array([3.0]), 8.0)}, 1)])
+    assert [f.tolist() for f in blocks["a"]] == [[1.0, 2.0, 3.0], [7.0, 7.0, 8.0]] and list(blocks) == ["a"]
