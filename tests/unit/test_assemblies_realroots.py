@@ -26,10 +26,30 @@ def test_closed_form_roots_and_multiplicities() -> None:
     assert am**2 > 2 > bm**2 and bm < 0  # -sqrt 2 inside (negative numbers: squares reversed)
     assert a3 <= Fraction(1, 3) <= b3
     assert ap**2 < 2 < bp**2 and ap > 0
-    for low, high, _ in found:
-        assert high - low <= realroots.WIDTH * max(Fraction(1), abs(low), abs(high))
+    for low, high, mult in found:
+        width = realroots.SIMPLE if mult == 1 else realroots.MULTIPLE
+        assert high - low <= width * max(Fraction(1), abs(low), abs(high))
     assert sturm_count(p) == 4
+    _each_holds_one_root(p, found)
 
+
+def _each_holds_one_root(p, found) -> None:
+    """Each interval holds exactly one distinct real root (sympy's exact count) and they are disjoint."""
+    poly = sympy.Poly([int(c) for c in reversed(p.coeffs())], sympy.Symbol("t"), domain="ZZ")
+    for low, high, _ in found:
+        assert poly.count_roots(sympy.Rational(low.numerator, low.denominator),
+                                sympy.Rational(high.numerator, high.denominator)) == 1
+    assert all(a[1] < b[0] for a, b in zip(found, found[1:]))
+
+
+def test_a_huge_root_gets_a_relative_interval() -> None:
+    """A root near 1e17 (a triad near half a turn: t = tan(theta / 2)) is isolated to 1e-12 of its size,
+    not to arb's 1e-44: a root polished at 50 digits, known there to 1e-18, falls inside it."""
+    big = 10**17 + 3
+    found = isolate((X - big) * (7 * X + 2))
+    low, high, _ = found[1]
+    assert low < big < high and high - low > realroots.SIMPLE * big / 4
+    _each_holds_one_root((X - big) * (7 * X + 2), found)
 
 def test_no_real_root() -> None:
     p = (X**2 + 1) * (X**2 + X + 7)
@@ -44,6 +64,7 @@ def test_clustered_roots_are_told_apart() -> None:
     found = isolate(p)
     assert len(found) == 3
     assert found[0][0] <= 1 <= found[0][1] < found[1][0] <= Fraction(n + 1, n) <= found[1][1]
+    _each_holds_one_root(p, found)
 
 
 @pytest.mark.parametrize("seed", range(6))
@@ -63,6 +84,7 @@ def test_against_sympy(seed: int) -> None:
         assert mult == m
         a, b = Fraction(int(a.p), int(a.q)), Fraction(int(b.p), int(b.q))
         assert max(low, a) <= min(high, b)  # the two isolating intervals of one root meet
+    _each_holds_one_root(p, found)
 
 
 def test_sturm_count_of_rational_polynomial() -> None:
