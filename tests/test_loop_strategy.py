@@ -20,9 +20,9 @@ from linkgen import loopmap
 from linkgen.assemblies import assemblies, whole_log
 from linkgen.cli import cli
 from linkgen.evaluate import evaluate
-from linkgen.rowsolver import RowSolver, runtime
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
+from linkgen.rowsolver import RowSolver, runtime
 from linkgen.writer import write_all
 
 ROOT = Path(__file__).resolve().parents[1]

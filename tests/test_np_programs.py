@@ -253,8 +253,8 @@ def test_a_call_fills_the_arrays_of_an_earlier_one():
 def test_the_kernels_branch_and_reach_are_the_python_runtimes_on_every_row():
     """branch_at and reach_at on arrays (the kernel's runtime) against the Python runtime's, one value
     at a time, on values around change points and gaps, turns away included."""
-    from linkgen.rowsolver import runtime as python_runtime
     from linkgen.kernel import runtime as numpy_runtime
+    from linkgen.rowsolver import runtime as python_runtime
 
     scalar, vector = python_runtime(), numpy_runtime()
     rng = np.random.default_rng(19)

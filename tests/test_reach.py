@@ -22,10 +22,10 @@ from programs import CFLAGS, ROOT, SAMPLES, build, need
 from reference import MP, Reference
 
 from linkgen.evaluate import evaluate
-from linkgen.rowsolver import RowSolver, runtime
 from linkgen.pipeline import build_log
 from linkgen.policy import POLICY
 from linkgen.rows import input_rows
+from linkgen.rowsolver import RowSolver, runtime
 
 MECHANISMS = SAMPLES + sorted((ROOT / "tests" / "mechanisms").glob("*.yaml"))
 PARTIAL = ROOT / "tests" / "mechanisms" / "sixbar_partial.yaml"  # a crank that meets two limit positions

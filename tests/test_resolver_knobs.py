@@ -27,10 +27,10 @@ import pytest
 from programs import ROOT, STRICT, compare, need, parse, run_octave, run_python
 
 from linkgen import status
-from linkgen.rowsolver import RowSolver
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
 from linkgen.rows import input_rows
+from linkgen.rowsolver import RowSolver
 from linkgen.steplog import StepLog
 from linkgen.writer import write_all
 

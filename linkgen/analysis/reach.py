@@ -14,8 +14,8 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..rowsolver import RowSolver
 from ..motion import Reach
+from ..rowsolver import RowSolver
 from ..steplog import StepLog
 from .sweep import span
 

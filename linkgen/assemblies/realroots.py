@@ -46,8 +46,8 @@ def sturm_count(p: Any) -> int:
 
 def isolate(p: Any) -> list[Interval]:
     """The real roots of the fmpz_poly p (degree >= 1) in increasing order: each an isolating
-    interval of rationals (see the module's doc) and its multiplicity.  ArithmeticError where arb's isolation and Sturm's
-    count disagree (never seen; it would be a bug in one of them)."""
+    interval of rationals (see the module's doc) and its multiplicity.  ArithmeticError where arb's
+    isolation and Sturm's count disagree (never seen; it would be a bug in one of them)."""
     old, flint.ctx.prec = flint.ctx.prec, PRECISION
     try:
         found = p.complex_roots()

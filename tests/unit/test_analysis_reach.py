@@ -15,8 +15,8 @@ from pathlib import Path
 import pytest
 
 from linkgen.analysis.reach import _outward
-from linkgen.rowsolver import RowSolver
 from linkgen.pipeline import build_log
+from linkgen.rowsolver import RowSolver
 
 ROOT = Path(__file__).resolve().parents[2]
 PARTIAL = ROOT / "tests" / "mechanisms" / "sixbar_partial.yaml"  # a crank that meets two limit positions

@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from linkgen.rowsolver import _scalar_call
 from linkgen.loopstate import arc_state, loop_flags
 from linkgen.pipeline import build_log
+from linkgen.rowsolver import _scalar_call
 
 FIG14 = Path(__file__).resolve().parents[2] / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"
 

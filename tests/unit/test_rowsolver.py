@@ -11,11 +11,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from linkgen.rowsolver import RowSolver, mechanism, row_status
 from linkgen.options import runtime_policy
 from linkgen.pipeline import build_log
 from linkgen.render import render_all
 from linkgen.rows import input_rows
+from linkgen.rowsolver import RowSolver, mechanism, row_status
 from linkgen.writer import write_all
 
 ROOT = Path(__file__).resolve().parents[2]
