@@ -10,8 +10,10 @@ one evaluation serves every zoom's grid.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -90,6 +92,88 @@ def zoom_min(log: StepLog, lo: float, hi: float, value: Measure, warm: Any = Non
             break
         best, (lo, hi) = refined(lo, hi, lam, v)
     return best
+
+
+def zooms_together(log: StepLog, asked: Sequence[tuple[float, float, Measure]]) -> list[tuple[float, float]]:
+    """zoom_min of each (lo, hi, value), in a log without resolvers: each refinement evaluates the
+    grids of all of them in one call (rows are independent: the values of one zoom at a time)."""
+    assert not log.groups, "rows evaluated together in a log with resolvers"
+    bracket = [(lo, hi) for lo, hi, _ in asked]
+    best = [(lo, np.inf) for lo, _, _ in asked]
+    live = list(range(len(asked)))
+    for _ in range(ZOOMS):
+        if not live:
+            break
+        grids = [np.linspace(*bracket[i], GRID) for i in live]
+        result = run(log, np.concatenate(grids))
+        going = []
+        for j, (i, lam) in enumerate(zip(live, grids)):
+            v = asked[i][2](result)
+            v = None if v is None else v[j * GRID:(j + 1) * GRID]
+            if v is None or not np.any(np.isfinite(v)):
+                continue
+            best[i], bracket[i] = refined(*bracket[i], lam, v)
+            going.append(i)
+        live = going
+    return best
+
+
+def golden_min(log: StepLog, lo: float, hi: float, measure: Any, warm: Any) -> tuple[float, float]:
+    """(sweep position, value) of the least ``measure`` on [lo, hi] by golden-section search, one
+    row at a time (a resolver's rows are solved one by one: a grid refinement would take ten
+    times the rows), each from the warm start the row before it left (the points close in, so
+    the resolver's continuation walks ever shorter), until the bracket is 1e-9 of the sweep:
+    the value is then found to rounding (it is flat to second order there)."""
+    state = [warm]
+
+    def value(lam: float) -> float:
+        result = run(log, np.array([lam]), state[0])
+        if result.warm and result.warm[-1] is not None:
+            state[0] = result.warm[-1]
+        v = measure(result)
+        return math.inf if v is None or not np.isfinite(v[0]) else float(v[0])
+
+    ratio = (math.sqrt(5) - 1) / 2
+    a, b = lo, hi
+    c, d = b - ratio * (b - a), a + ratio * (b - a)
+    fc, fd = value(c), value(d)
+    while b - a > 1e-9:
+        if fc <= fd:
+            b, d, fd = d, c, fc
+            c = b - ratio * (b - a)
+            fc = value(c)
+        else:
+            a, c, fc = c, d, fd
+            d = a + ratio * (b - a)
+            fd = value(d)
+    return (c, fc) if fc <= fd else (d, fd)
+
+
+Pending = Callable[[], tuple[float, float]]  # a zoom's (sweep position, value), once found
+
+
+def found(where: float, value: float) -> Pending:
+    return lambda: (where, value)
+
+
+class Zooms:
+    """Grid refinements (zoom_min) of a log without resolvers, asked for first and found together when
+    the first is read (zooms_together: every grid of a refinement in one call, the values of one zoom
+    at a time); with resolvers each is found when asked (golden_min: row by row)."""
+
+    def __init__(self, log: StepLog) -> None:
+        self.log, self.asked, self.found = log, list[tuple[float, float, Any]](), list[tuple[float, float]]()
+
+    def ask(self, lo: float, hi: float, measure: Any, warm: Any) -> Pending:
+        if self.log.groups:
+            return found(*golden_min(self.log, lo, hi, measure, warm))
+        self.asked.append((lo, hi, measure))
+        return partial(self._read, len(self.asked) - 1)
+
+    def _read(self, k: int) -> tuple[float, float]:
+        if not self.found:
+            self.found = zooms_together(self.log, self.asked)
+        return self.found[k]
 
 
 def refined(lo: float, hi: float, lam: Array, v: Array) -> tuple[tuple[float, float], tuple[float, float]]:

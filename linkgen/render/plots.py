@@ -253,10 +253,12 @@ def _grid(log: StepLog, sweep: Sweep, kind: str, quantities: Sequence[str], head
     height = HEAD + len(owners) * (TOP + PANEL_H + BOTTOM)
     svg = Svg(width, height, f"{log.title}: {heading}")
     _heading(svg, LEFT, log.title, heading)
+    panels: dict[tuple[str, str], list[Column]] = {}  # (owner, quantity) -> its columns, in the log's order
+    for c in log.columns[len(log.inputs):]:
+        panels.setdefault((c.name.split(".")[0], c.quantity), []).append(c)
     for r, owner in enumerate(owners):
         for q, quantity in enumerate(used):
-            cols: list[Column] = [c for c in log.columns[len(log.inputs):]
-                                  if c.name.split(".")[0] == owner and c.quantity == quantity]
+            cols = panels.get((owner, quantity), [])
             unit, factor = _unit(log, quantity)
             series = [_wraps(sweep.column(c.name) * factor, quantity, factor) for c in cols]
             ylim, clipped = _range(series, _scale(log, quantity) * factor)

@@ -52,6 +52,20 @@ def fit(text: str, width: float, size: float, bold: bool = False) -> str:
     return text if len(text) <= room else text[:max(room - 1, 1)].rstrip() + "…"
 
 
+class _Tenths(dict[int, str]):
+    """_tenths of every count asked for, each written once (a figure's curves share their xs and
+    most of their ys: a 1000-dyad chain's plots ask for four million)."""
+
+    def __missing__(self, k: int) -> str:
+        if len(self) > 1 << 20:
+            self.clear()
+        text = self[k] = _tenths(k)
+        return text
+
+
+TENTHS = _Tenths()
+
+
 def path_data(xs: np.ndarray, ys: np.ndarray) -> str:
     """One path's d through the points (xs, ys) to 0.1: M at the start of each stretch of finite
     points, L after (a point alone is a dot: a zero-length line); a point that is not finite is a gap
@@ -60,12 +74,14 @@ def path_data(xs: np.ndarray, ys: np.ndarray) -> str:
     where = np.flatnonzero(ok)
     if not where.size:
         return ""
-    tx = [_tenths(k) for k in np.rint(np.where(ok, xs, 0.0) * 10).astype(np.int64).tolist()]
-    ty = [_tenths(k) for k in np.rint(np.where(ok, ys, 0.0) * 10).astype(np.int64).tolist()]
+    tx = [TENTHS[k] for k in np.rint(np.where(ok, xs, 0.0) * 10).astype(np.int64).tolist()]
+    ty = [TENTHS[k] for k in np.rint(np.where(ok, ys, 0.0) * 10).astype(np.int64).tolist()]
     parts = []
     for run in np.split(where, np.flatnonzero(np.diff(where) > 1) + 1):
-        rows = run.tolist()
-        parts.append(f"M{tx[rows[0]]} {ty[rows[0]]}" + "".join(f"L{tx[k]} {ty[k]}" for k in rows[1:] or rows))
+        first, last = int(run[0]), int(run[-1]) + 1  # a stretch: consecutive rows
+        parts.append(f"M{tx[first]} {ty[first]}" + ("".join([f"L{x} {y}" for x, y in zip(tx[first + 1:last],
+                                                                                      ty[first + 1:last])])
+                                                      if last > first + 1 else f"L{tx[first]} {ty[first]}"))
     return "".join(parts)
 
 

@@ -5,13 +5,15 @@ swings, time ratios, the rows that fail), each extreme located by grid refinemen
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import replace
+from functools import partial
 from typing import Any
 
 import numpy as np
 
 from .. import status
-from ..analysis.sweep import margin, own, run, warm_after, zoom_min
+from ..analysis.sweep import Pending, Zooms, found, margin, own, warm_after
 from ..evaluate import Result, evaluate
 from ..options import reference
 from ..steplog import Gap, StepLog
@@ -158,7 +160,8 @@ def _transmission(log: StepLog, result: Result, lam: Array, units: _Units, edges
     edges = [(s, x) for s, x in ((s, _in_sweep(log, x)) for s, x in edges) if lo <= x <= hi]
     limited = {s for s, _ in edges}
     added = {a.name for a in log.add_links}  # a chain on an Add-link transmits nothing: the resolver sets it
-    out = []
+    out: list[Callable[[], Transmission]] = []  # each made once every zoom is asked for (analysis.sweep.Zooms)
+    zooms = Zooms(log)
     for s in log.steps:
         if s.action != "chain" or s.variant or s.number not in result.sigma or set(s.links) & added:
             continue
@@ -169,17 +172,21 @@ def _transmission(log: StepLog, result: Result, lam: Array, units: _Units, edges
         high = units.angle(math.asin(min(1.0, float(np.max(sigma[ok])))))
         if s.number in limited:
             edge = min((x for n, x in edges if n == s.number), key=lambda x: abs(x - log.inputs[0].sketch))
-            out.append(Transmission(s.number, s.target, s.chain, s.links, 0.0, (units.input(0, edge),), high, True))
+            out.append(partial(Transmission, s.number, s.target, s.chain, s.links, 0.0, (units.input(0, edge),),
+                                high, True))
             continue
         k = int(np.argmin(np.where(ok, sigma, np.inf)))
-        where, least = _zoomed(log, result, lam, k, lambda r, n=s.number: r.sigma.get(n))
-        least = min(least, float(sigma[k]))
-        out.append(Transmission(s.number, s.target, s.chain, s.links, units.angle(math.asin(min(1.0, least))),
-                                units.at(_folded(log, where)), high, False))
-    return tuple(out)
+        zoom = _zoomed(log, result, lam, k, lambda r, n=s.number: r.sigma.get(n), zooms)
+
+        def least(s: Any = s, zoom: Any = zoom, row: float = float(sigma[k]), high: float = high) -> Transmission:
+            where, value = zoom()
+            return Transmission(s.number, s.target, s.chain, s.links, units.angle(math.asin(min(1.0, min(value, row)))),
+                                units.at(_folded(log, where)), high, False)
+        out.append(least)
+    return tuple(make() for make in out)
 
 
-def _zoomed(log: StepLog, result: Result, lam: Array, k: int, measure: Any) -> tuple[float, float]:
+def _zoomed(log: StepLog, result: Result, lam: Array, k: int, measure: Any, zooms: Zooms) -> Pending:
     """(sweep position, value) of the least ``measure`` around sweep row k, by grid refinement
     (across the seam of a whole turn); the row itself where the rows are more than STRIDE apart
     in an angle (a sweep over many turns: the places between rows are not one motion), at an end
@@ -192,45 +199,11 @@ def _zoomed(log: StepLog, result: Result, lam: Array, k: int, measure: Any) -> t
     # fail only after the resolver's whole search): that row
     if apart or edge or (not _periodic(log) and k in (0, len(lam) - 1)):
         v = measure(result)
-        return float(lam[k]), math.inf if v is None else float(v[k])
+        return found(float(lam[k]), math.inf if v is None else float(v[k]))
     lo, hi = float(lam[k]) - h, float(lam[k]) + h
     if not _periodic(log):
         lo, hi = max(lo, 0.0), min(hi, 1.0)
-    warm = warm_after(result, k - 1) if k > 0 else None
-    if not log.groups:
-        return zoom_min(log, lo, hi, measure, warm)
-    return _golden(log, lo, hi, measure, warm)
-
-
-def _golden(log: StepLog, lo: float, hi: float, measure: Any, warm: Any) -> tuple[float, float]:
-    """(sweep position, value) of the least ``measure`` on [lo, hi] by golden-section search, one
-    row at a time (a resolver's rows are solved one by one: a grid refinement would take ten
-    times the rows), each from the warm start the row before it left (the points close in, so
-    the resolver's continuation walks ever shorter), until the bracket is 1e-9 of the sweep:
-    the value is then found to rounding (it is flat to second order there)."""
-    state = [warm]
-
-    def value(lam: float) -> float:
-        result = run(log, np.array([lam]), state[0])
-        if result.warm and result.warm[-1] is not None:
-            state[0] = result.warm[-1]
-        v = measure(result)
-        return math.inf if v is None or not np.isfinite(v[0]) else float(v[0])
-
-    ratio = (math.sqrt(5) - 1) / 2
-    a, b = lo, hi
-    c, d = b - ratio * (b - a), a + ratio * (b - a)
-    fc, fd = value(c), value(d)
-    while b - a > 1e-9:
-        if fc <= fd:
-            b, d, fd = d, c, fc
-            c = b - ratio * (b - a)
-            fc = value(c)
-        else:
-            a, c, fc = c, d, fd
-            d = a + ratio * (b - a)
-            fd = value(d)
-    return (c, fc) if fc <= fd else (d, fd)
+    return zooms.ask(lo, hi, measure, warm_after(result, k - 1) if k > 0 else None)
 
 
 def _folded(log: StepLog, lam: float) -> float:
@@ -248,7 +221,8 @@ def _wrapped(x: Array | float) -> Any:
 
 def _travels(log: StepLog, result: Result, lam: Array, units: _Units) -> tuple[Travel, ...]:
     ok = _usable(result)
-    out = []
+    out: list[Callable[[], Travel]] = []  # each made once every zoom is asked for (analysis.sweep.Zooms)
+    zooms = Zooms(log)
     for c in log.columns[len(log.inputs):]:
         v = log.variable(c.variable)
         if v.constant or not ((v.role == "link" and c.field == "the") or (v.role == "slide" and c.field == "v")):
@@ -262,21 +236,27 @@ def _travels(log: StepLog, result: Result, lam: Array, units: _Units) -> tuple[T
         if u[kh] - u[kl] <= STILL * (1.0 if angle else log.length_scale):
             continue  # computed, but it does not move
         if angle and u[kh] - u[kl] >= TURN * (1 - 1e-9):
-            out.append(Travel(c.name, "angle", "deg" if units.deg else "rad", units.angle(u[kl]),
-                              units.angle(u[kh]), units.at(float(lam[kl])), units.at(float(lam[kh])),
-                              units.angle(float(u[kh] - u[kl])), True, None))
+            out.append(partial(Travel, c.name, "angle", "deg" if units.deg else "rad", units.angle(u[kl]),
+                               units.angle(u[kh]), units.at(float(lam[kl])), units.at(float(lam[kh])),
+                               units.angle(float(u[kh] - u[kl])), True, None))
             continue
-        high_at, high = _extreme(log, result, lam, kh, c.variable, float(x[kh]), float(u[kh]), angle, -1.0)
-        low_at, low = _extreme(log, result, lam, kl, c.variable, float(x[kl]), float(u[kl]), angle, 1.0)
-        if angle:  # the unwrapped sweep may start a turn away: the swing's middle in (-pi, pi]
-            turns = TURN * math.ceil((low + high) / 2 / TURN - 0.5)
-            low, high = low - turns, high - turns
-        scale = units.angle if angle else (lambda t: t)
-        out.append(Travel(c.name, "angle" if angle else "slide", ("deg" if units.deg else "rad") if angle
-                          else log.length_unit, scale(low), scale(high), units.at(_folded(log, low_at)),
-                          units.at(_folded(log, high_at)), scale(high) - scale(low), False,
-                          _time_ratio(log, result, u, low_at, high_at)))
-    return tuple(out)
+        high_zoom = _extreme(log, result, lam, kh, c.variable, float(x[kh]), float(u[kh]), angle, -1.0, zooms)
+        low_zoom = _extreme(log, result, lam, kl, c.variable, float(x[kl]), float(u[kl]), angle, 1.0, zooms)
+        out.append(partial(_travel, log, result, units, c.name, angle, u, high_zoom, low_zoom))
+    return tuple(make() for make in out)
+
+
+def _travel(log: StepLog, result: Result, units: _Units, name: str, angle: bool, u: Array, high_zoom: Pending,
+            low_zoom: Pending) -> Travel:
+    """An output's travel from its extremes (found by their zooms)."""
+    (high_at, high), (low_at, low) = high_zoom(), low_zoom()
+    if angle:  # the unwrapped sweep may start a turn away: the swing's middle in (-pi, pi]
+        turns = TURN * math.ceil((low + high) / 2 / TURN - 0.5)
+        low, high = low - turns, high - turns
+    scale = units.angle if angle else (lambda t: t)
+    return Travel(name, "angle" if angle else "slide", ("deg" if units.deg else "rad") if angle else log.length_unit,
+                  scale(low), scale(high), units.at(_folded(log, low_at)), units.at(_folded(log, high_at)),
+                  scale(high) - scale(low), False, _time_ratio(log, result, u, low_at, high_at))
 
 
 def _unwrapped(x: Array, ok: Array) -> Array:
@@ -288,7 +268,7 @@ def _unwrapped(x: Array, ok: Array) -> Array:
 
 
 def _extreme(log: StepLog, result: Result, lam: Array, k: int, variable: str, wrapped: float, unwrapped: float,
-             angle: bool, sign: float) -> tuple[float, float]:
+             angle: bool, sign: float, zooms: Zooms) -> Pending:
     """(sweep position, value) of the output's extreme near row k: its least (sign 1) or
     greatest (sign -1) value, an angle measured from its value at row k."""
 
@@ -299,13 +279,13 @@ def _extreme(log: StepLog, result: Result, lam: Array, k: int, variable: str, wr
     def measure(r: Result) -> Array:  # a row that fails further on has no motion: never an extreme
         return np.where(status.failed(r.status), np.inf, measure_at(np.asarray(r.values[variable][0], dtype=float)))
 
-    found = _stationary(log, result, lam, k, variable) if log.groups else None
-    if found is not None:
-        where, y = found
-        value = float(measure_at(y))
-    else:
-        where, value = _zoomed(log, result, lam, k, measure)
-    return where, unwrapped + sign * min(value, 0.0)
+    at = _stationary(log, result, lam, k, variable) if log.groups else None
+    zoom = _zoomed(log, result, lam, k, measure, zooms) if at is None else found(at[0], float(measure_at(at[1])))
+
+    def extreme() -> tuple[float, float]:
+        where, value = zoom()
+        return where, unwrapped + sign * min(value, 0.0)
+    return extreme
 
 
 def _stationary(log: StepLog, result: Result, lam: Array, k: int, variable: str) -> tuple[float, float] | None:

@@ -1,4 +1,5 @@
-"""analysis.sweep: the closing margin, local minima, the span searched, a step's own procedure."""
+"""analysis.sweep: the closing margin, local minima, the span searched, a step's own procedure, zooms found
+together."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import numpy as np
 import pytest
 from linkages import four_bar
 
-from linkgen.analysis.sweep import local_minima, margin, own, run, span, spanning
+from linkgen.analysis.sweep import Zooms, local_minima, margin, own, run, span, spanning, zoom_min, zooms_together
 from linkgen.pipeline import build_log
 
 TWO_TOGGLES = (40, 85, 25, 90)
@@ -49,3 +50,18 @@ def test_a_steps_own_procedure_is_what_it_reads_from(tmp_path):
     log = build_log(str(four_bar(tmp_path, "two_toggles", *TWO_TOGGLES, 90)), sweep=False)
     assert [s.target for s in log.steps] == ["frame", "A", "B", "crank", "coupler", "rocker"]
     assert [s.number for s in own(log, log.step(6)).steps] == [1, 2, 3, 6]
+
+
+def test_zooms_found_together_are_each_zoom_alone(tmp_path):
+    """The closing margin's and an angle's least values near rows of a sweep: every refinement's grids in
+    one evaluation give, bit for bit, what zoom_min finds one zoom at a time (a measure with no finite
+    value keeps its bracket's start, as zoom_min does)."""
+    log = spanning(build_log(str(four_bar(tmp_path, "two_toggles", *TWO_TOGGLES, 90)), sweep=False))
+    angle = next(c.variable for c in log.columns[1:] if c.field == "the" and not log.variable(c.variable).constant)
+    asked = [(0.1, 0.3, lambda r: margin(log.step(3), r)), (0.6, 0.9, lambda r: np.asarray(r.values[angle][0])),
+             (0.2, 0.25, lambda r: np.full(len(r.status), np.nan)), (0.0, 0.05, lambda r: margin(log.step(3), r))]
+    alone = [zoom_min(log, lo, hi, value) for lo, hi, value in asked]
+    assert zooms_together(log, asked) == alone and alone[2] == (0.2, math.inf)
+    zooms = Zooms(log)
+    pending = [zooms.ask(lo, hi, value, None) for lo, hi, value in asked]
+    assert not zooms.found and [p() for p in pending] == alone
