@@ -194,6 +194,21 @@ class _Panel:
                        stroke_width="1.4", stroke_linejoin="round", clip_path=f"url(#{clip})", data_column=column)
 
 
+def percentiles(x: np.ndarray, qs: tuple[float, ...]) -> list[float]:
+    """np.percentile(x, qs) (its linear method, bit for bit) of finite values, without it: it imports
+    numpy.ma (6 ms of every build)."""
+    s, n = np.sort(x), len(x)
+    out = []
+    for q in qs:
+        p = q / 100
+        v = (n - 1) * p  # numpy's virtual index of the linear method
+        k = math.floor(v)
+        a, b = (s[-1], s[-1]) if v >= n - 1 else (s[0], s[0]) if v < 0 else (s[k], s[k + 1])
+        gamma, diff = v - (-1 if v >= n - 1 else 0 if v < 0 else k), b - a
+        out.append(float(b - diff * (1 - gamma) if gamma >= 0.5 else a + diff * gamma))
+    return out
+
+
 def _range(values: list[np.ndarray], ref: float) -> tuple[tuple[float, float], bool]:
     """The y range of the finite values, padded; where a few rows (near a singular position) run far
     beyond the rest, the range of the central 98 % and True (those rows are clipped).  ``ref`` is the
@@ -204,7 +219,7 @@ def _range(values: list[np.ndarray], ref: float) -> tuple[tuple[float, float], b
         return (-1.0, 1.0), False
     lo, hi = float(finite.min()), float(finite.max())
     clipped = False
-    q1, q99 = (float(q) for q in np.percentile(finite, [1.0, 99.0]))
+    q1, q99 = percentiles(finite, (1.0, 99.0))
     if q99 > q1 and hi - lo > 20 * (q99 - q1):
         lo, hi, clipped = q1, q99, True
     span = hi - lo
