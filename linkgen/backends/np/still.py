@@ -7,6 +7,7 @@ import functools
 from typing import TYPE_CHECKING
 
 from ...primitives import PRIMITIVES
+from ...textcache import kept
 from .printer import held_still, numpy_function
 
 if TYPE_CHECKING:
@@ -18,10 +19,13 @@ def printed(name: str, order: int, suffix: str = "", checks: bool = True, still:
     """A primitive on arrays of rows at an order (named with the suffix), with its checks or without,
     with the record parameters named in still held still (see held_still; named with
     still_suffix): printed once, the evaluator renders many logs."""
-    prim = PRIMITIVES[name] if checks else PRIMITIVES[name].unchecked()
-    if still:
-        return numpy_function(held_still(prim, still)[0], order, suffix, name + still_suffix(still))
-    return numpy_function(prim, order, suffix)
+    def make() -> str:
+        prim = PRIMITIVES[name] if checks else PRIMITIVES[name].unchecked()
+        if still:
+            return numpy_function(held_still(prim, still)[0], order, suffix, name + still_suffix(still))
+        return numpy_function(prim, order, suffix)
+
+    return kept("numpy primitive", (name, order, suffix, checks, still), make)  # printing: 13 ms a build
 
 
 def still_suffix(still: tuple[str, ...]) -> str:
