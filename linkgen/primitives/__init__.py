@@ -34,8 +34,10 @@ def _compile(source: str, filename: str, namespace: dict[str, Any]) -> dict[str,
 def python_backend(order: int = 2) -> dict[str, RuntimeFunction]:
     """Scalar functions on tuples of floats, with sigma (what generated Python runs)."""
     from ..backends.py.printer import python_function
+    from ..textcache import kept
 
-    source = "\n\n".join(python_function(p, order) for p in PRIMITIVES.values())
+    source = kept("python primitives", (order,),  # printed once per user (textcache): 4-7 ms
+                  lambda: "\n\n".join(python_function(p, order) for p in PRIMITIVES.values()))
     ns: dict[str, Any] = {
         "sqrt": math.sqrt, "atan2": math.atan2, "cos": math.cos,
         "sin": math.sin, "EPS": sys.float_info.epsilon, "NAN": math.nan, "PI": math.pi,
