@@ -20,6 +20,7 @@ import numpy as np
 
 from .. import status
 from ..evaluate import Result, evaluate
+from ..numeric import unique
 from ..prune import keep
 from ..steplog import Step, StepLog
 
@@ -248,7 +249,7 @@ def at_once(log: StepLog, asked: Sequence[tuple[Step, Array, Measure]],
             rows_in = set(positions.tolist())
     out: list[Array | None] = []
     for part in parts:
-        lam, where = _unique(np.concatenate([asked[i][1] for i in part]))
+        lam, where = unique(np.concatenate([asked[i][1] for i in part]))
         steps = frozenset(asked[i][0].number for i in part)
         if steps not in procedures:
             procedures[steps] = keep(log, {name for n in steps for name in log.step(n).outputs})
@@ -259,16 +260,6 @@ def at_once(log: StepLog, asked: Sequence[tuple[Step, Array, Measure]],
             out.append(None if v is None else v[where[at:at + len(asked[i][1])]])
             at += len(asked[i][1])
     return out
-
-
-def _unique(x: Array) -> tuple[Array, Array]:
-    """np.unique(x, return_inverse=True) of values that are not nan, without it: it imports numpy.ma (6 ms)."""
-    order = np.argsort(x, kind="stable")
-    ranked = x[order]
-    first = np.concatenate([[True], ranked[1:] != ranked[:-1]])
-    where = np.empty(len(x), dtype=np.intp)
-    where[order] = np.cumsum(first) - 1
-    return ranked[first], where
 
 
 def zoom_edge(log: StepLog, good: float, bad: float, number: int, sigma: float,

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..numeric import percentiles
 from ..steplog import Column, StepLog
 from .svgwriter import Svg, fit, label, ticks
 
@@ -192,21 +193,6 @@ class _Panel:
         py = self.top + PANEL_H - (ys - c) / (d - c) * PANEL_H
         self.svg.curve(px, py, stroke=colour,
                        stroke_width="1.4", stroke_linejoin="round", clip_path=f"url(#{clip})", data_column=column)
-
-
-def percentiles(x: np.ndarray, qs: tuple[float, ...]) -> list[float]:
-    """np.percentile(x, qs) (its linear method, bit for bit) of finite values, without it: it imports
-    numpy.ma (6 ms of every build)."""
-    s, n = np.sort(x), len(x)
-    out = []
-    for q in qs:
-        p = q / 100
-        v = (n - 1) * p  # numpy's virtual index of the linear method
-        k = math.floor(v)
-        a, b = (s[-1], s[-1]) if v >= n - 1 else (s[0], s[0]) if v < 0 else (s[k], s[k + 1])
-        gamma, diff = v - (-1 if v >= n - 1 else 0 if v < 0 else k), b - a
-        out.append(float(b - diff * (1 - gamma) if gamma >= 0.5 else a + diff * gamma))
-    return out
 
 
 def _range(values: list[np.ndarray], ref: float) -> tuple[tuple[float, float], bool]:

@@ -11,7 +11,6 @@ from linkages import four_bar
 
 from linkgen.analysis.sweep import (
     Zooms,
-    _unique,
     local_minima,
     margin,
     own,
@@ -76,12 +75,3 @@ def test_zooms_found_together_are_each_zoom_alone(tmp_path):
     zooms = Zooms(log)
     pending = [zooms.ask(lo, hi, value, None) for lo, hi, value in asked]
     assert not zooms.found and [p() for p in pending] == alone
-
-
-def test_unique_is_numpys():
-    """sweep._unique against np.unique(x, return_inverse=True), repeated values included."""
-    rng = np.random.default_rng(3)
-    for n in (1, 2, 9, 200):
-        x = np.round(rng.normal(size=n), 1)
-        got, ref = _unique(x), np.unique(x, return_inverse=True)
-        assert np.array_equal(got[0], ref[0]) and np.array_equal(got[1], ref[1])

@@ -167,14 +167,3 @@ def test_the_paths_are_the_moving_places(log: StepLog):
     assert set(paths) == {"A", "B"}  # O1 and O2 stand still
     assert [len(re.findall("[ML]", d)) for d in paths.values()] == [4, 4]  # four solved rows each
     assert all(d.count("M") == 2 for d in paths.values())  # broken at the failed row
-
-
-def test_percentiles_are_numpys_bit_for_bit():
-    """plots.percentiles against np.percentile (its linear method) on sweeps of 1 to 4097 values, rounded or not."""
-    rng = np.random.default_rng(7)
-    qs = (1.0, 99.0, 50.0, 0.0, 100.0, 25.0, 12.5, 33.3)
-    for n in [*range(1, 24), 97, 361, 4097]:
-        for _ in range(8):
-            x = rng.normal(size=n) * 10 ** rng.uniform(-5, 5)
-            x = np.round(x, 1) if rng.random() < 0.3 else x
-            assert plots.percentiles(x, qs) == [float(v) for v in np.percentile(x, qs)]
