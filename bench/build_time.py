@@ -67,7 +67,11 @@ def bench_builds() -> None:
              f"takes {start:.2f} s.  The imports read the package's compiled bytecode (`make install` compiles it:",
              "an editable install where PYTHONDONTWRITEBYTECODE is set has none, and compiling every module took",
              "0.1 s of each command); the compiled code of the templates and of the generated kernels is kept",
-             "per user in the temporary directory, keyed on their text (linkgen.render.make_env, kernel.compiled).",
+             "per user in the temporary directory, keyed on their text (linkgen.render.make_env, kernel.compiled),",
+             "and so are the primitives as the numpy kernel and the Python runtime print them, keyed on a",
+             "fingerprint of the package's modules (linkgen.textcache: 15-20 ms of every build's CPU).  A resolver",
+             "mechanism's rows are solved one at a time in-process (linkgen.rowsolver, as NAME.py solves them):",
+             "its file's sweep, the reach's search and the summary's refinements are most of its build.",
              "",
              "| sample | `linkgen build` | imports | first build | later build (in-process) |",
              "| --- | ---: | ---: | ---: | ---: |"]

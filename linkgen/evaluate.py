@@ -9,7 +9,7 @@ programs carry, run on the step log by ``linkgen.rowsolver.RowSolver``.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -86,10 +86,7 @@ def _evaluate_rows(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np
         stopped = bool(stop) and any(n <= stop for n in failed)
         rows.append(Row({}, failed, {}, rows[-1].code) if stopped else solver.solve(values[r], rates[r], accs[r]))
         warms.append(None if stopped else solver.warm)
-    nan = {v.name: (math.nan,) * len(record_fields(v.kind, order)) for v in log.variables}
-    env = {name: tuple(np.array([row.env.get(name, nan[name])[i] for row in rows], dtype=float)
-                       for i in range(len(nan[name])))
-           for name in sorted(nan)}
+    env = RowRecords(rows, {v.name: len(record_fields(v.kind, order)) for v in log.variables})
     numbers = sorted({n for row in rows for n in row.report})
     sigma = {n: np.array([row.report.get(n, (0, math.nan))[1] for row in rows], dtype=float) for n in numbers}
     its = {g.number: np.array([row.iterations.get(g.number, 0) for row in rows], dtype=int) for g in log.groups}
@@ -97,3 +94,26 @@ def _evaluate_rows(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np
     if not log.options.checks:  # as the programs built without checks: a failure's code or 0
         codes = np.where(status.failed(codes), codes, 0)
     return Result(values, env, codes, sigma, its, warms)
+
+
+class RowRecords(Mapping[str, tuple[np.ndarray, ...]]):
+    """The rows' records as a result holds them: each variable's fields as arrays of the rows (nan
+    where a row has none), made when first read (the summary's single rows read one or two of a
+    hundred variables)."""
+
+    def __init__(self, rows: list[Row], widths: dict[str, int]):
+        self._rows, self._widths = rows, widths
+        self._made: dict[str, tuple[np.ndarray, ...]] = {}
+
+    def __getitem__(self, name: str) -> tuple[np.ndarray, ...]:
+        if name not in self._made:
+            nan = (math.nan,) * self._widths[name]
+            self._made[name] = tuple(np.array([row.env.get(name, nan)[i] for row in self._rows], dtype=float)
+                                     for i in range(len(nan)))
+        return self._made[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(sorted(self._widths))
+
+    def __len__(self) -> int:
+        return len(self._widths)

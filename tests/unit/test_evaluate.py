@@ -11,6 +11,7 @@ import pytest
 from linkgen import evaluate as evaluator
 from linkgen.pipeline import build_log
 from linkgen.rows import input_rows
+from linkgen.rowsolver import Row
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -30,3 +31,12 @@ def test_blocks_of_rows_are_one_call_over_all_rows(name, monkeypatch):
     for v in whole.values:
         for a, b in zip(whole.values[v], blocks.values[v], strict=True):
             assert a.shape == b.shape == (101,) and np.array_equal(a, b, equal_nan=True)
+
+
+def test_row_records_are_the_rows_fields_with_nan_where_a_row_has_none():
+    rows = [Row({"a": (1.0, 2.0), "b": (5.0,)}, {}, {}, 0), Row({"a": (3.0, 4.0)}, {}, {}, 31)]
+    records = evaluator.RowRecords(rows, {"b": 1, "a": 2})
+    assert list(records) == ["a", "b"] and len(records) == 2
+    assert [f.tolist() for f in records["a"]] == [[1.0, 3.0], [2.0, 4.0]]
+    b, = records["b"]
+    assert b[0] == 5.0 and np.isnan(b[1]) and records["b"] is records["b"]
