@@ -3,9 +3,9 @@
 Printing the primitives for the numpy kernel takes 13 ms of every build, and the text depends on
 nothing but linkgen's modules.  ``kept(kind, key, make)`` returns make()'s text, read from a store in
 the templates' cache directory (render.make_env's, in the temporary directory) when a process made
-it before: one JSON file per fingerprint of the package (every module's path, size and modification
-time: 1 ms to take), so that a changed module starts a new store.  Where the directory cannot be
-read or written, the text is made every time.
+it before: one JSON file per fingerprint of the package (its place, every module's path, size and
+modification time: 1 ms to take), so that a changed module, or another copy of the package, starts a
+new store.  Where the directory cannot be read or written, the text is made every time.
 """
 
 from __future__ import annotations
@@ -26,8 +26,8 @@ PACKAGE = Path(__file__).resolve().parent
 
 @functools.cache
 def fingerprint() -> str:
-    """The package's modules as they are: each .py file's path, size and modification time."""
-    digest = hashlib.sha256(__version__.encode())
+    """The package's modules as they are: where it is, and each .py file's path, size and modification time."""
+    digest = hashlib.sha256(f"{__version__} {PACKAGE}".encode())
     for folder, subfolders, files in os.walk(PACKAGE):
         subfolders[:] = sorted(s for s in subfolders if s != "__pycache__")
         for name in sorted(f for f in files if f.endswith(".py")):
