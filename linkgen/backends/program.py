@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from ..instant.names import CENTRE_QUANTITIES
 from ..primitives import PRIMITIVES
 from ..primitives.dsl import Primitive
+from ..textcache import kept
 from ..units import sweep_lists
 from . import Runtime
 
@@ -31,13 +33,19 @@ def program_primitive(view: View, name: str) -> Primitive:
     return PRIMITIVES[name] if view.measures else PRIMITIVES[name].unchecked()
 
 
+def _printed(printer: Callable[[Primitive, int], str], view: View, name: str, order: int) -> str:
+    return printer(program_primitive(view, name), order)
+
+
 def runtime_sources(view: View, printer: Callable[[Primitive, int], str], runtime: Runtime,
                     status: bool = True) -> list[str]:
     """The runtime a program carries: the primitives it calls, printed, then the hand-written
     status helpers (where ``status``) and, where the procedure needs them, branch_at, reach_at, the resolver
     (with the closure strategy's where it is chosen) and the row driver."""
     order = view.record_order
-    texts = [printer(program_primitive(view, p), order) for p in used_primitives(view)]
+    texts = [kept("program primitive", (printer.__module__, printer.__qualname__, p, view.measures, order),
+                  functools.partial(_printed, printer, view, p, order))  # printed once per user (textcache)
+             for p in used_primitives(view)]
     if status:
         texts.append(runtime.source("status"))
     texts += [runtime.source(name) for name, needed in (

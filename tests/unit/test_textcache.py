@@ -4,11 +4,21 @@ process (a new store on the same folder); a changed module, or no folder, makes 
 from __future__ import annotations
 
 import os
+from pathlib import Path
 
 from linkgen import textcache
+from linkgen.backends.c.printer import c_function
+from linkgen.backends.m.printer import octave_function
 from linkgen.backends.np import still
 from linkgen.backends.np.printer import numpy_function
-from linkgen.primitives import PRIMITIVES
+from linkgen.backends.program import program_primitive, runtime_sources, used_primitives
+from linkgen.backends.py import RUNTIME
+from linkgen.backends.py.printer import python_function
+from linkgen.pipeline import build_log
+from linkgen.primitives import PRIMITIVES, python_backend
+from linkgen.render.view import build_view
+
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _maker(calls: list[str], text: str):
@@ -57,7 +67,15 @@ def test_without_a_folder_or_where_it_cannot_be_written_the_text_is_made_each_ti
 
 
 def test_a_kept_primitive_is_the_printers_text():
-    """The numpy kernel's primitives as kept (read back from the store of earlier builds, or made now)
-    are what the printer prints now."""
+    """The primitives as kept (read back from the store of earlier builds, or made now) are what the
+    printers print now: the numpy kernel's, the C, Octave and Python programs' and the evaluator's."""
+    log = build_log(str(ROOT / "samples" / "fourbar" / "fourbar.yaml"), sweep=False)
+    view = build_view(log)
     for name in ("RRR_links", "link_angle"):
         assert still.printed(name, 2) == numpy_function(PRIMITIVES[name], 2)
+    for printer in (c_function, octave_function, python_function):
+        printed = [printer(program_primitive(view, p), view.record_order) for p in used_primitives(view)]
+        assert runtime_sources(view, printer, RUNTIME, status=False)[:len(printed)] == printed
+    python_backend(1)  # the evaluator's primitives at order 1: kept by now
+    source = "\n\n".join(python_function(p, 1) for p in PRIMITIVES.values())
+    assert textcache.kept("python primitives", (1,), lambda: "not this") == source
