@@ -37,7 +37,7 @@ from .steplog import Step, StepLog
 from .summary.compute import summarize
 from .summary.records import Summary
 
-if TYPE_CHECKING:  # the census needs sympy: imported when asked for
+if TYPE_CHECKING:  # the census needs python-flint: imported when asked for
     from .assemblies import Census
     from .instant.table import Located, Table
     from .model import Mechanism as Model

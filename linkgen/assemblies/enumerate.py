@@ -233,7 +233,7 @@ class _Walk:
 
     def _solve(self, triad: Triad | TwoBodies | Pivoted, env: Env) -> Solution | Count:
         """The group's solution at the bases' positions in ``env`` (solved once per position)."""
-        from .polynomial import solve  # sympy takes 0.7 s to import: only mechanisms with a group need it
+        from .polynomial import solve  # python-flint takes 30 ms to import: only mechanisms with a group need it
 
         unit = grid(self.log.length_scale)
         if isinstance(triad, TwoBodies):
