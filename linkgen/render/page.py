@@ -32,7 +32,12 @@ def _num(x: float) -> str:
 
 
 def _array(values: Sequence[float] | np.ndarray) -> str:
-    return "[" + ",".join(_num(x) for x in np.asarray(values, dtype=float).tolist()) + "]"
+    """The values as a JSON array, each as _num writes it (a 1000-dyad chain's page has two million)."""
+    xs = np.asarray(values, dtype=float)
+    text = [f"{x:.{DIGITS}g}" for x in xs.tolist()]
+    for k in np.flatnonzero(~np.isfinite(xs)).tolist():
+        text[k] = "null"
+    return "[" + ",".join(text) + "]"
 
 
 def _shown(log: StepLog, kind: str) -> tuple[str, float]:

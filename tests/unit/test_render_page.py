@@ -120,3 +120,9 @@ def test_the_page_holds_what_it_is_given(log: StepLog):
     assert sorted((float(x) + 180) % 360 - 180 for x in found) == pytest.approx([-limit, limit], abs=1e-6)
     assert "Engineering summary" in html
     assert "Engineering summary" not in page.render_page(replace(log, summary=None), _sweep(log), plots)
+
+
+def test_an_array_is_its_numbers_as_num_writes_them_and_null_where_not_finite():
+    x = np.array([1.0, np.nan, -np.inf, 1e-300, 123456789.123, -0.0, np.inf, 2.5e10, 1 / 3])
+    assert page._array(x) == "[" + ",".join(page._num(v) for v in x.tolist()) + "]"
+    assert json.loads(page._array(x))[:3] == [1, None, None] and page._array([]) == "[]"
