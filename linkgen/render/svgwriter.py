@@ -24,6 +24,17 @@ def esc(text: str) -> str:
     return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace('"', "&quot;")
 
 
+class _Names(dict[str, str]):
+    """An attribute's name from its keyword (class_ -> class, stroke_width -> stroke-width), each made once."""
+
+    def __missing__(self, key: str) -> str:
+        name = self[key] = key.rstrip("_").replace("_", "-")
+        return name
+
+
+NAMES = _Names()
+
+
 def attrs(items: dict[str, object]) -> str:
     """' a="1" b="x"': numbers by num() (a data- attribute's, which a script computes with, to 10
     significant digits), text escaped, in the order given; None is left out."""
@@ -35,7 +46,7 @@ def attrs(items: dict[str, object]) -> str:
             text = f"{value:.10g}" if key.startswith("data_") else num(value)
         else:
             text = esc(str(value))
-        out.append(f' {key.rstrip("_").replace("_", "-")}="{text}"')
+        out.append(f' {NAMES[key]}="{text}"')
     return "".join(out)
 
 
