@@ -353,16 +353,18 @@ class RowSolver:
             self.residual(env[k], env[u], self.zero) for k, u in pairs]
         n, marks, turns = len(b.pairs), [], []
         for j, bs in enumerate(b.branches):
-            q = [env[v] for v in bs.points]
+            q0, q1 = env[bs.points[0]], env[bs.points[1]]
+            ux, uy = q1[0] - q0[0], q1[1] - q0[1]  # b - a (each difference as the formulas below had it)
             if bs.kind == "side":
-                m = (q[1][0] - q[0][0]) * (q[2][1] - q[0][1]) - (q[1][1] - q[0][1]) * (q[2][0] - q[0][0])
-                dm = ((q[1][2] - q[0][2]) * (q[2][1] - q[0][1]) + (q[1][0] - q[0][0]) * (q[2][3] - q[0][3])
-                      - (q[1][3] - q[0][3]) * (q[2][0] - q[0][0]) - (q[1][1] - q[0][1]) * (q[2][2] - q[0][2]))
+                q2 = env[bs.points[2]]
+                vx, vy = q2[0] - q0[0], q2[1] - q0[1]
+                m = ux * vy - uy * vx
+                dm = (q1[2] - q0[2]) * vy + ux * (q2[3] - q0[3]) - (q1[3] - q0[3]) * vx - uy * (q2[2] - q0[2])
             else:
-                c, s, dt = math.cos(env[bs.angle][0]), math.sin(env[bs.angle][0]), env[bs.angle][1]
-                m = (q[1][0] - q[0][0]) * c + (q[1][1] - q[0][1]) * s
-                dm = ((q[1][2] - q[0][2]) * c + (q[1][3] - q[0][3]) * s
-                      + ((q[1][1] - q[0][1]) * c - (q[1][0] - q[0][0]) * s) * dt)
+                angle = env[bs.angle]
+                c, s, dt = math.cos(angle[0]), math.sin(angle[0]), angle[1]
+                m = ux * c + uy * s
+                dm = (q1[2] - q0[2]) * c + (q1[3] - q0[3]) * s + (uy * c - ux * s) * dt
             marks.append(m if m != 0 else old[n + j])
             turns.append(dm if m != 0 else 0.0)
         return [r[0] for r in f] + marks + [0.0], [r[1] for r in f] + turns + [0.0]
