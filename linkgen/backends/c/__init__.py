@@ -6,10 +6,11 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from ...policy import REAL_TYPES
+from ...primitives.dsl import RECORD_FIELDS
 from ...primitives.dsl import record_fields as record_fields_of
 from .. import Backend, Runtime, Template
-from ..program import input_lists, program_primitive, runtime_sources, sketch_states
-from .printer import c_function
+from ..program import bent_records, input_lists, program_primitive, runtime_sources, sensitivity_count, sketch_states
+from .printer import c_function, field
 from .real import retype, typedef
 from .spelling import C
 from .words import WORDS
@@ -43,6 +44,14 @@ def velocity_variants(view: View) -> list[str]:
         return []
     names = sorted({s.function for b in view.blocks for s in b.steps if s.function})
     return [c_function(replace(program_primitive(view, n), name=f"{n}_1"), 1) for n in names]
+
+
+def bends(view: View) -> dict[str, list[tuple[str, str]]]:
+    """Per resolver block (its suffix): the fields of its bent records (bent_records) as C names them,
+    each a (rate, acceleration) pair: w->NAME.DP.x and w->NAME.DDP.x of a POINT."""
+    return {b.suffix: [(f"{name}.{field(kind, d)}", f"{name}.{field(kind, dd)}")
+                       for name, kind in bent_records(view, b) for d, dd in zip(*RECORD_FIELDS[kind][1:])]
+            for b in view.blocks}
 
 
 def conditioned_steps(view: View) -> tuple[int, ...]:
@@ -79,7 +88,8 @@ def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
                            sketch_a=", ".join("{" + a + "}" for a in sketch_states(view, spell)),
                            column_fields=[f"{spell.ident(c.owner)}.{c.field}" for c in view.cells],
                            limits=lists["limits"], slack=spell.lit(log.policy.path_slack),
-                           periodic=lists["periodic"], conditioned=conditioned_steps(view)),
+                           periodic=lists["periodic"], conditioned=conditioned_steps(view), bends=bends(view),
+                           nsens=sensitivity_count(view)),
         "NAME_main.c": template("NAME_main.c.j2", upper=upper, columns=columns, inputs=lists),
     }
 

@@ -9,6 +9,11 @@
 typedef int (*group_fn)(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
                         double df[], double ddf[]);
 
+/* The sensitivities of the records a block writes to its Add-links: with keep, their rates as a
+ * Jacobian pass (unit Add-link rate, reads still) leaves them, into s in the order the block writes
+ * them; else acc times s added to their accelerations (which are linear in the Add-links' ones). */
+typedef void (*bend_fn)(void *ctx, double s[], double acc, int keep);
+
 /* Every block's state and its rates read off the solved pairs (the blocks of one group). */
 typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
 
@@ -295,30 +300,47 @@ static int solve_variant(group_fn group, void *ctx, int n, int loop, double a[],
 }
 
 /* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
- * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J), then
- * the final pass with them.  The rates are found at every order (they start the next
- * row).  *turn is the block's orientation, the sign of det J: it stays the same along the
+ * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J).  The
+ * rates are found at every order (they start the next row).  The pass at the rates leaves
+ * the records' positions and rates; their accelerations are that pass's plus the Add-link
+ * accelerations times the records' sensitivities (bend), which Newton's last pass left for
+ * the last Add-link (the others' measured again at a: the same bits), as accelerations are
+ * linear in the Add-links' ones; a singular J (no accelerations) takes one pass more with
+ * them.  *turn is the block's orientation, the sign of det J: it stays the same along the
  * assembly while the block's chains keep their branches (it changes only at a singular
- * position; a solution of the other sign is another assembly).  Returns the status of
- * the final pass. */
-static int addlink_rates(group_fn group, void *ctx, int n, const double a[], const double jac[][LINKGEN_NMAX],
-                         int order, double *sigma, double *turn)
+ * position; a solution of the other sign is another assembly).  Returns the status of the
+ * last pass. */
+static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const double a[],
+                         const double jac[][LINKGEN_NMAX], int order, double *sigma, double *turn)
 {
-    double zero[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
-    double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], det;
-    int i;
-    for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
+    double zero[LINKGEN_NMAX], unit[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
+    double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], sens[LINKGEN_NMAX][LINKGEN_NSENS], det;
+    int i, j, st;
+    for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = unit[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
+    if (order >= 2) {
+        bend(ctx, sens[n - 1], 0.0, 1);
+        for (j = 0; j < n - 1; j++) {
+            unit[j] = 1.0;
+            group(ctx, a, unit, zero, 0, f, df, NULL);
+            unit[j] = 0.0;
+            bend(ctx, sens[j], 0.0, 1);
+        }
+    }
     group(ctx, a, zero, zero, 1, f, df, NULL);
     for (i = 0; i < n; i++) rhs[i] = -df[i];
     det = solve_linear(n, jac, rhs, rates);
-    if (order >= 2) {
-        group(ctx, a, rates, zero, 1, f, df, ddf);
-        for (i = 0; i < n; i++) rhs[i] = -ddf[i];
-        solve_linear(n, jac, rhs, accs);
-        for (i = 0; i < n; i++) accs[i] = det != 0.0 ? accs[i] : NAN;
-    }
     *sigma = conditioning(n, jac, det);
     *turn = det > 0.0 ? 1.0 : det < 0.0 ? -1.0 : 0.0;
+    if (order >= 2) {
+        st = group(ctx, a, rates, zero, 1, f, df, ddf);
+        for (i = 0; i < n; i++) rhs[i] = -ddf[i];
+        solve_linear(n, jac, rhs, accs);
+        if (det != 0.0) {
+            for (j = 0; j < n; j++) bend(ctx, sens[j], accs[j], 0);
+            return st;
+        }
+        for (i = 0; i < n; i++) accs[i] = NAN;
+    }
     return group(ctx, a, rates, accs, 1, f, df, ddf);
 }
 
@@ -332,8 +354,8 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
  * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
-static int resolve_variants(const group_fn fns[], const int sizes[], const int loops[], int count, void *ctx,
-                            double a[][LINKGEN_NMAX], int order, int prefer, int *its, double *sigma, double *turn,
+static int resolve_variants(const group_fn fns[], const bend_fn bends[], const int sizes[], const int loops[], int count,
+                            void *ctx, double a[][LINKGEN_NMAX], int order, int prefer, int *its, double *sigma, double *turn,
                             const double *chains, const resolver_policy *p, double scale)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
@@ -354,14 +376,14 @@ static int resolve_variants(const group_fn fns[], const int sizes[], const int l
             }
             continue;
         }
-        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
+        if (addlink_rates(fns[k], bends[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
             return k;
     }
     if (best >= 0) {
         for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
         if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, its) > 0
-            && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma,
-                             turn) != 1)
+            && addlink_rates(fns[best], bends[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order,
+                             sigma, turn) != 1)
             return best;
     }
     return stuck ? -2 : -1;
@@ -372,13 +394,13 @@ static int resolve_variants(const group_fn fns[], const int sizes[], const int l
  * rates off the solved pairs (so any of them can start the next row) and the solving block
  * keeps its orientation.  Returns 1 when a block solved, with *used that block; 0 when none
  * converged, -1 when the iteration of one did not contract. */
-static int resolve_group(const group_fn fns[], int count, lengths_fn lengths, void *ctx, double a[][LINKGEN_NMAX],
-                         double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma,
+static int resolve_group(const group_fn fns[], const bend_fn bends[], int count, lengths_fn lengths, void *ctx,
+                         double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma,
                          const double *chains, int order, const resolver_mechanism *m, const resolver_policy *p)
 {
     double turn = 0.0;
-    const int k = resolve_variants(fns, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used, its,
-                                   sigma, &turn, chains, p, m->length_scale);
+    const int k = resolve_variants(fns, bends, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used,
+                                   its, sigma, &turn, chains, p, m->length_scale);
     if (k < 0) return k == -1 ? 0 : -1;
     *used = k;
     lengths(ctx, a + first, ad + first);
