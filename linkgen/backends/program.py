@@ -34,8 +34,7 @@ def program_primitive(view: View, name: str) -> Primitive:
 def bent_records(view: View, block: Group) -> tuple[tuple[str, str], ...]:
     """(name, kind) of the records a resolver block sets, its Add-links first, then what its steps write:
     the records whose accelerations the resolver bends by the Add-links' (linear in them)."""
-    names = dict.fromkeys((*block.group.add_links, *block.group.writes))
-    return tuple((n, view.log.variable(n).kind) for n in names)
+    return tuple((n, view.log.variable(n).kind) for n in block.group.sets)
 
 
 def sensitivity_count(view: View) -> int:
