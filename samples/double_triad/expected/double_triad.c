@@ -15,6 +15,7 @@ typedef struct { double v, dv, ddv; } VARIABLE;
 #define LINKGEN_NGROUPS 2
 #define LINKGEN_NBLOCKS 16
 #define LINKGEN_NINPUTS 1
+#define LINKGEN_NSENS 8
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
 #if defined(__GNUC__)
@@ -217,6 +218,11 @@ static int reason_of(int code)
  * Jacobian column through the velocity channel.  Returns 1 when a chain cannot close. */
 typedef int (*group_fn)(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
                         double df[], double ddf[]);
+
+/* The sensitivities of the records a block writes to its Add-links: with keep, their rates as a
+ * Jacobian pass (unit Add-link rate, reads still) leaves them, into s in the order the block writes
+ * them; else acc times s added to their accelerations (which are linear in the Add-links' ones). */
+typedef void (*bend_fn)(void *ctx, double s[], double acc, int keep);
 
 /* Every block's state and its rates read off the solved pairs (the blocks of one group). */
 typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
@@ -504,30 +510,47 @@ static int solve_variant(group_fn group, void *ctx, int n, int loop, double a[],
 }
 
 /* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
- * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J), then
- * the final pass with them.  The rates are found at every order (they start the next
- * row).  *turn is the block's orientation, the sign of det J: it stays the same along the
+ * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J).  The
+ * rates are found at every order (they start the next row).  The pass at the rates leaves
+ * the records' positions and rates; their accelerations are that pass's plus the Add-link
+ * accelerations times the records' sensitivities (bend), which Newton's last pass left for
+ * the last Add-link (the others' measured again at a: the same bits), as accelerations are
+ * linear in the Add-links' ones; a singular J (no accelerations) takes one pass more with
+ * them.  *turn is the block's orientation, the sign of det J: it stays the same along the
  * assembly while the block's chains keep their branches (it changes only at a singular
- * position; a solution of the other sign is another assembly).  Returns the status of
- * the final pass. */
-static int addlink_rates(group_fn group, void *ctx, int n, const double a[], const double jac[][LINKGEN_NMAX],
-                         int order, double *sigma, double *turn)
+ * position; a solution of the other sign is another assembly).  Returns the status of the
+ * last pass. */
+static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const double a[],
+                         const double jac[][LINKGEN_NMAX], int order, double *sigma, double *turn)
 {
-    double zero[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
-    double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], det;
-    int i;
-    for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
+    double zero[LINKGEN_NMAX], unit[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
+    double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], sens[LINKGEN_NMAX][LINKGEN_NSENS], det;
+    int i, j, st;
+    for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = unit[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
+    if (order >= 2) {
+        bend(ctx, sens[n - 1], 0.0, 1);
+        for (j = 0; j < n - 1; j++) {
+            unit[j] = 1.0;
+            group(ctx, a, unit, zero, 0, f, df, NULL);
+            unit[j] = 0.0;
+            bend(ctx, sens[j], 0.0, 1);
+        }
+    }
     group(ctx, a, zero, zero, 1, f, df, NULL);
     for (i = 0; i < n; i++) rhs[i] = -df[i];
     det = solve_linear(n, jac, rhs, rates);
-    if (order >= 2) {
-        group(ctx, a, rates, zero, 1, f, df, ddf);
-        for (i = 0; i < n; i++) rhs[i] = -ddf[i];
-        solve_linear(n, jac, rhs, accs);
-        for (i = 0; i < n; i++) accs[i] = det != 0.0 ? accs[i] : NAN;
-    }
     *sigma = conditioning(n, jac, det);
     *turn = det > 0.0 ? 1.0 : det < 0.0 ? -1.0 : 0.0;
+    if (order >= 2) {
+        st = group(ctx, a, rates, zero, 1, f, df, ddf);
+        for (i = 0; i < n; i++) rhs[i] = -ddf[i];
+        solve_linear(n, jac, rhs, accs);
+        if (det != 0.0) {
+            for (j = 0; j < n; j++) bend(ctx, sens[j], accs[j], 0);
+            return st;
+        }
+        for (i = 0; i < n; i++) accs[i] = NAN;
+    }
     return group(ctx, a, rates, accs, 1, f, df, ddf);
 }
 
@@ -541,8 +564,8 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
  * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
-static int resolve_variants(const group_fn fns[], const int sizes[], const int loops[], int count, void *ctx,
-                            double a[][LINKGEN_NMAX], int order, int prefer, int *its, double *sigma, double *turn,
+static int resolve_variants(const group_fn fns[], const bend_fn bends[], const int sizes[], const int loops[], int count,
+                            void *ctx, double a[][LINKGEN_NMAX], int order, int prefer, int *its, double *sigma, double *turn,
                             const double *chains, const resolver_policy *p, double scale)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
@@ -563,14 +586,14 @@ static int resolve_variants(const group_fn fns[], const int sizes[], const int l
             }
             continue;
         }
-        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
+        if (addlink_rates(fns[k], bends[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
             return k;
     }
     if (best >= 0) {
         for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
         if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, its) > 0
-            && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma,
-                             turn) != 1)
+            && addlink_rates(fns[best], bends[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order,
+                             sigma, turn) != 1)
             return best;
     }
     return stuck ? -2 : -1;
@@ -581,13 +604,13 @@ static int resolve_variants(const group_fn fns[], const int sizes[], const int l
  * rates off the solved pairs (so any of them can start the next row) and the solving block
  * keeps its orientation.  Returns 1 when a block solved, with *used that block; 0 when none
  * converged, -1 when the iteration of one did not contract. */
-static int resolve_group(const group_fn fns[], int count, lengths_fn lengths, void *ctx, double a[][LINKGEN_NMAX],
-                         double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma,
+static int resolve_group(const group_fn fns[], const bend_fn bends[], int count, lengths_fn lengths, void *ctx,
+                         double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma,
                          const double *chains, int order, const resolver_mechanism *m, const resolver_policy *p)
 {
     double turn = 0.0;
-    const int k = resolve_variants(fns, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used, its,
-                                   sigma, &turn, chains, p, m->length_scale);
+    const int k = resolve_variants(fns, bends, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used,
+                                   its, sigma, &turn, chains, p, m->length_scale);
     if (k < 0) return k == -1 ? 0 : -1;
     *used = k;
     lengths(ctx, a + first, ad + first);
@@ -1179,6 +1202,33 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
 }
 
 
+/* The sensitivities of the records block 1 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1.dv;
+        s[1] = w->p_J4.DP.x;
+        s[2] = w->p_J4.DP.y;
+        s[3] = w->p_J2.DP.x;
+        s[4] = w->p_J2.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1.dv;
+        return;
+    }
+    w->add1.ddv += acc * s[0];
+    w->p_J4.DDP.x += acc * s[1];
+    w->p_J4.DDP.y += acc * s[2];
+    w->p_J2.DDP.x += acc * s[3];
+    w->p_J2.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1.ddv += acc * s[7];
+}
+
+
 /* Steps 24, 25, 26, 27, iterated by the resolver of step 8   (fallback 1: the Add-link J6-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
@@ -1235,6 +1285,33 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
     df[0] = w->f1_v1.dv;
     ddf[0] = w->f1_v1.ddv;
     return 0;
+}
+
+
+/* The sensitivities of the records block 1_v1 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v1(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v1.dv;
+        s[1] = w->p_J2.DP.x;
+        s[2] = w->p_J2.DP.y;
+        s[3] = w->p_J4.DP.x;
+        s[4] = w->p_J4.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v1.dv;
+        return;
+    }
+    w->add1_v1.ddv += acc * s[0];
+    w->p_J2.DDP.x += acc * s[1];
+    w->p_J2.DDP.y += acc * s[2];
+    w->p_J4.DDP.x += acc * s[3];
+    w->p_J4.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v1.ddv += acc * s[7];
 }
 
 
@@ -1297,6 +1374,33 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 1_v2 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v2(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v2.dv;
+        s[1] = w->p_J2.DP.x;
+        s[2] = w->p_J2.DP.y;
+        s[3] = w->p_J4.DP.x;
+        s[4] = w->p_J4.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v2.dv;
+        return;
+    }
+    w->add1_v2.ddv += acc * s[0];
+    w->p_J2.DDP.x += acc * s[1];
+    w->p_J2.DDP.y += acc * s[2];
+    w->p_J4.DDP.x += acc * s[3];
+    w->p_J4.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v2.ddv += acc * s[7];
+}
+
+
 /* Steps 32, 33, 34, 35, iterated by the resolver of step 8   (fallback 3: the Add-link J7-J4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
@@ -1353,6 +1457,33 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
     df[0] = w->f1_v3.dv;
     ddf[0] = w->f1_v3.ddv;
     return 0;
+}
+
+
+/* The sensitivities of the records block 1_v3 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v3(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v3.dv;
+        s[1] = w->p_J4.DP.x;
+        s[2] = w->p_J4.DP.y;
+        s[3] = w->p_J2.DP.x;
+        s[4] = w->p_J2.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v3.dv;
+        return;
+    }
+    w->add1_v3.ddv += acc * s[0];
+    w->p_J4.DDP.x += acc * s[1];
+    w->p_J4.DDP.y += acc * s[2];
+    w->p_J2.DDP.x += acc * s[3];
+    w->p_J2.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v3.ddv += acc * s[7];
 }
 
 
@@ -1415,6 +1546,33 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 1_v4 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v4(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v4.dv;
+        s[1] = w->p_J4.DP.x;
+        s[2] = w->p_J4.DP.y;
+        s[3] = w->p_J2.DP.x;
+        s[4] = w->p_J2.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v4.dv;
+        return;
+    }
+    w->add1_v4.ddv += acc * s[0];
+    w->p_J4.DDP.x += acc * s[1];
+    w->p_J4.DDP.y += acc * s[2];
+    w->p_J2.DDP.x += acc * s[3];
+    w->p_J2.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v4.ddv += acc * s[7];
+}
+
+
 /* Steps 40, 41, 42, 43, iterated by the resolver of step 8   (fallback 5: the Add-link J3-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
@@ -1471,6 +1629,33 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
     df[0] = w->f1_v5.dv;
     ddf[0] = w->f1_v5.ddv;
     return 0;
+}
+
+
+/* The sensitivities of the records block 1_v5 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v5(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v5.dv;
+        s[1] = w->p_J2.DP.x;
+        s[2] = w->p_J2.DP.y;
+        s[3] = w->p_J4.DP.x;
+        s[4] = w->p_J4.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v5.dv;
+        return;
+    }
+    w->add1_v5.ddv += acc * s[0];
+    w->p_J2.DDP.x += acc * s[1];
+    w->p_J2.DDP.y += acc * s[2];
+    w->p_J4.DDP.x += acc * s[3];
+    w->p_J4.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v5.ddv += acc * s[7];
 }
 
 
@@ -1533,6 +1718,33 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 1_v6 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v6(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v6.dv;
+        s[1] = w->p_J2.DP.x;
+        s[2] = w->p_J2.DP.y;
+        s[3] = w->p_J4.DP.x;
+        s[4] = w->p_J4.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v6.dv;
+        return;
+    }
+    w->add1_v6.ddv += acc * s[0];
+    w->p_J2.DDP.x += acc * s[1];
+    w->p_J2.DDP.y += acc * s[2];
+    w->p_J4.DDP.x += acc * s[3];
+    w->p_J4.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v6.ddv += acc * s[7];
+}
+
+
 /* Steps 10, 11, 12, 13, iterated by the resolver of step 14:
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
@@ -1589,6 +1801,33 @@ static int group_2(void *ctx, const double a[], const double da[], const double 
     df[0] = w->f2.dv;
     ddf[0] = w->f2.ddv;
     return 0;
+}
+
+
+/* The sensitivities of the records block 2 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2.dv;
+        s[1] = w->p_K4.DP.x;
+        s[2] = w->p_K4.DP.y;
+        s[3] = w->p_K2.DP.x;
+        s[4] = w->p_K2.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2.dv;
+        return;
+    }
+    w->add2.ddv += acc * s[0];
+    w->p_K4.DDP.x += acc * s[1];
+    w->p_K4.DDP.y += acc * s[2];
+    w->p_K2.DDP.x += acc * s[3];
+    w->p_K2.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2.ddv += acc * s[7];
 }
 
 
@@ -1653,6 +1892,33 @@ static int group_2_v1(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 2_v1 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v1(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v1.dv;
+        s[1] = w->p_K2.DP.x;
+        s[2] = w->p_K2.DP.y;
+        s[3] = w->p_K4.DP.x;
+        s[4] = w->p_K4.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v1.dv;
+        return;
+    }
+    w->add2_v1.ddv += acc * s[0];
+    w->p_K2.DDP.x += acc * s[1];
+    w->p_K2.DDP.y += acc * s[2];
+    w->p_K4.DDP.x += acc * s[3];
+    w->p_K4.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v1.ddv += acc * s[7];
+}
+
+
 /* Steps 52, 53, 54, 55, iterated by the resolver of step 14   (fallback 2: the Add-link J5-K4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
@@ -1711,6 +1977,33 @@ static int group_2_v2(void *ctx, const double a[], const double da[], const doub
     df[0] = w->f2_v2.dv;
     ddf[0] = w->f2_v2.ddv;
     return 0;
+}
+
+
+/* The sensitivities of the records block 2_v2 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v2(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v2.dv;
+        s[1] = w->p_K4.DP.x;
+        s[2] = w->p_K4.DP.y;
+        s[3] = w->p_K2.DP.x;
+        s[4] = w->p_K2.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v2.dv;
+        return;
+    }
+    w->add2_v2.ddv += acc * s[0];
+    w->p_K4.DDP.x += acc * s[1];
+    w->p_K4.DDP.y += acc * s[2];
+    w->p_K2.DDP.x += acc * s[3];
+    w->p_K2.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v2.ddv += acc * s[7];
 }
 
 
@@ -1775,6 +2068,33 @@ static int group_2_v3(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 2_v3 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v3(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v3.dv;
+        s[1] = w->p_K4.DP.x;
+        s[2] = w->p_K4.DP.y;
+        s[3] = w->p_K2.DP.x;
+        s[4] = w->p_K2.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v3.dv;
+        return;
+    }
+    w->add2_v3.ddv += acc * s[0];
+    w->p_K4.DDP.x += acc * s[1];
+    w->p_K4.DDP.y += acc * s[2];
+    w->p_K2.DDP.x += acc * s[3];
+    w->p_K2.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v3.ddv += acc * s[7];
+}
+
+
 /* Steps 60, 61, 62, 63, iterated by the resolver of step 14   (fallback 4: the Add-link J4-K4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
@@ -1833,6 +2153,33 @@ static int group_2_v4(void *ctx, const double a[], const double da[], const doub
     df[0] = w->f2_v4.dv;
     ddf[0] = w->f2_v4.ddv;
     return 0;
+}
+
+
+/* The sensitivities of the records block 2_v4 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v4(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v4.dv;
+        s[1] = w->p_K4.DP.x;
+        s[2] = w->p_K4.DP.y;
+        s[3] = w->p_K2.DP.x;
+        s[4] = w->p_K2.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v4.dv;
+        return;
+    }
+    w->add2_v4.ddv += acc * s[0];
+    w->p_K4.DDP.x += acc * s[1];
+    w->p_K4.DDP.y += acc * s[2];
+    w->p_K2.DDP.x += acc * s[3];
+    w->p_K2.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v4.ddv += acc * s[7];
 }
 
 
@@ -1897,6 +2244,33 @@ static int group_2_v5(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 2_v5 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v5(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v5.dv;
+        s[1] = w->p_K2.DP.x;
+        s[2] = w->p_K2.DP.y;
+        s[3] = w->p_K4.DP.x;
+        s[4] = w->p_K4.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v5.dv;
+        return;
+    }
+    w->add2_v5.ddv += acc * s[0];
+    w->p_K2.DDP.x += acc * s[1];
+    w->p_K2.DDP.y += acc * s[2];
+    w->p_K4.DDP.x += acc * s[3];
+    w->p_K4.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v5.ddv += acc * s[7];
+}
+
+
 /* Steps 68, 69, 70, 71, iterated by the resolver of step 14   (fallback 6: the Add-link J4-K2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
@@ -1955,6 +2329,33 @@ static int group_2_v6(void *ctx, const double a[], const double da[], const doub
     df[0] = w->f2_v6.dv;
     ddf[0] = w->f2_v6.ddv;
     return 0;
+}
+
+
+/* The sensitivities of the records block 2_v6 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v6(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v6.dv;
+        s[1] = w->p_K2.DP.x;
+        s[2] = w->p_K2.DP.y;
+        s[3] = w->p_K4.DP.x;
+        s[4] = w->p_K4.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v6.dv;
+        return;
+    }
+    w->add2_v6.ddv += acc * s[0];
+    w->p_K2.DDP.x += acc * s[1];
+    w->p_K2.DDP.y += acc * s[2];
+    w->p_K4.DDP.x += acc * s[3];
+    w->p_K4.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v6.ddv += acc * s[7];
 }
 
 
@@ -2017,6 +2418,33 @@ static int group_2_v7(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 2_v7 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v7(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v7.dv;
+        s[1] = w->p_K2.DP.x;
+        s[2] = w->p_K2.DP.y;
+        s[3] = w->p_K4.DP.x;
+        s[4] = w->p_K4.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v7.dv;
+        return;
+    }
+    w->add2_v7.ddv += acc * s[0];
+    w->p_K2.DDP.x += acc * s[1];
+    w->p_K2.DDP.y += acc * s[2];
+    w->p_K4.DDP.x += acc * s[3];
+    w->p_K4.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v7.ddv += acc * s[7];
+}
+
+
 /* Steps 76, 77, 78, 79, iterated by the resolver of step 14   (fallback 8: the Add-link J5-K5):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
@@ -2075,6 +2503,33 @@ static int group_2_v8(void *ctx, const double a[], const double da[], const doub
     df[0] = w->f2_v8.dv;
     ddf[0] = w->f2_v8.ddv;
     return 0;
+}
+
+
+/* The sensitivities of the records block 2_v8 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v8(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v8.dv;
+        s[1] = w->p_K5.DP.x;
+        s[2] = w->p_K5.DP.y;
+        s[3] = w->p_K2.DP.x;
+        s[4] = w->p_K2.DP.y;
+        s[5] = w->p_K4.DP.x;
+        s[6] = w->p_K4.DP.y;
+        s[7] = w->f2_v8.dv;
+        return;
+    }
+    w->add2_v8.ddv += acc * s[0];
+    w->p_K5.DDP.x += acc * s[1];
+    w->p_K5.DDP.y += acc * s[2];
+    w->p_K2.DDP.x += acc * s[3];
+    w->p_K2.DDP.y += acc * s[4];
+    w->p_K4.DDP.x += acc * s[5];
+    w->p_K4.DDP.y += acc * s[6];
+    w->f2_v8.ddv += acc * s[7];
 }
 
 
@@ -2608,6 +3063,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 8: resolve, group1. the resolver iterates on add1 until right_coupler regains its length */
     {
         static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6 };
+        static const bend_fn bends[] = { bend_1, bend_1_v1, bend_1_v2, bend_1_v3, bend_1_v4, bend_1_v5, bend_1_v6 };
         w->br4 = a[0][1] < 0.0 ? -1 : 1;
         w->br5 = a[0][2] < 0.0 ? -1 : 1;
         w->br24 = a[1][1] < 0.0 ? -1 : 1;
@@ -2622,7 +3078,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
         w->br41 = a[5][2] < 0.0 ? -1 : 1;
         w->br44 = a[6][1] < 0.0 ? -1 : 1;
         w->br45 = a[6][2] < 0.0 ? -1 : 1;
-        if (!resolve_group(blocks, 7, lengths_1, w, a, ad, 0, &used[0],
+        if (!resolve_group(blocks, bends, 7, lengths_1, w, a, ad, 0, &used[0],
                            &its[0], &w->sigma[8], &w->chains, order, &MECHANISM, &POLICY))
             return 82;
         note(w, w->sigma[8] < 1e-07 ? 3 : w->sigma[8] < 0.001 ? 4 : 0, 83, -84);
@@ -2636,6 +3092,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 14: resolve, group2. the resolver iterates on add2 until left_coupler regains its length */
     {
         static const group_fn blocks[] = { group_2, group_2_v1, group_2_v2, group_2_v3, group_2_v4, group_2_v5, group_2_v6, group_2_v7, group_2_v8 };
+        static const bend_fn bends[] = { bend_2, bend_2_v1, bend_2_v2, bend_2_v3, bend_2_v4, bend_2_v5, bend_2_v6, bend_2_v7, bend_2_v8 };
         w->br10 = a[7][1] < 0.0 ? -1 : 1;
         w->br11 = a[7][2] < 0.0 ? -1 : 1;
         w->br48 = a[8][1] < 0.0 ? -1 : 1;
@@ -2654,7 +3111,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
         w->br73 = a[14][2] < 0.0 ? -1 : 1;
         w->br76 = a[15][1] < 0.0 ? -1 : 1;
         w->br77 = a[15][2] < 0.0 ? -1 : 1;
-        if (!resolve_group(blocks, 9, lengths_2, w, a, ad, 7, &used[1],
+        if (!resolve_group(blocks, bends, 9, lengths_2, w, a, ad, 7, &used[1],
                            &its[1], &w->sigma[14], &w->chains, order, &MECHANISM, &POLICY))
             return 142;
         note(w, w->sigma[14] < 1e-07 ? 3 : w->sigma[14] < 0.001 ? 4 : 0, 143, -144);

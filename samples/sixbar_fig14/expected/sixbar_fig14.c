@@ -15,6 +15,7 @@ typedef struct { double v, dv, ddv; } VARIABLE;
 #define LINKGEN_NGROUPS 1
 #define LINKGEN_NBLOCKS 9
 #define LINKGEN_NINPUTS 1
+#define LINKGEN_NSENS 8
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
 #if defined(__GNUC__)
@@ -217,6 +218,11 @@ static int reason_of(int code)
  * Jacobian column through the velocity channel.  Returns 1 when a chain cannot close. */
 typedef int (*group_fn)(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
                         double df[], double ddf[]);
+
+/* The sensitivities of the records a block writes to its Add-links: with keep, their rates as a
+ * Jacobian pass (unit Add-link rate, reads still) leaves them, into s in the order the block writes
+ * them; else acc times s added to their accelerations (which are linear in the Add-links' ones). */
+typedef void (*bend_fn)(void *ctx, double s[], double acc, int keep);
 
 /* Every block's state and its rates read off the solved pairs (the blocks of one group). */
 typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
@@ -504,30 +510,47 @@ static int solve_variant(group_fn group, void *ctx, int n, int loop, double a[],
 }
 
 /* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
- * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J), then
- * the final pass with them.  The rates are found at every order (they start the next
- * row).  *turn is the block's orientation, the sign of det J: it stays the same along the
+ * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J).  The
+ * rates are found at every order (they start the next row).  The pass at the rates leaves
+ * the records' positions and rates; their accelerations are that pass's plus the Add-link
+ * accelerations times the records' sensitivities (bend), which Newton's last pass left for
+ * the last Add-link (the others' measured again at a: the same bits), as accelerations are
+ * linear in the Add-links' ones; a singular J (no accelerations) takes one pass more with
+ * them.  *turn is the block's orientation, the sign of det J: it stays the same along the
  * assembly while the block's chains keep their branches (it changes only at a singular
- * position; a solution of the other sign is another assembly).  Returns the status of
- * the final pass. */
-static int addlink_rates(group_fn group, void *ctx, int n, const double a[], const double jac[][LINKGEN_NMAX],
-                         int order, double *sigma, double *turn)
+ * position; a solution of the other sign is another assembly).  Returns the status of the
+ * last pass. */
+static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const double a[],
+                         const double jac[][LINKGEN_NMAX], int order, double *sigma, double *turn)
 {
-    double zero[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
-    double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], det;
-    int i;
-    for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
+    double zero[LINKGEN_NMAX], unit[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
+    double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], sens[LINKGEN_NMAX][LINKGEN_NSENS], det;
+    int i, j, st;
+    for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = unit[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
+    if (order >= 2) {
+        bend(ctx, sens[n - 1], 0.0, 1);
+        for (j = 0; j < n - 1; j++) {
+            unit[j] = 1.0;
+            group(ctx, a, unit, zero, 0, f, df, NULL);
+            unit[j] = 0.0;
+            bend(ctx, sens[j], 0.0, 1);
+        }
+    }
     group(ctx, a, zero, zero, 1, f, df, NULL);
     for (i = 0; i < n; i++) rhs[i] = -df[i];
     det = solve_linear(n, jac, rhs, rates);
-    if (order >= 2) {
-        group(ctx, a, rates, zero, 1, f, df, ddf);
-        for (i = 0; i < n; i++) rhs[i] = -ddf[i];
-        solve_linear(n, jac, rhs, accs);
-        for (i = 0; i < n; i++) accs[i] = det != 0.0 ? accs[i] : NAN;
-    }
     *sigma = conditioning(n, jac, det);
     *turn = det > 0.0 ? 1.0 : det < 0.0 ? -1.0 : 0.0;
+    if (order >= 2) {
+        st = group(ctx, a, rates, zero, 1, f, df, ddf);
+        for (i = 0; i < n; i++) rhs[i] = -ddf[i];
+        solve_linear(n, jac, rhs, accs);
+        if (det != 0.0) {
+            for (j = 0; j < n; j++) bend(ctx, sens[j], accs[j], 0);
+            return st;
+        }
+        for (i = 0; i < n; i++) accs[i] = NAN;
+    }
     return group(ctx, a, rates, accs, 1, f, df, ddf);
 }
 
@@ -541,8 +564,8 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
  * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
-static int resolve_variants(const group_fn fns[], const int sizes[], const int loops[], int count, void *ctx,
-                            double a[][LINKGEN_NMAX], int order, int prefer, int *its, double *sigma, double *turn,
+static int resolve_variants(const group_fn fns[], const bend_fn bends[], const int sizes[], const int loops[], int count,
+                            void *ctx, double a[][LINKGEN_NMAX], int order, int prefer, int *its, double *sigma, double *turn,
                             const double *chains, const resolver_policy *p, double scale)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
@@ -563,14 +586,14 @@ static int resolve_variants(const group_fn fns[], const int sizes[], const int l
             }
             continue;
         }
-        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
+        if (addlink_rates(fns[k], bends[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
             return k;
     }
     if (best >= 0) {
         for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
         if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, its) > 0
-            && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma,
-                             turn) != 1)
+            && addlink_rates(fns[best], bends[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order,
+                             sigma, turn) != 1)
             return best;
     }
     return stuck ? -2 : -1;
@@ -581,13 +604,13 @@ static int resolve_variants(const group_fn fns[], const int sizes[], const int l
  * rates off the solved pairs (so any of them can start the next row) and the solving block
  * keeps its orientation.  Returns 1 when a block solved, with *used that block; 0 when none
  * converged, -1 when the iteration of one did not contract. */
-static int resolve_group(const group_fn fns[], int count, lengths_fn lengths, void *ctx, double a[][LINKGEN_NMAX],
-                         double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma,
+static int resolve_group(const group_fn fns[], const bend_fn bends[], int count, lengths_fn lengths, void *ctx,
+                         double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma,
                          const double *chains, int order, const resolver_mechanism *m, const resolver_policy *p)
 {
     double turn = 0.0;
-    const int k = resolve_variants(fns, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used, its,
-                                   sigma, &turn, chains, p, m->length_scale);
+    const int k = resolve_variants(fns, bends, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used,
+                                   its, sigma, &turn, chains, p, m->length_scale);
     if (k < 0) return k == -1 ? 0 : -1;
     *used = k;
     lengths(ctx, a + first, ad + first);
@@ -1138,6 +1161,33 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
 }
 
 
+/* The sensitivities of the records block 1 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1.dv;
+        s[1] = w->p_J4.DP.x;
+        s[2] = w->p_J4.DP.y;
+        s[3] = w->p_J2.DP.x;
+        s[4] = w->p_J2.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1.dv;
+        return;
+    }
+    w->add1.ddv += acc * s[0];
+    w->p_J4.DDP.x += acc * s[1];
+    w->p_J4.DDP.y += acc * s[2];
+    w->p_J2.DDP.x += acc * s[3];
+    w->p_J2.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1.ddv += acc * s[7];
+}
+
+
 /* Steps 14, 15, 16, 17, iterated by the resolver of step 8   (fallback 1: the Add-link J6-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
@@ -1194,6 +1244,33 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
     df[0] = w->f1_v1.dv;
     ddf[0] = w->f1_v1.ddv;
     return 0;
+}
+
+
+/* The sensitivities of the records block 1_v1 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v1(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v1.dv;
+        s[1] = w->p_J2.DP.x;
+        s[2] = w->p_J2.DP.y;
+        s[3] = w->p_J4.DP.x;
+        s[4] = w->p_J4.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v1.dv;
+        return;
+    }
+    w->add1_v1.ddv += acc * s[0];
+    w->p_J2.DDP.x += acc * s[1];
+    w->p_J2.DDP.y += acc * s[2];
+    w->p_J4.DDP.x += acc * s[3];
+    w->p_J4.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v1.ddv += acc * s[7];
 }
 
 
@@ -1256,6 +1333,33 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 1_v2 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v2(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v2.dv;
+        s[1] = w->p_J4.DP.x;
+        s[2] = w->p_J4.DP.y;
+        s[3] = w->p_J2.DP.x;
+        s[4] = w->p_J2.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v2.dv;
+        return;
+    }
+    w->add1_v2.ddv += acc * s[0];
+    w->p_J4.DDP.x += acc * s[1];
+    w->p_J4.DDP.y += acc * s[2];
+    w->p_J2.DDP.x += acc * s[3];
+    w->p_J2.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v2.ddv += acc * s[7];
+}
+
+
 /* Steps 22, 23, 24, 25, iterated by the resolver of step 8   (fallback 3: the Add-link J3-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
@@ -1312,6 +1416,33 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
     df[0] = w->f1_v3.dv;
     ddf[0] = w->f1_v3.ddv;
     return 0;
+}
+
+
+/* The sensitivities of the records block 1_v3 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v3(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v3.dv;
+        s[1] = w->p_J2.DP.x;
+        s[2] = w->p_J2.DP.y;
+        s[3] = w->p_J4.DP.x;
+        s[4] = w->p_J4.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v3.dv;
+        return;
+    }
+    w->add1_v3.ddv += acc * s[0];
+    w->p_J2.DDP.x += acc * s[1];
+    w->p_J2.DDP.y += acc * s[2];
+    w->p_J4.DDP.x += acc * s[3];
+    w->p_J4.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v3.ddv += acc * s[7];
 }
 
 
@@ -1374,6 +1505,33 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 1_v4 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v4(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v4.dv;
+        s[1] = w->p_J2.DP.x;
+        s[2] = w->p_J2.DP.y;
+        s[3] = w->p_J4.DP.x;
+        s[4] = w->p_J4.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v4.dv;
+        return;
+    }
+    w->add1_v4.ddv += acc * s[0];
+    w->p_J2.DDP.x += acc * s[1];
+    w->p_J2.DDP.y += acc * s[2];
+    w->p_J4.DDP.x += acc * s[3];
+    w->p_J4.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v4.ddv += acc * s[7];
+}
+
+
 /* Steps 30, 31, 32, 33, iterated by the resolver of step 8   (fallback 5: the Add-link J7-J4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
@@ -1430,6 +1588,33 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
     df[0] = w->f1_v5.dv;
     ddf[0] = w->f1_v5.ddv;
     return 0;
+}
+
+
+/* The sensitivities of the records block 1_v5 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v5(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v5.dv;
+        s[1] = w->p_J4.DP.x;
+        s[2] = w->p_J4.DP.y;
+        s[3] = w->p_J2.DP.x;
+        s[4] = w->p_J2.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v5.dv;
+        return;
+    }
+    w->add1_v5.ddv += acc * s[0];
+    w->p_J4.DDP.x += acc * s[1];
+    w->p_J4.DDP.y += acc * s[2];
+    w->p_J2.DDP.x += acc * s[3];
+    w->p_J2.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v5.ddv += acc * s[7];
 }
 
 
@@ -1492,6 +1677,33 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 1_v6 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v6(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v6.dv;
+        s[1] = w->p_J5.DP.x;
+        s[2] = w->p_J5.DP.y;
+        s[3] = w->p_J2.DP.x;
+        s[4] = w->p_J2.DP.y;
+        s[5] = w->p_J4.DP.x;
+        s[6] = w->p_J4.DP.y;
+        s[7] = w->f1_v6.dv;
+        return;
+    }
+    w->add1_v6.ddv += acc * s[0];
+    w->p_J5.DDP.x += acc * s[1];
+    w->p_J5.DDP.y += acc * s[2];
+    w->p_J2.DDP.x += acc * s[3];
+    w->p_J2.DDP.y += acc * s[4];
+    w->p_J4.DDP.x += acc * s[5];
+    w->p_J4.DDP.y += acc * s[6];
+    w->f1_v6.ddv += acc * s[7];
+}
+
+
 /* Steps 38, 39, 40, 41, iterated by the resolver of step 8   (fallback 7: the Add-link J1-J5):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
@@ -1551,6 +1763,33 @@ static int group_1_v7(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 1_v7 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v7(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v7.dv;
+        s[1] = w->p_J5.DP.x;
+        s[2] = w->p_J5.DP.y;
+        s[3] = w->p_J2.DP.x;
+        s[4] = w->p_J2.DP.y;
+        s[5] = w->p_J4.DP.x;
+        s[6] = w->p_J4.DP.y;
+        s[7] = w->f1_v7.dv;
+        return;
+    }
+    w->add1_v7.ddv += acc * s[0];
+    w->p_J5.DDP.x += acc * s[1];
+    w->p_J5.DDP.y += acc * s[2];
+    w->p_J2.DDP.x += acc * s[3];
+    w->p_J2.DDP.y += acc * s[4];
+    w->p_J4.DDP.x += acc * s[5];
+    w->p_J4.DDP.y += acc * s[6];
+    w->f1_v7.ddv += acc * s[7];
+}
+
+
 /* Steps 42, 43, 44, 45, iterated by the resolver of step 8   (fallback 8: the Add-link J7-J5):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
@@ -1607,6 +1846,33 @@ static int group_1_v8(void *ctx, const double a[], const double da[], const doub
     df[0] = w->f1_v8.dv;
     ddf[0] = w->f1_v8.ddv;
     return 0;
+}
+
+
+/* The sensitivities of the records block 1_v8 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v8(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v8.dv;
+        s[1] = w->p_J5.DP.x;
+        s[2] = w->p_J5.DP.y;
+        s[3] = w->p_J2.DP.x;
+        s[4] = w->p_J2.DP.y;
+        s[5] = w->p_J4.DP.x;
+        s[6] = w->p_J4.DP.y;
+        s[7] = w->f1_v8.dv;
+        return;
+    }
+    w->add1_v8.ddv += acc * s[0];
+    w->p_J5.DDP.x += acc * s[1];
+    w->p_J5.DDP.y += acc * s[2];
+    w->p_J2.DDP.x += acc * s[3];
+    w->p_J2.DDP.y += acc * s[4];
+    w->p_J4.DDP.x += acc * s[5];
+    w->p_J4.DDP.y += acc * s[6];
+    w->f1_v8.ddv += acc * s[7];
 }
 
 
@@ -1937,6 +2203,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 8: resolve, group1. the resolver iterates on add1 until coupler regains its length */
     {
         static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6, group_1_v7, group_1_v8 };
+        static const bend_fn bends[] = { bend_1, bend_1_v1, bend_1_v2, bend_1_v3, bend_1_v4, bend_1_v5, bend_1_v6, bend_1_v7, bend_1_v8 };
         w->br4 = a[0][1] < 0.0 ? -1 : 1;
         w->br5 = a[0][2] < 0.0 ? -1 : 1;
         w->br14 = a[1][1] < 0.0 ? -1 : 1;
@@ -1955,7 +2222,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
         w->br39 = a[7][2] < 0.0 ? -1 : 1;
         w->br42 = a[8][1] < 0.0 ? -1 : 1;
         w->br43 = a[8][2] < 0.0 ? -1 : 1;
-        if (!resolve_group(blocks, 9, lengths_1, w, a, ad, 0, &used[0],
+        if (!resolve_group(blocks, bends, 9, lengths_1, w, a, ad, 0, &used[0],
                            &its[0], &w->sigma[8], &w->chains, order, &MECHANISM, &POLICY))
             return 82;
         note(w, w->sigma[8] < 1e-07 ? 3 : w->sigma[8] < 0.001 ? 4 : 0, 83, -84);
