@@ -49,19 +49,17 @@ static int path_pass(const resolver_path *path, const double in[], const double 
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
                    const double now[][LINKGEN_NMAX], const int sizes[], double slack, const resolver_policy *p)
 {
-    double move = 0.0, share = p->path_share;
+    double move = 0.0, off = 0.0, share = p->path_share;
     int g, i;
-    for (g = 0; g < LINKGEN_NBLOCKS; g++) {
+    for (g = 0; g < LINKGEN_NBLOCKS; g++) {  /* one pass: the largest predicted move and correction */
         for (i = 0; i < sizes[g]; i++) {
-            const double d = fabs(guess[g][i] - prev[g][i]);
+            const double d = fabs(guess[g][i] - prev[g][i]), e = fabs(now[g][i] - guess[g][i]);
             if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
+            if (e > off || e != e) off = e;  /* a nan correction stays */
         }
         if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
     }
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < sizes[g]; i++)
-            if (!(fabs(now[g][i] - guess[g][i]) <= share * move + slack)) return 0; /* a nan too */
-    return 1;
+    return off <= share * move + slack;  /* a nan too */
 }
 
 /* Whether no input moved farther from the last row than a continuation step. */
