@@ -354,9 +354,9 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
  * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
-static int resolve_variants(const group_fn fns[], const bend_fn bends[], const int sizes[], const int loops[], int count,
-                            void *ctx, double a[][LINKGEN_NMAX], int order, int prefer, int *its, double *sigma, double *turn,
-                            const double *chains, const resolver_policy *p, double scale)
+static int resolve_variants(const group_fn fns[], const bend_fn bends[], const int sizes[], const int loops[],
+                            int count, void *ctx, double a[][LINKGEN_NMAX], int order, int prefer, int *its,
+                            double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
     int t, k, i, pass, best = -1, stuck = 0;
@@ -376,7 +376,8 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], const i
             }
             continue;
         }
-        if (addlink_rates(fns[k], bends[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
+        if (addlink_rates(fns[k], bends[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma,
+                          turn) != 1)
             return k;
     }
     if (best >= 0) {
@@ -395,8 +396,9 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], const i
  * keeps its orientation.  Returns 1 when a block solved, with *used that block; 0 when none
  * converged, -1 when the iteration of one did not contract. */
 static int resolve_group(const group_fn fns[], const bend_fn bends[], int count, lengths_fn lengths, void *ctx,
-                         double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma,
-                         const double *chains, int order, const resolver_mechanism *m, const resolver_policy *p)
+                         double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its,
+                         double *sigma, const double *chains, int order, const resolver_mechanism *m,
+                         const resolver_policy *p)
 {
     double turn = 0.0;
     const int k = resolve_variants(fns, bends, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used,
