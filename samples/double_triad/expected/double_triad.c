@@ -564,9 +564,9 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
  * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
-static int resolve_variants(const group_fn fns[], const bend_fn bends[], const int sizes[], const int loops[], int count,
-                            void *ctx, double a[][LINKGEN_NMAX], int order, int prefer, int *its, double *sigma, double *turn,
-                            const double *chains, const resolver_policy *p, double scale)
+static int resolve_variants(const group_fn fns[], const bend_fn bends[], const int sizes[], const int loops[],
+                            int count, void *ctx, double a[][LINKGEN_NMAX], int order, int prefer, int *its,
+                            double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
     int t, k, i, pass, best = -1, stuck = 0;
@@ -586,7 +586,8 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], const i
             }
             continue;
         }
-        if (addlink_rates(fns[k], bends[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
+        if (addlink_rates(fns[k], bends[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma,
+                          turn) != 1)
             return k;
     }
     if (best >= 0) {
@@ -605,8 +606,9 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], const i
  * keeps its orientation.  Returns 1 when a block solved, with *used that block; 0 when none
  * converged, -1 when the iteration of one did not contract. */
 static int resolve_group(const group_fn fns[], const bend_fn bends[], int count, lengths_fn lengths, void *ctx,
-                         double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma,
-                         const double *chains, int order, const resolver_mechanism *m, const resolver_policy *p)
+                         double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its,
+                         double *sigma, const double *chains, int order, const resolver_mechanism *m,
+                         const resolver_policy *p)
 {
     double turn = 0.0;
     const int k = resolve_variants(fns, bends, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used,
@@ -669,19 +671,17 @@ static int path_pass(const resolver_path *path, const double in[], const double 
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
                    const double now[][LINKGEN_NMAX], const int sizes[], double slack, const resolver_policy *p)
 {
-    double move = 0.0, share = p->path_share;
+    double move = 0.0, off = 0.0, share = p->path_share;
     int g, i;
-    for (g = 0; g < LINKGEN_NBLOCKS; g++) {
+    for (g = 0; g < LINKGEN_NBLOCKS; g++) {  /* one pass: the largest predicted move and correction */
         for (i = 0; i < sizes[g]; i++) {
-            const double d = fabs(guess[g][i] - prev[g][i]);
+            const double d = fabs(guess[g][i] - prev[g][i]), e = fabs(now[g][i] - guess[g][i]);
             if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
+            if (e > off || e != e) off = e;  /* a nan correction stays */
         }
         if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
     }
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < sizes[g]; i++)
-            if (!(fabs(now[g][i] - guess[g][i]) <= share * move + slack)) return 0; /* a nan too */
-    return 1;
+    return off <= share * move + slack;  /* a nan too */
 }
 
 /* Whether no input moved farther from the last row than a continuation step. */
