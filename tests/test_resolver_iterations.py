@@ -77,6 +77,7 @@ C_HARNESS = r"""
 #include <stdio.h>
 #define LINKGEN_NMAX 3
 #define LINKGEN_NSENS 1
+#define LINKGEN_NADD 2
 @RESOLVER@
 static int square(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
                   double df[], double ddf[])

@@ -52,6 +52,13 @@ typedef struct {
     int not_converged;  /* a row failed with this reason is followed from the last one */
 } resolver_mechanism;
 
+/* A block's Add-links: n, known to be 1 where no block has more (LINKGEN_NADD, the most), so the compiler
+ * drops the loops over them (the same operations). */
+static int adds(int n)
+{
+    return LINKGEN_NADD == 1 ? 1 : n;
+}
+
 /* Solve m x = b (n <= LINKGEN_NMAX) by Gaussian elimination with partial pivoting; returns det(m). */
 static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b[], double x[])
 {
@@ -96,6 +103,7 @@ static int jacobian(group_fn group, void *ctx, int n, const double a[], double f
 {
     double unit[LINKGEN_NMAX], zero[LINKGEN_NMAX], res[LINKGEN_NMAX], dres[LINKGEN_NMAX];
     int i, j;
+    n = adds(n);
     for (i = 0; i < LINKGEN_NMAX; i++) unit[i] = zero[i] = 0.0;
     for (j = 0; j < n; j++) {
         unit[j] = 1.0;
@@ -149,6 +157,7 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
     double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], dx[LINKGEN_NMAX], trial[LINKGEN_NMAX], rhs[LINKGEN_NMAX];
     double jac2[LINKGEN_NMAX][LINKGEN_NMAX];
     int it, i, j, halving;
+    n = adds(n);
     *iterations = 0;
     for (i = 0; i < n; i++) start[i] = a[i];
     if (jacobian(group, ctx, n, a, f, jac)) return 0;
@@ -211,6 +220,7 @@ static int fixed_point(group_fn group, void *ctx, int n, double a[], double tol,
     double start[LINKGEN_NMAX], j0[LINKGEN_NMAX][LINKGEN_NMAX];
     double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], dx[LINKGEN_NMAX], trial[LINKGEN_NMAX], rhs[LINKGEN_NMAX];
     int i, halving;
+    n = adds(n);
     *iterations = 0;
     for (i = 0; i < LINKGEN_NMAX; i++) rhs[i] = 0.0;  /* entries past n are never read */
     for (i = 0; i < n; i++) start[i] = a[i];
@@ -316,6 +326,7 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
     double zero[LINKGEN_NMAX], unit[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
     double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], sens[LINKGEN_NMAX][LINKGEN_NSENS], det;
     int i, j, st;
+    n = adds(n);
     for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = unit[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
     if (order >= 2) {
         bend(ctx, sens[n - 1], 0.0, 1);
