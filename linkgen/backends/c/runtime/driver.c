@@ -229,16 +229,14 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     int used[LINKGEN_NGROUPS];
     int code = 0, solved = 0, g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = m->sketch_in[i];
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = m->sketch_a[g][i];
+    memcpy(a, m->sketch_a, sizeof a);  /* the block states copied whole (a loop per entry costs more) */
     for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = *warm->valid ? warm->used[g] : 0;
     if (past) {
         /* past a limit position: the pass fails the row at once with the limit's code */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
     } else if (*warm->valid && within(in, warm->in, m->limits)) {
         predict(warm, in, m->sizes, m->loops, p->predictor, guess);
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* predictor order 0: from the warm states as they were */
-            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = p->predictor ? guess[g][i] : warm->a[g][i];
+        memcpy(a, p->predictor ? guess : warm->a, sizeof a);  /* predictor order 0: the warm states as they were */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
         solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
                                       (const double (*)[LINKGEN_NMAX])a, m->sizes,
@@ -246,8 +244,7 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     }
     if (!solved && *warm->valid) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = warm->in[i];
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = warm->a[g][i];
+        memcpy(a, warm->a, sizeof a);
         for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = warm->used[g];
     }
     if (!solved && (code <= 0 || reason_of(code) == m->not_converged)) {
@@ -269,18 +266,14 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         *warm->back_valid = solved && *warm->valid && code != m->another;
         if (*warm->back_valid) {
             for (i = 0; i < LINKGEN_NINPUTS; i++) warm->back_in[i] = warm->in[i];
-            for (g = 0; g < LINKGEN_NBLOCKS; g++)
-                for (i = 0; i < LINKGEN_NMAX; i++) warm->back_a[g][i] = warm->a[g][i];
+            memcpy(warm->back_a, warm->a, sizeof a);
         }
     }
     *warm->valid = solved;
     if (solved) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) { warm->in[i] = in[i]; warm->din[i] = din[i]; }
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) {
-                warm->a[g][i] = a[g][i];
-                warm->ad[g][i] = ad[g][i];
-            }
+        memcpy(warm->a, a, sizeof a);
+        memcpy(warm->ad, ad, sizeof ad);
         for (g = 0; g < LINKGEN_NGROUPS; g++) warm->used[g] = used[g];
     }
     return code;
