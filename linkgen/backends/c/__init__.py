@@ -12,6 +12,7 @@ from .. import Backend, Runtime, Template
 from ..program import bent_records, input_lists, program_primitive, runtime_sources, sensitivity_count, sketch_states
 from .printer import c_function, field
 from .real import retype, typedef
+from .tangent import two_channel
 from .spelling import C
 from .words import WORDS
 
@@ -44,6 +45,13 @@ def velocity_variants(view: View) -> list[str]:
         return []
     names = sorted({s.function for b in view.blocks for s in b.steps if s.function})
     return [c_function(replace(program_primitive(view, n), name=f"{n}_1"), 1) for n in names]
+
+
+def two_channel_variants(view: View) -> list[str]:
+    """Two-channel copies (NAME_2, tangent.py) of the primitives the resolver blocks call: a block's
+    last Newton pass measures its Jacobian column and the residuals' rates at zero Add-link rate at once."""
+    names = sorted({s.function for b in view.blocks for s in b.steps if s.function})
+    return [c_function(two_channel(program_primitive(view, n)), 1) for n in names]
 
 
 def bends(view: View) -> dict[str, list[tuple[str, str]]]:
@@ -83,7 +91,7 @@ def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
                            direction_fields=fields["direction"], columns=columns, inputs=lists),
         "NAME.c": template("NAME.c.j2", upper=upper,
                            runtime=runtime_sources(view, c_function, RUNTIME, status=_reads_reasons(view))
-                           + velocity_variants(view),
+                           + velocity_variants(view) + two_channel_variants(view),
                            record_fields=record_fields, sketch_in=lists["sketch"],
                            sketch_a=", ".join("{" + a + "}" for a in sketch_states(view, spell)),
                            column_fields=[f"{spell.ident(c.owner)}.{c.field}" for c in view.cells],
