@@ -12,8 +12,8 @@ from .. import Backend, Runtime, Template
 from ..program import bent_records, input_lists, program_primitive, runtime_sources, sensitivity_count, sketch_states
 from .printer import c_function, field
 from .real import retype, typedef
-from .tangent import two_channel
 from .spelling import C
+from .tangent import two_channel
 from .words import WORDS
 
 if TYPE_CHECKING:

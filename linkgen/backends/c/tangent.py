@@ -42,6 +42,7 @@ def two_channel(prim: Primitive) -> Primitive:
     results = dict(prim.results)
     for o in prim.outputs:
         results[o.name + SUFFIX] = {f: _renamed(e, names) for f, e in prim.results[o.name].items()}
-    return replace(prim, name=f"{prim.name}_2", params=(*prim.params, *(Param(p.name + SUFFIX, p.kind) for p in records)),
+    return replace(prim, name=f"{prim.name}_2",
+                   params=(*prim.params, *(Param(p.name + SUFFIX, p.kind) for p in records)),
                    outputs=(*prim.outputs, *(Param(o.name + SUFFIX, o.kind) for o in prim.outputs)),
                    body=(*lets, *second), results=results)
