@@ -700,7 +700,7 @@ static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKG
     double move = 0.0, off = 0.0, share = p->path_share;
     int g, i;
     for (g = 0; g < LINKGEN_NBLOCKS; g++) {  /* one pass: the largest predicted move and correction */
-        for (i = 0; i < sizes[g]; i++) {
+        for (i = 0; i < adds(sizes[g]); i++) {
             const double d = fabs(guess[g][i] - prev[g][i]), e = fabs(now[g][i] - guess[g][i]);
             if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
             if (e > off || e != e) off = e;  /* a nan correction stays */
@@ -729,7 +729,7 @@ static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_
 {
     int g, i;
     for (g = 0; g < LINKGEN_NBLOCKS; g++) {
-        for (i = 0; i < sizes[g]; i++)  /* a loop block's arc length is an angle: not reflected */
+        for (i = 0; i < adds(sizes[g]); i++)  /* a loop block's arc length is an angle: not reflected */
             out[g][i] = loops[g] ? a[g][i] + step * rate[g][i] : fabs(a[g][i] + step * rate[g][i]);
         for (; i < LINKGEN_NMAX - 1; i++) out[g][i] = a[g][i] + step * rate[g][i];
         out[g][LINKGEN_NMAX - 1] = a[g][LINKGEN_NMAX - 1];
@@ -764,7 +764,7 @@ static void predict(const resolver_warm *warm, const double in[], const int size
     back = warm_tau(warm, warm->back_in);
     if (back == 0.0) return;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < sizes[g]; i++) {
+        for (i = 0; i < adds(sizes[g]); i++) {
             const double bend = (warm->back_a[g][i] - warm->a[g][i] - back * warm->ad[g][i]) / (back * back);
             const double ahead = warm->a[g][i] + tau * warm->ad[g][i] + tau * tau * bend;
             a[g][i] = loops[g] ? ahead : fabs(ahead);
@@ -802,7 +802,7 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
         if (passes++ == p->walk_passes) return 0;
         fast = 0.0;
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < m->sizes[g]; i++)
+            for (i = 0; i < adds(m->sizes[g]); i++)
                 if (fabs(rate[g][i]) > fast) fast = fabs(rate[g][i]);
         if (fast * h > reach) h = reach / fast;
         tt = fmin(1.0, t + h);
