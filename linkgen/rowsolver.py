@@ -140,6 +140,20 @@ def _input_env(log: StepLog, order: int, values: Any, rates: Any, accs: Any) -> 
     return env
 
 
+class _Fields:
+    """The records of an Env as the fields of a generated program's work (the runtime's addlink_rates
+    reads and bends a block's records by name)."""
+
+    def __init__(self, env: Env):
+        object.__setattr__(self, "env", env)
+
+    def __getattr__(self, name: str) -> Any:
+        return self.env[name]
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        self.env[name] = value
+
+
 def _still(rec: tuple[float, ...], kind: str) -> tuple[float, ...]:
     """A record with its derivatives zero."""
     width = 2 if kind == "POINT" else 1
@@ -312,7 +326,7 @@ class RowSolver:
 
             resolve = functools.partial(runtime()["resolve_closure"], in_process(g.closure, env, adopt))
         ok, sigma = resolve(fns, lengths, a, ad, first, self.slots[g.number], used, its, order, lambda: chains[0],
-                            self.mech, runtime_policy(p, self.log.options))
+                            self.mech, runtime_policy(p, self.log.options), (_Fields(env), [b.sets for b in blocks]))
         if ok > 0:
             report.update(last)
         report[g.step] = ((SINGULAR if sigma < p.singular else NEAR if sigma < p.near_singular else 0) if ok > 0

@@ -152,6 +152,12 @@ class ResolverGroup:
     branches: tuple[BranchSign, ...] = ()  # chains whose branch follows the last solution
     closure: Closure | None = None  # strategy closure: the group's loop-closure equations (chosen block only)
 
+    @property
+    def sets(self) -> tuple[str, ...]:
+        """The records the block sets: its Add-links, then what its steps write (each once); the resolver
+        bends their accelerations by the Add-links' (linear in them)."""
+        return tuple(dict.fromkeys((*self.add_links, *self.writes)))
+
     def start(self) -> list[float]:
         """The block's state in the sketch: Add-link lengths, its chains' branches, then its
         orientation (0: not known until a block solves; see the runtime's on_path)."""

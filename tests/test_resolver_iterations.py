@@ -76,6 +76,8 @@ C_HARNESS = r"""
 #include <math.h>
 #include <stdio.h>
 #define LINKGEN_NMAX 3
+#define LINKGEN_NSENS 1
+#define LINKGEN_NADD 2
 @RESOLVER@
 static int square(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
                   double df[], double ddf[])
@@ -101,7 +103,7 @@ static void one(group_fn g, int n, double a0, double a1, int strategy, int polis
     int its, ok;
     a[0] = a0; a[1] = a1;
     p.strategy = strategy; p.polish = polish;
-    ok = solve_block(g, 0, n, a, &p, 1.0, jac, &its);
+    ok = solve_block(g, 0, n, a, &p, 1.0, jac, NULL, NULL, &its);
     printf("%d %d %.17g %.17g\n", ok, its, a[0], n > 1 ? a[1] : 0.0);
 }
 int main(void)

@@ -6,12 +6,14 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from ...policy import REAL_TYPES
+from ...primitives.dsl import RECORD_FIELDS
 from ...primitives.dsl import record_fields as record_fields_of
 from .. import Backend, Runtime, Template
-from ..program import input_lists, program_primitive, runtime_sources, sketch_states
-from .printer import c_function
+from ..program import bent_records, input_lists, program_primitive, runtime_sources, sensitivity_count, sketch_states
+from .printer import c_function, field
 from .real import retype, typedef
 from .spelling import C
+from .tangent import two_channel
 from .words import WORDS
 
 if TYPE_CHECKING:
@@ -45,6 +47,21 @@ def velocity_variants(view: View) -> list[str]:
     return [c_function(replace(program_primitive(view, n), name=f"{n}_1"), 1) for n in names]
 
 
+def two_channel_variants(view: View) -> list[str]:
+    """Two-channel copies (NAME_2, tangent.py) of the primitives the resolver blocks call: a block's
+    last Newton pass measures its Jacobian column and the residuals' rates at zero Add-link rate at once."""
+    names = sorted({s.function for b in view.blocks for s in b.steps if s.function})
+    return [c_function(two_channel(program_primitive(view, n)), 1) for n in names]
+
+
+def bends(view: View) -> dict[str, list[tuple[str, str]]]:
+    """Per resolver block (its suffix): the fields of its bent records (bent_records) as C names them,
+    each a (rate, acceleration) pair: w->NAME.DP.x and w->NAME.DDP.x of a POINT."""
+    return {b.suffix: [(f"{name}.{field(kind, d)}", f"{name}.{field(kind, dd)}")
+                       for name, kind in bent_records(view, b) for d, dd in zip(*RECORD_FIELDS[kind][1:])]
+            for b in view.blocks}
+
+
 def conditioned_steps(view: View) -> tuple[int, ...]:
     """The steps of the run whose call writes its conditioning (its primitive's sigma) into the state."""
     return tuple(s.number for s in view.run if s.function and program_primitive(view, s.function).sigma is not None)
@@ -74,12 +91,13 @@ def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
                            direction_fields=fields["direction"], columns=columns, inputs=lists),
         "NAME.c": template("NAME.c.j2", upper=upper,
                            runtime=runtime_sources(view, c_function, RUNTIME, status=_reads_reasons(view))
-                           + velocity_variants(view),
+                           + velocity_variants(view) + two_channel_variants(view),
                            record_fields=record_fields, sketch_in=lists["sketch"],
                            sketch_a=", ".join("{" + a + "}" for a in sketch_states(view, spell)),
                            column_fields=[f"{spell.ident(c.owner)}.{c.field}" for c in view.cells],
                            limits=lists["limits"], slack=spell.lit(log.policy.path_slack),
-                           periodic=lists["periodic"], conditioned=conditioned_steps(view)),
+                           periodic=lists["periodic"], conditioned=conditioned_steps(view), bends=bends(view),
+                           nsens=sensitivity_count(view)),
         "NAME_main.c": template("NAME_main.c.j2", upper=upper, columns=columns, inputs=lists),
     }
 

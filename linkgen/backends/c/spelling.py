@@ -49,6 +49,36 @@ class C(Spelling):
             return "{" + ", ".join(levels) + "}"
         return "{" + ", ".join([self.lit(value[0])] + ["0.0"] * self.order) + "}"
 
+    def pair_call(self, step: Step, scope: Group) -> list[str]:
+        """A step's two-channel copy (NAME_2) in a block's pass that measures a Jacobian column and the
+        residuals' rates at zero Add-link rate at once: the second channel's records are the block's t_
+        locals, what it reads from outside live (w->), the constants themselves.  No note: the pass
+        measures (the rates pass after it notes)."""
+        prim = self.primitives[step.function]
+        pairs = list(zip(step.args, prim.params))
+        args = [("&" if a.kind == "var" else "") + self.arg(a, scope, step) for a, _ in pairs]
+        args += [f"&{self.second(a.var, scope)}" for a, p in pairs if p.is_record]
+        args += [f"&{self.ref(o, scope)}" for o in step.outputs] + [f"&t_{o}" for o in step.outputs]
+        if prim.sigma is not None:
+            args.append(f"&{self.sigma(step)}")
+        text = f"{step.function}_2({', '.join(args)});"
+        points = ", ".join(self.lit(p) for p in step.change_points)
+        head = [f"static const double change_{step.number}[] = {{{points}}};"] if step.change_points else []
+        if prim.status is None:
+            return [*head, text]
+        lines = [*head, f"st = {text}", "if (st == 1) return 1;"]
+        if prim.sigma is not None:
+            lines.append(f"if ({self.sigma(step)} < w->chains) w->chains = {self.sigma(step)};")
+        return lines
+
+    def second(self, var: str, scope: Group) -> str:
+        """A record as a two-channel call's second channel reads it (pair_call)."""
+        if self.external(var, scope):
+            return self.work(var)
+        if self.variables[var].constant:
+            return var
+        return f"t_{var}"
+
     def call(self, step: Step, scope: Group | None, velocities: bool = False) -> list[str]:
         """A step's call; a failing chain ends the row (inside a resolver block: the block's pass;
         ``velocities``: its order-1 copy, for a pass whose accelerations are not read)."""

@@ -15,6 +15,8 @@ typedef struct { double v, dv, ddv; } VARIABLE;
 #define LINKGEN_NGROUPS 2
 #define LINKGEN_NBLOCKS 16
 #define LINKGEN_NINPUTS 1
+#define LINKGEN_NSENS 8
+#define LINKGEN_NADD 1
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
 #if defined(__GNUC__)
@@ -218,6 +220,11 @@ static int reason_of(int code)
 typedef int (*group_fn)(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
                         double df[], double ddf[]);
 
+/* The sensitivities of the records a block writes to its Add-links: with keep, their rates as a
+ * Jacobian pass (unit Add-link rate, reads still) leaves them, into s in the order the block writes
+ * them; else acc times s added to their accelerations (which are linear in the Add-links' ones). */
+typedef void (*bend_fn)(void *ctx, double s[], double acc, int keep);
+
 /* Every block's state and its rates read off the solved pairs (the blocks of one group). */
 typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
 
@@ -255,6 +262,13 @@ typedef struct {
     int another;  /* the code of a row solvable on another assembly only */
     int not_converged;  /* a row failed with this reason is followed from the last one */
 } resolver_mechanism;
+
+/* A block's Add-links: n, known to be 1 where no block has more (LINKGEN_NADD, the most), so the compiler
+ * drops the loops over them (the same operations). */
+static int adds(int n)
+{
+    return LINKGEN_NADD == 1 ? 1 : n;
+}
 
 /* Solve m x = b (n <= LINKGEN_NMAX) by Gaussian elimination with partial pivoting; returns det(m). */
 static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b[], double x[])
@@ -295,15 +309,19 @@ static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b
     return det;
 }
 
-/* Residuals and Jacobian at a, one pass per Add-link; returns 1 when a chain cannot close. */
-static int jacobian(group_fn group, void *ctx, int n, const double a[], double f[], double jac[][LINKGEN_NMAX])
+/* Residuals and Jacobian at a, one pass per Add-link, the last one (ft not null) with the residuals'
+ * rates at zero Add-link rate, the reads live, into ft (group's live 2: the rates pass after the
+ * iteration then has them); returns 1 when a chain cannot close. */
+static int jacobian(group_fn group, void *ctx, int n, const double a[], double f[], double jac[][LINKGEN_NMAX],
+                    double ft[])
 {
     double unit[LINKGEN_NMAX], zero[LINKGEN_NMAX], res[LINKGEN_NMAX], dres[LINKGEN_NMAX];
     int i, j;
+    n = adds(n);
     for (i = 0; i < LINKGEN_NMAX; i++) unit[i] = zero[i] = 0.0;
     for (j = 0; j < n; j++) {
         unit[j] = 1.0;
-        if (group(ctx, a, unit, zero, 0, res, dres, NULL)) return 1;
+        if (group(ctx, a, unit, zero, ft && j == n - 1 ? 2 : 0, res, dres, ft && j == n - 1 ? ft : NULL)) return 1;
         unit[j] = 0.0;
         for (i = 0; i < n; i++) { f[i] = res[i]; jac[i][j] = dres[i]; }
     }
@@ -345,17 +363,20 @@ static int kept(int n, const double a[], const double start[], double reach)
  * that makes a chain fail to close is halved (up to halvings times; then the block
  * fails and the next block is tried).  The cap counts every step, a polishing one too.
  * A solution farther than reach from the start is another assembly and refused.
- * Returns 1 on success with jac the Jacobian at the returned a, else 0. */
+ * Returns 1 on success with jac the Jacobian at the returned a, else 0; where the last pass
+ * is known to be the last (the polishing step's) it puts the residuals' rates at zero
+ * Add-link rate into ft (ft not null) and sets *rated. */
 static int newton(group_fn group, void *ctx, int n, double a[], double tol, int max_iter, double reach,
-                  int halvings, int polish, double jac[][LINKGEN_NMAX], int *iterations)
+                  int halvings, int polish, double jac[][LINKGEN_NMAX], double ft[], int *rated, int *iterations)
 {
     double start[LINKGEN_NMAX];
     double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], dx[LINKGEN_NMAX], trial[LINKGEN_NMAX], rhs[LINKGEN_NMAX];
     double jac2[LINKGEN_NMAX][LINKGEN_NMAX];
     int it, i, j, halving;
+    n = adds(n);
     *iterations = 0;
     for (i = 0; i < n; i++) start[i] = a[i];
-    if (jacobian(group, ctx, n, a, f, jac)) return 0;
+    if (jacobian(group, ctx, n, a, f, jac, NULL)) return 0;
     for (it = 1; it <= max_iter; it++) {
         double t = 1.0;
         const int done = met(n, f, tol);
@@ -366,7 +387,7 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
         if (solve_linear(n, (const double (*)[LINKGEN_NMAX])jac, rhs, dx) == 0.0) return 0;
         for (halving = 0; halving <= halvings; halving++) {
             for (i = 0; i < n; i++) trial[i] = a[i] + t * dx[i];
-            if (!jacobian(group, ctx, n, trial, f2, jac2)) { closed = 1; break; }
+            if (!jacobian(group, ctx, n, trial, f2, jac2, done ? ft : NULL)) { closed = 1; break; }
             t /= 2;
         }
         if (!closed) return 0;
@@ -375,7 +396,10 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
             f[i] = f2[i];
             for (j = 0; j < n; j++) jac[i][j] = jac2[i][j];
         }
-        if (done) return kept(n, a, start, reach);
+        if (done) {
+            if (ft) *rated = 1;
+            return kept(n, a, start, reach);
+        }
     }
     return !polish && met(n, f, tol) && kept(n, a, start, reach);
 }
@@ -415,10 +439,11 @@ static int fixed_point(group_fn group, void *ctx, int n, double a[], double tol,
     double start[LINKGEN_NMAX], j0[LINKGEN_NMAX][LINKGEN_NMAX];
     double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], dx[LINKGEN_NMAX], trial[LINKGEN_NMAX], rhs[LINKGEN_NMAX];
     int i, halving;
+    n = adds(n);
     *iterations = 0;
     for (i = 0; i < LINKGEN_NMAX; i++) rhs[i] = 0.0;  /* entries past n are never read */
     for (i = 0; i < n; i++) start[i] = a[i];
-    if (jacobian(group, ctx, n, a, f, j0)) return 0;
+    if (jacobian(group, ctx, n, a, f, j0, NULL)) return 0;
     while (!met(n, f, tol)) {
         double t = 1.0;
         int closed = 0;
@@ -441,7 +466,7 @@ static int fixed_point(group_fn group, void *ctx, int n, double a[], double tol,
         if (solve_linear(n, (const double (*)[LINKGEN_NMAX])j0, rhs, dx) == 0.0) return 0;
         for (i = 0; i < n; i++) a[i] += dx[i];
     }
-    if (jacobian(group, ctx, n, a, f, jac)) return 0;
+    if (jacobian(group, ctx, n, a, f, jac, NULL)) return 0;
     return kept(n, a, start, reach);
 }
 
@@ -475,59 +500,83 @@ static int loop_iteration(group_fn group, void *ctx, double a[], double tol, int
         ++*iterations;
         a[0] += f[0];
     }
-    if (jacobian(group, ctx, 1, a, f, jac)) return 0;
+    if (jacobian(group, ctx, 1, a, f, jac, NULL)) return 0;
     return kept(1, a, &start, reach);
 }
 
 /* The resolver strategy's iteration on one block from its start lengths a: the one place a
  * strategy is chosen (p->strategy; strategy loop's loop blocks: solve_variant).  Returns what
- * newton and fixed_point return. */
+ * newton and fixed_point return; Newton's ft and *rated as newton's. */
 static int solve_block(group_fn group, void *ctx, int n, double a[], const resolver_policy *p, double scale,
-                       double jac[][LINKGEN_NMAX], int *iterations)
+                       double jac[][LINKGEN_NMAX], double ft[], int *rated, int *iterations)
 {
     const double tol = p->tolerance * scale, reach = p->max_move * scale;
     if (p->strategy == RESOLVER_FIXED_POINT)
         return fixed_point(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac,
                            iterations);
-    return newton(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac, iterations);
+    return newton(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac, ft, rated,
+                  iterations);
 }
 
 /* One block's iteration: loop_iteration for a loop block (loop 1) under strategy loop, which
  * iterates its other blocks as the others do (solve_block). */
 static int solve_variant(group_fn group, void *ctx, int n, int loop, double a[], const resolver_policy *p,
-                         double scale, double jac[][LINKGEN_NMAX], int *iterations)
+                         double scale, double jac[][LINKGEN_NMAX], double ft[], int *rated, int *iterations)
 {
+    *rated = 0;
     if (p->strategy == RESOLVER_LOOP && loop)
         return loop_iteration(group, ctx, a, p->tolerance * scale, p->max_iterations, p->max_move * scale, p->polish,
                               jac, iterations);
-    return solve_block(group, ctx, n, a, p, scale, jac, iterations);
+    return solve_block(group, ctx, n, a, p, scale, jac, ft, rated, iterations);
 }
 
-/* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
- * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J), then
- * the final pass with them.  The rates are found at every order (they start the next
- * row).  *turn is the block's orientation, the sign of det J: it stays the same along the
+/* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0; df/dt
+ * ft where Newton's last pass measured it, else one pass at zero Add-link rate),
+ * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J).  The
+ * rates are found at every order (they start the next row).  The pass at the rates leaves
+ * the records' positions and rates; their accelerations are that pass's plus the Add-link
+ * accelerations times the records' sensitivities (bend), which Newton's last pass left for
+ * the last Add-link (the others' measured again at a: the same bits), as accelerations are
+ * linear in the Add-links' ones; a singular J (no accelerations) takes one pass more with
+ * them.  *turn is the block's orientation, the sign of det J: it stays the same along the
  * assembly while the block's chains keep their branches (it changes only at a singular
- * position; a solution of the other sign is another assembly).  Returns the status of
- * the final pass. */
-static int addlink_rates(group_fn group, void *ctx, int n, const double a[], const double jac[][LINKGEN_NMAX],
-                         int order, double *sigma, double *turn)
+ * position; a solution of the other sign is another assembly).  Returns the status of the
+ * last pass. */
+static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const double a[],
+                         const double jac[][LINKGEN_NMAX], const double ft[], int order, double *sigma, double *turn)
 {
-    double zero[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
-    double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], det;
-    int i;
-    for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
-    group(ctx, a, zero, zero, 1, f, df, NULL);
-    for (i = 0; i < n; i++) rhs[i] = -df[i];
-    det = solve_linear(n, jac, rhs, rates);
+    double zero[LINKGEN_NMAX], unit[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
+    double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], sens[LINKGEN_NMAX][LINKGEN_NSENS], det;
+    int i, j, st;
+    n = adds(n);
+    for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = unit[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
     if (order >= 2) {
-        group(ctx, a, rates, zero, 1, f, df, ddf);
-        for (i = 0; i < n; i++) rhs[i] = -ddf[i];
-        solve_linear(n, jac, rhs, accs);
-        for (i = 0; i < n; i++) accs[i] = det != 0.0 ? accs[i] : NAN;
+        bend(ctx, sens[n - 1], 0.0, 1);
+        for (j = 0; j < n - 1; j++) {
+            unit[j] = 1.0;
+            group(ctx, a, unit, zero, 0, f, df, NULL);
+            unit[j] = 0.0;
+            bend(ctx, sens[j], 0.0, 1);
+        }
     }
+    if (!ft) {
+        group(ctx, a, zero, zero, 1, f, df, NULL);
+        ft = df;
+    }
+    for (i = 0; i < n; i++) rhs[i] = -ft[i];
+    det = solve_linear(n, jac, rhs, rates);
     *sigma = conditioning(n, jac, det);
     *turn = det > 0.0 ? 1.0 : det < 0.0 ? -1.0 : 0.0;
+    if (order >= 2) {
+        st = group(ctx, a, rates, zero, 1, f, df, ddf);
+        for (i = 0; i < n; i++) rhs[i] = -ddf[i];
+        solve_linear(n, jac, rhs, accs);
+        if (det != 0.0) {
+            for (j = 0; j < n; j++) bend(ctx, sens[j], accs[j], 0);
+            return st;
+        }
+        for (i = 0; i < n; i++) accs[i] = NAN;
+    }
     return group(ctx, a, rates, accs, 1, f, df, ddf);
 }
 
@@ -541,19 +590,19 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
  * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
-static int resolve_variants(const group_fn fns[], const int sizes[], const int loops[], int count, void *ctx,
-                            double a[][LINKGEN_NMAX], int order, int prefer, int *its, double *sigma, double *turn,
-                            const double *chains, const resolver_policy *p, double scale)
+static int resolve_variants(const group_fn fns[], const bend_fn bends[], const int sizes[], const int loops[],
+                            int count, void *ctx, double a[][LINKGEN_NMAX], int order, int prefer, int *its,
+                            double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale)
 {
-    double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
-    int t, k, i, pass, best = -1, stuck = 0;
+    double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], ft[LINKGEN_NMAX], best_sigma = -1.0;
+    int t, k, i, pass, best = -1, stuck = 0, rated;
     for (pass = 0; pass < 2; pass++)  /* strategy loop: the loop blocks first, the Add-link blocks after */
     for (t = 0; t < count; t++) {
         int solved;
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         if (p->strategy == RESOLVER_LOOP ? (loops[k] != 0) != (pass == 0) : pass == 1) continue;
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
-        solved = solve_variant(fns[k], ctx, sizes[k], loops[k], x, p, scale, jac, its);
+        solved = solve_variant(fns[k], ctx, sizes[k], loops[k], x, p, scale, jac, ft, &rated, its);
         if (solved < 0) stuck = 1;
         if (solved <= 0) continue;
         if (*chains < p->min_chain_sigma) {
@@ -563,14 +612,15 @@ static int resolve_variants(const group_fn fns[], const int sizes[], const int l
             }
             continue;
         }
-        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
+        if (addlink_rates(fns[k], bends[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac,
+                          rated ? ft : NULL, order, sigma, turn) != 1)
             return k;
     }
     if (best >= 0) {
         for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
-        if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, its) > 0
-            && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma,
-                             turn) != 1)
+        if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, ft, &rated, its) > 0
+            && addlink_rates(fns[best], bends[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac,
+                             rated ? ft : NULL, order, sigma, turn) != 1)
             return best;
     }
     return stuck ? -2 : -1;
@@ -581,13 +631,14 @@ static int resolve_variants(const group_fn fns[], const int sizes[], const int l
  * rates off the solved pairs (so any of them can start the next row) and the solving block
  * keeps its orientation.  Returns 1 when a block solved, with *used that block; 0 when none
  * converged, -1 when the iteration of one did not contract. */
-static int resolve_group(const group_fn fns[], int count, lengths_fn lengths, void *ctx, double a[][LINKGEN_NMAX],
-                         double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma,
-                         const double *chains, int order, const resolver_mechanism *m, const resolver_policy *p)
+static int resolve_group(const group_fn fns[], const bend_fn bends[], int count, lengths_fn lengths, void *ctx,
+                         double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its,
+                         double *sigma, const double *chains, int order, const resolver_mechanism *m,
+                         const resolver_policy *p)
 {
     double turn = 0.0;
-    const int k = resolve_variants(fns, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used, its,
-                                   sigma, &turn, chains, p, m->length_scale);
+    const int k = resolve_variants(fns, bends, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used,
+                                   its, sigma, &turn, chains, p, m->length_scale);
     if (k < 0) return k == -1 ? 0 : -1;
     *used = k;
     lengths(ctx, a + first, ad + first);
@@ -646,19 +697,17 @@ static int path_pass(const resolver_path *path, const double in[], const double 
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
                    const double now[][LINKGEN_NMAX], const int sizes[], double slack, const resolver_policy *p)
 {
-    double move = 0.0, share = p->path_share;
+    double move = 0.0, off = 0.0, share = p->path_share;
     int g, i;
-    for (g = 0; g < LINKGEN_NBLOCKS; g++) {
-        for (i = 0; i < sizes[g]; i++) {
-            const double d = fabs(guess[g][i] - prev[g][i]);
+    for (g = 0; g < LINKGEN_NBLOCKS; g++) {  /* one pass: the largest predicted move and correction */
+        for (i = 0; i < adds(sizes[g]); i++) {
+            const double d = fabs(guess[g][i] - prev[g][i]), e = fabs(now[g][i] - guess[g][i]);
             if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
+            if (e > off || e != e) off = e;  /* a nan correction stays */
         }
         if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
     }
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < sizes[g]; i++)
-            if (!(fabs(now[g][i] - guess[g][i]) <= share * move + slack)) return 0; /* a nan too */
-    return 1;
+    return off <= share * move + slack;  /* a nan too */
 }
 
 /* Whether no input moved farther from the last row than a continuation step. */
@@ -680,7 +729,7 @@ static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_
 {
     int g, i;
     for (g = 0; g < LINKGEN_NBLOCKS; g++) {
-        for (i = 0; i < sizes[g]; i++)  /* a loop block's arc length is an angle: not reflected */
+        for (i = 0; i < adds(sizes[g]); i++)  /* a loop block's arc length is an angle: not reflected */
             out[g][i] = loops[g] ? a[g][i] + step * rate[g][i] : fabs(a[g][i] + step * rate[g][i]);
         for (; i < LINKGEN_NMAX - 1; i++) out[g][i] = a[g][i] + step * rate[g][i];
         out[g][LINKGEN_NMAX - 1] = a[g][LINKGEN_NMAX - 1];
@@ -715,7 +764,7 @@ static void predict(const resolver_warm *warm, const double in[], const int size
     back = warm_tau(warm, warm->back_in);
     if (back == 0.0) return;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < sizes[g]; i++) {
+        for (i = 0; i < adds(sizes[g]); i++) {
             const double bend = (warm->back_a[g][i] - warm->a[g][i] - back * warm->ad[g][i]) / (back * back);
             const double ahead = warm->a[g][i] + tau * warm->ad[g][i] + tau * tau * bend;
             a[g][i] = loops[g] ? ahead : fabs(ahead);
@@ -753,7 +802,7 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
         if (passes++ == p->walk_passes) return 0;
         fast = 0.0;
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < m->sizes[g]; i++)
+            for (i = 0; i < adds(m->sizes[g]); i++)
                 if (fabs(rate[g][i]) > fast) fast = fabs(rate[g][i]);
         if (fast * h > reach) h = reach / fast;
         tt = fmin(1.0, t + h);
@@ -828,16 +877,14 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     int used[LINKGEN_NGROUPS];
     int code = 0, solved = 0, g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = m->sketch_in[i];
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = m->sketch_a[g][i];
+    memcpy(a, m->sketch_a, sizeof a);  /* the block states copied whole (a loop per entry costs more) */
     for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = *warm->valid ? warm->used[g] : 0;
     if (past) {
         /* past a limit position: the pass fails the row at once with the limit's code */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
     } else if (*warm->valid && within(in, warm->in, m->limits)) {
         predict(warm, in, m->sizes, m->loops, p->predictor, guess);
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* predictor order 0: from the warm states as they were */
-            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = p->predictor ? guess[g][i] : warm->a[g][i];
+        memcpy(a, p->predictor ? guess : warm->a, sizeof a);  /* predictor order 0: the warm states as they were */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
         solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
                                       (const double (*)[LINKGEN_NMAX])a, m->sizes,
@@ -845,8 +892,7 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     }
     if (!solved && *warm->valid) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = warm->in[i];
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = warm->a[g][i];
+        memcpy(a, warm->a, sizeof a);
         for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = warm->used[g];
     }
     if (!solved && (code <= 0 || reason_of(code) == m->not_converged)) {
@@ -868,18 +914,14 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         *warm->back_valid = solved && *warm->valid && code != m->another;
         if (*warm->back_valid) {
             for (i = 0; i < LINKGEN_NINPUTS; i++) warm->back_in[i] = warm->in[i];
-            for (g = 0; g < LINKGEN_NBLOCKS; g++)
-                for (i = 0; i < LINKGEN_NMAX; i++) warm->back_a[g][i] = warm->a[g][i];
+            memcpy(warm->back_a, warm->a, sizeof a);
         }
     }
     *warm->valid = solved;
     if (solved) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) { warm->in[i] = in[i]; warm->din[i] = din[i]; }
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) {
-                warm->a[g][i] = a[g][i];
-                warm->ad[g][i] = ad[g][i];
-            }
+        memcpy(warm->a, a, sizeof a);
+        memcpy(warm->ad, ad, sizeof ad);
         for (g = 0; g < LINKGEN_NGROUPS; g++) warm->used[g] = used[g];
     }
     return code;
@@ -980,6 +1022,127 @@ static inline void link_residual_1(const POINT *j1, const POINT *j2, const VARIA
     const double rd = r == 0 ? sqrt(dvx * dvx + dvy * dvy) : (dx * dvx + dy * dvy) * ir;
     f->v = r - l->v;
     f->dv = rd - l->dv;
+}
+
+/* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
+#if defined(__GNUC__)
+static inline int RRR_links_2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, const POINT *j1_t, const POINT *j2_t, const VARIABLE *l1_t, const VARIABLE *l2_t, POINT *jb, POINT *jb_t, double *sigma_out) __attribute__((always_inline));
+#endif
+static inline int RRR_links_2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, const POINT *j1_t, const POINT *j2_t, const VARIABLE *l1_t, const VARIABLE *l2_t, POINT *jb, POINT *jb_t, double *sigma_out)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double q = sqrt(dx * dx + dy * dy);
+    const double iq = q == 0 ? NAN : 1 / q;
+    const double ux = dx * iq;
+    const double uy = dy * iq;
+    const double hi = (l2->v > l1->v ? l2->v : l1->v);
+    const double lo = (l2->v < l1->v ? l2->v : l1->v);
+    const double x = (q > hi ? q : hi);
+    const double z = (q < lo ? q : lo);
+    const double y = q >= hi ? hi : q <= lo ? lo : q;
+    const double k = z - (x - y);
+    const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
+    const double kk = (0.0 > k ? 0.0 : k);
+    const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
+    const double h = area4 * iq / 2;
+    const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double flat = q >= hi ? (l1->v + (q - l2->v)) / 2 : l1->v >= l2->v ? (l1->v + (q + l2->v)) / 2 : (q - (l1->v + l2->v)) / 2;
+    const double at = k > 0 ? a : flat;
+    const double hn = minv * h;
+    const double e1x = at * ux - hn * uy;
+    const double e1y = at * uy + hn * ux;
+    const double ratio = fail ? 0 : area4 * (0.5 / (l1->v * l2->v));
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
+    const double e2x = -a2 * ux - hn * uy;
+    const double e2y = -a2 * uy + hn * ux;
+    const double ihq = hn == 0 ? NAN : 1 / (hn * q);
+    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
+    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
+    const double buv = (r1v - r2v) * iq;
+    const double bnv = (a2 * r1v + a * r2v) * ihq;
+    const double bvx = buv * ux - bnv * uy;
+    const double bvy = buv * uy + bnv * ux;
+    const double r1v_t = l1->v * l1_t->dv + (e1x * j1_t->DP.x + e1y * j1_t->DP.y);
+    const double r2v_t = l2->v * l2_t->dv + (e2x * j2_t->DP.x + e2y * j2_t->DP.y);
+    const double buv_t = (r1v_t - r2v_t) * iq;
+    const double bnv_t = (a2 * r1v_t + a * r2v_t) * ihq;
+    const double bvx_t = buv_t * ux - bnv_t * uy;
+    const double bvy_t = buv_t * uy + bnv_t * ux;
+    const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    jb->P.x = j1->P.x + e1x;
+    jb->P.y = j1->P.y + e1y;
+    jb->DP.x = bvx;
+    jb->DP.y = bvy;
+    jb_t->P.x = j1->P.x + e1x;
+    jb_t->P.y = j1->P.y + e1y;
+    jb_t->DP.x = bvx_t;
+    jb_t->DP.y = bvy_t;
+    *sigma_out = sigma;
+    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb_t->P.x = NAN; jb_t->P.y = NAN; jb_t->DP.x = NAN; jb_t->DP.y = NAN; }
+    if (st == 1 || st == 3) { jb->DP.x = NAN; jb->DP.y = NAN; jb_t->DP.x = NAN; jb_t->DP.y = NAN; }
+    return st;
+}
+
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
+#if defined(__GNUC__)
+static inline int link_point_2(const POINT *j1, const POINT *j2, double gsi, double eta, const POINT *j1_t, const POINT *j2_t, POINT *jc, POINT *jc_t) __attribute__((always_inline));
+#endif
+static inline int link_point_2(const POINT *j1, const POINT *j2, double gsi, double eta, const POINT *j1_t, const POINT *j2_t, POINT *jc, POINT *jc_t)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = ir * ir;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double dvx_t = j2_t->DP.x - j1_t->DP.x;
+    const double dvy_t = j2_t->DP.y - j1_t->DP.y;
+    const double om_t = (dx * dvy_t - dy * dvx_t) * ir2;
+    const double rvx_t = -om_t * ry;
+    const double rvy_t = om_t * rx;
+    const int st = r2 == 0 ? 1 : 0;
+    jc->P.x = j1->P.x + rx;
+    jc->P.y = j1->P.y + ry;
+    jc->DP.x = j1->DP.x + rvx;
+    jc->DP.y = j1->DP.y + rvy;
+    jc_t->P.x = j1->P.x + rx;
+    jc_t->P.y = j1->P.y + ry;
+    jc_t->DP.x = j1_t->DP.x + rvx_t;
+    jc_t->DP.y = j1_t->DP.y + rvy_t;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc_t->P.x = NAN; jc_t->P.y = NAN; jc_t->DP.x = NAN; jc_t->DP.y = NAN; }
+    return st;
+}
+
+/* Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part). */
+#if defined(__GNUC__)
+static inline void link_residual_2(const POINT *j1, const POINT *j2, const VARIABLE *l, const POINT *j1_t, const POINT *j2_t, const VARIABLE *l_t, VARIABLE *f, VARIABLE *f_t) __attribute__((always_inline));
+#endif
+static inline void link_residual_2(const POINT *j1, const POINT *j2, const VARIABLE *l, const POINT *j1_t, const POINT *j2_t, const VARIABLE *l_t, VARIABLE *f, VARIABLE *f_t)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double r = sqrt(dx * dx + dy * dy);
+    const double ir = r == 0 ? NAN : 1 / r;
+    const double rd = r == 0 ? sqrt(dvx * dvx + dvy * dvy) : (dx * dvx + dy * dvy) * ir;
+    const double dvx_t = j2_t->DP.x - j1_t->DP.x;
+    const double dvy_t = j2_t->DP.y - j1_t->DP.y;
+    const double rd_t = r == 0 ? sqrt(dvx_t * dvx_t + dvy_t * dvy_t) : (dx * dvx_t + dy * dvy_t) * ir;
+    f->v = r - l->v;
+    f->dv = rd - l->dv;
+    f_t->v = r - l->v;
+    f_t->dv = rd_t - l_t->dv;
 }
 
 
@@ -1125,20 +1288,42 @@ static const VARIABLE ZERO_LENGTH = { 0.0, 0.0, 0.0 };
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_1(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1.v = a[0];
     w->add1.dv = da[0];
     w->add1.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add1 = ZERO_LENGTH;
+        POINT t_p_J4;
+        POINT t_p_J2;
+        POINT t_p_J5;
+        VARIABLE t_f1;
+        t_add1.v = a[0];
+        st = RRR_links_2(&p_J3, &p_J6, &l_right_rocker2, &w->add1, w->br4, &p_J3, &w->p_J6, &l_right_rocker2, &t_add1, &w->p_J4, &t_p_J4, &w->sigma[4]);
+        if (st == 1) return 1;
+        if (w->sigma[4] < w->chains) w->chains = w->sigma[4];
+        st = RRR_links_2(&p_J1, &w->p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, w->br5, &p_J1, &t_p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, &w->p_J2, &t_p_J2, &w->sigma[5]);
+        if (st == 1) return 1;
+        if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
+        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_J5, &l_right_coupler, &w->p_J6, &t_p_J5, &l_right_coupler, &w->f1, &t_f1);
+        f[0] = w->f1.v;
+        df[0] = w->f1.dv;
+        ddf[0] = t_f1.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_J3, &p_J6, &l_right_rocker2, &w->add1, w->br4, &w->p_J4, &w->sigma[4]);
         if (st == 1) return 1;
@@ -1179,25 +1364,74 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
 }
 
 
+/* The sensitivities of the records block 1 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1.dv;
+        s[1] = w->p_J4.DP.x;
+        s[2] = w->p_J4.DP.y;
+        s[3] = w->p_J2.DP.x;
+        s[4] = w->p_J2.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1.dv;
+        return;
+    }
+    w->add1.ddv += acc * s[0];
+    w->p_J4.DDP.x += acc * s[1];
+    w->p_J4.DDP.y += acc * s[2];
+    w->p_J2.DDP.x += acc * s[3];
+    w->p_J2.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1.ddv += acc * s[7];
+}
+
+
 /* Steps 24, 25, 26, 27, iterated by the resolver of step 8   (fallback 1: the Add-link J6-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_1_v1(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v1.v = a[0];
     w->add1_v1.dv = da[0];
     w->add1_v1.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add1_v1 = ZERO_LENGTH;
+        POINT t_p_J2;
+        POINT t_p_J4;
+        POINT t_p_J5;
+        VARIABLE t_f1_v1;
+        t_add1_v1.v = a[0];
+        st = RRR_links_2(&p_J1, &p_J6, &l_right_rocker1, &w->add1_v1, w->br24, &p_J1, &w->p_J6, &l_right_rocker1, &t_add1_v1, &w->p_J2, &t_p_J2, &w->sigma[24]);
+        if (st == 1) return 1;
+        if (w->sigma[24] < w->chains) w->chains = w->sigma[24];
+        st = RRR_links_2(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br25, &t_p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, &w->p_J4, &t_p_J4, &w->sigma[25]);
+        if (st == 1) return 1;
+        if (w->sigma[25] < w->chains) w->chains = w->sigma[25];
+        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_J5, &l_right_coupler, &w->p_J6, &t_p_J5, &l_right_coupler, &w->f1_v1, &t_f1_v1);
+        f[0] = w->f1_v1.v;
+        df[0] = w->f1_v1.dv;
+        ddf[0] = t_f1_v1.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_J1, &p_J6, &l_right_rocker1, &w->add1_v1, w->br24, &w->p_J2, &w->sigma[24]);
         if (st == 1) return 1;
@@ -1238,25 +1472,74 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 1_v1 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v1(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v1.dv;
+        s[1] = w->p_J2.DP.x;
+        s[2] = w->p_J2.DP.y;
+        s[3] = w->p_J4.DP.x;
+        s[4] = w->p_J4.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v1.dv;
+        return;
+    }
+    w->add1_v1.ddv += acc * s[0];
+    w->p_J2.DDP.x += acc * s[1];
+    w->p_J2.DDP.y += acc * s[2];
+    w->p_J4.DDP.x += acc * s[3];
+    w->p_J4.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v1.ddv += acc * s[7];
+}
+
+
 /* Steps 28, 29, 30, 31, iterated by the resolver of step 8   (fallback 2: the Add-link J7-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_1_v2(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v2.v = a[0];
     w->add1_v2.dv = da[0];
     w->add1_v2.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add1_v2 = ZERO_LENGTH;
+        POINT t_p_J2;
+        POINT t_p_J4;
+        POINT t_p_J5;
+        VARIABLE t_f1_v2;
+        t_add1_v2.v = a[0];
+        st = RRR_links_2(&p_J1, &p_J7, &l_right_rocker1, &w->add1_v2, w->br28, &p_J1, &p_J7, &l_right_rocker1, &t_add1_v2, &w->p_J2, &t_p_J2, &w->sigma[28]);
+        if (st == 1) return 1;
+        if (w->sigma[28] < w->chains) w->chains = w->sigma[28];
+        st = RRR_links_2(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br29, &t_p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, &w->p_J4, &t_p_J4, &w->sigma[29]);
+        if (st == 1) return 1;
+        if (w->sigma[29] < w->chains) w->chains = w->sigma[29];
+        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_J5, &l_right_coupler, &w->p_J6, &t_p_J5, &l_right_coupler, &w->f1_v2, &t_f1_v2);
+        f[0] = w->f1_v2.v;
+        df[0] = w->f1_v2.dv;
+        ddf[0] = t_f1_v2.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_J1, &p_J7, &l_right_rocker1, &w->add1_v2, w->br28, &w->p_J2, &w->sigma[28]);
         if (st == 1) return 1;
@@ -1297,25 +1580,74 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 1_v2 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v2(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v2.dv;
+        s[1] = w->p_J2.DP.x;
+        s[2] = w->p_J2.DP.y;
+        s[3] = w->p_J4.DP.x;
+        s[4] = w->p_J4.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v2.dv;
+        return;
+    }
+    w->add1_v2.ddv += acc * s[0];
+    w->p_J2.DDP.x += acc * s[1];
+    w->p_J2.DDP.y += acc * s[2];
+    w->p_J4.DDP.x += acc * s[3];
+    w->p_J4.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v2.ddv += acc * s[7];
+}
+
+
 /* Steps 32, 33, 34, 35, iterated by the resolver of step 8   (fallback 3: the Add-link J7-J4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_1_v3(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v3.v = a[0];
     w->add1_v3.dv = da[0];
     w->add1_v3.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add1_v3 = ZERO_LENGTH;
+        POINT t_p_J4;
+        POINT t_p_J2;
+        POINT t_p_J5;
+        VARIABLE t_f1_v3;
+        t_add1_v3.v = a[0];
+        st = RRR_links_2(&p_J3, &p_J7, &l_right_rocker2, &w->add1_v3, w->br32, &p_J3, &p_J7, &l_right_rocker2, &t_add1_v3, &w->p_J4, &t_p_J4, &w->sigma[32]);
+        if (st == 1) return 1;
+        if (w->sigma[32] < w->chains) w->chains = w->sigma[32];
+        st = RRR_links_2(&p_J1, &w->p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, w->br33, &p_J1, &t_p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, &w->p_J2, &t_p_J2, &w->sigma[33]);
+        if (st == 1) return 1;
+        if (w->sigma[33] < w->chains) w->chains = w->sigma[33];
+        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_J5, &l_right_coupler, &w->p_J6, &t_p_J5, &l_right_coupler, &w->f1_v3, &t_f1_v3);
+        f[0] = w->f1_v3.v;
+        df[0] = w->f1_v3.dv;
+        ddf[0] = t_f1_v3.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_J3, &p_J7, &l_right_rocker2, &w->add1_v3, w->br32, &w->p_J4, &w->sigma[32]);
         if (st == 1) return 1;
@@ -1356,25 +1688,74 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 1_v3 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v3(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v3.dv;
+        s[1] = w->p_J4.DP.x;
+        s[2] = w->p_J4.DP.y;
+        s[3] = w->p_J2.DP.x;
+        s[4] = w->p_J2.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v3.dv;
+        return;
+    }
+    w->add1_v3.ddv += acc * s[0];
+    w->p_J4.DDP.x += acc * s[1];
+    w->p_J4.DDP.y += acc * s[2];
+    w->p_J2.DDP.x += acc * s[3];
+    w->p_J2.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v3.ddv += acc * s[7];
+}
+
+
 /* Steps 36, 37, 38, 39, iterated by the resolver of step 8   (fallback 4: the Add-link J1-J4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_1_v4(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v4.v = a[0];
     w->add1_v4.dv = da[0];
     w->add1_v4.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add1_v4 = ZERO_LENGTH;
+        POINT t_p_J4;
+        POINT t_p_J2;
+        POINT t_p_J5;
+        VARIABLE t_f1_v4;
+        t_add1_v4.v = a[0];
+        st = RRR_links_2(&p_J3, &p_J1, &l_right_rocker2, &w->add1_v4, w->br36, &p_J3, &p_J1, &l_right_rocker2, &t_add1_v4, &w->p_J4, &t_p_J4, &w->sigma[36]);
+        if (st == 1) return 1;
+        if (w->sigma[36] < w->chains) w->chains = w->sigma[36];
+        st = RRR_links_2(&p_J1, &w->p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, w->br37, &p_J1, &t_p_J4, &l_right_rocker1, &l_right_ternary_J2_J4, &w->p_J2, &t_p_J2, &w->sigma[37]);
+        if (st == 1) return 1;
+        if (w->sigma[37] < w->chains) w->chains = w->sigma[37];
+        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_J5, &l_right_coupler, &w->p_J6, &t_p_J5, &l_right_coupler, &w->f1_v4, &t_f1_v4);
+        f[0] = w->f1_v4.v;
+        df[0] = w->f1_v4.dv;
+        ddf[0] = t_f1_v4.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_J3, &p_J1, &l_right_rocker2, &w->add1_v4, w->br36, &w->p_J4, &w->sigma[36]);
         if (st == 1) return 1;
@@ -1415,25 +1796,74 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 1_v4 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v4(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v4.dv;
+        s[1] = w->p_J4.DP.x;
+        s[2] = w->p_J4.DP.y;
+        s[3] = w->p_J2.DP.x;
+        s[4] = w->p_J2.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v4.dv;
+        return;
+    }
+    w->add1_v4.ddv += acc * s[0];
+    w->p_J4.DDP.x += acc * s[1];
+    w->p_J4.DDP.y += acc * s[2];
+    w->p_J2.DDP.x += acc * s[3];
+    w->p_J2.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v4.ddv += acc * s[7];
+}
+
+
 /* Steps 40, 41, 42, 43, iterated by the resolver of step 8   (fallback 5: the Add-link J3-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_1_v5(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v5.v = a[0];
     w->add1_v5.dv = da[0];
     w->add1_v5.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add1_v5 = ZERO_LENGTH;
+        POINT t_p_J2;
+        POINT t_p_J4;
+        POINT t_p_J5;
+        VARIABLE t_f1_v5;
+        t_add1_v5.v = a[0];
+        st = RRR_links_2(&p_J1, &p_J3, &l_right_rocker1, &w->add1_v5, w->br40, &p_J1, &p_J3, &l_right_rocker1, &t_add1_v5, &w->p_J2, &t_p_J2, &w->sigma[40]);
+        if (st == 1) return 1;
+        if (w->sigma[40] < w->chains) w->chains = w->sigma[40];
+        st = RRR_links_2(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br41, &t_p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, &w->p_J4, &t_p_J4, &w->sigma[41]);
+        if (st == 1) return 1;
+        if (w->sigma[41] < w->chains) w->chains = w->sigma[41];
+        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_J5, &l_right_coupler, &w->p_J6, &t_p_J5, &l_right_coupler, &w->f1_v5, &t_f1_v5);
+        f[0] = w->f1_v5.v;
+        df[0] = w->f1_v5.dv;
+        ddf[0] = t_f1_v5.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_J1, &p_J3, &l_right_rocker1, &w->add1_v5, w->br40, &w->p_J2, &w->sigma[40]);
         if (st == 1) return 1;
@@ -1474,25 +1904,74 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 1_v5 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v5(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v5.dv;
+        s[1] = w->p_J2.DP.x;
+        s[2] = w->p_J2.DP.y;
+        s[3] = w->p_J4.DP.x;
+        s[4] = w->p_J4.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v5.dv;
+        return;
+    }
+    w->add1_v5.ddv += acc * s[0];
+    w->p_J2.DDP.x += acc * s[1];
+    w->p_J2.DDP.y += acc * s[2];
+    w->p_J4.DDP.x += acc * s[3];
+    w->p_J4.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v5.ddv += acc * s[7];
+}
+
+
 /* Steps 44, 45, 46, 47, iterated by the resolver of step 8   (fallback 6: the Add-link K1-J2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_1_v6(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v6.v = a[0];
     w->add1_v6.dv = da[0];
     w->add1_v6.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add1_v6 = ZERO_LENGTH;
+        POINT t_p_J2;
+        POINT t_p_J4;
+        POINT t_p_J5;
+        VARIABLE t_f1_v6;
+        t_add1_v6.v = a[0];
+        st = RRR_links_2(&p_J1, &p_K1, &l_right_rocker1, &w->add1_v6, w->br44, &p_J1, &p_K1, &l_right_rocker1, &t_add1_v6, &w->p_J2, &t_p_J2, &w->sigma[44]);
+        if (st == 1) return 1;
+        if (w->sigma[44] < w->chains) w->chains = w->sigma[44];
+        st = RRR_links_2(&w->p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, w->br45, &t_p_J2, &p_J3, &l_right_ternary_J2_J4, &l_right_rocker2, &w->p_J4, &t_p_J4, &w->sigma[45]);
+        if (st == 1) return 1;
+        if (w->sigma[45] < w->chains) w->chains = w->sigma[45];
+        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_J5, &l_right_coupler, &w->p_J6, &t_p_J5, &l_right_coupler, &w->f1_v6, &t_f1_v6);
+        f[0] = w->f1_v6.v;
+        df[0] = w->f1_v6.dv;
+        ddf[0] = t_f1_v6.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_J1, &p_K1, &l_right_rocker1, &w->add1_v6, w->br44, &w->p_J2, &w->sigma[44]);
         if (st == 1) return 1;
@@ -1533,25 +2012,74 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 1_v6 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_1_v6(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add1_v6.dv;
+        s[1] = w->p_J2.DP.x;
+        s[2] = w->p_J2.DP.y;
+        s[3] = w->p_J4.DP.x;
+        s[4] = w->p_J4.DP.y;
+        s[5] = w->p_J5.DP.x;
+        s[6] = w->p_J5.DP.y;
+        s[7] = w->f1_v6.dv;
+        return;
+    }
+    w->add1_v6.ddv += acc * s[0];
+    w->p_J2.DDP.x += acc * s[1];
+    w->p_J2.DDP.y += acc * s[2];
+    w->p_J4.DDP.x += acc * s[3];
+    w->p_J4.DDP.y += acc * s[4];
+    w->p_J5.DDP.x += acc * s[5];
+    w->p_J5.DDP.y += acc * s[6];
+    w->f1_v6.ddv += acc * s[7];
+}
+
+
 /* Steps 10, 11, 12, 13, iterated by the resolver of step 14:
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_2(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add2.v = a[0];
     w->add2.dv = da[0];
     w->add2.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add2 = ZERO_LENGTH;
+        POINT t_p_K4;
+        POINT t_p_K2;
+        POINT t_p_K5;
+        VARIABLE t_f2;
+        t_add2.v = a[0];
+        st = RRR_links_2(&p_K3, &p_J6, &l_left_rocker2, &w->add2, w->br10, &p_K3, &w->p_J6, &l_left_rocker2, &t_add2, &w->p_K4, &t_p_K4, &w->sigma[10]);
+        if (st == 1) return 1;
+        if (w->sigma[10] < w->chains) w->chains = w->sigma[10];
+        st = RRR_links_2(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br11, &p_K1, &t_p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, &w->p_K2, &t_p_K2, &w->sigma[11]);
+        if (st == 1) return 1;
+        if (w->sigma[11] < w->chains) w->chains = w->sigma[11];
+        st = link_point_2(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &t_p_K4, &t_p_K2, &w->p_K5, &t_p_K5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_K5, &l_left_coupler, &w->p_J6, &t_p_K5, &l_left_coupler, &w->f2, &t_f2);
+        f[0] = w->f2.v;
+        df[0] = w->f2.dv;
+        ddf[0] = t_f2.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_K3, &p_J6, &l_left_rocker2, &w->add2, w->br10, &w->p_K4, &w->sigma[10]);
         if (st == 1) return 1;
@@ -1592,12 +2120,40 @@ static int group_2(void *ctx, const double a[], const double da[], const double 
 }
 
 
+/* The sensitivities of the records block 2 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2.dv;
+        s[1] = w->p_K4.DP.x;
+        s[2] = w->p_K4.DP.y;
+        s[3] = w->p_K2.DP.x;
+        s[4] = w->p_K2.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2.dv;
+        return;
+    }
+    w->add2.ddv += acc * s[0];
+    w->p_K4.DDP.x += acc * s[1];
+    w->p_K4.DDP.y += acc * s[2];
+    w->p_K2.DDP.x += acc * s[3];
+    w->p_K2.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2.ddv += acc * s[7];
+}
+
+
 /* Steps 48, 49, 50, 51, iterated by the resolver of step 14   (fallback 1: the Add-link J5-K2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_2_v1(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
@@ -1605,7 +2161,7 @@ static int group_2_v1(void *ctx, const double a[], const double da[], const doub
     POINT p_J5 = w->p_J5;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J5.DP.x = 0.0; p_J5.DP.y = 0.0; p_J5.DDP.x = 0.0; p_J5.DDP.y = 0.0;
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
@@ -1613,6 +2169,27 @@ static int group_2_v1(void *ctx, const double a[], const double da[], const doub
     w->add2_v1.dv = da[0];
     w->add2_v1.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add2_v1 = ZERO_LENGTH;
+        POINT t_p_K2;
+        POINT t_p_K4;
+        POINT t_p_K5;
+        VARIABLE t_f2_v1;
+        t_add2_v1.v = a[0];
+        st = RRR_links_2(&p_K1, &p_J5, &l_left_rocker1, &w->add2_v1, w->br48, &p_K1, &w->p_J5, &l_left_rocker1, &t_add2_v1, &w->p_K2, &t_p_K2, &w->sigma[48]);
+        if (st == 1) return 1;
+        if (w->sigma[48] < w->chains) w->chains = w->sigma[48];
+        st = RRR_links_2(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br49, &t_p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, &w->p_K4, &t_p_K4, &w->sigma[49]);
+        if (st == 1) return 1;
+        if (w->sigma[49] < w->chains) w->chains = w->sigma[49];
+        st = link_point_2(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &t_p_K4, &t_p_K2, &w->p_K5, &t_p_K5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_K5, &l_left_coupler, &w->p_J6, &t_p_K5, &l_left_coupler, &w->f2_v1, &t_f2_v1);
+        f[0] = w->f2_v1.v;
+        df[0] = w->f2_v1.dv;
+        ddf[0] = t_f2_v1.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_K1, &p_J5, &l_left_rocker1, &w->add2_v1, w->br48, &w->p_K2, &w->sigma[48]);
         if (st == 1) return 1;
@@ -1653,12 +2230,40 @@ static int group_2_v1(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 2_v1 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v1(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v1.dv;
+        s[1] = w->p_K2.DP.x;
+        s[2] = w->p_K2.DP.y;
+        s[3] = w->p_K4.DP.x;
+        s[4] = w->p_K4.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v1.dv;
+        return;
+    }
+    w->add2_v1.ddv += acc * s[0];
+    w->p_K2.DDP.x += acc * s[1];
+    w->p_K2.DDP.y += acc * s[2];
+    w->p_K4.DDP.x += acc * s[3];
+    w->p_K4.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v1.ddv += acc * s[7];
+}
+
+
 /* Steps 52, 53, 54, 55, iterated by the resolver of step 14   (fallback 2: the Add-link J5-K4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_2_v2(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
@@ -1666,7 +2271,7 @@ static int group_2_v2(void *ctx, const double a[], const double da[], const doub
     POINT p_J5 = w->p_J5;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J5.DP.x = 0.0; p_J5.DP.y = 0.0; p_J5.DDP.x = 0.0; p_J5.DDP.y = 0.0;
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
@@ -1674,6 +2279,27 @@ static int group_2_v2(void *ctx, const double a[], const double da[], const doub
     w->add2_v2.dv = da[0];
     w->add2_v2.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add2_v2 = ZERO_LENGTH;
+        POINT t_p_K4;
+        POINT t_p_K2;
+        POINT t_p_K5;
+        VARIABLE t_f2_v2;
+        t_add2_v2.v = a[0];
+        st = RRR_links_2(&p_K3, &p_J5, &l_left_rocker2, &w->add2_v2, w->br52, &p_K3, &w->p_J5, &l_left_rocker2, &t_add2_v2, &w->p_K4, &t_p_K4, &w->sigma[52]);
+        if (st == 1) return 1;
+        if (w->sigma[52] < w->chains) w->chains = w->sigma[52];
+        st = RRR_links_2(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br53, &p_K1, &t_p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, &w->p_K2, &t_p_K2, &w->sigma[53]);
+        if (st == 1) return 1;
+        if (w->sigma[53] < w->chains) w->chains = w->sigma[53];
+        st = link_point_2(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &t_p_K4, &t_p_K2, &w->p_K5, &t_p_K5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_K5, &l_left_coupler, &w->p_J6, &t_p_K5, &l_left_coupler, &w->f2_v2, &t_f2_v2);
+        f[0] = w->f2_v2.v;
+        df[0] = w->f2_v2.dv;
+        ddf[0] = t_f2_v2.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_K3, &p_J5, &l_left_rocker2, &w->add2_v2, w->br52, &w->p_K4, &w->sigma[52]);
         if (st == 1) return 1;
@@ -1714,12 +2340,40 @@ static int group_2_v2(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 2_v2 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v2(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v2.dv;
+        s[1] = w->p_K4.DP.x;
+        s[2] = w->p_K4.DP.y;
+        s[3] = w->p_K2.DP.x;
+        s[4] = w->p_K2.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v2.dv;
+        return;
+    }
+    w->add2_v2.ddv += acc * s[0];
+    w->p_K4.DDP.x += acc * s[1];
+    w->p_K4.DDP.y += acc * s[2];
+    w->p_K2.DDP.x += acc * s[3];
+    w->p_K2.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v2.ddv += acc * s[7];
+}
+
+
 /* Steps 56, 57, 58, 59, iterated by the resolver of step 14   (fallback 3: the Add-link J2-K4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_2_v3(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
@@ -1727,7 +2381,7 @@ static int group_2_v3(void *ctx, const double a[], const double da[], const doub
     POINT p_J2 = w->p_J2;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J2.DP.x = 0.0; p_J2.DP.y = 0.0; p_J2.DDP.x = 0.0; p_J2.DDP.y = 0.0;
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
@@ -1735,6 +2389,27 @@ static int group_2_v3(void *ctx, const double a[], const double da[], const doub
     w->add2_v3.dv = da[0];
     w->add2_v3.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add2_v3 = ZERO_LENGTH;
+        POINT t_p_K4;
+        POINT t_p_K2;
+        POINT t_p_K5;
+        VARIABLE t_f2_v3;
+        t_add2_v3.v = a[0];
+        st = RRR_links_2(&p_K3, &p_J2, &l_left_rocker2, &w->add2_v3, w->br56, &p_K3, &w->p_J2, &l_left_rocker2, &t_add2_v3, &w->p_K4, &t_p_K4, &w->sigma[56]);
+        if (st == 1) return 1;
+        if (w->sigma[56] < w->chains) w->chains = w->sigma[56];
+        st = RRR_links_2(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br57, &p_K1, &t_p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, &w->p_K2, &t_p_K2, &w->sigma[57]);
+        if (st == 1) return 1;
+        if (w->sigma[57] < w->chains) w->chains = w->sigma[57];
+        st = link_point_2(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &t_p_K4, &t_p_K2, &w->p_K5, &t_p_K5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_K5, &l_left_coupler, &w->p_J6, &t_p_K5, &l_left_coupler, &w->f2_v3, &t_f2_v3);
+        f[0] = w->f2_v3.v;
+        df[0] = w->f2_v3.dv;
+        ddf[0] = t_f2_v3.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_K3, &p_J2, &l_left_rocker2, &w->add2_v3, w->br56, &w->p_K4, &w->sigma[56]);
         if (st == 1) return 1;
@@ -1775,12 +2450,40 @@ static int group_2_v3(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 2_v3 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v3(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v3.dv;
+        s[1] = w->p_K4.DP.x;
+        s[2] = w->p_K4.DP.y;
+        s[3] = w->p_K2.DP.x;
+        s[4] = w->p_K2.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v3.dv;
+        return;
+    }
+    w->add2_v3.ddv += acc * s[0];
+    w->p_K4.DDP.x += acc * s[1];
+    w->p_K4.DDP.y += acc * s[2];
+    w->p_K2.DDP.x += acc * s[3];
+    w->p_K2.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v3.ddv += acc * s[7];
+}
+
+
 /* Steps 60, 61, 62, 63, iterated by the resolver of step 14   (fallback 4: the Add-link J4-K4):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_2_v4(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
@@ -1788,7 +2491,7 @@ static int group_2_v4(void *ctx, const double a[], const double da[], const doub
     POINT p_J4 = w->p_J4;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J4.DP.x = 0.0; p_J4.DP.y = 0.0; p_J4.DDP.x = 0.0; p_J4.DDP.y = 0.0;
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
@@ -1796,6 +2499,27 @@ static int group_2_v4(void *ctx, const double a[], const double da[], const doub
     w->add2_v4.dv = da[0];
     w->add2_v4.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add2_v4 = ZERO_LENGTH;
+        POINT t_p_K4;
+        POINT t_p_K2;
+        POINT t_p_K5;
+        VARIABLE t_f2_v4;
+        t_add2_v4.v = a[0];
+        st = RRR_links_2(&p_K3, &p_J4, &l_left_rocker2, &w->add2_v4, w->br60, &p_K3, &w->p_J4, &l_left_rocker2, &t_add2_v4, &w->p_K4, &t_p_K4, &w->sigma[60]);
+        if (st == 1) return 1;
+        if (w->sigma[60] < w->chains) w->chains = w->sigma[60];
+        st = RRR_links_2(&p_K1, &w->p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, w->br61, &p_K1, &t_p_K4, &l_left_rocker1, &l_left_ternary_K2_K4, &w->p_K2, &t_p_K2, &w->sigma[61]);
+        if (st == 1) return 1;
+        if (w->sigma[61] < w->chains) w->chains = w->sigma[61];
+        st = link_point_2(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &t_p_K4, &t_p_K2, &w->p_K5, &t_p_K5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_K5, &l_left_coupler, &w->p_J6, &t_p_K5, &l_left_coupler, &w->f2_v4, &t_f2_v4);
+        f[0] = w->f2_v4.v;
+        df[0] = w->f2_v4.dv;
+        ddf[0] = t_f2_v4.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_K3, &p_J4, &l_left_rocker2, &w->add2_v4, w->br60, &w->p_K4, &w->sigma[60]);
         if (st == 1) return 1;
@@ -1836,12 +2560,40 @@ static int group_2_v4(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 2_v4 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v4(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v4.dv;
+        s[1] = w->p_K4.DP.x;
+        s[2] = w->p_K4.DP.y;
+        s[3] = w->p_K2.DP.x;
+        s[4] = w->p_K2.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v4.dv;
+        return;
+    }
+    w->add2_v4.ddv += acc * s[0];
+    w->p_K4.DDP.x += acc * s[1];
+    w->p_K4.DDP.y += acc * s[2];
+    w->p_K2.DDP.x += acc * s[3];
+    w->p_K2.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v4.ddv += acc * s[7];
+}
+
+
 /* Steps 64, 65, 66, 67, iterated by the resolver of step 14   (fallback 5: the Add-link J2-K2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_2_v5(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
@@ -1849,7 +2601,7 @@ static int group_2_v5(void *ctx, const double a[], const double da[], const doub
     POINT p_J2 = w->p_J2;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J2.DP.x = 0.0; p_J2.DP.y = 0.0; p_J2.DDP.x = 0.0; p_J2.DDP.y = 0.0;
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
@@ -1857,6 +2609,27 @@ static int group_2_v5(void *ctx, const double a[], const double da[], const doub
     w->add2_v5.dv = da[0];
     w->add2_v5.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add2_v5 = ZERO_LENGTH;
+        POINT t_p_K2;
+        POINT t_p_K4;
+        POINT t_p_K5;
+        VARIABLE t_f2_v5;
+        t_add2_v5.v = a[0];
+        st = RRR_links_2(&p_K1, &p_J2, &l_left_rocker1, &w->add2_v5, w->br64, &p_K1, &w->p_J2, &l_left_rocker1, &t_add2_v5, &w->p_K2, &t_p_K2, &w->sigma[64]);
+        if (st == 1) return 1;
+        if (w->sigma[64] < w->chains) w->chains = w->sigma[64];
+        st = RRR_links_2(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br65, &t_p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, &w->p_K4, &t_p_K4, &w->sigma[65]);
+        if (st == 1) return 1;
+        if (w->sigma[65] < w->chains) w->chains = w->sigma[65];
+        st = link_point_2(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &t_p_K4, &t_p_K2, &w->p_K5, &t_p_K5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_K5, &l_left_coupler, &w->p_J6, &t_p_K5, &l_left_coupler, &w->f2_v5, &t_f2_v5);
+        f[0] = w->f2_v5.v;
+        df[0] = w->f2_v5.dv;
+        ddf[0] = t_f2_v5.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_K1, &p_J2, &l_left_rocker1, &w->add2_v5, w->br64, &w->p_K2, &w->sigma[64]);
         if (st == 1) return 1;
@@ -1897,12 +2670,40 @@ static int group_2_v5(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 2_v5 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v5(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v5.dv;
+        s[1] = w->p_K2.DP.x;
+        s[2] = w->p_K2.DP.y;
+        s[3] = w->p_K4.DP.x;
+        s[4] = w->p_K4.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v5.dv;
+        return;
+    }
+    w->add2_v5.ddv += acc * s[0];
+    w->p_K2.DDP.x += acc * s[1];
+    w->p_K2.DDP.y += acc * s[2];
+    w->p_K4.DDP.x += acc * s[3];
+    w->p_K4.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v5.ddv += acc * s[7];
+}
+
+
 /* Steps 68, 69, 70, 71, iterated by the resolver of step 14   (fallback 6: the Add-link J4-K2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_2_v6(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
@@ -1910,7 +2711,7 @@ static int group_2_v6(void *ctx, const double a[], const double da[], const doub
     POINT p_J4 = w->p_J4;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J4.DP.x = 0.0; p_J4.DP.y = 0.0; p_J4.DDP.x = 0.0; p_J4.DDP.y = 0.0;
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
@@ -1918,6 +2719,27 @@ static int group_2_v6(void *ctx, const double a[], const double da[], const doub
     w->add2_v6.dv = da[0];
     w->add2_v6.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add2_v6 = ZERO_LENGTH;
+        POINT t_p_K2;
+        POINT t_p_K4;
+        POINT t_p_K5;
+        VARIABLE t_f2_v6;
+        t_add2_v6.v = a[0];
+        st = RRR_links_2(&p_K1, &p_J4, &l_left_rocker1, &w->add2_v6, w->br68, &p_K1, &w->p_J4, &l_left_rocker1, &t_add2_v6, &w->p_K2, &t_p_K2, &w->sigma[68]);
+        if (st == 1) return 1;
+        if (w->sigma[68] < w->chains) w->chains = w->sigma[68];
+        st = RRR_links_2(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br69, &t_p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, &w->p_K4, &t_p_K4, &w->sigma[69]);
+        if (st == 1) return 1;
+        if (w->sigma[69] < w->chains) w->chains = w->sigma[69];
+        st = link_point_2(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &t_p_K4, &t_p_K2, &w->p_K5, &t_p_K5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_K5, &l_left_coupler, &w->p_J6, &t_p_K5, &l_left_coupler, &w->f2_v6, &t_f2_v6);
+        f[0] = w->f2_v6.v;
+        df[0] = w->f2_v6.dv;
+        ddf[0] = t_f2_v6.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_K1, &p_J4, &l_left_rocker1, &w->add2_v6, w->br68, &w->p_K2, &w->sigma[68]);
         if (st == 1) return 1;
@@ -1958,25 +2780,74 @@ static int group_2_v6(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 2_v6 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v6(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v6.dv;
+        s[1] = w->p_K2.DP.x;
+        s[2] = w->p_K2.DP.y;
+        s[3] = w->p_K4.DP.x;
+        s[4] = w->p_K4.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v6.dv;
+        return;
+    }
+    w->add2_v6.ddv += acc * s[0];
+    w->p_K2.DDP.x += acc * s[1];
+    w->p_K2.DDP.y += acc * s[2];
+    w->p_K4.DDP.x += acc * s[3];
+    w->p_K4.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v6.ddv += acc * s[7];
+}
+
+
 /* Steps 72, 73, 74, 75, iterated by the resolver of step 14   (fallback 7: the Add-link J6-K2):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_2_v7(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add2_v7.v = a[0];
     w->add2_v7.dv = da[0];
     w->add2_v7.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add2_v7 = ZERO_LENGTH;
+        POINT t_p_K2;
+        POINT t_p_K4;
+        POINT t_p_K5;
+        VARIABLE t_f2_v7;
+        t_add2_v7.v = a[0];
+        st = RRR_links_2(&p_K1, &p_J6, &l_left_rocker1, &w->add2_v7, w->br72, &p_K1, &w->p_J6, &l_left_rocker1, &t_add2_v7, &w->p_K2, &t_p_K2, &w->sigma[72]);
+        if (st == 1) return 1;
+        if (w->sigma[72] < w->chains) w->chains = w->sigma[72];
+        st = RRR_links_2(&w->p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, w->br73, &t_p_K2, &p_K3, &l_left_ternary_K2_K4, &l_left_rocker2, &w->p_K4, &t_p_K4, &w->sigma[73]);
+        if (st == 1) return 1;
+        if (w->sigma[73] < w->chains) w->chains = w->sigma[73];
+        st = link_point_2(&w->p_K4, &w->p_K2, 45.662543438831435, 12.84259034217134, &t_p_K4, &t_p_K2, &w->p_K5, &t_p_K5);
+        if (st == 1) return 1;
+        link_residual_2(&p_J6, &w->p_K5, &l_left_coupler, &w->p_J6, &t_p_K5, &l_left_coupler, &w->f2_v7, &t_f2_v7);
+        f[0] = w->f2_v7.v;
+        df[0] = w->f2_v7.dv;
+        ddf[0] = t_f2_v7.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_K1, &p_J6, &l_left_rocker1, &w->add2_v7, w->br72, &w->p_K2, &w->sigma[72]);
         if (st == 1) return 1;
@@ -2017,12 +2888,40 @@ static int group_2_v7(void *ctx, const double a[], const double da[], const doub
 }
 
 
+/* The sensitivities of the records block 2_v7 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v7(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v7.dv;
+        s[1] = w->p_K2.DP.x;
+        s[2] = w->p_K2.DP.y;
+        s[3] = w->p_K4.DP.x;
+        s[4] = w->p_K4.DP.y;
+        s[5] = w->p_K5.DP.x;
+        s[6] = w->p_K5.DP.y;
+        s[7] = w->f2_v7.dv;
+        return;
+    }
+    w->add2_v7.ddv += acc * s[0];
+    w->p_K2.DDP.x += acc * s[1];
+    w->p_K2.DDP.y += acc * s[2];
+    w->p_K4.DDP.x += acc * s[3];
+    w->p_K4.DDP.y += acc * s[4];
+    w->p_K5.DDP.x += acc * s[5];
+    w->p_K5.DDP.y += acc * s[6];
+    w->f2_v7.ddv += acc * s[7];
+}
+
+
 /* Steps 76, 77, 78, 79, iterated by the resolver of step 14   (fallback 8: the Add-link J5-K5):
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
-   Jacobian column).  Returns 1 when a chain cannot close. */
+   Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
+   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
 static int group_2_v8(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
@@ -2030,7 +2929,7 @@ static int group_2_v8(void *ctx, const double a[], const double da[], const doub
     POINT p_J6 = w->p_J6;
     POINT p_J5 = w->p_J5;
     int st;
-    if (!live) {
+    if (live != 1) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
         p_J5.DP.x = 0.0; p_J5.DP.y = 0.0; p_J5.DDP.x = 0.0; p_J5.DDP.y = 0.0;
     }
@@ -2038,6 +2937,27 @@ static int group_2_v8(void *ctx, const double a[], const double da[], const doub
     w->add2_v8.dv = da[0];
     w->add2_v8.ddv = dda[0];
     w->chains = 1.0;
+    if (live == 2) {  /* a Jacobian column (reads still) and, into ddf, the residuals' rates at zero Add-link rate */
+        VARIABLE t_add2_v8 = ZERO_LENGTH;
+        POINT t_p_K5;
+        POINT t_p_K2;
+        POINT t_p_K4;
+        VARIABLE t_f2_v8;
+        t_add2_v8.v = a[0];
+        st = RRR_links_2(&p_J6, &p_J5, &l_left_coupler, &w->add2_v8, w->br76, &w->p_J6, &w->p_J5, &l_left_coupler, &t_add2_v8, &w->p_K5, &t_p_K5, &w->sigma[76]);
+        if (st == 1) return 1;
+        if (w->sigma[76] < w->chains) w->chains = w->sigma[76];
+        st = RRR_links_2(&p_K1, &w->p_K5, &l_left_rocker1, &l_left_ternary_K2_K5, w->br77, &p_K1, &t_p_K5, &l_left_rocker1, &l_left_ternary_K2_K5, &w->p_K2, &t_p_K2, &w->sigma[77]);
+        if (st == 1) return 1;
+        if (w->sigma[77] < w->chains) w->chains = w->sigma[77];
+        st = link_point_2(&w->p_K5, &w->p_K2, -41.921741762866105, -22.193863286223234, &t_p_K5, &t_p_K2, &w->p_K4, &t_p_K4);
+        if (st == 1) return 1;
+        link_residual_2(&p_K3, &w->p_K4, &l_left_rocker2, &p_K3, &t_p_K4, &l_left_rocker2, &w->f2_v8, &t_f2_v8);
+        f[0] = w->f2_v8.v;
+        df[0] = w->f2_v8.dv;
+        ddf[0] = t_f2_v8.dv;
+        return 0;
+    }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
         st = RRR_links_1(&p_J6, &p_J5, &l_left_coupler, &w->add2_v8, w->br76, &w->p_K5, &w->sigma[76]);
         if (st == 1) return 1;
@@ -2075,6 +2995,33 @@ static int group_2_v8(void *ctx, const double a[], const double da[], const doub
     df[0] = w->f2_v8.dv;
     ddf[0] = w->f2_v8.ddv;
     return 0;
+}
+
+
+/* The sensitivities of the records block 2_v8 sets to its Add-links (bend_fn): their rates as a Jacobian
+   pass leaves them into s (keep), else acc times s added to their accelerations. */
+static void bend_2_v8(void *ctx, double s[], double acc, int keep)
+{
+    work *w = (work *)ctx;
+    if (keep) {
+        s[0] = w->add2_v8.dv;
+        s[1] = w->p_K5.DP.x;
+        s[2] = w->p_K5.DP.y;
+        s[3] = w->p_K2.DP.x;
+        s[4] = w->p_K2.DP.y;
+        s[5] = w->p_K4.DP.x;
+        s[6] = w->p_K4.DP.y;
+        s[7] = w->f2_v8.dv;
+        return;
+    }
+    w->add2_v8.ddv += acc * s[0];
+    w->p_K5.DDP.x += acc * s[1];
+    w->p_K5.DDP.y += acc * s[2];
+    w->p_K2.DDP.x += acc * s[3];
+    w->p_K2.DDP.y += acc * s[4];
+    w->p_K4.DDP.x += acc * s[5];
+    w->p_K4.DDP.y += acc * s[6];
+    w->f2_v8.ddv += acc * s[7];
 }
 
 
@@ -2608,6 +3555,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 8: resolve, group1. the resolver iterates on add1 until right_coupler regains its length */
     {
         static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6 };
+        static const bend_fn bends[] = { bend_1, bend_1_v1, bend_1_v2, bend_1_v3, bend_1_v4, bend_1_v5, bend_1_v6 };
         w->br4 = a[0][1] < 0.0 ? -1 : 1;
         w->br5 = a[0][2] < 0.0 ? -1 : 1;
         w->br24 = a[1][1] < 0.0 ? -1 : 1;
@@ -2622,7 +3570,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
         w->br41 = a[5][2] < 0.0 ? -1 : 1;
         w->br44 = a[6][1] < 0.0 ? -1 : 1;
         w->br45 = a[6][2] < 0.0 ? -1 : 1;
-        if (!resolve_group(blocks, 7, lengths_1, w, a, ad, 0, &used[0],
+        if (!resolve_group(blocks, bends, 7, lengths_1, w, a, ad, 0, &used[0],
                            &its[0], &w->sigma[8], &w->chains, order, &MECHANISM, &POLICY))
             return 82;
         note(w, w->sigma[8] < 1e-07 ? 3 : w->sigma[8] < 0.001 ? 4 : 0, 83, -84);
@@ -2636,6 +3584,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     /* Step 14: resolve, group2. the resolver iterates on add2 until left_coupler regains its length */
     {
         static const group_fn blocks[] = { group_2, group_2_v1, group_2_v2, group_2_v3, group_2_v4, group_2_v5, group_2_v6, group_2_v7, group_2_v8 };
+        static const bend_fn bends[] = { bend_2, bend_2_v1, bend_2_v2, bend_2_v3, bend_2_v4, bend_2_v5, bend_2_v6, bend_2_v7, bend_2_v8 };
         w->br10 = a[7][1] < 0.0 ? -1 : 1;
         w->br11 = a[7][2] < 0.0 ? -1 : 1;
         w->br48 = a[8][1] < 0.0 ? -1 : 1;
@@ -2654,7 +3603,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
         w->br73 = a[14][2] < 0.0 ? -1 : 1;
         w->br76 = a[15][1] < 0.0 ? -1 : 1;
         w->br77 = a[15][2] < 0.0 ? -1 : 1;
-        if (!resolve_group(blocks, 9, lengths_2, w, a, ad, 7, &used[1],
+        if (!resolve_group(blocks, bends, 9, lengths_2, w, a, ad, 7, &used[1],
                            &its[1], &w->sigma[14], &w->chains, order, &MECHANISM, &POLICY))
             return 142;
         note(w, w->sigma[14] < 1e-07 ? 3 : w->sigma[14] < 0.001 ? 4 : 0, 143, -144);

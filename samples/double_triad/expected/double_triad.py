@@ -647,12 +647,33 @@ def solve_block(group, a, p, scale, loop=0):
     return newton(group, a, tol, p.max_iterations, reach, p.newton_halvings, p.polish)
 
 
-def addlink_rates(group, a, jac, order):
-    """Exact Add-link rates by the implicit-function theorem, then the final pass.
+def sensitivities(w, names):
+    """The rates of the records names of w (order 2: value, rates, accelerations, each a third), one
+    list: as a Jacobian pass leaves them, the records' sensitivities to an Add-link."""
+    return [x for n in names for x in getattr(w, n)[len(getattr(w, n)) // 3:2 * len(getattr(w, n)) // 3]]
+
+
+def bend(w, names, sens, acc):
+    """The records names of w with acc times their sensitivities sens added to their accelerations."""
+    k = 0
+    for n in names:
+        r = getattr(w, n)
+        width = len(r) // 3
+        setattr(w, n, r[:2 * width] + tuple(r[2 * width + i] + acc * sens[k + i] for i in range(width)))
+        k += width
+
+
+def addlink_rates(group, a, jac, order, records=None):
+    """Exact Add-link rates by the implicit-function theorem, then the records at them.
 
     J adot = -df/dt|adot=0 with J the Newton Jacobian gives the rates at every order (they
-    start the next row); at order 2, J addot = -d2f/dt2|addot=0 the accelerations.
-    Returns the final pass's status, sigma and the block's orientation: the sign of det J,
+    start the next row); at order 2, J addot = -d2f/dt2|addot=0 the accelerations.  With
+    records (w and the names of the records the block sets) the pass at the rates leaves the
+    records' positions and rates, and their accelerations are that pass's plus the Add-link
+    accelerations times the records' sensitivities, as accelerations are linear in the
+    Add-links' (Newton's last pass left the last Add-link's; the others' are measured again
+    at a: the same bits); without, or at a singular J, one pass more with them.
+    Returns the last pass's status, sigma and the block's orientation: the sign of det J,
     which stays the same along the assembly while the block's chains keep their branches
     (it changes only at a singular position; a solution of the other sign is another assembly).
     """
@@ -660,20 +681,31 @@ def addlink_rates(group, a, jac, order):
     zero = [0.0] * n
     _, det = solve_linear(jac, zero)
     sigma = conditioning(jac, det)
+    turn = 1 if det > 0.0 else -1 if det < 0.0 else 0
     rates = accs = zero
     if det != 0.0:
+        sens = []
+        if order >= 2 and records is not None:
+            sens = [[]] * (n - 1) + [sensitivities(*records)]
+            for j in range(n - 1):
+                group(a, [1.0 if i == j else 0.0 for i in range(n)], zero, False)
+                sens[j] = sensitivities(*records)
         st, rec = group(a, zero, zero, True)
         rates, _ = solve_linear(jac, [-r[1] for r in rec])
         if order >= 2:
             st, rec = group(a, rates, zero, True)
             accs, _ = solve_linear(jac, [-r[2] for r in rec])
+            if records is not None:
+                for j in range(n):
+                    bend(*records, sens[j], accs[j])
+                return st, sigma, turn
     else:
         rates = accs = [NAN] * n
     st, _ = group(a, rates, accs, True)
-    return st, sigma, 1 if det > 0.0 else -1 if det < 0.0 else 0
+    return st, sigma, turn
 
 
-def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale, loops=None):
+def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale, loops=None, records=None):
     """The strategy's iteration (solve_block) on a group's blocks (its chosen Add-link
     candidate, then the fallbacks), the preferred block first, the others in order.  The
     first that converges with its chains conditioned at least p.min_chain_sigma (chains():
@@ -685,6 +717,7 @@ def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale, l
 
     a[first + k] is block k's state: its sizes[k] start lengths, its branches, its orientation.
     Under strategy loop the loop blocks (loops[k] 1) come first, the Add-link blocks after.
+    records: (w, the names of the records each block sets; see addlink_rates).
     Returns (k, iterations, sigma, orientation), k = -1 when no block converges, -2 when
     none does and the iteration of one of them did not contract.
     """
@@ -702,19 +735,19 @@ def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale, l
             if chains() > 2 * best_sigma:
                 best, best_sigma = k, chains()
             continue
-        st, sigma, turn = addlink_rates(groups[k], x, jac, order)
+        st, sigma, turn = addlink_rates(groups[k], x, jac, order, records and (records[0], records[1][k]))
         if st != 1:
             return k, its, sigma, turn
     if best >= 0:
         ok, x, its, jac = solve_block(groups[best], a[first + best][:sizes[best]], p, scale, loops[best])
         if ok > 0:
-            st, sigma, turn = addlink_rates(groups[best], x, jac, order)
+            st, sigma, turn = addlink_rates(groups[best], x, jac, order, records and (records[0], records[1][best]))
             if st != 1:
                 return best, its, sigma, turn
     return -2 if stuck else -1, its, 0.0, 0
 
 
-def resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains, m, p):
+def resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains, m, p, records=None):
     """One resolver step: resolve_variants on the group's blocks, the one that solved the
     last row (used[slot]) first; then lengths(a, ad) reads every block's state and its rates
     off the solved pairs (so any of them can start the next row) and the solving block keeps
@@ -722,7 +755,7 @@ def resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains,
     where no block converged, -1 where a block's iteration did not contract."""
     k, its[slot], sigma, turn = resolve_variants(groups, a, first, order, used[slot],
                                                  m.sizes[first:first + len(groups)], chains, p, m.length_scale,
-                                                 m.loops[first:first + len(groups)])
+                                                 m.loops[first:first + len(groups)], records)
     if k < 0:
         return (0 if k == -1 else -1), sigma
     used[slot] = k
@@ -3900,7 +3933,16 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
         lambda x, dx, ddx, live: _group_1_v6(w, x, dx, ddx, live),
     ]
     ok, w.sigma[8] = resolve_group(blocks, lambda a, ad: _lengths_1(w, a, ad), a, ad, 0, 0,
-        used, its, order, lambda: w.chains, MECHANISM, POLICY)
+        used, its, order, lambda: w.chains, MECHANISM, POLICY,
+        (w, (
+            ("add1", "p_J4", "p_J2", "p_J5", "f1", ),
+            ("add1_v1", "p_J2", "p_J4", "p_J5", "f1_v1", ),
+            ("add1_v2", "p_J2", "p_J4", "p_J5", "f1_v2", ),
+            ("add1_v3", "p_J4", "p_J2", "p_J5", "f1_v3", ),
+            ("add1_v4", "p_J4", "p_J2", "p_J5", "f1_v4", ),
+            ("add1_v5", "p_J2", "p_J4", "p_J5", "f1_v5", ),
+            ("add1_v6", "p_J2", "p_J4", "p_J5", "f1_v6", ),
+        )))
     if not ok:
         return 82
     w.note(3 if w.sigma[8] < 1e-07 else 4 if w.sigma[8] < 0.001 else 0, 83, -84)
@@ -3939,7 +3981,18 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
         lambda x, dx, ddx, live: _group_2_v8(w, x, dx, ddx, live),
     ]
     ok, w.sigma[14] = resolve_group(blocks, lambda a, ad: _lengths_2(w, a, ad), a, ad, 7, 1,
-        used, its, order, lambda: w.chains, MECHANISM, POLICY)
+        used, its, order, lambda: w.chains, MECHANISM, POLICY,
+        (w, (
+            ("add2", "p_K4", "p_K2", "p_K5", "f2", ),
+            ("add2_v1", "p_K2", "p_K4", "p_K5", "f2_v1", ),
+            ("add2_v2", "p_K4", "p_K2", "p_K5", "f2_v2", ),
+            ("add2_v3", "p_K4", "p_K2", "p_K5", "f2_v3", ),
+            ("add2_v4", "p_K4", "p_K2", "p_K5", "f2_v4", ),
+            ("add2_v5", "p_K2", "p_K4", "p_K5", "f2_v5", ),
+            ("add2_v6", "p_K2", "p_K4", "p_K5", "f2_v6", ),
+            ("add2_v7", "p_K2", "p_K4", "p_K5", "f2_v7", ),
+            ("add2_v8", "p_K5", "p_K2", "p_K4", "f2_v8", ),
+        )))
     if not ok:
         return 142
     w.note(3 if w.sigma[14] < 1e-07 else 4 if w.sigma[14] < 0.001 else 0, 143, -144)

@@ -49,19 +49,17 @@ static int path_pass(const resolver_path *path, const double in[], const double 
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
                    const double now[][LINKGEN_NMAX], const int sizes[], double slack, const resolver_policy *p)
 {
-    double move = 0.0, share = p->path_share;
+    double move = 0.0, off = 0.0, share = p->path_share;
     int g, i;
-    for (g = 0; g < LINKGEN_NBLOCKS; g++) {
-        for (i = 0; i < sizes[g]; i++) {
-            const double d = fabs(guess[g][i] - prev[g][i]);
+    for (g = 0; g < LINKGEN_NBLOCKS; g++) {  /* one pass: the largest predicted move and correction */
+        for (i = 0; i < adds(sizes[g]); i++) {
+            const double d = fabs(guess[g][i] - prev[g][i]), e = fabs(now[g][i] - guess[g][i]);
             if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
+            if (e > off || e != e) off = e;  /* a nan correction stays */
         }
         if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
     }
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < sizes[g]; i++)
-            if (!(fabs(now[g][i] - guess[g][i]) <= share * move + slack)) return 0; /* a nan too */
-    return 1;
+    return off <= share * move + slack;  /* a nan too */
 }
 
 /* Whether no input moved farther from the last row than a continuation step. */
@@ -83,7 +81,7 @@ static void advance(const double a[][LINKGEN_NMAX], const double rate[][LINKGEN_
 {
     int g, i;
     for (g = 0; g < LINKGEN_NBLOCKS; g++) {
-        for (i = 0; i < sizes[g]; i++)  /* a loop block's arc length is an angle: not reflected */
+        for (i = 0; i < adds(sizes[g]); i++)  /* a loop block's arc length is an angle: not reflected */
             out[g][i] = loops[g] ? a[g][i] + step * rate[g][i] : fabs(a[g][i] + step * rate[g][i]);
         for (; i < LINKGEN_NMAX - 1; i++) out[g][i] = a[g][i] + step * rate[g][i];
         out[g][LINKGEN_NMAX - 1] = a[g][LINKGEN_NMAX - 1];
@@ -118,7 +116,7 @@ static void predict(const resolver_warm *warm, const double in[], const int size
     back = warm_tau(warm, warm->back_in);
     if (back == 0.0) return;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < sizes[g]; i++) {
+        for (i = 0; i < adds(sizes[g]); i++) {
             const double bend = (warm->back_a[g][i] - warm->a[g][i] - back * warm->ad[g][i]) / (back * back);
             const double ahead = warm->a[g][i] + tau * warm->ad[g][i] + tau * tau * bend;
             a[g][i] = loops[g] ? ahead : fabs(ahead);
@@ -156,7 +154,7 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
         if (passes++ == p->walk_passes) return 0;
         fast = 0.0;
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < m->sizes[g]; i++)
+            for (i = 0; i < adds(m->sizes[g]); i++)
                 if (fabs(rate[g][i]) > fast) fast = fabs(rate[g][i]);
         if (fast * h > reach) h = reach / fast;
         tt = fmin(1.0, t + h);
@@ -231,16 +229,14 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     int used[LINKGEN_NGROUPS];
     int code = 0, solved = 0, g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = m->sketch_in[i];
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
-        for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = m->sketch_a[g][i];
+    memcpy(a, m->sketch_a, sizeof a);  /* the block states copied whole (a loop per entry costs more) */
     for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = *warm->valid ? warm->used[g] : 0;
     if (past) {
         /* past a limit position: the pass fails the row at once with the limit's code */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
     } else if (*warm->valid && within(in, warm->in, m->limits)) {
         predict(warm, in, m->sizes, m->loops, p->predictor, guess);
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* predictor order 0: from the warm states as they were */
-            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = p->predictor ? guess[g][i] : warm->a[g][i];
+        memcpy(a, p->predictor ? guess : warm->a, sizeof a);  /* predictor order 0: the warm states as they were */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
         solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
                                       (const double (*)[LINKGEN_NMAX])a, m->sizes,
@@ -248,8 +244,7 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     }
     if (!solved && *warm->valid) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = warm->in[i];
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) a[g][i] = warm->a[g][i];
+        memcpy(a, warm->a, sizeof a);
         for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = warm->used[g];
     }
     if (!solved && (code <= 0 || reason_of(code) == m->not_converged)) {
@@ -271,18 +266,14 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         *warm->back_valid = solved && *warm->valid && code != m->another;
         if (*warm->back_valid) {
             for (i = 0; i < LINKGEN_NINPUTS; i++) warm->back_in[i] = warm->in[i];
-            for (g = 0; g < LINKGEN_NBLOCKS; g++)
-                for (i = 0; i < LINKGEN_NMAX; i++) warm->back_a[g][i] = warm->a[g][i];
+            memcpy(warm->back_a, warm->a, sizeof a);
         }
     }
     *warm->valid = solved;
     if (solved) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) { warm->in[i] = in[i]; warm->din[i] = din[i]; }
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)
-            for (i = 0; i < LINKGEN_NMAX; i++) {
-                warm->a[g][i] = a[g][i];
-                warm->ad[g][i] = ad[g][i];
-            }
+        memcpy(warm->a, a, sizeof a);
+        memcpy(warm->ad, ad, sizeof ad);
         for (g = 0; g < LINKGEN_NGROUPS; g++) warm->used[g] = used[g];
     }
     return code;

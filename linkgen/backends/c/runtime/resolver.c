@@ -9,6 +9,11 @@
 typedef int (*group_fn)(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
                         double df[], double ddf[]);
 
+/* The sensitivities of the records a block writes to its Add-links: with keep, their rates as a
+ * Jacobian pass (unit Add-link rate, reads still) leaves them, into s in the order the block writes
+ * them; else acc times s added to their accelerations (which are linear in the Add-links' ones). */
+typedef void (*bend_fn)(void *ctx, double s[], double acc, int keep);
+
 /* Every block's state and its rates read off the solved pairs (the blocks of one group). */
 typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
 
@@ -46,6 +51,13 @@ typedef struct {
     int another;  /* the code of a row solvable on another assembly only */
     int not_converged;  /* a row failed with this reason is followed from the last one */
 } resolver_mechanism;
+
+/* A block's Add-links: n, known to be 1 where no block has more (LINKGEN_NADD, the most), so the compiler
+ * drops the loops over them (the same operations). */
+static int adds(int n)
+{
+    return LINKGEN_NADD == 1 ? 1 : n;
+}
 
 /* Solve m x = b (n <= LINKGEN_NMAX) by Gaussian elimination with partial pivoting; returns det(m). */
 static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b[], double x[])
@@ -86,15 +98,19 @@ static double solve_linear(int n, const double m[][LINKGEN_NMAX], const double b
     return det;
 }
 
-/* Residuals and Jacobian at a, one pass per Add-link; returns 1 when a chain cannot close. */
-static int jacobian(group_fn group, void *ctx, int n, const double a[], double f[], double jac[][LINKGEN_NMAX])
+/* Residuals and Jacobian at a, one pass per Add-link, the last one (ft not null) with the residuals'
+ * rates at zero Add-link rate, the reads live, into ft (group's live 2: the rates pass after the
+ * iteration then has them); returns 1 when a chain cannot close. */
+static int jacobian(group_fn group, void *ctx, int n, const double a[], double f[], double jac[][LINKGEN_NMAX],
+                    double ft[])
 {
     double unit[LINKGEN_NMAX], zero[LINKGEN_NMAX], res[LINKGEN_NMAX], dres[LINKGEN_NMAX];
     int i, j;
+    n = adds(n);
     for (i = 0; i < LINKGEN_NMAX; i++) unit[i] = zero[i] = 0.0;
     for (j = 0; j < n; j++) {
         unit[j] = 1.0;
-        if (group(ctx, a, unit, zero, 0, res, dres, NULL)) return 1;
+        if (group(ctx, a, unit, zero, ft && j == n - 1 ? 2 : 0, res, dres, ft && j == n - 1 ? ft : NULL)) return 1;
         unit[j] = 0.0;
         for (i = 0; i < n; i++) { f[i] = res[i]; jac[i][j] = dres[i]; }
     }
@@ -136,17 +152,20 @@ static int kept(int n, const double a[], const double start[], double reach)
  * that makes a chain fail to close is halved (up to halvings times; then the block
  * fails and the next block is tried).  The cap counts every step, a polishing one too.
  * A solution farther than reach from the start is another assembly and refused.
- * Returns 1 on success with jac the Jacobian at the returned a, else 0. */
+ * Returns 1 on success with jac the Jacobian at the returned a, else 0; where the last pass
+ * is known to be the last (the polishing step's) it puts the residuals' rates at zero
+ * Add-link rate into ft (ft not null) and sets *rated. */
 static int newton(group_fn group, void *ctx, int n, double a[], double tol, int max_iter, double reach,
-                  int halvings, int polish, double jac[][LINKGEN_NMAX], int *iterations)
+                  int halvings, int polish, double jac[][LINKGEN_NMAX], double ft[], int *rated, int *iterations)
 {
     double start[LINKGEN_NMAX];
     double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], dx[LINKGEN_NMAX], trial[LINKGEN_NMAX], rhs[LINKGEN_NMAX];
     double jac2[LINKGEN_NMAX][LINKGEN_NMAX];
     int it, i, j, halving;
+    n = adds(n);
     *iterations = 0;
     for (i = 0; i < n; i++) start[i] = a[i];
-    if (jacobian(group, ctx, n, a, f, jac)) return 0;
+    if (jacobian(group, ctx, n, a, f, jac, NULL)) return 0;
     for (it = 1; it <= max_iter; it++) {
         double t = 1.0;
         const int done = met(n, f, tol);
@@ -157,7 +176,7 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
         if (solve_linear(n, (const double (*)[LINKGEN_NMAX])jac, rhs, dx) == 0.0) return 0;
         for (halving = 0; halving <= halvings; halving++) {
             for (i = 0; i < n; i++) trial[i] = a[i] + t * dx[i];
-            if (!jacobian(group, ctx, n, trial, f2, jac2)) { closed = 1; break; }
+            if (!jacobian(group, ctx, n, trial, f2, jac2, done ? ft : NULL)) { closed = 1; break; }
             t /= 2;
         }
         if (!closed) return 0;
@@ -166,7 +185,10 @@ static int newton(group_fn group, void *ctx, int n, double a[], double tol, int 
             f[i] = f2[i];
             for (j = 0; j < n; j++) jac[i][j] = jac2[i][j];
         }
-        if (done) return kept(n, a, start, reach);
+        if (done) {
+            if (ft) *rated = 1;
+            return kept(n, a, start, reach);
+        }
     }
     return !polish && met(n, f, tol) && kept(n, a, start, reach);
 }
@@ -206,10 +228,11 @@ static int fixed_point(group_fn group, void *ctx, int n, double a[], double tol,
     double start[LINKGEN_NMAX], j0[LINKGEN_NMAX][LINKGEN_NMAX];
     double f[LINKGEN_NMAX], f2[LINKGEN_NMAX], dx[LINKGEN_NMAX], trial[LINKGEN_NMAX], rhs[LINKGEN_NMAX];
     int i, halving;
+    n = adds(n);
     *iterations = 0;
     for (i = 0; i < LINKGEN_NMAX; i++) rhs[i] = 0.0;  /* entries past n are never read */
     for (i = 0; i < n; i++) start[i] = a[i];
-    if (jacobian(group, ctx, n, a, f, j0)) return 0;
+    if (jacobian(group, ctx, n, a, f, j0, NULL)) return 0;
     while (!met(n, f, tol)) {
         double t = 1.0;
         int closed = 0;
@@ -232,7 +255,7 @@ static int fixed_point(group_fn group, void *ctx, int n, double a[], double tol,
         if (solve_linear(n, (const double (*)[LINKGEN_NMAX])j0, rhs, dx) == 0.0) return 0;
         for (i = 0; i < n; i++) a[i] += dx[i];
     }
-    if (jacobian(group, ctx, n, a, f, jac)) return 0;
+    if (jacobian(group, ctx, n, a, f, jac, NULL)) return 0;
     return kept(n, a, start, reach);
 }
 
@@ -266,59 +289,83 @@ static int loop_iteration(group_fn group, void *ctx, double a[], double tol, int
         ++*iterations;
         a[0] += f[0];
     }
-    if (jacobian(group, ctx, 1, a, f, jac)) return 0;
+    if (jacobian(group, ctx, 1, a, f, jac, NULL)) return 0;
     return kept(1, a, &start, reach);
 }
 
 /* The resolver strategy's iteration on one block from its start lengths a: the one place a
  * strategy is chosen (p->strategy; strategy loop's loop blocks: solve_variant).  Returns what
- * newton and fixed_point return. */
+ * newton and fixed_point return; Newton's ft and *rated as newton's. */
 static int solve_block(group_fn group, void *ctx, int n, double a[], const resolver_policy *p, double scale,
-                       double jac[][LINKGEN_NMAX], int *iterations)
+                       double jac[][LINKGEN_NMAX], double ft[], int *rated, int *iterations)
 {
     const double tol = p->tolerance * scale, reach = p->max_move * scale;
     if (p->strategy == RESOLVER_FIXED_POINT)
         return fixed_point(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac,
                            iterations);
-    return newton(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac, iterations);
+    return newton(group, ctx, n, a, tol, p->max_iterations, reach, p->newton_halvings, p->polish, jac, ft, rated,
+                  iterations);
 }
 
 /* One block's iteration: loop_iteration for a loop block (loop 1) under strategy loop, which
  * iterates its other blocks as the others do (solve_block). */
 static int solve_variant(group_fn group, void *ctx, int n, int loop, double a[], const resolver_policy *p,
-                         double scale, double jac[][LINKGEN_NMAX], int *iterations)
+                         double scale, double jac[][LINKGEN_NMAX], double ft[], int *rated, int *iterations)
 {
+    *rated = 0;
     if (p->strategy == RESOLVER_LOOP && loop)
         return loop_iteration(group, ctx, a, p->tolerance * scale, p->max_iterations, p->max_move * scale, p->polish,
                               jac, iterations);
-    return solve_block(group, ctx, n, a, p, scale, jac, iterations);
+    return solve_block(group, ctx, n, a, p, scale, jac, ft, rated, iterations);
 }
 
-/* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0),
- * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J), then
- * the final pass with them.  The rates are found at every order (they start the next
- * row).  *turn is the block's orientation, the sign of det J: it stays the same along the
+/* Exact Add-link rates by the implicit-function theorem (J adot = -df/dt at adot = 0; df/dt
+ * ft where Newton's last pass measured it, else one pass at zero Add-link rate),
+ * at order 2 the accelerations too (J addot = -d2f/dt2 at addot = 0, the same J).  The
+ * rates are found at every order (they start the next row).  The pass at the rates leaves
+ * the records' positions and rates; their accelerations are that pass's plus the Add-link
+ * accelerations times the records' sensitivities (bend), which Newton's last pass left for
+ * the last Add-link (the others' measured again at a: the same bits), as accelerations are
+ * linear in the Add-links' ones; a singular J (no accelerations) takes one pass more with
+ * them.  *turn is the block's orientation, the sign of det J: it stays the same along the
  * assembly while the block's chains keep their branches (it changes only at a singular
- * position; a solution of the other sign is another assembly).  Returns the status of
- * the final pass. */
-static int addlink_rates(group_fn group, void *ctx, int n, const double a[], const double jac[][LINKGEN_NMAX],
-                         int order, double *sigma, double *turn)
+ * position; a solution of the other sign is another assembly).  Returns the status of the
+ * last pass. */
+static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const double a[],
+                         const double jac[][LINKGEN_NMAX], const double ft[], int order, double *sigma, double *turn)
 {
-    double zero[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
-    double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], det;
-    int i;
-    for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
-    group(ctx, a, zero, zero, 1, f, df, NULL);
-    for (i = 0; i < n; i++) rhs[i] = -df[i];
-    det = solve_linear(n, jac, rhs, rates);
+    double zero[LINKGEN_NMAX], unit[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
+    double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], sens[LINKGEN_NMAX][LINKGEN_NSENS], det;
+    int i, j, st;
+    n = adds(n);
+    for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = unit[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
     if (order >= 2) {
-        group(ctx, a, rates, zero, 1, f, df, ddf);
-        for (i = 0; i < n; i++) rhs[i] = -ddf[i];
-        solve_linear(n, jac, rhs, accs);
-        for (i = 0; i < n; i++) accs[i] = det != 0.0 ? accs[i] : NAN;
+        bend(ctx, sens[n - 1], 0.0, 1);
+        for (j = 0; j < n - 1; j++) {
+            unit[j] = 1.0;
+            group(ctx, a, unit, zero, 0, f, df, NULL);
+            unit[j] = 0.0;
+            bend(ctx, sens[j], 0.0, 1);
+        }
     }
+    if (!ft) {
+        group(ctx, a, zero, zero, 1, f, df, NULL);
+        ft = df;
+    }
+    for (i = 0; i < n; i++) rhs[i] = -ft[i];
+    det = solve_linear(n, jac, rhs, rates);
     *sigma = conditioning(n, jac, det);
     *turn = det > 0.0 ? 1.0 : det < 0.0 ? -1.0 : 0.0;
+    if (order >= 2) {
+        st = group(ctx, a, rates, zero, 1, f, df, ddf);
+        for (i = 0; i < n; i++) rhs[i] = -ddf[i];
+        solve_linear(n, jac, rhs, accs);
+        if (det != 0.0) {
+            for (j = 0; j < n; j++) bend(ctx, sens[j], accs[j], 0);
+            return st;
+        }
+        for (i = 0; i < n; i++) accs[i] = NAN;
+    }
     return group(ctx, a, rates, accs, 1, f, df, ddf);
 }
 
@@ -332,19 +379,19 @@ static int addlink_rates(group_fn group, void *ctx, int n, const double a[], con
  * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
-static int resolve_variants(const group_fn fns[], const int sizes[], const int loops[], int count, void *ctx,
-                            double a[][LINKGEN_NMAX], int order, int prefer, int *its, double *sigma, double *turn,
-                            const double *chains, const resolver_policy *p, double scale)
+static int resolve_variants(const group_fn fns[], const bend_fn bends[], const int sizes[], const int loops[],
+                            int count, void *ctx, double a[][LINKGEN_NMAX], int order, int prefer, int *its,
+                            double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale)
 {
-    double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], best_sigma = -1.0;
-    int t, k, i, pass, best = -1, stuck = 0;
+    double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], ft[LINKGEN_NMAX], best_sigma = -1.0;
+    int t, k, i, pass, best = -1, stuck = 0, rated;
     for (pass = 0; pass < 2; pass++)  /* strategy loop: the loop blocks first, the Add-link blocks after */
     for (t = 0; t < count; t++) {
         int solved;
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         if (p->strategy == RESOLVER_LOOP ? (loops[k] != 0) != (pass == 0) : pass == 1) continue;
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
-        solved = solve_variant(fns[k], ctx, sizes[k], loops[k], x, p, scale, jac, its);
+        solved = solve_variant(fns[k], ctx, sizes[k], loops[k], x, p, scale, jac, ft, &rated, its);
         if (solved < 0) stuck = 1;
         if (solved <= 0) continue;
         if (*chains < p->min_chain_sigma) {
@@ -354,14 +401,15 @@ static int resolve_variants(const group_fn fns[], const int sizes[], const int l
             }
             continue;
         }
-        if (addlink_rates(fns[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma, turn) != 1)
+        if (addlink_rates(fns[k], bends[k], ctx, sizes[k], x, (const double (*)[LINKGEN_NMAX])jac,
+                          rated ? ft : NULL, order, sigma, turn) != 1)
             return k;
     }
     if (best >= 0) {
         for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
-        if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, its) > 0
-            && addlink_rates(fns[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac, order, sigma,
-                             turn) != 1)
+        if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, ft, &rated, its) > 0
+            && addlink_rates(fns[best], bends[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac,
+                             rated ? ft : NULL, order, sigma, turn) != 1)
             return best;
     }
     return stuck ? -2 : -1;
@@ -372,13 +420,14 @@ static int resolve_variants(const group_fn fns[], const int sizes[], const int l
  * rates off the solved pairs (so any of them can start the next row) and the solving block
  * keeps its orientation.  Returns 1 when a block solved, with *used that block; 0 when none
  * converged, -1 when the iteration of one did not contract. */
-static int resolve_group(const group_fn fns[], int count, lengths_fn lengths, void *ctx, double a[][LINKGEN_NMAX],
-                         double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma,
-                         const double *chains, int order, const resolver_mechanism *m, const resolver_policy *p)
+static int resolve_group(const group_fn fns[], const bend_fn bends[], int count, lengths_fn lengths, void *ctx,
+                         double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its,
+                         double *sigma, const double *chains, int order, const resolver_mechanism *m,
+                         const resolver_policy *p)
 {
     double turn = 0.0;
-    const int k = resolve_variants(fns, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used, its,
-                                   sigma, &turn, chains, p, m->length_scale);
+    const int k = resolve_variants(fns, bends, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used,
+                                   its, sigma, &turn, chains, p, m->length_scale);
     if (k < 0) return k == -1 ? 0 : -1;
     *used = k;
     lengths(ctx, a + first, ad + first);

@@ -29,7 +29,7 @@ function [ok, x, its] = closure_newton(c, w, x, tol, max_iter, reach, polish)
 end
 
 function [ok, its, sigma, w, a, ad, used] = resolver_closure(c, groups, lengths, w, a, ad, used, first, slot, order, ...
-                                                             m, p)
+                                                             m, p, writes)
     % One resolver step by the closure strategy (resolver_group's arguments and results, c the
     % group's closure): the positions start where the first block that closes at its state
     % puts them (the one that solved the last row, used(slot), first; the others in order),
@@ -59,6 +59,6 @@ function [ok, its, sigma, w, a, ad, used] = resolver_closure(c, groups, lengths,
     end
     [w, a] = c.adopt(w, x, a);
     p.polish = false;  % the closure's own step was the polishing one
-    [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a, ad, used, first, slot, order, m, p);
+    [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a, ad, used, first, slot, order, m, p, writes);
     its = its + steps;
 end

@@ -224,33 +224,88 @@ function [ok, a, its, jac, w] = resolver_solve_block(group, w, a, p, scale, loop
     end
 end
 
-function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order)
-    % Exact Add-link rates by the implicit-function theorem (at every order: they start
-    % the next row), the accelerations at order 2, then the final pass with them.  turn is
-    % the block's orientation, sign(det J): it stays the same along the assembly while the
-    % block's chains keep their branches (a solution of the other sign is another assembly).
-    n = numel(a);
-    zero = zeros(n, 1);
-    [~, res, w] = group(w, a, zero, zero, true);
-    [rates, det] = solve_linear(jac, -res(:, 2));
-    accs = zero;
-    if order >= 2
-        [~, res, w] = group(w, a, rates, zero, true);
-        accs = solve_linear(jac, -res(:, 3));
-        if det == 0
-            accs = NaN(n, 1);
+function s = resolver_sensitivities(w, names)
+    % The rates of the records names of w (their fields dX), one row: as a Jacobian pass
+    % leaves them, the records' sensitivities to an Add-link.
+    s = [];
+    for i = 1:numel(names)
+        r = w.(names{i});
+        f = fieldnames(r);
+        for k = 1:numel(f)
+            if f{k}(1) == 'd' && (numel(f{k}) < 2 || f{k}(2) ~= 'd')
+                s(end + 1) = r.(f{k});
+            end
         end
     end
+end
+
+function w = resolver_bend(w, names, s, acc)
+    % The records names of w with acc times their sensitivities s (resolver_sensitivities'
+    % order) added to their accelerations (the fields ddX).
+    j = 0;
+    for i = 1:numel(names)
+        r = w.(names{i});
+        f = fieldnames(r);
+        for k = 1:numel(f)
+            if f{k}(1) == 'd' && (numel(f{k}) < 2 || f{k}(2) ~= 'd')
+                j = j + 1;
+                r.(['d', f{k}]) = r.(['d', f{k}]) + acc * s(j);
+            end
+        end
+        w.(names{i}) = r;
+    end
+end
+
+function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order, names)
+    % Exact Add-link rates by the implicit-function theorem (at every order: they start
+    % the next row), the accelerations at order 2.  With names (the records the block sets)
+    % the pass at the rates leaves the records' positions and rates, and their accelerations
+    % are that pass's plus the Add-link accelerations times the records' sensitivities, as
+    % accelerations are linear in the Add-links' (Newton's last pass left the last
+    % Add-link's; the others' are measured again at a: the same bits); without, or at a
+    % singular J, one pass more with them.  turn is the block's orientation, sign(det J): it
+    % stays the same along the assembly while the block's chains keep their branches (a
+    % solution of the other sign is another assembly).
+    n = numel(a);
+    zero = zeros(n, 1);
+    bent = order >= 2 && nargin > 5;
+    sens = cell(n, 1);
+    if bent
+        sens{n} = resolver_sensitivities(w, names);
+        for j = 1:n - 1
+            unit = zero;
+            unit(j) = 1;
+            [~, ~, w] = group(w, a, unit, zero, false);
+            sens{j} = resolver_sensitivities(w, names);
+        end
+    end
+    [~, res, w] = group(w, a, zero, zero, true);
+    [rates, det] = solve_linear(jac, -res(:, 2));
     prod = 1;
     for j = 1:n
         prod = prod * sqrt(sum(jac(:, j) .^ 2));
     end
     sigma = abs(det) / max(prod, 1);
     turn = sign(det);
+    accs = zero;
+    if order >= 2
+        [st, res, w] = group(w, a, rates, zero, true);
+        accs = solve_linear(jac, -res(:, 3));
+        if bent && det ~= 0
+            for j = 1:n
+                w = resolver_bend(w, names, sens{j}, accs(j));
+            end
+            return;
+        end
+        if det == 0
+            accs = NaN(n, 1);
+        end
+    end
     [st, ~, w] = group(w, a, rates, accs, true);
 end
 
-function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, prefer, sizes, loops, p, scale)
+function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, prefer, sizes, loops, p, scale, ...
+                                                      writes)
     % The strategy's iteration (resolver_solve_block) on a group's blocks (its chosen Add-link
     % candidate, then the fallbacks), the preferred block first, the others in order.  The
     % first that converges with its chains conditioned at least p.min_chain_sigma (w.chains:
@@ -260,7 +315,7 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
     % decides).  a{first + k} is block k's state: its sizes(k + 1) start lengths, its
     % branches, its orientation; scale is the length scale; k = -1 when no block converges
     % (-2 when the iteration of one of them did not contract); turn is the orientation of
-    % block k (see resolver_rates).
+    % block k (see resolver_rates, which gets writes{k + 1}: the records block k sets).
     its = 0;
     sigma = 0;
     turn = 0;
@@ -285,7 +340,7 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
             end
             continue;
         end
-        [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
+        [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order, writes{k + 1});
         if st ~= 1
             return;
         end
@@ -295,7 +350,7 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
         [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale, ...
                                                     loops(k + 1));
         if ok > 0
-            [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order);
+            [st, sigma, turn, w] = resolver_rates(groups{k + 1}, w, x, jac, order, writes{k + 1});
             if st ~= 1
                 return;
             end
@@ -304,7 +359,8 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
     k = -1 - stuck;
 end
 
-function [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a, ad, used, first, slot, order, m, p)
+function [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a, ad, used, first, slot, order, m, p, ...
+                                                           writes)
     % One resolver step: resolver_variants on the group's blocks a{first}, ... (the one that
     % solved the last row, used(slot), first); then lengths(w, a, ad) reads every block's
     % state and its rates off the solved pairs (so any of them can start the next row) and
@@ -312,7 +368,8 @@ function [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a
     % converged, -1 when the iteration of one did not contract; its: its iterations.
     [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, used(slot), ...
                                                  m.sizes(first:first + numel(groups) - 1), ...
-                                                 m.loops(first:first + numel(groups) - 1), p, m.length_scale);
+                                                 m.loops(first:first + numel(groups) - 1), p, m.length_scale, ...
+                                                 writes);
     ok = 1;
     if k < 0
         ok = -(k == -2);  % 0: none converged, -1: an iteration did not contract

@@ -29,7 +29,7 @@ def closure_newton(c, x, tol, max_iter, reach, polish):
     return done and all(abs(u - v) <= reach for u, v in zip(x, start)), x, its
 
 
-def resolve_closure(c, groups, lengths, a, ad, first, slot, used, its, order, chains, m, p):
+def resolve_closure(c, groups, lengths, a, ad, first, slot, used, its, order, chains, m, p, records=None):
     """One resolver step by the closure strategy (resolve_group's arguments and result, c the
     group's closure): the positions start where the first block that closes at its state
     puts them (the one that solved the last row first, the others in order), Newton on the
@@ -49,6 +49,6 @@ def resolve_closure(c, groups, lengths, a, ad, first, slot, used, its, order, ch
         return False, 0.0
     c.adopt(x, a)
     polished = type(p)(**{**vars(p), "polish": False})  # the closure's own step was the polishing one
-    solved, sigma = resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains, m, polished)
+    solved, sigma = resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains, m, polished, records)
     its[slot] += steps
     return solved, sigma
