@@ -42,6 +42,7 @@ TARGETS: dict[str, tuple[str, tuple[str, ...] | None, str, dict[str, object]]] =
     "fourbar": ("fourbar", None, "C Python numpy", {}),
     "jansen_foot": ("jansen_foot", None, "C", {}),
     "jansen": ("jansen", None, "C numpy", {}),
+    "jansen_C": ("jansen", None, "C", {}),
     "sixbar_fig14": ("sixbar_fig14", None, "C numpy", {}),
     # the float builds (issue 19: at least 1.5x the double speed) and the checks off knob (faster than on)
     "fourbar_float": ("fourbar", None, "C", FLOAT),
