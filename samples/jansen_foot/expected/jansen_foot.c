@@ -64,11 +64,11 @@ static inline int link_point(const POINT *j1, const POINT *j2, double gsi, doubl
     const double rvx = -om * ry;
     const double rvy = om * rx;
     const int st = r2 == 0 ? 1 : 0;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; return st; }
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
     jc->DP.y = j1->DP.y + rvy;
-    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; }
     return st;
 }
 
@@ -113,13 +113,13 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double bvx = buv * ux - bnv * uy;
     const double bvy = buv * uy + bnv * ux;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    *sigma_out = sigma;
+    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; return st; }
+    if (st == 3) { jb->P.x = j1->P.x + e1x; jb->P.y = j1->P.y + e1y; jb->DP.x = NAN; jb->DP.y = NAN; return st; }
     jb->P.x = j1->P.x + e1x;
     jb->P.y = j1->P.y + e1y;
     jb->DP.x = bvx;
     jb->DP.y = bvy;
-    *sigma_out = sigma;
-    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; }
-    if (st == 1 || st == 3) { jb->DP.x = NAN; jb->DP.y = NAN; }
     return st;
 }
 
