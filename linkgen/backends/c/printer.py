@@ -26,6 +26,10 @@ class CExprs(RecordExprs):
                        for p in prim.params if p.is_record for f in record_fields(p.kind, 2)}
 
     def select(self, cond: str, a: str, b: str) -> str:
+        """``cond ? a : b``; a condition of logic() ``(x) & (y)`` in parentheses (clang's
+        -Wbitwise-conditional-parentheses)."""
+        if " & " in cond or " | " in cond:
+            cond = f"({cond})"
         return f"{cond} ? {a} : {b}"
 
     def logic(self, e: Logic) -> str:
