@@ -360,7 +360,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     l2_v, l2_dv, l2_ddv = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
-    q = sqrt(dx * dx + dy * dy)
+    dd = dx * dx + dy * dy
+    q = sqrt(dd)
     iq = NAN if q == 0 else 1 / q
     ux = dx * iq
     uy = dy * iq
@@ -372,7 +373,11 @@ def RRR_links(j1, j2, l1, l2, minv):
     k = z - (x - y)
     fail = k < -8 * EPS * x or q == 0 or lo <= 0
     kk = (0 if 0 > k else k)
-    area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
+    s2 = (l1_v + l2_v) * (l1_v + l2_v)
+    t2 = (l1_v - l2_v) * (l1_v - l2_v)
+    o1 = s2 - dd
+    o2 = dd - t2
+    area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     h = area4 * iq / 2
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
     a2 = (q + (l2_v - l1_v) * ((l1_v + l2_v) * iq)) / 2
@@ -954,7 +959,8 @@ def _group_1(w, a, da, dda, live):
     _minv = w.br4
     _dx = _j2_x - 164.0
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -966,7 +972,11 @@ def _group_1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -1010,7 +1020,8 @@ def _group_1(w, a, da, dda, live):
     _minv = w.br5
     _dx = _j2_x - 64.0
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1022,7 +1033,11 @@ def _group_1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -1130,7 +1145,8 @@ def _group_1_v1(w, a, da, dda, live):
     _minv = w.br24
     _dx = _j2_x - 64.0
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1142,7 +1158,11 @@ def _group_1_v1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -1186,7 +1206,8 @@ def _group_1_v1(w, a, da, dda, live):
     _minv = w.br25
     _dx = 164.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1198,7 +1219,11 @@ def _group_1_v1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -1305,7 +1330,8 @@ def _group_1_v2(w, a, da, dda, live):
     _minv = w.br28
     _dx = 4.0 - 64.0
     _dy = 32.0 - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1317,7 +1343,11 @@ def _group_1_v2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -1361,7 +1391,8 @@ def _group_1_v2(w, a, da, dda, live):
     _minv = w.br29
     _dx = 164.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1373,7 +1404,11 @@ def _group_1_v2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -1480,7 +1515,8 @@ def _group_1_v3(w, a, da, dda, live):
     _minv = w.br32
     _dx = 4.0 - 164.0
     _dy = 32.0 - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1492,7 +1528,11 @@ def _group_1_v3(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -1536,7 +1576,8 @@ def _group_1_v3(w, a, da, dda, live):
     _minv = w.br33
     _dx = _j2_x - 64.0
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1548,7 +1589,11 @@ def _group_1_v3(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -1655,7 +1700,8 @@ def _group_1_v4(w, a, da, dda, live):
     _minv = w.br36
     _dx = 64.0 - 164.0
     _dy = (-48.0) - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1667,7 +1713,11 @@ def _group_1_v4(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -1711,7 +1761,8 @@ def _group_1_v4(w, a, da, dda, live):
     _minv = w.br37
     _dx = _j2_x - 64.0
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1723,7 +1774,11 @@ def _group_1_v4(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -1830,7 +1885,8 @@ def _group_1_v5(w, a, da, dda, live):
     _minv = w.br40
     _dx = 164.0 - 64.0
     _dy = (-48.0) - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1842,7 +1898,11 @@ def _group_1_v5(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -1886,7 +1946,8 @@ def _group_1_v5(w, a, da, dda, live):
     _minv = w.br41
     _dx = 164.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1898,7 +1959,11 @@ def _group_1_v5(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -2005,7 +2070,8 @@ def _group_1_v6(w, a, da, dda, live):
     _minv = w.br44
     _dx = (-56.0) - 64.0
     _dy = (-48.0) - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2017,7 +2083,11 @@ def _group_1_v6(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -2061,7 +2131,8 @@ def _group_1_v6(w, a, da, dda, live):
     _minv = w.br45
     _dx = 164.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2073,7 +2144,11 @@ def _group_1_v6(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -2181,7 +2256,8 @@ def _group_2(w, a, da, dda, live):
     _minv = w.br10
     _dx = _j2_x - (-156.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2193,7 +2269,11 @@ def _group_2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -2237,7 +2317,8 @@ def _group_2(w, a, da, dda, live):
     _minv = w.br11
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2249,7 +2330,11 @@ def _group_2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -2358,7 +2443,8 @@ def _group_2_v1(w, a, da, dda, live):
     _minv = w.br48
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2370,7 +2456,11 @@ def _group_2_v1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -2414,7 +2504,8 @@ def _group_2_v1(w, a, da, dda, live):
     _minv = w.br49
     _dx = (-156.0) - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2426,7 +2517,11 @@ def _group_2_v1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -2535,7 +2630,8 @@ def _group_2_v2(w, a, da, dda, live):
     _minv = w.br52
     _dx = _j2_x - (-156.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2547,7 +2643,11 @@ def _group_2_v2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -2591,7 +2691,8 @@ def _group_2_v2(w, a, da, dda, live):
     _minv = w.br53
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2603,7 +2704,11 @@ def _group_2_v2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -2712,7 +2817,8 @@ def _group_2_v3(w, a, da, dda, live):
     _minv = w.br56
     _dx = _j2_x - (-156.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2724,7 +2830,11 @@ def _group_2_v3(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -2768,7 +2878,8 @@ def _group_2_v3(w, a, da, dda, live):
     _minv = w.br57
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2780,7 +2891,11 @@ def _group_2_v3(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -2889,7 +3004,8 @@ def _group_2_v4(w, a, da, dda, live):
     _minv = w.br60
     _dx = _j2_x - (-156.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2901,7 +3017,11 @@ def _group_2_v4(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -2945,7 +3065,8 @@ def _group_2_v4(w, a, da, dda, live):
     _minv = w.br61
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2957,7 +3078,11 @@ def _group_2_v4(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -3066,7 +3191,8 @@ def _group_2_v5(w, a, da, dda, live):
     _minv = w.br64
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3078,7 +3204,11 @@ def _group_2_v5(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -3122,7 +3252,8 @@ def _group_2_v5(w, a, da, dda, live):
     _minv = w.br65
     _dx = (-156.0) - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3134,7 +3265,11 @@ def _group_2_v5(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -3243,7 +3378,8 @@ def _group_2_v6(w, a, da, dda, live):
     _minv = w.br68
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3255,7 +3391,11 @@ def _group_2_v6(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -3299,7 +3439,8 @@ def _group_2_v6(w, a, da, dda, live):
     _minv = w.br69
     _dx = (-156.0) - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3311,7 +3452,11 @@ def _group_2_v6(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -3419,7 +3564,8 @@ def _group_2_v7(w, a, da, dda, live):
     _minv = w.br72
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3431,7 +3577,11 @@ def _group_2_v7(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -3475,7 +3625,8 @@ def _group_2_v7(w, a, da, dda, live):
     _minv = w.br73
     _dx = (-156.0) - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3487,7 +3638,11 @@ def _group_2_v7(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -3597,7 +3752,8 @@ def _group_2_v8(w, a, da, dda, live):
     _minv = w.br76
     _dx = _j2_x - _j1_x
     _dy = _j2_y - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3609,7 +3765,11 @@ def _group_2_v8(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (121.6552506059644 + _l2_v) * (121.6552506059644 + _l2_v)
+    _t2 = (121.6552506059644 - _l2_v) * (121.6552506059644 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (121.6552506059644 - _l2_v) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 121.6552506059644) * ((121.6552506059644 + _l2_v) * _iq)) / 2
@@ -3653,7 +3813,8 @@ def _group_2_v8(w, a, da, dda, live):
     _minv = w.br77
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3665,7 +3826,11 @@ def _group_2_v8(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 60.8276253029822) * (70.0 + 60.8276253029822)
+    _t2 = (70.0 - 60.8276253029822) * (70.0 - 60.8276253029822)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 60.8276253029822) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _a2 = (_q + (60.8276253029822 - 70.0) * ((70.0 + 60.8276253029822) * _iq)) / 2

@@ -276,7 +276,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     l2_v, l2_dv, l2_ddv = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
-    q = sqrt(dx * dx + dy * dy)
+    dd = dx * dx + dy * dy
+    q = sqrt(dd)
     iq = NAN if q == 0 else 1 / q
     ux = dx * iq
     uy = dy * iq
@@ -288,7 +289,11 @@ def RRR_links(j1, j2, l1, l2, minv):
     k = z - (x - y)
     fail = k < -8 * EPS * x or q == 0 or lo <= 0
     kk = (0 if 0 > k else k)
-    area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
+    s2 = (l1_v + l2_v) * (l1_v + l2_v)
+    t2 = (l1_v - l2_v) * (l1_v - l2_v)
+    o1 = s2 - dd
+    o2 = dd - t2
+    area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     h = area4 * iq / 2
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
     a2 = (q + (l2_v - l1_v) * ((l1_v + l2_v) * iq)) / 2
@@ -864,7 +869,8 @@ def _group_1(w, a, da, dda, live):
     _minv = w.br4
     _dx = _j2_x - 76.0
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -876,7 +882,11 @@ def _group_1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -920,7 +930,8 @@ def _group_1(w, a, da, dda, live):
     _minv = w.br5
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -932,7 +943,11 @@ def _group_1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -1040,7 +1055,8 @@ def _group_1_v1(w, a, da, dda, live):
     _minv = w.br14
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1052,7 +1068,11 @@ def _group_1_v1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -1096,7 +1116,8 @@ def _group_1_v1(w, a, da, dda, live):
     _minv = w.br15
     _dx = 76.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1108,7 +1129,11 @@ def _group_1_v1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -1215,7 +1240,8 @@ def _group_1_v2(w, a, da, dda, live):
     _minv = w.br18
     _dx = (-24.0) - 76.0
     _dy = (-48.0) - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1227,7 +1253,11 @@ def _group_1_v2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -1271,7 +1301,8 @@ def _group_1_v2(w, a, da, dda, live):
     _minv = w.br19
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1283,7 +1314,11 @@ def _group_1_v2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -1390,7 +1425,8 @@ def _group_1_v3(w, a, da, dda, live):
     _minv = w.br22
     _dx = 76.0 - (-24.0)
     _dy = (-48.0) - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1402,7 +1438,11 @@ def _group_1_v3(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -1446,7 +1486,8 @@ def _group_1_v3(w, a, da, dda, live):
     _minv = w.br23
     _dx = 76.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1458,7 +1499,11 @@ def _group_1_v3(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -1565,7 +1610,8 @@ def _group_1_v4(w, a, da, dda, live):
     _minv = w.br26
     _dx = (-84.0) - (-24.0)
     _dy = 32.0 - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1577,7 +1623,11 @@ def _group_1_v4(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -1621,7 +1671,8 @@ def _group_1_v4(w, a, da, dda, live):
     _minv = w.br27
     _dx = 76.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1633,7 +1684,11 @@ def _group_1_v4(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -1740,7 +1795,8 @@ def _group_1_v5(w, a, da, dda, live):
     _minv = w.br30
     _dx = (-84.0) - 76.0
     _dy = 32.0 - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1752,7 +1808,11 @@ def _group_1_v5(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -1796,7 +1856,8 @@ def _group_1_v5(w, a, da, dda, live):
     _minv = w.br31
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1808,7 +1869,11 @@ def _group_1_v5(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -1916,7 +1981,8 @@ def _group_1_v6(w, a, da, dda, live):
     _minv = w.br34
     _dx = 76.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1928,7 +1994,11 @@ def _group_1_v6(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (121.6552506059644 + _l2_v) * (121.6552506059644 + _l2_v)
+    _t2 = (121.6552506059644 - _l2_v) * (121.6552506059644 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (121.6552506059644 - _l2_v) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 121.6552506059644) * ((121.6552506059644 + _l2_v) * _iq)) / 2
@@ -1972,7 +2042,8 @@ def _group_1_v6(w, a, da, dda, live):
     _minv = w.br35
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1984,7 +2055,11 @@ def _group_1_v6(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 60.8276253029822) * (70.0 + 60.8276253029822)
+    _t2 = (70.0 - 60.8276253029822) * (70.0 - 60.8276253029822)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 60.8276253029822) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _a2 = (_q + (60.8276253029822 - 70.0) * ((70.0 + 60.8276253029822) * _iq)) / 2
@@ -2091,7 +2166,8 @@ def _group_1_v7(w, a, da, dda, live):
     _minv = w.br38
     _dx = (-24.0) - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2103,7 +2179,11 @@ def _group_1_v7(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (121.6552506059644 + _l2_v) * (121.6552506059644 + _l2_v)
+    _t2 = (121.6552506059644 - _l2_v) * (121.6552506059644 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (121.6552506059644 - _l2_v) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 121.6552506059644) * ((121.6552506059644 + _l2_v) * _iq)) / 2
@@ -2147,7 +2227,8 @@ def _group_1_v7(w, a, da, dda, live):
     _minv = w.br39
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2159,7 +2240,11 @@ def _group_1_v7(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 60.8276253029822) * (70.0 + 60.8276253029822)
+    _t2 = (70.0 - 60.8276253029822) * (70.0 - 60.8276253029822)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 60.8276253029822) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _a2 = (_q + (60.8276253029822 - 70.0) * ((70.0 + 60.8276253029822) * _iq)) / 2
@@ -2266,7 +2351,8 @@ def _group_1_v8(w, a, da, dda, live):
     _minv = w.br42
     _dx = (-84.0) - _j1_x
     _dy = 32.0 - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2278,7 +2364,11 @@ def _group_1_v8(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (121.6552506059644 + _l2_v) * (121.6552506059644 + _l2_v)
+    _t2 = (121.6552506059644 - _l2_v) * (121.6552506059644 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (121.6552506059644 - _l2_v) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 121.6552506059644) * ((121.6552506059644 + _l2_v) * _iq)) / 2
@@ -2322,7 +2412,8 @@ def _group_1_v8(w, a, da, dda, live):
     _minv = w.br43
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2334,7 +2425,11 @@ def _group_1_v8(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 60.8276253029822) * (70.0 + 60.8276253029822)
+    _t2 = (70.0 - 60.8276253029822) * (70.0 - 60.8276253029822)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 60.8276253029822) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _a2 = (_q + (60.8276253029822 - 70.0) * ((70.0 + 60.8276253029822) * _iq)) / 2

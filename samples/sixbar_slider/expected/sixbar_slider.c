@@ -106,7 +106,8 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
-    const double q = sqrt(dx * dx + dy * dy);
+    const double dd = dx * dx + dy * dy;
+    const double q = sqrt(dd);
     const double iq = q == 0 ? NAN : 1 / q;
     const double ux = dx * iq;
     const double uy = dy * iq;
@@ -118,7 +119,11 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double k = z - (x - y);
     const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
     const double kk = (0.0 > k ? 0.0 : k);
-    const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
+    const double s2 = (l1->v + l2->v) * (l1->v + l2->v);
+    const double t2 = (l1->v - l2->v) * (l1->v - l2->v);
+    const double o1 = s2 - dd;
+    const double o2 = dd - t2;
+    const double area4 = ((3 * o1 > s2) & (3 * o2 > dd)) ? sqrt(o1 * o2) : sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
     const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
     const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
