@@ -178,10 +178,6 @@ def either(a: Expr, b: Expr) -> Expr:
     return Logic("or", a, b)
 
 
-def both(a: Expr, b: Expr) -> Expr:
-    return Logic("and", a, b)
-
-
 def select(cond: Expr, a: object, b: object) -> Expr:
     return Select(cond, wrap(a), wrap(b))
 

@@ -9,7 +9,7 @@ status and its conditioning sigma (``vectors.chain_status``).
 from __future__ import annotations
 
 from ..policy import TOGGLE_SLACK
-from .dsl import EPS, NAN, Expr, Primitive, atan2, both, either, fabs, fmax, fmin, select, sqrt
+from .dsl import EPS, NAN, Expr, Logic, Primitive, atan2, either, fabs, fmax, fmin, select, sqrt
 from .vectors import Motion, PlaneBuilder, Vec, chain_status, primitive
 
 
@@ -42,7 +42,7 @@ def RRR_links(b: PlaneBuilder) -> Primitive:
     o1 = b.let("o1", s2 - dd)
     o2 = b.let("o2", dd - t2)
     kahan = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
-    area4 = b.let("area4", select(both(3 * o1 > s2, 3 * o2 > dd), sqrt(o1 * o2), kahan))
+    area4 = b.let("area4", select(Logic("and", 3 * o1 > s2, 3 * o2 > dd), sqrt(o1 * o2), kahan))
     h = b.let("h", area4 * iq / 2)
     a = b.let("a", (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2)
     a2 = b.let("a2", (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2)
