@@ -35,13 +35,21 @@ from linkgen.writer import write_all  # noqa: E402
 
 C_ROWS, C_RUNS, GRIND_ROWS = 3600, 31, 3600
 
-# name -> (sample, outputs or None for the file's, what is measured)
-TARGETS = {
-    "fourbar_P": ("fourbar", ("P",), "C"),
-    "fourbar": ("fourbar", None, "C Python numpy"),
-    "jansen_foot": ("jansen_foot", None, "C"),
-    "jansen": ("jansen", None, "C numpy"),
-    "sixbar_fig14": ("sixbar_fig14", None, "C numpy"),
+# name -> (sample, outputs or None for the file's, what is measured, settings over the file's)
+FLOAT = {"real": "float"}
+TARGETS: dict[str, tuple[str, tuple[str, ...] | None, str, dict[str, object]]] = {
+    "fourbar_P": ("fourbar", ("P",), "C", {}),
+    "fourbar": ("fourbar", None, "C Python numpy", {}),
+    "jansen_foot": ("jansen_foot", None, "C", {}),
+    "jansen": ("jansen", None, "C numpy", {}),
+    "jansen_C": ("jansen", None, "C", {}),
+    "sixbar_fig14": ("sixbar_fig14", None, "C numpy", {}),
+    # the float builds (issue 19: at least 1.5x the double speed) and the checks off knob (faster than on)
+    "fourbar_float": ("fourbar", None, "C", FLOAT),
+    "jansen_foot_float": ("jansen_foot", None, "C", FLOAT),
+    "jansen_float": ("jansen", None, "C", FLOAT),
+    "fourbar_nochecks": ("fourbar", None, "C", {"checks": False}),
+    "jansen_nochecks": ("jansen", None, "C", {"checks": False}),
 }
 
 
@@ -64,7 +72,7 @@ def instructions(log, folder: Path, lines: bool = False) -> float:
     return total / GRIND_ROWS
 
 
-def profile(folder: Path, name: str, least: float = 2.0) -> str:
+def profile(folder: Path, name: str, least: float = 0.5) -> str:
     """The lines of NAME.c with at least ``least`` instructions per configuration, most first
     (callgrind_annotate of the grind run): a line's own, and a call's ("=> function", all it costs)."""
     text = subprocess.run(["callgrind_annotate", "--auto=yes", "--show-percs=no", "grind.out"], cwd=folder,
@@ -87,8 +95,8 @@ def profile(folder: Path, name: str, least: float = 2.0) -> str:
 
 
 def measure(name: str, lines: bool = False) -> str:
-    sample, outputs, what = TARGETS[name]
-    log = build_log(str(ROOT / "samples" / sample / f"{sample}.yaml"), outputs)
+    sample, outputs, what, options = TARGETS[name]
+    log = build_log(str(ROOT / "samples" / sample / f"{sample}.yaml"), outputs, options=options)
     parts = [name]
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)

@@ -329,7 +329,8 @@ def test_run_prints_the_sweep_solved_by_hand(tmp_path: Path, monkeypatch: pytest
     text = _ok(args, tmp_path, monkeypatch)
     head, *rows = [line.split(",") for line in text.splitlines()]
     assert head == ["theta_O1", "B.x", "B.y", "status"]
-    assert [float(v) for v in rows[0]] == [0.0, 80.0, 50.0, 0.0]  # the sketch
+    theta0, x0, y0, status0 = (float(v) for v in rows[0])  # the sketch
+    assert (theta0, x0, status0) == (0.0, 80.0, 0.0) and y0 == pytest.approx(50.0, rel=1e-14)
     theta, x, y, status = (float(v) for v in rows[1])
     assert (theta, status) == (math.pi, 0)
     along = 15600 / 220

@@ -55,7 +55,7 @@ links:
   crank0: [J8, J7]
   frame: {joints: [J1, J3, J8], fixed: true}
 inputs:
-  - {joint: J8, link: crank0, relative_to: frame, range: [0, 10], speed: 30}
+  - {joint: J8, link: crank0, relative_to: frame, range: [0, 12], speed: 30}
   - {joint: J7, link: crank, relative_to: crank0, range: [60, 180], speed: 360}
 samples: 4
 sweep: grid
@@ -134,7 +134,9 @@ def test_resolver_grid_restarts_each_line_from_the_sketch(tmp_path: Path, monkey
              for lo in range(0, SAMPLES ** 2, SAMPLES)]  # each line alone, from the sketch
     evaluator = _evaluator(log)
     assert evaluator.splitlines()[1:] == [row for r in lines for row in csv(log, r).splitlines()[1:]]
-    assert csv(log, evaluate(log, values, rates, accs)) != evaluator  # continuing: other bits
+    # continuing: other bits (in the last digits, by rounding: the grid is one where they differ, so the
+    # restart is seen; over 0..10 deg they happen to agree since RRR_links' open-triangle area)
+    assert csv(log, evaluate(log, values, rates, accs)) != evaluator
     assert run_c(log, tmp_path) == run_python(log, tmp_path) == run_numpy(log, tmp_path) == evaluator
     monkeypatch.setattr(linkgen.api, "CHUNK", 6)  # chunks of whole lines (4 rows), each line from the sketch
     table = linkgen.load(path).sweep()

@@ -9,7 +9,7 @@ status and its conditioning sigma (``vectors.chain_status``).
 from __future__ import annotations
 
 from ..policy import TOGGLE_SLACK
-from .dsl import EPS, NAN, Expr, Primitive, atan2, either, fabs, fmax, fmin, select, sqrt
+from .dsl import EPS, NAN, Expr, Logic, Primitive, atan2, either, fabs, fmax, fmin, select, sqrt
 from .vectors import Motion, PlaneBuilder, Vec, chain_status, primitive
 
 
@@ -20,7 +20,8 @@ def RRR_links(b: PlaneBuilder) -> Primitive:
     l1, l2 = b.record("l1", "VARIABLE"), b.record("l2", "VARIABLE")
     minv = b.scalar("minv", "INT")
     d = b.vec("d", j2.p - j1.p)
-    q = b.let("q", d.norm())
+    dd = b.let("dd", d.dot(d))
+    q = b.let("q", sqrt(dd))
     iq = b.let("iq", select(q.eq(0), NAN, 1 / q))
     u = b.vec("u", Vec(d.x * iq, d.y * iq))
     # Kahan's area formula on the sorted sides x >= y >= z
@@ -32,7 +33,16 @@ def RRR_links(b: PlaneBuilder) -> Primitive:
     k = b.let("k", z - (x - y))
     fail = b.let("fail", either(either(k < -TOGGLE_SLACK * EPS * x, q.eq(0)), lo <= 0))
     kk = b.let("kk", fmax(k, 0))
-    area4 = b.let("area4", sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z))))  # 4 x the triangle's area
+    # 4 x the triangle's area.  Open (each of (l1 + l2)^2 - q^2 and q^2 - (l1 - l2)^2 over a third of its
+    # first term, so neither cancels more than 1.6 bits): sqrt of their product, from q^2 alone, while the
+    # square root of q is still running (the chain's critical path loses a square root, docs/primitives.md);
+    # else, near a toggle, Kahan's formula on the sorted sides, which needs q.
+    s2 = b.let("s2", (l1.v + l2.v) * (l1.v + l2.v))
+    t2 = b.let("t2", (l1.v - l2.v) * (l1.v - l2.v))
+    o1 = b.let("o1", s2 - dd)
+    o2 = b.let("o2", dd - t2)
+    kahan = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
+    area4 = b.let("area4", select(Logic("and", 3 * o1 > s2, 3 * o2 > dd), sqrt(o1 * o2), kahan))
     h = b.let("h", area4 * iq / 2)
     a = b.let("a", (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2)
     a2 = b.let("a2", (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2)

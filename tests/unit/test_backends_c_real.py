@@ -45,5 +45,5 @@ def test_float_calls_its_own_atan2_in_code_only():
     code = "#include <math.h>\n/* atan2(y, x) */\nstatic double f(double y, double x) { return atan2(y, x); }\n"
     out = retype(code, "float", "m")
     assert "/* atan2(y, x) */" in out and "return atan2_real(y, x);" in out
-    assert out.index("static m_real atan2_real(m_real y, m_real x)") < out.index("static m_real f(")
+    assert out.index("static inline m_real atan2_real(m_real y, m_real x)") < out.index("static m_real f(")
     assert "atan2_real" not in retype(code, "long double", "m") and retype(code, "double", "m") == code

@@ -24,8 +24,11 @@ ATAN2_FLOAT = """
 /* atan2(y, x) in float: the angle of the octant's ratio r, |r| <= tan(pi/8), from Cephes' atanf polynomial,
    moved to its octant and quadrant by constants in two parts (a float's and the rest): within 2.3 float ulps of
    the exact angle (2e7 random pairs; glibc's atan2f within 1 at three times the cost), with atan2's signed
-   zeros and nan. */
-static double atan2_real(double y, double x)
+   zeros and nan.  Inline like the primitives: a call would spill every live real around it. */
+#if defined(__GNUC__)
+static inline double atan2_real(double y, double x) __attribute__((always_inline));
+#endif
+static inline double atan2_real(double y, double x)
 {
     const double ax = fabs(x), ay = fabs(y);
     double base = 0.0, rest = 0.0, r, z, t;

@@ -30,10 +30,10 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
     const int st = r2 == 0 ? 1 : 0;
+    if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; return st; }
     angle->the = th;
     angle->dthe = om;
     angle->ddthe = al;
-    if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; }
     return st;
 }
 
@@ -63,13 +63,13 @@ static inline int link_point(const POINT *j1, const POINT *j2, double gsi, doubl
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
     const int st = r2 == 0 ? 1 : 0;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; return st; }
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
     jc->DP.y = j1->DP.y + rvy;
     jc->DDP.x = j1->DDP.x + rax;
     jc->DDP.y = j1->DDP.y + ray;
-    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; }
     return st;
 }
 
@@ -81,7 +81,8 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
-    const double q = sqrt(dx * dx + dy * dy);
+    const double dd = dx * dx + dy * dy;
+    const double q = sqrt(dd);
     const double iq = q == 0 ? NAN : 1 / q;
     const double ux = dx * iq;
     const double uy = dy * iq;
@@ -93,7 +94,11 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double k = z - (x - y);
     const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
     const double kk = (0.0 > k ? 0.0 : k);
-    const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
+    const double s2 = (l1->v + l2->v) * (l1->v + l2->v);
+    const double t2 = (l1->v - l2->v) * (l1->v - l2->v);
+    const double o1 = s2 - dd;
+    const double o2 = dd - t2;
+    const double area4 = ((3 * o1 > s2) & (3 * o2 > dd)) ? sqrt(o1 * o2) : sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
     const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
     const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
@@ -120,15 +125,15 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double bax = bua * ux - bna * uy;
     const double bay = bua * uy + bna * ux;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    *sigma_out = sigma;
+    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
+    if (st == 3) { jb->P.x = j1->P.x + e1x; jb->P.y = j1->P.y + e1y; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
     jb->P.x = j1->P.x + e1x;
     jb->P.y = j1->P.y + e1y;
     jb->DP.x = bvx;
     jb->DP.y = bvy;
     jb->DDP.x = bax;
     jb->DDP.y = bay;
-    *sigma_out = sigma;
-    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; }
-    if (st == 1 || st == 3) { jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; }
     return st;
 }
 
@@ -181,6 +186,9 @@ static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double 
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    *sigma_out = sigma;
+    if (st == 1) { psi->the = NAN; psi->dthe = NAN; psi->ddthe = NAN; s->v = NAN; s->dv = NAN; s->ddv = NAN; jp->P.x = NAN; jp->P.y = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; return st; }
+    if (st == 3) { psi->the = th; psi->dthe = NAN; psi->ddthe = NAN; s->v = sv; s->dv = NAN; s->ddv = NAN; jp->P.x = js->P.x + rx; jp->P.y = js->P.y + ry; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; return st; }
     psi->the = th;
     psi->dthe = om;
     psi->ddthe = al;
@@ -193,9 +201,6 @@ static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double 
     jp->DP.y = js->DP.y + rvy;
     jp->DDP.x = js->DDP.x + rax;
     jp->DDP.y = js->DDP.y + ray;
-    *sigma_out = sigma;
-    if (st == 1) { psi->the = NAN; psi->dthe = NAN; psi->ddthe = NAN; s->v = NAN; s->dv = NAN; s->ddv = NAN; jp->P.x = NAN; jp->P.y = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; }
-    if (st == 1 || st == 3) { psi->dthe = NAN; psi->ddthe = NAN; s->dv = NAN; s->ddv = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; }
     return st;
 }
 

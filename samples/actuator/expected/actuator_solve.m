@@ -412,7 +412,8 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     % 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
-    q = sqrt(dx * dx + dy * dy);
+    dd = dx * dx + dy * dy;
+    q = sqrt(dd);
     if q == 0
         iq = NaN;
     else
@@ -434,7 +435,15 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     k = z - (x - y);
     fail = k < -8 * eps * x || q == 0 || lo <= 0;
     kk = max(k, 0);
-    area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
+    s2 = (l1.v + l2.v) * (l1.v + l2.v);
+    t2 = (l1.v - l2.v) * (l1.v - l2.v);
+    o1 = s2 - dd;
+    o2 = dd - t2;
+    if 3 * o1 > s2 && 3 * o2 > dd
+        area4 = sqrt(o1 * o2);
+    else
+        area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
+    end
     h = area4 * iq / 2;
     a = (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2;
     a2 = (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2;

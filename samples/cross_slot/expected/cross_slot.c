@@ -123,6 +123,9 @@ static inline int PRP_links(const POINT *pg1, const ANGLE *psig1, double gsi1, d
     const double jp2ax = k2x + dds2 * cg2;
     const double jp2ay = k2y + dds2 * sg2;
     const int st = cr == 0 ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    *sigma_out = sigma;
+    if (st == 1) { s1->v = NAN; s1->dv = NAN; s1->ddv = NAN; jp1->P.x = NAN; jp1->P.y = NAN; jp1->DP.x = NAN; jp1->DP.y = NAN; jp1->DDP.x = NAN; jp1->DDP.y = NAN; s2->v = NAN; s2->dv = NAN; s2->ddv = NAN; jp2->P.x = NAN; jp2->P.y = NAN; jp2->DP.x = NAN; jp2->DP.y = NAN; jp2->DDP.x = NAN; jp2->DDP.y = NAN; jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
+    if (st == 3) { s1->v = sv1; s1->dv = NAN; s1->ddv = NAN; jp1->P.x = jp1x; jp1->P.y = jp1y; jp1->DP.x = NAN; jp1->DP.y = NAN; jp1->DDP.x = NAN; jp1->DDP.y = NAN; s2->v = sv2; s2->dv = NAN; s2->ddv = NAN; jp2->P.x = jp2x; jp2->P.y = jp2y; jp2->DP.x = NAN; jp2->DP.y = NAN; jp2->DDP.x = NAN; jp2->DDP.y = NAN; jb->P.x = jbx; jb->P.y = jby; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
     s1->v = sv1;
     s1->dv = ds1;
     s1->ddv = dds1;
@@ -147,9 +150,6 @@ static inline int PRP_links(const POINT *pg1, const ANGLE *psig1, double gsi1, d
     jb->DP.y = jp1vy + r1vy;
     jb->DDP.x = jp1ax + r1ax;
     jb->DDP.y = jp1ay + r1ay;
-    *sigma_out = sigma;
-    if (st == 1) { s1->v = NAN; s1->dv = NAN; s1->ddv = NAN; jp1->P.x = NAN; jp1->P.y = NAN; jp1->DP.x = NAN; jp1->DP.y = NAN; jp1->DDP.x = NAN; jp1->DDP.y = NAN; s2->v = NAN; s2->dv = NAN; s2->ddv = NAN; jp2->P.x = NAN; jp2->P.y = NAN; jp2->DP.x = NAN; jp2->DP.y = NAN; jp2->DDP.x = NAN; jp2->DDP.y = NAN; jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; }
-    if (st == 1 || st == 3) { s1->dv = NAN; s1->ddv = NAN; jp1->DP.x = NAN; jp1->DP.y = NAN; jp1->DDP.x = NAN; jp1->DDP.y = NAN; s2->dv = NAN; s2->ddv = NAN; jp2->DP.x = NAN; jp2->DP.y = NAN; jp2->DDP.x = NAN; jp2->DDP.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; }
     return st;
 }
 

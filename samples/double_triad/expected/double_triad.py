@@ -360,7 +360,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     l2_v, l2_dv, l2_ddv = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
-    q = sqrt(dx * dx + dy * dy)
+    dd = dx * dx + dy * dy
+    q = sqrt(dd)
     iq = NAN if q == 0 else 1 / q
     ux = dx * iq
     uy = dy * iq
@@ -372,7 +373,11 @@ def RRR_links(j1, j2, l1, l2, minv):
     k = z - (x - y)
     fail = k < -8 * EPS * x or q == 0 or lo <= 0
     kk = (0 if 0 > k else k)
-    area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
+    s2 = (l1_v + l2_v) * (l1_v + l2_v)
+    t2 = (l1_v - l2_v) * (l1_v - l2_v)
+    o1 = s2 - dd
+    o2 = dd - t2
+    area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     h = area4 * iq / 2
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
     a2 = (q + (l2_v - l1_v) * ((l1_v + l2_v) * iq)) / 2
@@ -987,7 +992,8 @@ def _group_1(w, a, da, dda, live):
     _minv = w.br4
     _dx = _j2_x - 164.0
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -999,7 +1005,11 @@ def _group_1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -1043,7 +1053,8 @@ def _group_1(w, a, da, dda, live):
     _minv = w.br5
     _dx = _j2_x - 64.0
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1055,7 +1066,11 @@ def _group_1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -1163,7 +1178,8 @@ def _group_1_v1(w, a, da, dda, live):
     _minv = w.br24
     _dx = _j2_x - 64.0
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1175,7 +1191,11 @@ def _group_1_v1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -1219,7 +1239,8 @@ def _group_1_v1(w, a, da, dda, live):
     _minv = w.br25
     _dx = 164.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1231,7 +1252,11 @@ def _group_1_v1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -1338,7 +1363,8 @@ def _group_1_v2(w, a, da, dda, live):
     _minv = w.br28
     _dx = 4.0 - 64.0
     _dy = 32.0 - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1350,7 +1376,11 @@ def _group_1_v2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -1394,7 +1424,8 @@ def _group_1_v2(w, a, da, dda, live):
     _minv = w.br29
     _dx = 164.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1406,7 +1437,11 @@ def _group_1_v2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -1513,7 +1548,8 @@ def _group_1_v3(w, a, da, dda, live):
     _minv = w.br32
     _dx = 4.0 - 164.0
     _dy = 32.0 - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1525,7 +1561,11 @@ def _group_1_v3(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -1569,7 +1609,8 @@ def _group_1_v3(w, a, da, dda, live):
     _minv = w.br33
     _dx = _j2_x - 64.0
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1581,7 +1622,11 @@ def _group_1_v3(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -1688,7 +1733,8 @@ def _group_1_v4(w, a, da, dda, live):
     _minv = w.br36
     _dx = 64.0 - 164.0
     _dy = (-48.0) - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1700,7 +1746,11 @@ def _group_1_v4(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -1744,7 +1794,8 @@ def _group_1_v4(w, a, da, dda, live):
     _minv = w.br37
     _dx = _j2_x - 64.0
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1756,7 +1807,11 @@ def _group_1_v4(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -1863,7 +1918,8 @@ def _group_1_v5(w, a, da, dda, live):
     _minv = w.br40
     _dx = 164.0 - 64.0
     _dy = (-48.0) - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1875,7 +1931,11 @@ def _group_1_v5(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -1919,7 +1979,8 @@ def _group_1_v5(w, a, da, dda, live):
     _minv = w.br41
     _dx = 164.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1931,7 +1992,11 @@ def _group_1_v5(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -2038,7 +2103,8 @@ def _group_1_v6(w, a, da, dda, live):
     _minv = w.br44
     _dx = (-56.0) - 64.0
     _dy = (-48.0) - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2050,7 +2116,11 @@ def _group_1_v6(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -2094,7 +2164,8 @@ def _group_1_v6(w, a, da, dda, live):
     _minv = w.br45
     _dx = 164.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2106,7 +2177,11 @@ def _group_1_v6(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -2214,7 +2289,8 @@ def _group_2(w, a, da, dda, live):
     _minv = w.br10
     _dx = _j2_x - (-156.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2226,7 +2302,11 @@ def _group_2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -2270,7 +2350,8 @@ def _group_2(w, a, da, dda, live):
     _minv = w.br11
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2282,7 +2363,11 @@ def _group_2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -2391,7 +2476,8 @@ def _group_2_v1(w, a, da, dda, live):
     _minv = w.br48
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2403,7 +2489,11 @@ def _group_2_v1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -2447,7 +2537,8 @@ def _group_2_v1(w, a, da, dda, live):
     _minv = w.br49
     _dx = (-156.0) - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2459,7 +2550,11 @@ def _group_2_v1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -2568,7 +2663,8 @@ def _group_2_v2(w, a, da, dda, live):
     _minv = w.br52
     _dx = _j2_x - (-156.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2580,7 +2676,11 @@ def _group_2_v2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -2624,7 +2724,8 @@ def _group_2_v2(w, a, da, dda, live):
     _minv = w.br53
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2636,7 +2737,11 @@ def _group_2_v2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -2745,7 +2850,8 @@ def _group_2_v3(w, a, da, dda, live):
     _minv = w.br56
     _dx = _j2_x - (-156.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2757,7 +2863,11 @@ def _group_2_v3(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -2801,7 +2911,8 @@ def _group_2_v3(w, a, da, dda, live):
     _minv = w.br57
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2813,7 +2924,11 @@ def _group_2_v3(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -2922,7 +3037,8 @@ def _group_2_v4(w, a, da, dda, live):
     _minv = w.br60
     _dx = _j2_x - (-156.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2934,7 +3050,11 @@ def _group_2_v4(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -2978,7 +3098,8 @@ def _group_2_v4(w, a, da, dda, live):
     _minv = w.br61
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2990,7 +3111,11 @@ def _group_2_v4(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -3099,7 +3224,8 @@ def _group_2_v5(w, a, da, dda, live):
     _minv = w.br64
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3111,7 +3237,11 @@ def _group_2_v5(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -3155,7 +3285,8 @@ def _group_2_v5(w, a, da, dda, live):
     _minv = w.br65
     _dx = (-156.0) - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3167,7 +3298,11 @@ def _group_2_v5(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -3276,7 +3411,8 @@ def _group_2_v6(w, a, da, dda, live):
     _minv = w.br68
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3288,7 +3424,11 @@ def _group_2_v6(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -3332,7 +3472,8 @@ def _group_2_v6(w, a, da, dda, live):
     _minv = w.br69
     _dx = (-156.0) - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3344,7 +3485,11 @@ def _group_2_v6(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -3452,7 +3597,8 @@ def _group_2_v7(w, a, da, dda, live):
     _minv = w.br72
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3464,7 +3610,11 @@ def _group_2_v7(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -3508,7 +3658,8 @@ def _group_2_v7(w, a, da, dda, live):
     _minv = w.br73
     _dx = (-156.0) - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3520,7 +3671,11 @@ def _group_2_v7(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -3630,7 +3785,8 @@ def _group_2_v8(w, a, da, dda, live):
     _minv = w.br76
     _dx = _j2_x - _j1_x
     _dy = _j2_y - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3642,7 +3798,11 @@ def _group_2_v8(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (121.6552506059644 + _l2_v) * (121.6552506059644 + _l2_v)
+    _t2 = (121.6552506059644 - _l2_v) * (121.6552506059644 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (121.6552506059644 - _l2_v) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 121.6552506059644) * ((121.6552506059644 + _l2_v) * _iq)) / 2
@@ -3686,7 +3846,8 @@ def _group_2_v8(w, a, da, dda, live):
     _minv = w.br77
     _dx = _j2_x - (-56.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -3698,7 +3859,11 @@ def _group_2_v8(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 60.8276253029822) * (70.0 + 60.8276253029822)
+    _t2 = (70.0 - 60.8276253029822) * (70.0 - 60.8276253029822)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 60.8276253029822) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _a2 = (_q + (60.8276253029822 - 70.0) * ((70.0 + 60.8276253029822) * _iq)) / 2

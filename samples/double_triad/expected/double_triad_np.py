@@ -388,7 +388,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     l2_v, l2_dv, l2_ddv = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
-    q = np.sqrt(dx * dx + dy * dy)
+    dd = dx * dx + dy * dy
+    q = np.sqrt(dd)
     _t1 = q == 0
     _c1 = np.asarray(_t1)
     if not _c1.any():
@@ -420,90 +421,100 @@ def RRR_links(j1, j2, l1, l2, minv):
     _t3 = x - y
     k = z - _t3
     fail = ((k < -8 * EPS * x) | (_t1)) | (lo <= 0)
-    kk = np.maximum(k, 0)
-    area4 = np.sqrt((x + (y + z)) * kk * (z + _t3) * (x + (y - z)))
-    h = area4 * iq / 2
     _t4 = l1_v + l2_v
-    _t5 = _t4 * iq
-    a = (q + (l1_v - l2_v) * _t5) / 2
-    a2 = (q + (l2_v - l1_v) * _t5) / 2
-    _c4 = np.asarray(k > 0)
+    s2 = _t4 * _t4
+    _t5 = l1_v - l2_v
+    t2 = _t5 * _t5
+    o1 = s2 - dd
+    o2 = dd - t2
+    _c4 = np.asarray((3 * o1 > s2) & (3 * o2 > dd))
     if not _c4.any():
-        _c5 = np.asarray(_t2)
-        if not _c5.any():
-            _c6 = np.asarray(l1_v >= l2_v)
-            if not _c6.any():
+        area4 = np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t3) * (x + (y - z)))
+    elif _c4.all():
+        area4 = np.sqrt(o1 * o2)
+    else:
+        area4 = np.where(_c4, np.sqrt(o1 * o2), np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t3) * (x + (y - z))))
+    h = area4 * iq / 2
+    _t6 = _t4 * iq
+    a = (q + _t5 * _t6) / 2
+    a2 = (q + (l2_v - l1_v) * _t6) / 2
+    _c5 = np.asarray(k > 0)
+    if not _c5.any():
+        _c6 = np.asarray(_t2)
+        if not _c6.any():
+            _c7 = np.asarray(l1_v >= l2_v)
+            if not _c7.any():
                 at = (q - _t4) / 2
-            elif _c6.all():
+            elif _c7.all():
                 at = (l1_v + (q + l2_v)) / 2
             else:
-                at = np.where(_c6, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)
-        elif _c5.all():
+                at = np.where(_c7, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)
+        elif _c6.all():
             at = (l1_v + (q - l2_v)) / 2
         else:
-            at = np.where(_c5, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2))
-    elif _c4.all():
+            at = np.where(_c6, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2))
+    elif _c5.all():
         at = a
     else:
-        at = np.where(_c4, a, np.where(_t2, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
+        at = np.where(_c5, a, np.where(_t2, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
     hn = minv * h
-    _t6 = hn * uy
-    e1x = at * ux - _t6
-    _t7 = hn * ux
-    e1y = at * uy + _t7
-    _c8 = np.asarray(fail)
-    if not _c8.any():
-        _s7 = area4 * (0.5 / (l1_v * l2_v))
-    elif _c8.all():
-        _s7 = 0
-    else:
-        _s7 = np.where(_c8, 0, area4 * (0.5 / (l1_v * l2_v)))
-    sigma = np.minimum(_s7, 1)
-    _t9 = -a2
-    e2x = _t9 * ux - _t6
-    e2y = _t9 * uy + _t7
-    _c9 = np.asarray(hn == 0)
+    _t7 = hn * uy
+    e1x = at * ux - _t7
+    _t8 = hn * ux
+    e1y = at * uy + _t8
+    _c9 = np.asarray(fail)
     if not _c9.any():
-        ihq = 1 / (hn * q)
+        _s8 = area4 * (0.5 / (l1_v * l2_v))
     elif _c9.all():
+        _s8 = 0
+    else:
+        _s8 = np.where(_c9, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s8, 1)
+    _t10 = -a2
+    e2x = _t10 * ux - _t7
+    e2y = _t10 * uy + _t8
+    _c10 = np.asarray(hn == 0)
+    if not _c10.any():
+        ihq = 1 / (hn * q)
+    elif _c10.all():
         ihq = NAN
     else:
-        ihq = np.where(_c9, NAN, 1 / (hn * q))
+        ihq = np.where(_c10, NAN, 1 / (hn * q))
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
     buv = (r1v - r2v) * iq
     bnv = (a2 * r1v + a * r2v) * ihq
     bvx = buv * ux - bnv * uy
     bvy = buv * uy + bnv * ux
-    _t10 = bvx - j1_dx
-    _t11 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t10 * _t10 + _t11 * _t11) + (e1x * j1_ddx + e1y * j1_ddy)
-    _t12 = bvx - j2_dx
-    _t13 = bvy - j2_dy
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t12 * _t12 + _t13 * _t13) + (e2x * j2_ddx + e2y * j2_ddy)
+    _t11 = bvx - j1_dx
+    _t12 = bvy - j1_dy
+    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t11 * _t11 + _t12 * _t12) + (e1x * j1_ddx + e1y * j1_ddy)
+    _t13 = bvx - j2_dx
+    _t14 = bvy - j2_dy
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t13 * _t13 + _t14 * _t14) + (e2x * j2_ddx + e2y * j2_ddy)
     bua = (r1a - r2a) * iq
     bna = (a2 * r1a + a * r2a) * ihq
     bax = bua * ux - bna * uy
     bay = bua * uy + bna * ux
-    _c10 = np.asarray(fail)
-    if not _c10.any():
-        _c11 = np.asarray(sigma < 1e-07)
-        if not _c11.any():
-            _c12 = np.asarray(sigma < 0.001)
-            if not _c12.any():
+    _c11 = np.asarray(fail)
+    if not _c11.any():
+        _c12 = np.asarray(sigma < 1e-07)
+        if not _c12.any():
+            _c13 = np.asarray(sigma < 0.001)
+            if not _c13.any():
                 _st = 0
-            elif _c12.all():
+            elif _c13.all():
                 _st = 4
             else:
-                _st = np.where(_c12, 4, 0)
-        elif _c11.all():
+                _st = np.where(_c13, 4, 0)
+        elif _c12.all():
             _st = 3
         else:
-            _st = np.where(_c11, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c10.all():
+            _st = np.where(_c12, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c11.all():
         _st = 1
     else:
-        _st = np.where(_c10, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c11, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -620,7 +631,8 @@ def RRR_links_1(j1, j2, l1, l2, minv):
     l2_v, l2_dv = l2[:2]
     dx = j2_x - j1_x
     dy = j2_y - j1_y
-    q = np.sqrt(dx * dx + dy * dy)
+    dd = dx * dx + dy * dy
+    q = np.sqrt(dd)
     _t1 = q == 0
     _c1 = np.asarray(_t1)
     if not _c1.any():
@@ -652,80 +664,90 @@ def RRR_links_1(j1, j2, l1, l2, minv):
     _t3 = x - y
     k = z - _t3
     fail = ((k < -8 * EPS * x) | (_t1)) | (lo <= 0)
-    kk = np.maximum(k, 0)
-    area4 = np.sqrt((x + (y + z)) * kk * (z + _t3) * (x + (y - z)))
-    h = area4 * iq / 2
     _t4 = l1_v + l2_v
-    _t5 = _t4 * iq
-    a = (q + (l1_v - l2_v) * _t5) / 2
-    a2 = (q + (l2_v - l1_v) * _t5) / 2
-    _c4 = np.asarray(k > 0)
+    s2 = _t4 * _t4
+    _t5 = l1_v - l2_v
+    t2 = _t5 * _t5
+    o1 = s2 - dd
+    o2 = dd - t2
+    _c4 = np.asarray((3 * o1 > s2) & (3 * o2 > dd))
     if not _c4.any():
-        _c5 = np.asarray(_t2)
-        if not _c5.any():
-            _c6 = np.asarray(l1_v >= l2_v)
-            if not _c6.any():
+        area4 = np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t3) * (x + (y - z)))
+    elif _c4.all():
+        area4 = np.sqrt(o1 * o2)
+    else:
+        area4 = np.where(_c4, np.sqrt(o1 * o2), np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t3) * (x + (y - z))))
+    h = area4 * iq / 2
+    _t6 = _t4 * iq
+    a = (q + _t5 * _t6) / 2
+    a2 = (q + (l2_v - l1_v) * _t6) / 2
+    _c5 = np.asarray(k > 0)
+    if not _c5.any():
+        _c6 = np.asarray(_t2)
+        if not _c6.any():
+            _c7 = np.asarray(l1_v >= l2_v)
+            if not _c7.any():
                 at = (q - _t4) / 2
-            elif _c6.all():
+            elif _c7.all():
                 at = (l1_v + (q + l2_v)) / 2
             else:
-                at = np.where(_c6, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)
-        elif _c5.all():
+                at = np.where(_c7, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)
+        elif _c6.all():
             at = (l1_v + (q - l2_v)) / 2
         else:
-            at = np.where(_c5, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2))
-    elif _c4.all():
+            at = np.where(_c6, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2))
+    elif _c5.all():
         at = a
     else:
-        at = np.where(_c4, a, np.where(_t2, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
+        at = np.where(_c5, a, np.where(_t2, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
     hn = minv * h
-    _t6 = hn * uy
-    e1x = at * ux - _t6
-    _t7 = hn * ux
-    e1y = at * uy + _t7
-    _c8 = np.asarray(fail)
-    if not _c8.any():
-        _s7 = area4 * (0.5 / (l1_v * l2_v))
-    elif _c8.all():
-        _s7 = 0
+    _t7 = hn * uy
+    e1x = at * ux - _t7
+    _t8 = hn * ux
+    e1y = at * uy + _t8
+    _c9 = np.asarray(fail)
+    if not _c9.any():
+        _s8 = area4 * (0.5 / (l1_v * l2_v))
+    elif _c9.all():
+        _s8 = 0
     else:
-        _s7 = np.where(_c8, 0, area4 * (0.5 / (l1_v * l2_v)))
-    sigma = np.minimum(_s7, 1)
-    _t9 = -a2
-    e2x = _t9 * ux - _t6
-    e2y = _t9 * uy + _t7
+        _s8 = np.where(_c9, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s8, 1)
+    _t10 = -a2
+    e2x = _t10 * ux - _t7
+    e2y = _t10 * uy + _t8
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
     buv = (r1v - r2v) * iq
-    _c10 = np.asarray(hn == 0)
-    if not _c10.any():
-        _s9 = 1 / (hn * q)
-    elif _c10.all():
-        _s9 = NAN
+    _c11 = np.asarray(hn == 0)
+    if not _c11.any():
+        _s10 = 1 / (hn * q)
+    elif _c11.all():
+        _s10 = NAN
     else:
-        _s9 = np.where(_c10, NAN, 1 / (hn * q))
-    bnv = (a2 * r1v + a * r2v) * _s9
+        _s10 = np.where(_c11, NAN, 1 / (hn * q))
+    bnv = (a2 * r1v + a * r2v) * _s10
     bvx = buv * ux - bnv * uy
     bvy = buv * uy + bnv * ux
-    _c11 = np.asarray(fail)
-    if not _c11.any():
-        _c12 = np.asarray(sigma < 1e-07)
-        if not _c12.any():
-            _c13 = np.asarray(sigma < 0.001)
-            if not _c13.any():
+    _c12 = np.asarray(fail)
+    if not _c12.any():
+        _c13 = np.asarray(sigma < 1e-07)
+        if not _c13.any():
+            _c14 = np.asarray(sigma < 0.001)
+            if not _c14.any():
                 _st = 0
-            elif _c13.all():
+            elif _c14.all():
                 _st = 4
             else:
-                _st = np.where(_c13, 4, 0)
-        elif _c12.all():
+                _st = np.where(_c14, 4, 0)
+        elif _c13.all():
             _st = 3
         else:
-            _st = np.where(_c12, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c11.all():
+            _st = np.where(_c13, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c12.all():
         _st = 1
     else:
-        _st = np.where(_c11, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c12, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)

@@ -120,6 +120,9 @@ static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double 
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    *sigma_out = sigma;
+    if (st == 1) { psi->the = NAN; psi->dthe = NAN; psi->ddthe = NAN; s->v = NAN; s->dv = NAN; s->ddv = NAN; jp->P.x = NAN; jp->P.y = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; return st; }
+    if (st == 3) { psi->the = th; psi->dthe = NAN; psi->ddthe = NAN; s->v = sv; s->dv = NAN; s->ddv = NAN; jp->P.x = js->P.x + rx; jp->P.y = js->P.y + ry; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; return st; }
     psi->the = th;
     psi->dthe = om;
     psi->ddthe = al;
@@ -132,9 +135,6 @@ static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double 
     jp->DP.y = js->DP.y + rvy;
     jp->DDP.x = js->DDP.x + rax;
     jp->DDP.y = js->DDP.y + ray;
-    *sigma_out = sigma;
-    if (st == 1) { psi->the = NAN; psi->dthe = NAN; psi->ddthe = NAN; s->v = NAN; s->dv = NAN; s->ddv = NAN; jp->P.x = NAN; jp->P.y = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; }
-    if (st == 1 || st == 3) { psi->dthe = NAN; psi->ddthe = NAN; s->dv = NAN; s->ddv = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; }
     return st;
 }
 

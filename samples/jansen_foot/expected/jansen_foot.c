@@ -64,11 +64,11 @@ static inline int link_point(const POINT *j1, const POINT *j2, double gsi, doubl
     const double rvx = -om * ry;
     const double rvy = om * rx;
     const int st = r2 == 0 ? 1 : 0;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; return st; }
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
     jc->DP.y = j1->DP.y + rvy;
-    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; }
     return st;
 }
 
@@ -80,7 +80,8 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
-    const double q = sqrt(dx * dx + dy * dy);
+    const double dd = dx * dx + dy * dy;
+    const double q = sqrt(dd);
     const double iq = q == 0 ? NAN : 1 / q;
     const double ux = dx * iq;
     const double uy = dy * iq;
@@ -92,7 +93,11 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double k = z - (x - y);
     const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
     const double kk = (0.0 > k ? 0.0 : k);
-    const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
+    const double s2 = (l1->v + l2->v) * (l1->v + l2->v);
+    const double t2 = (l1->v - l2->v) * (l1->v - l2->v);
+    const double o1 = s2 - dd;
+    const double o2 = dd - t2;
+    const double area4 = ((3 * o1 > s2) & (3 * o2 > dd)) ? sqrt(o1 * o2) : sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
     const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
     const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
@@ -113,13 +118,13 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double bvx = buv * ux - bnv * uy;
     const double bvy = buv * uy + bnv * ux;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    *sigma_out = sigma;
+    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; return st; }
+    if (st == 3) { jb->P.x = j1->P.x + e1x; jb->P.y = j1->P.y + e1y; jb->DP.x = NAN; jb->DP.y = NAN; return st; }
     jb->P.x = j1->P.x + e1x;
     jb->P.y = j1->P.y + e1y;
     jb->DP.x = bvx;
     jb->DP.y = bvy;
-    *sigma_out = sigma;
-    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; }
-    if (st == 1 || st == 3) { jb->DP.x = NAN; jb->DP.y = NAN; }
     return st;
 }
 

@@ -107,7 +107,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     l2_v, l2_dv = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
-    q = sqrt(dx * dx + dy * dy)
+    dd = dx * dx + dy * dy
+    q = sqrt(dd)
     iq = NAN if q == 0 else 1 / q
     ux = dx * iq
     uy = dy * iq
@@ -119,7 +120,11 @@ def RRR_links(j1, j2, l1, l2, minv):
     k = z - (x - y)
     fail = k < -8 * EPS * x or q == 0 or lo <= 0
     kk = (0 if 0 > k else k)
-    area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
+    s2 = (l1_v + l2_v) * (l1_v + l2_v)
+    t2 = (l1_v - l2_v) * (l1_v - l2_v)
+    o1 = s2 - dd
+    o2 = dd - t2
+    area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     h = area4 * iq / 2
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
     a2 = (q + (l2_v - l1_v) * ((l1_v + l2_v) * iq)) / 2
@@ -203,7 +208,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # RRR_links(w.p_A, p_B, l_rod_j, l_triangle_bde_C_B, -1), inline
     _dx = (-10.0) - _p_A_x
     _dy = 24.2 - _p_A_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -215,7 +221,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (49.999999999951626 + 41.499999999969184) * (49.999999999951626 + 41.499999999969184)
+    _t2 = (49.999999999951626 - 41.499999999969184) * (49.999999999951626 - 41.499999999969184)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (49.999999999951626 - 41.499999999969184) * ((49.999999999951626 + 41.499999999969184) * _iq)) / 2
     _a2 = (_q + (41.499999999969184 - 49.999999999951626) * ((49.999999999951626 + 41.499999999969184) * _iq)) / 2
@@ -276,7 +286,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # RRR_links(w.p_A, p_B, l_rod_k, l_rocker_c, 1), inline
     _dx = (-10.0) - _p_A_x
     _dy = 24.2 - _p_A_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -288,7 +299,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (61.90000000003217 + 39.30000000001047) * (61.90000000003217 + 39.30000000001047)
+    _t2 = (61.90000000003217 - 39.30000000001047) * (61.90000000003217 - 39.30000000001047)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (61.90000000003217 - 39.30000000001047) * ((61.90000000003217 + 39.30000000001047) * _iq)) / 2
     _a2 = (_q + (39.30000000001047 - 61.90000000003217) * ((61.90000000003217 + 39.30000000001047) * _iq)) / 2
@@ -324,7 +339,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # RRR_links(w.p_D, w.p_E, l_rod_f, l_leg_ghi, -1), inline
     _dx = _p_E_x - _p_D_x
     _dy = _p_E_y - _p_D_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -336,7 +352,11 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (39.39999999995135 + 36.69999999999471) * (39.39999999995135 + 36.69999999999471)
+    _t2 = (39.39999999995135 - 36.69999999999471) * (39.39999999995135 - 36.69999999999471)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (39.39999999995135 - 36.69999999999471) * ((39.39999999995135 + 36.69999999999471) * _iq)) / 2
     _a2 = (_q + (36.69999999999471 - 39.39999999995135) * ((39.39999999995135 + 36.69999999999471) * _iq)) / 2

@@ -122,6 +122,9 @@ static inline int PPR_links(const POINT *jr, const POINT *pg, const ANGLE *psig,
     const double jxddx = sgn > 0 ? jr->DDP.x + raax : jp1ax + rbax;
     const double jxddy = sgn > 0 ? jr->DDP.y + raay : jp1ay + rbay;
     const int st = cr == 0 ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    *sigma_out = sigma;
+    if (st == 1) { s1->v = NAN; s1->dv = NAN; s1->ddv = NAN; jp1->P.x = NAN; jp1->P.y = NAN; jp1->DP.x = NAN; jp1->DP.y = NAN; jp1->DDP.x = NAN; jp1->DDP.y = NAN; sx->v = NAN; sx->dv = NAN; sx->ddv = NAN; jpx->P.x = NAN; jpx->P.y = NAN; jpx->DP.x = NAN; jpx->DP.y = NAN; jpx->DDP.x = NAN; jpx->DDP.y = NAN; return st; }
+    if (st == 3) { s1->v = sv1; s1->dv = NAN; s1->ddv = NAN; jp1->P.x = jp1x; jp1->P.y = jp1y; jp1->DP.x = NAN; jp1->DP.y = NAN; jp1->DDP.x = NAN; jp1->DDP.y = NAN; sx->v = sgn * mu; sx->dv = NAN; sx->ddv = NAN; jpx->P.x = jxx; jpx->P.y = jxy; jpx->DP.x = NAN; jpx->DP.y = NAN; jpx->DDP.x = NAN; jpx->DDP.y = NAN; return st; }
     s1->v = sv1;
     s1->dv = ds1;
     s1->ddv = dds1;
@@ -140,9 +143,6 @@ static inline int PPR_links(const POINT *jr, const POINT *pg, const ANGLE *psig,
     jpx->DP.y = jxdy;
     jpx->DDP.x = jxddx;
     jpx->DDP.y = jxddy;
-    *sigma_out = sigma;
-    if (st == 1) { s1->v = NAN; s1->dv = NAN; s1->ddv = NAN; jp1->P.x = NAN; jp1->P.y = NAN; jp1->DP.x = NAN; jp1->DP.y = NAN; jp1->DDP.x = NAN; jp1->DDP.y = NAN; sx->v = NAN; sx->dv = NAN; sx->ddv = NAN; jpx->P.x = NAN; jpx->P.y = NAN; jpx->DP.x = NAN; jpx->DP.y = NAN; jpx->DDP.x = NAN; jpx->DDP.y = NAN; }
-    if (st == 1 || st == 3) { s1->dv = NAN; s1->ddv = NAN; jp1->DP.x = NAN; jp1->DP.y = NAN; jp1->DDP.x = NAN; jp1->DDP.y = NAN; sx->dv = NAN; sx->ddv = NAN; jpx->DP.x = NAN; jpx->DP.y = NAN; jpx->DDP.x = NAN; jpx->DDP.y = NAN; }
     return st;
 }
 

@@ -276,7 +276,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     l2_v, l2_dv, l2_ddv = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
-    q = sqrt(dx * dx + dy * dy)
+    dd = dx * dx + dy * dy
+    q = sqrt(dd)
     iq = NAN if q == 0 else 1 / q
     ux = dx * iq
     uy = dy * iq
@@ -288,7 +289,11 @@ def RRR_links(j1, j2, l1, l2, minv):
     k = z - (x - y)
     fail = k < -8 * EPS * x or q == 0 or lo <= 0
     kk = (0 if 0 > k else k)
-    area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
+    s2 = (l1_v + l2_v) * (l1_v + l2_v)
+    t2 = (l1_v - l2_v) * (l1_v - l2_v)
+    o1 = s2 - dd
+    o2 = dd - t2
+    area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     h = area4 * iq / 2
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
     a2 = (q + (l2_v - l1_v) * ((l1_v + l2_v) * iq)) / 2
@@ -897,7 +902,8 @@ def _group_1(w, a, da, dda, live):
     _minv = w.br4
     _dx = _j2_x - 76.0
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -909,7 +915,11 @@ def _group_1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -953,7 +963,8 @@ def _group_1(w, a, da, dda, live):
     _minv = w.br5
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -965,7 +976,11 @@ def _group_1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -1073,7 +1088,8 @@ def _group_1_v1(w, a, da, dda, live):
     _minv = w.br14
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1085,7 +1101,11 @@ def _group_1_v1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -1129,7 +1149,8 @@ def _group_1_v1(w, a, da, dda, live):
     _minv = w.br15
     _dx = 76.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1141,7 +1162,11 @@ def _group_1_v1(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -1248,7 +1273,8 @@ def _group_1_v2(w, a, da, dda, live):
     _minv = w.br18
     _dx = (-24.0) - 76.0
     _dy = (-48.0) - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1260,7 +1286,11 @@ def _group_1_v2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -1304,7 +1334,8 @@ def _group_1_v2(w, a, da, dda, live):
     _minv = w.br19
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1316,7 +1347,11 @@ def _group_1_v2(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -1423,7 +1458,8 @@ def _group_1_v3(w, a, da, dda, live):
     _minv = w.br22
     _dx = 76.0 - (-24.0)
     _dy = (-48.0) - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1435,7 +1471,11 @@ def _group_1_v3(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -1479,7 +1519,8 @@ def _group_1_v3(w, a, da, dda, live):
     _minv = w.br23
     _dx = 76.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1491,7 +1532,11 @@ def _group_1_v3(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -1598,7 +1643,8 @@ def _group_1_v4(w, a, da, dda, live):
     _minv = w.br26
     _dx = (-84.0) - (-24.0)
     _dy = 32.0 - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1610,7 +1656,11 @@ def _group_1_v4(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
+    _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
@@ -1654,7 +1704,8 @@ def _group_1_v4(w, a, da, dda, live):
     _minv = w.br27
     _dx = 76.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1666,7 +1717,11 @@ def _group_1_v4(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
@@ -1773,7 +1828,8 @@ def _group_1_v5(w, a, da, dda, live):
     _minv = w.br30
     _dx = (-84.0) - 76.0
     _dy = 32.0 - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1785,7 +1841,11 @@ def _group_1_v5(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
+    _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
@@ -1829,7 +1889,8 @@ def _group_1_v5(w, a, da, dda, live):
     _minv = w.br31
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1841,7 +1902,11 @@ def _group_1_v5(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
+    _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
@@ -1949,7 +2014,8 @@ def _group_1_v6(w, a, da, dda, live):
     _minv = w.br34
     _dx = 76.0 - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -1961,7 +2027,11 @@ def _group_1_v6(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (121.6552506059644 + _l2_v) * (121.6552506059644 + _l2_v)
+    _t2 = (121.6552506059644 - _l2_v) * (121.6552506059644 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (121.6552506059644 - _l2_v) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 121.6552506059644) * ((121.6552506059644 + _l2_v) * _iq)) / 2
@@ -2005,7 +2075,8 @@ def _group_1_v6(w, a, da, dda, live):
     _minv = w.br35
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2017,7 +2088,11 @@ def _group_1_v6(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 60.8276253029822) * (70.0 + 60.8276253029822)
+    _t2 = (70.0 - 60.8276253029822) * (70.0 - 60.8276253029822)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 60.8276253029822) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _a2 = (_q + (60.8276253029822 - 70.0) * ((70.0 + 60.8276253029822) * _iq)) / 2
@@ -2124,7 +2199,8 @@ def _group_1_v7(w, a, da, dda, live):
     _minv = w.br38
     _dx = (-24.0) - _j1_x
     _dy = (-48.0) - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2136,7 +2212,11 @@ def _group_1_v7(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (121.6552506059644 + _l2_v) * (121.6552506059644 + _l2_v)
+    _t2 = (121.6552506059644 - _l2_v) * (121.6552506059644 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (121.6552506059644 - _l2_v) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 121.6552506059644) * ((121.6552506059644 + _l2_v) * _iq)) / 2
@@ -2180,7 +2260,8 @@ def _group_1_v7(w, a, da, dda, live):
     _minv = w.br39
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2192,7 +2273,11 @@ def _group_1_v7(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 60.8276253029822) * (70.0 + 60.8276253029822)
+    _t2 = (70.0 - 60.8276253029822) * (70.0 - 60.8276253029822)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 60.8276253029822) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _a2 = (_q + (60.8276253029822 - 70.0) * ((70.0 + 60.8276253029822) * _iq)) / 2
@@ -2299,7 +2384,8 @@ def _group_1_v8(w, a, da, dda, live):
     _minv = w.br42
     _dx = (-84.0) - _j1_x
     _dy = 32.0 - _j1_y
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2311,7 +2397,11 @@ def _group_1_v8(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (121.6552506059644 + _l2_v) * (121.6552506059644 + _l2_v)
+    _t2 = (121.6552506059644 - _l2_v) * (121.6552506059644 - _l2_v)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (121.6552506059644 - _l2_v) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 121.6552506059644) * ((121.6552506059644 + _l2_v) * _iq)) / 2
@@ -2355,7 +2445,8 @@ def _group_1_v8(w, a, da, dda, live):
     _minv = w.br43
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _q = sqrt(_dx * _dx + _dy * _dy)
+    _dd = _dx * _dx + _dy * _dy
+    _q = sqrt(_dd)
     _iq = NAN if _q == 0 else 1 / _q
     _ux = _dx * _iq
     _uy = _dy * _iq
@@ -2367,7 +2458,11 @@ def _group_1_v8(w, a, da, dda, live):
     _k = _z - (_x - _y)
     _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
     _kk = (0 if 0 > _k else _k)
-    _area4 = sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
+    _s2 = (70.0 + 60.8276253029822) * (70.0 + 60.8276253029822)
+    _t2 = (70.0 - 60.8276253029822) * (70.0 - 60.8276253029822)
+    _o1 = _s2 - _dd
+    _o2 = _dd - _t2
+    _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _h = _area4 * _iq / 2
     _a = (_q + (70.0 - 60.8276253029822) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _a2 = (_q + (60.8276253029822 - 70.0) * ((70.0 + 60.8276253029822) * _iq)) / 2

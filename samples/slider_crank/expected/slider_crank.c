@@ -55,10 +55,10 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     const double om = (dx * dvy - dy * dvx) * ir2;
     const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
     const int st = r2 == 0 ? 1 : 0;
+    if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; return st; }
     angle->the = th;
     angle->dthe = om;
     angle->ddthe = al;
-    if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; }
     return st;
 }
 
@@ -138,6 +138,9 @@ static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg,
     const double jpax = pg->DDP.x + dds * cg - tn * sg - sv * om2 * cg;
     const double jpay = pg->DDP.y + dds * sg + tn * cg - sv * om2 * sg;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    *sigma_out = sigma;
+    if (st == 1) { s->v = NAN; s->dv = NAN; s->ddv = NAN; jp->P.x = NAN; jp->P.y = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
+    if (st == 3) { s->v = sv; s->dv = NAN; s->ddv = NAN; jp->P.x = jpx; jp->P.y = jpy; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; jb->P.x = jbx; jb->P.y = jby; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
     s->v = sv;
     s->dv = ds;
     s->ddv = dds;
@@ -153,9 +156,6 @@ static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg,
     jb->DP.y = jbvy;
     jb->DDP.x = jpax + rax;
     jb->DDP.y = jpay + ray;
-    *sigma_out = sigma;
-    if (st == 1) { s->v = NAN; s->dv = NAN; s->ddv = NAN; jp->P.x = NAN; jp->P.y = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; }
-    if (st == 1 || st == 3) { s->dv = NAN; s->ddv = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; }
     return st;
 }
 
