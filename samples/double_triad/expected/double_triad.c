@@ -1042,7 +1042,8 @@ static inline int RRR_links_2(const POINT *j1, const POINT *j2, const VARIABLE *
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
-    const double q = sqrt(dx * dx + dy * dy);
+    const double dd = dx * dx + dy * dy;
+    const double q = sqrt(dd);
     const double iq = q == 0 ? NAN : 1 / q;
     const double ux = dx * iq;
     const double uy = dy * iq;
@@ -1054,7 +1055,11 @@ static inline int RRR_links_2(const POINT *j1, const POINT *j2, const VARIABLE *
     const double k = z - (x - y);
     const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
     const double kk = (0.0 > k ? 0.0 : k);
-    const double area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
+    const double s2 = (l1->v + l2->v) * (l1->v + l2->v);
+    const double t2 = (l1->v - l2->v) * (l1->v - l2->v);
+    const double o1 = s2 - dd;
+    const double o2 = dd - t2;
+    const double area4 = ((3 * o1 > s2) & (3 * o2 > dd)) ? sqrt(o1 * o2) : sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     const double h = area4 * iq / 2;
     const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
     const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
@@ -1081,6 +1086,9 @@ static inline int RRR_links_2(const POINT *j1, const POINT *j2, const VARIABLE *
     const double bvx_t = buv_t * ux - bnv_t * uy;
     const double bvy_t = buv_t * uy + bnv_t * ux;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    *sigma_out = sigma;
+    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb_t->P.x = NAN; jb_t->P.y = NAN; jb_t->DP.x = NAN; jb_t->DP.y = NAN; return st; }
+    if (st == 3) { jb->P.x = j1->P.x + e1x; jb->P.y = j1->P.y + e1y; jb->DP.x = NAN; jb->DP.y = NAN; jb_t->P.x = j1->P.x + e1x; jb_t->P.y = j1->P.y + e1y; jb_t->DP.x = NAN; jb_t->DP.y = NAN; return st; }
     jb->P.x = j1->P.x + e1x;
     jb->P.y = j1->P.y + e1y;
     jb->DP.x = bvx;
@@ -1089,9 +1097,6 @@ static inline int RRR_links_2(const POINT *j1, const POINT *j2, const VARIABLE *
     jb_t->P.y = j1->P.y + e1y;
     jb_t->DP.x = bvx_t;
     jb_t->DP.y = bvy_t;
-    *sigma_out = sigma;
-    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb_t->P.x = NAN; jb_t->P.y = NAN; jb_t->DP.x = NAN; jb_t->DP.y = NAN; }
-    if (st == 1 || st == 3) { jb->DP.x = NAN; jb->DP.y = NAN; jb_t->DP.x = NAN; jb_t->DP.y = NAN; }
     return st;
 }
 
@@ -1121,6 +1126,7 @@ static inline int link_point_2(const POINT *j1, const POINT *j2, double gsi, dou
     const double rvx_t = -om_t * ry;
     const double rvy_t = om_t * rx;
     const int st = r2 == 0 ? 1 : 0;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc_t->P.x = NAN; jc_t->P.y = NAN; jc_t->DP.x = NAN; jc_t->DP.y = NAN; return st; }
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
     jc->DP.x = j1->DP.x + rvx;
@@ -1129,7 +1135,6 @@ static inline int link_point_2(const POINT *j1, const POINT *j2, double gsi, dou
     jc_t->P.y = j1->P.y + ry;
     jc_t->DP.x = j1_t->DP.x + rvx_t;
     jc_t->DP.y = j1_t->DP.y + rvy_t;
-    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc_t->P.x = NAN; jc_t->P.y = NAN; jc_t->DP.x = NAN; jc_t->DP.y = NAN; }
     return st;
 }
 
