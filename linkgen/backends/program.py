@@ -14,7 +14,7 @@ from ..units import sweep_lists
 from . import Runtime
 
 if TYPE_CHECKING:
-    from ..render.view import Group, View
+    from ..render.view import View
     from .spelling import Spelling
 
 # The derivative order of each output quantity.
@@ -33,15 +33,9 @@ def program_primitive(view: View, name: str) -> Primitive:
     return PRIMITIVES[name] if view.measures else PRIMITIVES[name].unchecked()
 
 
-def bent_records(view: View, block: Group) -> tuple[tuple[str, str], ...]:
-    """(name, kind) of the records a resolver block sets, its Add-links first, then what its steps write:
-    the records whose accelerations the resolver bends by the Add-links' (linear in them)."""
-    return tuple((n, view.log.variable(n).kind) for n in block.group.sets)
-
-
 def sensitivity_count(view: View) -> int:
-    """The most sensitivities of one block's records (bent_records: a POINT two, others one)."""
-    return max((sum(2 if kind == "POINT" else 1 for _, kind in bent_records(view, b)) for b in view.blocks), default=1)
+    """The most sensitivities of one block's records (Group.bent: a POINT two, others one)."""
+    return max((sum(2 if kind == "POINT" else 1 for _, kind in b.bent) for b in view.blocks), default=1)
 
 
 def _printed(printer: Callable[[Primitive, int], str], view: View, name: str, order: int) -> str:

@@ -18,7 +18,7 @@ from ..primitives.printers import literal
 from ..steplog import Arg, BranchSign, Column, Step, StepLog, Variable, held
 from ..units import DEGREE, converted
 from . import Words
-from .program import bent_records, program_primitive
+from .program import program_primitive
 
 if TYPE_CHECKING:
     from ..render.view import Group, View
@@ -46,7 +46,6 @@ class Spelling:
     words = Words()  # what the language makes of the user's names
 
     def __init__(self, view: View):
-        self.view = view
         self.log: StepLog = view.log
         self.order = self.order_of(view)
         self.variables = {v.name: v for v in self.log.variables}
@@ -58,10 +57,6 @@ class Spelling:
     def order_of(view: View) -> int:
         """The derivative order of the records the program holds."""
         return view.record_order
-
-    def bent(self, block: Group) -> tuple[tuple[str, str], ...]:
-        """(name, kind) of the records a resolver block sets (program.bent_records)."""
-        return bent_records(self.view, block)
 
     def ident(self, name: str) -> str:
         """A pair, point or link name as a field of the program's outputs (linkgen.names)."""

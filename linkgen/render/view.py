@@ -57,6 +57,8 @@ class Group:
     first: int  # index of its group's first block
     count: int  # blocks of its group
     ends: tuple[tuple[str, str], ...]  # position variables of each Add-link's pairs
+    bent: tuple[tuple[str, str], ...]  # (name, kind) of the records it sets, Add-links first: their accelerations
+    # are the rates pass's plus the Add-links' accelerations times their sensitivities (linear in them)
 
     @property
     def size(self) -> int:
@@ -187,7 +189,8 @@ def build_view(log: StepLog) -> View:
         for b in records:
             blocks.append(Group(b, tuple(log.step(n) for n in b.steps), tuple(log.variable(v) for v in b.reads),
                                 log.step(g.step), len(blocks), slot, first, len(records),
-                                tuple((pos[k], pos[u]) for k, u in b.pairs)))
+                                tuple((pos[k], pos[u]) for k, u in b.pairs),
+                                tuple((n, log.variable(n).kind) for n in b.sets)))
     inputs = tuple(v for v in log.variables if v.role == "input")
     used = {a.var for s in log.steps for a in s.args if a.kind == "var"}
     used |= {name for b in blocks for pair in b.ends for name in pair}  # (constant outputs are published as drawn)

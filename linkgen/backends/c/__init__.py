@@ -9,7 +9,7 @@ from ...policy import REAL_TYPES
 from ...primitives.dsl import RECORD_FIELDS
 from ...primitives.dsl import record_fields as record_fields_of
 from .. import Backend, Runtime, Template
-from ..program import bent_records, input_lists, program_primitive, runtime_sources, sensitivity_count, sketch_states
+from ..program import input_lists, program_primitive, runtime_sources, sensitivity_count, sketch_states
 from .printer import c_function, field
 from .real import retype, typedef
 from .spelling import C
@@ -55,10 +55,10 @@ def two_channel_variants(view: View) -> list[str]:
 
 
 def bends(view: View) -> dict[str, list[tuple[str, str]]]:
-    """Per resolver block (its suffix): the fields of its bent records (bent_records) as C names them,
+    """Per resolver block (its suffix): the fields of its bent records (Group.bent) as C names them,
     each a (rate, acceleration) pair: w->NAME.DP.x and w->NAME.DDP.x of a POINT."""
     return {b.suffix: [(f"{name}.{field(kind, d)}", f"{name}.{field(kind, dd)}")
-                       for name, kind in bent_records(view, b) for d, dd in zip(*RECORD_FIELDS[kind][1:])]
+                       for name, kind in b.bent for d, dd in zip(*RECORD_FIELDS[kind][1:])]
             for b in view.blocks}
 
 

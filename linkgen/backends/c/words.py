@@ -43,7 +43,8 @@ STATE_FIELDS = frozenset("status sigma iterations warm_valid warm_in warm_din wa
 HEADER_SUFFIXES = ("point", "angle", "prismatic", "state", "init", "solve", "columns")
 HEADER_MACRO_SUFFIXES = ("H", "N_INPUTS", "N_STEPS", "N_COLUMNS", "ORDER", "SAMPLES", "N_GROUPS", "N_BLOCKS", "NMAX",
                          "STATUS_BAD_INPUT", "COLUMN_NAMES", "INPUT_NAMES", "INPUT_START", "INPUT_STOP", "INPUT_SPEED")
-SOURCE_MACROS = frozenset(("LINKGEN_NMAX", "LINKGEN_NGROUPS", "LINKGEN_NBLOCKS", "LINKGEN_NINPUTS"))
+SOURCE_MACROS = frozenset(("LINKGEN_NMAX", "LINKGEN_NGROUPS", "LINKGEN_NBLOCKS", "LINKGEN_NINPUTS", "LINKGEN_NADD",
+                           "LINKGEN_NSENS"))
 
 
 def header_names(mechanism: str) -> frozenset[str]:
