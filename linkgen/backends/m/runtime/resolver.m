@@ -268,7 +268,7 @@ function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order, names)
     % solution of the other sign is another assembly).
     n = numel(a);
     zero = zeros(n, 1);
-    bent = order >= 2 && nargin > 5;
+    bent = order >= 2 && exist('names', 'var');
     sens = cell(n, 1);
     if bent
         sens{n} = resolver_sensitivities(w, names);
