@@ -42,6 +42,7 @@ TARGETS = {
     "jansen_foot": ("jansen_foot", None, "C"),
     "jansen": ("jansen", None, "C numpy"),
     "sixbar_fig14": ("sixbar_fig14", None, "C numpy"),
+    "double_triad": ("double_triad", None, "C"),
 }
 
 

@@ -15,7 +15,7 @@ typedef int (*group_fn)(void *ctx, const double a[], const double da[], const do
 typedef void (*bend_fn)(void *ctx, double s[], double acc, int keep);
 
 /* Every block's state and its rates read off the solved pairs (the blocks of one group). */
-typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
+typedef void (*lengths_fn)(const void *ctx, double a[restrict][LINKGEN_NMAX], double ad[restrict][LINKGEN_NMAX]);
 
 /* The resolver strategies (options: strategy), as resolver_policy.strategy names them. */
 enum { RESOLVER_NEWTON, RESOLVER_FIXED_POINT, RESOLVER_CLOSURE, RESOLVER_LOOP };
