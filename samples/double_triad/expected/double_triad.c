@@ -226,7 +226,7 @@ typedef int (*group_fn)(void *ctx, const double a[], const double da[], const do
 typedef void (*bend_fn)(void *ctx, double s[], double acc, int keep);
 
 /* Every block's state and its rates read off the solved pairs (the blocks of one group). */
-typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
+typedef void (*lengths_fn)(const void *ctx, double a[restrict][LINKGEN_NMAX], double ad[restrict][LINKGEN_NMAX]);
 
 /* The resolver strategies (options: strategy), as resolver_policy.strategy names them. */
 enum { RESOLVER_NEWTON, RESOLVER_FIXED_POINT, RESOLVER_CLOSURE, RESOLVER_LOOP };
@@ -877,7 +877,8 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     int used[LINKGEN_NGROUPS];
     int code = 0, solved = 0, g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = m->sketch_in[i];
-    memcpy(a, m->sketch_a, sizeof a);  /* the block states copied whole (a loop per entry costs more) */
+    if (past || !*warm->valid)  /* else the warm states replace them below */
+        memcpy(a, m->sketch_a, sizeof a);  /* the block states copied whole (a loop per entry costs more) */
     for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = *warm->valid ? warm->used[g] : 0;
     if (past) {
         /* past a limit position: the pass fails the row at once with the limit's code */
@@ -3030,7 +3031,7 @@ static void bend_2_v8(void *ctx, double s[], double acc, int keep)
    had), then, in the last entry, its orientation (0 here: the solving block's is set by the
    resolver); and their rates (the measures' too, so the predictor flips a branch where its
    chain passes its fold). */
-static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
+static void lengths_1(const void *ctx, double a[restrict][LINKGEN_NMAX], double ad[restrict][LINKGEN_NMAX])
 {
     const work *w = (const work *)ctx;
     VARIABLE f;
@@ -3121,7 +3122,7 @@ static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LIN
    had), then, in the last entry, its orientation (0 here: the solving block's is set by the
    resolver); and their rates (the measures' too, so the predictor flips a branch where its
    chain passes its fold). */
-static void lengths_2(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
+static void lengths_2(const void *ctx, double a[restrict][LINKGEN_NMAX], double ad[restrict][LINKGEN_NMAX])
 {
     const work *w = (const work *)ctx;
     VARIABLE f;
