@@ -45,6 +45,7 @@ typedef struct {
     const double (*sketch_a)[LINKGEN_NMAX];  /* per block: lengths, branches, orientation in the sketch */
     const int *sizes;  /* Add-links of each block */
     const int *loops;  /* 1: a loop block (strategy loop iterates it by loop_iteration) */
+    const int *firsts;  /* each group's first block */
     const double *limits;  /* the continuation's largest step of each input */
     const int *periodic;  /* angle inputs: the continuation goes the shorter way round */
     double low;  /* where the reach of an angle input starts (nan: no reach) */
