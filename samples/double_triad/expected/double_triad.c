@@ -256,6 +256,7 @@ typedef struct {
     const double (*sketch_a)[LINKGEN_NMAX];  /* per block: lengths, branches, orientation in the sketch */
     const int *sizes;  /* Add-links of each block */
     const int *loops;  /* 1: a loop block (strategy loop iterates it by loop_iteration) */
+    const int *firsts;  /* each group's first block */
     const double *limits;  /* the continuation's largest step of each input */
     const int *periodic;  /* angle inputs: the continuation goes the shorter way round */
     double low;  /* where the reach of an angle input starts (nan: no reach) */
@@ -676,12 +677,12 @@ typedef struct {
 } resolver_path;
 
 /* One pass along a continuation path (rates per unit of the path, no accelerations):
- * returns 1 when it closes, with the block states a and their rates. */
+ * returns 1 when it closes, with the block states a, their rates and the blocks that solved. */
 static int path_pass(const resolver_path *path, const double in[], const double din[], int order,
-                     double a[][LINKGEN_NMAX], double rates[][LINKGEN_NMAX])
+                     double a[][LINKGEN_NMAX], double rates[][LINKGEN_NMAX], int used[])
 {
     static const double zero[LINKGEN_NINPUTS] = { 0.0 };
-    int used[LINKGEN_NGROUPS], g;
+    int g;
     for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = path->prefer[g];
     return path->run(path->ctx, 0, in, din, zero, order, a, rates, used) <= 0;
 }
@@ -690,22 +691,27 @@ static int path_pass(const resolver_path *path, const double in[], const double 
  * length moved from the guess by more than p->path_share of the largest predicted move (plus
  * slack); a larger correction is a jump to another assembly, or a step too long for the
  * curve.  A block that solved both and turned its orientation (the state's last entry,
- * after its sizes[k] lengths and its branches; 0 where the block did not solve) has passed
+ * after its m->sizes[k] lengths and its branches; 0 where the block did not solve) has passed
  * a singular position.  Where two assemblies pass close the nearer one can lie within that
  * share, so a turned block must be within p->turn_share: the path crosses the singular
- * position along its tangent, as a mechanism goes straight through a change point. */
+ * position along its tangent, as a mechanism goes straight through a change point.  Only a
+ * block that solved now (used, of each group the block from its first, m->firsts) has an
+ * orientation there, so only those are looked at (the same verdict as every block). */
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
-                   const double now[][LINKGEN_NMAX], const int sizes[], double slack, const resolver_policy *p)
+                   const double now[][LINKGEN_NMAX], const int used[], const resolver_mechanism *m, double slack,
+                   const resolver_policy *p)
 {
     double move = 0.0, off = 0.0, share = p->path_share;
     int g, i;
-    for (g = 0; g < LINKGEN_NBLOCKS; g++) {  /* one pass: the largest predicted move and correction */
-        for (i = 0; i < adds(sizes[g]); i++) {
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* one pass: the largest predicted move and correction */
+        for (i = 0; i < adds(m->sizes[g]); i++) {
             const double d = fabs(guess[g][i] - prev[g][i]), e = fabs(now[g][i] - guess[g][i]);
             if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
             if (e > off || e != e) off = e;  /* a nan correction stays */
         }
-        if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
+    for (g = 0; g < LINKGEN_NGROUPS; g++) {
+        const int k = m->firsts[g] + used[g];
+        if (prev[k][LINKGEN_NMAX - 1] * now[k][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
     }
     return off <= share * move + slack;  /* a nan too */
 }
@@ -787,7 +793,7 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
     double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double now[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double t = 0.0, h, h_max = 1.0, fast;
-    int g, i, cuts = 0, passes = 1;
+    int used[LINKGEN_NGROUPS], g, i, cuts = 0, passes = 1;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         d[i] = goal[i] - base[i];
         if (d[i] != 0.0) h_max = fmin(h_max, m->limits[i] / fabs(d[i]));
@@ -795,7 +801,7 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
     if (h_max * p->walk_passes < 1.0) return 0;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) start[g][i] = a[g][i];
-    if (!path_pass(path, base, d, 1, start, rate)) return 0;
+    if (!path_pass(path, base, d, 1, start, rate, used)) return 0;
     h = h_max;
     while (t < 1.0) {
         double tt;
@@ -812,9 +818,9 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
                 guess);
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
             for (i = 0; i < LINKGEN_NMAX; i++) now[g][i] = guess[g][i];
-        if (path_pass(path, trial, d, 1, now, rate2)
+        if (path_pass(path, trial, d, 1, now, rate2, used)
             && on_path((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])guess,
-                       (const double (*)[LINKGEN_NMAX])now, m->sizes, slack, p)) {
+                       (const double (*)[LINKGEN_NMAX])now, used, m, slack, p)) {
             t = tt;
             h = fmin(2.0 * h, h_max);
             cuts = 0;
@@ -888,7 +894,7 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         memcpy(a, p->predictor ? guess : warm->a, sizeof a);  /* predictor order 0: the warm states as they were */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
         solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
-                                      (const double (*)[LINKGEN_NMAX])a, m->sizes,
+                                      (const double (*)[LINKGEN_NMAX])a, used, m,
                                       p->path_slack * m->length_scale, p);
     }
     if (!solved && *warm->valid) {
@@ -1151,13 +1157,14 @@ static const double SKETCH_IN[LINKGEN_NINPUTS] = { 1.5707963267948966 };
 static const double SKETCH_A[LINKGEN_NBLOCKS][LINKGEN_NMAX] = { {168.67127793433, -1.0, 1.0, 0.0}, {67.08203932499369, -1.0, 1.0, 0.0}, {60.8276253029822, -1.0, 1.0, 0.0}, {165.6804152578089, -1.0, 1.0, 0.0}, {123.4908903522847, -1.0, 1.0, 0.0}, {122.06555615733703, 1.0, 1.0, 0.0}, {138.92443989449805, -1.0, 1.0, 0.0}, {168.67127793433, 1.0, -1.0, 0.0}, {180.27756377319946, 1.0, -1.0, 0.0}, {285.3944638566067, 1.0, -1.0, 0.0}, {225.055548698538, 1.0, -1.0, 0.0}, {330.0, 1.0, -1.0, 0.0}, {120.0, 1.0, -1.0, 0.0}, {225.055548698538, 1.0, -1.0, 0.0}, {67.08203932499369, 1.0, -1.0, 0.0}, {240.0, -1.0, -1.0, 0.0} };
 static const int BLOCK_SIZES[LINKGEN_NBLOCKS] = { 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1 };
 static const int BLOCK_LOOPS[LINKGEN_NBLOCKS] = { 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+static const int GROUP_FIRSTS[LINKGEN_NGROUPS] = { 0, 7 };
 static const double LIMITS[LINKGEN_NINPUTS] = { 0.1 };
 static const int PERIODIC[LINKGEN_NINPUTS] = { 1 };
 
 /* What the row driver needs of the mechanism; its length scale is the largest distance
    between two of the sketch's pairs or points. */
 static const resolver_mechanism MECHANISM = {
-    331.436268383531, SKETCH_IN, SKETCH_A, BLOCK_SIZES, BLOCK_LOOPS, LIMITS, PERIODIC, NAN,
+    331.436268383531, SKETCH_IN, SKETCH_A, BLOCK_SIZES, BLOCK_LOOPS, GROUP_FIRSTS, LIMITS, PERIODIC, NAN,
     82, 2
 };
 
