@@ -225,12 +225,14 @@ static int continuation(const resolver_path *path, const double base[], double a
  * continuation from the previous row (or, without one, from the sketch) and the row solved
  * from there; where the way is cut but the row solves all the same it is on another
  * assembly only, and gets the code m->another.  A row past the reach (past) fails at once.
- * The warm start becomes this row's where it solved.  Returns the status code. */
+ * The warm start becomes this row's where it solved (the passes write the block states' rates
+ * into it at once: only predict reads them, before; a row that did not solve leaves none).
+ * Returns the status code. */
 static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const resolver_policy *p, int past,
                  const double in[], const double din[], const double ddin[], int order, const resolver_warm *warm)
 {
-    double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX];
-    double ad[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double (*const ad)[LINKGEN_NMAX] = warm->ad;  /* the passes' rates straight into the warm start */
     int used[LINKGEN_NGROUPS];
     int code = 0, solved = 0, g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = m->sketch_in[i];
@@ -279,7 +281,6 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     if (solved) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) { warm->in[i] = in[i]; warm->din[i] = din[i]; }
         memcpy(warm->a, a, sizeof a);
-        memcpy(warm->ad, ad, sizeof ad);
         for (g = 0; g < LINKGEN_NGROUPS; g++) warm->used[g] = used[g];
     }
     return code;
