@@ -225,6 +225,10 @@ typedef int (*group_fn)(void *ctx, const double a[], const double da[], const do
  * them; else acc times s added to their accelerations (which are linear in the Add-links' ones). */
 typedef void (*bend_fn)(void *ctx, double s[], double acc, int keep);
 
+/* Block k's branches (of a group's blocks) into the work from the signs of its state s: called before
+ * the resolver tries the block, so a fallback block's are set only where it is tried. */
+typedef void (*branches_fn)(void *ctx, int k, const double s[]);
+
 /* Every block's state and its rates read off the solved pairs (the blocks of one group). */
 typedef void (*lengths_fn)(const void *ctx, double a[restrict][LINKGEN_NMAX], double ad[restrict][LINKGEN_NMAX]);
 
@@ -591,9 +595,9 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
  * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
-static int resolve_variants(const group_fn fns[], const bend_fn bends[], const int sizes[], const int loops[],
-                            int count, void *ctx, double a[][LINKGEN_NMAX], int order, int prefer, int *its,
-                            double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale)
+static int resolve_variants(const group_fn fns[], const bend_fn bends[], branches_fn branches, const int sizes[],
+                            const int loops[], int count, void *ctx, double a[][LINKGEN_NMAX], int order, int prefer,
+                            int *its, double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], ft[LINKGEN_NMAX], best_sigma = -1.0;
     int t, k, i, pass, best = -1, stuck = 0, rated;
@@ -603,6 +607,7 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], const i
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         if (p->strategy == RESOLVER_LOOP ? (loops[k] != 0) != (pass == 0) : pass == 1) continue;
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
+        branches(ctx, k, a[k]);
         solved = solve_variant(fns[k], ctx, sizes[k], loops[k], x, p, scale, jac, ft, &rated, its);
         if (solved < 0) stuck = 1;
         if (solved <= 0) continue;
@@ -619,6 +624,7 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], const i
     }
     if (best >= 0) {
         for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
+        branches(ctx, best, a[best]);
         if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, ft, &rated, its) > 0
             && addlink_rates(fns[best], bends[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac,
                              rated ? ft : NULL, order, sigma, turn) != 1)
@@ -628,18 +634,19 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], const i
 }
 
 /* One resolver step: resolve_variants on the count blocks of a group, a[first] on (the one
- * that solved the last row, *used, first); then lengths() reads every block's state and its
+ * that solved the last row, *used, first; branches() sets a block's branches in the work from its
+ * state as it is tried); then lengths() reads every block's state and its
  * rates off the solved pairs (so any of them can start the next row) and the solving block
  * keeps its orientation.  Returns 1 when a block solved, with *used that block; 0 when none
  * converged, -1 when the iteration of one did not contract. */
-static int resolve_group(const group_fn fns[], const bend_fn bends[], int count, lengths_fn lengths, void *ctx,
-                         double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its,
-                         double *sigma, const double *chains, int order, const resolver_mechanism *m,
-                         const resolver_policy *p)
+static int resolve_group(const group_fn fns[], const bend_fn bends[], branches_fn branches, int count,
+                         lengths_fn lengths, void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first,
+                         int *used, int *its, double *sigma, const double *chains, int order,
+                         const resolver_mechanism *m, const resolver_policy *p)
 {
     double turn = 0.0;
-    const int k = resolve_variants(fns, bends, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used,
-                                   its, sigma, &turn, chains, p, m->length_scale);
+    const int k = resolve_variants(fns, bends, branches, m->sizes + first, m->loops + first, count, ctx, a + first,
+                                   order, *used, its, sigma, &turn, chains, p, m->length_scale);
     if (k < 0) return k == -1 ? 0 : -1;
     *used = k;
     lengths(ctx, a + first, ad + first);
@@ -874,12 +881,14 @@ static int continuation(const resolver_path *path, const double base[], double a
  * continuation from the previous row (or, without one, from the sketch) and the row solved
  * from there; where the way is cut but the row solves all the same it is on another
  * assembly only, and gets the code m->another.  A row past the reach (past) fails at once.
- * The warm start becomes this row's where it solved.  Returns the status code. */
+ * The warm start becomes this row's where it solved (the passes write the block states' rates
+ * into it at once: only predict reads them, before; a row that did not solve leaves none).
+ * Returns the status code. */
 static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const resolver_policy *p, int past,
                  const double in[], const double din[], const double ddin[], int order, const resolver_warm *warm)
 {
-    double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX];
-    double ad[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double (*const ad)[LINKGEN_NMAX] = warm->ad;  /* the passes' rates straight into the warm start */
     int used[LINKGEN_NGROUPS];
     int code = 0, solved = 0, g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = m->sketch_in[i];
@@ -928,7 +937,6 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     if (solved) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) { warm->in[i] = in[i]; warm->din[i] = din[i]; }
         memcpy(warm->a, a, sizeof a);
-        memcpy(warm->ad, ad, sizeof ad);
         for (g = 0; g < LINKGEN_NGROUPS; g++) warm->used[g] = used[g];
     }
     return code;
@@ -2222,6 +2230,54 @@ static void bend_1_v8(void *ctx, double s[], double acc, int keep)
 }
 
 
+/* Block k's branches of group 1 into the work, from the signs of its state s's
+   measures: set as the resolver tries the block, so a fallback block's only where it is tried. */
+static void branches_1(void *ctx, int k, const double s[])
+{
+    work *w = (work *)ctx;
+    switch (k) {
+    case 0:
+        w->br4 = s[1] < 0.0 ? -1 : 1;
+        w->br5 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 1:
+        w->br14 = s[1] < 0.0 ? -1 : 1;
+        w->br15 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 2:
+        w->br18 = s[1] < 0.0 ? -1 : 1;
+        w->br19 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 3:
+        w->br22 = s[1] < 0.0 ? -1 : 1;
+        w->br23 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 4:
+        w->br26 = s[1] < 0.0 ? -1 : 1;
+        w->br27 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 5:
+        w->br30 = s[1] < 0.0 ? -1 : 1;
+        w->br31 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 6:
+        w->br34 = s[1] < 0.0 ? -1 : 1;
+        w->br35 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 7:
+        w->br38 = s[1] < 0.0 ? -1 : 1;
+        w->br39 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 8:
+        w->br42 = s[1] < 0.0 ? -1 : 1;
+        w->br43 = s[2] < 0.0 ? -1 : 1;
+        break;
+    default:
+        break;
+    }
+}
+
+
 /* The state of every block of group 1, read off the solved pairs: its Add-link
    lengths, the measures whose signs are the branches of its chains (a zero keeps the one it
    had), then, in the last entry, its orientation (0 here: the solving block's is set by the
@@ -2550,25 +2606,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     {
         static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6, group_1_v7, group_1_v8 };
         static const bend_fn bends[] = { bend_1, bend_1_v1, bend_1_v2, bend_1_v3, bend_1_v4, bend_1_v5, bend_1_v6, bend_1_v7, bend_1_v8 };
-        w->br4 = a[0][1] < 0.0 ? -1 : 1;
-        w->br5 = a[0][2] < 0.0 ? -1 : 1;
-        w->br14 = a[1][1] < 0.0 ? -1 : 1;
-        w->br15 = a[1][2] < 0.0 ? -1 : 1;
-        w->br18 = a[2][1] < 0.0 ? -1 : 1;
-        w->br19 = a[2][2] < 0.0 ? -1 : 1;
-        w->br22 = a[3][1] < 0.0 ? -1 : 1;
-        w->br23 = a[3][2] < 0.0 ? -1 : 1;
-        w->br26 = a[4][1] < 0.0 ? -1 : 1;
-        w->br27 = a[4][2] < 0.0 ? -1 : 1;
-        w->br30 = a[5][1] < 0.0 ? -1 : 1;
-        w->br31 = a[5][2] < 0.0 ? -1 : 1;
-        w->br34 = a[6][1] < 0.0 ? -1 : 1;
-        w->br35 = a[6][2] < 0.0 ? -1 : 1;
-        w->br38 = a[7][1] < 0.0 ? -1 : 1;
-        w->br39 = a[7][2] < 0.0 ? -1 : 1;
-        w->br42 = a[8][1] < 0.0 ? -1 : 1;
-        w->br43 = a[8][2] < 0.0 ? -1 : 1;
-        if (!resolve_group(blocks, bends, 9, lengths_1, w, a, ad, 0, &used[0],
+        if (!resolve_group(blocks, bends, branches_1, 9, lengths_1, w, a, ad, 0, &used[0],
                            &its[0], &w->sigma[8], &w->chains, order, &MECHANISM, &POLICY))
             return 82;
         note(w, w->sigma[8] < 1e-07 ? 3 : w->sigma[8] < 0.001 ? 4 : 0, 83, -84);
