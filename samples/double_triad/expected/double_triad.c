@@ -229,8 +229,15 @@ typedef void (*bend_fn)(void *ctx, double s[], double acc, int keep);
  * the resolver tries the block, so a fallback block's are set only where it is tried. */
 typedef void (*branches_fn)(void *ctx, int k, const double s[]);
 
-/* Every block's state and its rates read off the solved pairs (the blocks of one group). */
-typedef void (*lengths_fn)(const void *ctx, double a[restrict][LINKGEN_NMAX], double ad[restrict][LINKGEN_NMAX]);
+/* Every block's state and its rates read off the solved pairs (the blocks of one group); a and ad
+ * never alias the work (LINKGEN_RESTRICT: C99's restrict, which C++ has not; the same operations). */
+#if defined(__cplusplus)
+#define LINKGEN_RESTRICT
+#else
+#define LINKGEN_RESTRICT restrict
+#endif
+typedef void (*lengths_fn)(const void *ctx, double a[LINKGEN_RESTRICT][LINKGEN_NMAX],
+                           double ad[LINKGEN_RESTRICT][LINKGEN_NMAX]);
 
 /* The resolver strategies (options: strategy), as resolver_policy.strategy names them. */
 enum { RESOLVER_NEWTON, RESOLVER_FIXED_POINT, RESOLVER_CLOSURE, RESOLVER_LOOP };
@@ -3086,7 +3093,8 @@ static void branches_1(void *ctx, int k, const double s[])
    had), then, in the last entry, its orientation (0 here: the solving block's is set by the
    resolver); and their rates (the measures' too, so the predictor flips a branch where its
    chain passes its fold). */
-static void lengths_1(const void *ctx, double a[restrict][LINKGEN_NMAX], double ad[restrict][LINKGEN_NMAX])
+static void lengths_1(const void *ctx, double a[LINKGEN_RESTRICT][LINKGEN_NMAX],
+                       double ad[LINKGEN_RESTRICT][LINKGEN_NMAX])
 {
     const work *w = (const work *)ctx;
     VARIABLE f;
@@ -3225,7 +3233,8 @@ static void branches_2(void *ctx, int k, const double s[])
    had), then, in the last entry, its orientation (0 here: the solving block's is set by the
    resolver); and their rates (the measures' too, so the predictor flips a branch where its
    chain passes its fold). */
-static void lengths_2(const void *ctx, double a[restrict][LINKGEN_NMAX], double ad[restrict][LINKGEN_NMAX])
+static void lengths_2(const void *ctx, double a[LINKGEN_RESTRICT][LINKGEN_NMAX],
+                       double ad[LINKGEN_RESTRICT][LINKGEN_NMAX])
 {
     const work *w = (const work *)ctx;
     VARIABLE f;
