@@ -44,6 +44,7 @@ TARGETS: dict[str, tuple[str, tuple[str, ...] | None, str, dict[str, object]]] =
     "jansen": ("jansen", None, "C numpy", {}),
     "jansen_C": ("jansen", None, "C", {}),
     "sixbar_fig14": ("sixbar_fig14", None, "C numpy", {}),
+    "double_triad": ("double_triad", None, "C", {}),
     # the float builds (issue 19: at least 1.5x the double speed) and the checks off knob (faster than on)
     "fourbar_float": ("fourbar", None, "C", FLOAT),
     "jansen_foot_float": ("jansen_foot", None, "C", FLOAT),

@@ -230,8 +230,19 @@ typedef int (*group_fn)(void *ctx, const double a[], const double da[], const do
  * them; else acc times s added to their accelerations (which are linear in the Add-links' ones). */
 typedef void (*bend_fn)(void *ctx, double s[], double acc, int keep);
 
-/* Every block's state and its rates read off the solved pairs (the blocks of one group). */
-typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
+/* Block k's branches (of a group's blocks) into the work from the signs of its state s: called before
+ * the resolver tries the block, so a fallback block's are set only where it is tried. */
+typedef void (*branches_fn)(void *ctx, int k, const double s[]);
+
+/* Every block's state and its rates read off the solved pairs (the blocks of one group); a and ad
+ * never alias the work (LINKGEN_RESTRICT: C99's restrict, which C++ has not; the same operations). */
+#if defined(__cplusplus)
+#define LINKGEN_RESTRICT
+#else
+#define LINKGEN_RESTRICT restrict
+#endif
+typedef void (*lengths_fn)(const void *ctx, double a[LINKGEN_RESTRICT][LINKGEN_NMAX],
+                           double ad[LINKGEN_RESTRICT][LINKGEN_NMAX]);
 
 /* The resolver strategies (options: strategy), as resolver_policy.strategy names them. */
 enum { RESOLVER_NEWTON, RESOLVER_FIXED_POINT, RESOLVER_CLOSURE, RESOLVER_LOOP };
@@ -261,6 +272,7 @@ typedef struct {
     const double (*sketch_a)[LINKGEN_NMAX];  /* per block: lengths, branches, orientation in the sketch */
     const int *sizes;  /* Add-links of each block */
     const int *loops;  /* 1: a loop block (strategy loop iterates it by loop_iteration) */
+    const int *firsts;  /* each group's first block */
     const double *limits;  /* the continuation's largest step of each input */
     const int *periodic;  /* angle inputs: the continuation goes the shorter way round */
     double low;  /* where the reach of an angle input starts (nan: no reach) */
@@ -595,9 +607,9 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
  * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
-static int resolve_variants(const group_fn fns[], const bend_fn bends[], const int sizes[], const int loops[],
-                            int count, void *ctx, double a[][LINKGEN_NMAX], int order, int prefer, int *its,
-                            double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale)
+static int resolve_variants(const group_fn fns[], const bend_fn bends[], branches_fn branches, const int sizes[],
+                            const int loops[], int count, void *ctx, double a[][LINKGEN_NMAX], int order, int prefer,
+                            int *its, double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], ft[LINKGEN_NMAX], best_sigma = -1.0;
     int t, k, i, pass, best = -1, stuck = 0, rated;
@@ -607,6 +619,7 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], const i
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         if (p->strategy == RESOLVER_LOOP ? (loops[k] != 0) != (pass == 0) : pass == 1) continue;
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
+        branches(ctx, k, a[k]);
         solved = solve_variant(fns[k], ctx, sizes[k], loops[k], x, p, scale, jac, ft, &rated, its);
         if (solved < 0) stuck = 1;
         if (solved <= 0) continue;
@@ -623,6 +636,7 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], const i
     }
     if (best >= 0) {
         for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
+        branches(ctx, best, a[best]);
         if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, ft, &rated, its) > 0
             && addlink_rates(fns[best], bends[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac,
                              rated ? ft : NULL, order, sigma, turn) != 1)
@@ -632,18 +646,19 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], const i
 }
 
 /* One resolver step: resolve_variants on the count blocks of a group, a[first] on (the one
- * that solved the last row, *used, first); then lengths() reads every block's state and its
+ * that solved the last row, *used, first; branches() sets a block's branches in the work from its
+ * state as it is tried); then lengths() reads every block's state and its
  * rates off the solved pairs (so any of them can start the next row) and the solving block
  * keeps its orientation.  Returns 1 when a block solved, with *used that block; 0 when none
  * converged, -1 when the iteration of one did not contract. */
-static int resolve_group(const group_fn fns[], const bend_fn bends[], int count, lengths_fn lengths, void *ctx,
-                         double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its,
-                         double *sigma, const double *chains, int order, const resolver_mechanism *m,
-                         const resolver_policy *p)
+static int resolve_group(const group_fn fns[], const bend_fn bends[], branches_fn branches, int count,
+                         lengths_fn lengths, void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first,
+                         int *used, int *its, double *sigma, const double *chains, int order,
+                         const resolver_mechanism *m, const resolver_policy *p)
 {
     double turn = 0.0;
-    const int k = resolve_variants(fns, bends, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used,
-                                   its, sigma, &turn, chains, p, m->length_scale);
+    const int k = resolve_variants(fns, bends, branches, m->sizes + first, m->loops + first, count, ctx, a + first,
+                                   order, *used, its, sigma, &turn, chains, p, m->length_scale);
     if (k < 0) return k == -1 ? 0 : -1;
     *used = k;
     lengths(ctx, a + first, ad + first);
@@ -681,12 +696,12 @@ typedef struct {
 } resolver_path;
 
 /* One pass along a continuation path (rates per unit of the path, no accelerations):
- * returns 1 when it closes, with the block states a and their rates. */
+ * returns 1 when it closes, with the block states a, their rates and the blocks that solved. */
 static int path_pass(const resolver_path *path, const double in[], const double din[], int order,
-                     double a[][LINKGEN_NMAX], double rates[][LINKGEN_NMAX])
+                     double a[][LINKGEN_NMAX], double rates[][LINKGEN_NMAX], int used[])
 {
     static const double zero[LINKGEN_NINPUTS] = { 0.0 };
-    int used[LINKGEN_NGROUPS], g;
+    int g;
     for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = path->prefer[g];
     return path->run(path->ctx, 0, in, din, zero, order, a, rates, used) <= 0;
 }
@@ -695,22 +710,27 @@ static int path_pass(const resolver_path *path, const double in[], const double 
  * length moved from the guess by more than p->path_share of the largest predicted move (plus
  * slack); a larger correction is a jump to another assembly, or a step too long for the
  * curve.  A block that solved both and turned its orientation (the state's last entry,
- * after its sizes[k] lengths and its branches; 0 where the block did not solve) has passed
+ * after its m->sizes[k] lengths and its branches; 0 where the block did not solve) has passed
  * a singular position.  Where two assemblies pass close the nearer one can lie within that
  * share, so a turned block must be within p->turn_share: the path crosses the singular
- * position along its tangent, as a mechanism goes straight through a change point. */
+ * position along its tangent, as a mechanism goes straight through a change point.  Only a
+ * block that solved now (used, of each group the block from its first, m->firsts) has an
+ * orientation there, so only those are looked at (the same verdict as every block). */
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
-                   const double now[][LINKGEN_NMAX], const int sizes[], double slack, const resolver_policy *p)
+                   const double now[][LINKGEN_NMAX], const int used[], const resolver_mechanism *m, double slack,
+                   const resolver_policy *p)
 {
     double move = 0.0, off = 0.0, share = p->path_share;
     int g, i;
-    for (g = 0; g < LINKGEN_NBLOCKS; g++) {  /* one pass: the largest predicted move and correction */
-        for (i = 0; i < adds(sizes[g]); i++) {
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* one pass: the largest predicted move and correction */
+        for (i = 0; i < adds(m->sizes[g]); i++) {
             const double d = fabs(guess[g][i] - prev[g][i]), e = fabs(now[g][i] - guess[g][i]);
             if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
             if (e > off || e != e) off = e;  /* a nan correction stays */
         }
-        if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
+    for (g = 0; g < LINKGEN_NGROUPS; g++) {
+        const int k = m->firsts[g] + used[g];
+        if (prev[k][LINKGEN_NMAX - 1] * now[k][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
     }
     return off <= share * move + slack;  /* a nan too */
 }
@@ -792,7 +812,7 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
     double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double now[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double t = 0.0, h, h_max = 1.0, fast;
-    int g, i, cuts = 0, passes = 1;
+    int used[LINKGEN_NGROUPS], g, i, cuts = 0, passes = 1;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         d[i] = goal[i] - base[i];
         if (d[i] != 0.0) h_max = fmin(h_max, m->limits[i] / fabs(d[i]));
@@ -800,7 +820,7 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
     if (h_max * p->walk_passes < 1.0) return 0;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) start[g][i] = a[g][i];
-    if (!path_pass(path, base, d, 1, start, rate)) return 0;
+    if (!path_pass(path, base, d, 1, start, rate, used)) return 0;
     h = h_max;
     while (t < 1.0) {
         double tt;
@@ -817,9 +837,9 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
                 guess);
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
             for (i = 0; i < LINKGEN_NMAX; i++) now[g][i] = guess[g][i];
-        if (path_pass(path, trial, d, 1, now, rate2)
+        if (path_pass(path, trial, d, 1, now, rate2, used)
             && on_path((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])guess,
-                       (const double (*)[LINKGEN_NMAX])now, m->sizes, slack, p)) {
+                       (const double (*)[LINKGEN_NMAX])now, used, m, slack, p)) {
             t = tt;
             h = fmin(2.0 * h, h_max);
             cuts = 0;
@@ -873,16 +893,19 @@ static int continuation(const resolver_path *path, const double base[], double a
  * continuation from the previous row (or, without one, from the sketch) and the row solved
  * from there; where the way is cut but the row solves all the same it is on another
  * assembly only, and gets the code m->another.  A row past the reach (past) fails at once.
- * The warm start becomes this row's where it solved.  Returns the status code. */
+ * The warm start becomes this row's where it solved (the passes write the block states' rates
+ * into it at once: only predict reads them, before; a row that did not solve leaves none).
+ * Returns the status code. */
 static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const resolver_policy *p, int past,
                  const double in[], const double din[], const double ddin[], int order, const resolver_warm *warm)
 {
-    double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX];
-    double ad[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double (*const ad)[LINKGEN_NMAX] = warm->ad;  /* the passes' rates straight into the warm start */
     int used[LINKGEN_NGROUPS];
     int code = 0, solved = 0, g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = m->sketch_in[i];
-    memcpy(a, m->sketch_a, sizeof a);  /* the block states copied whole (a loop per entry costs more) */
+    if (past || !*warm->valid)  /* else the warm states replace them below */
+        memcpy(a, m->sketch_a, sizeof a);  /* the block states copied whole (a loop per entry costs more) */
     for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = *warm->valid ? warm->used[g] : 0;
     if (past) {
         /* past a limit position: the pass fails the row at once with the limit's code */
@@ -892,7 +915,7 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         memcpy(a, p->predictor ? guess : warm->a, sizeof a);  /* predictor order 0: the warm states as they were */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
         solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
-                                      (const double (*)[LINKGEN_NMAX])a, m->sizes,
+                                      (const double (*)[LINKGEN_NMAX])a, used, m,
                                       p->path_slack * m->length_scale, p);
     }
     if (!solved && *warm->valid) {
@@ -926,7 +949,6 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     if (solved) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) { warm->in[i] = in[i]; warm->din[i] = din[i]; }
         memcpy(warm->a, a, sizeof a);
-        memcpy(warm->ad, ad, sizeof ad);
         for (g = 0; g < LINKGEN_NGROUPS; g++) warm->used[g] = used[g];
     }
     return code;
@@ -1165,13 +1187,14 @@ static const double SKETCH_IN[LINKGEN_NINPUTS] = { 1.5707963267948966 };
 static const double SKETCH_A[LINKGEN_NBLOCKS][LINKGEN_NMAX] = { {168.67127793433, -1.0, 1.0, 0.0}, {67.08203932499369, -1.0, 1.0, 0.0}, {123.4908903522847, -1.0, 1.0, 0.0}, {122.06555615733703, 1.0, 1.0, 0.0}, {60.8276253029822, -1.0, 1.0, 0.0}, {165.6804152578089, -1.0, 1.0, 0.0}, {89.44271909999159, 1.0, 1.0, 0.0}, {100.0, 1.0, 1.0, 0.0}, {120.0, 1.0, 1.0, 0.0} };
 static const int BLOCK_SIZES[LINKGEN_NBLOCKS] = { 1, 1, 1, 1, 1, 1, 1, 1, 1 };
 static const int BLOCK_LOOPS[LINKGEN_NBLOCKS] = { 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+static const int GROUP_FIRSTS[LINKGEN_NGROUPS] = { 0 };
 static const double LIMITS[LINKGEN_NINPUTS] = { 0.1 };
 static const int PERIODIC[LINKGEN_NINPUTS] = { 1 };
 
 /* What the row driver needs of the mechanism; its length scale is the largest distance
    between two of the sketch's pairs or points. */
 static const resolver_mechanism MECHANISM = {
-    188.67962264113208, SKETCH_IN, SKETCH_A, BLOCK_SIZES, BLOCK_LOOPS, LIMITS, PERIODIC, NAN,
+    188.67962264113208, SKETCH_IN, SKETCH_A, BLOCK_SIZES, BLOCK_LOOPS, GROUP_FIRSTS, LIMITS, PERIODIC, NAN,
     82, 2
 };
 
@@ -2229,12 +2252,61 @@ static void bend_1_v8(void *ctx, double s[], double acc, int keep)
 }
 
 
+/* Block k's branches of group 1 into the work, from the signs of its state s's
+   measures: set as the resolver tries the block, so a fallback block's only where it is tried. */
+static void branches_1(void *ctx, int k, const double s[])
+{
+    work *w = (work *)ctx;
+    switch (k) {
+    case 0:
+        w->br4 = s[1] < 0.0 ? -1 : 1;
+        w->br5 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 1:
+        w->br14 = s[1] < 0.0 ? -1 : 1;
+        w->br15 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 2:
+        w->br18 = s[1] < 0.0 ? -1 : 1;
+        w->br19 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 3:
+        w->br22 = s[1] < 0.0 ? -1 : 1;
+        w->br23 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 4:
+        w->br26 = s[1] < 0.0 ? -1 : 1;
+        w->br27 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 5:
+        w->br30 = s[1] < 0.0 ? -1 : 1;
+        w->br31 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 6:
+        w->br34 = s[1] < 0.0 ? -1 : 1;
+        w->br35 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 7:
+        w->br38 = s[1] < 0.0 ? -1 : 1;
+        w->br39 = s[2] < 0.0 ? -1 : 1;
+        break;
+    case 8:
+        w->br42 = s[1] < 0.0 ? -1 : 1;
+        w->br43 = s[2] < 0.0 ? -1 : 1;
+        break;
+    default:
+        break;
+    }
+}
+
+
 /* The state of every block of group 1, read off the solved pairs: its Add-link
    lengths, the measures whose signs are the branches of its chains (a zero keeps the one it
    had), then, in the last entry, its orientation (0 here: the solving block's is set by the
    resolver); and their rates (the measures' too, so the predictor flips a branch where its
    chain passes its fold). */
-static void lengths_1(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX])
+static void lengths_1(const void *ctx, double a[LINKGEN_RESTRICT][LINKGEN_NMAX],
+                       double ad[LINKGEN_RESTRICT][LINKGEN_NMAX])
 {
     const work *w = (const work *)ctx;
     VARIABLE f;
@@ -2557,25 +2629,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
     {
         static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6, group_1_v7, group_1_v8 };
         static const bend_fn bends[] = { bend_1, bend_1_v1, bend_1_v2, bend_1_v3, bend_1_v4, bend_1_v5, bend_1_v6, bend_1_v7, bend_1_v8 };
-        w->br4 = a[0][1] < 0.0 ? -1 : 1;
-        w->br5 = a[0][2] < 0.0 ? -1 : 1;
-        w->br14 = a[1][1] < 0.0 ? -1 : 1;
-        w->br15 = a[1][2] < 0.0 ? -1 : 1;
-        w->br18 = a[2][1] < 0.0 ? -1 : 1;
-        w->br19 = a[2][2] < 0.0 ? -1 : 1;
-        w->br22 = a[3][1] < 0.0 ? -1 : 1;
-        w->br23 = a[3][2] < 0.0 ? -1 : 1;
-        w->br26 = a[4][1] < 0.0 ? -1 : 1;
-        w->br27 = a[4][2] < 0.0 ? -1 : 1;
-        w->br30 = a[5][1] < 0.0 ? -1 : 1;
-        w->br31 = a[5][2] < 0.0 ? -1 : 1;
-        w->br34 = a[6][1] < 0.0 ? -1 : 1;
-        w->br35 = a[6][2] < 0.0 ? -1 : 1;
-        w->br38 = a[7][1] < 0.0 ? -1 : 1;
-        w->br39 = a[7][2] < 0.0 ? -1 : 1;
-        w->br42 = a[8][1] < 0.0 ? -1 : 1;
-        w->br43 = a[8][2] < 0.0 ? -1 : 1;
-        if (!resolve_group(blocks, bends, 9, lengths_1, w, a, ad, 0, &used[0],
+        if (!resolve_group(blocks, bends, branches_1, 9, lengths_1, w, a, ad, 0, &used[0],
                            &its[0], &w->sigma[8], &w->chains, order, &MECHANISM, &POLICY))
             return 82;
         note(w, w->sigma[8] < 1e-07 ? 3 : w->sigma[8] < 0.001 ? 4 : 0, 83, -84);

@@ -51,9 +51,9 @@ static int closure_newton(const closure_group *c, const void *ctx, double x[], d
  * closure equations, every block's state read off the solution, then resolve_group from
  * there (no polishing step there: the closure took it).  *its gets the closure's Newton steps
  * and the resolver's. */
-static int resolve_closure(const closure_group *c, const group_fn fns[], const bend_fn bends[], int count,
-                           lengths_fn lengths, void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX],
-                           int first, int *used, int *its, double *sigma, const double *chains, int order,
+static int resolve_closure(const closure_group *c, const group_fn fns[], const bend_fn bends[],
+                           branches_fn branches, int count, lengths_fn lengths, void *ctx,
+                           double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma, const double *chains, int order,
                            const resolver_mechanism *m, const resolver_policy *p)
 {
     double x[LINKGEN_NMAX], zero[LINKGEN_NMAX], f[LINKGEN_NMAX], df[LINKGEN_NMAX];
@@ -63,6 +63,7 @@ static int resolve_closure(const closure_group *c, const group_fn fns[], const b
     *its = 0;
     for (t = 0; t < count && !closed; t++) {
         const int k = t == 0 ? *used : (t - 1 < *used ? t - 1 : t);
+        branches(ctx, k, a[first + k]);
         closed = !fns[k](ctx, a[first + k], zero, zero, 0, f, df, NULL);
     }
     if (!closed) return 0;
@@ -73,8 +74,8 @@ static int resolve_closure(const closure_group *c, const group_fn fns[], const b
     if (!closed) return 0;
     c->adopt(ctx, x, a + first);
     polished.polish = 0;  /* the closure's own step was the polishing one */
-    solved = resolve_group(fns, bends, count, lengths, ctx, a, ad, first, used, its, sigma, chains, order, m,
-                           &polished);
+    solved = resolve_group(fns, bends, branches, count, lengths, ctx, a, ad, first, used, its, sigma, chains, order,
+                           m, &polished);
     *its += steps;
     return solved;
 }

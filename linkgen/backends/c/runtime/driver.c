@@ -28,12 +28,12 @@ typedef struct {
 } resolver_path;
 
 /* One pass along a continuation path (rates per unit of the path, no accelerations):
- * returns 1 when it closes, with the block states a and their rates. */
+ * returns 1 when it closes, with the block states a, their rates and the blocks that solved. */
 static int path_pass(const resolver_path *path, const double in[], const double din[], int order,
-                     double a[][LINKGEN_NMAX], double rates[][LINKGEN_NMAX])
+                     double a[][LINKGEN_NMAX], double rates[][LINKGEN_NMAX], int used[])
 {
     static const double zero[LINKGEN_NINPUTS] = { 0.0 };
-    int used[LINKGEN_NGROUPS], g;
+    int g;
     for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = path->prefer[g];
     return path->run(path->ctx, 0, in, din, zero, order, a, rates, used) <= 0;
 }
@@ -42,22 +42,27 @@ static int path_pass(const resolver_path *path, const double in[], const double 
  * length moved from the guess by more than p->path_share of the largest predicted move (plus
  * slack); a larger correction is a jump to another assembly, or a step too long for the
  * curve.  A block that solved both and turned its orientation (the state's last entry,
- * after its sizes[k] lengths and its branches; 0 where the block did not solve) has passed
+ * after its m->sizes[k] lengths and its branches; 0 where the block did not solve) has passed
  * a singular position.  Where two assemblies pass close the nearer one can lie within that
  * share, so a turned block must be within p->turn_share: the path crosses the singular
- * position along its tangent, as a mechanism goes straight through a change point. */
+ * position along its tangent, as a mechanism goes straight through a change point.  Only a
+ * block that solved now (used, of each group the block from its first, m->firsts) has an
+ * orientation there, so only those are looked at (the same verdict as every block). */
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
-                   const double now[][LINKGEN_NMAX], const int sizes[], double slack, const resolver_policy *p)
+                   const double now[][LINKGEN_NMAX], const int used[], const resolver_mechanism *m, double slack,
+                   const resolver_policy *p)
 {
     double move = 0.0, off = 0.0, share = p->path_share;
     int g, i;
-    for (g = 0; g < LINKGEN_NBLOCKS; g++) {  /* one pass: the largest predicted move and correction */
-        for (i = 0; i < adds(sizes[g]); i++) {
+    for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* one pass: the largest predicted move and correction */
+        for (i = 0; i < adds(m->sizes[g]); i++) {
             const double d = fabs(guess[g][i] - prev[g][i]), e = fabs(now[g][i] - guess[g][i]);
             if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
             if (e > off || e != e) off = e;  /* a nan correction stays */
         }
-        if (prev[g][LINKGEN_NMAX - 1] * now[g][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
+    for (g = 0; g < LINKGEN_NGROUPS; g++) {
+        const int k = m->firsts[g] + used[g];
+        if (prev[k][LINKGEN_NMAX - 1] * now[k][LINKGEN_NMAX - 1] < 0.0) share = p->turn_share;
     }
     return off <= share * move + slack;  /* a nan too */
 }
@@ -139,7 +144,7 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
     double rate[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double now[LINKGEN_NBLOCKS][LINKGEN_NMAX], rate2[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double t = 0.0, h, h_max = 1.0, fast;
-    int g, i, cuts = 0, passes = 1;
+    int used[LINKGEN_NGROUPS], g, i, cuts = 0, passes = 1;
     for (i = 0; i < LINKGEN_NINPUTS; i++) {
         d[i] = goal[i] - base[i];
         if (d[i] != 0.0) h_max = fmin(h_max, m->limits[i] / fabs(d[i]));
@@ -147,7 +152,7 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
     if (h_max * p->walk_passes < 1.0) return 0;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)
         for (i = 0; i < LINKGEN_NMAX; i++) start[g][i] = a[g][i];
-    if (!path_pass(path, base, d, 1, start, rate)) return 0;
+    if (!path_pass(path, base, d, 1, start, rate, used)) return 0;
     h = h_max;
     while (t < 1.0) {
         double tt;
@@ -164,9 +169,9 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
                 guess);
         for (g = 0; g < LINKGEN_NBLOCKS; g++)
             for (i = 0; i < LINKGEN_NMAX; i++) now[g][i] = guess[g][i];
-        if (path_pass(path, trial, d, 1, now, rate2)
+        if (path_pass(path, trial, d, 1, now, rate2, used)
             && on_path((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])guess,
-                       (const double (*)[LINKGEN_NMAX])now, m->sizes, slack, p)) {
+                       (const double (*)[LINKGEN_NMAX])now, used, m, slack, p)) {
             t = tt;
             h = fmin(2.0 * h, h_max);
             cuts = 0;
@@ -220,16 +225,19 @@ static int continuation(const resolver_path *path, const double base[], double a
  * continuation from the previous row (or, without one, from the sketch) and the row solved
  * from there; where the way is cut but the row solves all the same it is on another
  * assembly only, and gets the code m->another.  A row past the reach (past) fails at once.
- * The warm start becomes this row's where it solved.  Returns the status code. */
+ * The warm start becomes this row's where it solved (the passes write the block states' rates
+ * into it at once: only predict reads them, before; a row that did not solve leaves none).
+ * Returns the status code. */
 static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const resolver_policy *p, int past,
                  const double in[], const double din[], const double ddin[], int order, const resolver_warm *warm)
 {
-    double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX];
-    double ad[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
+    double (*const ad)[LINKGEN_NMAX] = warm->ad;  /* the passes' rates straight into the warm start */
     int used[LINKGEN_NGROUPS];
     int code = 0, solved = 0, g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = m->sketch_in[i];
-    memcpy(a, m->sketch_a, sizeof a);  /* the block states copied whole (a loop per entry costs more) */
+    if (past || !*warm->valid)  /* else the warm states replace them below */
+        memcpy(a, m->sketch_a, sizeof a);  /* the block states copied whole (a loop per entry costs more) */
     for (g = 0; g < LINKGEN_NGROUPS; g++) used[g] = *warm->valid ? warm->used[g] : 0;
     if (past) {
         /* past a limit position: the pass fails the row at once with the limit's code */
@@ -239,7 +247,7 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         memcpy(a, p->predictor ? guess : warm->a, sizeof a);  /* predictor order 0: the warm states as they were */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
         solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
-                                      (const double (*)[LINKGEN_NMAX])a, m->sizes,
+                                      (const double (*)[LINKGEN_NMAX])a, used, m,
                                       p->path_slack * m->length_scale, p);
     }
     if (!solved && *warm->valid) {
@@ -273,7 +281,6 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     if (solved) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) { warm->in[i] = in[i]; warm->din[i] = din[i]; }
         memcpy(warm->a, a, sizeof a);
-        memcpy(warm->ad, ad, sizeof ad);
         for (g = 0; g < LINKGEN_NGROUPS; g++) warm->used[g] = used[g];
     }
     return code;

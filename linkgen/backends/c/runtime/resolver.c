@@ -14,8 +14,19 @@ typedef int (*group_fn)(void *ctx, const double a[], const double da[], const do
  * them; else acc times s added to their accelerations (which are linear in the Add-links' ones). */
 typedef void (*bend_fn)(void *ctx, double s[], double acc, int keep);
 
-/* Every block's state and its rates read off the solved pairs (the blocks of one group). */
-typedef void (*lengths_fn)(const void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX]);
+/* Block k's branches (of a group's blocks) into the work from the signs of its state s: called before
+ * the resolver tries the block, so a fallback block's are set only where it is tried. */
+typedef void (*branches_fn)(void *ctx, int k, const double s[]);
+
+/* Every block's state and its rates read off the solved pairs (the blocks of one group); a and ad
+ * never alias the work (LINKGEN_RESTRICT: C99's restrict, which C++ has not; the same operations). */
+#if defined(__cplusplus)
+#define LINKGEN_RESTRICT
+#else
+#define LINKGEN_RESTRICT restrict
+#endif
+typedef void (*lengths_fn)(const void *ctx, double a[LINKGEN_RESTRICT][LINKGEN_NMAX],
+                           double ad[LINKGEN_RESTRICT][LINKGEN_NMAX]);
 
 /* The resolver strategies (options: strategy), as resolver_policy.strategy names them. */
 enum { RESOLVER_NEWTON, RESOLVER_FIXED_POINT, RESOLVER_CLOSURE, RESOLVER_LOOP };
@@ -45,6 +56,7 @@ typedef struct {
     const double (*sketch_a)[LINKGEN_NMAX];  /* per block: lengths, branches, orientation in the sketch */
     const int *sizes;  /* Add-links of each block */
     const int *loops;  /* 1: a loop block (strategy loop iterates it by loop_iteration) */
+    const int *firsts;  /* each group's first block */
     const double *limits;  /* the continuation's largest step of each input */
     const int *periodic;  /* angle inputs: the continuation goes the shorter way round */
     double low;  /* where the reach of an angle input starts (nan: no reach) */
@@ -379,9 +391,9 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
  * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
-static int resolve_variants(const group_fn fns[], const bend_fn bends[], const int sizes[], const int loops[],
-                            int count, void *ctx, double a[][LINKGEN_NMAX], int order, int prefer, int *its,
-                            double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale)
+static int resolve_variants(const group_fn fns[], const bend_fn bends[], branches_fn branches, const int sizes[],
+                            const int loops[], int count, void *ctx, double a[][LINKGEN_NMAX], int order, int prefer,
+                            int *its, double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], ft[LINKGEN_NMAX], best_sigma = -1.0;
     int t, k, i, pass, best = -1, stuck = 0, rated;
@@ -391,6 +403,7 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], const i
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         if (p->strategy == RESOLVER_LOOP ? (loops[k] != 0) != (pass == 0) : pass == 1) continue;
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
+        branches(ctx, k, a[k]);
         solved = solve_variant(fns[k], ctx, sizes[k], loops[k], x, p, scale, jac, ft, &rated, its);
         if (solved < 0) stuck = 1;
         if (solved <= 0) continue;
@@ -407,6 +420,7 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], const i
     }
     if (best >= 0) {
         for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
+        branches(ctx, best, a[best]);
         if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, ft, &rated, its) > 0
             && addlink_rates(fns[best], bends[best], ctx, sizes[best], x, (const double (*)[LINKGEN_NMAX])jac,
                              rated ? ft : NULL, order, sigma, turn) != 1)
@@ -416,18 +430,19 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], const i
 }
 
 /* One resolver step: resolve_variants on the count blocks of a group, a[first] on (the one
- * that solved the last row, *used, first); then lengths() reads every block's state and its
+ * that solved the last row, *used, first; branches() sets a block's branches in the work from its
+ * state as it is tried); then lengths() reads every block's state and its
  * rates off the solved pairs (so any of them can start the next row) and the solving block
  * keeps its orientation.  Returns 1 when a block solved, with *used that block; 0 when none
  * converged, -1 when the iteration of one did not contract. */
-static int resolve_group(const group_fn fns[], const bend_fn bends[], int count, lengths_fn lengths, void *ctx,
-                         double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its,
-                         double *sigma, const double *chains, int order, const resolver_mechanism *m,
-                         const resolver_policy *p)
+static int resolve_group(const group_fn fns[], const bend_fn bends[], branches_fn branches, int count,
+                         lengths_fn lengths, void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first,
+                         int *used, int *its, double *sigma, const double *chains, int order,
+                         const resolver_mechanism *m, const resolver_policy *p)
 {
     double turn = 0.0;
-    const int k = resolve_variants(fns, bends, m->sizes + first, m->loops + first, count, ctx, a + first, order, *used,
-                                   its, sigma, &turn, chains, p, m->length_scale);
+    const int k = resolve_variants(fns, bends, branches, m->sizes + first, m->loops + first, count, ctx, a + first,
+                                   order, *used, its, sigma, &turn, chains, p, m->length_scale);
     if (k < 0) return k == -1 ? 0 : -1;
     *used = k;
     lengths(ctx, a + first, ad + first);
