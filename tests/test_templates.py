@@ -40,8 +40,10 @@ def test_the_check_sees_a_threshold(tmp_path: Path):
 
 def test_the_c_macros_names_may_not_take_are_the_ones_name_c_defines():
     """linkgen.backends.c.words.SOURCE_MACROS (names refused for a mechanism's parts) is exactly
-    what NAME.c.j2 #defines."""
+    what NAME.c.j2 and the C runtime it pastes in #define."""
     from linkgen.backends.c.words import SOURCE_MACROS
 
-    defined = set(re.findall(r"^#define (\w+)", (ROOT / "templates" / "c" / "NAME.c.j2").read_text(), flags=re.M))
+    runtime = sorted((ROOT / "linkgen" / "backends" / "c" / "runtime").glob("*.c"))
+    sources = [ROOT / "templates" / "c" / "NAME.c.j2", *runtime]
+    defined = {m for path in sources for m in re.findall(r"^#define (\w+)", path.read_text(), flags=re.M)}
     assert defined == SOURCE_MACROS
