@@ -49,8 +49,8 @@ from linkgen.writer import write_all
 
 MECHANISMS = SAMPLES + sorted((ROOT / "tests" / "mechanisms").glob("*.yaml"))
 OCTAVE_ROWS = 25  # Octave is slow: its sweep is checked on fewer rows of the same ranges
-# Octave on every sample in `make test`, on the test mechanisms in `make test-long`
-OCTAVE = [pytest.param(p, id=p.stem, marks=() if p in SAMPLES else pytest.mark.long) for p in MECHANISMS]
+# Octave and the sanitizers on every sample in `make test`, on the test mechanisms in `make test-long`
+SAMPLES_NOW = [pytest.param(p, id=p.stem, marks=() if p in SAMPLES else pytest.mark.long) for p in MECHANISMS]
 
 
 def _id(path: Path) -> str:
@@ -88,6 +88,7 @@ def test_python_and_c_compute_the_same_bits(built):
     assert not differ, differ[:5]
 
 
+@pytest.mark.parametrize("built", SAMPLES_NOW, indirect=True)
 def test_c_is_clean_under_sanitizers(built):
     log, outdir, _ = built
     plain = run_c(log, outdir)
@@ -95,7 +96,7 @@ def test_c_is_clean_under_sanitizers(built):
     assert checked == plain
 
 
-@pytest.mark.parametrize("built", OCTAVE, indirect=True)
+@pytest.mark.parametrize("built", SAMPLES_NOW, indirect=True)
 def test_octave_agrees_with_c(built, tmp_path):
     log, _, _ = built
     small = dataclasses.replace(log, samples=OCTAVE_ROWS)
