@@ -10,13 +10,14 @@ import math
 import random
 import struct
 import sys
+from dataclasses import replace
 
 import pytest
 
-from linkgen.backends.c.tangent import SUFFIX, two_channel
+from linkgen.backends.c.tangent import SUFFIX, TAPED_STATUS, from_tape, tape, two_channel
 from linkgen.backends.py.printer import python_function
 from linkgen.primitives import PRIMITIVES
-from linkgen.primitives.dsl import RECORD_FIELDS, record_fields
+from linkgen.primitives.dsl import RECORD_FIELDS, Param, Sym, record_fields
 
 NAMESPACE = {"sqrt": math.sqrt, "atan2": math.atan2, "cos": math.cos, "sin": math.sin,
              "EPS": sys.float_info.epsilon, "NAN": math.nan, "PI": math.pi}
@@ -84,3 +85,37 @@ def test_the_second_channel_reads_rates_only_and_writes_copies():
     assert added == [p.name + SUFFIX for p in PRIMITIVES["RRR_links"].params if p.is_record]
     assert [o.name for o in prim.outputs] == ["jb", "jb" + SUFFIX]
     assert all(let.order <= 1 for let in prim.body)
+
+
+def _probe(prim):
+    """The primitive at order 0 returning (status, the values tangent.tape keeps): the two-channel copy's tape."""
+    names = [n for n in tape(prim) if n != TAPED_STATUS]
+    outputs = tuple(Param(f"kept{k}", "VARIABLE") for k in range(len(names)))
+    results = {f"kept{k}": {"v": Sym(n)} for k, n in enumerate(names)}
+    return replace(prim, name=f"{prim.name}_probe", outputs=outputs, results=results, sigma=None), len(names)
+
+
+@pytest.mark.parametrize("name", TWO_CHANNEL)
+def test_a_rates_copy_on_the_kept_positions_is_the_order_two_call(name):
+    """NAME_r given the position values a pass keeps (and its status) returns what the order-2 primitive
+    returns, bit for bit (fails when a kept value is another's, or the copy recomputes one differently)."""
+    prim = PRIMITIVES[name]
+    probe, count = _probe(prim)
+    whole = _function(python_function(prim, 2), name)
+    kept = _function(python_function(probe, 0), probe.name)
+    rates = _function(python_function(from_tape(prim), 2), f"{name}_r")
+    rng = random.Random(name + "_r")
+    closed = 0
+    for _ in range(200):
+        args = [tuple(rng.uniform(-3, 3) for _ in record_fields(p.kind, 2)) if p.is_record else _argument(p.kind, rng)
+                for p in prim.params]
+        got = kept(*(a[: len(record_fields(p.kind, 0))] if p.is_record else a for p, a in zip(prim.params, args)))
+        status = got[:1] if prim.status is not None else ()
+        values = got[len(status):] if count > 1 or status else (got,)
+        values = tuple(v[0] if isinstance(v, tuple) else v for v in values)
+        head, outputs = _split(prim, whole(*args))
+        mine = rates(*args, *values, *status)
+        assert _bits(_split(from_tape(prim), mine)[1]) == _bits(outputs)
+        assert _bits(_split(from_tape(prim), mine)[0]) == _bits(head[:1])  # the kept status, no conditioning
+        closed += not head or head[0] == 0
+    assert closed, "no draw closed the chain: the check saw only failures"

@@ -13,7 +13,7 @@ from ..program import input_lists, program_primitive, runtime_sources, sensitivi
 from .printer import c_function, field
 from .real import retype, typedef
 from .spelling import C
-from .tangent import two_channel
+from .tangent import from_tape, tape, two_channel
 from .words import WORDS
 
 if TYPE_CHECKING:
@@ -49,9 +49,23 @@ def velocity_variants(view: View) -> list[str]:
 
 def two_channel_variants(view: View) -> list[str]:
     """Two-channel copies (NAME_2, tangent.py) of the primitives the resolver blocks call: a block's
-    last Newton pass measures its Jacobian column and the residuals' rates at zero Add-link rate at once."""
+    last Newton pass measures its Jacobian column and the residuals' rates at zero Add-link rate at once,
+    and keeps its position values (tangent.tape) for the rates copies."""
     names = sorted({s.function for b in view.blocks for s in b.steps if s.function})
-    return [c_function(two_channel(program_primitive(view, n)), 1) for n in names]
+    return [c_function(two_channel(program_primitive(view, n)), 1, tape(program_primitive(view, n))) for n in names]
+
+
+def rates_variants(view: View) -> list[str]:
+    """Rates copies (NAME_r, tangent.from_tape) of the primitives the resolver blocks call: the pass at the
+    solved Add-link rates reads the positions the last Newton pass kept instead of computing them again."""
+    names = sorted({s.function for b in view.blocks for s in b.steps if s.function})
+    return [c_function(from_tape(program_primitive(view, n)), view.record_order) for n in names]
+
+
+def tape_size(view: View) -> int:
+    """The values a block's last Newton pass keeps for its rates pass, the most of any block (work.tape)."""
+    return max((sum(len(tape(program_primitive(view, s.function))) for s in b.steps if s.function)
+                for b in view.blocks), default=0)
 
 
 def bends(view: View) -> dict[str, list[tuple[str, str]]]:
@@ -91,13 +105,13 @@ def _render(view: View, spell: C, template: Template) -> dict[str, bytes]:
                            direction_fields=fields["direction"], columns=columns, inputs=lists),
         "NAME.c": template("NAME.c.j2", upper=upper,
                            runtime=runtime_sources(view, c_function, RUNTIME, status=_reads_reasons(view))
-                           + velocity_variants(view) + two_channel_variants(view),
+                           + velocity_variants(view) + two_channel_variants(view) + rates_variants(view),
                            record_fields=record_fields, sketch_in=lists["sketch"],
                            sketch_a=", ".join("{" + a + "}" for a in sketch_states(view, spell)),
                            column_fields=[f"{spell.ident(c.owner)}.{c.field}" for c in view.cells],
                            limits=lists["limits"], slack=spell.lit(log.policy.path_slack),
                            periodic=lists["periodic"], conditioned=conditioned_steps(view), bends=bends(view),
-                           nsens=sensitivity_count(view)),
+                           nsens=sensitivity_count(view), tape_size=tape_size(view)),
         "NAME_main.c": template("NAME_main.c.j2", upper=upper, columns=columns, inputs=lists),
     }
 

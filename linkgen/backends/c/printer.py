@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from ...primitives.dsl import Call, Cmp, Expr, Logic, Num, Param, Primitive, Select, Sym, field_order, record_fields
 from ...primitives.printers import MASKS, RecordExprs, statements
+from .tangent import TAPED_STATUS
 
 _POINT_FIELD = {"x": "P.x", "y": "P.y", "dx": "DP.x", "dy": "DP.y", "ddx": "DDP.x", "ddy": "DDP.y"}
 
@@ -71,16 +72,19 @@ def _c_type(kind: str) -> str:
     return {"REAL": "double", "INT": "int"}.get(kind, kind)
 
 
-def c_function(prim: Primitive, order: int) -> str:
+def c_function(prim: Primitive, order: int, tape: tuple[str, ...] = ()) -> str:
     """A static C99 function shaped like mech.cpp: records in by pointer to const (no copy of
     a record per call), outputs by pointer, the status as return value (void when the
     function cannot fail).  Inline, and declared always inline where the compiler has the
     attribute (gcc, clang): a call with the sketch's constants folds them, and a
     chain called from several steps is not left a call (Jansen's leg: 1292 -> 998 instructions
-    a row)."""
+    a row).  With ``tape`` (names of its values, the status st among them) it keeps those values
+    into ``double tape[]`` too, before its exits (tangent.from_tape's copy reads them)."""
     exprs = CExprs(prim)
     params = [f"const {p.kind} *{p.name}" if p.is_record else f"{_c_type(p.kind)} {p.name}" for p in prim.params]
     params += [f"{p.kind} *{p.name}" for p in prim.outputs]
+    if tape:
+        params.append("double tape[]")
     if prim.sigma is not None:
         params.append("double *sigma_out")
     head = "static inline int" if prim.status is not None else "static inline void"
@@ -110,6 +114,7 @@ def c_function(prim: Primitive, order: int) -> str:
     lines += statements(prim, order, exprs, define, store)
     if prim.sigma is not None:
         lines.append("    *sigma_out = sigma;")
+    lines += [f"    tape[{k}] = {'st' if name == TAPED_STATUS else name};" for k, name in enumerate(tape)]
     if prim.status is not None:
         lines += _masked_exits(prim, order, exprs)
     lines += [f"    {s}" for s in stores]

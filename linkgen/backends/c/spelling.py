@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 from ...steplog import Step, Variable, held
 from ..spelling import Spelling, Syntax
 from .printer import field
+from .tangent import tape
 from .words import WORDS
 
 if TYPE_CHECKING:
@@ -53,12 +54,13 @@ class C(Spelling):
         """A step's two-channel copy (NAME_2) in a block's pass that measures a Jacobian column and the
         residuals' rates at zero Add-link rate at once: the second channel's records are the block's t_
         locals, what it reads from outside live (w->), the constants themselves.  No note: the pass
-        measures (the rates pass after it notes)."""
+        measures (the rates pass after it notes); it keeps its position values in the work's tape."""
         prim = self.primitives[step.function]
         pairs = list(zip(step.args, prim.params))
         args = [("&" if a.kind == "var" else "") + self.arg(a, scope, step) for a, _ in pairs]
         args += [f"&{self.second(a.var, scope)}" for a, p in pairs if p.is_record]
         args += [f"&{self.ref(o, scope)}" for o in step.outputs] + [f"&t_{o}" for o in step.outputs]
+        args.append(f"w->tape + {self.tape_at(step, scope)}")
         if prim.sigma is not None:
             args.append(f"&{self.sigma(step)}")
         text = f"{step.function}_2({', '.join(args)});"
@@ -67,6 +69,29 @@ class C(Spelling):
         if prim.status is None:
             return [*head, text]
         lines = [*head, f"st = {text}", "if (st == 1) return 1;"]
+        if prim.sigma is not None:
+            lines.append(f"if ({self.sigma(step)} < w->chains) w->chains = {self.sigma(step)};")
+        return lines
+
+    def tape_at(self, step: Step, scope: Group) -> int:
+        """Where a step's values start in the work's tape: after those of the block's steps before it."""
+        before = scope.steps[: scope.steps.index(step)]
+        return sum(len(tape(self.primitives[s.function])) for s in before if s.function)
+
+    def tape_call(self, step: Step, scope: Group) -> list[str]:
+        """A step's rates copy (NAME_r) in a block's pass at the solved Add-link rates: the positions' values
+        as the last Newton pass (pair_call) kept them in the work's tape; it notes the kept status."""
+        prim = self.primitives[step.function]
+        at = self.tape_at(step, scope)
+        args = [("&" if a.kind == "var" else "") + self.arg(a, scope, step) for a in step.args]
+        args += [f"w->tape[{at + k}]" for k in range(len(tape(prim)))]
+        args += [f"&{self.ref(o, scope)}" for o in step.outputs]
+        text = f"{step.function}_r({', '.join(args)});"
+        points = ", ".join(self.lit(p) for p in step.change_points)
+        head = [f"static const double change_{step.number}[] = {{{points}}};"] if step.change_points else []
+        if prim.status is None:
+            return [*head, text]
+        lines = [*head, f"st = {text}", "if (st == 1) return 1;", *self.notes("st", step)]
         if prim.sigma is not None:
             lines.append(f"if ({self.sigma(step)} < w->chains) w->chains = {self.sigma(step)};")
         return lines

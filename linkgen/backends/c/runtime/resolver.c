@@ -5,7 +5,10 @@
  * their rates df and accelerations ddf (those of the program's order; a null ddf asks for no
  * accelerations: the passes that measure residuals and the Jacobian); live == 0 zeroes
  * the rates of everything the group reads, so a unit Add-link rate gives one exact
- * Jacobian column through the velocity channel.  Returns 1 when a chain cannot close. */
+ * Jacobian column through the velocity channel; live == 2 measures that column and the
+ * residuals' rates at zero Add-link rate (reads live) at once, into df and ddf, and keeps its
+ * positions' values; live == 3 is live == 1 at the a of that pass, from the values it kept
+ * (the same bits, without the positions' work).  Returns 1 when a chain cannot close. */
 typedef int (*group_fn)(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
                         double df[], double ddf[]);
 
@@ -348,6 +351,7 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
 {
     double zero[LINKGEN_NMAX], unit[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
     double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], sens[LINKGEN_NMAX][LINKGEN_NSENS], det;
+    const int live = ft ? 3 : 1;  /* Newton's last pass (live 2) was at a: its positions kept */
     int i, j, st;
     n = adds(n);
     for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = unit[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
@@ -369,7 +373,7 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
     *sigma = conditioning(n, jac, det);
     *turn = det > 0.0 ? 1.0 : det < 0.0 ? -1.0 : 0.0;
     if (order >= 2) {
-        st = group(ctx, a, rates, zero, 1, f, df, ddf);
+        st = group(ctx, a, rates, zero, live, f, df, ddf);
         for (i = 0; i < n; i++) rhs[i] = -ddf[i];
         solve_linear(n, jac, rhs, accs);
         if (det != 0.0) {
@@ -378,7 +382,7 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
         }
         for (i = 0; i < n; i++) accs[i] = NAN;
     }
-    return group(ctx, a, rates, accs, 1, f, df, ddf);
+    return group(ctx, a, rates, accs, live, f, df, ddf);
 }
 
 /* The strategy's iteration (solve_variant) on a group's blocks (its chosen Add-link candidate,
