@@ -221,7 +221,10 @@ static int reason_of(int code)
  * their rates df and accelerations ddf (those of the program's order; a null ddf asks for no
  * accelerations: the passes that measure residuals and the Jacobian); live == 0 zeroes
  * the rates of everything the group reads, so a unit Add-link rate gives one exact
- * Jacobian column through the velocity channel.  Returns 1 when a chain cannot close. */
+ * Jacobian column through the velocity channel; live == 2 measures that column and the
+ * residuals' rates at zero Add-link rate (reads live) at once, into df and ddf, and keeps its
+ * positions' values; live == 3 is live == 1 at the a of that pass, from the values it kept
+ * (the same bits, without the positions' work).  Returns 1 when a chain cannot close. */
 typedef int (*group_fn)(void *ctx, const double a[], const double da[], const double dda[], int live, double f[],
                         double df[], double ddf[]);
 
@@ -564,6 +567,7 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
 {
     double zero[LINKGEN_NMAX], unit[LINKGEN_NMAX], rhs[LINKGEN_NMAX], rates[LINKGEN_NMAX], accs[LINKGEN_NMAX];
     double f[LINKGEN_NMAX], df[LINKGEN_NMAX], ddf[LINKGEN_NMAX], sens[LINKGEN_NMAX][LINKGEN_NSENS], det;
+    const int live = ft ? 3 : 1;  /* Newton's last pass (live 2) was at a: its positions kept */
     int i, j, st;
     n = adds(n);
     for (i = 0; i < LINKGEN_NMAX; i++) zero[i] = unit[i] = rhs[i] = accs[i] = 0.0;  /* entries past n are never read */
@@ -585,7 +589,7 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
     *sigma = conditioning(n, jac, det);
     *turn = det > 0.0 ? 1.0 : det < 0.0 ? -1.0 : 0.0;
     if (order >= 2) {
-        st = group(ctx, a, rates, zero, 1, f, df, ddf);
+        st = group(ctx, a, rates, zero, live, f, df, ddf);
         for (i = 0; i < n; i++) rhs[i] = -ddf[i];
         solve_linear(n, jac, rhs, accs);
         if (det != 0.0) {
@@ -594,7 +598,7 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
         }
         for (i = 0; i < n; i++) accs[i] = NAN;
     }
-    return group(ctx, a, rates, accs, 1, f, df, ddf);
+    return group(ctx, a, rates, accs, live, f, df, ddf);
 }
 
 /* The strategy's iteration (solve_variant) on a group's blocks (its chosen Add-link candidate,
@@ -1058,9 +1062,9 @@ static inline void link_residual_1(const POINT *j1, const POINT *j2, const VARIA
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
 #if defined(__GNUC__)
-static inline int RRR_links_2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, const POINT *j1_t, const POINT *j2_t, const VARIABLE *l1_t, const VARIABLE *l2_t, POINT *jb, POINT *jb_t, double *sigma_out) __attribute__((always_inline));
+static inline int RRR_links_2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, const POINT *j1_t, const POINT *j2_t, const VARIABLE *l1_t, const VARIABLE *l2_t, POINT *jb, POINT *jb_t, double tape[], double *sigma_out) __attribute__((always_inline));
 #endif
-static inline int RRR_links_2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, const POINT *j1_t, const POINT *j2_t, const VARIABLE *l1_t, const VARIABLE *l2_t, POINT *jb, POINT *jb_t, double *sigma_out)
+static inline int RRR_links_2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, const POINT *j1_t, const POINT *j2_t, const VARIABLE *l1_t, const VARIABLE *l2_t, POINT *jb, POINT *jb_t, double tape[], double *sigma_out)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -1109,6 +1113,17 @@ static inline int RRR_links_2(const POINT *j1, const POINT *j2, const VARIABLE *
     const double bvy_t = buv_t * uy + bnv_t * ux;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
     *sigma_out = sigma;
+    tape[0] = iq;
+    tape[1] = ux;
+    tape[2] = uy;
+    tape[3] = a;
+    tape[4] = a2;
+    tape[5] = e1x;
+    tape[6] = e1y;
+    tape[7] = e2x;
+    tape[8] = e2y;
+    tape[9] = ihq;
+    tape[10] = st;
     if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb_t->P.x = NAN; jb_t->P.y = NAN; jb_t->DP.x = NAN; jb_t->DP.y = NAN; return st; }
     if (st == 3) { jb->P.x = j1->P.x + e1x; jb->P.y = j1->P.y + e1y; jb->DP.x = NAN; jb->DP.y = NAN; jb_t->P.x = j1->P.x + e1x; jb_t->P.y = j1->P.y + e1y; jb_t->DP.x = NAN; jb_t->DP.y = NAN; return st; }
     jb->P.x = j1->P.x + e1x;
@@ -1124,9 +1139,9 @@ static inline int RRR_links_2(const POINT *j1, const POINT *j2, const VARIABLE *
 
 /* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
 #if defined(__GNUC__)
-static inline int link_point_2(const POINT *j1, const POINT *j2, double gsi, double eta, const POINT *j1_t, const POINT *j2_t, POINT *jc, POINT *jc_t) __attribute__((always_inline));
+static inline int link_point_2(const POINT *j1, const POINT *j2, double gsi, double eta, const POINT *j1_t, const POINT *j2_t, POINT *jc, POINT *jc_t, double tape[]) __attribute__((always_inline));
 #endif
-static inline int link_point_2(const POINT *j1, const POINT *j2, double gsi, double eta, const POINT *j1_t, const POINT *j2_t, POINT *jc, POINT *jc_t)
+static inline int link_point_2(const POINT *j1, const POINT *j2, double gsi, double eta, const POINT *j1_t, const POINT *j2_t, POINT *jc, POINT *jc_t, double tape[])
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -1148,6 +1163,12 @@ static inline int link_point_2(const POINT *j1, const POINT *j2, double gsi, dou
     const double rvx_t = -om_t * ry;
     const double rvy_t = om_t * rx;
     const int st = r2 == 0 ? 1 : 0;
+    tape[0] = dx;
+    tape[1] = dy;
+    tape[2] = rx;
+    tape[3] = ry;
+    tape[4] = ir2;
+    tape[5] = st;
     if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc_t->P.x = NAN; jc_t->P.y = NAN; jc_t->DP.x = NAN; jc_t->DP.y = NAN; return st; }
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
@@ -1162,9 +1183,9 @@ static inline int link_point_2(const POINT *j1, const POINT *j2, double gsi, dou
 
 /* Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part). */
 #if defined(__GNUC__)
-static inline void link_residual_2(const POINT *j1, const POINT *j2, const VARIABLE *l, const POINT *j1_t, const POINT *j2_t, const VARIABLE *l_t, VARIABLE *f, VARIABLE *f_t) __attribute__((always_inline));
+static inline void link_residual_2(const POINT *j1, const POINT *j2, const VARIABLE *l, const POINT *j1_t, const POINT *j2_t, const VARIABLE *l_t, VARIABLE *f, VARIABLE *f_t, double tape[]) __attribute__((always_inline));
 #endif
-static inline void link_residual_2(const POINT *j1, const POINT *j2, const VARIABLE *l, const POINT *j1_t, const POINT *j2_t, const VARIABLE *l_t, VARIABLE *f, VARIABLE *f_t)
+static inline void link_residual_2(const POINT *j1, const POINT *j2, const VARIABLE *l, const POINT *j1_t, const POINT *j2_t, const VARIABLE *l_t, VARIABLE *f, VARIABLE *f_t, double tape[])
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -1176,10 +1197,94 @@ static inline void link_residual_2(const POINT *j1, const POINT *j2, const VARIA
     const double dvx_t = j2_t->DP.x - j1_t->DP.x;
     const double dvy_t = j2_t->DP.y - j1_t->DP.y;
     const double rd_t = r == 0 ? sqrt(dvx_t * dvx_t + dvy_t * dvy_t) : (dx * dvx_t + dy * dvy_t) * ir;
+    tape[0] = dx;
+    tape[1] = dy;
+    tape[2] = r;
+    tape[3] = ir;
     f->v = r - l->v;
     f->dv = rd - l->dv;
     f_t->v = r - l->v;
     f_t->dv = rd_t - l_t->dv;
+}
+
+/* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
+#if defined(__GNUC__)
+static inline int RRR_links_r(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, double iq, double ux, double uy, double a, double a2, double e1x, double e1y, double e2x, double e2y, double ihq, int st_taped, POINT *jb) __attribute__((always_inline));
+#endif
+static inline int RRR_links_r(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, double iq, double ux, double uy, double a, double a2, double e1x, double e1y, double e2x, double e2y, double ihq, int st_taped, POINT *jb)
+{
+    (void)minv;
+    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
+    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
+    const double buv = (r1v - r2v) * iq;
+    const double bnv = (a2 * r1v + a * r2v) * ihq;
+    const double bvx = buv * ux - bnv * uy;
+    const double bvy = buv * uy + bnv * ux;
+    const double r1a = l1->v * l1->ddv + l1->dv * l1->dv - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y)) + (e1x * j1->DDP.x + e1y * j1->DDP.y);
+    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y)) + (e2x * j2->DDP.x + e2y * j2->DDP.y);
+    const double bua = (r1a - r2a) * iq;
+    const double bna = (a2 * r1a + a * r2a) * ihq;
+    const double bax = bua * ux - bna * uy;
+    const double bay = bua * uy + bna * ux;
+    const int st = st_taped == 1 ? 1 : st_taped == 3 ? 3 : st_taped == 4 ? 4 : 0;
+    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
+    if (st == 3) { jb->P.x = j1->P.x + e1x; jb->P.y = j1->P.y + e1y; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
+    jb->P.x = j1->P.x + e1x;
+    jb->P.y = j1->P.y + e1y;
+    jb->DP.x = bvx;
+    jb->DP.y = bvy;
+    jb->DDP.x = bax;
+    jb->DDP.y = bay;
+    return st;
+}
+
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
+#if defined(__GNUC__)
+static inline int link_point_r(const POINT *j1, const POINT *j2, double gsi, double eta, double dx, double dy, double rx, double ry, double ir2, int st_taped, POINT *jc) __attribute__((always_inline));
+#endif
+static inline int link_point_r(const POINT *j1, const POINT *j2, double gsi, double eta, double dx, double dy, double rx, double ry, double ir2, int st_taped, POINT *jc)
+{
+    (void)gsi;
+    (void)eta;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    const int st = st_taped == 1 ? 1 : 0;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; return st; }
+    jc->P.x = j1->P.x + rx;
+    jc->P.y = j1->P.y + ry;
+    jc->DP.x = j1->DP.x + rvx;
+    jc->DP.y = j1->DP.y + rvy;
+    jc->DDP.x = j1->DDP.x + rax;
+    jc->DDP.y = j1->DDP.y + ray;
+    return st;
+}
+
+/* Over-constraint residual f = |j2 - j1| - l of a link the Solver did not use, with its rates (where the pairs coincide, the distance's rates as they part). */
+#if defined(__GNUC__)
+static inline void link_residual_r(const POINT *j1, const POINT *j2, const VARIABLE *l, double dx, double dy, double r, double ir, VARIABLE *f) __attribute__((always_inline));
+#endif
+static inline void link_residual_r(const POINT *j1, const POINT *j2, const VARIABLE *l, double dx, double dy, double r, double ir, VARIABLE *f)
+{
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
+    const double s = sqrt(dvx * dvx + dvy * dvy);
+    const double iv = s == 0 ? NAN : 1 / s;
+    const double rd = r == 0 ? sqrt(dvx * dvx + dvy * dvy) : (dx * dvx + dy * dvy) * ir;
+    const double rp = s == 0 ? sqrt(dax * dax + day * day) : (dvx * dax + dvy * day) * iv;
+    const double rdd = r == 0 ? rp : (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir;
+    f->v = r - l->v;
+    f->dv = rd - l->dv;
+    f->ddv = rdd - l->ddv;
 }
 
 
@@ -1251,6 +1356,7 @@ typedef struct {
     int singular, near;  /* first singular / near-singular step codes */
     int its[LINKGEN_NGROUPS];  /* iterations of each resolver in the row's own passes */
     double chains;  /* the worst conditioning of a block's chains in its last pass */
+    double tape[32];  /* the positions' values a block's two-channel pass keeps for its rates pass */
     int br4;  /* the branch of step 4, as the last solution left it */
     int br5;  /* the branch of step 5, as the last solution left it */
     int br14;  /* the branch of step 14, as the last solution left it */
@@ -1280,20 +1386,25 @@ static void note(work *w, int st, int singular, int near)
 
 static const VARIABLE ZERO_LENGTH = { 0.0, 0.0, 0.0 };
 
+/* Every step's conditioning before a pass: 1, none (the steps a pass runs write theirs). */
+static const double UNCONDITIONED[SIXBAR_FIG14_N_STEPS + 1] = { 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0 };
+
 /* Steps 4, 5, 6, 7, iterated by the resolver of step 8:
    the Add-link lengths a[], rates da[] and accelerations dda[] in, the residuals f[]
    and their rates df[] and accelerations ddf[] out (those of the program's order; ddf null: no
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
-   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
+   zero Add-link rate with the records live, at once (the steps' two-channel copies), and keeps the
+   positions' values in w->tape; live == 3 is live == 1 at the positions live == 2 left (the same a: the
+   steps' rates copies read the tape).  Returns 1 when a chain cannot close. */
 static int group_1(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (live != 1) {
+    if (live == 0 || live == 2) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1.v = a[0];
@@ -1307,18 +1418,36 @@ static int group_1(void *ctx, const double a[], const double da[], const double 
         POINT t_p_J5;
         VARIABLE t_f1;
         t_add1.v = a[0];
-        st = RRR_links_2(&p_J3, &p_J6, &l_rocker2, &w->add1, w->br4, &p_J3, &w->p_J6, &l_rocker2, &t_add1, &w->p_J4, &t_p_J4, &w->sigma[4]);
+        st = RRR_links_2(&p_J3, &p_J6, &l_rocker2, &w->add1, w->br4, &p_J3, &w->p_J6, &l_rocker2, &t_add1, &w->p_J4, &t_p_J4, w->tape + 0, &w->sigma[4]);
         if (st == 1) return 1;
         if (w->sigma[4] < w->chains) w->chains = w->sigma[4];
-        st = RRR_links_2(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br5, &p_J1, &t_p_J4, &l_rocker1, &l_ternary_J2_J4, &w->p_J2, &t_p_J2, &w->sigma[5]);
+        st = RRR_links_2(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br5, &p_J1, &t_p_J4, &l_rocker1, &l_ternary_J2_J4, &w->p_J2, &t_p_J2, w->tape + 11, &w->sigma[5]);
         if (st == 1) return 1;
         if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
-        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5);
+        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5, w->tape + 22);
         if (st == 1) return 1;
-        link_residual_2(&p_J6, &w->p_J5, &l_coupler, &w->p_J6, &t_p_J5, &l_coupler, &w->f1, &t_f1);
+        link_residual_2(&p_J6, &w->p_J5, &l_coupler, &w->p_J6, &t_p_J5, &l_coupler, &w->f1, &t_f1, w->tape + 28);
         f[0] = w->f1.v;
         df[0] = w->f1.dv;
         ddf[0] = t_f1.dv;
+        return 0;
+    }
+    if (live == 3) {  /* the rates at the positions the two-channel pass kept */
+        st = RRR_links_r(&p_J3, &p_J6, &l_rocker2, &w->add1, w->br4, w->tape[0], w->tape[1], w->tape[2], w->tape[3], w->tape[4], w->tape[5], w->tape[6], w->tape[7], w->tape[8], w->tape[9], w->tape[10], &w->p_J4);
+        if (st == 1) return 1;
+        note(w, st, 43, -44);
+        if (w->sigma[4] < w->chains) w->chains = w->sigma[4];
+        st = RRR_links_r(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br5, w->tape[11], w->tape[12], w->tape[13], w->tape[14], w->tape[15], w->tape[16], w->tape[17], w->tape[18], w->tape[19], w->tape[20], w->tape[21], &w->p_J2);
+        if (st == 1) return 1;
+        note(w, st, 53, -54);
+        if (w->sigma[5] < w->chains) w->chains = w->sigma[5];
+        st = link_point_r(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, w->tape[22], w->tape[23], w->tape[24], w->tape[25], w->tape[26], w->tape[27], &w->p_J5);
+        if (st == 1) return 1;
+        note(w, st, 63, -64);
+        link_residual_r(&p_J6, &w->p_J5, &l_coupler, w->tape[28], w->tape[29], w->tape[30], w->tape[31], &w->f1);
+        f[0] = w->f1.v;
+        df[0] = w->f1.dv;
+        ddf[0] = w->f1.ddv;
         return 0;
     }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
@@ -1394,14 +1523,16 @@ static void bend_1(void *ctx, double s[], double acc, int keep)
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
-   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
+   zero Add-link rate with the records live, at once (the steps' two-channel copies), and keeps the
+   positions' values in w->tape; live == 3 is live == 1 at the positions live == 2 left (the same a: the
+   steps' rates copies read the tape).  Returns 1 when a chain cannot close. */
 static int group_1_v1(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (live != 1) {
+    if (live == 0 || live == 2) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v1.v = a[0];
@@ -1415,18 +1546,36 @@ static int group_1_v1(void *ctx, const double a[], const double da[], const doub
         POINT t_p_J5;
         VARIABLE t_f1_v1;
         t_add1_v1.v = a[0];
-        st = RRR_links_2(&p_J1, &p_J6, &l_rocker1, &w->add1_v1, w->br14, &p_J1, &w->p_J6, &l_rocker1, &t_add1_v1, &w->p_J2, &t_p_J2, &w->sigma[14]);
+        st = RRR_links_2(&p_J1, &p_J6, &l_rocker1, &w->add1_v1, w->br14, &p_J1, &w->p_J6, &l_rocker1, &t_add1_v1, &w->p_J2, &t_p_J2, w->tape + 0, &w->sigma[14]);
         if (st == 1) return 1;
         if (w->sigma[14] < w->chains) w->chains = w->sigma[14];
-        st = RRR_links_2(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br15, &t_p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, &w->p_J4, &t_p_J4, &w->sigma[15]);
+        st = RRR_links_2(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br15, &t_p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, &w->p_J4, &t_p_J4, w->tape + 11, &w->sigma[15]);
         if (st == 1) return 1;
         if (w->sigma[15] < w->chains) w->chains = w->sigma[15];
-        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5);
+        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5, w->tape + 22);
         if (st == 1) return 1;
-        link_residual_2(&p_J6, &w->p_J5, &l_coupler, &w->p_J6, &t_p_J5, &l_coupler, &w->f1_v1, &t_f1_v1);
+        link_residual_2(&p_J6, &w->p_J5, &l_coupler, &w->p_J6, &t_p_J5, &l_coupler, &w->f1_v1, &t_f1_v1, w->tape + 28);
         f[0] = w->f1_v1.v;
         df[0] = w->f1_v1.dv;
         ddf[0] = t_f1_v1.dv;
+        return 0;
+    }
+    if (live == 3) {  /* the rates at the positions the two-channel pass kept */
+        st = RRR_links_r(&p_J1, &p_J6, &l_rocker1, &w->add1_v1, w->br14, w->tape[0], w->tape[1], w->tape[2], w->tape[3], w->tape[4], w->tape[5], w->tape[6], w->tape[7], w->tape[8], w->tape[9], w->tape[10], &w->p_J2);
+        if (st == 1) return 1;
+        note(w, st, 143, -144);
+        if (w->sigma[14] < w->chains) w->chains = w->sigma[14];
+        st = RRR_links_r(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br15, w->tape[11], w->tape[12], w->tape[13], w->tape[14], w->tape[15], w->tape[16], w->tape[17], w->tape[18], w->tape[19], w->tape[20], w->tape[21], &w->p_J4);
+        if (st == 1) return 1;
+        note(w, st, 153, -154);
+        if (w->sigma[15] < w->chains) w->chains = w->sigma[15];
+        st = link_point_r(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, w->tape[22], w->tape[23], w->tape[24], w->tape[25], w->tape[26], w->tape[27], &w->p_J5);
+        if (st == 1) return 1;
+        note(w, st, 163, -164);
+        link_residual_r(&p_J6, &w->p_J5, &l_coupler, w->tape[28], w->tape[29], w->tape[30], w->tape[31], &w->f1_v1);
+        f[0] = w->f1_v1.v;
+        df[0] = w->f1_v1.dv;
+        ddf[0] = w->f1_v1.ddv;
         return 0;
     }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
@@ -1502,14 +1651,16 @@ static void bend_1_v1(void *ctx, double s[], double acc, int keep)
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
-   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
+   zero Add-link rate with the records live, at once (the steps' two-channel copies), and keeps the
+   positions' values in w->tape; live == 3 is live == 1 at the positions live == 2 left (the same a: the
+   steps' rates copies read the tape).  Returns 1 when a chain cannot close. */
 static int group_1_v2(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (live != 1) {
+    if (live == 0 || live == 2) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v2.v = a[0];
@@ -1523,18 +1674,36 @@ static int group_1_v2(void *ctx, const double a[], const double da[], const doub
         POINT t_p_J5;
         VARIABLE t_f1_v2;
         t_add1_v2.v = a[0];
-        st = RRR_links_2(&p_J3, &p_J1, &l_rocker2, &w->add1_v2, w->br18, &p_J3, &p_J1, &l_rocker2, &t_add1_v2, &w->p_J4, &t_p_J4, &w->sigma[18]);
+        st = RRR_links_2(&p_J3, &p_J1, &l_rocker2, &w->add1_v2, w->br18, &p_J3, &p_J1, &l_rocker2, &t_add1_v2, &w->p_J4, &t_p_J4, w->tape + 0, &w->sigma[18]);
         if (st == 1) return 1;
         if (w->sigma[18] < w->chains) w->chains = w->sigma[18];
-        st = RRR_links_2(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br19, &p_J1, &t_p_J4, &l_rocker1, &l_ternary_J2_J4, &w->p_J2, &t_p_J2, &w->sigma[19]);
+        st = RRR_links_2(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br19, &p_J1, &t_p_J4, &l_rocker1, &l_ternary_J2_J4, &w->p_J2, &t_p_J2, w->tape + 11, &w->sigma[19]);
         if (st == 1) return 1;
         if (w->sigma[19] < w->chains) w->chains = w->sigma[19];
-        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5);
+        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5, w->tape + 22);
         if (st == 1) return 1;
-        link_residual_2(&p_J6, &w->p_J5, &l_coupler, &w->p_J6, &t_p_J5, &l_coupler, &w->f1_v2, &t_f1_v2);
+        link_residual_2(&p_J6, &w->p_J5, &l_coupler, &w->p_J6, &t_p_J5, &l_coupler, &w->f1_v2, &t_f1_v2, w->tape + 28);
         f[0] = w->f1_v2.v;
         df[0] = w->f1_v2.dv;
         ddf[0] = t_f1_v2.dv;
+        return 0;
+    }
+    if (live == 3) {  /* the rates at the positions the two-channel pass kept */
+        st = RRR_links_r(&p_J3, &p_J1, &l_rocker2, &w->add1_v2, w->br18, w->tape[0], w->tape[1], w->tape[2], w->tape[3], w->tape[4], w->tape[5], w->tape[6], w->tape[7], w->tape[8], w->tape[9], w->tape[10], &w->p_J4);
+        if (st == 1) return 1;
+        note(w, st, 183, -184);
+        if (w->sigma[18] < w->chains) w->chains = w->sigma[18];
+        st = RRR_links_r(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br19, w->tape[11], w->tape[12], w->tape[13], w->tape[14], w->tape[15], w->tape[16], w->tape[17], w->tape[18], w->tape[19], w->tape[20], w->tape[21], &w->p_J2);
+        if (st == 1) return 1;
+        note(w, st, 193, -194);
+        if (w->sigma[19] < w->chains) w->chains = w->sigma[19];
+        st = link_point_r(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, w->tape[22], w->tape[23], w->tape[24], w->tape[25], w->tape[26], w->tape[27], &w->p_J5);
+        if (st == 1) return 1;
+        note(w, st, 203, -204);
+        link_residual_r(&p_J6, &w->p_J5, &l_coupler, w->tape[28], w->tape[29], w->tape[30], w->tape[31], &w->f1_v2);
+        f[0] = w->f1_v2.v;
+        df[0] = w->f1_v2.dv;
+        ddf[0] = w->f1_v2.ddv;
         return 0;
     }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
@@ -1610,14 +1779,16 @@ static void bend_1_v2(void *ctx, double s[], double acc, int keep)
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
-   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
+   zero Add-link rate with the records live, at once (the steps' two-channel copies), and keeps the
+   positions' values in w->tape; live == 3 is live == 1 at the positions live == 2 left (the same a: the
+   steps' rates copies read the tape).  Returns 1 when a chain cannot close. */
 static int group_1_v3(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (live != 1) {
+    if (live == 0 || live == 2) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v3.v = a[0];
@@ -1631,18 +1802,36 @@ static int group_1_v3(void *ctx, const double a[], const double da[], const doub
         POINT t_p_J5;
         VARIABLE t_f1_v3;
         t_add1_v3.v = a[0];
-        st = RRR_links_2(&p_J1, &p_J3, &l_rocker1, &w->add1_v3, w->br22, &p_J1, &p_J3, &l_rocker1, &t_add1_v3, &w->p_J2, &t_p_J2, &w->sigma[22]);
+        st = RRR_links_2(&p_J1, &p_J3, &l_rocker1, &w->add1_v3, w->br22, &p_J1, &p_J3, &l_rocker1, &t_add1_v3, &w->p_J2, &t_p_J2, w->tape + 0, &w->sigma[22]);
         if (st == 1) return 1;
         if (w->sigma[22] < w->chains) w->chains = w->sigma[22];
-        st = RRR_links_2(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br23, &t_p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, &w->p_J4, &t_p_J4, &w->sigma[23]);
+        st = RRR_links_2(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br23, &t_p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, &w->p_J4, &t_p_J4, w->tape + 11, &w->sigma[23]);
         if (st == 1) return 1;
         if (w->sigma[23] < w->chains) w->chains = w->sigma[23];
-        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5);
+        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5, w->tape + 22);
         if (st == 1) return 1;
-        link_residual_2(&p_J6, &w->p_J5, &l_coupler, &w->p_J6, &t_p_J5, &l_coupler, &w->f1_v3, &t_f1_v3);
+        link_residual_2(&p_J6, &w->p_J5, &l_coupler, &w->p_J6, &t_p_J5, &l_coupler, &w->f1_v3, &t_f1_v3, w->tape + 28);
         f[0] = w->f1_v3.v;
         df[0] = w->f1_v3.dv;
         ddf[0] = t_f1_v3.dv;
+        return 0;
+    }
+    if (live == 3) {  /* the rates at the positions the two-channel pass kept */
+        st = RRR_links_r(&p_J1, &p_J3, &l_rocker1, &w->add1_v3, w->br22, w->tape[0], w->tape[1], w->tape[2], w->tape[3], w->tape[4], w->tape[5], w->tape[6], w->tape[7], w->tape[8], w->tape[9], w->tape[10], &w->p_J2);
+        if (st == 1) return 1;
+        note(w, st, 223, -224);
+        if (w->sigma[22] < w->chains) w->chains = w->sigma[22];
+        st = RRR_links_r(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br23, w->tape[11], w->tape[12], w->tape[13], w->tape[14], w->tape[15], w->tape[16], w->tape[17], w->tape[18], w->tape[19], w->tape[20], w->tape[21], &w->p_J4);
+        if (st == 1) return 1;
+        note(w, st, 233, -234);
+        if (w->sigma[23] < w->chains) w->chains = w->sigma[23];
+        st = link_point_r(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, w->tape[22], w->tape[23], w->tape[24], w->tape[25], w->tape[26], w->tape[27], &w->p_J5);
+        if (st == 1) return 1;
+        note(w, st, 243, -244);
+        link_residual_r(&p_J6, &w->p_J5, &l_coupler, w->tape[28], w->tape[29], w->tape[30], w->tape[31], &w->f1_v3);
+        f[0] = w->f1_v3.v;
+        df[0] = w->f1_v3.dv;
+        ddf[0] = w->f1_v3.ddv;
         return 0;
     }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
@@ -1718,14 +1907,16 @@ static void bend_1_v3(void *ctx, double s[], double acc, int keep)
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
-   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
+   zero Add-link rate with the records live, at once (the steps' two-channel copies), and keeps the
+   positions' values in w->tape; live == 3 is live == 1 at the positions live == 2 left (the same a: the
+   steps' rates copies read the tape).  Returns 1 when a chain cannot close. */
 static int group_1_v4(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (live != 1) {
+    if (live == 0 || live == 2) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v4.v = a[0];
@@ -1739,18 +1930,36 @@ static int group_1_v4(void *ctx, const double a[], const double da[], const doub
         POINT t_p_J5;
         VARIABLE t_f1_v4;
         t_add1_v4.v = a[0];
-        st = RRR_links_2(&p_J1, &p_J7, &l_rocker1, &w->add1_v4, w->br26, &p_J1, &p_J7, &l_rocker1, &t_add1_v4, &w->p_J2, &t_p_J2, &w->sigma[26]);
+        st = RRR_links_2(&p_J1, &p_J7, &l_rocker1, &w->add1_v4, w->br26, &p_J1, &p_J7, &l_rocker1, &t_add1_v4, &w->p_J2, &t_p_J2, w->tape + 0, &w->sigma[26]);
         if (st == 1) return 1;
         if (w->sigma[26] < w->chains) w->chains = w->sigma[26];
-        st = RRR_links_2(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br27, &t_p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, &w->p_J4, &t_p_J4, &w->sigma[27]);
+        st = RRR_links_2(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br27, &t_p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, &w->p_J4, &t_p_J4, w->tape + 11, &w->sigma[27]);
         if (st == 1) return 1;
         if (w->sigma[27] < w->chains) w->chains = w->sigma[27];
-        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5);
+        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5, w->tape + 22);
         if (st == 1) return 1;
-        link_residual_2(&p_J6, &w->p_J5, &l_coupler, &w->p_J6, &t_p_J5, &l_coupler, &w->f1_v4, &t_f1_v4);
+        link_residual_2(&p_J6, &w->p_J5, &l_coupler, &w->p_J6, &t_p_J5, &l_coupler, &w->f1_v4, &t_f1_v4, w->tape + 28);
         f[0] = w->f1_v4.v;
         df[0] = w->f1_v4.dv;
         ddf[0] = t_f1_v4.dv;
+        return 0;
+    }
+    if (live == 3) {  /* the rates at the positions the two-channel pass kept */
+        st = RRR_links_r(&p_J1, &p_J7, &l_rocker1, &w->add1_v4, w->br26, w->tape[0], w->tape[1], w->tape[2], w->tape[3], w->tape[4], w->tape[5], w->tape[6], w->tape[7], w->tape[8], w->tape[9], w->tape[10], &w->p_J2);
+        if (st == 1) return 1;
+        note(w, st, 263, -264);
+        if (w->sigma[26] < w->chains) w->chains = w->sigma[26];
+        st = RRR_links_r(&w->p_J2, &p_J3, &l_ternary_J2_J4, &l_rocker2, w->br27, w->tape[11], w->tape[12], w->tape[13], w->tape[14], w->tape[15], w->tape[16], w->tape[17], w->tape[18], w->tape[19], w->tape[20], w->tape[21], &w->p_J4);
+        if (st == 1) return 1;
+        note(w, st, 273, -274);
+        if (w->sigma[27] < w->chains) w->chains = w->sigma[27];
+        st = link_point_r(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, w->tape[22], w->tape[23], w->tape[24], w->tape[25], w->tape[26], w->tape[27], &w->p_J5);
+        if (st == 1) return 1;
+        note(w, st, 283, -284);
+        link_residual_r(&p_J6, &w->p_J5, &l_coupler, w->tape[28], w->tape[29], w->tape[30], w->tape[31], &w->f1_v4);
+        f[0] = w->f1_v4.v;
+        df[0] = w->f1_v4.dv;
+        ddf[0] = w->f1_v4.ddv;
         return 0;
     }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
@@ -1826,14 +2035,16 @@ static void bend_1_v4(void *ctx, double s[], double acc, int keep)
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
-   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
+   zero Add-link rate with the records live, at once (the steps' two-channel copies), and keeps the
+   positions' values in w->tape; live == 3 is live == 1 at the positions live == 2 left (the same a: the
+   steps' rates copies read the tape).  Returns 1 when a chain cannot close. */
 static int group_1_v5(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (live != 1) {
+    if (live == 0 || live == 2) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v5.v = a[0];
@@ -1847,18 +2058,36 @@ static int group_1_v5(void *ctx, const double a[], const double da[], const doub
         POINT t_p_J5;
         VARIABLE t_f1_v5;
         t_add1_v5.v = a[0];
-        st = RRR_links_2(&p_J3, &p_J7, &l_rocker2, &w->add1_v5, w->br30, &p_J3, &p_J7, &l_rocker2, &t_add1_v5, &w->p_J4, &t_p_J4, &w->sigma[30]);
+        st = RRR_links_2(&p_J3, &p_J7, &l_rocker2, &w->add1_v5, w->br30, &p_J3, &p_J7, &l_rocker2, &t_add1_v5, &w->p_J4, &t_p_J4, w->tape + 0, &w->sigma[30]);
         if (st == 1) return 1;
         if (w->sigma[30] < w->chains) w->chains = w->sigma[30];
-        st = RRR_links_2(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br31, &p_J1, &t_p_J4, &l_rocker1, &l_ternary_J2_J4, &w->p_J2, &t_p_J2, &w->sigma[31]);
+        st = RRR_links_2(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br31, &p_J1, &t_p_J4, &l_rocker1, &l_ternary_J2_J4, &w->p_J2, &t_p_J2, w->tape + 11, &w->sigma[31]);
         if (st == 1) return 1;
         if (w->sigma[31] < w->chains) w->chains = w->sigma[31];
-        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5);
+        st = link_point_2(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, &t_p_J4, &t_p_J2, &w->p_J5, &t_p_J5, w->tape + 22);
         if (st == 1) return 1;
-        link_residual_2(&p_J6, &w->p_J5, &l_coupler, &w->p_J6, &t_p_J5, &l_coupler, &w->f1_v5, &t_f1_v5);
+        link_residual_2(&p_J6, &w->p_J5, &l_coupler, &w->p_J6, &t_p_J5, &l_coupler, &w->f1_v5, &t_f1_v5, w->tape + 28);
         f[0] = w->f1_v5.v;
         df[0] = w->f1_v5.dv;
         ddf[0] = t_f1_v5.dv;
+        return 0;
+    }
+    if (live == 3) {  /* the rates at the positions the two-channel pass kept */
+        st = RRR_links_r(&p_J3, &p_J7, &l_rocker2, &w->add1_v5, w->br30, w->tape[0], w->tape[1], w->tape[2], w->tape[3], w->tape[4], w->tape[5], w->tape[6], w->tape[7], w->tape[8], w->tape[9], w->tape[10], &w->p_J4);
+        if (st == 1) return 1;
+        note(w, st, 303, -304);
+        if (w->sigma[30] < w->chains) w->chains = w->sigma[30];
+        st = RRR_links_r(&p_J1, &w->p_J4, &l_rocker1, &l_ternary_J2_J4, w->br31, w->tape[11], w->tape[12], w->tape[13], w->tape[14], w->tape[15], w->tape[16], w->tape[17], w->tape[18], w->tape[19], w->tape[20], w->tape[21], &w->p_J2);
+        if (st == 1) return 1;
+        note(w, st, 313, -314);
+        if (w->sigma[31] < w->chains) w->chains = w->sigma[31];
+        st = link_point_r(&w->p_J4, &w->p_J2, 45.662543438831435, -12.84259034217134, w->tape[22], w->tape[23], w->tape[24], w->tape[25], w->tape[26], w->tape[27], &w->p_J5);
+        if (st == 1) return 1;
+        note(w, st, 323, -324);
+        link_residual_r(&p_J6, &w->p_J5, &l_coupler, w->tape[28], w->tape[29], w->tape[30], w->tape[31], &w->f1_v5);
+        f[0] = w->f1_v5.v;
+        df[0] = w->f1_v5.dv;
+        ddf[0] = w->f1_v5.ddv;
         return 0;
     }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
@@ -1934,14 +2163,16 @@ static void bend_1_v5(void *ctx, double s[], double acc, int keep)
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
-   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
+   zero Add-link rate with the records live, at once (the steps' two-channel copies), and keeps the
+   positions' values in w->tape; live == 3 is live == 1 at the positions live == 2 left (the same a: the
+   steps' rates copies read the tape).  Returns 1 when a chain cannot close. */
 static int group_1_v6(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (live != 1) {
+    if (live == 0 || live == 2) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v6.v = a[0];
@@ -1955,18 +2186,36 @@ static int group_1_v6(void *ctx, const double a[], const double da[], const doub
         POINT t_p_J4;
         VARIABLE t_f1_v6;
         t_add1_v6.v = a[0];
-        st = RRR_links_2(&p_J6, &p_J3, &l_coupler, &w->add1_v6, w->br34, &w->p_J6, &p_J3, &l_coupler, &t_add1_v6, &w->p_J5, &t_p_J5, &w->sigma[34]);
+        st = RRR_links_2(&p_J6, &p_J3, &l_coupler, &w->add1_v6, w->br34, &w->p_J6, &p_J3, &l_coupler, &t_add1_v6, &w->p_J5, &t_p_J5, w->tape + 0, &w->sigma[34]);
         if (st == 1) return 1;
         if (w->sigma[34] < w->chains) w->chains = w->sigma[34];
-        st = RRR_links_2(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br35, &p_J1, &t_p_J5, &l_rocker1, &l_ternary_J2_J5, &w->p_J2, &t_p_J2, &w->sigma[35]);
+        st = RRR_links_2(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br35, &p_J1, &t_p_J5, &l_rocker1, &l_ternary_J2_J5, &w->p_J2, &t_p_J2, w->tape + 11, &w->sigma[35]);
         if (st == 1) return 1;
         if (w->sigma[35] < w->chains) w->chains = w->sigma[35];
-        st = link_point_2(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &t_p_J5, &t_p_J2, &w->p_J4, &t_p_J4);
+        st = link_point_2(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &t_p_J5, &t_p_J2, &w->p_J4, &t_p_J4, w->tape + 22);
         if (st == 1) return 1;
-        link_residual_2(&p_J3, &w->p_J4, &l_rocker2, &p_J3, &t_p_J4, &l_rocker2, &w->f1_v6, &t_f1_v6);
+        link_residual_2(&p_J3, &w->p_J4, &l_rocker2, &p_J3, &t_p_J4, &l_rocker2, &w->f1_v6, &t_f1_v6, w->tape + 28);
         f[0] = w->f1_v6.v;
         df[0] = w->f1_v6.dv;
         ddf[0] = t_f1_v6.dv;
+        return 0;
+    }
+    if (live == 3) {  /* the rates at the positions the two-channel pass kept */
+        st = RRR_links_r(&p_J6, &p_J3, &l_coupler, &w->add1_v6, w->br34, w->tape[0], w->tape[1], w->tape[2], w->tape[3], w->tape[4], w->tape[5], w->tape[6], w->tape[7], w->tape[8], w->tape[9], w->tape[10], &w->p_J5);
+        if (st == 1) return 1;
+        note(w, st, 343, -344);
+        if (w->sigma[34] < w->chains) w->chains = w->sigma[34];
+        st = RRR_links_r(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br35, w->tape[11], w->tape[12], w->tape[13], w->tape[14], w->tape[15], w->tape[16], w->tape[17], w->tape[18], w->tape[19], w->tape[20], w->tape[21], &w->p_J2);
+        if (st == 1) return 1;
+        note(w, st, 353, -354);
+        if (w->sigma[35] < w->chains) w->chains = w->sigma[35];
+        st = link_point_r(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, w->tape[22], w->tape[23], w->tape[24], w->tape[25], w->tape[26], w->tape[27], &w->p_J4);
+        if (st == 1) return 1;
+        note(w, st, 363, -364);
+        link_residual_r(&p_J3, &w->p_J4, &l_rocker2, w->tape[28], w->tape[29], w->tape[30], w->tape[31], &w->f1_v6);
+        f[0] = w->f1_v6.v;
+        df[0] = w->f1_v6.dv;
+        ddf[0] = w->f1_v6.ddv;
         return 0;
     }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
@@ -2042,14 +2291,16 @@ static void bend_1_v6(void *ctx, double s[], double acc, int keep)
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
-   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
+   zero Add-link rate with the records live, at once (the steps' two-channel copies), and keeps the
+   positions' values in w->tape; live == 3 is live == 1 at the positions live == 2 left (the same a: the
+   steps' rates copies read the tape).  Returns 1 when a chain cannot close. */
 static int group_1_v7(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (live != 1) {
+    if (live == 0 || live == 2) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v7.v = a[0];
@@ -2063,18 +2314,36 @@ static int group_1_v7(void *ctx, const double a[], const double da[], const doub
         POINT t_p_J4;
         VARIABLE t_f1_v7;
         t_add1_v7.v = a[0];
-        st = RRR_links_2(&p_J6, &p_J1, &l_coupler, &w->add1_v7, w->br38, &w->p_J6, &p_J1, &l_coupler, &t_add1_v7, &w->p_J5, &t_p_J5, &w->sigma[38]);
+        st = RRR_links_2(&p_J6, &p_J1, &l_coupler, &w->add1_v7, w->br38, &w->p_J6, &p_J1, &l_coupler, &t_add1_v7, &w->p_J5, &t_p_J5, w->tape + 0, &w->sigma[38]);
         if (st == 1) return 1;
         if (w->sigma[38] < w->chains) w->chains = w->sigma[38];
-        st = RRR_links_2(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br39, &p_J1, &t_p_J5, &l_rocker1, &l_ternary_J2_J5, &w->p_J2, &t_p_J2, &w->sigma[39]);
+        st = RRR_links_2(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br39, &p_J1, &t_p_J5, &l_rocker1, &l_ternary_J2_J5, &w->p_J2, &t_p_J2, w->tape + 11, &w->sigma[39]);
         if (st == 1) return 1;
         if (w->sigma[39] < w->chains) w->chains = w->sigma[39];
-        st = link_point_2(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &t_p_J5, &t_p_J2, &w->p_J4, &t_p_J4);
+        st = link_point_2(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &t_p_J5, &t_p_J2, &w->p_J4, &t_p_J4, w->tape + 22);
         if (st == 1) return 1;
-        link_residual_2(&p_J3, &w->p_J4, &l_rocker2, &p_J3, &t_p_J4, &l_rocker2, &w->f1_v7, &t_f1_v7);
+        link_residual_2(&p_J3, &w->p_J4, &l_rocker2, &p_J3, &t_p_J4, &l_rocker2, &w->f1_v7, &t_f1_v7, w->tape + 28);
         f[0] = w->f1_v7.v;
         df[0] = w->f1_v7.dv;
         ddf[0] = t_f1_v7.dv;
+        return 0;
+    }
+    if (live == 3) {  /* the rates at the positions the two-channel pass kept */
+        st = RRR_links_r(&p_J6, &p_J1, &l_coupler, &w->add1_v7, w->br38, w->tape[0], w->tape[1], w->tape[2], w->tape[3], w->tape[4], w->tape[5], w->tape[6], w->tape[7], w->tape[8], w->tape[9], w->tape[10], &w->p_J5);
+        if (st == 1) return 1;
+        note(w, st, 383, -384);
+        if (w->sigma[38] < w->chains) w->chains = w->sigma[38];
+        st = RRR_links_r(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br39, w->tape[11], w->tape[12], w->tape[13], w->tape[14], w->tape[15], w->tape[16], w->tape[17], w->tape[18], w->tape[19], w->tape[20], w->tape[21], &w->p_J2);
+        if (st == 1) return 1;
+        note(w, st, 393, -394);
+        if (w->sigma[39] < w->chains) w->chains = w->sigma[39];
+        st = link_point_r(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, w->tape[22], w->tape[23], w->tape[24], w->tape[25], w->tape[26], w->tape[27], &w->p_J4);
+        if (st == 1) return 1;
+        note(w, st, 403, -404);
+        link_residual_r(&p_J3, &w->p_J4, &l_rocker2, w->tape[28], w->tape[29], w->tape[30], w->tape[31], &w->f1_v7);
+        f[0] = w->f1_v7.v;
+        df[0] = w->f1_v7.dv;
+        ddf[0] = w->f1_v7.ddv;
         return 0;
     }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
@@ -2150,14 +2419,16 @@ static void bend_1_v7(void *ctx, double s[], double acc, int keep)
    accelerations, the steps' order-1 copies run); live == 0
    zeroes the rates of the records read from outside (a unit Add-link rate then gives one
    Jacobian column); live == 2 measures that column and, into ddf, the residuals' rates at
-   zero Add-link rate with the records live, at once (the steps' two-channel copies).  Returns 1 when a chain cannot close. */
+   zero Add-link rate with the records live, at once (the steps' two-channel copies), and keeps the
+   positions' values in w->tape; live == 3 is live == 1 at the positions live == 2 left (the same a: the
+   steps' rates copies read the tape).  Returns 1 when a chain cannot close. */
 static int group_1_v8(void *ctx, const double a[], const double da[], const double dda[], int live,
                     double f[], double df[], double ddf[])
 {
     work *w = (work *)ctx;
     POINT p_J6 = w->p_J6;
     int st;
-    if (live != 1) {
+    if (live == 0 || live == 2) {
         p_J6.DP.x = 0.0; p_J6.DP.y = 0.0; p_J6.DDP.x = 0.0; p_J6.DDP.y = 0.0;
     }
     w->add1_v8.v = a[0];
@@ -2171,18 +2442,36 @@ static int group_1_v8(void *ctx, const double a[], const double da[], const doub
         POINT t_p_J4;
         VARIABLE t_f1_v8;
         t_add1_v8.v = a[0];
-        st = RRR_links_2(&p_J6, &p_J7, &l_coupler, &w->add1_v8, w->br42, &w->p_J6, &p_J7, &l_coupler, &t_add1_v8, &w->p_J5, &t_p_J5, &w->sigma[42]);
+        st = RRR_links_2(&p_J6, &p_J7, &l_coupler, &w->add1_v8, w->br42, &w->p_J6, &p_J7, &l_coupler, &t_add1_v8, &w->p_J5, &t_p_J5, w->tape + 0, &w->sigma[42]);
         if (st == 1) return 1;
         if (w->sigma[42] < w->chains) w->chains = w->sigma[42];
-        st = RRR_links_2(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br43, &p_J1, &t_p_J5, &l_rocker1, &l_ternary_J2_J5, &w->p_J2, &t_p_J2, &w->sigma[43]);
+        st = RRR_links_2(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br43, &p_J1, &t_p_J5, &l_rocker1, &l_ternary_J2_J5, &w->p_J2, &t_p_J2, w->tape + 11, &w->sigma[43]);
         if (st == 1) return 1;
         if (w->sigma[43] < w->chains) w->chains = w->sigma[43];
-        st = link_point_2(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &t_p_J5, &t_p_J2, &w->p_J4, &t_p_J4);
+        st = link_point_2(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, &t_p_J5, &t_p_J2, &w->p_J4, &t_p_J4, w->tape + 22);
         if (st == 1) return 1;
-        link_residual_2(&p_J3, &w->p_J4, &l_rocker2, &p_J3, &t_p_J4, &l_rocker2, &w->f1_v8, &t_f1_v8);
+        link_residual_2(&p_J3, &w->p_J4, &l_rocker2, &p_J3, &t_p_J4, &l_rocker2, &w->f1_v8, &t_f1_v8, w->tape + 28);
         f[0] = w->f1_v8.v;
         df[0] = w->f1_v8.dv;
         ddf[0] = t_f1_v8.dv;
+        return 0;
+    }
+    if (live == 3) {  /* the rates at the positions the two-channel pass kept */
+        st = RRR_links_r(&p_J6, &p_J7, &l_coupler, &w->add1_v8, w->br42, w->tape[0], w->tape[1], w->tape[2], w->tape[3], w->tape[4], w->tape[5], w->tape[6], w->tape[7], w->tape[8], w->tape[9], w->tape[10], &w->p_J5);
+        if (st == 1) return 1;
+        note(w, st, 423, -424);
+        if (w->sigma[42] < w->chains) w->chains = w->sigma[42];
+        st = RRR_links_r(&p_J1, &w->p_J5, &l_rocker1, &l_ternary_J2_J5, w->br43, w->tape[11], w->tape[12], w->tape[13], w->tape[14], w->tape[15], w->tape[16], w->tape[17], w->tape[18], w->tape[19], w->tape[20], w->tape[21], &w->p_J2);
+        if (st == 1) return 1;
+        note(w, st, 433, -434);
+        if (w->sigma[43] < w->chains) w->chains = w->sigma[43];
+        st = link_point_r(&w->p_J5, &w->p_J2, -41.921741762866105, 22.193863286223234, w->tape[22], w->tape[23], w->tape[24], w->tape[25], w->tape[26], w->tape[27], &w->p_J4);
+        if (st == 1) return 1;
+        note(w, st, 443, -444);
+        link_residual_r(&p_J3, &w->p_J4, &l_rocker2, w->tape[28], w->tape[29], w->tape[30], w->tape[31], &w->f1_v8);
+        f[0] = w->f1_v8.v;
+        df[0] = w->f1_v8.dv;
+        ddf[0] = w->f1_v8.ddv;
         return 0;
     }
     if (!ddf) {  /* no accelerations asked for: the order-1 copies of the steps */
@@ -2612,7 +2901,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    for (st = 0; st <= SIXBAR_FIG14_N_STEPS; st++) w->sigma[st] = 1.0;
+    memcpy(w->sigma, UNCONDITIONED, sizeof w->sigma);  /* a copy: a loop over the steps costs twice the instructions */
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
@@ -2711,7 +3000,7 @@ int sixbar_fig14_solve(const double in[], const double din[], const double ddin[
     work w;
     int code, g;
     if (!finite_inputs(in, din, ddin)) return refuse(out);
-    memset(&w, 0, sizeof w);  /* records a failed step leaves unset are zero (publish() never reads them) */
+    for (g = 0; g < LINKGEN_NGROUPS; g++) w.its[g] = 0;  /* a row that fails before a group has no Newton steps */
     code = drive(one_pass, &w, &MECHANISM, &POLICY, 0, in, din, ddin,
                  SIXBAR_FIG14_ORDER, &warm);
     for (g = 0; g < LINKGEN_NGROUPS; g++) out->iterations[g] = w.its[g];
