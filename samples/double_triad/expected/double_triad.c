@@ -1379,7 +1379,7 @@ typedef struct {
     VARIABLE f2_v7;
     VARIABLE add2_v8;
     VARIABLE f2_v8;
-    double sigma[DOUBLE_TRIAD_N_STEPS + 1];
+    double *sigma;  /* the public state's: each pass writes its steps' conditioning there (no copy a row) */
     int singular, near;  /* first singular / near-singular step codes */
     int its[LINKGEN_NGROUPS];  /* iterations of each resolver in the row's own passes */
     double chains;  /* the worst conditioning of a block's chains in its last pass */
@@ -3893,12 +3893,11 @@ static void no_outputs(double_triad_state *out)
     out->left_coupler.alpha = NAN;
 }
 
-/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
+/* A row that failed (reason 1 or 2): its code (the conditioning of the steps before it in the state), every output nan. */
 static int failed(const work *w, double_triad_state *out, int code)
 {
-    int k;
+    (void)w;  /* its conditioning is the state's already (work.sigma) */
     out->status = code;
-    for (k = 0; k <= DOUBLE_TRIAD_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     no_outputs(out);
     return code;
 }
@@ -3906,13 +3905,11 @@ static int failed(const work *w, double_triad_state *out, int code)
 /* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, double_triad_state *out)
 {
-    int k;
     if (reason_of(code) == 1 || reason_of(code) == 2) {
         failed(w, out, code);
         return;
     }
     out->status = code;
-    for (k = 0; k <= DOUBLE_TRIAD_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     out->J7.x = -60.0;
     out->J7.y = 80.0;
     out->J7.vx = 0.0;
@@ -4096,7 +4093,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    memcpy(w->sigma, UNCONDITIONED, sizeof w->sigma);  /* a copy: a loop over the steps costs twice the instructions */
+    memcpy(w->sigma, UNCONDITIONED, sizeof UNCONDITIONED);  /* a copy: a loop over the steps costs twice the instructions */
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
@@ -4235,6 +4232,7 @@ int double_triad_solve(const double in[], const double din[], const double ddin[
     int code, g;
     if (!finite_inputs(in, din, ddin)) return refuse(out);
     for (g = 0; g < LINKGEN_NGROUPS; g++) w.its[g] = 0;  /* a row that fails before a group has no Newton steps */
+    w.sigma = out->sigma;
     code = drive(one_pass, &w, &MECHANISM, &POLICY, 0, in, din, ddin,
                  DOUBLE_TRIAD_ORDER, &warm);
     for (g = 0; g < LINKGEN_NGROUPS; g++) out->iterations[g] = w.its[g];

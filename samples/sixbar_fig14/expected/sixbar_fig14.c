@@ -1352,7 +1352,7 @@ typedef struct {
     VARIABLE f1_v7;
     VARIABLE add1_v8;
     VARIABLE f1_v8;
-    double sigma[SIXBAR_FIG14_N_STEPS + 1];
+    double *sigma;  /* the public state's: each pass writes its steps' conditioning there (no copy a row) */
     int singular, near;  /* first singular / near-singular step codes */
     int its[LINKGEN_NGROUPS];  /* iterations of each resolver in the row's own passes */
     double chains;  /* the worst conditioning of a block's chains in its last pass */
@@ -2768,12 +2768,11 @@ static void no_outputs(sixbar_fig14_state *out)
     out->frame.alpha = NAN;
 }
 
-/* A row that failed (reason 1 or 2): its code, the conditioning of the steps before, every output nan. */
+/* A row that failed (reason 1 or 2): its code (the conditioning of the steps before it in the state), every output nan. */
 static int failed(const work *w, sixbar_fig14_state *out, int code)
 {
-    int k;
+    (void)w;  /* its conditioning is the state's already (work.sigma) */
     out->status = code;
-    for (k = 0; k <= SIXBAR_FIG14_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     no_outputs(out);
     return code;
 }
@@ -2781,13 +2780,11 @@ static int failed(const work *w, sixbar_fig14_state *out, int code)
 /* Copy the records of a computed row into the public state, with the status rules of the CSV. */
 static void publish(const work *w, int code, sixbar_fig14_state *out)
 {
-    int k;
     if (reason_of(code) == 1 || reason_of(code) == 2) {
         failed(w, out, code);
         return;
     }
     out->status = code;
-    for (k = 0; k <= SIXBAR_FIG14_N_STEPS; k++) out->sigma[k] = w->sigma[k];
     out->J1.x = 0.0;
     out->J1.y = 0.0;
     out->J1.vx = 0.0;
@@ -2901,7 +2898,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
     w->singular = 0;
     w->near = 0;
-    memcpy(w->sigma, UNCONDITIONED, sizeof w->sigma);  /* a copy: a loop over the steps costs twice the instructions */
+    memcpy(w->sigma, UNCONDITIONED, sizeof UNCONDITIONED);  /* a copy: a loop over the steps costs twice the instructions */
     w->in1.the = in[0]; w->in1.dthe = din[0]; w->in1.ddthe = ddin[0];
 
     /* Step 1: fixed, frame. link frame is the frame: its pairs are fixed */
@@ -3001,6 +2998,7 @@ int sixbar_fig14_solve(const double in[], const double din[], const double ddin[
     int code, g;
     if (!finite_inputs(in, din, ddin)) return refuse(out);
     for (g = 0; g < LINKGEN_NGROUPS; g++) w.its[g] = 0;  /* a row that fails before a group has no Newton steps */
+    w.sigma = out->sigma;
     code = drive(one_pass, &w, &MECHANISM, &POLICY, 0, in, din, ddin,
                  SIXBAR_FIG14_ORDER, &warm);
     for (g = 0; g < LINKGEN_NGROUPS; g++) out->iterations[g] = w.its[g];
