@@ -65,9 +65,14 @@ lint: install
 	$(VENV)/bin/mypy
 
 # docs/performance.md and its plots (bench/run.py DOC); the peers come with the bench extra, and a peer
-# that does not install is named in the doc while the rest runs (hence the '-').
+# that does not install is named in the doc while the rest runs (hence the '-'); the Cortex-M4 toolchain
+# and QEMU (bench/mcu.py) from apt where missing.
 bench: install
 	-$(PY) -m pip install --quiet -e '.[bench]'
+	-@command -v arm-none-eabi-gcc >/dev/null 2>&1 && command -v qemu-system-arm >/dev/null 2>&1 || { \
+	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
+	  $$SUDO apt-get install -y -qq --no-install-recommends gcc-arm-none-eabi libnewlib-arm-none-eabi \
+	    qemu-system-arm >/dev/null; }
 	$(PY) bench/run.py
 
 # Rewrite the golden files of every sample (review the git diff like source code).

@@ -217,6 +217,12 @@ def bench_pareto() -> None:
     plot()
 
 
+def bench_mcu() -> None:
+    from mcu import bench_mcu as run
+
+    run()
+
+
 def bench_addlinks() -> None:
     from addlinks import bench_addlinks as run
 
@@ -224,9 +230,9 @@ def bench_addlinks() -> None:
 
 
 GROUPS.update(rows=bench_rows, builds=bench_builds, kernel=bench_kernel, scaling=bench_scaling, knobs=bench_knobs,
-              peers=bench_peers, pareto=bench_pareto, addlinks=bench_addlinks)
+              peers=bench_peers, pareto=bench_pareto, addlinks=bench_addlinks, mcu=bench_mcu)
 # the groups whose results go into docs/ (docs/performance.md, its plots, docs/accuracy-rrr*.svg), in order
-DOC = ("knobs", "peers", "pareto", "addlinks", "builds", "scaling", "accuracy")
+DOC = ("knobs", "peers", "pareto", "addlinks", "builds", "mcu", "scaling", "accuracy")
 
 
 if __name__ == "__main__":

@@ -82,7 +82,7 @@ def test_float_and_long_double_agree_with_double_to_their_bound(mechanism: Path,
 
 @pytest.mark.parametrize("real", ["float", "long double"])
 def test_the_library_compiled_as_cpp_writes_the_same_sweep(real: str, tmp_path: Path):
-    """NAME.c as C++ (g++ -std=c++11 -pedantic -Werror: math.h's overloads instead of tgmath.h),
+    """NAME.c as C++ (g++ -std=c++11 -pedantic -Werror: the same named float and long double functions of math.h),
     linked with the C sweep program: the same CSV as the C library's."""
     log, csv = _sweep(SAMPLES[0].parent.parent / "sixbar_fig14" / "sixbar_fig14.yaml", real, tmp_path)
     compile_step([need("g++"), "-x", "c++", *CXXFLAGS, "-O2", "-c", f"{log.name}.c", "-o", "lib.o"], tmp_path)

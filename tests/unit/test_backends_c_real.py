@@ -1,5 +1,6 @@
 """linkgen.backends.c.real: the C text in another real type; literals in code take the type's suffix,
-comments and strings keep theirs, double becomes NAME_real, DBL_EPSILON the type's, math.h tgmath.h,
+comments and strings keep theirs, double becomes NAME_real, DBL_EPSILON the type's, the math functions the type's
+(sqrtf, fabsl: named, since newlib has no usable tgmath.h),
 and long double gets pi to its own precision."""
 
 from __future__ import annotations
@@ -11,7 +12,7 @@ from linkgen.backends.c.real import PI_LONG, retype, typedef
 CODE = '''#include <math.h>
 /* 0.5 of a double, 1e-3 */
 static double half(double x) { printf("%.17g 2.0", x);
-    return 0.5 * x + 1e-3 + 2 + .25 + 3.141592653589793 + DBL_EPSILON; }
+    return 0.5 * x + 1e-3 + 2 + .25 + 3.141592653589793 + DBL_EPSILON + sqrt(fabs(x)) + p_cos(x); }
 '''
 
 
@@ -21,7 +22,7 @@ def test_double_is_left_as_it_is():
 
 def test_float_suffixes_code_literals_only():
     out = retype(CODE, "float", "m")
-    assert "#ifdef __cplusplus\n#include <math.h>\n#else\n#include <tgmath.h>\n#endif" in out
+    assert "tgmath" not in out and "sqrtf(fabsf(x)) + p_cos(x)" in out
     assert "/* 0.5 of a double, 1e-3 */" in out and '"%.17g 2.0"' in out
     assert "static m_real half(m_real x)" in out
     assert "0.5f * x + 1e-3f + 2 + .25f + 3.141592653589793f + FLT_EPSILON" in out
@@ -29,7 +30,7 @@ def test_float_suffixes_code_literals_only():
 
 def test_long_double_takes_pi_to_its_own_precision():
     out = retype(CODE, "long double", "m")
-    assert f"{PI_LONG}L + LDBL_EPSILON" in out and "static m_real half" in out
+    assert f"{PI_LONG}L + LDBL_EPSILON + sqrtl(fabsl(x)) + p_cos(x)" in out and "static m_real half" in out
     assert abs(float(PI_LONG) - 3.141592653589793) == 0.0 and len(PI_LONG.split(".")[1]) >= 34
 
 

@@ -48,7 +48,7 @@ class CExprs(RecordExprs):
 
     def expr(self, e: Expr) -> str:
         """As every language, but a whole number given to a math function is a real literal (0.0):
-        under <tgmath.h> an int argument would make a call a double call for a float operand."""
+        in another real type the literal then takes the type's suffix (fmaxf(x, 0.0f), not an int to convert)."""
         if isinstance(e, Call):
             args = tuple(Num(float(a.value)) if isinstance(a, Num) and isinstance(a.value, int) else a for a in e.args)
             e = Call(e.fn, args)

@@ -1,6 +1,7 @@
 """The C files in another real type than double: every real of NAME.h and NAME.c is a NAME_real
-(a typedef in NAME.h, which NAME_main.c uses too), the math functions are <tgmath.h>'s (sqrtf, atan2l, ... by
-the argument's type), literals carry the type's suffix and the resolver's thresholds follow the
+(a typedef in NAME.h, which NAME_main.c uses too), the math functions are math.h's of the type (sqrtf,
+atan2l, ...: named, not <tgmath.h>'s, which newlib, the C library of most microcontrollers, cannot
+compile), literals carry the type's suffix and the resolver's thresholds follow the
 type's epsilon (policy.for_real).  In float, atan2 is the program's own (ATAN2_FLOAT): glibc's atan2f
 costs twice the double atan2, which left a float program hardly faster than a double one."""
 
@@ -13,8 +14,8 @@ EPSILON = {"float": "FLT_EPSILON", "double": "DBL_EPSILON", "long double": "LDBL
 PI_DOUBLE = "3.141592653589793"
 PI_LONG = "3.14159265358979323846264338327950288"  # pi to 36 digits, past any long double's 113 bits
 
-# C's type-generic math; compiled as C++, math.h holds the float and long double overloads
-TGMATH = "#ifdef __cplusplus\n#include <math.h>\n#else\n#include <tgmath.h>\n#endif"
+# the math functions the files call (the DSL's and the runtime's), named with the type's suffix
+MATH = re.compile(r"\b(sqrt|fabs|sin|cos|tan|atan2|fmin|fmax|floor|ceil|fmod|copysign|hypot)\(")
 # comments and string literals are left as they are; everything between them is code
 _NOT_CODE = re.compile(r'/\*.*?\*/|//[^\n]*|"(?:\\.|[^"\\\n])*"', re.DOTALL)
 # a decimal floating literal: digits with a point or an exponent, not part of a name or a longer number
@@ -56,11 +57,12 @@ _FLOATING = re.compile(r"(?<![\w.])(?:\d+\.\d*|\.\d+|\d+(?=[eE]))(?:[eE][+-]?\d+
 
 def _code(text: str, real: str, name: str) -> str:
     text = re.sub(r"\bdouble\b", f"{name}_real", text)
-    text = text.replace("DBL_EPSILON", EPSILON[real]).replace("#include <math.h>", TGMATH)
+    text = text.replace("DBL_EPSILON", EPSILON[real])
     if real == "long double":
         text = re.sub(rf"(?<![\w.]){re.escape(PI_DOUBLE)}(?![\w.])", PI_LONG, text)
     if real == "float":
         text = re.sub(r"\batan2\(", "atan2_real(", text)
+    text = MATH.sub(lambda m: f"{m.group(1)}{SUFFIX[real].lower()}(", text)
     return _FLOATING.sub(lambda m: m.group(0) + SUFFIX[real], text)
 
 
@@ -80,7 +82,7 @@ def retype(text: str, real: str, name: str) -> str:
         return text
     text = _retyped(text, real, name)
     if "atan2_real(" in text:
-        text = text.replace(TGMATH + "\n", TGMATH + "\n" + _retyped(ATAN2_FLOAT, real, name), 1)
+        text = text.replace("#include <math.h>\n", "#include <math.h>\n" + _retyped(ATAN2_FLOAT, real, name), 1)
     return text
 
 
