@@ -366,12 +366,23 @@ def runtime(log: StepLog) -> tuple[str, ...]:
     return tuple(sorted(names))
 
 
+_PLAIN = frozenset((str, int, float, bool, type(None)))  # the types a step log holds as they are
+
+
 def _plain(obj: object) -> object:
+    if type(obj) in _PLAIN:
+        return obj
     if hasattr(obj, "__dataclass_fields__"):
-        return {f.name: _plain(getattr(obj, f.name)) for f in fields(obj)}  # type: ignore[arg-type]
+        return {name: _plain(getattr(obj, name)) for name in _field_names(type(obj))}
     if isinstance(obj, tuple):
-        return [_plain(x) for x in obj]
+        return [x if type(x) in _PLAIN else _plain(x) for x in obj]
     if obj is None or isinstance(obj, (str, int, float, bool)):
         return obj
     raise TypeError(f"{type(obj).__name__} is not allowed in the step log")
+
+
+@functools.cache
+def _field_names(cls: type) -> tuple[str, ...]:
+    """A dataclass's field names in order (dataclasses.fields, looked up once per class)."""
+    return tuple(f.name for f in fields(cls))
 
