@@ -63,26 +63,31 @@ Runner = Callable[[Env], tuple[Any, Any, tuple[Any, ...]]]  # one step's call on
 
 def runner(step: Step, fns: Mapping[str, Any]) -> Runner:
     """A step's call made once (its runtime function, where each argument comes from, how the
-    result unpacks): run on the records it gives what ``call(step.function, args)`` gives."""
-    fn, prim = fns[step.function], PRIMITIVES[step.function]
-    plan: list[tuple[int, Any, Any]] = []  # 0: a record; 1: the branch (env's, else the step's); 2: a number
-    for a in step.args:
+    result unpacks): run on the records it gives what ``call(step.function, args)`` gives.  It is
+    compiled as a function of its own (a record read as ``env[name]``, a chain's branch as the
+    env's, else the step's, a number in place): a row calls it a few hundred times."""
+    prim = PRIMITIVES[step.function]
+    scope: dict[str, Any] = {"fn": fns[step.function]}
+    args = []
+    for k, a in enumerate(step.args):
         if a.kind == "var":
-            plan.append((0, a.var, None))
-        elif a.kind == "int":
-            plan.append((1, (BRANCH, step.number), int(a.value)) if a.label == "minv" else (2, int(a.value), None))
+            scope[f"k{k}"] = a.var
+            args.append(f"env[k{k}]")
+        elif a.kind == "int" and a.label == "minv":
+            scope[f"k{k}"], scope[f"d{k}"] = (BRANCH, step.number), int(a.value)
+            args.append(f"env.get(k{k}, d{k})")
         else:
-            plan.append((2, float(a.value), None))
-    single, shape = len(prim.outputs) == 1, 0 if prim.status is None else 1 if prim.sigma is None else 2
-
-    def run(env: Env) -> tuple[Any, Any, tuple[Any, ...]]:
-        res = fn(*[env[k] if m == 0 else env.get(k, d) if m == 1 else k for m, k, d in plan])
-        if shape == 2:
-            return res[0], res[1], res[2:]
-        if shape == 1:
-            return res[0], 1.0, res[1:]
-        return 0, 1.0, ((res,) if single else res)
-
+            scope[f"k{k}"] = int(a.value) if a.kind == "int" else float(a.value)
+            args.append(f"k{k}")
+    call = f"fn({', '.join(args)})"
+    if prim.status is None:
+        body = f"return 0, 1.0, ({call},)" if len(prim.outputs) == 1 else f"return 0, 1.0, {call}"
+    elif prim.sigma is None:
+        body = f"res = {call}\n    return res[0], 1.0, res[1:]"
+    else:
+        body = f"res = {call}\n    return res[0], res[1], res[2:]"
+    exec(compile(f"def run(env):\n    {body}\n", f"<linkgen step {step.number}>", "exec"), scope)
+    run: Runner = scope["run"]
     return run
 
 
@@ -231,20 +236,25 @@ class RowSolver:
         self.steps = [s for s in log.steps
                       if s.action == "resolve" or (s.function and s.number not in inside and not s.variant)]
         self.parts = {(b.number, b.variant): self._parts(b) for g in log.groups for b in (g, *g.variants)}
+        self.plan = [(s.number, self.groups[s.number] if s.action == "resolve" else None,
+                      self.runners.get(s.number), s.outputs) for s in self.steps]
         self.residual, self.zero = fns["link_residual"], (0.0,) * (self.width + 1)
         self.measured = {(b.number, b.variant): None if log.step(b.steps[0]).function == "loop_point" else
                          [(self.pos[k], self.pos[u]) for k, u in b.pairs] for g in log.groups for b in (g, *g.variants)}
         self.its: list[int] = []
         self.last: Row | None = None
 
-    def _parts(self, b: ResolverGroup) -> tuple[list[Step], list[tuple[str, str]], list[int]]:
-        """A block's steps, the records they read from before the group (with their kinds)
-        and the steps whose conditioning its chains' is."""
+    def _parts(self, b: ResolverGroup) -> tuple[list[tuple[int, Runner, tuple[str, ...]]], list[tuple[str, str]],
+                                                list[int]]:
+        """A block's calls (step number, runner, outputs: its steps that call a function), the
+        records they read from before the group (with their kinds) and the steps whose
+        conditioning its chains' is."""
         steps = [self.log.step(n) for n in b.steps]
         inner = set(b.writes) | set(b.add_links)
         reads = sorted({a.var for st in steps for a in st.args if a.kind == "var" and a.var not in inner})
         sigma = [s.number for s in steps if s.function and PRIMITIVES[s.function].sigma is not None]
-        return steps, [(name, self.kinds[name]) for name in reads], sigma
+        calls = [(s.number, self.runners[s.number], s.outputs) for s in steps if s.function]
+        return calls, [(name, self.kinds[name]) for name in reads], sigma
 
     def solve(self, values: Any, rates: Any, accs: Any, one_way: bool = False) -> Row:
         """Solve one row (see the runtime's drive); ``one_way``: the continuation takes the
@@ -278,13 +288,16 @@ class RowSolver:
         side, reach = self._side(inputs), self.log.reach
         if reach is not None and side:  # past a limit position: fails at once
             report[status.step(reach.codes()[side > 0])] = (FAIL, math.nan)
-        for step in self.steps if not side else ():
-            if step.action == "resolve":
-                if not self._resolve(self.groups[step.number], env, report, order, a, ad, used, its):
+        for number, group, call, outputs in self.plan if not side else ():
+            if group is not None:
+                if not self._resolve(group, env, report, order, a, ad, used, its):
                     break
-            else:
-                execute((step,), env, self.runners, report)
-                if report[step.number][0] == FAIL:
+            else:  # execute((step,), ...) written out: its records, then its report
+                st, sigma, outs = call(env)
+                for name, rec in zip(outputs, outs):
+                    env[name] = rec
+                report[number] = (st, sigma)
+                if st == FAIL:
                     break
         code = int(row_status(report))
         if row:
@@ -338,8 +351,8 @@ class RowSolver:
         of its steps at Add-link lengths, rates and accelerations; live=False zeroes the rates
         of what it reads from before the group.  ``chains[0]``: the worst conditioning of the
         last pass's chains, from the block's lever down."""
-        steps, reads, sigma_steps = self.parts[b.number, b.variant]
-        width, runners = self.width + 1, self.runners
+        calls, reads, sigma_steps = self.parts[b.number, b.variant]
+        width, add_links, residuals, lever = self.width + 1, b.add_links, b.residuals, b.lever
         seen: dict[bool, Env] = {}
 
         def group(x: list[float], dx: list[float], ddx: list[float], live: bool) -> tuple[int, Any]:
@@ -347,14 +360,20 @@ class RowSolver:
                 seen[True] = {name: before[name] for name, _ in reads}
                 seen[False] = {name: _still(before[name], kind) for name, kind in reads}
             env.update(seen[live])
-            for name, v, r, c in zip(b.add_links, x, dx, ddx):
+            for name, v, r, c in zip(add_links, x, dx, ddx):
                 env[name] = (v, r, c)[:width]
             last.clear()
-            execute(steps, env, runners, last)
-            if any(st == FAIL for st, _ in last.values()):
+            failed = False
+            for number, call, outputs in calls:  # execute(steps, env, runners, last) written out
+                st, sigma, outs = call(env)
+                for name, rec in zip(outputs, outs):
+                    env[name] = rec
+                last[number] = (st, sigma)
+                failed = failed or st == FAIL
+            if failed:
                 return 1, None
-            chains[0] = min([b.lever, *(last[n][1] for n in sigma_steps)])
-            return 0, [env[f] for f in b.residuals]
+            chains[0] = min([lever, *(last[n][1] for n in sigma_steps)])
+            return 0, [env[f] for f in residuals]
 
         return group
 
