@@ -243,6 +243,16 @@ class RowSolver:
                          [(self.pos[k], self.pos[u]) for k, u in b.pairs] for g in log.groups for b in (g, *g.variants)}
         self.its: list[int] = []
         self.last: Row | None = None
+        self.sets = {g.number: [b.sets for b in (g, *g.variants)] for g in log.groups}
+        self._policies: dict[int, SimpleNamespace] = {}
+
+    def _policy(self, halvings: int) -> SimpleNamespace:
+        """The runtime's policy with the continuation's halvings, made once for each number of them
+        (the runtime reads it, never changes it)."""
+        if halvings not in self._policies:
+            self._policies[halvings] = runtime_policy(replace(self.log.policy, max_halvings=halvings),
+                                                      self.log.options)
+        return self._policies[halvings]
 
     def _parts(self, b: ResolverGroup) -> tuple[list[tuple[int, Runner, tuple[str, ...]]], list[tuple[str, str]],
                                                 list[int]]:
@@ -259,7 +269,7 @@ class RowSolver:
     def solve(self, values: Any, rates: Any, accs: Any, one_way: bool = False) -> Row:
         """Solve one row (see the runtime's drive); ``one_way``: the continuation takes the
         straight path only, never the other way round (the build's search for limit positions)."""
-        p = runtime_policy(replace(self.log.policy, max_halvings=self.halvings), self.log.options)
+        p = self._policy(self.halvings)
         x, d, dd = ([float(v) for v in seq] for seq in (values, rates, accs))
         self.its = [0] * len(self.log.groups)
         past = self._side(x) != 0
@@ -339,7 +349,7 @@ class RowSolver:
 
             resolve = functools.partial(runtime()["resolve_closure"], in_process(g.closure, env, adopt))
         ok, sigma = resolve(fns, lengths, a, ad, first, self.slots[g.number], used, its, order, lambda: chains[0],
-                            self.mech, runtime_policy(p, self.log.options), (_Fields(env), [b.sets for b in blocks]))
+                            self.mech, self._policy(p.max_halvings), (_Fields(env), self.sets[g.number]))
         if ok > 0:
             report.update(last)
         report[g.step] = ((SINGULAR if sigma < p.singular else NEAR if sigma < p.near_singular else 0) if ok > 0
