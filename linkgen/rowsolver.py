@@ -14,7 +14,7 @@ from collections import OrderedDict
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, replace
 from importlib import resources
-from types import SimpleNamespace
+from types import CodeType, FunctionType, SimpleNamespace
 from typing import Any
 
 from . import status
@@ -86,9 +86,16 @@ def runner(step: Step, fns: Mapping[str, Any]) -> Runner:
         body = f"res = {call}\n    return res[0], 1.0, res[1:]"
     else:
         body = f"res = {call}\n    return res[0], res[1], res[2:]"
-    exec(compile(f"def run(env):\n    {body}\n", f"<linkgen step {step.number}>", "exec"), scope)
-    run: Runner = scope["run"]
+    run: Runner = FunctionType(_runner_code(body), scope)
     return run
+
+
+@functools.cache
+def _runner_code(body: str) -> CodeType:
+    """The code of a runner's body, compiled once (steps differ in the names it reads, not in its text)."""
+    module = compile(f"def run(env):\n    {body}\n", "<linkgen step>", "exec")
+    code: CodeType = next(c for c in module.co_consts if isinstance(c, CodeType))
+    return code
 
 
 def branches(log: StepLog, env: Env, theta: float) -> None:
