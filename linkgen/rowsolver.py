@@ -309,7 +309,7 @@ class RowSolver:
             if group is not None:
                 if not self._resolve(group, env, report, order, a, ad, used, its):
                     break
-            else:  # execute((step,), ...) written out: its records, then its report
+            elif call is not None:  # every step here calls a function: execute((step,), ...) written out
                 st, sigma, outs = call(env)
                 for name, rec in zip(outputs, outs):
                     env[name] = rec
