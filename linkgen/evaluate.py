@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -19,9 +19,10 @@ from . import status
 from .kernel import Records, column, kernel
 from .kernel import runtime as numpy_runtime
 from .primitives.dsl import record_fields
-from .rowsolver import Row, bounds
-from .rowsolver import solver as row_solver
 from .steplog import Reach, StepLog
+
+if TYPE_CHECKING:  # the row solver: imported where a log has resolver groups
+    from .rowsolver import Row
 
 BLOCK = 16384  # rows of a chain mechanism evaluated at once (the numpy kernel's own block: solve's)
 
@@ -29,6 +30,8 @@ BLOCK = 16384  # rows of a chain mechanism evaluated at once (the numpy kernel's
 def reach_side(reach: Reach, theta: Any) -> Any:
     """The numpy runtime's reach_at at every input value of an array: 0 where it is reached
     from the sketch, -1 past the gap below, 1 past the gap above."""
+    from .rowsolver import bounds
+
     side = numpy_runtime()["reach_at"](np.asarray(theta, dtype=float), *bounds(reach), reach.periodic)
     return np.asarray(side, dtype=int)
 
@@ -75,6 +78,9 @@ def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarr
 
 def _evaluate_rows(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarray, order: int, warm: Any,
                    stop: int, line: int) -> Result:
+    from .rowsolver import Row
+    from .rowsolver import solver as row_solver
+
     solver = row_solver(log, max(order, 1))  # the resolver's rates start the next row at every order
     solver.warm = warm
     rows: list[Row] = []

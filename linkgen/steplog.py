@@ -9,10 +9,9 @@ from __future__ import annotations
 import functools
 import json
 from dataclasses import dataclass, field, fields
-from typing import NewType
+from typing import TYPE_CHECKING, NewType
 
 from .census import Assemblies
-from .closurelog import Closure
 from .codes import StatusCode as StatusCode
 from .codes import status_codes
 from .instant.record import CentreAt as CentreAt
@@ -24,6 +23,9 @@ from .options import Options
 from .policy import Policy
 from .primitives.dsl import record_fields
 from .summary.records import Summary
+
+if TYPE_CHECKING:  # the closure strategy's: imported where a group has one
+    from .closurelog import Closure
 
 
 @dataclass(frozen=True)
@@ -367,22 +369,20 @@ def runtime(log: StepLog) -> tuple[str, ...]:
 
 
 _PLAIN = frozenset((str, int, float, bool, type(None)))  # the types a step log holds as they are
+_FIELDS: dict[type, tuple[str, ...]] = {}  # a dataclass's field names in order (dataclasses.fields, once a class)
 
 
 def _plain(obj: object) -> object:
     if type(obj) in _PLAIN:
         return obj
     if hasattr(obj, "__dataclass_fields__"):
-        return {name: _plain(getattr(obj, name)) for name in _field_names(type(obj))}
+        names = _FIELDS.get(type(obj))
+        if names is None:
+            names = _FIELDS[type(obj)] = tuple(f.name for f in fields(obj))  # type: ignore[arg-type]
+        return {name: _plain(getattr(obj, name)) for name in names}
     if isinstance(obj, tuple):
         return [x if type(x) in _PLAIN else _plain(x) for x in obj]
     if obj is None or isinstance(obj, (str, int, float, bool)):
         return obj
     raise TypeError(f"{type(obj).__name__} is not allowed in the step log")
-
-
-@functools.cache
-def _field_names(cls: type) -> tuple[str, ...]:
-    """A dataclass's field names in order (dataclasses.fields, looked up once per class)."""
-    return tuple(f.name for f in fields(cls))
 
