@@ -9,9 +9,10 @@ from __future__ import annotations
 import functools
 import json
 from dataclasses import dataclass, field, fields
-from typing import TYPE_CHECKING, NewType
+from typing import NewType
 
 from .census import Assemblies
+from .closurelog import Closure
 from .codes import StatusCode as StatusCode
 from .codes import status_codes
 from .instant.record import CentreAt as CentreAt
@@ -23,9 +24,6 @@ from .options import Options
 from .policy import Policy
 from .primitives.dsl import record_fields
 from .summary.records import Summary
-
-if TYPE_CHECKING:  # the closure strategy's: imported where a group has one
-    from .closurelog import Closure
 
 
 @dataclass(frozen=True)
