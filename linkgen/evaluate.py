@@ -88,8 +88,8 @@ def _evaluate_rows(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np
     for r in range(values.shape[0]):
         if line and r and r % line == 0:
             solver.warm = None
-        failed = {n: rep for n, rep in rows[-1].report.items() if rep[0] in status.FAILED} if rows else {}
-        stopped = bool(stop) and any(n <= stop for n in failed)
+        failed = {n: rep for n, rep in rows[-1].report.items() if rep[0] in status.FAILED} if rows and stop else {}
+        stopped = any(n <= stop for n in failed)
         rows.append(Row({}, failed, {}, rows[-1].code) if stopped else solver.solve(values[r], rates[r], accs[r]))
         warms.append(None if stopped else solver.warm)
     env = RowRecords(rows, {v.name: len(record_fields(v.kind, order)) for v in log.variables})

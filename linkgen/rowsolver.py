@@ -11,10 +11,10 @@ from __future__ import annotations
 import functools
 import math
 from collections import OrderedDict
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from importlib import resources
-from types import CodeType, FunctionType, SimpleNamespace
+from types import SimpleNamespace
 from typing import Any
 
 from . import status
@@ -23,12 +23,10 @@ from .options import runtime_policy
 from .primitives import PRIMITIVES, python_backend
 from .primitives.interpret import constant_record
 from .render.closure import in_process
-from .steplog import Reach, ResolverGroup, Step, StepLog
+from .runners import BRANCH, Env, Runner, runner
+from .steplog import Reach, ResolverGroup, StepLog
 
 FAIL, NOT_CONVERGED, SINGULAR, NEAR = status.CANNOT_CLOSE, status.NOT_CONVERGED, status.SINGULAR, status.NEAR_SINGULAR
-BRANCH = "branch"  # env key (with a step number) of a chain's branch where it is not the sketch's
-
-Env = dict[Any, Any]  # variable -> record, (BRANCH, step) -> branch
 Report = dict[int, tuple[Any, Any]]  # step -> (status, sigma), in the order the steps ran
 Call = Callable[[str, list[Any]], tuple[Any, Any, tuple[Any, ...]]]
 
@@ -58,46 +56,6 @@ def _scalar_call(order: int) -> Call:
     return call
 
 
-Runner = Callable[[Env], tuple[Any, Any, tuple[Any, ...]]]  # one step's call on the records: (status, sigma, outputs)
-
-
-def runner(step: Step, fns: Mapping[str, Any]) -> Runner:
-    """A step's call made once (its runtime function, where each argument comes from, how the
-    result unpacks): run on the records it gives what ``call(step.function, args)`` gives.  It is
-    compiled as a function of its own (a record read as ``env[name]``, a chain's branch as the
-    env's, else the step's, a number in place): a row calls it a few hundred times."""
-    prim = PRIMITIVES[step.function]
-    scope: dict[str, Any] = {"fn": fns[step.function]}
-    args = []
-    for k, a in enumerate(step.args):
-        if a.kind == "var":
-            scope[f"k{k}"] = a.var
-            args.append(f"env[k{k}]")
-        elif a.kind == "int" and a.label == "minv":
-            scope[f"k{k}"], scope[f"d{k}"] = (BRANCH, step.number), int(a.value)
-            args.append(f"env.get(k{k}, d{k})")
-        else:
-            scope[f"k{k}"] = int(a.value) if a.kind == "int" else float(a.value)
-            args.append(f"k{k}")
-    call = f"fn({', '.join(args)})"
-    if prim.status is None:
-        body = f"return 0, 1.0, ({call},)" if len(prim.outputs) == 1 else f"return 0, 1.0, {call}"
-    elif prim.sigma is None:
-        body = f"res = {call}\n    return res[0], 1.0, res[1:]"
-    else:
-        body = f"res = {call}\n    return res[0], res[1], res[2:]"
-    run: Runner = FunctionType(_runner_code(body), scope)
-    return run
-
-
-@functools.cache
-def _runner_code(body: str) -> CodeType:
-    """The code of a runner's body, compiled once (steps differ in the names it reads, not in its text)."""
-    module = compile(f"def run(env):\n    {body}\n", "<linkgen step>", "exec")
-    code: CodeType = next(c for c in module.co_consts if isinstance(c, CodeType))
-    return code
-
-
 def branches(log: StepLog, env: Env, theta: float) -> None:
     """The branch of every chain with change points at the first input's value theta (the
     Python runtime's branch_at)."""
@@ -112,21 +70,6 @@ def branches(log: StepLog, env: Env, theta: float) -> None:
 def bounds(reach: Reach) -> tuple[float, float]:
     low, high = (math.nan if x is None else x for x in (reach.low, reach.high))
     return low, high
-
-
-def execute(steps: list[Step] | tuple[Step, ...], env: Env, runners: Mapping[int, Runner],
-            report: Report | None = None) -> Report:
-    """Run the steps' calls in order (runners: step number -> its runner); returns {step
-    number: (status, sigma)}, written into ``report`` where given."""
-    report = {} if report is None else report
-    for step in steps:
-        if not step.function:
-            continue
-        st, sigma, outs = runners[step.number](env)
-        for name, rec in zip(step.outputs, outs):
-            env[name] = rec
-        report[step.number] = (st, sigma)
-    return report
 
 
 def row_status(report: Report) -> Any:
@@ -309,7 +252,7 @@ class RowSolver:
             if group is not None:
                 if not self._resolve(group, env, report, order, a, ad, used, its):
                     break
-            elif call is not None:  # every step here calls a function: execute((step,), ...) written out
+            elif call is not None:  # every step here calls a function: its records, then its report
                 st, sigma, outs = call(env)
                 for name, rec in zip(outputs, outs):
                     env[name] = rec
@@ -381,7 +324,7 @@ class RowSolver:
                 env[name] = (v, r, c)[:width]
             last.clear()
             failed = False
-            for number, call, outputs in calls:  # execute(steps, env, runners, last) written out
+            for number, call, outputs in calls:  # every step's records, then its report
                 st, sigma, outs = call(env)
                 for name, rec in zip(outputs, outs):
                     env[name] = rec
