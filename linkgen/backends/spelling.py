@@ -99,11 +99,9 @@ class Spelling:
 
     def external(self, var: str, scope: Group | None) -> bool:
         """Whether a block reads the record from before its group (each block's names gathered once)."""
-        if scope is None:
-            return False
-        if scope.index not in self._reads:
+        if scope is not None and scope.index not in self._reads:
             self._reads[scope.index] = {v.name for v in scope.reads}
-        return var in self._reads[scope.index]
+        return scope is not None and var in self._reads[scope.index]
 
     def member(self, kind: str, field: str) -> str:
         """How a record of a kind is followed to one of its fields (``.P.x``, ``[0]``, ``.x``)."""
