@@ -92,7 +92,8 @@ def _evaluate_rows(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np
         stopped = any(n <= stop for n in failed)
         rows.append(Row({}, failed, {}, rows[-1].code) if stopped else solver.solve(values[r], rates[r], accs[r]))
         warms.append(None if stopped else solver.warm)
-    env = RowRecords(rows, {v.name: len(record_fields(v.kind, order)) for v in log.variables})
+    width = {kind: len(record_fields(kind, order)) for kind in {v.kind for v in log.variables}}  # a few kinds
+    env = RowRecords(rows, {v.name: width[v.kind] for v in log.variables})
     numbers = sorted({n for row in rows for n in row.report})
     sigma = {n: np.array([row.report.get(n, (0, math.nan))[1] for row in rows], dtype=float) for n in numbers}
     its = {g.number: np.array([row.iterations.get(g.number, 0) for row in rows], dtype=int) for g in log.groups}
