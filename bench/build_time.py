@@ -27,7 +27,8 @@ from performance_doc import write_section
 ROOT = Path(__file__).resolve().parents[1]
 RUNS = 5  # processes of `linkgen build` per sample
 PROBES = 3  # processes timed inside per sample
-PROBE = """import sys, time
+PROBE = """import gc, sys, time
+gc.disable()  # as the command runs (linkgen.cli.main)
 t0 = time.perf_counter()
 from linkgen import cli
 from linkgen.pipeline import build_log
@@ -66,8 +67,10 @@ def bench_builds() -> None:
              f"of the command and of {PROBES} timed inside; the interpreter's own start-up (`python -c pass`) "
              f"takes {start:.2f} s.  The imports read the package's compiled bytecode (`make install` compiles it:",
              "an editable install where PYTHONDONTWRITEBYTECODE is set has none, and compiling every module took",
-             "0.1 s of each command); the compiled code of the templates and of the generated kernels is kept",
-             "per user in the temporary directory, keyed on their text (linkgen.render.make_env, kernel.compiled),",
+             "0.1 s of each command).  The command, and the probes as it, run without the cyclic garbage",
+             "collector (linkgen.cli.main: its passes took 10-50 ms of a build).  The compiled code of the",
+             "templates and of the generated kernels is kept per user in the temporary directory, keyed on",
+             "their text (linkgen.render.make_env, kernel.compiled),",
              "and so are the primitives as the numpy kernel and the Python runtime print them, keyed on a",
              "fingerprint of the package's modules (linkgen.textcache: 15-20 ms of every build's CPU).  A resolver",
              "mechanism's rows are solved one at a time in-process (linkgen.rowsolver, as NAME.py solves them):",

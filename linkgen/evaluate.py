@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -19,9 +19,10 @@ from . import status
 from .kernel import Records, column, kernel
 from .kernel import runtime as numpy_runtime
 from .primitives.dsl import record_fields
-from .rowsolver import Row, bounds
-from .rowsolver import solver as row_solver
 from .steplog import Reach, StepLog
+
+if TYPE_CHECKING:  # the row solver: imported where a log has resolver groups
+    from .rowsolver import Row
 
 BLOCK = 16384  # rows of a chain mechanism evaluated at once (the numpy kernel's own block: solve's)
 
@@ -29,6 +30,8 @@ BLOCK = 16384  # rows of a chain mechanism evaluated at once (the numpy kernel's
 def reach_side(reach: Reach, theta: Any) -> Any:
     """The numpy runtime's reach_at at every input value of an array: 0 where it is reached
     from the sketch, -1 past the gap below, 1 past the gap above."""
+    from .rowsolver import bounds
+
     side = numpy_runtime()["reach_at"](np.asarray(theta, dtype=float), *bounds(reach), reach.periodic)
     return np.asarray(side, dtype=int)
 
@@ -75,6 +78,9 @@ def evaluate(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarr
 
 def _evaluate_rows(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np.ndarray, order: int, warm: Any,
                    stop: int, line: int) -> Result:
+    from .rowsolver import Row
+    from .rowsolver import solver as row_solver
+
     solver = row_solver(log, max(order, 1))  # the resolver's rates start the next row at every order
     solver.warm = warm
     rows: list[Row] = []
@@ -82,11 +88,12 @@ def _evaluate_rows(log: StepLog, values: np.ndarray, rates: np.ndarray, accs: np
     for r in range(values.shape[0]):
         if line and r and r % line == 0:
             solver.warm = None
-        failed = {n: rep for n, rep in rows[-1].report.items() if rep[0] in status.FAILED} if rows else {}
-        stopped = bool(stop) and any(n <= stop for n in failed)
+        failed = {n: rep for n, rep in rows[-1].report.items() if rep[0] in status.FAILED} if rows and stop else {}
+        stopped = any(n <= stop for n in failed)
         rows.append(Row({}, failed, {}, rows[-1].code) if stopped else solver.solve(values[r], rates[r], accs[r]))
         warms.append(None if stopped else solver.warm)
-    env = RowRecords(rows, {v.name: len(record_fields(v.kind, order)) for v in log.variables})
+    width = {kind: len(record_fields(kind, order)) for kind in {v.kind for v in log.variables}}  # a few kinds
+    env = RowRecords(rows, {v.name: width[v.kind] for v in log.variables})
     numbers = sorted({n for row in rows for n in row.report})
     sigma = {n: np.array([row.report.get(n, (0, math.nan))[1] for row in rows], dtype=float) for n in numbers}
     its = {g.number: np.array([row.iterations.get(g.number, 0) for row in rows], dtype=int) for g in log.groups}

@@ -12,8 +12,6 @@ from .columns import plan
 from .directions import unit_directions
 from .errors import InputError, and_list
 from .extraction import Procedure, extract
-from .extraction.closure import ClosureRefused, with_closures
-from .extraction.loops import LOOP_ITERATIONS, with_loops
 from .instant.names import centre_problem, is_centre
 from .instant.steps import centre_records, with_centres
 from .instant.table import at_sketch, centre_outputs
@@ -36,6 +34,8 @@ def draft(topo: Topology, proc: Procedure, outputs: tuple[str, ...] | None = Non
     opts = overridden(m.options, options or {})
     if opts.strategy == "closure" and proc.groups:
         proc = _closed(proc, m, "strategy" in (options or {}))
+    if opts.strategy == "loop":  # the strategies' own extraction: imported where one is chosen
+        from .extraction.loops import LOOP_ITERATIONS, with_loops
     if opts.strategy == "loop" and "iterations" not in m.options_where and "iterations" not in (options or {}):
         opts = replace(opts, iterations=LOOP_ITERATIONS)  # the loop converges linearly (|g'| per step)
     if opts.strategy == "loop" and proc.groups:  # the loop blocks of every class-III group (extraction.loops)
@@ -91,6 +91,8 @@ def _no_velocities(m: Mechanism, centre: str, in_file: bool) -> None:
 def _closed(proc: Procedure, m: Mechanism, flag: bool) -> Procedure:
     """The procedure with its groups' loop-closure equations (strategy closure); a group it cannot
     write them for is an error where the strategy was asked for (the flag, else the file's key)."""
+    from .extraction.closure import ClosureRefused, with_closures
+
     try:
         steps, groups = with_closures(proc.steps, proc.variables, proc.groups)
     except ClosureRefused as exc:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import functools
 import math
 from collections import OrderedDict
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from importlib import resources
 from types import SimpleNamespace
@@ -23,12 +23,10 @@ from .options import runtime_policy
 from .primitives import PRIMITIVES, python_backend
 from .primitives.interpret import constant_record
 from .render.closure import in_process
-from .steplog import Reach, ResolverGroup, Step, StepLog
+from .runners import BRANCH, Env, Runner, runner
+from .steplog import Reach, ResolverGroup, StepLog
 
 FAIL, NOT_CONVERGED, SINGULAR, NEAR = status.CANNOT_CLOSE, status.NOT_CONVERGED, status.SINGULAR, status.NEAR_SINGULAR
-BRANCH = "branch"  # env key (with a step number) of a chain's branch where it is not the sketch's
-
-Env = dict[Any, Any]  # variable -> record, (BRANCH, step) -> branch
 Report = dict[int, tuple[Any, Any]]  # step -> (status, sigma), in the order the steps ran
 Call = Callable[[str, list[Any]], tuple[Any, Any, tuple[Any, ...]]]
 
@@ -58,34 +56,6 @@ def _scalar_call(order: int) -> Call:
     return call
 
 
-Runner = Callable[[Env], tuple[Any, Any, tuple[Any, ...]]]  # one step's call on the records: (status, sigma, outputs)
-
-
-def runner(step: Step, fns: Mapping[str, Any]) -> Runner:
-    """A step's call made once (its runtime function, where each argument comes from, how the
-    result unpacks): run on the records it gives what ``call(step.function, args)`` gives."""
-    fn, prim = fns[step.function], PRIMITIVES[step.function]
-    plan: list[tuple[int, Any, Any]] = []  # 0: a record; 1: the branch (env's, else the step's); 2: a number
-    for a in step.args:
-        if a.kind == "var":
-            plan.append((0, a.var, None))
-        elif a.kind == "int":
-            plan.append((1, (BRANCH, step.number), int(a.value)) if a.label == "minv" else (2, int(a.value), None))
-        else:
-            plan.append((2, float(a.value), None))
-    single, shape = len(prim.outputs) == 1, 0 if prim.status is None else 1 if prim.sigma is None else 2
-
-    def run(env: Env) -> tuple[Any, Any, tuple[Any, ...]]:
-        res = fn(*[env[k] if m == 0 else env.get(k, d) if m == 1 else k for m, k, d in plan])
-        if shape == 2:
-            return res[0], res[1], res[2:]
-        if shape == 1:
-            return res[0], 1.0, res[1:]
-        return 0, 1.0, ((res,) if single else res)
-
-    return run
-
-
 def branches(log: StepLog, env: Env, theta: float) -> None:
     """The branch of every chain with change points at the first input's value theta (the
     Python runtime's branch_at)."""
@@ -100,21 +70,6 @@ def branches(log: StepLog, env: Env, theta: float) -> None:
 def bounds(reach: Reach) -> tuple[float, float]:
     low, high = (math.nan if x is None else x for x in (reach.low, reach.high))
     return low, high
-
-
-def execute(steps: list[Step] | tuple[Step, ...], env: Env, runners: Mapping[int, Runner],
-            report: Report | None = None) -> Report:
-    """Run the steps' calls in order (runners: step number -> its runner); returns {step
-    number: (status, sigma)}, written into ``report`` where given."""
-    report = {} if report is None else report
-    for step in steps:
-        if not step.function:
-            continue
-        st, sigma, outs = runners[step.number](env)
-        for name, rec in zip(step.outputs, outs):
-            env[name] = rec
-        report[step.number] = (st, sigma)
-    return report
 
 
 def row_status(report: Report) -> Any:
@@ -231,25 +186,40 @@ class RowSolver:
         self.steps = [s for s in log.steps
                       if s.action == "resolve" or (s.function and s.number not in inside and not s.variant)]
         self.parts = {(b.number, b.variant): self._parts(b) for g in log.groups for b in (g, *g.variants)}
+        self.plan = [(s.number, self.groups[s.number] if s.action == "resolve" else None,
+                      self.runners.get(s.number), s.outputs) for s in self.steps]
         self.residual, self.zero = fns["link_residual"], (0.0,) * (self.width + 1)
         self.measured = {(b.number, b.variant): None if log.step(b.steps[0]).function == "loop_point" else
                          [(self.pos[k], self.pos[u]) for k, u in b.pairs] for g in log.groups for b in (g, *g.variants)}
         self.its: list[int] = []
         self.last: Row | None = None
+        self.sets = {g.number: [b.sets for b in (g, *g.variants)] for g in log.groups}
+        self._policies: dict[int, SimpleNamespace] = {}
 
-    def _parts(self, b: ResolverGroup) -> tuple[list[Step], list[tuple[str, str]], list[int]]:
-        """A block's steps, the records they read from before the group (with their kinds)
-        and the steps whose conditioning its chains' is."""
+    def _policy(self, halvings: int) -> SimpleNamespace:
+        """The runtime's policy with the continuation's halvings, made once for each number of them
+        (the runtime reads it, never changes it)."""
+        if halvings not in self._policies:
+            self._policies[halvings] = runtime_policy(replace(self.log.policy, max_halvings=halvings),
+                                                      self.log.options)
+        return self._policies[halvings]
+
+    def _parts(self, b: ResolverGroup) -> tuple[list[tuple[int, Runner, tuple[str, ...]]], list[tuple[str, str]],
+                                                list[int]]:
+        """A block's calls (step number, runner, outputs: its steps that call a function), the
+        records they read from before the group (with their kinds) and the steps whose
+        conditioning its chains' is."""
         steps = [self.log.step(n) for n in b.steps]
         inner = set(b.writes) | set(b.add_links)
         reads = sorted({a.var for st in steps for a in st.args if a.kind == "var" and a.var not in inner})
         sigma = [s.number for s in steps if s.function and PRIMITIVES[s.function].sigma is not None]
-        return steps, [(name, self.kinds[name]) for name in reads], sigma
+        calls = [(s.number, self.runners[s.number], s.outputs) for s in steps if s.function]
+        return calls, [(name, self.kinds[name]) for name in reads], sigma
 
     def solve(self, values: Any, rates: Any, accs: Any, one_way: bool = False) -> Row:
         """Solve one row (see the runtime's drive); ``one_way``: the continuation takes the
         straight path only, never the other way round (the build's search for limit positions)."""
-        p = runtime_policy(replace(self.log.policy, max_halvings=self.halvings), self.log.options)
+        p = self._policy(self.halvings)
         x, d, dd = ([float(v) for v in seq] for seq in (values, rates, accs))
         self.its = [0] * len(self.log.groups)
         past = self._side(x) != 0
@@ -278,13 +248,16 @@ class RowSolver:
         side, reach = self._side(inputs), self.log.reach
         if reach is not None and side:  # past a limit position: fails at once
             report[status.step(reach.codes()[side > 0])] = (FAIL, math.nan)
-        for step in self.steps if not side else ():
-            if step.action == "resolve":
-                if not self._resolve(self.groups[step.number], env, report, order, a, ad, used, its):
+        for number, group, call, outputs in self.plan if not side else ():
+            if group is not None:
+                if not self._resolve(group, env, report, order, a, ad, used, its):
                     break
-            else:
-                execute((step,), env, self.runners, report)
-                if report[step.number][0] == FAIL:
+            elif call is not None:  # every step here calls a function: its records, then its report
+                st, sigma, outs = call(env)
+                for name, rec in zip(outputs, outs):
+                    env[name] = rec
+                report[number] = (st, sigma)
+                if st == FAIL:
                     break
         code = int(row_status(report))
         if row:
@@ -326,7 +299,7 @@ class RowSolver:
 
             resolve = functools.partial(runtime()["resolve_closure"], in_process(g.closure, env, adopt))
         ok, sigma = resolve(fns, lengths, a, ad, first, self.slots[g.number], used, its, order, lambda: chains[0],
-                            self.mech, runtime_policy(p, self.log.options), (_Fields(env), [b.sets for b in blocks]))
+                            self.mech, self._policy(p.max_halvings), (_Fields(env), self.sets[g.number]))
         if ok > 0:
             report.update(last)
         report[g.step] = ((SINGULAR if sigma < p.singular else NEAR if sigma < p.near_singular else 0) if ok > 0
@@ -338,8 +311,8 @@ class RowSolver:
         of its steps at Add-link lengths, rates and accelerations; live=False zeroes the rates
         of what it reads from before the group.  ``chains[0]``: the worst conditioning of the
         last pass's chains, from the block's lever down."""
-        steps, reads, sigma_steps = self.parts[b.number, b.variant]
-        width, runners = self.width + 1, self.runners
+        calls, reads, sigma_steps = self.parts[b.number, b.variant]
+        width, add_links, residuals, lever = self.width + 1, b.add_links, b.residuals, b.lever
         seen: dict[bool, Env] = {}
 
         def group(x: list[float], dx: list[float], ddx: list[float], live: bool) -> tuple[int, Any]:
@@ -347,14 +320,20 @@ class RowSolver:
                 seen[True] = {name: before[name] for name, _ in reads}
                 seen[False] = {name: _still(before[name], kind) for name, kind in reads}
             env.update(seen[live])
-            for name, v, r, c in zip(b.add_links, x, dx, ddx):
+            for name, v, r, c in zip(add_links, x, dx, ddx):
                 env[name] = (v, r, c)[:width]
             last.clear()
-            execute(steps, env, runners, last)
-            if any(st == FAIL for st, _ in last.values()):
+            failed = False
+            for number, call, outputs in calls:  # every step's records, then its report
+                st, sigma, outs = call(env)
+                for name, rec in zip(outputs, outs):
+                    env[name] = rec
+                last[number] = (st, sigma)
+                failed = failed or st == FAIL
+            if failed:
                 return 1, None
-            chains[0] = min([b.lever, *(last[n][1] for n in sigma_steps)])
-            return 0, [env[f] for f in b.residuals]
+            chains[0] = min([lever, *(last[n][1] for n in sigma_steps)])
+            return 0, [env[f] for f in residuals]
 
         return group
 

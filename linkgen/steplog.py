@@ -366,11 +366,20 @@ def runtime(log: StepLog) -> tuple[str, ...]:
     return tuple(sorted(names))
 
 
+_PLAIN = frozenset((str, int, float, bool, type(None)))  # the types a step log holds as they are
+_FIELDS: dict[type, tuple[str, ...]] = {}  # a dataclass's field names in order (dataclasses.fields, once a class)
+
+
 def _plain(obj: object) -> object:
+    if type(obj) in _PLAIN:
+        return obj
     if hasattr(obj, "__dataclass_fields__"):
-        return {f.name: _plain(getattr(obj, f.name)) for f in fields(obj)}  # type: ignore[arg-type]
+        names = _FIELDS.get(type(obj))
+        if names is None:
+            names = _FIELDS[type(obj)] = tuple(f.name for f in fields(obj))  # type: ignore[arg-type]
+        return {name: _plain(getattr(obj, name)) for name in names}
     if isinstance(obj, tuple):
-        return [_plain(x) for x in obj]
+        return [x if type(x) in _PLAIN else _plain(x) for x in obj]
     if obj is None or isinstance(obj, (str, int, float, bool)):
         return obj
     raise TypeError(f"{type(obj).__name__} is not allowed in the step log")

@@ -10,14 +10,16 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
 from ..motion import Reach
-from ..rowsolver import RowSolver
 from ..steplog import StepLog
 from .sweep import span
+
+if TYPE_CHECKING:  # the row solver: imported where a log has resolver groups
+    from ..rowsolver import RowSolver
 
 FOLLOW = 180  # rows of a turn (or of the span of a sliding input) that the search for limit positions follows
 REFINE = 60  # values tried at most to locate a limit position once a value past it failed
@@ -48,6 +50,8 @@ def resolver_reach(log: StepLog) -> Reach | None:
     angle is followed at most a turn in all: a mechanism that gets that far has no reach (it
     turns fully, or its circuit covers a turn); nor has one whose way is cut where it is not
     at a limit position (see _limit), on either side for an angle."""
+    from ..rowsolver import RowSolver
+
     inp = log.inputs[0]
     solver = RowSolver(log, 1)
     if inp.kind == "revolute":

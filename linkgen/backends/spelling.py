@@ -52,6 +52,7 @@ class Spelling:
         self.measured = view.measured  # steps whose branch is read off the last solution
         self.checks = view.checks  # singular and near-singular steps noted, the conditioning reported
         self.primitives = {name: program_primitive(view, name) for name in self.log.runtime if name in PRIMITIVES}
+        self._reads: dict[int, set[str]] = {}  # block index -> the names of the records it reads (external)
 
     @staticmethod
     def order_of(view: View) -> int:
@@ -96,9 +97,11 @@ class Spelling:
             return var
         return self.work(var)
 
-    @staticmethod
-    def external(var: str, scope: Group | None) -> bool:
-        return scope is not None and any(v.name == var for v in scope.reads)
+    def external(self, var: str, scope: Group | None) -> bool:
+        """Whether a block reads the record from before its group (each block's names gathered once)."""
+        if scope is not None and scope.index not in self._reads:
+            self._reads[scope.index] = {v.name for v in scope.reads}
+        return scope is not None and var in self._reads[scope.index]
 
     def member(self, kind: str, field: str) -> str:
         """How a record of a kind is followed to one of its fields (``.P.x``, ``[0]``, ``.x``)."""

@@ -9,11 +9,15 @@ with the records they read from outside, and the public outputs.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from .. import status
 from ..steplog import Column, ResolverGroup, Step, StepLog, Variable
 from ..units import angular_inputs, factor
-from .closure import Plan, plan
+
+if TYPE_CHECKING:  # the closure strategy's: imported where a group has one
+    from ..closurelog import Closure
+    from .closure import Plan
 
 CENTRE_LINKS = 20  # links of a mechanism whose instant centres the manual lists (n(n-1)/2 of them: 190)
 
@@ -142,7 +146,7 @@ class View:
     def closure_plan(self, group: Group) -> Plan:
         """How the programs compute a group's loop-closure equations (render.closure)."""
         assert group.group.closure is not None
-        return plan(group.group.closure)
+        return _closure_plan(group.group.closure)
 
     def blocks_of(self, group: Group) -> tuple[Group, ...]:
         return self.blocks[group.first:group.first + group.count]
@@ -209,6 +213,13 @@ def build_view(log: StepLog) -> View:
         inputs,
         tuple(s.number for s in log.steps if s.fails),
         max([len(b.group.add_links) + len(b.group.branches) + 1 for b in blocks]
-            + [2 * len(plan(g.closure).unknowns) for g in log.groups if g.closure], default=1),
+            + [2 * len(_closure_plan(g.closure).unknowns) for g in log.groups if g.closure], default=1),
         max(log.order, 1) if log.groups else log.order,
     )
+
+
+def _closure_plan(closure: Closure) -> Plan:
+    """render.closure's plan of a group's loop-closure equations (imported where a group has them)."""
+    from .closure import plan
+
+    return plan(closure)

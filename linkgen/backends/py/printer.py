@@ -6,6 +6,8 @@ from __future__ import annotations
 import math
 import re
 import sys
+from collections import OrderedDict
+from typing import NamedTuple
 
 from ... import status
 from ...primitives.dsl import Param, Primitive, field_order, record_fields
@@ -59,6 +61,7 @@ def inline_lines(prim: Primitive, order: int, args: list[str | list[str]], targe
     record: read in place, as is a scalar given as a literal; another scalar is bound once); then the
     body, ``st`` and the conditioning into ``sigma``, and each output record into its target (the fields
     a failing status makes nan, nan), with the lines ``failed`` where the chain cannot close (st 1).
+    The primitive's expressions are printed once (``_printed``) and their names filled in here.
     """
     used = prim.params_used(order)
     literals: dict[str, str] = {}
@@ -74,21 +77,71 @@ def inline_lines(prim: Primitive, order: int, args: list[str | list[str]], targe
                 lines.append(f"{', '.join(names)}{',' if len(names) == 1 else ''} = {arg}")
         elif p.name in used:
             lines.append(f"_{p.name} = {arg}")
-    exprs = InlineExprs(literals)
-    lines += [f"_{let.name} = {exprs.expr(let.expr)}" for let in prim.live(order)]
-    if prim.status is not None:
-        lines.append(f"st = {exprs.expr(prim.status)}")
-    if prim.sigma is not None:
-        lines.append(f"{sigma} = {exprs.expr(prim.sigma)}")
+    printed = _printed(prim, order)
+
+    def fill(text: str) -> str:
+        return _MARKED.sub(lambda m: literals.get(m[1], f"_{m[1]}"), text)
+
+    lines += [f"_{name} = {fill(text)}" for name, text in printed.lets]
+    if printed.status is not None:
+        lines.append(f"st = {fill(printed.status)}")
+    if printed.sigma is not None:
+        lines.append(f"{sigma} = {fill(printed.sigma)}")
     cases = [(code, nan_from) for code, nan_from in MASKS if nan_from <= order and code in prim.codes()]
-    full = [f"{t} = {v}" for t, v in zip(targets, _result_tuples(prim, order, exprs, None))]
+    full = [f"{t} = {fill(v)}" for t, v in zip(targets, printed.results[None])]
     if not cases:
         return lines + full
     for k, (code, nan_from) in enumerate(cases):
         lines.append(f"{'el' if k else ''}if st == {code}:")
-        lines += [f"    {t} = {v}" for t, v in zip(targets, _result_tuples(prim, order, exprs, nan_from))]
+        lines += [f"    {t} = {fill(v)}" for t, v in zip(targets, printed.results[nan_from])]
         lines += [f"    {line}" for line in failed if code == status.CANNOT_CLOSE]
     return lines + ["else:"] + [f"    {line}" for line in full]
+
+
+_MARKED = re.compile("\x00(\\w+)\x00")  # a name as _Marked prints it
+
+
+class _Marked(InlineExprs):
+    """InlineExprs with every name marked (NUL name NUL), to be filled in per call: a name is a leaf of
+    the printed text wherever it stands, so the text filled in is the text printed with the names."""
+
+    def __init__(self) -> None:
+        super().__init__({})
+
+    def sym(self, name: str) -> str:
+        return f"\x00{name}\x00"
+
+
+class _Printed(NamedTuple):
+    """A primitive's expressions at an order as inline_lines writes them, their names marked."""
+
+    lets: list[tuple[str, str]]
+    status: str | None
+    sigma: str | None
+    results: dict[int | None, list[str]]  # the output tuples: all fields (None), or nan from an order
+
+
+_printed_by_id: OrderedDict[tuple[int, int], tuple[Primitive, _Printed]] = OrderedDict()
+KEPT = 64  # primitives whose printed expressions are kept (the last few programs')
+
+
+def _printed(prim: Primitive, order: int) -> _Printed:
+    """The primitive's expressions printed once per object and order (a resolver's blocks inline the same
+    primitive dozens of times; hashing a primitive's expression trees costs as much as printing them)."""
+    hit = _printed_by_id.get((id(prim), order))
+    if hit is not None and hit[0] is prim:
+        _printed_by_id.move_to_end((id(prim), order))
+        return hit[1]
+    exprs = _Marked()
+    printed = _Printed([(let.name, exprs.expr(let.expr)) for let in prim.live(order)],
+                       None if prim.status is None else exprs.expr(prim.status),
+                       None if prim.sigma is None else exprs.expr(prim.sigma),
+                       {nan_from: _result_tuples(prim, order, exprs, nan_from)
+                        for nan_from in (None, *(n for _, n in MASKS if n <= order))})
+    _printed_by_id[id(prim), order] = (prim, printed)
+    if len(_printed_by_id) > KEPT:
+        _printed_by_id.popitem(last=False)
+    return printed
 
 
 def _result_tuples(prim: Primitive, order: int, exprs: ExprPrinter, nan_from: int | None) -> list[str]:
