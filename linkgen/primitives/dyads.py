@@ -87,10 +87,11 @@ def RRR_links(b: PlaneBuilder) -> Primitive:
     vel = solve("v", l1.v * l1.dv + e1.dot(j1.v), l2.v * l2.dv + e2.dot(j2.v))
     w1 = vel - j1.v
     w2 = vel - j2.v
+    # |wi|^2 subtracted last: it waits for jb's velocity, the rest for positions and the ends' rates
     acc = solve(
         "a",
-        l1.v * l1.ddv + l1.dv * l1.dv - w1.dot(w1) + e1.dot(j1.a),
-        l2.v * l2.ddv + l2.dv * l2.dv - w2.dot(w2) + e2.dot(j2.a),
+        l1.v * l1.ddv + l1.dv * l1.dv + e1.dot(j1.a) - w1.dot(w1),
+        l2.v * l2.ddv + l2.dv * l2.dv + e2.dot(j2.a) - w2.dot(w2),
     )
     b.output_point("jb", Motion(j1.p + e1, vel, acc))
     return b.build(status=chain_status(fail, sigma), sigma=sigma, fail=fail)
