@@ -272,8 +272,8 @@ def RRR_links(j1, j2, l1, l2, minv):
     bnv = a2r * r1v + ar * r2v
     bvx = buv * sdx + bnv * tnx
     bvy = buv * sdy + bnv * tny
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy)) + (e1x * j1_ddx + e1y * j1_ddy)
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv - ((bvx - j2_dx) * (bvx - j2_dx) + (bvy - j2_dy) * (bvy - j2_dy)) + (e2x * j2_ddx + e2y * j2_ddy)
+    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy))
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv + (e2x * j2_ddx + e2y * j2_ddy) - ((bvx - j2_dx) * (bvx - j2_dx) + (bvy - j2_dy) * (bvy - j2_dy))
     bua = r1a - r2a
     bna = a2r * r1a + ar * r2a
     bax = bua * sdx + bna * tnx
@@ -428,8 +428,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _bnv = _a2r * _r1v + _ar * _r2v
     _bvx = _buv * _sdx + _bnv * _tnx
     _bvy = _buv * _sdy + _bnv * _tny
-    _r1a = 565.685424949238 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = _in1_v * _in1_ddv + _in1_dv * _in1_dv - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
+    _r1a = 565.685424949238 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = _in1_v * _in1_ddv + _in1_dv * _in1_dv + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
     _bua = _r1a - _r2a
     _bna = _a2r * _r1a + _ar * _r2a
     _bax = _bua * _sdx + _bna * _tnx
@@ -560,8 +560,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _bnv = _a2r * _r1v + _ar * _r2v
     _bvx = _buv * _sdx + _bnv * _tnx
     _bvy = _buv * _sdy + _bnv * _tny
-    _r1a = 545.8937625582472 * 0.0 + 0.0 * 0.0 - ((_bvx - _p_K_dx) * (_bvx - _p_K_dx) + (_bvy - _p_K_dy) * (_bvy - _p_K_dy)) + (_e1x * _p_K_ddx + _e1y * _p_K_ddy)
-    _r2a = 340.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
+    _r1a = 545.8937625582472 * 0.0 + 0.0 * 0.0 + (_e1x * _p_K_ddx + _e1y * _p_K_ddy) - ((_bvx - _p_K_dx) * (_bvx - _p_K_dx) + (_bvy - _p_K_dy) * (_bvy - _p_K_dy))
+    _r2a = 340.0 * 0.0 + 0.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
     _bua = _r1a - _r2a
     _bna = _a2r * _r1a + _ar * _r2a
     _bax = _bua * _sdx + _bna * _tnx

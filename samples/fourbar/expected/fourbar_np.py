@@ -472,8 +472,8 @@ def RRR_links_still_j2(j1, j2, l1, l2, minv):
     bvy = buv * sdy + bnv * tny
     _t14 = bvx - j1_dx
     _t15 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t14 * _t14 + _t15 * _t15) + (e1x * j1_ddx + e1y * j1_ddy)
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (bvx * bvx + bvy * bvy) + _t13
+    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - (_t14 * _t14 + _t15 * _t15)
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv + _t13 - (bvx * bvx + bvy * bvy)
     bua = r1a - r2a
     bna = a2r * r1a + ar * r2a
     bax = bua * sdx + bna * tnx

@@ -459,10 +459,10 @@ def RRR_links(j1, j2, l1, l2, minv):
     bvy = buv * sdy + bnv * tny
     _t13 = bvx - j1_dx
     _t14 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t13 * _t13 + _t14 * _t14) + (e1x * j1_ddx + e1y * j1_ddy)
+    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - (_t13 * _t13 + _t14 * _t14)
     _t15 = bvx - j2_dx
     _t16 = bvy - j2_dy
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (_t15 * _t15 + _t16 * _t16) + (e2x * j2_ddx + e2y * j2_ddy)
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv + (e2x * j2_ddx + e2y * j2_ddy) - (_t15 * _t15 + _t16 * _t16)
     bua = r1a - r2a
     bna = a2r * r1a + ar * r2a
     bax = bua * sdx + bna * tnx
@@ -747,8 +747,8 @@ def RRR_links_still_j2(j1, j2, l1, l2, minv):
     bvy = buv * sdy + bnv * tny
     _t14 = bvx - j1_dx
     _t15 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv - (_t14 * _t14 + _t15 * _t15) + (e1x * j1_ddx + e1y * j1_ddy)
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (bvx * bvx + bvy * bvy) + _t13
+    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - (_t14 * _t14 + _t15 * _t15)
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv + _t13 - (bvx * bvx + bvy * bvy)
     bua = r1a - r2a
     bna = a2r * r1a + ar * r2a
     bax = bua * sdx + bna * tnx
