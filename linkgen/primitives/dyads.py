@@ -22,8 +22,6 @@ def RRR_links(b: PlaneBuilder) -> Primitive:
     d = b.vec("d", j2.p - j1.p)
     dd = b.let("dd", d.dot(d))
     q = b.let("q", sqrt(dd))
-    iq = b.let("iq", select(q.eq(0), NAN, 1 / q))
-    u = b.vec("u", Vec(d.x * iq, d.y * iq))
     # Kahan's area formula on the sorted sides x >= y >= z
     hi = b.let("hi", fmax(l1.v, l2.v))
     lo = b.let("lo", fmin(l1.v, l2.v))
@@ -34,16 +32,22 @@ def RRR_links(b: PlaneBuilder) -> Primitive:
     fail = b.let("fail", either(either(k < -TOGGLE_SLACK * EPS * x, q.eq(0)), lo <= 0))
     kk = b.let("kk", fmax(k, 0))
     # 4 x the triangle's area.  Open (each of (l1 + l2)^2 - q^2 and q^2 - (l1 - l2)^2 over a third of its
-    # first term, so neither cancels more than 1.6 bits): sqrt of their product, from q^2 alone, while the
-    # square root of q is still running (the chain's critical path loses a square root, docs/primitives.md);
-    # else, near a toggle, Kahan's formula on the sorted sides, which needs q.
+    # first term, so neither cancels more than 1.6 bits): sqrt of their product, from q^2 alone; else, near a
+    # toggle, Kahan's formula on the sorted sides, which needs q.
     s2 = b.let("s2", (l1.v + l2.v) * (l1.v + l2.v))
     t2 = b.let("t2", (l1.v - l2.v) * (l1.v - l2.v))
     o1 = b.let("o1", s2 - dd)
     o2 = b.let("o2", dd - t2)
+    is_open = Logic("and", 3 * o1 > s2, 3 * o2 > dd)  # written out where read: the sympy oracle differentiates lets
     kahan = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
-    area4 = b.let("area4", select(Logic("and", 3 * o1 > s2, 3 * o2 > dd), sqrt(o1 * o2), kahan))
-    h = b.let("h", area4 * iq / 2)
+    area4 = b.let("area4", select(is_open, sqrt(o1 * o2), kahan))
+    # jb - j1 = e1 = A d + area4 M n(d), with A = a / q (a: jb's distance along d) and M = minv / (2 q^2):
+    # on the open triangle A = (q^2 + l1^2 - l2^2) / (2 q^2) from q^2 alone, so that neither square root
+    # waits for the other and no division waits for a square root (docs/primitives.md); else from q.
+    idd2 = b.let("idd2", select(dd.eq(0), NAN, 0.5 / dd))
+    c = b.let("c", (l1.v - l2.v) * (l1.v + l2.v))
+    # near a toggle, from q
+    iq = b.let("iq", select(q.eq(0), NAN, 1 / q))
     a = b.let("a", (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2)
     a2 = b.let("a2", (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2)
     # At a toggle (k <= 0: the circles touch, or miss by rounding) jb lies on the line: halfway
@@ -52,30 +56,42 @@ def RRR_links(b: PlaneBuilder) -> Primitive:
     flat = b.let("flat", select(q >= hi, (l1.v + (q - l2.v)) / 2,
                                 select(l1.v >= l2.v, (l1.v + (q + l2.v)) / 2, (q - (l1.v + l2.v)) / 2)))
     at = b.let("at", select(k > 0, a, flat))
-    hn = b.let("hn", minv * h)
-    e1 = b.local("e1", u, at, hn)
+    ao = b.let("ao", (dd + c) * idd2)
+    mi = b.let("mi", minv * idd2)
+    m = b.vec("m", Vec(-mi * d.y, mi * d.x))
+    # else in the chain's frame (u, n), u = d / q: e1 = at u + hn n, exact at an exact toggle
+    u = b.vec("u", Vec(d.x * iq, d.y * iq))
+    hn = b.let("hn", minv * (area4 * iq / 2))
+    e1 = b.vec("e1", Vec(select(is_open, ao * d.x + area4 * m.x, at * u.x - hn * u.y),
+                         select(is_open, ao * d.y + area4 * m.y, at * u.y + hn * u.x)))
     # times a reciprocal of the lengths alone: a C compiler folds it where they are the sketch's constants
     ratio = b.let("ratio", select(fail, 0, area4 * (0.5 / (l1.v * l2.v))))
     sigma = b.let("sigma", fmin(ratio, 1))
-    # derivatives: (jb - ji).(jb' - ji') = li li', solved in the (u, n) frame:
-    #   a bu + hn bn = r1,  -a2 bu + hn bn = r2   (determinant hn q)
-    e2 = b.local("e2", u, -a2, hn)
-    ihq = b.let("ihq", select(hn.eq(0), NAN, 1 / (hn * q)))
+    # derivatives: (jb - ji).(jb' - ji') = li li', solved in the (u, n) frame of u = d / q:
+    #   a bu + hn bn = r1,  -a2 bu + hn bn = r2   (determinant hn q = minv area4 / 2)
+    # jb' = bu u + bn n = (r1 - r2) d / q^2 + (A2 r1 + A r2) n(d) / (hn q), A = a / q and A2 = a2 / q
+    ar = b.let("ar", select(is_open, ao, a * iq))
+    a2r = b.let("a2r", select(is_open, (dd - c) * idd2, a2 * iq))
+    e2 = b.vec("e2", Vec(-a2r * d.x + area4 * m.x, -a2r * d.y + area4 * m.y))
+    sd = b.vec("sd", d.scaled(2 * idd2))
+    ihq = b.let("ihq", select(area4.eq(0), NAN, 2 * minv / area4))
+    tn = b.vec("tn", Vec(-ihq * d.y, ihq * d.x))
 
     def solve(tag: str, rhs1: Expr, rhs2: Expr) -> Vec:
         r1 = b.let(f"r1{tag}", rhs1)
         r2 = b.let(f"r2{tag}", rhs2)
-        bu = b.let(f"bu{tag}", (r1 - r2) * iq)
-        bn = b.let(f"bn{tag}", (a2 * r1 + a * r2) * ihq)
-        return b.local(f"b{tag}", u, bu, bn)
+        bu = b.let(f"bu{tag}", r1 - r2)
+        bn = b.let(f"bn{tag}", a2r * r1 + ar * r2)
+        return b.vec(f"b{tag}", Vec(bu * sd.x + bn * tn.x, bu * sd.y + bn * tn.y))
 
     vel = solve("v", l1.v * l1.dv + e1.dot(j1.v), l2.v * l2.dv + e2.dot(j2.v))
     w1 = vel - j1.v
     w2 = vel - j2.v
+    # |wi|^2 subtracted last: it waits for jb's velocity, the rest for positions and the ends' rates
     acc = solve(
         "a",
-        l1.v * l1.ddv + l1.dv * l1.dv - w1.dot(w1) + e1.dot(j1.a),
-        l2.v * l2.ddv + l2.dv * l2.dv - w2.dot(w2) + e2.dot(j2.a),
+        l1.v * l1.ddv + l1.dv * l1.dv + e1.dot(j1.a) - w1.dot(w1),
+        l2.v * l2.ddv + l2.dv * l2.dv + e2.dot(j2.a) - w2.dot(w2),
     )
     b.output_point("jb", Motion(j1.p + e1, vel, acc))
     return b.build(status=chain_status(fail, sigma), sigma=sigma, fail=fail)

@@ -109,5 +109,5 @@ def test_an_inlined_call_names_its_locals_with_an_underscore():
     lines = inline_lines(PRIMITIVES["RRR_links"], 0, ["w.p_A", "p_O2", ["78.1"], "w.l", "-1"], ["w.p_B"], "s", ["x"])
     assigned = {line.split(" = ")[0] for line in lines if " = " in line and not line.startswith(" ")}
     assert all(name.startswith(("_", "st", "s", "w.p_B")) for name in assigned), assigned
-    assert "_l1_v" not in "\n".join(lines) and "78.1" in "\n".join(lines) and "(-1) * _h" in "\n".join(lines)
+    assert "_l1_v" not in "\n".join(lines) and "78.1" in "\n".join(lines) and "(-1) * _idd2" in "\n".join(lines)
     assert "_l2_v, = w.l" in lines

@@ -226,9 +226,6 @@ def RRR_links(j1, j2, l1, l2, minv):
     dy = j2_y - j1_y
     dd = dx * dx + dy * dy
     q = sqrt(dd)
-    iq = NAN if q == 0 else 1 / q
-    ux = dx * iq
-    uy = dy * iq
     hi = (l2_v if l2_v > l1_v else l1_v)
     lo = (l2_v if l2_v < l1_v else l1_v)
     x = (q if q > hi else hi)
@@ -242,31 +239,45 @@ def RRR_links(j1, j2, l1, l2, minv):
     o1 = s2 - dd
     o2 = dd - t2
     area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
-    h = area4 * iq / 2
+    idd2 = NAN if dd == 0 else 0.5 / dd
+    c = (l1_v - l2_v) * (l1_v + l2_v)
+    iq = NAN if q == 0 else 1 / q
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
     a2 = (q + (l2_v - l1_v) * ((l1_v + l2_v) * iq)) / 2
     flat = (l1_v + (q - l2_v)) / 2 if q >= hi else (l1_v + (q + l2_v)) / 2 if l1_v >= l2_v else (q - (l1_v + l2_v)) / 2
     at = a if k > 0 else flat
-    hn = minv * h
-    e1x = at * ux - hn * uy
-    e1y = at * uy + hn * ux
+    ao = (dd + c) * idd2
+    mi = minv * idd2
+    mx = -mi * dy
+    my = mi * dx
+    ux = dx * iq
+    uy = dy * iq
+    hn = minv * (area4 * iq / 2)
+    e1x = ao * dx + area4 * mx if 3 * o1 > s2 and 3 * o2 > dd else at * ux - hn * uy
+    e1y = ao * dy + area4 * my if 3 * o1 > s2 and 3 * o2 > dd else at * uy + hn * ux
     ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
     sigma = (1 if 1 < ratio else ratio)
-    e2x = -a2 * ux - hn * uy
-    e2y = -a2 * uy + hn * ux
-    ihq = NAN if hn == 0 else 1 / (hn * q)
+    ar = ao if 3 * o1 > s2 and 3 * o2 > dd else a * iq
+    a2r = (dd - c) * idd2 if 3 * o1 > s2 and 3 * o2 > dd else a2 * iq
+    e2x = -a2r * dx + area4 * mx
+    e2y = -a2r * dy + area4 * my
+    sdx = 2 * idd2 * dx
+    sdy = 2 * idd2 * dy
+    ihq = NAN if area4 == 0 else 2 * minv / area4
+    tnx = -ihq * dy
+    tny = ihq * dx
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
-    buv = (r1v - r2v) * iq
-    bnv = (a2 * r1v + a * r2v) * ihq
-    bvx = buv * ux - bnv * uy
-    bvy = buv * uy + bnv * ux
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy)) + (e1x * j1_ddx + e1y * j1_ddy)
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv - ((bvx - j2_dx) * (bvx - j2_dx) + (bvy - j2_dy) * (bvy - j2_dy)) + (e2x * j2_ddx + e2y * j2_ddy)
-    bua = (r1a - r2a) * iq
-    bna = (a2 * r1a + a * r2a) * ihq
-    bax = bua * ux - bna * uy
-    bay = bua * uy + bna * ux
+    buv = r1v - r2v
+    bnv = a2r * r1v + ar * r2v
+    bvx = buv * sdx + bnv * tnx
+    bvy = buv * sdy + bnv * tny
+    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy))
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv + (e2x * j2_ddx + e2y * j2_ddy) - ((bvx - j2_dx) * (bvx - j2_dx) + (bvy - j2_dy) * (bvy - j2_dy))
+    bua = r1a - r2a
+    bna = a2r * r1a + ar * r2a
+    bax = bua * sdx + bna * tnx
+    bay = bua * sdy + bna * tny
     st = 1 if fail else 3 if sigma < 1e-07 else 4 if sigma < 0.001 else 0
     if st == 1:
         return st, sigma, (NAN, NAN, NAN, NAN, NAN, NAN)
@@ -371,9 +382,6 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _dy = 556.0 - 256.0
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (_in1_v if _in1_v > 565.685424949238 else 565.685424949238)
     _lo = (_in1_v if _in1_v < 565.685424949238 else 565.685424949238)
     _x = (_q if _q > _hi else _hi)
@@ -387,31 +395,45 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (565.685424949238 - _in1_v) * (565.685424949238 + _in1_v)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (565.685424949238 - _in1_v) * ((565.685424949238 + _in1_v) * _iq)) / 2
     _a2 = (_q + (_in1_v - 565.685424949238) * ((565.685424949238 + _in1_v) * _iq)) / 2
     _flat = (565.685424949238 + (_q - _in1_v)) / 2 if _q >= _hi else (565.685424949238 + (_q + _in1_v)) / 2 if 565.685424949238 >= _in1_v else (_q - (565.685424949238 + _in1_v)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = (-1) * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = (-1) * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = (-1) * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (565.685424949238 * _in1_v))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * (-1) / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 565.685424949238 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
     _r2v = _in1_v * _in1_dv + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 565.685424949238 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = _in1_v * _in1_ddv + _in1_dv * _in1_dv - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 565.685424949238 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = _in1_v * _in1_ddv + _in1_dv * _in1_dv + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[2] = _sigma
     if st == 1:
@@ -492,9 +514,6 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _dy = 256.0 - _p_K_y
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (340.0 if 340.0 > 545.8937625582472 else 545.8937625582472)
     _lo = (340.0 if 340.0 < 545.8937625582472 else 545.8937625582472)
     _x = (_q if _q > _hi else _hi)
@@ -508,31 +527,45 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (545.8937625582472 - 340.0) * (545.8937625582472 + 340.0)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (545.8937625582472 - 340.0) * ((545.8937625582472 + 340.0) * _iq)) / 2
     _a2 = (_q + (340.0 - 545.8937625582472) * ((545.8937625582472 + 340.0) * _iq)) / 2
     _flat = (545.8937625582472 + (_q - 340.0)) / 2 if _q >= _hi else (545.8937625582472 + (_q + 340.0)) / 2 if 545.8937625582472 >= 340.0 else (_q - (545.8937625582472 + 340.0)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = 1 * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = 1 * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = 1 * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (545.8937625582472 * 340.0))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * 1 / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 545.8937625582472 * 0.0 + (_e1x * _p_K_dx + _e1y * _p_K_dy)
     _r2v = 340.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 545.8937625582472 * 0.0 + 0.0 * 0.0 - ((_bvx - _p_K_dx) * (_bvx - _p_K_dx) + (_bvy - _p_K_dy) * (_bvy - _p_K_dy)) + (_e1x * _p_K_ddx + _e1y * _p_K_ddy)
-    _r2a = 340.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 545.8937625582472 * 0.0 + 0.0 * 0.0 + (_e1x * _p_K_ddx + _e1y * _p_K_ddy) - ((_bvx - _p_K_dx) * (_bvx - _p_K_dx) + (_bvy - _p_K_dy) * (_bvy - _p_K_dy))
+    _r2a = 340.0 * 0.0 + 0.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[4] = _sigma
     if st == 1:

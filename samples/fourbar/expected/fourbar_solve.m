@@ -377,13 +377,6 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     dy = j2.y - j1.y;
     dd = dx * dx + dy * dy;
     q = sqrt(dd);
-    if q == 0
-        iq = NaN;
-    else
-        iq = 1 / q;
-    end
-    ux = dx * iq;
-    uy = dy * iq;
     hi = max(l1.v, l2.v);
     lo = min(l1.v, l2.v);
     x = max(hi, q);
@@ -407,7 +400,17 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     else
         area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
     end
-    h = area4 * iq / 2;
+    if dd == 0
+        idd2 = NaN;
+    else
+        idd2 = 0.5 / dd;
+    end
+    c = (l1.v - l2.v) * (l1.v + l2.v);
+    if q == 0
+        iq = NaN;
+    else
+        iq = 1 / q;
+    end
     a = (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2;
     a2 = (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2;
     if q >= hi
@@ -422,34 +425,62 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     else
         at = flat;
     end
-    hn = minv * h;
-    e1x = at * ux - hn * uy;
-    e1y = at * uy + hn * ux;
+    ao = (dd + c) * idd2;
+    mi = minv * idd2;
+    mx = -mi * dy;
+    my = mi * dx;
+    ux = dx * iq;
+    uy = dy * iq;
+    hn = minv * (area4 * iq / 2);
+    if 3 * o1 > s2 && 3 * o2 > dd
+        e1x = ao * dx + area4 * mx;
+    else
+        e1x = at * ux - hn * uy;
+    end
+    if 3 * o1 > s2 && 3 * o2 > dd
+        e1y = ao * dy + area4 * my;
+    else
+        e1y = at * uy + hn * ux;
+    end
     if fail
         ratio = 0;
     else
         ratio = area4 * (0.5 / (l1.v * l2.v));
     end
     sigma = min(ratio, 1);
-    e2x = -a2 * ux - hn * uy;
-    e2y = -a2 * uy + hn * ux;
-    if hn == 0
+    if 3 * o1 > s2 && 3 * o2 > dd
+        ar = ao;
+    else
+        ar = a * iq;
+    end
+    if 3 * o1 > s2 && 3 * o2 > dd
+        a2r = (dd - c) * idd2;
+    else
+        a2r = a2 * iq;
+    end
+    e2x = -a2r * dx + area4 * mx;
+    e2y = -a2r * dy + area4 * my;
+    sdx = 2 * idd2 * dx;
+    sdy = 2 * idd2 * dy;
+    if area4 == 0
         ihq = NaN;
     else
-        ihq = 1 / (hn * q);
+        ihq = 2 * minv / area4;
     end
+    tnx = -ihq * dy;
+    tny = ihq * dx;
     r1v = l1.v * l1.dv + (e1x * j1.dx + e1y * j1.dy);
     r2v = l2.v * l2.dv + (e2x * j2.dx + e2y * j2.dy);
-    buv = (r1v - r2v) * iq;
-    bnv = (a2 * r1v + a * r2v) * ihq;
-    bvx = buv * ux - bnv * uy;
-    bvy = buv * uy + bnv * ux;
-    r1a = l1.v * l1.ddv + l1.dv * l1.dv - ((bvx - j1.dx) * (bvx - j1.dx) + (bvy - j1.dy) * (bvy - j1.dy)) + (e1x * j1.ddx + e1y * j1.ddy);
-    r2a = l2.v * l2.ddv + l2.dv * l2.dv - ((bvx - j2.dx) * (bvx - j2.dx) + (bvy - j2.dy) * (bvy - j2.dy)) + (e2x * j2.ddx + e2y * j2.ddy);
-    bua = (r1a - r2a) * iq;
-    bna = (a2 * r1a + a * r2a) * ihq;
-    bax = bua * ux - bna * uy;
-    bay = bua * uy + bna * ux;
+    buv = r1v - r2v;
+    bnv = a2r * r1v + ar * r2v;
+    bvx = buv * sdx + bnv * tnx;
+    bvy = buv * sdy + bnv * tny;
+    r1a = l1.v * l1.ddv + l1.dv * l1.dv + (e1x * j1.ddx + e1y * j1.ddy) - ((bvx - j1.dx) * (bvx - j1.dx) + (bvy - j1.dy) * (bvy - j1.dy));
+    r2a = l2.v * l2.ddv + l2.dv * l2.dv + (e2x * j2.ddx + e2y * j2.ddy) - ((bvx - j2.dx) * (bvx - j2.dx) + (bvy - j2.dy) * (bvy - j2.dy));
+    bua = r1a - r2a;
+    bna = a2r * r1a + ar * r2a;
+    bax = bua * sdx + bna * tnx;
+    bay = bua * sdy + bna * tny;
     if fail
         st = 1;
     elseif sigma < 1e-07

@@ -109,9 +109,6 @@ def RRR_links(j1, j2, l1, l2, minv):
     dy = j2_y - j1_y
     dd = dx * dx + dy * dy
     q = sqrt(dd)
-    iq = NAN if q == 0 else 1 / q
-    ux = dx * iq
-    uy = dy * iq
     hi = (l2_v if l2_v > l1_v else l1_v)
     lo = (l2_v if l2_v < l1_v else l1_v)
     x = (q if q > hi else hi)
@@ -125,25 +122,39 @@ def RRR_links(j1, j2, l1, l2, minv):
     o1 = s2 - dd
     o2 = dd - t2
     area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
-    h = area4 * iq / 2
+    idd2 = NAN if dd == 0 else 0.5 / dd
+    c = (l1_v - l2_v) * (l1_v + l2_v)
+    iq = NAN if q == 0 else 1 / q
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
     a2 = (q + (l2_v - l1_v) * ((l1_v + l2_v) * iq)) / 2
     flat = (l1_v + (q - l2_v)) / 2 if q >= hi else (l1_v + (q + l2_v)) / 2 if l1_v >= l2_v else (q - (l1_v + l2_v)) / 2
     at = a if k > 0 else flat
-    hn = minv * h
-    e1x = at * ux - hn * uy
-    e1y = at * uy + hn * ux
+    ao = (dd + c) * idd2
+    mi = minv * idd2
+    mx = -mi * dy
+    my = mi * dx
+    ux = dx * iq
+    uy = dy * iq
+    hn = minv * (area4 * iq / 2)
+    e1x = ao * dx + area4 * mx if 3 * o1 > s2 and 3 * o2 > dd else at * ux - hn * uy
+    e1y = ao * dy + area4 * my if 3 * o1 > s2 and 3 * o2 > dd else at * uy + hn * ux
     ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
     sigma = (1 if 1 < ratio else ratio)
-    e2x = -a2 * ux - hn * uy
-    e2y = -a2 * uy + hn * ux
-    ihq = NAN if hn == 0 else 1 / (hn * q)
+    ar = ao if 3 * o1 > s2 and 3 * o2 > dd else a * iq
+    a2r = (dd - c) * idd2 if 3 * o1 > s2 and 3 * o2 > dd else a2 * iq
+    e2x = -a2r * dx + area4 * mx
+    e2y = -a2r * dy + area4 * my
+    sdx = 2 * idd2 * dx
+    sdy = 2 * idd2 * dy
+    ihq = NAN if area4 == 0 else 2 * minv / area4
+    tnx = -ihq * dy
+    tny = ihq * dx
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
-    buv = (r1v - r2v) * iq
-    bnv = (a2 * r1v + a * r2v) * ihq
-    bvx = buv * ux - bnv * uy
-    bvy = buv * uy + bnv * ux
+    buv = r1v - r2v
+    bnv = a2r * r1v + ar * r2v
+    bvx = buv * sdx + bnv * tnx
+    bvy = buv * sdy + bnv * tny
     st = 1 if fail else 3 if sigma < 1e-07 else 4 if sigma < 0.001 else 0
     if st == 1:
         return st, sigma, (NAN, NAN, NAN, NAN)
@@ -210,9 +221,6 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _dy = 24.2 - _p_A_y
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (41.499999999969184 if 41.499999999969184 > 49.999999999951626 else 49.999999999951626)
     _lo = (41.499999999969184 if 41.499999999969184 < 49.999999999951626 else 49.999999999951626)
     _x = (_q if _q > _hi else _hi)
@@ -226,25 +234,39 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (49.999999999951626 - 41.499999999969184) * (49.999999999951626 + 41.499999999969184)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (49.999999999951626 - 41.499999999969184) * ((49.999999999951626 + 41.499999999969184) * _iq)) / 2
     _a2 = (_q + (41.499999999969184 - 49.999999999951626) * ((49.999999999951626 + 41.499999999969184) * _iq)) / 2
     _flat = (49.999999999951626 + (_q - 41.499999999969184)) / 2 if _q >= _hi else (49.999999999951626 + (_q + 41.499999999969184)) / 2 if 49.999999999951626 >= 41.499999999969184 else (_q - (49.999999999951626 + 41.499999999969184)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = (-1) * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = (-1) * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = (-1) * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (49.999999999951626 * 41.499999999969184))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * (-1) / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 49.999999999951626 * 0.0 + (_e1x * _p_A_dx + _e1y * _p_A_dy)
     _r2v = 41.499999999969184 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[3] = _sigma
     if st == 1:
@@ -288,9 +310,6 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _dy = 24.2 - _p_A_y
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (39.30000000001047 if 39.30000000001047 > 61.90000000003217 else 61.90000000003217)
     _lo = (39.30000000001047 if 39.30000000001047 < 61.90000000003217 else 61.90000000003217)
     _x = (_q if _q > _hi else _hi)
@@ -304,25 +323,39 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (61.90000000003217 - 39.30000000001047) * (61.90000000003217 + 39.30000000001047)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (61.90000000003217 - 39.30000000001047) * ((61.90000000003217 + 39.30000000001047) * _iq)) / 2
     _a2 = (_q + (39.30000000001047 - 61.90000000003217) * ((61.90000000003217 + 39.30000000001047) * _iq)) / 2
     _flat = (61.90000000003217 + (_q - 39.30000000001047)) / 2 if _q >= _hi else (61.90000000003217 + (_q + 39.30000000001047)) / 2 if 61.90000000003217 >= 39.30000000001047 else (_q - (61.90000000003217 + 39.30000000001047)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = 1 * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = 1 * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = 1 * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (61.90000000003217 * 39.30000000001047))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * 1 / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 61.90000000003217 * 0.0 + (_e1x * _p_A_dx + _e1y * _p_A_dy)
     _r2v = 39.30000000001047 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[5] = _sigma
     if st == 1:
@@ -341,9 +374,6 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _dy = _p_E_y - _p_D_y
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (36.69999999999471 if 36.69999999999471 > 39.39999999995135 else 39.39999999995135)
     _lo = (36.69999999999471 if 36.69999999999471 < 39.39999999995135 else 39.39999999995135)
     _x = (_q if _q > _hi else _hi)
@@ -357,25 +387,39 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (39.39999999995135 - 36.69999999999471) * (39.39999999995135 + 36.69999999999471)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (39.39999999995135 - 36.69999999999471) * ((39.39999999995135 + 36.69999999999471) * _iq)) / 2
     _a2 = (_q + (36.69999999999471 - 39.39999999995135) * ((39.39999999995135 + 36.69999999999471) * _iq)) / 2
     _flat = (39.39999999995135 + (_q - 36.69999999999471)) / 2 if _q >= _hi else (39.39999999995135 + (_q + 36.69999999999471)) / 2 if 39.39999999995135 >= 36.69999999999471 else (_q - (39.39999999995135 + 36.69999999999471)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = (-1) * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = (-1) * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = (-1) * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (39.39999999995135 * 36.69999999999471))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * (-1) / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 39.39999999995135 * 0.0 + (_e1x * _p_D_dx + _e1y * _p_D_dy)
     _r2v = 36.69999999999471 * 0.0 + (_e2x * _p_E_dx + _e2y * _p_E_dy)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[6] = _sigma
     if st == 1:

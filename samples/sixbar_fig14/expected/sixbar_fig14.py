@@ -278,9 +278,6 @@ def RRR_links(j1, j2, l1, l2, minv):
     dy = j2_y - j1_y
     dd = dx * dx + dy * dy
     q = sqrt(dd)
-    iq = NAN if q == 0 else 1 / q
-    ux = dx * iq
-    uy = dy * iq
     hi = (l2_v if l2_v > l1_v else l1_v)
     lo = (l2_v if l2_v < l1_v else l1_v)
     x = (q if q > hi else hi)
@@ -294,31 +291,45 @@ def RRR_links(j1, j2, l1, l2, minv):
     o1 = s2 - dd
     o2 = dd - t2
     area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
-    h = area4 * iq / 2
+    idd2 = NAN if dd == 0 else 0.5 / dd
+    c = (l1_v - l2_v) * (l1_v + l2_v)
+    iq = NAN if q == 0 else 1 / q
     a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
     a2 = (q + (l2_v - l1_v) * ((l1_v + l2_v) * iq)) / 2
     flat = (l1_v + (q - l2_v)) / 2 if q >= hi else (l1_v + (q + l2_v)) / 2 if l1_v >= l2_v else (q - (l1_v + l2_v)) / 2
     at = a if k > 0 else flat
-    hn = minv * h
-    e1x = at * ux - hn * uy
-    e1y = at * uy + hn * ux
+    ao = (dd + c) * idd2
+    mi = minv * idd2
+    mx = -mi * dy
+    my = mi * dx
+    ux = dx * iq
+    uy = dy * iq
+    hn = minv * (area4 * iq / 2)
+    e1x = ao * dx + area4 * mx if 3 * o1 > s2 and 3 * o2 > dd else at * ux - hn * uy
+    e1y = ao * dy + area4 * my if 3 * o1 > s2 and 3 * o2 > dd else at * uy + hn * ux
     ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
     sigma = (1 if 1 < ratio else ratio)
-    e2x = -a2 * ux - hn * uy
-    e2y = -a2 * uy + hn * ux
-    ihq = NAN if hn == 0 else 1 / (hn * q)
+    ar = ao if 3 * o1 > s2 and 3 * o2 > dd else a * iq
+    a2r = (dd - c) * idd2 if 3 * o1 > s2 and 3 * o2 > dd else a2 * iq
+    e2x = -a2r * dx + area4 * mx
+    e2y = -a2r * dy + area4 * my
+    sdx = 2 * idd2 * dx
+    sdy = 2 * idd2 * dy
+    ihq = NAN if area4 == 0 else 2 * minv / area4
+    tnx = -ihq * dy
+    tny = ihq * dx
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
-    buv = (r1v - r2v) * iq
-    bnv = (a2 * r1v + a * r2v) * ihq
-    bvx = buv * ux - bnv * uy
-    bvy = buv * uy + bnv * ux
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy)) + (e1x * j1_ddx + e1y * j1_ddy)
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv - ((bvx - j2_dx) * (bvx - j2_dx) + (bvy - j2_dy) * (bvy - j2_dy)) + (e2x * j2_ddx + e2y * j2_ddy)
-    bua = (r1a - r2a) * iq
-    bna = (a2 * r1a + a * r2a) * ihq
-    bax = bua * ux - bna * uy
-    bay = bua * uy + bna * ux
+    buv = r1v - r2v
+    bnv = a2r * r1v + ar * r2v
+    bvx = buv * sdx + bnv * tnx
+    bvy = buv * sdy + bnv * tny
+    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy))
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv + (e2x * j2_ddx + e2y * j2_ddy) - ((bvx - j2_dx) * (bvx - j2_dx) + (bvy - j2_dy) * (bvy - j2_dy))
+    bua = r1a - r2a
+    bna = a2r * r1a + ar * r2a
+    bax = bua * sdx + bna * tnx
+    bay = bua * sdy + bna * tny
     st = 1 if fail else 3 if sigma < 1e-07 else 4 if sigma < 0.001 else 0
     if st == 1:
         return st, sigma, (NAN, NAN, NAN, NAN, NAN, NAN)
@@ -904,9 +915,6 @@ def _group_1(w, a, da, dda, live):
     _dy = _j2_y - (-48.0)
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (_l2_v if _l2_v > 65.19202405202648 else 65.19202405202648)
     _lo = (_l2_v if _l2_v < 65.19202405202648 else 65.19202405202648)
     _x = (_q if _q > _hi else _hi)
@@ -920,31 +928,45 @@ def _group_1(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (65.19202405202648 - _l2_v) * (65.19202405202648 + _l2_v)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _flat = (65.19202405202648 + (_q - _l2_v)) / 2 if _q >= _hi else (65.19202405202648 + (_q + _l2_v)) / 2 if 65.19202405202648 >= _l2_v else (_q - (65.19202405202648 + _l2_v)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (65.19202405202648 * _l2_v))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 65.19202405202648 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
     _r2v = _l2_v * _l2_dv + (_e2x * _j2_dx + _e2y * _j2_dy)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 65.19202405202648 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy)) + (_e2x * _j2_ddx + _e2y * _j2_ddy)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 65.19202405202648 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv + (_e2x * _j2_ddx + _e2y * _j2_ddy) - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[4] = _sigma
     if st == 1:
@@ -965,9 +987,6 @@ def _group_1(w, a, da, dda, live):
     _dy = _j2_y - (-48.0)
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (105.11898020814318 if 105.11898020814318 > 70.0 else 70.0)
     _lo = (105.11898020814318 if 105.11898020814318 < 70.0 else 70.0)
     _x = (_q if _q > _hi else _hi)
@@ -981,31 +1000,45 @@ def _group_1(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (70.0 - 105.11898020814318) * (70.0 + 105.11898020814318)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _flat = (70.0 + (_q - 105.11898020814318)) / 2 if _q >= _hi else (70.0 + (_q + 105.11898020814318)) / 2 if 70.0 >= 105.11898020814318 else (_q - (70.0 + 105.11898020814318)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (70.0 * 105.11898020814318))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 70.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
     _r2v = 105.11898020814318 * 0.0 + (_e2x * _j2_dx + _e2y * _j2_dy)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 70.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = 105.11898020814318 * 0.0 + 0.0 * 0.0 - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy)) + (_e2x * _j2_ddx + _e2y * _j2_ddy)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 70.0 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = 105.11898020814318 * 0.0 + 0.0 * 0.0 + (_e2x * _j2_ddx + _e2y * _j2_ddy) - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[5] = _sigma
     if st == 1:
@@ -1090,9 +1123,6 @@ def _group_1_v1(w, a, da, dda, live):
     _dy = _j2_y - (-48.0)
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (_l2_v if _l2_v > 70.0 else 70.0)
     _lo = (_l2_v if _l2_v < 70.0 else 70.0)
     _x = (_q if _q > _hi else _hi)
@@ -1106,31 +1136,45 @@ def _group_1_v1(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (70.0 - _l2_v) * (70.0 + _l2_v)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
     _flat = (70.0 + (_q - _l2_v)) / 2 if _q >= _hi else (70.0 + (_q + _l2_v)) / 2 if 70.0 >= _l2_v else (_q - (70.0 + _l2_v)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (70.0 * _l2_v))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 70.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
     _r2v = _l2_v * _l2_dv + (_e2x * _j2_dx + _e2y * _j2_dy)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 70.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy)) + (_e2x * _j2_ddx + _e2y * _j2_ddy)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 70.0 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv + (_e2x * _j2_ddx + _e2y * _j2_ddy) - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[14] = _sigma
     if st == 1:
@@ -1151,9 +1195,6 @@ def _group_1_v1(w, a, da, dda, live):
     _dy = (-48.0) - _j1_y
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (65.19202405202648 if 65.19202405202648 > 105.11898020814318 else 105.11898020814318)
     _lo = (65.19202405202648 if 65.19202405202648 < 105.11898020814318 else 105.11898020814318)
     _x = (_q if _q > _hi else _hi)
@@ -1167,31 +1208,45 @@ def _group_1_v1(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _flat = (105.11898020814318 + (_q - 65.19202405202648)) / 2 if _q >= _hi else (105.11898020814318 + (_q + 65.19202405202648)) / 2 if 105.11898020814318 >= 65.19202405202648 else (_q - (105.11898020814318 + 65.19202405202648)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (105.11898020814318 * 65.19202405202648))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 105.11898020814318 * 0.0 + (_e1x * _j1_dx + _e1y * _j1_dy)
     _r2v = 65.19202405202648 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 105.11898020814318 * 0.0 + 0.0 * 0.0 - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy)) + (_e1x * _j1_ddx + _e1y * _j1_ddy)
-    _r2a = 65.19202405202648 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 105.11898020814318 * 0.0 + 0.0 * 0.0 + (_e1x * _j1_ddx + _e1y * _j1_ddy) - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy))
+    _r2a = 65.19202405202648 * 0.0 + 0.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[15] = _sigma
     if st == 1:
@@ -1275,9 +1330,6 @@ def _group_1_v2(w, a, da, dda, live):
     _dy = (-48.0) - (-48.0)
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (_l2_v if _l2_v > 65.19202405202648 else 65.19202405202648)
     _lo = (_l2_v if _l2_v < 65.19202405202648 else 65.19202405202648)
     _x = (_q if _q > _hi else _hi)
@@ -1291,31 +1343,45 @@ def _group_1_v2(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (65.19202405202648 - _l2_v) * (65.19202405202648 + _l2_v)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _flat = (65.19202405202648 + (_q - _l2_v)) / 2 if _q >= _hi else (65.19202405202648 + (_q + _l2_v)) / 2 if 65.19202405202648 >= _l2_v else (_q - (65.19202405202648 + _l2_v)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (65.19202405202648 * _l2_v))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 65.19202405202648 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
     _r2v = _l2_v * _l2_dv + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 65.19202405202648 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 65.19202405202648 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[18] = _sigma
     if st == 1:
@@ -1336,9 +1402,6 @@ def _group_1_v2(w, a, da, dda, live):
     _dy = _j2_y - (-48.0)
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (105.11898020814318 if 105.11898020814318 > 70.0 else 70.0)
     _lo = (105.11898020814318 if 105.11898020814318 < 70.0 else 70.0)
     _x = (_q if _q > _hi else _hi)
@@ -1352,31 +1415,45 @@ def _group_1_v2(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (70.0 - 105.11898020814318) * (70.0 + 105.11898020814318)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _flat = (70.0 + (_q - 105.11898020814318)) / 2 if _q >= _hi else (70.0 + (_q + 105.11898020814318)) / 2 if 70.0 >= 105.11898020814318 else (_q - (70.0 + 105.11898020814318)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (70.0 * 105.11898020814318))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 70.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
     _r2v = 105.11898020814318 * 0.0 + (_e2x * _j2_dx + _e2y * _j2_dy)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 70.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = 105.11898020814318 * 0.0 + 0.0 * 0.0 - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy)) + (_e2x * _j2_ddx + _e2y * _j2_ddy)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 70.0 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = 105.11898020814318 * 0.0 + 0.0 * 0.0 + (_e2x * _j2_ddx + _e2y * _j2_ddy) - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[19] = _sigma
     if st == 1:
@@ -1460,9 +1537,6 @@ def _group_1_v3(w, a, da, dda, live):
     _dy = (-48.0) - (-48.0)
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (_l2_v if _l2_v > 70.0 else 70.0)
     _lo = (_l2_v if _l2_v < 70.0 else 70.0)
     _x = (_q if _q > _hi else _hi)
@@ -1476,31 +1550,45 @@ def _group_1_v3(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (70.0 - _l2_v) * (70.0 + _l2_v)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
     _flat = (70.0 + (_q - _l2_v)) / 2 if _q >= _hi else (70.0 + (_q + _l2_v)) / 2 if 70.0 >= _l2_v else (_q - (70.0 + _l2_v)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (70.0 * _l2_v))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 70.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
     _r2v = _l2_v * _l2_dv + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 70.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 70.0 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[22] = _sigma
     if st == 1:
@@ -1521,9 +1609,6 @@ def _group_1_v3(w, a, da, dda, live):
     _dy = (-48.0) - _j1_y
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (65.19202405202648 if 65.19202405202648 > 105.11898020814318 else 105.11898020814318)
     _lo = (65.19202405202648 if 65.19202405202648 < 105.11898020814318 else 105.11898020814318)
     _x = (_q if _q > _hi else _hi)
@@ -1537,31 +1622,45 @@ def _group_1_v3(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _flat = (105.11898020814318 + (_q - 65.19202405202648)) / 2 if _q >= _hi else (105.11898020814318 + (_q + 65.19202405202648)) / 2 if 105.11898020814318 >= 65.19202405202648 else (_q - (105.11898020814318 + 65.19202405202648)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (105.11898020814318 * 65.19202405202648))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 105.11898020814318 * 0.0 + (_e1x * _j1_dx + _e1y * _j1_dy)
     _r2v = 65.19202405202648 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 105.11898020814318 * 0.0 + 0.0 * 0.0 - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy)) + (_e1x * _j1_ddx + _e1y * _j1_ddy)
-    _r2a = 65.19202405202648 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 105.11898020814318 * 0.0 + 0.0 * 0.0 + (_e1x * _j1_ddx + _e1y * _j1_ddy) - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy))
+    _r2a = 65.19202405202648 * 0.0 + 0.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[23] = _sigma
     if st == 1:
@@ -1645,9 +1744,6 @@ def _group_1_v4(w, a, da, dda, live):
     _dy = 32.0 - (-48.0)
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (_l2_v if _l2_v > 70.0 else 70.0)
     _lo = (_l2_v if _l2_v < 70.0 else 70.0)
     _x = (_q if _q > _hi else _hi)
@@ -1661,31 +1757,45 @@ def _group_1_v4(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (70.0 - _l2_v) * (70.0 + _l2_v)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (70.0 - _l2_v) * ((70.0 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 70.0) * ((70.0 + _l2_v) * _iq)) / 2
     _flat = (70.0 + (_q - _l2_v)) / 2 if _q >= _hi else (70.0 + (_q + _l2_v)) / 2 if 70.0 >= _l2_v else (_q - (70.0 + _l2_v)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (70.0 * _l2_v))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 70.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
     _r2v = _l2_v * _l2_dv + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 70.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 70.0 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[26] = _sigma
     if st == 1:
@@ -1706,9 +1816,6 @@ def _group_1_v4(w, a, da, dda, live):
     _dy = (-48.0) - _j1_y
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (65.19202405202648 if 65.19202405202648 > 105.11898020814318 else 105.11898020814318)
     _lo = (65.19202405202648 if 65.19202405202648 < 105.11898020814318 else 105.11898020814318)
     _x = (_q if _q > _hi else _hi)
@@ -1722,31 +1829,45 @@ def _group_1_v4(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (105.11898020814318 - 65.19202405202648) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _a2 = (_q + (65.19202405202648 - 105.11898020814318) * ((105.11898020814318 + 65.19202405202648) * _iq)) / 2
     _flat = (105.11898020814318 + (_q - 65.19202405202648)) / 2 if _q >= _hi else (105.11898020814318 + (_q + 65.19202405202648)) / 2 if 105.11898020814318 >= 65.19202405202648 else (_q - (105.11898020814318 + 65.19202405202648)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (105.11898020814318 * 65.19202405202648))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 105.11898020814318 * 0.0 + (_e1x * _j1_dx + _e1y * _j1_dy)
     _r2v = 65.19202405202648 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 105.11898020814318 * 0.0 + 0.0 * 0.0 - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy)) + (_e1x * _j1_ddx + _e1y * _j1_ddy)
-    _r2a = 65.19202405202648 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 105.11898020814318 * 0.0 + 0.0 * 0.0 + (_e1x * _j1_ddx + _e1y * _j1_ddy) - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy))
+    _r2a = 65.19202405202648 * 0.0 + 0.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[27] = _sigma
     if st == 1:
@@ -1830,9 +1951,6 @@ def _group_1_v5(w, a, da, dda, live):
     _dy = 32.0 - (-48.0)
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (_l2_v if _l2_v > 65.19202405202648 else 65.19202405202648)
     _lo = (_l2_v if _l2_v < 65.19202405202648 else 65.19202405202648)
     _x = (_q if _q > _hi else _hi)
@@ -1846,31 +1964,45 @@ def _group_1_v5(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (65.19202405202648 - _l2_v) * (65.19202405202648 + _l2_v)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (65.19202405202648 - _l2_v) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 65.19202405202648) * ((65.19202405202648 + _l2_v) * _iq)) / 2
     _flat = (65.19202405202648 + (_q - _l2_v)) / 2 if _q >= _hi else (65.19202405202648 + (_q + _l2_v)) / 2 if 65.19202405202648 >= _l2_v else (_q - (65.19202405202648 + _l2_v)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (65.19202405202648 * _l2_v))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 65.19202405202648 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
     _r2v = _l2_v * _l2_dv + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 65.19202405202648 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 65.19202405202648 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[30] = _sigma
     if st == 1:
@@ -1891,9 +2023,6 @@ def _group_1_v5(w, a, da, dda, live):
     _dy = _j2_y - (-48.0)
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (105.11898020814318 if 105.11898020814318 > 70.0 else 70.0)
     _lo = (105.11898020814318 if 105.11898020814318 < 70.0 else 70.0)
     _x = (_q if _q > _hi else _hi)
@@ -1907,31 +2036,45 @@ def _group_1_v5(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (70.0 - 105.11898020814318) * (70.0 + 105.11898020814318)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (70.0 - 105.11898020814318) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _a2 = (_q + (105.11898020814318 - 70.0) * ((70.0 + 105.11898020814318) * _iq)) / 2
     _flat = (70.0 + (_q - 105.11898020814318)) / 2 if _q >= _hi else (70.0 + (_q + 105.11898020814318)) / 2 if 70.0 >= 105.11898020814318 else (_q - (70.0 + 105.11898020814318)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (70.0 * 105.11898020814318))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 70.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
     _r2v = 105.11898020814318 * 0.0 + (_e2x * _j2_dx + _e2y * _j2_dy)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 70.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = 105.11898020814318 * 0.0 + 0.0 * 0.0 - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy)) + (_e2x * _j2_ddx + _e2y * _j2_ddy)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 70.0 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = 105.11898020814318 * 0.0 + 0.0 * 0.0 + (_e2x * _j2_ddx + _e2y * _j2_ddy) - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[31] = _sigma
     if st == 1:
@@ -2016,9 +2159,6 @@ def _group_1_v6(w, a, da, dda, live):
     _dy = (-48.0) - _j1_y
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (_l2_v if _l2_v > 121.6552506059644 else 121.6552506059644)
     _lo = (_l2_v if _l2_v < 121.6552506059644 else 121.6552506059644)
     _x = (_q if _q > _hi else _hi)
@@ -2032,31 +2172,45 @@ def _group_1_v6(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (121.6552506059644 - _l2_v) * (121.6552506059644 + _l2_v)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (121.6552506059644 - _l2_v) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 121.6552506059644) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _flat = (121.6552506059644 + (_q - _l2_v)) / 2 if _q >= _hi else (121.6552506059644 + (_q + _l2_v)) / 2 if 121.6552506059644 >= _l2_v else (_q - (121.6552506059644 + _l2_v)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (121.6552506059644 * _l2_v))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 121.6552506059644 * 0.0 + (_e1x * _j1_dx + _e1y * _j1_dy)
     _r2v = _l2_v * _l2_dv + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 121.6552506059644 * 0.0 + 0.0 * 0.0 - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy)) + (_e1x * _j1_ddx + _e1y * _j1_ddy)
-    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 121.6552506059644 * 0.0 + 0.0 * 0.0 + (_e1x * _j1_ddx + _e1y * _j1_ddy) - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy))
+    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[34] = _sigma
     if st == 1:
@@ -2077,9 +2231,6 @@ def _group_1_v6(w, a, da, dda, live):
     _dy = _j2_y - (-48.0)
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (60.8276253029822 if 60.8276253029822 > 70.0 else 70.0)
     _lo = (60.8276253029822 if 60.8276253029822 < 70.0 else 70.0)
     _x = (_q if _q > _hi else _hi)
@@ -2093,31 +2244,45 @@ def _group_1_v6(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (70.0 - 60.8276253029822) * (70.0 + 60.8276253029822)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (70.0 - 60.8276253029822) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _a2 = (_q + (60.8276253029822 - 70.0) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _flat = (70.0 + (_q - 60.8276253029822)) / 2 if _q >= _hi else (70.0 + (_q + 60.8276253029822)) / 2 if 70.0 >= 60.8276253029822 else (_q - (70.0 + 60.8276253029822)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (70.0 * 60.8276253029822))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 70.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
     _r2v = 60.8276253029822 * 0.0 + (_e2x * _j2_dx + _e2y * _j2_dy)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 70.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = 60.8276253029822 * 0.0 + 0.0 * 0.0 - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy)) + (_e2x * _j2_ddx + _e2y * _j2_ddy)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 70.0 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = 60.8276253029822 * 0.0 + 0.0 * 0.0 + (_e2x * _j2_ddx + _e2y * _j2_ddy) - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[35] = _sigma
     if st == 1:
@@ -2201,9 +2366,6 @@ def _group_1_v7(w, a, da, dda, live):
     _dy = (-48.0) - _j1_y
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (_l2_v if _l2_v > 121.6552506059644 else 121.6552506059644)
     _lo = (_l2_v if _l2_v < 121.6552506059644 else 121.6552506059644)
     _x = (_q if _q > _hi else _hi)
@@ -2217,31 +2379,45 @@ def _group_1_v7(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (121.6552506059644 - _l2_v) * (121.6552506059644 + _l2_v)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (121.6552506059644 - _l2_v) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 121.6552506059644) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _flat = (121.6552506059644 + (_q - _l2_v)) / 2 if _q >= _hi else (121.6552506059644 + (_q + _l2_v)) / 2 if 121.6552506059644 >= _l2_v else (_q - (121.6552506059644 + _l2_v)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (121.6552506059644 * _l2_v))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 121.6552506059644 * 0.0 + (_e1x * _j1_dx + _e1y * _j1_dy)
     _r2v = _l2_v * _l2_dv + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 121.6552506059644 * 0.0 + 0.0 * 0.0 - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy)) + (_e1x * _j1_ddx + _e1y * _j1_ddy)
-    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 121.6552506059644 * 0.0 + 0.0 * 0.0 + (_e1x * _j1_ddx + _e1y * _j1_ddy) - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy))
+    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[38] = _sigma
     if st == 1:
@@ -2262,9 +2438,6 @@ def _group_1_v7(w, a, da, dda, live):
     _dy = _j2_y - (-48.0)
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (60.8276253029822 if 60.8276253029822 > 70.0 else 70.0)
     _lo = (60.8276253029822 if 60.8276253029822 < 70.0 else 70.0)
     _x = (_q if _q > _hi else _hi)
@@ -2278,31 +2451,45 @@ def _group_1_v7(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (70.0 - 60.8276253029822) * (70.0 + 60.8276253029822)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (70.0 - 60.8276253029822) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _a2 = (_q + (60.8276253029822 - 70.0) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _flat = (70.0 + (_q - 60.8276253029822)) / 2 if _q >= _hi else (70.0 + (_q + 60.8276253029822)) / 2 if 70.0 >= 60.8276253029822 else (_q - (70.0 + 60.8276253029822)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (70.0 * 60.8276253029822))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 70.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
     _r2v = 60.8276253029822 * 0.0 + (_e2x * _j2_dx + _e2y * _j2_dy)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 70.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = 60.8276253029822 * 0.0 + 0.0 * 0.0 - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy)) + (_e2x * _j2_ddx + _e2y * _j2_ddy)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 70.0 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = 60.8276253029822 * 0.0 + 0.0 * 0.0 + (_e2x * _j2_ddx + _e2y * _j2_ddy) - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[39] = _sigma
     if st == 1:
@@ -2386,9 +2573,6 @@ def _group_1_v8(w, a, da, dda, live):
     _dy = 32.0 - _j1_y
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (_l2_v if _l2_v > 121.6552506059644 else 121.6552506059644)
     _lo = (_l2_v if _l2_v < 121.6552506059644 else 121.6552506059644)
     _x = (_q if _q > _hi else _hi)
@@ -2402,31 +2586,45 @@ def _group_1_v8(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (121.6552506059644 - _l2_v) * (121.6552506059644 + _l2_v)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (121.6552506059644 - _l2_v) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _a2 = (_q + (_l2_v - 121.6552506059644) * ((121.6552506059644 + _l2_v) * _iq)) / 2
     _flat = (121.6552506059644 + (_q - _l2_v)) / 2 if _q >= _hi else (121.6552506059644 + (_q + _l2_v)) / 2 if 121.6552506059644 >= _l2_v else (_q - (121.6552506059644 + _l2_v)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (121.6552506059644 * _l2_v))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 121.6552506059644 * 0.0 + (_e1x * _j1_dx + _e1y * _j1_dy)
     _r2v = _l2_v * _l2_dv + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 121.6552506059644 * 0.0 + 0.0 * 0.0 - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy)) + (_e1x * _j1_ddx + _e1y * _j1_ddy)
-    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e2x * 0.0 + _e2y * 0.0)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 121.6552506059644 * 0.0 + 0.0 * 0.0 + (_e1x * _j1_ddx + _e1y * _j1_ddy) - ((_bvx - _j1_dx) * (_bvx - _j1_dx) + (_bvy - _j1_dy) * (_bvy - _j1_dy))
+    _r2a = _l2_v * _l2_ddv + _l2_dv * _l2_dv + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[42] = _sigma
     if st == 1:
@@ -2447,9 +2645,6 @@ def _group_1_v8(w, a, da, dda, live):
     _dy = _j2_y - (-48.0)
     _dd = _dx * _dx + _dy * _dy
     _q = sqrt(_dd)
-    _iq = NAN if _q == 0 else 1 / _q
-    _ux = _dx * _iq
-    _uy = _dy * _iq
     _hi = (60.8276253029822 if 60.8276253029822 > 70.0 else 70.0)
     _lo = (60.8276253029822 if 60.8276253029822 < 70.0 else 70.0)
     _x = (_q if _q > _hi else _hi)
@@ -2463,31 +2658,45 @@ def _group_1_v8(w, a, da, dda, live):
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
-    _h = _area4 * _iq / 2
+    _idd2 = NAN if _dd == 0 else 0.5 / _dd
+    _c = (70.0 - 60.8276253029822) * (70.0 + 60.8276253029822)
+    _iq = NAN if _q == 0 else 1 / _q
     _a = (_q + (70.0 - 60.8276253029822) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _a2 = (_q + (60.8276253029822 - 70.0) * ((70.0 + 60.8276253029822) * _iq)) / 2
     _flat = (70.0 + (_q - 60.8276253029822)) / 2 if _q >= _hi else (70.0 + (_q + 60.8276253029822)) / 2 if 70.0 >= 60.8276253029822 else (_q - (70.0 + 60.8276253029822)) / 2
     _at = _a if _k > 0 else _flat
-    _hn = _minv * _h
-    _e1x = _at * _ux - _hn * _uy
-    _e1y = _at * _uy + _hn * _ux
+    _ao = (_dd + _c) * _idd2
+    _mi = _minv * _idd2
+    _mx = -_mi * _dy
+    _my = _mi * _dx
+    _ux = _dx * _iq
+    _uy = _dy * _iq
+    _hn = _minv * (_area4 * _iq / 2)
+    _e1x = _ao * _dx + _area4 * _mx if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _ux - _hn * _uy
+    _e1y = _ao * _dy + _area4 * _my if 3 * _o1 > _s2 and 3 * _o2 > _dd else _at * _uy + _hn * _ux
     _ratio = 0 if _fail else _area4 * (0.5 / (70.0 * 60.8276253029822))
     _sigma = (1 if 1 < _ratio else _ratio)
-    _e2x = -_a2 * _ux - _hn * _uy
-    _e2y = -_a2 * _uy + _hn * _ux
-    _ihq = NAN if _hn == 0 else 1 / (_hn * _q)
+    _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
+    _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
+    _e2x = -_a2r * _dx + _area4 * _mx
+    _e2y = -_a2r * _dy + _area4 * _my
+    _sdx = 2 * _idd2 * _dx
+    _sdy = 2 * _idd2 * _dy
+    _ihq = NAN if _area4 == 0 else 2 * _minv / _area4
+    _tnx = -_ihq * _dy
+    _tny = _ihq * _dx
     _r1v = 70.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
     _r2v = 60.8276253029822 * 0.0 + (_e2x * _j2_dx + _e2y * _j2_dy)
-    _buv = (_r1v - _r2v) * _iq
-    _bnv = (_a2 * _r1v + _a * _r2v) * _ihq
-    _bvx = _buv * _ux - _bnv * _uy
-    _bvy = _buv * _uy + _bnv * _ux
-    _r1a = 70.0 * 0.0 + 0.0 * 0.0 - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0)) + (_e1x * 0.0 + _e1y * 0.0)
-    _r2a = 60.8276253029822 * 0.0 + 0.0 * 0.0 - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy)) + (_e2x * _j2_ddx + _e2y * _j2_ddy)
-    _bua = (_r1a - _r2a) * _iq
-    _bna = (_a2 * _r1a + _a * _r2a) * _ihq
-    _bax = _bua * _ux - _bna * _uy
-    _bay = _bua * _uy + _bna * _ux
+    _buv = _r1v - _r2v
+    _bnv = _a2r * _r1v + _ar * _r2v
+    _bvx = _buv * _sdx + _bnv * _tnx
+    _bvy = _buv * _sdy + _bnv * _tny
+    _r1a = 70.0 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r2a = 60.8276253029822 * 0.0 + 0.0 * 0.0 + (_e2x * _j2_ddx + _e2y * _j2_ddy) - ((_bvx - _j2_dx) * (_bvx - _j2_dx) + (_bvy - _j2_dy) * (_bvy - _j2_dy))
+    _bua = _r1a - _r2a
+    _bna = _a2r * _r1a + _ar * _r2a
+    _bax = _bua * _sdx + _bna * _tnx
+    _bay = _bua * _sdy + _bna * _tny
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[43] = _sigma
     if st == 1:
