@@ -1146,16 +1146,16 @@ static inline int RRR_links_2(const POINT *j1, const POINT *j2, const VARIABLE *
     const double bvy_t = buv_t * sdy + bnv_t * tny;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
     *sigma_out = sigma;
-    tape[0] = iq;
-    tape[1] = ux;
-    tape[2] = uy;
-    tape[3] = a;
-    tape[4] = a2;
-    tape[5] = e1x;
-    tape[6] = e1y;
-    tape[7] = e2x;
-    tape[8] = e2y;
-    tape[9] = ihq;
+    tape[0] = e1x;
+    tape[1] = e1y;
+    tape[2] = ar;
+    tape[3] = a2r;
+    tape[4] = e2x;
+    tape[5] = e2y;
+    tape[6] = sdx;
+    tape[7] = sdy;
+    tape[8] = tnx;
+    tape[9] = tny;
     tape[10] = st;
     if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb_t->P.x = NAN; jb_t->P.y = NAN; jb_t->DP.x = NAN; jb_t->DP.y = NAN; return st; }
     if (st == 3) { jb->P.x = j1->P.x + e1x; jb->P.y = j1->P.y + e1y; jb->DP.x = NAN; jb->DP.y = NAN; jb_t->P.x = j1->P.x + e1x; jb_t->P.y = j1->P.y + e1y; jb_t->DP.x = NAN; jb_t->DP.y = NAN; return st; }
@@ -1242,23 +1242,23 @@ static inline void link_residual_2(const POINT *j1, const POINT *j2, const VARIA
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
 #if defined(__GNUC__)
-static inline int RRR_links_r(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, double iq, double ux, double uy, double a, double a2, double e1x, double e1y, double e2x, double e2y, double ihq, int st_taped, POINT *jb) __attribute__((always_inline));
+static inline int RRR_links_r(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, double e1x, double e1y, double ar, double a2r, double e2x, double e2y, double sdx, double sdy, double tnx, double tny, int st_taped, POINT *jb) __attribute__((always_inline));
 #endif
-static inline int RRR_links_r(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, double iq, double ux, double uy, double a, double a2, double e1x, double e1y, double e2x, double e2y, double ihq, int st_taped, POINT *jb)
+static inline int RRR_links_r(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, double e1x, double e1y, double ar, double a2r, double e2x, double e2y, double sdx, double sdy, double tnx, double tny, int st_taped, POINT *jb)
 {
     (void)minv;
     const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
     const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
-    const double buv = (r1v - r2v) * iq;
-    const double bnv = (a2 * r1v + a * r2v) * ihq;
-    const double bvx = buv * ux - bnv * uy;
-    const double bvy = buv * uy + bnv * ux;
-    const double r1a = l1->v * l1->ddv + l1->dv * l1->dv - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y)) + (e1x * j1->DDP.x + e1y * j1->DDP.y);
-    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y)) + (e2x * j2->DDP.x + e2y * j2->DDP.y);
-    const double bua = (r1a - r2a) * iq;
-    const double bna = (a2 * r1a + a * r2a) * ihq;
-    const double bax = bua * ux - bna * uy;
-    const double bay = bua * uy + bna * ux;
+    const double buv = r1v - r2v;
+    const double bnv = a2r * r1v + ar * r2v;
+    const double bvx = buv * sdx + bnv * tnx;
+    const double bvy = buv * sdy + bnv * tny;
+    const double r1a = l1->v * l1->ddv + l1->dv * l1->dv + (e1x * j1->DDP.x + e1y * j1->DDP.y) - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y));
+    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv + (e2x * j2->DDP.x + e2y * j2->DDP.y) - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y));
+    const double bua = r1a - r2a;
+    const double bna = a2r * r1a + ar * r2a;
+    const double bax = bua * sdx + bna * tnx;
+    const double bay = bua * sdy + bna * tny;
     const int st = st_taped == 1 ? 1 : st_taped == 3 ? 3 : st_taped == 4 ? 4 : 0;
     if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
     if (st == 3) { jb->P.x = j1->P.x + e1x; jb->P.y = j1->P.y + e1y; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
