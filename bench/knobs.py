@@ -243,6 +243,9 @@ build` builds it (`build_log(path, options=...)`), so a knob shows here once it 
   radians ("positions"), velocities and accelerations relative to the larger of the value and its
   quantity's scale ("rates").  A float program rounds its inputs to float too: that is part of its
   error.  Octave's sweep is not compared (the tests hold it to the others).
+- `real float` on this x86-64 machine: a scalar float costs what a double does, so the float C gains only
+  in its library calls (sincosf, its own atan2); on the microcontrollers the knob is for, whose FPU computes
+  in float only, see "Float on a microcontroller" (`bench/mcu.py`).
 - `=`: the language's program is the default's byte for byte but for its banner (the line that
   states the settings): the knob does not act in that language; its numbers are the default's.
 - The machine is shared (2 cores): read ratios, not single times; no number here is asserted by a test.
