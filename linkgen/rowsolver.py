@@ -72,6 +72,15 @@ def bounds(reach: Reach) -> tuple[float, float]:
     return low, high
 
 
+def _run(number: int, call: Runner, outputs: tuple[str, ...], env: Env, report: Report) -> Any:
+    """One step's call: its records into env, (status, sigma) into report; returns the status."""
+    st, sigma, outs = call(env)
+    for name, rec in zip(outputs, outs):
+        env[name] = rec
+    report[number] = (st, sigma)
+    return st
+
+
 def row_status(report: Report) -> Any:
     """The programs' row status from the steps' reports in the order they ran: the first
     failure's code, else the first singular step's, else the first near-singular one's
@@ -252,13 +261,8 @@ class RowSolver:
             if group is not None:
                 if not self._resolve(group, env, report, order, a, ad, used, its):
                     break
-            elif call is not None:  # every step here calls a function: its records, then its report
-                st, sigma, outs = call(env)
-                for name, rec in zip(outputs, outs):
-                    env[name] = rec
-                report[number] = (st, sigma)
-                if st == FAIL:
-                    break
+            elif call is not None and _run(number, call, outputs, env, report) == FAIL:
+                break
         code = int(row_status(report))
         if row:
             self.last = Row(env, report, {}, code)
@@ -323,14 +327,7 @@ class RowSolver:
             for name, v, r, c in zip(add_links, x, dx, ddx):
                 env[name] = (v, r, c)[:width]
             last.clear()
-            failed = False
-            for number, call, outputs in calls:  # every step's records, then its report
-                st, sigma, outs = call(env)
-                for name, rec in zip(outputs, outs):
-                    env[name] = rec
-                last[number] = (st, sigma)
-                failed = failed or st == FAIL
-            if failed:
+            if [_run(number, call, outputs, env, last) for number, call, outputs in calls].count(FAIL):
                 return 1, None
             chains[0] = min([lever, *(last[n][1] for n in sigma_steps)])
             return 0, [env[f] for f in residuals]
