@@ -43,23 +43,26 @@ def velocity_variants(view: View) -> list[str]:
     passes that measure residuals and the Jacobian need no accelerations (the same statements, fewer)."""
     if not view.groups or view.record_order < 2:
         return []
-    names = sorted({s.function for b in view.blocks for s in b.steps if s.function})
-    return [c_function(replace(program_primitive(view, n), name=f"{n}_1"), 1) for n in names]
+    return [c_function(replace(program_primitive(view, n), name=f"{n}_1"), 1) for n in _block_functions(view)]
 
 
 def two_channel_variants(view: View) -> list[str]:
     """Two-channel copies (NAME_2, tangent.py) of the primitives the resolver blocks call: a block's
     last Newton pass measures its Jacobian column and the residuals' rates at zero Add-link rate at once,
     and keeps its position values (tangent.tape) for the rates copies."""
-    names = sorted({s.function for b in view.blocks for s in b.steps if s.function})
-    return [c_function(two_channel(program_primitive(view, n)), 1, tape(program_primitive(view, n))) for n in names]
+    return [c_function(two_channel(program_primitive(view, n)), 1, tape(program_primitive(view, n)))
+            for n in _block_functions(view)]
 
 
 def rates_variants(view: View) -> list[str]:
     """Rates copies (NAME_r, tangent.from_tape) of the primitives the resolver blocks call: the pass at the
     solved Add-link rates reads the positions the last Newton pass kept instead of computing them again."""
-    names = sorted({s.function for b in view.blocks for s in b.steps if s.function})
-    return [c_function(from_tape(program_primitive(view, n)), view.record_order) for n in names]
+    return [c_function(from_tape(program_primitive(view, n)), view.record_order) for n in _block_functions(view)]
+
+
+def _block_functions(view: View) -> list[str]:
+    """The primitives the resolver blocks call, by name."""
+    return sorted({s.function for b in view.blocks for s in b.steps if s.function})
 
 
 def tape_size(view: View) -> int:

@@ -63,15 +63,7 @@ class C(Spelling):
         args.append(f"w->tape + {self.tape_at(step, scope)}")
         if prim.sigma is not None:
             args.append(f"&{self.sigma(step)}")
-        text = f"{step.function}_2({', '.join(args)});"
-        points = ", ".join(self.lit(p) for p in step.change_points)
-        head = [f"static const double change_{step.number}[] = {{{points}}};"] if step.change_points else []
-        if prim.status is None:
-            return [*head, text]
-        lines = [*head, f"st = {text}", "if (st == 1) return 1;"]
-        if prim.sigma is not None:
-            lines.append(f"if ({self.sigma(step)} < w->chains) w->chains = {self.sigma(step)};")
-        return lines
+        return self._block_call(step, f"{step.function}_2({', '.join(args)});", noted=False)
 
     def tape_at(self, step: Step, scope: Group) -> int:
         """Where a step's values start in the work's tape: after those of the block's steps before it."""
@@ -86,12 +78,17 @@ class C(Spelling):
         args = [("&" if a.kind == "var" else "") + self.arg(a, scope, step) for a in step.args]
         args += [f"w->tape[{at + k}]" for k in range(len(tape(prim)))]
         args += [f"&{self.ref(o, scope)}" for o in step.outputs]
-        text = f"{step.function}_r({', '.join(args)});"
+        return self._block_call(step, f"{step.function}_r({', '.join(args)});", noted=True)
+
+    def _block_call(self, step: Step, text: str, noted: bool) -> list[str]:
+        """A block's call of a primitive copy: the step's change points, the call, a chain that cannot close
+        ending the pass, the status noted where the pass notes, the block's worst chain conditioning."""
+        prim = self.primitives[step.function]
         points = ", ".join(self.lit(p) for p in step.change_points)
         head = [f"static const double change_{step.number}[] = {{{points}}};"] if step.change_points else []
         if prim.status is None:
             return [*head, text]
-        lines = [*head, f"st = {text}", "if (st == 1) return 1;", *self.notes("st", step)]
+        lines = [*head, f"st = {text}", "if (st == 1) return 1;", *(self.notes("st", step) if noted else ())]
         if prim.sigma is not None:
             lines.append(f"if ({self.sigma(step)} < w->chains) w->chains = {self.sigma(step)};")
         return lines
