@@ -114,9 +114,10 @@ def point_on(ws: Workspace, link: str, name: str, out: str, reason: str, linear:
     where it has them, on the pair whose base is longest against the point's distance from its first point
     (the base's direction error turns the point by that lever): in the frame of their unit vector
     (link_point: a rounding or a resolver's tolerance that stretches the base does not reach the point), or,
-    with ``linear`` (a point no chain reads), linear in them (pair_point: no root, no division); else at its offset from the nearest known point along the link's angle (coupler_point, with link_angle where
-    the angle is not known yet); also where that lever is below GOOD_LEVER and the link's angle is known otherwise (a slider link
-    turning with its line: an RPR chain's angle does not depend on the short base)."""
+    with ``linear`` (a point no chain reads), linear in them (pair_point: no root, no division); else at its
+    offset from the nearest known point along the link's angle (coupler_point, with link_angle where the angle
+    is not known yet); also where that lever is below GOOD_LEVER and the link's angle is known otherwise (a
+    slider link turning with its line: an RPR chain's angle does not depend on the short base)."""
     tied = [n for n in ws.tied[link] if ws.pos[n] != out]
     here = ws.xy(name)
     pairs = [(a, b) for a in tied for b in tied if ws.xy(a) != ws.xy(b)]

@@ -1,10 +1,10 @@
 """The Solver (the paper's Algorithm 1): compute each unknown pair as soon as it can.
 
 It scans the unknown pairs in declaration order and computes the first it can: as a
-point of a placed link (``link_point``, ``pair_point`` for a point no chain reads, or ``coupler_point`` where one point of it is
-known), through an input (``crank_input``, ``slider_input``), or as the middle pair of a
-two-link chain whose ends are known (in extract's second pass, a chain on a slide first
-inside an Add-link group: ``slides_first``).
+point of a placed link (``link_point``, ``pair_point`` for a point no chain reads, or
+``coupler_point`` where one point of it is known), through an input (``crank_input``,
+``slider_input``), or as the middle pair of a two-link chain whose ends are known (in extract's
+second pass, a chain on a slide first inside an Add-link group: ``slides_first``).
 Every choice breaks ties by declaration order, so a file always gives the same procedure.
 """
 
