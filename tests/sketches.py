@@ -1059,11 +1059,11 @@ def residuals(case: Case, outs: dict) -> list:
         r = vsub(pt("jc"), _p(v, "j1"))
         q = MP.sqrt(vdot(d, d))
         return [vdot(r, d) / q - v["gsi"], vcross(d, r) / q - v["eta"]]
-    if n == "pair_point":  # jc - j1 = along d + across n(d), d = j2 - j1
+    if n == "pair_point":  # jc - j1 = along d + across n(d), d = j2 - j1: its components along e = d / |d| and n(e)
         d = vsub(_p(v, "j2"), _p(v, "j1"))
         r = vsub(pt("jc"), _p(v, "j1"))
-        q2 = vdot(d, d)
-        return [vdot(r, d) / q2 - v["along"], vcross(d, r) / q2 - v["across"]]
+        q = MP.sqrt(vdot(d, d))
+        return [vdot(r, d) / q - v["along"] * q, vcross(d, r) / q - v["across"] * q]
     if n == "crank_input":
         d = vsub(pt("j2"), _p(v, "j1"))
         u = _dir_mp(_val(v, "theta") + _val(v, "phi"))

@@ -341,7 +341,7 @@ test_chain_loop_turn = _chain_test("loop_turn")
 
 # Outside the supported range (no strategy draws there) every primitive still gives a defined answer: the
 # status discipline, no exception, no inf, no status 0 with a nan.
-ANGLE_SCALARS = {"off", "cx"}  # the REAL parameters that are angles; the others are lengths
+ANGLE_SCALARS = {"off", "cx", "along", "across"}  # the REAL parameters that are angles or ratios; the others lengths
 OUTSIDE = {"tiny": 1e-300, "subnormal": 1e-315}  # lengths of the seeded cases times this
 OUTSIDE_CASES = 20  # seeded cases per primitive and magnitude
 FOUND_OUTSIDE = [  # the counterexamples of the chain tests before they drew inside the range (issue 17)
