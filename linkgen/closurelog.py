@@ -21,7 +21,7 @@ class Distance:
 class Frame:
     """A closure equation: a point fixed in the frame of its link, point = origin + w (b - a)
     with w a complex number (two rows, x and y): (gsi + i eta) e^(i off) / |b - a| for
-    coupler_point, (c - a) / (b - a) of the sketch for link_point and pair_point (whose origin is a)."""
+    coupler_point, (c - a) / (b - a) of the sketch for link_point (whose origin is a)."""
 
     point: str
     origin: str

@@ -4,7 +4,7 @@ Newton on all loop-closure equations of a resolver group at once: the unknowns a
 positions the group's chosen block places (x and y of each), the equations the rigid-link
 constraints its steps hold, read off them: a 3R chain's two distances (an Add-link's is no
 constraint and is left out), a point fixed in its link's frame (two rows: coupler_point's, on
-the link's angle, or link_point's and pair_point's, on two of its points) and the length of
+the link's angle, or link_point's, on two of its points) and the length of
 each link the Solver did not use (the residual's).  Each placement gives two rows and each
 Add-link's row is traded for a residual's, so the system is square.  A length that changes with
 the inputs (an actuator's) is read from its record as the row is computed.  A group with a step
@@ -56,10 +56,9 @@ def closure(group: ResolverGroup, block: list[Step], variables: dict[str, Variab
             a, b = _base(var[1], producer, s)
             frames.append(Frame(s.outputs[0], var[0], (a, b), _ratio(variables, s.outputs[0], var[0], a, b),
                                 s.number, s.links[0]))
-        elif s.function in ("link_point", "pair_point"):  # pair_point's arguments are the ratio itself
+        elif s.function == "link_point":
             (ax, ay), (bx, by), (px, py) = (variables[n].sketch[:2] for n in (var[0], var[1], s.outputs[0]))
-            ratio = exact.along_across(px - ax, py - ay, bx - ax, by - ay) if s.function == "link_point" else (
-                s.args[2].value, s.args[3].value)
+            ratio = exact.along_across(px - ax, py - ay, bx - ax, by - ay)
             frames.append(Frame(s.outputs[0], var[0], (var[0], var[1]), ratio, s.number, s.links[0]))
         elif s.function not in ("link_angle", "offset_angle"):
             raise ClosureRefused(f"it handles resolver groups of revolute pairs only, and step {s.number} of "

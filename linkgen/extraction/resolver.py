@@ -128,7 +128,7 @@ def _lever(block: ResolverGroup, steps: dict[int, Step], variables: dict[str, Va
 
 def placement_lever(block: list[Step], steps: list[Step], variables: dict[str, Variable]) -> float:
     """The worst ratio, over the block's point placements, of the base its frame angle is
-    measured on (link_point, pair_point: the two points it places from) to the arm of the placed point
+    measured on (link_point: the two points it places from) to the arm of the placed point
     (at most 1).  A placement magnifies the
     angle's error by the inverse: a block that must turn a needle to place a far pair is
     a poor coordinate of the assembly, whatever its chains' conditioning."""
@@ -151,10 +151,9 @@ def placement_lever(block: list[Step], steps: list[Step], variables: dict[str, V
         if s.function == "coupler_point":
             b = base(s.args[1].var)
             arm = math.hypot(s.args[2].value, s.args[3].value)
-        elif s.function in ("link_point", "pair_point"):  # the base j1-j2 itself; the arm (gsi, eta), or
-            (xa, ya), (xb, yb) = (variables[a.var].sketch[:2] for a in s.args[:2])  # (along, across) in bases
+        elif s.function == "link_point":  # the base j1-j2 itself; the arm (gsi, eta)
+            (xa, ya), (xb, yb) = (variables[a.var].sketch[:2] for a in s.args[:2])
             b, arm = math.hypot(xb - xa, yb - ya), math.hypot(s.args[2].value, s.args[3].value)
-            arm *= b if s.function == "pair_point" else 1.0
         else:
             continue
         if b is not None and arm > b:

@@ -100,3 +100,15 @@ def test_a_link_angle_is_measured_between_two_known_pairs_of_the_link(slotted: P
     assert [a.var for a in angles["coupler"].args[:2]] == ["p_A", "p_B"]
     assert [a.var for a in angles["rod"].args[:2]] == ["p_E", "p_O3"]
     assert all(_arg(s, "off") == 0.0 for s in angles.values())  # each measured along its own direction
+
+
+@pytest.mark.parametrize("path", ["tests/mechanisms/triad_far.yaml", "samples/double_triad/double_triad.yaml"])
+def test_a_resolver_group_places_pairs_in_their_frame_and_its_points_come_after_it(path: str):
+    """A group's pairs carry its tolerance: link_point (their direction only) places them; the mechanism's
+    points (triad_far's P) are placed after every group closes, linearly (pair_point)."""
+    proc = _extract(ROOT / path)
+    grouped = {n for g in proc.groups for n in (*g.steps, *(n for v in g.variants for n in v.steps))}
+    functions = {s.function for s in proc.steps if s.number in grouped}
+    assert "link_point" in functions and "pair_point" not in functions
+    points = {p.name for lk in read_mechanism(str(ROOT / path)).links for p in lk.points}
+    assert {s.target for s in proc.steps if s.function == "pair_point"} == points
