@@ -114,7 +114,8 @@ def point_on(ws: Workspace, link: str, name: str, out: str, reason: str, linear:
     where it has them, on the pair whose base is longest against the point's distance from its first point
     (the base's direction error turns the point by that lever): in the frame of their unit vector
     (link_point: a rounding or a resolver's tolerance that stretches the base does not reach the point), or,
-    with ``linear`` (a point no chain reads), linear in them (pair_point: no root, no division); else at its
+    with ``linear`` (a point no chain reads) where neither pair comes out of a resolver group (whose tolerance
+    can stretch their distance), linear in them (pair_point: no root, no division); else at its
     offset from the nearest known point along the link's angle (coupler_point, with link_angle where the angle
     is not known yet); also where that lever is below GOOD_LEVER and the link's angle is known otherwise (a
     slider link turning with its line: an RPR chain's angle does not depend on the short base)."""
@@ -129,7 +130,8 @@ def point_on(ws: Workspace, link: str, name: str, out: str, reason: str, linear:
         base, far = best
         r = tuple(a - b for a, b in zip(here, ws.xy(base)))
         d = tuple(a - b for a, b in zip(ws.xy(far), ws.xy(base)))
-        if linear:
+        grouped = {o for s in ws.steps if s.group for o in s.outputs}
+        if linear and not {ws.pos[base], ws.pos[far]} & grouped:
             function, labels, coords = "pair_point", ("along", "across"), exact.along_across(r[0], r[1], d[0], d[1])
         else:
             function, labels, coords = "link_point", ("gsi", "eta"), exact.local(r[0], r[1], d[0], d[1])

@@ -176,8 +176,8 @@ def _try_point(ws: Workspace, pair: str) -> bool:
 
 
 def finish(ws: Workspace) -> None:
-    """Every point of a placed link (linear in two of its pairs where it can: no chain reads a point), then
-    every link's angle for the outputs."""
+    """Every point of a placed link (linear in two of its pairs where no group computes them: no chain reads
+    a point), then every link's angle for the outputs."""
     for p in ws.m.prismatic:
         if p.joint not in ws.slides:
             raise Unsupported(f"the prismatic pair {p.joint} is not used by any chain")

@@ -102,13 +102,11 @@ def test_a_link_angle_is_measured_between_two_known_pairs_of_the_link(slotted: P
     assert all(_arg(s, "off") == 0.0 for s in angles.values())  # each measured along its own direction
 
 
-@pytest.mark.parametrize("path", ["tests/mechanisms/triad_far.yaml", "samples/double_triad/double_triad.yaml"])
-def test_a_resolver_group_places_pairs_in_their_frame_and_its_points_come_after_it(path: str):
-    """A group's pairs carry its tolerance: link_point (their direction only) places them; the mechanism's
-    points (triad_far's P) are placed after every group closes, linearly (pair_point)."""
-    proc = _extract(ROOT / path)
-    grouped = {n for g in proc.groups for n in (*g.steps, *(n for v in g.variants for n in v.steps))}
-    functions = {s.function for s in proc.steps if s.number in grouped}
-    assert "link_point" in functions and "pair_point" not in functions
-    points = {p.name for lk in read_mechanism(str(ROOT / path)).links for p in lk.points}
-    assert {s.target for s in proc.steps if s.function == "pair_point"} == points
+def test_a_point_on_pairs_a_resolver_group_places_is_placed_in_their_frame():
+    """triad_far's P sits on the ternary whose pairs J4, J5 the group iterates: their distance carries the
+    group's tolerance, so P takes their direction only (link_point), after the group, as every point."""
+    proc = _extract(ROOT / "tests" / "mechanisms" / "triad_far.yaml")
+    (step,) = [s for s in proc.steps if s.target == "P"]
+    grouped = {o for s in proc.steps if s.group for o in s.outputs}
+    assert step.function == "link_point" and step.group == 0 and {a.var for a in step.args[:2]} <= grouped
+    assert "pair_point" not in {s.function for s in proc.steps}
