@@ -12,6 +12,7 @@ from ..primitives.dsl import Primitive
 from ..textcache import kept
 from ..units import sweep_lists
 from . import Runtime
+from .still import held_params, variant
 
 if TYPE_CHECKING:
     from ..render.view import View
@@ -38,19 +39,25 @@ def sensitivity_count(view: View) -> int:
     return max((sum(2 if kind == "POINT" else 1 for _, kind in b.bent) for b in view.blocks), default=1)
 
 
-def _printed(printer: Callable[[Primitive, int], str], view: View, name: str, order: int) -> str:
-    return printer(program_primitive(view, name), order)
+def _printed(printer: Callable[[Primitive, int], str], view: View, name: str, order: int,
+             still: tuple[str, ...]) -> str:
+    return printer(variant(name, view.measures, still), order)
 
 
 def runtime_sources(view: View, printer: Callable[[Primitive, int], str], runtime: Runtime,
                     status: bool = True) -> list[str]:
-    """The runtime a program carries: the primitives it calls, printed, then the hand-written
+    """The runtime a program carries: the primitives it calls (each variant with records held still,
+    still.py, that a call takes), printed, then the hand-written
     status helpers (where ``status``) and, where the procedure needs them, branch_at, reach_at, the resolver
     (with the closure strategy's where it is chosen) and the row driver."""
     order = view.record_order
-    texts = [kept("program primitive", (printer.__module__, printer.__qualname__, p, view.measures, order),
-                  functools.partial(_printed, printer, view, p, order))  # printed once per user (textcache)
-             for p in used_primitives(view)]
+    calls = {(s.function, held_params(view.log, order, s)) for s in view.log.steps if s.function}
+    held = sorted((call for call in calls if call[1]), key=lambda call: (list(PRIMITIVES).index(call[0]), call[1]))
+    plain = [(p, ()) for p in used_primitives(view)
+             if (p, ()) in calls or all(p != f for f, _ in held)]  # none where every call holds a record still
+    texts = [kept("program primitive", (printer.__module__, printer.__qualname__, p, view.measures, order, still),
+                  functools.partial(_printed, printer, view, p, order, still))  # printed once per user (textcache)
+             for p, still in plain + held]
     if status:
         texts.append(runtime.source("status"))
     texts += [runtime.source(name) for name, needed in (

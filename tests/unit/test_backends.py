@@ -8,15 +8,15 @@ import itertools
 import re
 import sys
 from collections.abc import Iterator
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
 
 import linkgen.backends
 from linkgen.backends import Backend, backends
-from linkgen.backends.np.printer import held_still, numpy_function
-from linkgen.backends.np.still import still_suffix
 from linkgen.backends.spelling import Spelling
+from linkgen.backends.still import held_still, still_suffix
 from linkgen.pipeline import build_log
 from linkgen.primitives import PRIMITIVES
 from linkgen.render import make_env, render_all, render_backend, template_dir
@@ -93,15 +93,15 @@ def test_a_backend_writes_its_files_each_with_the_banner_in_its_comment_syntax(b
 
 
 def _printed(backend: Backend, name: str, order: int) -> list[str]:
-    """A primitive as the backend prints it; the numpy kernel's also with records held still."""
+    """A primitive as the backend prints it, also with records held still (named with their suffix)."""
     assert backend.printer is not None
     prim = PRIMITIVES[name]
     texts = [backend.printer(prim, order)]
-    if backend.name == "np":
-        records = [p.name for p in prim.params if p.is_record]
-        for k in range(1, len(records) + 1):
-            texts += [numpy_function(held_still(prim, still)[0], order, name=name + still_suffix(still))
-                      for still in itertools.combinations(records, k)]
+    records = [p.name for p in prim.params if p.is_record]
+    for k in range(1, len(records) + 1):
+        for still in itertools.combinations(records, k):
+            held = replace(held_still(prim, still)[0], name=name + still_suffix(still))
+            texts.append(backend.printer(held, order))
     return texts
 
 

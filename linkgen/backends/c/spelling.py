@@ -104,12 +104,12 @@ class C(Spelling):
     def call(self, step: Step, scope: Group | None, velocities: bool = False) -> list[str]:
         """A step's call; a failing chain ends the row (inside a resolver block: the block's pass;
         ``velocities``: its order-1 copy, for a pass whose accelerations are not read)."""
-        prim = self.primitives[step.function]
+        name, prim = self.callee(step, scope)
         args = [("&" if a.kind == "var" else "") + self.arg(a, scope, step) for a in step.args]
         args += [f"&{self.ref(o, scope)}" for o in step.outputs]
         if prim.sigma is not None:
             args.append(f"&{self.sigma(step)}")
-        text = f"{step.function}{'_1' if velocities else ''}({', '.join(args)});"
+        text = f"{name}{'_1' if velocities else ''}({', '.join(args)});"
         points = ", ".join(self.lit(p) for p in step.change_points)
         head = [f"static const double change_{step.number}[] = {{{points}}};"] if step.change_points else []
         if prim.status is None:

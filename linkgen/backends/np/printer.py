@@ -9,20 +9,15 @@ the same numbers.
 
 from __future__ import annotations
 
-import math
 from collections import Counter
-from dataclasses import replace
 
 from ...primitives.dsl import (
-    RECORD_FIELDS,
-    Bin,
     Binary,
     Call,
     Const,
     Expr,
     Let,
     Logic,
-    Neg,
     Num,
     Primitive,
     Select,
@@ -33,6 +28,8 @@ from ...primitives.dsl import (
 )
 from ...primitives.printers import ATOM, ExprPrinter
 from ..py.printer import PythonExprs, parameter_lines
+from ..still import rebuilt as _rebuilt
+from ..still import substituted as _substituted
 
 
 class NumpyExprs(PythonExprs):
@@ -147,33 +144,6 @@ def _cos_sin_pairs(lets: tuple[Let, ...]) -> dict[str, tuple[str, str]]:
     return {c: (c, calls["sin", arg]) for (fn, arg), c in calls.items() if fn == "cos" and ("sin", arg) in calls}
 
 
-def _rebuilt(e: Expr, kids: list[Expr]) -> Expr:
-    """e with other children (e itself where they are its own)."""
-    if all(n is c for n, c in zip(kids, children(e))):
-        return e
-    if isinstance(e, Binary):
-        return type(e)(e.op, kids[0], kids[1])
-    if isinstance(e, Neg):
-        return Neg(kids[0])
-    if isinstance(e, Call):
-        return Call(e.fn, tuple(kids))
-    if isinstance(e, Select):
-        return Select(kids[0], kids[1], kids[2])
-    return e
-
-
-def _substituted(e: Expr, names: dict[str, Expr], memo: dict[int, Expr]) -> Expr:
-    """e with the symbols named in names replaced by their expressions (a node met twice, once)."""
-    if id(e) in memo:
-        return memo[id(e)]
-    if isinstance(e, Sym):
-        out = names.get(e.name, e)
-    else:
-        out = _rebuilt(e, [_substituted(c, names, memo) for c in children(e)])
-    memo[id(e)] = out
-    return out
-
-
 def _own(e: Expr) -> tuple[object, ...]:
     """What a node is besides its children: a symbol's or a constant's name, a number's type and
     value, a call's function, an operator."""
@@ -219,36 +189,6 @@ def _merged(roots: list[Expr]) -> list[Expr]:
         return memo[id(e)]
 
     return [rebuild(root) for root in roots]
-
-
-def held_still(prim: Primitive, still: tuple[str, ...]) -> tuple[Primitive, int]:
-    """The primitive where the record parameters named hold still, as a constant record of the
-    sketch does (every rate +0.0): a rate of theirs subtracted is not subtracted, since x - 0.0
-    is x bit for bit (-0.0 and nan included); every other reading reads 0.0 as before.  Returns
-    it and the subtractions it leaves out."""
-    zero: dict[str, Expr] = {f"{p.name}_{f}": Num(0.0) for p in prim.params if p.name in still
-                             for level in RECORD_FIELDS[p.kind][1:] for f in level}
-    memo: dict[int, Expr] = {}
-    kept: dict[int, Expr] = {}
-    saved = Counter[str]()
-
-    def fold(e: Expr) -> Expr:
-        if id(e) not in kept:
-            kids = [fold(c) for c in children(e)]
-            b = kids[1] if isinstance(e, Bin) and e.op == "-" else None
-            plus_zero = isinstance(b, Num) and b.value == 0 and math.copysign(1.0, b.value) > 0
-            saved["-"] += plus_zero
-            kept[id(e)] = kids[0] if plus_zero else _rebuilt(e, kids)
-        return kept[id(e)]
-
-    def still_(e: Expr) -> Expr:
-        return fold(_substituted(e, zero, memo))
-
-    body = tuple(Let(let.name, still_(let.expr), let.order) for let in prim.body)
-    results = {o: {f: still_(e) for f, e in fields.items()} for o, fields in prim.results.items()}
-    held = replace(prim, body=body, results=results, status=prim.status and still_(prim.status),
-                   sigma=prim.sigma and still_(prim.sigma), fail=prim.fail and still_(prim.fail))
-    return held, saved["-"]
 
 
 def _uses(exprs: list[Expr]) -> tuple[Counter[str], set[str]]:
