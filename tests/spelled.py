@@ -1,17 +1,21 @@
 """What the languages' spellings (linkgen.backends.<lang>.spelling) are checked against: the samples without
-a resolver, their procedure run at one input row by linkgen.primitives.interpret (no spelling involved),
-record by record."""
+a resolver, their procedure run at one input row by the Python printer's functions of the primitives each step
+calls (with the sketch's records held still, linkgen.backends.still: no spelling involved), record by record."""
 
 from __future__ import annotations
 
 import math
+import sys
 from functools import cache
 from pathlib import Path
 
+from linkgen.backends.py.printer import python_function
+from linkgen.backends.still import held_params, variant
 from linkgen.pipeline import build_log
-from linkgen.primitives.dsl import record_fields
-from linkgen.primitives.interpret import Record, constant_record, run_steps
+from linkgen.primitives.dsl import Primitive, record_fields
+from linkgen.primitives.interpret import Record, constant_record
 from linkgen.render.view import View, build_view
+from linkgen.status import CANNOT_CLOSE
 
 ROOT = Path(__file__).resolve().parents[1]
 # every kind of call between them: the five chains, crank, slider and distance inputs, points, angles
@@ -41,8 +45,29 @@ def reference(v: View) -> dict[str, Record]:
     values, rates, accelerations = row(v)
     for k, var in enumerate(v.inputs):
         env[var.name] = (values[k], rates[k], accelerations[k])[: order + 1]
-    assert run_steps(v.run, env, order)
+    space = {"sqrt": math.sqrt, "atan2": math.atan2, "cos": math.cos, "sin": math.sin, "EPS": sys.float_info.epsilon,
+             "NAN": math.nan, "PI": math.pi}
+    exec("\n\n".join(python_function(p, order) for p in called(v)), space)
+    for step, prim in zip((s for s in v.run if s.function), calls(v), strict=True):
+        args = [env[a.var] if a.kind == "var" else int(a.value) if a.kind == "int" else float(a.value)
+                for a in step.args]
+        res = space[prim.name](*args)
+        if prim.status is not None:
+            assert res[0] != CANNOT_CLOSE, step.number
+            res = res[2:] if prim.sigma is not None else res[1:]
+        env.update(zip(step.outputs, res if prim.status is not None or len(prim.outputs) > 1 else (res,)))
     return env
+
+
+def calls(v: View) -> list[Primitive]:
+    """The primitive each step of the run calls, in order: with the sketch's records held still where the
+    programs hold them (with its checks: the samples keep theirs)."""
+    return [variant(s.function, True, held_params(v.log, v.record_order, s)) for s in v.run if s.function]
+
+
+def called(v: View) -> list[Primitive]:
+    """The primitives the run calls, each once."""
+    return list({p.name: p for p in calls(v)}.values())
 
 
 def computed(v: View) -> list[tuple[str, str]]:

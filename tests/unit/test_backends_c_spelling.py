@@ -11,15 +11,13 @@ from pathlib import Path
 
 import pytest
 from programs import CFLAGS, need
-from spelled import NAMES, ROOT, computed, reference, row, same, view
+from spelled import NAMES, ROOT, called, computed, reference, row, same, view
 
 from linkgen import status
 from linkgen.backends.c import RUNTIME
 from linkgen.backends.c.printer import c_function, field
 from linkgen.backends.c.spelling import C
-from linkgen.backends.program import used_primitives
 from linkgen.pipeline import build_log
-from linkgen.primitives import PRIMITIVES
 from linkgen.primitives.dsl import record_fields
 from linkgen.render.view import View, build_view
 
@@ -39,7 +37,7 @@ def unit(v: View, name: str, moved: dict[str, str] | None = None) -> str:
     order = v.record_order
     values, rates, accelerations = row(v)
     lines = ["#include <float.h>", "#include <math.h>", "#include <stdio.h>", "", records(order)]
-    lines += [c_function(PRIMITIVES[p], order) for p in used_primitives(v)]
+    lines += [c_function(p, order) for p in called(v)]
     lines += [f"static const {c.kind} {c.name} = {(moved or {}).get(c.name) or spell.initializer(c)};"
               for c in v.constants]
     lines.append("typedef struct {")

@@ -12,16 +12,14 @@ from pathlib import Path
 
 import pytest
 from programs import need
-from spelled import NAMES, ROOT, computed, reference, row, same, view
+from spelled import NAMES, ROOT, called, computed, reference, row, same, view
 
 from linkgen import status
 from linkgen.backends.m import RUNTIME
 from linkgen.backends.m.printer import octave_function
 from linkgen.backends.m.spelling import Octave
-from linkgen.backends.program import used_primitives
 from linkgen.pipeline import build_log
-from linkgen.primitives import PRIMITIVES
-from linkgen.primitives.dsl import record_fields
+from linkgen.primitives.dsl import Primitive, record_fields
 from linkgen.render.view import View, build_view
 
 
@@ -52,9 +50,9 @@ def functions(v: View, name: str, moved: dict[str, str] | None = None) -> str:
 NOTE = "function w = note(w, st, singular, near)\n    printf('note %d %d %d\\n', st, singular, near);\nend"
 
 
-def run_script(order: int, bodies: dict[str, str], folder: Path, used: set[str]) -> dict[str, list[str]]:
+def run_script(order: int, bodies: dict[str, str], folder: Path, used: list[Primitive]) -> dict[str, list[str]]:
     """One octave-cli run of the primitives at ``order``, note() and each body's run_NAME; output by name."""
-    script = "\n".join(["1;", *[octave_function(PRIMITIVES[p], order) for p in PRIMITIVES if p in used], NOTE,
+    script = "\n".join(["1;", *[octave_function(p, order) for p in used], NOTE,
                         *bodies.values(), *[f"printf('unit {n}\\n'); run_{n}();" for n in bodies]]) + "\n"
     path = folder / f"spelled_{order}.m"
     path.write_text(script, encoding="utf-8")
@@ -77,7 +75,7 @@ def outputs(tmp_path_factory: pytest.TempPathFactory) -> dict[str, list[str]]:
     out: dict[str, list[str]] = {}
     for order in sorted({view(n).record_order for n in NAMES}):
         names = [n for n in NAMES if view(n).record_order == order]
-        used = {p for n in names for p in used_primitives(view(n))}
+        used = list({p.name: p for n in names for p in called(view(n))}.values())
         out.update(run_script(order, {n: functions(view(n), n) for n in names}, folder, used))
     return out
 
@@ -103,7 +101,7 @@ def test_a_chain_that_cannot_close_ends_the_row_with_its_steps_code(tmp_path: Pa
     chain = next(s for s in v.run if s.function == "RRR_links")
     grounded = next(c for c in v.constants if c.role == "pair" and any(a.var == c.name for a in chain.args))
     far = "struct('x', 1e6, 'y', 1e6, 'dx', 0, 'dy', 0, 'ddx', 0, 'ddy', 0)"
-    out = run_script(2, {"far": functions(v, "far", {grounded.name: far})}, tmp_path, set(used_primitives(v)))
+    out = run_script(2, {"far": functions(v, "far", {grounded.name: far})}, tmp_path, called(v))
     assert f"code {status.code(chain.number, status.CANNOT_CLOSE)}" in out["far"]
 
 

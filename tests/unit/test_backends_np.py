@@ -25,8 +25,9 @@ def test_a_closed_form_kernel_carries_the_primitives_it_calls():
     called = {s.function for s in view.log.steps if s.function}
     for name in PRIMITIVES:
         assert (f"def {name}(" in text or f"def {name}_still_" in text) == (name in called), name
-    # the frame's pairs hold still: the crank's and the rocker's angles and B's chain to O2 take them so
-    assert printed("RRR_links", view.record_order, still=("j2",)).rstrip("\n") in text
+    # the frame's pairs and the links' lengths hold still: the crank's and the rocker's angles and B's chain to O2
+    # (with the coupler's and the rocker's lengths) take them so
+    assert printed("RRR_links", view.record_order, still=("j2", "l1", "l2")).rstrip("\n") in text
     assert "def RRR_links(" not in text
     assert printed("link_angle", view.record_order).rstrip("\n") in text  # the coupler's: A and B move
     assert printed("link_angle", view.record_order, still=("j1",)).rstrip("\n") in text

@@ -24,9 +24,10 @@ from linkgen.backends.program import (
 from linkgen.backends.py import RUNTIME as PY_RUNTIME
 from linkgen.backends.py.printer import python_function
 from linkgen.backends.py.spelling import Python
+from linkgen.backends.still import held_params, variant
 from linkgen.pipeline import build_log
 from linkgen.primitives import PRIMITIVES
-from linkgen.primitives.dsl import field_order
+from linkgen.primitives.dsl import Primitive, field_order
 from linkgen.render.view import View, build_view
 
 PATHS = {"fourbar": "samples/fourbar/fourbar.yaml", "parallelogram": "tests/mechanisms/parallelogram.yaml",
@@ -63,9 +64,19 @@ def test_a_program_carries_the_runtime_its_procedure_needs(key: str, extra: list
     v = view(key)
     for printer, runtime in ((python_function, PY_RUNTIME), (c_function, C_RUNTIME)):
         texts = runtime_sources(v, printer, runtime)
-        want = [printer(PRIMITIVES[p], v.record_order) for p in used_primitives(v)]
+        want = [printer(p, v.record_order) for p in calls(v, v.measures)]
         want += [runtime.source(name) for name in ["status", *extra]]
         assert texts == want
+
+
+def calls(v: View, checks: bool) -> list[Primitive]:
+    """The primitives the steps call (with the checks or without): those a step calls as they are, then their
+    variants with the sketch's records held still (still.held_params), each in the library's order."""
+    found = {(s.function, held_params(v.log, v.record_order, s)) for s in v.log.steps if s.function}
+    found |= {(p, ()) for p in used_primitives(v) if all(f != p for f, _ in found)}  # called by the runtime alone
+    order = list(PRIMITIVES)
+    ranked = sorted(found, key=lambda call: (bool(call[1]), order.index(call[0]), call[1]))
+    return [variant(p, checks, still) for p, still in ranked]
 
 
 @pytest.mark.parametrize("key", ["fourbar", "cylinder"])
@@ -78,8 +89,8 @@ def test_without_checks_the_primitives_drop_theirs_unless_a_resolver_needs_them(
         assert got is PRIMITIVES[p] if v.groups else got.sigma is None and got.codes() <= {1}
         assert program_primitive(view(key), p) is PRIMITIVES[p]  # with the checks (the default)
     texts = runtime_sources(v, c_function, C_RUNTIME, status=False)
-    assert texts[: len(used_primitives(v))] == [c_function(program_primitive(v, p), v.record_order)
-                                                for p in used_primitives(v)]
+    want = [c_function(p, v.record_order) for p in calls(v, v.measures)]
+    assert texts[: len(want)] == want
     assert C_RUNTIME.source("status") not in texts
 
 
