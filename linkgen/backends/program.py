@@ -12,7 +12,7 @@ from ..primitives.dsl import Primitive
 from ..textcache import kept
 from ..units import sweep_lists
 from . import Runtime
-from .still import held_params, variant
+from .still import carried, held_params, variant
 
 if TYPE_CHECKING:
     from ..render.view import View
@@ -34,6 +34,13 @@ def program_primitive(view: View, name: str) -> Primitive:
     return PRIMITIVES[name] if view.measures else PRIMITIVES[name].unchecked()
 
 
+def step_primitives(view: View) -> dict[int, Primitive]:
+    """The primitive each step calls, by the step's number (its name the function's): outside resolver
+    blocks its variant with the sketch's records held still where it has one (still.py)."""
+    return {s.number: variant(s.function, view.measures, held_params(view.log, view.record_order, s))
+            for s in view.log.steps if s.function}
+
+
 def sensitivity_count(view: View) -> int:
     """The most sensitivities of one block's records (Group.bent: a POINT two, others one)."""
     return max((sum(2 if kind == "POINT" else 1 for _, kind in b.bent) for b in view.blocks), default=1)
@@ -51,13 +58,9 @@ def runtime_sources(view: View, printer: Callable[[Primitive, int], str], runtim
     status helpers (where ``status``) and, where the procedure needs them, branch_at, reach_at, the resolver
     (with the closure strategy's where it is chosen) and the row driver."""
     order = view.record_order
-    calls = {(s.function, held_params(view.log, order, s)) for s in view.log.steps if s.function}
-    held = sorted((call for call in calls if call[1]), key=lambda call: (list(PRIMITIVES).index(call[0]), call[1]))
-    plain = [(p, ()) for p in used_primitives(view)
-             if (p, ()) in calls or all(p != f for f, _ in held)]  # none where every call holds a record still
     texts = [kept("program primitive", (printer.__module__, printer.__qualname__, p, view.measures, order, still),
                   functools.partial(_printed, printer, view, p, order, still))  # printed once per user (textcache)
-             for p, still in plain + held]
+             for p, still in carried(view.log, order, used_primitives(view))]
     if status:
         texts.append(runtime.source("status"))
     texts += [runtime.source(name) for name, needed in (

@@ -12,14 +12,12 @@ from typing import TYPE_CHECKING, Any
 
 from .. import status
 from ..instant.names import field_name, is_centre
-from ..primitives import PRIMITIVES
-from ..primitives.dsl import Primitive, record_fields
+from ..primitives.dsl import record_fields
 from ..primitives.printers import literal
 from ..steplog import Arg, BranchSign, Column, Step, StepLog, Variable, held
 from ..units import DEGREE, converted
 from . import Words
-from .program import program_primitive
-from .still import held_params, variant
+from .program import step_primitives
 
 if TYPE_CHECKING:
     from ..render.view import Group, View
@@ -52,18 +50,8 @@ class Spelling:
         self.variables = {v.name: v for v in self.log.variables}
         self.measured = view.measured  # steps whose branch is read off the last solution
         self.checks = view.checks  # singular and near-singular steps noted, the conditioning reported
-        self.measures = view.measures  # the primitives keep their checks (program_primitive)
-        self.primitives = {name: program_primitive(view, name) for name in self.log.runtime if name in PRIMITIVES}
+        self.callees = step_primitives(view)  # by step number (held still outside resolver blocks: still.py)
         self._reads: dict[int, set[str]] = {}  # block index -> the names of the records it reads (external)
-
-    def callee(self, step: Step, scope: Group | None) -> tuple[str, Primitive]:
-        """The name and primitive a step calls: outside a resolver block, its variant with the
-        sketch's records held still where it has one (still.py)."""
-        still = held_params(self.log, self.order, step) if scope is None else ()
-        if not still:
-            return step.function, self.primitives[step.function]
-        prim = variant(step.function, self.measures, still)
-        return prim.name, prim
 
     @staticmethod
     def order_of(view: View) -> int:

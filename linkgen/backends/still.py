@@ -112,13 +112,24 @@ def variant(name: str, checks: bool, still: tuple[str, ...]) -> Primitive:
 
 def held_params(log: StepLog, order: int, step: Step) -> tuple[str, ...]:
     """The record parameters of a step's call that hold still (the sketch's constant records,
-    their rates 0) where that saves an operation: outside resolver groups (whose blocks call their own
-    copies), at records with rates; () for the primitive as it is."""
-    if log.groups or order == 0 or not step.function:
+    their rates 0) where that saves an operation: at steps outside resolver groups (whose blocks
+    call their own copies), at records with rates; () for the primitive as it is.  The choice reads
+    the step and the mechanism only, never which outputs are kept: a pruned build calls what the
+    whole build calls, and gives its bits, signed zeros included."""
+    if step.group or step.variant or order == 0 or not step.function:
         return ()
     prim = PRIMITIVES[step.function]
     return tuple(p.name for p, a in zip(prim.params, step.args) if p.is_record and a.kind == "var"
                  and log.variable(a.var).constant and _saves(step.function, p.name))
+
+
+def carried(log: StepLog, order: int, used: list[str]) -> list[tuple[str, tuple[str, ...]]]:
+    """The primitives a program carries, each with the records it holds still: those of ``used`` (in
+    the library's order) that a step calls as they are or that no step calls (a resolver block's own),
+    then every variant a step calls (held_params), in the library's order."""
+    calls = {(s.function, held_params(log, order, s)) for s in log.steps if s.function}
+    held = sorted((call for call in calls if call[1]), key=lambda call: (list(PRIMITIVES).index(call[0]), call[1]))
+    return [(p, ()) for p in used if (p, ()) in calls or all(p != f for f, _ in held)] + held
 
 
 @functools.cache

@@ -11,9 +11,10 @@ from linkgen.backends.c.printer import c_function
 from linkgen.backends.m.printer import octave_function
 from linkgen.backends.np import still
 from linkgen.backends.np.printer import numpy_function
-from linkgen.backends.program import program_primitive, runtime_sources, used_primitives
+from linkgen.backends.program import runtime_sources, used_primitives
 from linkgen.backends.py import RUNTIME
 from linkgen.backends.py.printer import python_function
+from linkgen.backends.still import carried, variant
 from linkgen.pipeline import build_log
 from linkgen.primitives import PRIMITIVES, python_backend
 from linkgen.render.view import build_view
@@ -74,7 +75,8 @@ def test_a_kept_primitive_is_the_printers_text():
     for name in ("RRR_links", "link_angle"):
         assert still.printed(name, 2) == numpy_function(PRIMITIVES[name], 2)
     for printer in (c_function, octave_function, python_function):
-        printed = [printer(program_primitive(view, p), view.record_order) for p in used_primitives(view)]
+        calls = carried(log, view.record_order, used_primitives(view))  # with the sketch's records held still
+        printed = [printer(variant(p, view.measures, still), view.record_order) for p, still in calls]
         assert runtime_sources(view, printer, RUNTIME, status=False)[:len(printed)] == printed
     python_backend(1)  # the evaluator's primitives at order 1: kept by now
     source = "\n\n".join(python_function(p, 1) for p in PRIMITIVES.values())

@@ -55,7 +55,7 @@ class C(Spelling):
         residuals' rates at zero Add-link rate at once: the second channel's records are the block's t_
         locals, what it reads from outside live (w->), the constants themselves.  No note: the pass
         measures (the rates pass after it notes); it keeps its position values in the work's tape."""
-        prim = self.primitives[step.function]
+        prim = self.callees[step.number]
         pairs = list(zip(step.args, prim.params))
         args = [("&" if a.kind == "var" else "") + self.arg(a, scope, step) for a, _ in pairs]
         args += [f"&{self.second(a.var, scope)}" for a, p in pairs if p.is_record]
@@ -68,12 +68,12 @@ class C(Spelling):
     def tape_at(self, step: Step, scope: Group) -> int:
         """Where a step's values start in the work's tape: after those of the block's steps before it."""
         before = scope.steps[: scope.steps.index(step)]
-        return sum(len(tape(self.primitives[s.function])) for s in before if s.function)
+        return sum(len(tape(self.callees[s.number])) for s in before if s.function)
 
     def tape_call(self, step: Step, scope: Group) -> list[str]:
         """A step's rates copy (NAME_r) in a block's pass at the solved Add-link rates: the positions' values
         as the last Newton pass (pair_call) kept them in the work's tape; it notes the kept status."""
-        prim = self.primitives[step.function]
+        prim = self.callees[step.number]
         at = self.tape_at(step, scope)
         args = [("&" if a.kind == "var" else "") + self.arg(a, scope, step) for a in step.args]
         args += [f"w->tape[{at + k}]" for k in range(len(tape(prim)))]
@@ -83,7 +83,7 @@ class C(Spelling):
     def _block_call(self, step: Step, text: str, noted: bool) -> list[str]:
         """A block's call of a primitive copy: the step's change points, the call, a chain that cannot close
         ending the pass, the status noted where the pass notes, the block's worst chain conditioning."""
-        prim = self.primitives[step.function]
+        prim = self.callees[step.number]
         points = ", ".join(self.lit(p) for p in step.change_points)
         head = [f"static const double change_{step.number}[] = {{{points}}};"] if step.change_points else []
         if prim.status is None:
@@ -104,12 +104,12 @@ class C(Spelling):
     def call(self, step: Step, scope: Group | None, velocities: bool = False) -> list[str]:
         """A step's call; a failing chain ends the row (inside a resolver block: the block's pass;
         ``velocities``: its order-1 copy, for a pass whose accelerations are not read)."""
-        name, prim = self.callee(step, scope)
+        prim = self.callees[step.number]
         args = [("&" if a.kind == "var" else "") + self.arg(a, scope, step) for a in step.args]
         args += [f"&{self.ref(o, scope)}" for o in step.outputs]
         if prim.sigma is not None:
             args.append(f"&{self.sigma(step)}")
-        text = f"{name}{'_1' if velocities else ''}({', '.join(args)});"
+        text = f"{prim.name}{'_1' if velocities else ''}({', '.join(args)});"
         points = ", ".join(self.lit(p) for p in step.change_points)
         head = [f"static const double change_{step.number}[] = {{{points}}};"] if step.change_points else []
         if prim.status is None:

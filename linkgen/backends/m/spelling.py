@@ -55,7 +55,7 @@ class Octave(Spelling):
 
     def call(self, step: Step, scope: Group | None) -> list[str]:
         """A step's call; a failing chain ends the row (inside a resolver block: the block's pass)."""
-        name, prim = self.callee(step, scope)
+        prim = self.callees[step.number]
         args = ", ".join(self.arg(a, scope, step) for a in step.args)
         targets = [self.ref(o, scope) for o in step.outputs]
         if prim.status is not None:
@@ -63,7 +63,7 @@ class Octave(Spelling):
         if prim.sigma is not None:
             targets.append(self.sigma(step))
         lhs = f"[{', '.join(targets)}]" if len(targets) > 1 else targets[0]
-        lines = [f"{lhs} = {name}({args});"]
+        lines = [f"{lhs} = {prim.name}({args});"]
         if prim.status is None:
             return lines
         if scope is None:

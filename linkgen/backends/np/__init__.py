@@ -8,9 +8,10 @@ from ...primitives import PRIMITIVES
 from ...units import sweep_lists
 from .. import Backend, Runtime, Template
 from ..program import LEVEL, used_primitives
+from ..still import carried
 from .printer import numpy_function
 from .spelling import Numpy
-from .still import held_params, printed
+from .still import printed
 
 if TYPE_CHECKING:
     from ...render.view import View
@@ -42,11 +43,8 @@ def runtime_sources(view: View) -> list[str]:
     branch_at and reach_at where the procedure needs them, and the row driver; with resolver
     groups the resolver on lanes of rows and the sweep that solves the rows in order."""
     log = view.log
-    calls = {(s.function, held_params(log, view.record_order, s)) for s in log.steps if s.function}
-    held = sorted((call for call in calls if call[1]), key=lambda call: (list(PRIMITIVES).index(call[0]), call[1]))
-    texts = [printed(p, view.record_order, "", view.measures) for p in used_primitives(view)
-             if (p, ()) in calls or all(p != f for f, _ in held)]  # none where every call holds a record still
-    texts += [printed(p, view.record_order, "", view.measures, still) for p, still in held]
+    texts = [printed(p, view.record_order, "", view.measures, still)
+             for p, still in carried(log, view.record_order, used_primitives(view))]
     texts += [printed(p, 1, FAST, view.measures) for p in fast_primitives(view)]
     if any("cos_sin(" in text for text in texts):
         texts.append(RUNTIME.source("trig"))

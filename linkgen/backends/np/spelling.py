@@ -11,7 +11,6 @@ from ...primitives.dsl import record_fields
 from ...steplog import Arg, BranchSign, Column, Step, Variable
 from ..py.spelling import Python
 from ..spelling import Syntax
-from .still import held_params, still_suffix
 
 if TYPE_CHECKING:
     from ...render.view import Group, View
@@ -89,7 +88,7 @@ class Numpy(Python):
         a singular position, a near-singular one (those its function returns; a resolve step's, all
         three with the checks, else the first)."""
         every = (status.CANNOT_CLOSE, status.SINGULAR, status.NEAR_SINGULAR)
-        returned = self.primitives[step.function].codes() if step.function else every if self.checks else every[:1]
+        returned = self.callees[step.number].codes() if step.function else every if self.checks else every[:1]
         pairs = [(r, status.code(step.number, r)) for r in (status.CANNOT_CLOSE, status.SINGULAR, status.NEAR_SINGULAR)
                  if r in returned]
         return "(" + ", ".join(f"({r}, {c})" for r, c in pairs) + ("," if len(pairs) == 1 else "") + ")"
@@ -155,12 +154,11 @@ class Numpy(Python):
         """A step's call on a block of rows (to the primitive named with the suffix, outside a
         resolver block to its variant with the sketch's records held still where it has one); one
         that can fail reports its status and codes."""
-        prim = self.primitives[step.function]
-        if scope is None and not suffix:
-            suffix = still_suffix(held_params(self.log, self.order, step))
+        prim = self.callees[step.number]
+        name = step.function + suffix if suffix else prim.name
         args = ", ".join(self.arg(a, scope, step) for a in step.args)
         targets = ", ".join(self.ref(o, scope) for o in step.outputs)
         if prim.status is None:
-            return [f"_, _, {targets} = {step.function}{suffix}({args})"]
+            return [f"_, _, {targets} = {name}({args})"]
         sigma = self.sigma(step) if prim.sigma is not None else "_"
-        return [f"st, {sigma}, {targets} = {step.function}{suffix}({args})", f"report.append((st, {self.codes(step)}))"]
+        return [f"st, {sigma}, {targets} = {name}({args})", f"report.append((st, {self.codes(step)}))"]

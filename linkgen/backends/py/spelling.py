@@ -69,12 +69,12 @@ class Python(Spelling):
 
     def call(self, step: Step, scope: Group | None) -> list[str]:
         """A step's call; a failing chain ends the row (inside a resolver block: the block's pass)."""
-        name, prim = self.callee(step, scope)
+        prim = self.callees[step.number]
         args = [self.arg(a, scope, step) for a in step.args]
         fields = [self.fields_of(a.var, scope) or text if a.kind == "var" else text for a, text in zip(step.args, args)]
         targets = [self.hold(o, scope) for o in step.outputs]
         failed = [f"return {self.status_code(step, 1)}" if scope is None else "return 1, None"]
-        lines = [f"# {name}({', '.join(args)}), inline"]
+        lines = [f"# {prim.name}({', '.join(args)}), inline"]
         lines += inline_lines(prim, self.order, fields, targets, self.sigma(step), failed)
         if prim.status is None:
             return lines
