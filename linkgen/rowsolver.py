@@ -18,6 +18,7 @@ from types import SimpleNamespace
 from typing import Any
 
 from . import status
+from .backends.still import held_params, scalar_variants, still_suffix
 from .loopstate import lengths, loop_flags
 from .options import runtime_policy
 from .primitives import PRIMITIVES, python_backend
@@ -179,8 +180,9 @@ class RowSolver:
     def __init__(self, log: StepLog, order: int):
         self.log, self.order, self.width = log, order, max(order, 1)  # records carry rates: the Jacobian's
         self.call = _scalar_call(self.width)
-        fns = python_backend(self.width)
-        self.runners = {s.number: runner(s, fns) for s in log.steps if s.function}
+        fns = {**python_backend(self.width), **scalar_variants(log, self.width)}  # the programs' calls (still.py)
+        self.runners = {s.number: runner(s, fns, s.function + still_suffix(held_params(log, self.width, s)))
+                        for s in log.steps if s.function}
         self.warm: Any = None
         self.halvings = log.policy.max_halvings
         self.mech, self.straight = mechanism(log), mechanism(log, one_way=True)

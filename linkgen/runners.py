@@ -22,11 +22,12 @@ Env = dict[Any, Any]  # variable -> record, (BRANCH, step) -> branch
 Runner = Callable[[Env], tuple[Any, Any, tuple[Any, ...]]]  # one step's call on the records: (status, sigma, outputs)
 
 
-def runner(step: Step, fns: Mapping[str, Any]) -> Runner:
-    """A step's call made once (its runtime function, where each argument comes from, how the
-    result unpacks): run on the records it gives what ``call(step.function, args)`` gives."""
+def runner(step: Step, fns: Mapping[str, Any], name: str = "") -> Runner:
+    """A step's call made once (its runtime function, the one of fns named ``name`` where given,
+    else the step's; where each argument comes from, how the result unpacks): run on the records it
+    gives what ``call(step.function, args)`` gives."""
     prim = PRIMITIVES[step.function]
-    scope: dict[str, Any] = {"fn": fns[step.function]}
+    scope: dict[str, Any] = {"fn": fns[name or step.function]}
     args = []
     for k, a in enumerate(step.args):
         if a.kind == "var":

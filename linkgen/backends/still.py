@@ -6,11 +6,13 @@ at the same step, so they keep giving the same bits as each other."""
 from __future__ import annotations
 
 import functools
+import math
+import sys
 from collections import Counter
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
-from ..primitives import PRIMITIVES
+from ..primitives import PRIMITIVES, RuntimeFunction
 from ..primitives.dsl import RECORD_FIELDS, Bin, Binary, Call, Expr, Let, Neg, Num, Primitive, Select, Sym, children
 from ..textcache import kept
 
@@ -42,33 +44,34 @@ def substituted(e: Expr, names: dict[str, Expr], memo: dict[int, Expr]) -> Expr:
     return memo[id(e)]
 
 
-def _zero(e: Expr) -> bool:
-    return isinstance(e, Num) and e.value == 0
+# A held record's rate, and what it makes zero: the zeros that fold.  A primitive's own 0.0 stays where it
+# is written (instant_centre's ``+ 0.0`` and ``0.0 - gy`` turn a -0.0 into 0.0: folded, they would not).
+HELD = Num(0.0)
 
 
 def _folded(e: Expr, kids: list[Expr]) -> Expr | None:
-    """e with a zero operand folded (x - 0, x + 0, 0 + x: x; 0 - x: -x; 0 * x, x * 0, -0: 0), None where
+    """e with a HELD operand folded (x - 0, x + 0, 0 + x: x; 0 - x: -x; 0 * x, x * 0, -0: 0), None where
     nothing folds.  For finite x this is the value IEEE arithmetic gives but for the sign of a
-    zero (0.0 + -0.0 is +0.0, x * 0.0 is -0.0 for a negative x)."""
+    zero (-0.0 + 0.0 is +0.0, x * 0.0 is -0.0 for a negative x)."""
     if isinstance(e, Bin) and e.op in "+-*":
         a, b = kids
-        if e.op == "*" and (_zero(a) or _zero(b)):
-            return Num(0.0)
-        if _zero(b):
+        if e.op == "*" and (a is HELD or b is HELD):
+            return HELD
+        if b is HELD:
             return a
-        if _zero(a):
+        if a is HELD:
             return b if e.op == "+" else Neg(b)
-    if isinstance(e, Neg) and _zero(kids[0]):
-        return Num(0.0)
+    if isinstance(e, Neg) and kids[0] is HELD:
+        return HELD
     return None
 
 
 def held_still(prim: Primitive, still: tuple[str, ...]) -> tuple[Primitive, int]:
     """The primitive where the record parameters named hold still, as a constant record of the
     sketch does (every rate 0.0), with what those zeros make zero folded away (_folded; an
-    assignment that folds to 0 folded into those reading it).  Returns it and the operations it
+    assignment that folds to HELD folded into those reading it).  Returns it and the operations it
     leaves out."""
-    zero: dict[str, Expr] = {f"{p.name}_{f}": Num(0.0) for p in prim.params if p.name in still
+    zero: dict[str, Expr] = {f"{p.name}_{f}": HELD for p in prim.params if p.name in still
                              for level in RECORD_FIELDS[p.kind][1:] for f in level}
     memo: dict[int, Expr] = {}
     done: dict[int, Expr] = {}
@@ -88,7 +91,7 @@ def held_still(prim: Primitive, still: tuple[str, ...]) -> tuple[Primitive, int]
     body = []
     for let in prim.body:  # a later assignment reads an earlier one only: zero and memo stay true as zero grows
         e = still_(let.expr)
-        if isinstance(e, Num):
+        if e is HELD:
             zero[let.name] = e
         body.append(Let(let.name, e, let.order))
     results = {o: {f: still_(e) for f, e in fields.items()} for o, fields in prim.results.items()}
@@ -130,6 +133,24 @@ def carried(log: StepLog, order: int, used: list[str]) -> list[tuple[str, tuple[
     calls = {(s.function, held_params(log, order, s)) for s in log.steps if s.function}
     held = sorted((call for call in calls if call[1]), key=lambda call: (list(PRIMITIVES).index(call[0]), call[1]))
     return [(p, ()) for p in used if (p, ()) in calls or all(p != f for f, _ in held)] + held
+
+
+def scalar_variants(log: StepLog, order: int) -> dict[str, RuntimeFunction]:
+    """The variants the log's steps call (carried), by their names, as Python functions on tuples of
+    floats: what the row solver calls where the programs call them (linkgen.rowsolver)."""
+    return {name + still_suffix(still): _scalar(name, still, order) for name, still in carried(log, order, [])}
+
+
+@functools.cache
+def _scalar(name: str, still: tuple[str, ...], order: int) -> RuntimeFunction:
+    from .py.printer import python_function  # the py backend imports the programs' module, which imports this one
+
+    prim = variant(name, True, still)
+    space: dict[str, Any] = {"sqrt": math.sqrt, "atan2": math.atan2, "cos": math.cos, "sin": math.sin,
+                             "EPS": sys.float_info.epsilon, "NAN": math.nan, "PI": math.pi}  # as python_backend's
+    exec(compile(python_function(prim, order), f"<linkgen runtime python {prim.name} order {order}>", "exec"), space)
+    function: RuntimeFunction = space[prim.name]
+    return function
 
 
 @functools.cache

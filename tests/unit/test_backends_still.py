@@ -13,9 +13,9 @@ from pathlib import Path
 import pytest
 
 from linkgen.backends.py.printer import python_function
-from linkgen.backends.still import carried, held_params, held_still, still_suffix, substituted, variant
+from linkgen.backends.still import carried, held_params, held_still, scalar_variants, still_suffix, substituted, variant
 from linkgen.pipeline import build_log
-from linkgen.primitives import PRIMITIVES
+from linkgen.primitives import PRIMITIVES, python_backend
 from linkgen.primitives.dsl import Bin, Num, Param, Primitive, Sym, record_fields
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -83,6 +83,24 @@ def test_a_folded_zero_keeps_the_other_operands_sign():
     assert [math.copysign(1, x) for x in held[1:]] == [-1, -1]
 
 
+def test_a_primitives_own_zero_is_not_folded():
+    """instant_centre's direction is written ``k * (0.0 - gy) / |g| + 0.0`` so that it is never -0.0: held
+    still, it still is not (the whole primitive's signs, on records whose rates are zeros of either sign)."""
+    rng = random.Random(7)
+    whole = _function(PRIMITIVES["instant_centre"], 2)
+    ux, uy = record_fields("CENTRE", 2).index("ux"), record_fields("CENTRE", 2).index("uy")
+    signed = 0
+    for still in _records("instant_centre"):
+        held = _function(variant("instant_centre", True, still), 2)
+        for _ in range(200):
+            args = [tuple(rng.choice((0.0, -0.0, 1.0, -2.0)) if x != 0.0 else x for x in _argument(p, 2, still, rng))
+                    for p in PRIMITIVES["instant_centre"].params]
+            got, want = held(*args), whole(*args)
+            assert [math.copysign(1, got[k]) for k in (ux, uy)] == [math.copysign(1, want[k]) for k in (ux, uy)]
+            signed += got[uy] == 0 and got[ux] == 1
+    assert signed > 10  # directions along x, where -0.0 would show
+
+
 @pytest.mark.parametrize(("name", "still", "saved"), [
     ("link_angle", ("j1",), 4),  # j2's rates minus j1's: dvx, dvy, dax, day
     ("crank_input", ("j1",), 4),  # j1's rates plus the rotating arm's: dx, dy, ddx, ddy
@@ -145,3 +163,13 @@ def test_a_pruned_build_holds_what_the_whole_build_holds_and_resolver_blocks_not
     assert _held(pruned, order) == {n: held for n, held in wanted.items() if n in {s.number for s in pruned.steps}}
     inside = {n for g in whole.groups for b in (g, *g.variants) for n in b.steps}
     assert inside and not inside & set(wanted)
+
+
+def test_the_row_solvers_variants_are_those_a_resolver_program_calls_outside_its_blocks():
+    """The triad six-bar: the crank from its frame pivot J7 at the frame's angle, the rocker's angle from J1."""
+    log = _log("sixbar_fig14")
+    found = scalar_variants(log, 2)
+    assert sorted(found) == ["crank_angle_still_phi", "crank_input_still_j1_phi", "link_angle_still_j1"]
+    whole = python_backend(2)["crank_angle"]
+    assert found["crank_angle_still_phi"]((1.0, -0.0, 0.5), (0.5, 0.0, 0.0), 0.25) == whole((1.0, -0.0, 0.5),
+                                                                                             (0.5, 0.0, 0.0), 0.25)

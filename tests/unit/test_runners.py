@@ -52,3 +52,14 @@ def test_a_compiled_call_gives_the_generic_calls_result(sample: str):
     ours = runner(chain, fns)(flipped)
     assert repr(ours) == repr(call(chain.function, _arguments(chain, flipped)))
     assert ours != runner(chain, fns)(env)  # the other branch: another position
+
+
+def test_a_call_runs_the_function_named_where_a_name_is_given():
+    """The row solver names a step's variant with records held still (linkgen.backends.still)."""
+    log = build_log(str(ROOT / "samples" / "fourbar" / "fourbar.yaml"), sweep=False)
+    step = next(s for s in log.steps if s.function == "crank_angle")
+    seen: list[tuple[Any, ...]] = []
+    fns = {**python_backend(2), "other": lambda *args: seen.append(args) or (1.0, 2.0, 3.0)}
+    env = {v.name: constant_record(v, 2, log.origin) for v in log.variables if v.constant} | {"in1": (0.5, 1.0, 0.0)}
+    assert runner(step, fns, "other")(env) == (0, 1.0, ((1.0, 2.0, 3.0),)) and len(seen) == 1
+    assert runner(step, fns)(env) != runner(step, fns, "other")(env)
