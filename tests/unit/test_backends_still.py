@@ -144,9 +144,9 @@ def test_the_four_bars_constant_records_are_held_still_where_their_zero_rates_en
     log = _log("fourbar")
     want = {2: ("j1", "phi"), 3: ("j2", "l1", "l2"), 5: ("phi",), 7: ("j1",)}
     assert _held(log, 2) == want and _held(log, 1) == want and _held(log, 0) == {}
-    # what its programs carry: link_angle (step 6) and link_point (step 4) as they are, then the variants
-    assert carried(log, 2, ["crank_input", "link_angle", "crank_angle", "link_point", "RRR_links"]) == [
-        ("link_angle", ()), ("link_point", ()), ("crank_input", ("j1", "phi")), ("link_angle", ("j1",)),
+    # what its programs carry: link_angle (step 6) and pair_point (step 4) as they are, then the variants
+    assert carried(log, 2, ["crank_input", "link_angle", "crank_angle", "pair_point", "RRR_links"]) == [
+        ("link_angle", ()), ("pair_point", ()), ("crank_input", ("j1", "phi")), ("link_angle", ("j1",)),
         ("crank_angle", ("phi",)), ("RRR_links", ("j2", "l1", "l2"))]
 
 
