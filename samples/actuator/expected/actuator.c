@@ -37,18 +37,44 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows). */
+/* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
 #if defined(__GNUC__)
-static inline int pair_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc) __attribute__((always_inline));
+static inline int link_angle_still_j1(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
 #endif
-static inline int pair_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
+static inline int link_angle_still_j1(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
-    const double dvx = j2->DP.x - j1->DP.x;
-    const double dvy = j2->DP.y - j1->DP.y;
-    const double dax = j2->DDP.x - j1->DDP.x;
-    const double day = j2->DDP.y - j1->DDP.y;
+    const double dvx = j2->DP.x;
+    const double dvy = j2->DP.y;
+    const double dax = j2->DDP.x;
+    const double day = j2->DDP.y;
+    const double r2 = dx * dx + dy * dy;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
+    const double ir2 = r2 == 0 ? NAN : 1 / r2;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    const int st = r2 == 0 ? 1 : 0;
+    if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; return st; }
+    angle->the = th;
+    angle->dthe = om;
+    angle->ddthe = al;
+    return st;
+}
+
+/* Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows). */
+#if defined(__GNUC__)
+static inline int pair_point_still_j1(const POINT *j1, const POINT *j2, double along, double across, POINT *jc) __attribute__((always_inline));
+#endif
+static inline int pair_point_still_j1(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x;
+    const double dvy = j2->DP.y;
+    const double dax = j2->DDP.x;
+    const double day = j2->DDP.y;
     const double r2 = dx * dx + dy * dy;
     const double rx = along * dx - across * dy;
     const double ry = along * dy + across * dx;
@@ -60,18 +86,18 @@ static inline int pair_point(const POINT *j1, const POINT *j2, double along, dou
     if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; return st; }
     jc->P.x = j1->P.x + rx;
     jc->P.y = j1->P.y + ry;
-    jc->DP.x = j1->DP.x + rvx;
-    jc->DP.y = j1->DP.y + rvy;
-    jc->DDP.x = j1->DDP.x + rax;
-    jc->DDP.y = j1->DDP.y + ray;
+    jc->DP.x = rvx;
+    jc->DP.y = rvy;
+    jc->DDP.x = rax;
+    jc->DDP.y = ray;
     return st;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
 #if defined(__GNUC__)
-static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+static inline int RRR_links_still_j1_j2_l1(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
 #endif
-static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
+static inline int RRR_links_still_j1_j2_l1(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -110,21 +136,90 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double ar = ((3 * o1 > s2) & (3 * o2 > dd)) ? ao : a * iq;
     const double a2r = ((3 * o1 > s2) & (3 * o2 > dd)) ? (dd - c) * idd2 : a2 * iq;
-    const double e2x = -a2r * dx + area4 * mx;
-    const double e2y = -a2r * dy + area4 * my;
     const double sdx = 2 * idd2 * dx;
     const double sdy = 2 * idd2 * dy;
     const double ihq = area4 == 0 ? NAN : 2 * minv / area4;
     const double tnx = -ihq * dy;
     const double tny = ihq * dx;
-    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
-    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
-    const double buv = r1v - r2v;
-    const double bnv = a2r * r1v + ar * r2v;
+    const double r2v = l2->v * l2->dv;
+    const double buv = -r2v;
+    const double bnv = ar * r2v;
     const double bvx = buv * sdx + bnv * tnx;
     const double bvy = buv * sdy + bnv * tny;
-    const double r1a = l1->v * l1->ddv + l1->dv * l1->dv + (e1x * j1->DDP.x + e1y * j1->DDP.y) - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y));
-    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv + (e2x * j2->DDP.x + e2y * j2->DDP.y) - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y));
+    const double r1a = -(bvx * bvx + bvy * bvy);
+    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv - (bvx * bvx + bvy * bvy);
+    const double bua = r1a - r2a;
+    const double bna = a2r * r1a + ar * r2a;
+    const double bax = bua * sdx + bna * tnx;
+    const double bay = bua * sdy + bna * tny;
+    const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    *sigma_out = sigma;
+    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
+    if (st == 3) { jb->P.x = j1->P.x + e1x; jb->P.y = j1->P.y + e1y; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
+    jb->P.x = j1->P.x + e1x;
+    jb->P.y = j1->P.y + e1y;
+    jb->DP.x = bvx;
+    jb->DP.y = bvy;
+    jb->DDP.x = bax;
+    jb->DDP.y = bay;
+    return st;
+}
+
+/* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
+#if defined(__GNUC__)
+static inline int RRR_links_still_j2_l1_l2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+#endif
+static inline int RRR_links_still_j2_l1_l2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dd = dx * dx + dy * dy;
+    const double q = sqrt(dd);
+    const double hi = (l2->v > l1->v ? l2->v : l1->v);
+    const double lo = (l2->v < l1->v ? l2->v : l1->v);
+    const double x = (q > hi ? q : hi);
+    const double z = (q < lo ? q : lo);
+    const double y = q >= hi ? hi : q <= lo ? lo : q;
+    const double k = z - (x - y);
+    const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
+    const double kk = (0.0 > k ? 0.0 : k);
+    const double s2 = (l1->v + l2->v) * (l1->v + l2->v);
+    const double t2 = (l1->v - l2->v) * (l1->v - l2->v);
+    const double o1 = s2 - dd;
+    const double o2 = dd - t2;
+    const double area4 = ((3 * o1 > s2) & (3 * o2 > dd)) ? sqrt(o1 * o2) : sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
+    const double idd2 = dd == 0 ? NAN : 0.5 / dd;
+    const double c = (l1->v - l2->v) * (l1->v + l2->v);
+    const double iq = q == 0 ? NAN : 1 / q;
+    const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double flat = q >= hi ? (l1->v + (q - l2->v)) / 2 : l1->v >= l2->v ? (l1->v + (q + l2->v)) / 2 : (q - (l1->v + l2->v)) / 2;
+    const double at = k > 0 ? a : flat;
+    const double ao = (dd + c) * idd2;
+    const double mi = minv * idd2;
+    const double mx = -mi * dy;
+    const double my = mi * dx;
+    const double ux = dx * iq;
+    const double uy = dy * iq;
+    const double hn = minv * (area4 * iq / 2);
+    const double e1x = ((3 * o1 > s2) & (3 * o2 > dd)) ? ao * dx + area4 * mx : at * ux - hn * uy;
+    const double e1y = ((3 * o1 > s2) & (3 * o2 > dd)) ? ao * dy + area4 * my : at * uy + hn * ux;
+    const double ratio = fail ? 0 : area4 * (0.5 / (l1->v * l2->v));
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
+    const double ar = ((3 * o1 > s2) & (3 * o2 > dd)) ? ao : a * iq;
+    const double a2r = ((3 * o1 > s2) & (3 * o2 > dd)) ? (dd - c) * idd2 : a2 * iq;
+    const double sdx = 2 * idd2 * dx;
+    const double sdy = 2 * idd2 * dy;
+    const double ihq = area4 == 0 ? NAN : 2 * minv / area4;
+    const double tnx = -ihq * dy;
+    const double tny = ihq * dx;
+    const double r1v = e1x * j1->DP.x + e1y * j1->DP.y;
+    const double buv = r1v;
+    const double bnv = a2r * r1v;
+    const double bvx = buv * sdx + bnv * tnx;
+    const double bvy = buv * sdy + bnv * tny;
+    const double r1a = e1x * j1->DDP.x + e1y * j1->DDP.y - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y));
+    const double r2a = -(bvx * bvx + bvy * bvy);
     const double bua = r1a - r2a;
     const double bna = a2r * r1a + ar * r2a;
     const double bax = bua * sdx + bna * tnx;
@@ -144,16 +239,16 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
 
 /* RPR chain: a guide link turning about jg and a slider link turning about js slide along one line; (ag, bg) and (as, bs) are the pair's reference point seen from jg and js in the line's frame.  Gives the line angle psi, the displacement s and the pair's slider point jp. */
 #if defined(__GNUC__)
-static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out) __attribute__((always_inline));
+static inline int RPR_links_still_jg(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out) __attribute__((always_inline));
 #endif
-static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out)
+static inline int RPR_links_still_jg(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out)
 {
     const double dx = js->P.x - jg->P.x;
     const double dy = js->P.y - jg->P.y;
-    const double dvx = js->DP.x - jg->DP.x;
-    const double dvy = js->DP.y - jg->DP.y;
-    const double dax = js->DDP.x - jg->DDP.x;
-    const double day = js->DDP.y - jg->DDP.y;
+    const double dvx = js->DP.x;
+    const double dvy = js->DP.y;
+    const double dax = js->DDP.x;
+    const double day = js->DDP.y;
     const double hh = bg - bs;
     const double q = sqrt(dx * dx + dy * dy);
     const double ah = fabs(hh);
@@ -462,31 +557,31 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 2: RRR_links, K (branch -1). K is joined to the known R by side_link and to the known S0 by d_S0_K: a 3R two-link chain with both ends known */
-    st = RRR_links(&p_R, &p_S0, &l_side_link, &w->in1, -1, &w->p_K, &out->sigma[2]);
+    st = RRR_links_still_j1_j2_l1(&p_R, &p_S0, &l_side_link, &w->in1, -1, &w->p_K, &out->sigma[2]);
     if (st == 1) return failed(out, 21, 2);
     note(w, st, 23, -24);
 
 
     /* Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known */
-    st = RPR_links(&p_S0, &w->p_K, 850.0, 0.0, -850.0, 0.0, 1, &w->psi_C, &w->s_C, &w->p_C, &out->sigma[3]);
+    st = RPR_links_still_jg(&p_S0, &w->p_K, 850.0, 0.0, -850.0, 0.0, 1, &w->psi_C, &w->s_C, &w->p_C, &out->sigma[3]);
     if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
 
     /* Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_K, &p_Q, &l_power_link, &l_bucket, 1, &w->p_M, &out->sigma[4]);
+    st = RRR_links_still_j2_l1_l2(&w->p_K, &p_Q, &l_power_link, &l_bucket, 1, &w->p_M, &out->sigma[4]);
     if (st == 1) return failed(out, 41, 4);
     note(w, st, 43, -44);
 
 
     /* Step 5: pair_point, tip. point tip of link bucket */
-    st = pair_point(&p_Q, &w->p_M, -1.6193771626297577, -3.463667820069204, &w->p_tip);
+    st = pair_point_still_j1(&p_Q, &w->p_M, -1.6193771626297577, -3.463667820069204, &w->p_tip);
     if (st == 1) return failed(out, 51, 5);
     note(w, st, 53, -54);
 
 
     /* Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is known */
-    st = link_angle(&p_R, &w->p_K, 0.0, &w->phi_side_link);
+    st = link_angle_still_j1(&p_R, &w->p_K, 0.0, &w->phi_side_link);
     if (st == 1) return failed(out, 61, 6);
     note(w, st, 63, -64);
 
@@ -498,7 +593,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is known */
-    st = link_angle(&p_Q, &w->p_M, 0.0, &w->phi_bucket);
+    st = link_angle_still_j1(&p_Q, &w->p_M, 0.0, &w->phi_bucket);
     if (st == 1) return failed(out, 81, 8);
     note(w, st, 83, -84);
 

@@ -188,16 +188,37 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
-def pair_point(j1, j2, along, across):
-    """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+def link_angle_still_j1(j1, j2, off):
+    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
+    j1_x, j1_y, _, _, _, _ = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
-    dvx = j2_dx - j1_dx
-    dvy = j2_dy - j1_dy
-    dax = j2_ddx - j1_ddx
-    day = j2_ddy - j1_ddy
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
+    r2 = dx * dx + dy * dy
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    ir2 = NAN if r2 == 0 else 1 / r2
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN)
+    return st, (th, om, al)
+
+def pair_point_still_j1(j1, j2, along, across):
+    """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
     r2 = dx * dx + dy * dy
     rx = along * dx - across * dy
     ry = along * dy + across * dx
@@ -208,13 +229,13 @@ def pair_point(j1, j2, along, across):
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN, NAN, NAN, NAN)
-    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    return st, (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
 
-def RRR_links(j1, j2, l1, l2, minv):
+def RRR_links_still_j1_j2_l1(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    l1_v, l1_dv, l1_ddv = l1
+    j1_x, j1_y, _, _, _, _ = j1
+    j2_x, j2_y, _, _, _, _ = j2
+    l1_v, _, _ = l1
     l2_v, l2_dv, l2_ddv = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
@@ -253,21 +274,18 @@ def RRR_links(j1, j2, l1, l2, minv):
     sigma = (1 if 1 < ratio else ratio)
     ar = ao if 3 * o1 > s2 and 3 * o2 > dd else a * iq
     a2r = (dd - c) * idd2 if 3 * o1 > s2 and 3 * o2 > dd else a2 * iq
-    e2x = -a2r * dx + area4 * mx
-    e2y = -a2r * dy + area4 * my
     sdx = 2 * idd2 * dx
     sdy = 2 * idd2 * dy
     ihq = NAN if area4 == 0 else 2 * minv / area4
     tnx = -ihq * dy
     tny = ihq * dx
-    r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
-    r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
-    buv = r1v - r2v
-    bnv = a2r * r1v + ar * r2v
+    r2v = l2_v * l2_dv
+    buv = -r2v
+    bnv = ar * r2v
     bvx = buv * sdx + bnv * tnx
     bvy = buv * sdy + bnv * tny
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy))
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv + (e2x * j2_ddx + e2y * j2_ddy) - ((bvx - j2_dx) * (bvx - j2_dx) + (bvy - j2_dy) * (bvy - j2_dy))
+    r1a = -(bvx * bvx + bvy * bvy)
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv - (bvx * bvx + bvy * bvy)
     bua = r1a - r2a
     bna = a2r * r1a + ar * r2a
     bax = bua * sdx + bna * tnx
@@ -279,16 +297,82 @@ def RRR_links(j1, j2, l1, l2, minv):
         return st, sigma, (j1_x + e1x, j1_y + e1y, NAN, NAN, NAN, NAN)
     return st, sigma, (j1_x + e1x, j1_y + e1y, bvx, bvy, bax, bay)
 
-def RPR_links(jg, js, ag, bg, as_, bs, minv):
+def RRR_links_still_j2_l1_l2(j1, j2, l1, l2, minv):
+    """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, _, _, _, _ = j2
+    l1_v, _, _ = l1
+    l2_v, _, _ = l2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dd = dx * dx + dy * dy
+    q = sqrt(dd)
+    hi = (l2_v if l2_v > l1_v else l1_v)
+    lo = (l2_v if l2_v < l1_v else l1_v)
+    x = (q if q > hi else hi)
+    z = (q if q < lo else lo)
+    y = hi if q >= hi else lo if q <= lo else q
+    k = z - (x - y)
+    fail = k < -8 * EPS * x or q == 0 or lo <= 0
+    kk = (0 if 0 > k else k)
+    s2 = (l1_v + l2_v) * (l1_v + l2_v)
+    t2 = (l1_v - l2_v) * (l1_v - l2_v)
+    o1 = s2 - dd
+    o2 = dd - t2
+    area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
+    idd2 = NAN if dd == 0 else 0.5 / dd
+    c = (l1_v - l2_v) * (l1_v + l2_v)
+    iq = NAN if q == 0 else 1 / q
+    a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
+    a2 = (q + (l2_v - l1_v) * ((l1_v + l2_v) * iq)) / 2
+    flat = (l1_v + (q - l2_v)) / 2 if q >= hi else (l1_v + (q + l2_v)) / 2 if l1_v >= l2_v else (q - (l1_v + l2_v)) / 2
+    at = a if k > 0 else flat
+    ao = (dd + c) * idd2
+    mi = minv * idd2
+    mx = -mi * dy
+    my = mi * dx
+    ux = dx * iq
+    uy = dy * iq
+    hn = minv * (area4 * iq / 2)
+    e1x = ao * dx + area4 * mx if 3 * o1 > s2 and 3 * o2 > dd else at * ux - hn * uy
+    e1y = ao * dy + area4 * my if 3 * o1 > s2 and 3 * o2 > dd else at * uy + hn * ux
+    ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
+    sigma = (1 if 1 < ratio else ratio)
+    ar = ao if 3 * o1 > s2 and 3 * o2 > dd else a * iq
+    a2r = (dd - c) * idd2 if 3 * o1 > s2 and 3 * o2 > dd else a2 * iq
+    sdx = 2 * idd2 * dx
+    sdy = 2 * idd2 * dy
+    ihq = NAN if area4 == 0 else 2 * minv / area4
+    tnx = -ihq * dy
+    tny = ihq * dx
+    r1v = e1x * j1_dx + e1y * j1_dy
+    buv = r1v
+    bnv = a2r * r1v
+    bvx = buv * sdx + bnv * tnx
+    bvy = buv * sdy + bnv * tny
+    r1a = e1x * j1_ddx + e1y * j1_ddy - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy))
+    r2a = -(bvx * bvx + bvy * bvy)
+    bua = r1a - r2a
+    bna = a2r * r1a + ar * r2a
+    bax = bua * sdx + bna * tnx
+    bay = bua * sdy + bna * tny
+    st = 1 if fail else 3 if sigma < 1e-07 else 4 if sigma < 0.001 else 0
+    if st == 1:
+        return st, sigma, (NAN, NAN, NAN, NAN, NAN, NAN)
+    if st == 3:
+        return st, sigma, (j1_x + e1x, j1_y + e1y, NAN, NAN, NAN, NAN)
+    return st, sigma, (j1_x + e1x, j1_y + e1y, bvx, bvy, bax, bay)
+
+def RPR_links_still_jg(jg, js, ag, bg, as_, bs, minv):
     """RPR chain: a guide link turning about jg and a slider link turning about js slide along one line; (ag, bg) and (as, bs) are the pair's reference point seen from jg and js in the line's frame.  Gives the line angle psi, the displacement s and the pair's slider point jp."""
-    jg_x, jg_y, jg_dx, jg_dy, jg_ddx, jg_ddy = jg
+    jg_x, jg_y, _, _, _, _ = jg
     js_x, js_y, js_dx, js_dy, js_ddx, js_ddy = js
     dx = js_x - jg_x
     dy = js_y - jg_y
-    dvx = js_dx - jg_dx
-    dvy = js_dy - jg_dy
-    dax = js_ddx - jg_ddx
-    day = js_ddy - jg_ddy
+    dvx = js_dx
+    dvy = js_dy
+    dax = js_ddx
+    day = js_ddy
     hh = bg - bs
     q = sqrt(dx * dx + dy * dy)
     ah = abs(hh)
@@ -371,7 +455,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # Step 1: fixed, stick. link stick is the frame: its pairs are fixed
 
     # Step 2: RRR_links, K (branch -1). K is joined to the known R by side_link and to the known S0 by d_S0_K: a 3R two-link chain with both ends known
-    # RRR_links(p_R, p_S0, l_side_link, w.in1, -1), inline
+    # RRR_links_still_j1_j2_l1(p_R, p_S0, l_side_link, w.in1, -1), inline
     _dx = (-1360.0) - 240.0
     _dy = 556.0 - 256.0
     _dd = _dx * _dx + _dy * _dy
@@ -409,21 +493,18 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _sigma = (1 if 1 < _ratio else _ratio)
     _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
     _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
-    _e2x = -_a2r * _dx + _area4 * _mx
-    _e2y = -_a2r * _dy + _area4 * _my
     _sdx = 2 * _idd2 * _dx
     _sdy = 2 * _idd2 * _dy
     _ihq = NAN if _area4 == 0 else 2 * (-1) / _area4
     _tnx = -_ihq * _dy
     _tny = _ihq * _dx
-    _r1v = 565.685424949238 * 0.0 + (_e1x * 0.0 + _e1y * 0.0)
-    _r2v = _in1_v * _in1_dv + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = _r1v - _r2v
-    _bnv = _a2r * _r1v + _ar * _r2v
+    _r2v = _in1_v * _in1_dv
+    _buv = -_r2v
+    _bnv = _ar * _r2v
     _bvx = _buv * _sdx + _bnv * _tnx
     _bvy = _buv * _sdy + _bnv * _tny
-    _r1a = 565.685424949238 * 0.0 + 0.0 * 0.0 + (_e1x * 0.0 + _e1y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
-    _r2a = _in1_v * _in1_ddv + _in1_dv * _in1_dv + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r1a = -(_bvx * _bvx + _bvy * _bvy)
+    _r2a = _in1_v * _in1_ddv + _in1_dv * _in1_dv - (_bvx * _bvx + _bvy * _bvy)
     _bua = _r1a - _r2a
     _bna = _a2r * _r1a + _ar * _r2a
     _bax = _bua * _sdx + _bna * _tnx
@@ -441,13 +522,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 23, -24)
 
     # Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known
-    # RPR_links(p_S0, w.p_K, 850.0, 0.0, -850.0, 0.0, 1), inline
+    # RPR_links_still_jg(p_S0, w.p_K, 850.0, 0.0, -850.0, 0.0, 1), inline
     _dx = _p_K_x - (-1360.0)
     _dy = _p_K_y - 556.0
-    _dvx = _p_K_dx - 0.0
-    _dvy = _p_K_dy - 0.0
-    _dax = _p_K_ddx - 0.0
-    _day = _p_K_ddy - 0.0
+    _dvx = _p_K_dx
+    _dvy = _p_K_dy
+    _dax = _p_K_ddx
+    _day = _p_K_ddy
     _hh = 0.0 - 0.0
     _q = sqrt(_dx * _dx + _dy * _dy)
     _ah = abs(_hh)
@@ -503,7 +584,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 33, -34)
 
     # Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known
-    # RRR_links(w.p_K, p_Q, l_power_link, l_bucket, 1), inline
+    # RRR_links_still_j2_l1_l2(w.p_K, p_Q, l_power_link, l_bucket, 1), inline
     _dx = 640.0 - _p_K_x
     _dy = 256.0 - _p_K_y
     _dd = _dx * _dx + _dy * _dy
@@ -541,21 +622,18 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _sigma = (1 if 1 < _ratio else _ratio)
     _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
     _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
-    _e2x = -_a2r * _dx + _area4 * _mx
-    _e2y = -_a2r * _dy + _area4 * _my
     _sdx = 2 * _idd2 * _dx
     _sdy = 2 * _idd2 * _dy
     _ihq = NAN if _area4 == 0 else 2 * 1 / _area4
     _tnx = -_ihq * _dy
     _tny = _ihq * _dx
-    _r1v = 545.8937625582472 * 0.0 + (_e1x * _p_K_dx + _e1y * _p_K_dy)
-    _r2v = 340.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = _r1v - _r2v
-    _bnv = _a2r * _r1v + _ar * _r2v
+    _r1v = _e1x * _p_K_dx + _e1y * _p_K_dy
+    _buv = _r1v
+    _bnv = _a2r * _r1v
     _bvx = _buv * _sdx + _bnv * _tnx
     _bvy = _buv * _sdy + _bnv * _tny
-    _r1a = 545.8937625582472 * 0.0 + 0.0 * 0.0 + (_e1x * _p_K_ddx + _e1y * _p_K_ddy) - ((_bvx - _p_K_dx) * (_bvx - _p_K_dx) + (_bvy - _p_K_dy) * (_bvy - _p_K_dy))
-    _r2a = 340.0 * 0.0 + 0.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r1a = _e1x * _p_K_ddx + _e1y * _p_K_ddy - ((_bvx - _p_K_dx) * (_bvx - _p_K_dx) + (_bvy - _p_K_dy) * (_bvy - _p_K_dy))
+    _r2a = -(_bvx * _bvx + _bvy * _bvy)
     _bua = _r1a - _r2a
     _bna = _a2r * _r1a + _ar * _r2a
     _bax = _bua * _sdx + _bna * _tnx
@@ -573,13 +651,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 43, -44)
 
     # Step 5: pair_point, tip. point tip of link bucket
-    # pair_point(p_Q, w.p_M, -1.6193771626297577, -3.463667820069204), inline
+    # pair_point_still_j1(p_Q, w.p_M, -1.6193771626297577, -3.463667820069204), inline
     _dx = _p_M_x - 640.0
     _dy = _p_M_y - 256.0
-    _dvx = _p_M_dx - 0.0
-    _dvy = _p_M_dy - 0.0
-    _dax = _p_M_ddx - 0.0
-    _day = _p_M_ddy - 0.0
+    _dvx = _p_M_dx
+    _dvy = _p_M_dy
+    _dax = _p_M_ddx
+    _day = _p_M_ddy
     _r2 = _dx * _dx + _dy * _dy
     _rx = (-1.6193771626297577) * _dx - (-3.463667820069204) * _dy
     _ry = (-1.6193771626297577) * _dy + (-3.463667820069204) * _dx
@@ -592,18 +670,18 @@ def _run(w, inputs, d_inputs, dd_inputs):
         _p_tip_x, _p_tip_y, _p_tip_dx, _p_tip_dy, _p_tip_ddx, _p_tip_ddy = w.p_tip = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 51
     else:
-        _p_tip_x, _p_tip_y, _p_tip_dx, _p_tip_dy, _p_tip_ddx, _p_tip_ddy = w.p_tip = (640.0 + _rx, 256.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+        _p_tip_x, _p_tip_y, _p_tip_dx, _p_tip_dy, _p_tip_ddx, _p_tip_ddy = w.p_tip = (640.0 + _rx, 256.0 + _ry, _rvx, _rvy, _rax, _ray)
     if st:
         w.note(st, 53, -54)
 
     # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is known
-    # link_angle(p_R, w.p_K, 0.0), inline
+    # link_angle_still_j1(p_R, w.p_K, 0.0), inline
     _dx = _p_K_x - 240.0
     _dy = _p_K_y - 256.0
-    _dvx = _p_K_dx - 0.0
-    _dvy = _p_K_dy - 0.0
-    _dax = _p_K_ddx - 0.0
-    _day = _p_K_ddy - 0.0
+    _dvx = _p_K_dx
+    _dvy = _p_K_dy
+    _dax = _p_K_ddx
+    _day = _p_K_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
     _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
@@ -643,13 +721,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 73, -74)
 
     # Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is known
-    # link_angle(p_Q, w.p_M, 0.0), inline
+    # link_angle_still_j1(p_Q, w.p_M, 0.0), inline
     _dx = _p_M_x - 640.0
     _dy = _p_M_y - 256.0
-    _dvx = _p_M_dx - 0.0
-    _dvy = _p_M_dy - 0.0
-    _dax = _p_M_ddx - 0.0
-    _day = _p_M_ddy - 0.0
+    _dvx = _p_M_dx
+    _dvy = _p_M_dy
+    _dax = _p_M_ddx
+    _day = _p_M_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
     _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0

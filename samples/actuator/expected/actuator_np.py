@@ -278,16 +278,16 @@ def pair_point_still_j1(j1, j2, along, across):
     _sigma = np.asarray(_sigma, dtype=REAL)
     _fails = _st == 1
     _singular = _fails | (_st == 3)
-    _jc = (j1_x + rx, j1_y + ry, 0.0 + rvx, 0.0 + rvy, 0.0 + rax, 0.0 + ray)
+    _jc = (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
     if _singular.any():  # nan where the rows failed
         _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]), np.where(_singular, np.nan, _jc[4]), np.where(_singular, np.nan, _jc[5]))
     return _st, _sigma, _jc
 
-def RRR_links_still_j1_j2(j1, j2, l1, l2, minv):
+def RRR_links_still_j1_j2_l1(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
     j1_x, j1_y, _, _, _, _ = j1
     j2_x, j2_y, _, _, _, _ = j2
-    l1_v, l1_dv, l1_ddv = l1
+    l1_v, _, _ = l1
     l2_v, l2_dv, l2_ddv = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
@@ -367,114 +367,106 @@ def RRR_links_still_j1_j2(j1, j2, l1, l2, minv):
         at = np.where(_c6, a, np.where(_t1, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
     ao = (dd + c) * idd2
     mi = minv * idd2
-    mx = -mi * dy
-    my = mi * dx
     ux = dx * iq
     uy = dy * iq
     hn = minv * (area4 * iq / 2)
-    _t8 = area4 * mx
-    _c9 = np.asarray(_t6)
-    if not _c9.any():
-        e1x = at * ux - hn * uy
-    elif _c9.all():
-        e1x = ao * dx + _t8
-    else:
-        e1x = np.where(_c9, ao * dx + _t8, at * ux - hn * uy)
-    _t9 = area4 * my
-    _c10 = np.asarray(_t6)
+    _c10 = np.asarray(fail)
     if not _c10.any():
-        e1y = at * uy + hn * ux
+        _s9 = area4 * (0.5 / (l1_v * l2_v))
     elif _c10.all():
-        e1y = ao * dy + _t9
+        _s9 = 0
     else:
-        e1y = np.where(_c10, ao * dy + _t9, at * uy + hn * ux)
-    _c12 = np.asarray(fail)
-    if not _c12.any():
-        _s11 = area4 * (0.5 / (l1_v * l2_v))
-    elif _c12.all():
-        _s11 = 0
-    else:
-        _s11 = np.where(_c12, 0, area4 * (0.5 / (l1_v * l2_v)))
-    sigma = np.minimum(_s11, 1)
-    _c13 = np.asarray(_t6)
-    if not _c13.any():
+        _s9 = np.where(_c10, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s9, 1)
+    _c11 = np.asarray(_t6)
+    if not _c11.any():
         ar = a * iq
-    elif _c13.all():
+    elif _c11.all():
         ar = ao
     else:
-        ar = np.where(_c13, ao, a * iq)
-    _c14 = np.asarray(_t6)
-    if not _c14.any():
-        a2r = (q + (l2_v - l1_v) * _t7) / 2 * iq
-    elif _c14.all():
-        a2r = (dd - c) * idd2
-    else:
-        a2r = np.where(_c14, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
-    _t11 = -a2r
-    e2x = _t11 * dx + _t8
-    e2y = _t11 * dy + _t9
-    _t12 = 2 * idd2
-    sdx = _t12 * dx
-    sdy = _t12 * dy
-    _c15 = np.asarray(area4 == 0)
-    if not _c15.any():
+        ar = np.where(_c11, ao, a * iq)
+    _t9 = 2 * idd2
+    sdx = _t9 * dx
+    sdy = _t9 * dy
+    _c12 = np.asarray(area4 == 0)
+    if not _c12.any():
         ihq = 2 * minv / area4
-    elif _c15.all():
+    elif _c12.all():
         ihq = NAN
     else:
-        ihq = np.where(_c15, NAN, 2 * minv / area4)
+        ihq = np.where(_c12, NAN, 2 * minv / area4)
     tnx = -ihq * dy
     tny = ihq * dx
-    _t13 = e1x * 0.0 + e1y * 0.0
-    r1v = l1_v * l1_dv + _t13
-    _t14 = e2x * 0.0 + e2y * 0.0
-    r2v = l2_v * l2_dv + _t14
-    buv = r1v - r2v
-    bnv = a2r * r1v + ar * r2v
+    r2v = l2_v * l2_dv
+    buv = -r2v
+    bnv = ar * r2v
     bvx = buv * sdx + bnv * tnx
     bvy = buv * sdy + bnv * tny
-    _t15 = bvx * bvx + bvy * bvy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv + _t13 - _t15
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv + _t14 - _t15
+    _t10 = bvx * bvx + bvy * bvy
+    r1a = -_t10
+    r2a = l2_v * l2_ddv + l2_dv * l2_dv - _t10
     bua = r1a - r2a
-    bna = a2r * r1a + ar * r2a
+    _c14 = np.asarray(_t6)
+    if not _c14.any():
+        _s13 = (q + (l2_v - l1_v) * _t7) / 2 * iq
+    elif _c14.all():
+        _s13 = (dd - c) * idd2
+    else:
+        _s13 = np.where(_c14, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
+    bna = _s13 * r1a + ar * r2a
     bax = bua * sdx + bna * tnx
     bay = bua * sdy + bna * tny
-    _c16 = np.asarray(fail)
-    if not _c16.any():
-        _c17 = np.asarray(sigma < 1e-07)
-        if not _c17.any():
-            _c18 = np.asarray(sigma < 0.001)
-            if not _c18.any():
+    _c15 = np.asarray(fail)
+    if not _c15.any():
+        _c16 = np.asarray(sigma < 1e-07)
+        if not _c16.any():
+            _c17 = np.asarray(sigma < 0.001)
+            if not _c17.any():
                 _st = 0
-            elif _c18.all():
+            elif _c17.all():
                 _st = 4
             else:
-                _st = np.where(_c18, 4, 0)
-        elif _c17.all():
+                _st = np.where(_c17, 4, 0)
+        elif _c16.all():
             _st = 3
         else:
-            _st = np.where(_c17, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c16.all():
+            _st = np.where(_c16, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c15.all():
         _st = 1
     else:
-        _st = np.where(_c16, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c15, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
     _fails = _st == 1
     _singular = _fails | (_st == 3)
-    _jb = (j1_x + e1x, j1_y + e1y, bvx, bvy, bax, bay)
+    _c19 = np.asarray(_t6)
+    if not _c19.any():
+        _s18 = at * ux - hn * uy
+    elif _c19.all():
+        _s18 = ao * dx + area4 * (-mi * dy)
+    else:
+        _s18 = np.where(_c19, ao * dx + area4 * (-mi * dy), at * ux - hn * uy)
+    _f1 = j1_x + _s18
+    _c21 = np.asarray(_t6)
+    if not _c21.any():
+        _s20 = at * uy + hn * ux
+    elif _c21.all():
+        _s20 = ao * dy + area4 * (mi * dx)
+    else:
+        _s20 = np.where(_c21, ao * dy + area4 * (mi * dx), at * uy + hn * ux)
+    _f2 = j1_y + _s20
+    _jb = (_f1, _f2, bvx, bvy, bax, bay)
     if _singular.any():  # nan where the rows failed
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
     return _st, _sigma, _jb
 
-def RRR_links_still_j2(j1, j2, l1, l2, minv):
+def RRR_links_still_j2_l1_l2(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, _, _, _, _ = j2
-    l1_v, l1_dv, l1_ddv = l1
-    l2_v, l2_dv, l2_ddv = l2
+    l1_v, _, _ = l1
+    l2_v, _, _ = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
     dd = dx * dx + dy * dy
@@ -553,27 +545,23 @@ def RRR_links_still_j2(j1, j2, l1, l2, minv):
         at = np.where(_c6, a, np.where(_t1, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
     ao = (dd + c) * idd2
     mi = minv * idd2
-    mx = -mi * dy
-    my = mi * dx
     ux = dx * iq
     uy = dy * iq
     hn = minv * (area4 * iq / 2)
-    _t8 = area4 * mx
     _c9 = np.asarray(_t6)
     if not _c9.any():
         e1x = at * ux - hn * uy
     elif _c9.all():
-        e1x = ao * dx + _t8
+        e1x = ao * dx + area4 * (-mi * dy)
     else:
-        e1x = np.where(_c9, ao * dx + _t8, at * ux - hn * uy)
-    _t9 = area4 * my
+        e1x = np.where(_c9, ao * dx + area4 * (-mi * dy), at * ux - hn * uy)
     _c10 = np.asarray(_t6)
     if not _c10.any():
         e1y = at * uy + hn * ux
     elif _c10.all():
-        e1y = ao * dy + _t9
+        e1y = ao * dy + area4 * (mi * dx)
     else:
-        e1y = np.where(_c10, ao * dy + _t9, at * uy + hn * ux)
+        e1y = np.where(_c10, ao * dy + area4 * (mi * dx), at * uy + hn * ux)
     _c12 = np.asarray(fail)
     if not _c12.any():
         _s11 = area4 * (0.5 / (l1_v * l2_v))
@@ -584,67 +572,62 @@ def RRR_links_still_j2(j1, j2, l1, l2, minv):
     sigma = np.minimum(_s11, 1)
     _c13 = np.asarray(_t6)
     if not _c13.any():
-        ar = a * iq
-    elif _c13.all():
-        ar = ao
-    else:
-        ar = np.where(_c13, ao, a * iq)
-    _c14 = np.asarray(_t6)
-    if not _c14.any():
         a2r = (q + (l2_v - l1_v) * _t7) / 2 * iq
-    elif _c14.all():
+    elif _c13.all():
         a2r = (dd - c) * idd2
     else:
-        a2r = np.where(_c14, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
-    _t11 = -a2r
-    e2x = _t11 * dx + _t8
-    e2y = _t11 * dy + _t9
-    _t12 = 2 * idd2
-    sdx = _t12 * dx
-    sdy = _t12 * dy
-    _c15 = np.asarray(area4 == 0)
-    if not _c15.any():
+        a2r = np.where(_c13, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
+    _t9 = 2 * idd2
+    sdx = _t9 * dx
+    sdy = _t9 * dy
+    _c14 = np.asarray(area4 == 0)
+    if not _c14.any():
         ihq = 2 * minv / area4
-    elif _c15.all():
+    elif _c14.all():
         ihq = NAN
     else:
-        ihq = np.where(_c15, NAN, 2 * minv / area4)
+        ihq = np.where(_c14, NAN, 2 * minv / area4)
     tnx = -ihq * dy
     tny = ihq * dx
-    r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
-    _t13 = e2x * 0.0 + e2y * 0.0
-    r2v = l2_v * l2_dv + _t13
-    buv = r1v - r2v
-    bnv = a2r * r1v + ar * r2v
+    r1v = e1x * j1_dx + e1y * j1_dy
+    buv = r1v
+    bnv = a2r * r1v
     bvx = buv * sdx + bnv * tnx
     bvy = buv * sdy + bnv * tny
-    _t14 = bvx - j1_dx
-    _t15 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - (_t14 * _t14 + _t15 * _t15)
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv + _t13 - (bvx * bvx + bvy * bvy)
+    _t10 = bvx - j1_dx
+    _t11 = bvy - j1_dy
+    r1a = e1x * j1_ddx + e1y * j1_ddy - (_t10 * _t10 + _t11 * _t11)
+    r2a = -(bvx * bvx + bvy * bvy)
     bua = r1a - r2a
-    bna = a2r * r1a + ar * r2a
+    _c16 = np.asarray(_t6)
+    if not _c16.any():
+        _s15 = a * iq
+    elif _c16.all():
+        _s15 = ao
+    else:
+        _s15 = np.where(_c16, ao, a * iq)
+    bna = a2r * r1a + _s15 * r2a
     bax = bua * sdx + bna * tnx
     bay = bua * sdy + bna * tny
-    _c16 = np.asarray(fail)
-    if not _c16.any():
-        _c17 = np.asarray(sigma < 1e-07)
-        if not _c17.any():
-            _c18 = np.asarray(sigma < 0.001)
-            if not _c18.any():
+    _c17 = np.asarray(fail)
+    if not _c17.any():
+        _c18 = np.asarray(sigma < 1e-07)
+        if not _c18.any():
+            _c19 = np.asarray(sigma < 0.001)
+            if not _c19.any():
                 _st = 0
-            elif _c18.all():
+            elif _c19.all():
                 _st = 4
             else:
-                _st = np.where(_c18, 4, 0)
-        elif _c17.all():
+                _st = np.where(_c19, 4, 0)
+        elif _c18.all():
             _st = 3
         else:
-            _st = np.where(_c17, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c16.all():
+            _st = np.where(_c18, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c17.all():
         _st = 1
     else:
-        _st = np.where(_c16, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c17, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -1071,13 +1054,13 @@ def _run(x, dx, ddx, c):
     report = []
     # Step 1: fixed, stick. link stick is the frame: its pairs are fixed
     # Step 2: RRR_links, K (branch -1). K is joined to the known R by side_link and to the known S0 by d_S0_K: a 3R two-link chain with both ends known
-    st, sigma[2], w.p_K = RRR_links_still_j1_j2(w.p_R, w.p_S0, w.l_side_link, w.in1, -1)
+    st, sigma[2], w.p_K = RRR_links_still_j1_j2_l1(w.p_R, w.p_S0, w.l_side_link, w.in1, -1)
     report.append((st, ((1, 21), (3, 23), (4, -24))))
     # Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known
     st, sigma[3], w.psi_C, w.s_C, w.p_C = RPR_links_still_jg(w.p_S0, w.p_K, c["step3.ag"], c["step3.bg"], c["step3.as"], c["step3.bs"], 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known
-    st, sigma[4], w.p_M = RRR_links_still_j2(w.p_K, w.p_Q, w.l_power_link, w.l_bucket, 1)
+    st, sigma[4], w.p_M = RRR_links_still_j2_l1_l2(w.p_K, w.p_Q, w.l_power_link, w.l_bucket, 1)
     report.append((st, ((1, 41), (3, 43), (4, -44))))
     # Step 5: pair_point, tip. point tip of link bucket
     st, _, w.p_tip = pair_point_still_j1(w.p_Q, w.p_M, c["step5.along"], c["step5.across"])

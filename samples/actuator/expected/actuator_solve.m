@@ -79,7 +79,7 @@ function [status, w] = run(w, in, din, ddin)
     % Step 1: fixed, stick. link stick is the frame: its pairs are fixed
 
     % Step 2: RRR_links, K (branch -1). K is joined to the known R by side_link and to the known S0 by d_S0_K: a 3R two-link chain with both ends known
-    [w.p_K, st, w.sigma(2)] = RRR_links(w.p_R, w.p_S0, w.l_side_link, w.in1, -1);
+    [w.p_K, st, w.sigma(2)] = RRR_links_still_j1_j2_l1(w.p_R, w.p_S0, w.l_side_link, w.in1, -1);
     if st == 1
         status = 21;
         return;
@@ -87,7 +87,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 23, -24);
 
     % Step 3: RPR_links, C (branch +1). the guide barrel turns about the known S0 and the slider rod about the known K, sliding along one line at C: an RPR two-link chain with both ends known
-    [w.psi_C, w.s_C, w.p_C, st, w.sigma(3)] = RPR_links(w.p_S0, w.p_K, 850.0, 0.0, -850.0, 0.0, 1);
+    [w.psi_C, w.s_C, w.p_C, st, w.sigma(3)] = RPR_links_still_jg(w.p_S0, w.p_K, 850.0, 0.0, -850.0, 0.0, 1);
     if st == 1
         status = 31;
         return;
@@ -95,7 +95,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 33, -34);
 
     % Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known
-    [w.p_M, st, w.sigma(4)] = RRR_links(w.p_K, w.p_Q, w.l_power_link, w.l_bucket, 1);
+    [w.p_M, st, w.sigma(4)] = RRR_links_still_j2_l1_l2(w.p_K, w.p_Q, w.l_power_link, w.l_bucket, 1);
     if st == 1
         status = 41;
         return;
@@ -103,7 +103,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 43, -44);
 
     % Step 5: pair_point, tip. point tip of link bucket
-    [w.p_tip, st] = pair_point(w.p_Q, w.p_M, -1.6193771626297577, -3.463667820069204);
+    [w.p_tip, st] = pair_point_still_j1(w.p_Q, w.p_M, -1.6193771626297577, -3.463667820069204);
     if st == 1
         status = 51;
         return;
@@ -111,7 +111,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 53, -54);
 
     % Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is known
-    [w.phi_side_link, st] = link_angle(w.p_R, w.p_K, 0.0);
+    [w.phi_side_link, st] = link_angle_still_j1(w.p_R, w.p_K, 0.0);
     if st == 1
         status = 61;
         return;
@@ -127,7 +127,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 73, -74);
 
     % Step 8: link_angle, bucket. Q and M of link bucket are known, so its angle is known
-    [w.phi_bucket, st] = link_angle(w.p_Q, w.p_M, 0.0);
+    [w.phi_bucket, st] = link_angle_still_j1(w.p_Q, w.p_M, 0.0);
     if st == 1
         status = 81;
         return;
@@ -362,14 +362,53 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function [jc, st] = pair_point(j1, j2, along, across)
+function [angle, st] = link_angle_still_j1(j1, j2, off)
+    % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx;
+    dvy = j2.dy;
+    dax = j2.ddx;
+    day = j2.ddy;
+    r2 = dx * dx + dy * dy;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    if r2 == 0
+        ir2 = NaN;
+    else
+        ir2 = 1 / r2;
+    end
+    om = (dx * dvy - dy * dvx) * ir2;
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
+    angle.the = th;
+    angle.dthe = om;
+    angle.ddthe = al;
+    if st == 1
+        angle.the = NaN;
+        angle.dthe = NaN;
+        angle.ddthe = NaN;
+    end
+end
+
+function [jc, st] = pair_point_still_j1(j1, j2, along, across)
     % Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
-    dvx = j2.dx - j1.dx;
-    dvy = j2.dy - j1.dy;
-    dax = j2.ddx - j1.ddx;
-    day = j2.ddy - j1.ddy;
+    dvx = j2.dx;
+    dvy = j2.dy;
+    dax = j2.ddx;
+    day = j2.ddy;
     r2 = dx * dx + dy * dy;
     rx = along * dx - across * dy;
     ry = along * dy + across * dx;
@@ -384,10 +423,10 @@ function [jc, st] = pair_point(j1, j2, along, across)
     end
     jc.x = j1.x + rx;
     jc.y = j1.y + ry;
-    jc.dx = j1.dx + rvx;
-    jc.dy = j1.dy + rvy;
-    jc.ddx = j1.ddx + rax;
-    jc.ddy = j1.ddy + ray;
+    jc.dx = rvx;
+    jc.dy = rvy;
+    jc.ddx = rax;
+    jc.ddy = ray;
     if st == 1
         jc.x = NaN;
         jc.y = NaN;
@@ -398,7 +437,7 @@ function [jc, st] = pair_point(j1, j2, along, across)
     end
 end
 
-function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
+function [jb, st, sigma] = RRR_links_still_j1_j2_l1(j1, j2, l1, l2, minv)
     % 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
@@ -485,8 +524,6 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     else
         a2r = a2 * iq;
     end
-    e2x = -a2r * dx + area4 * mx;
-    e2y = -a2r * dy + area4 * my;
     sdx = 2 * idd2 * dx;
     sdy = 2 * idd2 * dy;
     if area4 == 0
@@ -496,14 +533,13 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     end
     tnx = -ihq * dy;
     tny = ihq * dx;
-    r1v = l1.v * l1.dv + (e1x * j1.dx + e1y * j1.dy);
-    r2v = l2.v * l2.dv + (e2x * j2.dx + e2y * j2.dy);
-    buv = r1v - r2v;
-    bnv = a2r * r1v + ar * r2v;
+    r2v = l2.v * l2.dv;
+    buv = -r2v;
+    bnv = ar * r2v;
     bvx = buv * sdx + bnv * tnx;
     bvy = buv * sdy + bnv * tny;
-    r1a = l1.v * l1.ddv + l1.dv * l1.dv + (e1x * j1.ddx + e1y * j1.ddy) - ((bvx - j1.dx) * (bvx - j1.dx) + (bvy - j1.dy) * (bvy - j1.dy));
-    r2a = l2.v * l2.ddv + l2.dv * l2.dv + (e2x * j2.ddx + e2y * j2.ddy) - ((bvx - j2.dx) * (bvx - j2.dx) + (bvy - j2.dy) * (bvy - j2.dy));
+    r1a = -(bvx * bvx + bvy * bvy);
+    r2a = l2.v * l2.ddv + l2.dv * l2.dv - (bvx * bvx + bvy * bvy);
     bua = r1a - r2a;
     bna = a2r * r1a + ar * r2a;
     bax = bua * sdx + bna * tnx;
@@ -539,14 +575,152 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     end
 end
 
-function [psi, s, jp, st, sigma] = RPR_links(jg, js, ag, bg, as_, bs, minv)
+function [jb, st, sigma] = RRR_links_still_j2_l1_l2(j1, j2, l1, l2, minv)
+    % 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2).
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dd = dx * dx + dy * dy;
+    q = sqrt(dd);
+    hi = max(l1.v, l2.v);
+    lo = min(l1.v, l2.v);
+    x = max(hi, q);
+    z = min(lo, q);
+    if q >= hi
+        y = hi;
+    elseif q <= lo
+        y = lo;
+    else
+        y = q;
+    end
+    k = z - (x - y);
+    fail = k < -8 * eps * x || q == 0 || lo <= 0;
+    kk = max(k, 0);
+    s2 = (l1.v + l2.v) * (l1.v + l2.v);
+    t2 = (l1.v - l2.v) * (l1.v - l2.v);
+    o1 = s2 - dd;
+    o2 = dd - t2;
+    if 3 * o1 > s2 && 3 * o2 > dd
+        area4 = sqrt(o1 * o2);
+    else
+        area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
+    end
+    if dd == 0
+        idd2 = NaN;
+    else
+        idd2 = 0.5 / dd;
+    end
+    c = (l1.v - l2.v) * (l1.v + l2.v);
+    if q == 0
+        iq = NaN;
+    else
+        iq = 1 / q;
+    end
+    a = (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2;
+    a2 = (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2;
+    if q >= hi
+        flat = (l1.v + (q - l2.v)) / 2;
+    elseif l1.v >= l2.v
+        flat = (l1.v + (q + l2.v)) / 2;
+    else
+        flat = (q - (l1.v + l2.v)) / 2;
+    end
+    if k > 0
+        at = a;
+    else
+        at = flat;
+    end
+    ao = (dd + c) * idd2;
+    mi = minv * idd2;
+    mx = -mi * dy;
+    my = mi * dx;
+    ux = dx * iq;
+    uy = dy * iq;
+    hn = minv * (area4 * iq / 2);
+    if 3 * o1 > s2 && 3 * o2 > dd
+        e1x = ao * dx + area4 * mx;
+    else
+        e1x = at * ux - hn * uy;
+    end
+    if 3 * o1 > s2 && 3 * o2 > dd
+        e1y = ao * dy + area4 * my;
+    else
+        e1y = at * uy + hn * ux;
+    end
+    if fail
+        ratio = 0;
+    else
+        ratio = area4 * (0.5 / (l1.v * l2.v));
+    end
+    sigma = min(ratio, 1);
+    if 3 * o1 > s2 && 3 * o2 > dd
+        ar = ao;
+    else
+        ar = a * iq;
+    end
+    if 3 * o1 > s2 && 3 * o2 > dd
+        a2r = (dd - c) * idd2;
+    else
+        a2r = a2 * iq;
+    end
+    sdx = 2 * idd2 * dx;
+    sdy = 2 * idd2 * dy;
+    if area4 == 0
+        ihq = NaN;
+    else
+        ihq = 2 * minv / area4;
+    end
+    tnx = -ihq * dy;
+    tny = ihq * dx;
+    r1v = e1x * j1.dx + e1y * j1.dy;
+    buv = r1v;
+    bnv = a2r * r1v;
+    bvx = buv * sdx + bnv * tnx;
+    bvy = buv * sdy + bnv * tny;
+    r1a = e1x * j1.ddx + e1y * j1.ddy - ((bvx - j1.dx) * (bvx - j1.dx) + (bvy - j1.dy) * (bvy - j1.dy));
+    r2a = -(bvx * bvx + bvy * bvy);
+    bua = r1a - r2a;
+    bna = a2r * r1a + ar * r2a;
+    bax = bua * sdx + bna * tnx;
+    bay = bua * sdy + bna * tny;
+    if fail
+        st = 1;
+    elseif sigma < 1e-07
+        st = 3;
+    elseif sigma < 0.001
+        st = 4;
+    else
+        st = 0;
+    end
+    jb.x = j1.x + e1x;
+    jb.y = j1.y + e1y;
+    jb.dx = bvx;
+    jb.dy = bvy;
+    jb.ddx = bax;
+    jb.ddy = bay;
+    if st == 1
+        jb.x = NaN;
+        jb.y = NaN;
+        jb.dx = NaN;
+        jb.dy = NaN;
+        jb.ddx = NaN;
+        jb.ddy = NaN;
+    end
+    if st == 1 || st == 3
+        jb.dx = NaN;
+        jb.dy = NaN;
+        jb.ddx = NaN;
+        jb.ddy = NaN;
+    end
+end
+
+function [psi, s, jp, st, sigma] = RPR_links_still_jg(jg, js, ag, bg, as_, bs, minv)
     % RPR chain: a guide link turning about jg and a slider link turning about js slide along one line; (ag, bg) and (as, bs) are the pair's reference point seen from jg and js in the line's frame.  Gives the line angle psi, the displacement s and the pair's slider point jp.
     dx = js.x - jg.x;
     dy = js.y - jg.y;
-    dvx = js.dx - jg.dx;
-    dvy = js.dy - jg.dy;
-    dax = js.ddx - jg.ddx;
-    day = js.ddy - jg.ddy;
+    dvx = js.dx;
+    dvy = js.dy;
+    dax = js.ddx;
+    day = js.ddy;
     hh = bg - bs;
     q = sqrt(dx * dx + dy * dy);
     ah = abs(hh);

@@ -11,44 +11,6 @@ typedef struct { VEC2 P, DP, DDP; } POINT;
 typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
-/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-#if defined(__GNUC__)
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
-#endif
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
-{
-    const double t = theta->the + phi->the;
-    const double ct = cos(t);
-    const double st = sin(t);
-    const double rx = l * ct;
-    const double ry = l * st;
-    const double om = theta->dthe + phi->dthe;
-    const double al = theta->ddthe + phi->ddthe;
-    const double rvx = -om * ry;
-    const double rvy = om * rx;
-    const double rax = -al * ry - om * om * rx;
-    const double ray = al * rx - om * om * ry;
-    j2->P.x = j1->P.x + rx;
-    j2->P.y = j1->P.y + ry;
-    j2->DP.x = j1->DP.x + rvx;
-    j2->DP.y = j1->DP.y + rvy;
-    j2->DDP.x = j1->DDP.x + rax;
-    j2->DDP.y = j1->DDP.y + ray;
-}
-
-/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
-#if defined(__GNUC__)
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
-#endif
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
-{
-    const double th0 = theta->the + phi->the + off;
-    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
-    angle->the = th;
-    angle->dthe = theta->dthe + phi->dthe;
-    angle->ddthe = theta->ddthe + phi->ddthe;
-}
-
 /* Angle of a link that keeps a constant angle off to a known angle phi. */
 #if defined(__GNUC__)
 static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
@@ -62,11 +24,49 @@ static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle)
     angle->ddthe = phi->ddthe;
 }
 
+/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
+{
+    const double t = theta->the + phi->the;
+    const double ct = cos(t);
+    const double st = sin(t);
+    const double rx = l * ct;
+    const double ry = l * st;
+    const double om = theta->dthe;
+    const double al = theta->ddthe;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = rvx;
+    j2->DP.y = rvy;
+    j2->DDP.x = rax;
+    j2->DDP.y = ray;
+}
+
+/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
+#if defined(__GNUC__)
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
+{
+    const double th0 = theta->the + phi->the + off;
+    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
+    angle->the = th;
+    angle->dthe = theta->dthe;
+    angle->ddthe = theta->ddthe;
+}
+
 /* 1R2P chain: pair jb joins two sliders on the guide lines (pg1, psig1) and (pg2, psig2), at (gsi1, eta1) and (gsi2, eta2) from their slider points jp1, jp2 (displacements s1, s2). */
 #if defined(__GNUC__)
-static inline int PRP_links(const POINT *pg1, const ANGLE *psig1, double gsi1, double eta1, const POINT *pg2, const ANGLE *psig2, double gsi2, double eta2, VARIABLE *s1, POINT *jp1, VARIABLE *s2, POINT *jp2, POINT *jb, double *sigma_out) __attribute__((always_inline));
+static inline int PRP_links_still_pg2_psig2(const POINT *pg1, const ANGLE *psig1, double gsi1, double eta1, const POINT *pg2, const ANGLE *psig2, double gsi2, double eta2, VARIABLE *s1, POINT *jp1, VARIABLE *s2, POINT *jp2, POINT *jb, double *sigma_out) __attribute__((always_inline));
 #endif
-static inline int PRP_links(const POINT *pg1, const ANGLE *psig1, double gsi1, double eta1, const POINT *pg2, const ANGLE *psig2, double gsi2, double eta2, VARIABLE *s1, POINT *jp1, VARIABLE *s2, POINT *jp2, POINT *jb, double *sigma_out)
+static inline int PRP_links_still_pg2_psig2(const POINT *pg1, const ANGLE *psig1, double gsi1, double eta1, const POINT *pg2, const ANGLE *psig2, double gsi2, double eta2, VARIABLE *s1, POINT *jp1, VARIABLE *s2, POINT *jp2, POINT *jb, double *sigma_out)
 {
     const double cg1 = cos(psig1->the);
     const double sg1 = sin(psig1->the);
@@ -94,34 +94,26 @@ static inline int PRP_links(const POINT *pg1, const ANGLE *psig1, double gsi1, d
     const double r1vy = psig1->dthe * r1x;
     const double r1ax = -psig1->ddthe * r1y - psig1->dthe * psig1->dthe * r1x;
     const double r1ay = psig1->ddthe * r1x - psig1->dthe * psig1->dthe * r1y;
-    const double r2vx = -psig2->dthe * r2y;
-    const double r2vy = psig2->dthe * r2x;
-    const double r2ax = -psig2->ddthe * r2y - psig2->dthe * psig2->dthe * r2x;
-    const double r2ay = psig2->ddthe * r2x - psig2->dthe * psig2->dthe * r2y;
-    const double gvx = pg2->DP.x + r2vx - sv2 * psig2->dthe * sg2 - pg1->DP.x - r1vx + sv1 * psig1->dthe * sg1;
-    const double gvy = pg2->DP.y + r2vy + sv2 * psig2->dthe * cg2 - pg1->DP.y - r1vy - sv1 * psig1->dthe * cg1;
+    const double gvx = -pg1->DP.x - r1vx + sv1 * psig1->dthe * sg1;
+    const double gvy = -pg1->DP.y - r1vy - sv1 * psig1->dthe * cg1;
     const double ds1 = (gvx * sg2 - gvy * cg2) * icr;
     const double ds2 = (gvx * sg1 - gvy * cg1) * icr;
     const double jp1vx = pg1->DP.x + ds1 * cg1 - sv1 * psig1->dthe * sg1;
     const double jp1vy = pg1->DP.y + ds1 * sg1 + sv1 * psig1->dthe * cg1;
-    const double jp2vx = pg2->DP.x + ds2 * cg2 - sv2 * psig2->dthe * sg2;
-    const double jp2vy = pg2->DP.y + ds2 * sg2 + sv2 * psig2->dthe * cg2;
+    const double jp2vx = ds2 * cg2;
+    const double jp2vy = ds2 * sg2;
     const double t1n = 2 * ds1 * psig1->dthe + sv1 * psig1->ddthe;
-    const double t2n = 2 * ds2 * psig2->dthe + sv2 * psig2->ddthe;
     const double t1u = sv1 * psig1->dthe * psig1->dthe;
-    const double t2u = sv2 * psig2->dthe * psig2->dthe;
     const double k1x = pg1->DDP.x - t1n * sg1 - t1u * cg1;
     const double k1y = pg1->DDP.y + t1n * cg1 - t1u * sg1;
-    const double k2x = pg2->DDP.x - t2n * sg2 - t2u * cg2;
-    const double k2y = pg2->DDP.y + t2n * cg2 - t2u * sg2;
-    const double gax = k2x + r2ax - k1x - r1ax;
-    const double gay = k2y + r2ay - k1y - r1ay;
+    const double gax = -k1x - r1ax;
+    const double gay = -k1y - r1ay;
     const double dds1 = (gax * sg2 - gay * cg2) * icr;
     const double dds2 = (gax * sg1 - gay * cg1) * icr;
     const double jp1ax = k1x + dds1 * cg1;
     const double jp1ay = k1y + dds1 * sg1;
-    const double jp2ax = k2x + dds2 * cg2;
-    const double jp2ay = k2y + dds2 * sg2;
+    const double jp2ax = dds2 * cg2;
+    const double jp2ay = dds2 * sg2;
     const int st = cr == 0 ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
     *sigma_out = sigma;
     if (st == 1) { s1->v = NAN; s1->dv = NAN; s1->ddv = NAN; jp1->P.x = NAN; jp1->P.y = NAN; jp1->DP.x = NAN; jp1->DP.y = NAN; jp1->DDP.x = NAN; jp1->DDP.y = NAN; s2->v = NAN; s2->dv = NAN; s2->ddv = NAN; jp2->P.x = NAN; jp2->P.y = NAN; jp2->DP.x = NAN; jp2->DP.y = NAN; jp2->DDP.x = NAN; jp2->DDP.y = NAN; jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
@@ -347,15 +339,15 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 2: crank_input, P1. O is known and link frame is placed, so the input angle theta_O turns link arm to P1 */
-    crank_input(&p_O, 50.0, &w->in1, &ref_O, &w->g_P1);
+    crank_input_still_j1_phi(&p_O, 50.0, &w->in1, &ref_O, &w->g_P1);
 
 
     /* Step 3: crank_angle, arm. the input theta_O turns link arm, so its angle is the input's */
-    crank_angle(&w->in1, &ref_O, 0.0, &w->phi_arm);
+    crank_angle_still_phi(&w->in1, &ref_O, 0.0, &w->phi_arm);
 
 
     /* Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution) */
-    st = PRP_links(&w->g_P1, &w->phi_arm, 0.0, 0.0, &g_P2, &psi_P2, 0.0, 0.0, &w->s_P1, &w->p_P1, &w->s_P2, &w->p_P2, &w->p_X, &out->sigma[4]);
+    st = PRP_links_still_pg2_psig2(&w->g_P1, &w->phi_arm, 0.0, 0.0, &g_P2, &psi_P2, 0.0, 0.0, &w->s_P1, &w->p_P1, &w->s_P2, &w->p_P2, &w->p_X, &out->sigma[4]);
     if (st == 1) return failed(out, 41, 4);
     note(w, st, 43, -44);
 

@@ -125,32 +125,6 @@ _FIXED = {  # every output column: those of the fixed sketch with their values, 
 
 # -- the mech.cpp functions this procedure uses -------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct = cos(t)
-    st = sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    rax = -al * ry - om * om * rx
-    ray = al * rx - om * om * ry
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-
-def crank_angle(theta, phi, off):
-    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    th0 = theta_the + phi_the + off
-    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
-    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
-
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
@@ -158,12 +132,38 @@ def offset_angle(phi, off):
     th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     return (th, phi_dthe, phi_ddthe)
 
-def PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct = cos(t)
+    st = sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    return (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+
+def crank_angle_still_phi(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    th0 = theta_the + phi_the + off
+    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    return (th, theta_dthe, theta_ddthe)
+
+def PRP_links_still_pg2_psig2(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
     """1R2P chain: pair jb joins two sliders on the guide lines (pg1, psig1) and (pg2, psig2), at (gsi1, eta1) and (gsi2, eta2) from their slider points jp1, jp2 (displacements s1, s2)."""
     pg1_x, pg1_y, pg1_dx, pg1_dy, pg1_ddx, pg1_ddy = pg1
     psig1_the, psig1_dthe, psig1_ddthe = psig1
-    pg2_x, pg2_y, pg2_dx, pg2_dy, pg2_ddx, pg2_ddy = pg2
-    psig2_the, psig2_dthe, psig2_ddthe = psig2
+    pg2_x, pg2_y, _, _, _, _ = pg2
+    psig2_the, _, _ = psig2
     cg1 = cos(psig1_the)
     sg1 = sin(psig1_the)
     r1x = gsi1 * cg1 - eta1 * sg1
@@ -190,34 +190,26 @@ def PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
     r1vy = psig1_dthe * r1x
     r1ax = -psig1_ddthe * r1y - psig1_dthe * psig1_dthe * r1x
     r1ay = psig1_ddthe * r1x - psig1_dthe * psig1_dthe * r1y
-    r2vx = -psig2_dthe * r2y
-    r2vy = psig2_dthe * r2x
-    r2ax = -psig2_ddthe * r2y - psig2_dthe * psig2_dthe * r2x
-    r2ay = psig2_ddthe * r2x - psig2_dthe * psig2_dthe * r2y
-    gvx = pg2_dx + r2vx - sv2 * psig2_dthe * sg2 - pg1_dx - r1vx + sv1 * psig1_dthe * sg1
-    gvy = pg2_dy + r2vy + sv2 * psig2_dthe * cg2 - pg1_dy - r1vy - sv1 * psig1_dthe * cg1
+    gvx = -pg1_dx - r1vx + sv1 * psig1_dthe * sg1
+    gvy = -pg1_dy - r1vy - sv1 * psig1_dthe * cg1
     ds1 = (gvx * sg2 - gvy * cg2) * icr
     ds2 = (gvx * sg1 - gvy * cg1) * icr
     jp1vx = pg1_dx + ds1 * cg1 - sv1 * psig1_dthe * sg1
     jp1vy = pg1_dy + ds1 * sg1 + sv1 * psig1_dthe * cg1
-    jp2vx = pg2_dx + ds2 * cg2 - sv2 * psig2_dthe * sg2
-    jp2vy = pg2_dy + ds2 * sg2 + sv2 * psig2_dthe * cg2
+    jp2vx = ds2 * cg2
+    jp2vy = ds2 * sg2
     t1n = 2 * ds1 * psig1_dthe + sv1 * psig1_ddthe
-    t2n = 2 * ds2 * psig2_dthe + sv2 * psig2_ddthe
     t1u = sv1 * psig1_dthe * psig1_dthe
-    t2u = sv2 * psig2_dthe * psig2_dthe
     k1x = pg1_ddx - t1n * sg1 - t1u * cg1
     k1y = pg1_ddy + t1n * cg1 - t1u * sg1
-    k2x = pg2_ddx - t2n * sg2 - t2u * cg2
-    k2y = pg2_ddy + t2n * cg2 - t2u * sg2
-    gax = k2x + r2ax - k1x - r1ax
-    gay = k2y + r2ay - k1y - r1ay
+    gax = -k1x - r1ax
+    gay = -k1y - r1ay
     dds1 = (gax * sg2 - gay * cg2) * icr
     dds2 = (gax * sg1 - gay * cg1) * icr
     jp1ax = k1x + dds1 * cg1
     jp1ay = k1y + dds1 * sg1
-    jp2ax = k2x + dds2 * cg2
-    jp2ay = k2y + dds2 * sg2
+    jp2ax = dds2 * cg2
+    jp2ay = dds2 * sg2
     st = 1 if cr == 0 else 3 if sigma < 1e-07 else 4 if sigma < 0.001 else 0
     if st == 1:
         return st, sigma, (NAN, NAN, NAN), (NAN, NAN, NAN, NAN, NAN, NAN), (NAN, NAN, NAN), (NAN, NAN, NAN, NAN, NAN, NAN), (NAN, NAN, NAN, NAN, NAN, NAN)
@@ -263,28 +255,28 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, P1. O is known and link frame is placed, so the input angle theta_O turns link arm to P1
-    # crank_input(p_O, 50.0, w.in1, ref_O), inline
+    # crank_input_still_j1_phi(p_O, 50.0, w.in1, ref_O), inline
     _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 50.0 * _ct
     _ry = 50.0 * _st
-    _om = _in1_dthe + 0.0
-    _al = _in1_ddthe + 0.0
+    _om = _in1_dthe
+    _al = _in1_ddthe
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    _g_P1_x, _g_P1_y, _g_P1_dx, _g_P1_dy, _g_P1_ddx, _g_P1_ddy = w.g_P1 = ((-26.0) + _rx, 0.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _g_P1_x, _g_P1_y, _g_P1_dx, _g_P1_dy, _g_P1_ddx, _g_P1_ddy = w.g_P1 = ((-26.0) + _rx, 0.0 + _ry, _rvx, _rvy, _rax, _ray)
 
     # Step 3: crank_angle, arm. the input theta_O turns link arm, so its angle is the input's
-    # crank_angle(w.in1, ref_O, 0.0), inline
+    # crank_angle_still_phi(w.in1, ref_O, 0.0), inline
     _th0 = _in1_the + 0.0 + 0.0
     _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
-    _phi_arm_the, _phi_arm_dthe, _phi_arm_ddthe = w.phi_arm = (_th, _in1_dthe + 0.0, _in1_ddthe + 0.0)
+    _phi_arm_the, _phi_arm_dthe, _phi_arm_ddthe = w.phi_arm = (_th, _in1_dthe, _in1_ddthe)
 
     # Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution)
-    # PRP_links(w.g_P1, w.phi_arm, 0.0, 0.0, g_P2, psi_P2, 0.0, 0.0), inline
+    # PRP_links_still_pg2_psig2(w.g_P1, w.phi_arm, 0.0, 0.0, g_P2, psi_P2, 0.0, 0.0), inline
     _cg1 = cos(_phi_arm_the)
     _sg1 = sin(_phi_arm_the)
     _r1x = 0.0 * _cg1 - 0.0 * _sg1
@@ -311,34 +303,26 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _r1vy = _phi_arm_dthe * _r1x
     _r1ax = -_phi_arm_ddthe * _r1y - _phi_arm_dthe * _phi_arm_dthe * _r1x
     _r1ay = _phi_arm_ddthe * _r1x - _phi_arm_dthe * _phi_arm_dthe * _r1y
-    _r2vx = -0.0 * _r2y
-    _r2vy = 0.0 * _r2x
-    _r2ax = -0.0 * _r2y - 0.0 * 0.0 * _r2x
-    _r2ay = 0.0 * _r2x - 0.0 * 0.0 * _r2y
-    _gvx = 0.0 + _r2vx - _sv2 * 0.0 * _sg2 - _g_P1_dx - _r1vx + _sv1 * _phi_arm_dthe * _sg1
-    _gvy = 0.0 + _r2vy + _sv2 * 0.0 * _cg2 - _g_P1_dy - _r1vy - _sv1 * _phi_arm_dthe * _cg1
+    _gvx = -_g_P1_dx - _r1vx + _sv1 * _phi_arm_dthe * _sg1
+    _gvy = -_g_P1_dy - _r1vy - _sv1 * _phi_arm_dthe * _cg1
     _ds1 = (_gvx * _sg2 - _gvy * _cg2) * _icr
     _ds2 = (_gvx * _sg1 - _gvy * _cg1) * _icr
     _jp1vx = _g_P1_dx + _ds1 * _cg1 - _sv1 * _phi_arm_dthe * _sg1
     _jp1vy = _g_P1_dy + _ds1 * _sg1 + _sv1 * _phi_arm_dthe * _cg1
-    _jp2vx = 0.0 + _ds2 * _cg2 - _sv2 * 0.0 * _sg2
-    _jp2vy = 0.0 + _ds2 * _sg2 + _sv2 * 0.0 * _cg2
+    _jp2vx = _ds2 * _cg2
+    _jp2vy = _ds2 * _sg2
     _t1n = 2 * _ds1 * _phi_arm_dthe + _sv1 * _phi_arm_ddthe
-    _t2n = 2 * _ds2 * 0.0 + _sv2 * 0.0
     _t1u = _sv1 * _phi_arm_dthe * _phi_arm_dthe
-    _t2u = _sv2 * 0.0 * 0.0
     _k1x = _g_P1_ddx - _t1n * _sg1 - _t1u * _cg1
     _k1y = _g_P1_ddy + _t1n * _cg1 - _t1u * _sg1
-    _k2x = 0.0 - _t2n * _sg2 - _t2u * _cg2
-    _k2y = 0.0 + _t2n * _cg2 - _t2u * _sg2
-    _gax = _k2x + _r2ax - _k1x - _r1ax
-    _gay = _k2y + _r2ay - _k1y - _r1ay
+    _gax = -_k1x - _r1ax
+    _gay = -_k1y - _r1ay
     _dds1 = (_gax * _sg2 - _gay * _cg2) * _icr
     _dds2 = (_gax * _sg1 - _gay * _cg1) * _icr
     _jp1ax = _k1x + _dds1 * _cg1
     _jp1ay = _k1y + _dds1 * _sg1
-    _jp2ax = _k2x + _dds2 * _cg2
-    _jp2ay = _k2y + _dds2 * _sg2
+    _jp2ax = _dds2 * _cg2
+    _jp2ay = _dds2 * _sg2
     st = 1 if _cr == 0 else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[4] = _sigma
     if st == 1:

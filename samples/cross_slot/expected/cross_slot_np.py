@@ -119,56 +119,6 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
 
 # -- the runtime of the kernel, on arrays of rows ------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct, st = cos_sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    _t1 = om * om
-    rax = -al * ry - _t1 * rx
-    ray = al * rx - _t1 * ry
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-    return _st, _sigma, _j2
-
-def crank_angle(theta, phi, off):
-    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    th0 = theta_the + phi_the + off
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
-    if not _c1.any():
-        _c2 = np.asarray(th0 > PI)
-        if not _c2.any():
-            _c3 = np.asarray(th0 <= -PI)
-            if not _c3.any():
-                _f1 = th0
-            elif _c3.all():
-                _f1 = th0 + 2 * PI
-            else:
-                _f1 = np.where(_c3, th0 + 2 * PI, th0)
-        elif _c2.all():
-            _f1 = th0 - 2 * PI
-        else:
-            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
-    elif _c1.all():
-        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
-    else:
-        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
-    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
-    return _st, _sigma, _angle
-
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
@@ -191,12 +141,62 @@ def offset_angle(phi, off):
     _angle = (_f1, phi_dthe, phi_ddthe)
     return _st, _sigma, _angle
 
-def PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct, st = cos_sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    _t1 = om * om
+    rax = -al * ry - _t1 * rx
+    ray = al * rx - _t1 * ry
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _j2 = (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+    return _st, _sigma, _j2
+
+def crank_angle_still_phi(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe, theta_ddthe)
+    return _st, _sigma, _angle
+
+def PRP_links_still_pg2_psig2(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
     """1R2P chain: pair jb joins two sliders on the guide lines (pg1, psig1) and (pg2, psig2), at (gsi1, eta1) and (gsi2, eta2) from their slider points jp1, jp2 (displacements s1, s2)."""
     pg1_x, pg1_y, pg1_dx, pg1_dy, pg1_ddx, pg1_ddy = pg1
     psig1_the, psig1_dthe, psig1_ddthe = psig1
-    pg2_x, pg2_y, pg2_dx, pg2_dy, pg2_ddx, pg2_ddy = pg2
-    psig2_the, psig2_dthe, psig2_ddthe = psig2
+    pg2_x, pg2_y, _, _, _, _ = pg2
+    psig2_the, _, _ = psig2
     cg1 = np.cos(psig1_the)
     sg1 = np.sin(psig1_the)
     r1x = gsi1 * cg1 - eta1 * sg1
@@ -231,41 +231,29 @@ def PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2):
     _t2 = psig1_dthe * psig1_dthe
     r1ax = -psig1_ddthe * r1y - _t2 * r1x
     r1ay = psig1_ddthe * r1x - _t2 * r1y
-    r2vx = -psig2_dthe * r2y
-    r2vy = psig2_dthe * r2x
-    _t3 = psig2_dthe * psig2_dthe
-    r2ax = -psig2_ddthe * r2y - _t3 * r2x
-    r2ay = psig2_ddthe * r2x - _t3 * r2y
-    _t4 = sv2 * psig2_dthe
-    _t5 = _t4 * sg2
-    _t6 = sv1 * psig1_dthe
-    _t7 = _t6 * sg1
-    gvx = pg2_dx + r2vx - _t5 - pg1_dx - r1vx + _t7
-    _t8 = _t4 * cg2
-    _t9 = _t6 * cg1
-    gvy = pg2_dy + r2vy + _t8 - pg1_dy - r1vy - _t9
+    _t3 = sv1 * psig1_dthe
+    _t4 = _t3 * sg1
+    gvx = -pg1_dx - r1vx + _t4
+    _t5 = _t3 * cg1
+    gvy = -pg1_dy - r1vy - _t5
     ds1 = (gvx * sg2 - gvy * cg2) * icr
     ds2 = (gvx * sg1 - gvy * cg1) * icr
-    jp1vx = pg1_dx + ds1 * cg1 - _t7
-    jp1vy = pg1_dy + ds1 * sg1 + _t9
-    jp2vx = pg2_dx + ds2 * cg2 - _t5
-    jp2vy = pg2_dy + ds2 * sg2 + _t8
+    jp1vx = pg1_dx + ds1 * cg1 - _t4
+    jp1vy = pg1_dy + ds1 * sg1 + _t5
+    jp2vx = ds2 * cg2
+    jp2vy = ds2 * sg2
     t1n = 2 * ds1 * psig1_dthe + sv1 * psig1_ddthe
-    t2n = 2 * ds2 * psig2_dthe + sv2 * psig2_ddthe
-    t1u = _t6 * psig1_dthe
-    t2u = _t4 * psig2_dthe
+    t1u = _t3 * psig1_dthe
     k1x = pg1_ddx - t1n * sg1 - t1u * cg1
     k1y = pg1_ddy + t1n * cg1 - t1u * sg1
-    k2x = pg2_ddx - t2n * sg2 - t2u * cg2
-    k2y = pg2_ddy + t2n * cg2 - t2u * sg2
-    gax = k2x + r2ax - k1x - r1ax
-    gay = k2y + r2ay - k1y - r1ay
+    gax = -k1x - r1ax
+    gay = -k1y - r1ay
     dds1 = (gax * sg2 - gay * cg2) * icr
     dds2 = (gax * sg1 - gay * cg1) * icr
     jp1ax = k1x + dds1 * cg1
     jp1ay = k1y + dds1 * sg1
-    jp2ax = k2x + dds2 * cg2
-    jp2ay = k2y + dds2 * sg2
+    jp2ax = dds2 * cg2
+    jp2ay = dds2 * sg2
     _c2 = np.asarray(_t1)
     if not _c2.any():
         _c3 = np.asarray(sigma < 1e-07)
@@ -628,11 +616,11 @@ def _run(x, dx, ddx, c):
     report = []
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
     # Step 2: crank_input, P1. O is known and link frame is placed, so the input angle theta_O turns link arm to P1
-    _, _, w.g_P1 = crank_input(w.p_O, c["step2.l"], w.in1, w.ref_O)
+    _, _, w.g_P1 = crank_input_still_j1_phi(w.p_O, c["step2.l"], w.in1, w.ref_O)
     # Step 3: crank_angle, arm. the input theta_O turns link arm, so its angle is the input's
-    _, _, w.phi_arm = crank_angle(w.in1, w.ref_O, c["step3.off"])
+    _, _, w.phi_arm = crank_angle_still_phi(w.in1, w.ref_O, c["step3.off"])
     # Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution)
-    st, sigma[4], w.s_P1, w.p_P1, w.s_P2, w.p_P2, w.p_X = PRP_links(w.g_P1, w.phi_arm, c["step4.gsi1"], c["step4.eta1"], w.g_P2, w.psi_P2, c["step4.gsi1"], c["step4.eta1"])
+    st, sigma[4], w.s_P1, w.p_P1, w.s_P2, w.p_P2, w.p_X = PRP_links_still_pg2_psig2(w.g_P1, w.phi_arm, c["step4.gsi1"], c["step4.eta1"], w.g_P2, w.psi_P2, c["step4.gsi1"], c["step4.eta1"])
     report.append((st, ((1, 41), (3, 43), (4, -44))))
     # Step 5: offset_angle, block2. link block2 keeps a constant angle to its slide
     _, _, w.phi_block2 = offset_angle(w.phi_frame, c["step5.off"])

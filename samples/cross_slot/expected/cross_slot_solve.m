@@ -78,13 +78,13 @@ function [status, w] = run(w, in, din, ddin)
     % Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     % Step 2: crank_input, P1. O is known and link frame is placed, so the input angle theta_O turns link arm to P1
-    w.g_P1 = crank_input(w.p_O, 50.0, w.in1, w.ref_O);
+    w.g_P1 = crank_input_still_j1_phi(w.p_O, 50.0, w.in1, w.ref_O);
 
     % Step 3: crank_angle, arm. the input theta_O turns link arm, so its angle is the input's
-    w.phi_arm = crank_angle(w.in1, w.ref_O, 0.0);
+    w.phi_arm = crank_angle_still_phi(w.in1, w.ref_O, 0.0);
 
     % Step 4: PRP_links, X. X joins the slider block1 on the known line P1 and the slider block2 on the known line P2: a 1R2P two-link chain (one solution)
-    [w.s_P1, w.p_P1, w.s_P2, w.p_P2, w.p_X, st, w.sigma(4)] = PRP_links(w.g_P1, w.phi_arm, 0.0, 0.0, w.g_P2, w.psi_P2, 0.0, 0.0);
+    [w.s_P1, w.p_P1, w.s_P2, w.p_P2, w.p_X, st, w.sigma(4)] = PRP_links_still_pg2_psig2(w.g_P1, w.phi_arm, 0.0, 0.0, w.g_P2, w.psi_P2, 0.0, 0.0);
     if st == 1
         status = 41;
         return;
@@ -227,44 +227,6 @@ function out = publish(w, status, in)
     out.columns = [in(:)', out.O.x, out.O.y, out.O.vx, out.O.vy, out.O.ax, out.O.ay, out.P1.x, out.P1.y, out.P1.vx, out.P1.vy, out.P1.ax, out.P1.ay, out.X.x, out.X.y, out.X.vx, out.X.vy, out.X.ax, out.X.ay, out.P2.x, out.P2.y, out.P2.vx, out.P2.vy, out.P2.ax, out.P2.ay, out.frame.phi, out.frame.omega, out.frame.alpha, out.arm.phi, out.arm.omega, out.arm.alpha, out.block1.phi, out.block1.omega, out.block1.alpha, out.block2.phi, out.block2.omega, out.block2.alpha, out.P1.s, out.P1.ds, out.P1.dds, out.P2.s, out.P2.ds, out.P2.dds];
 end
 
-function j2 = crank_input(j1, l, theta, phi)
-    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
-    t = theta.the + phi.the;
-    ct = cos(t);
-    st = sin(t);
-    rx = l * ct;
-    ry = l * st;
-    om = theta.dthe + phi.dthe;
-    al = theta.ddthe + phi.ddthe;
-    rvx = -om * ry;
-    rvy = om * rx;
-    rax = -al * ry - om * om * rx;
-    ray = al * rx - om * om * ry;
-    j2.x = j1.x + rx;
-    j2.y = j1.y + ry;
-    j2.dx = j1.dx + rvx;
-    j2.dy = j1.dy + rvy;
-    j2.ddx = j1.ddx + rax;
-    j2.ddy = j1.ddy + ray;
-end
-
-function angle = crank_angle(theta, phi, off)
-    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
-    th0 = theta.the + phi.the + off;
-    if abs(th0) >= 3 * pi
-        th = atan2(sin(th0), cos(th0));
-    elseif th0 > pi
-        th = th0 - 2 * pi;
-    elseif th0 <= -pi
-        th = th0 + 2 * pi;
-    else
-        th = th0;
-    end
-    angle.the = th;
-    angle.dthe = theta.dthe + phi.dthe;
-    angle.ddthe = theta.ddthe + phi.ddthe;
-end
-
 function angle = offset_angle(phi, off)
     % Angle of a link that keeps a constant angle off to a known angle phi.
     th0 = phi.the + off;
@@ -280,7 +242,45 @@ function angle = offset_angle(phi, off)
     angle.ddthe = phi.ddthe;
 end
 
-function [s1, jp1, s2, jp2, jb, st, sigma] = PRP_links(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2)
+function j2 = crank_input_still_j1_phi(j1, l, theta, phi)
+    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
+    t = theta.the + phi.the;
+    ct = cos(t);
+    st = sin(t);
+    rx = l * ct;
+    ry = l * st;
+    om = theta.dthe;
+    al = theta.ddthe;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    j2.x = j1.x + rx;
+    j2.y = j1.y + ry;
+    j2.dx = rvx;
+    j2.dy = rvy;
+    j2.ddx = rax;
+    j2.ddy = ray;
+end
+
+function angle = crank_angle_still_phi(theta, phi, off)
+    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
+    th0 = theta.the + phi.the + off;
+    if abs(th0) >= 3 * pi
+        th = atan2(sin(th0), cos(th0));
+    elseif th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    angle.the = th;
+    angle.dthe = theta.dthe;
+    angle.ddthe = theta.ddthe;
+end
+
+function [s1, jp1, s2, jp2, jb, st, sigma] = PRP_links_still_pg2_psig2(pg1, psig1, gsi1, eta1, pg2, psig2, gsi2, eta2)
     % 1R2P chain: pair jb joins two sliders on the guide lines (pg1, psig1) and (pg2, psig2), at (gsi1, eta1) and (gsi2, eta2) from their slider points jp1, jp2 (displacements s1, s2).
     cg1 = cos(psig1.the);
     sg1 = sin(psig1.the);
@@ -312,34 +312,26 @@ function [s1, jp1, s2, jp2, jb, st, sigma] = PRP_links(pg1, psig1, gsi1, eta1, p
     r1vy = psig1.dthe * r1x;
     r1ax = -psig1.ddthe * r1y - psig1.dthe * psig1.dthe * r1x;
     r1ay = psig1.ddthe * r1x - psig1.dthe * psig1.dthe * r1y;
-    r2vx = -psig2.dthe * r2y;
-    r2vy = psig2.dthe * r2x;
-    r2ax = -psig2.ddthe * r2y - psig2.dthe * psig2.dthe * r2x;
-    r2ay = psig2.ddthe * r2x - psig2.dthe * psig2.dthe * r2y;
-    gvx = pg2.dx + r2vx - sv2 * psig2.dthe * sg2 - pg1.dx - r1vx + sv1 * psig1.dthe * sg1;
-    gvy = pg2.dy + r2vy + sv2 * psig2.dthe * cg2 - pg1.dy - r1vy - sv1 * psig1.dthe * cg1;
+    gvx = -pg1.dx - r1vx + sv1 * psig1.dthe * sg1;
+    gvy = -pg1.dy - r1vy - sv1 * psig1.dthe * cg1;
     ds1 = (gvx * sg2 - gvy * cg2) * icr;
     ds2 = (gvx * sg1 - gvy * cg1) * icr;
     jp1vx = pg1.dx + ds1 * cg1 - sv1 * psig1.dthe * sg1;
     jp1vy = pg1.dy + ds1 * sg1 + sv1 * psig1.dthe * cg1;
-    jp2vx = pg2.dx + ds2 * cg2 - sv2 * psig2.dthe * sg2;
-    jp2vy = pg2.dy + ds2 * sg2 + sv2 * psig2.dthe * cg2;
+    jp2vx = ds2 * cg2;
+    jp2vy = ds2 * sg2;
     t1n = 2 * ds1 * psig1.dthe + sv1 * psig1.ddthe;
-    t2n = 2 * ds2 * psig2.dthe + sv2 * psig2.ddthe;
     t1u = sv1 * psig1.dthe * psig1.dthe;
-    t2u = sv2 * psig2.dthe * psig2.dthe;
     k1x = pg1.ddx - t1n * sg1 - t1u * cg1;
     k1y = pg1.ddy + t1n * cg1 - t1u * sg1;
-    k2x = pg2.ddx - t2n * sg2 - t2u * cg2;
-    k2y = pg2.ddy + t2n * cg2 - t2u * sg2;
-    gax = k2x + r2ax - k1x - r1ax;
-    gay = k2y + r2ay - k1y - r1ay;
+    gax = -k1x - r1ax;
+    gay = -k1y - r1ay;
     dds1 = (gax * sg2 - gay * cg2) * icr;
     dds2 = (gax * sg1 - gay * cg1) * icr;
     jp1ax = k1x + dds1 * cg1;
     jp1ay = k1y + dds1 * sg1;
-    jp2ax = k2x + dds2 * cg2;
-    jp2ay = k2y + dds2 * sg2;
+    jp2ax = dds2 * cg2;
+    jp2ay = dds2 * sg2;
     if cr == 0
         st = 1;
     elseif sigma < 1e-07

@@ -18,31 +18,6 @@ typedef struct { double v, dv, ddv; } VARIABLE;
 #define LINKGEN_NSENS 8
 #define LINKGEN_NADD 1
 
-/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-#if defined(__GNUC__)
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
-#endif
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
-{
-    const double t = theta->the + phi->the;
-    const double ct = cos(t);
-    const double st = sin(t);
-    const double rx = l * ct;
-    const double ry = l * st;
-    const double om = theta->dthe + phi->dthe;
-    const double al = theta->ddthe + phi->ddthe;
-    const double rvx = -om * ry;
-    const double rvy = om * rx;
-    const double rax = -al * ry - om * om * rx;
-    const double ray = al * rx - om * om * ry;
-    j2->P.x = j1->P.x + rx;
-    j2->P.y = j1->P.y + ry;
-    j2->DP.x = j1->DP.x + rvx;
-    j2->DP.y = j1->DP.y + rvy;
-    j2->DDP.x = j1->DDP.x + rax;
-    j2->DDP.y = j1->DDP.y + ray;
-}
-
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
 #if defined(__GNUC__)
 static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
@@ -67,19 +42,6 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     angle->dthe = om;
     angle->ddthe = al;
     return st;
-}
-
-/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
-#if defined(__GNUC__)
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
-#endif
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
-{
-    const double th0 = theta->the + phi->the + off;
-    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
-    angle->the = th;
-    angle->dthe = theta->dthe + phi->dthe;
-    angle->ddthe = theta->ddthe + phi->ddthe;
 }
 
 /* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
@@ -215,6 +177,70 @@ static inline void link_residual(const POINT *j1, const POINT *j2, const VARIABL
     f->v = r - l->v;
     f->dv = rd - l->dv;
     f->ddv = rdd - l->ddv;
+}
+
+/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
+{
+    const double t = theta->the + phi->the;
+    const double ct = cos(t);
+    const double st = sin(t);
+    const double rx = l * ct;
+    const double ry = l * st;
+    const double om = theta->dthe;
+    const double al = theta->ddthe;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = rvx;
+    j2->DP.y = rvy;
+    j2->DDP.x = rax;
+    j2->DDP.y = ray;
+}
+
+/* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
+#if defined(__GNUC__)
+static inline int link_angle_still_j1(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
+static inline int link_angle_still_j1(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x;
+    const double dvy = j2->DP.y;
+    const double dax = j2->DDP.x;
+    const double day = j2->DDP.y;
+    const double r2 = dx * dx + dy * dy;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
+    const double ir2 = r2 == 0 ? NAN : 1 / r2;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    const int st = r2 == 0 ? 1 : 0;
+    if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; return st; }
+    angle->the = th;
+    angle->dthe = om;
+    angle->ddthe = al;
+    return st;
+}
+
+/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
+#if defined(__GNUC__)
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
+{
+    const double th0 = theta->the + phi->the + off;
+    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
+    angle->the = th;
+    angle->dthe = theta->dthe;
+    angle->ddthe = theta->ddthe;
 }
 
 /* The reason of a status code (linkgen/status.py): the last digit of a positive code
@@ -4133,7 +4159,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 2: crank_input, J6. J7 is known and link frame is placed, so the input angle theta_J7 turns link crank to J6 */
-    crank_input(&p_J7, 20.0, &w->in1, &ref_J7, &w->p_J6);
+    crank_input_still_j1_phi(&p_J7, 20.0, &w->in1, &ref_J7, &w->p_J6);
 
 
     /* Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4 */
@@ -4167,11 +4193,11 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 15: crank_angle, crank. the input theta_J7 turns link crank, so its angle is the input's */
-    crank_angle(&w->in1, &ref_J7, 0.0, &w->phi_crank);
+    crank_angle_still_phi(&w->in1, &ref_J7, 0.0, &w->phi_crank);
 
 
     /* Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is known */
-    st = link_angle(&p_J1, &w->p_J2, 0.0, &w->phi_right_rocker1);
+    st = link_angle_still_j1(&p_J1, &w->p_J2, 0.0, &w->phi_right_rocker1);
     if (st == 1) return 161;
     note(w, st, 163, -164);
 
@@ -4183,7 +4209,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 18: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is known */
-    st = link_angle(&p_J3, &w->p_J4, 0.0, &w->phi_right_rocker2);
+    st = link_angle_still_j1(&p_J3, &w->p_J4, 0.0, &w->phi_right_rocker2);
     if (st == 1) return 181;
     note(w, st, 183, -184);
 
@@ -4195,7 +4221,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 20: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is known */
-    st = link_angle(&p_K1, &w->p_K2, 0.0, &w->phi_left_rocker1);
+    st = link_angle_still_j1(&p_K1, &w->p_K2, 0.0, &w->phi_left_rocker1);
     if (st == 1) return 201;
     note(w, st, 203, -204);
 
@@ -4207,7 +4233,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is known */
-    st = link_angle(&p_K3, &w->p_K4, 0.0, &w->phi_left_rocker2);
+    st = link_angle_still_j1(&p_K3, &w->p_K4, 0.0, &w->phi_left_rocker2);
     if (st == 1) return 221;
     note(w, st, 223, -224);
 

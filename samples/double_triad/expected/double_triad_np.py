@@ -230,27 +230,6 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
 
 # -- the runtime of the kernel, on arrays of rows ------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct, st = cos_sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    _t1 = om * om
-    rax = -al * ry - _t1 * rx
-    ray = al * rx - _t1 * ry
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-    return _st, _sigma, _j2
-
 def link_angle(j1, j2, off):
     """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -301,35 +280,6 @@ def link_angle(j1, j2, off):
     _angle = (_f1, om, al)
     if _singular.any():  # nan where the rows failed
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
-    return _st, _sigma, _angle
-
-def crank_angle(theta, phi, off):
-    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    th0 = theta_the + phi_the + off
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
-    if not _c1.any():
-        _c2 = np.asarray(th0 > PI)
-        if not _c2.any():
-            _c3 = np.asarray(th0 <= -PI)
-            if not _c3.any():
-                _f1 = th0
-            elif _c3.all():
-                _f1 = th0 + 2 * PI
-            else:
-                _f1 = np.where(_c3, th0 + 2 * PI, th0)
-        elif _c2.all():
-            _f1 = th0 - 2 * PI
-        else:
-            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
-    elif _c1.all():
-        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
-    else:
-        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
-    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
     return _st, _sigma, _angle
 
 def link_point(j1, j2, gsi, eta):
@@ -622,6 +572,108 @@ def link_residual(j1, j2, l):
     _f3 = _s3 - l_ddv
     _f = (r - l_v, rd - l_dv, _f3)
     return _st, _sigma, _f
+
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct, st = cos_sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    _t1 = om * om
+    rax = -al * ry - _t1 * rx
+    ray = al * rx - _t1 * ry
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _j2 = (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+    return _st, _sigma, _j2
+
+def link_angle_still_j1(j1, j2, off):
+    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
+    j1_x, j1_y, _, _, _, _ = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
+    r2 = dx * dx + dy * dy
+    th0 = np.arctan2(dy, dx) + off
+    _t1 = r2 == 0
+    _c1 = np.asarray(_t1)
+    if not _c1.any():
+        ir2 = 1 / r2
+    elif _c1.all():
+        ir2 = NAN
+    else:
+        ir2 = np.where(_c1, NAN, 1 / r2)
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    _c2 = np.asarray(_t1)
+    if not _c2.any():
+        _st = 0
+    elif _c2.all():
+        _st = 1
+    else:
+        _st = np.where(_c2, 1, 0)
+    _sigma = 1.0
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
+    _c3 = np.asarray(th0 > PI)
+    if not _c3.any():
+        _c4 = np.asarray(th0 <= -PI)
+        if not _c4.any():
+            _f1 = th0
+        elif _c4.all():
+            _f1 = th0 + 2 * PI
+        else:
+            _f1 = np.where(_c4, th0 + 2 * PI, th0)
+    elif _c3.all():
+        _f1 = th0 - 2 * PI
+    else:
+        _f1 = np.where(_c3, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    _angle = (_f1, om, al)
+    if _singular.any():  # nan where the rows failed
+        _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
+    return _st, _sigma, _angle
+
+def crank_angle_still_phi(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe, theta_ddthe)
+    return _st, _sigma, _angle
 
 def link_point_1(j1, j2, gsi, eta):
     """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
@@ -3129,7 +3181,7 @@ def _run(x, dx, ddx, c, a, ad, used, order, skip, m, p):
     past = np.zeros(np.shape(skip), dtype=bool)
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
     # Step 2: crank_input, J6. J7 is known and link frame is placed, so the input angle theta_J7 turns link crank to J6
-    _, _, w.p_J6 = crank_input(w.p_J7, c["step2.l"], w.in1, w.ref_J7)
+    _, _, w.p_J6 = crank_input_still_j1_phi(w.p_J7, c["step2.l"], w.in1, w.ref_J7)
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
     # Step 8: resolve, group1. the resolver iterates on add1 until right_coupler regains its length
     done, steps = resolve_lanes(w, _GROUP_1, a, ad, used, order, sigma, report,
@@ -3143,27 +3195,27 @@ def _run(x, dx, ddx, c, a, ad, used, order, skip, m, p):
     settled = settled & done
     its.append(steps)
     # Step 15: crank_angle, crank. the input theta_J7 turns link crank, so its angle is the input's
-    _, _, w.phi_crank = crank_angle(w.in1, w.ref_J7, c["step15.off"])
+    _, _, w.phi_crank = crank_angle_still_phi(w.in1, w.ref_J7, c["step15.off"])
     # Step 16: link_angle, right_rocker1. J1 and J2 of link right_rocker1 are known, so its angle is known
-    st, _, w.phi_right_rocker1 = link_angle(w.p_J1, w.p_J2, c["step16.off"])
+    st, _, w.phi_right_rocker1 = link_angle_still_j1(w.p_J1, w.p_J2, c["step16.off"])
     report.append((st, ((1, 161),)))
     # Step 17: link_angle, right_ternary. J2 and J4 of link right_ternary are known, so its angle is known
     st, _, w.phi_right_ternary = link_angle(w.p_J2, w.p_J4, c["step17.off"])
     report.append((st, ((1, 171),)))
     # Step 18: link_angle, right_rocker2. J3 and J4 of link right_rocker2 are known, so its angle is known
-    st, _, w.phi_right_rocker2 = link_angle(w.p_J3, w.p_J4, c["step18.off"])
+    st, _, w.phi_right_rocker2 = link_angle_still_j1(w.p_J3, w.p_J4, c["step18.off"])
     report.append((st, ((1, 181),)))
     # Step 19: link_angle, right_coupler. J6 and J5 of link right_coupler are known, so its angle is known
     st, _, w.phi_right_coupler = link_angle(w.p_J6, w.p_J5, c["step19.off"])
     report.append((st, ((1, 191),)))
     # Step 20: link_angle, left_rocker1. K1 and K2 of link left_rocker1 are known, so its angle is known
-    st, _, w.phi_left_rocker1 = link_angle(w.p_K1, w.p_K2, c["step20.off"])
+    st, _, w.phi_left_rocker1 = link_angle_still_j1(w.p_K1, w.p_K2, c["step20.off"])
     report.append((st, ((1, 201),)))
     # Step 21: link_angle, left_ternary. K2 and K4 of link left_ternary are known, so its angle is known
     st, _, w.phi_left_ternary = link_angle(w.p_K2, w.p_K4, c["step21.off"])
     report.append((st, ((1, 211),)))
     # Step 22: link_angle, left_rocker2. K3 and K4 of link left_rocker2 are known, so its angle is known
-    st, _, w.phi_left_rocker2 = link_angle(w.p_K3, w.p_K4, c["step22.off"])
+    st, _, w.phi_left_rocker2 = link_angle_still_j1(w.p_K3, w.p_K4, c["step22.off"])
     report.append((st, ((1, 221),)))
     # Step 23: link_angle, left_coupler. J6 and K5 of link left_coupler are known, so its angle is known
     st, _, w.phi_left_coupler = link_angle(w.p_J6, w.p_K5, c["step23.off"])

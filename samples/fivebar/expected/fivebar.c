@@ -11,31 +11,6 @@ typedef struct { VEC2 P, DP, DDP; } POINT;
 typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
-/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-#if defined(__GNUC__)
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
-#endif
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
-{
-    const double t = theta->the + phi->the;
-    const double ct = cos(t);
-    const double st = sin(t);
-    const double rx = l * ct;
-    const double ry = l * st;
-    const double om = theta->dthe + phi->dthe;
-    const double al = theta->ddthe + phi->ddthe;
-    const double rvx = -om * ry;
-    const double rvy = om * rx;
-    const double rax = -al * ry - om * om * rx;
-    const double ray = al * rx - om * om * ry;
-    j2->P.x = j1->P.x + rx;
-    j2->P.y = j1->P.y + ry;
-    j2->DP.x = j1->DP.x + rvx;
-    j2->DP.y = j1->DP.y + rvy;
-    j2->DDP.x = j1->DDP.x + rax;
-    j2->DDP.y = j1->DDP.y + ray;
-}
-
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
 #if defined(__GNUC__)
 static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
@@ -62,24 +37,49 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
+/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
+{
+    const double t = theta->the + phi->the;
+    const double ct = cos(t);
+    const double st = sin(t);
+    const double rx = l * ct;
+    const double ry = l * st;
+    const double om = theta->dthe;
+    const double al = theta->ddthe;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = rvx;
+    j2->DP.y = rvy;
+    j2->DDP.x = rax;
+    j2->DDP.y = ray;
+}
+
 /* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
 #if defined(__GNUC__)
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
 #endif
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
 {
     const double th0 = theta->the + phi->the + off;
     const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     angle->the = th;
-    angle->dthe = theta->dthe + phi->dthe;
-    angle->ddthe = theta->ddthe + phi->ddthe;
+    angle->dthe = theta->dthe;
+    angle->ddthe = theta->ddthe;
 }
 
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
 #if defined(__GNUC__)
-static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+static inline int RRR_links_still_l1_l2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
 #endif
-static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
+static inline int RRR_links_still_l1_l2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -125,14 +125,14 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double ihq = area4 == 0 ? NAN : 2 * minv / area4;
     const double tnx = -ihq * dy;
     const double tny = ihq * dx;
-    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
-    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
+    const double r1v = e1x * j1->DP.x + e1y * j1->DP.y;
+    const double r2v = e2x * j2->DP.x + e2y * j2->DP.y;
     const double buv = r1v - r2v;
     const double bnv = a2r * r1v + ar * r2v;
     const double bvx = buv * sdx + bnv * tnx;
     const double bvy = buv * sdy + bnv * tny;
-    const double r1a = l1->v * l1->ddv + l1->dv * l1->dv + (e1x * j1->DDP.x + e1y * j1->DDP.y) - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y));
-    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv + (e2x * j2->DDP.x + e2y * j2->DDP.y) - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y));
+    const double r1a = e1x * j1->DDP.x + e1y * j1->DDP.y - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y));
+    const double r2a = e2x * j2->DDP.x + e2y * j2->DDP.y - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y));
     const double bua = r1a - r2a;
     const double bna = a2r * r1a + ar * r2a;
     const double bax = bua * sdx + bna * tnx;
@@ -357,21 +357,21 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank1 to A */
-    crank_input(&p_O1, 15.0, &w->in1, &ref_O1, &w->p_A);
+    crank_input_still_j1_phi(&p_O1, 15.0, &w->in1, &ref_O1, &w->p_A);
 
 
     /* Step 3: crank_input, B. O2 is known and link frame is placed, so the input angle theta_O2 turns link crank2 to B */
-    crank_input(&p_O2, 15.0, &w->in2, &ref_O2, &w->p_B);
+    crank_input_still_j1_phi(&p_O2, 15.0, &w->in2, &ref_O2, &w->p_B);
 
 
     /* Step 4: RRR_links, P (branch +1). P is joined to the known A by link1 and to the known B by link2: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_A, &w->p_B, &l_link1, &l_link2, 1, &w->p_P, &out->sigma[4]);
+    st = RRR_links_still_l1_l2(&w->p_A, &w->p_B, &l_link1, &l_link2, 1, &w->p_P, &out->sigma[4]);
     if (st == 1) return failed(out, 41, 4);
     note(w, st, 43, -44);
 
 
     /* Step 5: crank_angle, crank1. the input theta_O1 turns link crank1, so its angle is the input's */
-    crank_angle(&w->in1, &ref_O1, 0.0, &w->phi_crank1);
+    crank_angle_still_phi(&w->in1, &ref_O1, 0.0, &w->phi_crank1);
 
 
     /* Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known */
@@ -387,7 +387,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 8: crank_angle, crank2. the input theta_O2 turns link crank2, so its angle is the input's */
-    crank_angle(&w->in2, &ref_O2, 0.0, &w->phi_crank2);
+    crank_angle_still_phi(&w->in2, &ref_O2, 0.0, &w->phi_crank2);
 
     st = w->singular ? w->singular : w->near;
     publish(w, st, out);

@@ -132,24 +132,6 @@ _FIXED = {  # every output column: those of the fixed sketch with their values, 
 
 # -- the mech.cpp functions this procedure uses -------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct = cos(t)
-    st = sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    rax = -al * ry - om * om * rx
-    ray = al * rx - om * om * ry
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-
 def link_angle(j1, j2, off):
     """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -171,20 +153,38 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
-def crank_angle(theta, phi, off):
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct = cos(t)
+    st = sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    return (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+
+def crank_angle_still_phi(theta, phi, off):
     """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
     theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
+    phi_the, _, _ = phi
     th0 = theta_the + phi_the + off
     th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
-    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
+    return (th, theta_dthe, theta_ddthe)
 
-def RRR_links(j1, j2, l1, l2, minv):
+def RRR_links_still_l1_l2(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    l1_v, l1_dv, l1_ddv = l1
-    l2_v, l2_dv, l2_ddv = l2
+    l1_v, _, _ = l1
+    l2_v, _, _ = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
     dd = dx * dx + dy * dy
@@ -229,14 +229,14 @@ def RRR_links(j1, j2, l1, l2, minv):
     ihq = NAN if area4 == 0 else 2 * minv / area4
     tnx = -ihq * dy
     tny = ihq * dx
-    r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
-    r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
+    r1v = e1x * j1_dx + e1y * j1_dy
+    r2v = e2x * j2_dx + e2y * j2_dy
     buv = r1v - r2v
     bnv = a2r * r1v + ar * r2v
     bvx = buv * sdx + bnv * tnx
     bvy = buv * sdy + bnv * tny
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy))
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv + (e2x * j2_ddx + e2y * j2_ddy) - ((bvx - j2_dx) * (bvx - j2_dx) + (bvy - j2_dy) * (bvy - j2_dy))
+    r1a = e1x * j1_ddx + e1y * j1_ddy - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy))
+    r2a = e2x * j2_ddx + e2y * j2_ddy - ((bvx - j2_dx) * (bvx - j2_dx) + (bvy - j2_dy) * (bvy - j2_dy))
     bua = r1a - r2a
     bna = a2r * r1a + ar * r2a
     bax = bua * sdx + bna * tnx
@@ -288,37 +288,37 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank1 to A
-    # crank_input(p_O1, 15.0, w.in1, ref_O1), inline
+    # crank_input_still_j1_phi(p_O1, 15.0, w.in1, ref_O1), inline
     _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 15.0 * _ct
     _ry = 15.0 * _st
-    _om = _in1_dthe + 0.0
-    _al = _in1_ddthe + 0.0
+    _om = _in1_dthe
+    _al = _in1_ddthe
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-36.0) + _rx, (-20.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-36.0) + _rx, (-20.0) + _ry, _rvx, _rvy, _rax, _ray)
 
     # Step 3: crank_input, B. O2 is known and link frame is placed, so the input angle theta_O2 turns link crank2 to B
-    # crank_input(p_O2, 15.0, w.in2, ref_O2), inline
+    # crank_input_still_j1_phi(p_O2, 15.0, w.in2, ref_O2), inline
     _t = _in2_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 15.0 * _ct
     _ry = 15.0 * _st
-    _om = _in2_dthe + 0.0
-    _al = _in2_ddthe + 0.0
+    _om = _in2_dthe
+    _al = _in2_ddthe
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (24.0 + _rx, (-20.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (24.0 + _rx, (-20.0) + _ry, _rvx, _rvy, _rax, _ray)
 
     # Step 4: RRR_links, P (branch +1). P is joined to the known A by link1 and to the known B by link2: a 3R two-link chain with both ends known
-    # RRR_links(w.p_A, w.p_B, l_link1, l_link2, 1), inline
+    # RRR_links_still_l1_l2(w.p_A, w.p_B, l_link1, l_link2, 1), inline
     _dx = _p_B_x - _p_A_x
     _dy = _p_B_y - _p_A_y
     _dd = _dx * _dx + _dy * _dy
@@ -363,14 +363,14 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _ihq = NAN if _area4 == 0 else 2 * 1 / _area4
     _tnx = -_ihq * _dy
     _tny = _ihq * _dx
-    _r1v = 50.0 * 0.0 + (_e1x * _p_A_dx + _e1y * _p_A_dy)
-    _r2v = 50.0 * 0.0 + (_e2x * _p_B_dx + _e2y * _p_B_dy)
+    _r1v = _e1x * _p_A_dx + _e1y * _p_A_dy
+    _r2v = _e2x * _p_B_dx + _e2y * _p_B_dy
     _buv = _r1v - _r2v
     _bnv = _a2r * _r1v + _ar * _r2v
     _bvx = _buv * _sdx + _bnv * _tnx
     _bvy = _buv * _sdy + _bnv * _tny
-    _r1a = 50.0 * 0.0 + 0.0 * 0.0 + (_e1x * _p_A_ddx + _e1y * _p_A_ddy) - ((_bvx - _p_A_dx) * (_bvx - _p_A_dx) + (_bvy - _p_A_dy) * (_bvy - _p_A_dy))
-    _r2a = 50.0 * 0.0 + 0.0 * 0.0 + (_e2x * _p_B_ddx + _e2y * _p_B_ddy) - ((_bvx - _p_B_dx) * (_bvx - _p_B_dx) + (_bvy - _p_B_dy) * (_bvy - _p_B_dy))
+    _r1a = _e1x * _p_A_ddx + _e1y * _p_A_ddy - ((_bvx - _p_A_dx) * (_bvx - _p_A_dx) + (_bvy - _p_A_dy) * (_bvy - _p_A_dy))
+    _r2a = _e2x * _p_B_ddx + _e2y * _p_B_ddy - ((_bvx - _p_B_dx) * (_bvx - _p_B_dx) + (_bvy - _p_B_dy) * (_bvy - _p_B_dy))
     _bua = _r1a - _r2a
     _bna = _a2r * _r1a + _ar * _r2a
     _bax = _bua * _sdx + _bna * _tnx
@@ -388,10 +388,10 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 43, -44)
 
     # Step 5: crank_angle, crank1. the input theta_O1 turns link crank1, so its angle is the input's
-    # crank_angle(w.in1, ref_O1, 0.0), inline
+    # crank_angle_still_phi(w.in1, ref_O1, 0.0), inline
     _th0 = _in1_the + 0.0 + 0.0
     _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
-    _phi_crank1_the, _phi_crank1_dthe, _phi_crank1_ddthe = w.phi_crank1 = (_th, _in1_dthe + 0.0, _in1_ddthe + 0.0)
+    _phi_crank1_the, _phi_crank1_dthe, _phi_crank1_ddthe = w.phi_crank1 = (_th, _in1_dthe, _in1_ddthe)
 
     # Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known
     # link_angle(w.p_A, w.p_P, 0.0), inline
@@ -440,10 +440,10 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 73, -74)
 
     # Step 8: crank_angle, crank2. the input theta_O2 turns link crank2, so its angle is the input's
-    # crank_angle(w.in2, ref_O2, 0.0), inline
+    # crank_angle_still_phi(w.in2, ref_O2, 0.0), inline
     _th0 = _in2_the + 0.0 + 0.0
     _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
-    _phi_crank2_the, _phi_crank2_dthe, _phi_crank2_ddthe = w.phi_crank2 = (_th, _in2_dthe + 0.0, _in2_ddthe + 0.0)
+    _phi_crank2_the, _phi_crank2_dthe, _phi_crank2_ddthe = w.phi_crank2 = (_th, _in2_dthe, _in2_ddthe)
 
     return w.singular or w.near
 

@@ -124,27 +124,6 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
 
 # -- the runtime of the kernel, on arrays of rows ------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct, st = cos_sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    _t1 = om * om
-    rax = -al * ry - _t1 * rx
-    ray = al * rx - _t1 * ry
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-    return _st, _sigma, _j2
-
 def link_angle(j1, j2, off):
     """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -197,10 +176,31 @@ def link_angle(j1, j2, off):
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def crank_angle(theta, phi, off):
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct, st = cos_sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    _t1 = om * om
+    rax = -al * ry - _t1 * rx
+    ray = al * rx - _t1 * ry
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _j2 = (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+    return _st, _sigma, _j2
+
+def crank_angle_still_phi(theta, phi, off):
     """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
     theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
+    phi_the, _, _ = phi
     th0 = theta_the + phi_the + off
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
@@ -223,15 +223,15 @@ def crank_angle(theta, phi, off):
         _f1 = np.arctan2(np.sin(th0), np.cos(th0))
     else:
         _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
-    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
+    _angle = (_f1, theta_dthe, theta_ddthe)
     return _st, _sigma, _angle
 
-def RRR_links(j1, j2, l1, l2, minv):
+def RRR_links_still_l1_l2(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    l1_v, l1_dv, l1_ddv = l1
-    l2_v, l2_dv, l2_ddv = l2
+    l1_v, _, _ = l1
+    l2_v, _, _ = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
     dd = dx * dx + dy * dy
@@ -368,18 +368,18 @@ def RRR_links(j1, j2, l1, l2, minv):
         ihq = np.where(_c15, NAN, 2 * minv / area4)
     tnx = -ihq * dy
     tny = ihq * dx
-    r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
-    r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
+    r1v = e1x * j1_dx + e1y * j1_dy
+    r2v = e2x * j2_dx + e2y * j2_dy
     buv = r1v - r2v
     bnv = a2r * r1v + ar * r2v
     bvx = buv * sdx + bnv * tnx
     bvy = buv * sdy + bnv * tny
     _t13 = bvx - j1_dx
     _t14 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - (_t13 * _t13 + _t14 * _t14)
+    r1a = e1x * j1_ddx + e1y * j1_ddy - (_t13 * _t13 + _t14 * _t14)
     _t15 = bvx - j2_dx
     _t16 = bvy - j2_dy
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv + (e2x * j2_ddx + e2y * j2_ddy) - (_t15 * _t15 + _t16 * _t16)
+    r2a = e2x * j2_ddx + e2y * j2_ddy - (_t15 * _t15 + _t16 * _t16)
     bua = r1a - r2a
     bna = a2r * r1a + ar * r2a
     bax = bua * sdx + bna * tnx
@@ -740,14 +740,14 @@ def _run(x, dx, ddx, c):
     report = []
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
     # Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank1 to A
-    _, _, w.p_A = crank_input(w.p_O1, c["step2.l"], w.in1, w.ref_O1)
+    _, _, w.p_A = crank_input_still_j1_phi(w.p_O1, c["step2.l"], w.in1, w.ref_O1)
     # Step 3: crank_input, B. O2 is known and link frame is placed, so the input angle theta_O2 turns link crank2 to B
-    _, _, w.p_B = crank_input(w.p_O2, c["step3.l"], w.in2, w.ref_O2)
+    _, _, w.p_B = crank_input_still_j1_phi(w.p_O2, c["step3.l"], w.in2, w.ref_O2)
     # Step 4: RRR_links, P (branch +1). P is joined to the known A by link1 and to the known B by link2: a 3R two-link chain with both ends known
-    st, sigma[4], w.p_P = RRR_links(w.p_A, w.p_B, w.l_link1, w.l_link2, 1)
+    st, sigma[4], w.p_P = RRR_links_still_l1_l2(w.p_A, w.p_B, w.l_link1, w.l_link2, 1)
     report.append((st, ((1, 41), (3, 43), (4, -44))))
     # Step 5: crank_angle, crank1. the input theta_O1 turns link crank1, so its angle is the input's
-    _, _, w.phi_crank1 = crank_angle(w.in1, w.ref_O1, c["step5.off"])
+    _, _, w.phi_crank1 = crank_angle_still_phi(w.in1, w.ref_O1, c["step5.off"])
     # Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known
     st, _, w.phi_link1 = link_angle(w.p_A, w.p_P, c["step6.off"])
     report.append((st, ((1, 61),)))
@@ -755,7 +755,7 @@ def _run(x, dx, ddx, c):
     st, _, w.phi_link2 = link_angle(w.p_P, w.p_B, c["step7.off"])
     report.append((st, ((1, 71),)))
     # Step 8: crank_angle, crank2. the input theta_O2 turns link crank2, so its angle is the input's
-    _, _, w.phi_crank2 = crank_angle(w.in2, w.ref_O2, c["step8.off"])
+    _, _, w.phi_crank2 = crank_angle_still_phi(w.in2, w.ref_O2, c["step8.off"])
     code = row_status(report)
     return w, code, sigma
 

@@ -80,13 +80,13 @@ function [status, w] = run(w, in, din, ddin)
     % Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     % Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank1 to A
-    w.p_A = crank_input(w.p_O1, 15.0, w.in1, w.ref_O1);
+    w.p_A = crank_input_still_j1_phi(w.p_O1, 15.0, w.in1, w.ref_O1);
 
     % Step 3: crank_input, B. O2 is known and link frame is placed, so the input angle theta_O2 turns link crank2 to B
-    w.p_B = crank_input(w.p_O2, 15.0, w.in2, w.ref_O2);
+    w.p_B = crank_input_still_j1_phi(w.p_O2, 15.0, w.in2, w.ref_O2);
 
     % Step 4: RRR_links, P (branch +1). P is joined to the known A by link1 and to the known B by link2: a 3R two-link chain with both ends known
-    [w.p_P, st, w.sigma(4)] = RRR_links(w.p_A, w.p_B, w.l_link1, w.l_link2, 1);
+    [w.p_P, st, w.sigma(4)] = RRR_links_still_l1_l2(w.p_A, w.p_B, w.l_link1, w.l_link2, 1);
     if st == 1
         status = 41;
         return;
@@ -94,7 +94,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 43, -44);
 
     % Step 5: crank_angle, crank1. the input theta_O1 turns link crank1, so its angle is the input's
-    w.phi_crank1 = crank_angle(w.in1, w.ref_O1, 0.0);
+    w.phi_crank1 = crank_angle_still_phi(w.in1, w.ref_O1, 0.0);
 
     % Step 6: link_angle, link1. A and P of link link1 are known, so its angle is known
     [w.phi_link1, st] = link_angle(w.p_A, w.p_P, 0.0);
@@ -113,7 +113,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 73, -74);
 
     % Step 8: crank_angle, crank2. the input theta_O2 turns link crank2, so its angle is the input's
-    w.phi_crank2 = crank_angle(w.in2, w.ref_O2, 0.0);
+    w.phi_crank2 = crank_angle_still_phi(w.in2, w.ref_O2, 0.0);
 
     if w.singular > 0
         status = w.singular;
@@ -256,27 +256,6 @@ function out = publish(w, status, in)
     out.columns = [in(:)', out.O1.x, out.O1.y, out.O1.vx, out.O1.vy, out.O1.ax, out.O1.ay, out.A.x, out.A.y, out.A.vx, out.A.vy, out.A.ax, out.A.ay, out.P.x, out.P.y, out.P.vx, out.P.vy, out.P.ax, out.P.ay, out.B.x, out.B.y, out.B.vx, out.B.vy, out.B.ax, out.B.ay, out.O2.x, out.O2.y, out.O2.vx, out.O2.vy, out.O2.ax, out.O2.ay, out.frame.phi, out.frame.omega, out.frame.alpha, out.crank1.phi, out.crank1.omega, out.crank1.alpha, out.link1.phi, out.link1.omega, out.link1.alpha, out.link2.phi, out.link2.omega, out.link2.alpha, out.crank2.phi, out.crank2.omega, out.crank2.alpha];
 end
 
-function j2 = crank_input(j1, l, theta, phi)
-    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
-    t = theta.the + phi.the;
-    ct = cos(t);
-    st = sin(t);
-    rx = l * ct;
-    ry = l * st;
-    om = theta.dthe + phi.dthe;
-    al = theta.ddthe + phi.ddthe;
-    rvx = -om * ry;
-    rvy = om * rx;
-    rax = -al * ry - om * om * rx;
-    ray = al * rx - om * om * ry;
-    j2.x = j1.x + rx;
-    j2.y = j1.y + ry;
-    j2.dx = j1.dx + rvx;
-    j2.dy = j1.dy + rvy;
-    j2.ddx = j1.ddx + rax;
-    j2.ddy = j1.ddy + ray;
-end
-
 function [angle, st] = link_angle(j1, j2, off)
     % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
     dx = j2.x - j1.x;
@@ -316,7 +295,28 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function angle = crank_angle(theta, phi, off)
+function j2 = crank_input_still_j1_phi(j1, l, theta, phi)
+    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
+    t = theta.the + phi.the;
+    ct = cos(t);
+    st = sin(t);
+    rx = l * ct;
+    ry = l * st;
+    om = theta.dthe;
+    al = theta.ddthe;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    j2.x = j1.x + rx;
+    j2.y = j1.y + ry;
+    j2.dx = rvx;
+    j2.dy = rvy;
+    j2.ddx = rax;
+    j2.ddy = ray;
+end
+
+function angle = crank_angle_still_phi(theta, phi, off)
     % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
     th0 = theta.the + phi.the + off;
     if abs(th0) >= 3 * pi
@@ -329,11 +329,11 @@ function angle = crank_angle(theta, phi, off)
         th = th0;
     end
     angle.the = th;
-    angle.dthe = theta.dthe + phi.dthe;
-    angle.ddthe = theta.ddthe + phi.ddthe;
+    angle.dthe = theta.dthe;
+    angle.ddthe = theta.ddthe;
 end
 
-function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
+function [jb, st, sigma] = RRR_links_still_l1_l2(j1, j2, l1, l2, minv)
     % 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
@@ -431,14 +431,14 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     end
     tnx = -ihq * dy;
     tny = ihq * dx;
-    r1v = l1.v * l1.dv + (e1x * j1.dx + e1y * j1.dy);
-    r2v = l2.v * l2.dv + (e2x * j2.dx + e2y * j2.dy);
+    r1v = e1x * j1.dx + e1y * j1.dy;
+    r2v = e2x * j2.dx + e2y * j2.dy;
     buv = r1v - r2v;
     bnv = a2r * r1v + ar * r2v;
     bvx = buv * sdx + bnv * tnx;
     bvy = buv * sdy + bnv * tny;
-    r1a = l1.v * l1.ddv + l1.dv * l1.dv + (e1x * j1.ddx + e1y * j1.ddy) - ((bvx - j1.dx) * (bvx - j1.dx) + (bvy - j1.dy) * (bvy - j1.dy));
-    r2a = l2.v * l2.ddv + l2.dv * l2.dv + (e2x * j2.ddx + e2y * j2.ddy) - ((bvx - j2.dx) * (bvx - j2.dx) + (bvy - j2.dy) * (bvy - j2.dy));
+    r1a = e1x * j1.ddx + e1y * j1.ddy - ((bvx - j1.dx) * (bvx - j1.dx) + (bvy - j1.dy) * (bvy - j1.dy));
+    r2a = e2x * j2.ddx + e2y * j2.ddy - ((bvx - j2.dx) * (bvx - j2.dx) + (bvy - j2.dy) * (bvy - j2.dy));
     bua = r1a - r2a;
     bna = a2r * r1a + ar * r2a;
     bax = bua * sdx + bna * tnx;

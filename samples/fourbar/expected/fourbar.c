@@ -11,31 +11,6 @@ typedef struct { VEC2 P, DP, DDP; } POINT;
 typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
-/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-#if defined(__GNUC__)
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
-#endif
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
-{
-    const double t = theta->the + phi->the;
-    const double ct = cos(t);
-    const double st = sin(t);
-    const double rx = l * ct;
-    const double ry = l * st;
-    const double om = theta->dthe + phi->dthe;
-    const double al = theta->ddthe + phi->ddthe;
-    const double rvx = -om * ry;
-    const double rvy = om * rx;
-    const double rax = -al * ry - om * om * rx;
-    const double ray = al * rx - om * om * ry;
-    j2->P.x = j1->P.x + rx;
-    j2->P.y = j1->P.y + ry;
-    j2->DP.x = j1->DP.x + rvx;
-    j2->DP.y = j1->DP.y + rvy;
-    j2->DDP.x = j1->DDP.x + rax;
-    j2->DDP.y = j1->DDP.y + ray;
-}
-
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
 #if defined(__GNUC__)
 static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
@@ -60,19 +35,6 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     angle->dthe = om;
     angle->ddthe = al;
     return st;
-}
-
-/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
-#if defined(__GNUC__)
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
-#endif
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
-{
-    const double th0 = theta->the + phi->the + off;
-    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
-    angle->the = th;
-    angle->dthe = theta->dthe + phi->dthe;
-    angle->ddthe = theta->ddthe + phi->ddthe;
 }
 
 /* Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows). */
@@ -105,11 +67,75 @@ static inline int pair_point(const POINT *j1, const POINT *j2, double along, dou
     return st;
 }
 
+/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
+{
+    const double t = theta->the + phi->the;
+    const double ct = cos(t);
+    const double st = sin(t);
+    const double rx = l * ct;
+    const double ry = l * st;
+    const double om = theta->dthe;
+    const double al = theta->ddthe;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = rvx;
+    j2->DP.y = rvy;
+    j2->DDP.x = rax;
+    j2->DDP.y = ray;
+}
+
+/* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
+#if defined(__GNUC__)
+static inline int link_angle_still_j1(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
+static inline int link_angle_still_j1(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x;
+    const double dvy = j2->DP.y;
+    const double dax = j2->DDP.x;
+    const double day = j2->DDP.y;
+    const double r2 = dx * dx + dy * dy;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
+    const double ir2 = r2 == 0 ? NAN : 1 / r2;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    const int st = r2 == 0 ? 1 : 0;
+    if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; return st; }
+    angle->the = th;
+    angle->dthe = om;
+    angle->ddthe = al;
+    return st;
+}
+
+/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
+#if defined(__GNUC__)
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
+{
+    const double th0 = theta->the + phi->the + off;
+    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
+    angle->the = th;
+    angle->dthe = theta->dthe;
+    angle->ddthe = theta->ddthe;
+}
+
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
 #if defined(__GNUC__)
-static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+static inline int RRR_links_still_j2_l1_l2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
 #endif
-static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
+static inline int RRR_links_still_j2_l1_l2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -148,21 +174,18 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double ar = ((3 * o1 > s2) & (3 * o2 > dd)) ? ao : a * iq;
     const double a2r = ((3 * o1 > s2) & (3 * o2 > dd)) ? (dd - c) * idd2 : a2 * iq;
-    const double e2x = -a2r * dx + area4 * mx;
-    const double e2y = -a2r * dy + area4 * my;
     const double sdx = 2 * idd2 * dx;
     const double sdy = 2 * idd2 * dy;
     const double ihq = area4 == 0 ? NAN : 2 * minv / area4;
     const double tnx = -ihq * dy;
     const double tny = ihq * dx;
-    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
-    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
-    const double buv = r1v - r2v;
-    const double bnv = a2r * r1v + ar * r2v;
+    const double r1v = e1x * j1->DP.x + e1y * j1->DP.y;
+    const double buv = r1v;
+    const double bnv = a2r * r1v;
     const double bvx = buv * sdx + bnv * tnx;
     const double bvy = buv * sdy + bnv * tny;
-    const double r1a = l1->v * l1->ddv + l1->dv * l1->dv + (e1x * j1->DDP.x + e1y * j1->DDP.y) - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y));
-    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv + (e2x * j2->DDP.x + e2y * j2->DDP.y) - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y));
+    const double r1a = e1x * j1->DDP.x + e1y * j1->DDP.y - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y));
+    const double r2a = -(bvx * bvx + bvy * bvy);
     const double bua = r1a - r2a;
     const double bna = a2r * r1a + ar * r2a;
     const double bax = bua * sdx + bna * tnx;
@@ -374,11 +397,11 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A */
-    crank_input(&p_O1, 20.0, &w->in1, &ref_O1, &w->p_A);
+    crank_input_still_j1_phi(&p_O1, 20.0, &w->in1, &ref_O1, &w->p_A);
 
 
     /* Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_A, &p_O2, &l_coupler, &l_rocker, 1, &w->p_B, &out->sigma[3]);
+    st = RRR_links_still_j2_l1_l2(&w->p_A, &p_O2, &l_coupler, &l_rocker, 1, &w->p_B, &out->sigma[3]);
     if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
@@ -390,7 +413,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 5: crank_angle, crank. the input theta_O1 turns link crank, so its angle is the input's */
-    crank_angle(&w->in1, &ref_O1, 0.0, &w->phi_crank);
+    crank_angle_still_phi(&w->in1, &ref_O1, 0.0, &w->phi_crank);
 
 
     /* Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is known */
@@ -400,7 +423,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is known */
-    st = link_angle(&p_O2, &w->p_B, 0.0, &w->phi_rocker);
+    st = link_angle_still_j1(&p_O2, &w->p_B, 0.0, &w->phi_rocker);
     if (st == 1) return failed(out, 71, 7);
     note(w, st, 73, -74);
 

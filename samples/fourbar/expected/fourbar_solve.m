@@ -78,10 +78,10 @@ function [status, w] = run(w, in, din, ddin)
     % Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     % Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A
-    w.p_A = crank_input(w.p_O1, 20.0, w.in1, w.ref_O1);
+    w.p_A = crank_input_still_j1_phi(w.p_O1, 20.0, w.in1, w.ref_O1);
 
     % Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known
-    [w.p_B, st, w.sigma(3)] = RRR_links(w.p_A, w.p_O2, w.l_coupler, w.l_rocker, 1);
+    [w.p_B, st, w.sigma(3)] = RRR_links_still_j2_l1_l2(w.p_A, w.p_O2, w.l_coupler, w.l_rocker, 1);
     if st == 1
         status = 31;
         return;
@@ -97,7 +97,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 43, -44);
 
     % Step 5: crank_angle, crank. the input theta_O1 turns link crank, so its angle is the input's
-    w.phi_crank = crank_angle(w.in1, w.ref_O1, 0.0);
+    w.phi_crank = crank_angle_still_phi(w.in1, w.ref_O1, 0.0);
 
     % Step 6: link_angle, coupler. A and B of link coupler are known, so its angle is known
     [w.phi_coupler, st] = link_angle(w.p_A, w.p_B, 0.0);
@@ -108,7 +108,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 63, -64);
 
     % Step 7: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
-    [w.phi_rocker, st] = link_angle(w.p_O2, w.p_B, 0.0);
+    [w.phi_rocker, st] = link_angle_still_j1(w.p_O2, w.p_B, 0.0);
     if st == 1
         status = 71;
         return;
@@ -248,27 +248,6 @@ function out = publish(w, status, in)
     out.columns = [in(:)', out.O1.x, out.O1.y, out.O1.vx, out.O1.vy, out.O1.ax, out.O1.ay, out.A.x, out.A.y, out.A.vx, out.A.vy, out.A.ax, out.A.ay, out.B.x, out.B.y, out.B.vx, out.B.vy, out.B.ax, out.B.ay, out.O2.x, out.O2.y, out.O2.vx, out.O2.vy, out.O2.ax, out.O2.ay, out.P.x, out.P.y, out.P.vx, out.P.vy, out.P.ax, out.P.ay, out.frame.phi, out.frame.omega, out.frame.alpha, out.crank.phi, out.crank.omega, out.crank.alpha, out.coupler.phi, out.coupler.omega, out.coupler.alpha, out.rocker.phi, out.rocker.omega, out.rocker.alpha];
 end
 
-function j2 = crank_input(j1, l, theta, phi)
-    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
-    t = theta.the + phi.the;
-    ct = cos(t);
-    st = sin(t);
-    rx = l * ct;
-    ry = l * st;
-    om = theta.dthe + phi.dthe;
-    al = theta.ddthe + phi.ddthe;
-    rvx = -om * ry;
-    rvy = om * rx;
-    rax = -al * ry - om * om * rx;
-    ray = al * rx - om * om * ry;
-    j2.x = j1.x + rx;
-    j2.y = j1.y + ry;
-    j2.dx = j1.dx + rvx;
-    j2.dy = j1.dy + rvy;
-    j2.ddx = j1.ddx + rax;
-    j2.ddy = j1.ddy + ray;
-end
-
 function [angle, st] = link_angle(j1, j2, off)
     % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
     dx = j2.x - j1.x;
@@ -308,23 +287,6 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function angle = crank_angle(theta, phi, off)
-    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
-    th0 = theta.the + phi.the + off;
-    if abs(th0) >= 3 * pi
-        th = atan2(sin(th0), cos(th0));
-    elseif th0 > pi
-        th = th0 - 2 * pi;
-    elseif th0 <= -pi
-        th = th0 + 2 * pi;
-    else
-        th = th0;
-    end
-    angle.the = th;
-    angle.dthe = theta.dthe + phi.dthe;
-    angle.ddthe = theta.ddthe + phi.ddthe;
-end
-
 function [jc, st] = pair_point(j1, j2, along, across)
     % Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows).
     dx = j2.x - j1.x;
@@ -361,7 +323,84 @@ function [jc, st] = pair_point(j1, j2, along, across)
     end
 end
 
-function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
+function j2 = crank_input_still_j1_phi(j1, l, theta, phi)
+    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
+    t = theta.the + phi.the;
+    ct = cos(t);
+    st = sin(t);
+    rx = l * ct;
+    ry = l * st;
+    om = theta.dthe;
+    al = theta.ddthe;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    j2.x = j1.x + rx;
+    j2.y = j1.y + ry;
+    j2.dx = rvx;
+    j2.dy = rvy;
+    j2.ddx = rax;
+    j2.ddy = ray;
+end
+
+function [angle, st] = link_angle_still_j1(j1, j2, off)
+    % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx;
+    dvy = j2.dy;
+    dax = j2.ddx;
+    day = j2.ddy;
+    r2 = dx * dx + dy * dy;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    if r2 == 0
+        ir2 = NaN;
+    else
+        ir2 = 1 / r2;
+    end
+    om = (dx * dvy - dy * dvx) * ir2;
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
+    angle.the = th;
+    angle.dthe = om;
+    angle.ddthe = al;
+    if st == 1
+        angle.the = NaN;
+        angle.dthe = NaN;
+        angle.ddthe = NaN;
+    end
+end
+
+function angle = crank_angle_still_phi(theta, phi, off)
+    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
+    th0 = theta.the + phi.the + off;
+    if abs(th0) >= 3 * pi
+        th = atan2(sin(th0), cos(th0));
+    elseif th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    angle.the = th;
+    angle.dthe = theta.dthe;
+    angle.ddthe = theta.ddthe;
+end
+
+function [jb, st, sigma] = RRR_links_still_j2_l1_l2(j1, j2, l1, l2, minv)
     % 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
@@ -448,8 +487,6 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     else
         a2r = a2 * iq;
     end
-    e2x = -a2r * dx + area4 * mx;
-    e2y = -a2r * dy + area4 * my;
     sdx = 2 * idd2 * dx;
     sdy = 2 * idd2 * dy;
     if area4 == 0
@@ -459,14 +496,13 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     end
     tnx = -ihq * dy;
     tny = ihq * dx;
-    r1v = l1.v * l1.dv + (e1x * j1.dx + e1y * j1.dy);
-    r2v = l2.v * l2.dv + (e2x * j2.dx + e2y * j2.dy);
-    buv = r1v - r2v;
-    bnv = a2r * r1v + ar * r2v;
+    r1v = e1x * j1.dx + e1y * j1.dy;
+    buv = r1v;
+    bnv = a2r * r1v;
     bvx = buv * sdx + bnv * tnx;
     bvy = buv * sdy + bnv * tny;
-    r1a = l1.v * l1.ddv + l1.dv * l1.dv + (e1x * j1.ddx + e1y * j1.ddy) - ((bvx - j1.dx) * (bvx - j1.dx) + (bvy - j1.dy) * (bvy - j1.dy));
-    r2a = l2.v * l2.ddv + l2.dv * l2.dv + (e2x * j2.ddx + e2y * j2.ddy) - ((bvx - j2.dx) * (bvx - j2.dx) + (bvy - j2.dy) * (bvy - j2.dy));
+    r1a = e1x * j1.ddx + e1y * j1.ddy - ((bvx - j1.dx) * (bvx - j1.dx) + (bvy - j1.dy) * (bvy - j1.dy));
+    r2a = -(bvx * bvx + bvy * bvy);
     bua = r1a - r2a;
     bna = a2r * r1a + ar * r2a;
     bax = bua * sdx + bna * tnx;

@@ -13,47 +13,47 @@ typedef struct { double v, dv, ddv; } VARIABLE;
 
 /* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
 #if defined(__GNUC__)
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
 #endif
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
 {
     const double t = theta->the + phi->the;
     const double ct = cos(t);
     const double st = sin(t);
     const double rx = l * ct;
     const double ry = l * st;
-    const double om = theta->dthe + phi->dthe;
-    const double al = theta->ddthe + phi->ddthe;
+    const double om = theta->dthe;
+    const double al = theta->ddthe;
     const double rvx = -om * ry;
     const double rvy = om * rx;
     const double rax = -al * ry - om * om * rx;
     const double ray = al * rx - om * om * ry;
     j2->P.x = j1->P.x + rx;
     j2->P.y = j1->P.y + ry;
-    j2->DP.x = j1->DP.x + rvx;
-    j2->DP.y = j1->DP.y + rvy;
-    j2->DDP.x = j1->DDP.x + rax;
-    j2->DDP.y = j1->DDP.y + ray;
+    j2->DP.x = rvx;
+    j2->DP.y = rvy;
+    j2->DDP.x = rax;
+    j2->DDP.y = ray;
 }
 
 /* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
 #if defined(__GNUC__)
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
 #endif
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
 {
     const double th0 = theta->the + phi->the + off;
     const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
     angle->the = th;
-    angle->dthe = theta->dthe + phi->dthe;
-    angle->ddthe = theta->ddthe + phi->ddthe;
+    angle->dthe = theta->dthe;
+    angle->ddthe = theta->ddthe;
 }
 
 /* Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi. */
 #if defined(__GNUC__)
-static inline void coupler_point(const POINT *j0, const ANGLE *phi, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+static inline void coupler_point_still_j0(const POINT *j0, const ANGLE *phi, double gsi, double eta, POINT *jc) __attribute__((always_inline));
 #endif
-static inline void coupler_point(const POINT *j0, const ANGLE *phi, double gsi, double eta, POINT *jc)
+static inline void coupler_point_still_j0(const POINT *j0, const ANGLE *phi, double gsi, double eta, POINT *jc)
 {
     const double cp = cos(phi->the);
     const double sp = sin(phi->the);
@@ -65,24 +65,24 @@ static inline void coupler_point(const POINT *j0, const ANGLE *phi, double gsi, 
     const double ray = phi->ddthe * rx - phi->dthe * phi->dthe * ry;
     jc->P.x = j0->P.x + rx;
     jc->P.y = j0->P.y + ry;
-    jc->DP.x = j0->DP.x + rvx;
-    jc->DP.y = j0->DP.y + rvy;
-    jc->DDP.x = j0->DDP.x + rax;
-    jc->DDP.y = j0->DDP.y + ray;
+    jc->DP.x = rvx;
+    jc->DP.y = rvy;
+    jc->DDP.x = rax;
+    jc->DDP.y = ray;
 }
 
 /* RPR chain: a guide link turning about jg and a slider link turning about js slide along one line; (ag, bg) and (as, bs) are the pair's reference point seen from jg and js in the line's frame.  Gives the line angle psi, the displacement s and the pair's slider point jp. */
 #if defined(__GNUC__)
-static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out) __attribute__((always_inline));
+static inline int RPR_links_still_jg(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out) __attribute__((always_inline));
 #endif
-static inline int RPR_links(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out)
+static inline int RPR_links_still_jg(const POINT *jg, const POINT *js, double ag, double bg, double as_, double bs, int minv, ANGLE *psi, VARIABLE *s, POINT *jp, double *sigma_out)
 {
     const double dx = js->P.x - jg->P.x;
     const double dy = js->P.y - jg->P.y;
-    const double dvx = js->DP.x - jg->DP.x;
-    const double dvy = js->DP.y - jg->DP.y;
-    const double dax = js->DDP.x - jg->DDP.x;
-    const double day = js->DDP.y - jg->DDP.y;
+    const double dvx = js->DP.x;
+    const double dvy = js->DP.y;
+    const double dax = js->DDP.x;
+    const double day = js->DDP.y;
     const double hh = bg - bs;
     const double q = sqrt(dx * dx + dy * dy);
     const double ah = fabs(hh);
@@ -336,21 +336,21 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A */
-    crank_input(&p_O1, 25.0, &w->in1, &ref_O1, &w->p_A);
+    crank_input_still_j1_phi(&p_O1, 25.0, &w->in1, &ref_O1, &w->p_A);
 
 
     /* Step 3: RPR_links, S (branch +1). the guide lever turns about the known O2 and the slider block about the known A, sliding along one line at S: an RPR two-link chain with both ends known */
-    st = RPR_links(&p_O2, &w->p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1, &w->psi_S, &w->s_S, &w->p_S, &out->sigma[3]);
+    st = RPR_links_still_jg(&p_O2, &w->p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1, &w->psi_S, &w->s_S, &w->p_S, &out->sigma[3]);
     if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
 
     /* Step 4: coupler_point, P. point P of link lever */
-    coupler_point(&p_O2, &w->psi_S, 120.00000000000001, 0.0, &w->p_P);
+    coupler_point_still_j0(&p_O2, &w->psi_S, 120.00000000000001, 0.0, &w->p_P);
 
 
     /* Step 5: crank_angle, crank. the input theta_O1 turns link crank, so its angle is the input's */
-    crank_angle(&w->in1, &ref_O1, 0.0, &w->phi_crank);
+    crank_angle_still_phi(&w->in1, &ref_O1, 0.0, &w->phi_crank);
 
     st = w->singular ? w->singular : w->near;
     publish(w, st, out);

@@ -131,35 +131,35 @@ _FIXED = {  # every output column: those of the fixed sketch with their values, 
 
 # -- the mech.cpp functions this procedure uses -------------------------------
 
-def crank_input(j1, l, theta, phi):
+def crank_input_still_j1_phi(j1, l, theta, phi):
     """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j1_x, j1_y, _, _, _, _ = j1
     theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
+    phi_the, _, _ = phi
     t = theta_the + phi_the
     ct = cos(t)
     st = sin(t)
     rx = l * ct
     ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
+    om = theta_dthe
+    al = theta_ddthe
     rvx = -om * ry
     rvy = om * rx
     rax = -al * ry - om * om * rx
     ray = al * rx - om * om * ry
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    return (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
 
-def crank_angle(theta, phi, off):
+def crank_angle_still_phi(theta, phi, off):
     """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
     theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
+    phi_the, _, _ = phi
     th0 = theta_the + phi_the + off
     th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
-    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
+    return (th, theta_dthe, theta_ddthe)
 
-def coupler_point(j0, phi, gsi, eta):
+def coupler_point_still_j0(j0, phi, gsi, eta):
     """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
+    j0_x, j0_y, _, _, _, _ = j0
     phi_the, phi_dthe, phi_ddthe = phi
     cp = cos(phi_the)
     sp = sin(phi_the)
@@ -169,18 +169,18 @@ def coupler_point(j0, phi, gsi, eta):
     rvy = phi_dthe * rx
     rax = -phi_ddthe * ry - phi_dthe * phi_dthe * rx
     ray = phi_ddthe * rx - phi_dthe * phi_dthe * ry
-    return (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+    return (j0_x + rx, j0_y + ry, rvx, rvy, rax, ray)
 
-def RPR_links(jg, js, ag, bg, as_, bs, minv):
+def RPR_links_still_jg(jg, js, ag, bg, as_, bs, minv):
     """RPR chain: a guide link turning about jg and a slider link turning about js slide along one line; (ag, bg) and (as, bs) are the pair's reference point seen from jg and js in the line's frame.  Gives the line angle psi, the displacement s and the pair's slider point jp."""
-    jg_x, jg_y, jg_dx, jg_dy, jg_ddx, jg_ddy = jg
+    jg_x, jg_y, _, _, _, _ = jg
     js_x, js_y, js_dx, js_dy, js_ddx, js_ddy = js
     dx = js_x - jg_x
     dy = js_y - jg_y
-    dvx = js_dx - jg_dx
-    dvy = js_dy - jg_dy
-    dax = js_ddx - jg_ddx
-    day = js_ddy - jg_ddy
+    dvx = js_dx
+    dvy = js_dy
+    dax = js_ddx
+    day = js_ddy
     hh = bg - bs
     q = sqrt(dx * dx + dy * dy)
     ah = abs(hh)
@@ -260,28 +260,28 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A
-    # crank_input(p_O1, 25.0, w.in1, ref_O1), inline
+    # crank_input_still_j1_phi(p_O1, 25.0, w.in1, ref_O1), inline
     _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 25.0 * _ct
     _ry = 25.0 * _st
-    _om = _in1_dthe + 0.0
-    _al = _in1_ddthe + 0.0
+    _om = _in1_dthe
+    _al = _in1_ddthe
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-12.0) + _rx, (-10.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-12.0) + _rx, (-10.0) + _ry, _rvx, _rvy, _rax, _ray)
 
     # Step 3: RPR_links, S (branch +1). the guide lever turns about the known O2 and the slider block about the known A, sliding along one line at S: an RPR two-link chain with both ends known
-    # RPR_links(p_O2, w.p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1), inline
+    # RPR_links_still_jg(p_O2, w.p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1), inline
     _dx = _p_A_x - (-12.0)
     _dy = _p_A_y - (-60.0)
-    _dvx = _p_A_dx - 0.0
-    _dvy = _p_A_dy - 0.0
-    _dax = _p_A_ddx - 0.0
-    _day = _p_A_ddy - 0.0
+    _dvx = _p_A_dx
+    _dvy = _p_A_dy
+    _dax = _p_A_ddx
+    _day = _p_A_ddy
     _hh = (-1.7763568394002505e-15) - 0.0
     _q = sqrt(_dx * _dx + _dy * _dy)
     _ah = abs(_hh)
@@ -337,7 +337,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 33, -34)
 
     # Step 4: coupler_point, P. point P of link lever
-    # coupler_point(p_O2, w.psi_S, 120.00000000000001, 0.0), inline
+    # coupler_point_still_j0(p_O2, w.psi_S, 120.00000000000001, 0.0), inline
     _cp = cos(_psi_S_the)
     _sp = sin(_psi_S_the)
     _rx = 120.00000000000001 * _cp - 0.0 * _sp
@@ -346,13 +346,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _rvy = _psi_S_dthe * _rx
     _rax = -_psi_S_ddthe * _ry - _psi_S_dthe * _psi_S_dthe * _rx
     _ray = _psi_S_ddthe * _rx - _psi_S_dthe * _psi_S_dthe * _ry
-    _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = ((-12.0) + _rx, (-60.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = ((-12.0) + _rx, (-60.0) + _ry, _rvx, _rvy, _rax, _ray)
 
     # Step 5: crank_angle, crank. the input theta_O1 turns link crank, so its angle is the input's
-    # crank_angle(w.in1, ref_O1, 0.0), inline
+    # crank_angle_still_phi(w.in1, ref_O1, 0.0), inline
     _th0 = _in1_the + 0.0 + 0.0
     _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
-    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe + 0.0, _in1_ddthe + 0.0)
+    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe, _in1_ddthe)
 
     return w.singular or w.near
 

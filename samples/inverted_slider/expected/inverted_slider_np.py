@@ -122,17 +122,17 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
 
 # -- the runtime of the kernel, on arrays of rows ------------------------------
 
-def crank_input(j1, l, theta, phi):
+def crank_input_still_j1_phi(j1, l, theta, phi):
     """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j1_x, j1_y, _, _, _, _ = j1
     theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
+    phi_the, _, _ = phi
     t = theta_the + phi_the
     ct, st = cos_sin(t)
     rx = l * ct
     ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
+    om = theta_dthe
+    al = theta_ddthe
     rvx = -om * ry
     rvy = om * rx
     _t1 = om * om
@@ -140,13 +140,13 @@ def crank_input(j1, l, theta, phi):
     ray = al * rx - _t1 * ry
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
-    _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+    _j2 = (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
     return _st, _sigma, _j2
 
-def crank_angle(theta, phi, off):
+def crank_angle_still_phi(theta, phi, off):
     """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
     theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
+    phi_the, _, _ = phi
     th0 = theta_the + phi_the + off
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
@@ -169,12 +169,12 @@ def crank_angle(theta, phi, off):
         _f1 = np.arctan2(np.sin(th0), np.cos(th0))
     else:
         _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
-    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
+    _angle = (_f1, theta_dthe, theta_ddthe)
     return _st, _sigma, _angle
 
-def coupler_point(j0, phi, gsi, eta):
+def coupler_point_still_j0(j0, phi, gsi, eta):
     """Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi."""
-    j0_x, j0_y, j0_dx, j0_dy, j0_ddx, j0_ddy = j0
+    j0_x, j0_y, _, _, _, _ = j0
     phi_the, phi_dthe, phi_ddthe = phi
     cp, sp = cos_sin(phi_the)
     rx = gsi * cp - eta * sp
@@ -186,7 +186,7 @@ def coupler_point(j0, phi, gsi, eta):
     ray = phi_ddthe * rx - _t1 * ry
     _st = np.asarray(0)
     _sigma = np.asarray(1.0, dtype=REAL)
-    _jc = (j0_x + rx, j0_y + ry, j0_dx + rvx, j0_dy + rvy, j0_ddx + rax, j0_ddy + ray)
+    _jc = (j0_x + rx, j0_y + ry, rvx, rvy, rax, ray)
     return _st, _sigma, _jc
 
 def RPR_links_still_jg(jg, js, ag, bg, as_, bs, minv):
@@ -610,14 +610,14 @@ def _run(x, dx, ddx, c):
     report = []
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
     # Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A
-    _, _, w.p_A = crank_input(w.p_O1, c["step2.l"], w.in1, w.ref_O1)
+    _, _, w.p_A = crank_input_still_j1_phi(w.p_O1, c["step2.l"], w.in1, w.ref_O1)
     # Step 3: RPR_links, S (branch +1). the guide lever turns about the known O2 and the slider block about the known A, sliding along one line at S: an RPR two-link chain with both ends known
     st, sigma[3], w.psi_S, w.s_S, w.p_S = RPR_links_still_jg(w.p_O2, w.p_A, c["step3.ag"], c["step3.bg"], c["step3.as"], c["step3.bs"], 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: coupler_point, P. point P of link lever
-    _, _, w.p_P = coupler_point(w.p_O2, w.psi_S, c["step4.gsi"], c["step4.eta"])
+    _, _, w.p_P = coupler_point_still_j0(w.p_O2, w.psi_S, c["step4.gsi"], c["step4.eta"])
     # Step 5: crank_angle, crank. the input theta_O1 turns link crank, so its angle is the input's
-    _, _, w.phi_crank = crank_angle(w.in1, w.ref_O1, c["step5.off"])
+    _, _, w.phi_crank = crank_angle_still_phi(w.in1, w.ref_O1, c["step5.off"])
     code = row_status(report)
     return w, code, sigma
 

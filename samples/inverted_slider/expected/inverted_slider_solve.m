@@ -76,10 +76,10 @@ function [status, w] = run(w, in, din, ddin)
     % Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     % Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A
-    w.p_A = crank_input(w.p_O1, 25.0, w.in1, w.ref_O1);
+    w.p_A = crank_input_still_j1_phi(w.p_O1, 25.0, w.in1, w.ref_O1);
 
     % Step 3: RPR_links, S (branch +1). the guide lever turns about the known O2 and the slider block about the known A, sliding along one line at S: an RPR two-link chain with both ends known
-    [w.psi_S, w.s_S, w.p_S, st, w.sigma(3)] = RPR_links(w.p_O2, w.p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1);
+    [w.psi_S, w.s_S, w.p_S, st, w.sigma(3)] = RPR_links_still_jg(w.p_O2, w.p_A, 71.58910531638176, -1.7763568394002505e-15, 0.0, 0.0, 1);
     if st == 1
         status = 31;
         return;
@@ -87,10 +87,10 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 33, -34);
 
     % Step 4: coupler_point, P. point P of link lever
-    w.p_P = coupler_point(w.p_O2, w.psi_S, 120.00000000000001, 0.0);
+    w.p_P = coupler_point_still_j0(w.p_O2, w.psi_S, 120.00000000000001, 0.0);
 
     % Step 5: crank_angle, crank. the input theta_O1 turns link crank, so its angle is the input's
-    w.phi_crank = crank_angle(w.in1, w.ref_O1, 0.0);
+    w.phi_crank = crank_angle_still_phi(w.in1, w.ref_O1, 0.0);
 
     if w.singular > 0
         status = w.singular;
@@ -233,28 +233,28 @@ function out = publish(w, status, in)
     out.columns = [in(:)', out.O1.x, out.O1.y, out.O1.vx, out.O1.vy, out.O1.ax, out.O1.ay, out.A.x, out.A.y, out.A.vx, out.A.vy, out.A.ax, out.A.ay, out.O2.x, out.O2.y, out.O2.vx, out.O2.vy, out.O2.ax, out.O2.ay, out.S.x, out.S.y, out.S.vx, out.S.vy, out.S.ax, out.S.ay, out.P.x, out.P.y, out.P.vx, out.P.vy, out.P.ax, out.P.ay, out.frame.phi, out.frame.omega, out.frame.alpha, out.crank.phi, out.crank.omega, out.crank.alpha, out.lever.phi, out.lever.omega, out.lever.alpha, out.block.phi, out.block.omega, out.block.alpha, out.S.s, out.S.ds, out.S.dds];
 end
 
-function j2 = crank_input(j1, l, theta, phi)
+function j2 = crank_input_still_j1_phi(j1, l, theta, phi)
     % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
     t = theta.the + phi.the;
     ct = cos(t);
     st = sin(t);
     rx = l * ct;
     ry = l * st;
-    om = theta.dthe + phi.dthe;
-    al = theta.ddthe + phi.ddthe;
+    om = theta.dthe;
+    al = theta.ddthe;
     rvx = -om * ry;
     rvy = om * rx;
     rax = -al * ry - om * om * rx;
     ray = al * rx - om * om * ry;
     j2.x = j1.x + rx;
     j2.y = j1.y + ry;
-    j2.dx = j1.dx + rvx;
-    j2.dy = j1.dy + rvy;
-    j2.ddx = j1.ddx + rax;
-    j2.ddy = j1.ddy + ray;
+    j2.dx = rvx;
+    j2.dy = rvy;
+    j2.ddx = rax;
+    j2.ddy = ray;
 end
 
-function angle = crank_angle(theta, phi, off)
+function angle = crank_angle_still_phi(theta, phi, off)
     % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
     th0 = theta.the + phi.the + off;
     if abs(th0) >= 3 * pi
@@ -267,11 +267,11 @@ function angle = crank_angle(theta, phi, off)
         th = th0;
     end
     angle.the = th;
-    angle.dthe = theta.dthe + phi.dthe;
-    angle.ddthe = theta.ddthe + phi.ddthe;
+    angle.dthe = theta.dthe;
+    angle.ddthe = theta.ddthe;
 end
 
-function jc = coupler_point(j0, phi, gsi, eta)
+function jc = coupler_point_still_j0(j0, phi, gsi, eta)
     % Point jc of a link at local coordinates (gsi, eta) from its point j0, x axis at the link angle phi.
     cp = cos(phi.the);
     sp = sin(phi.the);
@@ -283,20 +283,20 @@ function jc = coupler_point(j0, phi, gsi, eta)
     ray = phi.ddthe * rx - phi.dthe * phi.dthe * ry;
     jc.x = j0.x + rx;
     jc.y = j0.y + ry;
-    jc.dx = j0.dx + rvx;
-    jc.dy = j0.dy + rvy;
-    jc.ddx = j0.ddx + rax;
-    jc.ddy = j0.ddy + ray;
+    jc.dx = rvx;
+    jc.dy = rvy;
+    jc.ddx = rax;
+    jc.ddy = ray;
 end
 
-function [psi, s, jp, st, sigma] = RPR_links(jg, js, ag, bg, as_, bs, minv)
+function [psi, s, jp, st, sigma] = RPR_links_still_jg(jg, js, ag, bg, as_, bs, minv)
     % RPR chain: a guide link turning about jg and a slider link turning about js slide along one line; (ag, bg) and (as, bs) are the pair's reference point seen from jg and js in the line's frame.  Gives the line angle psi, the displacement s and the pair's slider point jp.
     dx = js.x - jg.x;
     dy = js.y - jg.y;
-    dvx = js.dx - jg.dx;
-    dvy = js.dy - jg.dy;
-    dax = js.ddx - jg.ddx;
-    day = js.ddy - jg.ddy;
+    dvx = js.dx;
+    dvy = js.dy;
+    dax = js.ddx;
+    day = js.ddy;
     hh = bg - bs;
     q = sqrt(dx * dx + dy * dy);
     ah = abs(hh);

@@ -185,24 +185,6 @@ _FIXED = {  # every output column: those of the fixed sketch with their values, 
 
 # -- the mech.cpp functions this procedure uses -------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct = cos(t)
-    st = sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    rax = -al * ry - om * om * rx
-    ray = al * rx - om * om * ry
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-
 def link_angle(j1, j2, off):
     """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -223,42 +205,6 @@ def link_angle(j1, j2, off):
     if st == 1:
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
-
-def crank_angle(theta, phi, off):
-    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    th0 = theta_the + phi_the + off
-    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
-    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
-
-def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    dx = j2_x - j1_x
-    dy = j2_y - j1_y
-    dvx = j2_dx - j1_dx
-    dvy = j2_dy - j1_dy
-    dax = j2_ddx - j1_ddx
-    day = j2_ddy - j1_ddy
-    r2 = dx * dx + dy * dy
-    ir = NAN if r2 == 0 else 1 / sqrt(r2)
-    ex = ir * dx
-    ey = ir * dy
-    rx = gsi * ex - eta * ey
-    ry = gsi * ey + eta * ex
-    ir2 = ir * ir
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    rvx = -om * ry
-    rvy = om * rx
-    rax = -al * ry - om * om * rx
-    ray = al * rx - om * om * ry
-    st = 1 if r2 == 0 else 0
-    if st == 1:
-        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
-    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
 def pair_point(j1, j2, along, across):
     """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
@@ -282,12 +228,153 @@ def pair_point(j1, j2, along, across):
         return st, (NAN, NAN, NAN, NAN, NAN, NAN)
     return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
-def RRR_links(j1, j2, l1, l2, minv):
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct = cos(t)
+    st = sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    return (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+
+def link_angle_still_j1(j1, j2, off):
+    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
+    j1_x, j1_y, _, _, _, _ = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
+    r2 = dx * dx + dy * dy
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    ir2 = NAN if r2 == 0 else 1 / r2
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN)
+    return st, (th, om, al)
+
+def crank_angle_still_phi(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    th0 = theta_the + phi_the + off
+    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    return (th, theta_dthe, theta_ddthe)
+
+def link_point_still_j1(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
+    r2 = dx * dx + dy * dy
+    ir = NAN if r2 == 0 else 1 / sqrt(r2)
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+
+def RRR_links_still_j2_l1_l2(j1, j2, l1, l2, minv):
+    """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, _, _, _, _ = j2
+    l1_v, _, _ = l1
+    l2_v, _, _ = l2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dd = dx * dx + dy * dy
+    q = sqrt(dd)
+    hi = (l2_v if l2_v > l1_v else l1_v)
+    lo = (l2_v if l2_v < l1_v else l1_v)
+    x = (q if q > hi else hi)
+    z = (q if q < lo else lo)
+    y = hi if q >= hi else lo if q <= lo else q
+    k = z - (x - y)
+    fail = k < -8 * EPS * x or q == 0 or lo <= 0
+    kk = (0 if 0 > k else k)
+    s2 = (l1_v + l2_v) * (l1_v + l2_v)
+    t2 = (l1_v - l2_v) * (l1_v - l2_v)
+    o1 = s2 - dd
+    o2 = dd - t2
+    area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
+    idd2 = NAN if dd == 0 else 0.5 / dd
+    c = (l1_v - l2_v) * (l1_v + l2_v)
+    iq = NAN if q == 0 else 1 / q
+    a = (q + (l1_v - l2_v) * ((l1_v + l2_v) * iq)) / 2
+    a2 = (q + (l2_v - l1_v) * ((l1_v + l2_v) * iq)) / 2
+    flat = (l1_v + (q - l2_v)) / 2 if q >= hi else (l1_v + (q + l2_v)) / 2 if l1_v >= l2_v else (q - (l1_v + l2_v)) / 2
+    at = a if k > 0 else flat
+    ao = (dd + c) * idd2
+    mi = minv * idd2
+    mx = -mi * dy
+    my = mi * dx
+    ux = dx * iq
+    uy = dy * iq
+    hn = minv * (area4 * iq / 2)
+    e1x = ao * dx + area4 * mx if 3 * o1 > s2 and 3 * o2 > dd else at * ux - hn * uy
+    e1y = ao * dy + area4 * my if 3 * o1 > s2 and 3 * o2 > dd else at * uy + hn * ux
+    ratio = 0 if fail else area4 * (0.5 / (l1_v * l2_v))
+    sigma = (1 if 1 < ratio else ratio)
+    ar = ao if 3 * o1 > s2 and 3 * o2 > dd else a * iq
+    a2r = (dd - c) * idd2 if 3 * o1 > s2 and 3 * o2 > dd else a2 * iq
+    sdx = 2 * idd2 * dx
+    sdy = 2 * idd2 * dy
+    ihq = NAN if area4 == 0 else 2 * minv / area4
+    tnx = -ihq * dy
+    tny = ihq * dx
+    r1v = e1x * j1_dx + e1y * j1_dy
+    buv = r1v
+    bnv = a2r * r1v
+    bvx = buv * sdx + bnv * tnx
+    bvy = buv * sdy + bnv * tny
+    r1a = e1x * j1_ddx + e1y * j1_ddy - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy))
+    r2a = -(bvx * bvx + bvy * bvy)
+    bua = r1a - r2a
+    bna = a2r * r1a + ar * r2a
+    bax = bua * sdx + bna * tnx
+    bay = bua * sdy + bna * tny
+    st = 1 if fail else 3 if sigma < 1e-07 else 4 if sigma < 0.001 else 0
+    if st == 1:
+        return st, sigma, (NAN, NAN, NAN, NAN, NAN, NAN)
+    if st == 3:
+        return st, sigma, (j1_x + e1x, j1_y + e1y, NAN, NAN, NAN, NAN)
+    return st, sigma, (j1_x + e1x, j1_y + e1y, bvx, bvy, bax, bay)
+
+def RRR_links_still_l1_l2(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    l1_v, l1_dv, l1_ddv = l1
-    l2_v, l2_dv, l2_ddv = l2
+    l1_v, _, _ = l1
+    l2_v, _, _ = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
     dd = dx * dx + dy * dy
@@ -332,14 +419,14 @@ def RRR_links(j1, j2, l1, l2, minv):
     ihq = NAN if area4 == 0 else 2 * minv / area4
     tnx = -ihq * dy
     tny = ihq * dx
-    r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
-    r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
+    r1v = e1x * j1_dx + e1y * j1_dy
+    r2v = e2x * j2_dx + e2y * j2_dy
     buv = r1v - r2v
     bnv = a2r * r1v + ar * r2v
     bvx = buv * sdx + bnv * tnx
     bvy = buv * sdy + bnv * tny
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy))
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv + (e2x * j2_ddx + e2y * j2_ddy) - ((bvx - j2_dx) * (bvx - j2_dx) + (bvy - j2_dy) * (bvy - j2_dy))
+    r1a = e1x * j1_ddx + e1y * j1_ddy - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy))
+    r2a = e2x * j2_ddx + e2y * j2_ddy - ((bvx - j2_dx) * (bvx - j2_dx) + (bvy - j2_dy) * (bvy - j2_dy))
     bua = r1a - r2a
     bna = a2r * r1a + ar * r2a
     bax = bua * sdx + bna * tnx
@@ -393,22 +480,22 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
-    # crank_input(p_O, 15.0, w.in1, ref_O), inline
+    # crank_input_still_j1_phi(p_O, 15.0, w.in1, ref_O), inline
     _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 15.0 * _ct
     _ry = 15.0 * _st
-    _om = _in1_dthe + 0.0
-    _al = _in1_ddthe + 0.0
+    _om = _in1_dthe
+    _al = _in1_ddthe
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = (28.0 + _rx, 32.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = (28.0 + _rx, 32.0 + _ry, _rvx, _rvy, _rax, _ray)
 
     # Step 3: RRR_links, C (branch -1). C is joined to the known A by rod_j and to the known B by triangle_bde: a 3R two-link chain with both ends known
-    # RRR_links(w.p_A, p_B, l_rod_j, l_triangle_bde_C_B, -1), inline
+    # RRR_links_still_j2_l1_l2(w.p_A, p_B, l_rod_j, l_triangle_bde_C_B, -1), inline
     _dx = (-10.0) - _p_A_x
     _dy = 24.2 - _p_A_y
     _dd = _dx * _dx + _dy * _dy
@@ -446,21 +533,18 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _sigma = (1 if 1 < _ratio else _ratio)
     _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
     _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
-    _e2x = -_a2r * _dx + _area4 * _mx
-    _e2y = -_a2r * _dy + _area4 * _my
     _sdx = 2 * _idd2 * _dx
     _sdy = 2 * _idd2 * _dy
     _ihq = NAN if _area4 == 0 else 2 * (-1) / _area4
     _tnx = -_ihq * _dy
     _tny = _ihq * _dx
-    _r1v = 49.999999999951626 * 0.0 + (_e1x * _p_A_dx + _e1y * _p_A_dy)
-    _r2v = 41.499999999969184 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = _r1v - _r2v
-    _bnv = _a2r * _r1v + _ar * _r2v
+    _r1v = _e1x * _p_A_dx + _e1y * _p_A_dy
+    _buv = _r1v
+    _bnv = _a2r * _r1v
     _bvx = _buv * _sdx + _bnv * _tnx
     _bvy = _buv * _sdy + _bnv * _tny
-    _r1a = 49.999999999951626 * 0.0 + 0.0 * 0.0 + (_e1x * _p_A_ddx + _e1y * _p_A_ddy) - ((_bvx - _p_A_dx) * (_bvx - _p_A_dx) + (_bvy - _p_A_dy) * (_bvy - _p_A_dy))
-    _r2a = 41.499999999969184 * 0.0 + 0.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r1a = _e1x * _p_A_ddx + _e1y * _p_A_ddy - ((_bvx - _p_A_dx) * (_bvx - _p_A_dx) + (_bvy - _p_A_dy) * (_bvy - _p_A_dy))
+    _r2a = -(_bvx * _bvx + _bvy * _bvy)
     _bua = _r1a - _r2a
     _bna = _a2r * _r1a + _ar * _r2a
     _bax = _bua * _sdx + _bna * _tnx
@@ -478,13 +562,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 33, -34)
 
     # Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
-    # link_point(p_B, w.p_C, 2.6098795180489716, 40.01497880667611), inline
+    # link_point_still_j1(p_B, w.p_C, 2.6098795180489716, 40.01497880667611), inline
     _dx = _p_C_x - (-10.0)
     _dy = _p_C_y - 24.2
-    _dvx = _p_C_dx - 0.0
-    _dvy = _p_C_dy - 0.0
-    _dax = _p_C_ddx - 0.0
-    _day = _p_C_ddy - 0.0
+    _dvx = _p_C_dx
+    _dvy = _p_C_dy
+    _dax = _p_C_ddx
+    _day = _p_C_ddy
     _r2 = _dx * _dx + _dy * _dy
     _ir = NAN if _r2 == 0 else 1 / sqrt(_r2)
     _ex = _ir * _dx
@@ -503,12 +587,12 @@ def _run(w, inputs, d_inputs, dd_inputs):
         _p_D_x, _p_D_y, _p_D_dx, _p_D_dy, _p_D_ddx, _p_D_ddy = w.p_D = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 41
     else:
-        _p_D_x, _p_D_y, _p_D_dx, _p_D_dy, _p_D_ddx, _p_D_ddy = w.p_D = ((-10.0) + _rx, 24.2 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+        _p_D_x, _p_D_y, _p_D_dx, _p_D_dy, _p_D_ddx, _p_D_ddy = w.p_D = ((-10.0) + _rx, 24.2 + _ry, _rvx, _rvy, _rax, _ray)
     if st:
         w.note(st, 43, -44)
 
     # Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
-    # RRR_links(w.p_A, p_B, l_rod_k, l_rocker_c, 1), inline
+    # RRR_links_still_j2_l1_l2(w.p_A, p_B, l_rod_k, l_rocker_c, 1), inline
     _dx = (-10.0) - _p_A_x
     _dy = 24.2 - _p_A_y
     _dd = _dx * _dx + _dy * _dy
@@ -546,21 +630,18 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _sigma = (1 if 1 < _ratio else _ratio)
     _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
     _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
-    _e2x = -_a2r * _dx + _area4 * _mx
-    _e2y = -_a2r * _dy + _area4 * _my
     _sdx = 2 * _idd2 * _dx
     _sdy = 2 * _idd2 * _dy
     _ihq = NAN if _area4 == 0 else 2 * 1 / _area4
     _tnx = -_ihq * _dy
     _tny = _ihq * _dx
-    _r1v = 61.90000000003217 * 0.0 + (_e1x * _p_A_dx + _e1y * _p_A_dy)
-    _r2v = 39.30000000001047 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = _r1v - _r2v
-    _bnv = _a2r * _r1v + _ar * _r2v
+    _r1v = _e1x * _p_A_dx + _e1y * _p_A_dy
+    _buv = _r1v
+    _bnv = _a2r * _r1v
     _bvx = _buv * _sdx + _bnv * _tnx
     _bvy = _buv * _sdy + _bnv * _tny
-    _r1a = 61.90000000003217 * 0.0 + 0.0 * 0.0 + (_e1x * _p_A_ddx + _e1y * _p_A_ddy) - ((_bvx - _p_A_dx) * (_bvx - _p_A_dx) + (_bvy - _p_A_dy) * (_bvy - _p_A_dy))
-    _r2a = 39.30000000001047 * 0.0 + 0.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r1a = _e1x * _p_A_ddx + _e1y * _p_A_ddy - ((_bvx - _p_A_dx) * (_bvx - _p_A_dx) + (_bvy - _p_A_dy) * (_bvy - _p_A_dy))
+    _r2a = -(_bvx * _bvx + _bvy * _bvy)
     _bua = _r1a - _r2a
     _bna = _a2r * _r1a + _ar * _r2a
     _bax = _bua * _sdx + _bna * _tnx
@@ -578,7 +659,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 53, -54)
 
     # Step 6: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known
-    # RRR_links(w.p_D, w.p_E, l_rod_f, l_leg_ghi, -1), inline
+    # RRR_links_still_l1_l2(w.p_D, w.p_E, l_rod_f, l_leg_ghi, -1), inline
     _dx = _p_E_x - _p_D_x
     _dy = _p_E_y - _p_D_y
     _dd = _dx * _dx + _dy * _dy
@@ -623,14 +704,14 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _ihq = NAN if _area4 == 0 else 2 * (-1) / _area4
     _tnx = -_ihq * _dy
     _tny = _ihq * _dx
-    _r1v = 39.39999999995135 * 0.0 + (_e1x * _p_D_dx + _e1y * _p_D_dy)
-    _r2v = 36.69999999999471 * 0.0 + (_e2x * _p_E_dx + _e2y * _p_E_dy)
+    _r1v = _e1x * _p_D_dx + _e1y * _p_D_dy
+    _r2v = _e2x * _p_E_dx + _e2y * _p_E_dy
     _buv = _r1v - _r2v
     _bnv = _a2r * _r1v + _ar * _r2v
     _bvx = _buv * _sdx + _bnv * _tnx
     _bvy = _buv * _sdy + _bnv * _tny
-    _r1a = 39.39999999995135 * 0.0 + 0.0 * 0.0 + (_e1x * _p_D_ddx + _e1y * _p_D_ddy) - ((_bvx - _p_D_dx) * (_bvx - _p_D_dx) + (_bvy - _p_D_dy) * (_bvy - _p_D_dy))
-    _r2a = 36.69999999999471 * 0.0 + 0.0 * 0.0 + (_e2x * _p_E_ddx + _e2y * _p_E_ddy) - ((_bvx - _p_E_dx) * (_bvx - _p_E_dx) + (_bvy - _p_E_dy) * (_bvy - _p_E_dy))
+    _r1a = _e1x * _p_D_ddx + _e1y * _p_D_ddy - ((_bvx - _p_D_dx) * (_bvx - _p_D_dx) + (_bvy - _p_D_dy) * (_bvy - _p_D_dy))
+    _r2a = _e2x * _p_E_ddx + _e2y * _p_E_ddy - ((_bvx - _p_E_dx) * (_bvx - _p_E_dx) + (_bvy - _p_E_dy) * (_bvy - _p_E_dy))
     _bua = _r1a - _r2a
     _bna = _a2r * _r1a + _ar * _r2a
     _bax = _bua * _sdx + _bna * _tnx
@@ -672,10 +753,10 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 73, -74)
 
     # Step 8: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
-    # crank_angle(w.in1, ref_O, 0.0), inline
+    # crank_angle_still_phi(w.in1, ref_O, 0.0), inline
     _th0 = _in1_the + 0.0 + 0.0
     _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
-    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe + 0.0, _in1_ddthe + 0.0)
+    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe, _in1_ddthe)
 
     # Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is known
     # link_angle(w.p_A, w.p_C, 0.0), inline
@@ -724,13 +805,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 103, -104)
 
     # Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is known
-    # link_angle(p_B, w.p_C, 0.0), inline
+    # link_angle_still_j1(p_B, w.p_C, 0.0), inline
     _dx = _p_C_x - (-10.0)
     _dy = _p_C_y - 24.2
-    _dvx = _p_C_dx - 0.0
-    _dvy = _p_C_dy - 0.0
-    _dax = _p_C_ddx - 0.0
-    _day = _p_C_ddy - 0.0
+    _dvx = _p_C_dx
+    _dvy = _p_C_dy
+    _dax = _p_C_ddx
+    _day = _p_C_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
     _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
@@ -747,13 +828,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 113, -114)
 
     # Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is known
-    # link_angle(p_B, w.p_E, 0.0), inline
+    # link_angle_still_j1(p_B, w.p_E, 0.0), inline
     _dx = _p_E_x - (-10.0)
     _dy = _p_E_y - 24.2
-    _dvx = _p_E_dx - 0.0
-    _dvy = _p_E_dy - 0.0
-    _dax = _p_E_ddx - 0.0
-    _day = _p_E_ddy - 0.0
+    _dvx = _p_E_dx
+    _dvy = _p_E_dy
+    _dax = _p_E_ddx
+    _day = _p_E_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
     _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0

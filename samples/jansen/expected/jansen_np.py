@@ -159,27 +159,6 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
 
 # -- the runtime of the kernel, on arrays of rows ------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct, st = cos_sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    _t1 = om * om
-    rax = -al * ry - _t1 * rx
-    ray = al * rx - _t1 * ry
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-    return _st, _sigma, _j2
-
 def link_angle(j1, j2, off):
     """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -232,35 +211,6 @@ def link_angle(j1, j2, off):
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def crank_angle(theta, phi, off):
-    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    th0 = theta_the + phi_the + off
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
-    if not _c1.any():
-        _c2 = np.asarray(th0 > PI)
-        if not _c2.any():
-            _c3 = np.asarray(th0 <= -PI)
-            if not _c3.any():
-                _f1 = th0
-            elif _c3.all():
-                _f1 = th0 + 2 * PI
-            else:
-                _f1 = np.where(_c3, th0 + 2 * PI, th0)
-        elif _c2.all():
-            _f1 = th0 - 2 * PI
-        else:
-            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
-    elif _c1.all():
-        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
-    else:
-        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
-    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
-    return _st, _sigma, _angle
-
 def pair_point(j1, j2, along, across):
     """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -295,192 +245,26 @@ def pair_point(j1, j2, along, across):
         _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]), np.where(_singular, np.nan, _jc[4]), np.where(_singular, np.nan, _jc[5]))
     return _st, _sigma, _jc
 
-def RRR_links(j1, j2, l1, l2, minv):
-    """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    l1_v, l1_dv, l1_ddv = l1
-    l2_v, l2_dv, l2_ddv = l2
-    dx = j2_x - j1_x
-    dy = j2_y - j1_y
-    dd = dx * dx + dy * dy
-    q = np.sqrt(dd)
-    hi = np.maximum(l1_v, l2_v)
-    lo = np.minimum(l1_v, l2_v)
-    x = np.maximum(hi, q)
-    z = np.minimum(lo, q)
-    _t1 = q >= hi
-    _c1 = np.asarray(_t1)
-    if not _c1.any():
-        _c2 = np.asarray(q <= lo)
-        if not _c2.any():
-            y = q
-        elif _c2.all():
-            y = lo
-        else:
-            y = np.where(_c2, lo, q)
-    elif _c1.all():
-        y = hi
-    else:
-        y = np.where(_c1, hi, np.where(q <= lo, lo, q))
-    _t2 = x - y
-    k = z - _t2
-    _t3 = q == 0
-    fail = ((k < -8 * EPS * x) | (_t3)) | (lo <= 0)
-    _t4 = l1_v + l2_v
-    s2 = _t4 * _t4
-    _t5 = l1_v - l2_v
-    t2 = _t5 * _t5
-    o1 = s2 - dd
-    o2 = dd - t2
-    _t6 = (3 * o1 > s2) & (3 * o2 > dd)
-    _c3 = np.asarray(_t6)
-    if not _c3.any():
-        area4 = np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z)))
-    elif _c3.all():
-        area4 = np.sqrt(o1 * o2)
-    else:
-        area4 = np.where(_c3, np.sqrt(o1 * o2), np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z))))
-    _c4 = np.asarray(dd == 0)
-    if not _c4.any():
-        idd2 = 0.5 / dd
-    elif _c4.all():
-        idd2 = NAN
-    else:
-        idd2 = np.where(_c4, NAN, 0.5 / dd)
-    c = _t5 * _t4
-    _c5 = np.asarray(_t3)
-    if not _c5.any():
-        iq = 1 / q
-    elif _c5.all():
-        iq = NAN
-    else:
-        iq = np.where(_c5, NAN, 1 / q)
-    _t7 = _t4 * iq
-    a = (q + _t5 * _t7) / 2
-    _c6 = np.asarray(k > 0)
-    if not _c6.any():
-        _c7 = np.asarray(_t1)
-        if not _c7.any():
-            _c8 = np.asarray(l1_v >= l2_v)
-            if not _c8.any():
-                at = (q - _t4) / 2
-            elif _c8.all():
-                at = (l1_v + (q + l2_v)) / 2
-            else:
-                at = np.where(_c8, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)
-        elif _c7.all():
-            at = (l1_v + (q - l2_v)) / 2
-        else:
-            at = np.where(_c7, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2))
-    elif _c6.all():
-        at = a
-    else:
-        at = np.where(_c6, a, np.where(_t1, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
-    ao = (dd + c) * idd2
-    mi = minv * idd2
-    mx = -mi * dy
-    my = mi * dx
-    ux = dx * iq
-    uy = dy * iq
-    hn = minv * (area4 * iq / 2)
-    _t8 = area4 * mx
-    _c9 = np.asarray(_t6)
-    if not _c9.any():
-        e1x = at * ux - hn * uy
-    elif _c9.all():
-        e1x = ao * dx + _t8
-    else:
-        e1x = np.where(_c9, ao * dx + _t8, at * ux - hn * uy)
-    _t9 = area4 * my
-    _c10 = np.asarray(_t6)
-    if not _c10.any():
-        e1y = at * uy + hn * ux
-    elif _c10.all():
-        e1y = ao * dy + _t9
-    else:
-        e1y = np.where(_c10, ao * dy + _t9, at * uy + hn * ux)
-    _c12 = np.asarray(fail)
-    if not _c12.any():
-        _s11 = area4 * (0.5 / (l1_v * l2_v))
-    elif _c12.all():
-        _s11 = 0
-    else:
-        _s11 = np.where(_c12, 0, area4 * (0.5 / (l1_v * l2_v)))
-    sigma = np.minimum(_s11, 1)
-    _c13 = np.asarray(_t6)
-    if not _c13.any():
-        ar = a * iq
-    elif _c13.all():
-        ar = ao
-    else:
-        ar = np.where(_c13, ao, a * iq)
-    _c14 = np.asarray(_t6)
-    if not _c14.any():
-        a2r = (q + (l2_v - l1_v) * _t7) / 2 * iq
-    elif _c14.all():
-        a2r = (dd - c) * idd2
-    else:
-        a2r = np.where(_c14, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
-    _t11 = -a2r
-    e2x = _t11 * dx + _t8
-    e2y = _t11 * dy + _t9
-    _t12 = 2 * idd2
-    sdx = _t12 * dx
-    sdy = _t12 * dy
-    _c15 = np.asarray(area4 == 0)
-    if not _c15.any():
-        ihq = 2 * minv / area4
-    elif _c15.all():
-        ihq = NAN
-    else:
-        ihq = np.where(_c15, NAN, 2 * minv / area4)
-    tnx = -ihq * dy
-    tny = ihq * dx
-    r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
-    r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
-    buv = r1v - r2v
-    bnv = a2r * r1v + ar * r2v
-    bvx = buv * sdx + bnv * tnx
-    bvy = buv * sdy + bnv * tny
-    _t13 = bvx - j1_dx
-    _t14 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - (_t13 * _t13 + _t14 * _t14)
-    _t15 = bvx - j2_dx
-    _t16 = bvy - j2_dy
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv + (e2x * j2_ddx + e2y * j2_ddy) - (_t15 * _t15 + _t16 * _t16)
-    bua = r1a - r2a
-    bna = a2r * r1a + ar * r2a
-    bax = bua * sdx + bna * tnx
-    bay = bua * sdy + bna * tny
-    _c16 = np.asarray(fail)
-    if not _c16.any():
-        _c17 = np.asarray(sigma < 1e-07)
-        if not _c17.any():
-            _c18 = np.asarray(sigma < 0.001)
-            if not _c18.any():
-                _st = 0
-            elif _c18.all():
-                _st = 4
-            else:
-                _st = np.where(_c18, 4, 0)
-        elif _c17.all():
-            _st = 3
-        else:
-            _st = np.where(_c17, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c16.all():
-        _st = 1
-    else:
-        _st = np.where(_c16, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
-    _sigma = sigma
-    _st = np.asarray(_st)
-    _sigma = np.asarray(_sigma, dtype=REAL)
-    _fails = _st == 1
-    _singular = _fails | (_st == 3)
-    _jb = (j1_x + e1x, j1_y + e1y, bvx, bvy, bax, bay)
-    if _singular.any():  # nan where the rows failed
-        _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
-    return _st, _sigma, _jb
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct, st = cos_sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    _t1 = om * om
+    rax = -al * ry - _t1 * rx
+    ray = al * rx - _t1 * ry
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _j2 = (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+    return _st, _sigma, _j2
 
 def link_angle_still_j1(j1, j2, off):
     """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
@@ -534,6 +318,35 @@ def link_angle_still_j1(j1, j2, off):
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
+def crank_angle_still_phi(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe, theta_ddthe)
+    return _st, _sigma, _angle
+
 def link_point_still_j1(j1, j2, gsi, eta):
     """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, _, _, _, _ = j1
@@ -577,17 +390,194 @@ def link_point_still_j1(j1, j2, gsi, eta):
     _sigma = np.asarray(_sigma, dtype=REAL)
     _fails = _st == 1
     _singular = _fails | (_st == 3)
-    _jc = (j1_x + rx, j1_y + ry, 0.0 + rvx, 0.0 + rvy, 0.0 + rax, 0.0 + ray)
+    _jc = (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
     if _singular.any():  # nan where the rows failed
         _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]), np.where(_singular, np.nan, _jc[4]), np.where(_singular, np.nan, _jc[5]))
     return _st, _sigma, _jc
 
-def RRR_links_still_j2(j1, j2, l1, l2, minv):
+def RRR_links_still_j2_l1_l2(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, _, _, _, _ = j2
-    l1_v, l1_dv, l1_ddv = l1
-    l2_v, l2_dv, l2_ddv = l2
+    l1_v, _, _ = l1
+    l2_v, _, _ = l2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dd = dx * dx + dy * dy
+    q = np.sqrt(dd)
+    hi = np.maximum(l1_v, l2_v)
+    lo = np.minimum(l1_v, l2_v)
+    x = np.maximum(hi, q)
+    z = np.minimum(lo, q)
+    _t1 = q >= hi
+    _c1 = np.asarray(_t1)
+    if not _c1.any():
+        _c2 = np.asarray(q <= lo)
+        if not _c2.any():
+            y = q
+        elif _c2.all():
+            y = lo
+        else:
+            y = np.where(_c2, lo, q)
+    elif _c1.all():
+        y = hi
+    else:
+        y = np.where(_c1, hi, np.where(q <= lo, lo, q))
+    _t2 = x - y
+    k = z - _t2
+    _t3 = q == 0
+    fail = ((k < -8 * EPS * x) | (_t3)) | (lo <= 0)
+    _t4 = l1_v + l2_v
+    s2 = _t4 * _t4
+    _t5 = l1_v - l2_v
+    t2 = _t5 * _t5
+    o1 = s2 - dd
+    o2 = dd - t2
+    _t6 = (3 * o1 > s2) & (3 * o2 > dd)
+    _c3 = np.asarray(_t6)
+    if not _c3.any():
+        area4 = np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z)))
+    elif _c3.all():
+        area4 = np.sqrt(o1 * o2)
+    else:
+        area4 = np.where(_c3, np.sqrt(o1 * o2), np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z))))
+    _c4 = np.asarray(dd == 0)
+    if not _c4.any():
+        idd2 = 0.5 / dd
+    elif _c4.all():
+        idd2 = NAN
+    else:
+        idd2 = np.where(_c4, NAN, 0.5 / dd)
+    c = _t5 * _t4
+    _c5 = np.asarray(_t3)
+    if not _c5.any():
+        iq = 1 / q
+    elif _c5.all():
+        iq = NAN
+    else:
+        iq = np.where(_c5, NAN, 1 / q)
+    _t7 = _t4 * iq
+    a = (q + _t5 * _t7) / 2
+    _c6 = np.asarray(k > 0)
+    if not _c6.any():
+        _c7 = np.asarray(_t1)
+        if not _c7.any():
+            _c8 = np.asarray(l1_v >= l2_v)
+            if not _c8.any():
+                at = (q - _t4) / 2
+            elif _c8.all():
+                at = (l1_v + (q + l2_v)) / 2
+            else:
+                at = np.where(_c8, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)
+        elif _c7.all():
+            at = (l1_v + (q - l2_v)) / 2
+        else:
+            at = np.where(_c7, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2))
+    elif _c6.all():
+        at = a
+    else:
+        at = np.where(_c6, a, np.where(_t1, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
+    ao = (dd + c) * idd2
+    mi = minv * idd2
+    ux = dx * iq
+    uy = dy * iq
+    hn = minv * (area4 * iq / 2)
+    _c9 = np.asarray(_t6)
+    if not _c9.any():
+        e1x = at * ux - hn * uy
+    elif _c9.all():
+        e1x = ao * dx + area4 * (-mi * dy)
+    else:
+        e1x = np.where(_c9, ao * dx + area4 * (-mi * dy), at * ux - hn * uy)
+    _c10 = np.asarray(_t6)
+    if not _c10.any():
+        e1y = at * uy + hn * ux
+    elif _c10.all():
+        e1y = ao * dy + area4 * (mi * dx)
+    else:
+        e1y = np.where(_c10, ao * dy + area4 * (mi * dx), at * uy + hn * ux)
+    _c12 = np.asarray(fail)
+    if not _c12.any():
+        _s11 = area4 * (0.5 / (l1_v * l2_v))
+    elif _c12.all():
+        _s11 = 0
+    else:
+        _s11 = np.where(_c12, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s11, 1)
+    _c13 = np.asarray(_t6)
+    if not _c13.any():
+        a2r = (q + (l2_v - l1_v) * _t7) / 2 * iq
+    elif _c13.all():
+        a2r = (dd - c) * idd2
+    else:
+        a2r = np.where(_c13, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
+    _t9 = 2 * idd2
+    sdx = _t9 * dx
+    sdy = _t9 * dy
+    _c14 = np.asarray(area4 == 0)
+    if not _c14.any():
+        ihq = 2 * minv / area4
+    elif _c14.all():
+        ihq = NAN
+    else:
+        ihq = np.where(_c14, NAN, 2 * minv / area4)
+    tnx = -ihq * dy
+    tny = ihq * dx
+    r1v = e1x * j1_dx + e1y * j1_dy
+    buv = r1v
+    bnv = a2r * r1v
+    bvx = buv * sdx + bnv * tnx
+    bvy = buv * sdy + bnv * tny
+    _t10 = bvx - j1_dx
+    _t11 = bvy - j1_dy
+    r1a = e1x * j1_ddx + e1y * j1_ddy - (_t10 * _t10 + _t11 * _t11)
+    r2a = -(bvx * bvx + bvy * bvy)
+    bua = r1a - r2a
+    _c16 = np.asarray(_t6)
+    if not _c16.any():
+        _s15 = a * iq
+    elif _c16.all():
+        _s15 = ao
+    else:
+        _s15 = np.where(_c16, ao, a * iq)
+    bna = a2r * r1a + _s15 * r2a
+    bax = bua * sdx + bna * tnx
+    bay = bua * sdy + bna * tny
+    _c17 = np.asarray(fail)
+    if not _c17.any():
+        _c18 = np.asarray(sigma < 1e-07)
+        if not _c18.any():
+            _c19 = np.asarray(sigma < 0.001)
+            if not _c19.any():
+                _st = 0
+            elif _c19.all():
+                _st = 4
+            else:
+                _st = np.where(_c19, 4, 0)
+        elif _c18.all():
+            _st = 3
+        else:
+            _st = np.where(_c18, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c17.all():
+        _st = 1
+    else:
+        _st = np.where(_c17, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+    _sigma = sigma
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
+    _jb = (j1_x + e1x, j1_y + e1y, bvx, bvy, bax, bay)
+    if _singular.any():  # nan where the rows failed
+        _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
+    return _st, _sigma, _jb
+
+def RRR_links_still_l1_l2(j1, j2, l1, l2, minv):
+    """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    l1_v, _, _ = l1
+    l2_v, _, _ = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
     dd = dx * dx + dy * dy
@@ -724,17 +714,18 @@ def RRR_links_still_j2(j1, j2, l1, l2, minv):
         ihq = np.where(_c15, NAN, 2 * minv / area4)
     tnx = -ihq * dy
     tny = ihq * dx
-    r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
-    _t13 = e2x * 0.0 + e2y * 0.0
-    r2v = l2_v * l2_dv + _t13
+    r1v = e1x * j1_dx + e1y * j1_dy
+    r2v = e2x * j2_dx + e2y * j2_dy
     buv = r1v - r2v
     bnv = a2r * r1v + ar * r2v
     bvx = buv * sdx + bnv * tnx
     bvy = buv * sdy + bnv * tny
-    _t14 = bvx - j1_dx
-    _t15 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - (_t14 * _t14 + _t15 * _t15)
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv + _t13 - (bvx * bvx + bvy * bvy)
+    _t13 = bvx - j1_dx
+    _t14 = bvy - j1_dy
+    r1a = e1x * j1_ddx + e1y * j1_ddy - (_t13 * _t13 + _t14 * _t14)
+    _t15 = bvx - j2_dx
+    _t16 = bvy - j2_dy
+    r2a = e2x * j2_ddx + e2y * j2_ddy - (_t15 * _t15 + _t16 * _t16)
     bua = r1a - r2a
     bna = a2r * r1a + ar * r2a
     bax = bua * sdx + bna * tnx
@@ -1097,24 +1088,24 @@ def _run(x, dx, ddx, c):
     report = []
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
     # Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
-    _, _, w.p_A = crank_input(w.p_O, c["step2.l"], w.in1, w.ref_O)
+    _, _, w.p_A = crank_input_still_j1_phi(w.p_O, c["step2.l"], w.in1, w.ref_O)
     # Step 3: RRR_links, C (branch -1). C is joined to the known A by rod_j and to the known B by triangle_bde: a 3R two-link chain with both ends known
-    st, sigma[3], w.p_C = RRR_links_still_j2(w.p_A, w.p_B, w.l_rod_j, w.l_triangle_bde_C_B, -1)
+    st, sigma[3], w.p_C = RRR_links_still_j2_l1_l2(w.p_A, w.p_B, w.l_rod_j, w.l_triangle_bde_C_B, -1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
     st, _, w.p_D = link_point_still_j1(w.p_B, w.p_C, c["step4.gsi"], c["step4.eta"])
     report.append((st, ((1, 41),)))
     # Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
-    st, sigma[5], w.p_E = RRR_links_still_j2(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1)
+    st, sigma[5], w.p_E = RRR_links_still_j2_l1_l2(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1)
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     # Step 6: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known
-    st, sigma[6], w.p_F = RRR_links(w.p_D, w.p_E, w.l_rod_f, w.l_leg_ghi, -1)
+    st, sigma[6], w.p_F = RRR_links_still_l1_l2(w.p_D, w.p_E, w.l_rod_f, w.l_leg_ghi, -1)
     report.append((st, ((1, 61), (3, 63), (4, -64))))
     # Step 7: pair_point, foot. point foot of link leg_ghi
     st, _, w.p_foot = pair_point(w.p_E, w.p_F, c["step7.along"], c["step7.across"])
     report.append((st, ((1, 71),)))
     # Step 8: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
-    _, _, w.phi_crank = crank_angle(w.in1, w.ref_O, c["step8.off"])
+    _, _, w.phi_crank = crank_angle_still_phi(w.in1, w.ref_O, c["step8.off"])
     # Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is known
     st, _, w.phi_rod_j = link_angle(w.p_A, w.p_C, c["step9.off"])
     report.append((st, ((1, 91),)))

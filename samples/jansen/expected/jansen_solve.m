@@ -82,10 +82,10 @@ function [status, w] = run(w, in, din, ddin)
     % Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     % Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
-    w.p_A = crank_input(w.p_O, 15.0, w.in1, w.ref_O);
+    w.p_A = crank_input_still_j1_phi(w.p_O, 15.0, w.in1, w.ref_O);
 
     % Step 3: RRR_links, C (branch -1). C is joined to the known A by rod_j and to the known B by triangle_bde: a 3R two-link chain with both ends known
-    [w.p_C, st, w.sigma(3)] = RRR_links(w.p_A, w.p_B, w.l_rod_j, w.l_triangle_bde_C_B, -1);
+    [w.p_C, st, w.sigma(3)] = RRR_links_still_j2_l1_l2(w.p_A, w.p_B, w.l_rod_j, w.l_triangle_bde_C_B, -1);
     if st == 1
         status = 31;
         return;
@@ -93,7 +93,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 33, -34);
 
     % Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it
-    [w.p_D, st] = link_point(w.p_B, w.p_C, 2.6098795180489716, 40.01497880667611);
+    [w.p_D, st] = link_point_still_j1(w.p_B, w.p_C, 2.6098795180489716, 40.01497880667611);
     if st == 1
         status = 41;
         return;
@@ -101,7 +101,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 43, -44);
 
     % Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known
-    [w.p_E, st, w.sigma(5)] = RRR_links(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1);
+    [w.p_E, st, w.sigma(5)] = RRR_links_still_j2_l1_l2(w.p_A, w.p_B, w.l_rod_k, w.l_rocker_c, 1);
     if st == 1
         status = 51;
         return;
@@ -109,7 +109,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 53, -54);
 
     % Step 6: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known
-    [w.p_F, st, w.sigma(6)] = RRR_links(w.p_D, w.p_E, w.l_rod_f, w.l_leg_ghi, -1);
+    [w.p_F, st, w.sigma(6)] = RRR_links_still_l1_l2(w.p_D, w.p_E, w.l_rod_f, w.l_leg_ghi, -1);
     if st == 1
         status = 61;
         return;
@@ -125,7 +125,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 73, -74);
 
     % Step 8: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
-    w.phi_crank = crank_angle(w.in1, w.ref_O, 0.0);
+    w.phi_crank = crank_angle_still_phi(w.in1, w.ref_O, 0.0);
 
     % Step 9: link_angle, rod_j. A and C of link rod_j are known, so its angle is known
     [w.phi_rod_j, st] = link_angle(w.p_A, w.p_C, 0.0);
@@ -144,7 +144,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 103, -104);
 
     % Step 11: link_angle, triangle_bde. B and C of link triangle_bde are known, so its angle is known
-    [w.phi_triangle_bde, st] = link_angle(w.p_B, w.p_C, 0.0);
+    [w.phi_triangle_bde, st] = link_angle_still_j1(w.p_B, w.p_C, 0.0);
     if st == 1
         status = 111;
         return;
@@ -152,7 +152,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 113, -114);
 
     % Step 12: link_angle, rocker_c. B and E of link rocker_c are known, so its angle is known
-    [w.phi_rocker_c, st] = link_angle(w.p_B, w.p_E, 0.0);
+    [w.phi_rocker_c, st] = link_angle_still_j1(w.p_B, w.p_E, 0.0);
     if st == 1
         status = 121;
         return;
@@ -388,27 +388,6 @@ function out = publish(w, status, in)
     out.columns = [in(:)', out.O.x, out.O.y, out.O.vx, out.O.vy, out.O.ax, out.O.ay, out.A.x, out.A.y, out.A.vx, out.A.vy, out.A.ax, out.A.ay, out.B.x, out.B.y, out.B.vx, out.B.vy, out.B.ax, out.B.ay, out.C.x, out.C.y, out.C.vx, out.C.vy, out.C.ax, out.C.ay, out.D.x, out.D.y, out.D.vx, out.D.vy, out.D.ax, out.D.ay, out.E.x, out.E.y, out.E.vx, out.E.vy, out.E.ax, out.E.ay, out.F.x, out.F.y, out.F.vx, out.F.vy, out.F.ax, out.F.ay, out.foot.x, out.foot.y, out.foot.vx, out.foot.vy, out.foot.ax, out.foot.ay, out.frame.phi, out.frame.omega, out.frame.alpha, out.crank.phi, out.crank.omega, out.crank.alpha, out.rod_j.phi, out.rod_j.omega, out.rod_j.alpha, out.rod_k.phi, out.rod_k.omega, out.rod_k.alpha, out.triangle_bde.phi, out.triangle_bde.omega, out.triangle_bde.alpha, out.rocker_c.phi, out.rocker_c.omega, out.rocker_c.alpha, out.rod_f.phi, out.rod_f.omega, out.rod_f.alpha, out.leg_ghi.phi, out.leg_ghi.omega, out.leg_ghi.alpha];
 end
 
-function j2 = crank_input(j1, l, theta, phi)
-    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
-    t = theta.the + phi.the;
-    ct = cos(t);
-    st = sin(t);
-    rx = l * ct;
-    ry = l * st;
-    om = theta.dthe + phi.dthe;
-    al = theta.ddthe + phi.ddthe;
-    rvx = -om * ry;
-    rvy = om * rx;
-    rax = -al * ry - om * om * rx;
-    ray = al * rx - om * om * ry;
-    j2.x = j1.x + rx;
-    j2.y = j1.y + ry;
-    j2.dx = j1.dx + rvx;
-    j2.dy = j1.dy + rvy;
-    j2.ddx = j1.ddx + rax;
-    j2.ddy = j1.ddy + ray;
-end
-
 function [angle, st] = link_angle(j1, j2, off)
     % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
     dx = j2.x - j1.x;
@@ -448,69 +427,6 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function angle = crank_angle(theta, phi, off)
-    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
-    th0 = theta.the + phi.the + off;
-    if abs(th0) >= 3 * pi
-        th = atan2(sin(th0), cos(th0));
-    elseif th0 > pi
-        th = th0 - 2 * pi;
-    elseif th0 <= -pi
-        th = th0 + 2 * pi;
-    else
-        th = th0;
-    end
-    angle.the = th;
-    angle.dthe = theta.dthe + phi.dthe;
-    angle.ddthe = theta.ddthe + phi.ddthe;
-end
-
-function [jc, st] = link_point(j1, j2, gsi, eta)
-    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows).
-    dx = j2.x - j1.x;
-    dy = j2.y - j1.y;
-    dvx = j2.dx - j1.dx;
-    dvy = j2.dy - j1.dy;
-    dax = j2.ddx - j1.ddx;
-    day = j2.ddy - j1.ddy;
-    r2 = dx * dx + dy * dy;
-    if r2 == 0
-        ir = NaN;
-    else
-        ir = 1 / sqrt(r2);
-    end
-    ex = ir * dx;
-    ey = ir * dy;
-    rx = gsi * ex - eta * ey;
-    ry = gsi * ey + eta * ex;
-    ir2 = ir * ir;
-    om = (dx * dvy - dy * dvx) * ir2;
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
-    rvx = -om * ry;
-    rvy = om * rx;
-    rax = -al * ry - om * om * rx;
-    ray = al * rx - om * om * ry;
-    if r2 == 0
-        st = 1;
-    else
-        st = 0;
-    end
-    jc.x = j1.x + rx;
-    jc.y = j1.y + ry;
-    jc.dx = j1.dx + rvx;
-    jc.dy = j1.dy + rvy;
-    jc.ddx = j1.ddx + rax;
-    jc.ddy = j1.ddy + ray;
-    if st == 1
-        jc.x = NaN;
-        jc.y = NaN;
-        jc.dx = NaN;
-        jc.dy = NaN;
-        jc.ddx = NaN;
-        jc.ddy = NaN;
-    end
-end
-
 function [jc, st] = pair_point(j1, j2, along, across)
     % Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows).
     dx = j2.x - j1.x;
@@ -547,7 +463,268 @@ function [jc, st] = pair_point(j1, j2, along, across)
     end
 end
 
-function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
+function j2 = crank_input_still_j1_phi(j1, l, theta, phi)
+    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
+    t = theta.the + phi.the;
+    ct = cos(t);
+    st = sin(t);
+    rx = l * ct;
+    ry = l * st;
+    om = theta.dthe;
+    al = theta.ddthe;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    j2.x = j1.x + rx;
+    j2.y = j1.y + ry;
+    j2.dx = rvx;
+    j2.dy = rvy;
+    j2.ddx = rax;
+    j2.ddy = ray;
+end
+
+function [angle, st] = link_angle_still_j1(j1, j2, off)
+    % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx;
+    dvy = j2.dy;
+    dax = j2.ddx;
+    day = j2.ddy;
+    r2 = dx * dx + dy * dy;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    if r2 == 0
+        ir2 = NaN;
+    else
+        ir2 = 1 / r2;
+    end
+    om = (dx * dvy - dy * dvx) * ir2;
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
+    angle.the = th;
+    angle.dthe = om;
+    angle.ddthe = al;
+    if st == 1
+        angle.the = NaN;
+        angle.dthe = NaN;
+        angle.ddthe = NaN;
+    end
+end
+
+function angle = crank_angle_still_phi(theta, phi, off)
+    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
+    th0 = theta.the + phi.the + off;
+    if abs(th0) >= 3 * pi
+        th = atan2(sin(th0), cos(th0));
+    elseif th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    angle.the = th;
+    angle.dthe = theta.dthe;
+    angle.ddthe = theta.ddthe;
+end
+
+function [jc, st] = link_point_still_j1(j1, j2, gsi, eta)
+    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows).
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx;
+    dvy = j2.dy;
+    dax = j2.ddx;
+    day = j2.ddy;
+    r2 = dx * dx + dy * dy;
+    if r2 == 0
+        ir = NaN;
+    else
+        ir = 1 / sqrt(r2);
+    end
+    ex = ir * dx;
+    ey = ir * dy;
+    rx = gsi * ex - eta * ey;
+    ry = gsi * ey + eta * ex;
+    ir2 = ir * ir;
+    om = (dx * dvy - dy * dvx) * ir2;
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
+    jc.x = j1.x + rx;
+    jc.y = j1.y + ry;
+    jc.dx = rvx;
+    jc.dy = rvy;
+    jc.ddx = rax;
+    jc.ddy = ray;
+    if st == 1
+        jc.x = NaN;
+        jc.y = NaN;
+        jc.dx = NaN;
+        jc.dy = NaN;
+        jc.ddx = NaN;
+        jc.ddy = NaN;
+    end
+end
+
+function [jb, st, sigma] = RRR_links_still_j2_l1_l2(j1, j2, l1, l2, minv)
+    % 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2).
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dd = dx * dx + dy * dy;
+    q = sqrt(dd);
+    hi = max(l1.v, l2.v);
+    lo = min(l1.v, l2.v);
+    x = max(hi, q);
+    z = min(lo, q);
+    if q >= hi
+        y = hi;
+    elseif q <= lo
+        y = lo;
+    else
+        y = q;
+    end
+    k = z - (x - y);
+    fail = k < -8 * eps * x || q == 0 || lo <= 0;
+    kk = max(k, 0);
+    s2 = (l1.v + l2.v) * (l1.v + l2.v);
+    t2 = (l1.v - l2.v) * (l1.v - l2.v);
+    o1 = s2 - dd;
+    o2 = dd - t2;
+    if 3 * o1 > s2 && 3 * o2 > dd
+        area4 = sqrt(o1 * o2);
+    else
+        area4 = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
+    end
+    if dd == 0
+        idd2 = NaN;
+    else
+        idd2 = 0.5 / dd;
+    end
+    c = (l1.v - l2.v) * (l1.v + l2.v);
+    if q == 0
+        iq = NaN;
+    else
+        iq = 1 / q;
+    end
+    a = (q + (l1.v - l2.v) * ((l1.v + l2.v) * iq)) / 2;
+    a2 = (q + (l2.v - l1.v) * ((l1.v + l2.v) * iq)) / 2;
+    if q >= hi
+        flat = (l1.v + (q - l2.v)) / 2;
+    elseif l1.v >= l2.v
+        flat = (l1.v + (q + l2.v)) / 2;
+    else
+        flat = (q - (l1.v + l2.v)) / 2;
+    end
+    if k > 0
+        at = a;
+    else
+        at = flat;
+    end
+    ao = (dd + c) * idd2;
+    mi = minv * idd2;
+    mx = -mi * dy;
+    my = mi * dx;
+    ux = dx * iq;
+    uy = dy * iq;
+    hn = minv * (area4 * iq / 2);
+    if 3 * o1 > s2 && 3 * o2 > dd
+        e1x = ao * dx + area4 * mx;
+    else
+        e1x = at * ux - hn * uy;
+    end
+    if 3 * o1 > s2 && 3 * o2 > dd
+        e1y = ao * dy + area4 * my;
+    else
+        e1y = at * uy + hn * ux;
+    end
+    if fail
+        ratio = 0;
+    else
+        ratio = area4 * (0.5 / (l1.v * l2.v));
+    end
+    sigma = min(ratio, 1);
+    if 3 * o1 > s2 && 3 * o2 > dd
+        ar = ao;
+    else
+        ar = a * iq;
+    end
+    if 3 * o1 > s2 && 3 * o2 > dd
+        a2r = (dd - c) * idd2;
+    else
+        a2r = a2 * iq;
+    end
+    sdx = 2 * idd2 * dx;
+    sdy = 2 * idd2 * dy;
+    if area4 == 0
+        ihq = NaN;
+    else
+        ihq = 2 * minv / area4;
+    end
+    tnx = -ihq * dy;
+    tny = ihq * dx;
+    r1v = e1x * j1.dx + e1y * j1.dy;
+    buv = r1v;
+    bnv = a2r * r1v;
+    bvx = buv * sdx + bnv * tnx;
+    bvy = buv * sdy + bnv * tny;
+    r1a = e1x * j1.ddx + e1y * j1.ddy - ((bvx - j1.dx) * (bvx - j1.dx) + (bvy - j1.dy) * (bvy - j1.dy));
+    r2a = -(bvx * bvx + bvy * bvy);
+    bua = r1a - r2a;
+    bna = a2r * r1a + ar * r2a;
+    bax = bua * sdx + bna * tnx;
+    bay = bua * sdy + bna * tny;
+    if fail
+        st = 1;
+    elseif sigma < 1e-07
+        st = 3;
+    elseif sigma < 0.001
+        st = 4;
+    else
+        st = 0;
+    end
+    jb.x = j1.x + e1x;
+    jb.y = j1.y + e1y;
+    jb.dx = bvx;
+    jb.dy = bvy;
+    jb.ddx = bax;
+    jb.ddy = bay;
+    if st == 1
+        jb.x = NaN;
+        jb.y = NaN;
+        jb.dx = NaN;
+        jb.dy = NaN;
+        jb.ddx = NaN;
+        jb.ddy = NaN;
+    end
+    if st == 1 || st == 3
+        jb.dx = NaN;
+        jb.dy = NaN;
+        jb.ddx = NaN;
+        jb.ddy = NaN;
+    end
+end
+
+function [jb, st, sigma] = RRR_links_still_l1_l2(j1, j2, l1, l2, minv)
     % 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
@@ -645,14 +822,14 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     end
     tnx = -ihq * dy;
     tny = ihq * dx;
-    r1v = l1.v * l1.dv + (e1x * j1.dx + e1y * j1.dy);
-    r2v = l2.v * l2.dv + (e2x * j2.dx + e2y * j2.dy);
+    r1v = e1x * j1.dx + e1y * j1.dy;
+    r2v = e2x * j2.dx + e2y * j2.dy;
     buv = r1v - r2v;
     bnv = a2r * r1v + ar * r2v;
     bvx = buv * sdx + bnv * tnx;
     bvy = buv * sdy + bnv * tny;
-    r1a = l1.v * l1.ddv + l1.dv * l1.dv + (e1x * j1.ddx + e1y * j1.ddy) - ((bvx - j1.dx) * (bvx - j1.dx) + (bvy - j1.dy) * (bvy - j1.dy));
-    r2a = l2.v * l2.ddv + l2.dv * l2.dv + (e2x * j2.ddx + e2y * j2.ddy) - ((bvx - j2.dx) * (bvx - j2.dx) + (bvy - j2.dy) * (bvy - j2.dy));
+    r1a = e1x * j1.ddx + e1y * j1.ddy - ((bvx - j1.dx) * (bvx - j1.dx) + (bvy - j1.dy) * (bvy - j1.dy));
+    r2a = e2x * j2.ddx + e2y * j2.ddy - ((bvx - j2.dx) * (bvx - j2.dx) + (bvy - j2.dy) * (bvy - j2.dy));
     bua = r1a - r2a;
     bna = a2r * r1a + ar * r2a;
     bax = bua * sdx + bna * tnx;

@@ -11,67 +11,6 @@ typedef struct { VEC2 P, DP; } POINT;
 typedef struct { double the, dthe; } ANGLE;
 typedef struct { double v, dv; } VARIABLE;
 
-/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-#if defined(__GNUC__)
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
-#endif
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
-{
-    const double t = theta->the + phi->the;
-    const double ct = cos(t);
-    const double st = sin(t);
-    const double rx = l * ct;
-    const double ry = l * st;
-    const double om = theta->dthe + phi->dthe;
-    const double rvx = -om * ry;
-    const double rvy = om * rx;
-    j2->P.x = j1->P.x + rx;
-    j2->P.y = j1->P.y + ry;
-    j2->DP.x = j1->DP.x + rvx;
-    j2->DP.y = j1->DP.y + rvy;
-}
-
-/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
-#if defined(__GNUC__)
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
-#endif
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
-{
-    const double th0 = theta->the + phi->the + off;
-    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
-    angle->the = th;
-    angle->dthe = theta->dthe + phi->dthe;
-}
-
-/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
-#if defined(__GNUC__)
-static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
-#endif
-static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
-{
-    const double dx = j2->P.x - j1->P.x;
-    const double dy = j2->P.y - j1->P.y;
-    const double dvx = j2->DP.x - j1->DP.x;
-    const double dvy = j2->DP.y - j1->DP.y;
-    const double r2 = dx * dx + dy * dy;
-    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
-    const double ex = ir * dx;
-    const double ey = ir * dy;
-    const double rx = gsi * ex - eta * ey;
-    const double ry = gsi * ey + eta * ex;
-    const double ir2 = ir * ir;
-    const double om = (dx * dvy - dy * dvx) * ir2;
-    const double rvx = -om * ry;
-    const double rvy = om * rx;
-    const int st = r2 == 0 ? 1 : 0;
-    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; return st; }
-    jc->P.x = j1->P.x + rx;
-    jc->P.y = j1->P.y + ry;
-    jc->DP.x = j1->DP.x + rvx;
-    jc->DP.y = j1->DP.y + rvy;
-    return st;
-}
-
 /* Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows). */
 #if defined(__GNUC__)
 static inline int pair_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc) __attribute__((always_inline));
@@ -96,11 +35,135 @@ static inline int pair_point(const POINT *j1, const POINT *j2, double along, dou
     return st;
 }
 
+/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
+{
+    const double t = theta->the + phi->the;
+    const double ct = cos(t);
+    const double st = sin(t);
+    const double rx = l * ct;
+    const double ry = l * st;
+    const double om = theta->dthe;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = rvx;
+    j2->DP.y = rvy;
+}
+
+/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
+#if defined(__GNUC__)
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
+{
+    const double th0 = theta->the + phi->the + off;
+    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
+    angle->the = th;
+    angle->dthe = theta->dthe;
+}
+
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
+#if defined(__GNUC__)
+static inline int link_point_still_j1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+#endif
+static inline int link_point_still_j1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x;
+    const double dvy = j2->DP.y;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = ir * ir;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const int st = r2 == 0 ? 1 : 0;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; return st; }
+    jc->P.x = j1->P.x + rx;
+    jc->P.y = j1->P.y + ry;
+    jc->DP.x = rvx;
+    jc->DP.y = rvy;
+    return st;
+}
+
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
 #if defined(__GNUC__)
-static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+static inline int RRR_links_still_j2_l1_l2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
 #endif
-static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
+static inline int RRR_links_still_j2_l1_l2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dd = dx * dx + dy * dy;
+    const double q = sqrt(dd);
+    const double hi = (l2->v > l1->v ? l2->v : l1->v);
+    const double lo = (l2->v < l1->v ? l2->v : l1->v);
+    const double x = (q > hi ? q : hi);
+    const double z = (q < lo ? q : lo);
+    const double y = q >= hi ? hi : q <= lo ? lo : q;
+    const double k = z - (x - y);
+    const int fail = (k < -8 * DBL_EPSILON * x) | (q == 0) | (lo <= 0);
+    const double kk = (0.0 > k ? 0.0 : k);
+    const double s2 = (l1->v + l2->v) * (l1->v + l2->v);
+    const double t2 = (l1->v - l2->v) * (l1->v - l2->v);
+    const double o1 = s2 - dd;
+    const double o2 = dd - t2;
+    const double area4 = ((3 * o1 > s2) & (3 * o2 > dd)) ? sqrt(o1 * o2) : sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)));
+    const double idd2 = dd == 0 ? NAN : 0.5 / dd;
+    const double c = (l1->v - l2->v) * (l1->v + l2->v);
+    const double iq = q == 0 ? NAN : 1 / q;
+    const double a = (q + (l1->v - l2->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double a2 = (q + (l2->v - l1->v) * ((l1->v + l2->v) * iq)) / 2;
+    const double flat = q >= hi ? (l1->v + (q - l2->v)) / 2 : l1->v >= l2->v ? (l1->v + (q + l2->v)) / 2 : (q - (l1->v + l2->v)) / 2;
+    const double at = k > 0 ? a : flat;
+    const double ao = (dd + c) * idd2;
+    const double mi = minv * idd2;
+    const double mx = -mi * dy;
+    const double my = mi * dx;
+    const double ux = dx * iq;
+    const double uy = dy * iq;
+    const double hn = minv * (area4 * iq / 2);
+    const double e1x = ((3 * o1 > s2) & (3 * o2 > dd)) ? ao * dx + area4 * mx : at * ux - hn * uy;
+    const double e1y = ((3 * o1 > s2) & (3 * o2 > dd)) ? ao * dy + area4 * my : at * uy + hn * ux;
+    const double ratio = fail ? 0 : area4 * (0.5 / (l1->v * l2->v));
+    const double sigma = (1.0 < ratio ? 1.0 : ratio);
+    const double a2r = ((3 * o1 > s2) & (3 * o2 > dd)) ? (dd - c) * idd2 : a2 * iq;
+    const double sdx = 2 * idd2 * dx;
+    const double sdy = 2 * idd2 * dy;
+    const double ihq = area4 == 0 ? NAN : 2 * minv / area4;
+    const double tnx = -ihq * dy;
+    const double tny = ihq * dx;
+    const double r1v = e1x * j1->DP.x + e1y * j1->DP.y;
+    const double buv = r1v;
+    const double bnv = a2r * r1v;
+    const double bvx = buv * sdx + bnv * tnx;
+    const double bvy = buv * sdy + bnv * tny;
+    const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
+    *sigma_out = sigma;
+    if (st == 1) { jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; return st; }
+    if (st == 3) { jb->P.x = j1->P.x + e1x; jb->P.y = j1->P.y + e1y; jb->DP.x = NAN; jb->DP.y = NAN; return st; }
+    jb->P.x = j1->P.x + e1x;
+    jb->P.y = j1->P.y + e1y;
+    jb->DP.x = bvx;
+    jb->DP.y = bvy;
+    return st;
+}
+
+/* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
+#if defined(__GNUC__)
+static inline int RRR_links_still_l1_l2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+#endif
+static inline int RRR_links_still_l1_l2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -146,8 +209,8 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double ihq = area4 == 0 ? NAN : 2 * minv / area4;
     const double tnx = -ihq * dy;
     const double tny = ihq * dx;
-    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
-    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
+    const double r1v = e1x * j1->DP.x + e1y * j1->DP.y;
+    const double r2v = e2x * j2->DP.x + e2y * j2->DP.y;
     const double buv = r1v - r2v;
     const double bnv = a2r * r1v + ar * r2v;
     const double bvx = buv * sdx + bnv * tnx;
@@ -265,29 +328,29 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A */
-    crank_input(&p_O, 15.0, &w->in1, &ref_O, &w->p_A);
+    crank_input_still_j1_phi(&p_O, 15.0, &w->in1, &ref_O, &w->p_A);
 
 
     /* Step 3: RRR_links, C (branch -1). C is joined to the known A by rod_j and to the known B by triangle_bde: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_A, &p_B, &l_rod_j, &l_triangle_bde_C_B, -1, &w->p_C, &out->sigma[3]);
+    st = RRR_links_still_j2_l1_l2(&w->p_A, &p_B, &l_rod_j, &l_triangle_bde_C_B, -1, &w->p_C, &out->sigma[3]);
     if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
 
     /* Step 4: link_point, D. link triangle_bde is placed (its pairs B, C are known), so D follows as a point of it */
-    st = link_point(&p_B, &w->p_C, 2.6098795180489716, 40.01497880667611, &w->p_D);
+    st = link_point_still_j1(&p_B, &w->p_C, 2.6098795180489716, 40.01497880667611, &w->p_D);
     if (st == 1) return failed(out, 41, 4);
     note(w, st, 43, -44);
 
 
     /* Step 5: RRR_links, E (branch +1). E is joined to the known A by rod_k and to the known B by rocker_c: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_A, &p_B, &l_rod_k, &l_rocker_c, 1, &w->p_E, &out->sigma[5]);
+    st = RRR_links_still_j2_l1_l2(&w->p_A, &p_B, &l_rod_k, &l_rocker_c, 1, &w->p_E, &out->sigma[5]);
     if (st == 1) return failed(out, 51, 5);
     note(w, st, 53, -54);
 
 
     /* Step 6: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_D, &w->p_E, &l_rod_f, &l_leg_ghi, -1, &w->p_F, &out->sigma[6]);
+    st = RRR_links_still_l1_l2(&w->p_D, &w->p_E, &l_rod_f, &l_leg_ghi, -1, &w->p_F, &out->sigma[6]);
     if (st == 1) return failed(out, 61, 6);
     note(w, st, 63, -64);
 
@@ -299,7 +362,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 8: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's */
-    crank_angle(&w->in1, &ref_O, 0.0, &w->phi_crank);
+    crank_angle_still_phi(&w->in1, &ref_O, 0.0, &w->phi_crank);
 
     st = w->singular ? w->singular : w->near;
     publish(w, st, out);

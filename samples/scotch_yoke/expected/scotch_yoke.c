@@ -11,44 +11,6 @@ typedef struct { VEC2 P, DP, DDP; } POINT;
 typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
-/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-#if defined(__GNUC__)
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
-#endif
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
-{
-    const double t = theta->the + phi->the;
-    const double ct = cos(t);
-    const double st = sin(t);
-    const double rx = l * ct;
-    const double ry = l * st;
-    const double om = theta->dthe + phi->dthe;
-    const double al = theta->ddthe + phi->ddthe;
-    const double rvx = -om * ry;
-    const double rvy = om * rx;
-    const double rax = -al * ry - om * om * rx;
-    const double ray = al * rx - om * om * ry;
-    j2->P.x = j1->P.x + rx;
-    j2->P.y = j1->P.y + ry;
-    j2->DP.x = j1->DP.x + rvx;
-    j2->DP.y = j1->DP.y + rvy;
-    j2->DDP.x = j1->DDP.x + rax;
-    j2->DDP.y = j1->DDP.y + ray;
-}
-
-/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
-#if defined(__GNUC__)
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
-#endif
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
-{
-    const double th0 = theta->the + phi->the + off;
-    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
-    angle->the = th;
-    angle->dthe = theta->dthe + phi->dthe;
-    angle->ddthe = theta->ddthe + phi->ddthe;
-}
-
 /* Angle of a link that keeps a constant angle off to a known angle phi. */
 #if defined(__GNUC__)
 static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
@@ -62,11 +24,49 @@ static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle)
     angle->ddthe = phi->ddthe;
 }
 
+/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
+{
+    const double t = theta->the + phi->the;
+    const double ct = cos(t);
+    const double st = sin(t);
+    const double rx = l * ct;
+    const double ry = l * st;
+    const double om = theta->dthe;
+    const double al = theta->ddthe;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = rvx;
+    j2->DP.y = rvy;
+    j2->DDP.x = rax;
+    j2->DDP.y = ray;
+}
+
+/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
+#if defined(__GNUC__)
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
+{
+    const double th0 = theta->the + phi->the + off;
+    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
+    angle->the = th;
+    angle->dthe = theta->dthe;
+    angle->ddthe = theta->ddthe;
+}
+
 /* PPR chain: link b slides on the guide line (pg, psig) and shares a second prismatic pair, of axis psig + cx, with link a turning about jr.  (xa, ya): the pair's reference point on a from jr; (xb, yb): on b from b's slider point; both in the guide's frame.  sgn is +1 when a is the slider of the second pair.  Gives s1, jp1 on the guide and sx, jpx of the second pair. */
 #if defined(__GNUC__)
-static inline int PPR_links(const POINT *jr, const POINT *pg, const ANGLE *psig, double xa, double ya, double xb, double yb, double cx, int sgn, VARIABLE *s1, POINT *jp1, VARIABLE *sx, POINT *jpx, double *sigma_out) __attribute__((always_inline));
+static inline int PPR_links_still_pg_psig(const POINT *jr, const POINT *pg, const ANGLE *psig, double xa, double ya, double xb, double yb, double cx, int sgn, VARIABLE *s1, POINT *jp1, VARIABLE *sx, POINT *jpx, double *sigma_out) __attribute__((always_inline));
 #endif
-static inline int PPR_links(const POINT *jr, const POINT *pg, const ANGLE *psig, double xa, double ya, double xb, double yb, double cx, int sgn, VARIABLE *s1, POINT *jp1, VARIABLE *sx, POINT *jpx, double *sigma_out)
+static inline int PPR_links_still_pg_psig(const POINT *jr, const POINT *pg, const ANGLE *psig, double xa, double ya, double xb, double yb, double cx, int sgn, VARIABLE *s1, POINT *jp1, VARIABLE *sx, POINT *jpx, double *sigma_out)
 {
     const double cg = cos(psig->the);
     const double sg = sin(psig->the);
@@ -92,35 +92,25 @@ static inline int PPR_links(const POINT *jr, const POINT *pg, const ANGLE *psig,
     const double pby = jp1y + rby;
     const double acr = fabs(cr);
     const double sigma = (1.0 < acr ? 1.0 : acr);
-    const double ravx = -psig->dthe * ray;
-    const double ravy = psig->dthe * rax;
-    const double raax = -psig->ddthe * ray - psig->dthe * psig->dthe * rax;
-    const double raay = psig->ddthe * rax - psig->dthe * psig->dthe * ray;
-    const double rbvx = -psig->dthe * rby;
-    const double rbvy = psig->dthe * rbx;
-    const double rbax = -psig->ddthe * rby - psig->dthe * psig->dthe * rbx;
-    const double rbay = psig->ddthe * rbx - psig->dthe * psig->dthe * rby;
-    const double k1x = jr->DP.x + ravx - pg->DP.x - rbvx + sv1 * psig->dthe * sg;
-    const double k1y = jr->DP.y + ravy - pg->DP.y - rbvy - sv1 * psig->dthe * cg;
-    const double ds1 = (k1x * sax - k1y * cax + psig->dthe * mu) * icr;
+    const double k1x = jr->DP.x;
+    const double k1y = jr->DP.y;
+    const double ds1 = (k1x * sax - k1y * cax) * icr;
     const double mvx = k1x - ds1 * cg;
     const double mvy = k1y - ds1 * sg;
     const double mvu = mvx * cax + mvy * sax;
-    const double jp1vx = pg->DP.x + ds1 * cg - sv1 * psig->dthe * sg;
-    const double jp1vy = pg->DP.y + ds1 * sg + sv1 * psig->dthe * cg;
-    const double tn = 2 * ds1 * psig->dthe + sv1 * psig->ddthe;
-    const double tu = sv1 * psig->dthe * psig->dthe;
-    const double k2x = jr->DDP.x + raax - pg->DDP.x - rbax + tn * sg + tu * cg;
-    const double k2y = jr->DDP.y + raay - pg->DDP.y - rbay - tn * cg + tu * sg;
-    const double dds1 = (k2x * sax - k2y * cax + 2 * psig->dthe * mvu + psig->ddthe * mu) * icr;
-    const double jp1ax = pg->DDP.x + dds1 * cg - tn * sg - tu * cg;
-    const double jp1ay = pg->DDP.y + dds1 * sg + tn * cg - tu * sg;
+    const double jp1vx = ds1 * cg;
+    const double jp1vy = ds1 * sg;
+    const double k2x = jr->DDP.x;
+    const double k2y = jr->DDP.y;
+    const double dds1 = (k2x * sax - k2y * cax) * icr;
+    const double jp1ax = dds1 * cg;
+    const double jp1ay = dds1 * sg;
     const double jxx = sgn > 0 ? pax : pbx;
     const double jxy = sgn > 0 ? pay : pby;
-    const double jxdx = sgn > 0 ? jr->DP.x + ravx : jp1vx + rbvx;
-    const double jxdy = sgn > 0 ? jr->DP.y + ravy : jp1vy + rbvy;
-    const double jxddx = sgn > 0 ? jr->DDP.x + raax : jp1ax + rbax;
-    const double jxddy = sgn > 0 ? jr->DDP.y + raay : jp1ay + rbay;
+    const double jxdx = sgn > 0 ? jr->DP.x : jp1vx;
+    const double jxdy = sgn > 0 ? jr->DP.y : jp1vy;
+    const double jxddx = sgn > 0 ? jr->DDP.x : jp1ax;
+    const double jxddy = sgn > 0 ? jr->DDP.y : jp1ay;
     const int st = cr == 0 ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
     *sigma_out = sigma;
     if (st == 1) { s1->v = NAN; s1->dv = NAN; s1->ddv = NAN; jp1->P.x = NAN; jp1->P.y = NAN; jp1->DP.x = NAN; jp1->DP.y = NAN; jp1->DDP.x = NAN; jp1->DDP.y = NAN; sx->v = NAN; sx->dv = NAN; sx->ddv = NAN; jpx->P.x = NAN; jpx->P.y = NAN; jpx->DP.x = NAN; jpx->DP.y = NAN; jpx->DDP.x = NAN; jpx->DDP.y = NAN; return st; }
@@ -136,7 +126,7 @@ static inline int PPR_links(const POINT *jr, const POINT *pg, const ANGLE *psig,
     jp1->DDP.y = jp1ay;
     sx->v = sgn * mu;
     sx->dv = sgn * mvu;
-    sx->ddv = sgn * ((k2x - dds1 * cg) * cax + (k2y - dds1 * sg) * sax + psig->dthe * (cax * mvy - sax * mvx));
+    sx->ddv = sgn * ((k2x - dds1 * cg) * cax + (k2y - dds1 * sg) * sax);
     jpx->P.x = jxx;
     jpx->P.y = jxy;
     jpx->DP.x = jxdx;
@@ -341,17 +331,17 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A */
-    crank_input(&p_O, 25.0, &w->in1, &ref_O, &w->p_A);
+    crank_input_still_j1_phi(&p_O, 25.0, &w->in1, &ref_O, &w->p_A);
 
 
     /* Step 3: PPR_links, P. the slider yoke rides on the known line Q and carries the slide P of block, which turns about the known A: a PPR two-link chain (one solution) */
-    st = PPR_links(&w->p_A, &g_Q, &psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1, &w->s_Q, &w->p_Q, &w->s_P, &w->p_P, &out->sigma[3]);
+    st = PPR_links_still_pg_psig(&w->p_A, &g_Q, &psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1, &w->s_Q, &w->p_Q, &w->s_P, &w->p_P, &out->sigma[3]);
     if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
 
     /* Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's */
-    crank_angle(&w->in1, &ref_O, 0.0, &w->phi_crank);
+    crank_angle_still_phi(&w->in1, &ref_O, 0.0, &w->phi_crank);
 
 
     /* Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide */

@@ -125,32 +125,6 @@ _FIXED = {  # every output column: those of the fixed sketch with their values, 
 
 # -- the mech.cpp functions this procedure uses -------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct = cos(t)
-    st = sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    rax = -al * ry - om * om * rx
-    ray = al * rx - om * om * ry
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-
-def crank_angle(theta, phi, off):
-    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    th0 = theta_the + phi_the + off
-    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
-    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
-
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
@@ -158,11 +132,37 @@ def offset_angle(phi, off):
     th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     return (th, phi_dthe, phi_ddthe)
 
-def PPR_links(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct = cos(t)
+    st = sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    return (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+
+def crank_angle_still_phi(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    th0 = theta_the + phi_the + off
+    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    return (th, theta_dthe, theta_ddthe)
+
+def PPR_links_still_pg_psig(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
     """PPR chain: link b slides on the guide line (pg, psig) and shares a second prismatic pair, of axis psig + cx, with link a turning about jr.  (xa, ya): the pair's reference point on a from jr; (xb, yb): on b from b's slider point; both in the guide's frame.  sgn is +1 when a is the slider of the second pair.  Gives s1, jp1 on the guide and sx, jpx of the second pair."""
     jr_x, jr_y, jr_dx, jr_dy, jr_ddx, jr_ddy = jr
-    pg_x, pg_y, pg_dx, pg_dy, pg_ddx, pg_ddy = pg
-    psig_the, psig_dthe, psig_ddthe = psig
+    pg_x, pg_y, _, _, _, _ = pg
+    psig_the, _, _ = psig
     cg = cos(psig_the)
     sg = sin(psig_the)
     cax = cos(psig_the + cx)
@@ -187,41 +187,31 @@ def PPR_links(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
     pby = jp1y + rby
     acr = abs(cr)
     sigma = (1 if 1 < acr else acr)
-    ravx = -psig_dthe * ray
-    ravy = psig_dthe * rax
-    raax = -psig_ddthe * ray - psig_dthe * psig_dthe * rax
-    raay = psig_ddthe * rax - psig_dthe * psig_dthe * ray
-    rbvx = -psig_dthe * rby
-    rbvy = psig_dthe * rbx
-    rbax = -psig_ddthe * rby - psig_dthe * psig_dthe * rbx
-    rbay = psig_ddthe * rbx - psig_dthe * psig_dthe * rby
-    k1x = jr_dx + ravx - pg_dx - rbvx + sv1 * psig_dthe * sg
-    k1y = jr_dy + ravy - pg_dy - rbvy - sv1 * psig_dthe * cg
-    ds1 = (k1x * sax - k1y * cax + psig_dthe * mu) * icr
+    k1x = jr_dx
+    k1y = jr_dy
+    ds1 = (k1x * sax - k1y * cax) * icr
     mvx = k1x - ds1 * cg
     mvy = k1y - ds1 * sg
     mvu = mvx * cax + mvy * sax
-    jp1vx = pg_dx + ds1 * cg - sv1 * psig_dthe * sg
-    jp1vy = pg_dy + ds1 * sg + sv1 * psig_dthe * cg
-    tn = 2 * ds1 * psig_dthe + sv1 * psig_ddthe
-    tu = sv1 * psig_dthe * psig_dthe
-    k2x = jr_ddx + raax - pg_ddx - rbax + tn * sg + tu * cg
-    k2y = jr_ddy + raay - pg_ddy - rbay - tn * cg + tu * sg
-    dds1 = (k2x * sax - k2y * cax + 2 * psig_dthe * mvu + psig_ddthe * mu) * icr
-    jp1ax = pg_ddx + dds1 * cg - tn * sg - tu * cg
-    jp1ay = pg_ddy + dds1 * sg + tn * cg - tu * sg
+    jp1vx = ds1 * cg
+    jp1vy = ds1 * sg
+    k2x = jr_ddx
+    k2y = jr_ddy
+    dds1 = (k2x * sax - k2y * cax) * icr
+    jp1ax = dds1 * cg
+    jp1ay = dds1 * sg
     jxx = pax if sgn > 0 else pbx
     jxy = pay if sgn > 0 else pby
-    jxdx = jr_dx + ravx if sgn > 0 else jp1vx + rbvx
-    jxdy = jr_dy + ravy if sgn > 0 else jp1vy + rbvy
-    jxddx = jr_ddx + raax if sgn > 0 else jp1ax + rbax
-    jxddy = jr_ddy + raay if sgn > 0 else jp1ay + rbay
+    jxdx = jr_dx if sgn > 0 else jp1vx
+    jxdy = jr_dy if sgn > 0 else jp1vy
+    jxddx = jr_ddx if sgn > 0 else jp1ax
+    jxddy = jr_ddy if sgn > 0 else jp1ay
     st = 1 if cr == 0 else 3 if sigma < 1e-07 else 4 if sigma < 0.001 else 0
     if st == 1:
         return st, sigma, (NAN, NAN, NAN), (NAN, NAN, NAN, NAN, NAN, NAN), (NAN, NAN, NAN), (NAN, NAN, NAN, NAN, NAN, NAN)
     if st == 3:
         return st, sigma, (sv1, NAN, NAN), (jp1x, jp1y, NAN, NAN, NAN, NAN), (sgn * mu, NAN, NAN), (jxx, jxy, NAN, NAN, NAN, NAN)
-    return st, sigma, (sv1, ds1, dds1), (jp1x, jp1y, jp1vx, jp1vy, jp1ax, jp1ay), (sgn * mu, sgn * mvu, sgn * ((k2x - dds1 * cg) * cax + (k2y - dds1 * sg) * sax + psig_dthe * (cax * mvy - sax * mvx))), (jxx, jxy, jxdx, jxdy, jxddx, jxddy)
+    return st, sigma, (sv1, ds1, dds1), (jp1x, jp1y, jp1vx, jp1vy, jp1ax, jp1ay), (sgn * mu, sgn * mvu, sgn * ((k2x - dds1 * cg) * cax + (k2y - dds1 * sg) * sax)), (jxx, jxy, jxdx, jxdy, jxddx, jxddy)
 
 def reason_of(code):
     """The reason of a status code (linkgen/status.py): the last digit of a positive code
@@ -261,22 +251,22 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
-    # crank_input(p_O, 25.0, w.in1, ref_O), inline
+    # crank_input_still_j1_phi(p_O, 25.0, w.in1, ref_O), inline
     _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 25.0 * _ct
     _ry = 25.0 * _st
-    _om = _in1_dthe + 0.0
-    _al = _in1_ddthe + 0.0
+    _om = _in1_dthe
+    _al = _in1_ddthe
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-40.0) + _rx, (-12.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-40.0) + _rx, (-12.0) + _ry, _rvx, _rvy, _rax, _ray)
 
     # Step 3: PPR_links, P. the slider yoke rides on the known line Q and carries the slide P of block, which turns about the known A: a PPR two-link chain (one solution)
-    # PPR_links(w.p_A, g_Q, psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1), inline
+    # PPR_links_still_pg_psig(w.p_A, g_Q, psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1), inline
     _cg = cos(0.0)
     _sg = sin(0.0)
     _cax = cos(0.0 + 1.5707963267948966)
@@ -301,35 +291,25 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _pby = _jp1y + _rby
     _acr = abs(_cr)
     _sigma = (1 if 1 < _acr else _acr)
-    _ravx = -0.0 * _ray
-    _ravy = 0.0 * _rax
-    _raax = -0.0 * _ray - 0.0 * 0.0 * _rax
-    _raay = 0.0 * _rax - 0.0 * 0.0 * _ray
-    _rbvx = -0.0 * _rby
-    _rbvy = 0.0 * _rbx
-    _rbax = -0.0 * _rby - 0.0 * 0.0 * _rbx
-    _rbay = 0.0 * _rbx - 0.0 * 0.0 * _rby
-    _k1x = _p_A_dx + _ravx - 0.0 - _rbvx + _sv1 * 0.0 * _sg
-    _k1y = _p_A_dy + _ravy - 0.0 - _rbvy - _sv1 * 0.0 * _cg
-    _ds1 = (_k1x * _sax - _k1y * _cax + 0.0 * _mu) * _icr
+    _k1x = _p_A_dx
+    _k1y = _p_A_dy
+    _ds1 = (_k1x * _sax - _k1y * _cax) * _icr
     _mvx = _k1x - _ds1 * _cg
     _mvy = _k1y - _ds1 * _sg
     _mvu = _mvx * _cax + _mvy * _sax
-    _jp1vx = 0.0 + _ds1 * _cg - _sv1 * 0.0 * _sg
-    _jp1vy = 0.0 + _ds1 * _sg + _sv1 * 0.0 * _cg
-    _tn = 2 * _ds1 * 0.0 + _sv1 * 0.0
-    _tu = _sv1 * 0.0 * 0.0
-    _k2x = _p_A_ddx + _raax - 0.0 - _rbax + _tn * _sg + _tu * _cg
-    _k2y = _p_A_ddy + _raay - 0.0 - _rbay - _tn * _cg + _tu * _sg
-    _dds1 = (_k2x * _sax - _k2y * _cax + 2 * 0.0 * _mvu + 0.0 * _mu) * _icr
-    _jp1ax = 0.0 + _dds1 * _cg - _tn * _sg - _tu * _cg
-    _jp1ay = 0.0 + _dds1 * _sg + _tn * _cg - _tu * _sg
+    _jp1vx = _ds1 * _cg
+    _jp1vy = _ds1 * _sg
+    _k2x = _p_A_ddx
+    _k2y = _p_A_ddy
+    _dds1 = (_k2x * _sax - _k2y * _cax) * _icr
+    _jp1ax = _dds1 * _cg
+    _jp1ay = _dds1 * _sg
     _jxx = _pax if 1 > 0 else _pbx
     _jxy = _pay if 1 > 0 else _pby
-    _jxdx = _p_A_dx + _ravx if 1 > 0 else _jp1vx + _rbvx
-    _jxdy = _p_A_dy + _ravy if 1 > 0 else _jp1vy + _rbvy
-    _jxddx = _p_A_ddx + _raax if 1 > 0 else _jp1ax + _rbax
-    _jxddy = _p_A_ddy + _raay if 1 > 0 else _jp1ay + _rbay
+    _jxdx = _p_A_dx if 1 > 0 else _jp1vx
+    _jxdy = _p_A_dy if 1 > 0 else _jp1vy
+    _jxddx = _p_A_ddx if 1 > 0 else _jp1ax
+    _jxddy = _p_A_ddy if 1 > 0 else _jp1ay
     st = 1 if _cr == 0 else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[3] = _sigma
     if st == 1:
@@ -346,16 +326,16 @@ def _run(w, inputs, d_inputs, dd_inputs):
     else:
         _s_Q_v, _s_Q_dv, _s_Q_ddv = w.s_Q = (_sv1, _ds1, _dds1)
         _p_Q_x, _p_Q_y, _p_Q_dx, _p_Q_dy, _p_Q_ddx, _p_Q_ddy = w.p_Q = (_jp1x, _jp1y, _jp1vx, _jp1vy, _jp1ax, _jp1ay)
-        _s_P_v, _s_P_dv, _s_P_ddv = w.s_P = (1 * _mu, 1 * _mvu, 1 * ((_k2x - _dds1 * _cg) * _cax + (_k2y - _dds1 * _sg) * _sax + 0.0 * (_cax * _mvy - _sax * _mvx)))
+        _s_P_v, _s_P_dv, _s_P_ddv = w.s_P = (1 * _mu, 1 * _mvu, 1 * ((_k2x - _dds1 * _cg) * _cax + (_k2y - _dds1 * _sg) * _sax))
         _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (_jxx, _jxy, _jxdx, _jxdy, _jxddx, _jxddy)
     if st:
         w.note(st, 33, -34)
 
     # Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
-    # crank_angle(w.in1, ref_O, 0.0), inline
+    # crank_angle_still_phi(w.in1, ref_O, 0.0), inline
     _th0 = _in1_the + 0.0 + 0.0
     _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
-    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe + 0.0, _in1_ddthe + 0.0)
+    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe, _in1_ddthe)
 
     # Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide
     # offset_angle(phi_frame, -0.2984989315861793), inline

@@ -121,56 +121,6 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
 
 # -- the runtime of the kernel, on arrays of rows ------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct, st = cos_sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    _t1 = om * om
-    rax = -al * ry - _t1 * rx
-    ray = al * rx - _t1 * ry
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-    return _st, _sigma, _j2
-
-def crank_angle(theta, phi, off):
-    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    th0 = theta_the + phi_the + off
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
-    if not _c1.any():
-        _c2 = np.asarray(th0 > PI)
-        if not _c2.any():
-            _c3 = np.asarray(th0 <= -PI)
-            if not _c3.any():
-                _f1 = th0
-            elif _c3.all():
-                _f1 = th0 + 2 * PI
-            else:
-                _f1 = np.where(_c3, th0 + 2 * PI, th0)
-        elif _c2.all():
-            _f1 = th0 - 2 * PI
-        else:
-            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
-    elif _c1.all():
-        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
-    else:
-        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
-    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
-    return _st, _sigma, _angle
-
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
@@ -193,11 +143,61 @@ def offset_angle(phi, off):
     _angle = (_f1, phi_dthe, phi_ddthe)
     return _st, _sigma, _angle
 
-def PPR_links_still_pg(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct, st = cos_sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    _t1 = om * om
+    rax = -al * ry - _t1 * rx
+    ray = al * rx - _t1 * ry
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _j2 = (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+    return _st, _sigma, _j2
+
+def crank_angle_still_phi(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe, theta_ddthe)
+    return _st, _sigma, _angle
+
+def PPR_links_still_pg_psig(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
     """PPR chain: link b slides on the guide line (pg, psig) and shares a second prismatic pair, of axis psig + cx, with link a turning about jr.  (xa, ya): the pair's reference point on a from jr; (xb, yb): on b from b's slider point; both in the guide's frame.  sgn is +1 when a is the slider of the second pair.  Gives s1, jp1 on the guide and sx, jpx of the second pair."""
     jr_x, jr_y, jr_dx, jr_dy, jr_ddx, jr_ddy = jr
     pg_x, pg_y, _, _, _, _ = pg
-    psig_the, psig_dthe, psig_ddthe = psig
+    psig_the, _, _ = psig
     cg = np.cos(psig_the)
     sg = np.sin(psig_the)
     _t1 = psig_the + cx
@@ -230,47 +230,23 @@ def PPR_links_still_pg(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
     jp1y = pg_y + _t4
     acr = np.abs(cr)
     sigma = np.minimum(acr, 1)
-    _t5 = -psig_dthe
-    ravx = _t5 * ray
-    ravy = psig_dthe * rax
-    _t6 = -psig_ddthe
-    _t7 = psig_dthe * psig_dthe
-    raax = _t6 * ray - _t7 * rax
-    raay = psig_ddthe * rax - _t7 * ray
-    rbvx = _t5 * rby
-    rbvy = psig_dthe * rbx
-    rbax = _t6 * rby - _t7 * rbx
-    rbay = psig_ddthe * rbx - _t7 * rby
-    _t8 = jr_dx + ravx
-    _t9 = sv1 * psig_dthe
-    _t10 = _t9 * sg
-    k1x = _t8 - rbvx + _t10
-    _t11 = jr_dy + ravy
-    _t12 = _t9 * cg
-    k1y = _t11 - rbvy - _t12
-    ds1 = (k1x * sax - k1y * cax + psig_dthe * mu) * icr
-    _t13 = ds1 * cg
-    mvx = k1x - _t13
-    _t14 = ds1 * sg
-    mvy = k1y - _t14
+    k1x = jr_dx
+    k1y = jr_dy
+    ds1 = (k1x * sax - k1y * cax) * icr
+    _t5 = ds1 * cg
+    mvx = k1x - _t5
+    _t6 = ds1 * sg
+    mvy = k1y - _t6
     mvu = mvx * cax + mvy * sax
-    jp1vx = 0.0 + _t13 - _t10
-    jp1vy = 0.0 + _t14 + _t12
-    tn = 2 * ds1 * psig_dthe + sv1 * psig_ddthe
-    tu = _t9 * psig_dthe
-    _t15 = jr_ddx + raax
-    _t16 = tn * sg
-    _t17 = tu * cg
-    k2x = _t15 - rbax + _t16 + _t17
-    _t18 = jr_ddy + raay
-    _t19 = tn * cg
-    _t20 = tu * sg
-    k2y = _t18 - rbay - _t19 + _t20
-    dds1 = (k2x * sax - k2y * cax + 2 * psig_dthe * mvu + psig_ddthe * mu) * icr
-    _t21 = dds1 * cg
-    jp1ax = 0.0 + _t21 - _t16 - _t17
-    _t22 = dds1 * sg
-    jp1ay = 0.0 + _t22 + _t19 - _t20
+    jp1vx = _t5
+    jp1vy = _t6
+    k2x = jr_ddx
+    k2y = jr_ddy
+    dds1 = (k2x * sax - k2y * cax) * icr
+    _t7 = dds1 * cg
+    jp1ax = _t7
+    _t8 = dds1 * sg
+    jp1ay = _t8
     _c2 = np.asarray(_t2)
     if not _c2.any():
         _c3 = np.asarray(sigma < 1e-07)
@@ -295,52 +271,52 @@ def PPR_links_still_pg(jr, pg, psig, xa, ya, xb, yb, cx, sgn):
     _sigma = np.asarray(_sigma, dtype=REAL)
     _fails = _st == 1
     _singular = _fails | (_st == 3)
-    _t23 = sgn > 0
-    _c5 = np.asarray(_t23)
+    _t9 = sgn > 0
+    _c5 = np.asarray(_t9)
     if not _c5.any():
         _f13 = jp1x + rbx
     elif _c5.all():
         _f13 = pax
     else:
         _f13 = np.where(_c5, pax, jp1x + rbx)
-    _c6 = np.asarray(_t23)
+    _c6 = np.asarray(_t9)
     if not _c6.any():
         _f14 = jp1y + rby
     elif _c6.all():
         _f14 = pay
     else:
         _f14 = np.where(_c6, pay, jp1y + rby)
-    _c7 = np.asarray(_t23)
+    _c7 = np.asarray(_t9)
     if not _c7.any():
-        _f15 = jp1vx + rbvx
+        _f15 = jp1vx
     elif _c7.all():
-        _f15 = _t8
+        _f15 = jr_dx
     else:
-        _f15 = np.where(_c7, _t8, jp1vx + rbvx)
-    _c8 = np.asarray(_t23)
+        _f15 = np.where(_c7, jr_dx, jp1vx)
+    _c8 = np.asarray(_t9)
     if not _c8.any():
-        _f16 = jp1vy + rbvy
+        _f16 = jp1vy
     elif _c8.all():
-        _f16 = _t11
+        _f16 = jr_dy
     else:
-        _f16 = np.where(_c8, _t11, jp1vy + rbvy)
-    _c9 = np.asarray(_t23)
+        _f16 = np.where(_c8, jr_dy, jp1vy)
+    _c9 = np.asarray(_t9)
     if not _c9.any():
-        _f17 = jp1ax + rbax
+        _f17 = jp1ax
     elif _c9.all():
-        _f17 = _t15
+        _f17 = jr_ddx
     else:
-        _f17 = np.where(_c9, _t15, jp1ax + rbax)
-    _c10 = np.asarray(_t23)
+        _f17 = np.where(_c9, jr_ddx, jp1ax)
+    _c10 = np.asarray(_t9)
     if not _c10.any():
-        _f18 = jp1ay + rbay
+        _f18 = jp1ay
     elif _c10.all():
-        _f18 = _t18
+        _f18 = jr_ddy
     else:
-        _f18 = np.where(_c10, _t18, jp1ay + rbay)
+        _f18 = np.where(_c10, jr_ddy, jp1ay)
     _s1 = (sv1, ds1, dds1)
     _jp1 = (jp1x, jp1y, jp1vx, jp1vy, jp1ax, jp1ay)
-    _sx = (sgn * mu, sgn * mvu, sgn * ((k2x - _t21) * cax + (k2y - _t22) * sax + psig_dthe * (cax * mvy - sax * mvx)))
+    _sx = (sgn * mu, sgn * mvu, sgn * ((k2x - _t7) * cax + (k2y - _t8) * sax))
     _jpx = (_f13, _f14, _f15, _f16, _f17, _f18)
     if _singular.any():  # nan where the rows failed
         _s1 = (np.where(_fails, np.nan, _s1[0]), np.where(_singular, np.nan, _s1[1]), np.where(_singular, np.nan, _s1[2]))
@@ -674,12 +650,12 @@ def _run(x, dx, ddx, c):
     report = []
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
     # Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
-    _, _, w.p_A = crank_input(w.p_O, c["step2.l"], w.in1, w.ref_O)
+    _, _, w.p_A = crank_input_still_j1_phi(w.p_O, c["step2.l"], w.in1, w.ref_O)
     # Step 3: PPR_links, P. the slider yoke rides on the known line Q and carries the slide P of block, which turns about the known A: a PPR two-link chain (one solution)
-    st, sigma[3], w.s_Q, w.p_Q, w.s_P, w.p_P = PPR_links_still_pg(w.p_A, w.g_Q, w.psi_Q, c["step3.xa"], c["step3.ya"], c["step3.xb"], c["step3.yb"], c["step3.cx"], 1)
+    st, sigma[3], w.s_Q, w.p_Q, w.s_P, w.p_P = PPR_links_still_pg_psig(w.p_A, w.g_Q, w.psi_Q, c["step3.xa"], c["step3.ya"], c["step3.xb"], c["step3.yb"], c["step3.cx"], 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
-    _, _, w.phi_crank = crank_angle(w.in1, w.ref_O, c["step4.off"])
+    _, _, w.phi_crank = crank_angle_still_phi(w.in1, w.ref_O, c["step4.off"])
     # Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide
     _, _, w.phi_yoke = offset_angle(w.phi_frame, c["step5.off"])
     # Step 6: offset_angle, block. link block keeps a constant angle to its slide

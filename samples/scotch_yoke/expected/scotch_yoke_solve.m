@@ -78,10 +78,10 @@ function [status, w] = run(w, in, din, ddin)
     % Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     % Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
-    w.p_A = crank_input(w.p_O, 25.0, w.in1, w.ref_O);
+    w.p_A = crank_input_still_j1_phi(w.p_O, 25.0, w.in1, w.ref_O);
 
     % Step 3: PPR_links, P. the slider yoke rides on the known line Q and carries the slide P of block, which turns about the known A: a PPR two-link chain (one solution)
-    [w.s_Q, w.p_Q, w.s_P, w.p_P, st, w.sigma(3)] = PPR_links(w.p_A, w.g_Q, w.psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1);
+    [w.s_Q, w.p_Q, w.s_P, w.p_P, st, w.sigma(3)] = PPR_links_still_pg_psig(w.p_A, w.g_Q, w.psi_Q, 0.0, 0.0, -65.0, 20.0, 1.5707963267948966, 1);
     if st == 1
         status = 31;
         return;
@@ -89,7 +89,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 33, -34);
 
     % Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
-    w.phi_crank = crank_angle(w.in1, w.ref_O, 0.0);
+    w.phi_crank = crank_angle_still_phi(w.in1, w.ref_O, 0.0);
 
     % Step 5: offset_angle, yoke. link yoke keeps a constant angle to its slide
     w.phi_yoke = offset_angle(w.phi_frame, -0.2984989315861793);
@@ -230,44 +230,6 @@ function out = publish(w, status, in)
     out.columns = [in(:)', out.O.x, out.O.y, out.O.vx, out.O.vy, out.O.ax, out.O.ay, out.A.x, out.A.y, out.A.vx, out.A.vy, out.A.ax, out.A.ay, out.P.x, out.P.y, out.P.vx, out.P.vy, out.P.ax, out.P.ay, out.Q.x, out.Q.y, out.Q.vx, out.Q.vy, out.Q.ax, out.Q.ay, out.frame.phi, out.frame.omega, out.frame.alpha, out.crank.phi, out.crank.omega, out.crank.alpha, out.yoke.phi, out.yoke.omega, out.yoke.alpha, out.block.phi, out.block.omega, out.block.alpha, out.P.s, out.P.ds, out.P.dds, out.Q.s, out.Q.ds, out.Q.dds];
 end
 
-function j2 = crank_input(j1, l, theta, phi)
-    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
-    t = theta.the + phi.the;
-    ct = cos(t);
-    st = sin(t);
-    rx = l * ct;
-    ry = l * st;
-    om = theta.dthe + phi.dthe;
-    al = theta.ddthe + phi.ddthe;
-    rvx = -om * ry;
-    rvy = om * rx;
-    rax = -al * ry - om * om * rx;
-    ray = al * rx - om * om * ry;
-    j2.x = j1.x + rx;
-    j2.y = j1.y + ry;
-    j2.dx = j1.dx + rvx;
-    j2.dy = j1.dy + rvy;
-    j2.ddx = j1.ddx + rax;
-    j2.ddy = j1.ddy + ray;
-end
-
-function angle = crank_angle(theta, phi, off)
-    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
-    th0 = theta.the + phi.the + off;
-    if abs(th0) >= 3 * pi
-        th = atan2(sin(th0), cos(th0));
-    elseif th0 > pi
-        th = th0 - 2 * pi;
-    elseif th0 <= -pi
-        th = th0 + 2 * pi;
-    else
-        th = th0;
-    end
-    angle.the = th;
-    angle.dthe = theta.dthe + phi.dthe;
-    angle.ddthe = theta.ddthe + phi.ddthe;
-end
-
 function angle = offset_angle(phi, off)
     % Angle of a link that keeps a constant angle off to a known angle phi.
     th0 = phi.the + off;
@@ -283,7 +245,45 @@ function angle = offset_angle(phi, off)
     angle.ddthe = phi.ddthe;
 end
 
-function [s1, jp1, sx, jpx, st, sigma] = PPR_links(jr, pg, psig, xa, ya, xb, yb, cx, sgn)
+function j2 = crank_input_still_j1_phi(j1, l, theta, phi)
+    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
+    t = theta.the + phi.the;
+    ct = cos(t);
+    st = sin(t);
+    rx = l * ct;
+    ry = l * st;
+    om = theta.dthe;
+    al = theta.ddthe;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    j2.x = j1.x + rx;
+    j2.y = j1.y + ry;
+    j2.dx = rvx;
+    j2.dy = rvy;
+    j2.ddx = rax;
+    j2.ddy = ray;
+end
+
+function angle = crank_angle_still_phi(theta, phi, off)
+    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
+    th0 = theta.the + phi.the + off;
+    if abs(th0) >= 3 * pi
+        th = atan2(sin(th0), cos(th0));
+    elseif th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    angle.the = th;
+    angle.dthe = theta.dthe;
+    angle.ddthe = theta.ddthe;
+end
+
+function [s1, jp1, sx, jpx, st, sigma] = PPR_links_still_pg_psig(jr, pg, psig, xa, ya, xb, yb, cx, sgn)
     % PPR chain: link b slides on the guide line (pg, psig) and shares a second prismatic pair, of axis psig + cx, with link a turning about jr.  (xa, ya): the pair's reference point on a from jr; (xb, yb): on b from b's slider point; both in the guide's frame.  sgn is +1 when a is the slider of the second pair.  Gives s1, jp1 on the guide and sx, jpx of the second pair.
     cg = cos(psig.the);
     sg = sin(psig.the);
@@ -313,29 +313,19 @@ function [s1, jp1, sx, jpx, st, sigma] = PPR_links(jr, pg, psig, xa, ya, xb, yb,
     pby = jp1y + rby;
     acr = abs(cr);
     sigma = min(acr, 1);
-    ravx = -psig.dthe * ray;
-    ravy = psig.dthe * rax;
-    raax = -psig.ddthe * ray - psig.dthe * psig.dthe * rax;
-    raay = psig.ddthe * rax - psig.dthe * psig.dthe * ray;
-    rbvx = -psig.dthe * rby;
-    rbvy = psig.dthe * rbx;
-    rbax = -psig.ddthe * rby - psig.dthe * psig.dthe * rbx;
-    rbay = psig.ddthe * rbx - psig.dthe * psig.dthe * rby;
-    k1x = jr.dx + ravx - pg.dx - rbvx + sv1 * psig.dthe * sg;
-    k1y = jr.dy + ravy - pg.dy - rbvy - sv1 * psig.dthe * cg;
-    ds1 = (k1x * sax - k1y * cax + psig.dthe * mu) * icr;
+    k1x = jr.dx;
+    k1y = jr.dy;
+    ds1 = (k1x * sax - k1y * cax) * icr;
     mvx = k1x - ds1 * cg;
     mvy = k1y - ds1 * sg;
     mvu = mvx * cax + mvy * sax;
-    jp1vx = pg.dx + ds1 * cg - sv1 * psig.dthe * sg;
-    jp1vy = pg.dy + ds1 * sg + sv1 * psig.dthe * cg;
-    tn = 2 * ds1 * psig.dthe + sv1 * psig.ddthe;
-    tu = sv1 * psig.dthe * psig.dthe;
-    k2x = jr.ddx + raax - pg.ddx - rbax + tn * sg + tu * cg;
-    k2y = jr.ddy + raay - pg.ddy - rbay - tn * cg + tu * sg;
-    dds1 = (k2x * sax - k2y * cax + 2 * psig.dthe * mvu + psig.ddthe * mu) * icr;
-    jp1ax = pg.ddx + dds1 * cg - tn * sg - tu * cg;
-    jp1ay = pg.ddy + dds1 * sg + tn * cg - tu * sg;
+    jp1vx = ds1 * cg;
+    jp1vy = ds1 * sg;
+    k2x = jr.ddx;
+    k2y = jr.ddy;
+    dds1 = (k2x * sax - k2y * cax) * icr;
+    jp1ax = dds1 * cg;
+    jp1ay = dds1 * sg;
     if sgn > 0
         jxx = pax;
     else
@@ -347,24 +337,24 @@ function [s1, jp1, sx, jpx, st, sigma] = PPR_links(jr, pg, psig, xa, ya, xb, yb,
         jxy = pby;
     end
     if sgn > 0
-        jxdx = jr.dx + ravx;
+        jxdx = jr.dx;
     else
-        jxdx = jp1vx + rbvx;
+        jxdx = jp1vx;
     end
     if sgn > 0
-        jxdy = jr.dy + ravy;
+        jxdy = jr.dy;
     else
-        jxdy = jp1vy + rbvy;
+        jxdy = jp1vy;
     end
     if sgn > 0
-        jxddx = jr.ddx + raax;
+        jxddx = jr.ddx;
     else
-        jxddx = jp1ax + rbax;
+        jxddx = jp1ax;
     end
     if sgn > 0
-        jxddy = jr.ddy + raay;
+        jxddy = jr.ddy;
     else
-        jxddy = jp1ay + rbay;
+        jxddy = jp1ay;
     end
     if cr == 0
         st = 1;
@@ -386,7 +376,7 @@ function [s1, jp1, sx, jpx, st, sigma] = PPR_links(jr, pg, psig, xa, ya, xb, yb,
     jp1.ddy = jp1ay;
     sx.v = sgn * mu;
     sx.dv = sgn * mvu;
-    sx.ddv = sgn * ((k2x - dds1 * cg) * cax + (k2y - dds1 * sg) * sax + psig.dthe * (cax * mvy - sax * mvx));
+    sx.ddv = sgn * ((k2x - dds1 * cg) * cax + (k2y - dds1 * sg) * sax);
     jpx.x = jxx;
     jpx.y = jxy;
     jpx.dx = jxdx;

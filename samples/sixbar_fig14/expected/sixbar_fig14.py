@@ -193,24 +193,6 @@ POLICY = SimpleNamespace(  # the resolver's policy, lengths relative to the leng
 
 # -- the mech.cpp functions this procedure uses -------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct = cos(t)
-    st = sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    rax = -al * ry - om * om * rx
-    ray = al * rx - om * om * ry
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-
 def link_angle(j1, j2, off):
     """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -231,14 +213,6 @@ def link_angle(j1, j2, off):
     if st == 1:
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
-
-def crank_angle(theta, phi, off):
-    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    th0 = theta_the + phi_the + off
-    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
-    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
 
 def link_point(j1, j2, gsi, eta):
     """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
@@ -356,6 +330,53 @@ def link_residual(j1, j2, l):
     rp = sqrt(dax * dax + day * day) if s == 0 else (dvx * dax + dvy * day) * iv
     rdd = rp if r == 0 else (dvx * dvx + dvy * dvy + (dx * dax + dy * day) - rd * rd) * ir
     return (r - l_v, rd - l_dv, rdd - l_ddv)
+
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct = cos(t)
+    st = sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    return (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+
+def link_angle_still_j1(j1, j2, off):
+    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
+    j1_x, j1_y, _, _, _, _ = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
+    r2 = dx * dx + dy * dy
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    ir2 = NAN if r2 == 0 else 1 / r2
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN)
+    return st, (th, om, al)
+
+def crank_angle_still_phi(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    th0 = theta_the + phi_the + off
+    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    return (th, theta_dthe, theta_ddthe)
 
 def reason_of(code):
     """The reason of a status code (linkgen/status.py): the last digit of a positive code
@@ -2822,19 +2843,19 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, J6. J7 is known and link frame is placed, so the input angle theta_J7 turns link crank to J6
-    # crank_input(p_J7, 20.0, w.in1, ref_J7), inline
+    # crank_input_still_j1_phi(p_J7, 20.0, w.in1, ref_J7), inline
     _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 20.0 * _ct
     _ry = 20.0 * _st
-    _om = _in1_dthe + 0.0
-    _al = _in1_ddthe + 0.0
+    _om = _in1_dthe
+    _al = _in1_ddthe
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    _p_J6_x, _p_J6_y, _p_J6_dx, _p_J6_dy, _p_J6_ddx, _p_J6_ddy = w.p_J6 = ((-84.0) + _rx, 32.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_J6_x, _p_J6_y, _p_J6_dx, _p_J6_dy, _p_J6_ddx, _p_J6_ddy = w.p_J6 = ((-84.0) + _rx, 32.0 + _ry, _rvx, _rvy, _rax, _ray)
 
     # Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
@@ -2887,14 +2908,14 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
 
 
     # Step 9: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is known
-    # link_angle(p_J1, w.p_J2, 0.0), inline
+    # link_angle_still_j1(p_J1, w.p_J2, 0.0), inline
     _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_J2
     _dx = _j2_x - (-24.0)
     _dy = _j2_y - (-48.0)
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dvx = _j2_dx
+    _dvy = _j2_dy
+    _dax = _j2_ddx
+    _day = _j2_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
     _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
@@ -2936,14 +2957,14 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
         w.note(st, 103, -104)
 
     # Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is known
-    # link_angle(p_J3, w.p_J4, 0.0), inline
+    # link_angle_still_j1(p_J3, w.p_J4, 0.0), inline
     _j2_x, _j2_y, _j2_dx, _j2_dy, _j2_ddx, _j2_ddy = w.p_J4
     _dx = _j2_x - 76.0
     _dy = _j2_y - (-48.0)
-    _dvx = _j2_dx - 0.0
-    _dvy = _j2_dy - 0.0
-    _dax = _j2_ddx - 0.0
-    _day = _j2_ddy - 0.0
+    _dvx = _j2_dx
+    _dvy = _j2_dy
+    _dax = _j2_ddx
+    _day = _j2_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
     _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
@@ -2984,10 +3005,10 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
         w.note(st, 123, -124)
 
     # Step 13: crank_angle, crank. the input theta_J7 turns link crank, so its angle is the input's
-    # crank_angle(w.in1, ref_J7, 0.0), inline
+    # crank_angle_still_phi(w.in1, ref_J7, 0.0), inline
     _th0 = _in1_the + 0.0 + 0.0
     _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
-    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe + 0.0, _in1_ddthe + 0.0)
+    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe, _in1_ddthe)
 
     return w.singular or w.near
 

@@ -117,7 +117,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
     % Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     % Step 2: crank_input, J6. J7 is known and link frame is placed, so the input angle theta_J7 turns link crank to J6
-    w.p_J6 = crank_input(w.p_J7, 20.0, w.in1, w.ref_J7);
+    w.p_J6 = crank_input_still_j1_phi(w.p_J7, 20.0, w.in1, w.ref_J7);
 
     % Step 3: add_link, add1. no two-link chain is computable, so the Add-link add1 joins the known J6 to the unknown J4
 
@@ -168,7 +168,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
 
 
     % Step 9: link_angle, rocker1. J1 and J2 of link rocker1 are known, so its angle is known
-    [w.phi_rocker1, st] = link_angle(w.p_J1, w.p_J2, 0.0);
+    [w.phi_rocker1, st] = link_angle_still_j1(w.p_J1, w.p_J2, 0.0);
     if st == 1
         status = 91;
         return;
@@ -184,7 +184,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
     w = note(w, st, 103, -104);
 
     % Step 11: link_angle, rocker2. J3 and J4 of link rocker2 are known, so its angle is known
-    [w.phi_rocker2, st] = link_angle(w.p_J3, w.p_J4, 0.0);
+    [w.phi_rocker2, st] = link_angle_still_j1(w.p_J3, w.p_J4, 0.0);
     if st == 1
         status = 111;
         return;
@@ -200,7 +200,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
     w = note(w, st, 123, -124);
 
     % Step 13: crank_angle, crank. the input theta_J7 turns link crank, so its angle is the input's
-    w.phi_crank = crank_angle(w.in1, w.ref_J7, 0.0);
+    w.phi_crank = crank_angle_still_phi(w.in1, w.ref_J7, 0.0);
 
     if w.singular > 0
         status = w.singular;
@@ -951,27 +951,6 @@ function out = publish(w, status, in)
     out.columns = [in(:)', out.J1.x, out.J1.y, out.J1.vx, out.J1.vy, out.J1.ax, out.J1.ay, out.J2.x, out.J2.y, out.J2.vx, out.J2.vy, out.J2.ax, out.J2.ay, out.J3.x, out.J3.y, out.J3.vx, out.J3.vy, out.J3.ax, out.J3.ay, out.J4.x, out.J4.y, out.J4.vx, out.J4.vy, out.J4.ax, out.J4.ay, out.J5.x, out.J5.y, out.J5.vx, out.J5.vy, out.J5.ax, out.J5.ay, out.J6.x, out.J6.y, out.J6.vx, out.J6.vy, out.J6.ax, out.J6.ay, out.J7.x, out.J7.y, out.J7.vx, out.J7.vy, out.J7.ax, out.J7.ay, out.rocker1.phi, out.rocker1.omega, out.rocker1.alpha, out.ternary.phi, out.ternary.omega, out.ternary.alpha, out.rocker2.phi, out.rocker2.omega, out.rocker2.alpha, out.coupler.phi, out.coupler.omega, out.coupler.alpha, out.crank.phi, out.crank.omega, out.crank.alpha, out.frame.phi, out.frame.omega, out.frame.alpha];
 end
 
-function j2 = crank_input(j1, l, theta, phi)
-    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
-    t = theta.the + phi.the;
-    ct = cos(t);
-    st = sin(t);
-    rx = l * ct;
-    ry = l * st;
-    om = theta.dthe + phi.dthe;
-    al = theta.ddthe + phi.ddthe;
-    rvx = -om * ry;
-    rvy = om * rx;
-    rax = -al * ry - om * om * rx;
-    ray = al * rx - om * om * ry;
-    j2.x = j1.x + rx;
-    j2.y = j1.y + ry;
-    j2.dx = j1.dx + rvx;
-    j2.dy = j1.dy + rvy;
-    j2.ddx = j1.ddx + rax;
-    j2.ddy = j1.ddy + ray;
-end
-
 function [angle, st] = link_angle(j1, j2, off)
     % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
     dx = j2.x - j1.x;
@@ -1009,23 +988,6 @@ function [angle, st] = link_angle(j1, j2, off)
         angle.dthe = NaN;
         angle.ddthe = NaN;
     end
-end
-
-function angle = crank_angle(theta, phi, off)
-    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
-    th0 = theta.the + phi.the + off;
-    if abs(th0) >= 3 * pi
-        th = atan2(sin(th0), cos(th0));
-    elseif th0 > pi
-        th = th0 - 2 * pi;
-    elseif th0 <= -pi
-        th = th0 + 2 * pi;
-    else
-        th = th0;
-    end
-    angle.the = th;
-    angle.dthe = theta.dthe + phi.dthe;
-    angle.ddthe = theta.ddthe + phi.ddthe;
 end
 
 function [jc, st] = link_point(j1, j2, gsi, eta)
@@ -1253,6 +1215,83 @@ function f = link_residual(j1, j2, l)
     f.v = r - l.v;
     f.dv = rd - l.dv;
     f.ddv = rdd - l.ddv;
+end
+
+function j2 = crank_input_still_j1_phi(j1, l, theta, phi)
+    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
+    t = theta.the + phi.the;
+    ct = cos(t);
+    st = sin(t);
+    rx = l * ct;
+    ry = l * st;
+    om = theta.dthe;
+    al = theta.ddthe;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    j2.x = j1.x + rx;
+    j2.y = j1.y + ry;
+    j2.dx = rvx;
+    j2.dy = rvy;
+    j2.ddx = rax;
+    j2.ddy = ray;
+end
+
+function [angle, st] = link_angle_still_j1(j1, j2, off)
+    % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx;
+    dvy = j2.dy;
+    dax = j2.ddx;
+    day = j2.ddy;
+    r2 = dx * dx + dy * dy;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    if r2 == 0
+        ir2 = NaN;
+    else
+        ir2 = 1 / r2;
+    end
+    om = (dx * dvy - dy * dvx) * ir2;
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
+    angle.the = th;
+    angle.dthe = om;
+    angle.ddthe = al;
+    if st == 1
+        angle.the = NaN;
+        angle.dthe = NaN;
+        angle.ddthe = NaN;
+    end
+end
+
+function angle = crank_angle_still_phi(theta, phi, off)
+    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
+    th0 = theta.the + phi.the + off;
+    if abs(th0) >= 3 * pi
+        th = atan2(sin(th0), cos(th0));
+    elseif th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    angle.the = th;
+    angle.dthe = theta.dthe;
+    angle.ddthe = theta.ddthe;
 end
 
 function r = reason_of(code)

@@ -11,93 +11,6 @@ typedef struct { VEC2 P, DP, DDP; } POINT;
 typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
-/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-#if defined(__GNUC__)
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
-#endif
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
-{
-    const double t = theta->the + phi->the;
-    const double ct = cos(t);
-    const double st = sin(t);
-    const double rx = l * ct;
-    const double ry = l * st;
-    const double om = theta->dthe + phi->dthe;
-    const double al = theta->ddthe + phi->ddthe;
-    const double rvx = -om * ry;
-    const double rvy = om * rx;
-    const double rax = -al * ry - om * om * rx;
-    const double ray = al * rx - om * om * ry;
-    j2->P.x = j1->P.x + rx;
-    j2->P.y = j1->P.y + ry;
-    j2->DP.x = j1->DP.x + rvx;
-    j2->DP.y = j1->DP.y + rvy;
-    j2->DDP.x = j1->DDP.x + rax;
-    j2->DDP.y = j1->DDP.y + ray;
-}
-
-/* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
-#if defined(__GNUC__)
-static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
-#endif
-static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
-{
-    const double dx = j2->P.x - j1->P.x;
-    const double dy = j2->P.y - j1->P.y;
-    const double dvx = j2->DP.x - j1->DP.x;
-    const double dvy = j2->DP.y - j1->DP.y;
-    const double dax = j2->DDP.x - j1->DDP.x;
-    const double day = j2->DDP.y - j1->DDP.y;
-    const double r2 = dx * dx + dy * dy;
-    const double th0 = atan2(dy, dx) + off;
-    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
-    const double ir2 = r2 == 0 ? NAN : 1 / r2;
-    const double om = (dx * dvy - dy * dvx) * ir2;
-    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
-    const int st = r2 == 0 ? 1 : 0;
-    if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; return st; }
-    angle->the = th;
-    angle->dthe = om;
-    angle->ddthe = al;
-    return st;
-}
-
-/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
-#if defined(__GNUC__)
-static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
-#endif
-static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
-{
-    const double dx = j2->P.x - j1->P.x;
-    const double dy = j2->P.y - j1->P.y;
-    const double dvx = j2->DP.x - j1->DP.x;
-    const double dvy = j2->DP.y - j1->DP.y;
-    const double dax = j2->DDP.x - j1->DDP.x;
-    const double day = j2->DDP.y - j1->DDP.y;
-    const double r2 = dx * dx + dy * dy;
-    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
-    const double ex = ir * dx;
-    const double ey = ir * dy;
-    const double rx = gsi * ex - eta * ey;
-    const double ry = gsi * ey + eta * ex;
-    const double ir2 = ir * ir;
-    const double om = (dx * dvy - dy * dvx) * ir2;
-    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
-    const double rvx = -om * ry;
-    const double rvy = om * rx;
-    const double rax = -al * ry - om * om * rx;
-    const double ray = al * rx - om * om * ry;
-    const int st = r2 == 0 ? 1 : 0;
-    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; return st; }
-    jc->P.x = j1->P.x + rx;
-    jc->P.y = j1->P.y + ry;
-    jc->DP.x = j1->DP.x + rvx;
-    jc->DP.y = j1->DP.y + rvy;
-    jc->DDP.x = j1->DDP.x + rax;
-    jc->DDP.y = j1->DDP.y + ray;
-    return st;
-}
-
 /* Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows). */
 #if defined(__GNUC__)
 static inline int pair_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc) __attribute__((always_inline));
@@ -128,11 +41,98 @@ static inline int pair_point(const POINT *j1, const POINT *j2, double along, dou
     return st;
 }
 
+/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
+{
+    const double t = theta->the + phi->the;
+    const double ct = cos(t);
+    const double st = sin(t);
+    const double rx = l * ct;
+    const double ry = l * st;
+    const double om = theta->dthe;
+    const double al = theta->ddthe;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = rvx;
+    j2->DP.y = rvy;
+    j2->DDP.x = rax;
+    j2->DDP.y = ray;
+}
+
+/* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
+#if defined(__GNUC__)
+static inline int link_angle_still_j1(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
+static inline int link_angle_still_j1(const POINT *j1, const POINT *j2, double off, ANGLE *angle)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x;
+    const double dvy = j2->DP.y;
+    const double dax = j2->DDP.x;
+    const double day = j2->DDP.y;
+    const double r2 = dx * dx + dy * dy;
+    const double th0 = atan2(dy, dx) + off;
+    const double th = th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
+    const double ir2 = r2 == 0 ? NAN : 1 / r2;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    const int st = r2 == 0 ? 1 : 0;
+    if (st == 1) { angle->the = NAN; angle->dthe = NAN; angle->ddthe = NAN; return st; }
+    angle->the = th;
+    angle->dthe = om;
+    angle->ddthe = al;
+    return st;
+}
+
+/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
+#if defined(__GNUC__)
+static inline int link_point_still_j1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+#endif
+static inline int link_point_still_j1(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x;
+    const double dvy = j2->DP.y;
+    const double dax = j2->DDP.x;
+    const double day = j2->DDP.y;
+    const double r2 = dx * dx + dy * dy;
+    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
+    const double ex = ir * dx;
+    const double ey = ir * dy;
+    const double rx = gsi * ex - eta * ey;
+    const double ry = gsi * ey + eta * ex;
+    const double ir2 = ir * ir;
+    const double om = (dx * dvy - dy * dvx) * ir2;
+    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    const int st = r2 == 0 ? 1 : 0;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; return st; }
+    jc->P.x = j1->P.x + rx;
+    jc->P.y = j1->P.y + ry;
+    jc->DP.x = rvx;
+    jc->DP.y = rvy;
+    jc->DDP.x = rax;
+    jc->DDP.y = ray;
+    return st;
+}
+
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
 #if defined(__GNUC__)
-static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
+static inline int RRR_links_still_j2_l1_l2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
 #endif
-static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
+static inline int RRR_links_still_j2_l1_l2(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -171,21 +171,18 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
     const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double ar = ((3 * o1 > s2) & (3 * o2 > dd)) ? ao : a * iq;
     const double a2r = ((3 * o1 > s2) & (3 * o2 > dd)) ? (dd - c) * idd2 : a2 * iq;
-    const double e2x = -a2r * dx + area4 * mx;
-    const double e2y = -a2r * dy + area4 * my;
     const double sdx = 2 * idd2 * dx;
     const double sdy = 2 * idd2 * dy;
     const double ihq = area4 == 0 ? NAN : 2 * minv / area4;
     const double tnx = -ihq * dy;
     const double tny = ihq * dx;
-    const double r1v = l1->v * l1->dv + (e1x * j1->DP.x + e1y * j1->DP.y);
-    const double r2v = l2->v * l2->dv + (e2x * j2->DP.x + e2y * j2->DP.y);
-    const double buv = r1v - r2v;
-    const double bnv = a2r * r1v + ar * r2v;
+    const double r1v = e1x * j1->DP.x + e1y * j1->DP.y;
+    const double buv = r1v;
+    const double bnv = a2r * r1v;
     const double bvx = buv * sdx + bnv * tnx;
     const double bvy = buv * sdy + bnv * tny;
-    const double r1a = l1->v * l1->ddv + l1->dv * l1->dv + (e1x * j1->DDP.x + e1y * j1->DDP.y) - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y));
-    const double r2a = l2->v * l2->ddv + l2->dv * l2->dv + (e2x * j2->DDP.x + e2y * j2->DDP.y) - ((bvx - j2->DP.x) * (bvx - j2->DP.x) + (bvy - j2->DP.y) * (bvy - j2->DP.y));
+    const double r1a = e1x * j1->DDP.x + e1y * j1->DDP.y - ((bvx - j1->DP.x) * (bvx - j1->DP.x) + (bvy - j1->DP.y) * (bvy - j1->DP.y));
+    const double r2a = -(bvx * bvx + bvy * bvy);
     const double bua = r1a - r2a;
     const double bna = a2r * r1a + ar * r2a;
     const double bax = bua * sdx + bna * tnx;
@@ -205,9 +202,9 @@ static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1
 
 /* 2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side. */
 #if defined(__GNUC__)
-static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out) __attribute__((always_inline));
+static inline int PRR_links_still_l_pg_psig(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out) __attribute__((always_inline));
 #endif
-static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out)
+static inline int PRR_links_still_l_pg_psig(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out)
 {
     const double cg = cos(psig->the);
     const double sg = sin(psig->the);
@@ -233,25 +230,18 @@ static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg,
     const double ratio = rd == 0 ? 0 : rd * (1 / l->v);
     const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double ieu = eu == 0 ? NAN : 1 / eu;
-    const double sgsi = sv + gsi;
-    const double relvx = pg->DP.x - jr->DP.x;
-    const double relvy = pg->DP.y - jr->DP.y;
-    const double ds = (l->v * l->dv - (ex * relvx + ey * relvy) - psig->dthe * (sgsi * -pn - eta * eu)) * ieu;
-    const double jpvx = pg->DP.x + ds * cg - sv * psig->dthe * sg;
-    const double jpvy = pg->DP.y + ds * sg + sv * psig->dthe * cg;
-    const double rvx = -psig->dthe * ry;
-    const double rvy = psig->dthe * rx;
-    const double rax = -psig->ddthe * ry - psig->dthe * psig->dthe * rx;
-    const double ray = psig->ddthe * rx - psig->dthe * psig->dthe * ry;
-    const double jbvx = jpvx + rvx;
-    const double jbvy = jpvy + rvy;
-    const double relax = pg->DDP.x - jr->DDP.x;
-    const double relay = pg->DDP.y - jr->DDP.y;
-    const double om2 = psig->dthe * psig->dthe;
-    const double dds = (l->v * l->ddv + l->dv * l->dv - ((jbvx - jr->DP.x) * (jbvx - jr->DP.x) + (jbvy - jr->DP.y) * (jbvy - jr->DP.y)) - (ex * relax + ey * relay) - 2 * ds * psig->dthe * -pn - sgsi * (psig->ddthe * -pn - om2 * eu) + eta * (psig->ddthe * eu + om2 * -pn)) * ieu;
-    const double tn = 2 * ds * psig->dthe + sv * psig->ddthe;
-    const double jpax = pg->DDP.x + dds * cg - tn * sg - sv * om2 * cg;
-    const double jpay = pg->DDP.y + dds * sg + tn * cg - sv * om2 * sg;
+    const double relvx = -jr->DP.x;
+    const double relvy = -jr->DP.y;
+    const double ds = -(ex * relvx + ey * relvy) * ieu;
+    const double jpvx = ds * cg;
+    const double jpvy = ds * sg;
+    const double jbvx = jpvx;
+    const double jbvy = jpvy;
+    const double relax = -jr->DDP.x;
+    const double relay = -jr->DDP.y;
+    const double dds = (-((jbvx - jr->DP.x) * (jbvx - jr->DP.x) + (jbvy - jr->DP.y) * (jbvy - jr->DP.y)) - (ex * relax + ey * relay)) * ieu;
+    const double jpax = dds * cg;
+    const double jpay = dds * sg;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
     *sigma_out = sigma;
     if (st == 1) { s->v = NAN; s->dv = NAN; s->ddv = NAN; jp->P.x = NAN; jp->P.y = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
@@ -269,8 +259,8 @@ static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg,
     jb->P.y = jby;
     jb->DP.x = jbvx;
     jb->DP.y = jbvy;
-    jb->DDP.x = jpax + rax;
-    jb->DDP.y = jpay + ray;
+    jb->DDP.x = jpax;
+    jb->DDP.y = jpay;
     return st;
 }
 
@@ -410,23 +400,23 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A */
-    crank_input(&p_O1, 27.730849247724095, &w->in1, &ref_O1, &w->p_A);
+    crank_input_still_j1_phi(&p_O1, 27.730849247724095, &w->in1, &ref_O1, &w->p_A);
 
 
     /* Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known */
-    st = RRR_links(&w->p_A, &p_O2, &l_coupler, &l_rocker_B_O2, 1, &w->p_B, &out->sigma[3]);
+    st = RRR_links_still_j2_l1_l2(&w->p_A, &p_O2, &l_coupler, &l_rocker_B_O2, 1, &w->p_B, &out->sigma[3]);
     if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
 
     /* Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it */
-    st = link_point(&p_O2, &w->p_B, 25.307692307692307, -48.46153846153846, &w->p_C);
+    st = link_point_still_j1(&p_O2, &w->p_B, 25.307692307692307, -48.46153846153846, &w->p_C);
     if (st == 1) return failed(out, 41, 4);
     note(w, st, 43, -44);
 
 
     /* Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known */
-    st = PRR_links(&w->p_C, &l_rod, &g_S, &psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_D, &out->sigma[5]);
+    st = PRR_links_still_l_pg_psig(&w->p_C, &l_rod, &g_S, &psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_D, &out->sigma[5]);
     if (st == 1) return failed(out, 51, 5);
     note(w, st, 53, -54);
 
@@ -438,7 +428,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known */
-    st = link_angle(&p_O2, &w->p_B, 0.0, &w->phi_rocker);
+    st = link_angle_still_j1(&p_O2, &w->p_B, 0.0, &w->phi_rocker);
     if (st == 1) return failed(out, 91, 9);
     note(w, st, 93, -94);
 

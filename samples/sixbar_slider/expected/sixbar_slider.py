@@ -77,73 +77,6 @@ _FIXED = {  # every output column: those of the fixed sketch with their values, 
 
 # -- the mech.cpp functions this procedure uses -------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct = cos(t)
-    st = sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    rax = -al * ry - om * om * rx
-    ray = al * rx - om * om * ry
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-
-def link_angle(j1, j2, off):
-    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    dx = j2_x - j1_x
-    dy = j2_y - j1_y
-    dvx = j2_dx - j1_dx
-    dvy = j2_dy - j1_dy
-    dax = j2_ddx - j1_ddx
-    day = j2_ddy - j1_ddy
-    r2 = dx * dx + dy * dy
-    th0 = atan2(dy, dx) + off
-    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
-    ir2 = NAN if r2 == 0 else 1 / r2
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    st = 1 if r2 == 0 else 0
-    if st == 1:
-        return st, (NAN, NAN, NAN)
-    return st, (th, om, al)
-
-def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    dx = j2_x - j1_x
-    dy = j2_y - j1_y
-    dvx = j2_dx - j1_dx
-    dvy = j2_dy - j1_dy
-    dax = j2_ddx - j1_ddx
-    day = j2_ddy - j1_ddy
-    r2 = dx * dx + dy * dy
-    ir = NAN if r2 == 0 else 1 / sqrt(r2)
-    ex = ir * dx
-    ey = ir * dy
-    rx = gsi * ex - eta * ey
-    ry = gsi * ey + eta * ex
-    ir2 = ir * ir
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    rvx = -om * ry
-    rvy = om * rx
-    rax = -al * ry - om * om * rx
-    ray = al * rx - om * om * ry
-    st = 1 if r2 == 0 else 0
-    if st == 1:
-        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
-    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-
 def pair_point(j1, j2, along, across):
     """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -166,12 +99,79 @@ def pair_point(j1, j2, along, across):
         return st, (NAN, NAN, NAN, NAN, NAN, NAN)
     return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
-def RRR_links(j1, j2, l1, l2, minv):
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct = cos(t)
+    st = sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    return (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+
+def link_angle_still_j1(j1, j2, off):
+    """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
+    j1_x, j1_y, _, _, _, _ = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
+    r2 = dx * dx + dy * dy
+    th0 = atan2(dy, dx) + off
+    th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    ir2 = NAN if r2 == 0 else 1 / r2
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN)
+    return st, (th, om, al)
+
+def link_point_still_j1(j1, j2, gsi, eta):
+    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx
+    dvy = j2_dy
+    dax = j2_ddx
+    day = j2_ddy
+    r2 = dx * dx + dy * dy
+    ir = NAN if r2 == 0 else 1 / sqrt(r2)
+    ex = ir * dx
+    ey = ir * dy
+    rx = gsi * ex - eta * ey
+    ry = gsi * ey + eta * ex
+    ir2 = ir * ir
+    om = (dx * dvy - dy * dvx) * ir2
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+
+def RRR_links_still_j2_l1_l2(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
-    l1_v, l1_dv, l1_ddv = l1
-    l2_v, l2_dv, l2_ddv = l2
+    j2_x, j2_y, _, _, _, _ = j2
+    l1_v, _, _ = l1
+    l2_v, _, _ = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
     dd = dx * dx + dy * dy
@@ -209,21 +209,18 @@ def RRR_links(j1, j2, l1, l2, minv):
     sigma = (1 if 1 < ratio else ratio)
     ar = ao if 3 * o1 > s2 and 3 * o2 > dd else a * iq
     a2r = (dd - c) * idd2 if 3 * o1 > s2 and 3 * o2 > dd else a2 * iq
-    e2x = -a2r * dx + area4 * mx
-    e2y = -a2r * dy + area4 * my
     sdx = 2 * idd2 * dx
     sdy = 2 * idd2 * dy
     ihq = NAN if area4 == 0 else 2 * minv / area4
     tnx = -ihq * dy
     tny = ihq * dx
-    r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
-    r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
-    buv = r1v - r2v
-    bnv = a2r * r1v + ar * r2v
+    r1v = e1x * j1_dx + e1y * j1_dy
+    buv = r1v
+    bnv = a2r * r1v
     bvx = buv * sdx + bnv * tnx
     bvy = buv * sdy + bnv * tny
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy))
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv + (e2x * j2_ddx + e2y * j2_ddy) - ((bvx - j2_dx) * (bvx - j2_dx) + (bvy - j2_dy) * (bvy - j2_dy))
+    r1a = e1x * j1_ddx + e1y * j1_ddy - ((bvx - j1_dx) * (bvx - j1_dx) + (bvy - j1_dy) * (bvy - j1_dy))
+    r2a = -(bvx * bvx + bvy * bvy)
     bua = r1a - r2a
     bna = a2r * r1a + ar * r2a
     bax = bua * sdx + bna * tnx
@@ -235,12 +232,12 @@ def RRR_links(j1, j2, l1, l2, minv):
         return st, sigma, (j1_x + e1x, j1_y + e1y, NAN, NAN, NAN, NAN)
     return st, sigma, (j1_x + e1x, j1_y + e1y, bvx, bvy, bax, bay)
 
-def PRR_links(jr, l, pg, psig, gsi, eta, minv):
+def PRR_links_still_l_pg_psig(jr, l, pg, psig, gsi, eta, minv):
     """2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side."""
     jr_x, jr_y, jr_dx, jr_dy, jr_ddx, jr_ddy = jr
-    l_v, l_dv, l_ddv = l
-    pg_x, pg_y, pg_dx, pg_dy, pg_ddx, pg_ddy = pg
-    psig_the, psig_dthe, psig_ddthe = psig
+    l_v, _, _ = l
+    pg_x, pg_y, _, _, _, _ = pg
+    psig_the, _, _ = psig
     cg = cos(psig_the)
     sg = sin(psig_the)
     rx = gsi * cg - eta * sg
@@ -265,31 +262,24 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     ratio = 0 if rd == 0 else rd * (1 / l_v)
     sigma = (1 if 1 < ratio else ratio)
     ieu = NAN if eu == 0 else 1 / eu
-    sgsi = sv + gsi
-    relvx = pg_dx - jr_dx
-    relvy = pg_dy - jr_dy
-    ds = (l_v * l_dv - (ex * relvx + ey * relvy) - psig_dthe * (sgsi * -pn - eta * eu)) * ieu
-    jpvx = pg_dx + ds * cg - sv * psig_dthe * sg
-    jpvy = pg_dy + ds * sg + sv * psig_dthe * cg
-    rvx = -psig_dthe * ry
-    rvy = psig_dthe * rx
-    rax = -psig_ddthe * ry - psig_dthe * psig_dthe * rx
-    ray = psig_ddthe * rx - psig_dthe * psig_dthe * ry
-    jbvx = jpvx + rvx
-    jbvy = jpvy + rvy
-    relax = pg_ddx - jr_ddx
-    relay = pg_ddy - jr_ddy
-    om2 = psig_dthe * psig_dthe
-    dds = (l_v * l_ddv + l_dv * l_dv - ((jbvx - jr_dx) * (jbvx - jr_dx) + (jbvy - jr_dy) * (jbvy - jr_dy)) - (ex * relax + ey * relay) - 2 * ds * psig_dthe * -pn - sgsi * (psig_ddthe * -pn - om2 * eu) + eta * (psig_ddthe * eu + om2 * -pn)) * ieu
-    tn = 2 * ds * psig_dthe + sv * psig_ddthe
-    jpax = pg_ddx + dds * cg - tn * sg - sv * om2 * cg
-    jpay = pg_ddy + dds * sg + tn * cg - sv * om2 * sg
+    relvx = -jr_dx
+    relvy = -jr_dy
+    ds = -(ex * relvx + ey * relvy) * ieu
+    jpvx = ds * cg
+    jpvy = ds * sg
+    jbvx = jpvx
+    jbvy = jpvy
+    relax = -jr_ddx
+    relay = -jr_ddy
+    dds = (-((jbvx - jr_dx) * (jbvx - jr_dx) + (jbvy - jr_dy) * (jbvy - jr_dy)) - (ex * relax + ey * relay)) * ieu
+    jpax = dds * cg
+    jpay = dds * sg
     st = 1 if fail else 3 if sigma < 1e-07 else 4 if sigma < 0.001 else 0
     if st == 1:
         return st, sigma, (NAN, NAN, NAN), (NAN, NAN, NAN, NAN, NAN, NAN), (NAN, NAN, NAN, NAN, NAN, NAN)
     if st == 3:
         return st, sigma, (sv, NAN, NAN), (jpx, jpy, NAN, NAN, NAN, NAN), (jbx, jby, NAN, NAN, NAN, NAN)
-    return st, sigma, (sv, ds, dds), (jpx, jpy, jpvx, jpvy, jpax, jpay), (jbx, jby, jbvx, jbvy, jpax + rax, jpay + ray)
+    return st, sigma, (sv, ds, dds), (jpx, jpy, jpvx, jpvy, jpax, jpay), (jbx, jby, jbvx, jbvy, jpax, jpay)
 
 def reason_of(code):
     """The reason of a status code (linkgen/status.py): the last digit of a positive code
@@ -332,22 +322,22 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A
-    # crank_input(p_O1, 27.730849247724095, w.in1, ref_O1), inline
+    # crank_input_still_j1_phi(p_O1, 27.730849247724095, w.in1, ref_O1), inline
     _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 27.730849247724095 * _ct
     _ry = 27.730849247724095 * _st
-    _om = _in1_dthe + 0.0
-    _al = _in1_ddthe + 0.0
+    _om = _in1_dthe
+    _al = _in1_ddthe
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-72.0) + _rx, (-32.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-72.0) + _rx, (-32.0) + _ry, _rvx, _rvy, _rax, _ray)
 
     # Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known
-    # RRR_links(w.p_A, p_O2, l_coupler, l_rocker_B_O2, 1), inline
+    # RRR_links_still_j2_l1_l2(w.p_A, p_O2, l_coupler, l_rocker_B_O2, 1), inline
     _dx = (-12.0) - _p_A_x
     _dy = (-32.0) - _p_A_y
     _dd = _dx * _dx + _dy * _dy
@@ -385,21 +375,18 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _sigma = (1 if 1 < _ratio else _ratio)
     _ar = _ao if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a * _iq
     _a2r = (_dd - _c) * _idd2 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _a2 * _iq
-    _e2x = -_a2r * _dx + _area4 * _mx
-    _e2y = -_a2r * _dy + _area4 * _my
     _sdx = 2 * _idd2 * _dx
     _sdy = 2 * _idd2 * _dy
     _ihq = NAN if _area4 == 0 else 2 * 1 / _area4
     _tnx = -_ihq * _dy
     _tny = _ihq * _dx
-    _r1v = 56.859475903318 * 0.0 + (_e1x * _p_A_dx + _e1y * _p_A_dy)
-    _r2v = 52.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0)
-    _buv = _r1v - _r2v
-    _bnv = _a2r * _r1v + _ar * _r2v
+    _r1v = _e1x * _p_A_dx + _e1y * _p_A_dy
+    _buv = _r1v
+    _bnv = _a2r * _r1v
     _bvx = _buv * _sdx + _bnv * _tnx
     _bvy = _buv * _sdy + _bnv * _tny
-    _r1a = 56.859475903318 * 0.0 + 0.0 * 0.0 + (_e1x * _p_A_ddx + _e1y * _p_A_ddy) - ((_bvx - _p_A_dx) * (_bvx - _p_A_dx) + (_bvy - _p_A_dy) * (_bvy - _p_A_dy))
-    _r2a = 52.0 * 0.0 + 0.0 * 0.0 + (_e2x * 0.0 + _e2y * 0.0) - ((_bvx - 0.0) * (_bvx - 0.0) + (_bvy - 0.0) * (_bvy - 0.0))
+    _r1a = _e1x * _p_A_ddx + _e1y * _p_A_ddy - ((_bvx - _p_A_dx) * (_bvx - _p_A_dx) + (_bvy - _p_A_dy) * (_bvy - _p_A_dy))
+    _r2a = -(_bvx * _bvx + _bvy * _bvy)
     _bua = _r1a - _r2a
     _bna = _a2r * _r1a + _ar * _r2a
     _bax = _bua * _sdx + _bna * _tnx
@@ -417,13 +404,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 33, -34)
 
     # Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
-    # link_point(p_O2, w.p_B, 25.307692307692307, -48.46153846153846), inline
+    # link_point_still_j1(p_O2, w.p_B, 25.307692307692307, -48.46153846153846), inline
     _dx = _p_B_x - (-12.0)
     _dy = _p_B_y - (-32.0)
-    _dvx = _p_B_dx - 0.0
-    _dvy = _p_B_dy - 0.0
-    _dax = _p_B_ddx - 0.0
-    _day = _p_B_ddy - 0.0
+    _dvx = _p_B_dx
+    _dvy = _p_B_dy
+    _dax = _p_B_ddx
+    _day = _p_B_ddy
     _r2 = _dx * _dx + _dy * _dy
     _ir = NAN if _r2 == 0 else 1 / sqrt(_r2)
     _ex = _ir * _dx
@@ -442,12 +429,12 @@ def _run(w, inputs, d_inputs, dd_inputs):
         _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = (NAN, NAN, NAN, NAN, NAN, NAN)
         return 41
     else:
-        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = ((-12.0) + _rx, (-32.0) + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+        _p_C_x, _p_C_y, _p_C_dx, _p_C_dy, _p_C_ddx, _p_C_ddy = w.p_C = ((-12.0) + _rx, (-32.0) + _ry, _rvx, _rvy, _rax, _ray)
     if st:
         w.note(st, 43, -44)
 
     # Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
-    # PRR_links(w.p_C, l_rod, g_S, psi_S, 0.0, 0.0, 1), inline
+    # PRR_links_still_l_pg_psig(w.p_C, l_rod, g_S, psi_S, 0.0, 0.0, 1), inline
     _cg = cos(0.0)
     _sg = sin(0.0)
     _rx = 0.0 * _cg - 0.0 * _sg
@@ -472,25 +459,18 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _ratio = 0 if _rd == 0 else _rd * (1 / 65.27633568147036)
     _sigma = (1 if 1 < _ratio else _ratio)
     _ieu = NAN if _eu == 0 else 1 / _eu
-    _sgsi = _sv + 0.0
-    _relvx = 0.0 - _p_C_dx
-    _relvy = 0.0 - _p_C_dy
-    _ds = (65.27633568147036 * 0.0 - (_ex * _relvx + _ey * _relvy) - 0.0 * (_sgsi * -_pn - 0.0 * _eu)) * _ieu
-    _jpvx = 0.0 + _ds * _cg - _sv * 0.0 * _sg
-    _jpvy = 0.0 + _ds * _sg + _sv * 0.0 * _cg
-    _rvx = -0.0 * _ry
-    _rvy = 0.0 * _rx
-    _rax = -0.0 * _ry - 0.0 * 0.0 * _rx
-    _ray = 0.0 * _rx - 0.0 * 0.0 * _ry
-    _jbvx = _jpvx + _rvx
-    _jbvy = _jpvy + _rvy
-    _relax = 0.0 - _p_C_ddx
-    _relay = 0.0 - _p_C_ddy
-    _om2 = 0.0 * 0.0
-    _dds = (65.27633568147036 * 0.0 + 0.0 * 0.0 - ((_jbvx - _p_C_dx) * (_jbvx - _p_C_dx) + (_jbvy - _p_C_dy) * (_jbvy - _p_C_dy)) - (_ex * _relax + _ey * _relay) - 2 * _ds * 0.0 * -_pn - _sgsi * (0.0 * -_pn - _om2 * _eu) + 0.0 * (0.0 * _eu + _om2 * -_pn)) * _ieu
-    _tn = 2 * _ds * 0.0 + _sv * 0.0
-    _jpax = 0.0 + _dds * _cg - _tn * _sg - _sv * _om2 * _cg
-    _jpay = 0.0 + _dds * _sg + _tn * _cg - _sv * _om2 * _sg
+    _relvx = -_p_C_dx
+    _relvy = -_p_C_dy
+    _ds = -(_ex * _relvx + _ey * _relvy) * _ieu
+    _jpvx = _ds * _cg
+    _jpvy = _ds * _sg
+    _jbvx = _jpvx
+    _jbvy = _jpvy
+    _relax = -_p_C_ddx
+    _relay = -_p_C_ddy
+    _dds = (-((_jbvx - _p_C_dx) * (_jbvx - _p_C_dx) + (_jbvy - _p_C_dy) * (_jbvy - _p_C_dy)) - (_ex * _relax + _ey * _relay)) * _ieu
+    _jpax = _dds * _cg
+    _jpay = _dds * _sg
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[5] = _sigma
     if st == 1:
@@ -505,7 +485,7 @@ def _run(w, inputs, d_inputs, dd_inputs):
     else:
         _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (_sv, _ds, _dds)
         _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (_jpx, _jpy, _jpvx, _jpvy, _jpax, _jpay)
-        _p_D_x, _p_D_y, _p_D_dx, _p_D_dy, _p_D_ddx, _p_D_ddy = w.p_D = (_jbx, _jby, _jbvx, _jbvy, _jpax + _rax, _jpay + _ray)
+        _p_D_x, _p_D_y, _p_D_dx, _p_D_dy, _p_D_ddx, _p_D_ddy = w.p_D = (_jbx, _jby, _jbvx, _jbvy, _jpax, _jpay)
     if st:
         w.note(st, 53, -54)
 
@@ -534,13 +514,13 @@ def _run(w, inputs, d_inputs, dd_inputs):
         w.note(st, 63, -64)
 
     # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
-    # link_angle(p_O2, w.p_B, 0.0), inline
+    # link_angle_still_j1(p_O2, w.p_B, 0.0), inline
     _dx = _p_B_x - (-12.0)
     _dy = _p_B_y - (-32.0)
-    _dvx = _p_B_dx - 0.0
-    _dvy = _p_B_dy - 0.0
-    _dax = _p_B_ddx - 0.0
-    _day = _p_B_ddy - 0.0
+    _dvx = _p_B_dx
+    _dvy = _p_B_dy
+    _dax = _p_B_ddx
+    _day = _p_B_ddy
     _r2 = _dx * _dx + _dy * _dy
     _th0 = atan2(_dy, _dx) + 0.0
     _th = _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0

@@ -100,27 +100,6 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
 
 # -- the runtime of the kernel, on arrays of rows ------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct, st = cos_sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    _t1 = om * om
-    rax = -al * ry - _t1 * rx
-    ray = al * rx - _t1 * ry
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-    return _st, _sigma, _j2
-
 def pair_point(j1, j2, along, across):
     """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -155,106 +134,26 @@ def pair_point(j1, j2, along, across):
         _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]), np.where(_singular, np.nan, _jc[4]), np.where(_singular, np.nan, _jc[5]))
     return _st, _sigma, _jc
 
-def PRR_links(jr, l, pg, psig, gsi, eta, minv):
-    """2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side."""
-    jr_x, jr_y, jr_dx, jr_dy, jr_ddx, jr_ddy = jr
-    l_v, l_dv, l_ddv = l
-    pg_x, pg_y, pg_dx, pg_dy, pg_ddx, pg_ddy = pg
-    psig_the, psig_dthe, psig_ddthe = psig
-    cg = np.cos(psig_the)
-    sg = np.sin(psig_the)
-    rx = gsi * cg - eta * sg
-    ry = gsi * sg + eta * cg
-    wx = pg_x + rx - jr_x
-    wy = pg_y + ry - jr_y
-    wu = wx * cg + wy * sg
-    pn = wx * sg - wy * cg
-    ap = np.abs(pn)
-    k = l_v - ap
-    big = np.maximum(l_v, ap)
-    fail = (k < -8 * EPS * big) | (l_v <= 0)
-    rd = np.sqrt(np.maximum(k, 0) * (l_v + ap))
-    eu = minv * rd
-    _t1 = -pn
-    ex = eu * cg - _t1 * sg
-    ey = eu * sg + _t1 * cg
-    sv = eu - wu
-    jbx = jr_x + ex
-    jby = jr_y + ey
-    jpx = jbx - rx
-    jpy = jby - ry
-    _c2 = np.asarray(rd == 0)
-    if not _c2.any():
-        _s1 = rd * (1 / l_v)
-    elif _c2.all():
-        _s1 = 0
-    else:
-        _s1 = np.where(_c2, 0, rd * (1 / l_v))
-    sigma = np.minimum(_s1, 1)
-    _c3 = np.asarray(eu == 0)
-    if not _c3.any():
-        ieu = 1 / eu
-    elif _c3.all():
-        ieu = NAN
-    else:
-        ieu = np.where(_c3, NAN, 1 / eu)
-    sgsi = sv + gsi
-    relvx = pg_dx - jr_dx
-    relvy = pg_dy - jr_dy
-    ds = (l_v * l_dv - (ex * relvx + ey * relvy) - psig_dthe * (sgsi * _t1 - eta * eu)) * ieu
-    _t3 = sv * psig_dthe
-    jpvx = pg_dx + ds * cg - _t3 * sg
-    jpvy = pg_dy + ds * sg + _t3 * cg
-    rvx = -psig_dthe * ry
-    rvy = psig_dthe * rx
-    _t4 = psig_dthe * psig_dthe
-    rax = -psig_ddthe * ry - _t4 * rx
-    ray = psig_ddthe * rx - _t4 * ry
-    jbvx = jpvx + rvx
-    jbvy = jpvy + rvy
-    relax = pg_ddx - jr_ddx
-    relay = pg_ddy - jr_ddy
-    om2 = _t4
-    _t5 = jbvx - jr_dx
-    _t6 = jbvy - jr_dy
-    _t7 = 2 * ds * psig_dthe
-    dds = (l_v * l_ddv + l_dv * l_dv - (_t5 * _t5 + _t6 * _t6) - (ex * relax + ey * relay) - _t7 * _t1 - sgsi * (psig_ddthe * _t1 - om2 * eu) + eta * (psig_ddthe * eu + om2 * _t1)) * ieu
-    tn = _t7 + sv * psig_ddthe
-    _t8 = sv * om2
-    jpax = pg_ddx + dds * cg - tn * sg - _t8 * cg
-    jpay = pg_ddy + dds * sg + tn * cg - _t8 * sg
-    _c4 = np.asarray(fail)
-    if not _c4.any():
-        _c5 = np.asarray(sigma < 1e-07)
-        if not _c5.any():
-            _c6 = np.asarray(sigma < 0.001)
-            if not _c6.any():
-                _st = 0
-            elif _c6.all():
-                _st = 4
-            else:
-                _st = np.where(_c6, 4, 0)
-        elif _c5.all():
-            _st = 3
-        else:
-            _st = np.where(_c5, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c4.all():
-        _st = 1
-    else:
-        _st = np.where(_c4, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
-    _sigma = sigma
-    _st = np.asarray(_st)
-    _sigma = np.asarray(_sigma, dtype=REAL)
-    _fails = _st == 1
-    _singular = _fails | (_st == 3)
-    _s = (sv, ds, dds)
-    _jp = (jpx, jpy, jpvx, jpvy, jpax, jpay)
-    _jb = (jbx, jby, jbvx, jbvy, jpax + rax, jpay + ray)
-    if _singular.any():  # nan where the rows failed
-        _s = (np.where(_fails, np.nan, _s[0]), np.where(_singular, np.nan, _s[1]), np.where(_singular, np.nan, _s[2]))
-        _jp = (np.where(_fails, np.nan, _jp[0]), np.where(_fails, np.nan, _jp[1]), np.where(_singular, np.nan, _jp[2]), np.where(_singular, np.nan, _jp[3]), np.where(_singular, np.nan, _jp[4]), np.where(_singular, np.nan, _jp[5]))
-        _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
-    return _st, _sigma, _s, _jp, _jb
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct, st = cos_sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    _t1 = om * om
+    rax = -al * ry - _t1 * rx
+    ray = al * rx - _t1 * ry
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _j2 = (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+    return _st, _sigma, _j2
 
 def link_angle_still_j1(j1, j2, off):
     """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
@@ -351,17 +250,17 @@ def link_point_still_j1(j1, j2, gsi, eta):
     _sigma = np.asarray(_sigma, dtype=REAL)
     _fails = _st == 1
     _singular = _fails | (_st == 3)
-    _jc = (j1_x + rx, j1_y + ry, 0.0 + rvx, 0.0 + rvy, 0.0 + rax, 0.0 + ray)
+    _jc = (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
     if _singular.any():  # nan where the rows failed
         _jc = (np.where(_fails, np.nan, _jc[0]), np.where(_fails, np.nan, _jc[1]), np.where(_singular, np.nan, _jc[2]), np.where(_singular, np.nan, _jc[3]), np.where(_singular, np.nan, _jc[4]), np.where(_singular, np.nan, _jc[5]))
     return _st, _sigma, _jc
 
-def RRR_links_still_j2(j1, j2, l1, l2, minv):
+def RRR_links_still_j2_l1_l2(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, _, _, _, _ = j2
-    l1_v, l1_dv, l1_ddv = l1
-    l2_v, l2_dv, l2_ddv = l2
+    l1_v, _, _ = l1
+    l2_v, _, _ = l2
     dx = j2_x - j1_x
     dy = j2_y - j1_y
     dd = dx * dx + dy * dy
@@ -440,27 +339,23 @@ def RRR_links_still_j2(j1, j2, l1, l2, minv):
         at = np.where(_c6, a, np.where(_t1, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
     ao = (dd + c) * idd2
     mi = minv * idd2
-    mx = -mi * dy
-    my = mi * dx
     ux = dx * iq
     uy = dy * iq
     hn = minv * (area4 * iq / 2)
-    _t8 = area4 * mx
     _c9 = np.asarray(_t6)
     if not _c9.any():
         e1x = at * ux - hn * uy
     elif _c9.all():
-        e1x = ao * dx + _t8
+        e1x = ao * dx + area4 * (-mi * dy)
     else:
-        e1x = np.where(_c9, ao * dx + _t8, at * ux - hn * uy)
-    _t9 = area4 * my
+        e1x = np.where(_c9, ao * dx + area4 * (-mi * dy), at * ux - hn * uy)
     _c10 = np.asarray(_t6)
     if not _c10.any():
         e1y = at * uy + hn * ux
     elif _c10.all():
-        e1y = ao * dy + _t9
+        e1y = ao * dy + area4 * (mi * dx)
     else:
-        e1y = np.where(_c10, ao * dy + _t9, at * uy + hn * ux)
+        e1y = np.where(_c10, ao * dy + area4 * (mi * dx), at * uy + hn * ux)
     _c12 = np.asarray(fail)
     if not _c12.any():
         _s11 = area4 * (0.5 / (l1_v * l2_v))
@@ -471,67 +366,62 @@ def RRR_links_still_j2(j1, j2, l1, l2, minv):
     sigma = np.minimum(_s11, 1)
     _c13 = np.asarray(_t6)
     if not _c13.any():
-        ar = a * iq
-    elif _c13.all():
-        ar = ao
-    else:
-        ar = np.where(_c13, ao, a * iq)
-    _c14 = np.asarray(_t6)
-    if not _c14.any():
         a2r = (q + (l2_v - l1_v) * _t7) / 2 * iq
-    elif _c14.all():
+    elif _c13.all():
         a2r = (dd - c) * idd2
     else:
-        a2r = np.where(_c14, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
-    _t11 = -a2r
-    e2x = _t11 * dx + _t8
-    e2y = _t11 * dy + _t9
-    _t12 = 2 * idd2
-    sdx = _t12 * dx
-    sdy = _t12 * dy
-    _c15 = np.asarray(area4 == 0)
-    if not _c15.any():
+        a2r = np.where(_c13, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
+    _t9 = 2 * idd2
+    sdx = _t9 * dx
+    sdy = _t9 * dy
+    _c14 = np.asarray(area4 == 0)
+    if not _c14.any():
         ihq = 2 * minv / area4
-    elif _c15.all():
+    elif _c14.all():
         ihq = NAN
     else:
-        ihq = np.where(_c15, NAN, 2 * minv / area4)
+        ihq = np.where(_c14, NAN, 2 * minv / area4)
     tnx = -ihq * dy
     tny = ihq * dx
-    r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
-    _t13 = e2x * 0.0 + e2y * 0.0
-    r2v = l2_v * l2_dv + _t13
-    buv = r1v - r2v
-    bnv = a2r * r1v + ar * r2v
+    r1v = e1x * j1_dx + e1y * j1_dy
+    buv = r1v
+    bnv = a2r * r1v
     bvx = buv * sdx + bnv * tnx
     bvy = buv * sdy + bnv * tny
-    _t14 = bvx - j1_dx
-    _t15 = bvy - j1_dy
-    r1a = l1_v * l1_ddv + l1_dv * l1_dv + (e1x * j1_ddx + e1y * j1_ddy) - (_t14 * _t14 + _t15 * _t15)
-    r2a = l2_v * l2_ddv + l2_dv * l2_dv + _t13 - (bvx * bvx + bvy * bvy)
+    _t10 = bvx - j1_dx
+    _t11 = bvy - j1_dy
+    r1a = e1x * j1_ddx + e1y * j1_ddy - (_t10 * _t10 + _t11 * _t11)
+    r2a = -(bvx * bvx + bvy * bvy)
     bua = r1a - r2a
-    bna = a2r * r1a + ar * r2a
+    _c16 = np.asarray(_t6)
+    if not _c16.any():
+        _s15 = a * iq
+    elif _c16.all():
+        _s15 = ao
+    else:
+        _s15 = np.where(_c16, ao, a * iq)
+    bna = a2r * r1a + _s15 * r2a
     bax = bua * sdx + bna * tnx
     bay = bua * sdy + bna * tny
-    _c16 = np.asarray(fail)
-    if not _c16.any():
-        _c17 = np.asarray(sigma < 1e-07)
-        if not _c17.any():
-            _c18 = np.asarray(sigma < 0.001)
-            if not _c18.any():
+    _c17 = np.asarray(fail)
+    if not _c17.any():
+        _c18 = np.asarray(sigma < 1e-07)
+        if not _c18.any():
+            _c19 = np.asarray(sigma < 0.001)
+            if not _c19.any():
                 _st = 0
-            elif _c18.all():
+            elif _c19.all():
                 _st = 4
             else:
-                _st = np.where(_c18, 4, 0)
-        elif _c17.all():
+                _st = np.where(_c19, 4, 0)
+        elif _c18.all():
             _st = 3
         else:
-            _st = np.where(_c17, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c16.all():
+            _st = np.where(_c18, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c17.all():
         _st = 1
     else:
-        _st = np.where(_c16, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c17, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -541,6 +431,96 @@ def RRR_links_still_j2(j1, j2, l1, l2, minv):
     if _singular.any():  # nan where the rows failed
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
     return _st, _sigma, _jb
+
+def PRR_links_still_l_pg_psig(jr, l, pg, psig, gsi, eta, minv):
+    """2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side."""
+    jr_x, jr_y, jr_dx, jr_dy, jr_ddx, jr_ddy = jr
+    l_v, _, _ = l
+    pg_x, pg_y, _, _, _, _ = pg
+    psig_the, _, _ = psig
+    cg = np.cos(psig_the)
+    sg = np.sin(psig_the)
+    rx = gsi * cg - eta * sg
+    ry = gsi * sg + eta * cg
+    wx = pg_x + rx - jr_x
+    wy = pg_y + ry - jr_y
+    wu = wx * cg + wy * sg
+    pn = wx * sg - wy * cg
+    ap = np.abs(pn)
+    k = l_v - ap
+    big = np.maximum(l_v, ap)
+    fail = (k < -8 * EPS * big) | (l_v <= 0)
+    rd = np.sqrt(np.maximum(k, 0) * (l_v + ap))
+    eu = minv * rd
+    _t1 = -pn
+    ex = eu * cg - _t1 * sg
+    ey = eu * sg + _t1 * cg
+    sv = eu - wu
+    jbx = jr_x + ex
+    jby = jr_y + ey
+    jpx = jbx - rx
+    jpy = jby - ry
+    _c2 = np.asarray(rd == 0)
+    if not _c2.any():
+        _s1 = rd * (1 / l_v)
+    elif _c2.all():
+        _s1 = 0
+    else:
+        _s1 = np.where(_c2, 0, rd * (1 / l_v))
+    sigma = np.minimum(_s1, 1)
+    _c3 = np.asarray(eu == 0)
+    if not _c3.any():
+        ieu = 1 / eu
+    elif _c3.all():
+        ieu = NAN
+    else:
+        ieu = np.where(_c3, NAN, 1 / eu)
+    relvx = -jr_dx
+    relvy = -jr_dy
+    ds = -(ex * relvx + ey * relvy) * ieu
+    jpvx = ds * cg
+    jpvy = ds * sg
+    jbvx = jpvx
+    jbvy = jpvy
+    relax = -jr_ddx
+    relay = -jr_ddy
+    _t3 = jbvx - jr_dx
+    _t4 = jbvy - jr_dy
+    dds = (-(_t3 * _t3 + _t4 * _t4) - (ex * relax + ey * relay)) * ieu
+    jpax = dds * cg
+    jpay = dds * sg
+    _c4 = np.asarray(fail)
+    if not _c4.any():
+        _c5 = np.asarray(sigma < 1e-07)
+        if not _c5.any():
+            _c6 = np.asarray(sigma < 0.001)
+            if not _c6.any():
+                _st = 0
+            elif _c6.all():
+                _st = 4
+            else:
+                _st = np.where(_c6, 4, 0)
+        elif _c5.all():
+            _st = 3
+        else:
+            _st = np.where(_c5, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c4.all():
+        _st = 1
+    else:
+        _st = np.where(_c4, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+    _sigma = sigma
+    _st = np.asarray(_st)
+    _sigma = np.asarray(_sigma, dtype=REAL)
+    _fails = _st == 1
+    _singular = _fails | (_st == 3)
+    _s = (sv, ds, dds)
+    _jp = (jpx, jpy, jpvx, jpvy, jpax, jpay)
+    _jb = (jbx, jby, jbvx, jbvy, jpax, jpay)
+    if _singular.any():  # nan where the rows failed
+        _s = (np.where(_fails, np.nan, _s[0]), np.where(_singular, np.nan, _s[1]), np.where(_singular, np.nan, _s[2]))
+        _jp = (np.where(_fails, np.nan, _jp[0]), np.where(_fails, np.nan, _jp[1]), np.where(_singular, np.nan, _jp[2]), np.where(_singular, np.nan, _jp[3]), np.where(_singular, np.nan, _jp[4]), np.where(_singular, np.nan, _jp[5]))
+        _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
+    return _st, _sigma, _s, _jp, _jb
 
 def cos_sin(t):
     """cos t and sin t from one tangent of the half angle, within an eps of the library's:
@@ -870,15 +850,15 @@ def _run(x, dx, ddx, c):
     report = []
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
     # Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A
-    _, _, w.p_A = crank_input(w.p_O1, c["step2.l"], w.in1, w.ref_O1)
+    _, _, w.p_A = crank_input_still_j1_phi(w.p_O1, c["step2.l"], w.in1, w.ref_O1)
     # Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known
-    st, sigma[3], w.p_B = RRR_links_still_j2(w.p_A, w.p_O2, w.l_coupler, w.l_rocker_B_O2, 1)
+    st, sigma[3], w.p_B = RRR_links_still_j2_l1_l2(w.p_A, w.p_O2, w.l_coupler, w.l_rocker_B_O2, 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
     st, _, w.p_C = link_point_still_j1(w.p_O2, w.p_B, c["step4.gsi"], c["step4.eta"])
     report.append((st, ((1, 41),)))
     # Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
-    st, sigma[5], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, w.l_rod, w.g_S, w.psi_S, c["step5.gsi"], c["step5.eta"], 1)
+    st, sigma[5], w.s_S, w.p_S, w.p_D = PRR_links_still_l_pg_psig(w.p_C, w.l_rod, w.g_S, w.psi_S, c["step5.gsi"], c["step5.eta"], 1)
     report.append((st, ((1, 51), (3, 53), (4, -54))))
     # Step 6: pair_point, P. point P of link coupler
     st, _, w.p_P = pair_point(w.p_B, w.p_A, c["step6.along"], c["step6.across"])

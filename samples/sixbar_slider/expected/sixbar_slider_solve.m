@@ -81,10 +81,10 @@ function [status, w] = run(w, in, din, ddin)
     % Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     % Step 2: crank_input, A. O1 is known and link frame is placed, so the input angle theta_O1 turns link crank to A
-    w.p_A = crank_input(w.p_O1, 27.730849247724095, w.in1, w.ref_O1);
+    w.p_A = crank_input_still_j1_phi(w.p_O1, 27.730849247724095, w.in1, w.ref_O1);
 
     % Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known
-    [w.p_B, st, w.sigma(3)] = RRR_links(w.p_A, w.p_O2, w.l_coupler, w.l_rocker_B_O2, 1);
+    [w.p_B, st, w.sigma(3)] = RRR_links_still_j2_l1_l2(w.p_A, w.p_O2, w.l_coupler, w.l_rocker_B_O2, 1);
     if st == 1
         status = 31;
         return;
@@ -92,7 +92,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 33, -34);
 
     % Step 4: link_point, C. link rocker is placed (its pairs O2, B are known), so C follows as a point of it
-    [w.p_C, st] = link_point(w.p_O2, w.p_B, 25.307692307692307, -48.46153846153846);
+    [w.p_C, st] = link_point_still_j1(w.p_O2, w.p_B, 25.307692307692307, -48.46153846153846);
     if st == 1
         status = 41;
         return;
@@ -100,7 +100,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 43, -44);
 
     % Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
-    [w.s_S, w.p_S, w.p_D, st, w.sigma(5)] = PRR_links(w.p_C, w.l_rod, w.g_S, w.psi_S, 0.0, 0.0, 1);
+    [w.s_S, w.p_S, w.p_D, st, w.sigma(5)] = PRR_links_still_l_pg_psig(w.p_C, w.l_rod, w.g_S, w.psi_S, 0.0, 0.0, 1);
     if st == 1
         status = 51;
         return;
@@ -116,7 +116,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 63, -64);
 
     % Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
-    [w.phi_rocker, st] = link_angle(w.p_O2, w.p_B, 0.0);
+    [w.phi_rocker, st] = link_angle_still_j1(w.p_O2, w.p_B, 0.0);
     if st == 1
         status = 91;
         return;
@@ -192,112 +192,6 @@ function out = publish(w, status, in)
     out.columns = [in(:)', out.S.x, out.S.y, out.S.vx, out.S.vy, out.S.ax, out.S.ay, out.S.s, out.S.ds, out.S.dds, out.P.x, out.P.y, out.P.vx, out.P.vy, out.P.ax, out.P.ay, out.rocker.phi, out.rocker.omega, out.rocker.alpha];
 end
 
-function j2 = crank_input(j1, l, theta, phi)
-    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
-    t = theta.the + phi.the;
-    ct = cos(t);
-    st = sin(t);
-    rx = l * ct;
-    ry = l * st;
-    om = theta.dthe + phi.dthe;
-    al = theta.ddthe + phi.ddthe;
-    rvx = -om * ry;
-    rvy = om * rx;
-    rax = -al * ry - om * om * rx;
-    ray = al * rx - om * om * ry;
-    j2.x = j1.x + rx;
-    j2.y = j1.y + ry;
-    j2.dx = j1.dx + rvx;
-    j2.dy = j1.dy + rvy;
-    j2.ddx = j1.ddx + rax;
-    j2.ddy = j1.ddy + ray;
-end
-
-function [angle, st] = link_angle(j1, j2, off)
-    % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
-    dx = j2.x - j1.x;
-    dy = j2.y - j1.y;
-    dvx = j2.dx - j1.dx;
-    dvy = j2.dy - j1.dy;
-    dax = j2.ddx - j1.ddx;
-    day = j2.ddy - j1.ddy;
-    r2 = dx * dx + dy * dy;
-    th0 = atan2(dy, dx) + off;
-    if th0 > pi
-        th = th0 - 2 * pi;
-    elseif th0 <= -pi
-        th = th0 + 2 * pi;
-    else
-        th = th0;
-    end
-    if r2 == 0
-        ir2 = NaN;
-    else
-        ir2 = 1 / r2;
-    end
-    om = (dx * dvy - dy * dvx) * ir2;
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
-    if r2 == 0
-        st = 1;
-    else
-        st = 0;
-    end
-    angle.the = th;
-    angle.dthe = om;
-    angle.ddthe = al;
-    if st == 1
-        angle.the = NaN;
-        angle.dthe = NaN;
-        angle.ddthe = NaN;
-    end
-end
-
-function [jc, st] = link_point(j1, j2, gsi, eta)
-    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows).
-    dx = j2.x - j1.x;
-    dy = j2.y - j1.y;
-    dvx = j2.dx - j1.dx;
-    dvy = j2.dy - j1.dy;
-    dax = j2.ddx - j1.ddx;
-    day = j2.ddy - j1.ddy;
-    r2 = dx * dx + dy * dy;
-    if r2 == 0
-        ir = NaN;
-    else
-        ir = 1 / sqrt(r2);
-    end
-    ex = ir * dx;
-    ey = ir * dy;
-    rx = gsi * ex - eta * ey;
-    ry = gsi * ey + eta * ex;
-    ir2 = ir * ir;
-    om = (dx * dvy - dy * dvx) * ir2;
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
-    rvx = -om * ry;
-    rvy = om * rx;
-    rax = -al * ry - om * om * rx;
-    ray = al * rx - om * om * ry;
-    if r2 == 0
-        st = 1;
-    else
-        st = 0;
-    end
-    jc.x = j1.x + rx;
-    jc.y = j1.y + ry;
-    jc.dx = j1.dx + rvx;
-    jc.dy = j1.dy + rvy;
-    jc.ddx = j1.ddx + rax;
-    jc.ddy = j1.ddy + ray;
-    if st == 1
-        jc.x = NaN;
-        jc.y = NaN;
-        jc.dx = NaN;
-        jc.dy = NaN;
-        jc.ddx = NaN;
-        jc.ddy = NaN;
-    end
-end
-
 function [jc, st] = pair_point(j1, j2, along, across)
     % Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows).
     dx = j2.x - j1.x;
@@ -334,7 +228,113 @@ function [jc, st] = pair_point(j1, j2, along, across)
     end
 end
 
-function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
+function j2 = crank_input_still_j1_phi(j1, l, theta, phi)
+    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
+    t = theta.the + phi.the;
+    ct = cos(t);
+    st = sin(t);
+    rx = l * ct;
+    ry = l * st;
+    om = theta.dthe;
+    al = theta.ddthe;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    j2.x = j1.x + rx;
+    j2.y = j1.y + ry;
+    j2.dx = rvx;
+    j2.dy = rvy;
+    j2.ddx = rax;
+    j2.ddy = ray;
+end
+
+function [angle, st] = link_angle_still_j1(j1, j2, off)
+    % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx;
+    dvy = j2.dy;
+    dax = j2.ddx;
+    day = j2.ddy;
+    r2 = dx * dx + dy * dy;
+    th0 = atan2(dy, dx) + off;
+    if th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    if r2 == 0
+        ir2 = NaN;
+    else
+        ir2 = 1 / r2;
+    end
+    om = (dx * dvy - dy * dvx) * ir2;
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
+    angle.the = th;
+    angle.dthe = om;
+    angle.ddthe = al;
+    if st == 1
+        angle.the = NaN;
+        angle.dthe = NaN;
+        angle.ddthe = NaN;
+    end
+end
+
+function [jc, st] = link_point_still_j1(j1, j2, gsi, eta)
+    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows).
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx;
+    dvy = j2.dy;
+    dax = j2.ddx;
+    day = j2.ddy;
+    r2 = dx * dx + dy * dy;
+    if r2 == 0
+        ir = NaN;
+    else
+        ir = 1 / sqrt(r2);
+    end
+    ex = ir * dx;
+    ey = ir * dy;
+    rx = gsi * ex - eta * ey;
+    ry = gsi * ey + eta * ex;
+    ir2 = ir * ir;
+    om = (dx * dvy - dy * dvx) * ir2;
+    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
+    jc.x = j1.x + rx;
+    jc.y = j1.y + ry;
+    jc.dx = rvx;
+    jc.dy = rvy;
+    jc.ddx = rax;
+    jc.ddy = ray;
+    if st == 1
+        jc.x = NaN;
+        jc.y = NaN;
+        jc.dx = NaN;
+        jc.dy = NaN;
+        jc.ddx = NaN;
+        jc.ddy = NaN;
+    end
+end
+
+function [jb, st, sigma] = RRR_links_still_j2_l1_l2(j1, j2, l1, l2, minv)
     % 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
@@ -421,8 +421,6 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     else
         a2r = a2 * iq;
     end
-    e2x = -a2r * dx + area4 * mx;
-    e2y = -a2r * dy + area4 * my;
     sdx = 2 * idd2 * dx;
     sdy = 2 * idd2 * dy;
     if area4 == 0
@@ -432,14 +430,13 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     end
     tnx = -ihq * dy;
     tny = ihq * dx;
-    r1v = l1.v * l1.dv + (e1x * j1.dx + e1y * j1.dy);
-    r2v = l2.v * l2.dv + (e2x * j2.dx + e2y * j2.dy);
-    buv = r1v - r2v;
-    bnv = a2r * r1v + ar * r2v;
+    r1v = e1x * j1.dx + e1y * j1.dy;
+    buv = r1v;
+    bnv = a2r * r1v;
     bvx = buv * sdx + bnv * tnx;
     bvy = buv * sdy + bnv * tny;
-    r1a = l1.v * l1.ddv + l1.dv * l1.dv + (e1x * j1.ddx + e1y * j1.ddy) - ((bvx - j1.dx) * (bvx - j1.dx) + (bvy - j1.dy) * (bvy - j1.dy));
-    r2a = l2.v * l2.ddv + l2.dv * l2.dv + (e2x * j2.ddx + e2y * j2.ddy) - ((bvx - j2.dx) * (bvx - j2.dx) + (bvy - j2.dy) * (bvy - j2.dy));
+    r1a = e1x * j1.ddx + e1y * j1.ddy - ((bvx - j1.dx) * (bvx - j1.dx) + (bvy - j1.dy) * (bvy - j1.dy));
+    r2a = -(bvx * bvx + bvy * bvy);
     bua = r1a - r2a;
     bna = a2r * r1a + ar * r2a;
     bax = bua * sdx + bna * tnx;
@@ -475,7 +472,7 @@ function [jb, st, sigma] = RRR_links(j1, j2, l1, l2, minv)
     end
 end
 
-function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
+function [s, jp, jb, st, sigma] = PRR_links_still_l_pg_psig(jr, l, pg, psig, gsi, eta, minv)
     % 2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side.
     cg = cos(psig.the);
     sg = sin(psig.the);
@@ -509,25 +506,18 @@ function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
     else
         ieu = 1 / eu;
     end
-    sgsi = sv + gsi;
-    relvx = pg.dx - jr.dx;
-    relvy = pg.dy - jr.dy;
-    ds = (l.v * l.dv - (ex * relvx + ey * relvy) - psig.dthe * (sgsi * -pn - eta * eu)) * ieu;
-    jpvx = pg.dx + ds * cg - sv * psig.dthe * sg;
-    jpvy = pg.dy + ds * sg + sv * psig.dthe * cg;
-    rvx = -psig.dthe * ry;
-    rvy = psig.dthe * rx;
-    rax = -psig.ddthe * ry - psig.dthe * psig.dthe * rx;
-    ray = psig.ddthe * rx - psig.dthe * psig.dthe * ry;
-    jbvx = jpvx + rvx;
-    jbvy = jpvy + rvy;
-    relax = pg.ddx - jr.ddx;
-    relay = pg.ddy - jr.ddy;
-    om2 = psig.dthe * psig.dthe;
-    dds = (l.v * l.ddv + l.dv * l.dv - ((jbvx - jr.dx) * (jbvx - jr.dx) + (jbvy - jr.dy) * (jbvy - jr.dy)) - (ex * relax + ey * relay) - 2 * ds * psig.dthe * -pn - sgsi * (psig.ddthe * -pn - om2 * eu) + eta * (psig.ddthe * eu + om2 * -pn)) * ieu;
-    tn = 2 * ds * psig.dthe + sv * psig.ddthe;
-    jpax = pg.ddx + dds * cg - tn * sg - sv * om2 * cg;
-    jpay = pg.ddy + dds * sg + tn * cg - sv * om2 * sg;
+    relvx = -jr.dx;
+    relvy = -jr.dy;
+    ds = -(ex * relvx + ey * relvy) * ieu;
+    jpvx = ds * cg;
+    jpvy = ds * sg;
+    jbvx = jpvx;
+    jbvy = jpvy;
+    relax = -jr.ddx;
+    relay = -jr.ddy;
+    dds = (-((jbvx - jr.dx) * (jbvx - jr.dx) + (jbvy - jr.dy) * (jbvy - jr.dy)) - (ex * relax + ey * relay)) * ieu;
+    jpax = dds * cg;
+    jpay = dds * sg;
     if fail
         st = 1;
     elseif sigma < 1e-07
@@ -550,8 +540,8 @@ function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
     jb.y = jby;
     jb.dx = jbvx;
     jb.dy = jbvy;
-    jb.ddx = jpax + rax;
-    jb.ddy = jpay + ray;
+    jb.ddx = jpax;
+    jb.ddy = jpay;
     if st == 1
         s.v = NaN;
         s.dv = NaN;

@@ -11,31 +11,6 @@ typedef struct { VEC2 P, DP, DDP; } POINT;
 typedef struct { double the, dthe, ddthe; } ANGLE;
 typedef struct { double v, dv, ddv; } VARIABLE;
 
-/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
-#if defined(__GNUC__)
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
-#endif
-static inline void crank_input(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
-{
-    const double t = theta->the + phi->the;
-    const double ct = cos(t);
-    const double st = sin(t);
-    const double rx = l * ct;
-    const double ry = l * st;
-    const double om = theta->dthe + phi->dthe;
-    const double al = theta->ddthe + phi->ddthe;
-    const double rvx = -om * ry;
-    const double rvy = om * rx;
-    const double rax = -al * ry - om * om * rx;
-    const double ray = al * rx - om * om * ry;
-    j2->P.x = j1->P.x + rx;
-    j2->P.y = j1->P.y + ry;
-    j2->DP.x = j1->DP.x + rvx;
-    j2->DP.y = j1->DP.y + rvy;
-    j2->DDP.x = j1->DDP.x + rax;
-    j2->DDP.y = j1->DDP.y + ray;
-}
-
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
 #if defined(__GNUC__)
 static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE *angle) __attribute__((always_inline));
@@ -62,19 +37,6 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
-#if defined(__GNUC__)
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
-#endif
-static inline void crank_angle(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
-{
-    const double th0 = theta->the + phi->the + off;
-    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
-    angle->the = th;
-    angle->dthe = theta->dthe + phi->dthe;
-    angle->ddthe = theta->ddthe + phi->ddthe;
-}
-
 /* Angle of a link that keeps a constant angle off to a known angle phi. */
 #if defined(__GNUC__)
 static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
@@ -88,11 +50,49 @@ static inline void offset_angle(const ANGLE *phi, double off, ANGLE *angle)
     angle->ddthe = phi->ddthe;
 }
 
+/* Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle). */
+#if defined(__GNUC__)
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2) __attribute__((always_inline));
+#endif
+static inline void crank_input_still_j1_phi(const POINT *j1, double l, const ANGLE *theta, const ANGLE *phi, POINT *j2)
+{
+    const double t = theta->the + phi->the;
+    const double ct = cos(t);
+    const double st = sin(t);
+    const double rx = l * ct;
+    const double ry = l * st;
+    const double om = theta->dthe;
+    const double al = theta->ddthe;
+    const double rvx = -om * ry;
+    const double rvy = om * rx;
+    const double rax = -al * ry - om * om * rx;
+    const double ray = al * rx - om * om * ry;
+    j2->P.x = j1->P.x + rx;
+    j2->P.y = j1->P.y + ry;
+    j2->DP.x = rvx;
+    j2->DP.y = rvy;
+    j2->DDP.x = rax;
+    j2->DDP.y = ray;
+}
+
+/* Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine. */
+#if defined(__GNUC__)
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle) __attribute__((always_inline));
+#endif
+static inline void crank_angle_still_phi(const ANGLE *theta, const ANGLE *phi, double off, ANGLE *angle)
+{
+    const double th0 = theta->the + phi->the + off;
+    const double th = fabs(th0) >= 3 * 3.141592653589793 ? atan2(sin(th0), cos(th0)) : th0 > 3.141592653589793 ? th0 - 2 * 3.141592653589793 : th0 <= -3.141592653589793 ? th0 + 2 * 3.141592653589793 : th0;
+    angle->the = th;
+    angle->dthe = theta->dthe;
+    angle->ddthe = theta->ddthe;
+}
+
 /* 2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side. */
 #if defined(__GNUC__)
-static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out) __attribute__((always_inline));
+static inline int PRR_links_still_l_pg_psig(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out) __attribute__((always_inline));
 #endif
-static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out)
+static inline int PRR_links_still_l_pg_psig(const POINT *jr, const VARIABLE *l, const POINT *pg, const ANGLE *psig, double gsi, double eta, int minv, VARIABLE *s, POINT *jp, POINT *jb, double *sigma_out)
 {
     const double cg = cos(psig->the);
     const double sg = sin(psig->the);
@@ -118,25 +118,18 @@ static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg,
     const double ratio = rd == 0 ? 0 : rd * (1 / l->v);
     const double sigma = (1.0 < ratio ? 1.0 : ratio);
     const double ieu = eu == 0 ? NAN : 1 / eu;
-    const double sgsi = sv + gsi;
-    const double relvx = pg->DP.x - jr->DP.x;
-    const double relvy = pg->DP.y - jr->DP.y;
-    const double ds = (l->v * l->dv - (ex * relvx + ey * relvy) - psig->dthe * (sgsi * -pn - eta * eu)) * ieu;
-    const double jpvx = pg->DP.x + ds * cg - sv * psig->dthe * sg;
-    const double jpvy = pg->DP.y + ds * sg + sv * psig->dthe * cg;
-    const double rvx = -psig->dthe * ry;
-    const double rvy = psig->dthe * rx;
-    const double rax = -psig->ddthe * ry - psig->dthe * psig->dthe * rx;
-    const double ray = psig->ddthe * rx - psig->dthe * psig->dthe * ry;
-    const double jbvx = jpvx + rvx;
-    const double jbvy = jpvy + rvy;
-    const double relax = pg->DDP.x - jr->DDP.x;
-    const double relay = pg->DDP.y - jr->DDP.y;
-    const double om2 = psig->dthe * psig->dthe;
-    const double dds = (l->v * l->ddv + l->dv * l->dv - ((jbvx - jr->DP.x) * (jbvx - jr->DP.x) + (jbvy - jr->DP.y) * (jbvy - jr->DP.y)) - (ex * relax + ey * relay) - 2 * ds * psig->dthe * -pn - sgsi * (psig->ddthe * -pn - om2 * eu) + eta * (psig->ddthe * eu + om2 * -pn)) * ieu;
-    const double tn = 2 * ds * psig->dthe + sv * psig->ddthe;
-    const double jpax = pg->DDP.x + dds * cg - tn * sg - sv * om2 * cg;
-    const double jpay = pg->DDP.y + dds * sg + tn * cg - sv * om2 * sg;
+    const double relvx = -jr->DP.x;
+    const double relvy = -jr->DP.y;
+    const double ds = -(ex * relvx + ey * relvy) * ieu;
+    const double jpvx = ds * cg;
+    const double jpvy = ds * sg;
+    const double jbvx = jpvx;
+    const double jbvy = jpvy;
+    const double relax = -jr->DDP.x;
+    const double relay = -jr->DDP.y;
+    const double dds = (-((jbvx - jr->DP.x) * (jbvx - jr->DP.x) + (jbvy - jr->DP.y) * (jbvy - jr->DP.y)) - (ex * relax + ey * relay)) * ieu;
+    const double jpax = dds * cg;
+    const double jpay = dds * sg;
     const int st = fail ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
     *sigma_out = sigma;
     if (st == 1) { s->v = NAN; s->dv = NAN; s->ddv = NAN; jp->P.x = NAN; jp->P.y = NAN; jp->DP.x = NAN; jp->DP.y = NAN; jp->DDP.x = NAN; jp->DDP.y = NAN; jb->P.x = NAN; jb->P.y = NAN; jb->DP.x = NAN; jb->DP.y = NAN; jb->DDP.x = NAN; jb->DDP.y = NAN; return st; }
@@ -154,8 +147,8 @@ static inline int PRR_links(const POINT *jr, const VARIABLE *l, const POINT *pg,
     jb->P.y = jby;
     jb->DP.x = jbvx;
     jb->DP.y = jbvy;
-    jb->DDP.x = jpax + rax;
-    jb->DDP.y = jpay + ray;
+    jb->DDP.x = jpax;
+    jb->DDP.y = jpay;
     return st;
 }
 
@@ -346,17 +339,17 @@ static int run(work *w, const double in[], const double din[], const double ddin
 
 
     /* Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A */
-    crank_input(&p_O, 20.0, &w->in1, &ref_O, &w->p_A);
+    crank_input_still_j1_phi(&p_O, 20.0, &w->in1, &ref_O, &w->p_A);
 
 
     /* Step 3: PRR_links, B (branch +1). B is joined to the known A by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known */
-    st = PRR_links(&w->p_A, &l_rod, &g_S, &psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_B, &out->sigma[3]);
+    st = PRR_links_still_l_pg_psig(&w->p_A, &l_rod, &g_S, &psi_S, 0.0, 0.0, 1, &w->s_S, &w->p_S, &w->p_B, &out->sigma[3]);
     if (st == 1) return failed(out, 31, 3);
     note(w, st, 33, -34);
 
 
     /* Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's */
-    crank_angle(&w->in1, &ref_O, 0.0, &w->phi_crank);
+    crank_angle_still_phi(&w->in1, &ref_O, 0.0, &w->phi_crank);
 
 
     /* Step 5: link_angle, rod. A and B of link rod are known, so its angle is known */

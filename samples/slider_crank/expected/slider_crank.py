@@ -119,24 +119,6 @@ _FIXED = {  # every output column: those of the fixed sketch with their values, 
 
 # -- the mech.cpp functions this procedure uses -------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct = cos(t)
-    st = sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    rax = -al * ry - om * om * rx
-    ray = al * rx - om * om * ry
-    return (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-
 def link_angle(j1, j2, off):
     """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -158,14 +140,6 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
-def crank_angle(theta, phi, off):
-    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    th0 = theta_the + phi_the + off
-    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
-    return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
-
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
@@ -173,12 +147,38 @@ def offset_angle(phi, off):
     th = th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     return (th, phi_dthe, phi_ddthe)
 
-def PRR_links(jr, l, pg, psig, gsi, eta, minv):
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct = cos(t)
+    st = sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    rax = -al * ry - om * om * rx
+    ray = al * rx - om * om * ry
+    return (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+
+def crank_angle_still_phi(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    th0 = theta_the + phi_the + off
+    th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
+    return (th, theta_dthe, theta_ddthe)
+
+def PRR_links_still_l_pg_psig(jr, l, pg, psig, gsi, eta, minv):
     """2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side."""
     jr_x, jr_y, jr_dx, jr_dy, jr_ddx, jr_ddy = jr
-    l_v, l_dv, l_ddv = l
-    pg_x, pg_y, pg_dx, pg_dy, pg_ddx, pg_ddy = pg
-    psig_the, psig_dthe, psig_ddthe = psig
+    l_v, _, _ = l
+    pg_x, pg_y, _, _, _, _ = pg
+    psig_the, _, _ = psig
     cg = cos(psig_the)
     sg = sin(psig_the)
     rx = gsi * cg - eta * sg
@@ -203,31 +203,24 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     ratio = 0 if rd == 0 else rd * (1 / l_v)
     sigma = (1 if 1 < ratio else ratio)
     ieu = NAN if eu == 0 else 1 / eu
-    sgsi = sv + gsi
-    relvx = pg_dx - jr_dx
-    relvy = pg_dy - jr_dy
-    ds = (l_v * l_dv - (ex * relvx + ey * relvy) - psig_dthe * (sgsi * -pn - eta * eu)) * ieu
-    jpvx = pg_dx + ds * cg - sv * psig_dthe * sg
-    jpvy = pg_dy + ds * sg + sv * psig_dthe * cg
-    rvx = -psig_dthe * ry
-    rvy = psig_dthe * rx
-    rax = -psig_ddthe * ry - psig_dthe * psig_dthe * rx
-    ray = psig_ddthe * rx - psig_dthe * psig_dthe * ry
-    jbvx = jpvx + rvx
-    jbvy = jpvy + rvy
-    relax = pg_ddx - jr_ddx
-    relay = pg_ddy - jr_ddy
-    om2 = psig_dthe * psig_dthe
-    dds = (l_v * l_ddv + l_dv * l_dv - ((jbvx - jr_dx) * (jbvx - jr_dx) + (jbvy - jr_dy) * (jbvy - jr_dy)) - (ex * relax + ey * relay) - 2 * ds * psig_dthe * -pn - sgsi * (psig_ddthe * -pn - om2 * eu) + eta * (psig_ddthe * eu + om2 * -pn)) * ieu
-    tn = 2 * ds * psig_dthe + sv * psig_ddthe
-    jpax = pg_ddx + dds * cg - tn * sg - sv * om2 * cg
-    jpay = pg_ddy + dds * sg + tn * cg - sv * om2 * sg
+    relvx = -jr_dx
+    relvy = -jr_dy
+    ds = -(ex * relvx + ey * relvy) * ieu
+    jpvx = ds * cg
+    jpvy = ds * sg
+    jbvx = jpvx
+    jbvy = jpvy
+    relax = -jr_ddx
+    relay = -jr_ddy
+    dds = (-((jbvx - jr_dx) * (jbvx - jr_dx) + (jbvy - jr_dy) * (jbvy - jr_dy)) - (ex * relax + ey * relay)) * ieu
+    jpax = dds * cg
+    jpay = dds * sg
     st = 1 if fail else 3 if sigma < 1e-07 else 4 if sigma < 0.001 else 0
     if st == 1:
         return st, sigma, (NAN, NAN, NAN), (NAN, NAN, NAN, NAN, NAN, NAN), (NAN, NAN, NAN, NAN, NAN, NAN)
     if st == 3:
         return st, sigma, (sv, NAN, NAN), (jpx, jpy, NAN, NAN, NAN, NAN), (jbx, jby, NAN, NAN, NAN, NAN)
-    return st, sigma, (sv, ds, dds), (jpx, jpy, jpvx, jpvy, jpax, jpay), (jbx, jby, jbvx, jbvy, jpax + rax, jpay + ray)
+    return st, sigma, (sv, ds, dds), (jpx, jpy, jpvx, jpvy, jpax, jpay), (jbx, jby, jbvx, jbvy, jpax, jpay)
 
 def reason_of(code):
     """The reason of a status code (linkgen/status.py): the last digit of a positive code
@@ -268,22 +261,22 @@ def _run(w, inputs, d_inputs, dd_inputs):
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     # Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
-    # crank_input(p_O, 20.0, w.in1, ref_O), inline
+    # crank_input_still_j1_phi(p_O, 20.0, w.in1, ref_O), inline
     _t = _in1_the + 0.0
     _ct = cos(_t)
     _st = sin(_t)
     _rx = 20.0 * _ct
     _ry = 20.0 * _st
-    _om = _in1_dthe + 0.0
-    _al = _in1_ddthe + 0.0
+    _om = _in1_dthe
+    _al = _in1_ddthe
     _rvx = -_om * _ry
     _rvy = _om * _rx
     _rax = -_al * _ry - _om * _om * _rx
     _ray = _al * _rx - _om * _om * _ry
-    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-40.0) + _rx, 0.0 + _ry, 0.0 + _rvx, 0.0 + _rvy, 0.0 + _rax, 0.0 + _ray)
+    _p_A_x, _p_A_y, _p_A_dx, _p_A_dy, _p_A_ddx, _p_A_ddy = w.p_A = ((-40.0) + _rx, 0.0 + _ry, _rvx, _rvy, _rax, _ray)
 
     # Step 3: PRR_links, B (branch +1). B is joined to the known A by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
-    # PRR_links(w.p_A, l_rod, g_S, psi_S, 0.0, 0.0, 1), inline
+    # PRR_links_still_l_pg_psig(w.p_A, l_rod, g_S, psi_S, 0.0, 0.0, 1), inline
     _cg = cos(0.0)
     _sg = sin(0.0)
     _rx = 0.0 * _cg - 0.0 * _sg
@@ -308,25 +301,18 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _ratio = 0 if _rd == 0 else _rd * (1 / 65.0)
     _sigma = (1 if 1 < _ratio else _ratio)
     _ieu = NAN if _eu == 0 else 1 / _eu
-    _sgsi = _sv + 0.0
-    _relvx = 0.0 - _p_A_dx
-    _relvy = 0.0 - _p_A_dy
-    _ds = (65.0 * 0.0 - (_ex * _relvx + _ey * _relvy) - 0.0 * (_sgsi * -_pn - 0.0 * _eu)) * _ieu
-    _jpvx = 0.0 + _ds * _cg - _sv * 0.0 * _sg
-    _jpvy = 0.0 + _ds * _sg + _sv * 0.0 * _cg
-    _rvx = -0.0 * _ry
-    _rvy = 0.0 * _rx
-    _rax = -0.0 * _ry - 0.0 * 0.0 * _rx
-    _ray = 0.0 * _rx - 0.0 * 0.0 * _ry
-    _jbvx = _jpvx + _rvx
-    _jbvy = _jpvy + _rvy
-    _relax = 0.0 - _p_A_ddx
-    _relay = 0.0 - _p_A_ddy
-    _om2 = 0.0 * 0.0
-    _dds = (65.0 * 0.0 + 0.0 * 0.0 - ((_jbvx - _p_A_dx) * (_jbvx - _p_A_dx) + (_jbvy - _p_A_dy) * (_jbvy - _p_A_dy)) - (_ex * _relax + _ey * _relay) - 2 * _ds * 0.0 * -_pn - _sgsi * (0.0 * -_pn - _om2 * _eu) + 0.0 * (0.0 * _eu + _om2 * -_pn)) * _ieu
-    _tn = 2 * _ds * 0.0 + _sv * 0.0
-    _jpax = 0.0 + _dds * _cg - _tn * _sg - _sv * _om2 * _cg
-    _jpay = 0.0 + _dds * _sg + _tn * _cg - _sv * _om2 * _sg
+    _relvx = -_p_A_dx
+    _relvy = -_p_A_dy
+    _ds = -(_ex * _relvx + _ey * _relvy) * _ieu
+    _jpvx = _ds * _cg
+    _jpvy = _ds * _sg
+    _jbvx = _jpvx
+    _jbvy = _jpvy
+    _relax = -_p_A_ddx
+    _relay = -_p_A_ddy
+    _dds = (-((_jbvx - _p_A_dx) * (_jbvx - _p_A_dx) + (_jbvy - _p_A_dy) * (_jbvy - _p_A_dy)) - (_ex * _relax + _ey * _relay)) * _ieu
+    _jpax = _dds * _cg
+    _jpay = _dds * _sg
     st = 1 if _fail else 3 if _sigma < 1e-07 else 4 if _sigma < 0.001 else 0
     w.sigma[3] = _sigma
     if st == 1:
@@ -341,15 +327,15 @@ def _run(w, inputs, d_inputs, dd_inputs):
     else:
         _s_S_v, _s_S_dv, _s_S_ddv = w.s_S = (_sv, _ds, _dds)
         _p_S_x, _p_S_y, _p_S_dx, _p_S_dy, _p_S_ddx, _p_S_ddy = w.p_S = (_jpx, _jpy, _jpvx, _jpvy, _jpax, _jpay)
-        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (_jbx, _jby, _jbvx, _jbvy, _jpax + _rax, _jpay + _ray)
+        _p_B_x, _p_B_y, _p_B_dx, _p_B_dy, _p_B_ddx, _p_B_ddy = w.p_B = (_jbx, _jby, _jbvx, _jbvy, _jpax, _jpay)
     if st:
         w.note(st, 33, -34)
 
     # Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
-    # crank_angle(w.in1, ref_O, 0.0), inline
+    # crank_angle_still_phi(w.in1, ref_O, 0.0), inline
     _th0 = _in1_the + 0.0 + 0.0
     _th = atan2(sin(_th0), cos(_th0)) if abs(_th0) >= 3 * 3.141592653589793 else _th0 - 2 * 3.141592653589793 if _th0 > 3.141592653589793 else _th0 + 2 * 3.141592653589793 if _th0 <= -3.141592653589793 else _th0
-    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe + 0.0, _in1_ddthe + 0.0)
+    _phi_crank_the, _phi_crank_dthe, _phi_crank_ddthe = w.phi_crank = (_th, _in1_dthe, _in1_ddthe)
 
     # Step 5: link_angle, rod. A and B of link rod are known, so its angle is known
     # link_angle(w.p_A, w.p_B, 0.0), inline

@@ -116,27 +116,6 @@ _MODULE = SimpleNamespace(  # what the row driver needs of this module
 
 # -- the runtime of the kernel, on arrays of rows ------------------------------
 
-def crank_input(j1, l, theta, phi):
-    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
-    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    t = theta_the + phi_the
-    ct, st = cos_sin(t)
-    rx = l * ct
-    ry = l * st
-    om = theta_dthe + phi_dthe
-    al = theta_ddthe + phi_ddthe
-    rvx = -om * ry
-    rvy = om * rx
-    _t1 = om * om
-    rax = -al * ry - _t1 * rx
-    ray = al * rx - _t1 * ry
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
-    return _st, _sigma, _j2
-
 def link_angle(j1, j2, off):
     """Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -189,35 +168,6 @@ def link_angle(j1, j2, off):
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def crank_angle(theta, phi, off):
-    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
-    theta_the, theta_dthe, theta_ddthe = theta
-    phi_the, phi_dthe, phi_ddthe = phi
-    th0 = theta_the + phi_the + off
-    _st = np.asarray(0)
-    _sigma = np.asarray(1.0, dtype=REAL)
-    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
-    if not _c1.any():
-        _c2 = np.asarray(th0 > PI)
-        if not _c2.any():
-            _c3 = np.asarray(th0 <= -PI)
-            if not _c3.any():
-                _f1 = th0
-            elif _c3.all():
-                _f1 = th0 + 2 * PI
-            else:
-                _f1 = np.where(_c3, th0 + 2 * PI, th0)
-        elif _c2.all():
-            _f1 = th0 - 2 * PI
-        else:
-            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
-    elif _c1.all():
-        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
-    else:
-        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
-    _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
-    return _st, _sigma, _angle
-
 def offset_angle(phi, off):
     """Angle of a link that keeps a constant angle off to a known angle phi."""
     phi_the, phi_dthe, phi_ddthe = phi
@@ -240,12 +190,62 @@ def offset_angle(phi, off):
     _angle = (_f1, phi_dthe, phi_ddthe)
     return _st, _sigma, _angle
 
-def PRR_links(jr, l, pg, psig, gsi, eta, minv):
+def crank_input_still_j1_phi(j1, l, theta, phi):
+    """Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle)."""
+    j1_x, j1_y, _, _, _, _ = j1
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    t = theta_the + phi_the
+    ct, st = cos_sin(t)
+    rx = l * ct
+    ry = l * st
+    om = theta_dthe
+    al = theta_ddthe
+    rvx = -om * ry
+    rvy = om * rx
+    _t1 = om * om
+    rax = -al * ry - _t1 * rx
+    ray = al * rx - _t1 * ry
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _j2 = (j1_x + rx, j1_y + ry, rvx, rvy, rax, ray)
+    return _st, _sigma, _j2
+
+def crank_angle_still_phi(theta, phi, off):
+    """Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine."""
+    theta_the, theta_dthe, theta_ddthe = theta
+    phi_the, _, _ = phi
+    th0 = theta_the + phi_the + off
+    _st = np.asarray(0)
+    _sigma = np.asarray(1.0, dtype=REAL)
+    _c1 = np.asarray(np.abs(th0) >= 3 * PI)
+    if not _c1.any():
+        _c2 = np.asarray(th0 > PI)
+        if not _c2.any():
+            _c3 = np.asarray(th0 <= -PI)
+            if not _c3.any():
+                _f1 = th0
+            elif _c3.all():
+                _f1 = th0 + 2 * PI
+            else:
+                _f1 = np.where(_c3, th0 + 2 * PI, th0)
+        elif _c2.all():
+            _f1 = th0 - 2 * PI
+        else:
+            _f1 = np.where(_c2, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0))
+    elif _c1.all():
+        _f1 = np.arctan2(np.sin(th0), np.cos(th0))
+    else:
+        _f1 = np.where(_c1, np.arctan2(np.sin(th0), np.cos(th0)), np.where(th0 > PI, th0 - 2 * PI, np.where(th0 <= -PI, th0 + 2 * PI, th0)))
+    _angle = (_f1, theta_dthe, theta_ddthe)
+    return _st, _sigma, _angle
+
+def PRR_links_still_l_pg_psig(jr, l, pg, psig, gsi, eta, minv):
     """2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side."""
     jr_x, jr_y, jr_dx, jr_dy, jr_ddx, jr_ddy = jr
-    l_v, l_dv, l_ddv = l
-    pg_x, pg_y, pg_dx, pg_dy, pg_ddx, pg_ddy = pg
-    psig_the, psig_dthe, psig_ddthe = psig
+    l_v, _, _ = l
+    pg_x, pg_y, _, _, _, _ = pg
+    psig_the, _, _ = psig
     cg = np.cos(psig_the)
     sg = np.sin(psig_the)
     rx = gsi * cg - eta * sg
@@ -283,31 +283,20 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
         ieu = NAN
     else:
         ieu = np.where(_c3, NAN, 1 / eu)
-    sgsi = sv + gsi
-    relvx = pg_dx - jr_dx
-    relvy = pg_dy - jr_dy
-    ds = (l_v * l_dv - (ex * relvx + ey * relvy) - psig_dthe * (sgsi * _t1 - eta * eu)) * ieu
-    _t3 = sv * psig_dthe
-    jpvx = pg_dx + ds * cg - _t3 * sg
-    jpvy = pg_dy + ds * sg + _t3 * cg
-    rvx = -psig_dthe * ry
-    rvy = psig_dthe * rx
-    _t4 = psig_dthe * psig_dthe
-    rax = -psig_ddthe * ry - _t4 * rx
-    ray = psig_ddthe * rx - _t4 * ry
-    jbvx = jpvx + rvx
-    jbvy = jpvy + rvy
-    relax = pg_ddx - jr_ddx
-    relay = pg_ddy - jr_ddy
-    om2 = _t4
-    _t5 = jbvx - jr_dx
-    _t6 = jbvy - jr_dy
-    _t7 = 2 * ds * psig_dthe
-    dds = (l_v * l_ddv + l_dv * l_dv - (_t5 * _t5 + _t6 * _t6) - (ex * relax + ey * relay) - _t7 * _t1 - sgsi * (psig_ddthe * _t1 - om2 * eu) + eta * (psig_ddthe * eu + om2 * _t1)) * ieu
-    tn = _t7 + sv * psig_ddthe
-    _t8 = sv * om2
-    jpax = pg_ddx + dds * cg - tn * sg - _t8 * cg
-    jpay = pg_ddy + dds * sg + tn * cg - _t8 * sg
+    relvx = -jr_dx
+    relvy = -jr_dy
+    ds = -(ex * relvx + ey * relvy) * ieu
+    jpvx = ds * cg
+    jpvy = ds * sg
+    jbvx = jpvx
+    jbvy = jpvy
+    relax = -jr_ddx
+    relay = -jr_ddy
+    _t3 = jbvx - jr_dx
+    _t4 = jbvy - jr_dy
+    dds = (-(_t3 * _t3 + _t4 * _t4) - (ex * relax + ey * relay)) * ieu
+    jpax = dds * cg
+    jpay = dds * sg
     _c4 = np.asarray(fail)
     if not _c4.any():
         _c5 = np.asarray(sigma < 1e-07)
@@ -334,7 +323,7 @@ def PRR_links(jr, l, pg, psig, gsi, eta, minv):
     _singular = _fails | (_st == 3)
     _s = (sv, ds, dds)
     _jp = (jpx, jpy, jpvx, jpvy, jpax, jpay)
-    _jb = (jbx, jby, jbvx, jbvy, jpax + rax, jpay + ray)
+    _jb = (jbx, jby, jbvx, jbvy, jpax, jpay)
     if _singular.any():  # nan where the rows failed
         _s = (np.where(_fails, np.nan, _s[0]), np.where(_singular, np.nan, _s[1]), np.where(_singular, np.nan, _s[2]))
         _jp = (np.where(_fails, np.nan, _jp[0]), np.where(_fails, np.nan, _jp[1]), np.where(_singular, np.nan, _jp[2]), np.where(_singular, np.nan, _jp[3]), np.where(_singular, np.nan, _jp[4]), np.where(_singular, np.nan, _jp[5]))
@@ -667,12 +656,12 @@ def _run(x, dx, ddx, c):
     report = []
     # Step 1: fixed, frame. link frame is the frame: its pairs are fixed
     # Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
-    _, _, w.p_A = crank_input(w.p_O, c["step2.l"], w.in1, w.ref_O)
+    _, _, w.p_A = crank_input_still_j1_phi(w.p_O, c["step2.l"], w.in1, w.ref_O)
     # Step 3: PRR_links, B (branch +1). B is joined to the known A by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
-    st, sigma[3], w.s_S, w.p_S, w.p_B = PRR_links(w.p_A, w.l_rod, w.g_S, w.psi_S, c["step3.gsi"], c["step3.eta"], 1)
+    st, sigma[3], w.s_S, w.p_S, w.p_B = PRR_links_still_l_pg_psig(w.p_A, w.l_rod, w.g_S, w.psi_S, c["step3.gsi"], c["step3.eta"], 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
     # Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
-    _, _, w.phi_crank = crank_angle(w.in1, w.ref_O, c["step4.off"])
+    _, _, w.phi_crank = crank_angle_still_phi(w.in1, w.ref_O, c["step4.off"])
     # Step 5: link_angle, rod. A and B of link rod are known, so its angle is known
     st, _, w.phi_rod = link_angle(w.p_A, w.p_B, c["step5.off"])
     report.append((st, ((1, 51),)))

@@ -79,10 +79,10 @@ function [status, w] = run(w, in, din, ddin)
     % Step 1: fixed, frame. link frame is the frame: its pairs are fixed
 
     % Step 2: crank_input, A. O is known and link frame is placed, so the input angle theta_O turns link crank to A
-    w.p_A = crank_input(w.p_O, 20.0, w.in1, w.ref_O);
+    w.p_A = crank_input_still_j1_phi(w.p_O, 20.0, w.in1, w.ref_O);
 
     % Step 3: PRR_links, B (branch +1). B is joined to the known A by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
-    [w.s_S, w.p_S, w.p_B, st, w.sigma(3)] = PRR_links(w.p_A, w.l_rod, w.g_S, w.psi_S, 0.0, 0.0, 1);
+    [w.s_S, w.p_S, w.p_B, st, w.sigma(3)] = PRR_links_still_l_pg_psig(w.p_A, w.l_rod, w.g_S, w.psi_S, 0.0, 0.0, 1);
     if st == 1
         status = 31;
         return;
@@ -90,7 +90,7 @@ function [status, w] = run(w, in, din, ddin)
     w = note(w, st, 33, -34);
 
     % Step 4: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
-    w.phi_crank = crank_angle(w.in1, w.ref_O, 0.0);
+    w.phi_crank = crank_angle_still_phi(w.in1, w.ref_O, 0.0);
 
     % Step 5: link_angle, rod. A and B of link rod are known, so its angle is known
     [w.phi_rod, st] = link_angle(w.p_A, w.p_B, 0.0);
@@ -228,27 +228,6 @@ function out = publish(w, status, in)
     out.columns = [in(:)', out.O.x, out.O.y, out.O.vx, out.O.vy, out.O.ax, out.O.ay, out.A.x, out.A.y, out.A.vx, out.A.vy, out.A.ax, out.A.ay, out.B.x, out.B.y, out.B.vx, out.B.vy, out.B.ax, out.B.ay, out.S.x, out.S.y, out.S.vx, out.S.vy, out.S.ax, out.S.ay, out.frame.phi, out.frame.omega, out.frame.alpha, out.crank.phi, out.crank.omega, out.crank.alpha, out.rod.phi, out.rod.omega, out.rod.alpha, out.block.phi, out.block.omega, out.block.alpha, out.S.s, out.S.ds, out.S.dds];
 end
 
-function j2 = crank_input(j1, l, theta, phi)
-    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
-    t = theta.the + phi.the;
-    ct = cos(t);
-    st = sin(t);
-    rx = l * ct;
-    ry = l * st;
-    om = theta.dthe + phi.dthe;
-    al = theta.ddthe + phi.ddthe;
-    rvx = -om * ry;
-    rvy = om * rx;
-    rax = -al * ry - om * om * rx;
-    ray = al * rx - om * om * ry;
-    j2.x = j1.x + rx;
-    j2.y = j1.y + ry;
-    j2.dx = j1.dx + rvx;
-    j2.dy = j1.dy + rvy;
-    j2.ddx = j1.ddx + rax;
-    j2.ddy = j1.ddy + ray;
-end
-
 function [angle, st] = link_angle(j1, j2, off)
     % Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi].
     dx = j2.x - j1.x;
@@ -288,23 +267,6 @@ function [angle, st] = link_angle(j1, j2, off)
     end
 end
 
-function angle = crank_angle(theta, phi, off)
-    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
-    th0 = theta.the + phi.the + off;
-    if abs(th0) >= 3 * pi
-        th = atan2(sin(th0), cos(th0));
-    elseif th0 > pi
-        th = th0 - 2 * pi;
-    elseif th0 <= -pi
-        th = th0 + 2 * pi;
-    else
-        th = th0;
-    end
-    angle.the = th;
-    angle.dthe = theta.dthe + phi.dthe;
-    angle.ddthe = theta.ddthe + phi.ddthe;
-end
-
 function angle = offset_angle(phi, off)
     % Angle of a link that keeps a constant angle off to a known angle phi.
     th0 = phi.the + off;
@@ -320,7 +282,45 @@ function angle = offset_angle(phi, off)
     angle.ddthe = phi.ddthe;
 end
 
-function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
+function j2 = crank_input_still_j1_phi(j1, l, theta, phi)
+    % Pair j2 at distance l from j1 in the direction theta + phi (input angle plus root link angle).
+    t = theta.the + phi.the;
+    ct = cos(t);
+    st = sin(t);
+    rx = l * ct;
+    ry = l * st;
+    om = theta.dthe;
+    al = theta.ddthe;
+    rvx = -om * ry;
+    rvy = om * rx;
+    rax = -al * ry - om * om * rx;
+    ray = al * rx - om * om * ry;
+    j2.x = j1.x + rx;
+    j2.y = j1.y + ry;
+    j2.dx = rvx;
+    j2.dy = rvy;
+    j2.ddx = rax;
+    j2.ddy = ray;
+end
+
+function angle = crank_angle_still_phi(theta, phi, off)
+    % Angle of a link an input angle turns (crank_input): the input angle theta plus the root link angle phi plus the sketch offset off, wrapped to (-pi, pi], with their rates; no atan2 of the placed points (their rounding does not reach it).  Beyond one and a half turns either way (an input of many turns) wrapped by atan2 of its sine and cosine.
+    th0 = theta.the + phi.the + off;
+    if abs(th0) >= 3 * pi
+        th = atan2(sin(th0), cos(th0));
+    elseif th0 > pi
+        th = th0 - 2 * pi;
+    elseif th0 <= -pi
+        th = th0 + 2 * pi;
+    else
+        th = th0;
+    end
+    angle.the = th;
+    angle.dthe = theta.dthe;
+    angle.ddthe = theta.ddthe;
+end
+
+function [s, jp, jb, st, sigma] = PRR_links_still_l_pg_psig(jr, l, pg, psig, gsi, eta, minv)
     % 2R1P chain: pair jb at distance l from jr, carried at (gsi, eta) by a slider on the guide line (pg, psig); s is the slider displacement from pg, jp the slider point, minv the side.
     cg = cos(psig.the);
     sg = sin(psig.the);
@@ -354,25 +354,18 @@ function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
     else
         ieu = 1 / eu;
     end
-    sgsi = sv + gsi;
-    relvx = pg.dx - jr.dx;
-    relvy = pg.dy - jr.dy;
-    ds = (l.v * l.dv - (ex * relvx + ey * relvy) - psig.dthe * (sgsi * -pn - eta * eu)) * ieu;
-    jpvx = pg.dx + ds * cg - sv * psig.dthe * sg;
-    jpvy = pg.dy + ds * sg + sv * psig.dthe * cg;
-    rvx = -psig.dthe * ry;
-    rvy = psig.dthe * rx;
-    rax = -psig.ddthe * ry - psig.dthe * psig.dthe * rx;
-    ray = psig.ddthe * rx - psig.dthe * psig.dthe * ry;
-    jbvx = jpvx + rvx;
-    jbvy = jpvy + rvy;
-    relax = pg.ddx - jr.ddx;
-    relay = pg.ddy - jr.ddy;
-    om2 = psig.dthe * psig.dthe;
-    dds = (l.v * l.ddv + l.dv * l.dv - ((jbvx - jr.dx) * (jbvx - jr.dx) + (jbvy - jr.dy) * (jbvy - jr.dy)) - (ex * relax + ey * relay) - 2 * ds * psig.dthe * -pn - sgsi * (psig.ddthe * -pn - om2 * eu) + eta * (psig.ddthe * eu + om2 * -pn)) * ieu;
-    tn = 2 * ds * psig.dthe + sv * psig.ddthe;
-    jpax = pg.ddx + dds * cg - tn * sg - sv * om2 * cg;
-    jpay = pg.ddy + dds * sg + tn * cg - sv * om2 * sg;
+    relvx = -jr.dx;
+    relvy = -jr.dy;
+    ds = -(ex * relvx + ey * relvy) * ieu;
+    jpvx = ds * cg;
+    jpvy = ds * sg;
+    jbvx = jpvx;
+    jbvy = jpvy;
+    relax = -jr.ddx;
+    relay = -jr.ddy;
+    dds = (-((jbvx - jr.dx) * (jbvx - jr.dx) + (jbvy - jr.dy) * (jbvy - jr.dy)) - (ex * relax + ey * relay)) * ieu;
+    jpax = dds * cg;
+    jpay = dds * sg;
     if fail
         st = 1;
     elseif sigma < 1e-07
@@ -395,8 +388,8 @@ function [s, jp, jb, st, sigma] = PRR_links(jr, l, pg, psig, gsi, eta, minv)
     jb.y = jby;
     jb.dx = jbvx;
     jb.dy = jbvy;
-    jb.ddx = jpax + rax;
-    jb.ddy = jpay + ray;
+    jb.ddx = jpax;
+    jb.ddy = jpay;
     if st == 1
         s.v = NaN;
         s.dv = NaN;
