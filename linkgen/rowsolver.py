@@ -23,8 +23,9 @@ from .options import runtime_policy
 from .primitives import PRIMITIVES, python_backend
 from .primitives.interpret import constant_record
 from .render.closure import in_process
+from .rowblocks import MakePass, State, block_pass, block_state
 from .runners import BRANCH, Env, Runner, runner
-from .steplog import Reach, ResolverGroup, StepLog
+from .steplog import Reach, ResolverGroup, Step, StepLog
 
 FAIL, NOT_CONVERGED, SINGULAR, NEAR = status.CANNOT_CLOSE, status.NOT_CONVERGED, status.SINGULAR, status.NEAR_SINGULAR
 Report = dict[int, tuple[Any, Any]]  # step -> (status, sigma), in the order the steps ran
@@ -81,19 +82,19 @@ def _run(number: int, call: Runner, outputs: tuple[str, ...], env: Env, report: 
     return st
 
 
-def row_status(report: Report) -> Any:
+def row_status(report: Report) -> int:
     """The programs' row status from the steps' reports in the order they ran: the first
     failure's code, else the first singular step's, else the first near-singular one's
-    (negative).  Works on one row (ints) and on arrays of rows alike."""
-    fail: Any = 0
-    singular: Any = 0
-    near: Any = 0
+    (negative)."""
+    singular = near = 0
     for n, (st, _) in report.items():
-        failed = (st == FAIL) | (st == NOT_CONVERGED) | (st == status.NOT_CONTRACTING)
-        fail = fail + (fail == 0) * failed * status.code(n, st)
-        singular = singular + (singular == 0) * (st == SINGULAR) * status.code(n, st)
-        near = near + (near == 0) * (st == NEAR) * status.code(n, st)
-    return fail + (fail == 0) * (singular + (singular == 0) * near)
+        if st in (FAIL, NOT_CONVERGED, status.NOT_CONTRACTING):
+            return int(status.code(n, st))
+        if st == SINGULAR and not singular:
+            singular = status.code(n, st)
+        elif st == NEAR and not near:
+            near = status.code(n, st)
+    return int(singular or near)
 
 
 def _input_env(log: StepLog, order: int, values: Any, rates: Any, accs: Any) -> Env:
@@ -116,12 +117,6 @@ class _Fields:
 
     def __setattr__(self, name: str, value: Any) -> None:
         self.env[name] = value
-
-
-def _still(rec: tuple[float, ...], kind: str) -> tuple[float, ...]:
-    """A record with its derivatives zero."""
-    width = 2 if kind == "POINT" else 1
-    return tuple(rec[:width]) + (0.0,) * (len(rec) - width)
 
 
 @dataclass
@@ -194,12 +189,28 @@ class RowSolver:
         inside = {n for g in log.groups for b in (g, *g.variants) for n in b.steps}
         self.steps = [s for s in log.steps
                       if s.action == "resolve" or (s.function and s.number not in inside and not s.variant)]
-        self.parts = {(b.number, b.variant): self._parts(b) for g in log.groups for b in (g, *g.variants)}
+        blocks = [b for g in log.groups for b in (g, *g.variants)]
+        parts = {(b.number, b.variant): self._parts(b) for b in blocks}
+        self.passes: dict[tuple[int, int], MakePass] = {
+            key: block_pass(b, steps, fns, reads, sigma, self.width + 1)
+            for key, (b, steps, reads, sigma) in parts.items()}
+        self.group_reads = {g.number: list(dict.fromkeys(name for b in (g, *g.variants)
+                                                         for name, _ in parts[b.number, b.variant][2]))
+                            for g in log.groups}
         self.plan = [(s.number, self.groups[s.number] if s.action == "resolve" else None,
                       self.runners.get(s.number), s.outputs) for s in self.steps]
-        self.residual, self.zero = fns["link_residual"], (0.0,) * (self.width + 1)
-        self.measured = {(b.number, b.variant): None if log.step(b.steps[0]).function == "loop_point" else
-                         [(self.pos[k], self.pos[u]) for k, u in b.pairs] for g in log.groups for b in (g, *g.variants)}
+        residual, zero = fns["link_residual"], (0.0,) * (self.width + 1)
+        self.states: dict[tuple[int, int], State] = {
+            (b.number, b.variant): block_state(b, self.pos, residual, zero, self._arc(b)) for b in blocks}
+        self.periodic = log.inputs[0].kind == "revolute" if log.inputs else False
+        self.theta0 = log.inputs[0].sketch if log.inputs else 0.0
+        self.change_points = [(s.number, next(int(a.value) for a in s.args if a.label == "minv"), s.change_points)
+                              for s in log.steps if s.change_points]
+        self.blocks = {g.number: [(self.passes[b.number, b.variant], self.states[b.number, b.variant])
+                                  for b in (g, *g.variants)] for g in log.groups}
+        self.signs = {g.number: [(self.first[g.number] + j, len(b.add_links) + i, bs.step)
+                                 for j, b in enumerate((g, *g.variants)) for i, bs in enumerate(b.branches)]
+                      for g in log.groups}
         self.its: list[int] = []
         self.last: Row | None = None
         self.sets = {g.number: [b.sets for b in (g, *g.variants)] for g in log.groups}
@@ -213,17 +224,21 @@ class RowSolver:
                                                       self.log.options)
         return self._policies[halvings]
 
-    def _parts(self, b: ResolverGroup) -> tuple[list[tuple[int, Runner, tuple[str, ...]]], list[tuple[str, str]],
-                                                list[int]]:
-        """A block's calls (step number, runner, outputs: its steps that call a function), the
-        records they read from before the group (with their kinds) and the steps whose
-        conditioning its chains' is."""
+    def _parts(self, b: ResolverGroup) -> tuple[ResolverGroup, list[Step], list[tuple[str, str]], list[int]]:
+        """A block, its steps that call a function, the records they read from before the group
+        (with their kinds) and the steps whose conditioning its chains' is."""
         steps = [self.log.step(n) for n in b.steps]
         inner = set(b.writes) | set(b.add_links)
         reads = sorted({a.var for st in steps for a in st.args if a.kind == "var" and a.var not in inner})
         sigma = [s.number for s in steps if s.function and PRIMITIVES[s.function].sigma is not None]
-        calls = [(s.number, self.runners[s.number], s.outputs) for s in steps if s.function]
-        return calls, [(name, self.kinds[name]) for name in reads], sigma
+        return b, [s for s in steps if s.function], [(name, self.kinds[name]) for name in reads], sigma
+
+    def _arc(self, b: ResolverGroup) -> Callable[[Env, list[float]], list[tuple[float, ...]]] | None:
+        """A loop block's state records off a configuration (loopstate.lengths); None for an Add-link block
+        (its pairs measured by link_residual)."""
+        if self.log.step(b.steps[0]).function != "loop_point":
+            return None
+        return lambda env, old: lengths(self.call, env, self.pos, self.log, b, old, self.width)
 
     def solve(self, values: Any, rates: Any, accs: Any, one_way: bool = False) -> Row:
         """Solve one row (see the runtime's drive); ``one_way``: the continuation takes the
@@ -250,7 +265,9 @@ class RowSolver:
         env = dict(self.constants)
         for name, x, r, c in zip(self.inputs, inputs, rates, accs):
             env[name] = (x, r, c)[: self.width + 1]
-        branches(self.log, env, float(inputs[0]) if inputs else 0.0)
+        theta, branch_at = float(inputs[0]) if inputs else 0.0, runtime()["branch_at"]
+        for number, b0, points in self.change_points:  # the branch of every chain with change points (branches)
+            env[BRANCH, number] = branch_at(theta, b0, self.theta0, points, self.periodic)
         report: Report = {}
         ad = [[0.0] * len(s) for s in a]
         its = self.its if row else [0] * len(self.log.groups)
@@ -263,7 +280,7 @@ class RowSolver:
                     break
             elif call is not None and _run(number, call, outputs, env, report) == FAIL:
                 break
-        code = int(row_status(report))
+        code = row_status(report)
         if row:
             self.last = Row(env, report, {}, code)
         return code, ad
@@ -277,22 +294,21 @@ class RowSolver:
                  ad: list[list[float]], used: list[int], its: list[int]) -> bool:
         """The group's resolver step through the runtime's resolve_group; the report gets the
         last pass of the block that solved, then the step's own status."""
-        first, blocks = self.first[g.number], (g, *g.variants)
+        first, blocks, signs = self.first[g.number], self.blocks[g.number], self.signs[g.number]
 
         def branches_of(a: list[list[float]]) -> None:
-            for j, b in enumerate(blocks):
-                for i, bs in enumerate(b.branches):
-                    env[BRANCH, bs.step] = -1 if a[first + j][len(b.add_links) + i] < 0 else 1
+            for k, i, step in signs:
+                env[BRANCH, step] = -1 if a[k][i] < 0 else 1
 
         branches_of(a)
         last: Report = {}
         chains = [0.0]
-        before = dict(env)
-        fns = [self._group(b, env, before, last, chains) for b in blocks]
+        before = {name: env[name] for name in self.group_reads[g.number] if name in env}  # as the group found them
+        fns = [make(env, last, before, chains) for make, _ in blocks]
 
         def lengths(states: list[list[float]], rates: list[list[float]]) -> None:
-            for j, b in enumerate(blocks):
-                states[first + j], rates[first + j] = self._state(env, b, states[first + j])
+            for k, (_, state) in enumerate(blocks, first):
+                states[k], rates[k] = state(env, states[k])
 
         p = self.log.policy
         resolve = runtime()["resolve_group"]
@@ -311,50 +327,8 @@ class RowSolver:
         return bool(ok > 0)
 
     def _group(self, b: ResolverGroup, env: Env, before: Env, last: Report, chains: list[float]) -> Callable[..., Any]:
-        """The runtime's view of a block (the generated _group_N): (status, residual records)
-        of its steps at Add-link lengths, rates and accelerations; live=False zeroes the rates
-        of what it reads from before the group.  ``chains[0]``: the worst conditioning of the
-        last pass's chains, from the block's lever down."""
-        calls, reads, sigma_steps = self.parts[b.number, b.variant]
-        width, add_links, residuals, lever = self.width + 1, b.add_links, b.residuals, b.lever
-        seen: dict[bool, Env] = {}
-
-        def group(x: list[float], dx: list[float], ddx: list[float], live: bool) -> tuple[int, Any]:
-            if not seen:  # the records as the group found them (a block's pass leaves its reads still)
-                seen[True] = {name: before[name] for name, _ in reads}
-                seen[False] = {name: _still(before[name], kind) for name, kind in reads}
-            env.update(seen[live])
-            for name, v, r, c in zip(add_links, x, dx, ddx):
-                env[name] = (v, r, c)[:width]
-            last.clear()
-            if [_run(number, call, outputs, env, last) for number, call, outputs in calls].count(FAIL):
-                return 1, None
-            chains[0] = min([lever, *(last[n][1] for n in sigma_steps)])
-            return 0, [env[f] for f in residuals]
-
-        return group
-
-    def _state(self, env: Env, b: ResolverGroup, old: list[float]) -> tuple[list[float], list[float]]:
-        """A block's state and rates off a solved configuration (the generated _lengths_N): its Add-link lengths
-        or loop's arc (loopstate.lengths), its chains' sign measures and rates (the predictor moves them: a chain
-        passing its fold changes branch; a zero keeps the old one, rate 0), then its orientation (0)."""
-        pairs = self.measured[b.number, b.variant]  # an Add-link block's pairs (loopstate.lengths, its call made once)
-        f = lengths(self.call, env, self.pos, self.log, b, old, self.width) if pairs is None else [
-            self.residual(env[k], env[u], self.zero) for k, u in pairs]
-        n, marks, turns = len(b.pairs), [], []
-        for j, bs in enumerate(b.branches):
-            q0, q1 = env[bs.points[0]], env[bs.points[1]]
-            ux, uy = q1[0] - q0[0], q1[1] - q0[1]  # b - a (each difference as the formulas below had it)
-            if bs.kind == "side":
-                q2 = env[bs.points[2]]
-                vx, vy = q2[0] - q0[0], q2[1] - q0[1]
-                m = ux * vy - uy * vx
-                dm = (q1[2] - q0[2]) * vy + ux * (q2[3] - q0[3]) - (q1[3] - q0[3]) * vx - uy * (q2[2] - q0[2])
-            else:
-                angle = env[bs.angle]
-                c, s, dt = math.cos(angle[0]), math.sin(angle[0]), angle[1]
-                m = ux * c + uy * s
-                dm = (q1[2] - q0[2]) * c + (q1[3] - q0[3]) * s + (uy * c - ux * s) * dt
-            marks.append(m if m != 0 else old[n + j])
-            turns.append(dm if m != 0 else 0.0)
-        return [r[0] for r in f] + marks + [0.0], [r[1] for r in f] + turns + [0.0]
+        """The runtime's view of a block (the generated _group_N, linkgen.rowblocks.block_pass): (status, residual
+        records) of its steps at Add-link lengths, rates and accelerations; live=False zeroes the rates of what it
+        reads from before the group (``before``: the records as the group found them).  ``chains[0]``: the worst
+        conditioning of the last pass's chains, from the block's lever down."""
+        return self.passes[b.number, b.variant](env, last, before, chains)
