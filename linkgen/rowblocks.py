@@ -1,11 +1,13 @@
-"""A resolver block as the row solver (linkgen.rowsolver) runs it, each part compiled once as one function:
-its pass (the generated programs' _group_N: its steps' calls on the records at Add-link lengths, rates and
-accelerations) and its state read off a solved configuration (_lengths_N).
+"""A resolver group as the row solver (linkgen.rowsolver) runs it, each part compiled once as one function:
+a block's pass (the generated programs' _group_N: its steps' calls on the records at Add-link lengths, rates
+and accelerations), the states of all the group's blocks read off a solved configuration (_lengths_N), and
+the branches the blocks' states give the group's chains.
 
 A resolver solves a row in a few dozen passes; a pass as a loop over the steps' runners (linkgen.runners),
 each call's result unpacked and stored through a helper, took half again the time of the calls themselves.
 The compiled pass makes the same calls with the same arguments in the same order, stores the same records
-and reports the same (status, sigma) per step; the compiled state computes the same expressions.
+and reports the same (status, sigma) per step; the compiled states compute the same expressions (a measure
+several blocks share once: the same operands, the same bits).
 """
 
 from __future__ import annotations
@@ -24,7 +26,8 @@ from .steplog import BranchSign, ResolverGroup, Step
 Report = dict[int, tuple[Any, Any]]  # step -> (status, sigma), in the order the steps ran
 Pass = Callable[[list[float], list[float], list[float], bool], tuple[int, Any]]
 MakePass = Callable[[Env, Report, Env, list[float]], Pass]  # (env, last, before, chains) -> the block's pass
-State = Callable[[Env, list[float]], tuple[list[float], list[float]]]
+Measure = Callable[[Env, list[float]], list[tuple[float, ...]]]  # (env, old state) -> a loop block's state records
+States = Callable[[Env, list[list[float]], list[list[float]]], None]  # (env, a, ad): every block's state and rates
 
 
 def _still(rec: tuple[float, ...], kind: str) -> tuple[float, ...]:
@@ -118,39 +121,65 @@ def _call(step: Step, fns: Mapping[str, Any], s: _Scope, j: int, sigmas: dict[in
     return lines + [f"        env[{s(name)}] = {out}" for name, out in zip(step.outputs, outs)]
 
 
-def block_state(b: ResolverGroup, pos: Mapping[str, str], residual: Any, zero: tuple[float, ...],
-                measure: Callable[[Env, list[float]], list[tuple[float, ...]]] | None) -> State:
-    """The block's state and rates off a solved configuration, state(env, old): its Add-link lengths (each pair's
-    link_residual at a zero length; ``measure`` instead where given: a loop block's arc), its chains' sign
-    measures and rates (the predictor moves them: a chain passing its fold changes branch; a zero keeps the old
-    one, rate 0), then its orientation (0)."""
+def group_states(blocks: Sequence[ResolverGroup], first: int, pos: Mapping[str, str], residual: Any,
+                 zero: tuple[float, ...], measures: Sequence[Measure | None]) -> States:
+    """The states and rates of a group's blocks off a solved configuration, states(env, a, ad): block k's
+    (a[first + k], ad[first + k]) its Add-link lengths (each pair's link_residual at a zero length; the block's
+    ``measures`` instead where given: a loop block's arc), its chains' sign measures and rates (the predictor moves
+    them: a chain passing its fold changes branch; a zero keeps the old one, rate 0), then its orientation (0).
+    A pair or a chain's measure that several blocks share is computed once."""
     s = _Scope()
-    s.names.update(residual=residual, zero=zero, measure=measure, cos=math.cos, sin=math.sin)
-    if measure is None:
-        body = [f"    f{k} = residual(env[{s(pos[p])}], env[{s(pos[q])}], zero)" for k, (p, q) in enumerate(b.pairs)]
-        values, rates = [f"f{k}[0]" for k in range(len(b.pairs))], [f"f{k}[1]" for k in range(len(b.pairs))]
-    else:
-        body, values, rates = ["    f = measure(env, old)"], ["*[r[0] for r in f]"], ["*[r[1] for r in f]"]
-    n = len(b.pairs)
-    for j, bs in enumerate(b.branches):
-        body += _sign(bs, s, j)
-        values.append(f"m{j} if m{j} != 0 else old[{n + j}]")
-        rates.append(f"dm{j} if m{j} != 0 else 0.0")
-    body.append(f"    return [{', '.join([*values, '0.0'])}], [{', '.join([*rates, '0.0'])}]")
-    made: State = _function("\n".join(["def state(env, old):", *body, ""]), s.names, "state")
+    s.names.update(residual=residual, zero=zero, cos=math.cos, sin=math.sin)
+    body: list[str] = []
+    done: dict[Any, str] = {}  # a pair's or a chain's measure -> its local name
+    for k, (b, measure) in enumerate(zip(blocks, measures)):
+        body.append(f"    old = a[{first + k}]")
+        if measure is None:
+            fs = []
+            for p, q in b.pairs:
+                if (pos[p], pos[q]) not in done:
+                    v = done[pos[p], pos[q]] = f"v{len(done)}"
+                    body.append(f"    {v} = residual(env[{s(pos[p])}], env[{s(pos[q])}], zero)")
+                fs.append(done[pos[p], pos[q]])
+            values, rates = [f"{f}[0]" for f in fs], [f"{f}[1]" for f in fs]
+        else:
+            body.append(f"    f = {s(measure)}(env, old)")
+            values, rates = ["*[r[0] for r in f]"], ["*[r[1] for r in f]"]
+        n = len(b.pairs)
+        for j, bs in enumerate(b.branches):
+            if (bs.kind, bs.points, bs.angle) not in done:
+                m = done[bs.kind, bs.points, bs.angle] = f"v{len(done)}"
+                body += _sign(bs, s, m)
+            m = done[bs.kind, bs.points, bs.angle]
+            values.append(f"{m} if {m} != 0 else old[{n + j}]")
+            rates.append(f"d{m} if {m} != 0 else 0.0")
+        body.append(f"    a[{first + k}], ad[{first + k}] = [{', '.join([*values, '0.0'])}], "
+                    f"[{', '.join([*rates, '0.0'])}]")
+    made: States = _function("\n".join(["def states(env, a, ad):", *body, ""]), s.names, "states")
     return made
 
 
-def _sign(bs: BranchSign, s: _Scope, j: int) -> list[str]:
-    """A chain's sign measure m{j} and its rate dm{j}: b - a against c - a (side), or against the direction of an
+def group_signs(blocks: Sequence[ResolverGroup], first: int) -> Callable[[Env, list[list[float]]], None]:
+    """signs(env, a): the branch of every chain of the group's blocks as their states a hold it (a sign measure
+    below zero: -1, else 1)."""
+    s = _Scope()
+    body = [f"    env[{s((BRANCH, bs.step))}] = -1 if a[{first + k}][{len(b.add_links) + i}] < 0 else 1"
+            for k, b in enumerate(blocks) for i, bs in enumerate(b.branches)]
+    made: Callable[[Env, list[list[float]]], None] = _function("\n".join(["def signs(env, a):", *body, "    return",
+                                                                          ""]), s.names, "signs")
+    return made
+
+
+def _sign(bs: BranchSign, s: _Scope, m: str) -> list[str]:
+    """A chain's sign measure m and its rate dm: b - a against c - a (side), or against the direction of an
     angle record; each difference as the generated programs have it."""
     q0, q1 = (s(p) for p in bs.points[:2])
     lines = [f"    q0, q1 = env[{q0}], env[{q1}]", "    ux, uy = q1[0] - q0[0], q1[1] - q0[1]"]
     if bs.kind == "side":
         return lines + [f"    q2 = env[{s(bs.points[2])}]", "    vx, vy = q2[0] - q0[0], q2[1] - q0[1]",
-                        f"    m{j} = ux * vy - uy * vx",
-                        f"    dm{j} = (q1[2] - q0[2]) * vy + ux * (q2[3] - q0[3]) - (q1[3] - q0[3]) * vx"
+                        f"    {m} = ux * vy - uy * vx",
+                        f"    d{m} = (q1[2] - q0[2]) * vy + ux * (q2[3] - q0[3]) - (q1[3] - q0[3]) * vx"
                         " - uy * (q2[2] - q0[2])"]
     return lines + [f"    angle = env[{s(bs.angle)}]", "    c, s, dt = cos(angle[0]), sin(angle[0]), angle[1]",
-                    f"    m{j} = ux * c + uy * s",
-                    f"    dm{j} = (q1[2] - q0[2]) * c + (q1[3] - q0[3]) * s + (uy * c - ux * s) * dt"]
+                    f"    {m} = ux * c + uy * s",
+                    f"    d{m} = (q1[2] - q0[2]) * c + (q1[3] - q0[3]) * s + (uy * c - ux * s) * dt"]

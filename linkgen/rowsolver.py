@@ -23,7 +23,7 @@ from .options import runtime_policy
 from .primitives import PRIMITIVES, python_backend
 from .primitives.interpret import constant_record
 from .render.closure import in_process
-from .rowblocks import MakePass, State, block_pass, block_state
+from .rowblocks import MakePass, Measure, States, block_pass, group_signs, group_states
 from .runners import BRANCH, Env, Runner, runner
 from .steplog import Reach, ResolverGroup, Step, StepLog
 
@@ -107,16 +107,11 @@ def _input_env(log: StepLog, order: int, values: Any, rates: Any, accs: Any) -> 
 
 class _Fields:
     """The records of an Env as the fields of a generated program's work (the runtime's addlink_rates
-    reads and bends a block's records by name)."""
+    reads and bends a block's records by name): the env is the object's own namespace, so getattr
+    and setattr read and write its records without a call of Python code."""
 
     def __init__(self, env: Env):
-        object.__setattr__(self, "env", env)
-
-    def __getattr__(self, name: str) -> Any:
-        return self.env[name]
-
-    def __setattr__(self, name: str, value: Any) -> None:
-        self.env[name] = value
+        self.__dict__ = env
 
 
 @dataclass
@@ -200,17 +195,15 @@ class RowSolver:
         self.plan = [(s.number, self.groups[s.number] if s.action == "resolve" else None,
                       self.runners.get(s.number), s.outputs) for s in self.steps]
         residual, zero = fns["link_residual"], (0.0,) * (self.width + 1)
-        self.states: dict[tuple[int, int], State] = {
-            (b.number, b.variant): block_state(b, self.pos, residual, zero, self._arc(b)) for b in blocks}
+        self.states: dict[int, States] = {
+            g.number: group_states((g, *g.variants), self.first[g.number], self.pos, residual, zero,
+                                   [self._arc(b) for b in (g, *g.variants)]) for g in log.groups}
+        self.signs = {g.number: group_signs((g, *g.variants), self.first[g.number]) for g in log.groups}
         self.periodic = log.inputs[0].kind == "revolute" if log.inputs else False
         self.theta0 = log.inputs[0].sketch if log.inputs else 0.0
         self.change_points = [(s.number, next(int(a.value) for a in s.args if a.label == "minv"), s.change_points)
                               for s in log.steps if s.change_points]
-        self.blocks = {g.number: [(self.passes[b.number, b.variant], self.states[b.number, b.variant])
-                                  for b in (g, *g.variants)] for g in log.groups}
-        self.signs = {g.number: [(self.first[g.number] + j, len(b.add_links) + i, bs.step)
-                                 for j, b in enumerate((g, *g.variants)) for i, bs in enumerate(b.branches)]
-                      for g in log.groups}
+        self.blocks = {g.number: [self.passes[b.number, b.variant] for b in (g, *g.variants)] for g in log.groups}
         self.its: list[int] = []
         self.last: Row | None = None
         self.sets = {g.number: [b.sets for b in (g, *g.variants)] for g in log.groups}
@@ -233,7 +226,7 @@ class RowSolver:
         sigma = [s.number for s in steps if s.function and PRIMITIVES[s.function].sigma is not None]
         return b, [s for s in steps if s.function], [(name, self.kinds[name]) for name in reads], sigma
 
-    def _arc(self, b: ResolverGroup) -> Callable[[Env, list[float]], list[tuple[float, ...]]] | None:
+    def _arc(self, b: ResolverGroup) -> Measure | None:
         """A loop block's state records off a configuration (loopstate.lengths); None for an Add-link block
         (its pairs measured by link_residual)."""
         if self.log.step(b.steps[0]).function != "loop_point":
@@ -294,28 +287,22 @@ class RowSolver:
                  ad: list[list[float]], used: list[int], its: list[int]) -> bool:
         """The group's resolver step through the runtime's resolve_group; the report gets the
         last pass of the block that solved, then the step's own status."""
-        first, blocks, signs = self.first[g.number], self.blocks[g.number], self.signs[g.number]
-
-        def branches_of(a: list[list[float]]) -> None:
-            for k, i, step in signs:
-                env[BRANCH, step] = -1 if a[k][i] < 0 else 1
-
-        branches_of(a)
+        first, signs, states = self.first[g.number], self.signs[g.number], self.states[g.number]
+        signs(env, a)  # each chain's branch as the blocks' states hold it
         last: Report = {}
         chains = [0.0]
         before = {name: env[name] for name in self.group_reads[g.number] if name in env}  # as the group found them
-        fns = [make(env, last, before, chains) for make, _ in blocks]
+        fns = [make(env, last, before, chains) for make in self.blocks[g.number]]
 
-        def lengths(states: list[list[float]], rates: list[list[float]]) -> None:
-            for k, (_, state) in enumerate(blocks, first):
-                states[k], rates[k] = state(env, states[k])
+        def lengths(a: list[list[float]], ad: list[list[float]]) -> None:
+            states(env, a, ad)
 
         p = self.log.policy
         resolve = runtime()["resolve_group"]
         if g.closure is not None:  # the closure strategy: its equations first, the states read off the solution
             def adopt(states: list[list[float]]) -> None:
                 lengths(states, [[]] * len(states))
-                branches_of(states)
+                signs(env, states)
 
             resolve = functools.partial(runtime()["resolve_closure"], in_process(g.closure, env, adopt))
         ok, sigma = resolve(fns, lengths, a, ad, first, self.slots[g.number], used, its, order, lambda: chains[0],
