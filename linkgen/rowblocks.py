@@ -3,8 +3,9 @@ a block's pass (the generated programs' _group_N: its steps' calls on the record
 and accelerations), the states of all the group's blocks read off a solved configuration (_lengths_N), and
 the branches the blocks' states give the group's chains.
 
-A resolver solves a row in a few dozen passes; a pass as a loop over the steps' runners (linkgen.runners),
-each call's result unpacked and stored through a helper, took half again the time of the calls themselves.
+A resolver solves a row in a few dozen passes; a pass as a loop over the steps, each call made by a compiled
+runner, its result unpacked and stored through a helper, took half again the time of the calls themselves.
+The steps outside the groups are compiled likewise (steps_pass).
 The compiled pass makes the same calls with the same arguments in the same order, stores the same records
 and reports the same (status, sigma) per step; the compiled states compute the same expressions (a measure
 several blocks share once: the same operands, the same bits).
@@ -19,10 +20,11 @@ from types import CodeType
 from typing import Any
 
 from .primitives import PRIMITIVES
-from .runners import BRANCH, Env
 from .status import CANNOT_CLOSE
 from .steplog import BranchSign, ResolverGroup, Step
 
+BRANCH = "branch"  # env key (with a step number) of a chain's branch where it is not the sketch's
+Env = dict[Any, Any]  # variable -> record, (BRANCH, step) -> branch
 Report = dict[int, tuple[Any, Any]]  # step -> (status, sigma), in the order the steps ran
 Pass = Callable[[list[float], list[float], list[float], bool], tuple[int, Any]]
 MakePass = Callable[[Env, Report, Env, list[float]], Pass]  # (env, last, before, chains) -> the block's pass
@@ -93,9 +95,11 @@ def block_pass(b: ResolverGroup, steps: Sequence[Step], fns: Mapping[str, Any], 
     return made
 
 
-def _call(step: Step, fns: Mapping[str, Any], s: _Scope, j: int, sigmas: dict[int, str]) -> list[str]:
-    """One step's call in a block's pass: as linkgen.runners.runner makes it, and what rowsolver._run does
-    with its result."""
+def _call(step: Step, fns: Mapping[str, Any], s: _Scope, j: int, sigmas: dict[int, str], report: str = "last",
+          check: str = "fails += {r}[0] == FAIL", indent: str = "        ") -> list[str]:
+    """One step's call in a compiled pass (a record read as ``env[name]``, a chain's branch as the env's, else the
+    step's, a number in place); its (status, sigma) into the dict
+    ``report``, its outputs into env, then ``check`` (formatted with the result's name r) where it has a status."""
     prim = PRIMITIVES[step.function]
     args = []
     for a in step.args:
@@ -107,18 +111,31 @@ def _call(step: Step, fns: Mapping[str, Any], s: _Scope, j: int, sigmas: dict[in
             args.append(s(int(a.value) if a.kind == "int" else float(a.value)))
     call, r = f"{s(fns[step.function])}({', '.join(args)})", f"r{j}"
     n = s(step.number)
+    checks = []
     if prim.status is None:
-        lines = [f"        {r} = {call}", f"        last[{n}] = (0, 1.0)"]
+        lines = [f"{r} = {call}", f"{report}[{n}] = (0, 1.0)"]
         outs = [r] if len(prim.outputs) == 1 else [f"{r}[{k}]" for k in range(len(prim.outputs))]
         sigmas[step.number] = "1.0"
     else:
         first = 2 if prim.sigma is not None else 1
         sigma = f"{r}[1]" if prim.sigma is not None else "1.0"
-        lines = [f"        {r} = {call}", f"        last[{n}] = ({r}[0], {sigma})",
-                 f"        fails += {r}[0] == FAIL"]
+        lines = [f"{r} = {call}", f"{report}[{n}] = ({r}[0], {sigma})"]
+        checks = check.format(r=r).splitlines()
         outs = [f"{r}[{first + k}]" for k in range(len(prim.outputs))]
         sigmas[step.number] = sigma
-    return lines + [f"        env[{s(name)}] = {out}" for name, out in zip(step.outputs, outs)]
+    lines += [f"env[{s(name)}] = {out}" for name, out in zip(step.outputs, outs)] + checks
+    return [indent + line for line in lines]
+
+
+def steps_pass(steps: Sequence[Step], fns: Mapping[str, Any]) -> Callable[[Env, Report], bool]:
+    """run(env, report): steps outside the resolver groups called in order (each step's (status, sigma) into
+    report, its outputs into env), up to the first that cannot close: False there, else True."""
+    s = _Scope()
+    body = [line for j, step in enumerate(steps)
+            for line in _call(step, fns, s, j, {}, "report", "if {r}[0] == FAIL:\n    return False", "    ")]
+    made: Callable[[Env, Report], bool] = _function("\n".join(["def run(env, report):", *body, "    return True", ""]),
+                                                    {**s.names, "FAIL": CANNOT_CLOSE}, "run")
+    return made
 
 
 def group_states(blocks: Sequence[ResolverGroup], first: int, pos: Mapping[str, str], residual: Any,

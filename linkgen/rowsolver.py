@@ -2,8 +2,8 @@
 
 The Python runtime the generated programs carry (linkgen/backends/py/runtime: the row driver, the
 resolver, branch_at, reach_at) runs here on the step log: ``RowSolver`` gives the driver one pass of
-the procedure, whose calls the scalar primitives make (each step's call made once: ``runner``), and
-the blocks' state reader.
+the procedure, whose calls the scalar primitives make (the steps between the groups, each block's pass
+and the groups' state readers each compiled once as one function: linkgen.rowblocks).
 """
 
 from __future__ import annotations
@@ -23,8 +23,7 @@ from .options import runtime_policy
 from .primitives import PRIMITIVES, python_backend
 from .primitives.interpret import constant_record
 from .render.closure import in_process
-from .rowblocks import MakePass, Measure, States, block_pass, group_signs, group_states
-from .runners import BRANCH, Env, Runner, runner
+from .rowblocks import BRANCH, Env, MakePass, Measure, States, block_pass, group_signs, group_states, steps_pass
 from .steplog import Reach, ResolverGroup, Step, StepLog
 
 FAIL, NOT_CONVERGED, SINGULAR, NEAR = status.CANNOT_CLOSE, status.NOT_CONVERGED, status.SINGULAR, status.NEAR_SINGULAR
@@ -73,13 +72,15 @@ def bounds(reach: Reach) -> tuple[float, float]:
     return low, high
 
 
-def _run(number: int, call: Runner, outputs: tuple[str, ...], env: Env, report: Report) -> Any:
-    """One step's call: its records into env, (status, sigma) into report; returns the status."""
-    st, sigma, outs = call(env)
-    for name, rec in zip(outputs, outs):
-        env[name] = rec
-    report[number] = (st, sigma)
-    return st
+def _runs(steps: list[Step]) -> list[list[Step]]:
+    """The steps in order, each resolve step alone and the steps between them together."""
+    out: list[list[Step]] = []
+    for s in steps:
+        if s.action == "resolve" or not out or out[-1][0].action == "resolve":
+            out.append([s])
+        else:
+            out[-1].append(s)
+    return out
 
 
 def row_status(report: Report) -> int:
@@ -170,7 +171,6 @@ class RowSolver:
         self.log, self.order, self.width = log, order, max(order, 1)  # records carry rates: the Jacobian's
         self.call = _scalar_call(self.width)
         fns = python_backend(self.width)
-        self.runners = {s.number: runner(s, fns) for s in log.steps if s.function}
         self.warm: Any = None
         self.halvings = log.policy.max_halvings
         self.mech, self.straight = mechanism(log), mechanism(log, one_way=True)
@@ -192,8 +192,9 @@ class RowSolver:
         self.group_reads = {g.number: list(dict.fromkeys(name for b in (g, *g.variants)
                                                          for name, _ in parts[b.number, b.variant][2]))
                             for g in log.groups}
-        self.plan = [(s.number, self.groups[s.number] if s.action == "resolve" else None,
-                      self.runners.get(s.number), s.outputs) for s in self.steps]
+        self.plan: list[tuple[ResolverGroup | None, Callable[[Env, Report], bool] | None]] = [
+            (self.groups[k[0].number], None) if k[0].action == "resolve" else (None, steps_pass(k, fns))
+            for k in _runs(self.steps)]
         residual, zero = fns["link_residual"], (0.0,) * (self.width + 1)
         self.states: dict[int, States] = {
             g.number: group_states((g, *g.variants), self.first[g.number], self.pos, residual, zero,
@@ -267,11 +268,9 @@ class RowSolver:
         side, reach = self._side(inputs), self.log.reach
         if reach is not None and side:  # past a limit position: fails at once
             report[status.step(reach.codes()[side > 0])] = (FAIL, math.nan)
-        for number, group, call, outputs in self.plan if not side else ():
-            if group is not None:
-                if not self._resolve(group, env, report, order, a, ad, used, its):
-                    break
-            elif call is not None and _run(number, call, outputs, env, report) == FAIL:
+        for group, steps in self.plan if not side else ():
+            done = self._resolve(group, env, report, order, a, ad, used, its) if group else steps and steps(env, report)
+            if not done:
                 break
         code = row_status(report)
         if row:
