@@ -32,12 +32,6 @@ Measure = Callable[[Env, list[float]], list[tuple[float, ...]]]  # (env, old sta
 States = Callable[[Env, list[list[float]], list[list[float]]], None]  # (env, a, ad): every block's state and rates
 
 
-def _still(rec: tuple[float, ...], kind: str) -> tuple[float, ...]:
-    """A record with its derivatives zero."""
-    width = 2 if kind == "POINT" else 1
-    return tuple(rec[:width]) + (0.0,) * (len(rec) - width)
-
-
 def _function(source: str, scope: dict[str, Any], name: str) -> Any:
     """The function ``name`` the source defines, its names read from scope."""
     exec(_code(source, name), scope)
@@ -72,10 +66,9 @@ def block_pass(b: ResolverGroup, steps: Sequence[Step], fns: Mapping[str, Any], 
     conditioning of the pass's chains, from the block's lever down, in chains[0].  ``steps``: the block's steps
     that call a function, in order; ``reads``: (record, kind) of what it reads from before the group."""
     s = _Scope()
-    s.names["still"] = _still
-    keys = [(s(name), s(kind)) for name, kind in reads]
+    keys = [(s(name), 2 if kind == "POINT" else 1) for name, kind in reads]  # a record's values: a point's x, y
     live = ", ".join(f"{k}: before[{k}]" for k, _ in keys)
-    still = ", ".join(f"{k}: still(before[{k}], {kind})" for k, kind in keys)
+    still = ", ".join(f"{k}: tuple(before[{k}][:{n}]) + (0.0,) * (len(before[{k}]) - {n})" for k, n in keys)
     body = ["        if not seen:  # the records as the group found them (a block's pass leaves its reads still)",
             f"            seen.append({{{live}}})", f"            seen.append({{{still}}})",
             "        env.update(seen[0] if live else seen[1])"]
