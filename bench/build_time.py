@@ -73,8 +73,10 @@ def bench_builds() -> None:
              "their text (linkgen.render.make_env, kernel.compiled),",
              "and so are the primitives as the numpy kernel and the Python runtime print them, keyed on a",
              "fingerprint of the package's modules (linkgen.textcache: 15-20 ms of every build's CPU).  A resolver",
-             "mechanism's rows are solved one at a time in-process (linkgen.rowsolver, as NAME.py solves them):",
-             "its file's sweep, the reach's search and the summary's refinements are most of its build.",
+             "mechanism's rows are solved one at a time in-process (linkgen.rowsolver, as NAME.py solves them;",
+             "the steps between the groups, each block's pass and each group's state reader compiled once as one",
+             "function, linkgen.rowblocks): its file's sweep, the reach's search and the summary's refinements are",
+             "most of its build.",
              "",
              "| sample | `linkgen build` | imports | first build | later build (in-process) |",
              "| --- | ---: | ---: | ---: | ---: |"]

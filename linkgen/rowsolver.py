@@ -2,8 +2,8 @@
 
 The Python runtime the generated programs carry (linkgen/backends/py/runtime: the row driver, the
 resolver, branch_at, reach_at) runs here on the step log: ``RowSolver`` gives the driver one pass of
-the procedure, whose calls the scalar primitives make (each step's call made once: ``runner``), and
-the blocks' state reader.
+the procedure, whose calls the scalar primitives make (the steps between the groups, each block's pass
+and the groups' state readers each compiled once as one function: linkgen.rowblocks).
 """
 
 from __future__ import annotations
@@ -19,13 +19,14 @@ from typing import Any
 
 from . import status
 from .backends.still import held_params, scalar_variants, still_suffix
+from .kernel import compiled
 from .loopstate import lengths, loop_flags
 from .options import runtime_policy
 from .primitives import PRIMITIVES, python_backend
 from .primitives.interpret import constant_record
 from .render.closure import in_process
-from .runners import BRANCH, Env, Runner, runner
-from .steplog import Reach, ResolverGroup, StepLog
+from .rowblocks import BRANCH, Env, MakePass, Measure, States, block_pass, group_signs, group_states, steps_pass
+from .steplog import Reach, ResolverGroup, Step, StepLog
 
 FAIL, NOT_CONVERGED, SINGULAR, NEAR = status.CANNOT_CLOSE, status.NOT_CONVERGED, status.SINGULAR, status.NEAR_SINGULAR
 Report = dict[int, tuple[Any, Any]]  # step -> (status, sigma), in the order the steps ran
@@ -38,7 +39,7 @@ def runtime() -> dict[str, Any]:
     ns: dict[str, Any] = {"sqrt": math.sqrt, "floor": math.floor, "NAN": math.nan, "PI": math.pi}
     for name in ("status.py", "branch.py", "reach.py", "resolver.py", "closure.py", "driver.py"):
         source = resources.files("linkgen.backends.py").joinpath("runtime").joinpath(name).read_text(encoding="utf-8")
-        exec(compile(source, f"<linkgen runtime {name}>", "exec"), ns)
+        exec(compiled(source, f"<linkgen runtime {name}>"), ns)  # compiled once per user (7 ms of a build)
     return ns
 
 
@@ -73,28 +74,30 @@ def bounds(reach: Reach) -> tuple[float, float]:
     return low, high
 
 
-def _run(number: int, call: Runner, outputs: tuple[str, ...], env: Env, report: Report) -> Any:
-    """One step's call: its records into env, (status, sigma) into report; returns the status."""
-    st, sigma, outs = call(env)
-    for name, rec in zip(outputs, outs):
-        env[name] = rec
-    report[number] = (st, sigma)
-    return st
+def _runs(steps: list[Step]) -> list[list[Step]]:
+    """The steps in order, each resolve step alone and the steps between them together."""
+    out: list[list[Step]] = []
+    for s in steps:
+        if s.action == "resolve" or not out or out[-1][0].action == "resolve":
+            out.append([s])
+        else:
+            out[-1].append(s)
+    return out
 
 
-def row_status(report: Report) -> Any:
+def row_status(report: Report) -> int:
     """The programs' row status from the steps' reports in the order they ran: the first
     failure's code, else the first singular step's, else the first near-singular one's
-    (negative).  Works on one row (ints) and on arrays of rows alike."""
-    fail: Any = 0
-    singular: Any = 0
-    near: Any = 0
+    (negative)."""
+    singular = near = 0
     for n, (st, _) in report.items():
-        failed = (st == FAIL) | (st == NOT_CONVERGED) | (st == status.NOT_CONTRACTING)
-        fail = fail + (fail == 0) * failed * status.code(n, st)
-        singular = singular + (singular == 0) * (st == SINGULAR) * status.code(n, st)
-        near = near + (near == 0) * (st == NEAR) * status.code(n, st)
-    return fail + (fail == 0) * (singular + (singular == 0) * near)
+        if st in (FAIL, NOT_CONVERGED, status.NOT_CONTRACTING):
+            return int(status.code(n, st))
+        if st == SINGULAR and not singular:
+            singular = status.code(n, st)
+        elif st == NEAR and not near:
+            near = status.code(n, st)
+    return int(singular or near)
 
 
 def _input_env(log: StepLog, order: int, values: Any, rates: Any, accs: Any) -> Env:
@@ -107,22 +110,11 @@ def _input_env(log: StepLog, order: int, values: Any, rates: Any, accs: Any) -> 
 
 class _Fields:
     """The records of an Env as the fields of a generated program's work (the runtime's addlink_rates
-    reads and bends a block's records by name)."""
+    reads and bends a block's records by name): the env is the object's own namespace, so getattr
+    and setattr read and write its records without a call of Python code."""
 
     def __init__(self, env: Env):
-        object.__setattr__(self, "env", env)
-
-    def __getattr__(self, name: str) -> Any:
-        return self.env[name]
-
-    def __setattr__(self, name: str, value: Any) -> None:
-        self.env[name] = value
-
-
-def _still(rec: tuple[float, ...], kind: str) -> tuple[float, ...]:
-    """A record with its derivatives zero."""
-    width = 2 if kind == "POINT" else 1
-    return tuple(rec[:width]) + (0.0,) * (len(rec) - width)
+        self.__dict__ = env
 
 
 @dataclass
@@ -181,8 +173,7 @@ class RowSolver:
         self.log, self.order, self.width = log, order, max(order, 1)  # records carry rates: the Jacobian's
         self.call = _scalar_call(self.width)
         fns = {**python_backend(self.width), **scalar_variants(log, self.width)}  # the programs' calls (still.py)
-        self.runners = {s.number: runner(s, fns, s.function + still_suffix(held_params(log, self.width, s)))
-                        for s in log.steps if s.function}
+        callee = {s.number: s.function + still_suffix(held_params(log, self.width, s)) for s in log.steps if s.function}
         self.warm: Any = None
         self.halvings = log.policy.max_halvings
         self.mech, self.straight = mechanism(log), mechanism(log, one_way=True)
@@ -196,12 +187,27 @@ class RowSolver:
         inside = {n for g in log.groups for b in (g, *g.variants) for n in b.steps}
         self.steps = [s for s in log.steps
                       if s.action == "resolve" or (s.function and s.number not in inside and not s.variant)]
-        self.parts = {(b.number, b.variant): self._parts(b) for g in log.groups for b in (g, *g.variants)}
-        self.plan = [(s.number, self.groups[s.number] if s.action == "resolve" else None,
-                      self.runners.get(s.number), s.outputs) for s in self.steps]
-        self.residual, self.zero = fns["link_residual"], (0.0,) * (self.width + 1)
-        self.measured = {(b.number, b.variant): None if log.step(b.steps[0]).function == "loop_point" else
-                         [(self.pos[k], self.pos[u]) for k, u in b.pairs] for g in log.groups for b in (g, *g.variants)}
+        blocks = [b for g in log.groups for b in (g, *g.variants)]
+        parts = {(b.number, b.variant): self._parts(b) for b in blocks}
+        self.passes: dict[tuple[int, int], MakePass] = {
+            key: block_pass(b, steps, fns, reads, sigma, self.width + 1)
+            for key, (b, steps, reads, sigma) in parts.items()}
+        self.group_reads = {g.number: list(dict.fromkeys(name for b in (g, *g.variants)
+                                                         for name, _ in parts[b.number, b.variant][2]))
+                            for g in log.groups}
+        self.plan: list[tuple[ResolverGroup | None, Callable[[Env, Report], bool] | None]] = [
+            (self.groups[k[0].number], None) if k[0].action == "resolve" else (None, steps_pass(k, fns, callee))
+            for k in _runs(self.steps)]
+        residual, zero = fns["link_residual"], (0.0,) * (self.width + 1)
+        self.states: dict[int, States] = {
+            g.number: group_states((g, *g.variants), self.first[g.number], self.pos, residual, zero,
+                                   [self._arc(b) for b in (g, *g.variants)]) for g in log.groups}
+        self.signs = {g.number: group_signs((g, *g.variants), self.first[g.number]) for g in log.groups}
+        self.periodic = log.inputs[0].kind == "revolute" if log.inputs else False
+        self.theta0 = log.inputs[0].sketch if log.inputs else 0.0
+        self.change_points = [(s.number, next(int(a.value) for a in s.args if a.label == "minv"), s.change_points)
+                              for s in log.steps if s.change_points]
+        self.blocks = {g.number: [self.passes[b.number, b.variant] for b in (g, *g.variants)] for g in log.groups}
         self.its: list[int] = []
         self.last: Row | None = None
         self.sets = {g.number: [b.sets for b in (g, *g.variants)] for g in log.groups}
@@ -215,17 +221,21 @@ class RowSolver:
                                                       self.log.options)
         return self._policies[halvings]
 
-    def _parts(self, b: ResolverGroup) -> tuple[list[tuple[int, Runner, tuple[str, ...]]], list[tuple[str, str]],
-                                                list[int]]:
-        """A block's calls (step number, runner, outputs: its steps that call a function), the
-        records they read from before the group (with their kinds) and the steps whose
-        conditioning its chains' is."""
+    def _parts(self, b: ResolverGroup) -> tuple[ResolverGroup, list[Step], list[tuple[str, str]], list[int]]:
+        """A block, its steps that call a function, the records they read from before the group
+        (with their kinds) and the steps whose conditioning its chains' is."""
         steps = [self.log.step(n) for n in b.steps]
         inner = set(b.writes) | set(b.add_links)
         reads = sorted({a.var for st in steps for a in st.args if a.kind == "var" and a.var not in inner})
         sigma = [s.number for s in steps if s.function and PRIMITIVES[s.function].sigma is not None]
-        calls = [(s.number, self.runners[s.number], s.outputs) for s in steps if s.function]
-        return calls, [(name, self.kinds[name]) for name in reads], sigma
+        return b, [s for s in steps if s.function], [(name, self.kinds[name]) for name in reads], sigma
+
+    def _arc(self, b: ResolverGroup) -> Measure | None:
+        """A loop block's state records off a configuration (loopstate.lengths); None for an Add-link block
+        (its pairs measured by link_residual)."""
+        if self.log.step(b.steps[0]).function != "loop_point":
+            return None
+        return lambda env, old: lengths(self.call, env, self.pos, self.log, b, old, self.width)
 
     def solve(self, values: Any, rates: Any, accs: Any, one_way: bool = False) -> Row:
         """Solve one row (see the runtime's drive); ``one_way``: the continuation takes the
@@ -252,20 +262,20 @@ class RowSolver:
         env = dict(self.constants)
         for name, x, r, c in zip(self.inputs, inputs, rates, accs):
             env[name] = (x, r, c)[: self.width + 1]
-        branches(self.log, env, float(inputs[0]) if inputs else 0.0)
+        theta, branch_at = float(inputs[0]) if inputs else 0.0, runtime()["branch_at"]
+        for number, b0, points in self.change_points:  # the branch of every chain with change points (branches)
+            env[BRANCH, number] = branch_at(theta, b0, self.theta0, points, self.periodic)
         report: Report = {}
         ad = [[0.0] * len(s) for s in a]
         its = self.its if row else [0] * len(self.log.groups)
         side, reach = self._side(inputs), self.log.reach
         if reach is not None and side:  # past a limit position: fails at once
             report[status.step(reach.codes()[side > 0])] = (FAIL, math.nan)
-        for number, group, call, outputs in self.plan if not side else ():
-            if group is not None:
-                if not self._resolve(group, env, report, order, a, ad, used, its):
-                    break
-            elif call is not None and _run(number, call, outputs, env, report) == FAIL:
+        for group, steps in self.plan if not side else ():
+            done = self._resolve(group, env, report, order, a, ad, used, its) if group else steps and steps(env, report)
+            if not done:
                 break
-        code = int(row_status(report))
+        code = row_status(report)
         if row:
             self.last = Row(env, report, {}, code)
         return code, ad
@@ -279,29 +289,22 @@ class RowSolver:
                  ad: list[list[float]], used: list[int], its: list[int]) -> bool:
         """The group's resolver step through the runtime's resolve_group; the report gets the
         last pass of the block that solved, then the step's own status."""
-        first, blocks = self.first[g.number], (g, *g.variants)
-
-        def branches_of(a: list[list[float]]) -> None:
-            for j, b in enumerate(blocks):
-                for i, bs in enumerate(b.branches):
-                    env[BRANCH, bs.step] = -1 if a[first + j][len(b.add_links) + i] < 0 else 1
-
-        branches_of(a)
+        first, signs, states = self.first[g.number], self.signs[g.number], self.states[g.number]
+        signs(env, a)  # each chain's branch as the blocks' states hold it
         last: Report = {}
         chains = [0.0]
-        before = dict(env)
-        fns = [self._group(b, env, before, last, chains) for b in blocks]
+        before = {name: env[name] for name in self.group_reads[g.number] if name in env}  # as the group found them
+        fns = [make(env, last, before, chains) for make in self.blocks[g.number]]
 
-        def lengths(states: list[list[float]], rates: list[list[float]]) -> None:
-            for j, b in enumerate(blocks):
-                states[first + j], rates[first + j] = self._state(env, b, states[first + j])
+        def lengths(a: list[list[float]], ad: list[list[float]]) -> None:
+            states(env, a, ad)
 
         p = self.log.policy
         resolve = runtime()["resolve_group"]
         if g.closure is not None:  # the closure strategy: its equations first, the states read off the solution
             def adopt(states: list[list[float]]) -> None:
                 lengths(states, [[]] * len(states))
-                branches_of(states)
+                signs(env, states)
 
             resolve = functools.partial(runtime()["resolve_closure"], in_process(g.closure, env, adopt))
         ok, sigma = resolve(fns, lengths, a, ad, first, self.slots[g.number], used, its, order, lambda: chains[0],
@@ -313,50 +316,8 @@ class RowSolver:
         return bool(ok > 0)
 
     def _group(self, b: ResolverGroup, env: Env, before: Env, last: Report, chains: list[float]) -> Callable[..., Any]:
-        """The runtime's view of a block (the generated _group_N): (status, residual records)
-        of its steps at Add-link lengths, rates and accelerations; live=False zeroes the rates
-        of what it reads from before the group.  ``chains[0]``: the worst conditioning of the
-        last pass's chains, from the block's lever down."""
-        calls, reads, sigma_steps = self.parts[b.number, b.variant]
-        width, add_links, residuals, lever = self.width + 1, b.add_links, b.residuals, b.lever
-        seen: dict[bool, Env] = {}
-
-        def group(x: list[float], dx: list[float], ddx: list[float], live: bool) -> tuple[int, Any]:
-            if not seen:  # the records as the group found them (a block's pass leaves its reads still)
-                seen[True] = {name: before[name] for name, _ in reads}
-                seen[False] = {name: _still(before[name], kind) for name, kind in reads}
-            env.update(seen[live])
-            for name, v, r, c in zip(add_links, x, dx, ddx):
-                env[name] = (v, r, c)[:width]
-            last.clear()
-            if [_run(number, call, outputs, env, last) for number, call, outputs in calls].count(FAIL):
-                return 1, None
-            chains[0] = min([lever, *(last[n][1] for n in sigma_steps)])
-            return 0, [env[f] for f in residuals]
-
-        return group
-
-    def _state(self, env: Env, b: ResolverGroup, old: list[float]) -> tuple[list[float], list[float]]:
-        """A block's state and rates off a solved configuration (the generated _lengths_N): its Add-link lengths
-        or loop's arc (loopstate.lengths), its chains' sign measures and rates (the predictor moves them: a chain
-        passing its fold changes branch; a zero keeps the old one, rate 0), then its orientation (0)."""
-        pairs = self.measured[b.number, b.variant]  # an Add-link block's pairs (loopstate.lengths, its call made once)
-        f = lengths(self.call, env, self.pos, self.log, b, old, self.width) if pairs is None else [
-            self.residual(env[k], env[u], self.zero) for k, u in pairs]
-        n, marks, turns = len(b.pairs), [], []
-        for j, bs in enumerate(b.branches):
-            q0, q1 = env[bs.points[0]], env[bs.points[1]]
-            ux, uy = q1[0] - q0[0], q1[1] - q0[1]  # b - a (each difference as the formulas below had it)
-            if bs.kind == "side":
-                q2 = env[bs.points[2]]
-                vx, vy = q2[0] - q0[0], q2[1] - q0[1]
-                m = ux * vy - uy * vx
-                dm = (q1[2] - q0[2]) * vy + ux * (q2[3] - q0[3]) - (q1[3] - q0[3]) * vx - uy * (q2[2] - q0[2])
-            else:
-                angle = env[bs.angle]
-                c, s, dt = math.cos(angle[0]), math.sin(angle[0]), angle[1]
-                m = ux * c + uy * s
-                dm = (q1[2] - q0[2]) * c + (q1[3] - q0[3]) * s + (uy * c - ux * s) * dt
-            marks.append(m if m != 0 else old[n + j])
-            turns.append(dm if m != 0 else 0.0)
-        return [r[0] for r in f] + marks + [0.0], [r[1] for r in f] + turns + [0.0]
+        """The runtime's view of a block (the generated _group_N, linkgen.rowblocks.block_pass): (status, residual
+        records) of its steps at Add-link lengths, rates and accelerations; live=False zeroes the rates of what it
+        reads from before the group (``before``: the records as the group found them).  ``chains[0]``: the worst
+        conditioning of the last pass's chains, from the block's lever down."""
+        return self.passes[b.number, b.variant](env, last, before, chains)

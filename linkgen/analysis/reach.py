@@ -102,7 +102,7 @@ def _limit(log: StepLog, solver: RowSolver, stop: float) -> Limit | None:
             return None
         speed = max((math.hypot(*out.env[p][2:4]) for p in points if p in out.env),  # a fallback's own: where it ran
                     default=0.0) / log.length_scale
-        sigma = {n: float(s) for n, (_, s) in out.report.items() if n not in inner and np.isfinite(s)}
+        sigma = {n: float(s) for n, (_, s) in out.report.items() if n not in inner and math.isfinite(s)}
         return _Point(value, solver.warm, speed, sigma)
 
     first = attempt(theta0, None, full)

@@ -34,9 +34,10 @@ def test_row_status_takes_the_first_failure_then_the_first_singular_then_the_fir
     assert row_status({6: (2, 0.0), 2: (1, math.nan)}) == 62  # the order the steps ran, not their numbers
 
 
-def test_row_status_works_row_by_row_on_arrays():
-    report = {3: (np.array([0, 1, 0, 4]), None), 5: (np.array([3, 0, 4, 3]), None), 7: (np.array([2, 0, 0, 0]), None)}
-    assert row_status(report).tolist() == [72, 31, -54, 53]  # a failure beats a singular step, which beats a near one
+def test_row_status_ranks_a_failure_over_a_singular_step_over_a_near_singular_one():
+    rows = [(0, 3, 2), (1, 0, 0), (0, 4, 0), (4, 3, 0)]  # the statuses of steps 3, 5 and 7 on four rows
+    codes = [row_status({3: (a, None), 5: (b, None), 7: (c, None)}) for a, b, c in rows]
+    assert codes == [72, 31, -54, 53]  # a failure beats a singular step, which beats a near one
 
 
 @pytest.fixture(scope="module", params=RESOLVED, ids=lambda p: p.stem)
