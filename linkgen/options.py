@@ -11,7 +11,8 @@ from types import SimpleNamespace
 from .policy import DEFAULT_REAL, POLICY, REAL_TYPES, Policy
 
 STRATEGIES = ("newton", "fixed-point", "closure", "loop")  # the resolver strategies (see Options.strategy)
-PREDICTORS = (0, 1, 2)  # the warm start's order: the last row's state, along its rates, with its accelerations
+PREDICTORS = (0, 1, 2)  # the warm start's order: the last row's state, along its rates, along the parabola
+# with those rates through the row before
 ANGLE_FORMS = ("angle", "unit")  # angle outputs as angles (atan2) or as unit vectors (no trigonometry)
 UNIT_SYSTEMS = ("si", "file")  # the programs' inputs and outputs in radians (SI) or in the file's angle unit
 MAX_ITERATIONS = 100  # the largest iteration cap a user may set
