@@ -34,7 +34,7 @@ def _reasons(s: Step, strategy: str) -> dict[int, str]:
         return {status.CANNOT_CLOSE: f"the loop's body {s.target} is turned over (its mirror image, no assembly)"}
     if s.function in ("link_angle", "link_direction"):
         return {status.CANNOT_CLOSE: f"the two points of {s.target} coincide"}
-    if s.function == "link_point":
+    if s.function in ("link_point", "pair_point"):
         return {status.CANNOT_CLOSE: f"the two pairs {s.target} is placed from coincide"}
     return {status.CANNOT_CLOSE: "the chain cannot close", status.SINGULAR: "singular position (toggle)",
             status.NEAR_SINGULAR: "near a singular position"}

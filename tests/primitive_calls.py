@@ -109,6 +109,9 @@ def special_inputs(name: str) -> list[tuple[str, int | None, dict]]:
                                       "xa": 0.0, "ya": 0.0, "xb": 0.0, "yb": 0.0, "cx": 0.0, "sgn": 1}))
     elif name == "link_angle":
         cases.append(("coincident", 1, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), "off": 0.5}))
+    elif name in ("link_point", "pair_point"):  # a point placed from coincident pairs is undefined
+        cases.append(("coincident", 1, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), **dict(zip(
+            [q.name for q in PRIMITIVES[name].params[2:]], (0.5, 0.25)))}))
     elif name == "link_direction":
         cases.append(("coincident", 1, {**pt("j1", 1.0, 2.0), **pt("j2", 1.0, 2.0), "c": 0.6, "s": 0.8}))
     elif name == "link_residual":

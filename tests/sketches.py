@@ -726,6 +726,29 @@ def link_point_case(src: Source) -> Case:
                 max(1.0, arm), math.nan, False, "short" if short else "random")
 
 
+def pair_point_case(src: Source) -> Case:
+    """A point of a link linear in two of its points (a needle of a base with a far point in the short mode):
+    along and across as the extraction rounds them (the nearest doubles), the exact point from those doubles."""
+    s = src.scale()
+    j1 = src.point(s)
+    short = src.flag()
+    j2 = src.near(j1, s * src.ratio()) if short else src.point(s)
+    jc = src.point(s)
+    dx, dy, rx, ry = (MP.mpf(j2[0]) - j1[0], MP.mpf(j2[1]) - j1[1], MP.mpf(jc[0]) - j1[0], MP.mpf(jc[1]) - j1[1])
+    q2 = dx * dx + dy * dy
+    if q2 == 0:
+        raise Degenerate("pair_point: the base's points coincide")
+    along, across = float((rx * dx + ry * dy) / q2), float((dx * ry - dy * rx) / q2)
+    w = _angular(src)
+    args = (_pt_arg(j1, _rates(src, s, w)), _pt_arg(j2, _rates(src, s, w)), along, across)
+    J1, J2 = _pt_jet(args[0]), _pt_jet(args[1])
+    out = {"jc": vadd(J1, local(vsub(J2, J1), mp(along), mp(across)))}
+    arm = math.hypot(along, across)
+    length = max(_magnitude(*j1, *j2, *jc), arm * float(MP.sqrt(q2)))
+    return Case("pair_point", args, {"j1": J1, "j2": J2, "along": mp(along), "across": mp(across)}, out, length,
+                max(1.0, arm), math.nan, False, "short" if short else "random")
+
+
 def link_angle_case(src: Source) -> Case:
     s = src.scale()
     j1 = src.point(s)
@@ -941,6 +964,7 @@ CHAINS = {
     "PPR_links": ppr_case,
     "coupler_point": coupler_point_case,
     "link_point": link_point_case,
+    "pair_point": pair_point_case,
     "link_angle": link_angle_case,
     "link_direction": link_direction_case,
     "angle_direction": angle_direction_case,
@@ -1035,6 +1059,11 @@ def residuals(case: Case, outs: dict) -> list:
         r = vsub(pt("jc"), _p(v, "j1"))
         q = MP.sqrt(vdot(d, d))
         return [vdot(r, d) / q - v["gsi"], vcross(d, r) / q - v["eta"]]
+    if n == "pair_point":  # jc - j1 = along d + across n(d), d = j2 - j1: its components along e = d / |d| and n(e)
+        d = vsub(_p(v, "j2"), _p(v, "j1"))
+        r = vsub(pt("jc"), _p(v, "j1"))
+        q = MP.sqrt(vdot(d, d))
+        return [vdot(r, d) / q - v["along"] * q, vcross(d, r) / q - v["across"] * q]
     if n == "crank_input":
         d = vsub(pt("j2"), _p(v, "j1"))
         u = _dir_mp(_val(v, "theta") + _val(v, "phi"))

@@ -238,6 +238,13 @@ def sample_link_point(r: Draw, branch: int):
     return Sample({"j1": j1, "j2": j2, "gsi": gsi, "eta": eta}, {"jc": jc})
 
 
+def sample_pair_point(r: Draw, branch: int):
+    j1, rad, phi, along, across = r.point(), r.variable(0.2, 2), r.angle(), r.length(), r.length()
+    j2 = vadd(j1, vscale(rad, direction(phi)))  # a base that stretches: the point stretches with it
+    jc = vadd(j1, local(vsub(j2, j1), along, across))
+    return Sample({"j1": j1, "j2": j2, "along": along, "across": across}, {"jc": jc})
+
+
 def sample_slider_input(r: Draw, branch: int):
     pg, psig, s, gsi, eta = r.point(), r.angle(), r.variable(), r.length(), r.length()
     u = direction(psig)
@@ -409,6 +416,7 @@ SAMPLERS: dict[str, Callable] = {
     "crank_angle": sample_crank_angle,
     "coupler_point": sample_coupler_point,
     "link_point": sample_link_point,
+    "pair_point": sample_pair_point,
     "RRR_links": sample_rrr,
     "PRR_links": sample_prr,
     "PRP_links": sample_prp,
@@ -607,6 +615,9 @@ def constraints(name: str, v: dict, f: dict) -> tuple[list, list]:
     if name == "link_point":  # jc - j1 = gsi e + eta n, e = d / |d| (d = j2 - j1) and n = e turned a quarter left
         d, r = _sub(p("j2"), p("j1")), _sub(_pt(f, "jc"), p("j1"))
         return [_dot(r, d) - v["gsi"] * _norm(d), _cross(d, r) - v["eta"] * _norm(d)], []
+    if name == "pair_point":  # jc - j1 = along d + across n(d), d = j2 - j1 and n(d) it turned a quarter left
+        d, r = _sub(p("j2"), p("j1")), _sub(_pt(f, "jc"), p("j1"))
+        return [_dot(r, d) - v["along"] * _dot(d, d), _cross(d, r) - v["across"] * _dot(d, d)], []
     if name == "slider_input":
         u = _dir(v["psig_the"])
         jp, jc = _pt(f, "jp"), _pt(f, "jc")
@@ -761,7 +772,7 @@ def _displacements(name: str) -> list[tuple[str, str]]:
 
 @pytest.mark.parametrize(
     "name", ["crank_input", "slider_input", "link_angle", "offset_angle", "coupler_point", "link_point",
-             "link_residual", "link_direction", "angle_direction"]
+             "pair_point", "link_residual", "link_direction", "angle_direction"]
 )
 def test_literal_sympy_diff_agrees_with_chain_rule(name):
     _literal_check(name, _displacements(name), second=True)

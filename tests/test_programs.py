@@ -171,7 +171,7 @@ def test_c_has_no_mutable_static_or_global_state(sources):
 
 def test_only_used_runtime_functions_are_emitted(sources):
     all_functions = ("crank_input", "slider_input", "link_angle", "offset_angle", "coupler_point", "link_point",
-                     "RRR_links", "PRR_links", "PRP_links", "RPR_links", "PPR_links", "link_residual")
+                     "pair_point", "RRR_links", "PRR_links", "PRP_links", "RPR_links", "PPR_links", "link_residual")
     for _, (log, files) in sources.items():
         used = {s.function for s in log.steps if s.function}
         c_text = files[f"{log.name}.c"].decode()

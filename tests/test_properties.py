@@ -287,7 +287,7 @@ def chain_cases(draw, name: str) -> sk.Case:
 
 
 CHAIN_EXAMPLES = {"RRR_links": 500, "PRR_links": 400, "RPR_links": 400, "PRP_links": 300, "PPR_links": 300,
-                  "coupler_point": 150, "link_point": 150, "link_angle": 150, "link_direction": 100,
+                  "coupler_point": 150, "link_point": 150, "pair_point": 150, "link_angle": 150, "link_direction": 100,
                   "angle_direction": 50, "crank_input": 100, "slider_input": 100,
                   "offset_angle": 50, "crank_angle": 50, "link_residual": 100, "loop_point": 100,
                   "loop_residual": 100, "loop_turn": 100}
@@ -325,6 +325,7 @@ test_chain_PRP_links = _chain_test("PRP_links")
 test_chain_PPR_links = _chain_test("PPR_links")
 test_chain_coupler_point = _chain_test("coupler_point")
 test_chain_link_point = _chain_test("link_point")
+test_chain_pair_point = _chain_test("pair_point")
 test_chain_link_angle = _chain_test("link_angle")
 test_chain_link_direction = _chain_test("link_direction")
 test_chain_angle_direction = _chain_test("angle_direction")
@@ -340,7 +341,7 @@ test_chain_loop_turn = _chain_test("loop_turn")
 
 # Outside the supported range (no strategy draws there) every primitive still gives a defined answer: the
 # status discipline, no exception, no inf, no status 0 with a nan.
-ANGLE_SCALARS = {"off", "cx"}  # the REAL parameters that are angles; the others are lengths
+ANGLE_SCALARS = {"off", "cx", "along", "across"}  # the REAL parameters that are angles or ratios; the others lengths
 OUTSIDE = {"tiny": 1e-300, "subnormal": 1e-315}  # lengths of the seeded cases times this
 OUTSIDE_CASES = 20  # seeded cases per primitive and magnitude
 FOUND_OUTSIDE = [  # the counterexamples of the chain tests before they drew inside the range (issue 17)

@@ -109,13 +109,16 @@ def line(ws: Workspace, pair: str) -> tuple[str, str]:
     return ws.lines[pair]
 
 
-def point_on(ws: Workspace, link: str, name: str, out: str, reason: str) -> None:
-    """``name`` (the record ``out``) at its sketch place on a placed link: in the frame of two known points of
-    the link where it has them (link_point, on the pair whose base is longest against the point's distance
-    from its first point: the base's direction error turns the point by that lever), else at its offset from
-    the nearest known point along the link's angle (coupler_point, with link_angle where the angle is not known
-    yet); also where that lever is below GOOD_LEVER and the link's angle is known otherwise (a slider link
-    turning with its line: an RPR chain's angle does not depend on the short base)."""
+def point_on(ws: Workspace, link: str, name: str, out: str, reason: str, linear: bool = False) -> None:
+    """``name`` (the record ``out``) at its sketch place on a placed link: from two known points of the link
+    where it has them, on the pair whose base is longest against the point's distance from its first point
+    (the base's direction error turns the point by that lever): in the frame of their unit vector
+    (link_point: a rounding or a resolver's tolerance that stretches the base does not reach the point), or,
+    with ``linear`` (a point no chain reads) where neither pair comes out of a resolver group (whose tolerance
+    can stretch their distance), linear in them (pair_point: no root, no division); else at its
+    offset from the nearest known point along the link's angle (coupler_point, with link_angle where the angle
+    is not known yet); also where that lever is below GOOD_LEVER and the link's angle is known otherwise (a
+    slider link turning with its line: an RPR chain's angle does not depend on the short base)."""
     tied = [n for n in ws.tied[link] if ws.pos[n] != out]
     here = ws.xy(name)
     pairs = [(a, b) for a in tied for b in tied if ws.xy(a) != ws.xy(b)]
@@ -127,11 +130,15 @@ def point_on(ws: Workspace, link: str, name: str, out: str, reason: str) -> None
         base, far = best
         r = tuple(a - b for a, b in zip(here, ws.xy(base)))
         d = tuple(a - b for a, b in zip(ws.xy(far), ws.xy(base)))
-        gsi, eta = exact.local(r[0], r[1], d[0], d[1])
-        emit(ws, "point", "link_point",
-             [Arg("var", ws.pos[base]), Arg("var", ws.pos[far]), Arg("real", value=gsi, label="gsi"),
-              Arg("real", value=eta, label="eta")], [out], name, pairs=(base, far), links=(link,), fails=True,
-             reason=reason)
+        grouped = {o for s in ws.steps if s.group for o in s.outputs}
+        if linear and not {ws.pos[base], ws.pos[far]} & grouped:
+            function, labels, coords = "pair_point", ("along", "across"), exact.along_across(r[0], r[1], d[0], d[1])
+        else:
+            function, labels, coords = "link_point", ("gsi", "eta"), exact.local(r[0], r[1], d[0], d[1])
+        emit(ws, "point", function,
+             [Arg("var", ws.pos[base]), Arg("var", ws.pos[far])]
+             + [Arg("real", value=v, label=k) for k, v in zip(labels, coords)], [out], name, pairs=(base, far),
+             links=(link,), fails=True, reason=reason)
         return
     base = min(tied, key=lambda n: math.dist(here, ws.xy(n)))
     r = tuple(a - b for a, b in zip(here, ws.xy(base)))

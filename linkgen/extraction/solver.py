@@ -1,10 +1,10 @@
 """The Solver (the paper's Algorithm 1): compute each unknown pair as soon as it can.
 
 It scans the unknown pairs in declaration order and computes the first it can: as a
-point of a placed link (``link_point``, or ``coupler_point`` where one point of it is
-known), through an input (``crank_input``, ``slider_input``), or as the middle pair of a
-two-link chain whose ends are known (in extract's second pass, a chain on a slide first
-inside an Add-link group: ``slides_first``).
+point of a placed link (``link_point``, ``pair_point`` for a point no chain reads, or
+``coupler_point`` where one point of it is known), through an input (``crank_input``,
+``slider_input``), or as the middle pair of a two-link chain whose ends are known (in extract's
+second pass, a chain on a slide first inside an Add-link group: ``slides_first``).
 Every choice breaks ties by declaration order, so a file always gives the same procedure.
 """
 
@@ -176,7 +176,8 @@ def _try_point(ws: Workspace, pair: str) -> bool:
 
 
 def finish(ws: Workspace) -> None:
-    """Every point of a placed link, then every link's angle for the outputs."""
+    """Every point of a placed link (linear in two of its pairs where no group computes them: no chain reads
+    a point), then every link's angle for the outputs."""
     for p in ws.m.prismatic:
         if p.joint not in ws.slides:
             raise Unsupported(f"the prismatic pair {p.joint} is not used by any chain")
@@ -184,6 +185,6 @@ def finish(ws: Workspace) -> None:
         for pt in lk.points:
             if pt.name not in ws.pos:
                 ws.pos[pt.name] = ws.point_var(pt.name, "point")
-                point_on(ws, lk.name, pt.name, ws.pos[pt.name], f"point {pt.name} of link {lk.name}")
+                point_on(ws, lk.name, pt.name, ws.pos[pt.name], f"point {pt.name} of link {lk.name}", linear=True)
     for lk in ws.m.links:
         link_angle(ws, lk.name)

@@ -67,6 +67,23 @@ def link_point(b: PlaneBuilder) -> Primitive:
 
 
 @primitive
+def pair_point(b: PlaneBuilder) -> Primitive:
+    """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) =
+    (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d'
+    and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square
+    underflows).
+    """
+    j1, j2 = b.points("j1", "j2")
+    along, across = b.scalars("along", "across")
+    d = b.difference(j1, j2)
+    r2 = b.let("r2", d.p.dot(d.p))
+    arm = Motion(b.local("r", d.p, along, across), b.local("rv", d.v, along, across),
+                 b.local("ra", d.a, along, across))
+    b.output_point("jc", j1 + arm)
+    return b.build(status=select(r2.eq(0), status.CANNOT_CLOSE, 0), fail=r2.eq(0))
+
+
+@primitive
 def slider_input(b: PlaneBuilder) -> Primitive:
     """Slider point jp at displacement s along the guide line (pg, psig) and its pair jc at (gsi, eta)."""
     pg = b.point("pg")
@@ -154,6 +171,7 @@ PRIMITIVES: dict[str, Primitive] = {
         offset_angle,
         coupler_point,
         link_point,
+        pair_point,
         RRR_links,
         PRR_links,
         PRP_links,

@@ -29,6 +29,14 @@ def test_each_failing_step_has_its_reasons():
     assert all(c.meaning.startswith(f"step {c.step}") for c in log.status_codes)
 
 
+def test_a_point_placed_linearly_fails_where_its_two_pairs_coincide():
+    """The four-bar's P is placed by pair_point (step 4) from B and A: its one failure is reason 1."""
+    log = build_log(str(ROOT / "samples" / "fourbar" / "fourbar.yaml"), sweep=False)
+    assert log.step(4).function == "pair_point"
+    assert [(c.code, c.meaning) for c in log.status_codes if c.step == 4] == [
+        (41, "step 4 (P): the two pairs P is placed from coincide")]
+
+
 def test_a_resolver_limit_position_has_a_code_of_its_own():
     """Rows past sixbar_partial's limit positions fail at the resolve step (8) with reason 1."""
     log = build_log(str(ROOT / "tests" / "mechanisms" / "sixbar_partial.yaml"), sweep=False)

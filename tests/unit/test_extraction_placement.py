@@ -39,15 +39,26 @@ def test_rot_gives_the_coordinates_in_a_turned_frame(angle: float, x: float, y: 
     assert rot(angle, x, y) == pytest.approx(expected, abs=1e-15)
 
 
-def test_a_point_of_a_link_with_two_known_pairs_is_placed_in_their_frame():
+def test_a_point_of_a_link_with_two_known_pairs_is_linear_in_them():
     proc = _extract(ROOT / "samples" / "fourbar" / "fourbar.yaml")
     (step,) = [s for s in proc.steps if s.target == "P"]
-    # P (60, 70) from B (80, 50) = (-20, 20), along B -> A = (-60, -50) and across it (50, -60), over |AB|:
-    # B is the nearer base (|BP| / |AB| = 0.36; from A it would be 1.03)
-    assert step.function == "link_point" and [a.var for a in step.args[:2]] == ["p_B", "p_A"]
-    assert _arg(step, "gsi") == pytest.approx((20 * 60 - 20 * 50) / math.sqrt(6100), rel=1e-15)
-    assert _arg(step, "eta") == pytest.approx((-20 * 50 - 20 * 60) / math.sqrt(6100), rel=1e-15)
+    # P (60, 70) from B (80, 50) = (-20, 20), along B -> A = (-60, -50) and across it (50, -60), over |AB|^2:
+    # B is the nearer base (|BP| / |AB| = 0.36; from A it would be 1.03); 20/610 and -220/610 by hand
+    assert step.function == "pair_point" and [a.var for a in step.args[:2]] == ["p_B", "p_A"]
+    assert (_arg(step, "along"), _arg(step, "across")) == (2 / 61, -22 / 61)
     assert "link_angle" not in {s.function for s in proc.steps if s.number < step.number}  # no angle needed
+
+
+def test_a_pair_of_a_link_with_two_known_pairs_is_placed_in_their_frame():
+    proc = _extract(ROOT / "samples" / "jansen" / "jansen.yaml")
+    (step,) = [s for s in proc.steps if s.target == "D"]
+    # D (-74.79.., 8.14..) of the triangle B C D, a pair the chain D-F reads: in the frame of B -> C (B nearer)
+    b, c, d = (-38, -7.8), (-24.0135350971, 31.2720974548), (-74.7943653809, 8.1431702059)
+    r, base = (d[0] - b[0], d[1] - b[1]), (c[0] - b[0], c[1] - b[1])
+    q = math.hypot(*base)
+    assert step.function == "link_point" and [a.var for a in step.args[:2]] == ["p_B", "p_C"]
+    assert _arg(step, "gsi") == pytest.approx((r[0] * base[0] + r[1] * base[1]) / q, rel=1e-14)
+    assert _arg(step, "eta") == pytest.approx((base[0] * r[1] - base[1] * r[0]) / q, rel=1e-14)
 
 
 def test_a_point_of_a_link_with_one_known_pair_is_at_its_offset_along_the_links_angle():
@@ -89,3 +100,13 @@ def test_a_link_angle_is_measured_between_two_known_pairs_of_the_link(slotted: P
     assert [a.var for a in angles["coupler"].args[:2]] == ["p_A", "p_B"]
     assert [a.var for a in angles["rod"].args[:2]] == ["p_E", "p_O3"]
     assert all(_arg(s, "off") == 0.0 for s in angles.values())  # each measured along its own direction
+
+
+def test_a_point_on_pairs_a_resolver_group_places_is_placed_in_their_frame():
+    """triad_far's P sits on the ternary whose pairs J4, J5 the group iterates: their distance carries the
+    group's tolerance, so P takes their direction only (link_point), after the group, as every point."""
+    proc = _extract(ROOT / "tests" / "mechanisms" / "triad_far.yaml")
+    (step,) = [s for s in proc.steps if s.target == "P"]
+    grouped = {o for s in proc.steps if s.group for o in s.outputs}
+    assert step.function == "link_point" and step.group == 0 and {a.var for a in step.args[:2]} <= grouped
+    assert "pair_point" not in {s.function for s in proc.steps}

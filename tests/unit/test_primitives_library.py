@@ -16,7 +16,7 @@ from linkgen.primitives.dsl import Primitive
 def test_the_library_lists_every_primitive_of_the_four_modules_once_by_its_name():
     defined = {p.name for module in (library, dyads, directions, centres, loops) for p in vars(module).values()
                if isinstance(p, Primitive)}
-    assert set(library.PRIMITIVES) == defined and len(defined) == 19
+    assert set(library.PRIMITIVES) == defined and len(defined) == 20
     assert all(name == p.name for name, p in library.PRIMITIVES.items())
     # the placing functions first, then the chains, then the residual (the programs paste them in this order)
     order = list(library.PRIMITIVES)
@@ -96,6 +96,18 @@ def test_link_point_hand():
     for k in (1.0, 1.5):
         (placed,) = py2("link_point", (1.0, 1.0, 0, 0, 0, 0), (1.0, 1.0 + k, -2.0 * k, 0.0, 0.0, -4.0 * k), 2.0, 1.0)[2]
         assert placed == approx(angled)
+
+
+def test_pair_point_hand():
+    # d = (3, 4), n(d) = (-4, 3): jc = (1, 2) + 0.5 (3, 4) + 0.25 (-4, 3) = (1.5, 4.75); d' = (1, 0), n(d') = (0, 1):
+    # jc' = (0.5, 0.25); d'' = (0, -2), n(d'') = (2, 0): jc'' = (0.5, -1)
+    (got,) = py2("pair_point", (1.0, 2.0, 0, 0, 0, 0), (4.0, 6.0, 1.0, 0.0, 0.0, -2.0), 0.5, 0.25)[2]
+    assert got == approx((1.5, 4.75, 0.5, 0.25, 0.5, -1.0))
+    # a point on a crank turning at 2 about j1, as coupler_point places it at (2, 1) from j1 along the crank:
+    # with the crank's pair at d = (0, 1) from j1, 2 d + 1 n(d) = (-1, 2): (along, across) = (2, 1), the same motion
+    (angled,) = py2("coupler_point", (1.0, 1.0, 0, 0, 0, 0), (PI / 2, 2.0, 0.0), 2.0, 1.0)[2]
+    (placed,) = py2("pair_point", (1.0, 1.0, 0, 0, 0, 0), (1.0, 2.0, -2.0, 0.0, 0.0, -4.0), 2.0, 1.0)[2]
+    assert placed == approx(angled)
 
 
 def test_slider_input_hand():

@@ -21,12 +21,12 @@ def _view(path: str, order: int | None = None) -> View:
 
 def test_fourbar_constants_records_and_status_steps():
     v = _view(FOURBAR)
-    # steps: 1 frame, 2 crank_input, 3 RRR_links (B), 4 link_point P, 5 crank_angle crank (the input's: no
+    # steps: 1 frame, 2 crank_input, 3 RRR_links (B), 4 pair_point P, 5 crank_angle crank (the input's: no
     # status), 6-7 link_angle coupler and rocker.  The frame's angle is a constant no step reads: the program
     # leaves it out.
     assert [c.name for c in v.constants] == ["p_O1", "p_O2", "ref_O1", "l_coupler", "l_rocker"]
     assert [r.name for r in v.records] == ["in1", "p_A", "p_B", "p_P", "phi_crank", "phi_coupler", "phi_rocker"]
-    assert v.sigma_steps == (3, 4, 6, 7)  # the chain, link_point (P) and the link angles report a status
+    assert v.sigma_steps == (3, 4, 6, 7)  # the chain, pair_point (P) and the link angles report a status
     assert [s.number for s in v.run] == [1, 2, 3, 4, 5, 6, 7] and v.last_step == 7
     assert v.groups == v.blocks == () and v.nmax == 1
 

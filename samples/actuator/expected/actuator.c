@@ -37,11 +37,11 @@ static inline int link_angle(const POINT *j1, const POINT *j2, double off, ANGLE
     return st;
 }
 
-/* Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows). */
+/* Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows). */
 #if defined(__GNUC__)
-static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc) __attribute__((always_inline));
+static inline int pair_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc) __attribute__((always_inline));
 #endif
-static inline int link_point(const POINT *j1, const POINT *j2, double gsi, double eta, POINT *jc)
+static inline int pair_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
 {
     const double dx = j2->P.x - j1->P.x;
     const double dy = j2->P.y - j1->P.y;
@@ -50,18 +50,12 @@ static inline int link_point(const POINT *j1, const POINT *j2, double gsi, doubl
     const double dax = j2->DDP.x - j1->DDP.x;
     const double day = j2->DDP.y - j1->DDP.y;
     const double r2 = dx * dx + dy * dy;
-    const double ir = r2 == 0 ? NAN : 1 / sqrt(r2);
-    const double ex = ir * dx;
-    const double ey = ir * dy;
-    const double rx = gsi * ex - eta * ey;
-    const double ry = gsi * ey + eta * ex;
-    const double ir2 = ir * ir;
-    const double om = (dx * dvy - dy * dvx) * ir2;
-    const double al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
-    const double rvx = -om * ry;
-    const double rvy = om * rx;
-    const double rax = -al * ry - om * om * rx;
-    const double ray = al * rx - om * om * ry;
+    const double rx = along * dx - across * dy;
+    const double ry = along * dy + across * dx;
+    const double rvx = along * dvx - across * dvy;
+    const double rvy = along * dvy + across * dvx;
+    const double rax = along * dax - across * day;
+    const double ray = along * day + across * dax;
     const int st = r2 == 0 ? 1 : 0;
     if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; return st; }
     jc->P.x = j1->P.x + rx;
@@ -485,8 +479,8 @@ static int run(work *w, const double in[], const double din[], const double ddin
     note(w, st, 43, -44);
 
 
-    /* Step 5: link_point, tip. point tip of link bucket */
-    st = link_point(&p_Q, &w->p_M, -550.5882352941177, -1177.6470588235295, &w->p_tip);
+    /* Step 5: pair_point, tip. point tip of link bucket */
+    st = pair_point(&p_Q, &w->p_M, -1.6193771626297577, -3.463667820069204, &w->p_tip);
     if (st == 1) return failed(out, 51, 5);
     note(w, st, 53, -54);
 

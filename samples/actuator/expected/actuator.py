@@ -188,8 +188,8 @@ def link_angle(j1, j2, off):
         return st, (NAN, NAN, NAN)
     return st, (th, om, al)
 
-def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
+def pair_point(j1, j2, along, across):
+    """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -199,18 +199,12 @@ def link_point(j1, j2, gsi, eta):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    ir = NAN if r2 == 0 else 1 / sqrt(r2)
-    ex = ir * dx
-    ey = ir * dy
-    rx = gsi * ex - eta * ey
-    ry = gsi * ey + eta * ex
-    ir2 = ir * ir
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    rvx = -om * ry
-    rvy = om * rx
-    rax = -al * ry - om * om * rx
-    ray = al * rx - om * om * ry
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN, NAN, NAN, NAN)
@@ -578,8 +572,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 43, -44)
 
-    # Step 5: link_point, tip. point tip of link bucket
-    # link_point(p_Q, w.p_M, -550.5882352941177, -1177.6470588235295), inline
+    # Step 5: pair_point, tip. point tip of link bucket
+    # pair_point(p_Q, w.p_M, -1.6193771626297577, -3.463667820069204), inline
     _dx = _p_M_x - 640.0
     _dy = _p_M_y - 256.0
     _dvx = _p_M_dx - 0.0
@@ -587,18 +581,12 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _dax = _p_M_ddx - 0.0
     _day = _p_M_ddy - 0.0
     _r2 = _dx * _dx + _dy * _dy
-    _ir = NAN if _r2 == 0 else 1 / sqrt(_r2)
-    _ex = _ir * _dx
-    _ey = _ir * _dy
-    _rx = (-550.5882352941177) * _ex - (-1177.6470588235295) * _ey
-    _ry = (-550.5882352941177) * _ey + (-1177.6470588235295) * _ex
-    _ir2 = _ir * _ir
-    _om = (_dx * _dvy - _dy * _dvx) * _ir2
-    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
-    _rvx = -_om * _ry
-    _rvy = _om * _rx
-    _rax = -_al * _ry - _om * _om * _rx
-    _ray = _al * _rx - _om * _om * _ry
+    _rx = (-1.6193771626297577) * _dx - (-3.463667820069204) * _dy
+    _ry = (-1.6193771626297577) * _dy + (-3.463667820069204) * _dx
+    _rvx = (-1.6193771626297577) * _dvx - (-3.463667820069204) * _dvy
+    _rvy = (-1.6193771626297577) * _dvy + (-3.463667820069204) * _dvx
+    _rax = (-1.6193771626297577) * _dax - (-3.463667820069204) * _day
+    _ray = (-1.6193771626297577) * _day + (-3.463667820069204) * _dax
     st = 1 if _r2 == 0 else 0
     if st == 1:
         _p_tip_x, _p_tip_y, _p_tip_dx, _p_tip_dy, _p_tip_ddx, _p_tip_ddy = w.p_tip = (NAN, NAN, NAN, NAN, NAN, NAN)

@@ -127,8 +127,8 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step3.bg": 0.0,  # step 3: RPR_links of C
     "step3.as": -850.0,  # step 3: RPR_links of C
     "step3.bs": 0.0,  # step 3: RPR_links of C
-    "step5.gsi": -550.5882352941177,  # step 5: link_point of tip
-    "step5.eta": -1177.6470588235295,  # step 5: link_point of tip
+    "step5.along": -1.6193771626297577,  # step 5: pair_point of tip
+    "step5.across": -3.463667820069204,  # step 5: pair_point of tip
     "step6.off": 0.0,  # step 6: link_angle of side_link
     "step7.off": 0.0,  # step 7: link_angle of power_link
     "step8.off": 0.0,  # step 8: link_angle of bucket
@@ -249,8 +249,8 @@ def link_angle_still_j1(j1, j2, off):
         _angle = (np.where(_fails, np.nan, _angle[0]), np.where(_singular, np.nan, _angle[1]), np.where(_singular, np.nan, _angle[2]))
     return _st, _sigma, _angle
 
-def link_point_still_j1(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
+def pair_point_still_j1(j1, j2, along, across):
+    """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, _, _, _, _ = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -260,33 +260,19 @@ def link_point_still_j1(j1, j2, gsi, eta):
     dax = j2_ddx
     day = j2_ddy
     r2 = dx * dx + dy * dy
-    _t1 = r2 == 0
-    _c1 = np.asarray(_t1)
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
+    _c1 = np.asarray(r2 == 0)
     if not _c1.any():
-        ir = 1 / np.sqrt(r2)
-    elif _c1.all():
-        ir = NAN
-    else:
-        ir = np.where(_c1, NAN, 1 / np.sqrt(r2))
-    ex = ir * dx
-    ey = ir * dy
-    rx = gsi * ex - eta * ey
-    ry = gsi * ey + eta * ex
-    ir2 = ir * ir
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    rvx = -om * ry
-    rvy = om * rx
-    _t2 = om * om
-    rax = -al * ry - _t2 * rx
-    ray = al * rx - _t2 * ry
-    _c2 = np.asarray(_t1)
-    if not _c2.any():
         _st = 0
-    elif _c2.all():
+    elif _c1.all():
         _st = 1
     else:
-        _st = np.where(_c2, 1, 0)
+        _st = np.where(_c1, 1, 0)
     _sigma = 1.0
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -1093,8 +1079,8 @@ def _run(x, dx, ddx, c):
     # Step 4: RRR_links, M (branch +1). M is joined to the known K by power_link and to the known Q by bucket: a 3R two-link chain with both ends known
     st, sigma[4], w.p_M = RRR_links_still_j2(w.p_K, w.p_Q, w.l_power_link, w.l_bucket, 1)
     report.append((st, ((1, 41), (3, 43), (4, -44))))
-    # Step 5: link_point, tip. point tip of link bucket
-    st, _, w.p_tip = link_point_still_j1(w.p_Q, w.p_M, c["step5.gsi"], c["step5.eta"])
+    # Step 5: pair_point, tip. point tip of link bucket
+    st, _, w.p_tip = pair_point_still_j1(w.p_Q, w.p_M, c["step5.along"], c["step5.across"])
     report.append((st, ((1, 51),)))
     # Step 6: link_angle, side_link. R and K of link side_link are known, so its angle is known
     st, _, w.phi_side_link = link_angle_still_j1(w.p_R, w.p_K, c["step6.off"])

@@ -172,8 +172,8 @@ def crank_angle(theta, phi, off):
     th = atan2(sin(th0), cos(th0)) if abs(th0) >= 3 * PI else th0 - 2 * PI if th0 > PI else th0 + 2 * PI if th0 <= -PI else th0
     return (th, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
 
-def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
+def pair_point(j1, j2, along, across):
+    """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -183,18 +183,12 @@ def link_point(j1, j2, gsi, eta):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    ir = NAN if r2 == 0 else 1 / sqrt(r2)
-    ex = ir * dx
-    ey = ir * dy
-    rx = gsi * ex - eta * ey
-    ry = gsi * ey + eta * ex
-    ir2 = ir * ir
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    rvx = -om * ry
-    rvy = om * rx
-    rax = -al * ry - om * om * rx
-    ray = al * rx - om * om * ry
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
     st = 1 if r2 == 0 else 0
     if st == 1:
         return st, (NAN, NAN, NAN, NAN, NAN, NAN)
@@ -391,8 +385,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 33, -34)
 
-    # Step 4: link_point, P. point P of link coupler
-    # link_point(w.p_B, w.p_A, 2.5607375986579193, -28.168113585237116), inline
+    # Step 4: pair_point, P. point P of link coupler
+    # pair_point(w.p_B, w.p_A, 0.03278688524590164, -0.36065573770491804), inline
     _dx = _p_A_x - _p_B_x
     _dy = _p_A_y - _p_B_y
     _dvx = _p_A_dx - _p_B_dx
@@ -400,18 +394,12 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _dax = _p_A_ddx - _p_B_ddx
     _day = _p_A_ddy - _p_B_ddy
     _r2 = _dx * _dx + _dy * _dy
-    _ir = NAN if _r2 == 0 else 1 / sqrt(_r2)
-    _ex = _ir * _dx
-    _ey = _ir * _dy
-    _rx = 2.5607375986579193 * _ex - (-28.168113585237116) * _ey
-    _ry = 2.5607375986579193 * _ey + (-28.168113585237116) * _ex
-    _ir2 = _ir * _ir
-    _om = (_dx * _dvy - _dy * _dvx) * _ir2
-    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
-    _rvx = -_om * _ry
-    _rvy = _om * _rx
-    _rax = -_al * _ry - _om * _om * _rx
-    _ray = _al * _rx - _om * _om * _ry
+    _rx = 0.03278688524590164 * _dx - (-0.36065573770491804) * _dy
+    _ry = 0.03278688524590164 * _dy + (-0.36065573770491804) * _dx
+    _rvx = 0.03278688524590164 * _dvx - (-0.36065573770491804) * _dvy
+    _rvy = 0.03278688524590164 * _dvy + (-0.36065573770491804) * _dvx
+    _rax = 0.03278688524590164 * _dax - (-0.36065573770491804) * _day
+    _ray = 0.03278688524590164 * _day + (-0.36065573770491804) * _dax
     st = 1 if _r2 == 0 else 0
     if st == 1:
         _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (NAN, NAN, NAN, NAN, NAN, NAN)

@@ -101,8 +101,8 @@ PARAMS = {  # design parameter -> its value in the sketch
     "l_coupler": 78.10249675906654,  # length coupler:A-B
     "l_rocker": 50.99019513592785,  # length rocker:B-O2
     "step2.l": 20.0,  # step 2: crank_input of A
-    "step4.gsi": 2.5607375986579193,  # step 4: link_point of P
-    "step4.eta": -28.168113585237116,  # step 4: link_point of P
+    "step4.along": 0.03278688524590164,  # step 4: pair_point of P
+    "step4.across": -0.36065573770491804,  # step 4: pair_point of P
     "step5.off": 0.0,  # step 5: crank_angle of crank
     "step6.off": 0.0,  # step 6: link_angle of coupler
     "step7.off": 0.0,  # step 7: link_angle of rocker
@@ -221,8 +221,8 @@ def crank_angle(theta, phi, off):
     _angle = (_f1, theta_dthe + phi_dthe, theta_ddthe + phi_ddthe)
     return _st, _sigma, _angle
 
-def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
+def pair_point(j1, j2, along, across):
+    """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -232,33 +232,19 @@ def link_point(j1, j2, gsi, eta):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    _t1 = r2 == 0
-    _c1 = np.asarray(_t1)
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
+    _c1 = np.asarray(r2 == 0)
     if not _c1.any():
-        ir = 1 / np.sqrt(r2)
-    elif _c1.all():
-        ir = NAN
-    else:
-        ir = np.where(_c1, NAN, 1 / np.sqrt(r2))
-    ex = ir * dx
-    ey = ir * dy
-    rx = gsi * ex - eta * ey
-    ry = gsi * ey + eta * ex
-    ir2 = ir * ir
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    rvx = -om * ry
-    rvy = om * rx
-    _t2 = om * om
-    rax = -al * ry - _t2 * rx
-    ray = al * rx - _t2 * ry
-    _c2 = np.asarray(_t1)
-    if not _c2.any():
         _st = 0
-    elif _c2.all():
+    elif _c1.all():
         _st = 1
     else:
-        _st = np.where(_c2, 1, 0)
+        _st = np.where(_c1, 1, 0)
     _sigma = 1.0
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -836,8 +822,8 @@ def _run(x, dx, ddx, c):
     # Step 3: RRR_links, B (branch +1). B is joined to the known A by coupler and to the known O2 by rocker: a 3R two-link chain with both ends known
     st, sigma[3], w.p_B = RRR_links_still_j2(w.p_A, w.p_O2, w.l_coupler, w.l_rocker, 1)
     report.append((st, ((1, 31), (3, 33), (4, -34))))
-    # Step 4: link_point, P. point P of link coupler
-    st, _, w.p_P = link_point(w.p_B, w.p_A, c["step4.gsi"], c["step4.eta"])
+    # Step 4: pair_point, P. point P of link coupler
+    st, _, w.p_P = pair_point(w.p_B, w.p_A, c["step4.along"], c["step4.across"])
     report.append((st, ((1, 41),)))
     # Step 5: crank_angle, crank. the input theta_O1 turns link crank, so its angle is the input's
     _, _, w.phi_crank = crank_angle(w.in1, w.ref_O1, c["step5.off"])

@@ -88,8 +88,8 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 33, -34);
 
-    % Step 4: link_point, P. point P of link coupler
-    [w.p_P, st] = link_point(w.p_B, w.p_A, 2.5607375986579193, -28.168113585237116);
+    % Step 4: pair_point, P. point P of link coupler
+    [w.p_P, st] = pair_point(w.p_B, w.p_A, 0.03278688524590164, -0.36065573770491804);
     if st == 1
         status = 41;
         return;
@@ -325,8 +325,8 @@ function angle = crank_angle(theta, phi, off)
     angle.ddthe = theta.ddthe + phi.ddthe;
 end
 
-function [jc, st] = link_point(j1, j2, gsi, eta)
-    % Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows).
+function [jc, st] = pair_point(j1, j2, along, across)
+    % Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows).
     dx = j2.x - j1.x;
     dy = j2.y - j1.y;
     dvx = j2.dx - j1.dx;
@@ -334,22 +334,12 @@ function [jc, st] = link_point(j1, j2, gsi, eta)
     dax = j2.ddx - j1.ddx;
     day = j2.ddy - j1.ddy;
     r2 = dx * dx + dy * dy;
-    if r2 == 0
-        ir = NaN;
-    else
-        ir = 1 / sqrt(r2);
-    end
-    ex = ir * dx;
-    ey = ir * dy;
-    rx = gsi * ex - eta * ey;
-    ry = gsi * ey + eta * ex;
-    ir2 = ir * ir;
-    om = (dx * dvy - dy * dvx) * ir2;
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2;
-    rvx = -om * ry;
-    rvy = om * rx;
-    rax = -al * ry - om * om * rx;
-    ray = al * rx - om * om * ry;
+    rx = along * dx - across * dy;
+    ry = along * dy + across * dx;
+    rvx = along * dvx - across * dvy;
+    rvy = along * dvy + across * dvx;
+    rax = along * dax - across * day;
+    ray = along * day + across * dax;
     if r2 == 0
         st = 1;
     else

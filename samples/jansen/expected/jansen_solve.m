@@ -116,8 +116,8 @@ function [status, w] = run(w, in, din, ddin)
     end
     w = note(w, st, 63, -64);
 
-    % Step 7: link_point, foot. point foot of link leg_ghi
-    [w.p_foot, st] = link_point(w.p_E, w.p_F, -7.746594005561121, 48.38378118035099);
+    % Step 7: pair_point, foot. point foot of link leg_ghi
+    [w.p_foot, st] = pair_point(w.p_E, w.p_F, -0.21107885573739069, 1.3183591602277374);
     if st == 1
         status = 71;
         return;
@@ -490,6 +490,42 @@ function [jc, st] = link_point(j1, j2, gsi, eta)
     rvy = om * rx;
     rax = -al * ry - om * om * rx;
     ray = al * rx - om * om * ry;
+    if r2 == 0
+        st = 1;
+    else
+        st = 0;
+    end
+    jc.x = j1.x + rx;
+    jc.y = j1.y + ry;
+    jc.dx = j1.dx + rvx;
+    jc.dy = j1.dy + rvy;
+    jc.ddx = j1.ddx + rax;
+    jc.ddy = j1.ddy + ray;
+    if st == 1
+        jc.x = NaN;
+        jc.y = NaN;
+        jc.dx = NaN;
+        jc.dy = NaN;
+        jc.ddx = NaN;
+        jc.ddy = NaN;
+    end
+end
+
+function [jc, st] = pair_point(j1, j2, along, across)
+    % Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows).
+    dx = j2.x - j1.x;
+    dy = j2.y - j1.y;
+    dvx = j2.dx - j1.dx;
+    dvy = j2.dy - j1.dy;
+    dax = j2.ddx - j1.ddx;
+    day = j2.ddy - j1.ddy;
+    r2 = dx * dx + dy * dy;
+    rx = along * dx - across * dy;
+    ry = along * dy + across * dx;
+    rvx = along * dvx - across * dvy;
+    rvy = along * dvy + across * dvx;
+    rax = along * dax - across * day;
+    ray = along * day + across * dax;
     if r2 == 0
         st = 1;
     else

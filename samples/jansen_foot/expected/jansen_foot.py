@@ -99,6 +99,24 @@ def link_point(j1, j2, gsi, eta):
         return st, (NAN, NAN, NAN, NAN)
     return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy)
 
+def pair_point(j1, j2, along, across):
+    """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
+    j1_x, j1_y, j1_dx, j1_dy = j1
+    j2_x, j2_y, j2_dx, j2_dy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    r2 = dx * dx + dy * dy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy)
+
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
     j1_x, j1_y, j1_dx, j1_dy = j1
@@ -432,22 +450,17 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 63, -64)
 
-    # Step 7: link_point, foot. point foot of link leg_ghi
-    # link_point(w.p_E, w.p_F, -7.746594005561121, 48.38378118035099), inline
+    # Step 7: pair_point, foot. point foot of link leg_ghi
+    # pair_point(w.p_E, w.p_F, -0.21107885573739069, 1.3183591602277374), inline
     _dx = _p_F_x - _p_E_x
     _dy = _p_F_y - _p_E_y
     _dvx = _p_F_dx - _p_E_dx
     _dvy = _p_F_dy - _p_E_dy
     _r2 = _dx * _dx + _dy * _dy
-    _ir = NAN if _r2 == 0 else 1 / sqrt(_r2)
-    _ex = _ir * _dx
-    _ey = _ir * _dy
-    _rx = (-7.746594005561121) * _ex - 48.38378118035099 * _ey
-    _ry = (-7.746594005561121) * _ey + 48.38378118035099 * _ex
-    _ir2 = _ir * _ir
-    _om = (_dx * _dvy - _dy * _dvx) * _ir2
-    _rvx = -_om * _ry
-    _rvy = _om * _rx
+    _rx = (-0.21107885573739069) * _dx - 1.3183591602277374 * _dy
+    _ry = (-0.21107885573739069) * _dy + 1.3183591602277374 * _dx
+    _rvx = (-0.21107885573739069) * _dvx - 1.3183591602277374 * _dvy
+    _rvy = (-0.21107885573739069) * _dvy + 1.3183591602277374 * _dvx
     st = 1 if _r2 == 0 else 0
     if st == 1:
         _p_foot_x, _p_foot_y, _p_foot_dx, _p_foot_dy = w.p_foot = (NAN, NAN, NAN, NAN)

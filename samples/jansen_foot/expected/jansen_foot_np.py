@@ -70,8 +70,8 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step2.l": 15.0,  # step 2: crank_input of A
     "step4.gsi": 2.6098795180489716,  # step 4: link_point of D
     "step4.eta": 40.01497880667611,  # step 4: link_point of D
-    "step7.gsi": -7.746594005561121,  # step 7: link_point of foot
-    "step7.eta": 48.38378118035099,  # step 7: link_point of foot
+    "step7.along": -0.21107885573739069,  # step 7: pair_point of foot
+    "step7.across": 1.3183591602277374,  # step 7: pair_point of foot
     "step8.off": 0.0,  # step 8: crank_angle of crank
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
@@ -132,8 +132,8 @@ def crank_angle(theta, phi, off):
     _angle = (_f1, theta_dthe + phi_dthe)
     return _st, _sigma, _angle
 
-def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
+def pair_point(j1, j2, along, across):
+    """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy = j1
     j2_x, j2_y, j2_dx, j2_dy = j2
     dx = j2_x - j1_x
@@ -141,29 +141,17 @@ def link_point(j1, j2, gsi, eta):
     dvx = j2_dx - j1_dx
     dvy = j2_dy - j1_dy
     r2 = dx * dx + dy * dy
-    _t1 = r2 == 0
-    _c1 = np.asarray(_t1)
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    _c1 = np.asarray(r2 == 0)
     if not _c1.any():
-        ir = 1 / np.sqrt(r2)
-    elif _c1.all():
-        ir = NAN
-    else:
-        ir = np.where(_c1, NAN, 1 / np.sqrt(r2))
-    ex = ir * dx
-    ey = ir * dy
-    rx = gsi * ex - eta * ey
-    ry = gsi * ey + eta * ex
-    ir2 = ir * ir
-    om = (dx * dvy - dy * dvx) * ir2
-    rvx = -om * ry
-    rvy = om * rx
-    _c2 = np.asarray(_t1)
-    if not _c2.any():
         _st = 0
-    elif _c2.all():
+    elif _c1.all():
         _st = 1
     else:
-        _st = np.where(_c2, 1, 0)
+        _st = np.where(_c1, 1, 0)
     _sigma = 1.0
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -912,8 +900,8 @@ def _run(x, dx, ddx, c):
     # Step 6: RRR_links, F (branch -1). F is joined to the known D by rod_f and to the known E by leg_ghi: a 3R two-link chain with both ends known
     st, sigma[6], w.p_F = RRR_links(w.p_D, w.p_E, w.l_rod_f, w.l_leg_ghi, -1)
     report.append((st, ((1, 61), (3, 63), (4, -64))))
-    # Step 7: link_point, foot. point foot of link leg_ghi
-    st, _, w.p_foot = link_point(w.p_E, w.p_F, c["step7.gsi"], c["step7.eta"])
+    # Step 7: pair_point, foot. point foot of link leg_ghi
+    st, _, w.p_foot = pair_point(w.p_E, w.p_F, c["step7.along"], c["step7.across"])
     report.append((st, ((1, 71),)))
     # Step 8: crank_angle, crank. the input theta_O turns link crank, so its angle is the input's
     _, _, w.phi_crank = crank_angle(w.in1, w.ref_O, c["step8.off"])

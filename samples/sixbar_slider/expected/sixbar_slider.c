@@ -98,6 +98,36 @@ static inline int link_point(const POINT *j1, const POINT *j2, double gsi, doubl
     return st;
 }
 
+/* Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows). */
+#if defined(__GNUC__)
+static inline int pair_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc) __attribute__((always_inline));
+#endif
+static inline int pair_point(const POINT *j1, const POINT *j2, double along, double across, POINT *jc)
+{
+    const double dx = j2->P.x - j1->P.x;
+    const double dy = j2->P.y - j1->P.y;
+    const double dvx = j2->DP.x - j1->DP.x;
+    const double dvy = j2->DP.y - j1->DP.y;
+    const double dax = j2->DDP.x - j1->DDP.x;
+    const double day = j2->DDP.y - j1->DDP.y;
+    const double r2 = dx * dx + dy * dy;
+    const double rx = along * dx - across * dy;
+    const double ry = along * dy + across * dx;
+    const double rvx = along * dvx - across * dvy;
+    const double rvy = along * dvy + across * dvx;
+    const double rax = along * dax - across * day;
+    const double ray = along * day + across * dax;
+    const int st = r2 == 0 ? 1 : 0;
+    if (st == 1) { jc->P.x = NAN; jc->P.y = NAN; jc->DP.x = NAN; jc->DP.y = NAN; jc->DDP.x = NAN; jc->DDP.y = NAN; return st; }
+    jc->P.x = j1->P.x + rx;
+    jc->P.y = j1->P.y + ry;
+    jc->DP.x = j1->DP.x + rvx;
+    jc->DP.y = j1->DP.y + rvy;
+    jc->DDP.x = j1->DDP.x + rax;
+    jc->DDP.y = j1->DDP.y + ray;
+    return st;
+}
+
 /* 3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2). */
 #if defined(__GNUC__)
 static inline int RRR_links(const POINT *j1, const POINT *j2, const VARIABLE *l1, const VARIABLE *l2, int minv, POINT *jb, double *sigma_out) __attribute__((always_inline));
@@ -401,8 +431,8 @@ static int run(work *w, const double in[], const double din[], const double ddin
     note(w, st, 53, -54);
 
 
-    /* Step 6: link_point, P. point P of link coupler */
-    st = link_point(&w->p_B, &w->p_A, 13.436634577833267, -19.06454434865348, &w->p_P);
+    /* Step 6: pair_point, P. point P of link coupler */
+    st = pair_point(&w->p_B, &w->p_A, 0.2363130219610269, -0.3352922981750696, &w->p_P);
     if (st == 1) return failed(out, 61, 6);
     note(w, st, 63, -64);
 

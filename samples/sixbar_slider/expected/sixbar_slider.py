@@ -144,6 +144,28 @@ def link_point(j1, j2, gsi, eta):
         return st, (NAN, NAN, NAN, NAN, NAN, NAN)
     return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
 
+def pair_point(j1, j2, along, across):
+    """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
+    j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
+    j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
+    dx = j2_x - j1_x
+    dy = j2_y - j1_y
+    dvx = j2_dx - j1_dx
+    dvy = j2_dy - j1_dy
+    dax = j2_ddx - j1_ddx
+    day = j2_ddy - j1_ddy
+    r2 = dx * dx + dy * dy
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
+    st = 1 if r2 == 0 else 0
+    if st == 1:
+        return st, (NAN, NAN, NAN, NAN, NAN, NAN)
+    return st, (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
+
 def RRR_links(j1, j2, l1, l2, minv):
     """3R chain: pair jb at distance l1 from j1 and l2 from j2, on the side minv (+1 left of j1->j2)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
@@ -487,8 +509,8 @@ def _run(w, inputs, d_inputs, dd_inputs):
     if st:
         w.note(st, 53, -54)
 
-    # Step 6: link_point, P. point P of link coupler
-    # link_point(w.p_B, w.p_A, 13.436634577833267, -19.06454434865348), inline
+    # Step 6: pair_point, P. point P of link coupler
+    # pair_point(w.p_B, w.p_A, 0.2363130219610269, -0.3352922981750696), inline
     _dx = _p_A_x - _p_B_x
     _dy = _p_A_y - _p_B_y
     _dvx = _p_A_dx - _p_B_dx
@@ -496,18 +518,12 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _dax = _p_A_ddx - _p_B_ddx
     _day = _p_A_ddy - _p_B_ddy
     _r2 = _dx * _dx + _dy * _dy
-    _ir = NAN if _r2 == 0 else 1 / sqrt(_r2)
-    _ex = _ir * _dx
-    _ey = _ir * _dy
-    _rx = 13.436634577833267 * _ex - (-19.06454434865348) * _ey
-    _ry = 13.436634577833267 * _ey + (-19.06454434865348) * _ex
-    _ir2 = _ir * _ir
-    _om = (_dx * _dvy - _dy * _dvx) * _ir2
-    _al = (_dx * _day - _dy * _dax - 2 * _om * (_dx * _dvx + _dy * _dvy)) * _ir2
-    _rvx = -_om * _ry
-    _rvy = _om * _rx
-    _rax = -_al * _ry - _om * _om * _rx
-    _ray = _al * _rx - _om * _om * _ry
+    _rx = 0.2363130219610269 * _dx - (-0.3352922981750696) * _dy
+    _ry = 0.2363130219610269 * _dy + (-0.3352922981750696) * _dx
+    _rvx = 0.2363130219610269 * _dvx - (-0.3352922981750696) * _dvy
+    _rvy = 0.2363130219610269 * _dvy + (-0.3352922981750696) * _dvx
+    _rax = 0.2363130219610269 * _dax - (-0.3352922981750696) * _day
+    _ray = 0.2363130219610269 * _day + (-0.3352922981750696) * _dax
     st = 1 if _r2 == 0 else 0
     if st == 1:
         _p_P_x, _p_P_y, _p_P_dx, _p_P_dy, _p_P_ddx, _p_P_ddy = w.p_P = (NAN, NAN, NAN, NAN, NAN, NAN)

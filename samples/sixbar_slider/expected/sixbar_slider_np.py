@@ -84,8 +84,8 @@ PARAMS = {  # design parameter -> its value in the sketch
     "step4.eta": -48.46153846153846,  # step 4: link_point of C
     "step5.gsi": 0.0,  # step 5: PRR_links of D
     "step5.eta": 0.0,  # step 5: PRR_links of D
-    "step6.gsi": 13.436634577833267,  # step 6: link_point of P
-    "step6.eta": -19.06454434865348,  # step 6: link_point of P
+    "step6.along": 0.2363130219610269,  # step 6: pair_point of P
+    "step6.across": -0.3352922981750696,  # step 6: pair_point of P
     "step9.off": 0.0,  # step 9: link_angle of rocker
 }
 _MODULE = SimpleNamespace(  # what the row driver needs of this module
@@ -121,8 +121,8 @@ def crank_input(j1, l, theta, phi):
     _j2 = (j1_x + rx, j1_y + ry, j1_dx + rvx, j1_dy + rvy, j1_ddx + rax, j1_ddy + ray)
     return _st, _sigma, _j2
 
-def link_point(j1, j2, gsi, eta):
-    """Point jc of a link at local coordinates (gsi, eta) in the frame of two of its points: origin j1, x axis the unit vector e along j2 - j1 (no angle, no trigonometry; e's rates are those of the link's angle).  Fails where the two points coincide (or their distance's square underflows)."""
+def pair_point(j1, j2, along, across):
+    """Point jc of a link linear in two of its points: jc = j1 + along d + across n(d) with d = j2 - j1 and n(d) = (-dy, dx), (along, across) the point's coordinates in the sketch's frame (d, n(d)); its rates the same map of d' and d'' (no root, no division, no angle).  Fails where the two points coincide (or their distance's square underflows)."""
     j1_x, j1_y, j1_dx, j1_dy, j1_ddx, j1_ddy = j1
     j2_x, j2_y, j2_dx, j2_dy, j2_ddx, j2_ddy = j2
     dx = j2_x - j1_x
@@ -132,33 +132,19 @@ def link_point(j1, j2, gsi, eta):
     dax = j2_ddx - j1_ddx
     day = j2_ddy - j1_ddy
     r2 = dx * dx + dy * dy
-    _t1 = r2 == 0
-    _c1 = np.asarray(_t1)
+    rx = along * dx - across * dy
+    ry = along * dy + across * dx
+    rvx = along * dvx - across * dvy
+    rvy = along * dvy + across * dvx
+    rax = along * dax - across * day
+    ray = along * day + across * dax
+    _c1 = np.asarray(r2 == 0)
     if not _c1.any():
-        ir = 1 / np.sqrt(r2)
-    elif _c1.all():
-        ir = NAN
-    else:
-        ir = np.where(_c1, NAN, 1 / np.sqrt(r2))
-    ex = ir * dx
-    ey = ir * dy
-    rx = gsi * ex - eta * ey
-    ry = gsi * ey + eta * ex
-    ir2 = ir * ir
-    om = (dx * dvy - dy * dvx) * ir2
-    al = (dx * day - dy * dax - 2 * om * (dx * dvx + dy * dvy)) * ir2
-    rvx = -om * ry
-    rvy = om * rx
-    _t2 = om * om
-    rax = -al * ry - _t2 * rx
-    ray = al * rx - _t2 * ry
-    _c2 = np.asarray(_t1)
-    if not _c2.any():
         _st = 0
-    elif _c2.all():
+    elif _c1.all():
         _st = 1
     else:
-        _st = np.where(_c2, 1, 0)
+        _st = np.where(_c1, 1, 0)
     _sigma = 1.0
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -894,8 +880,8 @@ def _run(x, dx, ddx, c):
     # Step 5: PRR_links, D (branch +1). D is joined to the known C by rod and rides on the slider block of the known line S: a 2R1P two-link chain with both ends known
     st, sigma[5], w.s_S, w.p_S, w.p_D = PRR_links(w.p_C, w.l_rod, w.g_S, w.psi_S, c["step5.gsi"], c["step5.eta"], 1)
     report.append((st, ((1, 51), (3, 53), (4, -54))))
-    # Step 6: link_point, P. point P of link coupler
-    st, _, w.p_P = link_point(w.p_B, w.p_A, c["step6.gsi"], c["step6.eta"])
+    # Step 6: pair_point, P. point P of link coupler
+    st, _, w.p_P = pair_point(w.p_B, w.p_A, c["step6.along"], c["step6.across"])
     report.append((st, ((1, 61),)))
     # Step 9: link_angle, rocker. O2 and B of link rocker are known, so its angle is known
     st, _, w.phi_rocker = link_angle_still_j1(w.p_O2, w.p_B, c["step9.off"])
