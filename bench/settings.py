@@ -16,7 +16,7 @@ EVERY = [{"real": "float"}, {"real": "long double"}, {"checks": False}, {"angles
 # the resolver's knobs: only where the mechanism has Add-links
 RESOLVER = [{"strategy": "fixed-point"}, {"strategy": "closure"}, {"strategy": "loop"}, {"polish": False},
             {"predictor": 0},
-            {"predictor": 2}, {"tolerance": 1e-6}]
+            {"predictor": 1}, {"tolerance": 1e-6}]
 
 
 def singles(resolver: bool) -> list[Setting]:

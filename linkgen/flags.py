@@ -21,7 +21,8 @@ SETTINGS = (  # the flags that override the file's options (linkgen.options.Opti
     click.option("--iterations", type=click.IntRange(1, MAX_ITERATIONS), help="The resolver's iteration cap."),
     click.option("--polish/--no-polish", default=None, help="One resolver step more once the tolerance is met."),
     click.option("--predictor", type=click.IntRange(min(PREDICTORS), max(PREDICTORS)),
-                 help="The warm start's order: 0 the last row, 1 along its rates, 2 with its accelerations."),
+                 help="The warm start's order: 0 the last row, 1 along its rates, 2 (default) along the "
+                      "parabola with those rates through the row before."),
     click.option("--checks/--no-checks", default=None,
                  help="Conditioning and status per step (off: positions and rates only)."),
     click.option("--angles", type=click.Choice(ANGLE_FORMS), help="Angle outputs as angles or as unit vectors."),

@@ -11,7 +11,8 @@ from types import SimpleNamespace
 from .policy import DEFAULT_REAL, POLICY, REAL_TYPES, Policy
 
 STRATEGIES = ("newton", "fixed-point", "closure", "loop")  # the resolver strategies (see Options.strategy)
-PREDICTORS = (0, 1, 2)  # the warm start's order: the last row's state, along its rates, with its accelerations
+PREDICTORS = (0, 1, 2)  # the warm start's order: the last row's state, along its rates, along the parabola
+# with those rates through the row before
 ANGLE_FORMS = ("angle", "unit")  # angle outputs as angles (atan2) or as unit vectors (no trigonometry)
 UNIT_SYSTEMS = ("si", "file")  # the programs' inputs and outputs in radians (SI) or in the file's angle unit
 MAX_ITERATIONS = 100  # the largest iteration cap a user may set
@@ -29,7 +30,8 @@ class Options:
     tolerance: float = POLICY.tolerance  # the resolver stops at this residual, relative to the length scale
     iterations: int = POLICY.max_iterations  # the resolver's iteration cap
     polish: bool = True  # one resolver step more once the tolerance is met
-    predictor: int = 1  # the warm start's order (PREDICTORS)
+    predictor: int = 2  # the warm start's order (PREDICTORS): the parabola takes fewer Newton steps than the
+    # tangent for the same statuses (docs/mechanism-format.md)
     checks: bool = True  # conditioning and status per step; off: positions and rates only
     angles: str = "angle"  # angle outputs as angles or as unit vectors (ANGLE_FORMS)
     assembly: int = 0  # the assembly the programs follow (linkgen assemblies' number at the sketch's
@@ -58,7 +60,7 @@ def policy_for(options: Options, policy: Policy = POLICY) -> Policy:
 
 
 def reference(options: Options) -> Options:
-    """``options`` with the resolver's default iteration (Newton, polish, first-order
+    """``options`` with the resolver's default iteration (Newton, polish, second-order
     predictor) and every check on: the build follows the mechanism with them to find its motion
     facts (the reach, the conditioning over the sweep), which are the mechanism's, whatever the
     programs run."""

@@ -45,8 +45,20 @@ def _one_by_one(rows_module, values, rates, accs, order):
 
 @pytest.mark.parametrize(("mechanism", "rows"), RESOLVERS)
 def test_the_lanes_solve_what_the_standard_library_program_solves(mechanism: Path, rows):
-    log = build_log(str(mechanism))
+    _check_lanes(build_log(str(mechanism)), rows)
+
+
+def test_the_lanes_run_the_first_order_predictor_too():
+    """The default's lanes run the second-order predictor (the parabola through the row before, which a
+    seed of the call's chunks holds as the one-by-one rows do); built with the first order, theirs."""
+    log = build_log(str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"), options={"predictor": 1})
+    _check_lanes(log, DENSE)
+
+
+def _check_lanes(log, rows):
+    """The kernel's sweep against NAME.py's rows one by one (see the module's docstring)."""
     module = kernel(log, log.order)
+    assert module._MODULE.lanes  # on lanes, not NAME.py's rows
     values, rates, accs = input_rows(log, log.samples if rows == "file" else rows)
     out = module.solve(values, rates, accs)
     ref = _one_by_one(module.ROWS, values, rates, accs, log.order)

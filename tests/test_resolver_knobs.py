@@ -1,5 +1,5 @@
 """The resolver's knobs (options: strategy, polish, predictor) act as docs/mechanism-format.md says,
-checked against the default build (Newton, polish, first-order predictor).
+checked against the default build (Newton, polish, second-order predictor).
 
 Every combination gives the default build's status on every row and its pair and point positions
 to within BOUND times the tolerance asked for over the row's conditioning (the smallest sigma of
@@ -102,9 +102,9 @@ def fig14(tmp_path_factory) -> dict[int, tuple[StepLog, ModuleType, list[dict[st
 
 def test_the_predictor_of_order_0_needs_more_newton_steps(fig14):
     steps = {k: sum(sum(r["iterations"]) for r in rows) for k, (_, _, rows) in fig14.items()}
-    assert steps[0] > steps[1] and steps[0] > steps[2], steps
-    log, _, default = fig14[1]
-    for k in (0, 2):
+    assert steps[0] > steps[1] >= steps[2], steps  # the default (2) takes no more than the first order
+    log, _, default = fig14[2]
+    for k in (0, 1):
         assert _check_against_default(log, default, fig14[k][2], False) == 0
 
 

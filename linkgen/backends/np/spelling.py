@@ -132,10 +132,10 @@ class Numpy(Python):
 
     def on_lanes(self) -> bool:
         """Whether the kernel solves a resolver's rows on lanes: with the resolver settings its
-        lanes have (Newton on the Add-link lengths, the first-order predictor, the polishing step);
+        lanes have (Newton on the Add-link lengths, the first- or second-order predictor, the polishing step);
         with others NAME.py solves every row."""
         o = self.log.options
-        return o.strategy == "newton" and o.predictor == 1 and o.polish
+        return o.strategy == "newton" and o.predictor in (1, 2) and o.polish
 
     @staticmethod
     def reads_parameters(b: Group) -> bool:

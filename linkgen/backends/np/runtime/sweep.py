@@ -1,7 +1,8 @@
 # The rows of a mechanism with resolvers, in order, each from the last (the Python runtime's row
 # driver, drive(), on lanes).  A state holds, per lane, what a solved row leaves for the next
 # one: its inputs and rates, every block's state (Add-link lengths, branches, orientation) and
-# their rates, the block each group used, and whether the row solved (ok).
+# their rates, the block each group used, and whether the row solved (ok); for the second-order
+# predictor the row before it (back_ok where there is one: its inputs and Add-link lengths).
 #
 # The rows are cut into chunks solved side by side, one row of every chunk a pass (a lane per
 # chunk): the first row of a chunk starts from a seed, the state of the row before it as the
@@ -21,7 +22,6 @@ STEPS = 16  # rows of a chunk of the call's rows (fewer: one row at a time)
 SEED_STEPS = 4  # rows of a chunk of a seeding sweep (narrow passes: their fixed cost dominates)
 RATES_AGREE = 1e-6  # two states' rates agree to this share
 ALONE = 48  # a sweep of no more rows is solved by the standard-library module, row after row
-WARM_KEPT = 5  # entries of the standard-library module's warm start a lane keeps (see alone_row)
 
 
 def state_of(s, idx):
@@ -30,14 +30,17 @@ def state_of(s, idx):
         return [v[idx] for v in x]
 
     return SimpleNamespace(inputs=pick(s.inputs), rates=pick(s.rates), a=[pick(b) for b in s.a],
-                           ad=[pick(b) for b in s.ad], used=pick(s.used), ok=s.ok[idx])
+                           ad=[pick(b) for b in s.ad], used=pick(s.used), ok=s.ok[idx],
+                           back_inputs=pick(s.back_inputs), back_a=[pick(b) for b in s.back_a],
+                           back_ok=s.back_ok[idx])
 
 
 def state_put(s, idx, t):
     """Lanes idx of state s (its arrays) set to those of state t."""
-    for x, y in zip(s.inputs + s.rates + s.used + [s.ok], t.inputs + t.rates + t.used + [t.ok]):
+    for x, y in zip(s.inputs + s.rates + s.used + [s.ok] + s.back_inputs + [s.back_ok],
+                    t.inputs + t.rates + t.used + [t.ok] + t.back_inputs + [t.back_ok]):
         x[idx] = y
-    for b, c in zip(s.a + s.ad, t.a + t.ad):
+    for b, c in zip(s.a + s.ad + s.back_a, t.a + t.ad + t.back_a):
         put(b, idx, c)
 
 
@@ -52,7 +55,10 @@ def state_cat(states):
                            a=[[cat(x) for x in zip(*b)] for b in zip(*(t.a for t in states))],
                            ad=[[cat(x) for x in zip(*b)] for b in zip(*(t.ad for t in states))],
                            used=[cat(x) for x in zip(*(t.used for t in states))],
-                           ok=cat([t.ok for t in states])) if len(states) > 1 else s
+                           ok=cat([t.ok for t in states]),
+                           back_inputs=[cat(x) for x in zip(*(t.back_inputs for t in states))],
+                           back_a=[[cat(x) for x in zip(*b)] for b in zip(*(t.back_a for t in states))],
+                           back_ok=cat([t.back_ok for t in states])) if len(states) > 1 else s
 
 
 def empty_state(k, lanes):
@@ -62,14 +68,18 @@ def empty_state(k, lanes):
                            rates=[np.zeros(lanes, dtype=REAL) for _ in range(n)],
                            a=[[np.full(lanes, v, dtype=REAL) for v in b] for b in m.sketch_a],
                            ad=[[np.zeros(lanes, dtype=REAL) for _ in b] for b in m.sketch_a],
-                           used=[np.zeros(lanes, dtype=int) for _ in range(m.groups)], ok=np.zeros(lanes, dtype=bool))
+                           used=[np.zeros(lanes, dtype=int) for _ in range(m.groups)], ok=np.zeros(lanes, dtype=bool),
+                           back_inputs=[np.zeros(lanes, dtype=REAL) for _ in range(n)],
+                           back_a=[[np.zeros(lanes, dtype=REAL) for _ in range(size)] for size in m.sizes],
+                           back_ok=np.zeros(lanes, dtype=bool))
 
 
-def agree(s, t, k):
+def agree(s, t, k, backs):
     """Lanes where two states of the same rows would start the next row alike: both failed, or
     both solved with the same blocks, branches and orientations (the signs of the entries past
     the lengths: a branch is held as a measure, see _lengths_N), lengths within the resolver's
-    tolerance and rates within a millionth."""
+    tolerance and rates within a millionth; with backs, the same row before (the second-order
+    predictor's) with its lengths within the tolerance."""
     tol = k.p.tolerance * k.m.length_scale
     same = s.ok == t.ok
     for u, v in zip(s.used, t.used):
@@ -80,6 +90,14 @@ def agree(s, t, k):
     for b, c in zip(s.ad, t.ad):
         for x, y in zip(b, c):
             same = same & _close(x, y, RATES_AGREE * np.maximum(np.abs(x), np.abs(y)) + tol)
+    if not backs:
+        return same | ~(s.ok | t.ok)
+    same = same & (s.back_ok == t.back_ok)
+    for x, y in zip(s.back_inputs, t.back_inputs):
+        same = same & (~s.back_ok | (x == y))
+    for b, c in zip(s.back_a, t.back_a):
+        for x, y in zip(b, c):
+            same = same & (~s.back_ok | _close(x, y, tol))
     return same | ~(s.ok | t.ok)
 
 
@@ -88,18 +106,35 @@ def _close(x, y, bound):
     return (np.abs(x - y) <= bound) | (x == y) | (np.isnan(x) & np.isnan(y))
 
 
-def predict_lanes(prev, x, sizes):
-    """The Python runtime's predict on every lane: the block states along their rates to x (a
-    chain's sign measure too, so its branch flips where it passes zero; an orientation has no
-    rate)."""
+def _tau(prev, x):
+    """The Python runtime's _tau on every lane: how far inputs x lie from prev's along its rates."""
     den, num = 0.0, 0.0
     for r in prev.rates:
         den = den + r * r
     for xi, yi, r in zip(x, prev.inputs, prev.rates):
         num = num + (xi - yi) * r
-    tau = np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
-    return [[np.abs(v + tau * r) if i < n else v + tau * r for i, (v, r) in enumerate(zip(b, br))]
-            for b, br, n in zip(prev.a, prev.ad, sizes)]
+    return np.where(den > 0, num / np.where(den > 0, den, 1.0), 0.0)
+
+
+def predict_lanes(prev, x, sizes, order):
+    """The Python runtime's predict on every lane: the block states along their rates to x (a
+    chain's sign measure too, so its branch flips where it passes zero; an orientation has no
+    rate); at order 2 the Add-link lengths along the parabola that also passes through the row
+    before (where a lane has one at a distance other than 0: else along the rates)."""
+    tau = _tau(prev, x)
+    along = [[v + tau * r for v, r in zip(b, br)] for b, br in zip(prev.a, prev.ad)]
+    out = [[np.abs(u) if i < n else u for i, u in enumerate(b)] for b, n in zip(along, sizes)]
+    if order < 2 or not prev.back_ok.any():
+        return out
+    back = np.where(prev.back_ok, _tau(prev, prev.back_inputs), 0.0)
+    curved = back != 0.0
+    every = curved.all()  # the usual pass: no lane without a row before
+    back2, tau2 = (back * back if every else np.where(curved, back * back, 1.0)), tau * tau
+    for g, u, b, br, bb, n in zip(out, along, prev.a, prev.ad, prev.back_a, sizes):
+        for i in range(n):  # v + tau r + tau^2 (b - v - back r) / back^2, as the runtime's order of operations
+            ahead = np.abs(u[i] + tau2 * ((bb[i] - b[i] - back * br[i]) / back2))
+            g[i] = ahead if every else np.where(curved, ahead, g[i])
+    return out
 
 
 def on_path_lanes(prev, guess, new, sizes, slack, p):
@@ -133,7 +168,7 @@ def advance(k, prev, rows, sink=None, spot=None):
     if sink is not None:
         for xi, yi, lim in zip(x, prev.inputs, m.limits):
             near = near & (np.abs(xi - yi) <= lim)
-    guess = predict_lanes(prev, x, m.sizes)
+    guess = predict_lanes(prev, x, m.sizes, p.predictor if sink is not None else 1)  # a seed: along the rates
     a, ad, used = [list(b) for b in guess], [list(b) for b in prev.ad], [u.copy() for u in prev.used]
     w, code, sigma, its, settled, past = k.run(x, dx, ddx, k.c, a, ad, used, k.order, ~near, m, p)
     code = np.broadcast_to(code, (lanes,))
@@ -142,7 +177,9 @@ def advance(k, prev, rows, sink=None, spot=None):
         solved = solved & on_path_lanes(prev.a, guess, a, m.sizes, p.path_slack * m.length_scale, p)
     followed = ~solved & ((code <= 0) | (reason_of(code) == m.not_converged))  # the runtime continues there
     alone = np.flatnonzero(~past & (~near | ~settled | followed))
-    new = SimpleNamespace(inputs=x, rates=dx, a=a, ad=ad, used=used, ok=solved)
+    new = SimpleNamespace(inputs=x, rates=dx, a=a, ad=ad, used=used, ok=solved, back_inputs=prev.inputs,
+                          back_a=[b[:n] for b, n in zip(prev.a, m.sizes)],
+                          back_ok=solved & prev.ok if p.predictor == 2 else np.zeros(lanes, dtype=bool))
     if sink is not None:
         j, at = spot
         for name, value in zip(k.columns, k.publish(w, k.c)):
@@ -179,26 +216,30 @@ def advance(k, prev, rows, sink=None, spot=None):
 def alone_row(k, prev, row):
     """One row solved by the standard-library module from a one-lane state; returns its outputs
     and its state.  The module's warm start (its drive()'s) holds the inputs, rates, block states,
-    their rates and the blocks used, then the row before them, which only the second-order
-    predictor reads; the lanes run with the first-order one, so they hand over none and keep the
-    first WARM_KEPT entries of what comes back."""
+    their rates and the blocks used, then the row before them (its inputs and block states, of
+    which the second-order predictor reads the Add-link lengths; None where there is none)."""
     warm = None
     if prev.ok[0]:
+        back = ([float(v[0]) for v in prev.back_inputs], [[float(v[0]) for v in b] for b in prev.back_a]) \
+            if prev.back_ok[0] else None
         warm = ([float(v[0]) for v in prev.inputs], [float(v[0]) for v in prev.rates],
                 [[float(v[0]) for v in b] for b in prev.a], [[float(v[0]) for v in b] for b in prev.ad],
-                [int(u[0]) for u in prev.used], None)
+                [int(u[0]) for u in prev.used], back)
     state = {"warm": warm}
     x, dx, ddx = ([float(v if np.ndim(v) == 0 else v[row]) for v in col] for col in (k.x, k.dx, k.ddx))
     out = k.rows.solve(x, dx, ddx, k.order, state)
     new = empty_state(k, 1)
     warm = state["warm"]
     if warm is not None:
-        ins, rates, a, ad, used = warm[:WARM_KEPT]
-        new = SimpleNamespace(inputs=[np.array([v], dtype=REAL) for v in ins],
-                              rates=[np.array([v], dtype=REAL) for v in rates],
-                              a=[[np.array([v], dtype=REAL) for v in b] for b in a],
-                              ad=[[np.array([v], dtype=REAL) for v in b] for b in ad],
-                              used=[np.array([u]) for u in used], ok=np.array([True]))
+        ins, rates, a, ad, used, back = warm
+        new.inputs, new.rates = [np.array([v], dtype=REAL) for v in ins], [np.array([v], dtype=REAL) for v in rates]
+        new.a = [[np.array([v], dtype=REAL) for v in b] for b in a]
+        new.ad = [[np.array([v], dtype=REAL) for v in b] for b in ad]
+        new.used, new.ok = [np.array([u]) for u in used], np.array([True])
+        if back is not None:
+            new.back_inputs = [np.array([v], dtype=REAL) for v in back[0]]
+            new.back_a = [[np.array([v], dtype=REAL) for v in b[:n]] for b, n in zip(back[1], k.m.sizes)]
+            new.back_ok = np.array([True])
     return out, new
 
 
@@ -291,11 +332,11 @@ def sweep(k, seq, prev, emit=False, keep=False):
         return kept
     steps, chunks = layout(n, STEPS if emit else SEED_STEPS)
     starts = np.arange(chunks) * steps
-    first = prev if chunks == 1 else state_cat([prev, sweep(k, seq[starts[1:] - 1], prev, False, True)])
+    first = prev if chunks == 1 else state_cat([prev, seeds(k, seq, starts[1:], prev, emit)])
     ends = run_tiles(k, seq, starts, steps, np.arange(chunks), first, emit, kept)
     fixing = False
     while True:  # a chunk whose seed is not where the chunk before it ends is solved again from there
-        wrong = np.flatnonzero(~agree(state_of(first, slice(1, None)), state_of(ends, slice(None, -1)), k))
+        wrong = np.flatnonzero(~agree(state_of(first, slice(1, None)), state_of(ends, slice(None, -1)), k, emit))
         if not wrong.size:
             return kept
         if not fixing:  # copies to write into (a pass's states hold views)
@@ -303,6 +344,19 @@ def sweep(k, seq, prev, emit=False, keep=False):
         again = state_of(ends, wrong)
         state_put(first, wrong + 1, again)
         state_put(ends, wrong + 1, run_tiles(k, seq, starts, steps, wrong + 1, again, emit, kept))
+
+
+def seeds(k, seq, starts, prev, emit):
+    """The states of the rows before starts (positions in seq), from a sweep over them one level up
+    from prev.  Seeding the call's own rows (emit) at the second-order predictor, the sweep is over
+    the rows two before, and one pass of lanes goes on from each to the row after it, so a seed
+    holds the row before it as the one-by-one rows do (a seeding sweep's lanes predict along the
+    rates, and its seeds are checked without the rows before)."""
+    if k.p.predictor != 2 or not emit:
+        return sweep(k, seq[starts - 1], prev, False, True)
+    before = sweep(k, seq[starts - 2], prev, False, True)
+    return state_cat([advance(k, state_of(before, slice(t, t + LANES)), seq[starts[t:t + LANES] - 1])
+                      for t in range(0, len(starts), LANES)])
 
 
 def run_tiles(k, seq, starts, steps, chunks, prev, emit, kept):
