@@ -1521,10 +1521,16 @@ def test_a_point_far_out_over_its_base_is_placed_from_the_bases_direction():
     """Found by test_resolver_sweep[fig14] (fig14_9) after link_point placed a ternary's third pair linearly in
     the two others: the fallback block that solves the sweep from 60 degrees on placed J4 from J5-J2 at 1.8 times
     that base, magnifying the base's length error: J4 5.49 eps L off at row 75 where every sigma is at least
-    0.5 (1.85 along the link's angle).  link_point now uses the base's direction only: 0.81.  Reference: the
-    sketch's assembly followed at 50 digits; L the largest distance between two pairs, as the sweep property."""
+    0.5 (1.85 along the link's angle).  link_point uses the base's direction only (the linear pair_point never
+    inside a group): 0.81 there then.  The rounding of the pairs still turns the base, and the arm magnifies
+    that: over rows 66..78 the error is 0.7..6.7 eps L with the first-order predictor and 0.9..5.6 with the
+    second (Newton's start moves the last bits), so each row is held to twice RESOLVER_POSITION and their median
+    to it.  Reference: the sketch's assembly followed at 50 digits; L the largest distance between two pairs, as
+    the sweep property."""
     path = MECHANISMS / "fig14_long_arm.yaml"
     log = build_log(str(path), outputs=(), sweep=False)
+    placed = {s.function for s in log.steps if s.group and s.target == "J4"} - {"RRR_links"}  # or a chain's
+    assert placed == {"link_point"}
     ref = Reference(str(path))
     t0 = ref.sketch_inputs()[0]
     values = [t0 - math.radians(k) for k in range(79)]
@@ -1533,13 +1539,15 @@ def test_a_point_far_out_over_its_base_is_placed_from_the_bases_direction():
     names, data = columns(log, result)
     pairs = [(ref.joints[n].x, ref.joints[n].y) for n in ref.joints]
     length = max(math.dist(a, b) for a in pairs for b in pairs)
-    for k in (72, 75, 78):
+    errs = []
+    for k in range(66, 79):
         q = sk.walk(ref, ref.sketch_pose(), t0, values[k])
         exact = ref.solve([values[k]], [1.0], q).columns
         row = dict(zip(names, (float(x) for x in data[k])))
         err = max(abs(sk.MP.mpf(row[c]) - x) for c, x in exact.items() if sk.quantity(c) == "position")
-        assert result.status[k] == 0 and float(err / (EPS * length)) <= RESOLVER_POSITION, f"row {k}"
-
+        errs.append(float(err / (EPS * length)))
+        assert result.status[k] == 0 and errs[-1] <= 2 * RESOLVER_POSITION, f"row {k}: {errs[-1]:.3g} eps L"
+    assert float(np.median(errs)) <= RESOLVER_POSITION, errs
 
 
 def test_a_slider_links_point_over_a_short_base_is_placed_from_the_lines_angle():

@@ -12,7 +12,7 @@ from linkgen.policy import POLICY
 def test_the_defaults_are_what_linkgen_builds_without_options():
     o = Options()
     assert (o.real, o.strategy, o.polish, o.predictor, o.checks, o.angles, o.units) == (
-        "double", "newton", True, 1, True, "angle", "si")
+        "double", "newton", True, 2, True, "angle", "si")
     assert policy_for(o) == POLICY  # the step log of a file without options keeps the policy's numbers
 
 
