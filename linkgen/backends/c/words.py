@@ -38,8 +38,8 @@ HEADERS = frozenset("""
 # Device names: Windows cannot create NAME.c for them, whatever the case or extension.
 WINDOWS_DEVICES = frozenset("con prn aux nul".split() + [f"{d}{k}" for d in ("com", "lpt") for k in range(1, 10)])
 # Fields of the generated state besides the outputs.
-STATE_FIELDS = frozenset("status sigma iterations warm_valid warm_in warm_din warm_a warm_ad warm_used back_valid back_in"
-                         " back_a".split())
+STATE_FIELDS = frozenset("""status sigma iterations warm_valid warm_in warm_din warm_a warm_ad warm_used back_valid
+    back_in back_a""".split())
 # What NAME.h defines from the mechanism name (NAME_x, NAME_X with NAME upper-cased) and the macros of NAME.c.
 HEADER_SUFFIXES = ("point", "angle", "prismatic", "state", "init", "solve", "columns")
 HEADER_MACRO_SUFFIXES = ("H", "N_INPUTS", "N_STEPS", "N_COLUMNS", "ORDER", "SAMPLES", "N_GROUPS", "N_BLOCKS", "NMAX",
