@@ -337,8 +337,8 @@ def test_every_chain_reports_a_status_and_its_conditioning():
 
 def test_rrr_an_open_triangle_never_fails():
     """RRR_links selects fail 0 on the open test (3 o1 > s2 and 3 o2 > dd): the toggle-side test it replaces,
-    computed as the DSL writes it, is false on every open triangle (its sides at most 5 apart), of sides from
-    alike to 5 apart and of q from the open range's ends to its middle (lo > 0, q > 0 and k > 0, by a margin of about 0.18 q)."""
+    computed as the DSL writes it, is false on every open triangle (its sides at most 5 apart): sides alike to
+    5 apart, q from the open range's ends to its middle (lo > 0, q > 0 and k > 0, by a margin of about 0.18 q)."""
     rng = random.Random(7)
     eps = 2.0 ** -52
     checked = 0
