@@ -29,8 +29,6 @@ def RRR_links(b: PlaneBuilder) -> Primitive:
     z = b.let("z", fmin(lo, q))
     y = b.let("y", select(q >= hi, hi, select(q <= lo, lo, q)))
     k = b.let("k", z - (x - y))
-    fail = b.let("fail", either(either(k < -TOGGLE_SLACK * EPS * x, q.eq(0)), lo <= 0))
-    kk = b.let("kk", fmax(k, 0))
     # 4 x the triangle's area.  Open (each of (l1 + l2)^2 - q^2 and q^2 - (l1 - l2)^2 over a third of its
     # first term, so neither cancels more than 1.6 bits): sqrt of their product, from q^2 alone; else, near a
     # toggle, Kahan's formula on the sorted sides, which needs q.
@@ -39,6 +37,11 @@ def RRR_links(b: PlaneBuilder) -> Primitive:
     o1 = b.let("o1", s2 - dd)
     o2 = b.let("o2", dd - t2)
     is_open = Logic("and", 3 * o1 > s2, 3 * o2 > dd)  # written out where read: the sympy oracle differentiates lets
+    # an open triangle never fails (o1 > 0 and o2 > 0 give t2 < dd < s2, so lo > 0, q > 0, and k > 0 with a
+    # margin of 0.18 q over its rounding): 0 there, the same value, so that the C computes k, x, y and z only
+    # near a toggle (printer.py's branch on the open test)
+    fail = b.let("fail", select(is_open, 0, either(either(k < -TOGGLE_SLACK * EPS * x, q.eq(0)), lo <= 0)))
+    kk = b.let("kk", fmax(k, 0))
     kahan = sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     area4 = b.let("area4", select(is_open, sqrt(o1 * o2), kahan))
     # jb - j1 = e1 = A d + area4 M n(d), with A = a / q (a: jb's distance along d) and M = minv / (2 q^2):

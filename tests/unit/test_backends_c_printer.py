@@ -202,3 +202,16 @@ def test_a_parameter_an_order_does_not_read_is_voided(tmp_path: Path):
     assert done.returncode == 0 and not done.stderr, done.stderr
     out = subprocess.run([str(tmp_path / "t")], capture_output=True, text=True, check=True).stdout
     assert float.fromhex(out.strip()) == 2.5
+
+
+def test_rrr_links_branches_on_its_open_test():
+    """The C of RRR_links computes q, 1/q and Kahan's sorted sides only on the toggle side of its open test (the
+    values the other side selects are the same: test_the_c_functions_compute_what_the_dsl_says_bit_for_bit)."""
+    text = c_function(PRIMITIVES["RRR_links"], 2)
+    before, branch, rest = text.partition("    if ((3 * o1 > s2) & (3 * o2 > dd)) {\n")
+    opened, other, after = rest.partition("    } else {\n")
+    toggle, end, after = after.partition("\n    }\n")
+    assert branch and other and end
+    assert "double area4, e1x, e1y, ar, a2r;" in before and "sqrt(dd)" not in before + opened + after
+    assert "        const double q = sqrt(dd);" in toggle and "        fail = (k < " in toggle
+    assert "        fail = 0;" in opened and "        area4 = sqrt(o1 * o2);" in opened

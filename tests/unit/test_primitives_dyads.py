@@ -333,3 +333,33 @@ def test_every_chain_reports_a_status_and_its_conditioning():
     for name in ("RRR_links", "PRR_links", "PRP_links", "RPR_links", "PPR_links"):
         prim = PRIMITIVES[name]
         assert prim.status is not None and prim.sigma is not None, name
+
+
+def test_rrr_an_open_triangle_never_fails():
+    """RRR_links selects fail 0 on the open test (3 o1 > s2 and 3 o2 > dd): the toggle-side test it replaces,
+    computed as the DSL writes it, is false on every open triangle (its sides at most 5 apart): sides alike to
+    5 apart, q from the open range's ends to its middle (lo > 0, q > 0 and k > 0, by a margin of about 0.18 q)."""
+    rng = random.Random(7)
+    eps = 2.0 ** -52
+    checked = 0
+    for _ in range(20000):
+        l1 = 10.0 ** rng.uniform(-30, 30)
+        l2 = l1 * rng.choice((1.0, 1.0 + 1e-15, 10.0 ** rng.uniform(-0.7, 0.7)))
+        lo_q, hi_q = abs(l1 - l2) * math.sqrt(1.5), (l1 + l2) * math.sqrt(2 / 3)
+        q0 = lo_q + (hi_q - lo_q) * rng.choice((0.0, 1.0, rng.random()))
+        dx = q0 * rng.uniform(0.1, 1.0)
+        dy = math.sqrt(max(q0 * q0 - dx * dx, 0.0))
+        dd = dx * dx + dy * dy
+        s2, t2 = (l1 + l2) * (l1 + l2), (l1 - l2) * (l1 - l2)
+        o1, o2 = s2 - dd, dd - t2
+        if not (3 * o1 > s2 and 3 * o2 > dd):
+            continue
+        q = math.sqrt(dd)
+        hi, lo = max(l1, l2), min(l1, l2)
+        x, z = max(hi, q), min(lo, q)
+        y = hi if q >= hi else lo if q <= lo else q
+        k = z - (x - y)
+        assert not (k < -8 * eps * x or q == 0 or lo <= 0), (l1, l2, dx, dy)
+        assert k > 0.15 * q
+        checked += 1
+    assert checked > 5000

@@ -313,88 +313,94 @@ def RRR_links_still_j1_j2_l1(j1, j2, l1, l2, minv):
         y = np.where(_c1, hi, np.where(q <= lo, lo, q))
     _t2 = x - y
     k = z - _t2
-    _t3 = q == 0
-    fail = ((k < -8 * EPS * x) | (_t3)) | (lo <= 0)
-    _t4 = l1_v + l2_v
-    s2 = _t4 * _t4
-    _t5 = l1_v - l2_v
-    t2 = _t5 * _t5
+    _t3 = l1_v + l2_v
+    s2 = _t3 * _t3
+    _t4 = l1_v - l2_v
+    t2 = _t4 * _t4
     o1 = s2 - dd
     o2 = dd - t2
-    _t6 = (3 * o1 > s2) & (3 * o2 > dd)
-    _c3 = np.asarray(_t6)
+    _t5 = (3 * o1 > s2) & (3 * o2 > dd)
+    _t6 = q == 0
+    _c3 = np.asarray(_t5)
     if not _c3.any():
-        area4 = np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z)))
+        fail = ((k < -8 * EPS * x) | (_t6)) | (lo <= 0)
     elif _c3.all():
+        fail = 0
+    else:
+        fail = np.where(_c3, 0, ((k < -8 * EPS * x) | (_t6)) | (lo <= 0))
+    _c4 = np.asarray(_t5)
+    if not _c4.any():
+        area4 = np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z)))
+    elif _c4.all():
         area4 = np.sqrt(o1 * o2)
     else:
-        area4 = np.where(_c3, np.sqrt(o1 * o2), np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z))))
-    _c4 = np.asarray(dd == 0)
-    if not _c4.any():
+        area4 = np.where(_c4, np.sqrt(o1 * o2), np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z))))
+    _c5 = np.asarray(dd == 0)
+    if not _c5.any():
         idd2 = 0.5 / dd
-    elif _c4.all():
+    elif _c5.all():
         idd2 = NAN
     else:
-        idd2 = np.where(_c4, NAN, 0.5 / dd)
-    c = _t5 * _t4
-    _c5 = np.asarray(_t3)
-    if not _c5.any():
+        idd2 = np.where(_c5, NAN, 0.5 / dd)
+    c = _t4 * _t3
+    _c6 = np.asarray(_t6)
+    if not _c6.any():
         iq = 1 / q
-    elif _c5.all():
+    elif _c6.all():
         iq = NAN
     else:
-        iq = np.where(_c5, NAN, 1 / q)
-    _t7 = _t4 * iq
-    a = (q + _t5 * _t7) / 2
-    _c6 = np.asarray(k > 0)
-    if not _c6.any():
-        _c7 = np.asarray(_t1)
-        if not _c7.any():
-            _c8 = np.asarray(l1_v >= l2_v)
-            if not _c8.any():
-                at = (q - _t4) / 2
-            elif _c8.all():
+        iq = np.where(_c6, NAN, 1 / q)
+    _t7 = _t3 * iq
+    a = (q + _t4 * _t7) / 2
+    _c7 = np.asarray(k > 0)
+    if not _c7.any():
+        _c8 = np.asarray(_t1)
+        if not _c8.any():
+            _c9 = np.asarray(l1_v >= l2_v)
+            if not _c9.any():
+                at = (q - _t3) / 2
+            elif _c9.all():
                 at = (l1_v + (q + l2_v)) / 2
             else:
-                at = np.where(_c8, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)
-        elif _c7.all():
+                at = np.where(_c9, (l1_v + (q + l2_v)) / 2, (q - _t3) / 2)
+        elif _c8.all():
             at = (l1_v + (q - l2_v)) / 2
         else:
-            at = np.where(_c7, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2))
-    elif _c6.all():
+            at = np.where(_c8, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t3) / 2))
+    elif _c7.all():
         at = a
     else:
-        at = np.where(_c6, a, np.where(_t1, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
+        at = np.where(_c7, a, np.where(_t1, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t3) / 2)))
     ao = (dd + c) * idd2
     mi = minv * idd2
     ux = dx * iq
     uy = dy * iq
     hn = minv * (area4 * iq / 2)
-    _c10 = np.asarray(fail)
-    if not _c10.any():
-        _s9 = area4 * (0.5 / (l1_v * l2_v))
-    elif _c10.all():
-        _s9 = 0
-    else:
-        _s9 = np.where(_c10, 0, area4 * (0.5 / (l1_v * l2_v)))
-    sigma = np.minimum(_s9, 1)
-    _c11 = np.asarray(_t6)
+    _c11 = np.asarray(fail)
     if not _c11.any():
-        ar = a * iq
+        _s10 = area4 * (0.5 / (l1_v * l2_v))
     elif _c11.all():
+        _s10 = 0
+    else:
+        _s10 = np.where(_c11, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s10, 1)
+    _c12 = np.asarray(_t5)
+    if not _c12.any():
+        ar = a * iq
+    elif _c12.all():
         ar = ao
     else:
-        ar = np.where(_c11, ao, a * iq)
+        ar = np.where(_c12, ao, a * iq)
     _t9 = 2 * idd2
     sdx = _t9 * dx
     sdy = _t9 * dy
-    _c12 = np.asarray(area4 == 0)
-    if not _c12.any():
+    _c13 = np.asarray(area4 == 0)
+    if not _c13.any():
         ihq = 2 * minv / area4
-    elif _c12.all():
+    elif _c13.all():
         ihq = NAN
     else:
-        ihq = np.where(_c12, NAN, 2 * minv / area4)
+        ihq = np.where(_c13, NAN, 2 * minv / area4)
     tnx = -ihq * dy
     tny = ihq * dx
     r2v = l2_v * l2_dv
@@ -406,56 +412,56 @@ def RRR_links_still_j1_j2_l1(j1, j2, l1, l2, minv):
     r1a = -_t10
     r2a = l2_v * l2_ddv + l2_dv * l2_dv - _t10
     bua = r1a - r2a
-    _c14 = np.asarray(_t6)
-    if not _c14.any():
-        _s13 = (q + (l2_v - l1_v) * _t7) / 2 * iq
-    elif _c14.all():
-        _s13 = (dd - c) * idd2
+    _c15 = np.asarray(_t5)
+    if not _c15.any():
+        _s14 = (q + (l2_v - l1_v) * _t7) / 2 * iq
+    elif _c15.all():
+        _s14 = (dd - c) * idd2
     else:
-        _s13 = np.where(_c14, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
-    bna = _s13 * r1a + ar * r2a
+        _s14 = np.where(_c15, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
+    bna = _s14 * r1a + ar * r2a
     bax = bua * sdx + bna * tnx
     bay = bua * sdy + bna * tny
-    _c15 = np.asarray(fail)
-    if not _c15.any():
-        _c16 = np.asarray(sigma < 1e-07)
-        if not _c16.any():
-            _c17 = np.asarray(sigma < 0.001)
-            if not _c17.any():
+    _c16 = np.asarray(fail)
+    if not _c16.any():
+        _c17 = np.asarray(sigma < 1e-07)
+        if not _c17.any():
+            _c18 = np.asarray(sigma < 0.001)
+            if not _c18.any():
                 _st = 0
-            elif _c17.all():
+            elif _c18.all():
                 _st = 4
             else:
-                _st = np.where(_c17, 4, 0)
-        elif _c16.all():
+                _st = np.where(_c18, 4, 0)
+        elif _c17.all():
             _st = 3
         else:
-            _st = np.where(_c16, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c15.all():
+            _st = np.where(_c17, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c16.all():
         _st = 1
     else:
-        _st = np.where(_c15, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c16, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
     _fails = _st == 1
     _singular = _fails | (_st == 3)
-    _c19 = np.asarray(_t6)
-    if not _c19.any():
-        _s18 = at * ux - hn * uy
-    elif _c19.all():
-        _s18 = ao * dx + area4 * (-mi * dy)
+    _c20 = np.asarray(_t5)
+    if not _c20.any():
+        _s19 = at * ux - hn * uy
+    elif _c20.all():
+        _s19 = ao * dx + area4 * (-mi * dy)
     else:
-        _s18 = np.where(_c19, ao * dx + area4 * (-mi * dy), at * ux - hn * uy)
-    _f1 = j1_x + _s18
-    _c21 = np.asarray(_t6)
-    if not _c21.any():
-        _s20 = at * uy + hn * ux
-    elif _c21.all():
-        _s20 = ao * dy + area4 * (mi * dx)
+        _s19 = np.where(_c20, ao * dx + area4 * (-mi * dy), at * ux - hn * uy)
+    _f1 = j1_x + _s19
+    _c22 = np.asarray(_t5)
+    if not _c22.any():
+        _s21 = at * uy + hn * ux
+    elif _c22.all():
+        _s21 = ao * dy + area4 * (mi * dx)
     else:
-        _s20 = np.where(_c21, ao * dy + area4 * (mi * dx), at * uy + hn * ux)
-    _f2 = j1_y + _s20
+        _s21 = np.where(_c22, ao * dy + area4 * (mi * dx), at * uy + hn * ux)
+    _f2 = j1_y + _s21
     _jb = (_f1, _f2, bvx, bvy, bax, bay)
     if _singular.any():  # nan where the rows failed
         _jb = (np.where(_fails, np.nan, _jb[0]), np.where(_fails, np.nan, _jb[1]), np.where(_singular, np.nan, _jb[2]), np.where(_singular, np.nan, _jb[3]), np.where(_singular, np.nan, _jb[4]), np.where(_singular, np.nan, _jb[5]))
@@ -491,102 +497,108 @@ def RRR_links_still_j2_l1_l2(j1, j2, l1, l2, minv):
         y = np.where(_c1, hi, np.where(q <= lo, lo, q))
     _t2 = x - y
     k = z - _t2
-    _t3 = q == 0
-    fail = ((k < -8 * EPS * x) | (_t3)) | (lo <= 0)
-    _t4 = l1_v + l2_v
-    s2 = _t4 * _t4
-    _t5 = l1_v - l2_v
-    t2 = _t5 * _t5
+    _t3 = l1_v + l2_v
+    s2 = _t3 * _t3
+    _t4 = l1_v - l2_v
+    t2 = _t4 * _t4
     o1 = s2 - dd
     o2 = dd - t2
-    _t6 = (3 * o1 > s2) & (3 * o2 > dd)
-    _c3 = np.asarray(_t6)
+    _t5 = (3 * o1 > s2) & (3 * o2 > dd)
+    _t6 = q == 0
+    _c3 = np.asarray(_t5)
     if not _c3.any():
-        area4 = np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z)))
+        fail = ((k < -8 * EPS * x) | (_t6)) | (lo <= 0)
     elif _c3.all():
+        fail = 0
+    else:
+        fail = np.where(_c3, 0, ((k < -8 * EPS * x) | (_t6)) | (lo <= 0))
+    _c4 = np.asarray(_t5)
+    if not _c4.any():
+        area4 = np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z)))
+    elif _c4.all():
         area4 = np.sqrt(o1 * o2)
     else:
-        area4 = np.where(_c3, np.sqrt(o1 * o2), np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z))))
-    _c4 = np.asarray(dd == 0)
-    if not _c4.any():
+        area4 = np.where(_c4, np.sqrt(o1 * o2), np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z))))
+    _c5 = np.asarray(dd == 0)
+    if not _c5.any():
         idd2 = 0.5 / dd
-    elif _c4.all():
+    elif _c5.all():
         idd2 = NAN
     else:
-        idd2 = np.where(_c4, NAN, 0.5 / dd)
-    c = _t5 * _t4
-    _c5 = np.asarray(_t3)
-    if not _c5.any():
+        idd2 = np.where(_c5, NAN, 0.5 / dd)
+    c = _t4 * _t3
+    _c6 = np.asarray(_t6)
+    if not _c6.any():
         iq = 1 / q
-    elif _c5.all():
+    elif _c6.all():
         iq = NAN
     else:
-        iq = np.where(_c5, NAN, 1 / q)
-    _t7 = _t4 * iq
-    a = (q + _t5 * _t7) / 2
-    _c6 = np.asarray(k > 0)
-    if not _c6.any():
-        _c7 = np.asarray(_t1)
-        if not _c7.any():
-            _c8 = np.asarray(l1_v >= l2_v)
-            if not _c8.any():
-                at = (q - _t4) / 2
-            elif _c8.all():
+        iq = np.where(_c6, NAN, 1 / q)
+    _t7 = _t3 * iq
+    a = (q + _t4 * _t7) / 2
+    _c7 = np.asarray(k > 0)
+    if not _c7.any():
+        _c8 = np.asarray(_t1)
+        if not _c8.any():
+            _c9 = np.asarray(l1_v >= l2_v)
+            if not _c9.any():
+                at = (q - _t3) / 2
+            elif _c9.all():
                 at = (l1_v + (q + l2_v)) / 2
             else:
-                at = np.where(_c8, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)
-        elif _c7.all():
+                at = np.where(_c9, (l1_v + (q + l2_v)) / 2, (q - _t3) / 2)
+        elif _c8.all():
             at = (l1_v + (q - l2_v)) / 2
         else:
-            at = np.where(_c7, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2))
-    elif _c6.all():
+            at = np.where(_c8, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t3) / 2))
+    elif _c7.all():
         at = a
     else:
-        at = np.where(_c6, a, np.where(_t1, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
+        at = np.where(_c7, a, np.where(_t1, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t3) / 2)))
     ao = (dd + c) * idd2
     mi = minv * idd2
     ux = dx * iq
     uy = dy * iq
     hn = minv * (area4 * iq / 2)
-    _c9 = np.asarray(_t6)
-    if not _c9.any():
+    _c10 = np.asarray(_t5)
+    if not _c10.any():
         e1x = at * ux - hn * uy
-    elif _c9.all():
+    elif _c10.all():
         e1x = ao * dx + area4 * (-mi * dy)
     else:
-        e1x = np.where(_c9, ao * dx + area4 * (-mi * dy), at * ux - hn * uy)
-    _c10 = np.asarray(_t6)
-    if not _c10.any():
+        e1x = np.where(_c10, ao * dx + area4 * (-mi * dy), at * ux - hn * uy)
+    _c11 = np.asarray(_t5)
+    if not _c11.any():
         e1y = at * uy + hn * ux
-    elif _c10.all():
+    elif _c11.all():
         e1y = ao * dy + area4 * (mi * dx)
     else:
-        e1y = np.where(_c10, ao * dy + area4 * (mi * dx), at * uy + hn * ux)
-    _c12 = np.asarray(fail)
-    if not _c12.any():
-        _s11 = area4 * (0.5 / (l1_v * l2_v))
-    elif _c12.all():
-        _s11 = 0
-    else:
-        _s11 = np.where(_c12, 0, area4 * (0.5 / (l1_v * l2_v)))
-    sigma = np.minimum(_s11, 1)
-    _c13 = np.asarray(_t6)
+        e1y = np.where(_c11, ao * dy + area4 * (mi * dx), at * uy + hn * ux)
+    _c13 = np.asarray(fail)
     if not _c13.any():
-        a2r = (q + (l2_v - l1_v) * _t7) / 2 * iq
+        _s12 = area4 * (0.5 / (l1_v * l2_v))
     elif _c13.all():
+        _s12 = 0
+    else:
+        _s12 = np.where(_c13, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s12, 1)
+    _c14 = np.asarray(_t5)
+    if not _c14.any():
+        a2r = (q + (l2_v - l1_v) * _t7) / 2 * iq
+    elif _c14.all():
         a2r = (dd - c) * idd2
     else:
-        a2r = np.where(_c13, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
+        a2r = np.where(_c14, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
     _t9 = 2 * idd2
     sdx = _t9 * dx
     sdy = _t9 * dy
-    _c14 = np.asarray(area4 == 0)
-    if not _c14.any():
+    _c15 = np.asarray(area4 == 0)
+    if not _c15.any():
         ihq = 2 * minv / area4
-    elif _c14.all():
+    elif _c15.all():
         ihq = NAN
     else:
-        ihq = np.where(_c14, NAN, 2 * minv / area4)
+        ihq = np.where(_c15, NAN, 2 * minv / area4)
     tnx = -ihq * dy
     tny = ihq * dx
     r1v = e1x * j1_dx + e1y * j1_dy
@@ -599,35 +611,35 @@ def RRR_links_still_j2_l1_l2(j1, j2, l1, l2, minv):
     r1a = e1x * j1_ddx + e1y * j1_ddy - (_t10 * _t10 + _t11 * _t11)
     r2a = -(bvx * bvx + bvy * bvy)
     bua = r1a - r2a
-    _c16 = np.asarray(_t6)
-    if not _c16.any():
-        _s15 = a * iq
-    elif _c16.all():
-        _s15 = ao
+    _c17 = np.asarray(_t5)
+    if not _c17.any():
+        _s16 = a * iq
+    elif _c17.all():
+        _s16 = ao
     else:
-        _s15 = np.where(_c16, ao, a * iq)
-    bna = a2r * r1a + _s15 * r2a
+        _s16 = np.where(_c17, ao, a * iq)
+    bna = a2r * r1a + _s16 * r2a
     bax = bua * sdx + bna * tnx
     bay = bua * sdy + bna * tny
-    _c17 = np.asarray(fail)
-    if not _c17.any():
-        _c18 = np.asarray(sigma < 1e-07)
-        if not _c18.any():
-            _c19 = np.asarray(sigma < 0.001)
-            if not _c19.any():
+    _c18 = np.asarray(fail)
+    if not _c18.any():
+        _c19 = np.asarray(sigma < 1e-07)
+        if not _c19.any():
+            _c20 = np.asarray(sigma < 0.001)
+            if not _c20.any():
                 _st = 0
-            elif _c19.all():
+            elif _c20.all():
                 _st = 4
             else:
-                _st = np.where(_c19, 4, 0)
-        elif _c18.all():
+                _st = np.where(_c20, 4, 0)
+        elif _c19.all():
             _st = 3
         else:
-            _st = np.where(_c18, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c17.all():
+            _st = np.where(_c19, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c18.all():
         _st = 1
     else:
-        _st = np.where(_c17, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c18, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)

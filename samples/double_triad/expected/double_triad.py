@@ -342,12 +342,12 @@ def RRR_links(j1, j2, l1, l2, minv):
     z = (q if q < lo else lo)
     y = hi if q >= hi else lo if q <= lo else q
     k = z - (x - y)
-    fail = k < -8 * EPS * x or q == 0 or lo <= 0
-    kk = (0 if 0 > k else k)
     s2 = (l1_v + l2_v) * (l1_v + l2_v)
     t2 = (l1_v - l2_v) * (l1_v - l2_v)
     o1 = s2 - dd
     o2 = dd - t2
+    fail = 0 if 3 * o1 > s2 and 3 * o2 > dd else k < -8 * EPS * x or q == 0 or lo <= 0
+    kk = (0 if 0 > k else k)
     area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     idd2 = NAN if dd == 0 else 0.5 / dd
     c = (l1_v - l2_v) * (l1_v + l2_v)
@@ -1032,12 +1032,12 @@ def _group_1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
     _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (65.19202405202648 - _l2_v) * (65.19202405202648 + _l2_v)
@@ -1104,12 +1104,12 @@ def _group_1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
     _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 105.11898020814318) * (70.0 + 105.11898020814318)
@@ -1240,12 +1240,12 @@ def _group_1_v1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
     _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - _l2_v) * (70.0 + _l2_v)
@@ -1312,12 +1312,12 @@ def _group_1_v1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
     _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
@@ -1447,12 +1447,12 @@ def _group_1_v2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
     _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - _l2_v) * (70.0 + _l2_v)
@@ -1519,12 +1519,12 @@ def _group_1_v2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
     _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
@@ -1654,12 +1654,12 @@ def _group_1_v3(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
     _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (65.19202405202648 - _l2_v) * (65.19202405202648 + _l2_v)
@@ -1726,12 +1726,12 @@ def _group_1_v3(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
     _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 105.11898020814318) * (70.0 + 105.11898020814318)
@@ -1861,12 +1861,12 @@ def _group_1_v4(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
     _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (65.19202405202648 - _l2_v) * (65.19202405202648 + _l2_v)
@@ -1933,12 +1933,12 @@ def _group_1_v4(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
     _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 105.11898020814318) * (70.0 + 105.11898020814318)
@@ -2068,12 +2068,12 @@ def _group_1_v5(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
     _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - _l2_v) * (70.0 + _l2_v)
@@ -2140,12 +2140,12 @@ def _group_1_v5(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
     _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
@@ -2275,12 +2275,12 @@ def _group_1_v6(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
     _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - _l2_v) * (70.0 + _l2_v)
@@ -2347,12 +2347,12 @@ def _group_1_v6(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
     _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
@@ -2483,12 +2483,12 @@ def _group_2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
     _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (65.19202405202648 - _l2_v) * (65.19202405202648 + _l2_v)
@@ -2555,12 +2555,12 @@ def _group_2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
     _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 105.11898020814318) * (70.0 + 105.11898020814318)
@@ -2692,12 +2692,12 @@ def _group_2_v1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
     _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - _l2_v) * (70.0 + _l2_v)
@@ -2764,12 +2764,12 @@ def _group_2_v1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
     _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
@@ -2901,12 +2901,12 @@ def _group_2_v2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
     _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (65.19202405202648 - _l2_v) * (65.19202405202648 + _l2_v)
@@ -2973,12 +2973,12 @@ def _group_2_v2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
     _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 105.11898020814318) * (70.0 + 105.11898020814318)
@@ -3110,12 +3110,12 @@ def _group_2_v3(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
     _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (65.19202405202648 - _l2_v) * (65.19202405202648 + _l2_v)
@@ -3182,12 +3182,12 @@ def _group_2_v3(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
     _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 105.11898020814318) * (70.0 + 105.11898020814318)
@@ -3319,12 +3319,12 @@ def _group_2_v4(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
     _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (65.19202405202648 - _l2_v) * (65.19202405202648 + _l2_v)
@@ -3391,12 +3391,12 @@ def _group_2_v4(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
     _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 105.11898020814318) * (70.0 + 105.11898020814318)
@@ -3528,12 +3528,12 @@ def _group_2_v5(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
     _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - _l2_v) * (70.0 + _l2_v)
@@ -3600,12 +3600,12 @@ def _group_2_v5(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
     _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
@@ -3737,12 +3737,12 @@ def _group_2_v6(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
     _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - _l2_v) * (70.0 + _l2_v)
@@ -3809,12 +3809,12 @@ def _group_2_v6(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
     _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
@@ -3945,12 +3945,12 @@ def _group_2_v7(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
     _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - _l2_v) * (70.0 + _l2_v)
@@ -4017,12 +4017,12 @@ def _group_2_v7(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
     _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
@@ -4155,12 +4155,12 @@ def _group_2_v8(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (121.6552506059644 + _l2_v) * (121.6552506059644 + _l2_v)
     _t2 = (121.6552506059644 - _l2_v) * (121.6552506059644 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (121.6552506059644 - _l2_v) * (121.6552506059644 + _l2_v)
@@ -4227,12 +4227,12 @@ def _group_2_v8(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 60.8276253029822) * (70.0 + 60.8276253029822)
     _t2 = (70.0 - 60.8276253029822) * (70.0 - 60.8276253029822)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 60.8276253029822) * (70.0 + 60.8276253029822)

@@ -360,58 +360,64 @@ def RRR_links(j1, j2, l1, l2, minv):
         y = np.where(_c1, hi, np.where(q <= lo, lo, q))
     _t2 = x - y
     k = z - _t2
-    _t3 = q == 0
-    fail = ((k < -8 * EPS * x) | (_t3)) | (lo <= 0)
-    _t4 = l1_v + l2_v
-    s2 = _t4 * _t4
-    _t5 = l1_v - l2_v
-    t2 = _t5 * _t5
+    _t3 = l1_v + l2_v
+    s2 = _t3 * _t3
+    _t4 = l1_v - l2_v
+    t2 = _t4 * _t4
     o1 = s2 - dd
     o2 = dd - t2
-    _t6 = (3 * o1 > s2) & (3 * o2 > dd)
-    _c3 = np.asarray(_t6)
+    _t5 = (3 * o1 > s2) & (3 * o2 > dd)
+    _t6 = q == 0
+    _c3 = np.asarray(_t5)
     if not _c3.any():
-        area4 = np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z)))
+        fail = ((k < -8 * EPS * x) | (_t6)) | (lo <= 0)
     elif _c3.all():
+        fail = 0
+    else:
+        fail = np.where(_c3, 0, ((k < -8 * EPS * x) | (_t6)) | (lo <= 0))
+    _c4 = np.asarray(_t5)
+    if not _c4.any():
+        area4 = np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z)))
+    elif _c4.all():
         area4 = np.sqrt(o1 * o2)
     else:
-        area4 = np.where(_c3, np.sqrt(o1 * o2), np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z))))
-    _c4 = np.asarray(dd == 0)
-    if not _c4.any():
+        area4 = np.where(_c4, np.sqrt(o1 * o2), np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z))))
+    _c5 = np.asarray(dd == 0)
+    if not _c5.any():
         idd2 = 0.5 / dd
-    elif _c4.all():
+    elif _c5.all():
         idd2 = NAN
     else:
-        idd2 = np.where(_c4, NAN, 0.5 / dd)
-    c = _t5 * _t4
-    _c5 = np.asarray(_t3)
-    if not _c5.any():
+        idd2 = np.where(_c5, NAN, 0.5 / dd)
+    c = _t4 * _t3
+    _c6 = np.asarray(_t6)
+    if not _c6.any():
         iq = 1 / q
-    elif _c5.all():
+    elif _c6.all():
         iq = NAN
     else:
-        iq = np.where(_c5, NAN, 1 / q)
-    _t7 = _t4 * iq
-    a = (q + _t5 * _t7) / 2
-    _c6 = np.asarray(k > 0)
-    if not _c6.any():
-        _c7 = np.asarray(_t1)
-        if not _c7.any():
-            _c8 = np.asarray(l1_v >= l2_v)
-            if not _c8.any():
-                at = (q - _t4) / 2
-            elif _c8.all():
+        iq = np.where(_c6, NAN, 1 / q)
+    _t7 = _t3 * iq
+    a = (q + _t4 * _t7) / 2
+    _c7 = np.asarray(k > 0)
+    if not _c7.any():
+        _c8 = np.asarray(_t1)
+        if not _c8.any():
+            _c9 = np.asarray(l1_v >= l2_v)
+            if not _c9.any():
+                at = (q - _t3) / 2
+            elif _c9.all():
                 at = (l1_v + (q + l2_v)) / 2
             else:
-                at = np.where(_c8, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)
-        elif _c7.all():
+                at = np.where(_c9, (l1_v + (q + l2_v)) / 2, (q - _t3) / 2)
+        elif _c8.all():
             at = (l1_v + (q - l2_v)) / 2
         else:
-            at = np.where(_c7, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2))
-    elif _c6.all():
+            at = np.where(_c8, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t3) / 2))
+    elif _c7.all():
         at = a
     else:
-        at = np.where(_c6, a, np.where(_t1, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
+        at = np.where(_c7, a, np.where(_t1, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t3) / 2)))
     ao = (dd + c) * idd2
     mi = minv * idd2
     mx = -mi * dy
@@ -420,56 +426,56 @@ def RRR_links(j1, j2, l1, l2, minv):
     uy = dy * iq
     hn = minv * (area4 * iq / 2)
     _t8 = area4 * mx
-    _c9 = np.asarray(_t6)
-    if not _c9.any():
+    _c10 = np.asarray(_t5)
+    if not _c10.any():
         e1x = at * ux - hn * uy
-    elif _c9.all():
+    elif _c10.all():
         e1x = ao * dx + _t8
     else:
-        e1x = np.where(_c9, ao * dx + _t8, at * ux - hn * uy)
+        e1x = np.where(_c10, ao * dx + _t8, at * ux - hn * uy)
     _t9 = area4 * my
-    _c10 = np.asarray(_t6)
-    if not _c10.any():
+    _c11 = np.asarray(_t5)
+    if not _c11.any():
         e1y = at * uy + hn * ux
-    elif _c10.all():
+    elif _c11.all():
         e1y = ao * dy + _t9
     else:
-        e1y = np.where(_c10, ao * dy + _t9, at * uy + hn * ux)
-    _c12 = np.asarray(fail)
-    if not _c12.any():
-        _s11 = area4 * (0.5 / (l1_v * l2_v))
-    elif _c12.all():
-        _s11 = 0
-    else:
-        _s11 = np.where(_c12, 0, area4 * (0.5 / (l1_v * l2_v)))
-    sigma = np.minimum(_s11, 1)
-    _c13 = np.asarray(_t6)
+        e1y = np.where(_c11, ao * dy + _t9, at * uy + hn * ux)
+    _c13 = np.asarray(fail)
     if not _c13.any():
-        ar = a * iq
+        _s12 = area4 * (0.5 / (l1_v * l2_v))
     elif _c13.all():
+        _s12 = 0
+    else:
+        _s12 = np.where(_c13, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s12, 1)
+    _c14 = np.asarray(_t5)
+    if not _c14.any():
+        ar = a * iq
+    elif _c14.all():
         ar = ao
     else:
-        ar = np.where(_c13, ao, a * iq)
-    _c14 = np.asarray(_t6)
-    if not _c14.any():
+        ar = np.where(_c14, ao, a * iq)
+    _c15 = np.asarray(_t5)
+    if not _c15.any():
         a2r = (q + (l2_v - l1_v) * _t7) / 2 * iq
-    elif _c14.all():
+    elif _c15.all():
         a2r = (dd - c) * idd2
     else:
-        a2r = np.where(_c14, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
+        a2r = np.where(_c15, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
     _t11 = -a2r
     e2x = _t11 * dx + _t8
     e2y = _t11 * dy + _t9
     _t12 = 2 * idd2
     sdx = _t12 * dx
     sdy = _t12 * dy
-    _c15 = np.asarray(area4 == 0)
-    if not _c15.any():
+    _c16 = np.asarray(area4 == 0)
+    if not _c16.any():
         ihq = 2 * minv / area4
-    elif _c15.all():
+    elif _c16.all():
         ihq = NAN
     else:
-        ihq = np.where(_c15, NAN, 2 * minv / area4)
+        ihq = np.where(_c16, NAN, 2 * minv / area4)
     tnx = -ihq * dy
     tny = ihq * dx
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
@@ -488,25 +494,25 @@ def RRR_links(j1, j2, l1, l2, minv):
     bna = a2r * r1a + ar * r2a
     bax = bua * sdx + bna * tnx
     bay = bua * sdy + bna * tny
-    _c16 = np.asarray(fail)
-    if not _c16.any():
-        _c17 = np.asarray(sigma < 1e-07)
-        if not _c17.any():
-            _c18 = np.asarray(sigma < 0.001)
-            if not _c18.any():
+    _c17 = np.asarray(fail)
+    if not _c17.any():
+        _c18 = np.asarray(sigma < 1e-07)
+        if not _c18.any():
+            _c19 = np.asarray(sigma < 0.001)
+            if not _c19.any():
                 _st = 0
-            elif _c18.all():
+            elif _c19.all():
                 _st = 4
             else:
-                _st = np.where(_c18, 4, 0)
-        elif _c17.all():
+                _st = np.where(_c19, 4, 0)
+        elif _c18.all():
             _st = 3
         else:
-            _st = np.where(_c17, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c16.all():
+            _st = np.where(_c18, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c17.all():
         _st = 1
     else:
-        _st = np.where(_c16, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c17, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)
@@ -747,58 +753,64 @@ def RRR_links_1(j1, j2, l1, l2, minv):
         y = np.where(_c1, hi, np.where(q <= lo, lo, q))
     _t2 = x - y
     k = z - _t2
-    _t3 = q == 0
-    fail = ((k < -8 * EPS * x) | (_t3)) | (lo <= 0)
-    _t4 = l1_v + l2_v
-    s2 = _t4 * _t4
-    _t5 = l1_v - l2_v
-    t2 = _t5 * _t5
+    _t3 = l1_v + l2_v
+    s2 = _t3 * _t3
+    _t4 = l1_v - l2_v
+    t2 = _t4 * _t4
     o1 = s2 - dd
     o2 = dd - t2
-    _t6 = (3 * o1 > s2) & (3 * o2 > dd)
-    _c3 = np.asarray(_t6)
+    _t5 = (3 * o1 > s2) & (3 * o2 > dd)
+    _t6 = q == 0
+    _c3 = np.asarray(_t5)
     if not _c3.any():
-        area4 = np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z)))
+        fail = ((k < -8 * EPS * x) | (_t6)) | (lo <= 0)
     elif _c3.all():
+        fail = 0
+    else:
+        fail = np.where(_c3, 0, ((k < -8 * EPS * x) | (_t6)) | (lo <= 0))
+    _c4 = np.asarray(_t5)
+    if not _c4.any():
+        area4 = np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z)))
+    elif _c4.all():
         area4 = np.sqrt(o1 * o2)
     else:
-        area4 = np.where(_c3, np.sqrt(o1 * o2), np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z))))
-    _c4 = np.asarray(dd == 0)
-    if not _c4.any():
+        area4 = np.where(_c4, np.sqrt(o1 * o2), np.sqrt((x + (y + z)) * np.maximum(k, 0) * (z + _t2) * (x + (y - z))))
+    _c5 = np.asarray(dd == 0)
+    if not _c5.any():
         idd2 = 0.5 / dd
-    elif _c4.all():
+    elif _c5.all():
         idd2 = NAN
     else:
-        idd2 = np.where(_c4, NAN, 0.5 / dd)
-    c = _t5 * _t4
-    _c5 = np.asarray(_t3)
-    if not _c5.any():
+        idd2 = np.where(_c5, NAN, 0.5 / dd)
+    c = _t4 * _t3
+    _c6 = np.asarray(_t6)
+    if not _c6.any():
         iq = 1 / q
-    elif _c5.all():
+    elif _c6.all():
         iq = NAN
     else:
-        iq = np.where(_c5, NAN, 1 / q)
-    _t7 = _t4 * iq
-    a = (q + _t5 * _t7) / 2
-    _c6 = np.asarray(k > 0)
-    if not _c6.any():
-        _c7 = np.asarray(_t1)
-        if not _c7.any():
-            _c8 = np.asarray(l1_v >= l2_v)
-            if not _c8.any():
-                at = (q - _t4) / 2
-            elif _c8.all():
+        iq = np.where(_c6, NAN, 1 / q)
+    _t7 = _t3 * iq
+    a = (q + _t4 * _t7) / 2
+    _c7 = np.asarray(k > 0)
+    if not _c7.any():
+        _c8 = np.asarray(_t1)
+        if not _c8.any():
+            _c9 = np.asarray(l1_v >= l2_v)
+            if not _c9.any():
+                at = (q - _t3) / 2
+            elif _c9.all():
                 at = (l1_v + (q + l2_v)) / 2
             else:
-                at = np.where(_c8, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)
-        elif _c7.all():
+                at = np.where(_c9, (l1_v + (q + l2_v)) / 2, (q - _t3) / 2)
+        elif _c8.all():
             at = (l1_v + (q - l2_v)) / 2
         else:
-            at = np.where(_c7, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2))
-    elif _c6.all():
+            at = np.where(_c8, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t3) / 2))
+    elif _c7.all():
         at = a
     else:
-        at = np.where(_c6, a, np.where(_t1, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t4) / 2)))
+        at = np.where(_c7, a, np.where(_t1, (l1_v + (q - l2_v)) / 2, np.where(l1_v >= l2_v, (l1_v + (q + l2_v)) / 2, (q - _t3) / 2)))
     ao = (dd + c) * idd2
     mi = minv * idd2
     mx = -mi * dy
@@ -807,83 +819,83 @@ def RRR_links_1(j1, j2, l1, l2, minv):
     uy = dy * iq
     hn = minv * (area4 * iq / 2)
     _t8 = area4 * mx
-    _c9 = np.asarray(_t6)
-    if not _c9.any():
+    _c10 = np.asarray(_t5)
+    if not _c10.any():
         e1x = at * ux - hn * uy
-    elif _c9.all():
+    elif _c10.all():
         e1x = ao * dx + _t8
     else:
-        e1x = np.where(_c9, ao * dx + _t8, at * ux - hn * uy)
+        e1x = np.where(_c10, ao * dx + _t8, at * ux - hn * uy)
     _t9 = area4 * my
-    _c10 = np.asarray(_t6)
-    if not _c10.any():
+    _c11 = np.asarray(_t5)
+    if not _c11.any():
         e1y = at * uy + hn * ux
-    elif _c10.all():
+    elif _c11.all():
         e1y = ao * dy + _t9
     else:
-        e1y = np.where(_c10, ao * dy + _t9, at * uy + hn * ux)
-    _c12 = np.asarray(fail)
-    if not _c12.any():
-        _s11 = area4 * (0.5 / (l1_v * l2_v))
-    elif _c12.all():
-        _s11 = 0
-    else:
-        _s11 = np.where(_c12, 0, area4 * (0.5 / (l1_v * l2_v)))
-    sigma = np.minimum(_s11, 1)
-    _c13 = np.asarray(_t6)
+        e1y = np.where(_c11, ao * dy + _t9, at * uy + hn * ux)
+    _c13 = np.asarray(fail)
     if not _c13.any():
-        a2r = (q + (l2_v - l1_v) * _t7) / 2 * iq
+        _s12 = area4 * (0.5 / (l1_v * l2_v))
     elif _c13.all():
+        _s12 = 0
+    else:
+        _s12 = np.where(_c13, 0, area4 * (0.5 / (l1_v * l2_v)))
+    sigma = np.minimum(_s12, 1)
+    _c14 = np.asarray(_t5)
+    if not _c14.any():
+        a2r = (q + (l2_v - l1_v) * _t7) / 2 * iq
+    elif _c14.all():
         a2r = (dd - c) * idd2
     else:
-        a2r = np.where(_c13, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
+        a2r = np.where(_c14, (dd - c) * idd2, (q + (l2_v - l1_v) * _t7) / 2 * iq)
     _t11 = -a2r
     e2x = _t11 * dx + _t8
     e2y = _t11 * dy + _t9
     _t12 = 2 * idd2
     sdx = _t12 * dx
     sdy = _t12 * dy
-    _c14 = np.asarray(area4 == 0)
-    if not _c14.any():
+    _c15 = np.asarray(area4 == 0)
+    if not _c15.any():
         ihq = 2 * minv / area4
-    elif _c14.all():
+    elif _c15.all():
         ihq = NAN
     else:
-        ihq = np.where(_c14, NAN, 2 * minv / area4)
+        ihq = np.where(_c15, NAN, 2 * minv / area4)
     tnx = -ihq * dy
     tny = ihq * dx
     r1v = l1_v * l1_dv + (e1x * j1_dx + e1y * j1_dy)
     r2v = l2_v * l2_dv + (e2x * j2_dx + e2y * j2_dy)
     buv = r1v - r2v
-    _c16 = np.asarray(_t6)
-    if not _c16.any():
-        _s15 = a * iq
-    elif _c16.all():
-        _s15 = ao
+    _c17 = np.asarray(_t5)
+    if not _c17.any():
+        _s16 = a * iq
+    elif _c17.all():
+        _s16 = ao
     else:
-        _s15 = np.where(_c16, ao, a * iq)
-    bnv = a2r * r1v + _s15 * r2v
+        _s16 = np.where(_c17, ao, a * iq)
+    bnv = a2r * r1v + _s16 * r2v
     bvx = buv * sdx + bnv * tnx
     bvy = buv * sdy + bnv * tny
-    _c17 = np.asarray(fail)
-    if not _c17.any():
-        _c18 = np.asarray(sigma < 1e-07)
-        if not _c18.any():
-            _c19 = np.asarray(sigma < 0.001)
-            if not _c19.any():
+    _c18 = np.asarray(fail)
+    if not _c18.any():
+        _c19 = np.asarray(sigma < 1e-07)
+        if not _c19.any():
+            _c20 = np.asarray(sigma < 0.001)
+            if not _c20.any():
                 _st = 0
-            elif _c19.all():
+            elif _c20.all():
                 _st = 4
             else:
-                _st = np.where(_c19, 4, 0)
-        elif _c18.all():
+                _st = np.where(_c20, 4, 0)
+        elif _c19.all():
             _st = 3
         else:
-            _st = np.where(_c18, 3, np.where(sigma < 0.001, 4, 0))
-    elif _c17.all():
+            _st = np.where(_c19, 3, np.where(sigma < 0.001, 4, 0))
+    elif _c18.all():
         _st = 1
     else:
-        _st = np.where(_c17, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
+        _st = np.where(_c18, 1, np.where(sigma < 1e-07, 3, np.where(sigma < 0.001, 4, 0)))
     _sigma = sigma
     _st = np.asarray(_st)
     _sigma = np.asarray(_sigma, dtype=REAL)

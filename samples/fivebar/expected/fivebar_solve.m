@@ -351,12 +351,16 @@ function [jb, st, sigma] = RRR_links_still_l1_l2(j1, j2, l1, l2, minv)
         y = q;
     end
     k = z - (x - y);
-    fail = k < -8 * eps * x || q == 0 || lo <= 0;
-    kk = max(k, 0);
     s2 = (l1.v + l2.v) * (l1.v + l2.v);
     t2 = (l1.v - l2.v) * (l1.v - l2.v);
     o1 = s2 - dd;
     o2 = dd - t2;
+    if 3 * o1 > s2 && 3 * o2 > dd
+        fail = 0;
+    else
+        fail = k < -8 * eps * x || q == 0 || lo <= 0;
+    end
+    kk = max(k, 0);
     if 3 * o1 > s2 && 3 * o2 > dd
         area4 = sqrt(o1 * o2);
     else

@@ -133,12 +133,12 @@ def RRR_links_still_j2_l1_l2(j1, j2, l1, l2, minv):
     z = (q if q < lo else lo)
     y = hi if q >= hi else lo if q <= lo else q
     k = z - (x - y)
-    fail = k < -8 * EPS * x or q == 0 or lo <= 0
-    kk = (0 if 0 > k else k)
     s2 = (l1_v + l2_v) * (l1_v + l2_v)
     t2 = (l1_v - l2_v) * (l1_v - l2_v)
     o1 = s2 - dd
     o2 = dd - t2
+    fail = 0 if 3 * o1 > s2 and 3 * o2 > dd else k < -8 * EPS * x or q == 0 or lo <= 0
+    kk = (0 if 0 > k else k)
     area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     idd2 = NAN if dd == 0 else 0.5 / dd
     c = (l1_v - l2_v) * (l1_v + l2_v)
@@ -192,12 +192,12 @@ def RRR_links_still_l1_l2(j1, j2, l1, l2, minv):
     z = (q if q < lo else lo)
     y = hi if q >= hi else lo if q <= lo else q
     k = z - (x - y)
-    fail = k < -8 * EPS * x or q == 0 or lo <= 0
-    kk = (0 if 0 > k else k)
     s2 = (l1_v + l2_v) * (l1_v + l2_v)
     t2 = (l1_v - l2_v) * (l1_v - l2_v)
     o1 = s2 - dd
     o2 = dd - t2
+    fail = 0 if 3 * o1 > s2 and 3 * o2 > dd else k < -8 * EPS * x or q == 0 or lo <= 0
+    kk = (0 if 0 > k else k)
     area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     idd2 = NAN if dd == 0 else 0.5 / dd
     c = (l1_v - l2_v) * (l1_v + l2_v)
@@ -304,12 +304,12 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (49.999999999951626 + 41.499999999969184) * (49.999999999951626 + 41.499999999969184)
     _t2 = (49.999999999951626 - 41.499999999969184) * (49.999999999951626 - 41.499999999969184)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (49.999999999951626 - 41.499999999969184) * (49.999999999951626 + 41.499999999969184)
@@ -389,12 +389,12 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (61.90000000003217 + 39.30000000001047) * (61.90000000003217 + 39.30000000001047)
     _t2 = (61.90000000003217 - 39.30000000001047) * (61.90000000003217 - 39.30000000001047)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (61.90000000003217 - 39.30000000001047) * (61.90000000003217 + 39.30000000001047)
@@ -449,12 +449,12 @@ def _run(w, inputs, d_inputs, dd_inputs):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (39.39999999995135 + 36.69999999999471) * (39.39999999995135 + 36.69999999999471)
     _t2 = (39.39999999995135 - 36.69999999999471) * (39.39999999995135 - 36.69999999999471)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (39.39999999995135 - 36.69999999999471) * (39.39999999995135 + 36.69999999999471)

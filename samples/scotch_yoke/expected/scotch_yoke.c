@@ -88,8 +88,6 @@ static inline int PPR_links_still_pg_psig(const POINT *jr, const POINT *pg, cons
     const double mu = mx * cax + my * sax;
     const double jp1x = pg->P.x + sv1 * cg;
     const double jp1y = pg->P.y + sv1 * sg;
-    const double pbx = jp1x + rbx;
-    const double pby = jp1y + rby;
     const double acr = fabs(cr);
     const double sigma = (1.0 < acr ? 1.0 : acr);
     const double k1x = jr->DP.x;
@@ -105,12 +103,24 @@ static inline int PPR_links_still_pg_psig(const POINT *jr, const POINT *pg, cons
     const double dds1 = (k2x * sax - k2y * cax) * icr;
     const double jp1ax = dds1 * cg;
     const double jp1ay = dds1 * sg;
-    const double jxx = sgn > 0 ? pax : pbx;
-    const double jxy = sgn > 0 ? pay : pby;
-    const double jxdx = sgn > 0 ? jr->DP.x : jp1vx;
-    const double jxdy = sgn > 0 ? jr->DP.y : jp1vy;
-    const double jxddx = sgn > 0 ? jr->DDP.x : jp1ax;
-    const double jxddy = sgn > 0 ? jr->DDP.y : jp1ay;
+    double jxx, jxy, jxdx, jxdy, jxddx, jxddy;
+    if (sgn > 0) {
+        jxx = pax;
+        jxy = pay;
+        jxdx = jr->DP.x;
+        jxdy = jr->DP.y;
+        jxddx = jr->DDP.x;
+        jxddy = jr->DDP.y;
+    } else {
+        const double pbx = jp1x + rbx;
+        const double pby = jp1y + rby;
+        jxx = pbx;
+        jxy = pby;
+        jxdx = jp1vx;
+        jxdy = jp1vy;
+        jxddx = jp1ax;
+        jxddy = jp1ay;
+    }
     const int st = cr == 0 ? 1 : sigma < 1e-07 ? 3 : sigma < 0.001 ? 4 : 0;
     *sigma_out = sigma;
     if (st == 1) { s1->v = NAN; s1->dv = NAN; s1->ddv = NAN; jp1->P.x = NAN; jp1->P.y = NAN; jp1->DP.x = NAN; jp1->DP.y = NAN; jp1->DDP.x = NAN; jp1->DDP.y = NAN; sx->v = NAN; sx->dv = NAN; sx->ddv = NAN; jpx->P.x = NAN; jpx->P.y = NAN; jpx->DP.x = NAN; jpx->DP.y = NAN; jpx->DDP.x = NAN; jpx->DDP.y = NAN; return st; }

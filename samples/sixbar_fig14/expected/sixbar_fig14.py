@@ -258,12 +258,12 @@ def RRR_links(j1, j2, l1, l2, minv):
     z = (q if q < lo else lo)
     y = hi if q >= hi else lo if q <= lo else q
     k = z - (x - y)
-    fail = k < -8 * EPS * x or q == 0 or lo <= 0
-    kk = (0 if 0 > k else k)
     s2 = (l1_v + l2_v) * (l1_v + l2_v)
     t2 = (l1_v - l2_v) * (l1_v - l2_v)
     o1 = s2 - dd
     o2 = dd - t2
+    fail = 0 if 3 * o1 > s2 and 3 * o2 > dd else k < -8 * EPS * x or q == 0 or lo <= 0
+    kk = (0 if 0 > k else k)
     area4 = sqrt(o1 * o2) if 3 * o1 > s2 and 3 * o2 > dd else sqrt((x + (y + z)) * kk * (z + (x - y)) * (x + (y - z)))
     idd2 = NAN if dd == 0 else 0.5 / dd
     c = (l1_v - l2_v) * (l1_v + l2_v)
@@ -942,12 +942,12 @@ def _group_1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
     _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (65.19202405202648 - _l2_v) * (65.19202405202648 + _l2_v)
@@ -1014,12 +1014,12 @@ def _group_1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
     _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 105.11898020814318) * (70.0 + 105.11898020814318)
@@ -1150,12 +1150,12 @@ def _group_1_v1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
     _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - _l2_v) * (70.0 + _l2_v)
@@ -1222,12 +1222,12 @@ def _group_1_v1(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
     _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
@@ -1357,12 +1357,12 @@ def _group_1_v2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
     _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (65.19202405202648 - _l2_v) * (65.19202405202648 + _l2_v)
@@ -1429,12 +1429,12 @@ def _group_1_v2(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
     _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 105.11898020814318) * (70.0 + 105.11898020814318)
@@ -1564,12 +1564,12 @@ def _group_1_v3(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
     _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - _l2_v) * (70.0 + _l2_v)
@@ -1636,12 +1636,12 @@ def _group_1_v3(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
     _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
@@ -1771,12 +1771,12 @@ def _group_1_v4(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + _l2_v) * (70.0 + _l2_v)
     _t2 = (70.0 - _l2_v) * (70.0 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - _l2_v) * (70.0 + _l2_v)
@@ -1843,12 +1843,12 @@ def _group_1_v4(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (105.11898020814318 + 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
     _t2 = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 - 65.19202405202648)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (105.11898020814318 - 65.19202405202648) * (105.11898020814318 + 65.19202405202648)
@@ -1978,12 +1978,12 @@ def _group_1_v5(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (65.19202405202648 + _l2_v) * (65.19202405202648 + _l2_v)
     _t2 = (65.19202405202648 - _l2_v) * (65.19202405202648 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (65.19202405202648 - _l2_v) * (65.19202405202648 + _l2_v)
@@ -2050,12 +2050,12 @@ def _group_1_v5(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 105.11898020814318) * (70.0 + 105.11898020814318)
     _t2 = (70.0 - 105.11898020814318) * (70.0 - 105.11898020814318)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 105.11898020814318) * (70.0 + 105.11898020814318)
@@ -2186,12 +2186,12 @@ def _group_1_v6(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (121.6552506059644 + _l2_v) * (121.6552506059644 + _l2_v)
     _t2 = (121.6552506059644 - _l2_v) * (121.6552506059644 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (121.6552506059644 - _l2_v) * (121.6552506059644 + _l2_v)
@@ -2258,12 +2258,12 @@ def _group_1_v6(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 60.8276253029822) * (70.0 + 60.8276253029822)
     _t2 = (70.0 - 60.8276253029822) * (70.0 - 60.8276253029822)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 60.8276253029822) * (70.0 + 60.8276253029822)
@@ -2393,12 +2393,12 @@ def _group_1_v7(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (121.6552506059644 + _l2_v) * (121.6552506059644 + _l2_v)
     _t2 = (121.6552506059644 - _l2_v) * (121.6552506059644 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (121.6552506059644 - _l2_v) * (121.6552506059644 + _l2_v)
@@ -2465,12 +2465,12 @@ def _group_1_v7(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 60.8276253029822) * (70.0 + 60.8276253029822)
     _t2 = (70.0 - 60.8276253029822) * (70.0 - 60.8276253029822)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 60.8276253029822) * (70.0 + 60.8276253029822)
@@ -2600,12 +2600,12 @@ def _group_1_v8(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (121.6552506059644 + _l2_v) * (121.6552506059644 + _l2_v)
     _t2 = (121.6552506059644 - _l2_v) * (121.6552506059644 - _l2_v)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (121.6552506059644 - _l2_v) * (121.6552506059644 + _l2_v)
@@ -2672,12 +2672,12 @@ def _group_1_v8(w, a, da, dda, live):
     _z = (_q if _q < _lo else _lo)
     _y = _hi if _q >= _hi else _lo if _q <= _lo else _q
     _k = _z - (_x - _y)
-    _fail = _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
-    _kk = (0 if 0 > _k else _k)
     _s2 = (70.0 + 60.8276253029822) * (70.0 + 60.8276253029822)
     _t2 = (70.0 - 60.8276253029822) * (70.0 - 60.8276253029822)
     _o1 = _s2 - _dd
     _o2 = _dd - _t2
+    _fail = 0 if 3 * _o1 > _s2 and 3 * _o2 > _dd else _k < -8 * 2.220446049250313e-16 * _x or _q == 0 or _lo <= 0
+    _kk = (0 if 0 > _k else _k)
     _area4 = sqrt(_o1 * _o2) if 3 * _o1 > _s2 and 3 * _o2 > _dd else sqrt((_x + (_y + _z)) * _kk * (_z + (_x - _y)) * (_x + (_y - _z)))
     _idd2 = NAN if _dd == 0 else 0.5 / _dd
     _c = (70.0 - 60.8276253029822) * (70.0 + 60.8276253029822)
