@@ -26,6 +26,7 @@ from ..primitives.interpret import constant_record
 from ..steplog import ResolverGroup, Step, StepLog, held
 from .bodies import TwoBodies, two_bodies_of
 from .pivots import Pivoted, pivoted_of
+from .roots import Root, Solution, solve  # kept across processes: python-flint and mpmath imported where not
 from .triad import NotReducible, Triad, grid, snap, triad_of
 
 CHAINS = ("RRR_links", "PRR_links", "RPR_links", "PRP_links", "PPR_links")
@@ -33,7 +34,6 @@ CHECK = 1e-9  # an assembly whose link lengths are off by more (relative to L) b
 MATCH = 1e-6  # the programs' configuration is an assembly this close (see distance)
 
 if TYPE_CHECKING:
-    from .polynomial import Root, Solution
     from .resultant import Assembled, Count
 
 Env = dict[str, tuple[float, ...]]
@@ -233,8 +233,6 @@ class _Walk:
 
     def _solve(self, triad: Triad | TwoBodies | Pivoted, env: Env) -> Solution | Count:
         """The group's solution at the bases' positions in ``env`` (solved once per position)."""
-        from .polynomial import solve  # python-flint takes 30 ms to import: only mechanisms with a group need it
-
         unit = grid(self.log.length_scale)
         if isinstance(triad, TwoBodies):
             return self._solve_bodies(triad, env, unit)
@@ -256,7 +254,7 @@ class _Walk:
 
     def _solve_slides(self, triad: Triad, env: Env, unit: Any) -> Solution:
         """The triad with blocks on fixed slides at its revolute legs' bases in ``env`` (``slides``)."""
-        from . import polynomial, slides
+        from . import slides
 
         holds: list[slides.Hold] = []
         for leg in triad.legs:
@@ -274,7 +272,7 @@ class _Walk:
                 triad.group, triad.describe(), sol.degree, sol.real_roots, sol.at_pi, tuple(r.theta for r in sol.roots),
                 sol.coefficients, tuple((r.theta, r.multiplicity) for r in sol.roots if r.multiplicity > 1)))
         found = self.solutions[key]
-        assert isinstance(found, polynomial.Solution)
+        assert isinstance(found, Solution)
         return found
 
     def _solve_bodies(self, bodies: TwoBodies, env: Env, unit: Any) -> Count:

@@ -29,7 +29,6 @@ and kept only if it converges inside its isolating interval.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
@@ -37,32 +36,12 @@ import flint
 import mpmath
 
 from .realroots import Interval, isolate, sturm_count
+from .roots import Root, Solution
 from .triad import Exact, NotReducible
 
 MP = mpmath.mp.clone()
 MP.dps = 50
 NEWTON_STEPS = 60  # Newton's method at 50 digits from a root isolated to 1e-45: one or two suffice
-
-
-@dataclass(frozen=True)
-class Root:
-    """One real root: the ternary's turn from the sketch and its three pairs' positions."""
-
-    theta: float  # radians, in (-pi, pi]
-    multiplicity: int  # >1: two or more assemblies meet (a singular position)
-    positions: tuple[tuple[float, float], tuple[float, float], tuple[float, float]]
-    error: float  # the worst leg length error after polishing, over the length scale
-
-
-@dataclass(frozen=True)
-class Solution:
-    """A triad at one position of its bases: its polynomial and every assembly it has there."""
-
-    degree: int  # of the characteristic polynomial in t, the factors (1 + t^2) divided out
-    real_roots: int  # its distinct real roots (Sturm's count)
-    at_pi: bool  # theta = pi is a root too
-    roots: tuple[Root, ...]  # in the order of theta
-    coefficients: tuple[float, ...]  # the polynomial's, highest first, scaled to a largest of 1 (to read)
 
 
 def closure(c: Any, s: Any, q: Any, bases: list[Exact], local: list[Exact], lengths2: list[Fraction],

@@ -27,8 +27,9 @@ from collections.abc import Callable
 from fractions import Fraction
 from typing import Any
 
-from .polynomial import MP, NEWTON_STEPS, QUARTER, Root, Solution, primitive, rational, scaled, special
+from .polynomial import MP, NEWTON_STEPS, QUARTER, primitive, rational, scaled, special
 from .realroots import Interval, isolate
+from .roots import Root, Solution
 from .triad import Exact, NotReducible
 
 Hold = tuple[Exact, Fraction] | tuple[Exact, Fraction, str]  # (B, l^2) revolute; (n, d, "slide") a slide
