@@ -41,8 +41,11 @@ def _function(source: str, scope: dict[str, Any], name: str) -> Any:
 @functools.cache
 def _code(source: str, name: str) -> CodeType:
     """A generated function's module code, compiled once (a build makes a few row solvers of one mechanism;
-    their blocks' texts are the same, the constants they name bound in each one's scope)."""
-    return compile(source, f"<linkgen block {name}>", "exec")
+    their blocks' texts are the same, the constants they name bound in each one's scope) and kept per user
+    across processes (kernel.compiled: compiling a resolver mechanism's blocks took 15-20 ms of its build)."""
+    from .kernel import compiled  # the kernel renders through the backends, which the row solver's callers import
+
+    return compiled(source, f"<linkgen block {name}>")
 
 
 class _Scope:

@@ -143,12 +143,14 @@ def scalar_variants(log: StepLog, order: int) -> dict[str, RuntimeFunction]:
 
 @functools.cache
 def _scalar(name: str, still: tuple[str, ...], order: int) -> RuntimeFunction:
+    from ..kernel import compiled  # the kernel renders through the backends
     from .py.printer import python_function  # the py backend imports the programs' module, which imports this one
 
     prim = variant(name, True, still)
     space: dict[str, Any] = {"sqrt": math.sqrt, "atan2": math.atan2, "cos": math.cos, "sin": math.sin,
                              "EPS": sys.float_info.epsilon, "NAN": math.nan, "PI": math.pi}  # as python_backend's
-    exec(compile(python_function(prim, order), f"<linkgen runtime python {prim.name} order {order}>", "exec"), space)
+    source = kept("python still variant", (name, still, order), lambda: python_function(prim, order))  # 3 ms a build
+    exec(compiled(source, f"<linkgen runtime python {prim.name} order {order}>"), space)  # compiled once per user
     function: RuntimeFunction = space[prim.name]
     return function
 
