@@ -83,7 +83,7 @@ def _octave_policy(text: str) -> dict[str, float]:
 
 def _c_policy(text: str) -> dict[str, float]:
     block = re.search(r"static const resolver_policy POLICY = \{(.*?)\};", text, re.S)
-    struct = re.search(r"typedef struct \{(.*?)\} resolver_policy;", text, re.S)
+    struct = re.search(r"typedef struct \{([^{}]*)\} resolver_policy;", text)
     assert block is not None and struct is not None
     names = re.findall(r"^\s*(?:double|int) (\w+);", struct[1], re.M)
     values = [v.strip() for v in block[1].split(",")]
