@@ -114,18 +114,22 @@ static void predict(const resolver_warm *warm, const double in[], const int size
                     double a[][LINKGEN_NMAX])
 {
     const double tau = warm_tau(warm, in);
-    double back;
+    const double back = order >= 2 && *warm->back_valid ? warm_tau(warm, warm->back_in) : 0.0;
     int g, i;
-    advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad, tau, sizes, loops, a);
-    if (order < 2 || !*warm->back_valid) return;
-    back = warm_tau(warm, warm->back_in);
-    if (back == 0.0) return;
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+    if (back == 0.0) {
+        advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad, tau, sizes, loops,
+                a);
+        return;
+    }
+    for (g = 0; g < LINKGEN_NBLOCKS; g++) {  /* advance's loop with the parabola for the lengths (the same bits) */
         for (i = 0; i < adds(sizes[g]); i++) {
             const double bend = (warm->back_a[g][i] - warm->a[g][i] - back * warm->ad[g][i]) / (back * back);
             const double ahead = warm->a[g][i] + tau * warm->ad[g][i] + tau * tau * bend;
             a[g][i] = loops[g] ? ahead : fabs(ahead);
         }
+        for (; i < LINKGEN_NMAX - 1; i++) a[g][i] = warm->a[g][i] + tau * warm->ad[g][i];
+        a[g][LINKGEN_NMAX - 1] = warm->a[g][LINKGEN_NMAX - 1];
+    }
 }
 
 /* Continuation along the straight path from base to goal.  Each step moves no input by
