@@ -272,7 +272,8 @@ class RowSolver:
         if reach is not None and side:  # past a limit position: fails at once
             report[status.step(reach.codes()[side > 0])] = (FAIL, math.nan)
         for group, steps in self.plan if not side else ():
-            done = self._resolve(group, env, report, order, a, ad, used, its) if group else steps and steps(env, report)
+            done = (self._resolve(group, env, report, order, a, ad, used, its, not row) if group
+                    else steps and steps(env, report))
             if not done:
                 break
         code = row_status(report)
@@ -286,9 +287,10 @@ class RowSolver:
         return 0 if reach is None else int(runtime()["reach_at"](float(inputs[0]), *bounds(reach), reach.periodic))
 
     def _resolve(self, g: ResolverGroup, env: Env, report: Report, order: int, a: list[list[float]],
-                 ad: list[list[float]], used: list[int], its: list[int]) -> bool:
-        """The group's resolver step through the runtime's resolve_group; the report gets the
-        last pass of the block that solved, then the step's own status."""
+                 ad: list[list[float]], used: list[int], its: list[int], full: bool) -> bool:
+        """The group's resolver step through the runtime's resolve_group (full: every block's state read
+        off the solution, a continuation pass's; else the solving block's); the report gets the last pass of
+        the block that solved, then the step's own status."""
         first, signs, states = self.first[g.number], self.signs[g.number], self.states[g.number]
         signs(env, a)  # each chain's branch as the blocks' states hold it
         last: Report = {}
@@ -308,7 +310,7 @@ class RowSolver:
 
             resolve = functools.partial(runtime()["resolve_closure"], in_process(g.closure, env, adopt))
         ok, sigma = resolve(fns, lengths, a, ad, first, self.slots[g.number], used, its, order, lambda: chains[0],
-                            self.mech, self._policy(p.max_halvings), (_Fields(env), self.sets[g.number]))
+                            self.mech, self._policy(p.max_halvings), (_Fields(env), self.sets[g.number]), full)
         if ok > 0:
             report.update(last)
         report[g.step] = ((SINGULAR if sigma < p.singular else NEAR if sigma < p.near_singular else 0) if ok > 0

@@ -54,7 +54,7 @@ static int closure_newton(const closure_group *c, const void *ctx, double x[], d
 static int resolve_closure(const closure_group *c, const group_fn fns[], const bend_fn bends[],
                            branches_fn branches, int count, lengths_fn lengths, void *ctx,
                            double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first, int *used, int *its, double *sigma, const double *chains, int order,
-                           const resolver_mechanism *m, const resolver_policy *p)
+                           const resolver_mechanism *m, const resolver_policy *p, int full)
 {
     double x[LINKGEN_NMAX], zero[LINKGEN_NMAX], f[LINKGEN_NMAX], df[LINKGEN_NMAX];
     resolver_policy polished = *p;
@@ -63,6 +63,7 @@ static int resolve_closure(const closure_group *c, const group_fn fns[], const b
     *its = 0;
     for (t = 0; t < count && !closed; t++) {
         const int k = t == 0 ? *used : (t - 1 < *used ? t - 1 : t);
+        if (a[first + k][0] != a[first + k][0]) continue;  /* a stale state (nan) is not tried */
         branches(ctx, k, a[first + k]);
         closed = !fns[k](ctx, a[first + k], zero, zero, 0, f, df, NULL);
     }
@@ -75,7 +76,7 @@ static int resolve_closure(const closure_group *c, const group_fn fns[], const b
     c->adopt(ctx, x, a + first);
     polished.polish = 0;  /* the closure's own step was the polishing one */
     solved = resolve_group(fns, bends, branches, count, lengths, ctx, a, ad, first, used, its, sigma, chains, order,
-                           m, &polished);
+                           m, &polished, full);
     *its += steps;
     return solved;
 }

@@ -47,7 +47,9 @@ static int path_pass(const resolver_path *path, const double in[], const double 
  * share, so a turned block must be within p->turn_share: the path crosses the singular
  * position along its tangent, as a mechanism goes straight through a change point.  Only a
  * block that solved now (used, of each group the block from its first, m->firsts) has an
- * orientation there, so only those are looked at (the same verdict as every block). */
+ * orientation there, so only those are looked at (the same verdict as every block).  Only the
+ * blocks with a state in prev are looked at (a stale one, nan, has none: a row's own pass is
+ * judged on its solving blocks; a continuation's on every block). */
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
                    const double now[][LINKGEN_NMAX], const int used[], const resolver_mechanism *m, double slack,
                    const resolver_policy *p)
@@ -55,7 +57,7 @@ static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKG
     double move = 0.0, off = 0.0, share = p->path_share;
     int g, i;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* one pass: the largest predicted move and correction */
-        for (i = 0; i < adds(m->sizes[g]); i++) {
+        for (i = 0; i < adds(m->sizes[g]) && prev[g][0] == prev[g][0]; i++) {
             const double d = fabs(guess[g][i] - prev[g][i]), e = fabs(now[g][i] - guess[g][i]);
             if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
             if (e > off || e != e) off = e;  /* a nan correction stays */
@@ -122,6 +124,11 @@ static void predict(const resolver_warm *warm, const double in[], const int size
         return;
     }
     for (g = 0; g < LINKGEN_NBLOCKS; g++) {  /* advance's loop with the parabola for the lengths (the same bits) */
+        if (warm->a[g][0] != warm->a[g][0]) {  /* a stale state (nan, orientation 0) stays stale: advance's */
+            for (i = 0; i < LINKGEN_NMAX - 1; i++) a[g][i] = NAN;
+            a[g][LINKGEN_NMAX - 1] = 0.0;
+            continue;
+        }
         for (i = 0; i < adds(sizes[g]); i++) {
             const double bend = (warm->back_a[g][i] - warm->a[g][i] - back * warm->ad[g][i]) / (back * back);
             const double ahead = warm->a[g][i] + tau * warm->ad[g][i] + tau * tau * bend;
@@ -247,8 +254,10 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         /* past a limit position: the pass fails the row at once with the limit's code */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
     } else if (*warm->valid && within(in, warm->in, m->limits)) {
-        predict(warm, in, m->sizes, m->loops, p->predictor, guess);
-        memcpy(a, p->predictor ? guess : warm->a, sizeof a);  /* predictor order 0: the warm states as they were */
+        predict(warm, in, m->sizes, m->loops, p->predictor, a);
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* the guessed lengths, all on_path reads of the guess */
+            for (i = 0; i < adds(m->sizes[g]); i++) guess[g][i] = a[g][i];
+        if (!p->predictor) memcpy(a, warm->a, sizeof a);  /* predictor order 0: the warm states as they were */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
         solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
                                       (const double (*)[LINKGEN_NMAX])a, used, m,
@@ -278,7 +287,8 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         *warm->back_valid = solved && *warm->valid && code != m->another;
         if (*warm->back_valid) {
             for (i = 0; i < LINKGEN_NINPUTS; i++) warm->back_in[i] = warm->in[i];
-            memcpy(warm->back_a, warm->a, sizeof a);
+            for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* the lengths, all predict reads of the row before */
+                for (i = 0; i < adds(m->sizes[g]); i++) warm->back_a[g][i] = warm->a[g][i];
         }
     }
     *warm->valid = solved;

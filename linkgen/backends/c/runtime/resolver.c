@@ -21,14 +21,15 @@ typedef void (*bend_fn)(void *ctx, double s[], double acc, int keep);
  * the resolver tries the block, so a fallback block's are set only where it is tried. */
 typedef void (*branches_fn)(void *ctx, int k, const double s[]);
 
-/* Every block's state and its rates read off the solved pairs (the blocks of one group); a and ad
- * never alias the work (LINKGEN_RESTRICT: C99's restrict, which C++ has not; the same operations). */
+/* The states and rates of the blocks of one group read off the solved pairs: every block's where only
+ * is negative, else block only's and the loop blocks' (the others' states are stale: nan, orientation 0;
+ * their rates are left as they are); a and ad never alias the work (LINKGEN_RESTRICT: C99's restrict, which C++ has not; the same operations). */
 #if defined(__cplusplus)
 #define LINKGEN_RESTRICT
 #else
 #define LINKGEN_RESTRICT restrict
 #endif
-typedef void (*lengths_fn)(const void *ctx, double a[LINKGEN_RESTRICT][LINKGEN_NMAX],
+typedef void (*lengths_fn)(const void *ctx, int only, double a[LINKGEN_RESTRICT][LINKGEN_NMAX],
                            double ad[LINKGEN_RESTRICT][LINKGEN_NMAX]);
 
 /* The resolver strategies (options: strategy), as resolver_policy.strategy names them. */
@@ -391,21 +392,29 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
  * the last pass, from the block's lever down) is kept; else the best conditioned of those
  * that converge, a later block only when more than twice as well conditioned (a block whose
  * chains are near a toggle is a poor coordinate of the assembly; blocks that share that chain
- * tie up to rounding, and the order, not the rounding, decides).  a[k] holds block k's start
- * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
+ * tie up to rounding, and the order, not the rounding, decides).  A block whose state is stale
+ * (nan, see resolve_group) is not tried; where one was skipped in a row's own pass (not full), a
+ * row none of the others solves with its chains so conditioned fails as not converged (the driver
+ * follows it from the last row: a continuation pass, full, takes the best of the blocks it can try
+ * and reads every block's state, so the others are tried along the path).  a[k] holds block k's start lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
 static int resolve_variants(const group_fn fns[], const bend_fn bends[], branches_fn branches, const int sizes[],
                             const int loops[], int count, void *ctx, double a[][LINKGEN_NMAX], int order, int prefer,
-                            int *its, double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale)
+                            int *its, double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale,
+                            int full)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], ft[LINKGEN_NMAX], best_sigma = -1.0;
-    int t, k, i, pass, best = -1, stuck = 0, rated;
+    int t, k, i, pass, best = -1, stuck = 0, stale = 0, rated;
     for (pass = 0; pass < 2; pass++)  /* strategy loop: the loop blocks first, the Add-link blocks after */
     for (t = 0; t < count; t++) {
         int solved;
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         if (p->strategy == RESOLVER_LOOP ? (loops[k] != 0) != (pass == 0) : pass == 1) continue;
+        if (a[k][0] != a[k][0]) {  /* a stale state: not read off this row's start */
+            stale = 1;
+            continue;
+        }
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
         branches(ctx, k, a[k]);
         solved = solve_variant(fns[k], ctx, sizes[k], loops[k], x, p, scale, jac, ft, &rated, its);
@@ -422,7 +431,7 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], branche
                           rated ? ft : NULL, order, sigma, turn) != 1)
             return k;
     }
-    if (best >= 0) {
+    if (best >= 0 && (full || !stale)) {
         for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
         branches(ctx, best, a[best]);
         if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, ft, &rated, its) > 0
@@ -430,26 +439,28 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], branche
                              rated ? ft : NULL, order, sigma, turn) != 1)
             return best;
     }
-    return stuck ? -2 : -1;
+    return stuck && (full || !stale) ? -2 : -1;
 }
 
 /* One resolver step: resolve_variants on the count blocks of a group, a[first] on (the one
  * that solved the last row, *used, first; branches() sets a block's branches in the work from its
- * state as it is tried); then lengths() reads every block's state and its
- * rates off the solved pairs (so any of them can start the next row) and the solving block
- * keeps its orientation.  Returns 1 when a block solved, with *used that block; 0 when none
- * converged, -1 when the iteration of one did not contract. */
+ * state as it is tried); then lengths() reads the solving block's state and its rates off the
+ * solved pairs and the block keeps its orientation.  With full (a continuation pass) every block's
+ * state is read (so any of them can take over along the path); else (a row's own pass) the other
+ * blocks' states, but a loop block's, are stale: nan, orientation 0.  Returns 1 when a block
+ * solved, with *used that block; 0 when none converged, -1 when the iteration of one did not
+ * contract. */
 static int resolve_group(const group_fn fns[], const bend_fn bends[], branches_fn branches, int count,
                          lengths_fn lengths, void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first,
                          int *used, int *its, double *sigma, const double *chains, int order,
-                         const resolver_mechanism *m, const resolver_policy *p)
+                         const resolver_mechanism *m, const resolver_policy *p, int full)
 {
     double turn = 0.0;
     const int k = resolve_variants(fns, bends, branches, m->sizes + first, m->loops + first, count, ctx, a + first,
-                                   order, *used, its, sigma, &turn, chains, p, m->length_scale);
+                                   order, *used, its, sigma, &turn, chains, p, m->length_scale, full);
     if (k < 0) return k == -1 ? 0 : -1;
     *used = k;
-    lengths(ctx, a + first, ad + first);
+    lengths(ctx, full ? -1 : k, a + first, ad + first);
     a[first + k][LINKGEN_NMAX - 1] = turn;
     return 1;
 }

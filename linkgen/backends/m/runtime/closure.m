@@ -29,7 +29,7 @@ function [ok, x, its] = closure_newton(c, w, x, tol, max_iter, reach, polish)
 end
 
 function [ok, its, sigma, w, a, ad, used] = resolver_closure(c, groups, lengths, w, a, ad, used, first, slot, order, ...
-                                                             m, p, writes)
+                                                             m, p, writes, full)
     % One resolver step by the closure strategy (resolver_group's arguments and results, c the
     % group's closure): the positions start where the first block that closes at its state
     % puts them (the one that solved the last row, used(slot), first; the others in order),
@@ -42,6 +42,9 @@ function [ok, its, sigma, w, a, ad, used] = resolver_closure(c, groups, lengths,
     sigma = 0;
     for k = [used(slot), setdiff(0:numel(groups) - 1, used(slot))]
         n = sizes(k + 1);
+        if isnan(a{first + k}(1))  % a stale state (nan) is not tried
+            continue;
+        end
         [st, ~, w] = groups{k + 1}(w, a{first + k}(1:n), zeros(n, 1), zeros(n, 1), false);
         ok = st == 0;
         if ok
@@ -59,6 +62,7 @@ function [ok, its, sigma, w, a, ad, used] = resolver_closure(c, groups, lengths,
     end
     [w, a] = c.adopt(w, x, a);
     p.polish = false;  % the closure's own step was the polishing one
-    [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a, ad, used, first, slot, order, m, p, writes);
+    [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a, ad, used, first, slot, order, m, p, writes, ...
+                                                     full);
     its = its + steps;
 end

@@ -7,17 +7,22 @@ function ok = resolver_on_path(prev, guess, now, sizes, slack, p)
     % has passed a singular position.  Where two assemblies pass close the nearer one can
     % lie within that share, so a turned block must be within p.turn_share: the path
     % crosses the singular position along its tangent, as a mechanism goes straight
-    % through a change point.
+    % through a change point.  Only the blocks with a state in prev are looked at (a stale
+    % one, nan, has none: a row's own pass judged on its solving blocks; a continuation's on
+    % every block).
     move = 0;
     share = p.path_share;
+    held = cellfun(@(s) ~isnan(s(1)), prev);
     for g = 1:numel(sizes)
-        move = max([move; abs(guess{g}(1:sizes(g)) - prev{g}(1:sizes(g)))]);
+        if held(g)
+            move = max([move; abs(guess{g}(1:sizes(g)) - prev{g}(1:sizes(g)))]);
+        end
         if prev{g}(end) * now{g}(end) < 0
             share = p.turn_share;
         end
     end
     ok = true;
-    for g = 1:numel(sizes)
+    for g = find(held(:)')
         ok = ok && all(abs(now{g}(1:sizes(g)) - guess{g}(1:sizes(g))) <= share * move + slack);
     end
 end
@@ -188,14 +193,15 @@ end
 function [ok, a, ad] = resolver_path(run, w, in, din, order, a, used)
     % One pass of the procedure along a continuation path (rates per unit of the path, no
     % accelerations; its work is dropped): closes, the block states, their rates.
-    [status, ~, a, ad] = run(w, in, din, zeros(size(in)), order, a, used);
+    [status, ~, a, ad] = run(w, in, din, zeros(size(in)), order, a, used, true);
     ok = status <= 0;
 end
 
 function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, warm, m, p)
-    % Solve one row on the sketch's assembly.  run(w, in, din, ddin, order, a, used) ->
+    % Solve one row on the sketch's assembly.  run(w, in, din, ddin, order, a, used, full) ->
     % [status, w, a, ad, used] is one pass of the procedure with the block states a (and
-    % their rates ad out) and the preferred blocks used.  From the warm start (the previous
+    % their rates ad out) and the preferred blocks used (full: a continuation pass, which
+    % reads every block's state; else the row's own, which reads the solving blocks').  From the warm start (the previous
     % row) when no input has moved farther than a continuation step: the resolvers start
     % where the predictor of order p.predictor points (see resolver_predict; order 0: from the
     % warm states as they were), and the row is taken when it solves on that path (see
@@ -214,7 +220,7 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
     solved = false;
     if past
         % past a limit position: the pass fails the row at once with the limit's code
-        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
+        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used, false);
     elseif warm.valid && all(abs(in - warm.in) <= m.limits)
         % from the previous row, where the predictor points (order 0: its block states as they were)
         guess = resolver_predict(warm, in, m.sizes, p.predictor, m.loops);
@@ -222,7 +228,7 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
         if p.predictor == 0
             a = warm.a;
         end
-        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
+        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used, false);
         solved = status <= 0 && resolver_on_path(warm.a, guess, a, m.sizes, p.path_slack * m.length_scale, p);
     end
     if warm.valid && ~solved
@@ -238,7 +244,7 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
         if reached
             a = a2;
         end
-        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
+        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used, false);
         if ~reached && status <= 0
             status = m.another;  % another assembly only
         end

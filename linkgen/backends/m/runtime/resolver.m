@@ -305,14 +305,19 @@ function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order, names)
 end
 
 function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, prefer, sizes, loops, p, scale, ...
-                                                      writes)
+                                                      writes, full)
     % The strategy's iteration (resolver_solve_block) on a group's blocks (its chosen Add-link
     % candidate, then the fallbacks), the preferred block first, the others in order.  The
     % first that converges with its chains conditioned at least p.min_chain_sigma (w.chains:
     % the worst of the last pass, from the block's lever down) is kept; else the best
     % conditioned of those that converge, a later block only when more than twice as well
     % conditioned (blocks that share a chain near a toggle tie up to rounding: the order
-    % decides).  a{first + k} is block k's state: its sizes(k + 1) start lengths, its
+    % decides).  A block whose state is stale (nan, see resolver_group) is not tried; where
+    % one was skipped in a row's own pass (not full), a row none of the others solves with
+    % its chains so conditioned fails as not converged (the driver follows it from the last
+    % row: a continuation pass, full, takes the best of the blocks it can try and reads every
+    % block's state, so the others are tried along the path).
+    % a{first + k} is block k's state: its sizes(k + 1) start lengths, its
     % branches, its orientation; scale is the length scale; k = -1 when no block converges
     % (-2 when the iteration of one of them did not contract); turn is the orientation of
     % block k (see resolver_rates, which gets writes{k + 1}: the records block k sets).
@@ -322,11 +327,16 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
     best = -1;
     best_sigma = -1;
     stuck = false;
+    stale = false;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
     if strcmp(p.strategy, 'loop')  % the loop blocks first, the Add-link blocks after
         tries = [tries(loops(tries + 1) ~= 0), tries(loops(tries + 1) == 0)];
     end
     for k = tries
+        if isnan(a{first + k}(1))  % a stale state: not read off this row's start
+            stale = true;
+            continue;
+        end
         [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale, ...
                                                     loops(k + 1));
         stuck = stuck || ok < 0;
@@ -346,7 +356,7 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
         end
     end
     k = best;
-    if k >= 0
+    if k >= 0 && (full || ~stale)
         [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale, ...
                                                     loops(k + 1));
         if ok > 0
@@ -356,20 +366,22 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
             end
         end
     end
-    k = -1 - stuck;
+    k = -1 - (stuck && (full || ~stale));
 end
 
 function [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a, ad, used, first, slot, order, m, p, ...
-                                                           writes)
+                                                           writes, full)
     % One resolver step: resolver_variants on the group's blocks a{first}, ... (the one that
     % solved the last row, used(slot), first); then lengths(w, a, ad) reads every block's
-    % state and its rates off the solved pairs (so any of them can start the next row) and
-    % the solving block keeps its orientation.  ok: 1 when a block solved, 0 when none
+    % state and its rates off the solved pairs and the solving block keeps its orientation.
+    % Unless full (a row's own pass) the other blocks' states, but a loop block's, are then
+    % stale: nan, orientation 0 (a continuation pass, full, reads every block's, so that any
+    % of them can take over along the path).  ok: 1 when a block solved, 0 when none
     % converged, -1 when the iteration of one did not contract; its: its iterations.
     [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, used(slot), ...
                                                  m.sizes(first:first + numel(groups) - 1), ...
                                                  m.loops(first:first + numel(groups) - 1), p, m.length_scale, ...
-                                                 writes);
+                                                 writes, full);
     ok = 1;
     if k < 0
         ok = -(k == -2);  % 0: none converged, -1: an iteration did not contract
@@ -378,4 +390,12 @@ function [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a
     used(slot) = k;
     [a, ad] = lengths(w, a, ad);
     a{first + k}(end) = turn;
+    if ~full
+        for j = 0:numel(groups) - 1
+            if j ~= k && ~m.loops(first + j)
+                a{first + j}(:) = NaN;
+                a{first + j}(end) = 0;
+            end
+        end
+    end
 end

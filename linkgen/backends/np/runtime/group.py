@@ -2,10 +2,11 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
     """One resolver step on lanes: the Python runtime's resolve_group on each lane's row where the
     block that solved the last row (used[g.slot]) solves this one at once (its Newton converges
     with its chains conditioned at least p.min_chain_sigma, and its final pass closes).  Those
-    lanes get the block's records in w, its steps' reports and conditioning, and every block's
-    state (a) and its rates (ad) read off the solution.  The other lanes are left unsettled, for
-    the caller to solve one by one; the skipped ones count as settled.  Returns (settled lanes,
-    Newton steps)."""
+    lanes get the block's records in w, its steps' reports and conditioning, and the block's
+    state (a) and its rates (ad) read off the solution; the other blocks' states, but a loop
+    block's, are stale there (nan, orientation 0: a row's own pass of resolve_group).  The
+    other lanes are left unsettled, for the caller to solve one by one; the skipped ones count
+    as settled.  Returns (settled lanes, Newton steps)."""
     lanes = np.shape(skip)[0]
     tol, reach = p.tolerance * m.length_scale, p.max_move * m.length_scale
     settled, its = skip.copy(), np.zeros(lanes, dtype=int)
@@ -74,7 +75,14 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
         none = np.zeros(lanes, dtype=REAL)
         for j in range(g.count):
             orient = np.where(solver == j, turn, 0.0) if only is None else turn if j == only else none
-            a[g.first + j] = [lanes_of(x, lanes) for x in new_a[j][:-1]] + [orient]
+            if m.loops[g.first + j]:
+                a[g.first + j] = [lanes_of(x, lanes) for x in new_a[j][:-1]] + [orient]
+            elif only is None:
+                mine = solver == j
+                a[g.first + j] = [np.where(mine, x, NAN) for x in new_a[j][:-1]] + [orient]
+            else:
+                a[g.first + j] = ([lanes_of(x, lanes) for x in new_a[j][:-1]] if j == only
+                                  else [np.full(lanes, NAN, dtype=REAL) for _ in new_a[j][:-1]]) + [orient]
             ad[g.first + j] = [lanes_of(x, lanes) for x in new_ad[j]]
     report.append((np.where(resolved & (cond < g.singular), 3, np.where(resolved & (cond < g.near), 4, 0)), g.codes))
     sigma[g.step] = cond

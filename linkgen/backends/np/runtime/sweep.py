@@ -86,7 +86,7 @@ def agree(s, t, k, backs):
         same = same & (u == v)
     for b, c, n in zip(s.a, t.a, k.m.sizes):
         for i, (x, y) in enumerate(zip(b, c)):
-            same = same & (_close(x, y, tol) if i < n else (np.sign(x) == np.sign(y)))
+            same = same & (_close(x, y, tol) if i < n else ((np.sign(x) == np.sign(y)) | (np.isnan(x) & np.isnan(y))))
     for b, c in zip(s.ad, t.ad):
         for x, y in zip(b, c):
             same = same & _close(x, y, RATES_AGREE * np.maximum(np.abs(x), np.abs(y)) + tol)
@@ -138,18 +138,19 @@ def predict_lanes(prev, x, sizes, order):
 
 
 def on_path_lanes(prev, guess, new, sizes, slack, p):
-    """The Python runtime's on_path on every lane."""
+    """The Python runtime's on_path on every lane (a block looked at where its state in prev is not stale)."""
     move, turned = 0.0, False
-    for b, g, n in zip(prev, guess, sizes):
+    held = [~np.isnan(b[0]) for b in prev]
+    for b, g, n, h in zip(prev, guess, sizes, held):
         for i in range(n):
-            move = np.maximum(move, np.abs(g[i] - b[i]))
+            move = np.maximum(move, np.where(h, np.abs(g[i] - b[i]), 0.0))
     for b, x in zip(prev, new):
         turned = turned | (b[-1] * x[-1] < 0)
     bound = np.where(turned, p.turn_share, p.path_share) * move + slack
     fine = True
-    for g, x, n in zip(guess, new, sizes):
+    for g, x, n, h in zip(guess, new, sizes, held):
         for i in range(n):
-            fine = fine & (np.abs(x[i] - g[i]) <= bound)
+            fine = fine & (~h | (np.abs(x[i] - g[i]) <= bound))
     return fine
 
 

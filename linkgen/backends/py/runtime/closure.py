@@ -29,7 +29,7 @@ def closure_newton(c, x, tol, max_iter, reach, polish):
     return done and all(abs(u - v) <= reach for u, v in zip(x, start)), x, its
 
 
-def resolve_closure(c, groups, lengths, a, ad, first, slot, used, its, order, chains, m, p, records=None):
+def resolve_closure(c, groups, lengths, a, ad, first, slot, used, its, order, chains, m, p, records=None, full=True):
     """One resolver step by the closure strategy (resolve_group's arguments and result, c the
     group's closure): the positions start where the first block that closes at its state
     puts them (the one that solved the last row first, the others in order), Newton on the
@@ -38,7 +38,8 @@ def resolve_closure(c, groups, lengths, a, ad, first, slot, used, its, order, ch
     steps and the resolver's."""
     sizes = m.sizes[first:first + len(groups)]
     zero = [0.0] * max(sizes)
-    tries = [used[slot]] + [k for k in range(len(groups)) if k != used[slot]]
+    tries = [k for k in [used[slot]] + [k for k in range(len(groups)) if k != used[slot]]
+             if a[first + k][0] == a[first + k][0]]  # a stale state (nan) is not tried
     its[slot] = 0
     if not any(groups[k](a[first + k][:sizes[k]], zero, zero, False)[0] == 0 for k in tries):
         return False, 0.0
@@ -49,6 +50,7 @@ def resolve_closure(c, groups, lengths, a, ad, first, slot, used, its, order, ch
         return False, 0.0
     c.adopt(x, a)
     polished = type(p)(**{**vars(p), "polish": False})  # the closure's own step was the polishing one
-    solved, sigma = resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains, m, polished, records)
+    solved, sigma = resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains, m, polished, records,
+                                  full)
     its[slot] += steps
     return solved, sigma
