@@ -742,7 +742,7 @@ def addlink_rates(group, a, jac, order, records=None):
     return st, sigma, turn
 
 
-def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale, loops=None, records=None):
+def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale, loops=None, records=None, full=True):
     """The strategy's iteration (solve_block) on a group's blocks (its chosen Add-link
     candidate, then the fallbacks), the preferred block first, the others in order.  The
     first that converges with its chains conditioned at least p.min_chain_sigma (chains():
@@ -750,7 +750,11 @@ def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale, l
     conditioned of those that converge, a later block only when more than twice as well
     conditioned (a block whose chains are near a toggle is a poor coordinate of the
     assembly; blocks that share that chain tie up to rounding, and the order, not the
-    rounding, decides).
+    rounding, decides).  A block whose state is stale (nan, see resolve_group) is not tried;
+    where one was skipped in a row's own pass (not full), a row none of the others solves with
+    its chains so conditioned fails as not converged (the driver follows it from the last row:
+    a continuation pass, full, takes the best of the blocks it can try and reads every block's
+    state, so the others are tried along the path).
 
     a[first + k] is block k's state: its sizes[k] start lengths, its branches, its orientation.
     Under strategy loop the loop blocks (loops[k] 1) come first, the Add-link blocks after.
@@ -758,12 +762,15 @@ def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale, l
     Returns (k, iterations, sigma, orientation), k = -1 when no block converges, -2 when
     none does and the iteration of one of them did not contract.
     """
-    its, best, best_sigma, stuck = 0, -1, -1.0, False
+    its, best, best_sigma, stuck, stale = 0, -1, -1.0, False, False
     loops = loops or [0] * len(groups)
     tries = [prefer] + [j for j in range(len(groups)) if j != prefer]
     if p.strategy == "loop":
         tries = [k for k in tries if loops[k]] + [k for k in tries if not loops[k]]
     for k in tries:
+        if a[first + k][0] != a[first + k][0]:  # a stale state: not read off this row's start
+            stale = True
+            continue
         ok, x, its, jac = solve_block(groups[k], a[first + k][:sizes[k]], p, scale, loops[k])
         stuck = stuck or ok < 0
         if ok <= 0:
@@ -775,29 +782,38 @@ def resolve_variants(groups, a, first, order, prefer, sizes, chains, p, scale, l
         st, sigma, turn = addlink_rates(groups[k], x, jac, order, records and (records[0], records[1][k]))
         if st != 1:
             return k, its, sigma, turn
-    if best >= 0:
+    if best >= 0 and (full or not stale):
         ok, x, its, jac = solve_block(groups[best], a[first + best][:sizes[best]], p, scale, loops[best])
         if ok > 0:
             st, sigma, turn = addlink_rates(groups[best], x, jac, order, records and (records[0], records[1][best]))
             if st != 1:
                 return best, its, sigma, turn
-    return -2 if stuck else -1, its, 0.0, 0
+    return -2 if stuck and (full or not stale) else -1, its, 0.0, 0
 
 
-def resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains, m, p, records=None):
+def resolve_group(groups, lengths, a, ad, first, slot, used, its, order, chains, m, p, records=None, full=True):
     """One resolver step: resolve_variants on the group's blocks, the one that solved the
     last row (used[slot]) first; then lengths(a, ad) reads every block's state and its rates
-    off the solved pairs (so any of them can start the next row) and the solving block keeps
-    its orientation.  its[slot] gets the iterations.  Returns (solved, sigma): solved 1, 0
-    where no block converged, -1 where a block's iteration did not contract."""
+    off the solved pairs and the solving block keeps its orientation.  Unless full (a row's
+    own pass) the other blocks' states, but a loop block's, are then stale: nan, orientation
+    0 (a row's own pass needs the solving block's alone; a continuation pass, full, reads
+    every block's, so that any of them can take over along the path).  its[slot] gets the
+    iterations.  Returns (solved, sigma): solved 1, 0 where no block converged, -1 where a
+    block's iteration did not contract."""
+    count = len(groups)
+    loops = m.loops[first:first + count]
     k, its[slot], sigma, turn = resolve_variants(groups, a, first, order, used[slot],
-                                                 m.sizes[first:first + len(groups)], chains, p, m.length_scale,
-                                                 m.loops[first:first + len(groups)], records)
+                                                 m.sizes[first:first + count], chains, p, m.length_scale,
+                                                 loops, records, full)
     if k < 0:
         return (0 if k == -1 else -1), sigma
     used[slot] = k
     lengths(a, ad)
     a[first + k][-1] = float(turn)
+    if not full:
+        for j in range(count):
+            if j != k and not loops[j]:
+                a[first + j] = [NAN] * (len(a[first + j]) - 1) + [0.0]
     return 1, sigma
 
 # The row driver: one row of a sweep solved on the sketch's assembly, from the previous
@@ -860,10 +876,13 @@ def on_path(prev, guess, new, sizes, slack, p):
     entry of a block's state, after its sizes[k] lengths and its branches; 0 where it did not
     solve) has passed a singular position.  Where two assemblies pass close the nearer one can
     lie within that share, so a turned block must be within p.turn_share: the path crosses the
-    singular position along its tangent, as a mechanism goes straight through a change point."""
-    move = max((abs(g[i] - p_[i]) for p_, g, n in zip(prev, guess, sizes) for i in range(n)), default=0.0)
+    singular position along its tangent, as a mechanism goes straight through a change point.
+    Only the blocks with a state in prev are looked at (a stale one, nan, has none: a row's own
+    pass judged on its solving blocks; a continuation's on every block)."""
+    held = [(p_, g, x, n) for p_, g, x, n in zip(prev, guess, new, sizes) if p_[0] == p_[0]]
+    move = max((abs(g[i] - p_[i]) for p_, g, _, n in held for i in range(n)), default=0.0)
     share = p.turn_share if any(p_[-1] * x[-1] < 0.0 for p_, x in zip(prev, new)) else p.path_share
-    return all(abs(x[i] - g[i]) <= share * move + slack for g, x, n in zip(guess, new, sizes) for i in range(n))
+    return all(abs(x[i] - g[i]) <= share * move + slack for _, g, x, n in held for i in range(n))
 
 
 def continuation(run, base, a, target, m, p):
@@ -4433,7 +4452,7 @@ def _lengths_2(w, a, ad):
 
 
 
-def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
+def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used, full):
     """The procedure of double_triad.md, step by step."""
     w.sigma = [1.0] * (N_STEPS + 1)
     w.singular = w.near = 0
@@ -4491,7 +4510,7 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
             ("add1_v4", "p_J4", "p_J2", "p_J5", "f1_v4", ),
             ("add1_v5", "p_J2", "p_J4", "p_J5", "f1_v5", ),
             ("add1_v6", "p_J2", "p_J4", "p_J5", "f1_v6", ),
-        )))
+        )), full)
     if not ok:
         return 82
     w.note(3 if w.sigma[8] < 1e-07 else 4 if w.sigma[8] < 0.001 else 0, 83, -84)
@@ -4541,7 +4560,7 @@ def _run(w, inputs, d_inputs, dd_inputs, order, a, ad, its, used):
             ("add2_v6", "p_K2", "p_K4", "p_K5", "f2_v6", ),
             ("add2_v7", "p_K2", "p_K4", "p_K5", "f2_v7", ),
             ("add2_v8", "p_K5", "p_K2", "p_K4", "f2_v8", ),
-        )))
+        )), full)
     if not ok:
         return 142
     w.note(3 if w.sigma[14] < 1e-07 else 4 if w.sigma[14] < 0.001 else 0, 143, -144)
@@ -4888,7 +4907,7 @@ def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
     def run(x, d, dd, o, a, used, row):
         """One pass of the procedure: the row's own (into w and its), or one along a continuation path."""
         ad = [[0.0] * len(g) for g in a]
-        return _run(w if row else _Work(), x, d, dd, o, a, ad, its if row else [0] * N_GROUPS, used), ad
+        return _run(w if row else _Work(), x, d, dd, o, a, ad, its if row else [0] * N_GROUPS, used, not row), ad
 
     order = min(order, ORDER)
     warm = state.get("warm") if state is not None else None

@@ -291,14 +291,15 @@ typedef void (*bend_fn)(void *ctx, double s[], double acc, int keep);
  * the resolver tries the block, so a fallback block's are set only where it is tried. */
 typedef void (*branches_fn)(void *ctx, int k, const double s[]);
 
-/* Every block's state and its rates read off the solved pairs (the blocks of one group); a and ad
- * never alias the work (LINKGEN_RESTRICT: C99's restrict, which C++ has not; the same operations). */
+/* The states and rates of the blocks of one group read off the solved pairs: every block's where only
+ * is negative, else block only's and the loop blocks' (the others' states are stale: nan, orientation 0;
+ * their rates are left as they are); a and ad never alias the work (LINKGEN_RESTRICT: C99's restrict, which C++ has not; the same operations). */
 #if defined(__cplusplus)
 #define LINKGEN_RESTRICT
 #else
 #define LINKGEN_RESTRICT restrict
 #endif
-typedef void (*lengths_fn)(const void *ctx, double a[LINKGEN_RESTRICT][LINKGEN_NMAX],
+typedef void (*lengths_fn)(const void *ctx, int only, double a[LINKGEN_RESTRICT][LINKGEN_NMAX],
                            double ad[LINKGEN_RESTRICT][LINKGEN_NMAX]);
 
 /* The resolver strategies (options: strategy), as resolver_policy.strategy names them. */
@@ -661,21 +662,29 @@ static int addlink_rates(group_fn group, bend_fn bend, void *ctx, int n, const d
  * the last pass, from the block's lever down) is kept; else the best conditioned of those
  * that converge, a later block only when more than twice as well conditioned (a block whose
  * chains are near a toggle is a poor coordinate of the assembly; blocks that share that chain
- * tie up to rounding, and the order, not the rounding, decides).  a[k] holds block k's start
- * lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
+ * tie up to rounding, and the order, not the rounding, decides).  A block whose state is stale
+ * (nan, see resolve_group) is not tried; where one was skipped in a row's own pass (not full), a
+ * row none of the others solves with its chains so conditioned fails as not converged (the driver
+ * follows it from the last row: a continuation pass, full, takes the best of the blocks it can try
+ * and reads every block's state, so the others are tried along the path).  a[k] holds block k's start lengths; scale is the length scale.  Returns the block, or -1 when none converges (-2 when
  * the iteration of one of them did not contract); *turn is its orientation (see
  * addlink_rates). */
 static int resolve_variants(const group_fn fns[], const bend_fn bends[], branches_fn branches, const int sizes[],
                             const int loops[], int count, void *ctx, double a[][LINKGEN_NMAX], int order, int prefer,
-                            int *its, double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale)
+                            int *its, double *sigma, double *turn, const double *chains, const resolver_policy *p, double scale,
+                            int full)
 {
     double jac[LINKGEN_NMAX][LINKGEN_NMAX], x[LINKGEN_NMAX], ft[LINKGEN_NMAX], best_sigma = -1.0;
-    int t, k, i, pass, best = -1, stuck = 0, rated;
+    int t, k, i, pass, best = -1, stuck = 0, stale = 0, rated;
     for (pass = 0; pass < 2; pass++)  /* strategy loop: the loop blocks first, the Add-link blocks after */
     for (t = 0; t < count; t++) {
         int solved;
         k = t == 0 ? prefer : (t - 1 < prefer ? t - 1 : t);
         if (p->strategy == RESOLVER_LOOP ? (loops[k] != 0) != (pass == 0) : pass == 1) continue;
+        if (a[k][0] != a[k][0]) {  /* a stale state: not read off this row's start */
+            stale = 1;
+            continue;
+        }
         for (i = 0; i < sizes[k]; i++) x[i] = a[k][i];
         branches(ctx, k, a[k]);
         solved = solve_variant(fns[k], ctx, sizes[k], loops[k], x, p, scale, jac, ft, &rated, its);
@@ -692,7 +701,7 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], branche
                           rated ? ft : NULL, order, sigma, turn) != 1)
             return k;
     }
-    if (best >= 0) {
+    if (best >= 0 && (full || !stale)) {
         for (i = 0; i < sizes[best]; i++) x[i] = a[best][i];
         branches(ctx, best, a[best]);
         if (solve_variant(fns[best], ctx, sizes[best], loops[best], x, p, scale, jac, ft, &rated, its) > 0
@@ -700,26 +709,28 @@ static int resolve_variants(const group_fn fns[], const bend_fn bends[], branche
                              rated ? ft : NULL, order, sigma, turn) != 1)
             return best;
     }
-    return stuck ? -2 : -1;
+    return stuck && (full || !stale) ? -2 : -1;
 }
 
 /* One resolver step: resolve_variants on the count blocks of a group, a[first] on (the one
  * that solved the last row, *used, first; branches() sets a block's branches in the work from its
- * state as it is tried); then lengths() reads every block's state and its
- * rates off the solved pairs (so any of them can start the next row) and the solving block
- * keeps its orientation.  Returns 1 when a block solved, with *used that block; 0 when none
- * converged, -1 when the iteration of one did not contract. */
+ * state as it is tried); then lengths() reads the solving block's state and its rates off the
+ * solved pairs and the block keeps its orientation.  With full (a continuation pass) every block's
+ * state is read (so any of them can take over along the path); else (a row's own pass) the other
+ * blocks' states, but a loop block's, are stale: nan, orientation 0.  Returns 1 when a block
+ * solved, with *used that block; 0 when none converged, -1 when the iteration of one did not
+ * contract. */
 static int resolve_group(const group_fn fns[], const bend_fn bends[], branches_fn branches, int count,
                          lengths_fn lengths, void *ctx, double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int first,
                          int *used, int *its, double *sigma, const double *chains, int order,
-                         const resolver_mechanism *m, const resolver_policy *p)
+                         const resolver_mechanism *m, const resolver_policy *p, int full)
 {
     double turn = 0.0;
     const int k = resolve_variants(fns, bends, branches, m->sizes + first, m->loops + first, count, ctx, a + first,
-                                   order, *used, its, sigma, &turn, chains, p, m->length_scale);
+                                   order, *used, its, sigma, &turn, chains, p, m->length_scale, full);
     if (k < 0) return k == -1 ? 0 : -1;
     *used = k;
-    lengths(ctx, a + first, ad + first);
+    lengths(ctx, full ? -1 : k, a + first, ad + first);
     a[first + k][LINKGEN_NMAX - 1] = turn;
     return 1;
 }
@@ -773,7 +784,9 @@ static int path_pass(const resolver_path *path, const double in[], const double 
  * share, so a turned block must be within p->turn_share: the path crosses the singular
  * position along its tangent, as a mechanism goes straight through a change point.  Only a
  * block that solved now (used, of each group the block from its first, m->firsts) has an
- * orientation there, so only those are looked at (the same verdict as every block). */
+ * orientation there, so only those are looked at (the same verdict as every block).  Only the
+ * blocks with a state in prev are looked at (a stale one, nan, has none: a row's own pass is
+ * judged on its solving blocks; a continuation's on every block). */
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
                    const double now[][LINKGEN_NMAX], const int used[], const resolver_mechanism *m, double slack,
                    const resolver_policy *p)
@@ -781,7 +794,7 @@ static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKG
     double move = 0.0, off = 0.0, share = p->path_share;
     int g, i;
     for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* one pass: the largest predicted move and correction */
-        for (i = 0; i < adds(m->sizes[g]); i++) {
+        for (i = 0; i < adds(m->sizes[g]) && prev[g][0] == prev[g][0]; i++) {
             const double d = fabs(guess[g][i] - prev[g][i]), e = fabs(now[g][i] - guess[g][i]);
             if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
             if (e > off || e != e) off = e;  /* a nan correction stays */
@@ -840,18 +853,27 @@ static void predict(const resolver_warm *warm, const double in[], const int size
                     double a[][LINKGEN_NMAX])
 {
     const double tau = warm_tau(warm, in);
-    double back;
+    const double back = order >= 2 && *warm->back_valid ? warm_tau(warm, warm->back_in) : 0.0;
     int g, i;
-    advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad, tau, sizes, loops, a);
-    if (order < 2 || !*warm->back_valid) return;
-    back = warm_tau(warm, warm->back_in);
-    if (back == 0.0) return;
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)
+    if (back == 0.0) {
+        advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad, tau, sizes, loops,
+                a);
+        return;
+    }
+    for (g = 0; g < LINKGEN_NBLOCKS; g++) {  /* advance's loop with the parabola for the lengths (the same bits) */
+        if (warm->a[g][0] != warm->a[g][0]) {  /* a stale state (nan, orientation 0) stays stale: advance's */
+            for (i = 0; i < LINKGEN_NMAX - 1; i++) a[g][i] = NAN;
+            a[g][LINKGEN_NMAX - 1] = 0.0;
+            continue;
+        }
         for (i = 0; i < adds(sizes[g]); i++) {
             const double bend = (warm->back_a[g][i] - warm->a[g][i] - back * warm->ad[g][i]) / (back * back);
             const double ahead = warm->a[g][i] + tau * warm->ad[g][i] + tau * tau * bend;
             a[g][i] = loops[g] ? ahead : fabs(ahead);
         }
+        for (; i < LINKGEN_NMAX - 1; i++) a[g][i] = warm->a[g][i] + tau * warm->ad[g][i];
+        a[g][LINKGEN_NMAX - 1] = warm->a[g][LINKGEN_NMAX - 1];
+    }
 }
 
 /* Continuation along the straight path from base to goal.  Each step moves no input by
@@ -969,8 +991,10 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         /* past a limit position: the pass fails the row at once with the limit's code */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
     } else if (*warm->valid && within(in, warm->in, m->limits)) {
-        predict(warm, in, m->sizes, m->loops, p->predictor, guess);
-        memcpy(a, p->predictor ? guess : warm->a, sizeof a);  /* predictor order 0: the warm states as they were */
+        predict(warm, in, m->sizes, m->loops, p->predictor, a);
+        for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* the guessed lengths, all on_path reads of the guess */
+            for (i = 0; i < adds(m->sizes[g]); i++) guess[g][i] = a[g][i];
+        if (!p->predictor) memcpy(a, warm->a, sizeof a);  /* predictor order 0: the warm states as they were */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
         solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
                                       (const double (*)[LINKGEN_NMAX])a, used, m,
@@ -1000,7 +1024,8 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         *warm->back_valid = solved && *warm->valid && code != m->another;
         if (*warm->back_valid) {
             for (i = 0; i < LINKGEN_NINPUTS; i++) warm->back_in[i] = warm->in[i];
-            memcpy(warm->back_a, warm->a, sizeof a);
+            for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* the lengths, all predict reads of the row before */
+                for (i = 0; i < adds(m->sizes[g]); i++) warm->back_a[g][i] = warm->a[g][i];
         }
     }
     *warm->valid = solved;
@@ -2686,117 +2711,164 @@ static void branches_1(void *ctx, int k, const double s[])
 }
 
 
-/* The state of every block of group 1, read off the solved pairs: its Add-link
+/* The state of the blocks of group 1, read off the solved pairs (every block's
+   where only is negative, else block only's and the loop blocks': the others' are stale, nan with
+   orientation 0): its Add-link
    lengths, the measures whose signs are the branches of its chains (a zero keeps the one it
    had), then, in the last entry, its orientation (0 here: the solving block's is set by the
    resolver); and their rates (the measures' too, so the predictor flips a branch where its
    chain passes its fold). */
-static void lengths_1(const void *ctx, double a[LINKGEN_RESTRICT][LINKGEN_NMAX],
+static void lengths_1(const void *ctx, int only, double a[LINKGEN_RESTRICT][LINKGEN_NMAX],
                        double ad[LINKGEN_RESTRICT][LINKGEN_NMAX])
 {
     const work *w = (const work *)ctx;
     VARIABLE f;
     int i;
     double m;
-    link_residual_1(&w->p_J6, &w->p_J4, &ZERO_LENGTH, &f);
-    a[0][0] = f.v;
-    ad[0][0] = f.dv;
-    m = (w->p_J6.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (w->p_J6.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
-    if (m != 0.0) a[0][1] = m;
-    ad[0][1] = m != 0.0 ? (w->p_J6.DP.x - p_J3.DP.x) * (w->p_J4.P.y - p_J3.P.y) + (w->p_J6.P.x - p_J3.P.x) * (w->p_J4.DP.y - p_J3.DP.y) - (w->p_J6.DP.y - p_J3.DP.y) * (w->p_J4.P.x - p_J3.P.x) - (w->p_J6.P.y - p_J3.P.y) * (w->p_J4.DP.x - p_J3.DP.x) : 0.0;
-    m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    if (m != 0.0) a[0][2] = m;
-    ad[0][2] = m != 0.0 ? (w->p_J4.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J4.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
-    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[0][i] = 0.0;  /* unused: no rate */
-    a[0][LINKGEN_NMAX - 1] = ad[0][LINKGEN_NMAX - 1] = 0.0;
-    link_residual_1(&w->p_J6, &w->p_J2, &ZERO_LENGTH, &f);
-    a[1][0] = f.v;
-    ad[1][0] = f.dv;
-    m = (w->p_J6.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J6.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    if (m != 0.0) a[1][1] = m;
-    ad[1][1] = m != 0.0 ? (w->p_J6.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J6.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J6.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J6.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
-    m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
-    if (m != 0.0) a[1][2] = m;
-    ad[1][2] = m != 0.0 ? (p_J3.DP.x - w->p_J2.DP.x) * (w->p_J4.P.y - w->p_J2.P.y) + (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.DP.y - w->p_J2.DP.y) - (p_J3.DP.y - w->p_J2.DP.y) * (w->p_J4.P.x - w->p_J2.P.x) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.DP.x - w->p_J2.DP.x) : 0.0;
-    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[1][i] = 0.0;  /* unused: no rate */
-    a[1][LINKGEN_NMAX - 1] = ad[1][LINKGEN_NMAX - 1] = 0.0;
-    link_residual_1(&p_J1, &w->p_J4, &ZERO_LENGTH, &f);
-    a[2][0] = f.v;
-    ad[2][0] = f.dv;
-    m = (p_J1.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J1.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
-    if (m != 0.0) a[2][1] = m;
-    ad[2][1] = m != 0.0 ? (p_J1.DP.x - p_J3.DP.x) * (w->p_J4.P.y - p_J3.P.y) + (p_J1.P.x - p_J3.P.x) * (w->p_J4.DP.y - p_J3.DP.y) - (p_J1.DP.y - p_J3.DP.y) * (w->p_J4.P.x - p_J3.P.x) - (p_J1.P.y - p_J3.P.y) * (w->p_J4.DP.x - p_J3.DP.x) : 0.0;
-    m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    if (m != 0.0) a[2][2] = m;
-    ad[2][2] = m != 0.0 ? (w->p_J4.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J4.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
-    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[2][i] = 0.0;  /* unused: no rate */
-    a[2][LINKGEN_NMAX - 1] = ad[2][LINKGEN_NMAX - 1] = 0.0;
-    link_residual_1(&p_J3, &w->p_J2, &ZERO_LENGTH, &f);
-    a[3][0] = f.v;
-    ad[3][0] = f.dv;
-    m = (p_J3.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J3.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    if (m != 0.0) a[3][1] = m;
-    ad[3][1] = m != 0.0 ? (p_J3.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (p_J3.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (p_J3.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (p_J3.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
-    m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
-    if (m != 0.0) a[3][2] = m;
-    ad[3][2] = m != 0.0 ? (p_J3.DP.x - w->p_J2.DP.x) * (w->p_J4.P.y - w->p_J2.P.y) + (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.DP.y - w->p_J2.DP.y) - (p_J3.DP.y - w->p_J2.DP.y) * (w->p_J4.P.x - w->p_J2.P.x) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.DP.x - w->p_J2.DP.x) : 0.0;
-    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[3][i] = 0.0;  /* unused: no rate */
-    a[3][LINKGEN_NMAX - 1] = ad[3][LINKGEN_NMAX - 1] = 0.0;
-    link_residual_1(&p_J7, &w->p_J2, &ZERO_LENGTH, &f);
-    a[4][0] = f.v;
-    ad[4][0] = f.dv;
-    m = (p_J7.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J7.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    if (m != 0.0) a[4][1] = m;
-    ad[4][1] = m != 0.0 ? (p_J7.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (p_J7.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (p_J7.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (p_J7.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
-    m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
-    if (m != 0.0) a[4][2] = m;
-    ad[4][2] = m != 0.0 ? (p_J3.DP.x - w->p_J2.DP.x) * (w->p_J4.P.y - w->p_J2.P.y) + (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.DP.y - w->p_J2.DP.y) - (p_J3.DP.y - w->p_J2.DP.y) * (w->p_J4.P.x - w->p_J2.P.x) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.DP.x - w->p_J2.DP.x) : 0.0;
-    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[4][i] = 0.0;  /* unused: no rate */
-    a[4][LINKGEN_NMAX - 1] = ad[4][LINKGEN_NMAX - 1] = 0.0;
-    link_residual_1(&p_J7, &w->p_J4, &ZERO_LENGTH, &f);
-    a[5][0] = f.v;
-    ad[5][0] = f.dv;
-    m = (p_J7.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J7.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
-    if (m != 0.0) a[5][1] = m;
-    ad[5][1] = m != 0.0 ? (p_J7.DP.x - p_J3.DP.x) * (w->p_J4.P.y - p_J3.P.y) + (p_J7.P.x - p_J3.P.x) * (w->p_J4.DP.y - p_J3.DP.y) - (p_J7.DP.y - p_J3.DP.y) * (w->p_J4.P.x - p_J3.P.x) - (p_J7.P.y - p_J3.P.y) * (w->p_J4.DP.x - p_J3.DP.x) : 0.0;
-    m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    if (m != 0.0) a[5][2] = m;
-    ad[5][2] = m != 0.0 ? (w->p_J4.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J4.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
-    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[5][i] = 0.0;  /* unused: no rate */
-    a[5][LINKGEN_NMAX - 1] = ad[5][LINKGEN_NMAX - 1] = 0.0;
-    link_residual_1(&p_J3, &w->p_J5, &ZERO_LENGTH, &f);
-    a[6][0] = f.v;
-    ad[6][0] = f.dv;
-    m = (p_J3.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J3.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
-    if (m != 0.0) a[6][1] = m;
-    ad[6][1] = m != 0.0 ? (p_J3.DP.x - w->p_J6.DP.x) * (w->p_J5.P.y - w->p_J6.P.y) + (p_J3.P.x - w->p_J6.P.x) * (w->p_J5.DP.y - w->p_J6.DP.y) - (p_J3.DP.y - w->p_J6.DP.y) * (w->p_J5.P.x - w->p_J6.P.x) - (p_J3.P.y - w->p_J6.P.y) * (w->p_J5.DP.x - w->p_J6.DP.x) : 0.0;
-    m = (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    if (m != 0.0) a[6][2] = m;
-    ad[6][2] = m != 0.0 ? (w->p_J5.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J5.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
-    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[6][i] = 0.0;  /* unused: no rate */
-    a[6][LINKGEN_NMAX - 1] = ad[6][LINKGEN_NMAX - 1] = 0.0;
-    link_residual_1(&p_J1, &w->p_J5, &ZERO_LENGTH, &f);
-    a[7][0] = f.v;
-    ad[7][0] = f.dv;
-    m = (p_J1.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J1.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
-    if (m != 0.0) a[7][1] = m;
-    ad[7][1] = m != 0.0 ? (p_J1.DP.x - w->p_J6.DP.x) * (w->p_J5.P.y - w->p_J6.P.y) + (p_J1.P.x - w->p_J6.P.x) * (w->p_J5.DP.y - w->p_J6.DP.y) - (p_J1.DP.y - w->p_J6.DP.y) * (w->p_J5.P.x - w->p_J6.P.x) - (p_J1.P.y - w->p_J6.P.y) * (w->p_J5.DP.x - w->p_J6.DP.x) : 0.0;
-    m = (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    if (m != 0.0) a[7][2] = m;
-    ad[7][2] = m != 0.0 ? (w->p_J5.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J5.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
-    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[7][i] = 0.0;  /* unused: no rate */
-    a[7][LINKGEN_NMAX - 1] = ad[7][LINKGEN_NMAX - 1] = 0.0;
-    link_residual_1(&p_J7, &w->p_J5, &ZERO_LENGTH, &f);
-    a[8][0] = f.v;
-    ad[8][0] = f.dv;
-    m = (p_J7.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J7.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
-    if (m != 0.0) a[8][1] = m;
-    ad[8][1] = m != 0.0 ? (p_J7.DP.x - w->p_J6.DP.x) * (w->p_J5.P.y - w->p_J6.P.y) + (p_J7.P.x - w->p_J6.P.x) * (w->p_J5.DP.y - w->p_J6.DP.y) - (p_J7.DP.y - w->p_J6.DP.y) * (w->p_J5.P.x - w->p_J6.P.x) - (p_J7.P.y - w->p_J6.P.y) * (w->p_J5.DP.x - w->p_J6.DP.x) : 0.0;
-    m = (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
-    if (m != 0.0) a[8][2] = m;
-    ad[8][2] = m != 0.0 ? (w->p_J5.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J5.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
-    for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[8][i] = 0.0;  /* unused: no rate */
-    a[8][LINKGEN_NMAX - 1] = ad[8][LINKGEN_NMAX - 1] = 0.0;
+    if (only < 0 || only == 0) {
+        link_residual_1(&w->p_J6, &w->p_J4, &ZERO_LENGTH, &f);
+        a[0][0] = f.v;
+        ad[0][0] = f.dv;
+        m = (w->p_J6.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (w->p_J6.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
+        if (m != 0.0) a[0][1] = m;
+        ad[0][1] = m != 0.0 ? (w->p_J6.DP.x - p_J3.DP.x) * (w->p_J4.P.y - p_J3.P.y) + (w->p_J6.P.x - p_J3.P.x) * (w->p_J4.DP.y - p_J3.DP.y) - (w->p_J6.DP.y - p_J3.DP.y) * (w->p_J4.P.x - p_J3.P.x) - (w->p_J6.P.y - p_J3.P.y) * (w->p_J4.DP.x - p_J3.DP.x) : 0.0;
+        m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+        if (m != 0.0) a[0][2] = m;
+        ad[0][2] = m != 0.0 ? (w->p_J4.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J4.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
+        for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[0][i] = 0.0;  /* unused: no rate */
+        a[0][LINKGEN_NMAX - 1] = ad[0][LINKGEN_NMAX - 1] = 0.0;
+    } else {
+        for (i = 0; i < LINKGEN_NMAX - 1; i++) a[0][i] = NAN;
+        a[0][LINKGEN_NMAX - 1] = 0.0;
+    }
+    if (only < 0 || only == 1) {
+        link_residual_1(&w->p_J6, &w->p_J2, &ZERO_LENGTH, &f);
+        a[1][0] = f.v;
+        ad[1][0] = f.dv;
+        m = (w->p_J6.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J6.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+        if (m != 0.0) a[1][1] = m;
+        ad[1][1] = m != 0.0 ? (w->p_J6.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J6.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J6.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J6.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
+        m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
+        if (m != 0.0) a[1][2] = m;
+        ad[1][2] = m != 0.0 ? (p_J3.DP.x - w->p_J2.DP.x) * (w->p_J4.P.y - w->p_J2.P.y) + (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.DP.y - w->p_J2.DP.y) - (p_J3.DP.y - w->p_J2.DP.y) * (w->p_J4.P.x - w->p_J2.P.x) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.DP.x - w->p_J2.DP.x) : 0.0;
+        for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[1][i] = 0.0;  /* unused: no rate */
+        a[1][LINKGEN_NMAX - 1] = ad[1][LINKGEN_NMAX - 1] = 0.0;
+    } else {
+        for (i = 0; i < LINKGEN_NMAX - 1; i++) a[1][i] = NAN;
+        a[1][LINKGEN_NMAX - 1] = 0.0;
+    }
+    if (only < 0 || only == 2) {
+        link_residual_1(&p_J1, &w->p_J4, &ZERO_LENGTH, &f);
+        a[2][0] = f.v;
+        ad[2][0] = f.dv;
+        m = (p_J1.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J1.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
+        if (m != 0.0) a[2][1] = m;
+        ad[2][1] = m != 0.0 ? (p_J1.DP.x - p_J3.DP.x) * (w->p_J4.P.y - p_J3.P.y) + (p_J1.P.x - p_J3.P.x) * (w->p_J4.DP.y - p_J3.DP.y) - (p_J1.DP.y - p_J3.DP.y) * (w->p_J4.P.x - p_J3.P.x) - (p_J1.P.y - p_J3.P.y) * (w->p_J4.DP.x - p_J3.DP.x) : 0.0;
+        m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+        if (m != 0.0) a[2][2] = m;
+        ad[2][2] = m != 0.0 ? (w->p_J4.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J4.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
+        for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[2][i] = 0.0;  /* unused: no rate */
+        a[2][LINKGEN_NMAX - 1] = ad[2][LINKGEN_NMAX - 1] = 0.0;
+    } else {
+        for (i = 0; i < LINKGEN_NMAX - 1; i++) a[2][i] = NAN;
+        a[2][LINKGEN_NMAX - 1] = 0.0;
+    }
+    if (only < 0 || only == 3) {
+        link_residual_1(&p_J3, &w->p_J2, &ZERO_LENGTH, &f);
+        a[3][0] = f.v;
+        ad[3][0] = f.dv;
+        m = (p_J3.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J3.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+        if (m != 0.0) a[3][1] = m;
+        ad[3][1] = m != 0.0 ? (p_J3.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (p_J3.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (p_J3.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (p_J3.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
+        m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
+        if (m != 0.0) a[3][2] = m;
+        ad[3][2] = m != 0.0 ? (p_J3.DP.x - w->p_J2.DP.x) * (w->p_J4.P.y - w->p_J2.P.y) + (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.DP.y - w->p_J2.DP.y) - (p_J3.DP.y - w->p_J2.DP.y) * (w->p_J4.P.x - w->p_J2.P.x) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.DP.x - w->p_J2.DP.x) : 0.0;
+        for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[3][i] = 0.0;  /* unused: no rate */
+        a[3][LINKGEN_NMAX - 1] = ad[3][LINKGEN_NMAX - 1] = 0.0;
+    } else {
+        for (i = 0; i < LINKGEN_NMAX - 1; i++) a[3][i] = NAN;
+        a[3][LINKGEN_NMAX - 1] = 0.0;
+    }
+    if (only < 0 || only == 4) {
+        link_residual_1(&p_J7, &w->p_J2, &ZERO_LENGTH, &f);
+        a[4][0] = f.v;
+        ad[4][0] = f.dv;
+        m = (p_J7.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (p_J7.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+        if (m != 0.0) a[4][1] = m;
+        ad[4][1] = m != 0.0 ? (p_J7.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (p_J7.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (p_J7.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (p_J7.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
+        m = (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.P.y - w->p_J2.P.y) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.P.x - w->p_J2.P.x);
+        if (m != 0.0) a[4][2] = m;
+        ad[4][2] = m != 0.0 ? (p_J3.DP.x - w->p_J2.DP.x) * (w->p_J4.P.y - w->p_J2.P.y) + (p_J3.P.x - w->p_J2.P.x) * (w->p_J4.DP.y - w->p_J2.DP.y) - (p_J3.DP.y - w->p_J2.DP.y) * (w->p_J4.P.x - w->p_J2.P.x) - (p_J3.P.y - w->p_J2.P.y) * (w->p_J4.DP.x - w->p_J2.DP.x) : 0.0;
+        for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[4][i] = 0.0;  /* unused: no rate */
+        a[4][LINKGEN_NMAX - 1] = ad[4][LINKGEN_NMAX - 1] = 0.0;
+    } else {
+        for (i = 0; i < LINKGEN_NMAX - 1; i++) a[4][i] = NAN;
+        a[4][LINKGEN_NMAX - 1] = 0.0;
+    }
+    if (only < 0 || only == 5) {
+        link_residual_1(&p_J7, &w->p_J4, &ZERO_LENGTH, &f);
+        a[5][0] = f.v;
+        ad[5][0] = f.dv;
+        m = (p_J7.P.x - p_J3.P.x) * (w->p_J4.P.y - p_J3.P.y) - (p_J7.P.y - p_J3.P.y) * (w->p_J4.P.x - p_J3.P.x);
+        if (m != 0.0) a[5][1] = m;
+        ad[5][1] = m != 0.0 ? (p_J7.DP.x - p_J3.DP.x) * (w->p_J4.P.y - p_J3.P.y) + (p_J7.P.x - p_J3.P.x) * (w->p_J4.DP.y - p_J3.DP.y) - (p_J7.DP.y - p_J3.DP.y) * (w->p_J4.P.x - p_J3.P.x) - (p_J7.P.y - p_J3.P.y) * (w->p_J4.DP.x - p_J3.DP.x) : 0.0;
+        m = (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+        if (m != 0.0) a[5][2] = m;
+        ad[5][2] = m != 0.0 ? (w->p_J4.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J4.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J4.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J4.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
+        for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[5][i] = 0.0;  /* unused: no rate */
+        a[5][LINKGEN_NMAX - 1] = ad[5][LINKGEN_NMAX - 1] = 0.0;
+    } else {
+        for (i = 0; i < LINKGEN_NMAX - 1; i++) a[5][i] = NAN;
+        a[5][LINKGEN_NMAX - 1] = 0.0;
+    }
+    if (only < 0 || only == 6) {
+        link_residual_1(&p_J3, &w->p_J5, &ZERO_LENGTH, &f);
+        a[6][0] = f.v;
+        ad[6][0] = f.dv;
+        m = (p_J3.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J3.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
+        if (m != 0.0) a[6][1] = m;
+        ad[6][1] = m != 0.0 ? (p_J3.DP.x - w->p_J6.DP.x) * (w->p_J5.P.y - w->p_J6.P.y) + (p_J3.P.x - w->p_J6.P.x) * (w->p_J5.DP.y - w->p_J6.DP.y) - (p_J3.DP.y - w->p_J6.DP.y) * (w->p_J5.P.x - w->p_J6.P.x) - (p_J3.P.y - w->p_J6.P.y) * (w->p_J5.DP.x - w->p_J6.DP.x) : 0.0;
+        m = (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+        if (m != 0.0) a[6][2] = m;
+        ad[6][2] = m != 0.0 ? (w->p_J5.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J5.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
+        for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[6][i] = 0.0;  /* unused: no rate */
+        a[6][LINKGEN_NMAX - 1] = ad[6][LINKGEN_NMAX - 1] = 0.0;
+    } else {
+        for (i = 0; i < LINKGEN_NMAX - 1; i++) a[6][i] = NAN;
+        a[6][LINKGEN_NMAX - 1] = 0.0;
+    }
+    if (only < 0 || only == 7) {
+        link_residual_1(&p_J1, &w->p_J5, &ZERO_LENGTH, &f);
+        a[7][0] = f.v;
+        ad[7][0] = f.dv;
+        m = (p_J1.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J1.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
+        if (m != 0.0) a[7][1] = m;
+        ad[7][1] = m != 0.0 ? (p_J1.DP.x - w->p_J6.DP.x) * (w->p_J5.P.y - w->p_J6.P.y) + (p_J1.P.x - w->p_J6.P.x) * (w->p_J5.DP.y - w->p_J6.DP.y) - (p_J1.DP.y - w->p_J6.DP.y) * (w->p_J5.P.x - w->p_J6.P.x) - (p_J1.P.y - w->p_J6.P.y) * (w->p_J5.DP.x - w->p_J6.DP.x) : 0.0;
+        m = (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+        if (m != 0.0) a[7][2] = m;
+        ad[7][2] = m != 0.0 ? (w->p_J5.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J5.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
+        for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[7][i] = 0.0;  /* unused: no rate */
+        a[7][LINKGEN_NMAX - 1] = ad[7][LINKGEN_NMAX - 1] = 0.0;
+    } else {
+        for (i = 0; i < LINKGEN_NMAX - 1; i++) a[7][i] = NAN;
+        a[7][LINKGEN_NMAX - 1] = 0.0;
+    }
+    if (only < 0 || only == 8) {
+        link_residual_1(&p_J7, &w->p_J5, &ZERO_LENGTH, &f);
+        a[8][0] = f.v;
+        ad[8][0] = f.dv;
+        m = (p_J7.P.x - w->p_J6.P.x) * (w->p_J5.P.y - w->p_J6.P.y) - (p_J7.P.y - w->p_J6.P.y) * (w->p_J5.P.x - w->p_J6.P.x);
+        if (m != 0.0) a[8][1] = m;
+        ad[8][1] = m != 0.0 ? (p_J7.DP.x - w->p_J6.DP.x) * (w->p_J5.P.y - w->p_J6.P.y) + (p_J7.P.x - w->p_J6.P.x) * (w->p_J5.DP.y - w->p_J6.DP.y) - (p_J7.DP.y - w->p_J6.DP.y) * (w->p_J5.P.x - w->p_J6.P.x) - (p_J7.P.y - w->p_J6.P.y) * (w->p_J5.DP.x - w->p_J6.DP.x) : 0.0;
+        m = (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.P.y - p_J1.P.y) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.P.x - p_J1.P.x);
+        if (m != 0.0) a[8][2] = m;
+        ad[8][2] = m != 0.0 ? (w->p_J5.DP.x - p_J1.DP.x) * (w->p_J2.P.y - p_J1.P.y) + (w->p_J5.P.x - p_J1.P.x) * (w->p_J2.DP.y - p_J1.DP.y) - (w->p_J5.DP.y - p_J1.DP.y) * (w->p_J2.P.x - p_J1.P.x) - (w->p_J5.P.y - p_J1.P.y) * (w->p_J2.DP.x - p_J1.DP.x) : 0.0;
+        for (i = 3; i < LINKGEN_NMAX - 1; i++) ad[8][i] = 0.0;  /* unused: no rate */
+        a[8][LINKGEN_NMAX - 1] = ad[8][LINKGEN_NMAX - 1] = 0.0;
+    } else {
+        for (i = 0; i < LINKGEN_NMAX - 1; i++) a[8][i] = NAN;
+        a[8][LINKGEN_NMAX - 1] = 0.0;
+    }
 }
 
 
@@ -2989,7 +3061,7 @@ static void publish(const work *w, int code, sixbar_fig14_state *out)
 /* The procedure of sixbar_fig14.md, step by step. */
 static int run(work *w, const double in[], const double din[], const double ddin[], int order,
                double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int its[],
-               int used[])
+               int used[], int full)
 {
     int st;
 
@@ -3013,7 +3085,7 @@ static int run(work *w, const double in[], const double din[], const double ddin
         static const group_fn blocks[] = { group_1, group_1_v1, group_1_v2, group_1_v3, group_1_v4, group_1_v5, group_1_v6, group_1_v7, group_1_v8 };
         static const bend_fn bends[] = { bend_1, bend_1_v1, bend_1_v2, bend_1_v3, bend_1_v4, bend_1_v5, bend_1_v6, bend_1_v7, bend_1_v8 };
         if (!resolve_group(blocks, bends, branches_1, 9, lengths_1, w, a, ad, 0, &used[0],
-                           &its[0], &w->sigma[8], &w->chains, order, &MECHANISM, &POLICY))
+                           &its[0], &w->sigma[8], &w->chains, order, &MECHANISM, &POLICY, full))
             return 82;
         note(w, w->sigma[8] < 1e-07 ? 3 : w->sigma[8] < 0.001 ? 4 : 0, 83, -84);
     }
@@ -3084,7 +3156,7 @@ static int one_pass(void *ctx, int row, const double in[], const double din[], c
 {
     work *w = (work *)ctx;
     int its[LINKGEN_NGROUPS];
-    return run(w, in, din, ddin, order, a, ad, row ? w->its : its, used);
+    return run(w, in, din, ddin, order, a, ad, row ? w->its : its, used, !row);
 }
 
 int sixbar_fig14_solve(const double in[], const double din[], const double ddin[], sixbar_fig14_state *out)

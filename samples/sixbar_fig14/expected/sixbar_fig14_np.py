@@ -1395,10 +1395,11 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
     """One resolver step on lanes: the Python runtime's resolve_group on each lane's row where the
     block that solved the last row (used[g.slot]) solves this one at once (its Newton converges
     with its chains conditioned at least p.min_chain_sigma, and its final pass closes).  Those
-    lanes get the block's records in w, its steps' reports and conditioning, and every block's
-    state (a) and its rates (ad) read off the solution.  The other lanes are left unsettled, for
-    the caller to solve one by one; the skipped ones count as settled.  Returns (settled lanes,
-    Newton steps)."""
+    lanes get the block's records in w, its steps' reports and conditioning, and the block's
+    state (a) and its rates (ad) read off the solution; the other blocks' states, but a loop
+    block's, are stale there (nan, orientation 0: a row's own pass of resolve_group).  The
+    other lanes are left unsettled, for the caller to solve one by one; the skipped ones count
+    as settled.  Returns (settled lanes, Newton steps)."""
     lanes = np.shape(skip)[0]
     tol, reach = p.tolerance * m.length_scale, p.max_move * m.length_scale
     settled, its = skip.copy(), np.zeros(lanes, dtype=int)
@@ -1467,7 +1468,14 @@ def resolve_lanes(w, g, a, ad, used, order, sigma, report, skip, m, p):
         none = np.zeros(lanes, dtype=REAL)
         for j in range(g.count):
             orient = np.where(solver == j, turn, 0.0) if only is None else turn if j == only else none
-            a[g.first + j] = [lanes_of(x, lanes) for x in new_a[j][:-1]] + [orient]
+            if m.loops[g.first + j]:
+                a[g.first + j] = [lanes_of(x, lanes) for x in new_a[j][:-1]] + [orient]
+            elif only is None:
+                mine = solver == j
+                a[g.first + j] = [np.where(mine, x, NAN) for x in new_a[j][:-1]] + [orient]
+            else:
+                a[g.first + j] = ([lanes_of(x, lanes) for x in new_a[j][:-1]] if j == only
+                                  else [np.full(lanes, NAN, dtype=REAL) for _ in new_a[j][:-1]]) + [orient]
             ad[g.first + j] = [lanes_of(x, lanes) for x in new_ad[j]]
     report.append((np.where(resolved & (cond < g.singular), 3, np.where(resolved & (cond < g.near), 4, 0)), g.codes))
     sigma[g.step] = cond
@@ -1587,7 +1595,7 @@ def agree(s, t, k, backs):
         same = same & (u == v)
     for b, c, n in zip(s.a, t.a, k.m.sizes):
         for i, (x, y) in enumerate(zip(b, c)):
-            same = same & (_close(x, y, tol) if i < n else (np.sign(x) == np.sign(y)))
+            same = same & (_close(x, y, tol) if i < n else ((np.sign(x) == np.sign(y)) | (np.isnan(x) & np.isnan(y))))
     for b, c in zip(s.ad, t.ad):
         for x, y in zip(b, c):
             same = same & _close(x, y, RATES_AGREE * np.maximum(np.abs(x), np.abs(y)) + tol)
@@ -1639,18 +1647,19 @@ def predict_lanes(prev, x, sizes, order):
 
 
 def on_path_lanes(prev, guess, new, sizes, slack, p):
-    """The Python runtime's on_path on every lane."""
+    """The Python runtime's on_path on every lane (a block looked at where its state in prev is not stale)."""
     move, turned = 0.0, False
-    for b, g, n in zip(prev, guess, sizes):
+    held = [~np.isnan(b[0]) for b in prev]
+    for b, g, n, h in zip(prev, guess, sizes, held):
         for i in range(n):
-            move = np.maximum(move, np.abs(g[i] - b[i]))
+            move = np.maximum(move, np.where(h, np.abs(g[i] - b[i]), 0.0))
     for b, x in zip(prev, new):
         turned = turned | (b[-1] * x[-1] < 0)
     bound = np.where(turned, p.turn_share, p.path_share) * move + slack
     fine = True
-    for g, x, n in zip(guess, new, sizes):
+    for g, x, n, h in zip(guess, new, sizes, held):
         for i in range(n):
-            fine = fine & (np.abs(x[i] - g[i]) <= bound)
+            fine = fine & (~h | (np.abs(x[i] - g[i]) <= bound))
     return fine
 
 

@@ -105,7 +105,7 @@ function w = note(w, st, singular, near)
     end
 end
 
-function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
+function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used, full)
     % The procedure of sixbar_fig14.md, step by step: the resolvers start from the block states a (their
     % rates ad out) and try the blocks used first.
     status = 0;
@@ -153,7 +153,7 @@ function [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used)
                                                         { 'add1_v6', 'p_J5', 'p_J2', 'p_J4', 'f1_v6' }, ...
                                                         { 'add1_v7', 'p_J5', 'p_J2', 'p_J4', 'f1_v7' }, ...
                                                         { 'add1_v8', 'p_J5', 'p_J2', 'p_J4', 'f1_v8' } ...
-                                                      });
+                                                      }, full);
     w.iterations(1) = its;
     w.sigma(8) = sigma;
     if ~ok
@@ -1615,14 +1615,19 @@ function [st, sigma, turn, w] = resolver_rates(group, w, a, jac, order, names)
 end
 
 function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, prefer, sizes, loops, p, scale, ...
-                                                      writes)
+                                                      writes, full)
     % The strategy's iteration (resolver_solve_block) on a group's blocks (its chosen Add-link
     % candidate, then the fallbacks), the preferred block first, the others in order.  The
     % first that converges with its chains conditioned at least p.min_chain_sigma (w.chains:
     % the worst of the last pass, from the block's lever down) is kept; else the best
     % conditioned of those that converge, a later block only when more than twice as well
     % conditioned (blocks that share a chain near a toggle tie up to rounding: the order
-    % decides).  a{first + k} is block k's state: its sizes(k + 1) start lengths, its
+    % decides).  A block whose state is stale (nan, see resolver_group) is not tried; where
+    % one was skipped in a row's own pass (not full), a row none of the others solves with
+    % its chains so conditioned fails as not converged (the driver follows it from the last
+    % row: a continuation pass, full, takes the best of the blocks it can try and reads every
+    % block's state, so the others are tried along the path).
+    % a{first + k} is block k's state: its sizes(k + 1) start lengths, its
     % branches, its orientation; scale is the length scale; k = -1 when no block converges
     % (-2 when the iteration of one of them did not contract); turn is the orientation of
     % block k (see resolver_rates, which gets writes{k + 1}: the records block k sets).
@@ -1632,11 +1637,16 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
     best = -1;
     best_sigma = -1;
     stuck = false;
+    stale = false;
     tries = [prefer, setdiff(0:numel(groups) - 1, prefer)];
     if strcmp(p.strategy, 'loop')  % the loop blocks first, the Add-link blocks after
         tries = [tries(loops(tries + 1) ~= 0), tries(loops(tries + 1) == 0)];
     end
     for k = tries
+        if isnan(a{first + k}(1))  % a stale state: not read off this row's start
+            stale = true;
+            continue;
+        end
         [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale, ...
                                                     loops(k + 1));
         stuck = stuck || ok < 0;
@@ -1656,7 +1666,7 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
         end
     end
     k = best;
-    if k >= 0
+    if k >= 0 && (full || ~stale)
         [ok, x, its, jac, w] = resolver_solve_block(groups{k + 1}, w, a{first + k}(1:sizes(k + 1)), p, scale, ...
                                                     loops(k + 1));
         if ok > 0
@@ -1666,20 +1676,22 @@ function [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order
             end
         end
     end
-    k = -1 - stuck;
+    k = -1 - (stuck && (full || ~stale));
 end
 
 function [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a, ad, used, first, slot, order, m, p, ...
-                                                           writes)
+                                                           writes, full)
     % One resolver step: resolver_variants on the group's blocks a{first}, ... (the one that
     % solved the last row, used(slot), first); then lengths(w, a, ad) reads every block's
-    % state and its rates off the solved pairs (so any of them can start the next row) and
-    % the solving block keeps its orientation.  ok: 1 when a block solved, 0 when none
+    % state and its rates off the solved pairs and the solving block keeps its orientation.
+    % Unless full (a row's own pass) the other blocks' states, but a loop block's, are then
+    % stale: nan, orientation 0 (a continuation pass, full, reads every block's, so that any
+    % of them can take over along the path).  ok: 1 when a block solved, 0 when none
     % converged, -1 when the iteration of one did not contract; its: its iterations.
     [k, its, sigma, turn, w] = resolver_variants(groups, w, a, first, order, used(slot), ...
                                                  m.sizes(first:first + numel(groups) - 1), ...
                                                  m.loops(first:first + numel(groups) - 1), p, m.length_scale, ...
-                                                 writes);
+                                                 writes, full);
     ok = 1;
     if k < 0
         ok = -(k == -2);  % 0: none converged, -1: an iteration did not contract
@@ -1688,6 +1700,14 @@ function [ok, its, sigma, w, a, ad, used] = resolver_group(groups, lengths, w, a
     used(slot) = k;
     [a, ad] = lengths(w, a, ad);
     a{first + k}(end) = turn;
+    if ~full
+        for j = 0:numel(groups) - 1
+            if j ~= k && ~m.loops(first + j)
+                a{first + j}(:) = NaN;
+                a{first + j}(end) = 0;
+            end
+        end
+    end
 end
 
 function ok = resolver_on_path(prev, guess, now, sizes, slack, p)
@@ -1699,17 +1719,22 @@ function ok = resolver_on_path(prev, guess, now, sizes, slack, p)
     % has passed a singular position.  Where two assemblies pass close the nearer one can
     % lie within that share, so a turned block must be within p.turn_share: the path
     % crosses the singular position along its tangent, as a mechanism goes straight
-    % through a change point.
+    % through a change point.  Only the blocks with a state in prev are looked at (a stale
+    % one, nan, has none: a row's own pass judged on its solving blocks; a continuation's on
+    % every block).
     move = 0;
     share = p.path_share;
+    held = cellfun(@(s) ~isnan(s(1)), prev);
     for g = 1:numel(sizes)
-        move = max([move; abs(guess{g}(1:sizes(g)) - prev{g}(1:sizes(g)))]);
+        if held(g)
+            move = max([move; abs(guess{g}(1:sizes(g)) - prev{g}(1:sizes(g)))]);
+        end
         if prev{g}(end) * now{g}(end) < 0
             share = p.turn_share;
         end
     end
     ok = true;
-    for g = 1:numel(sizes)
+    for g = find(held(:)')
         ok = ok && all(abs(now{g}(1:sizes(g)) - guess{g}(1:sizes(g))) <= share * move + slack);
     end
 end
@@ -1880,14 +1905,15 @@ end
 function [ok, a, ad] = resolver_path(run, w, in, din, order, a, used)
     % One pass of the procedure along a continuation path (rates per unit of the path, no
     % accelerations; its work is dropped): closes, the block states, their rates.
-    [status, ~, a, ad] = run(w, in, din, zeros(size(in)), order, a, used);
+    [status, ~, a, ad] = run(w, in, din, zeros(size(in)), order, a, used, true);
     ok = status <= 0;
 end
 
 function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, warm, m, p)
-    % Solve one row on the sketch's assembly.  run(w, in, din, ddin, order, a, used) ->
+    % Solve one row on the sketch's assembly.  run(w, in, din, ddin, order, a, used, full) ->
     % [status, w, a, ad, used] is one pass of the procedure with the block states a (and
-    % their rates ad out) and the preferred blocks used.  From the warm start (the previous
+    % their rates ad out) and the preferred blocks used (full: a continuation pass, which
+    % reads every block's state; else the row's own, which reads the solving blocks').  From the warm start (the previous
     % row) when no input has moved farther than a continuation step: the resolvers start
     % where the predictor of order p.predictor points (see resolver_predict; order 0: from the
     % warm states as they were), and the row is taken when it solves on that path (see
@@ -1906,7 +1932,7 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
     solved = false;
     if past
         % past a limit position: the pass fails the row at once with the limit's code
-        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
+        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used, false);
     elseif warm.valid && all(abs(in - warm.in) <= m.limits)
         % from the previous row, where the predictor points (order 0: its block states as they were)
         guess = resolver_predict(warm, in, m.sizes, p.predictor, m.loops);
@@ -1914,7 +1940,7 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
         if p.predictor == 0
             a = warm.a;
         end
-        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
+        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used, false);
         solved = status <= 0 && resolver_on_path(warm.a, guess, a, m.sizes, p.path_slack * m.length_scale, p);
     end
     if warm.valid && ~solved
@@ -1930,7 +1956,7 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
         if reached
             a = a2;
         end
-        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used);
+        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used, false);
         if ~reached && status <= 0
             status = m.another;  % another assembly only
         end
