@@ -45,7 +45,7 @@ HEADER_SUFFIXES = ("point", "angle", "prismatic", "state", "init", "solve", "col
 HEADER_MACRO_SUFFIXES = ("H", "N_INPUTS", "N_STEPS", "N_COLUMNS", "ORDER", "SAMPLES", "N_GROUPS", "N_BLOCKS", "NMAX",
                          "STATUS_BAD_INPUT", "COLUMN_NAMES", "INPUT_NAMES", "INPUT_START", "INPUT_STOP", "INPUT_SPEED")
 SOURCE_MACROS = frozenset(("LINKGEN_NMAX", "LINKGEN_NGROUPS", "LINKGEN_NBLOCKS", "LINKGEN_NINPUTS", "LINKGEN_NADD",
-                           "LINKGEN_NSENS", "LINKGEN_RESTRICT"))
+                           "LINKGEN_NSENS", "LINKGEN_RESTRICT", "LINKGEN_LOOPS"))
 
 
 def header_names(mechanism: str) -> frozenset[str]:
