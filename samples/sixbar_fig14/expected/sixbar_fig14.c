@@ -17,6 +17,7 @@ typedef struct { double v, dv, ddv; } VARIABLE;
 #define LINKGEN_NINPUTS 1
 #define LINKGEN_NSENS 8
 #define LINKGEN_NADD 1
+#define LINKGEN_LOOPS 0
 
 /* Angle of a link from two of its points j1, j2, plus the sketch offset off, wrapped to (-pi, pi]. */
 #if defined(__GNUC__)
@@ -775,6 +776,20 @@ static int path_pass(const resolver_path *path, const double in[], const double 
     return path->run(path->ctx, 0, in, din, zero, order, a, rates, used) <= 0;
 }
 
+/* How many blocks a row's own pass leaves with a state (warm; else every block): of each group the
+ * one that solved it, the others stale (resolve_group), where no block is a loop block (LINKGEN_LOOPS
+ * 0; a loop block keeps its state: then every block, a stale one looked at as such). */
+static int held(int warm)
+{
+    return warm && !LINKGEN_LOOPS ? LINKGEN_NGROUPS : LINKGEN_NBLOCKS;
+}
+
+/* The t-th of those blocks (see held) of a row's own pass whose groups' solving blocks are used. */
+static int block(int t, const int used[], const resolver_mechanism *m)
+{
+    return LINKGEN_LOOPS ? t : m->firsts[t] + used[t];
+}
+
 /* Whether a solved state is where the predictor pointed from prev: no block's Add-link
  * length moved from the guess by more than p->path_share of the largest predicted move (plus
  * slack); a larger correction is a jump to another assembly, or a step too long for the
@@ -786,15 +801,16 @@ static int path_pass(const resolver_path *path, const double in[], const double 
  * block that solved now (used, of each group the block from its first, m->firsts) has an
  * orientation there, so only those are looked at (the same verdict as every block).  Only the
  * blocks with a state in prev are looked at (a stale one, nan, has none: a row's own pass is
- * judged on its solving blocks; a continuation's on every block). */
+ * judged on its solving blocks; a continuation's on every block); warm says prev is a row's own
+ * pass's (see held). */
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
                    const double now[][LINKGEN_NMAX], const int used[], const resolver_mechanism *m, double slack,
-                   const resolver_policy *p)
+                   const resolver_policy *p, int warm)
 {
     double move = 0.0, off = 0.0, share = p->path_share;
-    int g, i;
-    for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* one pass: the largest predicted move and correction */
-        for (i = 0; i < adds(m->sizes[g]) && prev[g][0] == prev[g][0]; i++) {
+    int t, g, i;
+    for (t = 0; t < held(warm); t++)  /* one pass: the largest predicted move and correction */
+        for (g = warm ? block(t, used, m) : t, i = 0; i < adds(m->sizes[g]) && prev[g][0] == prev[g][0]; i++) {
             const double d = fabs(guess[g][i] - prev[g][i]), e = fabs(now[g][i] - guess[g][i]);
             if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
             if (e > off || e != e) off = e;  /* a nan correction stays */
@@ -849,30 +865,22 @@ static double warm_tau(const resolver_warm *warm, const double in[])
  * parabola with those rates that also passes through the row before them (order 2; first
  * order without one).  Both need positions and rates only, and the rates exist at every
  * order, so the positions do not depend on the order computed. */
-static void predict(const resolver_warm *warm, const double in[], const int sizes[], const int loops[], int order,
+static void predict(const resolver_warm *warm, const double in[], const resolver_mechanism *m, int order,
                     double a[][LINKGEN_NMAX])
 {
     const double tau = warm_tau(warm, in);
     const double back = order >= 2 && *warm->back_valid ? warm_tau(warm, warm->back_in) : 0.0;
-    int g, i;
-    if (back == 0.0) {
-        advance((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])warm->ad, tau, sizes, loops,
-                a);
-        return;
-    }
-    for (g = 0; g < LINKGEN_NBLOCKS; g++) {  /* advance's loop with the parabola for the lengths (the same bits) */
-        if (warm->a[g][0] != warm->a[g][0]) {  /* a stale state (nan, orientation 0) stays stale: advance's */
-            for (i = 0; i < LINKGEN_NMAX - 1; i++) a[g][i] = NAN;
-            a[g][LINKGEN_NMAX - 1] = 0.0;
-            continue;
-        }
-        for (i = 0; i < adds(sizes[g]); i++) {
-            const double bend = (warm->back_a[g][i] - warm->a[g][i] - back * warm->ad[g][i]) / (back * back);
-            const double ahead = warm->a[g][i] + tau * warm->ad[g][i] + tau * tau * bend;
-            a[g][i] = loops[g] ? ahead : fabs(ahead);
+    int t, g, i;
+    memcpy(a, warm->a, sizeof(double) * LINKGEN_NBLOCKS * LINKGEN_NMAX);  /* a stale state stays: advance's nan */
+    for (t = 0; t < held(1); t++) {  /* advance's operations, with the parabola for the lengths (the same bits) */
+        g = block(t, warm->used, m);
+        for (i = 0; i < adds(m->sizes[g]); i++) {
+            const double ahead = back == 0.0 ? warm->a[g][i] + tau * warm->ad[g][i]
+                : warm->a[g][i] + tau * warm->ad[g][i]
+                  + tau * tau * ((warm->back_a[g][i] - warm->a[g][i] - back * warm->ad[g][i]) / (back * back));
+            a[g][i] = m->loops[g] ? ahead : fabs(ahead);
         }
         for (; i < LINKGEN_NMAX - 1; i++) a[g][i] = warm->a[g][i] + tau * warm->ad[g][i];
-        a[g][LINKGEN_NMAX - 1] = warm->a[g][LINKGEN_NMAX - 1];
     }
 }
 
@@ -919,7 +927,7 @@ static int walk(const resolver_path *path, const double base[], double a[][LINKG
             for (i = 0; i < LINKGEN_NMAX; i++) now[g][i] = guess[g][i];
         if (path_pass(path, trial, d, 1, now, rate2, used)
             && on_path((const double (*)[LINKGEN_NMAX])start, (const double (*)[LINKGEN_NMAX])guess,
-                       (const double (*)[LINKGEN_NMAX])now, used, m, slack, p)) {
+                       (const double (*)[LINKGEN_NMAX])now, used, m, slack, p, 0)) {
             t = tt;
             h = fmin(2.0 * h, h_max);
             cuts = 0;
@@ -982,7 +990,7 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double (*const ad)[LINKGEN_NMAX] = warm->ad;  /* the passes' rates straight into the warm start */
     int used[LINKGEN_NGROUPS];
-    int code = 0, solved = 0, g, i;
+    int code = 0, solved = 0, t, g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = m->sketch_in[i];
     if (past || !*warm->valid)  /* else the warm states replace them below */
         memcpy(a, m->sketch_a, sizeof a);  /* the block states copied whole (a loop per entry costs more) */
@@ -991,14 +999,14 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         /* past a limit position: the pass fails the row at once with the limit's code */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
     } else if (*warm->valid && within(in, warm->in, m->limits)) {
-        predict(warm, in, m->sizes, m->loops, p->predictor, a);
-        for (g = 0; g < LINKGEN_NBLOCKS; g++)  /* the guessed lengths, all on_path reads of the guess */
-            for (i = 0; i < adds(m->sizes[g]); i++) guess[g][i] = a[g][i];
+        predict(warm, in, m, p->predictor, a);
+        for (t = 0; t < held(1); t++)  /* the guessed lengths, all on_path reads of the guess */
+            for (g = block(t, used, m), i = 0; i < adds(m->sizes[g]); i++) guess[g][i] = a[g][i];
         if (!p->predictor) memcpy(a, warm->a, sizeof a);  /* predictor order 0: the warm states as they were */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
         solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
                                       (const double (*)[LINKGEN_NMAX])a, used, m,
-                                      p->path_slack * m->length_scale, p);
+                                      p->path_slack * m->length_scale, p, 1);
     }
     if (!solved && *warm->valid) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = warm->in[i];
