@@ -255,7 +255,7 @@ class RowSolver:
         return row
 
     def run(self, inputs: list[float], rates: list[float], accs: list[float], order: int, a: list[list[float]],
-            used: list[int], row: bool) -> tuple[int, list[list[float]]]:
+            used: list[int], row: int) -> tuple[int, list[list[float]]]:
         """One pass of the procedure (the generated _run), each block started from its state
         in ``a``; a and used are updated as the resolvers leave them.  Returns (status code,
         the block states' rates)."""
@@ -272,7 +272,7 @@ class RowSolver:
         if reach is not None and side:  # past a limit position: fails at once
             report[status.step(reach.codes()[side > 0])] = (FAIL, math.nan)
         for group, steps in self.plan if not side else ():
-            done = (self._resolve(group, env, report, order, a, ad, used, its, not row) if group
+            done = (self._resolve(group, env, report, order, a, ad, used, its, row != 1) if group
                     else steps and steps(env, report))
             if not done:
                 break

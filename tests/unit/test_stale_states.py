@@ -1,5 +1,5 @@
-"""A row's own pass reads only its solving block's state off the solved pairs: the other blocks' states
-are stale (nan lengths and branches, orientation 0), the warm start is judged on the solving block alone
+"""A row's own pass from the warm start reads only its solving block's state off the solved pairs (a row
+followed by continuation reads every block's): the other blocks' states are stale (nan lengths and branches, orientation 0), the warm start is judged on the solving block alone
 (on_path), and a stale block is not tried until a continuation pass reads every block's state again.
 The wrong-assembly guard keeps its form on the solving block: its Add-link length fixes the group's
 configuration on its branches, so a jump to another assembly is a correction of that length, refused
@@ -27,30 +27,36 @@ def test_on_path_judges_the_blocks_with_a_state_only():
     guess = [[11.0, 1.0, 1.0, 1.0], list(STALE)]
     assert on_path(prev, guess, [[11.05, 1.0, 1.0, 1.0], list(STALE)], [1, 1], 0.0, POLICY)  # 0.05 <= 0.1 * 1
     assert not on_path(prev, guess, [[11.2, 1.0, 1.0, 1.0], list(STALE)], [1, 1], 0.0, POLICY)  # a jump
-    assert not on_path(prev, guess, [[NAN, 1.0, 1.0, 1.0], list(STALE)], [1, 1], 0.0, POLICY)  # a nan correction
+    both = [[10.0, 1.0, 1.0, 1.0], [5.0, 1.0, 1.0, 0.0]]  # the last row read both blocks' states (a continuation)
+    guess2 = [[11.0, 1.0, 1.0, 1.0], [5.5, 1.0, 1.0, 0.0]]
+    assert on_path(both, guess2, [[11.05, 1.0, 1.0, 1.0], list(STALE)], [1, 1], 0.0, POLICY)  # the solver's alone
+    assert not on_path(both, guess2, [[11.05, 1.0, 1.0, 1.0], [5.7, 1.0, 1.0, 0.0]], [1, 1], 0.0, POLICY)
     turned = [[11.05, 1.0, 1.0, -1.0], list(STALE)]  # the block's orientation turned: within 0.01 of the move
     assert not on_path(prev, guess, turned, [1, 1], 0.0, POLICY)
     assert on_path(prev, guess, turned, [1, 1], 0.05, POLICY)
 
 
-def test_a_rows_state_holds_the_solving_block_and_the_continuation_reads_every_one():
+def test_a_rows_state_holds_the_solving_block_and_a_continuation_reads_every_one():
     log = build_log(str(ROOT / "samples" / "sixbar_fig14" / "sixbar_fig14.yaml"), sweep=False)
     solver = RowSolver(log, log.order)
     sizes = solver.mech.sizes
-    full = []
+    followed: list[bool] = []
     run = solver.run
 
     def spy(inputs, rates, accs, order, a, used, row):
         out = run(inputs, rates, accs, order, a, used, row)
         if not row:  # a continuation pass: every block's state read off its solution
-            full.append(all(s[0] == s[0] for s in a))
+            assert all(s[0] == s[0] for s in a)
+            followed[-1] = True
         return out
 
     solver.run = spy  # type: ignore[method-assign]
-    for k, theta in enumerate((1.5, 1.52, 1.54)):
-        assert solver.solve([theta], [1.0], [0.0]).code == 0
+    for k in range(8):
+        followed.append(False)
+        assert solver.solve([1.5 + 0.02 * k], [1.0], [0.0]).code == 0
         _, _, a, _, used, _ = solver.warm
-        for j, s in enumerate(a):
+        for j, s in enumerate(a):  # a row followed by continuation reads every block's state, else the solver's
             stale = all(x != x for x in s[:-1]) and s[-1] == 0.0
-            assert stale == (j != used[0]) and (stale or all(x == x for x in s[:sizes[j]])), (k, j, s)
-    assert full and all(full), "the first row follows the sketch by continuation, reading every block"
+            assert stale == (not followed[k] and j != used[0]), (k, j, s)
+            assert stale or all(x == x for x in s[:sizes[j]]), (k, j, s)
+    assert followed[0] and not all(followed), followed  # the first row follows the sketch; the others, mostly not
