@@ -741,7 +741,8 @@ static int resolve_group(const group_fn fns[], const bend_fn bends[], branches_f
  * from the sketch.  run(ctx, row, in, din, ddin, order, a, ad, used) is one pass of the
  * procedure with the block states a and the preferred blocks used (both updated in place to
  * the solution) and writes the block states' rates into ad; row says whether the pass is the
- * row's own (else one along a continuation path).  Returns the status code. */
+ * row's own (1: reading the solving blocks' states alone, 2: every block's; else one along a
+ * continuation path, reading every block's).  Returns the status code. */
 typedef int (*pass_fn)(void *ctx, int row, const double in[], const double din[], const double ddin[], int order,
                        double a[][LINKGEN_NMAX], double ad[][LINKGEN_NMAX], int used[]);
 
@@ -776,18 +777,19 @@ static int path_pass(const resolver_path *path, const double in[], const double 
     return path->run(path->ctx, 0, in, din, zero, order, a, rates, used) <= 0;
 }
 
-/* How many blocks a row's own pass leaves with a state (warm; else every block): of each group the
- * one that solved it, the others stale (resolve_group), where no block is a loop block (LINKGEN_LOOPS
- * 0; a loop block keeps its state: then every block, a stale one looked at as such). */
-static int held(int warm)
+/* How many blocks a state has to look at: where stale (a row's own pass left it, reading the solving
+ * blocks' states alone: see resolve_group) of each group the one that solved it, where no block is a
+ * loop block (LINKGEN_LOOPS 0; a loop block keeps its state); else every block (a stale one looked at
+ * as such). */
+static int held(int stale)
 {
-    return warm && !LINKGEN_LOOPS ? LINKGEN_NGROUPS : LINKGEN_NBLOCKS;
+    return stale && !LINKGEN_LOOPS ? LINKGEN_NGROUPS : LINKGEN_NBLOCKS;
 }
 
-/* The t-th of those blocks (see held) of a row's own pass whose groups' solving blocks are used. */
-static int block(int t, const int used[], const resolver_mechanism *m)
+/* The t-th of those blocks (see held), the groups' solving blocks used. */
+static int block(int t, int stale, const int used[], const resolver_mechanism *m)
 {
-    return LINKGEN_LOOPS ? t : m->firsts[t] + used[t];
+    return stale && !LINKGEN_LOOPS ? m->firsts[t] + used[t] : t;
 }
 
 /* Whether a solved state is where the predictor pointed from prev: no block's Add-link
@@ -800,17 +802,18 @@ static int block(int t, const int used[], const resolver_mechanism *m)
  * position along its tangent, as a mechanism goes straight through a change point.  Only a
  * block that solved now (used, of each group the block from its first, m->firsts) has an
  * orientation there, so only those are looked at (the same verdict as every block).  Only the
- * blocks with a state in prev are looked at (a stale one, nan, has none: a row's own pass is
- * judged on its solving blocks; a continuation's on every block); warm says prev is a row's own
- * pass's (see held). */
+ * blocks with a state in prev and now are looked at (a stale one, nan, has none: a row's own pass is
+ * judged on its solving blocks; a continuation's on every block); stale says prev's fallback
+ * states are (see held). */
 static int on_path(const double prev[][LINKGEN_NMAX], const double guess[][LINKGEN_NMAX],
                    const double now[][LINKGEN_NMAX], const int used[], const resolver_mechanism *m, double slack,
-                   const resolver_policy *p, int warm)
+                   const resolver_policy *p, int stale)
 {
     double move = 0.0, off = 0.0, share = p->path_share;
     int t, g, i;
-    for (t = 0; t < held(warm); t++)  /* one pass: the largest predicted move and correction */
-        for (g = warm ? block(t, used, m) : t, i = 0; i < adds(m->sizes[g]) && prev[g][0] == prev[g][0]; i++) {
+    for (t = 0; t < held(stale); t++)  /* one pass: the largest predicted move and correction */
+        for (g = block(t, stale, used, m), i = 0;
+             i < adds(m->sizes[g]) && prev[g][0] == prev[g][0] && now[g][0] == now[g][0]; i++) {
             const double d = fabs(guess[g][i] - prev[g][i]), e = fabs(now[g][i] - guess[g][i]);
             if (d > move) move = d;  /* fmax without the call: a nan guess is checked below */
             if (e > off || e != e) off = e;  /* a nan correction stays */
@@ -866,14 +869,14 @@ static double warm_tau(const resolver_warm *warm, const double in[])
  * order without one).  Both need positions and rates only, and the rates exist at every
  * order, so the positions do not depend on the order computed. */
 static void predict(const resolver_warm *warm, const double in[], const resolver_mechanism *m, int order,
-                    double a[][LINKGEN_NMAX])
+                    double a[][LINKGEN_NMAX], int stale)
 {
     const double tau = warm_tau(warm, in);
     const double back = order >= 2 && *warm->back_valid ? warm_tau(warm, warm->back_in) : 0.0;
     int t, g, i;
     memcpy(a, warm->a, sizeof(double) * LINKGEN_NBLOCKS * LINKGEN_NMAX);  /* a stale state stays: advance's nan */
-    for (t = 0; t < held(1); t++) {  /* advance's operations, with the parabola for the lengths (the same bits) */
-        g = block(t, warm->used, m);
+    for (t = 0; t < held(stale); t++) {  /* advance's operations, with the parabola for the lengths (the same bits) */
+        g = block(t, stale, warm->used, m);
         for (i = 0; i < adds(m->sizes[g]); i++) {
             const double ahead = back == 0.0 ? warm->a[g][i] + tau * warm->ad[g][i]
                 : warm->a[g][i] + tau * warm->ad[g][i]
@@ -979,7 +982,7 @@ static int continuation(const resolver_path *path, const double base[], double a
  * the row is taken when it solves on that path (see on_path; order 0: the first-order one).
  * Else, or where that fails at a resolver or lands off the path, the assembly is followed by
  * continuation from the previous row (or, without one, from the sketch) and the row solved
- * from there; where the way is cut but the row solves all the same it is on another
+ * from there, reading every block's state (so that the next row can try every block); where the way is cut but the row solves all the same it is on another
  * assembly only, and gets the code m->another.  A row past the reach (past) fails at once.
  * The warm start becomes this row's where it solved (the passes write the block states' rates
  * into it at once: only predict reads them, before; a row that did not solve leaves none).
@@ -990,7 +993,8 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
     double base[LINKGEN_NINPUTS], a[LINKGEN_NBLOCKS][LINKGEN_NMAX], guess[LINKGEN_NBLOCKS][LINKGEN_NMAX];
     double (*const ad)[LINKGEN_NMAX] = warm->ad;  /* the passes' rates straight into the warm start */
     int used[LINKGEN_NGROUPS];
-    int code = 0, solved = 0, t, g, i;
+    const int stale = *warm->valid == 1;  /* the warm states of a row's own pass: its fallbacks' stale */
+    int code = 0, solved = 0, full = 0, t, g, i;
     for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = m->sketch_in[i];
     if (past || !*warm->valid)  /* else the warm states replace them below */
         memcpy(a, m->sketch_a, sizeof a);  /* the block states copied whole (a loop per entry costs more) */
@@ -999,14 +1003,14 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         /* past a limit position: the pass fails the row at once with the limit's code */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
     } else if (*warm->valid && within(in, warm->in, m->limits)) {
-        predict(warm, in, m, p->predictor, a);
-        for (t = 0; t < held(1); t++)  /* the guessed lengths, all on_path reads of the guess */
-            for (g = block(t, used, m), i = 0; i < adds(m->sizes[g]); i++) guess[g][i] = a[g][i];
+        predict(warm, in, m, p->predictor, a, stale);
+        for (t = 0; t < held(stale); t++)  /* the guessed lengths, all on_path reads of the guess */
+            for (g = block(t, stale, used, m), i = 0; i < adds(m->sizes[g]); i++) guess[g][i] = a[g][i];
         if (!p->predictor) memcpy(a, warm->a, sizeof a);  /* predictor order 0: the warm states as they were */
         code = run(ctx, 1, in, din, ddin, order, a, ad, used);
         solved = code <= 0 && on_path((const double (*)[LINKGEN_NMAX])warm->a, (const double (*)[LINKGEN_NMAX])guess,
                                       (const double (*)[LINKGEN_NMAX])a, used, m,
-                                      p->path_slack * m->length_scale, p, 1);
+                                      p->path_slack * m->length_scale, p, stale);
     }
     if (!solved && *warm->valid) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) base[i] = warm->in[i];
@@ -1020,10 +1024,11 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
         path.run = run;
         path.ctx = ctx;
         path.prefer = prefer;
+        full = 1;  /* a row followed by continuation reads every block's state: the next row can start any */
         if (continuation(&path, base, a, in, m, p)) {
-            code = run(ctx, 1, in, din, ddin, order, a, ad, used);
+            code = run(ctx, 2, in, din, ddin, order, a, ad, used);
         } else {
-            code = run(ctx, 1, in, din, ddin, order, a, ad, used);
+            code = run(ctx, 2, in, din, ddin, order, a, ad, used);
             if (code <= 0) code = m->another;  /* another assembly only */
         }
         solved = code <= 0;
@@ -1036,7 +1041,7 @@ static int drive(pass_fn run, void *ctx, const resolver_mechanism *m, const reso
                 for (i = 0; i < adds(m->sizes[g]); i++) warm->back_a[g][i] = warm->a[g][i];
         }
     }
-    *warm->valid = solved;
+    *warm->valid = solved ? 1 + full : 0;  /* 2: every block's state read (see stale) */
     if (solved) {
         for (i = 0; i < LINKGEN_NINPUTS; i++) { warm->in[i] = in[i]; warm->din[i] = din[i]; }
         memcpy(warm->a, a, sizeof a);
@@ -4435,7 +4440,7 @@ static int one_pass(void *ctx, int row, const double in[], const double din[], c
 {
     work *w = (work *)ctx;
     int its[LINKGEN_NGROUPS];
-    return run(w, in, din, ddin, order, a, ad, row ? w->its : its, used, !row);
+    return run(w, in, din, ddin, order, a, ad, row ? w->its : its, used, row != 1);
 }
 
 int double_triad_solve(const double in[], const double din[], const double ddin[], double_triad_state *out)

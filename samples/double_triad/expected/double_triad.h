@@ -69,7 +69,7 @@ typedef struct {
     int status;   /* 0, a status code listed in double_triad.md, or DOUBLE_TRIAD_STATUS_BAD_INPUT */
     double sigma[DOUBLE_TRIAD_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
     int iterations[DOUBLE_TRIAD_N_GROUPS];   /* iterations of each resolver (its strategy's steps) */
-    int warm_valid;   /* 0: start the resolvers from the sketch */
+    int warm_valid;   /* 0: start the resolvers from the sketch (2: every block's state held) */
     double warm_in[DOUBLE_TRIAD_N_INPUTS], warm_din[DOUBLE_TRIAD_N_INPUTS];
     double warm_a[DOUBLE_TRIAD_N_BLOCKS][DOUBLE_TRIAD_NMAX];   /* block states of the last solved row: Add-link lengths, then branches */
     double warm_ad[DOUBLE_TRIAD_N_BLOCKS][DOUBLE_TRIAD_NMAX];

@@ -2389,12 +2389,12 @@ function ok = resolver_on_path(prev, guess, now, sizes, slack, p)
     % has passed a singular position.  Where two assemblies pass close the nearer one can
     % lie within that share, so a turned block must be within p.turn_share: the path
     % crosses the singular position along its tangent, as a mechanism goes straight
-    % through a change point.  Only the blocks with a state in prev are looked at (a stale
+    % through a change point.  Only the blocks with a state in prev and now are looked at (a stale
     % one, nan, has none: a row's own pass judged on its solving blocks; a continuation's on
     % every block).
     move = 0;
     share = p.path_share;
-    held = cellfun(@(s) ~isnan(s(1)), prev);
+    held = cellfun(@(s) ~isnan(s(1)), prev) & cellfun(@(s) ~isnan(s(1)), now);
     for g = 1:numel(sizes)
         if held(g)
             move = max([move; abs(guess{g}(1:sizes(g)) - prev{g}(1:sizes(g)))]);
@@ -2626,7 +2626,7 @@ function [status, w, warm] = resolver_drive(run, w, in, din, ddin, order, past, 
         if reached
             a = a2;
         end
-        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used, false);
+        [status, w, a, ad, used] = run(w, in, din, ddin, order, a, used, true);  % every block's state read
         if ~reached && status <= 0
             status = m.another;  % another assembly only
         end

@@ -60,7 +60,7 @@ typedef struct {
     int status;   /* 0, a status code listed in sixbar_fig14.md, or SIXBAR_FIG14_STATUS_BAD_INPUT */
     double sigma[SIXBAR_FIG14_N_STEPS + 1];   /* conditioning of step k (1 when it has none) */
     int iterations[SIXBAR_FIG14_N_GROUPS];   /* iterations of each resolver (its strategy's steps) */
-    int warm_valid;   /* 0: start the resolvers from the sketch */
+    int warm_valid;   /* 0: start the resolvers from the sketch (2: every block's state held) */
     double warm_in[SIXBAR_FIG14_N_INPUTS], warm_din[SIXBAR_FIG14_N_INPUTS];
     double warm_a[SIXBAR_FIG14_N_BLOCKS][SIXBAR_FIG14_NMAX];   /* block states of the last solved row: Add-link lengths, then branches */
     double warm_ad[SIXBAR_FIG14_N_BLOCKS][SIXBAR_FIG14_NMAX];

@@ -793,9 +793,9 @@ def on_path(prev, guess, new, sizes, slack, p):
     solve) has passed a singular position.  Where two assemblies pass close the nearer one can
     lie within that share, so a turned block must be within p.turn_share: the path crosses the
     singular position along its tangent, as a mechanism goes straight through a change point.
-    Only the blocks with a state in prev are looked at (a stale one, nan, has none: a row's own
-    pass judged on its solving blocks; a continuation's on every block)."""
-    held = [(p_, g, x, n) for p_, g, x, n in zip(prev, guess, new, sizes) if p_[0] == p_[0]]
+    Only the blocks with a state in prev and new are looked at (a stale one, nan, has none: a
+    row's own pass judged on its solving blocks; a continuation's on every block)."""
+    held = [(p_, g, x, n) for p_, g, x, n in zip(prev, guess, new, sizes) if p_[0] == p_[0] and x[0] == x[0]]
     move = max((abs(g[i] - p_[i]) for p_, g, _, n in held for i in range(n)), default=0.0)
     share = p.turn_share if any(p_[-1] * x[-1] < 0.0 for p_, x in zip(prev, new)) else p.path_share
     return all(abs(x[i] - g[i]) <= share * move + slack for _, g, x, n in held for i in range(n))
@@ -899,7 +899,7 @@ def drive(run, warm, inputs, rates, accs, order, past, m, p):
         reached = continuation(path, base, a, list(inputs), m, p)
         if reached is not None:
             a = reached
-        code, ad = run(inputs, rates, accs, order, a, used, True)
+        code, ad = run(inputs, rates, accs, order, a, used, 2)  # every block's state read: the next row tries any
         if reached is None and code <= 0:
             code = m.another  # another assembly only
         solved = code <= 0
@@ -3133,7 +3133,7 @@ def solve(inputs, d_inputs, dd_inputs, order=ORDER, state=None):
     def run(x, d, dd, o, a, used, row):
         """One pass of the procedure: the row's own (into w and its), or one along a continuation path."""
         ad = [[0.0] * len(g) for g in a]
-        return _run(w if row else _Work(), x, d, dd, o, a, ad, its if row else [0] * N_GROUPS, used, not row), ad
+        return _run(w if row else _Work(), x, d, dd, o, a, ad, its if row else [0] * N_GROUPS, used, row != 1), ad
 
     order = min(order, ORDER)
     warm = state.get("warm") if state is not None else None

@@ -1647,9 +1647,9 @@ def predict_lanes(prev, x, sizes, order):
 
 
 def on_path_lanes(prev, guess, new, sizes, slack, p):
-    """The Python runtime's on_path on every lane (a block looked at where its state in prev is not stale)."""
+    """The Python runtime's on_path on every lane (a block looked at where its states in prev and new are not stale)."""
     move, turned = 0.0, False
-    held = [~np.isnan(b[0]) for b in prev]
+    held = [~np.isnan(b[0]) & ~np.isnan(x[0]) for b, x in zip(prev, new)]
     for b, g, n, h in zip(prev, guess, sizes, held):
         for i in range(n):
             move = np.maximum(move, np.where(h, np.abs(g[i] - b[i]), 0.0))
