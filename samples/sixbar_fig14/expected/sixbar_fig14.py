@@ -754,8 +754,11 @@ def predict(warm, inputs, sizes, order, loops):
     out = []
     tt, bb = tau * tau, back * back
     for g, gr, gb, n, loop in zip(a, ad, warm[5][1], sizes, loops):
-        ahead = [v + tau * r + tt * ((b - v - back * r) / bb) for v, r, b in zip(g[:n], gr, gb)]
-        out.append((ahead if loop else [abs(x) for x in ahead]) + [v + tau * r for v, r in zip(g[n:], gr[n:])])
+        ahead = [v + tau * r for v, r in zip(g, gr)]  # the lengths bend along the parabola, the rest go straight
+        for i in range(n):
+            x = ahead[i] + tt * ((gb[i] - g[i] - back * gr[i]) / bb)
+            ahead[i] = x if loop else abs(x)
+        out.append(ahead)
     return out
 
 
