@@ -21,7 +21,8 @@ from .sweep import span
 if TYPE_CHECKING:  # the row solver: imported where a log has resolver groups
     from ..rowsolver import RowSolver
 
-FOLLOW = 180  # rows of a turn (or of the span of a sliding input) that the search for limit positions follows
+FOLLOW = 90  # rows of a turn (or of the span of a sliding input) that the search for limit positions follows
+# (4 degrees apart: 0.7 of the continuation's largest step, policy.STEP_ANGLE; the search solves a row per value)
 REFINE = 60  # values tried at most to locate a limit position once a value past it failed
 FEW_HALVINGS = 4  # the search's continuation halves a step this often (a cut is then checked as the programs cut)
 AIM = 0.9  # the search tries this share of the way to the limit position it expects (less after a miss)

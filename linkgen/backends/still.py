@@ -146,12 +146,13 @@ def _scalar(name: str, still: tuple[str, ...], order: int) -> RuntimeFunction:
     from ..kernel import compiled  # the kernel renders through the backends
     from .py.printer import python_function  # the py backend imports the programs' module, which imports this one
 
-    prim = variant(name, True, still)
+    named = name + still_suffix(still)  # the variant's name: the variant itself made only where printed (held_still)
     space: dict[str, Any] = {"sqrt": math.sqrt, "atan2": math.atan2, "cos": math.cos, "sin": math.sin,
                              "EPS": sys.float_info.epsilon, "NAN": math.nan, "PI": math.pi}  # as python_backend's
-    source = kept("python still variant", (name, still, order), lambda: python_function(prim, order))  # 3 ms a build
-    exec(compiled(source, f"<linkgen runtime python {prim.name} order {order}>"), space)  # compiled once per user
-    function: RuntimeFunction = space[prim.name]
+    source = kept("python still variant", (name, still, order),  # 3 ms a build
+                  lambda: python_function(variant(name, True, still), order))
+    exec(compiled(source, f"<linkgen runtime python {named} order {order}>"), space)  # compiled once per user
+    function: RuntimeFunction = space[named]
     return function
 
 

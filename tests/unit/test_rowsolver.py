@@ -81,3 +81,21 @@ def test_the_evaluator_solves_each_row_as_the_program_does(program):
         if row.ok:
             for c in (c for c in log.columns if c.variable in points and c.field in ("x", "y")):
                 assert row.env[c.variable][c.field == "y"] + log.offset(c) == out[c.name], (k, c.name)
+
+
+def test_the_runtimes_one_by_one_solve_is_the_division_and_its_det_the_entry():
+    # a block with one Add-link solves a 1 x 1 system: x = b / d correctly rounded (IEEE), det d itself;
+    # elimination with pivoting gives those bits too ((b - 0) / (1.0 * d)), and d == 0 gives nan, det 0
+    from linkgen.rowsolver import runtime
+
+    solve_linear = runtime()["solve_linear"]
+    rng = np.random.default_rng(19)
+    for b, d in [*zip(rng.normal(size=50) * 10.0 ** rng.integers(-8, 8, 50), rng.normal(size=50)),
+                 (-0.0, 3.0), (0.0, -2.5), (1.0, 1e-300)]:
+        x, det = solve_linear([[float(d)]], [float(b)])
+        assert (x[0], det) == (float(b) / float(d), float(d))
+        assert math.copysign(1.0, x[0]) == math.copysign(1.0, float(b) / float(d))
+    x, det = solve_linear([[-0.0]], [1.0])
+    assert math.isnan(x[0]) and det == 0.0
+    x, det = solve_linear([[2.0, 1.0], [4.0, 3.0]], [1.0, 2.0])  # two Add-links: elimination, rows swapped
+    assert np.allclose(x, [0.5, 0.0], rtol=0, atol=1e-15) and det == 2.0  # by hand: det 2 * 3 - 1 * 4

@@ -70,7 +70,12 @@ def two_channel(prim: Primitive) -> Primitive:
 
 def tape(prim: Primitive) -> tuple[str, ...]:
     """The position values (order-0 definitions) the rates and accelerations read, and the results: what a
-    two-channel copy keeps for the rates copy (from_tape), the status after them where there is one."""
+    two-channel copy keeps for the rates copy (from_tape), the status after them where there is one.  Found
+    once per primitive (the C program asks for it at every call of a block's pass it prints)."""
+    return prim._memo("tape", 2, True, lambda order, with_sigma: _tape(prim))
+
+
+def _tape(prim: Primitive) -> tuple[str, ...]:
     live = prim.live(2)
     read: set[str] = set()
     for let in live:

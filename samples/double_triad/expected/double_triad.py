@@ -481,6 +481,9 @@ def reason_of(code):
 def solve_linear(m, b):
     """Solve m x = b by Gaussian elimination with partial pivoting; return (x, det)."""
     n = len(b)
+    if n == 1:  # one Add-link: the elimination's own operations (1.0 * d is d, b - 0 is b)
+        d = m[0][0]
+        return ([b[0] / d], d) if d != 0.0 else ([NAN], 0.0)
     a = [list(row) + [b[i]] for i, row in enumerate(m)]
     det = 1.0
     for c in range(n):
@@ -845,15 +848,17 @@ def predict(warm, inputs, sizes, order, loops):
     the same positions whatever order it computes."""
     w_in, w_rates, a, ad = warm[:4]
     tau = _tau(w_in, w_rates, inputs)
-    first = advance(a, ad, tau, sizes, loops)
     back = _tau(w_in, w_rates, warm[5][0]) if order == 2 and warm[5] is not None else 0.0
     if back == 0.0:
-        return first
+        return advance(a, ad, tau, sizes, loops)
     out = []
-    for g, gr, gb, n, f, loop in zip(a, ad, warm[5][1], sizes, first, loops):
-        bend = [(b - v - back * r) / (back * back) for v, r, b in zip(g[:n], gr, gb)]
-        ahead = [v + tau * r + tau * tau * c for v, r, c in zip(g, gr, bend)]
-        out.append((ahead if loop else [abs(x) for x in ahead]) + f[n:])
+    tt, bb = tau * tau, back * back
+    for g, gr, gb, n, loop in zip(a, ad, warm[5][1], sizes, loops):
+        ahead = [v + tau * r for v, r in zip(g, gr)]  # the lengths bend along the parabola, the rest go straight
+        for i in range(n):
+            x = ahead[i] + tt * ((gb[i] - g[i] - back * gr[i]) / bb)
+            ahead[i] = x if loop else abs(x)
+        out.append(ahead)
     return out
 
 

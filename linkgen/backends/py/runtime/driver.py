@@ -27,15 +27,17 @@ def predict(warm, inputs, sizes, order, loops):
     the same positions whatever order it computes."""
     w_in, w_rates, a, ad = warm[:4]
     tau = _tau(w_in, w_rates, inputs)
-    first = advance(a, ad, tau, sizes, loops)
     back = _tau(w_in, w_rates, warm[5][0]) if order == 2 and warm[5] is not None else 0.0
     if back == 0.0:
-        return first
+        return advance(a, ad, tau, sizes, loops)
     out = []
-    for g, gr, gb, n, f, loop in zip(a, ad, warm[5][1], sizes, first, loops):
-        bend = [(b - v - back * r) / (back * back) for v, r, b in zip(g[:n], gr, gb)]
-        ahead = [v + tau * r + tau * tau * c for v, r, c in zip(g, gr, bend)]
-        out.append((ahead if loop else [abs(x) for x in ahead]) + f[n:])
+    tt, bb = tau * tau, back * back
+    for g, gr, gb, n, loop in zip(a, ad, warm[5][1], sizes, loops):
+        ahead = [v + tau * r for v, r in zip(g, gr)]  # the lengths bend along the parabola, the rest go straight
+        for i in range(n):
+            x = ahead[i] + tt * ((gb[i] - g[i] - back * gr[i]) / bb)
+            ahead[i] = x if loop else abs(x)
+        out.append(ahead)
     return out
 
 

@@ -11,6 +11,9 @@
 def solve_linear(m, b):
     """Solve m x = b by Gaussian elimination with partial pivoting; return (x, det)."""
     n = len(b)
+    if n == 1:  # one Add-link: the elimination's own operations (1.0 * d is d, b - 0 is b)
+        d = m[0][0]
+        return ([b[0] / d], d) if d != 0.0 else ([NAN], 0.0)
     a = [list(row) + [b[i]] for i, row in enumerate(m)]
     det = 1.0
     for c in range(n):
