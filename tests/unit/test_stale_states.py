@@ -1,10 +1,11 @@
 """A row's own pass from the warm start reads only its solving block's state off the solved pairs (a row
-followed by continuation reads every block's): the other blocks' states are stale (nan lengths and branches, orientation 0), the warm start is judged on the solving block alone
-(on_path), and a stale block is not tried until a continuation pass reads every block's state again.
-The wrong-assembly guard keeps its form on the solving block: its Add-link length fixes the group's
-configuration on its branches, so a jump to another assembly is a correction of that length, refused
-beyond its share of the predicted move (hand-computed cases below; the programs' rows against the
-50-digit reference: tests/test_properties.py, test_accuracy.py)."""
+followed by continuation reads every block's): the other blocks' states are stale (nan lengths and
+branches, orientation 0), the warm start is judged on the blocks both rows hold (on_path), and a stale
+block is not tried until a continuation pass reads every block's state again.  The wrong-assembly guard
+keeps its form on the solving block: its Add-link length fixes the group's configuration on its
+branches, so a jump to another assembly is a correction of that length, refused beyond its share of
+the predicted move (hand-computed cases below; the programs' rows against the 50-digit reference:
+tests/test_properties.py, test_accuracy.py)."""
 
 from __future__ import annotations
 
